@@ -1,0 +1,162 @@
+#include "app/cli_clip_commands.h"
+
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "app/cli_common.h"
+#include "engine/bvh_io.h"
+#include "engine/convert.h"
+#include "engine/error.h"
+#include "engine/euler.h"
+#include "engine/kinematics.h"
+#include "engine/resample.h"
+#include "engine/units.h"
+
+namespace mostyle::cli {
+namespace {
+
+Clip load(const std::string& path) {
+  std::vector<std::string> warnings;
+  Clip clip = read_bvh_file(path, &warnings);
+  for (const std::string& w : warnings) std::cerr << "mostyle: warning: " << w << "\n";
+  return clip;
+}
+
+std::string channel_list(const Joint& j) {
+  std::string s;
+  for (Channel c : j.channels) {
+    if (!s.empty()) s += ' ';
+    s += channel_name(c);
+  }
+  return s;
+}
+
+std::string rotation_order(const Joint& j) {
+  std::string s;
+  for (Channel c : j.channels)
+    if (is_rotation(c)) s += static_cast<char>('X' + channel_axis(c));
+  return s;
+}
+
+}  // namespace
+
+void add_info_command(CLI::App& app, std::function<int()>* run) {
+  auto* cmd = app.add_subcommand("info", "Print a BVH file's joints, channels, frames and units");
+  auto path = std::make_shared<std::string>();
+  auto json = std::make_shared<bool>(false);
+  cmd->add_option("FILE", *path, "BVH file")->required();
+  cmd->add_flag("--json", *json, "Print JSON");
+  cmd->callback([=] {
+    *run = [=] {
+      const Clip clip = load(*path);
+      const Skeleton& s = clip.skeleton;
+      const UnitsGuess units = guess_units(clip);
+      const double duration = clip.frames() > 1 ? (clip.frames() - 1) / clip.fps() : 0.0;
+      if (*json) {
+        nlohmann::ordered_json j;
+        j["file"] = *path;
+        j["frames"] = clip.frames();
+        j["frame_time"] = clip.frame_time;
+        j["fps"] = clip.fps();
+        j["duration_s"] = duration;
+        j["channels"] = s.channel_count;
+        j["units_guess"] = units.name;
+        j["height"] = units.height;
+        auto& joints = j["joints"] = nlohmann::ordered_json::array();
+        for (const Joint& jt : s.joints) {
+          if (jt.end_site) continue;
+          nlohmann::ordered_json o;
+          o["name"] = jt.name;
+          o["parent"] = jt.parent < 0 ? nlohmann::ordered_json() : nlohmann::ordered_json(s.joints[jt.parent].name);
+          o["offset"] = {jt.offset.x(), jt.offset.y(), jt.offset.z()};
+          auto& ch = o["channels"] = nlohmann::ordered_json::array();
+          for (Channel c : jt.channels) ch.push_back(channel_name(c));
+          o["rotation_order"] = rotation_order(jt);
+          joints.push_back(o);
+        }
+        std::cout << j.dump(2) << "\n";
+      } else {
+        std::cout << *path << "\n"
+                  << "  joints: " << s.joint_count_without_end_sites() << " (+"
+                  << s.joints.size() - s.joint_count_without_end_sites() << " End Sites)\n"
+                  << "  channels per frame: " << s.channel_count << "\n"
+                  << "  frames: " << clip.frames() << "\n"
+                  << "  frame time: " << number(clip.frame_time) << " s (" << number(clip.fps())
+                  << " fps)\n"
+                  << "  duration: " << number(duration) << " s\n"
+                  << "  units (guess): " << units.name << " (height " << number(units.height)
+                  << ")\n";
+        for (const Joint& jt : s.joints) {
+          if (jt.end_site) continue;
+          int depth = 0;
+          for (int p = jt.parent; p >= 0; p = s.joints[p].parent) ++depth;
+          std::cout << "  " << std::string(std::min(depth, 16) * 2, ' ') << jt.name << "  ["
+                    << channel_list(jt) << "]";
+          if (!rotation_order(jt).empty()) std::cout << " order " << rotation_order(jt);
+          std::cout << "\n";
+        }
+      }
+      return 0;
+    };
+  });
+}
+
+void add_fk_command(CLI::App& app, std::function<int()>* run) {
+  auto* cmd = app.add_subcommand("fk", "Write every joint's global position per frame as CSV");
+  auto path = std::make_shared<std::string>();
+  auto out = std::make_shared<std::string>();
+  cmd->add_option("FILE", *path, "BVH file")->required();
+  cmd->add_option("--out", *out, "CSV file: frame,joint,x,y,z (file units and axes)")->required();
+  cmd->callback([=] {
+    *run = [=] {
+      const Clip clip = load(*path);
+      const Eigen::MatrixXd p = joint_positions(clip);
+      std::string csv = "frame,joint,x,y,z\n";
+      csv.reserve(static_cast<size_t>(p.size()) * 14);
+      for (int f = 0; f < clip.frames(); ++f) {
+        for (size_t i = 0; i < clip.skeleton.joints.size(); ++i) {
+          const Joint& j = clip.skeleton.joints[i];
+          if (j.end_site) continue;
+          csv += std::to_string(f);
+          csv += ',';
+          csv += j.name;
+          for (int d = 0; d < 3; ++d) {
+            csv += ',';
+            csv += number(p(f, 3 * i + d));
+          }
+          csv += '\n';
+        }
+      }
+      write_output(*out, csv);
+      return 0;
+    };
+  });
+}
+
+void add_convert_command(CLI::App& app, std::function<int()>* run) {
+  auto* cmd = app.add_subcommand("convert", "Rewrite a BVH file in another Euler order or frame rate");
+  auto in = std::make_shared<std::string>();
+  auto out = std::make_shared<std::string>();
+  auto order = std::make_shared<std::string>();
+  auto fps = std::make_shared<double>(0.0);
+  cmd->add_option("IN", *in, "BVH file to read")->required();
+  cmd->add_option("OUT", *out, "BVH file to write")->required();
+  cmd->add_option("--order", *order, "Rotation order: XYZ, XZY, YXZ, YZX, ZXY or ZYX")
+      ->check(CLI::IsMember({"XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX"}, CLI::ignore_case));
+  cmd->add_option("--fps", *fps, "Frame rate of the output")->check(CLI::PositiveNumber);
+  cmd->callback([=] {
+    *run = [=] {
+      Clip clip = load(*in);
+      if (*fps > 0) clip = resample_clip(clip, *fps);
+      if (!order->empty()) {
+        EulerOrder o;
+        parse_euler_order(*order, &o);
+        clip = convert_euler_order(clip, o);
+      }
+      write_bvh_file(clip, *out);
+      return 0;
+    };
+  });
+}
+
+}  // namespace mostyle::cli

@@ -1,0 +1,14 @@
+#pragma once
+// Changing a clip's frame rate.
+#include "engine/clip.h"
+
+namespace mostyle {
+
+// The clip resampled to `fps` frames per second over the same duration: rotations of joints
+// with three rotation channels by quaternion slerp (Euler angles unwrapped frame to frame),
+// other channels linearly. The source rate is the snapped one (0.008333 s counts as 120 Hz).
+// Frames: floor(duration * fps) + 1. Throws InputError when fps is not a positive number
+// or the result would be absurdly long.
+Clip resample_clip(const Clip& clip, double fps);
+
+}  // namespace mostyle

@@ -1,0 +1,56 @@
+#pragma once
+// Sparse coding (paper 3.3): min 1/2 ||Y - D X||_F^2 subject to a cap on the non-zeros of X,
+// solved by projected gradient (iterative hard thresholding): a gradient step, then keep the
+// largest-magnitude entries of each group and zero the rest.
+#include <Eigen/Core>
+#include <vector>
+
+namespace mostyle {
+
+// Which entries of the code matrix X share one non-zero budget.
+enum class SparseGroup {
+  kColumn,  // each column x_j of X (the paper's per-signal constraint ||x_j||_0 <= s)
+  kRow,     // each row of X (one component of a decomposition: how many channels it touches)
+};
+
+struct SparseCodingOptions {
+  int nonzeros = 1;                          // entries kept per group, >= 1, <= group size
+  SparseGroup group = SparseGroup::kColumn;  // how the budget is applied
+  int max_iterations = 200;                  // projected-gradient steps, >= 1
+  // Stop early when ||X_new - X_old||_F <= tolerance * ||X_new||_F; 0 runs every iteration.
+  double tolerance = 1e-12;
+
+  // Throws InputError when a value is out of range for codes of size code_rows x code_cols.
+  void Validate(int code_rows, int code_cols) const;
+};
+
+struct SparseCode {
+  Eigen::MatrixXd codes;   // X: atoms x signals, exactly `nonzeros` entries kept per group
+  int iterations = 0;      // projected-gradient steps taken
+  double objective = 0.0;  // 1/2 ||Y - D X||_F^2 at the returned codes, Y's units squared
+};
+
+// Sparse codes of signals y (dims x signals) in dictionary d (dims x atoms), warm-started from
+// warm_start (atoms x signals; zeros for a cold start). Step length 1/||D^T D||_2 (see the .cpp
+// for why not the paper's 2/||D^T D||_2), so the objective never increases once X is sparse.
+// Throws InputError on mismatched shapes, non-finite input or bad options.
+// Cost per iteration: O(atoms^2 * signals) after one O(dims * atoms * (atoms + signals)).
+SparseCode sparse_code(const Eigen::MatrixXd& y, const Eigen::MatrixXd& d,
+                       const Eigen::MatrixXd& warm_start, const SparseCodingOptions& options);
+
+// The same iteration on the normal equations, for callers that already hold them (the
+// decomposition): gram = D^T D (atoms x atoms), correlation = D^T Y (atoms x signals).
+// Updates codes (atoms x signals) in place and returns the number of steps taken. Shapes and
+// options are the caller's responsibility (asserted, not checked). Allocates two atoms x signals
+// buffers and one group-sized buffer; no other cost beyond the per-iteration product.
+int sparse_code_normal(const Eigen::MatrixXd& gram, const Eigen::MatrixXd& correlation,
+                       Eigen::MatrixXd& codes, const SparseCodingOptions& options);
+
+// Euclidean projection onto the sparse set: keeps the `nonzeros` largest-magnitude entries of
+// each group of x and zeroes the rest. Ties go to the lower index, so the result is
+// deterministic and always has exactly min(nonzeros, group size) kept entries per group.
+// scratch is resized as needed and may be reused between calls to avoid allocation.
+void keep_largest(Eigen::MatrixXd& x, int nonzeros, SparseGroup group,
+                  std::vector<double>& scratch);
+
+}  // namespace mostyle
