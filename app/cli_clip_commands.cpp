@@ -15,13 +15,6 @@
 namespace mostyle::cli {
 namespace {
 
-Clip load(const std::string& path) {
-  std::vector<std::string> warnings;
-  Clip clip = read_bvh_file(path, &warnings);
-  for (const std::string& w : warnings) std::cerr << "mostyle: warning: " << w << "\n";
-  return clip;
-}
-
 std::string channel_list(const Joint& j) {
   std::string s;
   for (Channel c : j.channels) {
@@ -48,7 +41,7 @@ void add_info_command(CLI::App& app, std::function<int()>* run) {
   cmd->add_flag("--json", *json, "Print JSON");
   cmd->callback([=] {
     *run = [=] {
-      const Clip clip = load(*path);
+      const Clip clip = load_clip(*path);
       const Skeleton& s = clip.skeleton;
       const UnitsGuess units = guess_units(clip);
       const double duration = clip.frames() > 1 ? (clip.frames() - 1) / clip.fps() : 0.0;
@@ -74,7 +67,8 @@ void add_info_command(CLI::App& app, std::function<int()>* run) {
           o["rotation_order"] = rotation_order(jt);
           joints.push_back(o);
         }
-        std::cout << j.dump(2) << "\n";
+        // Joint names are bytes from the file: invalid UTF-8 is replaced, not thrown on.
+        std::cout << j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
       } else {
         std::cout << *path << "\n"
                   << "  joints: " << s.joint_count_without_end_sites() << " (+"
@@ -86,11 +80,14 @@ void add_info_command(CLI::App& app, std::function<int()>* run) {
                   << "  duration: " << number(duration) << " s\n"
                   << "  units (guess): " << units.name << " (height " << number(units.height)
                   << ")\n";
-        for (const Joint& jt : s.joints) {
+        // Depths in one pass (parents come first): walking up per joint is quadratic in depth.
+        std::vector<int> depths(s.joints.size(), 0);
+        for (size_t i = 0; i < s.joints.size(); ++i)
+          if (s.joints[i].parent >= 0) depths[i] = depths[s.joints[i].parent] + 1;
+        for (size_t i = 0; i < s.joints.size(); ++i) {
+          const Joint& jt = s.joints[i];
           if (jt.end_site) continue;
-          int depth = 0;
-          for (int p = jt.parent; p >= 0; p = s.joints[p].parent) ++depth;
-          std::cout << "  " << std::string(std::min(depth, 16) * 2, ' ') << jt.name << "  ["
+          std::cout << "  " << std::string(std::min(depths[i], 16) * 2, ' ') << jt.name << "  ["
                     << channel_list(jt) << "]";
           if (!rotation_order(jt).empty()) std::cout << " order " << rotation_order(jt);
           std::cout << "\n";
@@ -109,25 +106,15 @@ void add_fk_command(CLI::App& app, std::function<int()>* run) {
   cmd->add_option("--out", *out, "CSV file: frame,joint,x,y,z (file units and axes)")->required();
   cmd->callback([=] {
     *run = [=] {
-      const Clip clip = load(*path);
-      const Eigen::MatrixXd p = joint_positions(clip);
-      std::string csv = "frame,joint,x,y,z\n";
-      csv.reserve(static_cast<size_t>(p.size()) * 14);
-      for (int f = 0; f < clip.frames(); ++f) {
-        for (size_t i = 0; i < clip.skeleton.joints.size(); ++i) {
-          const Joint& j = clip.skeleton.joints[i];
-          if (j.end_site) continue;
-          csv += std::to_string(f);
-          csv += ',';
-          csv += j.name;
-          for (int d = 0; d < 3; ++d) {
-            csv += ',';
-            csv += number(p(f, 3 * i + d));
-          }
-          csv += '\n';
-        }
+      const Clip clip = load_clip(*path);
+      std::vector<int> joints;
+      std::vector<std::string> names;
+      for (size_t i = 0; i < clip.skeleton.joints.size(); ++i) {
+        if (clip.skeleton.joints[i].end_site) continue;
+        joints.push_back(static_cast<int>(i));
+        names.push_back(clip.skeleton.joints[i].name);
       }
-      write_output(*out, csv);
+      write_output(*out, positions_csv(joint_positions(clip), joints, names));
       return 0;
     };
   });
@@ -146,7 +133,7 @@ void add_convert_command(CLI::App& app, std::function<int()>* run) {
   cmd->add_option("--fps", *fps, "Frame rate of the output")->check(CLI::PositiveNumber);
   cmd->callback([=] {
     *run = [=] {
-      Clip clip = load(*in);
+      Clip clip = load_clip(*in);
       if (*fps > 0) clip = resample_clip(clip, *fps);
       if (!order->empty()) {
         EulerOrder o;

@@ -1,8 +1,10 @@
 #include "app/cli_common.h"
 
 #include <charconv>
+#include <iostream>
 
 #include "engine/atomic_file.h"
+#include "engine/bvh_io.h"
 
 namespace mostyle::cli {
 
@@ -14,6 +16,40 @@ std::string number(double v) {
 
 void write_output(const std::string& path, const std::string& content) {
   write_file_atomically(path, content);
+}
+
+std::string positions_csv(const Eigen::MatrixXd& positions, const std::vector<int>& joints,
+                          const std::vector<std::string>& names) {
+  std::string csv = "frame,joint,x,y,z\n";
+  csv.reserve(static_cast<size_t>(positions.rows() * joints.size()) * 48);
+  for (Eigen::Index f = 0; f < positions.rows(); ++f) {
+    const std::string frame = std::to_string(f);
+    for (size_t i = 0; i < joints.size(); ++i) {
+      csv += frame;
+      csv += ',';
+      // RFC 4180: a joint name with a comma or a quote is quoted, its quotes doubled.
+      if (names[i].find_first_of(",\"") == std::string::npos) {
+        csv += names[i];
+      } else {
+        csv += '"';
+        for (char c : names[i]) csv += c == '"' ? std::string("\"\"") : std::string(1, c);
+        csv += '"';
+      }
+      for (int d = 0; d < 3; ++d) {
+        csv += ',';
+        csv += number(positions(f, 3 * joints[i] + d));
+      }
+      csv += '\n';
+    }
+  }
+  return csv;
+}
+
+Clip load_clip(const std::string& path) {
+  std::vector<std::string> warnings;
+  Clip clip = read_bvh_file(path, &warnings);
+  for (const std::string& w : warnings) std::cerr << "mostyle: warning: " << w << "\n";
+  return clip;
 }
 
 }  // namespace mostyle::cli

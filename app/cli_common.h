@@ -1,13 +1,25 @@
 #pragma once
-// Small pieces every mostyle-cli subcommand shares: number formatting, CSV, output files.
+// Small pieces every mostyle-cli subcommand shares: numbers, position CSVs, loading.
+#include <Eigen/Core>
 #include <string>
+#include <vector>
+
+#include "engine/clip.h"
 
 namespace mostyle::cli {
 
 // Shortest text that reads back as the same double.
 std::string number(double v);
 
-// Writes `content` atomically and says nothing; throws InputError on failure.
+// Writes `content` atomically; throws InputError on failure.
 void write_output(const std::string& path, const std::string& content);
+
+// CSV "frame,joint,x,y,z", one row per joint per frame. positions: F x 3J; joints[i] is the
+// column triple of names[i].
+std::string positions_csv(const Eigen::MatrixXd& positions, const std::vector<int>& joints,
+                          const std::vector<std::string>& names);
+
+// Reads a BVH file and prints its warnings to stderr as "mostyle: warning: ...".
+Clip load_clip(const std::string& path);
 
 }  // namespace mostyle::cli

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "app/cli_clip_commands.h"
+#include "app/cli_pipeline_commands.h"
 #include "engine/error.h"
 
 int main(int argc, char** argv) {
@@ -14,6 +15,10 @@ int main(int argc, char** argv) {
   mostyle::cli::add_info_command(app, &run);
   mostyle::cli::add_fk_command(app, &run);
   mostyle::cli::add_convert_command(app, &run);
+  mostyle::cli::add_dtw_command(app, &run);
+  mostyle::cli::add_align_command(app, &run);
+  mostyle::cli::add_decompose_command(app, &run);
+  mostyle::cli::add_blend_command(app, &run);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -31,6 +36,10 @@ int main(int argc, char** argv) {
     return 1;
   } catch (const std::bad_alloc&) {
     std::cerr << "mostyle: out of memory\n";
+    return 1;
+  } catch (const std::exception& e) {
+    // Our own bug, not the input's; still one line and no abort.
+    std::cerr << "mostyle: internal error: " << e.what() << "\n";
     return 1;
   }
 }

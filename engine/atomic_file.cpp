@@ -24,8 +24,11 @@ void write_file_atomically(const std::string& path, std::string_view content) {
   const std::string tmp = temporary_name(path);
   std::FILE* f = std::fopen(tmp.c_str(), "wb");
   if (!f) throw InputError(path + ": cannot write: " + std::strerror(errno));
+  errno = 0;
   bool ok = std::fwrite(content.data(), 1, content.size(), f) == content.size();
   ok = (std::fflush(f) == 0) && ok;
+  // On disk before the rename, so a crash leaves the old file or the new one, never an empty one.
+  ok = ok && ::fsync(::fileno(f)) == 0;
   const int saved_errno = errno;
   ok = (std::fclose(f) == 0) && ok;
   if (!ok) {

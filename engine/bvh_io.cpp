@@ -1,9 +1,9 @@
 #include "engine/bvh_io.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
-#include <cstring>
 #include <string>
 
 #include "engine/atomic_file.h"
@@ -16,9 +16,12 @@ namespace {
 constexpr long long kMaxFrames = 100'000'000;  // more than a day at 1000 fps
 constexpr int kMaxChannelsPerJoint = 6;
 constexpr size_t kShownTokenLength = 40;
+// A frame value takes at least two bytes ("0 "): the frames a text can hold, whatever it declares.
+constexpr size_t kMinBytesPerValue = 2;
 
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\f' || c == '\v'; }
 bool is_eol(char c) { return c == '\n' || c == '\r'; }
+bool is_separator(char c) { return is_space(c) || is_eol(c); }
 
 bool iequals(std::string_view a, std::string_view b) {
   if (a.size() != b.size()) return false;
@@ -55,14 +58,43 @@ std::string shown(std::string_view token) {
   return out + "'";
 }
 
-// Parses a whole token as a double (a leading '+' allowed, as strtod does).
+// Parses the number that starts at `first` (a leading '+' allowed, as strtod does) and returns
+// where it stops, or nullptr when no number starts there. Locale-independent. A value too small
+// for a double reads as a signed zero, as strtod gives; one too large reads as infinity, which
+// the callers refuse as not finite.
+const char* parse_number(const char* first, const char* last, double* value) {
+  const char* p = first;
+  if (p != last && *p == '+') {
+    ++p;
+    if (p != last && (*p == '-' || *p == '+')) return nullptr;
+  }
+  const auto r = std::from_chars(p, last, *value);
+  if (r.ec == std::errc::result_out_of_range) {
+    // Underflow has a negative exponent; "1e-400" is zero, "1e400" is not a finite number.
+    const char* e = p;
+    while (e != r.ptr && *e != 'e' && *e != 'E') ++e;
+    const bool underflow = e + 1 < r.ptr && e[1] == '-';
+    *value = underflow ? (*p == '-' ? -0.0 : 0.0) : (*p == '-' ? -HUGE_VAL : HUGE_VAL);
+    return r.ptr;
+  }
+  if (r.ec != std::errc()) return nullptr;
+  return r.ptr;
+}
+
+// Parses a whole token as a double.
 bool parse_double(std::string_view token, double* value) {
-  const char* first = token.data();
-  const char* last = first + token.size();
-  if (first != last && *first == '+') ++first;
-  if (first == last) return false;
-  auto result = std::from_chars(first, last, *value);
-  return result.ec == std::errc() && result.ptr == last;
+  const char* last = token.data() + token.size();
+  return !token.empty() && parse_number(token.data(), last, value) == last;
+}
+
+// A token cut off by the end of the file: only characters a number can hold ("-1.5e").
+bool looks_like_cut_number(std::string_view token) {
+  for (char c : token) {
+    if (!std::isdigit(static_cast<unsigned char>(c)) && c != '+' && c != '-' && c != '.' &&
+        c != 'e' && c != 'E')
+      return false;
+  }
+  return !token.empty();
 }
 
 bool parse_channel(std::string_view token, Channel* channel) {
@@ -87,9 +119,11 @@ class LineReader {
   explicit LineReader(std::string_view text) : text_(text) {}
 
   bool at_end() const { return pos_ >= text_.size(); }
-  int line() const { return line_; }  // line number of the line last returned
+  int line() const { return line_; }            // line number of the line last returned
+  int next_line() const { return next_line_; }  // line number of the line at position()
   size_t position() const { return pos_; }
   size_t remaining() const { return text_.size() - pos_; }
+  std::string_view text() const { return text_; }
 
   std::string_view next() {
     const size_t start = pos_;
@@ -105,13 +139,14 @@ class LineReader {
     return line;
   }
 
-  // The next line that is not blank; empty view at end of input.
+  // The next line that is not blank; an empty view at the end of the input, with line() then
+  // the last line of the file (where a message about a cut file should point).
   std::string_view next_nonblank() {
     while (!at_end()) {
       std::string_view l = trim(next());
       if (!l.empty()) return l;
     }
-    line_ = next_line_;
+    line_ = std::max(1, next_line_ - 1);
     return {};
   }
 
@@ -169,8 +204,8 @@ class Parser {
                              (reader_.at_end() && found.empty() ? std::string("end of file")
                                                                 : shown(found)));
   }
-  void warn(const std::string& what) {
-    if (warnings_) warnings_->push_back(source_ + ": " + what);
+  void warn(int line, const std::string& what) {
+    if (warnings_) warnings_->push_back(source_ + ":" + std::to_string(line) + ": " + what);
   }
 
   struct Open {
@@ -182,7 +217,9 @@ class Parser {
 
   void parse_hierarchy(Skeleton* skeleton) {
     std::string_view line = reader_.next_nonblank();
-    if (line.empty() && reader_.at_end()) fail(reader_.line() ? reader_.line() : 1, "expected HIERARCHY, found an empty file");
+    if (line.empty()) fail(1, "expected HIERARCHY, found an empty file");
+    // A UTF-8 byte order mark, as some Windows editors write.
+    if (line.substr(0, 3) == "\xEF\xBB\xBF") line = trim(line.substr(3));
     std::string_view rest;
     std::string_view word = first_word(line, &rest);
     if (!iequals(word, "HIERARCHY")) expected("HIERARCHY", word);
@@ -275,7 +312,7 @@ class Parser {
     joint.end_site = end_site;
     joint.line = reader_.line();
     if (end_site) {
-      if (!rest.empty()) expected("'{' after End Site", rest);
+      // Some exporters name End Sites ("End Site LeftToe_end"); Blender ignores the name, so do we.
       joint.name = skeleton->joints[parent].name + " End Site";
     } else {
       if (rest.empty()) fail(reader_.line(), "expected a joint name, found end of line");
@@ -288,16 +325,15 @@ class Parser {
   }
 
   void parse_offset(std::string_view rest, Joint* joint) {
-    double v[3];
+    double v[3] = {0, 0, 0};
     int count = 0;
     while (!rest.empty()) {
       std::string_view token = first_word(rest, &rest);
-      if (count == 3) expected("3 numbers after OFFSET", token);
-      if (!parse_double(token, &v[count]) || !std::isfinite(v[count]))
+      if (count < 3 && (!parse_double(token, &v[count]) || !std::isfinite(v[count])))
         expected("a finite number in OFFSET of " + describe(*joint), token);
       ++count;
     }
-    if (count < 3)
+    if (count != 3)
       fail(reader_.line(), "expected 3 numbers after OFFSET of " + describe(*joint) + ", found " +
                                std::to_string(count));
     joint->offset = Eigen::Vector3d(v[0], v[1], v[2]);
@@ -318,7 +354,7 @@ class Parser {
         expected("a channel name (Xposition .. Zrotation) for " + describe(*joint), token);
       if (std::find(channels.begin(), channels.end(), c) != channels.end())
         fail(reader_.line(), describe(*joint) + " lists channel " + channel_name(c) + " twice");
-      channels.push_back(c);
+      channels.push_back(c);  // at most 6: a seventh name repeats one
     }
     if (static_cast<long long>(channels.size()) != count)
       fail(reader_.line(), "expected " + std::to_string(count) + " channel names for " +
@@ -329,20 +365,21 @@ class Parser {
   }
 
   void parse_motion(Clip* clip) {
-    const int channels = clip->skeleton.channel_count;
     std::string_view value;
     std::string_view line = reader_.next_nonblank();
     if (!match_key(line, {"Frames"}, &value)) expected("'Frames: N'", first_word(line, nullptr));
+    const int frames_line = reader_.line();
     long long declared = -1;
     auto r = std::from_chars(value.data(), value.data() + value.size(), declared);
-    if (value.empty() || r.ec == std::errc::result_out_of_range)
-      expected("a frame count after Frames:", value);
-    if (r.ec != std::errc() || r.ptr != value.data() + value.size())
+    if (value.empty()) expected("a frame count after Frames:", value);
+    if (r.ec == std::errc::result_out_of_range && r.ptr == value.data() + value.size())
+      declared = value.front() == '-' ? -1 : kMaxFrames + 1;
+    else if (r.ec != std::errc() || r.ptr != value.data() + value.size())
       expected("a whole frame count after Frames:", value);
-    if (declared < 0) fail(reader_.line(), "expected a frame count of 0 or more, found " + shown(value));
+    if (declared < 0) fail(frames_line, "expected a frame count of 0 or more, found " + shown(value));
     if (declared > kMaxFrames)
-      fail(reader_.line(), "expected a frame count of at most " + std::to_string(kMaxFrames) +
-                               ", found " + shown(value));
+      fail(frames_line, "expected a frame count of at most " + std::to_string(kMaxFrames) +
+                            ", found " + shown(value));
 
     line = reader_.next_nonblank();
     if (!match_key(line, {"Frame", "Time"}, &value))
@@ -352,78 +389,129 @@ class Parser {
       expected("a positive frame time in seconds", value);
     clip->frame_time = frame_time;
 
-    if (channels == 0) {
-      // No values to read: each frame is an empty line, which blank-line tolerance cannot count.
-      clip->motion.resize(declared, 0);
-      return;
+    if (clip->skeleton.channel_count == 0) {
+      parse_empty_frames(clip, declared, frames_line);
+    } else {
+      parse_frames(clip, declared, frames_line);
     }
+  }
 
-    // Never allocate from the declared count alone: each value takes at least two bytes.
-    const size_t affordable = reader_.remaining() / 2 / static_cast<size_t>(channels) + 1;
-    std::vector<double> values;
-    values.reserve(std::min<size_t>(static_cast<size_t>(declared), affordable) * channels);
-    long long frames = 0;
-    int cut_line = 0;
-    int cut_count = 0;
-    const std::vector<Joint>& joints = clip->skeleton.joints;
-    while (!reader_.at_end()) {
-      std::string_view raw = reader_.next();
-      const char* p = raw.data();
-      const char* end = p + raw.size();
+  // The frame lines: one pass over the bytes, numbers parsed straight into the matrix, no
+  // per-line or per-value allocation. This loop is the parser's hot path (tests/bench/bvh_bench).
+  void parse_frames(Clip* clip, long long declared, int frames_line) {
+    const int channels = clip->skeleton.channel_count;
+    const std::string_view text = reader_.text();
+    const char* p = text.data() + reader_.position();
+    const char* const end = text.data() + text.size();
+    int line = reader_.next_line();
+
+    // Never allocate from the declared count alone: the text bounds how many frames it holds.
+    const long long affordable =
+        static_cast<long long>(reader_.remaining() / kMinBytesPerValue / channels) + 1;
+    Eigen::Index capacity = static_cast<Eigen::Index>(std::min(declared, affordable));
+    MotionMatrix motion(capacity, channels);
+    Eigen::Index frames = 0;
+    int cut_line = 0;   // line of a short frame line; only the last line may be one
+    int cut_count = 0;  // values on it
+    while (p < end) {
+      const int line_number = line;
+      double* row = nullptr;
       int count = 0;
+      bool cut_token = false;
       for (;;) {
         while (p < end && is_space(*p)) ++p;
-        if (p == end) break;
-        const char* token_start = p;
-        while (p < end && !is_space(*p)) ++p;
-        std::string_view token(token_start, p - token_start);
+        if (p == end || is_eol(*p)) break;
+        const char* token = p;
         if (count == channels) {
-          int extra = 1;
-          while (p < end) {
+          int extra = 0;
+          while (p < end && !is_eol(*p)) {
             while (p < end && is_space(*p)) ++p;
-            if (p == end) break;
+            if (p == end || is_eol(*p)) break;
             ++extra;
-            while (p < end && !is_space(*p)) ++p;
+            while (p < end && !is_separator(*p)) ++p;
           }
-          fail(reader_.line(), "expected " + std::to_string(channels) + " values in frame " +
-                                   std::to_string(frames + 1) + ", found " +
-                                   std::to_string(channels + extra));
+          fail(line_number, "expected " + std::to_string(channels) + " values in frame " +
+                                std::to_string(frames + 1) + ", found " +
+                                std::to_string(channels + extra));
         }
         double v;
-        if (!parse_double(token, &v) || !std::isfinite(v)) {
-          fail(reader_.line(), "expected a finite number for frame " + std::to_string(frames + 1) +
-                                   " channel " + std::to_string(count + 1) + " (" +
-                                   channel_label(joints, count) + "), found " + shown(token));
+        const char* stop = parse_number(token, end, &v);
+        if (stop == nullptr || (stop != end && !is_separator(*stop)) || !std::isfinite(v)) {
+          const char* token_end = token;
+          while (token_end < end && !is_separator(*token_end)) ++token_end;
+          const std::string_view bad(token, token_end - token);
+          if (token_end == end && looks_like_cut_number(bad) &&
+              (stop == nullptr || stop != end)) {
+            // The file ends inside this number ("-1.5e"): a cut last line.
+            cut_token = true;
+            p = token_end;
+            break;
+          }
+          fail(line_number, "expected a finite number for frame " + std::to_string(frames + 1) +
+                                " channel " + std::to_string(count + 1) + " (" +
+                                channel_label(clip->skeleton.joints, count) + "), found " +
+                                shown(bad));
         }
-        values.push_back(v);
-        ++count;
-      }
-      if (count == 0) continue;  // blank line
-      if (count < channels) {
-        if (cut_line == 0) {
-          cut_line = reader_.line();
-          cut_count = count;
-          values.resize(values.size() - count);
-          continue;
+        if (count == 0) {
+          if (frames == capacity) {
+            // More frames than declared: grow geometrically (a realloc; rows are contiguous).
+            capacity = std::max<Eigen::Index>(2 * capacity, 64);
+            motion.conservativeResize(capacity, channels);
+          }
+          row = motion.data() + frames * channels;
         }
-        break;
+        row[count++] = v;
+        p = stop;
       }
+      if (p < end) {  // the line's end: CRLF, LF or CR
+        if (*p == '\r' && p + 1 < end && p[1] == '\n') ++p;
+        ++p;
+        ++line;
+      }
+      if (count == 0 && !cut_token) continue;  // blank line
       if (cut_line != 0) {
+        // A short line followed by more data was not the cut last line: refuse it.
         fail(cut_line, "expected " + std::to_string(channels) + " values in frame " +
                            std::to_string(frames + 1) + ", found " + std::to_string(cut_count));
       }
+      if (count < channels) {
+        cut_line = line_number;
+        cut_count = count;
+        continue;
+      }
       ++frames;
     }
+    if (frames != capacity) motion.conservativeResize(frames, channels);
+    clip->motion = std::move(motion);
     if (cut_line != 0) {
-      warn(std::to_string(cut_line) + ": the last frame line is cut (" + std::to_string(cut_count) +
-           " of " + std::to_string(channels) + " values); loaded the " + std::to_string(frames) +
-           " complete frames");
+      warn(cut_line, "the last frame line is cut (" + std::to_string(cut_count) + " of " +
+                         std::to_string(channels) + " values); loaded the " +
+                         std::to_string(frames) + " complete frames");
     }
     if (frames != declared) {
-      warn("declares " + std::to_string(declared) + " frames but has " + std::to_string(frames) +
-           "; loaded " + std::to_string(frames));
+      warn(frames_line, "Frames: says " + std::to_string(declared) + " but the file has " +
+                            std::to_string(frames) + " complete frames; loaded " +
+                            std::to_string(frames));
     }
-    clip->motion = Eigen::Map<MotionMatrix>(values.data(), frames, channels);
+  }
+
+  // A skeleton without channels: each frame is an empty line, so count lines, never trusting
+  // the declared count beyond what the text holds.
+  void parse_empty_frames(Clip* clip, long long declared, int frames_line) {
+    long long lines = 0;
+    while (!reader_.at_end()) {
+      const std::string_view l = trim(reader_.next());
+      if (!l.empty())
+        fail(reader_.line(), "expected 0 values in frame " + std::to_string(lines + 1) +
+                                 ", found " + shown(first_word(l, nullptr)));
+      if (lines < declared) ++lines;  // blank lines past the declared count are just blank
+    }
+    if (lines != declared) {
+      warn(frames_line, "Frames: says " + std::to_string(declared) + " but the file has " +
+                            std::to_string(lines) + " frame lines; loaded " +
+                            std::to_string(lines));
+    }
+    clip->motion.resize(static_cast<Eigen::Index>(lines), 0);
   }
 
   static std::string channel_label(const std::vector<Joint>& joints, int channel) {
@@ -450,6 +538,10 @@ void append_number(std::string* out, double v) {
 constexpr int kMaxIndent = 32;  // deep files stay linear in size
 
 void append_indent(std::string* out, int depth) { out->append(std::min(depth, kMaxIndent), '\t'); }
+
+bool has_position_channel(const Joint& j) {
+  return std::any_of(j.channels.begin(), j.channels.end(), [](Channel c) { return is_position(c); });
+}
 
 }  // namespace
 
@@ -493,14 +585,18 @@ std::string format_bvh(const Clip& clip) {
     out += "{\n";
     append_indent(&out, depth[i] + 1);
     out += "OFFSET";
+    // A root's position channels place it alone (Blender and we ignore its OFFSET); three.js
+    // adds the OFFSET to them. A zero OFFSET there is read the same by all three.
+    const bool moot_offset = j.parent < 0 && has_position_channel(j);
     for (int d = 0; d < 3; ++d) {
       out += ' ';
-      append_number(&out, j.offset[d]);
+      append_number(&out, moot_offset ? 0.0 : j.offset[d]);
     }
     out += '\n';
     if (!j.end_site) {
       append_indent(&out, depth[i] + 1);
-      out += "CHANNELS " + std::to_string(j.channels.size());
+      out += "CHANNELS ";
+      out += std::to_string(j.channels.size());
       for (Channel c : j.channels) {
         out += ' ';
         out += channel_name(c);

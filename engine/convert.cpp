@@ -19,10 +19,10 @@ Clip convert_euler_order(const Clip& clip, EulerOrder order) {
   out.frame_time = clip.frame_time;
   out.skeleton = clip.skeleton;
   // New channel layout: position channels first (file order), then the three rotations.
-  std::vector<int> rotating;
   int next = 0;
   for (size_t i = 0; i < out.skeleton.joints.size(); ++i) {
     Joint& j = out.skeleton.joints[i];
+    j.first_channel = next;
     if (j.end_site) continue;
     std::vector<Channel> channels;
     bool rotates = false;
@@ -32,14 +32,20 @@ Clip convert_euler_order(const Clip& clip, EulerOrder order) {
     }
     if (rotates) {
       for (int a : axes) channels.push_back(static_cast<Channel>(static_cast<int>(Channel::kXrotation) + a));
-      rotating.push_back(static_cast<int>(i));
     }
     j.channels = channels;
-    j.first_channel = next;
     next += static_cast<int>(channels.size());
   }
   out.skeleton.channel_count = next;
   out.motion.resize(clip.frames(), next);
+
+  // Joints already in `order` keep their own values (unwrapped only), bit for bit.
+  std::vector<char> same_order(clip.skeleton.joints.size(), 0);
+  for (size_t i = 0; i < clip.skeleton.joints.size(); ++i) {
+    EulerOrder o;
+    const Joint& j = clip.skeleton.joints[i];
+    same_order[i] = !j.end_site && joint_euler_order(j, &o) && o == order;
+  }
 
   std::vector<Eigen::Vector3d> previous(clip.skeleton.joints.size(), Eigen::Vector3d::Zero());
   for (int f = 0; f < clip.frames(); ++f) {
@@ -54,9 +60,17 @@ Clip convert_euler_order(const Clip& clip, EulerOrder order) {
         if (is_position(src.channels[c])) row[k++] = in[src.first_channel + c];
       }
       if (k == dst.first_channel + static_cast<int>(dst.channels.size())) continue;
-      const Eigen::Matrix3d r = joint_local_rotation(src, in);
-      const Eigen::Vector3d angles =
-          f == 0 ? matrix_to_euler(order, r) : matrix_to_euler_near(order, r, previous[i]);
+      Eigen::Vector3d angles;
+      if (same_order[i]) {
+        int d = 0;
+        for (size_t c = 0; c < src.channels.size(); ++c) {
+          if (is_rotation(src.channels[c])) angles[d++] = in[src.first_channel + c];
+        }
+        if (f > 0) angles = euler_near(angles, previous[i]);
+      } else {
+        const Eigen::Matrix3d r = joint_local_rotation(src, in);
+        angles = f == 0 ? matrix_to_euler(order, r) : matrix_to_euler_near(order, r, previous[i]);
+      }
       previous[i] = angles;
       for (int d = 0; d < 3; ++d) row[k++] = angles[d];
     }

@@ -1,5 +1,7 @@
 #include "engine/kinematics.h"
 
+#include <cassert>
+
 #include "engine/euler.h"
 
 namespace mostyle {
@@ -14,13 +16,18 @@ Eigen::Matrix3d joint_local_rotation(const Joint& joint, const double* frame_val
 }
 
 Eigen::Vector3d joint_local_translation(const Joint& joint, const double* frame_values) {
-  // DESIGN.md 1: a position channel replaces that component of the OFFSET (Blender's reading).
-  Eigen::Vector3d t = joint.offset;
+  // DESIGN.md 1, as Blender's importer does it (io_anim_bvh: a bone with location channels is
+  // placed at (lx, ly, lz) relative to its parent, unset ones 0.0, whatever its OFFSET says).
+  bool has_position = false;
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();
   for (size_t c = 0; c < joint.channels.size(); ++c) {
     const Channel ch = joint.channels[c];
-    if (is_position(ch)) t[channel_axis(ch)] = frame_values[joint.first_channel + c];
+    if (is_position(ch)) {
+      t[channel_axis(ch)] = frame_values[joint.first_channel + c];
+      has_position = true;
+    }
   }
-  return t;
+  return has_position ? t : joint.offset;
 }
 
 namespace {
@@ -33,6 +40,7 @@ void frame_pose(const Skeleton& s, const double* values, std::vector<Eigen::Matr
   positions->resize(n);
   for (size_t i = 0; i < n; ++i) {
     const Joint& j = s.joints[i];
+    assert(j.parent < static_cast<int>(i) && "joints must come after their parent");
     const Eigen::Matrix3d local_r = joint_local_rotation(j, values);
     const Eigen::Vector3d local_t = joint_local_translation(j, values);
     if (j.parent < 0) {
@@ -61,6 +69,7 @@ Eigen::MatrixXd joint_positions(const Clip& clip) {
 }
 
 Pose pose_at(const Clip& clip, int frame) {
+  assert(frame >= 0 && frame < clip.frames());
   Pose pose;
   frame_pose(clip.skeleton, clip.motion.row(frame).data(), &pose.rotations, &pose.positions);
   return pose;

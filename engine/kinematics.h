@@ -12,11 +12,14 @@ namespace mostyle {
 // (channels "Zrotation Xrotation Yrotation" give Rz * Rx * Ry). values: the frame's row.
 Eigen::Matrix3d joint_local_rotation(const Joint& joint, const double* frame_values);
 
-// Local translation: the OFFSET, with each position channel replacing its component.
+// Local translation, Blender's reading (DESIGN.md 1): the OFFSET for a joint without position
+// channels; for a joint with any, its position channels replace the whole OFFSET, a missing
+// one reading as 0 (Blender and three.js both read it so; three.js then adds the OFFSET).
 Eigen::Vector3d joint_local_translation(const Joint& joint, const double* frame_values);
 
 // Global positions of all joints (End Sites included, in skeleton order) at every frame:
-// frames x 3*joints, file units and axes. O(frames * joints).
+// frames x 3*joints, file units and axes. One forward pass per frame (parents come before
+// children), so any depth works. O(frames * joints).
 Eigen::MatrixXd joint_positions(const Clip& clip);
 
 // Global positions and rotations of all joints at one frame.
@@ -24,7 +27,7 @@ struct Pose {
   std::vector<Eigen::Vector3d> positions;  // per joint, file units
   std::vector<Eigen::Matrix3d> rotations;  // per joint, global
 };
-Pose pose_at(const Clip& clip, int frame);
+Pose pose_at(const Clip& clip, int frame);  // frame in [0, clip.frames())
 
 // Rest pose (all channels zero except position channels taken as the OFFSET): positions per joint.
 std::vector<Eigen::Vector3d> rest_positions(const Skeleton& skeleton);

@@ -1,6 +1,8 @@
 #include "engine/resample.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <string>
 
@@ -11,14 +13,26 @@
 
 namespace mostyle {
 namespace {
-constexpr double kMaxOutputFrames = 50'000'000;
+
+// The output is a frames x channels matrix of doubles and then text: refuse before allocating
+// more than this many values (800 MB).
+constexpr double kMaxOutputValues = 100'000'000;
 constexpr double kTimeEpsilon = 1e-9;  // frames that land on a source frame up to rounding
+
+std::string number(double v) {
+  char buffer[32];
+  auto r = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return std::string(buffer, r.ptr);
+}
+
 }  // namespace
 
 Clip resample_clip(const Clip& clip, double fps) {
   if (!(fps > 0.0) || !std::isfinite(fps))
-    throw InputError("expected a positive frame rate, found " + std::to_string(fps));
+    throw InputError("expected a positive frame rate, found " + number(fps));
   const double source_fps = clip.fps();
+  if (!(source_fps > 0.0) || !std::isfinite(source_fps))
+    throw InputError(clip.source + ": expected a positive frame time, found " + number(clip.frame_time));
   Clip out;
   out.source = clip.source;
   out.skeleton = clip.skeleton;
@@ -30,20 +44,20 @@ Clip resample_clip(const Clip& clip, double fps) {
   }
   const double duration = (n - 1) / source_fps;
   const double frames = std::floor(duration * fps + kTimeEpsilon) + 1;
-  if (frames > kMaxOutputFrames)
-    throw InputError(clip.source + ": resampling to " + std::to_string(fps) + " fps gives too many frames");
+  if (!(frames * std::max<double>(1, clip.motion.cols()) <= kMaxOutputValues))
+    throw InputError(clip.source + ": resampling " + number(duration) + " s to " + number(fps) +
+                     " fps gives " + number(frames) + " frames, too many");
   const int m = static_cast<int>(frames);
   out.motion.resize(m, clip.motion.cols());
 
   struct Rotating {
-    const Joint* joint;
     EulerOrder order;
     int columns[3];  // motion columns of the three rotation channels, in order
   };
   std::vector<Rotating> rotating;
   std::vector<bool> slerped(clip.motion.cols(), false);
   for (const Joint& j : clip.skeleton.joints) {
-    Rotating r{&j, EulerOrder::kXYZ, {0, 0, 0}};
+    Rotating r{EulerOrder::kXYZ, {0, 0, 0}};
     if (j.end_site || !joint_euler_order(j, &r.order)) continue;
     int k = 0;
     for (size_t c = 0; c < j.channels.size(); ++c) {
@@ -61,29 +75,31 @@ Clip resample_clip(const Clip& clip, double fps) {
     i0 = std::min(i0, n - 1);
     const int i1 = std::min(i0 + 1, n - 1);
     const double w = std::max(0.0, u - i0);
+    const bool on_source_frame = w < kTimeEpsilon;
     for (Eigen::Index c = 0; c < clip.motion.cols(); ++c) {
-      if (!slerped[c]) out.motion(f, c) = (1 - w) * clip.motion(i0, c) + w * clip.motion(i1, c);
+      if (slerped[c]) continue;
+      // A frame on a source frame copies it exactly (120 -> 30 is every 4th frame, bit for bit).
+      out.motion(f, c) = on_source_frame ? clip.motion(i0, c)
+                                         : (1 - w) * clip.motion(i0, c) + w * clip.motion(i1, c);
     }
     for (const Rotating& r : rotating) {
-      Eigen::Vector3d a0, a1;
+      Eigen::Vector3d a0, previous;
       for (int d = 0; d < 3; ++d) {
         a0[d] = clip.motion(i0, r.columns[d]);
-        a1[d] = clip.motion(i1, r.columns[d]);
+        if (f > 0) previous[d] = out.motion(f - 1, r.columns[d]);
       }
       Eigen::Vector3d angles;
-      if (w < kTimeEpsilon) {
-        angles = a0;
+      if (on_source_frame) {
+        // The source's own angles, only unwrapped against the previous output frame.
+        angles = f > 0 ? euler_near(a0, previous) : a0;
       } else {
+        Eigen::Vector3d a1;
+        for (int d = 0; d < 3; ++d) a1[d] = clip.motion(i1, r.columns[d]);
         const Eigen::Quaterniond q0(euler_to_matrix(r.order, a0));
         const Eigen::Quaterniond q1(euler_to_matrix(r.order, a1));
+        // Eigen's slerp takes the shorter arc (it flips q1 when q0 . q1 < 0).
         const Eigen::Matrix3d m_rot = q0.slerp(w, q1).toRotationMatrix();
-        // Keep the curve continuous with the source's own branch at i0.
-        angles = matrix_to_euler_near(r.order, m_rot, a0);
-      }
-      if (f > 0) {
-        Eigen::Vector3d previous;
-        for (int d = 0; d < 3; ++d) previous[d] = out.motion(f - 1, r.columns[d]);
-        angles = matrix_to_euler_near(r.order, euler_to_matrix(r.order, angles), previous);
+        angles = matrix_to_euler_near(r.order, m_rot, f > 0 ? previous : a0);
       }
       for (int d = 0; d < 3; ++d) out.motion(f, r.columns[d]) = angles[d];
     }

@@ -1,0 +1,314 @@
+#include "app/cli_pipeline_commands.h"
+
+#include <chrono>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "app/cli_common.h"
+#include "engine/atomic_file.h"
+#include "engine/csv_io.h"
+#include "engine/dtw.h"
+#include "engine/error.h"
+#include "engine/pipeline.h"
+#include "engine/units.h"
+
+namespace mostyle::cli {
+namespace {
+
+using Json = nlohmann::ordered_json;
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+Json path_json(const DtwPath& path) {
+  Json steps = Json::array();
+  for (const auto& [i, j] : path.steps) steps.push_back({i, j});
+  return steps;
+}
+
+Json rows_json(const Eigen::MatrixXd& m) {
+  Json rows = Json::array();
+  for (Eigen::Index r = 0; r < m.rows(); ++r) {
+    Json row = Json::array();
+    for (Eigen::Index c = 0; c < m.cols(); ++c) row.push_back(m(r, c));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+MappingOverrides load_mapping(const std::string& path) {
+  if (path.empty()) return {};
+  return parse_mapping_overrides(read_file(path), path);
+}
+
+// Options shared by align and blend: how the pair is prepared.
+struct PairOptions {
+  std::string a, b;
+  double fps = 30.0;
+  int band = -1;
+  std::string mapping_a, mapping_b;
+
+  void add_to(CLI::App* cmd) {
+    cmd->add_option("A", a, "BVH take A (the reference: its skeleton, units and world frame)")->required();
+    cmd->add_option("B", b, "BVH take B (retargeted onto A, warped onto A's timeline)")->required();
+    cmd->add_option("--fps", fps, "Working and output frame rate (0 keeps A's)")->capture_default_str();
+    cmd->add_option("--band", band, "Sakoe-Chiba band half-width for the DTW, in frames (-1: none)")
+        ->capture_default_str();
+    cmd->add_option("--mapping-a", mapping_a, "Major-joint mapping file for A (see assets/mappings)");
+    cmd->add_option("--mapping-b", mapping_b, "Major-joint mapping file for B");
+  }
+
+  std::shared_ptr<const PreparedPair> prepare(double* load_ms) const {
+    const auto t0 = Clock::now();
+    auto clip_a = std::make_shared<const Clip>(load_clip(a));
+    auto clip_b = std::make_shared<const Clip>(load_clip(b));
+    *load_ms = ms_since(t0);
+    PrepareOptions o;
+    o.fps = fps;
+    o.dtw_band = band;
+    o.mapping_a = load_mapping(mapping_a);
+    o.mapping_b = load_mapping(mapping_b);
+    return prepare_pair(clip_a, clip_b, o);
+  }
+};
+
+}  // namespace
+
+void add_dtw_command(CLI::App& app, std::function<int()>* run) {
+  auto* cmd = app.add_subcommand("dtw", "Dynamic time warping of two CSV series (rows = time steps)");
+  struct Args {
+    std::string a, b;
+    int band = -1;
+    bool json = false;
+  };
+  auto args = std::make_shared<Args>();
+  cmd->add_option("A", args->a, "CSV series A")->required();
+  cmd->add_option("B", args->b, "CSV series B (same number of columns)")->required();
+  cmd->add_option("--band", args->band, "Sakoe-Chiba band half-width in rows (-1: none)")->capture_default_str();
+  cmd->add_flag("--json", args->json, "Print {\"cost\": c, \"path\": [[i, j], ...]}");
+  cmd->callback([=] {
+    *run = [=] {
+      const Eigen::MatrixXd a = read_csv_matrix(args->a);
+      const Eigen::MatrixXd b = read_csv_matrix(args->b);
+      if (a.cols() != b.cols())
+        throw InputError(args->b + ": expected " + std::to_string(a.cols()) + " columns like " + args->a +
+                         ", found " + std::to_string(b.cols()));
+      if (args->band < -1) throw InputError("expected a band of 0 or more rows, found " + std::to_string(args->band));
+      DtwOptions o;
+      o.band = args->band;
+      const DtwPath path = align_dtw(a, b, o);
+      if (args->json) {
+        Json j;
+        j["cost"] = path.cost;
+        j["path"] = path_json(path);
+        std::cout << j.dump() << "\n";
+      } else {
+        std::cout << "cost " << number(path.cost) << ", path of " << path.steps.size() << " steps\n";
+      }
+      return 0;
+    };
+  });
+}
+
+void add_align_command(CLI::App& app, std::function<int()>* run) {
+  auto* cmd = app.add_subcommand("align", "Left-foot DTW of two BVH takes");
+  auto pair = std::make_shared<PairOptions>();
+  auto json = std::make_shared<bool>(false);
+  pair->add_to(cmd);
+  cmd->add_flag("--json", *json, "Print the cost, path and the left-foot signals before and after warping");
+  cmd->callback([=] {
+    *run = [=] {
+      double load_ms = 0;
+      const auto p = pair->prepare(&load_ms);
+      const Eigen::MatrixXd warped = warp_onto(p->signal_b, p->path, static_cast<int>(p->signal_a.rows()));
+      if (*json) {
+        Json j;
+        j["a"] = pair->a;
+        j["b"] = pair->b;
+        j["fps"] = p->fps;
+        j["joint_a"] = p->names_a[p->left_ankle];
+        j["joint_b"] = p->names_b[p->left_ankle];
+        j["frames_a"] = p->signal_a.rows();
+        j["frames_b"] = p->signal_b.rows();
+        j["cost"] = p->path.cost;
+        j["path"] = path_json(p->path);
+        j["signal_a"] = rows_json(p->signal_a);
+        j["signal_b"] = rows_json(p->signal_b);
+        j["signal_b_warped"] = rows_json(warped);
+        j["timings_ms"] = {{"load", load_ms}, {"preprocess", p->times.preprocess_ms}, {"dtw", p->times.dtw_ms}};
+        std::cout << j.dump() << "\n";
+      } else {
+        std::cout << "left foot: " << p->names_a[p->left_ankle] << " / " << p->names_b[p->left_ankle] << "\n"
+                  << "frames: " << p->signal_a.rows() << " / " << p->signal_b.rows() << " at "
+                  << number(p->fps) << " fps\n"
+                  << "dtw cost: " << number(p->path.cost) << " (A's units), path of " << p->path.steps.size()
+                  << " steps, " << number(p->times.dtw_ms) << " ms\n";
+      }
+      return 0;
+    };
+  });
+}
+
+void add_decompose_command(CLI::App& app, std::function<int()>* run) {
+  auto* cmd = app.add_subcommand("decompose", "Sparse-coding decomposition X = W C of one take");
+  struct Args {
+    std::string file;
+    int components = 10;
+    double sparsity = 0.1;
+    int iterations = 100;
+    double fps = 30;
+    std::string mapping;
+    bool json = false;
+  };
+  auto args = std::make_shared<Args>();
+  cmd->add_option("FILE", args->file, "BVH take")->required();
+  cmd->add_option("--components,-k", args->components, "Number of components k")->capture_default_str();
+  cmd->add_option("--sparsity,-f", args->sparsity, "Fraction of non-zeros kept in C, in (0, 1]")->capture_default_str();
+  cmd->add_option("--iterations", args->iterations, "Iteration cap")->capture_default_str();
+  cmd->add_option("--fps", args->fps, "Working frame rate (0 keeps the file's)")->capture_default_str();
+  cmd->add_option("--mapping", args->mapping, "Major-joint mapping file");
+  cmd->add_flag("--json", args->json, "Print JSON");
+  cmd->callback([=] {
+    *run = [=] {
+      auto clip = std::make_shared<const Clip>(load_clip(args->file));
+      PrepareOptions o;
+      o.fps = args->fps;
+      o.mapping_a = o.mapping_b = load_mapping(args->mapping);
+      // A take paired with itself: the same preprocessing as a blend, normalized on its own.
+      const auto p = prepare_pair(clip, clip, o);
+      DecompositionOptions d;
+      d.components = args->components;
+      d.sparsity = args->sparsity;
+      d.max_iterations = args->iterations;
+      const Decomposition r = decompose(p->x_a, d);
+      const double rmse = r.rmse * p->normalization.scale;
+      if (args->json) {
+        Json j;
+        j["file"] = args->file;
+        j["frames"] = p->x_a.rows();
+        j["fps"] = p->fps;
+        j["joints"] = p->names_a;
+        j["components"] = args->components;
+        j["sparsity"] = args->sparsity;
+        j["reconstruction_rmse"] = rmse;
+        j["reconstruction_rmse_normalized"] = r.rmse;
+        j["nonzero_fraction"] = r.nonzero_fraction;
+        j["iterations"] = r.iterations;
+        j["converged"] = r.converged;
+        j["time_ms"] = r.elapsed_ms;
+        std::cout << j.dump(2) << "\n";
+      } else {
+        std::cout << args->file << ": " << p->x_a.rows() << " frames x " << p->names_a.size()
+                  << " joints at " << number(p->fps) << " fps\n"
+                  << "reconstruction RMSE " << number(rmse) << " (file units), non-zero fraction "
+                  << number(r.nonzero_fraction) << ", " << r.iterations << " iterations"
+                  << (r.converged ? " (converged)" : "") << ", " << number(r.elapsed_ms) << " ms\n";
+      }
+      return 0;
+    };
+  });
+}
+
+void add_blend_command(CLI::App& app, std::function<int()>* run) {
+  auto* cmd = app.add_subcommand("blend", "Blend the styles of two takes");
+  struct Args {
+    PairOptions pair;
+    double alpha = 0.5;
+    int components = 10;
+    double sparsity = 0.5;
+    int iterations = 100;
+    std::string mode = "shared";
+    int basic = 0;
+    std::vector<double> basic_sparsities;
+    int swap = 0;
+    std::vector<double> component_alpha;
+    bool no_limb = false;
+    std::string out, positions_out, report;
+  };
+  auto args = std::make_shared<Args>();
+  args->pair.add_to(cmd);
+  cmd->add_option("--alpha", args->alpha, "0 gives A, 1 gives B (shared mode)")->capture_default_str();
+  cmd->add_option("--components,-k", args->components, "Number of components k")->capture_default_str();
+  cmd->add_option("--sparsity,-f", args->sparsity, "Fraction of non-zeros kept in C, in (0, 1]")->capture_default_str();
+  cmd->add_option("--iterations", args->iterations, "Decomposition iteration cap")->capture_default_str();
+  cmd->add_option("--mode", args->mode, "shared (one component set, alpha 1 is B) or paper (core components)")
+      ->check(CLI::IsMember({"shared", "paper"}))
+      ->capture_default_str();
+  cmd->add_option("--basic", args->basic, "Paper mode: decompose into M basic motions")->capture_default_str();
+  cmd->add_option("--basic-sparsity", args->basic_sparsities, "Sparsity of each basic motion")->delimiter(',');
+  cmd->add_option("--swap", args->swap, "Basic motion (0-based) whose core is taken from B")->capture_default_str();
+  cmd->add_option("--component-alpha", args->component_alpha, "Shared mode: one alpha per component, comma separated")
+      ->delimiter(',');
+  cmd->add_flag("--no-limb-constraint", args->no_limb, "Skip the limb-length constraint (paper 3.7)");
+  cmd->add_option("--out", args->out, "BVH file of the blend on A's skeleton");
+  cmd->add_option("--positions-out", args->positions_out, "CSV frame,joint,x,y,z of the blend's major joints");
+  cmd->add_option("--report", args->report, "JSON report");
+  cmd->callback([=] {
+    *run = [=] {
+      if (!args->out.empty())
+        throw InputError("--out: BVH export is not available in this build yet; use --positions-out");
+      StageTimes times;
+      const auto p = args->pair.prepare(&times.load_ms);
+      times.preprocess_ms = p->times.preprocess_ms;
+      times.dtw_ms = p->times.dtw_ms;
+      DecomposeParams dp;
+      dp.mode = args->mode == "paper" ? BlendMode::kPaper : BlendMode::kShared;
+      dp.components = args->components;
+      dp.sparsity = args->sparsity;
+      dp.max_iterations = args->iterations;
+      dp.basic_motions = args->basic;
+      dp.basic_sparsities = args->basic_sparsities;
+      const auto d = decompose_pair(*p, dp);
+      times.decompose_ms = d->elapsed_ms;
+      BlendParams bp;
+      bp.alpha = args->alpha;
+      bp.component_alpha = args->component_alpha;
+      bp.swap_level = args->swap;
+      bp.limb_lengths = !args->no_limb;
+      BlendScratch scratch;
+      BlendResult result;
+      blend_pair(*p, *d, bp, scratch, result);
+      times.synthesize_ms = result.synthesize_ms;
+      times.postprocess_ms = result.postprocess_ms;
+
+      std::vector<int> columns(p->majors.size());
+      for (size_t i = 0; i < columns.size(); ++i) columns[i] = static_cast<int>(i);
+      if (!args->positions_out.empty())
+        write_output(args->positions_out, positions_csv(result.world, columns, p->names_a));
+
+      Json r;
+      r["a"] = args->pair.a;
+      r["b"] = args->pair.b;
+      r["frames"] = result.world.rows();
+      r["fps"] = p->fps;
+      r["alpha"] = args->alpha;
+      r["components"] = args->components;
+      r["sparsity"] = args->sparsity;
+      r["mode"] = args->mode;
+      if (args->basic > 0) {
+        r["basic_motions"] = args->basic;
+        r["swap"] = args->swap;
+      }
+      r["joints"] = p->names_a;
+      r["dtw"] = {{"cost", p->path.cost}, {"path_length", p->path.steps.size()}};
+      r["reconstruction_rmse"] = {{"a", d->rmse_a}, {"b", d->rmse_b}};
+      r["component_nonzero_fraction"] = {{"a", d->nonzero_a}, {"b", d->nonzero_b}};
+      r["iterations"] = d->iterations;
+      r["limb_length_max_error"] = result.limb_length_max_error;
+      r["skeleton_height"] = guess_units(*p->clip_a).height;
+      r["timings_ms"] = {{"load", times.load_ms},         {"preprocess", times.preprocess_ms},
+                         {"dtw", times.dtw_ms},           {"decompose", times.decompose_ms},
+                         {"synthesize", times.synthesize_ms}, {"postprocess", times.postprocess_ms},
+                         {"export", times.export_ms}};
+      if (!args->report.empty()) write_output(args->report, r.dump(2) + "\n");
+      if (args->report.empty() && args->positions_out.empty()) std::cout << r.dump(2) << "\n";
+      return 0;
+    };
+  });
+}
+
+}  // namespace mostyle::cli

@@ -1,0 +1,139 @@
+#include "engine/limb_length.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "engine/error.h"
+
+namespace mostyle {
+
+namespace {
+
+void check_skeleton(const Eigen::MatrixXd& positions, const std::vector<int>& parents,
+                    const char* where) {
+  const size_t joints = parents.size();
+  if (positions.cols() != static_cast<Eigen::Index>(3 * joints)) {
+    throw InputError(std::string(where) + ": positions have " + std::to_string(positions.cols()) +
+                     " columns, expected 3 per joint for " + std::to_string(joints) + " joints.");
+  }
+  for (size_t j = 0; j < joints; ++j) {
+    if (parents[j] < -1 || parents[j] >= static_cast<int>(j)) {
+      throw InputError(std::string(where) + ": joint " + std::to_string(j) + " has parent " +
+                       std::to_string(parents[j]) +
+                       "; parents must come before their children (or be -1 for a root).");
+    }
+  }
+}
+
+void check_lengths(const std::vector<int>& parents, const std::vector<double>& lengths,
+                   const char* where) {
+  if (lengths.size() != parents.size()) {
+    throw InputError(std::string(where) + ": " + std::to_string(lengths.size()) +
+                     " bone lengths for " + std::to_string(parents.size()) + " joints.");
+  }
+  for (size_t j = 0; j < lengths.size(); ++j) {
+    if (parents[j] >= 0 && !(std::isfinite(lengths[j]) && lengths[j] >= 0.0)) {
+      throw InputError(std::string(where) + ": the bone length of joint " + std::to_string(j) +
+                       " must be a finite number >= 0, got " + std::to_string(lengths[j]) + ".");
+    }
+  }
+}
+
+Eigen::Vector3d joint_at(const Eigen::MatrixXd& m, Eigen::Index row, int joint) {
+  return Eigen::Vector3d(m(row, 3 * joint), m(row, 3 * joint + 1), m(row, 3 * joint + 2));
+}
+
+void set_joint(Eigen::MatrixXd& m, Eigen::Index row, int joint, const Eigen::Vector3d& v) {
+  m(row, 3 * joint) = v.x();
+  m(row, 3 * joint + 1) = v.y();
+  m(row, 3 * joint + 2) = v.z();
+}
+
+}  // namespace
+
+void apply_limb_lengths(Eigen::MatrixXd& positions, const std::vector<int>& parents,
+                        const std::vector<double>& lengths, const LimbLengthOptions& options) {
+  check_skeleton(positions, parents, "limb-length constraint");
+  check_lengths(parents, lengths, "limb-length constraint");
+  if (options.fallback_pose.size() != 0 && options.fallback_pose.size() != positions.cols()) {
+    throw InputError("limb-length constraint: the fallback pose has " +
+                     std::to_string(options.fallback_pose.size()) + " values, expected " +
+                     std::to_string(positions.cols()) + ".");
+  }
+  const int joints = static_cast<int>(parents.size());
+
+  // Paper 3.7: restore each bone's reference length from the root outward. Within a frame the
+  // row is used as its own scratch, so nothing is allocated: a backward pass turns every
+  // non-root joint into its bone vector (child - parent, both still original because parents
+  // have lower indices), then a forward pass places child = corrected parent + L * direction.
+  for (Eigen::Index f = 0; f < positions.rows(); ++f) {
+    for (int j = joints - 1; j >= 0; --j) {
+      const int p = parents[static_cast<size_t>(j)];
+      if (p >= 0) set_joint(positions, f, j, joint_at(positions, f, j) - joint_at(positions, f, p));
+    }
+    for (int j = 0; j < joints; ++j) {
+      const int p = parents[static_cast<size_t>(j)];
+      if (p < 0) continue;
+      const double length = lengths[static_cast<size_t>(j)];
+      const Eigen::Vector3d bone = joint_at(positions, f, j);
+      const Eigen::Vector3d parent = joint_at(positions, f, p);
+      const double norm = bone.norm();
+      Eigen::Vector3d direction;
+      if (norm > options.degenerate_fraction * length && norm > 0.0) {
+        direction = bone / norm;
+      } else if (f > 0 && length > 0.0) {
+        // The previous output frame is final and its bone has length `length` > 0.
+        direction = (joint_at(positions, f - 1, j) - joint_at(positions, f - 1, p)).normalized();
+      } else {
+        direction = Eigen::Vector3d::UnitY();
+        if (options.fallback_pose.size() != 0) {
+          const Eigen::Vector3d reference =
+              options.fallback_pose.segment<3>(3 * j).transpose() -
+              options.fallback_pose.segment<3>(3 * p).transpose();
+          if (reference.norm() > 0.0) direction = reference.normalized();
+        }
+      }
+      set_joint(positions, f, j, parent + length * direction);
+    }
+  }
+}
+
+Eigen::MatrixXd with_limb_lengths(const Eigen::MatrixXd& positions, const std::vector<int>& parents,
+                                  const std::vector<double>& lengths,
+                                  const LimbLengthOptions& options) {
+  Eigen::MatrixXd out = positions;
+  apply_limb_lengths(out, parents, lengths, options);
+  return out;
+}
+
+std::vector<double> bone_lengths(const Eigen::MatrixXd& positions, const std::vector<int>& parents) {
+  check_skeleton(positions, parents, "bone lengths");
+  if (positions.rows() == 0) throw InputError("bone lengths: the positions have no frames.");
+  std::vector<double> lengths(parents.size(), 0.0);
+  for (size_t j = 0; j < parents.size(); ++j) {
+    const int p = parents[j];
+    if (p < 0) continue;
+    const auto bones = positions.middleCols(3 * static_cast<Eigen::Index>(j), 3) -
+                       positions.middleCols(3 * static_cast<Eigen::Index>(p), 3);
+    lengths[j] = bones.rowwise().norm().mean();
+  }
+  return lengths;
+}
+
+double max_bone_length_error(const Eigen::MatrixXd& positions, const std::vector<int>& parents,
+                             const std::vector<double>& lengths) {
+  check_skeleton(positions, parents, "bone length error");
+  check_lengths(parents, lengths, "bone length error");
+  double worst = 0.0;
+  for (size_t j = 0; j < parents.size(); ++j) {
+    const int p = parents[j];
+    if (p < 0 || positions.rows() == 0) continue;
+    const auto bones = positions.middleCols(3 * static_cast<Eigen::Index>(j), 3) -
+                       positions.middleCols(3 * static_cast<Eigen::Index>(p), 3);
+    worst = std::max(worst, (bones.rowwise().norm().array() - lengths[j]).abs().maxCoeff());
+  }
+  return worst;
+}
+
+}  // namespace mostyle
