@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages mostyle builds with, when any is missing (sudo when not root).
+set -euo pipefail
+packages=(build-essential cmake pkg-config libeigen3-dev libglfw3-dev libglm-dev libimgui-dev
+          libstb-dev libosmesa6-dev libgl-dev catch2 libbenchmark-dev nlohmann-json3-dev
+          libcli11-dev xvfb xauth)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+echo "mostyle: installing ${missing[*]}"
+as_root=()
+[ "$(id -u)" -eq 0 ] || as_root=(sudo)
+export DEBIAN_FRONTEND=noninteractive
+"${as_root[@]}" apt-get update -qq
+"${as_root[@]}" apt-get install -y -qq "${missing[@]}"

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Builds mostyle and runs every test (installing what it needs first).
+#   tests/run.sh                               normal build (build/), all tests
+#   tests/run.sh --sanitize address,undefined  ASan+UBSan build (build-address-undefined/), all tests
+#   tests/run.sh --sanitize thread             TSan build (build-thread/), the threaded tests
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+sanitize=""
+if [ "${1:-}" = "--sanitize" ]; then sanitize="${2:?--sanitize needs a value}"; fi
+"$root/app/install-deps.sh"
+
+build="$root/build"
+flags=(-DCMAKE_BUILD_TYPE=RelWithDebInfo)
+filter=()
+if [ -n "$sanitize" ]; then
+  build="$root/build-${sanitize//,/-}"
+  flags+=(-DMOSTYLE_SANITIZE="$sanitize" -DMOSTYLE_BUILD_BENCH=OFF)
+fi
+if [ "$sanitize" = "thread" ]; then
+  filter=(-R "worker|editor")
+  # Mesa's llvmpipe threads are not instrumented; render on the calling thread.
+  export LP_NUM_THREADS=0
+  export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1"
+fi
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
+export LSAN_OPTIONS="suppressions=$root/tests/lsan.supp:print_suppressions=0"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+
+cmake -S "$root" -B "$build" "${flags[@]}" >/dev/null
+cmake --build "$build" -j"$(nproc)"
+ctest --test-dir "$build" --output-on-failure -j"$(nproc)" "${filter[@]}"
