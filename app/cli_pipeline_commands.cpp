@@ -11,6 +11,7 @@
 #include "engine/csv_io.h"
 #include "engine/dtw.h"
 #include "engine/error.h"
+#include "engine/export_solve.h"
 #include "engine/pipeline.h"
 #include "engine/units.h"
 
@@ -227,6 +228,7 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
     int swap = 0;
     std::vector<double> component_alpha;
     bool no_limb = false;
+    bool no_foot_lock = false;
     std::string out, positions_out, report;
   };
   auto args = std::make_shared<Args>();
@@ -244,13 +246,12 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
   cmd->add_option("--component-alpha", args->component_alpha, "Shared mode: one alpha per component, comma separated")
       ->delimiter(',');
   cmd->add_flag("--no-limb-constraint", args->no_limb, "Skip the limb-length constraint (paper 3.7)");
+  cmd->add_flag("--no-foot-lock", args->no_foot_lock, "Leave planted feet free (no foot-contact IK clean-up)");
   cmd->add_option("--out", args->out, "BVH file of the blend on A's skeleton");
   cmd->add_option("--positions-out", args->positions_out, "CSV frame,joint,x,y,z of the blend's major joints");
   cmd->add_option("--report", args->report, "JSON report");
   cmd->callback([=] {
     *run = [=] {
-      if (!args->out.empty())
-        throw InputError("--out: BVH export is not available in this build yet; use --positions-out");
       StageTimes times;
       const auto p = args->pair.prepare(&times.load_ms);
       times.preprocess_ms = p->times.preprocess_ms;
@@ -269,6 +270,7 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
       bp.component_alpha = args->component_alpha;
       bp.swap_level = args->swap;
       bp.limb_lengths = !args->no_limb;
+      bp.foot_lock = !args->no_foot_lock;
       BlendScratch scratch;
       BlendResult result;
       blend_pair(*p, *d, bp, scratch, result);
@@ -277,6 +279,12 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
 
       std::vector<int> columns(p->majors.size());
       for (size_t i = 0; i < columns.size(); ++i) columns[i] = static_cast<int>(i);
+      ExportFit fit;
+      if (!args->out.empty()) {
+        const auto t_export = Clock::now();
+        fit = export_blend_bvh(*p, result.world, args->out).fit;
+        times.export_ms = ms_since(t_export);
+      }
       if (!args->positions_out.empty())
         write_output(args->positions_out, positions_csv(result.world, columns, p->names_a));
 
@@ -299,6 +307,12 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
       r["component_nonzero_fraction"] = {{"a", d->nonzero_a}, {"b", d->nonzero_b}};
       r["iterations"] = d->iterations;
       r["limb_length_max_error"] = result.limb_length_max_error;
+      if (!args->out.empty()) r["export_fit"] = {{"max", fit.max}, {"mean", fit.mean}};
+      r["foot_lock"] = bp.foot_lock;
+      r["foot_sliding"] = {{"a", p->foot_sliding_a},
+                           {"b", p->foot_sliding_b},
+                           {"raw_blend", result.foot_sliding_raw},
+                           {"cleaned_blend", result.foot_sliding_cleaned}};
       r["skeleton_height"] = guess_units(*p->clip_a).height;
       r["timings_ms"] = {{"load", times.load_ms},         {"preprocess", times.preprocess_ms},
                          {"dtw", times.dtw_ms},           {"decompose", times.decompose_ms},

@@ -230,8 +230,10 @@ class Parser {
     for (;;) {
       line = reader_.next_nonblank();
       if (line.empty()) {
-        expected(stack.empty() && !need_brace ? (skeleton->joints.empty() ? "ROOT" : "MOTION")
-                                              : (need_brace ? "'{'" : "'}'"),
+        expected(need_brace        ? "'{'"
+                 : !stack.empty()  ? (stack.back().has_offset ? "'}'" : "OFFSET")
+                 : skeleton->joints.empty() ? "ROOT"
+                                            : "MOTION",
                  line);
       }
       word = first_word(line, &rest);

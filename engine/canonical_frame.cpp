@@ -1,6 +1,9 @@
 #include "engine/canonical_frame.h"
 
+#include <algorithm>
+#include <cassert>
 #include <cmath>
+#include <string>
 
 #include "engine/error.h"
 
@@ -93,17 +96,98 @@ void integrate_root(const Eigen::MatrixXd& steps, const Eigen::Vector2d& start_g
   }
 }
 
+void integrate_blended_root(const Eigen::MatrixXd& steps, const Eigen::MatrixXd& ground_a,
+                            const Eigen::MatrixXd& ground_b, double alpha, double start_heading,
+                            double fps, double pull_seconds, Eigen::MatrixXd* ground,
+                            Eigen::VectorXd* heading) {
+  const Eigen::Index frames = steps.rows();
+  assert(steps.cols() == 3 && ground_a.rows() == frames && ground_b.rows() == frames &&
+         ground_a.cols() == 2 && ground_b.cols() == 2);
+  ground->resize(frames, 2);
+  heading->resize(frames);
+  if (frames == 0) return;
+  const double pull = pull_seconds > 0 && fps > 0 ? 1.0 - std::exp(-1.0 / (fps * pull_seconds)) : 0.0;
+  (*ground)(0, 0) = ground_a(0, 0);
+  (*ground)(0, 1) = ground_a(0, 1);
+  (*heading)[0] = start_heading;
+  for (Eigen::Index t = 0; t + 1 < frames; ++t) {
+    const double c = std::cos((*heading)[t]), s = std::sin((*heading)[t]);
+    // integrate_root's step, then a first-order pull towards the blended paths.
+    const double x = (*ground)(t, 0) + c * steps(t, 0) + s * steps(t, 1);
+    const double z = (*ground)(t, 1) - s * steps(t, 0) + c * steps(t, 1);
+    const double target_x = (1 - alpha) * ground_a(t + 1, 0) + alpha * ground_b(t + 1, 0);
+    const double target_z = (1 - alpha) * ground_a(t + 1, 1) + alpha * ground_b(t + 1, 1);
+    (*ground)(t + 1, 0) = x + pull * (target_x - x);
+    (*ground)(t + 1, 1) = z + pull * (target_z - z);
+    (*heading)[t + 1] = (*heading)[t] + steps(t, 2);
+  }
+}
+
+Eigen::MatrixXd limit_warped_steps(const Eigen::MatrixXd& steps, const Eigen::VectorXd& warp,
+                                   double max_speedup) {
+  if (steps.cols() != 3 || steps.rows() != warp.size())
+    throw InputError("cannot limit warped root steps: " + std::to_string(steps.rows()) + " x " +
+                     std::to_string(steps.cols()) + " steps for a warp of " + std::to_string(warp.size()) +
+                     " frames (expected F x 3 and F)");
+  Eigen::MatrixXd out = steps;
+  for (Eigen::Index t = 0; t + 1 < steps.rows(); ++t) {
+    const double skipped = warp[t + 1] - warp[t];
+    if (skipped > max_speedup) out.block<1, 2>(t, 0) *= max_speedup / skipped;
+  }
+  return out;
+}
+
+Eigen::MatrixXd match_turns(const Eigen::MatrixXd& steps_b, const Eigen::MatrixXd& steps_a) {
+  if (steps_a.rows() != steps_b.rows() || steps_a.cols() != 3 || steps_b.cols() != 3)
+    throw InputError("cannot match turns: root steps of " + std::to_string(steps_a.rows()) + " x " +
+                     std::to_string(steps_a.cols()) + " and " + std::to_string(steps_b.rows()) + " x " +
+                     std::to_string(steps_b.cols()) + " (expected F x 3 both)");
+  Eigen::MatrixXd out = steps_b;
+  // D = H_B - H_A, both integrated from 0; `whole` turns are taken off B's heading so that
+  // |D - 2 pi whole| stays within pi + hysteresis. Changing `whole` at frame t + 1 moves B's turn
+  // of step t by the same number of whole turns, which integrate_root cannot tell apart.
+  double difference = 0.0;
+  double whole = 0.0;
+  for (Eigen::Index t = 0; t + 1 < steps_b.rows(); ++t) {
+    difference += steps_b(t, 2) - steps_a(t, 2);
+    const double wrapped = difference - 2 * M_PI * whole;
+    if (std::abs(wrapped) > M_PI + kTurnHysteresis) {
+      const double next = std::round(difference / (2 * M_PI));
+      out(t, 2) -= 2 * M_PI * (next - whole);
+      whole = next;
+    }
+  }
+  return out;
+}
+
 void to_world(const Eigen::MatrixXd& local, const Eigen::MatrixXd& ground,
               const Eigen::VectorXd& heading, Eigen::MatrixXd* world) {
   const Eigen::Index frames = local.rows(), joints = local.cols() / 3;
   world->resize(frames, local.cols());
-  for (Eigen::Index t = 0; t < frames; ++t) {
-    const double c = std::cos(heading[t]), s = std::sin(heading[t]);
+  // Blocks of frames, so that every loop runs down contiguous columns (one frame's values lie a
+  // column apart in these column-major matrices); the angles of a block are computed once.
+  constexpr Eigen::Index kBlock = 64;
+  double c[kBlock], s[kBlock];
+  for (Eigen::Index first = 0; first < frames; first += kBlock) {
+    const Eigen::Index n = std::min(kBlock, frames - first);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      c[i] = std::cos(heading[first + i]);
+      s[i] = std::sin(heading[first + i]);
+    }
     for (Eigen::Index j = 0; j < joints; ++j) {
-      const double x = local(t, 3 * j), z = local(t, 3 * j + 2);
-      (*world)(t, 3 * j) = ground(t, 0) + c * x + s * z;
-      (*world)(t, 3 * j + 1) = local(t, 3 * j + 1);
-      (*world)(t, 3 * j + 2) = ground(t, 1) - s * x + c * z;
+      const double* x = local.col(3 * j).data() + first;
+      const double* y = local.col(3 * j + 1).data() + first;
+      const double* z = local.col(3 * j + 2).data() + first;
+      const double* gx = ground.col(0).data() + first;
+      const double* gz = ground.col(1).data() + first;
+      double* wx = world->col(3 * j).data() + first;
+      double* wy = world->col(3 * j + 1).data() + first;
+      double* wz = world->col(3 * j + 2).data() + first;
+      for (Eigen::Index i = 0; i < n; ++i) {
+        wx[i] = gx[i] + c[i] * x[i] + s[i] * z[i];
+        wy[i] = y[i];
+        wz[i] = gz[i] - s[i] * x[i] + c[i] * z[i];
+      }
     }
   }
 }

@@ -31,6 +31,46 @@ Eigen::MatrixXd root_steps(const Eigen::MatrixXd& ground, const Eigen::VectorXd&
 void integrate_root(const Eigen::MatrixXd& steps, const Eigen::Vector2d& start_ground,
                     double start_heading, Eigen::MatrixXd* ground, Eigen::VectorXd* heading);
 
+// B's root steps on A's timeline (F x 3: root_steps of B's ground and heading warped onto A's F
+// frames) with the ground part of each step limited to what max_speedup of B's own frames cover.
+// warp: F values, B's (fractional) frame shown at each A frame (dtw.h warp_map). Where the warp
+// runs over more than max_speedup B frames in one A frame, B's pose jumps over the frames in
+// between, and its root should not walk them in that one frame: where a long B is squeezed onto a
+// short A, the DTW skips up to a hundred frames at once and the root would teleport by metres.
+// Such a step keeps its direction and is scaled by max_speedup / (B frames skipped); the turn is
+// kept whole, so B faces the way its pose does. Throws InputError when the shapes differ. O(F).
+constexpr double kMaxWarpSpeedup = 4.0;
+Eigen::MatrixXd limit_warped_steps(const Eigen::MatrixXd& steps, const Eigen::VectorXd& warp,
+                                   double max_speedup);
+
+// B's root steps (F x 3, on A's timeline, from root_steps) with turns changed by whole turns
+// (multiples of 2 pi) so that the heading they integrate to stays within about pi of the heading
+// A's steps (F x 3) integrate to, from the same start: B's path and facing are unchanged (whole
+// turns are invisible), but blending the turn channel then blends the two facings along the
+// shorter arc. Without it, a take that turns back left at the end of the room blended with one
+// that turns back right integrates to a heading half a turn off both, walking away from where
+// either goes. Where the takes face opposite ways the shorter arc changes sides; a hysteresis of
+// kTurnHysteresis keeps it from flipping back and forth, and a blend at 0 < alpha < 1 turns by
+// 2 pi alpha in that one frame. Throws InputError when the shapes differ. O(F), exact.
+constexpr double kTurnHysteresis = 0.78539816339744831;  // pi / 4: radians beyond pi before the arc changes sides
+Eigen::MatrixXd match_turns(const Eigen::MatrixXd& steps_b, const Eigen::MatrixXd& steps_a);
+
+// The root trajectory of a blend of A and B (B warped onto A's timeline, both F frames): the
+// blended steps (F x 3, (1 - alpha) steps_a + alpha steps_b after match_turns) integrated from A's
+// start as integrate_root does, each step then pulled towards the blend of the two takes' own
+// paths, (1 - alpha) ground_a + alpha ground_b (F x 2 each, ground_b integrated from A's start),
+// by the fraction 1 - exp(-1 / (fps * pull_seconds)) of the gap. Integrated steps alone drift
+// apart from both takes wherever their turns are not aligned in time (the DTW aligns steps, not
+// turns), so that a blend would not lie between A and B; the pull keeps it there while moving
+// (almost) as the blended steps say, so feet hardly slide. alpha = 0 and 1 give A's and B's own
+// paths (the pull has nothing to correct). pull_seconds <= 0: no pull (integrate_root).
+// Writes ground (F x 2) and heading (F); allocation-free when they have that size. O(F).
+constexpr double kRootPullSeconds = 2.0;
+void integrate_blended_root(const Eigen::MatrixXd& steps, const Eigen::MatrixXd& ground_a,
+                            const Eigen::MatrixXd& ground_b, double alpha, double start_heading,
+                            double fps, double pull_seconds, Eigen::MatrixXd* ground,
+                            Eigen::VectorXd* heading);
+
 // Places local poses (F x 3J) in the world: p = ground + R_y(heading) local. Writes into `world`
 // (resized to F x 3J).
 void to_world(const Eigen::MatrixXd& local, const Eigen::MatrixXd& ground,

@@ -1,7 +1,9 @@
 #include "engine/csv_io.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "engine/atomic_file.h"
@@ -30,6 +32,7 @@ Eigen::MatrixXd parse_csv_matrix(std::string_view text, const std::string& sourc
   long long columns = -1, rows = 0;
   int line_number = 0;
   size_t pos = 0;
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") pos = 3;  // a UTF-8 byte order mark (spreadsheet exports)
   while (pos < text.size()) {
     size_t end = text.find_first_of("\r\n", pos);
     if (end == std::string_view::npos) end = text.size();
@@ -46,15 +49,23 @@ Eigen::MatrixXd parse_csv_matrix(std::string_view text, const std::string& sourc
       start = comma + 1;
     }
     std::vector<double> row(tokens.size());
-    bool numeric = true;
+    bool numeric = true, any_number = false;
     size_t bad = 0;
-    for (size_t i = 0; i < tokens.size() && numeric; ++i) {
-      numeric = parse_number(tokens[i], &row[i]) && std::isfinite(row[i]);
-      if (!numeric) bad = i;
+    for (size_t i = 0; i < tokens.size(); ++i) {
+      double ignored = 0;
+      const bool number = parse_number(tokens[i], &row[i]) && std::isfinite(row[i]);
+      // "nan" and "inf" parse but are not numbers a header would hold.
+      any_number = any_number || number || parse_number(tokens[i], &ignored);
+      if (!number && numeric) {
+        numeric = false;
+        bad = i;
+      }
     }
     const std::string where = source + ":" + std::to_string(line_number) + ": ";
     if (!numeric) {
-      if (rows == 0 && columns < 0) {  // a header line
+      // A header: the first line, made of names only. A first row with one bad number is an
+      // error like any other, not a header that silently drops the row.
+      if (rows == 0 && columns < 0 && !any_number) {
         columns = static_cast<long long>(tokens.size());
         continue;
       }

@@ -26,39 +26,47 @@ double nonzero_fraction(const Eigen::MatrixXd& c) {
 }
 
 // Paper 3.4 "Initialization". Picks, k times, the joint whose residual trajectory (its three
-// columns) has the most energy sum(X^2), factors that frames x 3 trajectory by its best rank-1
-// approximation w v^T, and subtracts it. The rank-1 factor comes from the top eigenvector of the
-// 3 x 3 Gram matrix T^T T, which is the SVD's right singular vector at O(frames) cost. Each
-// component therefore starts on one joint: sparse and localized, as SPLOCS starts.
+// columns) has the most energy sum(X^2), and factors that frames x 3 trajectory by its best
+// rank-1 approximation w v^T: w is the new weight column and v that joint's component entries.
+// The rank-1 factor comes from the top eigenvector of the 3 x 3 Gram matrix T^T T, which is the
+// SVD's right singular vector at O(frames) cost.
+// When the budget allows more than the joint's 3 channels, the rest of it goes to the other
+// channels that w explains best (their least-squares coefficients R^T w / |w|^2, largest
+// first): the component starts as the best sparse row for w that contains the joint, like
+// SPLOCS's init grows a component around its vertex. Subtracting it removes the signal from
+// every channel it explains, so the next pick is another part of the body rather than a
+// neighbour moving with the same signal (which left whole limbs to one component and others to
+// none, a local minimum the alternation could not leave).
 // r: frames x 3N, in: x, out: the residual x - w c. w: frames x k, c: k x 3N, both zeroed first.
 void greedy_init(int keep, Eigen::MatrixXd& r, Eigen::MatrixXd& w, Eigen::MatrixXd& c) {
-  const int joints = static_cast<int>(r.cols() / 3);
+  const Eigen::Index joints = r.cols() / 3;
   w.setZero();
   c.setZero();
   Eigen::VectorXd energy(joints);
-  for (int j = 0; j < joints; ++j) energy[j] = r.middleCols(3 * j, 3).squaredNorm();
+  const auto update_energy = [&] {
+    for (Eigen::Index j = 0; j < joints; ++j) energy[j] = r.middleCols(3 * j, 3).squaredNorm();
+  };
+  update_energy();
+  std::vector<double> scratch;
+  Eigen::MatrixXd others(r.cols(), 1);
 
-  for (int component = 0; component < w.cols(); ++component) {
+  for (Eigen::Index component = 0; component < w.cols(); ++component) {
     Eigen::Index joint = 0;
     energy.maxCoeff(&joint);  // the first maximum: deterministic
-    auto trajectory = r.middleCols(3 * joint, 3);
+    const auto trajectory = r.middleCols(3 * joint, 3);
     const Eigen::Matrix3d gram = trajectory.transpose() * trajectory;
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(gram);
-    Eigen::Vector3d v = eigen.eigenvectors().col(2);  // eigenvalues ascend: the largest is last
+    Eigen::MatrixXd v = eigen.eigenvectors().col(2);  // eigenvalues ascend: the largest is last
+    // (v is a 3 x 1 matrix so keep_largest can take it)
     // Fix the SVD's sign ambiguity so the result does not depend on the eigen solver's choice.
     Eigen::Index largest = 0;
-    v.cwiseAbs().maxCoeff(&largest);
-    if (v[largest] < 0.0) v = -v;
-    // When a component may keep fewer than 3 channels, the init must already be that sparse so
-    // the first sparse-coding step starts feasible (which keeps the objective monotone).
-    if (keep < 3) {
-      std::vector<double> scratch;
-      Eigen::MatrixXd column = v;
-      keep_largest(column, keep, SparseGroup::kColumn, scratch);
-      v = column.col(0);
-    }
-    // Least-squares weights for the fixed direction v: w = T v / (v^T v). For a unit v this is
-    // the rank-1 SVD's sigma * u.
+    v.col(0).cwiseAbs().maxCoeff(&largest);
+    if (v(largest, 0) < 0.0) v = -v;
+    // With fewer than 3 channels per component the init must already be that sparse, so the
+    // first sparse-coding step starts feasible (which keeps the objective monotone).
+    if (keep < 3) keep_largest(v, keep, SparseGroup::kColumn, scratch);
+    // Least-squares weights for the fixed direction v: w = T v / (v^T v); for the unit
+    // singular vector this is the rank-1 SVD's sigma * u.
     Eigen::VectorXd weight = trajectory * v / v.squaredNorm();
     // P_v: the weight column is scaled to max |w| = 1 and the component inversely.
     const double scale = weight.cwiseAbs().maxCoeff();
@@ -67,9 +75,21 @@ void greedy_init(int keep, Eigen::MatrixXd& r, Eigen::MatrixXd& w, Eigen::Matrix
       v *= scale;
     }
     w.col(component) = weight;
-    c.block<1, 3>(component, 3 * joint) = v.transpose();
-    trajectory.noalias() -= weight * v.transpose();
-    energy[joint] = trajectory.squaredNorm();
+    c.block<1, 3>(component, 3 * joint) = v.col(0).transpose();
+    if (keep > 3 && scale > 0.0) {
+      others.noalias() = r.transpose() * weight;
+      others /= weight.squaredNorm();
+      others.block<3, 1>(3 * joint, 0).setZero();
+      keep_largest(others, keep - 3, SparseGroup::kColumn, scratch);
+      for (Eigen::Index j = 0; j < r.cols(); ++j) {
+        if (others(j, 0) != 0.0) c(component, j) = others(j, 0);
+      }
+    }
+    for (Eigen::Index j = 0; j < r.cols(); ++j) {
+      const double value = c(component, j);
+      if (value != 0.0) r.col(j).noalias() -= value * weight;
+    }
+    update_energy();
   }
 }
 
@@ -139,8 +159,9 @@ Decomposition run_decomposition(const Eigen::MatrixXd& x, const DecompositionOpt
   result.objective_history.reserve(static_cast<size_t>(options.max_iterations) + 1);
   result.objective_history.push_back(objective);
 
-  // Paper 3.4 "Components optimization": a few warm-started projected-gradient steps of the
-  // sparse coding of 3.3 with D = W and one budget per component row of C.
+  // Paper 3.4 "Components optimization": a few warm-started sweeps of the sparse coding of 3.3
+  // with D = W and one budget per component row of C, on the normal equations (W^T W, W^T X)
+  // so a sweep costs O(k^2 * 3N) and only W^T X touches every frame.
   SparseCodingOptions coding;
   coding.nonzeros = keep;
   coding.group = SparseGroup::kRow;

@@ -15,8 +15,10 @@ struct DecompositionOptions {
   // overall non-zero fraction of C is f whenever f * 3N is whole, and no component is empty.
   double sparsity = 0.1;
   int max_iterations = 100;  // alternating W / C rounds after the greedy init, >= 0
-  double tolerance = 1e-6;   // stop when |E_prev - E| <= tolerance * E_prev, E the objective
-  int sparse_coding_iterations = 5;  // projected-gradient steps per C update (warm-started), >= 1
+  double tolerance = 1e-6;   // stop when |E_prev - E| < tolerance * E_prev, E the objective
+  // Sparse-coding sweeps per C update, >= 1: warm-started, each sweep updates every component
+  // row once (sparse_code_normal with SparseGroup::kRow).
+  int sparse_coding_iterations = 5;
 
   // Throws InputError when an option is out of range for x (frames x 3N), or x is empty, has a
   // column count that is not a multiple of 3, or holds a NaN or infinite value.
@@ -40,8 +42,11 @@ struct Decomposition {
 };
 
 // Decomposes x (frames x 3N, normalized, joints as consecutive x, y, z triples). Deterministic.
-// Greedy init by the joint with the most residual energy, then alternating closed-form weight
-// updates (projected to max |w| = 1) and sparse-coding component updates.
+// Greedy init: k times, the joint with the most residual energy gives a weight column (the
+// rank-1 SVD of its trajectory) and its component entries; a budget beyond 3 channels goes to
+// the channels that weight explains best. Then alternating rounds of closed-form weight updates
+// (projected to max |w| = 1, the component scaled inversely) and sparse-coding component
+// updates, each of which can only lower the objective.
 // control (may be null): checked for cancel once per round (throws Cancelled), progress 0..1.
 // Throws InputError from options.Validate(x).
 // Cost per round: O(frames * k * 3N) (one product W^T X), plus O(frames * nnz(C)).

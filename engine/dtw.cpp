@@ -195,7 +195,7 @@ double local_cost(const Eigen::MatrixXd& a, int i, const Eigen::MatrixXd& b, int
   double sum = 0.0;
   for (Eigen::Index k = 0; k < a.cols(); ++k) {
     const double d = b(j, k) - a(i, k);
-    sum = k == 0 ? d * d : sum + d * d;
+    sum += d * d;
   }
   return std::sqrt(sum);
 }
@@ -268,12 +268,14 @@ std::vector<double> run_rows(const View& v, int i0, int i_last, int j0, int j1,
   // A virtual row above i0 whose one finite cell, at column j0 - 1, feeds (i0, j0) diagonally
   // with 0, so the first row needs no special case.
   prev[0] = 0.0;
-  int prev_lo = j0 - 1, prev_hi = j0 - 1;
+  int prev_lo = j0 - 1;
+  [[maybe_unused]] int prev_hi = j0 - 1;  // for the assertion only
   for (int i = i0; i <= i_last; ++i) {
     int lo, hi;
     v.range(i, j0, j1, &lo, &hi);
-    assert(lo <= hi && lo <= prev_hi + 1);
-    for (int j = prev_hi + 1; j <= hi; ++j) prev[j - j0 + 1] = kInf;
+    // Both ends of the ranges only move right, so the previous row's buffer is still +inf
+    // after its range (never written there) and holds its row or +inf from lo - 1 on.
+    assert(lo <= hi && lo <= prev_hi + 1 && hi >= prev_hi && lo >= prev_lo);
     cur[lo - j0] = kInf;  // column lo - 1: no left neighbour, and +inf for the next row
     const int len = hi - lo + 1;
     local_costs(v.a, i, v.b, lo, len, c.data());
@@ -290,10 +292,8 @@ std::vector<double> run_rows(const View& v, int i0, int i_last, int j0, int j1,
     prev_hi = hi;
     progress.add_row(len);
   }
-  // Only column lo - 1 and the columns after hi are read by a next row, so only the returned
-  // row gets stale values before and after its range cleared.
+  // Rows read nothing before column lo - 1, so stale values may sit there; clear them.
   std::fill(prev.begin(), prev.begin() + (prev_lo - j0 + 1), kInf);
-  std::fill(prev.begin() + (prev_hi - j0 + 2), prev.end(), kInf);
   return prev;
 }
 
@@ -410,12 +410,9 @@ DtwPath align_dtw(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, const DtwO
     const Eigen::MatrixXd b_reversed = b.colwise().reverse();
     const View backward{a_reversed, b_reversed, band, true};
     solve(forward, backward, 0, n - 1, 0, m - 1, o.pointer_budget_bytes, progress, path.steps);
-    // Summed from the start, as the forward recurrence adds them.
+    // Summed from the start, in the order the forward recurrence adds them.
     double cost = 0.0;
-    for (std::size_t k = 0; k < path.steps.size(); ++k) {
-      const double c = local_cost(a, path.steps[k].first, b, path.steps[k].second);
-      cost = k == 0 ? c : c + cost;
-    }
+    for (const auto& [i, j] : path.steps) cost = local_cost(a, i, b, j) + cost;
     if (!std::isfinite(cost)) throw_overflow(a, b);
     path.cost = cost;
   }

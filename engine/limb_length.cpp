@@ -44,12 +44,6 @@ Eigen::Vector3d joint_at(const Eigen::MatrixXd& m, Eigen::Index row, int joint) 
   return Eigen::Vector3d(m(row, 3 * joint), m(row, 3 * joint + 1), m(row, 3 * joint + 2));
 }
 
-void set_joint(Eigen::MatrixXd& m, Eigen::Index row, int joint, const Eigen::Vector3d& v) {
-  m(row, 3 * joint) = v.x();
-  m(row, 3 * joint + 1) = v.y();
-  m(row, 3 * joint + 2) = v.z();
-}
-
 }  // namespace
 
 void apply_limb_lengths(Eigen::MatrixXd& positions, const std::vector<int>& parents,
@@ -67,34 +61,54 @@ void apply_limb_lengths(Eigen::MatrixXd& positions, const std::vector<int>& pare
   // row is used as its own scratch, so nothing is allocated: a backward pass turns every
   // non-root joint into its bone vector (child - parent, both still original because parents
   // have lower indices), then a forward pass places child = corrected parent + L * direction.
-  for (Eigen::Index f = 0; f < positions.rows(); ++f) {
+  // Frames go in blocks so that both passes run down contiguous memory (the matrix is
+  // column-major: one frame's values lie a whole column apart); per frame it is the same
+  // arithmetic in the same order as one frame at a time, and the previous frame a degenerate
+  // bone looks back to is always final (earlier in this joint's loop, or an earlier block).
+  constexpr Eigen::Index kBlock = 128;
+  const Eigen::Index rows = positions.rows();
+  auto column = [&positions, rows](int c) { return positions.data() + rows * static_cast<Eigen::Index>(c); };
+  for (Eigen::Index first = 0; first < rows; first += kBlock) {
+    const Eigen::Index last = std::min(rows, first + kBlock);
     for (int j = joints - 1; j >= 0; --j) {
       const int p = parents[static_cast<size_t>(j)];
-      if (p >= 0) set_joint(positions, f, j, joint_at(positions, f, j) - joint_at(positions, f, p));
+      if (p < 0) continue;
+      for (int k = 0; k < 3; ++k) {
+        double* child = column(3 * j + k);
+        const double* parent = column(3 * p + k);
+        for (Eigen::Index f = first; f < last; ++f) child[f] -= parent[f];
+      }
     }
     for (int j = 0; j < joints; ++j) {
       const int p = parents[static_cast<size_t>(j)];
       if (p < 0) continue;
       const double length = lengths[static_cast<size_t>(j)];
-      const Eigen::Vector3d bone = joint_at(positions, f, j);
-      const Eigen::Vector3d parent = joint_at(positions, f, p);
-      const double norm = bone.norm();
-      Eigen::Vector3d direction;
-      if (norm > options.degenerate_fraction * length && norm > 0.0) {
-        direction = bone / norm;
-      } else if (f > 0 && length > 0.0) {
-        // The previous output frame is final and its bone has length `length` > 0.
-        direction = (joint_at(positions, f - 1, j) - joint_at(positions, f - 1, p)).normalized();
-      } else {
-        direction = Eigen::Vector3d::UnitY();
-        if (options.fallback_pose.size() != 0) {
-          const Eigen::Vector3d reference =
-              options.fallback_pose.segment<3>(3 * j).transpose() -
-              options.fallback_pose.segment<3>(3 * p).transpose();
-          if (reference.norm() > 0.0) direction = reference.normalized();
+      double* const child[3] = {column(3 * j), column(3 * j + 1), column(3 * j + 2)};
+      const double* const parent_column[3] = {column(3 * p), column(3 * p + 1), column(3 * p + 2)};
+      for (Eigen::Index f = first; f < last; ++f) {
+        const Eigen::Vector3d bone(child[0][f], child[1][f], child[2][f]);
+        const Eigen::Vector3d parent(parent_column[0][f], parent_column[1][f], parent_column[2][f]);
+        const double norm = bone.norm();
+        Eigen::Vector3d direction;
+        if (norm > options.degenerate_fraction * length && norm > 0.0) {
+          direction = bone * (1.0 / norm);  // one division, not three
+        } else if (f > 0 && length > 0.0) {
+          // The previous output frame is final and its bone has length `length` > 0.
+          direction = (joint_at(positions, f - 1, j) - joint_at(positions, f - 1, p)).normalized();
+        } else {
+          direction = Eigen::Vector3d::UnitY();
+          if (options.fallback_pose.size() != 0) {
+            const Eigen::Vector3d reference =
+                options.fallback_pose.segment<3>(3 * j).transpose() -
+                options.fallback_pose.segment<3>(3 * p).transpose();
+            if (reference.norm() > 0.0) direction = reference.normalized();
+          }
         }
+        const Eigen::Vector3d placed = parent + length * direction;
+        child[0][f] = placed.x();
+        child[1][f] = placed.y();
+        child[2][f] = placed.z();
       }
-      set_joint(positions, f, j, parent + length * direction);
     }
   }
 }

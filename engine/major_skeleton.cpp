@@ -16,8 +16,6 @@ constexpr const char* kNames[kMajorJointCount] = {
     "left_elbow",     "left_wrist",  "left_hand",   "right_shoulder", "right_elbow",
     "right_wrist",    "right_hand",  "left_hip",    "left_knee",   "left_ankle",
     "left_toe",       "right_hip",   "right_knee",  "right_ankle", "right_toe"};
-// Fewer shared joints than this cannot describe a walk.
-constexpr int kMinimumSharedJoints = 8;
 constexpr double kZeroBone = 1e-6;  // relative to skeleton size
 
 enum class Side { kNone, kLeft, kRight };
@@ -92,19 +90,24 @@ struct Role {
 
 const std::vector<Role>& roles() {
   static const std::vector<Role> kRoles = {
-      {0, -1, {"hips", "hip", "pelvis", "root", "hipsroot"}},
-      {1, -1, {"spine", "abdomen", "spine0", "lowerback", "torso", "waist"}},
-      {2, -1, {"chest", "spine2", "spine1", "upperchest", "thorax", "spine3", "upperback", "chest2"}},
+      // Kinect v1 (the canonical set's model) names its joints HipCenter, ShoulderCenter,
+      // ShoulderLeft (the upper arm), WristLeft, HandLeft, AnkleLeft, FootLeft (the toe): the
+      // more specific spellings come first so that CMU's LeftHand / LeftFoot (wrist / ankle,
+      // no such joints) still map, and a spelling never matches the canonical parent itself.
+      {0, -1, {"hips", "hip", "pelvis", "hipcenter", "spinebase", "root", "hipsroot"}},
+      {1, -1, {"spine", "abdomen", "spine0", "spinemid", "lowerback", "torso", "waist"}},
+      {2, -1, {"chest", "spine2", "spine1", "upperchest", "thorax", "spine3", "upperback", "chest2",
+               "shouldercenter", "spineshoulder"}},
       {3, -1, {"head"}},
-      {4, 8, {"upperarm", "arm", "shldr", "uparm", "humerus", "shoulderjoint"}},
+      {4, 8, {"upperarm", "arm", "shldr", "uparm", "humerus", "shoulderjoint", "shoulder"}},
       {5, 9, {"forearm", "lowerarm", "elbow", "radius", "lowarm"}},
-      {6, 10, {"hand", "wrist"}},
+      {6, 10, {"wrist", "hand"}},
       {7, 11, {"handmiddle1", "handindex1", "fingerbase", "handend", "fingers", "finger1",
-               "finger0", "middle1", "index1", "handtip", "handsite"}},
+               "finger0", "middle1", "mid1", "index1", "handtip", "handsite", "hand"}},
       {12, 16, {"upleg", "upperleg", "thigh", "femur", "hip", "uleg", "hipjoint", "buttock"}},
       {13, 17, {"leg", "lowerleg", "shin", "knee", "calf", "tibia", "lleg", "lowleg"}},
-      {14, 18, {"foot", "ankle"}},
-      {15, 19, {"toebase", "toe", "toes", "toe0", "ball", "toes0"}},
+      {14, 18, {"ankle", "foot"}},
+      {15, 19, {"toebase", "toe", "toes", "toe0", "ball", "toes0", "foot"}},
   };
   return kRoles;
 }
@@ -156,7 +159,13 @@ MappingOverrides parse_mapping_overrides(const std::string& text, const std::str
       throw InputError(where + "expected a canonical joint name (hips, spine, chest, head, "
                                "left_shoulder .. right_toe), found '" + key + "'");
     if (value.empty()) throw InputError(where + "expected a joint name after '=', found nothing");
+    for (size_t i = 0; i < out.entries.size(); ++i) {
+      if (out.entries[i].first == major)
+        throw InputError(where + key + " is mapped a second time (first on line " +
+                         std::to_string(out.lines[i]) + ")");
+    }
     out.entries.emplace_back(major, value);
+    out.lines.push_back(line_number);
   }
   return out;
 }
@@ -188,6 +197,7 @@ MajorMapping map_major_joints(const Skeleton& skeleton, const MappingOverrides* 
           if (skeleton.joints[i].end_site || parts[i].part != spelling) continue;
           if (parts[i].side != wanted) continue;
           if (parent_joint >= 0 && !is_descendant(i, parent_joint)) continue;
+          if (std::find(m.joint.begin(), m.joint.end(), i) != m.joint.end()) continue;
           if (parent_joint >= 0 && (rest[i] - rest[parent_joint]).norm() <= kZeroBone * size) continue;
           found = i;
         }
@@ -206,15 +216,31 @@ MajorMapping map_major_joints(const Skeleton& skeleton, const MappingOverrides* 
     }
   }
   if (overrides) {
-    for (const auto& [major, name] : overrides->entries) {
-      if (name == "-") {
-        m.joint[major] = -1;
-        continue;
-      }
+    // Overrides first clear every role they name, so that "a = X" and "b = Y" can swap two joints
+    // the name rules had put the other way round.
+    for (const auto& entry : overrides->entries) m.joint[entry.first] = -1;
+    for (size_t e = 0; e < overrides->entries.size(); ++e) {
+      const auto& [major, name] = overrides->entries[e];
+      const int line = e < overrides->lines.size() ? overrides->lines[e] : 0;
+      const std::string where =
+          overrides->source + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": ";
+      if (name == "-") continue;
       const int j = skeleton.find(name);
-      if (j < 0)
-        throw InputError(overrides->source + ": joint '" + name + "' for " + kNames[major] +
-                         " is not in the skeleton");
+      if (j < 0) {
+        std::string names;
+        for (const Joint& joint : skeleton.joints) {
+          if (joint.end_site) continue;
+          names += (names.empty() ? "" : ", ") + joint.name;
+        }
+        throw InputError(where + "expected a joint of the skeleton for " + kNames[major] + ", found '" +
+                         name + "' (the skeleton has " + names + ")");
+      }
+      for (int other = 0; other < kMajorJointCount; ++other) {
+        if (other != major && m.joint[other] == j)
+          throw InputError(where + "joint '" + name + "' is already " + kNames[other] +
+                           "; a joint plays one role (name " + kNames[other] +
+                           " too, or write '" + kNames[other] + " = -')");
+      }
       m.joint[major] = j;
     }
   }
@@ -223,24 +249,30 @@ MajorMapping map_major_joints(const Skeleton& skeleton, const MappingOverrides* 
 
 std::vector<int> shared_major_joints(const MajorMapping& a, const std::string& source_a,
                                      const MajorMapping& b, const std::string& source_b) {
+  static const int kRequired[] = {0, 12, 13, 14, 16, 17, 18};
   std::vector<int> shared;
-  std::string missing;
+  std::string required_missing, other_missing;
+  const bool same = source_a == source_b;
   for (int i = 0; i < kMajorJointCount; ++i) {
     if (a.has(i) && b.has(i)) {
       shared.push_back(i);
       continue;
     }
-    std::string who = !a.has(i) && !b.has(i) ? "both" : (!a.has(i) ? source_a : source_b);
-    missing += std::string(missing.empty() ? "" : ", ") + kNames[i] + " (" + who + ")";
+    const std::string who = same || (!a.has(i) && !b.has(i)) ? (same ? source_a : "both")
+                                                               : (!a.has(i) ? source_a : source_b);
+    const bool required = std::find(std::begin(kRequired), std::end(kRequired), i) != std::end(kRequired);
+    std::string& list = required ? required_missing : other_missing;
+    list += std::string(list.empty() ? "" : ", ") + kNames[i] + " (" + who + ")";
   }
-  static const int kRequired[] = {0, 12, 13, 14, 16, 17, 18};
-  bool required_missing = false;
-  for (int r : kRequired) required_missing = required_missing || !(a.has(r) && b.has(r));
-  if (required_missing || static_cast<int>(shared.size()) < kMinimumSharedJoints) {
-    throw InputError(source_a + " and " + source_b +
-                     ": too few major joints found to blend (hips, hips/knees/ankles of both legs "
-                     "and at least 8 in all are needed); missing: " + missing +
-                     "; name them in a mapping file (--mapping)");
+  if (!required_missing.empty() || static_cast<int>(shared.size()) < kMinimumSharedJoints) {
+    std::string message = (same ? source_a : source_a + " and " + source_b) +
+                          ": too few major joints to blend: a blend needs the hips, both hips, knees "
+                          "and ankles, and at least " + std::to_string(kMinimumSharedJoints) +
+                          " joints in all, found " + std::to_string(shared.size()) + "; missing: ";
+    message += required_missing.empty() ? other_missing
+                                        : required_missing + (other_missing.empty() ? "" : "; also missing: " + other_missing);
+    message += "; name them in a mapping file (--mapping-a / --mapping-b, see assets/mappings/README.md)";
+    throw InputError(message);
   }
   return shared;
 }

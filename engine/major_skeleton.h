@@ -33,22 +33,29 @@ struct MajorMapping {
 
 // Overrides read from a mapping file: lines "left_elbow = LeftForeArm" (canonical name, then the
 // file's joint name; '#' starts a comment; "left_hand = -" says the skeleton has none).
+// The format is described in assets/mappings/README.md.
 struct MappingOverrides {
   std::vector<std::pair<int, std::string>> entries;  // (major, joint name or "-")
+  std::vector<int> lines;                            // 1-based line of each entry in `source`
   std::string source;
 };
-// Throws InputError "FILE:LINE: expected ..., found ..." on a malformed line.
+// Throws InputError "FILE:LINE: expected ..., found ..." on a malformed line, an unknown canonical
+// name, a missing joint name, or a canonical joint named twice.
 MappingOverrides parse_mapping_overrides(const std::string& text, const std::string& source);
 
 // Finds the canonical joints by name rules (retargeted CMU, CMU in 3ds Max/Poser naming, Bandai,
-// Mixamo, Biped, and similar), then applies the overrides. The hips is the pelvis joint that
-// carries the trajectory, which is not always the ROOT. A joint at the very same place as its
-// canonical parent in the rest pose (a zero-length bone) is passed over for the next candidate.
-// Throws InputError when an override names a joint the skeleton does not have.
+// Mixamo, 3ds Max Biped, Kinect, and similar), then applies the overrides. The hips is the pelvis
+// joint that carries the trajectory, which is not always the ROOT. A joint at the very same place
+// as its canonical parent in the rest pose (a zero-length bone), or not below it, is passed over
+// for the next candidate. Throws InputError "FILE:LINE: ..." when an override names a joint the
+// skeleton does not have (listing the ones it has) or one that already plays another role.
+// O(joints x spellings).
 MajorMapping map_major_joints(const Skeleton& skeleton, const MappingOverrides* overrides = nullptr);
 
 // The canonical joints two mappings share, in canonical order. Throws InputError naming the
-// files and the missing joints when the hips, both hips/knees/ankles or too few joints remain.
+// files and the missing joints (and which file lacks each) when the hips, a hip, knee or ankle,
+// or more than kMajorJointCount - kMinimumSharedJoints joints are missing.
+constexpr int kMinimumSharedJoints = 8;
 std::vector<int> shared_major_joints(const MajorMapping& a, const std::string& source_a,
                                      const MajorMapping& b, const std::string& source_b);
 

@@ -27,6 +27,7 @@ void PrepareOptions::Validate() const {
   if (!(fps >= 0) || fps > kMaxFps || !std::isfinite(fps))
     throw InputError("expected a frame rate from 1 to 1000 (or 0 to keep A's), found " + std::to_string(fps));
   if (dtw_band < -1) throw InputError("expected a DTW band of 0 or more frames, found " + std::to_string(dtw_band));
+  foot_contacts.Validate();
 }
 
 const char* blend_mode_name(BlendMode mode) { return mode == BlendMode::kShared ? "shared" : "paper"; }
@@ -38,6 +39,8 @@ void DecomposeParams::Validate(int channels) const {
   if (!(sparsity > 0 && sparsity <= 1))
     throw InputError("expected a sparsity in (0, 1], found " + std::to_string(sparsity));
   if (max_iterations < 0) throw InputError("expected 0 or more iterations, found " + std::to_string(max_iterations));
+  if (!(tolerance >= 0) || !std::isfinite(tolerance))
+    throw InputError("expected a tolerance of 0 or more, found " + std::to_string(tolerance));
   if (basic_motions < 0 || basic_motions > 16)
     throw InputError("expected from 0 to 16 basic motions, found " + std::to_string(basic_motions));
   if (basic_motions > 0 && mode != BlendMode::kPaper)
@@ -103,7 +106,9 @@ std::shared_ptr<const PreparedPair> prepare_pair(std::shared_ptr<const Clip> a,
   const Eigen::MatrixXd ground_b = warp_onto(p->canonical_b.ground, p->path, frames);
   const Eigen::VectorXd heading_b = warp_onto(Eigen::MatrixXd(p->canonical_b.heading), p->path, frames);
   p->steps_a = root_steps(p->canonical_a);
-  p->steps_b = root_steps(ground_b, heading_b);
+  // B's root on A's timeline: no teleport where the warp skips B frames, and facings that blend
+  // along the short arc (canonical_frame.h).
+  p->steps_b = match_turns(limit_warped_steps(root_steps(ground_b, heading_b), p->warp, kMaxWarpSpeedup), p->steps_a);
   p->normalization = fit_normalization(p->canonical_a.local, p->local_b);
   p->x_a = normalize(p->canonical_a.local, p->normalization.mean_a, p->normalization.scale);
   p->x_b = normalize(p->local_b, p->normalization.mean_b, p->normalization.scale);
@@ -112,6 +117,16 @@ std::shared_ptr<const PreparedPair> prepare_pair(std::shared_ptr<const Clip> a,
   integrate_root(p->steps_b, p->canonical_a.ground.row(0).transpose(), p->canonical_a.heading[0], &ground,
                  &heading);
   to_world(p->local_b, ground, heading, &p->world_b_on_a);
+  apply_limb_lengths(p->world_b_on_a, p->parents, p->lengths_a);  // the warp interpolates positions
+  p->ground_b_on_a = ground;
+  // Foot contacts of each take on its own motion, B's carried onto A's timeline by the warp, so
+  // blend_pair only mixes them (foot_contact.h).
+  p->feet = make_foot_rig(p->majors, p->lengths_a, fps, options.foot_contacts);
+  p->contacts_a = detect_foot_contacts(p->world_a, p->feet);
+  p->contacts_b = detect_foot_contacts(p->world_b, p->feet);
+  p->contacts_b_on_a = carry_contacts(p->contacts_b, p->warp);
+  p->foot_sliding_a = foot_sliding(p->world_a, p->contacts_a, p->feet);
+  p->foot_sliding_b = foot_sliding(p->world_b, p->contacts_b, p->feet);
   p->times.preprocess_ms += ms_since(t2);
   report_progress(control, 1.0f);
   return p;
@@ -129,11 +144,18 @@ std::shared_ptr<const DecomposedPair> decompose_pair(const PreparedPair& prepare
   o.components = params.components;
   o.sparsity = params.sparsity;
   o.max_iterations = params.max_iterations;
+  o.tolerance = params.tolerance;
   const double scale = prepared.normalization.scale;
   const Eigen::MatrixXd* support_source = nullptr;
   if (params.mode == BlendMode::kShared) {
     d->shared = decompose_shared(prepared.x_a, prepared.x_b, o, control);
     d->shared_synthesis = prepare_shared_synthesis(d->shared.weights_a, d->shared.weights_b, d->shared.components);
+    const Normalization& n = prepared.normalization;
+    d->local_a = synthesize_shared(d->shared_synthesis, 0.0) * scale;
+    d->local_a.rowwise() += n.mean_a;
+    d->local_delta = synthesize_shared(d->shared_synthesis, 1.0) * scale;
+    d->local_delta.rowwise() += n.mean_b;
+    d->local_delta -= d->local_a;
     d->rmse_a = d->shared.rmse_a * scale;
     d->rmse_b = d->shared.rmse_b * scale;
     d->nonzero_a = d->nonzero_b = d->shared.nonzero_fraction;
@@ -143,6 +165,7 @@ std::shared_ptr<const DecomposedPair> decompose_pair(const PreparedPair& prepare
     BasicMotionOptions bo;
     bo.components = params.components;
     bo.max_iterations = params.max_iterations;
+    bo.tolerance = params.tolerance;
     bo.sparsities.assign(params.basic_motions, params.sparsity);
     for (size_t i = 0; i < params.basic_sparsities.size() && i < bo.sparsities.size(); ++i)
       bo.sparsities[i] = params.basic_sparsities[i];
@@ -181,16 +204,18 @@ void blend_pair(const PreparedPair& p, const DecomposedPair& d, const BlendParam
   if (!std::isfinite(params.alpha)) throw InputError("expected a finite alpha");
   const auto t0 = Clock::now();
   const double alpha = params.alpha;
-  if (d.params.mode == BlendMode::kShared) {
-    if (!params.component_alpha.empty()) {
-      if (static_cast<int>(params.component_alpha.size()) != d.components())
-        throw InputError("expected " + std::to_string(d.components()) + " component alphas, found " +
-                         std::to_string(params.component_alpha.size()));
-      s.alphas = Eigen::Map<const Eigen::VectorXd>(params.component_alpha.data(), d.components());
-      synthesize_shared(d.shared_synthesis, s.alphas, s.x);
-    } else {
-      synthesize_shared(d.shared_synthesis, alpha, s.x);
-    }
+  const Normalization& n = p.normalization;
+  const bool affine = d.params.mode == BlendMode::kShared && params.component_alpha.empty();
+  if (affine) {
+    // local = (W_A + alpha (W_B - W_A)) C scale + mean_a + alpha (mean_b - mean_a), folded.
+    s.local.resize(d.local_a.rows(), d.local_a.cols());
+    s.local.noalias() = d.local_a + alpha * d.local_delta;
+  } else if (d.params.mode == BlendMode::kShared) {  // one alpha per component
+    if (static_cast<int>(params.component_alpha.size()) != d.components())
+      throw InputError("expected " + std::to_string(d.components()) + " component alphas, found " +
+                       std::to_string(params.component_alpha.size()));
+    s.alphas = Eigen::Map<const Eigen::VectorXd>(params.component_alpha.data(), d.components());
+    synthesize_shared(d.shared_synthesis, s.alphas, s.x);
   } else if (d.params.basic_motions > 0) {
     synthesize_basic_motions(d.basic_synthesis, params.swap_level, alpha, s.x);
     s.x += d.basic_a.residual;  // the paper's chain sums back to X only with the residual
@@ -200,17 +225,26 @@ void blend_pair(const PreparedPair& p, const DecomposedPair& d, const BlendParam
   out.synthesize_ms = ms_since(t0);
 
   const auto t1 = Clock::now();
-  const Normalization& n = p.normalization;
-  s.mean.noalias() = (1 - alpha) * n.mean_a + alpha * n.mean_b;
-  s.local.resize(s.x.rows(), s.x.cols());
-  s.local.noalias() = s.x * n.scale;
-  s.local.rowwise() += s.mean;
+  if (!affine) {
+    s.mean.noalias() = (1 - alpha) * n.mean_a + alpha * n.mean_b;
+    s.local.resize(s.x.rows(), s.x.cols());
+    s.local.noalias() = s.x * n.scale;
+    s.local.rowwise() += s.mean;
+  }
   s.steps.resize(p.steps_a.rows(), 3);
   s.steps.noalias() = (1 - alpha) * p.steps_a + alpha * p.steps_b;
-  integrate_root(s.steps, p.canonical_a.ground.row(0).transpose(), p.canonical_a.heading[0], &s.ground,
-                 &s.heading);
+  integrate_blended_root(s.steps, p.canonical_a.ground, p.ground_b_on_a, alpha, p.canonical_a.heading[0], p.fps,
+                         params.root_pull_seconds, &s.ground, &s.heading);
   to_world(s.local, s.ground, s.heading, &out.world);
   if (params.limb_lengths) apply_limb_lengths(out.world, p.parents, p.lengths_a);
+  // Foot lock (beyond the paper): contacts mixed with the same alpha (the mean one when each
+  // component has its own), planted ankles pinned by two-bone IK, which keeps bone lengths.
+  double contact_alpha = alpha;
+  if (d.params.mode == BlendMode::kShared && !params.component_alpha.empty()) contact_alpha = s.alphas.mean();
+  blend_contacts(p.contacts_a, p.contacts_b_on_a, contact_alpha, out.contacts);
+  out.foot_sliding_raw = foot_sliding(out.world, out.contacts, p.feet);
+  if (params.foot_lock) apply_foot_lock(out.world, out.contacts, p.feet, s.foot);
+  out.foot_sliding_cleaned = params.foot_lock ? foot_sliding(out.world, out.contacts, p.feet) : out.foot_sliding_raw;
   out.limb_length_max_error = max_bone_length_error(out.world, p.parents, p.lengths_a);
   out.postprocess_ms = ms_since(t1);
 }

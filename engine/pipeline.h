@@ -16,6 +16,7 @@
 #include "engine/clip.h"
 #include "engine/decomposition.h"
 #include "engine/dtw.h"
+#include "engine/foot_contact.h"
 #include "engine/job_control.h"
 #include "engine/major_skeleton.h"
 #include "engine/normalize.h"
@@ -28,6 +29,7 @@ struct PrepareOptions {
   int dtw_band = -1;      // Sakoe-Chiba half-width in frames, -1: none
   MappingOverrides mapping_a;  // empty: name rules only
   MappingOverrides mapping_b;
+  FootContactOptions foot_contacts;  // detection thresholds and the lock's fade (foot_contact.h)
   void Validate() const;  // throws InputError on a bad fps or band
 };
 
@@ -60,6 +62,13 @@ struct PreparedPair {
   Normalization normalization;
   Eigen::MatrixXd x_a, x_b;         // F x 3M normalized motion matrices
   Eigen::MatrixXd world_b_on_a;     // F x 3M: warped B walking from A's start (for display)
+  Eigen::MatrixXd ground_b_on_a;    // F x 2: its hips' ground path (x, z)
+  // Foot contacts (foot_contact.h), columns left and right foot, 1 planted, 0 not.
+  FootRig feet;                     // leg columns, leg length, thresholds
+  Eigen::MatrixXd contacts_a;       // F x 2: A's, from world_a
+  Eigen::MatrixXd contacts_b;       // Fb x 2: B's on its own timeline, from world_b
+  Eigen::MatrixXd contacts_b_on_a;  // F x 2: B's carried onto A's timeline with `warp`
+  double foot_sliding_a = 0, foot_sliding_b = 0;  // A's units per second (B retargeted)
   StageTimes times;                 // load (if read here), preprocess, dtw
 };
 
@@ -78,6 +87,7 @@ struct DecomposeParams {
   int components = 10;     // k
   double sparsity = 0.5;   // fraction of non-zeros kept in C
   int max_iterations = 100;
+  double tolerance = 1e-6;  // stop on a relative objective change below this (0: run to the cap)
   // Paper mode only: m > 0 decomposes each take into m basic motions (paper 3.5) with these
   // sparsities (missing entries take `sparsity`) instead of one decomposition.
   int basic_motions = 0;
@@ -90,6 +100,10 @@ struct DecomposedPair {
   // Shared mode.
   SharedDecomposition shared;
   SharedSynthesis shared_synthesis;
+  // One alpha for every component: the blend's local pose (before the root, limb lengths and
+  // foot lock) is local_a + alpha * local_delta, W_A C and W_B C de-normalized once here, so that
+  // a slider move is one pass over F x 3M values instead of two products.
+  Eigen::MatrixXd local_a, local_delta;  // F x 3M, A's units
   // Paper mode.
   Decomposition paper_a, paper_b;
   PaperSynthesis paper_synthesis;
@@ -115,6 +129,8 @@ struct BlendParams {
   std::vector<double> component_alpha;   // shared mode: per component, overrides alpha; empty: none
   int swap_level = 0;                    // basic motions: the level whose core comes from B
   bool limb_lengths = true;              // paper 3.7
+  double root_pull_seconds = kRootPullSeconds;  // keeps the path between A's and B's (canonical_frame.h)
+  bool foot_lock = true;                 // pin planted feet after the limb lengths (foot_contact.h)
 };
 
 // Buffers blend_pair reuses between calls so a slider move allocates nothing.
@@ -122,17 +138,23 @@ struct BlendScratch {
   Eigen::MatrixXd x, local, ground, steps;
   Eigen::VectorXd heading, alphas;
   Eigen::RowVectorXd mean;
+  FootLockScratch foot;
 };
 
 struct BlendResult {
   Eigen::MatrixXd world;            // F x 3M: the blend in A's world frame, A's units
   double limb_length_max_error = 0; // after the constraint (before it when off), A's units
+  Eigen::MatrixXd contacts;         // F x 2: the blend's foot contacts (A's and B's blended)
+  double foot_sliding_raw = 0;      // foot sliding before the foot lock, A's units per second
+  double foot_sliding_cleaned = 0;  // after it (the same as raw when the lock is off)
   double synthesize_ms = 0, postprocess_ms = 0;
 };
 
 // Synthesizes one blend (paper 3.6) and post-processes it (de-normalize, blended root
-// trajectory from A's start, limb lengths). Throws InputError on a bad alpha or swap level.
-// Cost O(F x k x 3M); allocation-free once `scratch` and `out` have the right sizes.
+// trajectory from A's start, limb lengths, foot lock). Throws InputError on a bad alpha or swap level.
+// Cost O(F x 3M) in shared mode with one alpha (about 0.5 ms for a minute at 30 fps), else
+// O(F x k x 3M); allocation-free once `scratch` and `out` have the right sizes (per-component
+// alphas allocate one 2k x 3M matrix).
 void blend_pair(const PreparedPair& prepared, const DecomposedPair& decomposed,
                 const BlendParams& params, BlendScratch& scratch, BlendResult& out);
 

@@ -31,8 +31,13 @@ struct SparseCode {
 };
 
 // Sparse codes of signals y (dims x signals) in dictionary d (dims x atoms), warm-started from
-// warm_start (atoms x signals; zeros for a cold start). Step length 1/||D^T D||_2 (see the .cpp
-// for why not the paper's 2/||D^T D||_2), so the objective never increases once X is sparse.
+// warm_start (atoms x signals; zeros for a cold start). Each group is a block that takes a
+// gradient step of length 1/(its Lipschitz constant), then keeps its largest entries:
+// - kColumn: all columns together with step 1/||D^T D||_2 (not the paper's printed
+//   2/||D^T D||_2, which is the stability limit; see the .cpp);
+// - kRow: one row after another (block-coordinate), row i with step 1/(D^T D)_ii, which makes
+//   each row update the exact best sparse row given the others.
+// Either way the objective never increases once X is sparse. One iteration = one pass over X.
 // Throws InputError on mismatched shapes, non-finite input or bad options.
 // Cost per iteration: O(atoms^2 * signals) after one O(dims * atoms * (atoms + signals)).
 SparseCode sparse_code(const Eigen::MatrixXd& y, const Eigen::MatrixXd& d,

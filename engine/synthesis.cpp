@@ -21,6 +21,12 @@ void require_finite_alpha(double alpha, const char* where) {
   }
 }
 
+// out = (1 - alpha) a + alpha b in one pass; exactly a at alpha = 0 and b at alpha = 1.
+void lerp(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double alpha, Eigen::MatrixXd& out) {
+  out.resize(a.rows(), a.cols());
+  out = (1.0 - alpha) * a + alpha * b;
+}
+
 }  // namespace
 
 CoreComponents core_components(const Eigen::MatrixXd& components) {
@@ -66,22 +72,20 @@ PaperSynthesis prepare_paper_synthesis(const Eigen::MatrixXd& weights_a, const C
                      shape(b.basis) + ") must have A's k and channels (" + shape(a.core) +
                      ", basis " + shape(a.basis) + ").");
   }
-  // X_syn = W_A ((1 - alpha) K_A + alpha K_B) V_A^T = (1 - alpha) W_A (K_A V_A^T)
-  //                                                   + alpha W_A (K_B V_A^T):
-  // both k x 3N products are fixed, so a slider move costs two frames x k x 3N products.
+  // Paper 3.6, "Components synthesis": X_syn = W_A ((1 - alpha) K_A + alpha K_B) V_A^T
+  //   = (1 - alpha) W_A K_A V_A^T + alpha W_A K_B V_A^T,
+  // so both ends are fixed and a slider move only blends them.
   PaperSynthesis p;
-  p.weights_a = weights_a;
-  p.mix_a.noalias() = a.core * a.basis.transpose();
-  p.mix_b.noalias() = b.core * a.basis.transpose();
+  const Eigen::MatrixXd mix_a = a.core * a.basis.transpose();  // k x 3N
+  const Eigen::MatrixXd mix_b = b.core * a.basis.transpose();  // k x 3N
+  p.motion_a.noalias() = weights_a * mix_a;
+  p.motion_b.noalias() = weights_a * mix_b;
   return p;
 }
 
 void synthesize_paper(const PaperSynthesis& p, double alpha, Eigen::MatrixXd& out) {
   require_finite_alpha(alpha, "paper synthesis");
-  out.resize(p.weights_a.rows(), p.mix_a.cols());
-  // Scalar factors inside a product are folded into the GEMM: no temporaries.
-  out.noalias() = (1.0 - alpha) * p.weights_a * p.mix_a;
-  out.noalias() += alpha * p.weights_a * p.mix_b;
+  lerp(p.motion_a, p.motion_b, alpha, out);
 }
 
 Eigen::MatrixXd synthesize_paper(const PaperSynthesis& p, double alpha) {
@@ -113,20 +117,18 @@ BasicMotionSynthesis prepare_basic_motion_synthesis(const BasicMotions& a, const
     }
   }
   // Paper 3.6, "Basic motion synthesis": X_syn = sum_i W^A_i K^A_i V^A_i^T with K^A_s -> K^B_s.
-  // Stacking the levels side by side makes the sum one product; the swap of level s adds
-  // alpha W^A_s (K^B_s - K^A_s) V^A_s^T.
+  // Blending level s's core by alpha adds alpha W^A_s (K^B_s - K^A_s) V^A_s^T to A's sum.
   BasicMotionSynthesis p;
-  p.components = static_cast<int>(k);
-  p.weights_a.resize(frames, static_cast<Eigen::Index>(levels) * k);
-  p.mix_a.resize(static_cast<Eigen::Index>(levels) * k, channels);
+  p.motion_a = Eigen::MatrixXd::Zero(frames, channels);
   p.swap_delta.resize(levels);
   for (size_t i = 0; i < levels; ++i) {
     const CoreComponents core_a = core_components(a.levels[i].components);
     const CoreComponents core_b = core_components(b.levels[i].components);
-    const Eigen::Index first = static_cast<Eigen::Index>(i) * k;
-    p.weights_a.middleCols(first, k) = a.levels[i].weights;
-    p.mix_a.middleRows(first, k).noalias() = core_a.core * core_a.basis.transpose();
-    p.swap_delta[i].noalias() = (core_b.core - core_a.core) * core_a.basis.transpose();
+    const Eigen::MatrixXd basis_t = core_a.basis.transpose();
+    const Eigen::MatrixXd mix_a = core_a.core * basis_t;                  // k x 3N
+    const Eigen::MatrixXd delta = (core_b.core - core_a.core) * basis_t;  // k x 3N
+    p.motion_a.noalias() += a.levels[i].weights * mix_a;
+    p.swap_delta[i].noalias() = a.levels[i].weights * delta;
   }
   return p;
 }
@@ -139,11 +141,8 @@ void synthesize_basic_motions(const BasicMotionSynthesis& p, int swap, double al
                      std::to_string(levels) + ", got " + std::to_string(swap + 1) + ".");
   }
   require_finite_alpha(alpha, "basic motion synthesis");
-  out.resize(p.weights_a.rows(), p.mix_a.cols());
-  out.noalias() = p.weights_a * p.mix_a;
-  const Eigen::Index k = p.components;
-  out.noalias() += alpha * p.weights_a.middleCols(static_cast<Eigen::Index>(swap) * k, k) *
-                   p.swap_delta[static_cast<size_t>(swap)];
+  out.resize(p.motion_a.rows(), p.motion_a.cols());
+  out = p.motion_a + alpha * p.swap_delta[static_cast<size_t>(swap)];
 }
 
 Eigen::MatrixXd synthesize_basic_motions(const BasicMotionSynthesis& p, int swap, double alpha) {
@@ -161,21 +160,18 @@ SharedSynthesis prepare_shared_synthesis(const Eigen::MatrixXd& weights_a,
                      shape(weights_b) + ") must have the same shape, frames x k, with k the "
                      "component count (" + shape(components) + "); warp B to A's timeline first.");
   }
+  // ((1 - alpha) W_A + alpha W_B) C = (1 - alpha) W_A C + alpha W_B C.
   SharedSynthesis p;
-  p.weights.resize(weights_a.rows(), 2 * weights_a.cols());
-  p.weights.leftCols(weights_a.cols()) = weights_a;
-  p.weights.rightCols(weights_b.cols()) = weights_b;
+  p.motion_a.noalias() = weights_a * components;
+  p.motion_b.noalias() = weights_b * components;
+  p.weight_delta = weights_b - weights_a;
   p.components = components;
   return p;
 }
 
 void synthesize_shared(const SharedSynthesis& p, double alpha, Eigen::MatrixXd& out) {
   require_finite_alpha(alpha, "shared synthesis");
-  const Eigen::Index k = p.components.rows();
-  out.resize(p.weights.rows(), p.components.cols());
-  // ((1 - alpha) W_A + alpha W_B) C without forming the blended W (which would allocate).
-  out.noalias() = (1.0 - alpha) * p.weights.leftCols(k) * p.components;
-  out.noalias() += alpha * p.weights.rightCols(k) * p.components;
+  lerp(p.motion_a, p.motion_b, alpha, out);
 }
 
 Eigen::MatrixXd synthesize_shared(const SharedSynthesis& p, double alpha) {
@@ -194,12 +190,11 @@ void synthesize_shared(const SharedSynthesis& p, const Eigen::VectorXd& alphas,
   if (!alphas.allFinite()) {
     throw InputError("shared synthesis: an alpha is not a finite number.");
   }
-  // sum_c ((1 - a_c) W_A[:,c] + a_c W_B[:,c]) C[c,:] = [W_A W_B] [diag(1 - a) C; diag(a) C].
-  Eigen::MatrixXd mix(2 * k, p.components.cols());
-  mix.topRows(k).noalias() = (1.0 - alphas.array()).matrix().asDiagonal() * p.components;
-  mix.bottomRows(k).noalias() = alphas.asDiagonal() * p.components;
-  out.resize(p.weights.rows(), p.components.cols());
-  out.noalias() = p.weights * mix;
+  // sum_c ((1 - a_c) W_A[:,c] + a_c W_B[:,c]) C[c,:] = W_A C + (W_B - W_A) diag(a) C.
+  const Eigen::MatrixXd mix = alphas.asDiagonal() * p.components;  // k x 3N
+  out.resize(p.motion_a.rows(), p.motion_a.cols());
+  out = p.motion_a;
+  out.noalias() += p.weight_delta * mix;
 }
 
 Eigen::MatrixXd synthesize_shared(const SharedSynthesis& p, const Eigen::VectorXd& alphas) {

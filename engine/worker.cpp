@@ -36,7 +36,9 @@ void Worker::load(const std::string& path_a, const std::string& path_b, const Pr
     path_a_ = path_a;
     path_b_ = path_b.empty() ? path_a : path_b;
     prepare_options_ = options;
-    need_load_ = need_decompose_ = need_blend_ = true;
+    // A successful load asks for the decomposition and blend itself; asking here would, when the
+    // load fails, re-run them on the previous pair and wipe the error off the snapshot.
+    need_load_ = true;
     if (running_ == WorkerStage::kLoading || running_ == WorkerStage::kDecomposing) control_.cancel = true;
   }
   wake_.notify_all();
@@ -46,7 +48,7 @@ void Worker::decompose(const DecomposeParams& params) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     decompose_params_ = params;
-    need_decompose_ = need_blend_ = true;
+    need_decompose_ = true;  // a successful decomposition asks for the blend (see load)
     if (running_ == WorkerStage::kDecomposing) control_.cancel = true;
   }
   wake_.notify_all();

@@ -6,6 +6,7 @@
 // loaded before an error stays.
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -19,7 +20,7 @@ namespace mostyle {
 
 struct WorkerSnapshot {
   std::shared_ptr<const PreparedPair> prepared;      // null until a pair loaded
-  std::shared_ptr<const DecomposedPair> decomposed;  // of `prepared`, null while decomposing
+  std::shared_ptr<const DecomposedPair> decomposed;  // of `prepared`; null until its first one
   std::shared_ptr<const BlendResult> blend;          // of `decomposed` with blend_params
   DecomposeParams decompose_params;                  // the parameters `decomposed` was made with
   BlendParams blend_params;                          // the parameters `blend` was made with

@@ -1,0 +1,150 @@
+#include "app/editor_options.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <system_error>
+
+namespace mostyle::app {
+namespace {
+
+bool parse_double(const std::string& text, double* out) {
+  char* end = nullptr;
+  *out = std::strtod(text.c_str(), &end);
+  return !text.empty() && end == text.c_str() + text.size() && std::isfinite(*out);
+}
+
+bool parse_int(const std::string& text, int* out) {
+  auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), *out);
+  return !text.empty() && ec == std::errc() && ptr == text.data() + text.size();
+}
+
+std::filesystem::path program_directory() {
+  std::error_code ec;
+  std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::filesystem::path() : exe.parent_path();
+}
+
+}  // namespace
+
+ParseResult parse_editor_options(int argc, const char* const* argv) {
+  ParseResult result;
+  EditorOptions& o = result.options;
+  auto fail = [&](const std::string& message) {
+    result.status = ParseStatus::kUsageError;
+    result.error = message;
+    return result;
+  };
+  for (int i = 1; i < argc; ++i) {
+    std::string arg = argv[i];
+    if (arg.size() < 2 || arg.compare(0, 2, "--") != 0 || arg == "--") {
+      if (arg == "--") {
+        for (++i; i < argc; ++i) o.files.emplace_back(argv[i]);
+        break;
+      }
+      if (arg.size() > 1 && arg[0] == '-') {
+        if (arg == "-h") {
+          result.status = ParseStatus::kHelp;
+          return result;
+        }
+        return fail("unknown option '" + arg + "' (see --help)");
+      }
+      o.files.push_back(arg);
+      continue;
+    }
+    std::string name = arg, value;
+    bool has_value = false;
+    if (size_t eq = arg.find('='); eq != std::string::npos) {
+      name = arg.substr(0, eq);
+      value = arg.substr(eq + 1);
+      has_value = true;
+    }
+    auto take_value = [&]() -> bool {
+      if (has_value) return true;
+      if (i + 1 >= argc) return false;
+      value = argv[++i];
+      return true;
+    };
+    if (name == "--help") {
+      result.status = ParseStatus::kHelp;
+      return result;
+    } else if (name == "--offscreen") {
+      if (has_value) return fail("--offscreen takes no value");
+      o.offscreen = true;
+    } else if (name == "--screenshot") {
+      if (!take_value() || value.empty()) return fail("--screenshot: expected an output file name");
+      o.screenshot_path = value;
+    } else if (name == "--alpha") {
+      double v = 0.0;
+      if (!take_value() || !parse_double(value, &v) || v < 0.0 || v > 1.0)
+        return fail("--alpha: expected a number in [0, 1], got '" + value + "'");
+      o.initial.parameters.alpha = v;
+    } else if (name == "--components") {
+      int v = 0;
+      if (!take_value() || !parse_int(value, &v) || v < 1)
+        return fail("--components: expected a whole number >= 1, got '" + value + "'");
+      o.initial.parameters.components = v;
+    } else if (name == "--sparsity") {
+      double v = 0.0;
+      if (!take_value() || !parse_double(value, &v) || v <= 0.0 || v > 1.0)
+        return fail("--sparsity: expected a number in (0, 1], got '" + value + "'");
+      o.initial.parameters.sparsity = v;
+    } else if (name == "--frame") {
+      int v = 0;
+      if (!take_value() || !parse_int(value, &v) || v < 0)
+        return fail("--frame: expected a whole number >= 0, got '" + value + "'");
+      o.initial.frame = v;
+    } else {
+      return fail("unknown option '" + name + "' (see --help)");
+    }
+  }
+  if (o.offscreen && o.screenshot_path.empty())
+    return fail("--offscreen renders for a screenshot: add --screenshot OUT.png");
+  return result;
+}
+
+std::string editor_usage() {
+  return "usage: mostyle [A.bvh B.bvh ...] [options]\n"
+         "\n"
+         "Blend the styles of motion-capture takes live. With no files, opens the bundled\n"
+         "example pair (CMU subject 142: happy and marching walks).\n"
+         "\n"
+         "options:\n"
+         "  --screenshot OUT.png  render the first frames, write a PNG of the whole window, exit\n"
+         "  --offscreen           no display needed (OSMesa); use with --screenshot\n"
+         "  --alpha A             initial blend, 0 = first take, 1 = second (default 0.5)\n"
+         "  --components K        initial number of components (default 10)\n"
+         "  --sparsity F          initial fraction of non-zeros per component, (0, 1] (default 0.1)\n"
+         "  --frame N             initial frame (default 0)\n"
+         "  --help                this text\n"
+         "\n"
+         "mouse: left drag orbits, right or middle drag pans, the wheel zooms.\n"
+         "exit status: 0 success, 1 failure (no display, unwritable screenshot), 2 bad usage.\n";
+}
+
+std::vector<std::string> default_motion_files() {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> roots;
+  if (const char* env = std::getenv("MOSTYLE_ASSETS")) roots.emplace_back(env);
+#ifdef MOSTYLE_SOURCE_ASSETS_DIR
+  roots.emplace_back(MOSTYLE_SOURCE_ASSETS_DIR);
+#endif
+  fs::path here = program_directory();
+  if (!here.empty()) {
+    roots.push_back(here / "assets");
+    roots.push_back(here.parent_path() / "assets");
+    roots.push_back(here.parent_path() / "share" / "mostyle" / "assets");
+  }
+  const char* const names[] = {"cmu142_walk_happy.bvh", "cmu142_walk_marching.bvh"};
+  for (const fs::path& root : roots) {
+    std::error_code ec;
+    if (fs::exists(root / "motions" / names[0], ec)) {
+      return {(root / "motions" / names[0]).string(), (root / "motions" / names[1]).string()};
+    }
+  }
+  // Not found: the names alone, so the load error in the UI says what is missing.
+  return {std::string("assets/motions/") + names[0], std::string("assets/motions/") + names[1]};
+}
+
+}  // namespace mostyle::app

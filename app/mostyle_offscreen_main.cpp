@@ -1,0 +1,24 @@
+// mostyle-offscreen: the editor with no display (OSMesa), for `mostyle --offscreen` (which
+// runs this program) and for CI screenshots. Same flags as mostyle; --offscreen is implied.
+#include <cstdio>
+
+#include "app/editor_options.h"
+#include "app/offscreen_platform.h"
+
+int main(int argc, char** argv) {
+  using namespace mostyle::app;
+  ParseResult parsed = parse_editor_options(argc, argv);
+  if (parsed.status == ParseStatus::kHelp) {
+    std::fputs(editor_usage().c_str(), stdout);
+    return 0;
+  }
+  if (parsed.status == ParseStatus::kUsageError) {
+    std::fprintf(stderr, "mostyle: %s\n", parsed.error.c_str());
+    return 2;
+  }
+  if (parsed.options.screenshot_path.empty()) {
+    std::fprintf(stderr, "mostyle: --offscreen renders for a screenshot: add --screenshot OUT.png\n");
+    return 2;
+  }
+  return run_offscreen(parsed.options);
+}

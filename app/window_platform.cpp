@@ -1,0 +1,110 @@
+#include "app/window_platform.h"
+
+#include <cfloat>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <string>
+
+#include "render/gl.h"  // before GLFW, which must not include GL itself
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+
+#include "app/editor.h"
+#include "app/imgui_session.h"
+#include "app/screenshot.h"
+
+namespace mostyle::app {
+namespace {
+
+constexpr const char* kNoDisplay = "mostyle: no display; run under xvfb-run or pass --offscreen";
+
+std::string g_glfw_error;  // last GLFW error, for the one-line message
+void on_glfw_error(int /*code*/, const char* description) { g_glfw_error = description ? description : ""; }
+
+bool have_display() {
+  const char* x11 = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  return (x11 && *x11) || (wayland && *wayland);
+}
+
+// Screenshot frames must not depend on where the pointer is or how fast the machine is.
+void neutralise_input() {
+  ImGuiIO& io = ImGui::GetIO();
+  io.DeltaTime = kScreenshotDeltaS;
+  io.MousePos = ImVec2(-FLT_MAX, -FLT_MAX);
+  for (bool& down : io.MouseDown) down = false;
+  io.MouseWheel = io.MouseWheelH = 0.0f;
+}
+
+}  // namespace
+
+int run_window(const EditorOptions& options) {
+  if (!have_display()) {
+    std::fprintf(stderr, "%s\n", kNoDisplay);
+    return 1;
+  }
+  glfwSetErrorCallback(on_glfw_error);
+  if (!glfwInit()) {
+    std::fprintf(stderr, "%s (%s)\n", kNoDisplay, g_glfw_error.c_str());
+    return 1;
+  }
+  const bool screenshot = !options.screenshot_path.empty();
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  glfwWindowHint(GLFW_SAMPLES, 0);  // the viewport multisamples in its own target
+  glfwWindowHint(GLFW_RESIZABLE, screenshot ? GLFW_FALSE : GLFW_TRUE);
+  GLFWwindow* window = glfwCreateWindow(options.width, options.height, "mostyle", nullptr, nullptr);
+  if (window == nullptr) {
+    std::fprintf(stderr, "%s (%s)\n", kNoDisplay, g_glfw_error.c_str());
+    glfwTerminate();
+    return 1;
+  }
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(screenshot ? 0 : 1);
+
+  int status = 0;
+  {
+    ImGuiSession session(/*persist_layout=*/!screenshot);
+    Editor editor(options);
+    editor.set_deterministic(screenshot);
+    ImGui_ImplGlfw_InitForOpenGL(window, /*install_callbacks=*/true);
+    try {
+      editor.init_graphics();
+      double last = glfwGetTime();
+      for (int frame = 0; !glfwWindowShouldClose(window); ++frame) {
+        glfwPollEvents();
+        ImGui_ImplGlfw_NewFrame();
+        const double now = glfwGetTime();
+        FrameInput input;
+        glfwGetFramebufferSize(window, &input.framebuffer_size.x, &input.framebuffer_size.y);
+        input.delta_s = static_cast<float>(now - last);
+        last = now;
+        if (screenshot) {
+          neutralise_input();
+          input.delta_s = kScreenshotDeltaS;
+        }
+        if (input.framebuffer_size.x > 0 && input.framebuffer_size.y > 0) editor.frame(input);  // minimised: skip
+        if (screenshot && frame + 1 == kScreenshotFrames) {
+          status = write_screenshot(input.framebuffer_size, options.screenshot_path);
+          break;
+        }
+        glfwSwapBuffers(window);
+      }
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "mostyle: %s\n", e.what());
+      status = 1;
+    }
+    editor.shutdown_graphics();
+    ImGui_ImplGlfw_Shutdown();
+  }
+  glfwDestroyWindow(window);
+  glfwTerminate();
+  return status;
+}
+
+}  // namespace mostyle::app

@@ -1,0 +1,88 @@
+#pragma once
+// Foot contacts (beyond the paper, issue #4): when each foot is planted in a take, carried through
+// the DTW onto A's timeline and blended, and a foot lock that pins planted feet in place with
+// two-bone IK (hip-knee-ankle) so the blend does not skate. Works on major-joint positions
+// (frames x 3M, file units, Y up), the same matrices the pipeline blends.
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+namespace mostyle {
+
+// Columns (within the major-joint positions) of one leg; -1 where the take has none.
+struct LegColumns {
+  int hip = -1, knee = -1, ankle = -1, toe = -1;
+  bool usable() const { return hip >= 0 && knee >= 0 && ankle >= 0; }
+};
+
+// Thresholds are relative to the skeleton (its leg length), so they hold in any unit.
+struct FootContactOptions {
+  double height_fraction = 0.06;      // ankle at most this many leg lengths above its floor level
+  double speed_fraction = 0.45;       // ankle slower than this many leg lengths per second
+  double min_contact_seconds = 0.1;   // shorter contacts are dropped (noise)
+  double max_gap_seconds = 0.07;      // shorter breaks inside a contact are filled
+  double blend_seconds = 0.15;        // the lock fades in before and out after a contact
+  void Validate() const;              // throws InputError on a negative or non-finite value
+};
+
+// What contact detection and the lock need to know about a pair, fixed in prepare_pair.
+struct FootRig {
+  std::array<LegColumns, 2> legs;  // 0: left, 1: right
+  double leg_length = 0.0;         // thigh + shin, averaged over the legs, file units
+  double fps = 30.0;               // frame rate of the positions
+  FootContactOptions options;
+  int blend_frames() const;        // options.blend_seconds at fps, at least 1
+};
+
+// The legs' columns from the major joints present (canonical order, major_skeleton.h) and the
+// leg length from per-joint bone lengths (bone_lengths(), parallel to majors). Throws InputError
+// on bad options or a zero fps.
+FootRig make_foot_rig(const std::vector<int>& majors, const std::vector<double>& lengths, double fps,
+                      const FootContactOptions& options = {});
+
+// Contacts of one take: F x 2 (left, right foot), 1 where the ankle is within height_fraction
+// of its floor level (the 5th percentile of its height over the take) and slower than
+// speed_fraction, after gaps are filled and short contacts dropped; 0 elsewhere. world: F x 3M.
+// A leg that is not usable is never in contact. Throws InputError on a column mismatch.
+// O(F log F) (the percentile).
+Eigen::MatrixXd detect_foot_contacts(const Eigen::MatrixXd& world, const FootRig& rig);
+
+// B's contacts (Fb x 2) carried onto A's timeline: row i is B's row at warp(i) rounded (warp:
+// dtw.h warp_map, F values in B's frames). Throws InputError on an empty B. O(F).
+Eigen::MatrixXd carry_contacts(const Eigen::MatrixXd& contacts_b, const Eigen::VectorXd& warp);
+
+// The blend's contacts: 1 where (1 - alpha) a + alpha b > 1/2, else 0 (at alpha = 1/2 both takes
+// must agree). a, b: F x 2. out: resized to F x 2, no allocation when it has that size.
+void blend_contacts(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double alpha, Eigen::MatrixXd& out);
+
+// Foot sliding: the ankles' mean horizontal (x, z) speed over the frame steps t -> t + 1 where
+// that foot is in contact at both t and t + 1, both feet pooled; file units per second. 0 when
+// no foot is ever planted for two frames. world: F x 3M, contacts: F x 2. O(F), no allocation.
+double foot_sliding(const Eigen::MatrixXd& world, const Eigen::MatrixXd& contacts, const FootRig& rig);
+
+// Buffers apply_foot_lock reuses, so the lock does not allocate once they have the right size.
+struct FootLockScratch {
+  Eigen::VectorXd weight;  // F: how much of the lock applies at each frame, 0..1
+  Eigen::MatrixXd target;  // F x 2: the planted ankle's (x, z)
+};
+
+// Locks planted feet in place, in world (F x 3M) itself. Per foot and contact run (contacts F x 2,
+// runs of 1s): the ankle's target is the run's mean horizontal position; it is held there through
+// the run and faded in and out over blend_frames() before and after (smoothstep), the vertical
+// kept. Each such frame moves the ankle with analytic two-bone IK: the hip stays, thigh and shin
+// keep their lengths, the knee stays in the plane of hip, target and its old position (its bend
+// direction kept); a target out of reach is approached along the hip-target line. The toe moves
+// with the ankle (the foot is translated). Frames farther than blend_frames() from any contact
+// (swing) are left exactly as they were. O(F), no allocation once scratch has size F.
+void apply_foot_lock(Eigen::MatrixXd& world, const Eigen::MatrixXd& contacts, const FootRig& rig,
+                     FootLockScratch& scratch);
+
+// One two-bone IK solve, exposed for tests: hip, knee, ankle are the chain's joints, `target`
+// where the ankle should go. Returns the new knee and ankle (hip unchanged); thigh |knee - hip|
+// and shin |ankle - knee| keep their lengths. `bend_fallback` is used as the knee's bend
+// direction when the leg is straight (knee on the hip-target line).
+void two_bone_ik(const Eigen::Vector3d& hip, const Eigen::Vector3d& knee, const Eigen::Vector3d& ankle,
+                 const Eigen::Vector3d& target, const Eigen::Vector3d& bend_fallback,
+                 Eigen::Vector3d* new_knee, Eigen::Vector3d* new_ankle);
+
+}  // namespace mostyle

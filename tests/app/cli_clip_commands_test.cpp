@@ -1,0 +1,210 @@
+// mostyle-cli info | fk | convert, run as a user runs them: exit 0 ok, 1 bad input (one line on
+// stderr naming file and line), 2 bad usage; a failed write leaves no file.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "engine/bvh_io.h"
+#include "engine/kinematics.h"
+#include "tests/test_data.h"
+
+namespace fs = std::filesystem;
+using namespace mostyle;
+
+namespace {
+
+struct Run {
+  int status = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class Sandbox {
+ public:
+  Sandbox() : dir_(fs::temp_directory_path() / ("mostyle_cli_test_" + std::to_string(::getpid()))) {
+    fs::create_directories(dir_);
+  }
+  ~Sandbox() { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string write(const std::string& name, const std::string& content) const {
+    std::ofstream(dir_ / name, std::ios::binary) << content;
+    return path(name);
+  }
+  // Runs mostyle-cli with `args` (already quoted as needed) and collects exit status and output.
+  Run cli(const std::string& args) const {
+    const std::string out = path("stdout.txt"), err = path("stderr.txt");
+    const std::string command = "\"" MOSTYLE_CLI "\" " + args + " >\"" + out + "\" 2>\"" + err + "\"";
+    const int raw = std::system(command.c_str());
+    Run r;
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    r.out = slurp(out);
+    r.err = slurp(err);
+    fs::remove(out);
+    fs::remove(err);
+    return r;
+  }
+  // Files other than the given ones: leftovers such as temporary outputs.
+  int count_files() const {
+    int n = 0;
+    for (const auto& e : fs::directory_iterator(dir_)) n += e.is_regular_file();
+    return n;
+  }
+
+ private:
+  fs::path dir_;
+};
+
+int lines_in(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
+
+const std::string kBad =
+    "HIERARCHY\nROOT Hips\n{\n  OFFSET 0 0 0\n  CHANNELS 3 Zrotation Xrotation Wrotation\n";
+
+}  // namespace
+
+TEST_CASE("cli info: text and JSON", "[cli][bvh]") {
+  Sandbox box;
+  const std::string file = test::asset("motions/cmu142_walk_clumsy.bvh");
+  Run r = box.cli("info \"" + file + "\"");
+  CHECK(r.status == 0);
+  CHECK(r.err.empty());
+  CHECK(r.out.find("joints: 31 (+7 End Sites)") != std::string::npos);
+  CHECK(r.out.find("(120 fps)") != std::string::npos);
+  CHECK(r.out.find("    LeftUpLeg  [Zrotation Yrotation Xrotation] order ZYX") != std::string::npos);
+  r = box.cli("info --json \"" + file + "\"");
+  CHECK(r.status == 0);
+  CHECK(r.out.find("\"frames\": 1080") != std::string::npos);
+  CHECK(r.out.find("\"fps\": 120.0") != std::string::npos);
+  // Joint names that are not UTF-8 do not stop the JSON.
+  const std::string latin1 = box.write(
+      "latin1.bvh", "HIERARCHY\nROOT H\xfc" "fte\n{\nOFFSET 0 0 0\nCHANNELS 0\n}\nMOTION\nFrames: 0\nFrame Time: 0.1\n");
+  r = box.cli("info --json \"" + latin1 + "\"");
+  CHECK(r.status == 0);
+  CHECK(r.out.find("\"name\": \"H\xef\xbf\xbd" "fte\"") != std::string::npos);
+}
+
+TEST_CASE("cli: bad input exits 1 with one line naming file and line", "[cli][bvh]") {
+  Sandbox box;
+  const std::string bad = box.write("bad.bvh", kBad);
+  for (const std::string& command : {"info \"" + bad + "\"", "info --json \"" + bad + "\"",
+                                     "fk \"" + bad + "\" --out \"" + box.path("p.csv") + "\"",
+                                     "convert \"" + bad + "\" \"" + box.path("o.bvh") + "\""}) {
+    INFO(command);
+    const Run r = box.cli(command);
+    CHECK(r.status == 1);
+    CHECK(r.out.empty());
+    CHECK(r.err == "mostyle: " + bad +
+                       ":5: expected a channel name (Xposition .. Zrotation) for joint 'Hips', found "
+                       "'Wrotation'\n");
+  }
+  CHECK_FALSE(fs::exists(box.path("p.csv")));
+  CHECK_FALSE(fs::exists(box.path("o.bvh")));
+  const Run missing = box.cli("info \"" + box.path("none.bvh") + "\"");
+  CHECK(missing.status == 1);
+  CHECK(lines_in(missing.err) == 1);
+  CHECK(missing.err.rfind("mostyle: " + box.path("none.bvh") + ": cannot read: ", 0) == 0);
+  // Warnings go to stderr and the command still succeeds.
+  const std::string cut = box.write(
+      "cut.bvh", "HIERARCHY\nROOT A\n{\nOFFSET 0 0 0\nCHANNELS 1 Xrotation\n}\nMOTION\nFrames: 3\n"
+                 "Frame Time: 0.1\n1\n2\n");
+  const Run warned = box.cli("info \"" + cut + "\"");
+  CHECK(warned.status == 0);
+  CHECK(warned.err == "mostyle: warning: " + cut + ":8: Frames: says 3 but the file has 2 complete frames; loaded 2\n");
+}
+
+TEST_CASE("cli: bad usage exits 2", "[cli][bvh]") {
+  Sandbox box;
+  const std::string file = test::asset("motions/cmu142_walk_clumsy.bvh");
+  CHECK(box.cli("").status == 2);
+  CHECK(box.cli("frobnicate").status == 2);
+  CHECK(box.cli("info").status == 2);
+  CHECK(box.cli("info \"" + file + "\" --bogus").status == 2);
+  CHECK(box.cli("fk \"" + file + "\"").status == 2);  // --out is required
+  CHECK(box.cli("convert \"" + file + "\" \"" + box.path("o.bvh") + "\" --order ABC").status == 2);
+  CHECK(box.cli("convert \"" + file + "\" \"" + box.path("o.bvh") + "\" --fps 0").status == 2);
+  CHECK(box.cli("convert \"" + file + "\" \"" + box.path("o.bvh") + "\" --fps -30").status == 2);
+  CHECK(box.cli("convert \"" + file + "\" \"" + box.path("o.bvh") + "\" --fps fast").status == 2);
+  CHECK_FALSE(fs::exists(box.path("o.bvh")));
+  CHECK(box.cli("info --help").status == 0);
+}
+
+TEST_CASE("cli fk writes frame,joint,x,y,z for every joint in file order", "[cli][bvh]") {
+  Sandbox box;
+  const std::string file = test::asset("motions/cmu142_walk_happy.bvh");
+  const Run r = box.cli("fk \"" + file + "\" --out \"" + box.path("p.csv") + "\"");
+  REQUIRE(r.status == 0);
+  const Clip clip = read_bvh_file(file);
+  const Eigen::MatrixXd p = joint_positions(clip);
+  std::ifstream csv(box.path("p.csv"));
+  std::string line;
+  std::getline(csv, line);
+  CHECK(line == "frame,joint,x,y,z");
+  int rows = 0;
+  double worst = 0;
+  while (std::getline(csv, line)) {
+    std::stringstream fields(line);
+    std::string frame, joint, x, y, z;
+    std::getline(fields, frame, ',');
+    std::getline(fields, joint, ',');
+    std::getline(fields, x, ',');
+    std::getline(fields, y, ',');
+    std::getline(fields, z, ',');
+    const int f = std::stoi(frame);
+    const int j = clip.skeleton.find(joint);
+    REQUIRE(j >= 0);
+    // Shortest round-trip text: the doubles come back exactly.
+    worst = std::max({worst, std::abs(std::stod(x) - p(f, 3 * j)), std::abs(std::stod(y) - p(f, 3 * j + 1)),
+                      std::abs(std::stod(z) - p(f, 3 * j + 2))});
+    ++rows;
+  }
+  CHECK(rows == clip.frames() * 31);  // End Sites out
+  CHECK(worst == 0.0);
+}
+
+TEST_CASE("cli convert: other order, other rate, same positions", "[cli][bvh]") {
+  Sandbox box;
+  const std::string file = test::asset("motions/cmu142_walk_marching.bvh");
+  const Clip clip = read_bvh_file(file);
+  const Eigen::MatrixXd p = joint_positions(clip);
+  Run r = box.cli("convert \"" + file + "\" \"" + box.path("xyz.bvh") + "\" --order xyz");
+  REQUIRE(r.status == 0);
+  const Clip xyz = read_bvh_file(box.path("xyz.bvh"));
+  CHECK(xyz.skeleton.joints[1].channels ==
+        std::vector<Channel>{Channel::kXrotation, Channel::kYrotation, Channel::kZrotation});
+  CHECK((joint_positions(xyz) - p).cwiseAbs().maxCoeff() < 1e-9 * 30);
+  r = box.cli("convert \"" + file + "\" \"" + box.path("30.bvh") + "\" --fps 30 --order ZXY");
+  REQUIRE(r.status == 0);
+  const Clip slow = read_bvh_file(box.path("30.bvh"));
+  CHECK(slow.frames() == (clip.frames() - 1) / 4 + 1);
+  CHECK(slow.fps() == 30.0);
+  const Eigen::MatrixXd ps = joint_positions(slow);
+  for (int f = 0; f < slow.frames(); ++f) CHECK((ps.row(f) - p.row(4 * f)).cwiseAbs().maxCoeff() < 1e-9 * 30);
+}
+
+TEST_CASE("cli: a failed write exits 1 and leaves no file", "[cli][bvh]") {
+  Sandbox box;
+  const std::string file = test::asset("motions/cmu142_walk_clumsy.bvh");
+  const std::string nowhere = box.path("no/such/dir/out.bvh");
+  Run r = box.cli("convert \"" + file + "\" \"" + nowhere + "\"");
+  CHECK(r.status == 1);
+  CHECK(r.err.rfind("mostyle: " + nowhere + ": cannot write: ", 0) == 0);
+  CHECK(lines_in(r.err) == 1);
+  CHECK_FALSE(fs::exists(nowhere));
+  // Over a folder: the temporary file is removed again.
+  fs::create_directory(box.path("taken.csv"));
+  r = box.cli("fk \"" + file + "\" --out \"" + box.path("taken.csv") + "\"");
+  CHECK(r.status == 1);
+  CHECK(lines_in(r.err) == 1);
+  CHECK(box.count_files() == 0);
+}

@@ -1,0 +1,133 @@
+// Speed of export and foot lock: the rotation solve of a real blend onto A's full skeleton
+// (an export click; target: well under a second for a minute of motion), and blend_pair with
+// the foot lock (a slider move; target: synthesis and post-processing of a minute at 30 fps
+// well under 1 ms), the lock alone, and contact detection (once per pair).
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <string>
+
+#include "engine/bvh_io.h"
+#include "engine/error.h"
+#include "engine/export_solve.h"
+#include "engine/foot_contact.h"
+#include "engine/pipeline.h"
+
+namespace {
+
+const std::string kAssets = MOSTYLE_ASSETS_DIR;
+const std::string kShared = MOSTYLE_SHARED_MOTIONS;
+
+struct Pair {
+  std::shared_ptr<const mostyle::PreparedPair> prepared;
+  std::shared_ptr<const mostyle::DecomposedPair> decomposed;
+  mostyle::BlendResult blend;
+};
+
+// A prepared, decomposed and blended pair; `ok` false when the files are absent.
+Pair load_pair(const std::string& a, const std::string& b, bool* ok) {
+  Pair p;
+  *ok = false;
+  try {
+    auto clip_a = std::make_shared<const mostyle::Clip>(mostyle::read_bvh_file(a));
+    auto clip_b = std::make_shared<const mostyle::Clip>(mostyle::read_bvh_file(b));
+    p.prepared = mostyle::prepare_pair(clip_a, clip_b, mostyle::PrepareOptions{});
+  } catch (const mostyle::InputError&) {
+    return p;
+  }
+  mostyle::DecomposeParams dp;
+  dp.max_iterations = 30;
+  p.decomposed = mostyle::decompose_pair(*p.prepared, dp);
+  mostyle::BlendScratch scratch;
+  mostyle::blend_pair(*p.prepared, *p.decomposed, mostyle::BlendParams{}, scratch, p.blend);
+  *ok = true;
+  return p;
+}
+
+// CMU 142 happy with joy from ../shared/motions: 25 s (759 frames at 30 fps) of a 31-joint skeleton
+// with fingers; the bundled 9 s versions when the shared folder is absent.
+Pair cmu_pair(bool* ok) {
+  Pair p = load_pair(kShared + "/cmu142_walk_happy.bvh", kShared + "/cmu142_walk_joy.bvh", ok);
+  if (!*ok) p = load_pair(kAssets + "/motions/cmu142_walk_happy.bvh", kAssets + "/motions/cmu142_walk_joy.bvh", ok);
+  return p;
+}
+
+void BM_ExportSolveCmu(benchmark::State& state) {
+  bool ok = false;
+  const Pair p = cmu_pair(&ok);
+  if (!ok) return state.SkipWithError("no CMU motions");
+  for (auto _ : state) {
+    const mostyle::ExportResult r = mostyle::export_blend(*p.prepared, p.blend.world);
+    benchmark::DoNotOptimize(r.clip.motion.data());
+  }
+  state.counters["frames"] = static_cast<double>(p.blend.world.rows());
+}
+BENCHMARK(BM_ExportSolveCmu)->Unit(benchmark::kMillisecond);
+
+// Bandai as A: a rigid pelvis and clavicles, so the hips' and chest's fits iterate.
+void BM_ExportSolveBandai(benchmark::State& state) {
+  bool ok = false;
+  const Pair p = load_pair(kShared + "/bandai_walk_normal.bvh", kShared + "/bandai_walk_tired.bvh", &ok);
+  if (!ok) return state.SkipWithError("../shared/motions is absent");
+  for (auto _ : state) {
+    const mostyle::ExportResult r = mostyle::export_blend(*p.prepared, p.blend.world);
+    benchmark::DoNotOptimize(r.clip.motion.data());
+  }
+  state.counters["frames"] = static_cast<double>(p.blend.world.rows());
+}
+BENCHMARK(BM_ExportSolveBandai)->Unit(benchmark::kMillisecond);
+
+// A slider move with the foot lock on: synthesis and post-processing, no allocation.
+void BM_BlendWithFootLock(benchmark::State& state) {
+  bool ok = false;
+  const Pair p = cmu_pair(&ok);
+  if (!ok) return state.SkipWithError("no CMU motions");
+  mostyle::BlendParams params;
+  params.foot_lock = state.range(0) != 0;
+  mostyle::BlendScratch scratch;
+  mostyle::BlendResult out;
+  double alpha = 0.0;
+  for (auto _ : state) {
+    params.alpha = alpha;
+    mostyle::blend_pair(*p.prepared, *p.decomposed, params, scratch, out);
+    benchmark::DoNotOptimize(out.world.data());
+    alpha = alpha > 1.0 ? 0.0 : alpha + 0.01;
+  }
+  state.counters["frames"] = static_cast<double>(out.world.rows());
+}
+BENCHMARK(BM_BlendWithFootLock)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+// The foot lock alone on a minute of 30 fps motion (the pair's blend tiled to 1800 frames).
+void BM_FootLockMinute(benchmark::State& state) {
+  bool ok = false;
+  const Pair p = cmu_pair(&ok);
+  if (!ok) return state.SkipWithError("no CMU motions");
+  const Eigen::Index n = p.blend.world.rows();
+  Eigen::MatrixXd world(1800, p.blend.world.cols());
+  Eigen::MatrixXd contacts(1800, 2);
+  for (Eigen::Index f = 0; f < 1800; ++f) {
+    world.row(f) = p.blend.world.row(f % n);
+    contacts.row(f) = p.blend.contacts.row(f % n);
+  }
+  mostyle::FootLockScratch scratch;
+  Eigen::MatrixXd work = world;
+  for (auto _ : state) {
+    work = world;
+    mostyle::apply_foot_lock(work, contacts, p.prepared->feet, scratch);
+    benchmark::DoNotOptimize(work.data());
+  }
+}
+BENCHMARK(BM_FootLockMinute)->Unit(benchmark::kMicrosecond);
+
+void BM_DetectFootContacts(benchmark::State& state) {
+  bool ok = false;
+  const Pair p = cmu_pair(&ok);
+  if (!ok) return state.SkipWithError("no CMU motions");
+  for (auto _ : state) {
+    const Eigen::MatrixXd c = mostyle::detect_foot_contacts(p.prepared->world_a, p.prepared->feet);
+    benchmark::DoNotOptimize(c.data());
+  }
+}
+BENCHMARK(BM_DetectFootContacts)->Unit(benchmark::kMicrosecond);
+
+}  // namespace

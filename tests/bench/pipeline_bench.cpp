@@ -1,0 +1,154 @@
+// Speed of the pair pipeline on a minute of motion at 30 fps (1800 frames, 20 major joints):
+// prepare_pair (resample, FK, retarget, canonical frame, DTW), decompose_pair (shared mode, k = 10)
+// and blend_pair for one alpha, the slider move, which must stay well under 1 ms and allocate
+// nothing once its scratch has the right size (counted here by wrapping malloc).
+//
+// Data: two CMU takes from ../shared/motions (marching and happy, 27 s and 25 s at 120 fps)
+// played slower so that each lasts a minute, then resampled to 30 fps by the pipeline: 1800 frames.
+// Without ../shared, the bundled 9 s takes, slowed down the same way.
+#include <benchmark/benchmark.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "engine/bvh_io.h"
+#include "engine/pipeline.h"
+
+// Every heap allocation of the process goes through these (glibc lets a program replace them;
+// the __libc_ functions are glibc's own), so the blend benchmark can count them.
+extern "C" {
+void* __libc_malloc(size_t size);
+void* __libc_calloc(size_t count, size_t size);
+void* __libc_realloc(void* p, size_t size);
+void __libc_free(void* p);
+}
+namespace {
+std::atomic<long> g_allocations{0};
+}
+extern "C" {
+void* malloc(size_t size) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  return __libc_malloc(size);
+}
+void* calloc(size_t count, size_t size) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  return __libc_calloc(count, size);
+}
+void* realloc(void* p, size_t size) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  return __libc_realloc(p, size);
+}
+void free(void* p) { __libc_free(p); }
+}
+
+namespace {
+
+using namespace mostyle;
+
+constexpr double kSeconds = 1799.0 / 30.0;  // the take's duration after slowing down: 1800 frames at 30 fps
+
+// The clip played slower so that it lasts kSeconds (its frame time stretched).
+std::shared_ptr<const Clip> minute_take(const std::string& name) {
+  const std::string shared = std::string(MOSTYLE_SHARED_MOTIONS) + "/" + name;
+  const std::string path = std::filesystem::exists(shared) ? shared : std::string(MOSTYLE_ASSETS_DIR) + "/motions/" + name;
+  Clip clip = read_bvh_file(path);
+  clip.frame_time = kSeconds / (clip.frames() - 1);
+  return std::make_shared<const Clip>(std::move(clip));
+}
+
+struct Pair {
+  std::shared_ptr<const PreparedPair> prepared;
+  std::shared_ptr<const DecomposedPair> decomposed;
+};
+
+DecomposeParams bench_params() {
+  DecomposeParams d;
+  d.components = 10;
+  return d;  // sparsity 0.5, at most 100 iterations
+}
+
+const Pair& minute_pair() {
+  static const Pair pair = [] {
+    Pair p;
+    p.prepared = prepare_pair(minute_take("cmu142_walk_marching.bvh"), minute_take("cmu142_walk_happy.bvh"), {});
+    p.decomposed = decompose_pair(*p.prepared, bench_params());
+    return p;
+  }();
+  return pair;
+}
+
+void BM_PreparePair(benchmark::State& state) {
+  const auto a = minute_take("cmu142_walk_marching.bvh");
+  const auto b = minute_take("cmu142_walk_happy.bvh");
+  std::shared_ptr<const PreparedPair> p;
+  for (auto _ : state) {
+    p = prepare_pair(a, b, {});
+    benchmark::DoNotOptimize(p.get());
+  }
+  state.counters["frames"] = static_cast<double>(p->world_a.rows());
+  state.counters["joints"] = static_cast<double>(p->majors.size());
+  state.counters["dtw_ms"] = p->times.dtw_ms;
+}
+BENCHMARK(BM_PreparePair)->Unit(benchmark::kMillisecond);
+
+void BM_DecomposePair(benchmark::State& state) {
+  const PreparedPair& p = *minute_pair().prepared;
+  std::shared_ptr<const DecomposedPair> d;
+  for (auto _ : state) {
+    d = decompose_pair(p, bench_params());
+    benchmark::DoNotOptimize(d.get());
+  }
+  state.counters["frames"] = static_cast<double>(p.x_a.rows());
+  state.counters["k"] = d->components();
+  state.counters["iterations"] = d->iterations;
+}
+BENCHMARK(BM_DecomposePair)->Unit(benchmark::kMillisecond);
+
+// One slider move. Arg 0: everything (synthesis, root, limb lengths, foot lock); 1: no foot lock;
+// 2: no foot lock and no limb lengths.
+void BM_BlendPair(benchmark::State& state) {
+  const Pair& pair = minute_pair();
+  BlendParams params;
+  params.foot_lock = state.range(0) < 1;
+  params.limb_lengths = state.range(0) < 2;
+  BlendScratch scratch;
+  BlendResult out;
+  blend_pair(*pair.prepared, *pair.decomposed, params, scratch, out);  // sizes the scratch
+  const long before = g_allocations.load();
+  double synthesize_ms = 0, postprocess_ms = 0;
+  int step = 0;
+  for (auto _ : state) {
+    params.alpha = 0.01 * (step++ % 101);
+    blend_pair(*pair.prepared, *pair.decomposed, params, scratch, out);
+    benchmark::DoNotOptimize(out.world.data());
+    synthesize_ms += out.synthesize_ms;
+    postprocess_ms += out.postprocess_ms;
+  }
+  const long allocations = g_allocations.load() - before;
+  if (allocations != 0) state.SkipWithError("blend_pair allocated with a sized scratch");
+  state.counters["allocations"] = static_cast<double>(allocations);
+  state.counters["frames"] = static_cast<double>(out.world.rows());
+  state.counters["synthesize_ms"] = synthesize_ms / std::max(1, step);
+  state.counters["postprocess_ms"] = postprocess_ms / std::max(1, step);
+}
+BENCHMARK(BM_BlendPair)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
+
+// Per-component alphas (each component its own): one 2k x 3N mixing matrix is allocated.
+void BM_BlendPairComponentAlphas(benchmark::State& state) {
+  const Pair& pair = minute_pair();
+  BlendParams params;
+  params.component_alpha.assign(pair.decomposed->components(), 0.3);
+  BlendScratch scratch;
+  BlendResult out;
+  blend_pair(*pair.prepared, *pair.decomposed, params, scratch, out);
+  for (auto _ : state) {
+    blend_pair(*pair.prepared, *pair.decomposed, params, scratch, out);
+    benchmark::DoNotOptimize(out.world.data());
+  }
+}
+BENCHMARK(BM_BlendPairComponentAlphas)->Unit(benchmark::kMicrosecond);
+
+}  // namespace

@@ -1,0 +1,13 @@
+#pragma once
+// The "Takes" window: each loaded take with its colour, visibility and size, load errors and
+// warnings as the engine worded them, and the viewport's display toggles.
+#include "ui/panel.h"
+
+namespace mostyle::ui {
+
+class TakesPanel : public Panel {
+ public:
+  void draw(EditorState& state) override;
+};
+
+}  // namespace mostyle::ui
