@@ -1,5 +1,6 @@
 #include "app/cli_clip_commands.h"
 
+#include <cmath>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -130,7 +131,15 @@ void add_convert_command(CLI::App& app, std::function<int()>* run) {
   cmd->add_option("OUT", *out, "BVH file to write")->required();
   cmd->add_option("--order", *order, "Rotation order: XYZ, XZY, YXZ, YZX, ZXY or ZYX")
       ->check(CLI::IsMember({"XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX"}, CLI::ignore_case));
-  cmd->add_option("--fps", *fps, "Frame rate of the output")->check(CLI::PositiveNumber);
+  // CLI::PositiveNumber lets "nan" through (every comparison with it is false).
+  const CLI::Validator positive_finite(
+      [](std::string& text) {
+        double v = 0;
+        if (CLI::detail::lexical_cast(text, v) && v > 0 && std::isfinite(v)) return std::string();
+        return "expected a positive frame rate, found " + text;
+      },
+      "POSITIVE");
+  cmd->add_option("--fps", *fps, "Frame rate of the output")->check(positive_finite);
   cmd->callback([=] {
     *run = [=] {
       Clip clip = load_clip(*in);

@@ -19,6 +19,7 @@
 #include "render/gpu_timer.h"
 #include "render/render_target.h"
 #include "render/scene_renderer.h"
+#include "ui/blend_session.h"
 #include "ui/editor_state.h"
 #include "ui/panel.h"
 
@@ -31,9 +32,10 @@ struct FrameInput {
 
 class Editor {
  public:
-  // Loads the takes named in `options` (the bundled pair when none). A file that fails to
-  // load becomes a Take with its error, shown in the UI; nothing here throws for bad input.
-  // Needs no GL context.
+  // Asks the engine's worker for the pair named in `options` (the bundled pair when none; A
+  // with itself for one file) and returns at once: the takes (A, B on A's timeline, the blend)
+  // appear when it is ready. A file that fails to load shows its error sentence in the UI and
+  // what was loaded before stays; nothing here throws for bad input. Needs no GL context.
   explicit Editor(const EditorOptions& options);
   ~Editor();
   Editor(const Editor&) = delete;
@@ -59,16 +61,29 @@ class Editor {
 
   void add_panel(std::unique_ptr<ui::Panel> panel) { panels_.push_back(std::move(panel)); }
   ui::EditorState& state() { return state_; }
+  ui::BlendSession& session() { return *session_; }
+
+  // Takes up the worker's latest results and re-blends if asked (what frame() does first);
+  // needs no GL context. Never blocks.
+  void update_engine();
+  // Blocks until the worker has loaded, decomposed and blended (screenshots, tests), then
+  // update_engine().
+  void wait_for_engine();
+  // Files dropped on the window (the platform's drop callback): loaded as the pair (two) or
+  // as B (one) by the files panel on the next frame.
+  void drop_files(const std::vector<std::string>& paths);
   const render::OrbitCamera& camera() const { return camera_; }
 
  private:
-  void load_takes(const std::vector<std::string>& files);
-  void place_takes();
   void build_scene();
   void frame_camera(float aspect);
 
   ui::EditorState state_;
+  std::unique_ptr<ui::BlendSession> session_;  // before panels_: they hold references to it
   std::vector<std::unique_ptr<ui::Panel>> panels_;
+  const void* framed_pair_ = nullptr;  // the prepared pair the camera was framed on
+  int initial_frame_ = 0;              // --frame, applied when the first pair arrives
+  bool initial_frame_applied_ = false;
   render::OrbitCamera camera_;
   render::Scene scene_;
   render::SceneStyle style_;

@@ -44,6 +44,7 @@ int run_offscreen(const EditorOptions& options) {
     io.BackendPlatformName = "mostyle_offscreen";
     Editor editor(options);
     editor.set_deterministic(true);
+    editor.wait_for_engine();  // the same aligned, decomposed pair every run
     try {
       editor.init_graphics();
       for (int frame = 0; frame < kScreenshotFrames; ++frame) {

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <exception>
 #include <string>
+#include <vector>
 
 #include "render/gl.h"  // before GLFW, which must not include GL itself
 #define GLFW_INCLUDE_NONE
@@ -31,6 +32,13 @@ bool have_display() {
 }
 
 // Screenshot frames must not depend on where the pointer is or how fast the machine is.
+// Files dropped on the window go to the editor's queue; the files panel loads them.
+void on_drop(GLFWwindow* window, int count, const char** paths) {
+  auto* editor = static_cast<Editor*>(glfwGetWindowUserPointer(window));
+  if (editor == nullptr || count <= 0) return;
+  editor->drop_files(std::vector<std::string>(paths, paths + count));
+}
+
 void neutralise_input() {
   ImGuiIO& io = ImGui::GetIO();
   io.DeltaTime = kScreenshotDeltaS;
@@ -72,7 +80,10 @@ int run_window(const EditorOptions& options) {
     ImGuiSession session(/*persist_layout=*/!screenshot);
     Editor editor(options);
     editor.set_deterministic(screenshot);
+    if (screenshot) editor.wait_for_engine();  // the same aligned, decomposed pair every run
     ImGui_ImplGlfw_InitForOpenGL(window, /*install_callbacks=*/true);
+    glfwSetWindowUserPointer(window, &editor);
+    glfwSetDropCallback(window, on_drop);
     try {
       editor.init_graphics();
       double last = glfwGetTime();
@@ -100,6 +111,8 @@ int run_window(const EditorOptions& options) {
       status = 1;
     }
     editor.shutdown_graphics();
+    glfwSetDropCallback(window, nullptr);
+    glfwSetWindowUserPointer(window, nullptr);
     ImGui_ImplGlfw_Shutdown();
   }
   glfwDestroyWindow(window);

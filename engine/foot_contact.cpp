@@ -17,6 +17,8 @@ constexpr double kTimeEpsilon = 1e-9;
 // A bend (knee off the hip-target line) shorter than this fraction of the leg has no usable
 // direction: the previous frame's is used instead.
 constexpr double kStraightLeg = 1e-4;
+// Fraction of the leg's length the IK keeps away from full extension or folding.
+constexpr double kExtensionMargin = 1e-9;
 
 Eigen::Vector3d joint_at(const Eigen::MatrixXd& m, Eigen::Index row, int column) {
   return Eigen::Vector3d(m(row, 3 * column), m(row, 3 * column + 1), m(row, 3 * column + 2));
@@ -214,7 +216,11 @@ void two_bone_ik(const Eigen::Vector3d& hip, const Eigen::Vector3d& knee, const 
   }
   const Eigen::Vector3d n = to_target / distance;
   // Law of cosines in the plane of hip, target and the knee's bend direction.
-  const double reach = std::clamp(distance, std::abs(thigh - shin), thigh + shin);
+  // Short of full extension (and of full folding) by a hair: there the knee's distance from the
+  // hip-target line is the square root of a difference that vanishes, so rounding in the input
+  // would move the knee by the square root of rounding (1e-8 of the leg, not 1e-16).
+  const double margin = kExtensionMargin * (thigh + shin);
+  const double reach = std::clamp(distance, std::abs(thigh - shin) + margin, thigh + shin - margin);
   Eigen::Vector3d bend = (knee - hip) - n * n.dot(knee - hip);
   if (bend.norm() <= kStraightLeg * (thigh + shin)) bend = bend_fallback - n * n.dot(bend_fallback);
   bend = bend.norm() > 0 ? Eigen::Vector3d(bend.normalized()) : any_perpendicular(n);

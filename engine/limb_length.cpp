@@ -50,6 +50,10 @@ void apply_limb_lengths(Eigen::MatrixXd& positions, const std::vector<int>& pare
                         const std::vector<double>& lengths, const LimbLengthOptions& options) {
   check_skeleton(positions, parents, "limb-length constraint");
   check_lengths(parents, lengths, "limb-length constraint");
+  if (!(options.degenerate_fraction >= 0.0) || !std::isfinite(options.degenerate_fraction)) {
+    throw InputError("limb-length constraint: degenerate_fraction must be a finite number >= 0, "
+                     "got " + std::to_string(options.degenerate_fraction) + ".");
+  }
   if (options.fallback_pose.size() != 0 && options.fallback_pose.size() != positions.cols()) {
     throw InputError("limb-length constraint: the fallback pose has " +
                      std::to_string(options.fallback_pose.size()) + " values, expected " +

@@ -23,8 +23,8 @@ struct LimbLengthOptions {
 // Per joint with a parent: child = parent' + L * unit(child - parent), parent' the already
 // corrected parent and (child - parent) the bone as it was before correction, so each bone
 // keeps its direction and each subtree moves rigidly with its root. Roots do not move.
-// Throws InputError when the shapes do not match, a parent index is not < its joint, or a length
-// is negative or not finite. O(frames * J); no allocation.
+// Throws InputError when the shapes do not match, a parent index is not < its joint, a length
+// is negative or not finite, or an option is out of range. O(frames * J); no allocation.
 void apply_limb_lengths(Eigen::MatrixXd& positions, const std::vector<int>& parents,
                         const std::vector<double>& lengths, const LimbLengthOptions& options = {});
 // The same on a copy.

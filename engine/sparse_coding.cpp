@@ -43,8 +43,6 @@ void keep_largest_in_group(Group&& v, int n, std::vector<double>& magnitudes) {
   }
 }
 
-bool all_finite(const Eigen::MatrixXd& m) { return m.allFinite(); }
-
 }  // namespace
 
 void SparseCodingOptions::Validate(int code_rows, int code_cols) const {
@@ -167,7 +165,7 @@ SparseCode sparse_code(const Eigen::MatrixXd& y, const Eigen::MatrixXd& d,
   if (d.cols() == 0 || y.cols() == 0) {
     throw InputError("sparse coding: the dictionary and the signals must not be empty.");
   }
-  if (!all_finite(y) || !all_finite(d) || !all_finite(warm_start)) {
+  if (!y.allFinite() || !d.allFinite() || !warm_start.allFinite()) {
     throw InputError("sparse coding: the input holds a NaN or infinite value.");
   }
   options.Validate(static_cast<int>(d.cols()), static_cast<int>(y.cols()));

@@ -16,7 +16,7 @@ enum class SparseGroup {
 struct SparseCodingOptions {
   int nonzeros = 1;                          // entries kept per group, >= 1, <= group size
   SparseGroup group = SparseGroup::kColumn;  // how the budget is applied
-  int max_iterations = 200;                  // projected-gradient steps, >= 1
+  int max_iterations = 200;                  // passes over X (one step per group), >= 1
   // Stop early when ||X_new - X_old||_F <= tolerance * ||X_new||_F; 0 runs every iteration.
   double tolerance = 1e-12;
 
@@ -25,8 +25,8 @@ struct SparseCodingOptions {
 };
 
 struct SparseCode {
-  Eigen::MatrixXd codes;   // X: atoms x signals, exactly `nonzeros` entries kept per group
-  int iterations = 0;      // projected-gradient steps taken
+  Eigen::MatrixXd codes;   // X: atoms x signals, at most `nonzeros` non-zeros per group
+  int iterations = 0;      // passes over X taken
   double objective = 0.0;  // 1/2 ||Y - D X||_F^2 at the returned codes, Y's units squared
 };
 
@@ -45,15 +45,16 @@ SparseCode sparse_code(const Eigen::MatrixXd& y, const Eigen::MatrixXd& d,
 
 // The same iteration on the normal equations, for callers that already hold them (the
 // decomposition): gram = D^T D (atoms x atoms), correlation = D^T Y (atoms x signals).
-// Updates codes (atoms x signals) in place and returns the number of steps taken. Shapes and
-// options are the caller's responsibility (asserted, not checked). Allocates two atoms x signals
-// buffers and one group-sized buffer; no other cost beyond the per-iteration product.
+// Updates codes (atoms x signals) in place and returns the number of passes taken. Shapes and
+// options are the caller's responsibility (asserted, not checked). Allocates O(atoms x signals)
+// scratch once per call.
 int sparse_code_normal(const Eigen::MatrixXd& gram, const Eigen::MatrixXd& correlation,
                        Eigen::MatrixXd& codes, const SparseCodingOptions& options);
 
 // Euclidean projection onto the sparse set: keeps the `nonzeros` largest-magnitude entries of
 // each group of x and zeroes the rest. Ties go to the lower index, so the result is
-// deterministic and always has exactly min(nonzeros, group size) kept entries per group.
+// deterministic and keeps exactly min(nonzeros, group size) entries per group (an entry that
+// was already zero may be among them).
 // scratch is resized as needed and may be reused between calls to avoid allocation.
 void keep_largest(Eigen::MatrixXd& x, int nonzeros, SparseGroup group,
                   std::vector<double>& scratch);

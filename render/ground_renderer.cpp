@@ -11,6 +11,7 @@ constexpr int kShadowMapSize = 256;   // shadows are soft: a coarse map is enoug
 constexpr float kShadowReach = 0.6f;    // blobs fade out at this height, times the size
 constexpr float kBlobRadius = 0.06f;    // blob radius at the ground, times the size
 constexpr float kMarkerRadius = 0.045f; // contact ring radius, times the size
+constexpr float kShadowMaxSide = 8.0f;  // widest shadow map, times the size (3 cm texels at 170 cm)
 
 // The backdrop: a vertical gradient with a faint vignette (keeps the eye on the middle).
 // Shared by the background pass and the floor, which fades into it.
@@ -230,8 +231,8 @@ GroundRenderer::~GroundRenderer() {
 }
 
 void GroundRenderer::draw_shadow_map(const std::vector<SkeletonPose>& poses, float ground_height,
-                                     glm::vec4* rect) {
-  // Blobs: one per joint, three along each bone; size and darkness from the height.
+                                     const glm::vec3& focus, glm::vec4* rect) {
+  // Blobs: one per joint, two along each bone; size and darkness from the height.
   instances_.clear();
   Bounds area;
   float max_size = 0.0f;
@@ -265,6 +266,12 @@ void GroundRenderer::draw_shadow_map(const std::vector<SkeletonPose>& poses, flo
   glm::vec3 extent = area.extent();
   float side = std::max(std::max(extent.x, extent.z), 1e-6f) * 1.02f;
   glm::vec3 centre = area.center();
+  // Skeletons far apart would spread the 256 texels thin: keep the map around what is looked at.
+  const float max_side = kShadowMaxSide * max_size;
+  if (side > max_side) {
+    side = max_side;
+    centre = focus;
+  }
   *rect = glm::vec4(centre.x - 0.5f * side, centre.z - 0.5f * side, 1.0f / side, 1.0f);
 
   GLint previous_framebuffer = 0;
@@ -294,7 +301,7 @@ void GroundRenderer::draw(const std::vector<SkeletonPose>& poses, float ground_h
                           const OrbitCamera& camera, const glm::ivec2& size, const GroundStyle& style) {
   const float stage = stage_size(poses, camera);
   glm::vec4 shadow_rect(0.0f);
-  if (style.floor && style.shadows) draw_shadow_map(poses, ground_height, &shadow_rect);  // w: 1 if any
+  if (style.floor && style.shadows) draw_shadow_map(poses, ground_height, camera.target, &shadow_rect);
 
   const float aspect = static_cast<float>(size.x) / static_cast<float>(std::max(size.y, 1));
   const glm::mat4 view_projection = camera.view_projection(aspect);

@@ -58,7 +58,9 @@ class GroundRenderer {
             const glm::ivec2& size, const GroundStyle& style = {});
 
  private:
-  void draw_shadow_map(const std::vector<SkeletonPose>& poses, float ground_height, glm::vec4* rect);
+  // Renders the blobs; *rect = (x, z origin, 1 / side, 1), or all 0 when there is no shadow.
+  void draw_shadow_map(const std::vector<SkeletonPose>& poses, float ground_height, const glm::vec3& focus,
+                       glm::vec4* rect);
 
   ShaderProgram background_program_;
   ShaderProgram floor_program_;

@@ -34,9 +34,16 @@ struct Take {
   float size = 1.0f;                      // standing height, world units
   glm::vec3 color{0.8f};                  // sRGB, its skeleton and label
   bool visible = true;
+  double fps = 0.0;                       // rate of `positions`; 0: the clip's own
+  // Optional, frames x joints: 1 where the joint is planted (the engine's foot contacts);
+  // empty: the viewport estimates contacts from the height above the floor.
+  Eigen::MatrixXd contacts;
+  // Optional, one per joint: rgb highlight (sRGB), a = strength (a component's joints).
+  std::vector<glm::vec4> highlights;
 
   bool ok() const { return error.empty() && clip != nullptr; }
   int frames() const { return static_cast<int>(positions.rows()); }
+  double rate() const { return fps > 0.0 ? fps : clip ? clip->fps() : 30.0; }
 };
 
 struct Playback {
@@ -52,6 +59,7 @@ struct ViewOptions {
   bool grid = true;
   bool shadows = true;
   bool contacts = true;
+  bool overlay = false;   // the takes drawn on top of each other instead of side by side
   int samples = 0;        // viewport MSAA samples; 0: automatic (4 on a GPU, 1 on llvmpipe)
   bool request_reframe = false;  // set by a panel: frame the skeletons on the next frame
 };
@@ -73,7 +81,7 @@ struct EditorState {
 // Frame of `take` at time t (seconds), clamped to its range; 0 for a take without frames.
 inline int frame_at(const Take& take, double time_s) {
   if (!take.ok() || take.frames() == 0) return 0;
-  double f = time_s * take.clip->fps();
+  double f = time_s * take.rate();
   int frame = f <= 0.0 ? 0 : static_cast<int>(f + 1e-6);
   return frame >= take.frames() ? take.frames() - 1 : frame;
 }

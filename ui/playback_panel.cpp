@@ -29,7 +29,7 @@ void PlaybackPanel::draw(EditorState& state) {
     ImGui::End();
     return;
   }
-  const double fps = reference->clip->fps();
+  const double fps = reference->rate();
   const int last = std::max(reference->frames() - 1, 0);
   int frame = frame_at(*reference, p.time_s);
 

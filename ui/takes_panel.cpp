@@ -26,7 +26,7 @@ void TakesPanel::draw(EditorState& state) {
       ImGui::Checkbox(take.label.c_str(), &take.visible);
       if (ImGui::IsItemHovered()) {
         ImGui::SetTooltip("%s\n%d frames at %.0f fps, %zu joints", take.path.c_str(), take.frames(),
-                          take.clip->fps(), take.parents.size());
+                          take.rate(), take.parents.size());
       }
       for (const std::string& w : take.warnings) {
         ImGui::PushTextWrapPos(0.0f);

@@ -135,6 +135,8 @@ TEST_CASE("cli: bad usage exits 2", "[cli][bvh]") {
   CHECK(box.cli("convert \"" + file + "\" \"" + box.path("o.bvh") + "\" --fps 0").status == 2);
   CHECK(box.cli("convert \"" + file + "\" \"" + box.path("o.bvh") + "\" --fps -30").status == 2);
   CHECK(box.cli("convert \"" + file + "\" \"" + box.path("o.bvh") + "\" --fps fast").status == 2);
+  CHECK(box.cli("convert \"" + file + "\" \"" + box.path("o.bvh") + "\" --fps nan").status == 2);
+  CHECK(box.cli("convert \"" + file + "\" \"" + box.path("o.bvh") + "\" --fps inf").status == 2);
   CHECK_FALSE(fs::exists(box.path("o.bvh")));
   CHECK(box.cli("info --help").status == 0);
 }

@@ -125,6 +125,9 @@ TEST_CASE("limb-length functions reject bad skeletons", "[limb_length]") {
   LimbLengthOptions options;
   options.fallback_pose = Eigen::RowVectorXd::Zero(6);
   CHECK_THROWS_AS(apply_limb_lengths(p, parents, lengths, options), InputError);
+  options.fallback_pose.resize(0);
+  options.degenerate_fraction = -1.0;
+  CHECK_THROWS_AS(apply_limb_lengths(p, parents, lengths, options), InputError);
   CHECK_THROWS_AS(bone_lengths(Eigen::MatrixXd(0, 9), parents), InputError);
   CHECK_THROWS_AS(bone_lengths(p, {-1, 0}), InputError);
   CHECK_THROWS_AS(max_bone_length_error(p, parents, {0.0}), InputError);

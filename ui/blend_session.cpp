@@ -1,0 +1,287 @@
+#include "ui/blend_session.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+
+#include "engine/error.h"
+#include "engine/export_solve.h"
+#include "render/skeleton_pose.h"
+
+namespace mostyle::ui {
+namespace {
+
+// A warm orange, a sky blue and a green: A, B, and the blend between them.
+const glm::vec3 kColorA(0.96f, 0.60f, 0.28f);
+const glm::vec3 kColorB(0.36f, 0.64f, 0.97f);
+const glm::vec3 kColorBlend(0.50f, 0.88f, 0.46f);
+const glm::vec4 kHighlight(1.0f, 0.92f, 0.25f, 1.0f);
+constexpr float kSpacing = 0.6f;     // side by side: lateral distance, times the skeleton's size
+constexpr size_t kRecentFiles = 8;
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+std::string stem(const std::string& path) { return std::filesystem::path(path).stem().string(); }
+
+// frames x joints contact matrix from the engine's F x 2 foot contacts: ankle and toe columns.
+Eigen::MatrixXd joint_contacts(const Eigen::MatrixXd& feet, const FootRig& rig, int joints) {
+  Eigen::MatrixXd out;
+  if (feet.rows() == 0 || feet.cols() < 2) return out;
+  out = Eigen::MatrixXd::Zero(feet.rows(), joints);
+  for (int side = 0; side < 2; ++side) {
+    for (int column : {rig.legs[side].ankle, rig.legs[side].toe}) {
+      if (column < 0 || column >= joints) continue;
+      out.col(column) = (feet.col(side).array() > 0.5).cast<double>().matrix();
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+BlendSession::BlendSession() : snapshot_(worker_.snapshot()) {}
+BlendSession::~BlendSession() = default;
+
+void BlendSession::load(const std::string& path_a, const std::string& path_b) {
+  for (const std::string& p : {path_b, path_a}) {
+    if (p.empty()) continue;
+    recent_.erase(std::remove(recent_.begin(), recent_.end(), p), recent_.end());
+    recent_.push_front(p);
+  }
+  while (recent_.size() > kRecentFiles) recent_.pop_back();
+  worker_.load(path_a, path_b, PrepareOptions{});
+}
+
+void BlendSession::request_decomposition(const EditorState& state) {
+  DecomposeParams p;
+  p.mode = controls_.mode;
+  p.components = state.parameters.components;
+  p.sparsity = state.parameters.sparsity;
+  if (p.mode == BlendMode::kPaper && controls_.basic_motions > 0) {
+    p.basic_motions = controls_.basic_motions;
+    controls_.basic_sparsities.resize(static_cast<size_t>(p.basic_motions), p.sparsity);
+    p.basic_sparsities = controls_.basic_sparsities;
+  }
+  requested_ = p;
+  worker_.decompose(p);
+}
+
+bool BlendSession::decomposition_outdated() const {
+  const DecomposeParams& shown = snapshot_->decompose_params;
+  return !snapshot_->decomposed || shown.mode != requested_.mode || shown.components != requested_.components ||
+         shown.sparsity != requested_.sparsity || shown.basic_motions != requested_.basic_motions ||
+         shown.basic_sparsities != requested_.basic_sparsities;
+}
+
+void BlendSession::poll(EditorState& state) {
+  auto snap = worker_.snapshot();
+  if (snap->version == seen_version_) return;
+  seen_version_ = snap->version;
+  snapshot_ = std::move(snap);
+  if (snapshot_->prepared.get() != seen_prepared_) {
+    seen_prepared_ = snapshot_->prepared.get();
+    take_up_prepared(state);
+  }
+  const DecomposedPair* d = snapshot_->decomposed.get();
+  if (d != nullptr && d != seen_decomposed_) {
+    seen_decomposed_ = d;
+    controls_.component_alpha.resize(static_cast<size_t>(d->components()), state.parameters.alpha);
+    if (controls_.selected_component >= d->components()) controls_.selected_component = -1;
+    ErrorPoint point{d->params.components, d->params.sparsity, d->params.mode, d->rmse_a, d->rmse_b};
+    auto same = [&](const ErrorPoint& e) {
+      return e.components == point.components && e.sparsity == point.sparsity && e.mode == point.mode;
+    };
+    error_curve_.erase(std::remove_if(error_curve_.begin(), error_curve_.end(), same), error_curve_.end());
+    error_curve_.push_back(point);
+    std::sort(error_curve_.begin(), error_curve_.end(),
+              [](const ErrorPoint& a, const ErrorPoint& b) { return a.components < b.components; });
+  }
+}
+
+// A new pair: the three takes on A's timeline, the placement, the DTW image.
+void BlendSession::take_up_prepared(EditorState& state) {
+  const PreparedPair* p = snapshot_->prepared.get();
+  state.takes.clear();
+  has_blend_ = false;
+  blended_decomposed_ = nullptr;
+  if (p == nullptr) return;
+  const int joints = static_cast<int>(p->majors.size());
+  auto make = [&](const std::string& label, const glm::vec3& color, const Eigen::MatrixXd& contacts) {
+    Take t;
+    t.label = label;
+    t.color = color;
+    t.clip = p->clip_a;
+    t.fps = p->fps;
+    t.parents = p->parents;
+    t.contacts = joint_contacts(contacts, p->feet, joints);
+    return t;
+  };
+  Take a = make("A  " + stem(snapshot_->path_a), kColorA, p->contacts_a);
+  a.path = snapshot_->path_a;
+  a.warnings = snapshot_->warnings;
+  Take b = make("B  " + stem(snapshot_->path_b), kColorB, p->contacts_b_on_a);
+  b.path = snapshot_->path_b;
+  Take blend = make("blend", kColorBlend, Eigen::MatrixXd());
+  blend.path = "(blend of A and B)";
+  blend.positions = p->world_a;  // until the first blend arrives
+  state.takes = {std::move(a), std::move(b), std::move(blend)};
+
+  // Shared floor and start: A's lowest joint on y = 0, A's first body centre at the origin;
+  // side by side goes across A's direction of travel.
+  const Eigen::MatrixXd& w = p->world_a;
+  double lowest = 0.0;
+  for (int j = 0; j < joints; ++j) lowest = j == 0 ? w.col(1).minCoeff() : std::min(lowest, w.col(3 * j + 1).minCoeff());
+  Eigen::Vector3d start = Eigen::Vector3d::Zero(), end = Eigen::Vector3d::Zero();
+  for (int j = 0; j < joints; ++j) {
+    start += w.row(0).segment<3>(3 * j).transpose();
+    end += w.row(w.rows() - 1).segment<3>(3 * j).transpose();
+  }
+  start /= std::max(joints, 1);
+  end /= std::max(joints, 1);
+  shift_ = Eigen::Vector3d(-start.x(), -lowest, -start.z());
+  const float size = render::clip_size(w);
+  spacing_ = kSpacing * (size > 0.0f ? size : 1.0f);
+  Eigen::Vector2d travel(end.x() - start.x(), end.z() - start.z());
+  side_ = travel.norm() > 1e-9 ? Eigen::Vector3d(travel.y(), 0.0, -travel.x()).normalized() : Eigen::Vector3d::UnitX();
+  for (Take& t : state.takes) t.size = size;
+  placed_overlay_ = state.view.overlay;
+  place(state);
+  compute_dtw_image();
+}
+
+// Writes every take's positions from the engine's matrices with the current placement.
+// Slots across the travel: A left, the blend in the middle, B right.
+void BlendSession::place(EditorState& state) {
+  const PreparedPair* p = snapshot_->prepared.get();
+  if (p == nullptr || state.takes.size() != 3) return;
+  const double slots[3] = {-1.0, 1.0, 0.0};  // A, B, blend
+  const Eigen::MatrixXd* sources[3] = {&p->world_a, &p->world_b_on_a, has_blend_ ? &blend_.world : &p->world_a};
+  for (int t = 0; t < 3; ++t) {
+    const Eigen::Vector3d offset = shift_ + (state.view.overlay ? 0.0 : slots[t] * spacing_) * side_;
+    Eigen::MatrixXd& out = state.takes[static_cast<size_t>(t)].positions;
+    out = *sources[t];
+    for (Eigen::Index j = 0; 3 * j < out.cols(); ++j)
+      for (int a = 0; a < 3; ++a) out.col(3 * j + a).array() += offset[a];
+  }
+  placed_overlay_ = state.view.overlay;
+}
+
+void BlendSession::update_blend(EditorState& state) {
+  const PreparedPair* p = snapshot_->prepared.get();
+  const DecomposedPair* d = snapshot_->decomposed.get();
+  if (p == nullptr || state.takes.size() != 3) return;
+  if (d != nullptr) {
+    BlendParams params;
+    params.alpha = state.parameters.alpha;
+    if (d->params.mode == BlendMode::kShared && controls_.per_component) {
+      controls_.component_alpha.resize(static_cast<size_t>(d->components()), params.alpha);
+      params.component_alpha = controls_.component_alpha;
+    }
+    params.swap_level = d->params.basic_motions > 0 ? std::clamp(controls_.swap_level, 0, d->params.basic_motions - 1) : 0;
+    params.foot_lock = controls_.foot_lock;
+    const bool changed = d != blended_decomposed_ || params.alpha != blended_params_.alpha ||
+                         params.component_alpha != blended_params_.component_alpha ||
+                         params.swap_level != blended_params_.swap_level || params.foot_lock != blended_params_.foot_lock;
+    if (changed) {
+      const auto t0 = Clock::now();
+      try {
+        blend_pair(*p, *d, params, scratch_, blend_);
+        has_blend_ = true;
+        blend_error_.clear();
+      } catch (const std::exception& e) {  // InputError: a bad parameter, shown as it is
+        blend_error_ = e.what();
+      }
+      blend_ms_ = ms_since(t0);
+      blended_decomposed_ = d;
+      blended_params_ = params;
+      refresh_blend_take(state);
+    }
+  }
+  if (placed_overlay_ != state.view.overlay) place(state);
+
+  // The selected component's joints light up on the blend.
+  Take& blend = state.takes[kTakeBlend];
+  blend.highlights.clear();
+  const int c = controls_.selected_component;
+  if (d != nullptr && c >= 0 && c < d->support.rows()) {
+    blend.highlights.assign(blend.parents.size(), glm::vec4(0.0f));
+    for (size_t j = 0; j < blend.parents.size() && 3 * j + 2 < static_cast<size_t>(d->support.cols()); ++j) {
+      const Eigen::Index col = 3 * static_cast<Eigen::Index>(j);
+      if (d->support(c, col) != 0 || d->support(c, col + 1) != 0 || d->support(c, col + 2) != 0)
+        blend.highlights[j] = kHighlight;
+    }
+  }
+}
+
+void BlendSession::refresh_blend_take(EditorState& state) {
+  const PreparedPair* p = snapshot_->prepared.get();
+  Take& t = state.takes[kTakeBlend];
+  char label[64];
+  if (controls_.per_component && snapshot_->decomposed && snapshot_->decomposed->params.mode == BlendMode::kShared)
+    std::snprintf(label, sizeof label, "blend (per component)");
+  else
+    std::snprintf(label, sizeof label, "blend  alpha %.2f", state.parameters.alpha);
+  t.label = label;
+  if (has_blend_) t.contacts = joint_contacts(blend_.contacts, p->feet, static_cast<int>(p->majors.size()));
+  place(state);
+}
+
+void BlendSession::wait_idle(EditorState& state) {
+  worker_.wait_idle();
+  poll(state);
+  update_blend(state);
+}
+
+// Local cost c(i, j) = |a_i - b_j| (DESIGN.md 6) at the centre of each cell: O(cells), not
+// O(F x Fb), so a long take does not stall the frame that takes it up.
+void BlendSession::compute_dtw_image() {
+  dtw_image_ = DtwCostImage();
+  const PreparedPair* p = snapshot_->prepared.get();
+  if (p == nullptr || p->signal_a.rows() == 0 || p->signal_b.rows() == 0) return;
+  DtwCostImage& img = dtw_image_;
+  img.frames_a = static_cast<int>(p->signal_a.rows());
+  img.frames_b = static_cast<int>(p->signal_b.rows());
+  img.rows = std::min(img.frames_a, DtwCostImage::kMaxCells);
+  img.cols = std::min(img.frames_b, DtwCostImage::kMaxCells);
+  img.cost.resize(img.rows, img.cols);
+  for (int r = 0; r < img.rows; ++r) {
+    const int i = std::min(img.frames_a - 1, static_cast<int>((r + 0.5) * img.frames_a / img.rows));
+    for (int c = 0; c < img.cols; ++c) {
+      const int j = std::min(img.frames_b - 1, static_cast<int>((c + 0.5) * img.frames_b / img.cols));
+      img.cost(r, c) = static_cast<float>((p->signal_a.row(i) - p->signal_b.row(j)).norm());
+    }
+  }
+  const float top = img.cost.maxCoeff();
+  if (top > 0.0f) img.cost /= top;
+}
+
+bool BlendSession::export_bvh(const std::string& path) {
+  export_ok_ = false;
+  const PreparedPair* p = snapshot_->prepared.get();
+  if (path.empty()) {
+    export_message_ = "Export: no file name given.";
+    return false;
+  }
+  if (p == nullptr || !has_blend_) {
+    export_message_ = "Export: nothing to export yet (no blend).";
+    return false;
+  }
+  const auto t0 = Clock::now();
+  try {
+    ExportResult r = export_blend_bvh(*p, blend_.world, path);
+    export_ms_ = ms_since(t0);
+    char fit[96];
+    std::snprintf(fit, sizeof fit, " (%d frames, fit max %.3g)", r.clip.frames(), r.fit.max);
+    export_message_ = "Exported to " + std::filesystem::absolute(path).string() + fit;
+    export_ok_ = true;
+  } catch (const std::exception& e) {
+    export_message_ = e.what();
+  }
+  return export_ok_;
+}
+
+}  // namespace mostyle::ui

@@ -1,0 +1,138 @@
+#pragma once
+// The editor's link to the engine. Owns the engine Worker; each frame poll() takes up its latest
+// snapshot (a new pair, a new decomposition, an error) and update_blend() re-runs blend_pair on
+// the UI thread when alpha or a per-component alpha moved (well under 1 ms: the viewport follows
+// in the same frame). Loads and decompositions only ever go to the worker: nothing here blocks,
+// except wait_idle(), for tests and screenshots.
+//
+// The three takes it keeps in EditorState::takes, all on A's aligned timeline (A's frames at the
+// working rate): [0] A (world_a), [1] B warped onto A (world_b_on_a), [2] the blend.
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "engine/pipeline.h"
+#include "engine/worker.h"
+#include "ui/editor_state.h"
+
+namespace mostyle::ui {
+
+// What the parameter panels edit beyond EditorState::parameters (alpha, k, sparsity).
+struct SessionControls {
+  BlendMode mode = BlendMode::kShared;
+  bool per_component = false;            // shared mode: one alpha per component
+  std::vector<double> component_alpha;   // resized to k when a decomposition arrives
+  int basic_motions = 0;                 // paper mode: m levels (0: one decomposition)
+  std::vector<double> basic_sparsities;  // per level, resized to m
+  int swap_level = 0;                    // paper mode with m > 0: the level taken from B
+  bool foot_lock = true;
+  int selected_component = -1;           // components view; -1: none
+  int dtw_coordinate = 1;                // DTW view: 0 lateral, 1 height, 2 forward
+};
+
+// One decomposition's reconstruction error, recorded as decompositions arrive.
+struct ErrorPoint {
+  int components = 0;
+  double sparsity = 0.0;
+  BlendMode mode = BlendMode::kShared;
+  double rmse_a = 0.0, rmse_b = 0.0;  // A's units
+};
+
+// The DTW local-cost matrix, sampled once per prepared pair at cell centres: rows x cols cells
+// (at most kMaxCells each way) over A frames (rows) x B frames (cols).
+struct DtwCostImage {
+  static constexpr int kMaxCells = 96;
+  int rows = 0, cols = 0;
+  int frames_a = 0, frames_b = 0;
+  Eigen::MatrixXf cost;  // rows x cols, local cost normalised to [0, 1]
+};
+
+class BlendSession {
+ public:
+  BlendSession();
+  ~BlendSession();
+  BlendSession(const BlendSession&) = delete;
+  BlendSession& operator=(const BlendSession&) = delete;
+
+  // Asks the worker for a pair (b empty: A with itself). What was loaded stays until it succeeds;
+  // a failure shows up as error() on a later poll(). Remembers both paths in recent().
+  void load(const std::string& path_a, const std::string& path_b);
+  // Asks for a decomposition with state.parameters (k, sparsity) and controls().
+  void request_decomposition(const EditorState& state);
+
+  // Before the panels, once per frame: takes up a new snapshot (new pair: rebuilds the takes).
+  void poll(EditorState& state);
+  // After the panels: re-blends when the blend's inputs changed, refreshes the blend take, the
+  // highlights and the placement (side by side / overlaid).
+  void update_blend(EditorState& state);
+  // Blocks until the worker is idle (tests, screenshots), then poll() + update_blend().
+  void wait_idle(EditorState& state);
+
+  const WorkerSnapshot& snapshot() const { return *snapshot_; }
+  WorkerStatus status() const { return worker_.status(); }
+  const std::string& error() const { return snapshot_->error; }
+  const BlendResult* blend() const { return has_blend_ ? &blend_ : nullptr; }
+  const std::string& blend_error() const { return blend_error_; }
+  double blend_ms() const { return blend_ms_; }  // the last UI-thread blend_pair, wall time
+  SessionControls& controls() { return controls_; }
+  const std::vector<ErrorPoint>& error_curve() const { return error_curve_; }
+  const DtwCostImage& dtw_image() const { return dtw_image_; }
+  // The decomposition the panels' sliders ask for differs from the one shown.
+  bool decomposition_outdated() const;
+
+  // Writes the blend as BVH on A's skeleton (engine export, atomic). Returns false and sets
+  // export_message() to the error sentence on failure; on success, where it went.
+  bool export_bvh(const std::string& path);
+  const std::string& export_message() const { return export_message_; }
+  bool export_ok() const { return export_ok_; }
+  double export_ms() const { return export_ms_; }
+
+  const std::deque<std::string>& recent() const { return recent_; }
+  // Files dropped on the window, waiting for the files panel.
+  std::vector<std::string>& dropped() { return dropped_; }
+
+  // Frame times the metrics panel shows (set by the app each frame); negative: not shown.
+  float frame_ms = -1.0f, viewport_ms = -1.0f;
+
+ private:
+  void take_up_prepared(EditorState& state);
+  void place(EditorState& state);
+  void refresh_blend_take(EditorState& state);
+  void compute_dtw_image();
+
+  Worker worker_;
+  std::shared_ptr<const WorkerSnapshot> snapshot_;
+  std::uint64_t seen_version_ = ~std::uint64_t(0);
+  const PreparedPair* seen_prepared_ = nullptr;
+  const DecomposedPair* seen_decomposed_ = nullptr;
+  const DecomposedPair* blended_decomposed_ = nullptr;
+  DecomposeParams requested_;
+  SessionControls controls_;
+  BlendParams blended_params_;
+  BlendScratch scratch_;
+  BlendResult blend_;
+  bool has_blend_ = false;
+  std::string blend_error_;
+  double blend_ms_ = 0.0;
+  std::vector<ErrorPoint> error_curve_;
+  DtwCostImage dtw_image_;
+  // Placement: every take shares A's floor and start; side by side adds lateral offsets.
+  Eigen::Vector3d shift_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d side_ = Eigen::Vector3d::UnitX();
+  float spacing_ = 0.0f;
+  bool placed_overlay_ = false;
+  std::string export_message_;
+  bool export_ok_ = false;
+  double export_ms_ = -1.0;
+  std::deque<std::string> recent_;
+  std::vector<std::string> dropped_;
+};
+
+// Index of each take in EditorState::takes while a pair is loaded.
+constexpr int kTakeA = 0, kTakeB = 1, kTakeBlend = 2;
+
+}  // namespace mostyle::ui

@@ -1,0 +1,107 @@
+#include <algorithm>
+#include <cstdio>
+#include <string>
+
+#include <imgui.h>
+
+#include "ui/layout.h"
+#include "ui/plot.h"
+#include "ui/session_panels.h"
+
+namespace mostyle::ui {
+namespace {
+const ImVec4 kDimColor(0.60f, 0.62f, 0.66f, 1.0f);
+}  // namespace
+
+void ComponentsPanel::draw(EditorState& state) {
+  place_next_window(Column::kRight, 0.47f, 0.30f);
+  if (!ImGui::Begin("Components")) {
+    ImGui::End();
+    return;
+  }
+  const PreparedPair* p = session_.snapshot().prepared.get();
+  const DecomposedPair* d = session_.snapshot().decomposed.get();
+  SessionControls& c = session_.controls();
+  if (p == nullptr || d == nullptr) {
+    ImGui::TextColored(kDimColor, "Waiting for the decomposition...");
+    ImGui::End();
+    return;
+  }
+  const bool shared = d->params.mode == BlendMode::kShared;
+  const int k = d->components();
+  ImGui::SetNextItemWidth(140.0f);
+  char preview[32];
+  std::snprintf(preview, sizeof preview, c.selected_component < 0 ? "none" : "component %d", c.selected_component);
+  if (ImGui::BeginCombo("component", preview)) {
+    if (ImGui::Selectable("none", c.selected_component < 0)) c.selected_component = -1;
+    for (int i = 0; i < k; ++i) {
+      char label[32];
+      std::snprintf(label, sizeof label, "component %d", i);
+      if (ImGui::Selectable(label, c.selected_component == i)) c.selected_component = i;
+    }
+    ImGui::EndCombo();
+  }
+  ImGui::SameLine();
+  if (ImGui::ArrowButton("##prev", ImGuiDir_Left)) c.selected_component = std::max(-1, c.selected_component - 1);
+  ImGui::SameLine();
+  if (ImGui::ArrowButton("##next", ImGuiDir_Right)) c.selected_component = std::min(k - 1, c.selected_component + 1);
+
+  // Its joints (lit on the blend skeleton) and its weights over A's timeline.
+  const int sel = c.selected_component;
+  if (sel >= 0 && sel < d->support.rows()) {
+    std::string joints;
+    for (size_t j = 0; j < p->names_a.size() && 3 * j + 2 < static_cast<size_t>(d->support.cols()); ++j) {
+      const Eigen::Index col = 3 * static_cast<Eigen::Index>(j);
+      if (d->support(sel, col) != 0 || d->support(sel, col + 1) != 0 || d->support(sel, col + 2) != 0)
+        joints += (joints.empty() ? "" : ", ") + p->names_a[j];
+    }
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextColored(kDimColor, "joints: %s", joints.empty() ? "(none)" : joints.c_str());
+    ImGui::PopTextWrapPos();
+  }
+  const Eigen::MatrixXd* wa = shared ? &d->shared.weights_a : &d->paper_a.weights;
+  const Eigen::MatrixXd* wb = shared ? &d->shared.weights_b : &d->paper_b.weights;
+  const float plot_h = std::max(50.0f, (ImGui::GetContentRegionAvail().y - 2.0f * ImGui::GetTextLineHeightWithSpacing()) * 0.5f);
+  if (sel >= 0 && sel < wa->cols() && sel < wb->cols() && wa->rows() > 1) {
+    const double top = std::max({1e-9, wa->col(sel).cwiseAbs().maxCoeff(), wb->col(sel).cwiseAbs().maxCoeff()});
+    PlotArea w = begin_plot("##weights", -1.0f, plot_h, 0.0, static_cast<double>(wa->rows() - 1), -1.05 * top, 1.05 * top);
+    plot_line(w, static_cast<int>(wa->rows()), [&](int i, double* x, double* y) { *x = i; *y = (*wa)(i, sel); }, color_a());
+    plot_line(w, static_cast<int>(wb->rows()), [&](int i, double* x, double* y) { *x = i; *y = (*wb)(i, sel); }, color_b());
+    plot_vline(w, frame_at(state.takes[kTakeA], state.playback.time_s), IM_COL32(255, 255, 255, 140));
+    plot_legend(w, 0, "W_A", color_a());
+    plot_legend(w, 1, "W_B", color_b());
+    if (w.clicked) state.playback.time_s = (std::clamp(w.x_at(ImGui::GetIO().MousePos.x), 0.0, 1e9) + 0.5) / p->fps;
+  } else {
+    ImGui::TextColored(kDimColor, "Pick a component to see its joints and weights.");
+  }
+
+  // Reconstruction error against k, from every decomposition seen with this mode and sparsity.
+  std::vector<const ErrorPoint*> points;
+  for (const ErrorPoint& e : session_.error_curve())
+    if (e.mode == d->params.mode && e.sparsity == d->params.sparsity) points.push_back(&e);
+  ImGui::Text("RMSE against k (f = %.2f)", d->params.sparsity);
+  if (!points.empty()) {
+    double top = 1e-9;
+    int kmax = 1;
+    for (const ErrorPoint* e : points) {
+      top = std::max({top, e->rmse_a, e->rmse_b});
+      kmax = std::max(kmax, e->components);
+    }
+    PlotArea r = begin_plot("##rmse", -1.0f, std::max(40.0f, ImGui::GetContentRegionAvail().y - 4.0f), 0.0, kmax + 1, 0.0,
+                            1.1 * top);
+    const int n = static_cast<int>(points.size());
+    plot_line(r, n, [&](int i, double* x, double* y) { *x = points[static_cast<size_t>(i)]->components; *y = points[static_cast<size_t>(i)]->rmse_a; }, color_a());
+    plot_line(r, n, [&](int i, double* x, double* y) { *x = points[static_cast<size_t>(i)]->components; *y = points[static_cast<size_t>(i)]->rmse_b; }, color_b());
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    for (const ErrorPoint* e : points) {
+      dl->AddCircleFilled(r.to_screen(e->components, e->rmse_a), 3.0f, color_a());
+      dl->AddCircleFilled(r.to_screen(e->components, e->rmse_b), 3.0f, color_b());
+    }
+    char legend[64];
+    std::snprintf(legend, sizeof legend, "%zu decompositions; move k to add", points.size());
+    plot_legend(r, 0, legend, color_dim());
+  }
+  ImGui::End();
+}
+
+}  // namespace mostyle::ui

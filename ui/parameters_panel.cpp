@@ -1,0 +1,115 @@
+#include <algorithm>
+#include <cstdio>
+
+#include <imgui.h>
+
+#include "ui/layout.h"
+#include "ui/session_panels.h"
+
+namespace mostyle::ui {
+namespace {
+const ImVec4 kErrorColor(1.0f, 0.45f, 0.40f, 1.0f);
+const ImVec4 kOkColor(0.55f, 0.85f, 0.55f, 1.0f);
+const ImVec4 kDimColor(0.60f, 0.62f, 0.66f, 1.0f);
+}  // namespace
+
+void ParametersPanel::draw(EditorState& state) {
+  place_next_window(Column::kLeft, 0.21f, 0.47f);
+  if (!ImGui::Begin("Parameters")) {
+    ImGui::End();
+    return;
+  }
+  BlendSession& s = session_;
+  SessionControls& c = s.controls();
+  BlendParameters& p = state.parameters;
+  const DecomposedPair* d = s.snapshot().decomposed.get();
+  ImGui::PushItemWidth(-90.0f);
+
+  float alpha = static_cast<float>(p.alpha);
+  if (ImGui::SliderFloat("alpha", &alpha, 0.0f, 1.0f, "%.2f")) p.alpha = alpha;  // blended this frame
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: style A, 1: style B. Applied immediately.");
+
+  bool redecompose = false;
+  ImGui::SliderInt("components k", &p.components, 1, 40);
+  redecompose |= ImGui::IsItemDeactivatedAfterEdit();
+  float sparsity = static_cast<float>(p.sparsity);
+  if (ImGui::SliderFloat("sparsity", &sparsity, 0.01f, 1.0f, "%.2f")) p.sparsity = sparsity;
+  redecompose |= ImGui::IsItemDeactivatedAfterEdit();
+  int mode = c.mode == BlendMode::kShared ? 0 : 1;
+  if (ImGui::Combo("mode", &mode, "shared\0paper\0")) {
+    c.mode = mode == 0 ? BlendMode::kShared : BlendMode::kPaper;
+    redecompose = true;
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("shared: one component set for A and B (alpha 1 is B)\npaper: separate decompositions, "
+                      "cores blended (paper 3.6)");
+  ImGui::Checkbox("foot lock", &c.foot_lock);
+
+  // Worker progress; the previous decomposition stays on screen until the new one arrives.
+  const WorkerStatus status = s.status();
+  if (status.stage == WorkerStage::kLoading || status.stage == WorkerStage::kDecomposing) {
+    char overlay[64];
+    std::snprintf(overlay, sizeof overlay, "%s %.0f%%", worker_stage_name(status.stage), 100.0 * status.progress);
+    ImGui::ProgressBar(status.progress, ImVec2(-1.0f, 0.0f), overlay);
+  } else if (d != nullptr) {
+    ImGui::TextColored(kDimColor, "k=%d  f=%.2f  %s: %d iterations, %.0f ms", d->params.components,
+                       d->params.sparsity, blend_mode_name(d->params.mode), d->iterations, d->elapsed_ms);
+  }
+  if (!s.blend_error().empty()) {
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextColored(kErrorColor, "%s", s.blend_error().c_str());
+    ImGui::PopTextWrapPos();
+  }
+
+  if (c.mode == BlendMode::kShared) {
+    if (ImGui::CollapsingHeader("Per-component alpha")) {
+      ImGui::Checkbox("use per-component alphas", &c.per_component);
+      if (d != nullptr && d->params.mode == BlendMode::kShared) {
+        c.component_alpha.resize(static_cast<size_t>(d->components()), p.alpha);
+        if (ImGui::SmallButton("all = alpha")) std::fill(c.component_alpha.begin(), c.component_alpha.end(), p.alpha);
+        for (int i = 0; i < d->components(); ++i) {
+          ImGui::PushID(i);
+          float a = static_cast<float>(c.component_alpha[static_cast<size_t>(i)]);
+          char label[32];
+          std::snprintf(label, sizeof label, "c%d%s", i, i == c.selected_component ? " *" : "");
+          if (ImGui::SliderFloat(label, &a, 0.0f, 1.0f, "%.2f")) {
+            c.component_alpha[static_cast<size_t>(i)] = a;
+            c.per_component = true;
+          }
+          if (ImGui::IsItemHovered() || ImGui::IsItemActive()) c.selected_component = i;
+          ImGui::PopID();
+        }
+      }
+    }
+  } else if (ImGui::CollapsingHeader("Basic motions", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::SliderInt("levels m", &c.basic_motions, 0, 5);
+    redecompose |= ImGui::IsItemDeactivatedAfterEdit();
+    c.basic_sparsities.resize(static_cast<size_t>(c.basic_motions), p.sparsity);
+    for (int i = 0; i < c.basic_motions; ++i) {
+      ImGui::PushID(i);
+      float f = static_cast<float>(c.basic_sparsities[static_cast<size_t>(i)]);
+      char label[32];
+      std::snprintf(label, sizeof label, "sparsity %d", i);
+      if (ImGui::SliderFloat(label, &f, 0.01f, 1.0f, "%.2f")) c.basic_sparsities[static_cast<size_t>(i)] = f;
+      redecompose |= ImGui::IsItemDeactivatedAfterEdit();
+      ImGui::PopID();
+    }
+    if (c.basic_motions > 0) ImGui::SliderInt("swap level", &c.swap_level, 0, c.basic_motions - 1);
+  }
+  if (redecompose) s.request_decomposition(state);
+
+  if (ImGui::CollapsingHeader("Export", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::InputText("##export", export_path_, sizeof export_path_);
+    ImGui::SameLine();
+    if (ImGui::Button("Export BVH")) s.export_bvh(export_path_);
+    if (!s.export_message().empty()) {
+      ImGui::PushTextWrapPos(0.0f);
+      ImGui::TextColored(s.export_ok() ? kOkColor : kErrorColor, "%s", s.export_message().c_str());
+      ImGui::PopTextWrapPos();
+    }
+  }
+  ImGui::PopItemWidth();
+  ImGui::End();
+}
+
+}  // namespace mostyle::ui
