@@ -85,6 +85,8 @@ std::shared_ptr<const PreparedPair> prepare_pair(std::shared_ptr<const Clip> a,
   const std::vector<double> lengths_b = bone_lengths(take_b.world, p->parents);
   p->world_b = retarget_positions(take_b.world, p->parents, p->lengths_a, leg_length(p->lengths_a, leg),
                                   leg_length(lengths_b, leg));
+  adopt_group_shapes(p->world_b, p->world_a, p->parents);
+  apply_limb_lengths(p->world_b, p->parents, p->lengths_a);
   p->canonical_a = to_canonical(p->world_a, 0, leg[0], leg[3]);
   p->canonical_b = to_canonical(p->world_b, 0, leg[0], leg[3]);
   p->signal_a = column_block(p->canonical_a.local, p->left_ankle);
