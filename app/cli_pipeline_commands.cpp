@@ -220,7 +220,7 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
     PairOptions pair;
     double alpha = 0.5;
     int components = 10;
-    double sparsity = 0.5;
+    double sparsity = 0.1;
     int iterations = 100;
     std::string mode = "shared";
     int basic = 0;
@@ -247,8 +247,9 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
       ->delimiter(',');
   cmd->add_flag("--no-limb-constraint", args->no_limb, "Skip the limb-length constraint (paper 3.7)");
   cmd->add_flag("--no-foot-lock", args->no_foot_lock, "Leave planted feet free (no foot-contact IK clean-up)");
-  cmd->add_option("--out", args->out, "BVH file of the blend on A's skeleton");
-  cmd->add_option("--positions-out", args->positions_out, "CSV frame,joint,x,y,z of the blend's major joints");
+  cmd->add_option("--out", args->out, "BVH file of the blend on A's skeleton (A's channels and rotation orders)");
+  cmd->add_option("--positions-out", args->positions_out,
+                  "CSV frame,joint,x,y,z of the blend's final major-joint positions (after the foot lock)");
   cmd->add_option("--report", args->report, "JSON report");
   cmd->callback([=] {
     *run = [=] {

@@ -15,7 +15,11 @@
 #include "render/gl.h"
 #include "render/skeleton_pose.h"
 #include "ui/playback_panel.h"
-#include "ui/session_panels.h"
+#include "ui/components_panel.h"
+#include "ui/dtw_panel.h"
+#include "ui/files_panel.h"
+#include "ui/metrics_panel.h"
+#include "ui/parameters_panel.h"
 #include "ui/takes_panel.h"
 #include "ui/viewport_overlay.h"
 

@@ -62,7 +62,9 @@ Eigen::MatrixXd match_turns(const Eigen::MatrixXd& steps_b, const Eigen::MatrixX
 // by the fraction 1 - exp(-1 / (fps * pull_seconds)) of the gap. Integrated steps alone drift
 // apart from both takes wherever their turns are not aligned in time (the DTW aligns steps, not
 // turns), so that a blend would not lie between A and B; the pull keeps it there while moving
-// (almost) as the blended steps say, so feet hardly slide. alpha = 0 and 1 give A's and B's own
+// as the blended steps say up to a correction (a slide of the feet) as fast as the two paths
+// part, spread over pull_seconds: slight for takes on similar paths, a few tenths of the body
+// height per second for a straight walk blended with one that turns back. alpha = 0 and 1 give A's and B's own
 // paths (the pull has nothing to correct). pull_seconds <= 0: no pull (integrate_root).
 // Writes ground (F x 2) and heading (F); allocation-free when they have that size. O(F).
 constexpr double kRootPullSeconds = 2.0;

@@ -85,7 +85,7 @@ const char* blend_mode_name(BlendMode mode);  // "shared", "paper"
 struct DecomposeParams {
   BlendMode mode = BlendMode::kShared;
   int components = 10;     // k
-  double sparsity = 0.5;   // fraction of non-zeros kept in C
+  double sparsity = 0.1;   // fraction of non-zeros kept in C (the paper's figures use 0.1)
   int max_iterations = 100;
   double tolerance = 1e-6;  // stop on a relative objective change below this (0: run to the cap)
   // Paper mode only: m > 0 decomposes each take into m basic motions (paper 3.5) with these

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
+#include <iterator>
 
 #include "engine/error.h"
 #include "engine/export_solve.h"
@@ -53,6 +55,8 @@ void BlendSession::load(const std::string& path_a, const std::string& path_b) {
     recent_.push_front(p);
   }
   while (recent_.size() > kRecentFiles) recent_.pop_back();
+  requested_a_ = path_a;
+  requested_b_ = path_b;
   worker_.load(path_a, path_b, PrepareOptions{});
 }
 
@@ -77,7 +81,44 @@ bool BlendSession::decomposition_outdated() const {
          shown.basic_sparsities != requested_.basic_sparsities;
 }
 
+void BlendSession::start_error_sweep(const DecomposeParams& base) {
+  if (!snapshot_->prepared) return;
+  sweep_params_ = base;
+  sweep_params_.components = kSweepComponents[0];
+  sweep_next_ = 0;
+  sweep_worker_ = std::make_unique<Worker>();  // the previous one (if any) is cancelled and joined
+  sweep_worker_->decompose(sweep_params_);
+  sweep_worker_->load(snapshot_->path_a, snapshot_->path_b, PrepareOptions{});
+}
+
+void BlendSession::poll_sweep() {
+  if (sweep_next_ < 0 || !sweep_worker_) return;
+  auto snap = sweep_worker_->snapshot();
+  if (!snap->error.empty()) {  // e.g. k larger than the channels: the sweep stops there
+    sweep_next_ = -1;
+    return;
+  }
+  const DecomposedPair* d = snap->decomposed.get();
+  if (d == nullptr || d->params.components != sweep_params_.components) return;
+  ErrorPoint point{d->params.components, d->params.sparsity, d->params.mode, d->rmse_a, d->rmse_b};
+  auto same = [&](const ErrorPoint& e) {
+    return e.components == point.components && e.sparsity == point.sparsity && e.mode == point.mode;
+  };
+  if (std::find_if(error_curve_.begin(), error_curve_.end(), same) == error_curve_.end()) {
+    error_curve_.push_back(point);
+    std::sort(error_curve_.begin(), error_curve_.end(),
+              [](const ErrorPoint& a, const ErrorPoint& b) { return a.components < b.components; });
+  }
+  if (++sweep_next_ >= static_cast<int>(std::size(kSweepComponents))) {
+    sweep_next_ = -1;
+    return;
+  }
+  sweep_params_.components = kSweepComponents[sweep_next_];
+  sweep_worker_->decompose(sweep_params_);
+}
+
 void BlendSession::poll(EditorState& state) {
+  poll_sweep();
   auto snap = worker_.snapshot();
   if (snap->version == seen_version_) return;
   seen_version_ = snap->version;
@@ -99,6 +140,13 @@ void BlendSession::poll(EditorState& state) {
     error_curve_.push_back(point);
     std::sort(error_curve_.begin(), error_curve_.end(),
               [](const ErrorPoint& a, const ErrorPoint& b) { return a.components < b.components; });
+    // A new pair, sparsity or mode: the curve for it is computed in the background.
+    const bool same_curve = sweep_params_.mode == d->params.mode && sweep_params_.sparsity == d->params.sparsity &&
+                            sweep_params_.basic_motions == d->params.basic_motions;
+    if (!same_curve || !sweep_worker_ || sweep_pair_ != seen_prepared_) {
+      sweep_pair_ = seen_prepared_;
+      start_error_sweep(d->params);
+    }
   }
 }
 
@@ -106,6 +154,7 @@ void BlendSession::poll(EditorState& state) {
 void BlendSession::take_up_prepared(EditorState& state) {
   const PreparedPair* p = snapshot_->prepared.get();
   state.takes.clear();
+  error_curve_.clear();  // of the previous pair
   has_blend_ = false;
   blended_decomposed_ = nullptr;
   if (p == nullptr) return;
@@ -232,6 +281,11 @@ void BlendSession::refresh_blend_take(EditorState& state) {
 
 void BlendSession::wait_idle(EditorState& state) {
   worker_.wait_idle();
+  poll(state);  // a new decomposition starts the error sweep
+  while (sweep_next_ >= 0 && sweep_worker_) {  // each step's next request is made by poll_sweep
+    sweep_worker_->wait_idle();
+    poll_sweep();
+  }
   poll(state);
   update_blend(state);
 }

@@ -45,7 +45,7 @@ struct ErrorPoint {
 // The DTW local-cost matrix, sampled once per prepared pair at cell centres: rows x cols cells
 // (at most kMaxCells each way) over A frames (rows) x B frames (cols).
 struct DtwCostImage {
-  static constexpr int kMaxCells = 96;
+  static constexpr int kMaxCells = 64;
   int rows = 0, cols = 0;
   int frames_a = 0, frames_b = 0;
   Eigen::MatrixXf cost;  // rows x cols, local cost normalised to [0, 1]
@@ -81,6 +81,13 @@ class BlendSession {
   SessionControls& controls() { return controls_; }
   const std::vector<ErrorPoint>& error_curve() const { return error_curve_; }
   const DtwCostImage& dtw_image() const { return dtw_image_; }
+  // Reconstruction error against k in the background: a second worker decomposes the pair at
+  // each k of kSweepComponents (mode and sparsity as now), one after the other, and the points
+  // join error_curve(). Restarted by a new pair or a new sparsity/mode; never touches the blend.
+  void start_error_sweep(const DecomposeParams& base);
+  bool sweeping() const { return sweep_next_ >= 0; }
+  static constexpr int kSweepComponents[] = {2, 4, 6, 8, 10, 12, 16, 20};
+
   // The decomposition the panels' sliders ask for differs from the one shown.
   bool decomposition_outdated() const;
 
@@ -92,6 +99,9 @@ class BlendSession {
   double export_ms() const { return export_ms_; }
 
   const std::deque<std::string>& recent() const { return recent_; }
+  // The pair last asked for (what the files panel's fields show), loaded or not.
+  const std::string& requested_a() const { return requested_a_; }
+  const std::string& requested_b() const { return requested_b_; }
   // Files dropped on the window, waiting for the files panel.
   std::vector<std::string>& dropped() { return dropped_; }
 
@@ -104,7 +114,13 @@ class BlendSession {
   void refresh_blend_take(EditorState& state);
   void compute_dtw_image();
 
+  void poll_sweep();
+
   Worker worker_;
+  std::unique_ptr<Worker> sweep_worker_;  // error against k, off the main worker
+  int sweep_next_ = -1;                   // index into kSweepComponents being computed; -1: none
+  DecomposeParams sweep_params_;
+  const PreparedPair* sweep_pair_ = nullptr;  // the pair the sweep was started for
   std::shared_ptr<const WorkerSnapshot> snapshot_;
   std::uint64_t seen_version_ = ~std::uint64_t(0);
   const PreparedPair* seen_prepared_ = nullptr;
@@ -129,6 +145,7 @@ class BlendSession {
   bool export_ok_ = false;
   double export_ms_ = -1.0;
   std::deque<std::string> recent_;
+  std::string requested_a_, requested_b_;
   std::vector<std::string> dropped_;
 };
 

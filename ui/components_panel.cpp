@@ -1,4 +1,7 @@
+#include "ui/components_panel.h"
+
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -6,7 +9,6 @@
 
 #include "ui/layout.h"
 #include "ui/plot.h"
-#include "ui/session_panels.h"
 
 namespace mostyle::ui {
 namespace {
@@ -14,7 +16,7 @@ const ImVec4 kDimColor(0.60f, 0.62f, 0.66f, 1.0f);
 }  // namespace
 
 void ComponentsPanel::draw(EditorState& state) {
-  place_next_window(Column::kRight, 0.47f, 0.30f);
+  place_next_window(Column::kRight, 0.54f, 0.27f);
   if (!ImGui::Begin("Components")) {
     ImGui::End();
     return;
@@ -81,6 +83,11 @@ void ComponentsPanel::draw(EditorState& state) {
     if (e.mode == d->params.mode && e.sparsity == d->params.sparsity) points.push_back(&e);
   ImGui::Text("RMSE against k (f = %.2f)", d->params.sparsity);
   if (!points.empty()) {
+    ImGui::SameLine();
+    if (session_.sweeping()) ImGui::TextColored(kDimColor, "computing...");
+    else ImGui::TextColored(kDimColor, "k %d..%d", points.front()->components, points.back()->components);
+  }
+  if (!points.empty()) {
     double top = 1e-9;
     int kmax = 1;
     for (const ErrorPoint* e : points) {
@@ -97,9 +104,13 @@ void ComponentsPanel::draw(EditorState& state) {
       dl->AddCircleFilled(r.to_screen(e->components, e->rmse_a), 3.0f, color_a());
       dl->AddCircleFilled(r.to_screen(e->components, e->rmse_b), 3.0f, color_b());
     }
-    char legend[64];
-    std::snprintf(legend, sizeof legend, "%zu decompositions; move k to add", points.size());
-    plot_legend(r, 0, legend, color_dim());
+    if (r.hovered) {
+      const ErrorPoint* nearest = points.front();
+      const double k = r.x_at(ImGui::GetIO().MousePos.x);
+      for (const ErrorPoint* e : points)
+        if (std::abs(e->components - k) < std::abs(nearest->components - k)) nearest = e;
+      ImGui::SetTooltip("k = %d\nRMSE A %.4g\nRMSE B %.4g", nearest->components, nearest->rmse_a, nearest->rmse_b);
+    }
   }
   ImGui::End();
 }

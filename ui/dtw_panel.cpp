@@ -1,3 +1,5 @@
+#include "ui/dtw_panel.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -6,7 +8,6 @@
 
 #include "ui/layout.h"
 #include "ui/plot.h"
-#include "ui/session_panels.h"
 
 namespace mostyle::ui {
 namespace {
@@ -38,7 +39,7 @@ std::pair<int, int> match_of(const DtwPath& path, int i) {
 }  // namespace
 
 void DtwPanel::draw(EditorState& state) {
-  place_next_window(Column::kRight, 0.0f, 0.47f);
+  place_next_window(Column::kRight, 0.0f, 0.54f);
   if (!ImGui::Begin("DTW alignment")) {
     ImGui::End();
     return;
@@ -62,12 +63,12 @@ void DtwPanel::draw(EditorState& state) {
   if (hi <= lo) hi = lo + 1.0;
   const double span = hi - lo;
   const int current = state.takes.empty() ? 0 : frame_at(state.takes[kTakeA], state.playback.time_s);
-  const float avail = ImGui::GetContentRegionAvail().y;
-  const float plot_h = std::max(60.0f, (avail - 3.0f * ImGui::GetTextLineHeightWithSpacing()) * 0.28f);
+  const float line = ImGui::GetTextLineHeightWithSpacing();
+  const float plot_h = std::max(50.0f, (ImGui::GetContentRegionAvail().y - 2.0f * line) * 0.36f);
   int hovered_i = -1;
 
   // Before warping: A above, B below, each on its own timeline; matched frames joined.
-  ImGui::TextUnformatted("before warping");
+  ImGui::TextUnformatted("before warping: matched frames joined");
   const int frames = std::max(fa, fb);
   PlotArea before = begin_plot("##before", -1.0f, plot_h, 0.0, frames - 1, lo - 1.15 * span, hi + 0.1 * span);
   {
@@ -89,21 +90,14 @@ void DtwPanel::draw(EditorState& state) {
   if (before.hovered) hovered_i = std::clamp(static_cast<int>(std::lround(before.x_at(ImGui::GetIO().MousePos.x))), 0, fa - 1);
   if (before.clicked && hovered_i >= 0) state.playback.time_s = (hovered_i + 0.5) / p->fps;
 
-  // After warping: B resampled onto A's timeline, on top of A.
-  ImGui::TextUnformatted("after warping (B on A's timeline)");
-  PlotArea after = begin_plot("##after", -1.0f, plot_h, 0.0, fa - 1, lo - 0.08 * span, hi + 0.08 * span);
-  plot_line(after, fa, [&](int i, double* x, double* y) { *x = i; *y = p->signal_a(i, col); }, color_a(), 2.0f);
-  if (p->warp.size() == fa)
-    plot_line(after, fa, [&](int i, double* x, double* y) { *x = i; *y = sample(p->signal_b, p->warp[i], col); },
-              color_b());
-  plot_vline(after, current, IM_COL32(255, 255, 255, 140));
-  if (after.hovered) hovered_i = std::clamp(static_cast<int>(std::lround(after.x_at(ImGui::GetIO().MousePos.x))), 0, fa - 1);
-  if (after.clicked && hovered_i >= 0) state.playback.time_s = (hovered_i + 0.5) / p->fps;
-
-  // Cost matrix: A frames down, B frames across; the optimal path and the playhead on it.
-  ImGui::TextUnformatted("local cost |a_i - b_j| and optimal path");
+  // Below: the cost matrix (A frames down, B frames across, the optimal path and the playhead
+  // on it) beside the signals after warping (B resampled onto A's timeline, on top of A).
+  const float side = std::clamp(std::min(ImGui::GetContentRegionAvail().y - line - 4.0f,
+                                         0.5f * ImGui::GetContentRegionAvail().x),
+                                60.0f, 600.0f);
+  ImGui::BeginGroup();
+  ImGui::TextUnformatted("cost and path");
   const DtwCostImage& img = session_.dtw_image();
-  const float side = std::max(60.0f, std::min(ImGui::GetContentRegionAvail().x, ImGui::GetContentRegionAvail().y - 4.0f));
   PlotArea cost = begin_plot("##cost", side, side, 0.0, fb, fa, 0.0);  // y down: frame 0 at the top
   if (img.rows > 0 && img.cols > 0) {
     ImDrawList* dl = ImGui::GetWindowDrawList();
@@ -120,8 +114,23 @@ void DtwPanel::draw(EditorState& state) {
               },
               IM_COL32(255, 255, 255, 230), 2.0f);
     const auto [ci, cj] = match_of(p->path, current);
-    dl->AddCircleFilled(cost.to_screen(cj + 0.5, ci + 0.5), 4.0f, color_blend());
+    dl->AddCircleFilled(cost.to_screen(cj + 0.5, ci + 0.5), 4.5f, color_blend());
   }
+  ImGui::EndGroup();
+  ImGui::SameLine();
+  ImGui::BeginGroup();
+  ImGui::TextUnformatted("after warping");
+  PlotArea after = begin_plot("##after", -1.0f, side, 0.0, fa - 1, lo - 0.08 * span, hi + 0.08 * span);
+  plot_line(after, fa, [&](int i, double* x, double* y) { *x = i; *y = p->signal_a(i, col); }, color_a(), 2.0f);
+  if (p->warp.size() == fa)
+    plot_line(after, fa, [&](int i, double* x, double* y) { *x = i; *y = sample(p->signal_b, p->warp[i], col); },
+              color_b());
+  plot_vline(after, current, IM_COL32(255, 255, 255, 140));
+  plot_legend(after, 0, "A", color_a());
+  plot_legend(after, 1, "B warped", color_b());
+  if (after.hovered) hovered_i = std::clamp(static_cast<int>(std::lround(after.x_at(ImGui::GetIO().MousePos.x))), 0, fa - 1);
+  if (after.clicked && hovered_i >= 0) state.playback.time_s = (hovered_i + 0.5) / p->fps;
+  ImGui::EndGroup();
   if (cost.hovered) {
     hovered_i = std::clamp(static_cast<int>(cost.y_at(ImGui::GetIO().MousePos.y)), 0, fa - 1);
     if (cost.clicked) state.playback.time_s = (hovered_i + 0.5) / p->fps;

@@ -1,9 +1,10 @@
+#include "ui/metrics_panel.h"
+
 #include <cstdio>
 
 #include <imgui.h>
 
 #include "ui/layout.h"
-#include "ui/session_panels.h"
 
 namespace mostyle::ui {
 namespace {
@@ -20,7 +21,7 @@ void row(const char* name, const char* format, double value) {
 }  // namespace
 
 void MetricsPanel::draw(EditorState& state) {
-  place_next_window(Column::kRight, 0.77f, 0.23f);
+  place_next_window(Column::kRight, 0.81f, 0.19f);
   if (!ImGui::Begin("Metrics")) {
     ImGui::End();
     return;

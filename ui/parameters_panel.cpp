@@ -1,20 +1,20 @@
+#include "ui/parameters_panel.h"
+
 #include <algorithm>
 #include <cstdio>
 
 #include <imgui.h>
 
 #include "ui/layout.h"
-#include "ui/session_panels.h"
 
 namespace mostyle::ui {
 namespace {
 const ImVec4 kErrorColor(1.0f, 0.45f, 0.40f, 1.0f);
-const ImVec4 kOkColor(0.55f, 0.85f, 0.55f, 1.0f);
 const ImVec4 kDimColor(0.60f, 0.62f, 0.66f, 1.0f);
 }  // namespace
 
 void ParametersPanel::draw(EditorState& state) {
-  place_next_window(Column::kLeft, 0.21f, 0.47f);
+  place_next_window(Column::kLeft, 0.235f, 0.445f);
   if (!ImGui::Begin("Parameters")) {
     ImGui::End();
     return;
@@ -23,14 +23,14 @@ void ParametersPanel::draw(EditorState& state) {
   SessionControls& c = s.controls();
   BlendParameters& p = state.parameters;
   const DecomposedPair* d = s.snapshot().decomposed.get();
-  ImGui::PushItemWidth(-90.0f);
+  ImGui::PushItemWidth(-80.0f);
 
   float alpha = static_cast<float>(p.alpha);
   if (ImGui::SliderFloat("alpha", &alpha, 0.0f, 1.0f, "%.2f")) p.alpha = alpha;  // blended this frame
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: style A, 1: style B. Applied immediately.");
 
   bool redecompose = false;
-  ImGui::SliderInt("components k", &p.components, 1, 40);
+  ImGui::SliderInt("k", &p.components, 1, 40);
   redecompose |= ImGui::IsItemDeactivatedAfterEdit();
   float sparsity = static_cast<float>(p.sparsity);
   if (ImGui::SliderFloat("sparsity", &sparsity, 0.01f, 1.0f, "%.2f")) p.sparsity = sparsity;
@@ -44,6 +44,9 @@ void ParametersPanel::draw(EditorState& state) {
     ImGui::SetTooltip("shared: one component set for A and B (alpha 1 is B)\npaper: separate decompositions, "
                       "cores blended (paper 3.6)");
   ImGui::Checkbox("foot lock", &c.foot_lock);
+  if (ImGui::RadioButton("side by side", !state.view.overlay)) state.view.overlay = false;
+  ImGui::SameLine();
+  if (ImGui::RadioButton("overlay", state.view.overlay)) state.view.overlay = true;
 
   // Worker progress; the previous decomposition stays on screen until the new one arrives.
   const WorkerStatus status = s.status();
@@ -52,8 +55,8 @@ void ParametersPanel::draw(EditorState& state) {
     std::snprintf(overlay, sizeof overlay, "%s %.0f%%", worker_stage_name(status.stage), 100.0 * status.progress);
     ImGui::ProgressBar(status.progress, ImVec2(-1.0f, 0.0f), overlay);
   } else if (d != nullptr) {
-    ImGui::TextColored(kDimColor, "k=%d  f=%.2f  %s: %d iterations, %.0f ms", d->params.components,
-                       d->params.sparsity, blend_mode_name(d->params.mode), d->iterations, d->elapsed_ms);
+    ImGui::TextColored(kDimColor, "k=%d  f=%.2f  %s: %d iterations", d->params.components, d->params.sparsity,
+                       blend_mode_name(d->params.mode), d->iterations);
   }
   if (!s.blend_error().empty()) {
     ImGui::PushTextWrapPos(0.0f);
@@ -98,16 +101,6 @@ void ParametersPanel::draw(EditorState& state) {
   }
   if (redecompose) s.request_decomposition(state);
 
-  if (ImGui::CollapsingHeader("Export", ImGuiTreeNodeFlags_DefaultOpen)) {
-    ImGui::InputText("##export", export_path_, sizeof export_path_);
-    ImGui::SameLine();
-    if (ImGui::Button("Export BVH")) s.export_bvh(export_path_);
-    if (!s.export_message().empty()) {
-      ImGui::PushTextWrapPos(0.0f);
-      ImGui::TextColored(s.export_ok() ? kOkColor : kErrorColor, "%s", s.export_message().c_str());
-      ImGui::PopTextWrapPos();
-    }
-  }
   ImGui::PopItemWidth();
   ImGui::End();
 }

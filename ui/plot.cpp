@@ -64,8 +64,11 @@ void plot_vline(const PlotArea& area, double x, ImU32 color) {
 }
 
 void plot_legend(const PlotArea& area, int row, const char* text, ImU32 color) {
-  ImGui::GetWindowDrawList()->AddText(ImVec2(area.min.x + 4.0f, area.min.y + 2.0f + row * ImGui::GetFontSize()), color,
-                                      text);
+  const ImVec2 at(area.min.x + 4.0f, area.min.y + 2.0f + row * ImGui::GetFontSize());
+  const ImVec2 size = ImGui::CalcTextSize(text);
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  dl->AddRectFilled(ImVec2(at.x - 2.0f, at.y), ImVec2(at.x + size.x + 2.0f, at.y + size.y), IM_COL32(22, 24, 28, 200));
+  dl->AddText(at, color, text);
 }
 
 ImU32 color_a() { return IM_COL32(245, 153, 71, 255); }

@@ -188,6 +188,20 @@ TEST_CASE("takes walking in opposite directions have the same canonical motion",
   CHECK((ground - a.ground).cwiseAbs().maxCoeff() < 1e-9);
 }
 
+TEST_CASE("limit_warped_steps: no teleport where the warp skips B frames", "[canonical_frame]") {
+  Eigen::MatrixXd steps(4, 3);
+  steps << 0, 1, 0.1, 3, 4, 0.2, 0, 3, 0.3, 0, 0, 0;
+  Eigen::VectorXd warp(4);
+  warp << 0, 1, 9, 10.5;  // B runs over 1, 8 and 1.5 frames
+  const Eigen::MatrixXd limited = limit_warped_steps(steps, warp, 4.0);
+  Eigen::MatrixXd expected = steps;
+  expected.block<1, 2>(1, 0) << 1.5, 2;  // 4 of 8 frames: half the way, the whole turn
+  CHECK(limited == expected);
+  CHECK(limit_warped_steps(steps, warp, 10.0) == steps);
+  CHECK_THROWS_AS(limit_warped_steps(steps, Eigen::VectorXd::Zero(3), 4.0), InputError);
+  CHECK_THROWS_AS(limit_warped_steps(Eigen::MatrixXd::Zero(4, 2), warp, 4.0), InputError);
+}
+
 TEST_CASE("match_turns: opposite U-turns blend along the short arc", "[canonical_frame]") {
   // A turns back to the left, B to the right, at the same time.
   const CanonicalMotion a = to_canonical(walk_with_u_turn(0, 0, 0.0, 1.0), 0, 1, 2);

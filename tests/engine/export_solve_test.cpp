@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -367,7 +368,7 @@ TEST_CASE("export of real blends from ../shared/motions: within the acceptance b
 TEST_CASE("export_blend_bvh writes a file Blender-style readers see as the blend", "[export]") {
   const Blended blend = blend_files(test::asset("motions/cmu142_walk_marching.bvh"),
                                     test::asset("motions/cmu142_walk_clumsy.bvh"), 0.3);
-  const std::string path = "export_solve_test_out.bvh";
+  const std::string path = (std::filesystem::temp_directory_path() / "mostyle_export_solve_test.bvh").string();
   const ExportResult r = export_blend_bvh(*blend.prepared, blend.result.world, path);
   const Clip back = read_bvh_file(path);
   CHECK(back.frames() == blend.result.world.rows());

@@ -253,7 +253,7 @@ TEST_CASE("a new request cancels a long decomposition at its next iteration", "[
   CHECK(s->decomposed->components() == 3);
 }
 
-TEST_CASE("a load cancels a long decomposition; the destructor cancels and joins", "[worker]") {
+TEST_CASE("a load cancels a long decomposition, and so does the destructor", "[worker]") {
   const auto t0 = Clock::now();
   {
     Worker w;

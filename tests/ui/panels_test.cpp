@@ -1,0 +1,196 @@
+// The blending editor's panels and its link to the engine (ui/blend_session.h), run as ImGui
+// frames with no window: the panels build over a loaded pair, alpha moves the blend in the same
+// frame, and a failed load shows its sentence while the previous pair stays.
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "tests/test_data.h"
+#include "tests/ui/imgui_frame.h"
+#include "ui/blend_session.h"
+#include "ui/playback_panel.h"
+#include "ui/components_panel.h"
+#include "ui/dtw_panel.h"
+#include "ui/files_panel.h"
+#include "ui/metrics_panel.h"
+#include "ui/parameters_panel.h"
+#include "ui/takes_panel.h"
+
+using namespace mostyle;
+using namespace mostyle::ui;
+
+namespace {
+
+struct LoadedSession {
+  EditorState state;
+  BlendSession session;
+  LoadedSession() {
+    state.parameters.components = 6;  // small and quick
+    state.parameters.sparsity = 0.2;
+    session.request_decomposition(state);
+    session.load(test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"));
+    session.wait_idle(state);
+  }
+};
+
+std::vector<std::unique_ptr<Panel>> all_panels(BlendSession& session) {
+  std::vector<std::unique_ptr<Panel>> panels;
+  panels.push_back(std::make_unique<TakesPanel>());
+  panels.push_back(std::make_unique<ParametersPanel>(session));
+  panels.push_back(std::make_unique<FilesPanel>(session, test::asset("motions")));
+  panels.push_back(std::make_unique<DtwPanel>(session));
+  panels.push_back(std::make_unique<ComponentsPanel>(session));
+  panels.push_back(std::make_unique<MetricsPanel>(session));
+  panels.push_back(std::make_unique<PlaybackPanel>());
+  return panels;
+}
+
+// Distance between the same joint of two takes at one frame.
+double joint_distance(const Take& a, const Take& b, int frame, int joint) {
+  return (a.positions.row(frame).segment<3>(3 * joint) - b.positions.row(frame).segment<3>(3 * joint)).norm();
+}
+
+}  // namespace
+
+TEST_CASE("the session turns a loaded pair into A, B on A's timeline and the blend") {
+  LoadedSession s;
+  REQUIRE(s.session.error().empty());
+  REQUIRE(s.state.takes.size() == 3);
+  const PreparedPair& p = *s.session.snapshot().prepared;
+  for (const Take& t : s.state.takes) {
+    CHECK(t.ok());
+    CHECK(t.frames() == p.world_a.rows());  // all three in step on A's aligned timeline
+    CHECK(t.positions.cols() == p.world_a.cols());
+    CHECK(t.rate() == p.fps);
+    CHECK(t.parents == p.parents);
+  }
+  REQUIRE(s.session.blend() != nullptr);
+  CHECK(s.state.takes[kTakeBlend].positions.rows() == s.session.blend()->world.rows());
+  const DtwCostImage& img = s.session.dtw_image();
+  CHECK(img.rows > 0);
+  CHECK(img.rows <= DtwCostImage::kMaxCells);
+  CHECK(img.cost.maxCoeff() == Approx(1.0));
+}
+
+TEST_CASE("the panels build over a loaded pair, with a component picked and in both modes") {
+  LoadedSession s;
+  test::HeadlessImGui imgui;
+  auto panels = all_panels(s.session);
+  for (int frame = 0; frame < 6; ++frame) {
+    if (frame == 2) s.session.controls().selected_component = 1;
+    if (frame == 4) s.session.controls().per_component = true;
+    imgui.begin_frame();
+    s.session.poll(s.state);
+    for (auto& panel : panels) panel->draw(s.state);
+    s.session.update_blend(s.state);
+    CHECK(imgui.end_frame() > 1000);
+  }
+  // The picked component lights up joints of the blend skeleton only.
+  const auto& highlights = s.state.takes[kTakeBlend].highlights;
+  REQUIRE(highlights.size() == s.state.takes[kTakeBlend].parents.size());
+  int lit = 0;
+  for (const auto& h : highlights) lit += h.a > 0.0f ? 1 : 0;
+  CHECK(lit > 0);
+  CHECK(s.state.takes[kTakeA].highlights.empty());
+
+  // Paper mode with basic motions: a re-decomposition on the worker, panels still draw.
+  s.session.controls().mode = BlendMode::kPaper;
+  s.session.controls().basic_motions = 2;
+  s.session.request_decomposition(s.state);
+  s.session.wait_idle(s.state);
+  CHECK(s.session.error().empty());
+  CHECK(s.session.snapshot().decomposed->params.mode == BlendMode::kPaper);
+  imgui.begin_frame();
+  for (auto& panel : panels) panel->draw(s.state);
+  s.session.update_blend(s.state);
+  CHECK(imgui.end_frame() > 1000);
+  CHECK(s.session.blend_error().empty());
+}
+
+TEST_CASE("moving alpha changes the blended pose in the same frame, from A towards B") {
+  LoadedSession s;
+  s.state.view.overlay = true;  // no lateral offsets: the takes can be compared
+  const int frame = s.state.takes[kTakeA].frames() / 2;
+  s.state.parameters.alpha = 0.0;
+  s.session.update_blend(s.state);
+  const Eigen::MatrixXd at_a = s.state.takes[kTakeBlend].positions;
+  s.state.parameters.alpha = 1.0;
+  s.session.update_blend(s.state);  // no worker round trip
+  const Eigen::MatrixXd at_b = s.state.takes[kTakeBlend].positions;
+  CHECK((at_a - at_b).norm() > 1.0);
+  CHECK(s.session.blend_ms() < 1000.0);  // sanity only; speed is measured in tests/bench
+  // A wrist at alpha 0 is nearer A's than B's, and at alpha 1 the other way round.
+  const int wrist = static_cast<int>(s.state.takes[kTakeA].parents.size()) - 1;
+  Take blend_a = s.state.takes[kTakeBlend], blend_b = s.state.takes[kTakeBlend];
+  blend_a.positions = at_a;
+  blend_b.positions = at_b;
+  double to_a = 0, to_b = 0, back_a = 0, back_b = 0;
+  for (int j = 0; j <= wrist; ++j) {
+    to_a += joint_distance(blend_a, s.state.takes[kTakeA], frame, j);
+    to_b += joint_distance(blend_a, s.state.takes[kTakeB], frame, j);
+    back_a += joint_distance(blend_b, s.state.takes[kTakeA], frame, j);
+    back_b += joint_distance(blend_b, s.state.takes[kTakeB], frame, j);
+  }
+  CHECK(to_a < to_b);
+  CHECK(back_b < back_a);
+}
+
+TEST_CASE("a failing load shows its error and keeps the previous pair") {
+  LoadedSession s;
+  const auto before = s.session.snapshot().prepared;
+  const Eigen::MatrixXd blend_before = s.state.takes[kTakeBlend].positions;
+  s.session.load("/nonexistent/walk.bvh", test::asset("motions/cmu142_walk_marching.bvh"));
+  s.session.wait_idle(s.state);
+  CHECK_THAT(s.session.error(), Catch::Contains("/nonexistent/walk.bvh"));
+  CHECK(s.session.snapshot().prepared == before);
+  REQUIRE(s.state.takes.size() == 3);
+  CHECK(s.state.takes[kTakeBlend].positions == blend_before);
+  // The panels still draw (the files panel shows the sentence) and the recent list has the path.
+  test::HeadlessImGui imgui;
+  auto panels = all_panels(s.session);
+  imgui.begin_frame();
+  for (auto& panel : panels) panel->draw(s.state);
+  CHECK(imgui.end_frame() > 1000);
+  CHECK(s.session.recent().front() == "/nonexistent/walk.bvh");
+  // And a good pair after it clears the error.
+  s.session.load(test::asset("motions/cmu142_walk_joy.bvh"), test::asset("motions/cmu142_walk_happy.bvh"));
+  s.session.wait_idle(s.state);
+  CHECK(s.session.error().empty());
+  CHECK(s.session.snapshot().prepared != before);
+  CHECK(s.state.takes.size() == 3);
+}
+
+TEST_CASE("export writes the blend as BVH or says why not") {
+  LoadedSession s;
+  const std::string out = (std::filesystem::temp_directory_path() / "mostyle_ui_export_test.bvh").string();
+  std::filesystem::remove(out);
+  CHECK(s.session.export_bvh(out));
+  CHECK(std::filesystem::exists(out));
+  CHECK_THAT(s.session.export_message(), Catch::Contains("mostyle_ui_export_test.bvh"));
+  std::filesystem::remove(out);
+  CHECK_FALSE(s.session.export_bvh("/nonexistent/dir/out.bvh"));
+  CHECK_FALSE(s.session.export_message().empty());
+  CHECK_FALSE(s.session.export_ok());
+}
+
+TEST_CASE("files dropped on the window load as the pair (two) or as B (one)") {
+  LoadedSession s;
+  test::HeadlessImGui imgui;
+  FilesPanel files(s.session, test::asset("motions"));
+  const std::string joy = test::asset("motions/cmu142_walk_joy.bvh");
+  s.session.dropped() = {joy};
+  imgui.begin_frame();
+  files.draw(s.state);
+  imgui.end_frame();
+  CHECK(s.session.dropped().empty());
+  CHECK(s.session.requested_a() == test::asset("motions/cmu142_walk_happy.bvh"));
+  CHECK(s.session.requested_b() == joy);
+  s.session.wait_idle(s.state);
+  CHECK(s.session.error().empty());
+  CHECK(s.session.snapshot().path_b == joy);
+  CHECK(s.state.takes.size() == 3);
+  CHECK_THAT(s.state.takes[kTakeB].label, Catch::Contains("joy"));
+}
