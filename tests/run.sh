@@ -3,6 +3,7 @@
 #   tests/run.sh                               normal build (build/), all tests
 #   tests/run.sh --sanitize address,undefined  ASan+UBSan build (build-address-undefined/), all tests
 #   tests/run.sh --sanitize thread             TSan build (build-thread/), the threaded tests
+#                                              (worker, editor, ui)
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 sanitize=""
@@ -12,12 +13,14 @@ if [ "${1:-}" = "--sanitize" ]; then sanitize="${2:?--sanitize needs a value}"; 
 build="$root/build"
 flags=(-DCMAKE_BUILD_TYPE=RelWithDebInfo)
 filter=()
+targets=()
 if [ -n "$sanitize" ]; then
   build="$root/build-${sanitize//,/-}"
   flags+=(-DMOSTYLE_SANITIZE="$sanitize" -DMOSTYLE_BUILD_BENCH=OFF)
 fi
 if [ "$sanitize" = "thread" ]; then
-  filter=(-R "worker|editor")
+  filter=(-R "worker|editor|ui:")
+  targets=(--target mostyle_worker_tests mostyle_editor_tests mostyle_ui_tests mostyle mostyle-cli)
   # Mesa's llvmpipe threads are not instrumented; render on the calling thread.
   export LP_NUM_THREADS=0
   export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1"
@@ -27,5 +30,5 @@ export LSAN_OPTIONS="suppressions=$root/tests/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 
 cmake -S "$root" -B "$build" "${flags[@]}" >/dev/null
-cmake --build "$build" -j"$(nproc)"
+cmake --build "$build" -j"$(nproc)" "${targets[@]}"
 ctest --test-dir "$build" --output-on-failure -j"$(nproc)" "${filter[@]}"

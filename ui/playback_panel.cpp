@@ -33,6 +33,17 @@ void PlaybackPanel::draw(EditorState& state) {
   const int last = std::max(reference->frames() - 1, 0);
   int frame = frame_at(*reference, p.time_s);
 
+  // Keys, unless a text field has them: space plays and pauses, left/right step one frame.
+  if (!io.WantTextInput) {
+    if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Space), false)) p.playing = !p.playing;
+    const bool back = ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_LeftArrow));
+    const bool forward = ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_RightArrow));
+    if (back || forward) {
+      p.playing = false;
+      frame = std::clamp(frame + (forward ? 1 : -1), 0, last);
+      p.time_s = (frame + 0.5) / fps;
+    }
+  }
   if (ImGui::Button(p.playing ? "Pause" : "Play", ImVec2(64.0f, 0.0f))) p.playing = !p.playing;
   ImGui::SameLine();
   if (ImGui::Button("|<")) p.time_s = 0.0;

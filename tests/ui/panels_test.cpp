@@ -194,3 +194,37 @@ TEST_CASE("files dropped on the window load as the pair (two) or as B (one)") {
   CHECK(s.state.takes.size() == 3);
   CHECK_THAT(s.state.takes[kTakeB].label, Catch::Contains("joy"));
 }
+
+TEST_CASE("space plays and pauses, the arrow keys step one frame") {
+  LoadedSession loaded;
+  test::HeadlessImGui imgui;
+  ImGuiIO& io = ImGui::GetIO();
+  io.KeyMap[ImGuiKey_Space] = 1;
+  io.KeyMap[ImGuiKey_RightArrow] = 2;
+  io.KeyMap[ImGuiKey_LeftArrow] = 3;
+  PlaybackPanel panel;
+  EditorState& state = loaded.state;
+  state.playback.playing = false;
+  state.playback.time_s = 0.0;
+  const Take* reference = state.reference_take();
+  REQUIRE(reference != nullptr);
+  auto press = [&](int key) {
+    io.KeysDown[key] = true;
+    imgui.begin_frame();
+    panel.draw(state);
+    imgui.end_frame();
+    io.KeysDown[key] = false;
+    imgui.begin_frame();
+    panel.draw(state);
+    imgui.end_frame();
+  };
+  press(1);
+  CHECK(state.playback.playing);
+  press(1);
+  CHECK_FALSE(state.playback.playing);
+  press(2);
+  press(2);
+  CHECK(frame_at(*reference, state.playback.time_s) == 2);
+  press(3);
+  CHECK(frame_at(*reference, state.playback.time_s) == 1);
+}
