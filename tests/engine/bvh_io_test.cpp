@@ -9,6 +9,7 @@
 #include "engine/atomic_file.h"
 #include "engine/error.h"
 #include "engine/kinematics.h"
+#include "tests/engine/small_bvh.h"
 #include "tests/test_data.h"
 
 using namespace mostyle;
@@ -16,28 +17,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A small file in the most common layout; line numbers in the comments.
-const std::string kSmall =
-    "HIERARCHY\n"                                                               // 1
-    "ROOT Hips\n"                                                               // 2
-    "{\n"                                                                       // 3
-    "  OFFSET 0 0 0\n"                                                          // 4
-    "  CHANNELS 6 Xposition Yposition Zposition Zrotation Yrotation Xrotation\n"  // 5
-    "  JOINT Spine\n"                                                           // 6
-    "  {\n"                                                                     // 7
-    "    OFFSET 0 10 0\n"                                                       // 8
-    "    CHANNELS 3 Zrotation Xrotation Yrotation\n"                            // 9
-    "    End Site\n"                                                            // 10
-    "    {\n"                                                                   // 11
-    "      OFFSET 0 5 0\n"                                                      // 12
-    "    }\n"                                                                   // 13
-    "  }\n"                                                                     // 14
-    "}\n"                                                                       // 15
-    "MOTION\n"                                                                  // 16
-    "Frames: 2\n"                                                               // 17
-    "Frame Time: 0.0333333\n"                                                   // 18
-    "1 2 3 0 0 0 0 0 0\n"                                                       // 19
-    "4 5 6 90 0 0 0 0 0\n";                                                     // 20
+const std::string& kSmall = test::kSmallBvh;                                                     // 20
 
 std::string replace_all(std::string s, const std::string& from, const std::string& to) {
   for (size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size()))
