@@ -5,13 +5,13 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli_common.h"
-#include "engine/bvh_io.h"
-#include "engine/convert.h"
-#include "engine/error.h"
-#include "engine/euler.h"
-#include "engine/kinematics.h"
-#include "engine/resample.h"
-#include "engine/units.h"
+#include "engine/io/bvh_io.h"
+#include "engine/kinematics/convert.h"
+#include "engine/io/error.h"
+#include "engine/kinematics/euler.h"
+#include "engine/kinematics/kinematics.h"
+#include "engine/kinematics/resample.h"
+#include "engine/kinematics/units.h"
 
 namespace mostyle::cli {
 namespace {

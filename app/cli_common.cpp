@@ -3,8 +3,8 @@
 #include <charconv>
 #include <iostream>
 
-#include "engine/atomic_file.h"
-#include "engine/bvh_io.h"
+#include "engine/io/atomic_file.h"
+#include "engine/io/bvh_io.h"
 
 namespace mostyle::cli {
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/clip.h"
+#include "engine/io/clip.h"
 
 namespace mostyle::cli {
 

@@ -6,7 +6,7 @@
 
 #include "app/cli_clip_commands.h"
 #include "app/cli_pipeline_commands.h"
-#include "engine/error.h"
+#include "engine/io/error.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"mostyle-cli: BVH takes, DTW alignment, sparse-coding style decomposition and blending"};

@@ -7,13 +7,13 @@
 #include <sstream>
 
 #include "app/cli_common.h"
-#include "engine/atomic_file.h"
-#include "engine/csv_io.h"
-#include "engine/dtw.h"
-#include "engine/error.h"
-#include "engine/export_solve.h"
-#include "engine/pipeline.h"
-#include "engine/units.h"
+#include "engine/io/atomic_file.h"
+#include "engine/io/csv_io.h"
+#include "engine/align/dtw.h"
+#include "engine/io/error.h"
+#include "engine/export/export_solve.h"
+#include "engine/run/pipeline.h"
+#include "engine/kinematics/units.h"
 
 namespace mostyle::cli {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-#include "engine/error.h"
+#include "engine/io/error.h"
 #include "render/gl.h"
 #include "render/image.h"
 #include "render/png_io.h"

@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <iterator>
 
-#include "engine/error.h"
-#include "engine/export_solve.h"
+#include "engine/io/error.h"
+#include "engine/export/export_solve.h"
 #include "render/skeleton_pose.h"
 
 namespace mostyle::ui {

@@ -15,8 +15,8 @@
 
 #include <Eigen/Core>
 
-#include "engine/pipeline.h"
-#include "engine/worker.h"
+#include "engine/run/pipeline.h"
+#include "engine/run/worker.h"
 #include "ui/editor_state.h"
 
 namespace mostyle::ui {

@@ -10,7 +10,7 @@
 #include <Eigen/Core>
 #include <glm/glm.hpp>
 
-#include "engine/clip.h"
+#include "engine/io/clip.h"
 
 namespace mostyle::ui {
 

@@ -10,8 +10,8 @@
 #include <sstream>
 #include <string>
 
-#include "engine/bvh_io.h"
-#include "engine/kinematics.h"
+#include "engine/io/bvh_io.h"
+#include "engine/kinematics/kinematics.h"
 #include "tests/test_data.h"
 
 namespace fs = std::filesystem;

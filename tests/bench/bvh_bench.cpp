@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "engine/atomic_file.h"
-#include "engine/bvh_io.h"
-#include "engine/kinematics.h"
+#include "engine/io/atomic_file.h"
+#include "engine/io/bvh_io.h"
+#include "engine/kinematics/kinematics.h"
 
 namespace {
 

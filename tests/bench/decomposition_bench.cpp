@@ -5,9 +5,9 @@
 
 #include <vector>
 
-#include "engine/decomposition.h"
-#include "engine/limb_length.h"
-#include "engine/synthesis.h"
+#include "engine/decompose/decomposition.h"
+#include "engine/kinematics/limb_length.h"
+#include "engine/synthesize/synthesis.h"
 #include "tests/engine/synthetic_motion.h"
 
 namespace {

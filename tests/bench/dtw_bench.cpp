@@ -6,7 +6,7 @@
 #include <cmath>
 #include <random>
 
-#include "engine/dtw.h"
+#include "engine/align/dtw.h"
 
 namespace {
 

@@ -7,11 +7,11 @@
 #include <memory>
 #include <string>
 
-#include "engine/bvh_io.h"
-#include "engine/error.h"
-#include "engine/export_solve.h"
-#include "engine/foot_contact.h"
-#include "engine/pipeline.h"
+#include "engine/io/bvh_io.h"
+#include "engine/io/error.h"
+#include "engine/export/export_solve.h"
+#include "engine/post/foot_contact.h"
+#include "engine/run/pipeline.h"
 
 namespace {
 

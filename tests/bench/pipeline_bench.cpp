@@ -14,8 +14,8 @@
 #include <memory>
 #include <string>
 
-#include "engine/bvh_io.h"
-#include "engine/pipeline.h"
+#include "engine/io/bvh_io.h"
+#include "engine/run/pipeline.h"
 
 // Every heap allocation of the process goes through these (glibc lets a program replace them;
 // the __libc_ functions are glibc's own), so the blend benchmark can count them.

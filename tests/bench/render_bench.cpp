@@ -9,8 +9,8 @@
 
 #include "app/editor.h"
 #include "app/imgui_session.h"
-#include "engine/bvh_io.h"
-#include "engine/kinematics.h"
+#include "engine/io/bvh_io.h"
+#include "engine/kinematics/kinematics.h"
 #include "render/gl.h"
 #include "render/render_target.h"
 #include "render/scene_renderer.h"

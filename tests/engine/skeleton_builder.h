@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/clip.h"
+#include "engine/io/clip.h"
 
 namespace mostyle::test {
 

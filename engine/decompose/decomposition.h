@@ -1,0 +1,85 @@
+#pragma once
+// Sparse coding-based decomposition (paper 3.4, after SPLOCS): a normalized motion matrix X
+// (frames x 3N) is factored as X ~ W C, with weights W (frames x k) and sparse, localized
+// components C (k x 3N).
+#include <Eigen/Core>
+#include <vector>
+
+#include "engine/io/job_control.h"
+
+namespace mostyle {
+
+struct DecompositionOptions {
+  int components = 10;    // k, 1 <= k <= 3N
+  // f in (0, 1]: each component row of C keeps max(1, round(f * 3N)) non-zero channels, so the
+  // overall non-zero fraction of C is f whenever f * 3N is whole, and no component is empty.
+  double sparsity = 0.1;
+  int max_iterations = 100;  // alternating W / C rounds after the greedy init, >= 0
+  double tolerance = 1e-6;   // stop when |E_prev - E| < tolerance * E_prev, E the objective
+  // Sparse-coding sweeps per C update, >= 1: warm-started, each sweep updates every component
+  // row once (sparse_code_normal with SparseGroup::kRow).
+  int sparse_coding_iterations = 5;
+
+  // Throws InputError when an option is out of range for x (frames x 3N), or x is empty, has a
+  // column count that is not a multiple of 3, or holds a NaN or infinite value.
+  void Validate(const Eigen::MatrixXd& x) const;
+  // Non-zeros kept per component row for `channels` (= 3N) columns: max(1, round(f * 3N)).
+  int NonzerosPerComponent(int channels) const;
+};
+
+struct Decomposition {
+  Eigen::MatrixXd weights;     // W: frames x k; every non-zero column has max |w| = 1
+  Eigen::MatrixXd components;  // C: k x 3N, NonzerosPerComponent(3N) entries kept per row
+  int iterations = 0;          // alternating rounds run
+  bool converged = false;      // the tolerance was met before the iteration cap
+  double objective = 0.0;      // ||X - W C||_F^2, X's units squared
+  double rmse = 0.0;           // sqrt(objective / (frames * 3N)), X's units
+  double nonzero_fraction = 0.0;  // non-zero entries of C / (k * 3N)
+  double elapsed_ms = 0.0;        // wall time of the call
+  // Objective after the greedy init, then after each round (size iterations + 1); never
+  // increases from one entry to the next, up to rounding.
+  std::vector<double> objective_history;
+};
+
+// Decomposes x (frames x 3N, normalized, joints as consecutive x, y, z triples). Deterministic.
+// Greedy init: k times, the joint with the most residual energy gives a weight column (the
+// rank-1 SVD of its trajectory) and its component entries; a budget beyond 3 channels goes to
+// the channels that weight explains best. Then alternating rounds of closed-form weight updates
+// (projected to max |w| = 1, the component scaled inversely) and sparse-coding component
+// updates, each of which can only lower the objective.
+// control (may be null): checked for cancel once per round (throws Cancelled), progress 0..1.
+// Throws InputError from options.Validate(x).
+// Cost per round: O(frames * k * 3N) (one product W^T X), plus O(frames * nnz(C)).
+Decomposition decompose(const Eigen::MatrixXd& x, const DecompositionOptions& options = {},
+                        JobControl* control = nullptr);
+
+// Shared-mode decomposition (DESIGN 10): one component set C for two takes, found by
+// decomposing the stacked [x_a; x_b] (frame counts may differ, channel counts must match).
+struct SharedDecomposition {
+  Eigen::MatrixXd weights_a;   // W_A: frames_a x k
+  Eigen::MatrixXd weights_b;   // W_B: frames_b x k
+  Eigen::MatrixXd components;  // C: k x 3N, shared
+  int iterations = 0;
+  bool converged = false;
+  double objective = 0.0;      // ||[x_a; x_b] - [W_A; W_B] C||_F^2
+  double rmse_a = 0.0;         // sqrt(||x_a - W_A C||^2 / (frames_a * 3N)), x's units
+  double rmse_b = 0.0;         // the same for b
+  double nonzero_fraction = 0.0;
+  double elapsed_ms = 0.0;
+  std::vector<double> objective_history;
+};
+
+// Throws InputError when the channel counts differ or options.Validate fails on either take.
+// Same cost as decompose() on frames_a + frames_b frames.
+SharedDecomposition decompose_shared(const Eigen::MatrixXd& x_a, const Eigen::MatrixXd& x_b,
+                                     const DecompositionOptions& options = {},
+                                     JobControl* control = nullptr);
+
+namespace detail {
+// decompose() reporting its progress inside [progress_begin, progress_end] of the job, for jobs
+// that chain several decompositions (basic motions).
+Decomposition decompose_part(const Eigen::MatrixXd& x, const DecompositionOptions& options,
+                             JobControl* control, float progress_begin, float progress_end);
+}  // namespace detail
+
+}  // namespace mostyle

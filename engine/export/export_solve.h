@@ -1,0 +1,70 @@
+#pragma once
+// Export (DESIGN.md 12, issue #4): the blend's major-joint positions turned back into rotations
+// of take A's full skeleton, in A's channel layout and rotation orders, so animators' tools read
+// the blend as a BVH file.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "engine/io/clip.h"
+#include "engine/run/pipeline.h"
+
+namespace mostyle {
+
+// How closely the exported clip's major joints (by our FK) match the positions it was solved
+// from: distances over all frames and joints, file units.
+struct ExportFit {
+  double max = 0.0;
+  double mean = 0.0;
+};
+
+struct ExportResult {
+  Clip clip;     // A's skeleton and channel layout at the output rate
+  ExportFit fit;
+};
+
+// Solves, per frame, A's rotations from target positions of some of its joints.
+//   clip:    take A as loaded (any rate; it is resampled to `fps` with resample_clip first, so
+//            every joint has A's own local rotation at every output frame).
+//   joints:  A's joint index of each target column (M distinct joints, no End Sites): the major
+//            joints. Their hierarchy is A's: a column's parent is its nearest ancestor column.
+//   world:   F x 3M target positions, A's units and world frame, at `fps`; F must equal the
+//            resampled clip's frame count.
+//   fps:     output frame rate; 0 or A's own rate keeps A's frames and frame time.
+// Per frame, parents first:
+//   - a column joint with one child column takes the smallest rotation that turns the direction
+//     to that child (through any joints in between, at A's rotations) into the direction from
+//     where the joint now is to the child's target, applied on top of A's local rotation (so
+//     the bone's twist is A's); aiming from where the joint actually is keeps an error above
+//     it from carrying down the chain;
+//   - a column joint with several child columns (hips, chest) takes the best-fit rotation of
+//     those directions (Kabsch), refined by least squares so the children themselves land. On
+//     the way to a child, the first joint that turns on its own (a clavicle, a neck base, CMU's
+//     LHipJoint or LowerBack: a "pivot") then aims at that child as a one-child joint would, so
+//     the shoulders and the head reach their targets although A's rigid offsets do not line up
+//     with the blend's directions. A pelvis without such joints (Bandai) is fitted rigidly;
+//   - column joints without a child column (head, hands, toes) and all other joints (fingers,
+//     further neck segments, End Sites) keep A's local rotations.
+// The joint that carries the trajectory (the topmost column, or its nearest ancestor with
+// position channels) gets position channels that put the topmost column on its target; other
+// position channels keep A's values. Euler angles are in each joint's own order, unwrapped frame
+// to frame (no jump over 180 degrees). A joint without exactly three rotation channels keeps
+// A's values. Throws InputError on a bad joint index, a shape mismatch or a non-finite target.
+// O(F x joints); allocates the output clip.
+ExportResult solve_export(const Clip& clip, const std::vector<int>& joints, const Eigen::MatrixXd& world,
+                          double fps);
+
+// The same for a blend: A's clip and major joints from `prepared`, world: the blend's final
+// positions (BlendResult::world, F x 3M at prepared.fps).
+ExportResult export_blend(const PreparedPair& prepared, const Eigen::MatrixXd& world);
+
+// export_blend, then the clip written atomically to `path` (bvh_io.h write_bvh_file). What the
+// CLI's --out and the editor's export call. Throws InputError when the file cannot be written.
+ExportResult export_blend_bvh(const PreparedPair& prepared, const Eigen::MatrixXd& world,
+                              const std::string& path);
+
+// max and mean distance between the clip's joints (FK at every frame) and `world`'s columns.
+// Throws InputError on a shape mismatch. O(F x joints).
+ExportFit export_fit(const Clip& clip, const std::vector<int>& joints, const Eigen::MatrixXd& world);
+
+}  // namespace mostyle

@@ -1,0 +1,628 @@
+#include "engine/io/bvh_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <string>
+
+#include "engine/io/atomic_file.h"
+#include "engine/io/error.h"
+
+namespace mostyle {
+namespace {
+
+// Limits that keep a hostile file from allocating or running away.
+constexpr long long kMaxFrames = 100'000'000;  // more than a day at 1000 fps
+constexpr int kMaxChannelsPerJoint = 6;
+constexpr size_t kShownTokenLength = 40;
+// A frame value takes at least two bytes ("0 "): the frames a text can hold, whatever it declares.
+constexpr size_t kMinBytesPerValue = 2;
+
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\f' || c == '\v'; }
+bool is_eol(char c) { return c == '\n' || c == '\r'; }
+bool is_separator(char c) { return is_space(c) || is_eol(c); }
+
+bool iequals(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (std::tolower(static_cast<unsigned char>(a[i])) !=
+        std::tolower(static_cast<unsigned char>(b[i])))
+      return false;
+  }
+  return true;
+}
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
+  while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
+  return s;
+}
+
+// A token as it may be shown in a message: quoted, printable, short.
+std::string shown(std::string_view token) {
+  if (token.empty()) return "end of line";
+  std::string out = "'";
+  for (size_t i = 0; i < token.size() && i < kShownTokenLength; ++i) {
+    const unsigned char c = static_cast<unsigned char>(token[i]);
+    if (c >= 32 && c < 127) {
+      out += static_cast<char>(c);
+    } else {
+      static const char* kHex = "0123456789abcdef";
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    }
+  }
+  if (token.size() > kShownTokenLength) out += "...";
+  return out + "'";
+}
+
+// Parses the number that starts at `first` (a leading '+' allowed, as strtod does) and returns
+// where it stops, or nullptr when no number starts there. Locale-independent. A value too small
+// for a double reads as a signed zero, as strtod gives; one too large reads as infinity, which
+// the callers refuse as not finite.
+const char* parse_number(const char* first, const char* last, double* value) {
+  const char* p = first;
+  if (p != last && *p == '+') {
+    ++p;
+    if (p != last && (*p == '-' || *p == '+')) return nullptr;
+  }
+  const auto r = std::from_chars(p, last, *value);
+  if (r.ec == std::errc::result_out_of_range) {
+    // Underflow has a negative exponent; "1e-400" is zero, "1e400" is not a finite number.
+    const char* e = p;
+    while (e != r.ptr && *e != 'e' && *e != 'E') ++e;
+    const bool underflow = e + 1 < r.ptr && e[1] == '-';
+    *value = underflow ? (*p == '-' ? -0.0 : 0.0) : (*p == '-' ? -HUGE_VAL : HUGE_VAL);
+    return r.ptr;
+  }
+  if (r.ec != std::errc()) return nullptr;
+  return r.ptr;
+}
+
+// Parses a whole token as a double.
+bool parse_double(std::string_view token, double* value) {
+  const char* last = token.data() + token.size();
+  return !token.empty() && parse_number(token.data(), last, value) == last;
+}
+
+// A token cut off by the end of the file: only characters a number can hold ("-1.5e").
+bool looks_like_cut_number(std::string_view token) {
+  for (char c : token) {
+    if (!std::isdigit(static_cast<unsigned char>(c)) && c != '+' && c != '-' && c != '.' &&
+        c != 'e' && c != 'E')
+      return false;
+  }
+  return !token.empty();
+}
+
+bool parse_channel(std::string_view token, Channel* channel) {
+  static const struct {
+    const char* name;
+    Channel channel;
+  } kNames[] = {{"Xposition", Channel::kXposition}, {"Yposition", Channel::kYposition},
+                {"Zposition", Channel::kZposition}, {"Xrotation", Channel::kXrotation},
+                {"Yrotation", Channel::kYrotation}, {"Zrotation", Channel::kZrotation}};
+  for (const auto& n : kNames) {
+    if (iequals(token, n.name)) {
+      *channel = n.channel;
+      return true;
+    }
+  }
+  return false;
+}
+
+// Walks the text line by line, tracking 1-based line numbers. LF, CRLF and CR all end a line.
+class LineReader {
+ public:
+  explicit LineReader(std::string_view text) : text_(text) {}
+
+  bool at_end() const { return pos_ >= text_.size(); }
+  int line() const { return line_; }            // line number of the line last returned
+  int next_line() const { return next_line_; }  // line number of the line at position()
+  size_t position() const { return pos_; }
+  size_t remaining() const { return text_.size() - pos_; }
+  std::string_view text() const { return text_; }
+
+  std::string_view next() {
+    const size_t start = pos_;
+    size_t p = pos_;
+    while (p < text_.size() && !is_eol(text_[p])) ++p;
+    std::string_view line = text_.substr(start, p - start);
+    if (p < text_.size()) {
+      if (text_[p] == '\r' && p + 1 < text_.size() && text_[p + 1] == '\n') ++p;
+      ++p;
+    }
+    pos_ = p;
+    line_ = next_line_++;
+    return line;
+  }
+
+  // The next line that is not blank; an empty view at the end of the input, with line() then
+  // the last line of the file (where a message about a cut file should point).
+  std::string_view next_nonblank() {
+    while (!at_end()) {
+      std::string_view l = trim(next());
+      if (!l.empty()) return l;
+    }
+    line_ = std::max(1, next_line_ - 1);
+    return {};
+  }
+
+ private:
+  std::string_view text_;
+  size_t pos_ = 0;
+  int line_ = 0;
+  int next_line_ = 1;
+};
+
+// Splits off the first whitespace-separated word.
+std::string_view first_word(std::string_view line, std::string_view* rest) {
+  size_t i = 0;
+  while (i < line.size() && !is_space(line[i])) ++i;
+  if (rest) *rest = trim(line.substr(i));
+  return line.substr(0, i);
+}
+
+// "Frames: 12", "FRAME TIME:\t0.03", "Frames 12": matches a key of one or more words, any case,
+// any spacing, optional colon. Returns false when the line is not that key.
+bool match_key(std::string_view line, std::initializer_list<std::string_view> words,
+               std::string_view* value) {
+  for (std::string_view word : words) {
+    line = trim(line);
+    if (line.size() < word.size() || !iequals(line.substr(0, word.size()), word)) return false;
+    line.remove_prefix(word.size());
+  }
+  // The key must end here: "Framesx" is not "Frames".
+  if (!line.empty() && line.front() != ':' && !is_space(line.front())) return false;
+  line = trim(line);
+  if (!line.empty() && line.front() == ':') line.remove_prefix(1);
+  *value = trim(line);
+  return true;
+}
+
+class Parser {
+ public:
+  Parser(std::string_view text, const std::string& source, std::vector<std::string>* warnings)
+      : reader_(text), source_(source), warnings_(warnings) {}
+
+  Clip run() {
+    Clip clip;
+    clip.source = source_;
+    parse_hierarchy(&clip.skeleton);
+    parse_motion(&clip);
+    return clip;
+  }
+
+ private:
+  [[noreturn]] void fail(int line, const std::string& what) const {
+    throw InputError(source_ + ":" + std::to_string(line) + ": " + what);
+  }
+  [[noreturn]] void expected(const std::string& what, std::string_view found) const {
+    fail(reader_.line(), "expected " + what + ", found " +
+                             (reader_.at_end() && found.empty() ? std::string("end of file")
+                                                                : shown(found)));
+  }
+  void warn(int line, const std::string& what) {
+    if (warnings_) warnings_->push_back(source_ + ":" + std::to_string(line) + ": " + what);
+  }
+
+  struct Open {
+    int joint;
+    bool has_offset = false;
+    bool has_channels = false;
+    bool has_children = false;
+  };
+
+  void parse_hierarchy(Skeleton* skeleton) {
+    std::string_view line = reader_.next_nonblank();
+    if (line.empty()) fail(1, "expected HIERARCHY, found an empty file");
+    // A UTF-8 byte order mark, as some Windows editors write.
+    if (line.substr(0, 3) == "\xEF\xBB\xBF") line = trim(line.substr(3));
+    std::string_view rest;
+    std::string_view word = first_word(line, &rest);
+    if (!iequals(word, "HIERARCHY")) expected("HIERARCHY", word);
+    if (!rest.empty()) expected("end of line after HIERARCHY", rest);
+
+    std::vector<Open> stack;  // joints whose '{' is open, innermost last
+    bool need_brace = false;  // a ROOT/JOINT/End Site line was read, its '{' not yet
+    for (;;) {
+      line = reader_.next_nonblank();
+      if (line.empty()) {
+        expected(need_brace        ? "'{'"
+                 : !stack.empty()  ? (stack.back().has_offset ? "'}'" : "OFFSET")
+                 : skeleton->joints.empty() ? "ROOT"
+                                            : "MOTION",
+                 line);
+      }
+      word = first_word(line, &rest);
+      if (need_brace) {
+        if (word != "{") expected("'{'", word);
+        if (!rest.empty()) expected("end of line after '{'", rest);
+        stack.push_back({static_cast<int>(skeleton->joints.size()) - 1});
+        need_brace = false;
+        continue;
+      }
+      if (stack.empty()) {
+        if (iequals(word, "MOTION")) {
+          if (skeleton->joints.empty()) expected("ROOT", word);
+          if (!rest.empty()) expected("end of line after MOTION", rest);
+          break;
+        }
+        if (!iequals(word, "ROOT")) expected(skeleton->joints.empty() ? "ROOT" : "ROOT or MOTION", word);
+        open_joint(skeleton, -1, rest, false, &stack, &need_brace);
+        continue;
+      }
+      Open& open = stack.back();
+      Joint& joint = skeleton->joints[open.joint];
+      if (word == "}") {
+        if (!rest.empty()) expected("end of line after '}'", rest);
+        if (!open.has_offset) expected("OFFSET in " + describe(joint), word);
+        stack.pop_back();
+      } else if (iequals(word, "OFFSET")) {
+        if (open.has_offset) fail(reader_.line(), describe(joint) + " has a second OFFSET");
+        if (open.has_children) expected("JOINT, End Site or '}'", word);
+        parse_offset(rest, &joint);
+        open.has_offset = true;
+      } else if (iequals(word, "CHANNELS")) {
+        if (joint.end_site) expected("OFFSET or '}' in an End Site", word);
+        if (open.has_channels) fail(reader_.line(), describe(joint) + " has a second CHANNELS");
+        if (open.has_children) expected("JOINT, End Site or '}'", word);
+        parse_channels(rest, &joint, skeleton);
+        open.has_channels = true;
+      } else if (iequals(word, "JOINT") || iequals(word, "End")) {
+        if (joint.end_site) expected("'}' closing the End Site", word);
+        if (!open.has_offset) expected("OFFSET in " + describe(joint), word);
+        open.has_children = true;
+        const bool end_site = iequals(word, "End");
+        if (end_site) {
+          std::string_view site_rest;
+          std::string_view site = first_word(rest, &site_rest);
+          if (!iequals(site, "Site")) expected("'Site' after End", site);
+          rest = site_rest;
+        }
+        const int parent = open.joint;
+        open_joint(skeleton, parent, rest, end_site, &stack, &need_brace);
+      } else {
+        expected(open.has_offset ? "CHANNELS, JOINT, End Site or '}'" : "OFFSET", word);
+      }
+    }
+  }
+
+  std::string describe(const Joint& joint) const {
+    return joint.end_site ? "the End Site of '" + skeleton_name_of_parent(joint) + "'"
+                          : "joint '" + joint.name + "'";
+  }
+  std::string skeleton_name_of_parent(const Joint& joint) const {
+    const std::string suffix = " End Site";
+    return joint.name.size() > suffix.size() ? joint.name.substr(0, joint.name.size() - suffix.size())
+                                             : joint.name;
+  }
+
+  // Adds a joint from the rest of its ROOT/JOINT/End Site line. Its '{' may end that line
+  // ("JOINT Hips {") or come on the next one (then *need_brace is set).
+  void open_joint(Skeleton* skeleton, int parent, std::string_view rest, bool end_site,
+                  std::vector<Open>* stack, bool* need_brace) {
+    bool opened = false;
+    if (!rest.empty() && rest.back() == '{') {
+      rest = trim(rest.substr(0, rest.size() - 1));
+      opened = true;
+    }
+    Joint joint;
+    joint.parent = parent;
+    joint.end_site = end_site;
+    joint.line = reader_.line();
+    if (end_site) {
+      // Some exporters name End Sites ("End Site LeftToe_end"); Blender ignores the name, so do we.
+      joint.name = skeleton->joints[parent].name + " End Site";
+    } else {
+      if (rest.empty()) fail(reader_.line(), "expected a joint name, found end of line");
+      joint.name = std::string(rest);
+    }
+    joint.first_channel = skeleton->channel_count;
+    skeleton->joints.push_back(std::move(joint));
+    if (opened) stack->push_back({static_cast<int>(skeleton->joints.size()) - 1});
+    *need_brace = !opened;
+  }
+
+  void parse_offset(std::string_view rest, Joint* joint) {
+    double v[3] = {0, 0, 0};
+    int count = 0;
+    while (!rest.empty()) {
+      std::string_view token = first_word(rest, &rest);
+      if (count < 3 && (!parse_double(token, &v[count]) || !std::isfinite(v[count])))
+        expected("a finite number in OFFSET of " + describe(*joint), token);
+      ++count;
+    }
+    if (count != 3)
+      fail(reader_.line(), "expected 3 numbers after OFFSET of " + describe(*joint) + ", found " +
+                               std::to_string(count));
+    joint->offset = Eigen::Vector3d(v[0], v[1], v[2]);
+  }
+
+  void parse_channels(std::string_view rest, Joint* joint, Skeleton* skeleton) {
+    std::string_view count_token = first_word(rest, &rest);
+    long long count = -1;
+    auto r = std::from_chars(count_token.data(), count_token.data() + count_token.size(), count);
+    if (r.ec != std::errc() || r.ptr != count_token.data() + count_token.size() || count < 0 ||
+        count > kMaxChannelsPerJoint)
+      expected("a channel count from 0 to 6 after CHANNELS", count_token);
+    std::vector<Channel> channels;
+    while (!rest.empty()) {
+      std::string_view token = first_word(rest, &rest);
+      Channel c;
+      if (!parse_channel(token, &c))
+        expected("a channel name (Xposition .. Zrotation) for " + describe(*joint), token);
+      if (std::find(channels.begin(), channels.end(), c) != channels.end())
+        fail(reader_.line(), describe(*joint) + " lists channel " + channel_name(c) + " twice");
+      channels.push_back(c);  // at most 6: a seventh name repeats one
+    }
+    if (static_cast<long long>(channels.size()) != count)
+      fail(reader_.line(), "expected " + std::to_string(count) + " channel names for " +
+                               describe(*joint) + ", found " + std::to_string(channels.size()));
+    joint->channels = std::move(channels);
+    joint->first_channel = skeleton->channel_count;
+    skeleton->channel_count += static_cast<int>(count);
+  }
+
+  void parse_motion(Clip* clip) {
+    std::string_view value;
+    std::string_view line = reader_.next_nonblank();
+    if (!match_key(line, {"Frames"}, &value)) expected("'Frames: N'", first_word(line, nullptr));
+    const int frames_line = reader_.line();
+    long long declared = -1;
+    auto r = std::from_chars(value.data(), value.data() + value.size(), declared);
+    if (value.empty()) expected("a frame count after Frames:", value);
+    if (r.ec == std::errc::result_out_of_range && r.ptr == value.data() + value.size())
+      declared = value.front() == '-' ? -1 : kMaxFrames + 1;
+    else if (r.ec != std::errc() || r.ptr != value.data() + value.size())
+      expected("a whole frame count after Frames:", value);
+    if (declared < 0) fail(frames_line, "expected a frame count of 0 or more, found " + shown(value));
+    if (declared > kMaxFrames)
+      fail(frames_line, "expected a frame count of at most " + std::to_string(kMaxFrames) +
+                            ", found " + shown(value));
+
+    line = reader_.next_nonblank();
+    if (!match_key(line, {"Frame", "Time"}, &value))
+      expected("'Frame Time: seconds'", first_word(line, nullptr));
+    double frame_time = 0;
+    if (!parse_double(value, &frame_time) || !std::isfinite(frame_time) || frame_time <= 0)
+      expected("a positive frame time in seconds", value);
+    clip->frame_time = frame_time;
+
+    if (clip->skeleton.channel_count == 0) {
+      parse_empty_frames(clip, declared, frames_line);
+    } else {
+      parse_frames(clip, declared, frames_line);
+    }
+  }
+
+  // The frame lines: one pass over the bytes, numbers parsed straight into the matrix, no
+  // per-line or per-value allocation. This loop is the parser's hot path (tests/bench/bvh_bench).
+  void parse_frames(Clip* clip, long long declared, int frames_line) {
+    const int channels = clip->skeleton.channel_count;
+    const std::string_view text = reader_.text();
+    const char* p = text.data() + reader_.position();
+    const char* const end = text.data() + text.size();
+    int line = reader_.next_line();
+
+    // Never allocate from the declared count alone: the text bounds how many frames it holds.
+    const long long affordable =
+        static_cast<long long>(reader_.remaining() / kMinBytesPerValue / channels) + 1;
+    Eigen::Index capacity = static_cast<Eigen::Index>(std::min(declared, affordable));
+    MotionMatrix motion(capacity, channels);
+    Eigen::Index frames = 0;
+    int cut_line = 0;   // line of a short frame line; only the last line may be one
+    int cut_count = 0;  // values on it
+    while (p < end) {
+      const int line_number = line;
+      double* row = nullptr;
+      int count = 0;
+      bool cut_token = false;
+      for (;;) {
+        while (p < end && is_space(*p)) ++p;
+        if (p == end || is_eol(*p)) break;
+        const char* token = p;
+        if (count == channels) {
+          int extra = 0;
+          while (p < end && !is_eol(*p)) {
+            while (p < end && is_space(*p)) ++p;
+            if (p == end || is_eol(*p)) break;
+            ++extra;
+            while (p < end && !is_separator(*p)) ++p;
+          }
+          fail(line_number, "expected " + std::to_string(channels) + " values in frame " +
+                                std::to_string(frames + 1) + ", found " +
+                                std::to_string(channels + extra));
+        }
+        double v;
+        const char* stop = parse_number(token, end, &v);
+        if (stop == nullptr || (stop != end && !is_separator(*stop)) || !std::isfinite(v)) {
+          const char* token_end = token;
+          while (token_end < end && !is_separator(*token_end)) ++token_end;
+          const std::string_view bad(token, token_end - token);
+          if (token_end == end && looks_like_cut_number(bad) &&
+              (stop == nullptr || stop != end)) {
+            // The file ends inside this number ("-1.5e"): a cut last line.
+            cut_token = true;
+            p = token_end;
+            break;
+          }
+          fail(line_number, "expected a finite number for frame " + std::to_string(frames + 1) +
+                                " channel " + std::to_string(count + 1) + " (" +
+                                channel_label(clip->skeleton.joints, count) + "), found " +
+                                shown(bad));
+        }
+        if (count == 0) {
+          if (frames == capacity) {
+            // More frames than declared: grow geometrically (a realloc; rows are contiguous).
+            capacity = std::max<Eigen::Index>(2 * capacity, 64);
+            motion.conservativeResize(capacity, channels);
+          }
+          row = motion.data() + frames * channels;
+        }
+        row[count++] = v;
+        p = stop;
+      }
+      if (p < end) {  // the line's end: CRLF, LF or CR
+        if (*p == '\r' && p + 1 < end && p[1] == '\n') ++p;
+        ++p;
+        ++line;
+      }
+      if (count == 0 && !cut_token) continue;  // blank line
+      if (cut_line != 0) {
+        // A short line followed by more data was not the cut last line: refuse it.
+        fail(cut_line, "expected " + std::to_string(channels) + " values in frame " +
+                           std::to_string(frames + 1) + ", found " + std::to_string(cut_count));
+      }
+      if (count < channels) {
+        cut_line = line_number;
+        cut_count = count;
+        continue;
+      }
+      ++frames;
+    }
+    if (frames != capacity) motion.conservativeResize(frames, channels);
+    clip->motion = std::move(motion);
+    if (cut_line != 0) {
+      warn(cut_line, "the last frame line is cut (" + std::to_string(cut_count) + " of " +
+                         std::to_string(channels) + " values); loaded the " +
+                         std::to_string(frames) + " complete frames");
+    }
+    if (frames != declared) {
+      warn(frames_line, "Frames: says " + std::to_string(declared) + " but the file has " +
+                            std::to_string(frames) + " complete frames; loaded " +
+                            std::to_string(frames));
+    }
+  }
+
+  // A skeleton without channels: each frame is an empty line, so count lines, never trusting
+  // the declared count beyond what the text holds.
+  void parse_empty_frames(Clip* clip, long long declared, int frames_line) {
+    long long lines = 0;
+    while (!reader_.at_end()) {
+      const std::string_view l = trim(reader_.next());
+      if (!l.empty())
+        fail(reader_.line(), "expected 0 values in frame " + std::to_string(lines + 1) +
+                                 ", found " + shown(first_word(l, nullptr)));
+      if (lines < declared) ++lines;  // blank lines past the declared count are just blank
+    }
+    if (lines != declared) {
+      warn(frames_line, "Frames: says " + std::to_string(declared) + " but the file has " +
+                            std::to_string(lines) + " frame lines; loaded " +
+                            std::to_string(lines));
+    }
+    clip->motion.resize(static_cast<Eigen::Index>(lines), 0);
+  }
+
+  static std::string channel_label(const std::vector<Joint>& joints, int channel) {
+    for (const Joint& j : joints) {
+      const int local = channel - j.first_channel;
+      if (!j.end_site && local >= 0 && local < static_cast<int>(j.channels.size()))
+        return j.name + " " + channel_name(j.channels[local]);
+    }
+    return "?";
+  }
+
+  LineReader reader_;
+  const std::string& source_;
+  std::vector<std::string>* warnings_;
+};
+
+// Shortest text that reads back as the same double.
+void append_number(std::string* out, double v) {
+  char buffer[32];
+  auto r = std::to_chars(buffer, buffer + sizeof buffer, v);
+  out->append(buffer, r.ptr);
+}
+
+constexpr int kMaxIndent = 32;  // deep files stay linear in size
+
+void append_indent(std::string* out, int depth) { out->append(std::min(depth, kMaxIndent), '\t'); }
+
+bool has_position_channel(const Joint& j) {
+  return std::any_of(j.channels.begin(), j.channels.end(), [](Channel c) { return is_position(c); });
+}
+
+}  // namespace
+
+Clip parse_bvh(std::string_view text, const std::string& source,
+               std::vector<std::string>* warnings) {
+  return Parser(text, source, warnings).run();
+}
+
+Clip read_bvh_file(const std::string& path, std::vector<std::string>* warnings) {
+  const std::string text = read_file(path);
+  return parse_bvh(text, path, warnings);
+}
+
+std::string format_bvh(const Clip& clip) {
+  const Skeleton& s = clip.skeleton;
+  std::string out;
+  out.reserve(4096 + static_cast<size_t>(clip.motion.size()) * 12);
+  out += "HIERARCHY\n";
+  std::vector<int> open;  // joints whose brace is open
+  std::vector<int> depth(s.joints.size(), 0);
+  auto close_until = [&](int parent) {
+    while (!open.empty() && open.back() != parent) {
+      append_indent(&out, depth[open.back()]);
+      out += "}\n";
+      open.pop_back();
+    }
+  };
+  for (int i = 0; i < static_cast<int>(s.joints.size()); ++i) {
+    const Joint& j = s.joints[i];
+    close_until(j.parent);
+    depth[i] = j.parent < 0 ? 0 : depth[j.parent] + 1;
+    append_indent(&out, depth[i]);
+    if (j.end_site) {
+      out += "End Site\n";
+    } else {
+      out += j.parent < 0 ? "ROOT " : "JOINT ";
+      out += j.name;
+      out += '\n';
+    }
+    append_indent(&out, depth[i]);
+    out += "{\n";
+    append_indent(&out, depth[i] + 1);
+    out += "OFFSET";
+    // A root's position channels place it alone (Blender and we ignore its OFFSET); three.js
+    // adds the OFFSET to them. A zero OFFSET there is read the same by all three.
+    const bool moot_offset = j.parent < 0 && has_position_channel(j);
+    for (int d = 0; d < 3; ++d) {
+      out += ' ';
+      append_number(&out, moot_offset ? 0.0 : j.offset[d]);
+    }
+    out += '\n';
+    if (!j.end_site) {
+      append_indent(&out, depth[i] + 1);
+      out += "CHANNELS ";
+      out += std::to_string(j.channels.size());
+      for (Channel c : j.channels) {
+        out += ' ';
+        out += channel_name(c);
+      }
+      out += '\n';
+    }
+    open.push_back(i);
+  }
+  close_until(-1);
+  out += "MOTION\nFrames: " + std::to_string(clip.motion.rows()) + "\nFrame Time: ";
+  append_number(&out, clip.frame_time);
+  out += '\n';
+  for (Eigen::Index f = 0; f < clip.motion.rows(); ++f) {
+    for (Eigen::Index c = 0; c < clip.motion.cols(); ++c) {
+      if (c) out += ' ';
+      append_number(&out, clip.motion(f, c));
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+void write_bvh_file(const Clip& clip, const std::string& path) {
+  write_file_atomically(path, format_bvh(clip));
+}
+
+}  // namespace mostyle

@@ -1,0 +1,35 @@
+#pragma once
+// Forward kinematics of a clip: global transforms and positions of every joint per frame.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "engine/io/clip.h"
+
+namespace mostyle {
+
+// Local rotation of one joint at one frame from its rotation channels, applied in file order
+// (channels "Zrotation Xrotation Yrotation" give Rz * Rx * Ry). values: the frame's row.
+Eigen::Matrix3d joint_local_rotation(const Joint& joint, const double* frame_values);
+
+// Local translation, Blender's reading (DESIGN.md 1): the OFFSET for a joint without position
+// channels; for a joint with any, its position channels replace the whole OFFSET, a missing
+// one reading as 0 (Blender and three.js both read it so; three.js then adds the OFFSET).
+Eigen::Vector3d joint_local_translation(const Joint& joint, const double* frame_values);
+
+// Global positions of all joints (End Sites included, in skeleton order) at every frame:
+// frames x 3*joints, file units and axes. One forward pass per frame (parents come before
+// children), so any depth works. O(frames * joints).
+Eigen::MatrixXd joint_positions(const Clip& clip);
+
+// Global positions and rotations of all joints at one frame.
+struct Pose {
+  std::vector<Eigen::Vector3d> positions;  // per joint, file units
+  std::vector<Eigen::Matrix3d> rotations;  // per joint, global
+};
+Pose pose_at(const Clip& clip, int frame);  // frame in [0, clip.frames())
+
+// Rest pose (all channels zero except position channels taken as the OFFSET): positions per joint.
+std::vector<Eigen::Vector3d> rest_positions(const Skeleton& skeleton);
+
+}  // namespace mostyle

@@ -1,0 +1,157 @@
+#include "engine/kinematics/limb_length.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "engine/io/error.h"
+
+namespace mostyle {
+
+namespace {
+
+void check_skeleton(const Eigen::MatrixXd& positions, const std::vector<int>& parents,
+                    const char* where) {
+  const size_t joints = parents.size();
+  if (positions.cols() != static_cast<Eigen::Index>(3 * joints)) {
+    throw InputError(std::string(where) + ": positions have " + std::to_string(positions.cols()) +
+                     " columns, expected 3 per joint for " + std::to_string(joints) + " joints.");
+  }
+  for (size_t j = 0; j < joints; ++j) {
+    if (parents[j] < -1 || parents[j] >= static_cast<int>(j)) {
+      throw InputError(std::string(where) + ": joint " + std::to_string(j) + " has parent " +
+                       std::to_string(parents[j]) +
+                       "; parents must come before their children (or be -1 for a root).");
+    }
+  }
+}
+
+void check_lengths(const std::vector<int>& parents, const std::vector<double>& lengths,
+                   const char* where) {
+  if (lengths.size() != parents.size()) {
+    throw InputError(std::string(where) + ": " + std::to_string(lengths.size()) +
+                     " bone lengths for " + std::to_string(parents.size()) + " joints.");
+  }
+  for (size_t j = 0; j < lengths.size(); ++j) {
+    if (parents[j] >= 0 && !(std::isfinite(lengths[j]) && lengths[j] >= 0.0)) {
+      throw InputError(std::string(where) + ": the bone length of joint " + std::to_string(j) +
+                       " must be a finite number >= 0, got " + std::to_string(lengths[j]) + ".");
+    }
+  }
+}
+
+Eigen::Vector3d joint_at(const Eigen::MatrixXd& m, Eigen::Index row, int joint) {
+  return Eigen::Vector3d(m(row, 3 * joint), m(row, 3 * joint + 1), m(row, 3 * joint + 2));
+}
+
+}  // namespace
+
+void apply_limb_lengths(Eigen::MatrixXd& positions, const std::vector<int>& parents,
+                        const std::vector<double>& lengths, const LimbLengthOptions& options) {
+  check_skeleton(positions, parents, "limb-length constraint");
+  check_lengths(parents, lengths, "limb-length constraint");
+  if (!(options.degenerate_fraction >= 0.0) || !std::isfinite(options.degenerate_fraction)) {
+    throw InputError("limb-length constraint: degenerate_fraction must be a finite number >= 0, "
+                     "got " + std::to_string(options.degenerate_fraction) + ".");
+  }
+  if (options.fallback_pose.size() != 0 && options.fallback_pose.size() != positions.cols()) {
+    throw InputError("limb-length constraint: the fallback pose has " +
+                     std::to_string(options.fallback_pose.size()) + " values, expected " +
+                     std::to_string(positions.cols()) + ".");
+  }
+  const int joints = static_cast<int>(parents.size());
+
+  // Paper 3.7: restore each bone's reference length from the root outward. Within a frame the
+  // row is used as its own scratch, so nothing is allocated: a backward pass turns every
+  // non-root joint into its bone vector (child - parent, both still original because parents
+  // have lower indices), then a forward pass places child = corrected parent + L * direction.
+  // Frames go in blocks so that both passes run down contiguous memory (the matrix is
+  // column-major: one frame's values lie a whole column apart); per frame it is the same
+  // arithmetic in the same order as one frame at a time, and the previous frame a degenerate
+  // bone looks back to is always final (earlier in this joint's loop, or an earlier block).
+  constexpr Eigen::Index kBlock = 128;
+  const Eigen::Index rows = positions.rows();
+  auto column = [&positions, rows](int c) { return positions.data() + rows * static_cast<Eigen::Index>(c); };
+  for (Eigen::Index first = 0; first < rows; first += kBlock) {
+    const Eigen::Index last = std::min(rows, first + kBlock);
+    for (int j = joints - 1; j >= 0; --j) {
+      const int p = parents[static_cast<size_t>(j)];
+      if (p < 0) continue;
+      for (int k = 0; k < 3; ++k) {
+        double* child = column(3 * j + k);
+        const double* parent = column(3 * p + k);
+        for (Eigen::Index f = first; f < last; ++f) child[f] -= parent[f];
+      }
+    }
+    for (int j = 0; j < joints; ++j) {
+      const int p = parents[static_cast<size_t>(j)];
+      if (p < 0) continue;
+      const double length = lengths[static_cast<size_t>(j)];
+      double* const child[3] = {column(3 * j), column(3 * j + 1), column(3 * j + 2)};
+      const double* const parent_column[3] = {column(3 * p), column(3 * p + 1), column(3 * p + 2)};
+      for (Eigen::Index f = first; f < last; ++f) {
+        const Eigen::Vector3d bone(child[0][f], child[1][f], child[2][f]);
+        const Eigen::Vector3d parent(parent_column[0][f], parent_column[1][f], parent_column[2][f]);
+        const double norm = bone.norm();
+        Eigen::Vector3d direction;
+        if (norm > options.degenerate_fraction * length && norm > 0.0) {
+          direction = bone * (1.0 / norm);  // one division, not three
+        } else if (f > 0 && length > 0.0) {
+          // The previous output frame is final and its bone has length `length` > 0.
+          direction = (joint_at(positions, f - 1, j) - joint_at(positions, f - 1, p)).normalized();
+        } else {
+          direction = Eigen::Vector3d::UnitY();
+          if (options.fallback_pose.size() != 0) {
+            const Eigen::Vector3d reference =
+                options.fallback_pose.segment<3>(3 * j).transpose() -
+                options.fallback_pose.segment<3>(3 * p).transpose();
+            if (reference.norm() > 0.0) direction = reference.normalized();
+          }
+        }
+        const Eigen::Vector3d placed = parent + length * direction;
+        child[0][f] = placed.x();
+        child[1][f] = placed.y();
+        child[2][f] = placed.z();
+      }
+    }
+  }
+}
+
+Eigen::MatrixXd with_limb_lengths(const Eigen::MatrixXd& positions, const std::vector<int>& parents,
+                                  const std::vector<double>& lengths,
+                                  const LimbLengthOptions& options) {
+  Eigen::MatrixXd out = positions;
+  apply_limb_lengths(out, parents, lengths, options);
+  return out;
+}
+
+std::vector<double> bone_lengths(const Eigen::MatrixXd& positions, const std::vector<int>& parents) {
+  check_skeleton(positions, parents, "bone lengths");
+  if (positions.rows() == 0) throw InputError("bone lengths: the positions have no frames.");
+  std::vector<double> lengths(parents.size(), 0.0);
+  for (size_t j = 0; j < parents.size(); ++j) {
+    const int p = parents[j];
+    if (p < 0) continue;
+    const auto bones = positions.middleCols(3 * static_cast<Eigen::Index>(j), 3) -
+                       positions.middleCols(3 * static_cast<Eigen::Index>(p), 3);
+    lengths[j] = bones.rowwise().norm().mean();
+  }
+  return lengths;
+}
+
+double max_bone_length_error(const Eigen::MatrixXd& positions, const std::vector<int>& parents,
+                             const std::vector<double>& lengths) {
+  check_skeleton(positions, parents, "bone length error");
+  check_lengths(parents, lengths, "bone length error");
+  double worst = 0.0;
+  for (size_t j = 0; j < parents.size(); ++j) {
+    const int p = parents[j];
+    if (p < 0 || positions.rows() == 0) continue;
+    const auto bones = positions.middleCols(3 * static_cast<Eigen::Index>(j), 3) -
+                       positions.middleCols(3 * static_cast<Eigen::Index>(p), 3);
+    worst = std::max(worst, (bones.rowwise().norm().array() - lengths[j]).abs().maxCoeff());
+  }
+  return worst;
+}
+
+}  // namespace mostyle

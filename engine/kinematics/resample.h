@@ -1,0 +1,16 @@
+#pragma once
+// Changing a clip's frame rate.
+#include "engine/io/clip.h"
+
+namespace mostyle {
+
+// The clip resampled to `fps` frames per second over the same duration: rotations of joints
+// with three rotation channels by quaternion slerp (Euler angles unwrapped frame to frame),
+// other channels linearly. The source rate is the snapped one (0.008333 s counts as 120 Hz).
+// Frames: floor(duration * fps) + 1; an output frame that lands on a source frame copies it
+// (its rotation angles changed only to an equivalent set, to stay continuous). Throws InputError when fps or the clip's frame
+// time is not a positive number or the result would hold over 1e8 values.
+// O(output frames * channels).
+Clip resample_clip(const Clip& clip, double fps);
+
+}  // namespace mostyle

@@ -1,0 +1,41 @@
+#include "engine/kinematics/units.h"
+
+#include "engine/kinematics/kinematics.h"
+
+namespace mostyle {
+
+UnitsGuess guess_units(const Clip& clip) {
+  std::vector<Eigen::Vector3d> points;
+  if (clip.frames() > 0) {
+    points = pose_at(clip, 0).positions;
+  } else {
+    points = rest_positions(clip.skeleton);
+  }
+  UnitsGuess g;
+  if (points.empty()) return g;
+  Eigen::Vector3d lo = points[0], hi = points[0];
+  for (const auto& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  g.height = hi.y() - lo.y();
+  g.size = (hi - lo).norm();
+  // A standing person is 1.5 to 1.9 m: the unit in which the height falls in that band.
+  struct Band {
+    double lo, hi;
+    const char* name;
+  };
+  static const Band kBands[] = {{0.9, 2.5, "metres"},
+                                {2.5, 7.0, "feet"},
+                                {7.0, 45.0, "CMU units (1/0.45 inch)"},
+                                {45.0, 90.0, "inches"},
+                                {90.0, 300.0, "centimetres"},
+                                {900.0, 3000.0, "millimetres"}};
+  g.name = "unknown";
+  for (const Band& b : kBands) {
+    if (g.height >= b.lo && g.height < b.hi) g.name = b.name;
+  }
+  return g;
+}
+
+}  // namespace mostyle

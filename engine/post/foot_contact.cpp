@@ -1,0 +1,308 @@
+#include "engine/post/foot_contact.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "engine/io/error.h"
+#include "engine/prepare/major_skeleton.h"
+#include "engine/prepare/major_take.h"
+
+namespace mostyle {
+namespace {
+
+constexpr double kFloorPercentile = 0.05;  // of the ankle's heights: its height when planted
+constexpr double kTimeEpsilon = 1e-9;
+// A bend (knee off the hip-target line) shorter than this fraction of the leg has no usable
+// direction: the previous frame's is used instead.
+constexpr double kStraightLeg = 1e-4;
+// Fraction of the leg's length the IK keeps away from full extension or folding.
+constexpr double kExtensionMargin = 1e-9;
+
+Eigen::Vector3d joint_at(const Eigen::MatrixXd& m, Eigen::Index row, int column) {
+  return Eigen::Vector3d(m(row, 3 * column), m(row, 3 * column + 1), m(row, 3 * column + 2));
+}
+
+void set_joint(Eigen::MatrixXd& m, Eigen::Index row, int column, const Eigen::Vector3d& v) {
+  m(row, 3 * column) = v.x();
+  m(row, 3 * column + 1) = v.y();
+  m(row, 3 * column + 2) = v.z();
+}
+
+int seconds_to_frames(double seconds, double fps) {
+  return static_cast<int>(std::floor(seconds * fps + kTimeEpsilon));
+}
+
+void check_columns(const Eigen::MatrixXd& world, const FootRig& rig, const char* where) {
+  for (const LegColumns& leg : rig.legs) {
+    for (int c : {leg.hip, leg.knee, leg.ankle, leg.toe}) {
+      if (c >= 0 && 3 * static_cast<Eigen::Index>(c) + 2 >= world.cols())
+        throw InputError(std::string(where) + ": positions have " + std::to_string(world.cols()) +
+                         " columns, too few for joint column " + std::to_string(c));
+    }
+  }
+}
+
+void check_contacts(const Eigen::MatrixXd& world, const Eigen::MatrixXd& contacts, const char* where) {
+  if (contacts.rows() != world.rows() || contacts.cols() != 2)
+    throw InputError(std::string(where) + ": expected " + std::to_string(world.rows()) +
+                     " x 2 contacts, found " + std::to_string(contacts.rows()) + " x " +
+                     std::to_string(contacts.cols()));
+}
+
+double smoothstep(double x) { return x * x * (3.0 - 2.0 * x); }
+
+// Any unit vector perpendicular to n (unit).
+Eigen::Vector3d any_perpendicular(const Eigen::Vector3d& n) {
+  const Eigen::Vector3d axis = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  return n.cross(axis).normalized();
+}
+
+}  // namespace
+
+void FootContactOptions::Validate() const {
+  const double values[] = {height_fraction, speed_fraction, min_contact_seconds, max_gap_seconds,
+                           blend_seconds};
+  const char* names[] = {"height fraction", "speed fraction", "minimum contact time", "maximum gap",
+                         "lock blend time"};
+  for (int i = 0; i < 5; ++i) {
+    if (!(values[i] >= 0) || !std::isfinite(values[i]))
+      throw InputError(std::string("foot contacts: expected a finite ") + names[i] + " of 0 or more, found " +
+                       std::to_string(values[i]));
+  }
+}
+
+int FootRig::blend_frames() const {
+  return std::max(1, static_cast<int>(std::lround(options.blend_seconds * fps)));
+}
+
+FootRig make_foot_rig(const std::vector<int>& majors, const std::vector<double>& lengths, double fps,
+                      const FootContactOptions& options) {
+  options.Validate();
+  if (!(fps > 0) || !std::isfinite(fps))
+    throw InputError("foot contacts: expected a positive frame rate, found " + std::to_string(fps));
+  if (lengths.size() != majors.size())
+    throw InputError("foot contacts: " + std::to_string(lengths.size()) + " bone lengths for " +
+                     std::to_string(majors.size()) + " joints");
+  FootRig rig;
+  rig.fps = fps;
+  rig.options = options;
+  auto column = [&](MajorJoint j) { return major_column(majors, static_cast<int>(j)); };
+  rig.legs[0] = {column(MajorJoint::kLeftHip), column(MajorJoint::kLeftKnee), column(MajorJoint::kLeftAnkle),
+                 column(MajorJoint::kLeftToe)};
+  rig.legs[1] = {column(MajorJoint::kRightHip), column(MajorJoint::kRightKnee),
+                 column(MajorJoint::kRightAnkle), column(MajorJoint::kRightToe)};
+  double sum = 0;
+  int legs = 0;
+  for (const LegColumns& leg : rig.legs) {
+    if (!leg.usable()) continue;
+    sum += lengths[leg.knee] + lengths[leg.ankle];
+    ++legs;
+  }
+  rig.leg_length = legs > 0 ? sum / legs : 0.0;
+  return rig;
+}
+
+Eigen::MatrixXd detect_foot_contacts(const Eigen::MatrixXd& world, const FootRig& rig) {
+  check_columns(world, rig, "foot contacts");
+  const Eigen::Index frames = world.rows();
+  Eigen::MatrixXd contacts = Eigen::MatrixXd::Zero(frames, 2);
+  if (frames == 0) return contacts;
+  const FootContactOptions& o = rig.options;
+  const double max_height = o.height_fraction * rig.leg_length;
+  const double max_speed = o.speed_fraction * rig.leg_length;
+  const int max_gap = seconds_to_frames(o.max_gap_seconds, rig.fps);
+  const int min_run = std::max(1, static_cast<int>(std::ceil(o.min_contact_seconds * rig.fps - kTimeEpsilon)));
+  std::vector<double> heights(static_cast<size_t>(frames));
+  std::vector<char> planted(static_cast<size_t>(frames));
+  for (int side = 0; side < 2; ++side) {
+    const LegColumns& leg = rig.legs[side];
+    if (!leg.usable()) continue;
+    for (Eigen::Index t = 0; t < frames; ++t) heights[t] = world(t, 3 * leg.ankle + 1);
+    // The floor under this foot: a low percentile of the ankle's own height, so a take whose
+    // ground is not at 0 (or a skeleton whose ankle is high above its sole) needs no setting.
+    std::vector<double> sorted = heights;
+    const size_t k = static_cast<size_t>(kFloorPercentile * static_cast<double>(frames - 1));
+    std::nth_element(sorted.begin(), sorted.begin() + k, sorted.end());
+    const double floor = sorted[k];
+    for (Eigen::Index t = 0; t < frames; ++t) {
+      // Central differences (one-sided at the ends): the speed at the frame itself.
+      const Eigen::Index t0 = std::max<Eigen::Index>(0, t - 1), t1 = std::min(frames - 1, t + 1);
+      const double speed =
+          t1 > t0 ? (joint_at(world, t1, leg.ankle) - joint_at(world, t0, leg.ankle)).norm() * rig.fps / (t1 - t0)
+                  : 0.0;
+      planted[t] = heights[t] - floor <= max_height && speed <= max_speed;
+    }
+    // Fill short breaks between two contacts, then drop contacts too short to be steps.
+    for (Eigen::Index t = 0; t < frames;) {
+      if (planted[t]) {
+        ++t;
+        continue;
+      }
+      Eigen::Index e = t;
+      while (e < frames && !planted[e]) ++e;
+      if (t > 0 && e < frames && e - t <= max_gap) std::fill(planted.begin() + t, planted.begin() + e, 1);
+      t = e;
+    }
+    for (Eigen::Index t = 0; t < frames;) {
+      if (!planted[t]) {
+        ++t;
+        continue;
+      }
+      Eigen::Index e = t;
+      while (e < frames && planted[e]) ++e;
+      if (e - t < min_run) std::fill(planted.begin() + t, planted.begin() + e, 0);
+      t = e;
+    }
+    for (Eigen::Index t = 0; t < frames; ++t) contacts(t, side) = planted[t] ? 1.0 : 0.0;
+  }
+  return contacts;
+}
+
+Eigen::MatrixXd carry_contacts(const Eigen::MatrixXd& contacts_b, const Eigen::VectorXd& warp) {
+  if (contacts_b.rows() == 0 || contacts_b.cols() != 2)
+    throw InputError("foot contacts: expected B's contacts as frames x 2, found " +
+                     std::to_string(contacts_b.rows()) + " x " + std::to_string(contacts_b.cols()));
+  const Eigen::Index last = contacts_b.rows() - 1;
+  Eigen::MatrixXd out(warp.size(), 2);
+  for (Eigen::Index i = 0; i < warp.size(); ++i) {
+    const double j = std::isfinite(warp[i]) ? std::round(warp[i]) : 0.0;
+    out.row(i) = contacts_b.row(static_cast<Eigen::Index>(std::clamp(j, 0.0, static_cast<double>(last))));
+  }
+  return out;
+}
+
+void blend_contacts(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double alpha, Eigen::MatrixXd& out) {
+  if (a.rows() != b.rows() || a.cols() != 2 || b.cols() != 2)
+    throw InputError("foot contacts: expected two F x 2 contact matrices, found " + std::to_string(a.rows()) +
+                     " x " + std::to_string(a.cols()) + " and " + std::to_string(b.rows()) + " x " +
+                     std::to_string(b.cols()));
+  out.resize(a.rows(), 2);
+  for (Eigen::Index t = 0; t < a.rows(); ++t)
+    for (int s = 0; s < 2; ++s) out(t, s) = (1.0 - alpha) * a(t, s) + alpha * b(t, s) > 0.5 ? 1.0 : 0.0;
+}
+
+double foot_sliding(const Eigen::MatrixXd& world, const Eigen::MatrixXd& contacts, const FootRig& rig) {
+  check_columns(world, rig, "foot sliding");
+  check_contacts(world, contacts, "foot sliding");
+  double sum = 0.0;
+  long steps = 0;
+  for (int side = 0; side < 2; ++side) {
+    const int ankle = rig.legs[side].ankle;
+    if (ankle < 0) continue;
+    for (Eigen::Index t = 0; t + 1 < world.rows(); ++t) {
+      if (contacts(t, side) <= 0.5 || contacts(t + 1, side) <= 0.5) continue;
+      const double dx = world(t + 1, 3 * ankle) - world(t, 3 * ankle);
+      const double dz = world(t + 1, 3 * ankle + 2) - world(t, 3 * ankle + 2);
+      sum += std::sqrt(dx * dx + dz * dz) * rig.fps;
+      ++steps;
+    }
+  }
+  return steps > 0 ? sum / static_cast<double>(steps) : 0.0;
+}
+
+void two_bone_ik(const Eigen::Vector3d& hip, const Eigen::Vector3d& knee, const Eigen::Vector3d& ankle,
+                 const Eigen::Vector3d& target, const Eigen::Vector3d& bend_fallback,
+                 Eigen::Vector3d* new_knee, Eigen::Vector3d* new_ankle) {
+  const double thigh = (knee - hip).norm();
+  const double shin = (ankle - knee).norm();
+  const Eigen::Vector3d to_target = target - hip;
+  const double distance = to_target.norm();
+  if (!(distance > kStraightLeg * (thigh + shin))) {  // target on the hip: no direction to reach
+    *new_knee = knee;
+    *new_ankle = ankle;
+    return;
+  }
+  const Eigen::Vector3d n = to_target / distance;
+  // Law of cosines in the plane of hip, target and the knee's bend direction.
+  // Short of full extension (and of full folding) by a hair: there the knee's distance from the
+  // hip-target line is the square root of a difference that vanishes, so rounding in the input
+  // would move the knee by the square root of rounding (1e-8 of the leg, not 1e-16).
+  const double margin = kExtensionMargin * (thigh + shin);
+  const double reach = std::clamp(distance, std::abs(thigh - shin) + margin, thigh + shin - margin);
+  Eigen::Vector3d bend = (knee - hip) - n * n.dot(knee - hip);
+  if (bend.norm() <= kStraightLeg * (thigh + shin)) bend = bend_fallback - n * n.dot(bend_fallback);
+  bend = bend.norm() > 0 ? Eigen::Vector3d(bend.normalized()) : any_perpendicular(n);
+  const double along = (thigh * thigh - shin * shin + reach * reach) / (2.0 * reach);
+  const double across = std::sqrt(std::max(0.0, thigh * thigh - along * along));
+  *new_knee = hip + n * along + bend * across;
+  *new_ankle = hip + n * reach;
+}
+
+void apply_foot_lock(Eigen::MatrixXd& world, const Eigen::MatrixXd& contacts, const FootRig& rig,
+                     FootLockScratch& scratch) {
+  check_columns(world, rig, "foot lock");
+  check_contacts(world, contacts, "foot lock");
+  const Eigen::Index frames = world.rows();
+  const int ramp = rig.blend_frames();
+  scratch.weight.resize(frames);
+  scratch.target.resize(frames, 2);
+  for (int side = 0; side < 2; ++side) {
+    const LegColumns& leg = rig.legs[side];
+    if (!leg.usable()) continue;
+    scratch.weight.setZero();
+    // Each contact run pins the ankle at its mean horizontal position (the least total
+    // correction); the fades of neighbouring runs overlap only in short gaps, where the nearer
+    // run wins.
+    for (Eigen::Index t = 0; t < frames;) {
+      if (contacts(t, side) <= 0.5) {
+        ++t;
+        continue;
+      }
+      const Eigen::Index start = t;
+      double x = 0, z = 0;
+      for (; t < frames && contacts(t, side) > 0.5; ++t) {
+        x += world(t, 3 * leg.ankle);
+        z += world(t, 3 * leg.ankle + 2);
+      }
+      const Eigen::Index end = t - 1;
+      const double n = static_cast<double>(end - start + 1);
+      x /= n;
+      z /= n;
+      for (Eigen::Index u = std::max<Eigen::Index>(0, start - ramp); u <= std::min(frames - 1, end + ramp); ++u) {
+        const Eigen::Index d = u < start ? start - u : (u > end ? u - end : 0);
+        const double w = d == 0 ? 1.0 : smoothstep(1.0 - static_cast<double>(d) / (ramp + 1));
+        if (w > scratch.weight[u]) {
+          scratch.weight[u] = w;
+          scratch.target(u, 0) = x;
+          scratch.target(u, 1) = z;
+        }
+      }
+    }
+    // The knee's bend direction where the leg is straight: the last frame's, within a second,
+    // where it was not (none: two_bone_ik picks one).
+    const Eigen::Index search = static_cast<Eigen::Index>(std::ceil(rig.fps));
+    auto last_bend = [&](Eigen::Index t) -> Eigen::Vector3d {
+      for (Eigen::Index u = t; u >= std::max<Eigen::Index>(0, t - search); --u) {
+        const Eigen::Vector3d hip = joint_at(world, u, leg.hip);
+        const Eigen::Vector3d along = joint_at(world, u, leg.ankle) - hip;
+        const Eigen::Vector3d knee = joint_at(world, u, leg.knee) - hip;
+        if (!(along.norm() > 0)) continue;
+        const Eigen::Vector3d b = knee - along * along.dot(knee) / along.squaredNorm();
+        if (b.norm() > kStraightLeg * along.norm()) return b;
+      }
+      return Eigen::Vector3d::Zero();
+    };
+    for (Eigen::Index t = 0; t < frames; ++t) {
+      const double w = scratch.weight[t];
+      if (w <= 0.0) continue;
+      const Eigen::Vector3d hip = joint_at(world, t, leg.hip);
+      const Eigen::Vector3d knee = joint_at(world, t, leg.knee);
+      const Eigen::Vector3d ankle = joint_at(world, t, leg.ankle);
+      Eigen::Vector3d target = ankle;
+      target.x() += w * (scratch.target(t, 0) - ankle.x());
+      target.z() += w * (scratch.target(t, 1) - ankle.z());
+      Eigen::Vector3d new_knee, new_ankle;
+      const Eigen::Vector3d to_target = target - hip;
+      const Eigen::Vector3d off_line = (knee - hip) - to_target * to_target.dot(knee - hip) / to_target.squaredNorm();
+      const bool straight = !(off_line.norm() > kStraightLeg * to_target.norm());
+      two_bone_ik(hip, knee, ankle, target, straight ? last_bend(t) : off_line, &new_knee, &new_ankle);
+      set_joint(world, t, leg.knee, new_knee);
+      set_joint(world, t, leg.ankle, new_ankle);
+      if (leg.toe >= 0) set_joint(world, t, leg.toe, joint_at(world, t, leg.toe) + (new_ankle - ankle));
+    }
+  }
+}
+
+}  // namespace mostyle

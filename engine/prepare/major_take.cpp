@@ -1,0 +1,39 @@
+#include "engine/prepare/major_take.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/io/error.h"
+#include "engine/kinematics/kinematics.h"
+#include "engine/kinematics/resample.h"
+
+namespace mostyle {
+
+MajorTake extract_major_take(const Clip& clip, const MajorMapping& mapping,
+                             const std::vector<int>& majors, double fps) {
+  if (clip.frames() == 0) throw InputError(clip.source + ": has no frames to blend");
+  MajorTake take;
+  take.source = clip.source;
+  take.majors = majors;
+  take.parents = subset_parents(majors);
+  const bool same_rate = fps <= 0 || std::abs(fps - clip.fps()) < 1e-9;
+  const Clip resampled = same_rate ? Clip() : resample_clip(clip, fps);
+  const Clip& source = same_rate ? clip : resampled;
+  take.fps = same_rate ? clip.fps() : fps;
+  const Eigen::MatrixXd all = joint_positions(source);
+  take.world.resize(all.rows(), 3 * static_cast<Eigen::Index>(majors.size()));
+  for (size_t i = 0; i < majors.size(); ++i) {
+    const int joint = mapping.joint[majors[i]];
+    take.clip_joints.push_back(joint);
+    take.names.push_back(clip.skeleton.joints[joint].name);
+    take.world.middleCols(3 * i, 3) = all.middleCols(3 * joint, 3);
+  }
+  return take;
+}
+
+int major_column(const std::vector<int>& majors, int major) {
+  auto it = std::find(majors.begin(), majors.end(), major);
+  return it == majors.end() ? -1 : static_cast<int>(it - majors.begin());
+}
+
+}  // namespace mostyle

@@ -1,0 +1,161 @@
+#pragma once
+// The paper's whole pipeline on a pair of takes, as three cached stages:
+//   prepare_pair   load-independent preprocessing: major skeleton, resample, FK, retarget B to A,
+//                  canonical frame, left-foot DTW, B warped onto A's timeline, normalization;
+//   decompose_pair sparse-coding decomposition (shared or paper mode, basic motions);
+//   blend_pair     synthesis for one alpha, de-normalization, root trajectory, limb lengths.
+// Each stage takes the previous one's immutable value. A slider move re-runs only blend_pair,
+// which does not allocate once its scratch has the right size.
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/decompose/basic_motions.h"
+#include "engine/prepare/canonical_frame.h"
+#include "engine/io/clip.h"
+#include "engine/decompose/decomposition.h"
+#include "engine/align/dtw.h"
+#include "engine/post/foot_contact.h"
+#include "engine/io/job_control.h"
+#include "engine/prepare/major_skeleton.h"
+#include "engine/prepare/normalize.h"
+#include "engine/synthesize/synthesis.h"
+
+namespace mostyle {
+
+struct PrepareOptions {
+  double fps = 30.0;      // working and output frame rate; 0 keeps A's own rate
+  int dtw_band = -1;      // Sakoe-Chiba half-width in frames, -1: none
+  MappingOverrides mapping_a;  // empty: name rules only
+  MappingOverrides mapping_b;
+  FootContactOptions foot_contacts;  // detection thresholds and the lock's fade (foot_contact.h)
+  void Validate() const;  // throws InputError on a bad fps or band
+};
+
+struct StageTimes {
+  double load_ms = 0, preprocess_ms = 0, dtw_ms = 0, decompose_ms = 0, synthesize_ms = 0,
+         postprocess_ms = 0, export_ms = 0;
+};
+
+// Everything up to the decomposition. F = A's frames at the working rate, M = shared joints.
+struct PreparedPair {
+  std::shared_ptr<const Clip> clip_a, clip_b;  // as loaded
+  MajorMapping mapping_a, mapping_b;
+  std::vector<int> majors;                 // canonical joints both takes have (M)
+  std::vector<int> parents;                // within majors
+  std::vector<std::string> names_a, names_b;  // the files' names of those joints
+  double fps = 30.0;                       // working rate
+  std::vector<double> lengths_a;           // A's bone lengths per joint, A's units
+  int left_ankle = -1, right_ankle = -1, left_toe = -1, right_toe = -1;  // columns, -1: absent
+
+  Eigen::MatrixXd world_a;          // F x 3M: A in its world frame, A's units
+  Eigen::MatrixXd world_b;          // Fb x 3M: B retargeted to A's bones, B's own timeline
+  CanonicalMotion canonical_a;      // F frames
+  CanonicalMotion canonical_b;      // Fb frames (B's own timeline)
+  Eigen::MatrixXd signal_a;         // F x 3: A's left-foot DTW signal (canonical frame)
+  Eigen::MatrixXd signal_b;         // Fb x 3: B's
+  DtwPath path;                     // A frames i to B frames j
+  Eigen::VectorXd warp;             // F: B's (fractional) frame for each A frame
+  Eigen::MatrixXd local_b;          // F x 3M: B's canonical pose warped onto A's timeline
+  Eigen::MatrixXd steps_a, steps_b; // F x 3: root steps (B warped)
+  Normalization normalization;
+  Eigen::MatrixXd x_a, x_b;         // F x 3M normalized motion matrices
+  Eigen::MatrixXd world_b_on_a;     // F x 3M: warped B walking from A's start (for display)
+  Eigen::MatrixXd ground_b_on_a;    // F x 2: its hips' ground path (x, z)
+  // Foot contacts (foot_contact.h), columns left and right foot, 1 planted, 0 not.
+  FootRig feet;                     // leg columns, leg length, thresholds
+  Eigen::MatrixXd contacts_a;       // F x 2: A's, from world_a
+  Eigen::MatrixXd contacts_b;       // Fb x 2: B's on its own timeline, from world_b
+  Eigen::MatrixXd contacts_b_on_a;  // F x 2: B's carried onto A's timeline with `warp`
+  double foot_sliding_a = 0, foot_sliding_b = 0;  // A's units per second (B retargeted)
+  StageTimes times;                 // load (if read here), preprocess, dtw
+};
+
+// Prepares clips already loaded. Throws InputError (missing joints, no frames, degenerate hips)
+// or Cancelled. Cost: FK O(frames x joints) and DTW O(F x Fb).
+std::shared_ptr<const PreparedPair> prepare_pair(std::shared_ptr<const Clip> a,
+                                                 std::shared_ptr<const Clip> b,
+                                                 const PrepareOptions& options,
+                                                 JobControl* control = nullptr);
+
+enum class BlendMode { kShared, kPaper };
+const char* blend_mode_name(BlendMode mode);  // "shared", "paper"
+
+struct DecomposeParams {
+  BlendMode mode = BlendMode::kShared;
+  int components = 10;     // k
+  double sparsity = 0.1;   // fraction of non-zeros kept in C (the paper's figures use 0.1)
+  int max_iterations = 100;
+  double tolerance = 1e-6;  // stop on a relative objective change below this (0: run to the cap)
+  // Paper mode only: m > 0 decomposes each take into m basic motions (paper 3.5) with these
+  // sparsities (missing entries take `sparsity`) instead of one decomposition.
+  int basic_motions = 0;
+  std::vector<double> basic_sparsities;
+  void Validate(int channels) const;  // throws InputError
+};
+
+struct DecomposedPair {
+  DecomposeParams params;
+  // Shared mode.
+  SharedDecomposition shared;
+  SharedSynthesis shared_synthesis;
+  // One alpha for every component: the blend's local pose (before the root, limb lengths and
+  // foot lock) is local_a + alpha * local_delta, W_A C and W_B C de-normalized once here, so that
+  // a slider move is one pass over F x 3M values instead of two products.
+  Eigen::MatrixXd local_a, local_delta;  // F x 3M, A's units
+  // Paper mode.
+  Decomposition paper_a, paper_b;
+  PaperSynthesis paper_synthesis;
+  BasicMotions basic_a, basic_b;
+  BasicMotionSynthesis basic_synthesis;
+  // Summary, file units.
+  double rmse_a = 0, rmse_b = 0;
+  double nonzero_a = 0, nonzero_b = 0;
+  int iterations = 0;
+  double elapsed_ms = 0;
+  // The components' channels (3M) that are non-zero, per component (k x 3M booleans as 0/1).
+  Eigen::MatrixXd support;
+  int components() const { return params.components; }
+};
+
+// Throws InputError on bad parameters, or Cancelled.
+std::shared_ptr<const DecomposedPair> decompose_pair(const PreparedPair& prepared,
+                                                     const DecomposeParams& params,
+                                                     JobControl* control = nullptr);
+
+struct BlendParams {
+  double alpha = 0.5;                    // 0: A, 1: B (shared mode)
+  std::vector<double> component_alpha;   // shared mode: per component, overrides alpha; empty: none
+  int swap_level = 0;                    // basic motions: the level whose core comes from B
+  bool limb_lengths = true;              // paper 3.7
+  double root_pull_seconds = kRootPullSeconds;  // keeps the path between A's and B's (canonical_frame.h)
+  bool foot_lock = true;                 // pin planted feet after the limb lengths (foot_contact.h)
+};
+
+// Buffers blend_pair reuses between calls so a slider move allocates nothing.
+struct BlendScratch {
+  Eigen::MatrixXd x, local, ground, steps;
+  Eigen::VectorXd heading, alphas;
+  Eigen::RowVectorXd mean;
+  FootLockScratch foot;
+};
+
+struct BlendResult {
+  Eigen::MatrixXd world;            // F x 3M: the blend in A's world frame, A's units
+  double limb_length_max_error = 0; // after the constraint (before it when off), A's units
+  Eigen::MatrixXd contacts;         // F x 2: the blend's foot contacts (A's and B's blended)
+  double foot_sliding_raw = 0;      // foot sliding before the foot lock, A's units per second
+  double foot_sliding_cleaned = 0;  // after it (the same as raw when the lock is off)
+  double synthesize_ms = 0, postprocess_ms = 0;
+};
+
+// Synthesizes one blend (paper 3.6) and post-processes it (de-normalize, blended root
+// trajectory from A's start, limb lengths, foot lock). Throws InputError on a bad alpha or swap level.
+// Cost O(F x 3M) in shared mode with one alpha (about 0.5 ms for a minute at 30 fps), else
+// O(F x k x 3M); allocation-free once `scratch` and `out` have the right sizes (per-component
+// alphas allocate one 2k x 3M matrix).
+void blend_pair(const PreparedPair& prepared, const DecomposedPair& decomposed,
+                const BlendParams& params, BlendScratch& scratch, BlendResult& out);
+
+}  // namespace mostyle

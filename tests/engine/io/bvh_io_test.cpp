@@ -1,0 +1,429 @@
+#include "engine/io/bvh_io.h"
+
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <unistd.h>
+
+#include "engine/io/atomic_file.h"
+#include "engine/io/error.h"
+#include "engine/kinematics/kinematics.h"
+#include "tests/engine/small_bvh.h"
+#include "tests/test_data.h"
+
+using namespace mostyle;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string& kSmall = test::kSmallBvh;                                                     // 20
+
+std::string replace_all(std::string s, const std::string& from, const std::string& to) {
+  for (size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size()))
+    s.replace(at, from.size(), to);
+  return s;
+}
+
+void check_same_clip(const Clip& a, const Clip& b) {
+  REQUIRE(a.skeleton.joints.size() == b.skeleton.joints.size());
+  for (size_t i = 0; i < a.skeleton.joints.size(); ++i) {
+    const Joint& x = a.skeleton.joints[i];
+    const Joint& y = b.skeleton.joints[i];
+    CHECK(x.name == y.name);
+    CHECK(x.parent == y.parent);
+    CHECK(x.offset == y.offset);
+    CHECK(x.channels == y.channels);
+    CHECK(x.first_channel == y.first_channel);
+    CHECK(x.end_site == y.end_site);
+  }
+  CHECK(a.skeleton.channel_count == b.skeleton.channel_count);
+  CHECK(a.frame_time == b.frame_time);
+  CHECK(a.motion == b.motion);
+}
+
+std::string temp_dir() {
+  const fs::path dir = fs::temp_directory_path() / ("mostyle_bvh_io_test_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir.string();
+}
+
+}  // namespace
+
+TEST_CASE("parses a small file: joints, channels, offsets, frames", "[bvh]") {
+  std::vector<std::string> warnings;
+  const Clip clip = parse_bvh(kSmall, "small.bvh", &warnings);
+  CHECK(warnings.empty());
+  CHECK(clip.source == "small.bvh");
+  const Skeleton& s = clip.skeleton;
+  REQUIRE(s.joints.size() == 3);
+  CHECK(s.joints[0].name == "Hips");
+  CHECK(s.joints[0].parent == -1);
+  CHECK(s.joints[0].line == 2);
+  CHECK(s.joints[0].channels.size() == 6);
+  CHECK(s.joints[0].first_channel == 0);
+  CHECK(s.joints[1].name == "Spine");
+  CHECK(s.joints[1].parent == 0);
+  CHECK(s.joints[1].offset == Eigen::Vector3d(0, 10, 0));
+  CHECK(s.joints[1].first_channel == 6);
+  CHECK(s.joints[1].channels ==
+        std::vector<Channel>{Channel::kZrotation, Channel::kXrotation, Channel::kYrotation});
+  CHECK(s.joints[2].end_site);
+  CHECK(s.joints[2].name == "Spine End Site");
+  CHECK(s.joints[2].parent == 1);
+  CHECK(s.joints[2].line == 10);
+  CHECK(s.channel_count == 9);
+  CHECK(clip.frame_time == 0.0333333);
+  CHECK(clip.fps() == 30.0);
+  REQUIRE(clip.frames() == 2);
+  CHECK(clip.motion(1, 0) == 4);
+  CHECK(clip.motion(1, 3) == 90);
+}
+
+TEST_CASE("every file in ../shared/motions loads as its README says", "[bvh]") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  const std::vector<std::string> files = test::shared_motions();
+  CHECK(files.size() == 11);
+  for (const std::string& path : files) {
+    INFO(path);
+    std::vector<std::string> warnings;
+    const Clip clip = read_bvh_file(path, &warnings);
+    CHECK(warnings.empty());
+    CHECK(clip.motion.allFinite());
+    const bool bandai = path.find("bandai_") != std::string::npos;
+    CHECK(clip.skeleton.joint_count_without_end_sites() == (bandai ? 22 : 31));
+    CHECK(clip.skeleton.joints.size() == (bandai ? 27u : 38u));
+    CHECK(clip.skeleton.channel_count == (bandai ? 132 : 96));
+    CHECK(clip.fps() == (bandai ? 30.0 : 120.0));
+    CHECK(clip.skeleton.find(bandai ? "Foot_L" : "LeftFoot") > 0);
+  }
+  // Frame counts from the README table.
+  CHECK(read_bvh_file(test::shared_motion("bandai_walk_angry.bvh")).frames() == 143);
+  CHECK(read_bvh_file(test::shared_motion("bandai_walk_sad.bvh")).frames() == 347);
+  CHECK(read_bvh_file(test::shared_motion("cmu142_walk_happy.bvh")).frames() == 3033);
+  CHECK(read_bvh_file(test::shared_motion("cmu142_walk_marching.bvh")).frames() == 3277);
+}
+
+TEST_CASE("every file in assets/motions loads", "[bvh]") {
+  const std::vector<std::string> files = test::asset_motions();
+  REQUIRE(!files.empty());
+  for (const std::string& path : files) {
+    INFO(path);
+    std::vector<std::string> warnings;
+    const Clip clip = read_bvh_file(path, &warnings);
+    CHECK(warnings.empty());
+    CHECK(clip.frames() > 100);
+    CHECK(clip.skeleton.channel_count == 96);
+    CHECK(clip.fps() == 120.0);
+    // CMU root: "Xposition Yposition Zposition Zrotation Yrotation Xrotation".
+    CHECK(clip.skeleton.joints[0].channels ==
+          std::vector<Channel>{Channel::kXposition, Channel::kYposition, Channel::kZposition,
+                               Channel::kZrotation, Channel::kYrotation, Channel::kXrotation});
+  }
+}
+
+TEST_CASE("line endings: LF, CRLF, CR and mixed read the same", "[bvh]") {
+  const Clip lf = parse_bvh(kSmall, "x.bvh");
+  check_same_clip(parse_bvh(replace_all(kSmall, "\n", "\r\n"), "x.bvh"), lf);
+  check_same_clip(parse_bvh(replace_all(kSmall, "\n", "\r"), "x.bvh"), lf);
+  // Mixed: every third line CRLF, every other CR.
+  std::string mixed;
+  int line = 0;
+  for (char c : kSmall) {
+    if (c != '\n') {
+      mixed += c;
+      continue;
+    }
+    ++line;
+    mixed += line % 3 == 0 ? "\r\n" : (line % 2 ? "\r" : "\n");
+  }
+  check_same_clip(parse_bvh(mixed, "x.bvh"), lf);
+  // Line numbers still count CRLF once: an error on line 9.
+  const std::string bad = replace_all(replace_all(kSmall, "Xrotation Yrotation\n", "Xrotation Wrotation\n"),
+                                      "\n", "\r\n");
+  CHECK_THROWS_WITH(parse_bvh(bad, "x.bvh"), Catch::StartsWith("x.bvh:9: "));
+  const std::string bad_cr = replace_all(replace_all(kSmall, "Xrotation Yrotation\n", "Xrotation Wrotation\n"),
+                                         "\n", "\r");
+  CHECK_THROWS_WITH(parse_bvh(bad_cr, "x.bvh"), Catch::StartsWith("x.bvh:9: "));
+}
+
+TEST_CASE("layout oddities: tabs, blank lines, trailing spaces, no indent, braces on the line",
+          "[bvh]") {
+  const Clip reference = parse_bvh(kSmall, "x.bvh");
+  // Tabs instead of spaces, and tabs between words.
+  check_same_clip(parse_bvh(replace_all(kSmall, " ", "\t"), "x.bvh"), reference);
+  // Blank lines and whitespace-only lines everywhere, trailing spaces on every line.
+  check_same_clip(parse_bvh(replace_all(kSmall, "\n", " \t\n \n\n"), "x.bvh"), reference);
+  // No indentation at all.
+  std::string flat;
+  for (size_t at = 0; at < kSmall.size();) {
+    size_t end = kSmall.find('\n', at);
+    std::string l = kSmall.substr(at, end - at);
+    flat += l.substr(l.find_first_not_of(' ') == std::string::npos ? 0 : l.find_first_not_of(' ')) + "\n";
+    at = end + 1;
+  }
+  check_same_clip(parse_bvh(flat, "x.bvh"), reference);
+  // '{' on the ROOT/JOINT/End Site line.
+  std::string braces = replace_all(kSmall, "Hips\n{", "Hips {");
+  braces = replace_all(braces, "Spine\n  {", "Spine {");
+  braces = replace_all(braces, "End Site\n    {", "End Site {");
+  check_same_clip(parse_bvh(braces, "x.bvh"), reference);
+  // A UTF-8 byte order mark, and keywords in other cases.
+  check_same_clip(parse_bvh("\xEF\xBB\xBF" + kSmall, "x.bvh"), reference);
+  std::string cases = replace_all(kSmall, "JOINT", "joint");
+  cases = replace_all(cases, "OFFSET", "Offset");
+  cases = replace_all(cases, "CHANNELS 3 Zrotation", "channels 3 ZROTATION");
+  cases = replace_all(cases, "End Site", "END SITE");
+  check_same_clip(parse_bvh(cases, "x.bvh"), reference);
+  // A named End Site (some exporters do it; Blender ignores the name).
+  check_same_clip(parse_bvh(replace_all(kSmall, "End Site\n", "End Site Spine_end\n"), "x.bvh"), reference);
+}
+
+TEST_CASE("Frames: and Frame Time: in any case and spacing; Frames: 0", "[bvh]") {
+  for (const char* frames : {"Frames: 2", "FRAMES:\t2", "frames:2", "Frames :  2", "Frames 2"}) {
+    for (const char* time : {"Frame Time: 0.0333333", "FRAME TIME:\t0.0333333", "frame  time:.0333333",
+                             "Frame\tTime :\t\t3.33333e-2"}) {
+      INFO(frames << " / " << time);
+      std::string text = replace_all(kSmall, "Frames: 2", frames);
+      text = replace_all(text, "Frame Time: 0.0333333", time);
+      const Clip clip = parse_bvh(text, "x.bvh");
+      CHECK(clip.frames() == 2);
+      CHECK(clip.frame_time == Approx(0.0333333).epsilon(1e-15));
+    }
+  }
+  std::vector<std::string> warnings;
+  const std::string zero = kSmall.substr(0, kSmall.find("Frames: 2")) + "Frames: 0\nFrame Time: .0083333\n";
+  const Clip clip = parse_bvh(zero, "x.bvh", &warnings);
+  CHECK(warnings.empty());
+  CHECK(clip.frames() == 0);
+  CHECK(clip.motion.cols() == 9);
+  CHECK(clip.frame_time == 0.0083333);
+  CHECK(clip.fps() == 120.0);
+}
+
+TEST_CASE("numbers: scientific notation, -0, no leading zero, '+', tiny and huge", "[bvh]") {
+  const std::string text = replace_all(
+      kSmall, "4 5 6 90 0 0 0 0 0", "1.87007e-05 -0 .5 -.25 +3 1E+2 5. 1e-400 -4.9e-324");
+  const Clip clip = parse_bvh(text, "x.bvh");
+  CHECK(clip.motion(1, 0) == 1.87007e-05);
+  CHECK(clip.motion(1, 1) == 0.0);
+  CHECK(std::signbit(clip.motion(1, 1)));
+  CHECK(clip.motion(1, 2) == 0.5);
+  CHECK(clip.motion(1, 3) == -0.25);
+  CHECK(clip.motion(1, 4) == 3);
+  CHECK(clip.motion(1, 5) == 100);
+  CHECK(clip.motion(1, 6) == 5);
+  CHECK(clip.motion(1, 7) == 0.0);  // underflows to zero, as strtod does
+  CHECK(clip.motion(1, 8) == -4.9e-324);
+  // OFFSET in scientific notation, as Bandai writes it.
+  const Clip offsets = parse_bvh(replace_all(kSmall, "OFFSET 0 10 0", "OFFSET 1e1 -0 8.98455e-01"), "x.bvh");
+  CHECK(offsets.skeleton.joints[1].offset == Eigen::Vector3d(10, 0, 0.898455));
+}
+
+TEST_CASE("names with spaces and colons, 0 to 6 channels in any order, each joint its order",
+          "[bvh]") {
+  const std::string text =
+      "HIERARCHY\nROOT mixamorig:Hips\n{\n\tOFFSET 1 2 3\n\tCHANNELS 0\n"
+      "\tJOINT Left Up Leg\n\t{\n\t\tOFFSET 1 0 0\n\t\tCHANNELS 1 Yrotation\n"
+      "\t\tJOINT a\n\t\t{\n\t\t\tOFFSET 0 1 0\n\t\t\tCHANNELS 2 Zposition Xrotation\n"
+      "\t\t\tJOINT b\n\t\t\t{\n\t\t\t\tOFFSET 0 1 0\n"
+      "\t\t\t\tCHANNELS 6 Yrotation Xposition Zrotation Zposition Xrotation Yposition\n"
+      "\t\t\t\tEnd Site\n\t\t\t\t{\n\t\t\t\t\tOFFSET 0 0 0\n\t\t\t\t}\n\t\t\t}\n\t\t}\n"
+      "\t\tJOINT c\n\t\t{\n\t\t\tOFFSET 0 1 0\n\t\t\tCHANNELS 5 Xrotation Yposition Zrotation Yrotation Xposition\n"
+      "\t\t\tEnd Site\n\t\t\t{\n\t\t\t\tOFFSET 0 0 0\n\t\t\t}\n\t\t}\n"
+      "\t}\n\tJOINT no channels line\n\t{\n\t\tOFFSET 0 0 1\n\t}\n}\n"
+      "MOTION\nFrames: 1\nFrame Time: 0.04\n"
+      "1  2 3  4 5 6 7 8 9  10 11 12 13 14\n";
+  const Clip clip = parse_bvh(text, "names.bvh");
+  const Skeleton& s = clip.skeleton;
+  CHECK(s.find("mixamorig:Hips") == 0);
+  CHECK(s.find("Left Up Leg") == 1);
+  CHECK(s.find("no channels line") == 7);
+  CHECK(s.joints[7].channels.empty());
+  CHECK(s.channel_count == 14);
+  CHECK(s.joints[1].first_channel == 0);
+  CHECK(s.joints[2].first_channel == 1);
+  CHECK(s.joints[3].first_channel == 3);
+  CHECK(s.joints[5].first_channel == 9);
+  CHECK(s.joints[5].channels[4] == Channel::kXposition);
+  CHECK(clip.motion(0, 13) == 14);
+}
+
+TEST_CASE("a 20000-deep hierarchy loads, formats and reads back", "[bvh]") {
+  constexpr int kDepth = 20000;
+  std::string text = "HIERARCHY\n";
+  for (int i = 0; i < kDepth; ++i)
+    text += (i ? "JOINT j" : "ROOT j") + std::to_string(i) + "\n{\nOFFSET 0 1 0\nCHANNELS 1 Xrotation\n";
+  text += "End Site\n{\nOFFSET 0 1 0\n}\n";
+  for (int i = 0; i < kDepth; ++i) text += "}\n";
+  text += "MOTION\nFrames: 2\nFrame Time: 1\n";
+  for (int f = 0; f < 2; ++f) {
+    for (int i = 0; i < kDepth; ++i) text += i ? " 0.5" : "0.5";
+    text += "\n";
+  }
+  const Clip clip = parse_bvh(text, "deep.bvh");
+  CHECK(clip.skeleton.joints.size() == kDepth + 1);
+  CHECK(clip.skeleton.joints.back().parent == kDepth - 1);
+  CHECK(clip.frames() == 2);
+  // The writer indents at most 32 tabs, so its text stays linear in the depth (not 20000 tabs
+  // on the deepest lines, 2e8 in all): 5 lines of at most 33 tabs and 40 characters a joint.
+  const std::string written = format_bvh(clip);
+  CHECK(written.size() < kDepth * 5 * (33 + 40) + 2 * 4 * kDepth);
+  check_same_clip(parse_bvh(written, "deep2.bvh"), clip);
+}
+
+TEST_CASE("a skeleton without channels: each frame an empty line", "[bvh]") {
+  const std::string header =
+      "HIERARCHY\nROOT A\n{\nOFFSET 0 0 0\nCHANNELS 0\nEnd Site\n{\nOFFSET 0 1 0\n}\n}\nMOTION\n";
+  std::vector<std::string> warnings;
+  Clip clip = parse_bvh(header + "Frames: 3\nFrame Time: 0.1\n\n\n\n", "empty.bvh", &warnings);
+  CHECK(clip.frames() == 3);
+  CHECK(warnings.empty());
+  check_same_clip(parse_bvh(format_bvh(clip), "again.bvh"), clip);
+  // An absurd declared count allocates nothing: the file holds no frame lines.
+  clip = parse_bvh(header + "Frames: 100000000\nFrame Time: 0.1\n", "lie.bvh", &warnings);
+  CHECK(clip.frames() == 0);
+  REQUIRE(warnings.size() == 1);
+  CHECK(warnings[0] == "lie.bvh:12: Frames: says 100000000 but the file has 0 frame lines; loaded 0");
+  CHECK_THROWS_WITH(parse_bvh(header + "Frames: 1\nFrame Time: 0.1\n1\n", "x.bvh"),
+                    "x.bvh:14: expected 0 values in frame 1, found '1'");
+}
+
+TEST_CASE("recoverable defects load the complete frames and warn", "[bvh]") {
+  std::vector<std::string> warnings;
+  SECTION("fewer frames than declared") {
+    const Clip clip = parse_bvh(replace_all(kSmall, "Frames: 2", "Frames: 5"), "w.bvh", &warnings);
+    CHECK(clip.frames() == 2);
+    REQUIRE(warnings.size() == 1);
+    CHECK(warnings[0] == "w.bvh:17: Frames: says 5 but the file has 2 complete frames; loaded 2");
+  }
+  SECTION("more frames than declared") {
+    std::string text = replace_all(kSmall, "Frames: 2", "Frames: 1");
+    for (int i = 0; i < 200; ++i) text += "7 8 9 0 0 0 0 0 0\n";
+    const Clip clip = parse_bvh(text, "w.bvh", &warnings);
+    CHECK(clip.frames() == 202);
+    CHECK(clip.motion(201, 2) == 9);
+    REQUIRE(warnings.size() == 1);
+    CHECK(warnings[0] == "w.bvh:17: Frames: says 1 but the file has 202 complete frames; loaded 202");
+  }
+  SECTION("a cut last line") {
+    const std::string text = kSmall.substr(0, kSmall.size() - std::string(" 0 0 0 0 0\n").size());
+    const Clip clip = parse_bvh(text, "w.bvh", &warnings);
+    CHECK(clip.frames() == 1);
+    REQUIRE(warnings.size() == 2);
+    CHECK(warnings[0] == "w.bvh:20: the last frame line is cut (4 of 9 values); loaded the 1 complete frames");
+    CHECK(warnings[1] == "w.bvh:17: Frames: says 2 but the file has 1 complete frames; loaded 1");
+  }
+  SECTION("a file cut inside a number") {
+    for (const char* tail : {"4 5 6 9.5e", "4 5 6 9.5e-", "4 5 -", "4 5 6 90 0 0 0 0 1.", "4."}) {
+      INFO(tail);
+      warnings.clear();
+      const std::string text = kSmall.substr(0, kSmall.find("4 5 6 90")) + tail;
+      const Clip clip = parse_bvh(text, "w.bvh", &warnings);
+      CHECK(clip.frames() == (std::string(tail) == "4 5 6 90 0 0 0 0 1." ? 2 : 1));
+    }
+  }
+  SECTION("a cut last line followed by blank lines") {
+    const std::string text = replace_all(kSmall, "4 5 6 90 0 0 0 0 0\n", "4 5 6\n\n  \n");
+    const Clip clip = parse_bvh(text, "w.bvh", &warnings);
+    CHECK(clip.frames() == 1);
+    CHECK(warnings.size() == 2);
+  }
+}
+
+TEST_CASE("write/read round trip: bit-exact values, same FK", "[bvh]") {
+  std::vector<std::string> files = test::asset_motions();
+  for (const std::string& f : test::shared_motions()) files.push_back(f);
+  for (const std::string& path : files) {
+    INFO(path);
+    const Clip clip = read_bvh_file(path);
+    const std::string text = format_bvh(clip);
+    std::vector<std::string> warnings;
+    const Clip back = parse_bvh(text, "back.bvh", &warnings);
+    CHECK(warnings.empty());
+    CHECK(back.motion == clip.motion);  // shortest round-trip numbers: every bit
+    CHECK(back.frame_time == clip.frame_time);
+    REQUIRE(back.skeleton.joints.size() == clip.skeleton.joints.size());
+    for (size_t i = 0; i < clip.skeleton.joints.size(); ++i) {
+      CHECK(back.skeleton.joints[i].name == clip.skeleton.joints[i].name);
+      CHECK(back.skeleton.joints[i].channels == clip.skeleton.joints[i].channels);
+      CHECK(back.skeleton.joints[i].parent == clip.skeleton.joints[i].parent);
+    }
+    CHECK(joint_positions(back) == joint_positions(clip));
+    // Formatting is a fixed point.
+    CHECK(format_bvh(back) == text);
+  }
+}
+
+TEST_CASE("the writer: standard layout, shortest numbers, LF, root OFFSET zeroed", "[bvh]") {
+  Clip clip = parse_bvh(replace_all(kSmall, "OFFSET 0 0 0", "OFFSET 7 8 9"), "w.bvh");
+  clip.motion(0, 0) = 0.1;
+  clip.motion(0, 1) = 1.0 / 3;
+  clip.motion(0, 2) = -0.0;
+  clip.motion(0, 3) = 1e-7;
+  const std::string text = format_bvh(clip);
+  CHECK(text.find('\r') == std::string::npos);
+  CHECK(text.rfind("HIERARCHY\nROOT Hips\n{\n\tOFFSET 0 0 0\n\tCHANNELS 6 Xposition", 0) == 0);
+  CHECK(text.find("\tJOINT Spine\n\t{\n\t\tOFFSET 0 10 0\n\t\tCHANNELS 3 Zrotation Xrotation Yrotation\n"
+                  "\t\tEnd Site\n\t\t{\n\t\t\tOFFSET 0 5 0\n\t\t}\n\t}\n}\nMOTION\nFrames: 2\n"
+                  "Frame Time: 0.0333333\n0.1 0.3333333333333333 -0 1e-07 0 0 0 0 0\n") !=
+        std::string::npos);
+  // The root's OFFSET was moot (its position channels place it): FK is unchanged.
+  CHECK(joint_positions(parse_bvh(text, "r.bvh")) == joint_positions(clip));
+}
+
+TEST_CASE("three.js reads the written root the same (it adds OFFSET to position channels)", "[bvh]") {
+  // three.js's BVHLoader animates every bone's position as OFFSET + position channels (0 when
+  // absent). With the root OFFSET written as 0 that equals our (Blender's) root position.
+  Clip clip = read_bvh_file(test::asset("motions/cmu142_walk_marching.bvh"));
+  clip.skeleton.joints[0].offset = Eigen::Vector3d(1, 2, 3);  // a file with a root OFFSET
+  const Clip back = parse_bvh(format_bvh(clip), "w.bvh");
+  const Eigen::MatrixXd p = joint_positions(clip);
+  for (int f = 0; f < clip.frames(); f += 100) {
+    const Eigen::Vector3d three_js = back.skeleton.joints[0].offset + back.motion.row(f).head<3>().transpose();
+    CHECK(three_js == p.block<1, 3>(f, 0).transpose());
+  }
+}
+
+TEST_CASE("write_bvh_file writes atomically and leaves nothing on failure", "[bvh]") {
+  const std::string dir = temp_dir();
+  const Clip clip = parse_bvh(kSmall, "x.bvh");
+  const std::string path = dir + "/out.bvh";
+  write_bvh_file(clip, path);
+  check_same_clip(read_bvh_file(path), clip);
+  // Overwrite: the new content replaces the old one.
+  Clip other = clip;
+  other.motion(0, 0) = 42;
+  write_bvh_file(other, path);
+  CHECK(read_bvh_file(path).motion(0, 0) == 42);
+  // A folder that does not exist: InputError naming the path, and no file at all.
+  const std::string missing = dir + "/no/such/folder/out.bvh";
+  CHECK_THROWS_WITH(write_bvh_file(clip, missing), Catch::StartsWith(missing + ": cannot write: "));
+  CHECK_FALSE(fs::exists(missing));
+  // Writing over a folder fails and removes its temporary file.
+  fs::create_directories(dir + "/a_folder.bvh");
+  CHECK_THROWS_AS(write_bvh_file(clip, dir + "/a_folder.bvh"), InputError);
+  int entries = 0;
+  for (const auto& e : fs::directory_iterator(dir)) entries += e.path().filename() != "a_folder.bvh";
+  CHECK(entries == 1);  // only out.bvh: no temporary left behind
+  // Reading a missing file or a folder: InputError naming it.
+  CHECK_THROWS_WITH(read_bvh_file(dir + "/none.bvh"), Catch::StartsWith(dir + "/none.bvh: cannot read: "));
+  CHECK_THROWS_WITH(read_bvh_file(dir), Catch::Contains("cannot read: it is a folder"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a large synthetic file loads (linear, no per-value reallocation)", "[bvh]") {
+  // 20000 frames of the CMU layout, about 17 MB; the declared count is a lie both ways.
+  const Clip cmu = read_bvh_file(test::asset("motions/cmu142_walk_happy.bvh"));
+  Clip big = cmu;
+  big.motion.resize(20000, cmu.motion.cols());
+  for (int f = 0; f < big.frames(); ++f) big.motion.row(f) = cmu.motion.row(f % cmu.frames());
+  const std::string text = format_bvh(big);
+  for (const char* frames : {"Frames: 20000", "Frames: 3", "Frames: 99999999"}) {
+    INFO(frames);
+    std::vector<std::string> warnings;
+    const Clip back = parse_bvh(replace_all(text, "Frames: 20000", frames), "big.bvh", &warnings);
+    CHECK(back.motion == big.motion);
+    CHECK(warnings.size() == (std::string(frames) == "Frames: 20000" ? 0u : 1u));
+  }
+}

@@ -1,0 +1,134 @@
+#include "engine/kinematics/limb_length.h"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <vector>
+
+#include "engine/io/error.h"
+#include "tests/engine/synthetic_motion.h"
+
+using namespace mostyle;
+using mostyle::test::Random;
+
+namespace {
+
+constexpr double kRelativeExact = 1e-12;  // lengths and directions hold to rounding
+
+Eigen::Vector3d joint(const Eigen::MatrixXd& m, int frame, int j) {
+  return m.block<1, 3>(frame, 3 * j).transpose();
+}
+
+// A 20-joint tree shaped like the major skeleton: hips, spine, chest, head, two arms, two legs.
+const std::vector<int> kParents = {-1, 0, 1, 2,  2, 4, 5, 6,  2, 8, 9, 10,
+                                   0,  12, 13, 14, 0, 16, 17, 18};
+
+}  // namespace
+
+TEST_CASE("limb lengths on a hand-worked 3-joint chain", "[limb_length]") {
+  // root (0,0,0) -> a (0,2,0) with L = 1 -> b (3,2,0) with L = 2:
+  // a = root + 1 * (0,1,0) = (0,1,0); b = a + 2 * (1,0,0) = (2,1,0).
+  Eigen::MatrixXd p(1, 9);
+  p << 0, 0, 0, 0, 2, 0, 3, 2, 0;
+  apply_limb_lengths(p, {-1, 0, 1}, {0.0, 1.0, 2.0});
+  Eigen::MatrixXd expected(1, 9);
+  expected << 0, 0, 0, 0, 1, 0, 2, 1, 0;
+  CHECK(p.isApprox(expected, 1e-15));
+
+  // A branch: both children of the root move by their own bone only.
+  Eigen::MatrixXd q(1, 12);
+  q << 1, 1, 1, 1, 1, 4, 1, 1, -1, 1, 1, -5;
+  const Eigen::MatrixXd r = with_limb_lengths(q, {-1, 0, 0, 2}, {0.0, 0.5, 1.0, 1.0});
+  Eigen::MatrixXd expected_r(1, 12);
+  expected_r << 1, 1, 1, 1, 1, 1.5, 1, 1, 0, 1, 1, -1;
+  CHECK(r.isApprox(expected_r, 1e-15));
+}
+
+TEST_CASE("limb lengths become exact and bone directions are kept", "[limb_length]") {
+  Random random(61);
+  const int frames = 50, joints = 20;
+  // A reference pose, and a distorted motion around it (as synthesis produces).
+  const Eigen::MatrixXd reference = random.matrix(1, 3 * joints);
+  const std::vector<double> lengths = bone_lengths(reference, kParents);
+  Eigen::MatrixXd motion = reference.replicate(frames, 1) + 0.2 * random.matrix(frames, 3 * joints);
+  const Eigen::MatrixXd before = motion;
+  CHECK(max_bone_length_error(motion, kParents, lengths) > 0.01);
+
+  apply_limb_lengths(motion, kParents, lengths);
+  double longest = 0.0;
+  for (double l : lengths) longest = std::max(longest, l);
+  CHECK(max_bone_length_error(motion, kParents, lengths) <= kRelativeExact * longest);
+  for (int f = 0; f < frames; ++f) {
+    CHECK(joint(motion, f, 0) == joint(before, f, 0));  // the root stays
+    for (int j = 1; j < joints; ++j) {
+      const int p = kParents[static_cast<size_t>(j)];
+      const Eigen::Vector3d after = joint(motion, f, j) - joint(motion, f, p);
+      const Eigen::Vector3d original = joint(before, f, j) - joint(before, f, p);
+      CAPTURE(f, j);
+      CHECK(std::abs(after.norm() - lengths[static_cast<size_t>(j)]) <=
+            kRelativeExact * lengths[static_cast<size_t>(j)]);
+      CHECK(after.normalized().dot(original.normalized()) >= 1.0 - kRelativeExact);
+    }
+  }
+  // Applying it again changes nothing beyond rounding.
+  const Eigen::MatrixXd twice = with_limb_lengths(motion, kParents, lengths);
+  CHECK((twice - motion).cwiseAbs().maxCoeff() < 1e-12);
+}
+
+TEST_CASE("a bone with no direction takes the previous frame's, or the fallback", "[limb_length]") {
+  // Joint 1 sits on the root in frames 0 and 2; frame 1 has it along +X.
+  Eigen::MatrixXd p(3, 6);
+  p << 0, 0, 0, 0, 0, 0,  //
+      0, 0, 0, 5, 0, 0,   //
+      1, 1, 1, 1, 1, 1;
+  const std::vector<int> parents = {-1, 0};
+  const std::vector<double> lengths = {0.0, 2.0};
+
+  const Eigen::MatrixXd plain = with_limb_lengths(p, parents, lengths);
+  CHECK(joint(plain, 0, 1) == Eigen::Vector3d(0, 2, 0));  // first frame: +Y
+  CHECK(joint(plain, 1, 1) == Eigen::Vector3d(2, 0, 0));
+  CHECK(joint(plain, 2, 1) == Eigen::Vector3d(3, 1, 1));  // previous frame's +X
+
+  LimbLengthOptions options;
+  options.fallback_pose.resize(6);
+  options.fallback_pose << 0, 0, 0, 0, 0, -3;
+  const Eigen::MatrixXd with_pose = with_limb_lengths(p, parents, lengths, options);
+  CHECK(joint(with_pose, 0, 1) == Eigen::Vector3d(0, 0, -2));
+  CHECK(max_bone_length_error(with_pose, parents, lengths) == 0.0);
+}
+
+TEST_CASE("bone lengths average over frames; the error is the worst deviation",
+          "[limb_length]") {
+  Eigen::MatrixXd p(2, 9);
+  p << 0, 0, 0, 1, 0, 0, 1, 2, 0,  //
+      0, 0, 0, 0, 3, 0, 0, 3, 4;
+  const std::vector<int> parents = {-1, 0, 1};
+  const std::vector<double> lengths = bone_lengths(p, parents);
+  REQUIRE(lengths.size() == 3);
+  CHECK(lengths[0] == 0.0);
+  CHECK(lengths[1] == 2.0);  // (1 + 3) / 2
+  CHECK(lengths[2] == 3.0);  // (2 + 4) / 2
+  CHECK(max_bone_length_error(p, parents, lengths) == 1.0);
+  CHECK(max_bone_length_error(p, parents, {0.0, 1.0, 2.0}) == 2.0);
+}
+
+TEST_CASE("limb-length functions reject bad skeletons", "[limb_length]") {
+  Eigen::MatrixXd p = Eigen::MatrixXd::Ones(2, 9);
+  const std::vector<int> parents = {-1, 0, 1};
+  const std::vector<double> lengths = {0.0, 1.0, 1.0};
+  CHECK_NOTHROW(apply_limb_lengths(p, parents, lengths));
+  CHECK_THROWS_AS(apply_limb_lengths(p, {-1, 0}, lengths), InputError);
+  CHECK_THROWS_AS(apply_limb_lengths(p, {-1, 2, 1}, lengths), InputError);  // child before parent
+  CHECK_THROWS_AS(apply_limb_lengths(p, {-1, 0, -2}, lengths), InputError);
+  CHECK_THROWS_AS(apply_limb_lengths(p, parents, {0.0, 1.0}), InputError);
+  CHECK_THROWS_AS(apply_limb_lengths(p, parents, {0.0, -1.0, 1.0}), InputError);
+  CHECK_THROWS_AS(apply_limb_lengths(p, parents, {0.0, std::nan(""), 1.0}), InputError);
+  LimbLengthOptions options;
+  options.fallback_pose = Eigen::RowVectorXd::Zero(6);
+  CHECK_THROWS_AS(apply_limb_lengths(p, parents, lengths, options), InputError);
+  options.fallback_pose.resize(0);
+  options.degenerate_fraction = -1.0;
+  CHECK_THROWS_AS(apply_limb_lengths(p, parents, lengths, options), InputError);
+  CHECK_THROWS_AS(bone_lengths(Eigen::MatrixXd(0, 9), parents), InputError);
+  CHECK_THROWS_AS(bone_lengths(p, {-1, 0}), InputError);
+  CHECK_THROWS_AS(max_bone_length_error(p, parents, {0.0}), InputError);
+}

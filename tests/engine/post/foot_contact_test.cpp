@@ -1,0 +1,303 @@
+#include "engine/post/foot_contact.h"
+
+#include <Eigen/Geometry>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "engine/io/bvh_io.h"
+#include "engine/io/error.h"
+#include "engine/kinematics/limb_length.h"
+#include "engine/run/pipeline.h"
+#include "tests/test_data.h"
+
+using namespace mostyle;
+
+namespace {
+
+constexpr double kExact = 1e-9;   // file units (cm here): IK and locks hold to rounding
+constexpr double kFps = 30.0;
+constexpr double kThigh = 40.0, kShin = 40.0;
+constexpr double kHipHeight = 75.0, kAnkleHeight = 8.0;
+constexpr double kSpeed = 100.0;     // hips, cm/s along +X
+constexpr int kCycle = 30;           // frames per step of one foot
+constexpr int kStance = 18;          // of which planted
+
+// Columns: left hip, knee, ankle, toe, then the right leg's.
+FootRig test_rig() {
+  FootRig rig;
+  rig.legs[0] = {0, 1, 2, 3};
+  rig.legs[1] = {4, 5, 6, 7};
+  rig.leg_length = kThigh + kShin;
+  rig.fps = kFps;
+  return rig;
+}
+
+Eigen::Vector3d at(const Eigen::MatrixXd& m, Eigen::Index f, int c) { return m.block<1, 3>(f, 3 * c).transpose(); }
+void put(Eigen::MatrixXd& m, Eigen::Index f, int c, const Eigen::Vector3d& v) { m.block<1, 3>(f, 3 * c) = v.transpose(); }
+
+// A walk of two legs: hips moving at kSpeed, each foot planted for kStance frames of every
+// kCycle (the right half a cycle later), swinging forward with eased motion and a lift in
+// between. `skate`: cm/s the planted foot slides forward (a skating blend). The knee bends
+// forward (+X) with the thigh and shin lengths fixed; the toe is 12 cm ahead of the ankle.
+// planted (out): F x 2, 1 on the planted frames.
+Eigen::MatrixXd walk(int frames, double skate, Eigen::MatrixXd* planted) {
+  Eigen::MatrixXd w(frames, 24);
+  planted->setZero(frames, 2);
+  for (int side = 0; side < 2; ++side) {
+    const double z = side == 0 ? 10.0 : -10.0;
+    const int shift = side == 0 ? 0 : kCycle / 2;
+    for (int f = 0; f < frames; ++f) {
+      const double t = f / kFps;
+      const Eigen::Vector3d hip(kSpeed * t, kHipHeight, z);
+      // Phase within this foot's cycle; cycle k plants the foot under mid-stance hips.
+      const int g = f + shift;
+      const int k = g / kCycle, phase = g % kCycle;
+      auto plant_x = [&](int cycle) { return kSpeed * ((cycle * kCycle - shift) + kStance / 2.0) / kFps; };
+      Eigen::Vector3d ankle;
+      if (phase < kStance) {
+        ankle = Eigen::Vector3d(plant_x(k) + skate * (phase - kStance / 2.0) / kFps, kAnkleHeight, z);
+        (*planted)(f, side) = 1;
+      } else {
+        const double u = (phase - kStance + 1.0) / (kCycle - kStance + 1.0);  // (0, 1)
+        const double from = plant_x(k) + skate * (kStance / 2.0) / kFps;
+        const double to = plant_x(k + 1) - skate * (kStance / 2.0) / kFps;
+        const double ease = 0.5 - 0.5 * std::cos(M_PI * u);
+        const double lift = 12.0 * std::pow(std::sin(M_PI * u), 2);
+        ankle = Eigen::Vector3d(from + (to - from) * ease, kAnkleHeight + lift, z);
+      }
+      // Knee: law of cosines, bent toward +X.
+      const Eigen::Vector3d d = ankle - hip;
+      const double len = d.norm();
+      const Eigen::Vector3d n = d / len;
+      const Eigen::Vector3d bend = (Eigen::Vector3d::UnitX() - n * n.x()).normalized();
+      const double along = (kThigh * kThigh - kShin * kShin + len * len) / (2 * len);
+      const Eigen::Vector3d knee = hip + n * along + bend * std::sqrt(kThigh * kThigh - along * along);
+      const int base = 4 * side;
+      put(w, f, base, hip);
+      put(w, f, base + 1, knee);
+      put(w, f, base + 2, ankle);
+      put(w, f, base + 3, ankle + Eigen::Vector3d(12, -6, 0));
+    }
+  }
+  return w;
+}
+
+}  // namespace
+
+TEST_CASE("two-bone IK reaches what it can, keeps lengths and the knee's bend", "[foot_contact]") {
+  const Eigen::Vector3d hip(0, 80, 0), knee(5, 42, 3), ankle(0, 5, 0);
+  const double thigh = (knee - hip).norm(), shin = (ankle - knee).norm();
+  const Eigen::Vector3d fallback(1, 0, 0);
+  Eigen::Vector3d k, a;
+  SECTION("a reachable target") {
+    const Eigen::Vector3d target(20, 10, -5);
+    two_bone_ik(hip, knee, ankle, target, fallback, &k, &a);
+    CHECK((a - target).norm() < kExact);
+    CHECK((k - hip).norm() == Approx(thigh).epsilon(1e-12));
+    CHECK((a - k).norm() == Approx(shin).epsilon(1e-12));
+    // The knee still bends the way it did (toward +X, +Z here).
+    const Eigen::Vector3d n = (target - hip).normalized();
+    const Eigen::Vector3d old_bend = (knee - hip) - n * n.dot(knee - hip);
+    const Eigen::Vector3d new_bend = (k - hip) - n * n.dot(k - hip);
+    CHECK(old_bend.dot(new_bend) > 0);
+    CHECK(std::abs(old_bend.normalized().cross(new_bend.normalized()).norm()) < 1e-9);
+  }
+  SECTION("the ankle where it is: nothing moves") {
+    two_bone_ik(hip, knee, ankle, ankle, fallback, &k, &a);
+    CHECK((a - ankle).norm() < kExact);
+    CHECK((k - knee).norm() < kExact);
+  }
+  SECTION("out of reach: straight leg toward the target") {
+    const Eigen::Vector3d target(0, -200, 0);
+    two_bone_ik(hip, knee, ankle, target, fallback, &k, &a);
+    CHECK((a - hip).norm() == Approx(thigh + shin));
+    CHECK((a - hip).normalized().dot(Eigen::Vector3d(0, -1, 0)) == Approx(1.0));
+    CHECK((k - hip).norm() == Approx(thigh));
+  }
+  SECTION("a straight leg bends along the fallback") {
+    const Eigen::Vector3d straight_knee(0, 40, 0), straight_ankle(0, 0, 0);
+    two_bone_ik(hip, straight_knee, straight_ankle, Eigen::Vector3d(0, 20, 0), fallback, &k, &a);
+    CHECK(a.y() == Approx(20.0));
+    CHECK(k.x() > 0);  // bent toward the fallback
+    CHECK(k.z() == Approx(0.0).margin(1e-12));
+  }
+}
+
+TEST_CASE("contacts of a synthetic walk are its planted phases", "[foot_contact]") {
+  const FootRig rig = test_rig();
+  Eigen::MatrixXd planted;
+  const Eigen::MatrixXd w = walk(150, 0.0, &planted);
+  const Eigen::MatrixXd c = detect_foot_contacts(w, rig);
+  REQUIRE(c.rows() == 150);
+  REQUIRE(c.cols() == 2);
+  // Each frame agrees, but for at most one frame at either end of a contact.
+  for (int side = 0; side < 2; ++side) {
+    for (int f = 1; f + 1 < 150; ++f) {
+      INFO("side " << side << " frame " << f);
+      if (planted(f - 1, side) == planted(f, side) && planted(f + 1, side) == planted(f, side))
+        CHECK(c(f, side) == planted(f, side));
+    }
+  }
+  CHECK(foot_sliding(w, c, rig) < kExact);
+}
+
+TEST_CASE("foot sliding is the planted ankle's horizontal speed", "[foot_contact]") {
+  const FootRig rig = test_rig();
+  Eigen::MatrixXd planted;
+  const Eigen::MatrixXd w = walk(150, 20.0, &planted);
+  CHECK(foot_sliding(w, planted, rig) == Approx(20.0));
+  // Still detected as contacts (20 cm/s is under the speed threshold) and measured the same.
+  const Eigen::MatrixXd c = detect_foot_contacts(w, rig);
+  CHECK(c.sum() > 0.8 * planted.sum());
+  CHECK(foot_sliding(w, c, rig) == Approx(20.0).epsilon(0.05));
+  // No contacts: nothing slides.
+  CHECK(foot_sliding(w, Eigen::MatrixXd::Zero(150, 2), rig) == 0.0);
+}
+
+TEST_CASE("the foot lock removes sliding on a skating foot and leaves swing alone", "[foot_contact]") {
+  const FootRig rig = test_rig();
+  Eigen::MatrixXd planted;
+  const Eigen::MatrixXd skating = walk(150, 20.0, &planted);
+  Eigen::MatrixXd w = skating;
+  FootLockScratch scratch;
+  apply_foot_lock(w, planted, rig, scratch);
+  CHECK(foot_sliding(skating, planted, rig) == Approx(20.0));
+  CHECK(foot_sliding(w, planted, rig) < kExact);
+  const int fade = rig.blend_frames();
+  for (int side = 0; side < 2; ++side) {
+    const LegColumns& leg = rig.legs[side];
+    for (int f = 0; f < 150; ++f) {
+      // Hips never move; bone lengths and the foot (ankle to toe) are kept.
+      CHECK(at(w, f, leg.hip) == at(skating, f, leg.hip));
+      CHECK((at(w, f, leg.knee) - at(w, f, leg.hip)).norm() == Approx(kThigh).epsilon(1e-12));
+      CHECK((at(w, f, leg.ankle) - at(w, f, leg.knee)).norm() == Approx(kShin).epsilon(1e-12));
+      CHECK((at(w, f, leg.toe) - at(w, f, leg.ankle) - Eigen::Vector3d(12, -6, 0)).norm() < kExact);
+      // Heights are the blend's own.
+      CHECK(w(f, 3 * leg.ankle + 1) == Approx(skating(f, 3 * leg.ankle + 1)).margin(kExact));
+      // Swing frames farther than the fade from every contact stay bit for bit.
+      bool near_contact = false;
+      for (int g = std::max(0, f - fade); g <= std::min(149, f + fade); ++g) near_contact |= planted(g, side) > 0.5;
+      if (!near_contact)
+        for (int c : {leg.knee, leg.ankle, leg.toe}) CHECK(at(w, f, c) == at(skating, f, c));
+    }
+  }
+  // Fading in and out: the ankle's largest step is not the lock's jump to its target.
+  double worst = 0;
+  for (int f = 1; f < 150; ++f) worst = std::max(worst, (at(w, f, 2) - at(w, f - 1, 2)).norm());
+  double worst_raw = 0;
+  for (int f = 1; f < 150; ++f) worst_raw = std::max(worst_raw, (at(skating, f, 2) - at(skating, f - 1, 2)).norm());
+  CHECK(worst < 1.5 * worst_raw);
+}
+
+TEST_CASE("contacts are carried through a warp and blended with alpha", "[foot_contact]") {
+  Eigen::MatrixXd b(5, 2);
+  b << 1, 0, 1, 0, 0, 1, 0, 1, 1, 1;
+  Eigen::VectorXd warp(4);
+  warp << 0.0, 1.6, 2.4, 4.0;  // rounds to B frames 0, 2, 2, 4
+  const Eigen::MatrixXd carried = carry_contacts(b, warp);
+  Eigen::MatrixXd expected(4, 2);
+  expected << 1, 0, 0, 1, 0, 1, 1, 1;
+  CHECK(carried == expected);
+
+  Eigen::MatrixXd a(4, 2);
+  a << 1, 1, 0, 1, 1, 0, 0, 0;
+  Eigen::MatrixXd out;
+  blend_contacts(a, carried, 0.0, out);
+  CHECK(out == a);
+  blend_contacts(a, carried, 1.0, out);
+  CHECK(out == carried);
+  blend_contacts(a, carried, 0.5, out);  // both must agree
+  Eigen::MatrixXd both(4, 2);
+  both << 1, 0, 0, 1, 0, 0, 0, 0;
+  CHECK(out == both);
+  blend_contacts(a, carried, 0.3, out);
+  CHECK(out == a);
+}
+
+TEST_CASE("foot contact options and shapes are checked", "[foot_contact]") {
+  FootContactOptions o;
+  CHECK_NOTHROW(o.Validate());
+  o.speed_fraction = -1;
+  CHECK_THROWS_AS(o.Validate(), InputError);
+  o = FootContactOptions{};
+  o.blend_seconds = NAN;
+  CHECK_THROWS_AS(o.Validate(), InputError);
+  const std::vector<int> majors = {0, 12, 13, 14, 16, 17, 18};
+  CHECK_THROWS_AS(make_foot_rig(majors, std::vector<double>(7, 1.0), 0.0), InputError);
+  CHECK_THROWS_AS(make_foot_rig(majors, std::vector<double>(6, 1.0), 30.0), InputError);
+  const FootRig rig = make_foot_rig(majors, {0, 5, 40, 40, 5, 42, 38}, 30.0);
+  CHECK(rig.legs[0].hip == 1);
+  CHECK(rig.legs[0].ankle == 3);
+  CHECK(rig.legs[0].toe == -1);
+  CHECK(rig.legs[1].knee == 5);
+  CHECK(rig.leg_length == Approx(80.0));
+
+  const FootRig test = test_rig();
+  const Eigen::MatrixXd too_narrow = Eigen::MatrixXd::Zero(10, 12);
+  CHECK_THROWS_AS(detect_foot_contacts(too_narrow, test), InputError);
+  const Eigen::MatrixXd w = Eigen::MatrixXd::Zero(10, 24);
+  CHECK_THROWS_AS(foot_sliding(w, Eigen::MatrixXd::Zero(9, 2), test), InputError);
+  Eigen::MatrixXd m = w;
+  FootLockScratch scratch;
+  CHECK_THROWS_AS(apply_foot_lock(m, Eigen::MatrixXd::Zero(10, 3), test, scratch), InputError);
+  CHECK_THROWS_AS(carry_contacts(Eigen::MatrixXd::Zero(0, 2), Eigen::VectorXd::Zero(3)), InputError);
+  Eigen::MatrixXd out;
+  CHECK_THROWS_AS(blend_contacts(Eigen::MatrixXd::Zero(4, 2), Eigen::MatrixXd::Zero(5, 2), 0.5, out), InputError);
+  // No frames: no contacts, no sliding, nothing to lock.
+  const Eigen::MatrixXd empty(0, 24);
+  CHECK(detect_foot_contacts(empty, test).rows() == 0);
+}
+
+namespace {
+
+void check_pipeline_foot_lock(const std::string& path_a, const std::string& path_b) {
+  auto a = std::make_shared<const Clip>(read_bvh_file(path_a));
+  auto b = std::make_shared<const Clip>(read_bvh_file(path_b));
+  const auto p = prepare_pair(a, b, PrepareOptions{});
+  const Eigen::Index frames = p->world_a.rows();
+  REQUIRE(p->contacts_a.rows() == frames);
+  REQUIRE(p->contacts_b.rows() == p->world_b.rows());
+  REQUIRE(p->contacts_b_on_a.rows() == frames);
+  // A walk: each foot planted for a good part of the take.
+  CHECK(p->contacts_a.col(0).mean() > 0.2);
+  CHECK(p->contacts_a.col(1).mean() > 0.2);
+  CHECK(p->foot_sliding_a > 0);
+  DecomposeParams dp;
+  dp.components = 8;
+  dp.max_iterations = 30;
+  const auto d = decompose_pair(*p, dp);
+  BlendParams bp;
+  bp.alpha = 0.5;
+  BlendScratch scratch;
+  BlendResult locked, free;
+  blend_pair(*p, *d, bp, scratch, locked);
+  bp.foot_lock = false;
+  blend_pair(*p, *d, bp, scratch, free);
+  INFO(path_a << " / " << path_b << ": sliding A " << p->foot_sliding_a << ", B " << p->foot_sliding_b
+              << ", raw " << locked.foot_sliding_raw << ", cleaned " << locked.foot_sliding_cleaned);
+  CHECK(free.foot_sliding_cleaned == free.foot_sliding_raw);
+  CHECK(locked.foot_sliding_raw == Approx(free.foot_sliding_raw));
+  CHECK(locked.foot_sliding_cleaned <= std::max(p->foot_sliding_a, p->foot_sliding_b));
+  CHECK(locked.foot_sliding_cleaned <= 0.1 * locked.foot_sliding_raw);
+  // The lock keeps the limb lengths and touches only the legs below the hips.
+  CHECK(locked.limb_length_max_error <= 1e-9 * p->feet.leg_length);
+  for (size_t c = 0; c < p->majors.size(); ++c) {
+    const bool leg = p->majors[c] >= static_cast<int>(MajorJoint::kLeftKnee) &&
+                     p->majors[c] != static_cast<int>(MajorJoint::kRightHip);
+    if (!leg) CHECK(locked.world.middleCols(3 * c, 3) == free.world.middleCols(3 * c, 3));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("the pipeline locks planted feet of a real blend (assets, CMU)", "[foot_contact]") {
+  check_pipeline_foot_lock(test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_joy.bvh"));
+}
+
+TEST_CASE("the pipeline locks planted feet of real blends from ../shared/motions", "[foot_contact]") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  check_pipeline_foot_lock(test::shared_motion("bandai_walk_normal.bvh"), test::shared_motion("bandai_walk_tired.bvh"));
+  check_pipeline_foot_lock(test::shared_motion("cmu142_walk_joy.bvh"), test::shared_motion("bandai_walk_sad.bvh"));
+}
