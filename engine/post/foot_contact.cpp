@@ -19,6 +19,8 @@ constexpr double kTimeEpsilon = 1e-9;
 constexpr double kStraightLeg = 1e-4;
 // Fraction of the leg's length the IK keeps away from full extension or folding.
 constexpr double kExtensionMargin = 1e-9;
+// How far (leg lengths) the knee's pole leans towards where the foot points (apply_foot_lock).
+constexpr double kKneeForwardBias = 0.02;
 
 Eigen::Vector3d joint_at(const Eigen::MatrixXd& m, Eigen::Index row, int column) {
   return Eigen::Vector3d(m(row, 3 * column), m(row, 3 * column + 1), m(row, 3 * column + 2));
@@ -205,6 +207,12 @@ double foot_sliding(const Eigen::MatrixXd& world, const Eigen::MatrixXd& contact
 void two_bone_ik(const Eigen::Vector3d& hip, const Eigen::Vector3d& knee, const Eigen::Vector3d& ankle,
                  const Eigen::Vector3d& target, const Eigen::Vector3d& bend_fallback,
                  Eigen::Vector3d* new_knee, Eigen::Vector3d* new_ankle) {
+  two_bone_ik_pole(hip, knee, ankle, target, knee - hip, bend_fallback, new_knee, new_ankle);
+}
+
+void two_bone_ik_pole(const Eigen::Vector3d& hip, const Eigen::Vector3d& knee, const Eigen::Vector3d& ankle,
+                      const Eigen::Vector3d& target, const Eigen::Vector3d& pole, const Eigen::Vector3d& bend_fallback,
+                      Eigen::Vector3d* new_knee, Eigen::Vector3d* new_ankle) {
   const double thigh = (knee - hip).norm();
   const double shin = (ankle - knee).norm();
   const Eigen::Vector3d to_target = target - hip;
@@ -221,7 +229,7 @@ void two_bone_ik(const Eigen::Vector3d& hip, const Eigen::Vector3d& knee, const 
   // would move the knee by the square root of rounding (1e-8 of the leg, not 1e-16).
   const double margin = kExtensionMargin * (thigh + shin);
   const double reach = std::clamp(distance, std::abs(thigh - shin) + margin, thigh + shin - margin);
-  Eigen::Vector3d bend = (knee - hip) - n * n.dot(knee - hip);
+  Eigen::Vector3d bend = pole - n * n.dot(pole);
   if (bend.norm() <= kStraightLeg * (thigh + shin)) bend = bend_fallback - n * n.dot(bend_fallback);
   bend = bend.norm() > 0 ? Eigen::Vector3d(bend.normalized()) : any_perpendicular(n);
   const double along = (thigh * thigh - shin * shin + reach * reach) / (2.0 * reach);
@@ -241,10 +249,15 @@ void apply_foot_lock(Eigen::MatrixXd& world, const Eigen::MatrixXd& contacts, co
   for (int side = 0; side < 2; ++side) {
     const LegColumns& leg = rig.legs[side];
     if (!leg.usable()) continue;
-    scratch.weight.setZero();
+    scratch.weight.setZero();  // 1 where the ankle gets an offset, 0 where it is left alone
+    scratch.target.setZero();  // the horizontal offset (x, z) that takes the ankle to its target
     // Each contact run pins the ankle at its mean horizontal position (the least total
-    // correction); the fades of neighbouring runs overlap only in short gaps, where the nearer
-    // run wins.
+    // correction) for the whole run: no sliding while planted. The offsets that takes then
+    // differ from one run to the next; between them, the change is spread over the whole swing
+    // (smoothstep), which adds little to the swinging foot's speed, where a fade of a few frames
+    // at landing or lift-off would add it all at the foot's fastest moments. Before the first
+    // run and after the last the offset fades in and out over blend_frames().
+    Eigen::Index previous_end = -1;  // last frame of the previous run
     for (Eigen::Index t = 0; t < frames;) {
       if (contacts(t, side) <= 0.5) {
         ++t;
@@ -260,16 +273,33 @@ void apply_foot_lock(Eigen::MatrixXd& world, const Eigen::MatrixXd& contacts, co
       const double n = static_cast<double>(end - start + 1);
       x /= n;
       z /= n;
-      for (Eigen::Index u = std::max<Eigen::Index>(0, start - ramp); u <= std::min(frames - 1, end + ramp); ++u) {
-        const Eigen::Index d = u < start ? start - u : (u > end ? u - end : 0);
-        const double w = d == 0 ? 1.0 : smoothstep(1.0 - static_cast<double>(d) / (ramp + 1));
-        if (w > scratch.weight[u]) {
-          scratch.weight[u] = w;
-          scratch.target(u, 0) = x;
-          scratch.target(u, 1) = z;
+      for (Eigen::Index u = start; u <= end; ++u) {
+        scratch.weight[u] = 1.0;
+        scratch.target(u, 0) = x - world(u, 3 * leg.ankle);
+        scratch.target(u, 1) = z - world(u, 3 * leg.ankle + 2);
+      }
+      if (previous_end >= 0) {  // the swing from the previous run
+        const Eigen::Index span = start - previous_end;
+        for (Eigen::Index u = previous_end + 1; u < start; ++u) {
+          const double f = smoothstep(static_cast<double>(u - previous_end) / span);
+          scratch.weight[u] = 1.0;
+          scratch.target.row(u) = (1.0 - f) * scratch.target.row(previous_end) + f * scratch.target.row(start);
+        }
+      } else {  // fade in before the first run
+        for (Eigen::Index u = std::max<Eigen::Index>(0, start - ramp); u < start; ++u) {
+          const double f = smoothstep(1.0 - static_cast<double>(start - u) / (ramp + 1));
+          scratch.weight[u] = 1.0;
+          scratch.target.row(u) = f * scratch.target.row(start);
         }
       }
+      previous_end = end;
     }
+    if (previous_end >= 0)  // fade out after the last run
+      for (Eigen::Index u = previous_end + 1; u <= std::min(frames - 1, previous_end + ramp); ++u) {
+        const double f = smoothstep(1.0 - static_cast<double>(u - previous_end) / (ramp + 1));
+        scratch.weight[u] = 1.0;
+        scratch.target.row(u) = f * scratch.target.row(previous_end);
+      }
     // The knee's bend direction where the leg is straight: the last frame's, within a second,
     // where it was not (none: two_bone_ik picks one).
     const Eigen::Index search = static_cast<Eigen::Index>(std::ceil(rig.fps));
@@ -285,19 +315,34 @@ void apply_foot_lock(Eigen::MatrixXd& world, const Eigen::MatrixXd& contacts, co
       return Eigen::Vector3d::Zero();
     };
     for (Eigen::Index t = 0; t < frames; ++t) {
-      const double w = scratch.weight[t];
-      if (w <= 0.0) continue;
+      if (scratch.weight[t] <= 0.0) continue;
       const Eigen::Vector3d hip = joint_at(world, t, leg.hip);
       const Eigen::Vector3d knee = joint_at(world, t, leg.knee);
       const Eigen::Vector3d ankle = joint_at(world, t, leg.ankle);
       Eigen::Vector3d target = ankle;
-      target.x() += w * (scratch.target(t, 0) - ankle.x());
-      target.z() += w * (scratch.target(t, 1) - ankle.z());
+      target.x() += scratch.target(t, 0);
+      target.z() += scratch.target(t, 1);
       Eigen::Vector3d new_knee, new_ankle;
-      const Eigen::Vector3d to_target = target - hip;
-      const Eigen::Vector3d off_line = (knee - hip) - to_target * to_target.dot(knee - hip) / to_target.squaredNorm();
-      const bool straight = !(off_line.norm() > kStraightLeg * to_target.norm());
-      two_bone_ik(hip, knee, ankle, target, straight ? last_bend(t) : off_line, &new_knee, &new_ankle);
+      // The knee's bend direction (the IK's pole) is taken from the leg's own pose, the knee's
+      // offset from its hip-ankle line, with a slight bias towards where the foot points. Taken
+      // from the hip-target line instead, it would swing round whenever the lock pulls the ankle
+      // across the knee's plane, and a knee that the blend leaves nearly straight would fold
+      // backwards; the bias keeps the pole from passing through zero as the leg straightens.
+      Eigen::Vector3d pole;
+      {
+        const Eigen::Vector3d leg_line = ankle - hip;
+        const double len2 = leg_line.squaredNorm();
+        pole = knee - hip;
+        if (len2 > 0) pole -= leg_line * (leg_line.dot(knee - hip) / len2);
+        if (leg.toe >= 0) {
+          Eigen::Vector3d forward = joint_at(world, t, leg.toe) - ankle;
+          forward.y() = 0.0;
+          if (forward.norm() > 0) pole += kKneeForwardBias * rig.leg_length * forward.normalized();
+        }
+      }
+      const bool straight = !(pole.norm() > kStraightLeg * rig.leg_length);
+      two_bone_ik_pole(hip, knee, ankle, target, straight ? last_bend(t) : pole,
+                       straight ? last_bend(t) : Eigen::Vector3d::Zero(), &new_knee, &new_ankle);
       set_joint(world, t, leg.knee, new_knee);
       set_joint(world, t, leg.ankle, new_ankle);
       if (leg.toe >= 0) set_joint(world, t, leg.toe, joint_at(world, t, leg.toe) + (new_ankle - ankle));

@@ -21,7 +21,7 @@ struct FootContactOptions {
   double speed_fraction = 0.45;       // ankle slower than this many leg lengths per second
   double min_contact_seconds = 0.1;   // shorter contacts are dropped (noise)
   double max_gap_seconds = 0.07;      // shorter breaks inside a contact are filled
-  double blend_seconds = 0.15;        // the lock fades in before and out after a contact
+  double blend_seconds = 0.15;        // the lock fades in before the first contact, out after the last
   void Validate() const;              // throws InputError on a negative or non-finite value
 };
 
@@ -62,18 +62,21 @@ double foot_sliding(const Eigen::MatrixXd& world, const Eigen::MatrixXd& contact
 
 // Buffers apply_foot_lock reuses, so the lock does not allocate once they have the right size.
 struct FootLockScratch {
-  Eigen::VectorXd weight;  // F: how much of the lock applies at each frame, 0..1
-  Eigen::MatrixXd target;  // F x 2: the planted ankle's (x, z)
+  Eigen::VectorXd weight;  // F: 1 where the ankle is moved, 0 where it is left as it is
+  Eigen::MatrixXd target;  // F x 2: the horizontal offset (x, z) that moves it
 };
 
 // Locks planted feet in place, in world (F x 3M) itself. Per foot and contact run (contacts F x 2,
-// runs of 1s): the ankle's target is the run's mean horizontal position; it is held there through
-// the run and faded in and out over blend_frames() before and after (smoothstep), the vertical
-// kept. Each such frame moves the ankle with analytic two-bone IK: the hip stays, thigh and shin
-// keep their lengths, the knee stays in the plane of hip, target and its old position (its bend
-// direction kept); a target out of reach is approached along the hip-target line. The toe moves
-// with the ankle (the foot is translated). Frames farther than blend_frames() from any contact
-// (swing) are left exactly as they were. O(F), no allocation once scratch has size F.
+// runs of 1s): the ankle's target is the run's mean horizontal position, held through the whole
+// run (no sliding), the vertical kept. The offset this takes changes from one run to the next;
+// between runs the change is spread over the whole swing (smoothstep), so it adds little to the
+// swinging foot's speed (a fade of a few frames at landing or lift-off would add it all at the
+// foot's fastest moments); before the first run and after the last it fades over blend_frames().
+// Each such frame moves the ankle with analytic two-bone IK: the hip stays, thigh and shin keep
+// their lengths, the knee bends in the plane of hip, target and the knee's own offset from its
+// hip-ankle line, leaning slightly towards the toe; a target out of reach is approached along the
+// hip-target line. The toe moves with the ankle (the foot is translated). Frames beyond the fades
+// are left exactly as they were. O(F), no allocation once scratch has size F.
 void apply_foot_lock(Eigen::MatrixXd& world, const Eigen::MatrixXd& contacts, const FootRig& rig,
                      FootLockScratch& scratch);
 
@@ -84,5 +87,10 @@ void apply_foot_lock(Eigen::MatrixXd& world, const Eigen::MatrixXd& contacts, co
 void two_bone_ik(const Eigen::Vector3d& hip, const Eigen::Vector3d& knee, const Eigen::Vector3d& ankle,
                  const Eigen::Vector3d& target, const Eigen::Vector3d& bend_fallback,
                  Eigen::Vector3d* new_knee, Eigen::Vector3d* new_ankle);
+// The same with the bend direction taken from `pole` (its part perpendicular to hip-target)
+// instead of from the knee; bend_fallback where that part vanishes.
+void two_bone_ik_pole(const Eigen::Vector3d& hip, const Eigen::Vector3d& knee, const Eigen::Vector3d& ankle,
+                      const Eigen::Vector3d& target, const Eigen::Vector3d& pole, const Eigen::Vector3d& bend_fallback,
+                      Eigen::Vector3d* new_knee, Eigen::Vector3d* new_ankle);
 
 }  // namespace mostyle
