@@ -10,6 +10,7 @@
 #include "engine/io/atomic_file.h"
 #include "engine/io/csv_io.h"
 #include "engine/align/dtw.h"
+#include "engine/align/time_warp.h"
 #include "engine/io/error.h"
 #include "engine/export/export_solve.h"
 #include "engine/run/pipeline.h"
@@ -46,36 +47,100 @@ MappingOverrides load_mapping(const std::string& path) {
   return parse_mapping_overrides(read_file(path), path);
 }
 
-// Options shared by align and blend: how the pair is prepared.
+// Options shared by align and blend: how the pair is prepared and aligned.
 struct PairOptions {
   std::string a, b;
   double fps = 30.0;
   int band = -1;
+  std::string dtw = "slope";
+  std::string align_on = "auto";
+  int max_slope = 2;
+  bool closed_ends = false;
   std::string mapping_a, mapping_b;
 
   void add_to(CLI::App* cmd) {
     cmd->add_option("A", a, "BVH take A (the reference: its skeleton, units and world frame)")->required();
-    cmd->add_option("B", b, "BVH take B (retargeted onto A, warped onto A's timeline)")->required();
+    cmd->add_option("B", b, "BVH take B (retargeted onto A and aligned onto it in time)")->required();
     cmd->add_option("--fps", fps, "Working and output frame rate (0 keeps A's)")->capture_default_str();
-    cmd->add_option("--band", band, "Sakoe-Chiba band half-width for the DTW, in frames (-1: none)")
+    cmd->add_option("--dtw", dtw,
+                    "slope: slope-limited, open-ended DTW with a smooth warp; paper: the paper's plain "
+                    "end-to-end left-foot DTW")
+        ->check(CLI::IsMember({"slope", "paper"}))
+        ->capture_default_str();
+    cmd->add_option("--align-on", align_on,
+                    "What to align on: auto (left foot for locomotion, else the joints that move), left-foot, "
+                    "feet, hands or body")
+        ->check(CLI::IsMember({"auto", "left-foot", "feet", "hands", "body"}))
+        ->capture_default_str();
+    cmd->add_option("--max-slope", max_slope, "Neither take runs more than this many times faster than the other (2-4)")
+        ->capture_default_str();
+    cmd->add_flag("--closed-ends", closed_ends, "Align first frames to first and last to last (no open ends)");
+    cmd->add_option("--band", band, "--dtw paper: Sakoe-Chiba band half-width in frames (-1: none)")
         ->capture_default_str();
     cmd->add_option("--mapping-a", mapping_a, "Major-joint mapping file for A (see assets/mappings)");
     cmd->add_option("--mapping-b", mapping_b, "Major-joint mapping file for B");
   }
 
   std::shared_ptr<const PreparedPair> prepare(double* load_ms) const {
+    PrepareOptions o;
+    o.fps = fps;
+    o.align.method = parse_dtw_method(dtw);
+    o.align.on = parse_align_on(align_on);
+    o.align.band = band;
+    o.align.slope.max_slope = max_slope;
+    o.align.slope.open_ends = !closed_ends;
+    o.align.Validate();
     const auto t0 = Clock::now();
     auto clip_a = std::make_shared<const Clip>(load_clip(a));
     auto clip_b = std::make_shared<const Clip>(load_clip(b));
     *load_ms = ms_since(t0);
-    PrepareOptions o;
-    o.fps = fps;
-    o.dtw_band = band;
     o.mapping_a = load_mapping(mapping_a);
     o.mapping_b = load_mapping(mapping_b);
-    return prepare_pair(clip_a, clip_b, o);
+    auto p = prepare_pair(clip_a, clip_b, o);
+    for (const std::string& w : p->alignment.warnings) std::cerr << "mostyle: warning: " << w << "\n";
+    return p;
   }
 };
+
+Json range_json(int first, int last, double fps) {
+  return {{"first", first}, {"last", last}, {"first_s", first / fps}, {"last_s", last / fps}};
+}
+
+// The alignment's summary: what it aligned on, the matched ranges, its quality.
+Json alignment_json(const PreparedPair& p) {
+  const Alignment& al = p.alignment;
+  Json j;
+  j["method"] = dtw_method_name(al.options.method);
+  j["feature"] = align_on_name(al.feature.on);
+  j["locomotion"] = al.feature.locomotion;
+  Json joints = Json::array();
+  for (int c : al.feature.columns) joints.push_back(p.names_a[c]);
+  j["joints"] = joints;
+  j["weights"] = al.feature.weights;
+  if (al.options.method == DtwMethod::kSlope) {
+    j["max_slope"] = al.options.slope.max_slope;
+    j["open_ends"] = al.options.slope.open_ends;
+    j["end_penalty"] = al.end_penalty;
+  }
+  j["cost"] = al.cost;
+  j["typical_cost"] = al.typical_cost;
+  j["frames_a"] = p.canonical_a.local.rows();
+  j["frames_b"] = p.canonical_b.local.rows();
+  j["matched_a"] = range_json(al.a_first, al.a_last, p.fps);
+  j["matched_b"] = range_json(al.b_first, al.b_last, p.fps);
+  j["samples"] = al.warp.samples();
+  j["max_cost_ratio"] = al.cost_ratio.size() ? al.cost_ratio.maxCoeff() : 0.0;
+  j["slope_range"] = {al.slope.size() ? al.slope.minCoeff() : 0.0, al.slope.size() ? al.slope.maxCoeff() : 0.0};
+  Json poor = Json::array();
+  for (const auto& [first, last] : al.poor)
+    poor.push_back({{"a", {al.warp.a[first], al.warp.a[last]}}, {"b", {al.warp.b[first], al.warp.b[last]}},
+                    {"cost_ratio", al.cost_ratio.segment(first, last - first + 1).mean()}});
+  j["poor_matches"] = poor;
+  j["warnings"] = al.warnings;
+  return j;
+}
+
+Json vector_json(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
 
 }  // namespace
 
@@ -116,38 +181,49 @@ void add_dtw_command(CLI::App& app, std::function<int()>* run) {
 }
 
 void add_align_command(CLI::App& app, std::function<int()>* run) {
-  auto* cmd = app.add_subcommand("align", "Left-foot DTW of two BVH takes");
+  auto* cmd = app.add_subcommand("align", "Align two BVH takes in time (left foot for walks, moving joints otherwise)");
   auto pair = std::make_shared<PairOptions>();
   auto json = std::make_shared<bool>(false);
   pair->add_to(cmd);
-  cmd->add_flag("--json", *json, "Print the cost, path and the left-foot signals before and after warping");
+  cmd->add_flag("--json", *json,
+                "Print the alignment: feature, matched ranges, path, warp, per-sample quality and the feature "
+                "signals before and after warping");
   cmd->callback([=] {
     *run = [=] {
       double load_ms = 0;
       const auto p = pair->prepare(&load_ms);
-      const Eigen::MatrixXd warped = warp_onto(p->signal_b, p->path, static_cast<int>(p->signal_a.rows()));
+      const Alignment& al = p->alignment;
       if (*json) {
         Json j;
         j["a"] = pair->a;
         j["b"] = pair->b;
         j["fps"] = p->fps;
-        j["joint_a"] = p->names_a[p->left_ankle];
-        j["joint_b"] = p->names_b[p->left_ankle];
-        j["frames_a"] = p->signal_a.rows();
-        j["frames_b"] = p->signal_b.rows();
-        j["cost"] = p->path.cost;
-        j["path"] = path_json(p->path);
-        j["signal_a"] = rows_json(p->signal_a);
-        j["signal_b"] = rows_json(p->signal_b);
-        j["signal_b_warped"] = rows_json(warped);
+        j["alignment"] = alignment_json(*p);
+        Json path = Json::array();
+        for (const auto& [i, k] : al.path) path.push_back({i, k});
+        j["path"] = path;
+        Json warp = Json::array();
+        for (int u = 0; u < al.warp.samples(); ++u) warp.push_back({al.warp.a[u], al.warp.b[u]});
+        j["warp"] = warp;
+        j["cost_ratio"] = vector_json(al.cost_ratio);
+        j["slope"] = vector_json(al.slope);
+        j["signal_a"] = rows_json(al.feature.a);
+        j["signal_b"] = rows_json(al.feature.b);
+        j["signal_a_warped"] = rows_json(sample_rows(al.feature.a, al.warp.a));
+        j["signal_b_warped"] = rows_json(sample_rows(al.feature.b, al.warp.b));
         j["timings_ms"] = {{"load", load_ms}, {"preprocess", p->times.preprocess_ms}, {"dtw", p->times.dtw_ms}};
         std::cout << j.dump() << "\n";
       } else {
-        std::cout << "left foot: " << p->names_a[p->left_ankle] << " / " << p->names_b[p->left_ankle] << "\n"
-                  << "frames: " << p->signal_a.rows() << " / " << p->signal_b.rows() << " at "
+        std::string joints;
+        for (int c : al.feature.columns) joints += (joints.empty() ? "" : ", ") + p->names_a[c];
+        std::cout << "aligned on: " << align_on_name(al.feature.on) << " (" << joints << "), "
+                  << dtw_method_name(al.options.method) << " DTW\n"
+                  << "frames: " << p->canonical_a.local.rows() << " / " << p->canonical_b.local.rows() << " at "
                   << number(p->fps) << " fps\n"
-                  << "dtw cost: " << number(p->path.cost) << " (A's units), path of " << p->path.steps.size()
-                  << " steps, " << number(p->times.dtw_ms) << " ms\n";
+                  << "matched: A " << al.a_first << "-" << al.a_last << ", B " << al.b_first << "-" << al.b_last
+                  << "\n"
+                  << "dtw cost: " << number(al.cost) << " (A's units), path of " << al.path.size() << " steps, "
+                  << number(p->times.dtw_ms) << " ms\n";
       }
       return 0;
     };
@@ -229,6 +305,8 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
     std::vector<double> component_alpha;
     bool no_limb = false;
     bool no_foot_lock = false;
+    std::string timing = "blend";
+    bool loop = false;
     std::string out, positions_out, report;
   };
   auto args = std::make_shared<Args>();
@@ -247,6 +325,12 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
       ->delimiter(',');
   cmd->add_flag("--no-limb-constraint", args->no_limb, "Skip the limb-length constraint (paper 3.7)");
   cmd->add_flag("--no-foot-lock", args->no_foot_lock, "Leave planted feet free (no foot-contact IK clean-up)");
+  cmd->add_option("--timing", args->timing,
+                  "blend: the output's timing moves from A's (alpha 0) to B's (alpha 1); a: keep A's timeline")
+      ->check(CLI::IsMember({"blend", "a"}))
+      ->capture_default_str();
+  cmd->add_flag("--loop", args->loop,
+                "Cut a seamless loop of 1 to 4 whole gait cycles (root travel per cycle kept)");
   cmd->add_option("--out", args->out, "BVH file of the blend on A's skeleton (A's channels and rotation orders)");
   cmd->add_option("--positions-out", args->positions_out,
                   "CSV frame,joint,x,y,z of the blend's final major-joint positions (after the foot lock)");
@@ -272,6 +356,8 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
       bp.swap_level = args->swap;
       bp.limb_lengths = !args->no_limb;
       bp.foot_lock = !args->no_foot_lock;
+      bp.timing_a = args->timing == "a";
+      bp.loop = args->loop;
       BlendScratch scratch;
       BlendResult result;
       blend_pair(*p, *d, bp, scratch, result);
@@ -283,7 +369,9 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
       ExportFit fit;
       if (!args->out.empty()) {
         const auto t_export = Clock::now();
-        fit = export_blend_bvh(*p, result.world, args->out).fit;
+        fit = export_blend_bvh(*p->clip_a, export_joints(*p), result.world, source_frames_in_clip(*p, result),
+                               p->fps, args->out)
+                  .fit;
         times.export_ms = ms_since(t_export);
       }
       if (!args->positions_out.empty())
@@ -303,7 +391,32 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
         r["swap"] = args->swap;
       }
       r["joints"] = p->names_a;
-      r["dtw"] = {{"cost", p->path.cost}, {"path_length", p->path.steps.size()}};
+      r["timing"] = args->timing;
+      r["dtw"] = {{"cost", p->alignment.cost}, {"path_length", p->alignment.path.size()}};
+      Json alignment = alignment_json(*p);
+      // Per output frame: where in A and B it is, how well they match there, the warp's slope.
+      Eigen::VectorXd ratio(result.sample.size()), slope(result.sample.size());
+      for (Eigen::Index k = 0; k < result.sample.size(); ++k) {
+        const Eigen::Index u = std::lround(result.sample[k]);
+        ratio[k] = p->alignment.cost_ratio[u];
+        slope[k] = p->alignment.slope[u];
+      }
+      alignment["per_frame"] = {{"source_a", vector_json(result.source_a)},
+                                {"source_b", vector_json(result.source_b)},
+                                {"cost_ratio", vector_json(ratio)},
+                                {"slope", vector_json(slope)}};
+      r["alignment"] = alignment;
+      r["duration_s"] = result.world.rows() / p->fps;
+      if (args->loop)
+        r["loop"] = {{"cycles", result.loop.cycles},
+                     {"frames", result.loop.frames()},
+                     {"seconds", result.loop.frames() / p->fps},
+                     {"cycle_seconds", result.loop.frames() / p->fps / std::max(1, result.loop.cycles)},
+                     {"begin", result.loop.begin},
+                     {"end", result.loop.end},
+                     {"travel", {result.loop.travel.x(), result.loop.travel.y()}},
+                     {"travel_distance", result.loop.travel.norm()},
+                     {"turn_removed_degrees", result.loop.turn_removed * 57.29577951308232}};
       r["reconstruction_rmse"] = {{"a", d->rmse_a}, {"b", d->rmse_b}};
       r["component_nonzero_fraction"] = {{"a", d->nonzero_a}, {"b", d->nonzero_b}};
       r["iterations"] = d->iterations;

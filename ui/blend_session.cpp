@@ -57,7 +57,18 @@ void BlendSession::load(const std::string& path_a, const std::string& path_b) {
   while (recent_.size() > kRecentFiles) recent_.pop_back();
   requested_a_ = path_a;
   requested_b_ = path_b;
-  worker_.load(path_a, path_b, PrepareOptions{});
+  worker_.load(path_a, path_b, prepare_options());
+}
+
+PrepareOptions BlendSession::prepare_options() const {
+  PrepareOptions o;
+  o.align = controls_.align;
+  return o;
+}
+
+void BlendSession::realign() {
+  if (!snapshot_->prepared) return;
+  worker_.load(snapshot_->path_a, snapshot_->path_b, prepare_options());
 }
 
 void BlendSession::request_decomposition(const EditorState& state) {
@@ -88,7 +99,7 @@ void BlendSession::start_error_sweep(const DecomposeParams& base) {
   sweep_next_ = 0;
   sweep_worker_ = std::make_unique<Worker>();  // the previous one (if any) is cancelled and joined
   sweep_worker_->decompose(sweep_params_);
-  sweep_worker_->load(snapshot_->path_a, snapshot_->path_b, PrepareOptions{});
+  sweep_worker_->load(snapshot_->path_a, snapshot_->path_b, prepare_options());
 }
 
 void BlendSession::poll_sweep() {
@@ -172,7 +183,9 @@ void BlendSession::take_up_prepared(EditorState& state) {
   Take a = make("A  " + stem(snapshot_->path_a), kColorA, p->contacts_a);
   a.path = snapshot_->path_a;
   a.warnings = snapshot_->warnings;
-  Take b = make("B  " + stem(snapshot_->path_b), kColorB, p->contacts_b_on_a);
+  // What could not be matched well is said where the takes are listed, not only in the DTW view.
+  a.warnings.insert(a.warnings.end(), p->alignment.warnings.begin(), p->alignment.warnings.end());
+  Take b = make("B  " + stem(snapshot_->path_b), kColorB, Eigen::MatrixXd());
   b.path = snapshot_->path_b;
   Take blend = make("blend", kColorBlend, Eigen::MatrixXd());
   blend.path = "(blend of A and B)";
@@ -202,13 +215,29 @@ void BlendSession::take_up_prepared(EditorState& state) {
   compute_dtw_image();
 }
 
-// Writes every take's positions from the engine's matrices with the current placement.
-// Slots across the travel: A left, the blend in the middle, B right.
+// Writes every take's positions from the engine's matrices with the current placement, all on
+// the blend's timeline: A and B are shown where the blend is in each of them (BlendResult
+// source_a, source_b), so the three stay in step whatever the timing. Before the first blend,
+// the warp's own samples. Slots across the travel: A left, the blend in the middle, B right.
 void BlendSession::place(EditorState& state) {
   const PreparedPair* p = snapshot_->prepared.get();
   if (p == nullptr || state.takes.size() != 3) return;
+  const TimeWarp& warp = p->alignment.warp;
+  const Eigen::VectorXd& at_a = has_blend_ ? blend_.source_a : warp.a;
+  const Eigen::VectorXd& at_b = has_blend_ ? blend_.source_b : warp.b;
+  sample_rows(p->world_a, at_a, shown_a_);
+  sample_rows(p->world_b_placed, at_b, shown_b_);
+  const int joints = static_cast<int>(p->majors.size());
+  auto nearest = [](const Eigen::MatrixXd& contacts, const Eigen::VectorXd& at) {
+    Eigen::MatrixXd out(at.size(), contacts.cols());
+    for (Eigen::Index k = 0; k < at.size(); ++k)
+      out.row(k) = contacts.row(std::clamp<Eigen::Index>(std::lround(at[k]), 0, contacts.rows() - 1));
+    return out;
+  };
+  state.takes[kTakeA].contacts = joint_contacts(nearest(p->contacts_a, at_a), p->feet, joints);
+  state.takes[kTakeB].contacts = joint_contacts(nearest(p->contacts_b, at_b), p->feet, joints);
   const double slots[3] = {-1.0, 1.0, 0.0};  // A, B, blend
-  const Eigen::MatrixXd* sources[3] = {&p->world_a, &p->world_b_on_a, has_blend_ ? &blend_.world : &p->world_a};
+  const Eigen::MatrixXd* sources[3] = {&shown_a_, &shown_b_, has_blend_ ? &blend_.world : &shown_a_};
   for (int t = 0; t < 3; ++t) {
     const Eigen::Vector3d offset = shift_ + (state.view.overlay ? 0.0 : slots[t] * spacing_) * side_;
     Eigen::MatrixXd& out = state.takes[static_cast<size_t>(t)].positions;
@@ -232,7 +261,10 @@ void BlendSession::update_blend(EditorState& state) {
     }
     params.swap_level = d->params.basic_motions > 0 ? std::clamp(controls_.swap_level, 0, d->params.basic_motions - 1) : 0;
     params.foot_lock = controls_.foot_lock;
+    params.timing_a = controls_.timing_a;
+    params.loop = controls_.loop;
     const bool changed = d != blended_decomposed_ || params.alpha != blended_params_.alpha ||
+                         params.timing_a != blended_params_.timing_a || params.loop != blended_params_.loop ||
                          params.component_alpha != blended_params_.component_alpha ||
                          params.swap_level != blended_params_.swap_level || params.foot_lock != blended_params_.foot_lock;
     if (changed) {
@@ -295,10 +327,13 @@ void BlendSession::wait_idle(EditorState& state) {
 void BlendSession::compute_dtw_image() {
   dtw_image_ = DtwCostImage();
   const PreparedPair* p = snapshot_->prepared.get();
-  if (p == nullptr || p->signal_a.rows() == 0 || p->signal_b.rows() == 0) return;
+  if (p == nullptr) return;
+  const Eigen::MatrixXd& fa = p->alignment.feature.a;
+  const Eigen::MatrixXd& fb = p->alignment.feature.b;
+  if (fa.rows() == 0 || fb.rows() == 0) return;
   DtwCostImage& img = dtw_image_;
-  img.frames_a = static_cast<int>(p->signal_a.rows());
-  img.frames_b = static_cast<int>(p->signal_b.rows());
+  img.frames_a = static_cast<int>(fa.rows());
+  img.frames_b = static_cast<int>(fb.rows());
   img.rows = std::min(img.frames_a, DtwCostImage::kMaxCells);
   img.cols = std::min(img.frames_b, DtwCostImage::kMaxCells);
   img.cost.resize(img.rows, img.cols);
@@ -306,7 +341,7 @@ void BlendSession::compute_dtw_image() {
     const int i = std::min(img.frames_a - 1, static_cast<int>((r + 0.5) * img.frames_a / img.rows));
     for (int c = 0; c < img.cols; ++c) {
       const int j = std::min(img.frames_b - 1, static_cast<int>((c + 0.5) * img.frames_b / img.cols));
-      img.cost(r, c) = static_cast<float>((p->signal_a.row(i) - p->signal_b.row(j)).norm());
+      img.cost(r, c) = static_cast<float>((fa.row(i) - fb.row(j)).norm());
     }
   }
   const float top = img.cost.maxCoeff();
@@ -326,7 +361,8 @@ bool BlendSession::export_bvh(const std::string& path) {
   }
   const auto t0 = Clock::now();
   try {
-    ExportResult r = export_blend_bvh(*p, blend_.world, path);
+    ExportResult r = export_blend_bvh(*p->clip_a, export_joints(*p), blend_.world, source_frames_in_clip(*p, blend_),
+                                      p->fps, path);
     export_ms_ = ms_since(t0);
     char fit[96];
     std::snprintf(fit, sizeof fit, " (%d frames, fit max %.3g)", r.clip.frames(), r.fit.max);

@@ -5,8 +5,8 @@
 // in the same frame). Loads and decompositions only ever go to the worker: nothing here blocks,
 // except wait_idle(), for tests and screenshots.
 //
-// The three takes it keeps in EditorState::takes, all on A's aligned timeline (A's frames at the
-// working rate): [0] A (world_a), [1] B warped onto A (world_b_on_a), [2] the blend.
+// The three takes it keeps in EditorState::takes, all on the blend's timeline (its output frames
+// at the working rate): [0] A and [1] B where the blend is in each, [2] the blend.
 #include <cstdint>
 #include <deque>
 #include <memory>
@@ -30,6 +30,9 @@ struct SessionControls {
   std::vector<double> basic_sparsities;  // per level, resized to m
   int swap_level = 0;                    // paper mode with m > 0: the level taken from B
   bool foot_lock = true;
+  AlignmentOptions align;                // what the takes are aligned on and how (a change re-aligns)
+  bool timing_a = false;                 // keep A's timeline instead of blending the timing
+  bool loop = false;                     // cut a seamless loop of whole gait cycles
   int selected_component = -1;           // components view; -1: none
   int dtw_coordinate = 1;                // DTW view: 0 lateral, 1 height, 2 forward
 };
@@ -61,6 +64,10 @@ class BlendSession {
   // Asks the worker for a pair (b empty: A with itself). What was loaded stays until it succeeds;
   // a failure shows up as error() on a later poll(). Remembers both paths in recent().
   void load(const std::string& path_a, const std::string& path_b);
+  // Aligns the loaded pair again with controls().align (the worker re-prepares, then decomposes).
+  void realign();
+  // The preparation options the controls ask for.
+  PrepareOptions prepare_options() const;
   // Asks for a decomposition with state.parameters (k, sparsity) and controls().
   void request_decomposition(const EditorState& state);
 
@@ -131,6 +138,7 @@ class BlendSession {
   BlendParams blended_params_;
   BlendScratch scratch_;
   BlendResult blend_;
+  Eigen::MatrixXd shown_a_, shown_b_;  // A and B on the blend's timeline (before placement)
   bool has_blend_ = false;
   std::string blend_error_;
   double blend_ms_ = 0.0;

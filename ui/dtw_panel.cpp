@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include <imgui.h>
 
@@ -30,11 +31,13 @@ ImU32 heat(float v) {
   return ImGui::ColorConvertFloat4ToU32(ImVec4(0.08f + 0.9f * r, 0.06f + g, std::max(0.05f, b), 1.0f));
 }
 
-// The path step for A frame i (the first one; the path is monotone).
-std::pair<int, int> match_of(const DtwPath& path, int i) {
-  auto it = std::lower_bound(path.steps.begin(), path.steps.end(), std::make_pair(i, -1));
-  if (it == path.steps.end()) return path.steps.empty() ? std::make_pair(i, 0) : path.steps.back();
-  return *it;
+// The output frame showing warp sample u (the first at or after it), or -1 without a blend.
+int output_frame_at(const BlendResult* blend, double u) {
+  if (blend == nullptr || blend->sample.size() == 0) return -1;
+  const double* begin = blend->sample.data();
+  const double* end = begin + blend->sample.size();
+  const double* it = std::lower_bound(begin, end, u);
+  return static_cast<int>(std::min<std::ptrdiff_t>(it - begin, blend->sample.size() - 1));
 }
 }  // namespace
 
@@ -45,53 +48,77 @@ void DtwPanel::draw(EditorState& state) {
     return;
   }
   const PreparedPair* p = session_.snapshot().prepared.get();
-  if (p == nullptr || p->signal_a.rows() < 2 || p->signal_b.rows() < 2 || p->path.steps.empty()) {
+  if (p == nullptr || p->alignment.feature.a.rows() < 2 || p->alignment.feature.b.rows() < 2 ||
+      p->alignment.path.empty()) {
     ImGui::TextColored(ImVec4(0.6f, 0.62f, 0.66f, 1.0f), "No pair aligned yet.");
     ImGui::End();
     return;
   }
+  const Alignment& al = p->alignment;
+  const Eigen::MatrixXd& sa = al.feature.a;
+  const Eigen::MatrixXd& sb = al.feature.b;
+  const TimeWarp& warp = al.warp;
+  const BlendResult* blend = session_.blend();
   SessionControls& c = session_.controls();
-  const int fa = static_cast<int>(p->signal_a.rows()), fb = static_cast<int>(p->signal_b.rows());
+  const int fa = static_cast<int>(sa.rows()), fb = static_cast<int>(sb.rows()), samples = warp.samples();
   ImGui::SetNextItemWidth(110.0f);
-  ImGui::Combo("left foot", &c.dtw_coordinate, "lateral x\0height y\0forward z\0");
+  ImGui::Combo("##coordinate", &c.dtw_coordinate, "lateral x\0height y\0forward z\0");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Which coordinate of the aligned joint the plots show");
   ImGui::SameLine();
-  ImGui::TextColored(ImVec4(0.6f, 0.62f, 0.66f, 1.0f), "cost %.3g  %d x %d", p->path.cost, fa, fb);
-  const int col = std::clamp(c.dtw_coordinate, 0, static_cast<int>(p->signal_a.cols()) - 1);
+  std::string joints;
+  for (int k : al.feature.columns) joints += (joints.empty() ? "" : ", ") + p->names_a[static_cast<size_t>(k)];
+  ImGui::TextColored(ImVec4(0.6f, 0.62f, 0.66f, 1.0f), "aligned on %s (%s)  matched A %d-%d, B %d-%d",
+                     align_on_name(al.feature.on), joints.c_str(), al.a_first, al.a_last, al.b_first, al.b_last);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("%s DTW. Frames outside the matched ranges (shaded) are left out of the blend.\n"
+                      "%d x %d frames at %.0f fps, cost %.3g",
+                      dtw_method_name(al.options.method), fa, fb, p->fps, al.cost);
+  for (const std::string& w : al.warnings) ImGui::TextColored(ImVec4(0.95f, 0.7f, 0.3f, 1.0f), "%s", w.c_str());
+  const int col = std::clamp(c.dtw_coordinate, 0, static_cast<int>(sa.cols()) - 1);
 
-  const double lo = std::min(p->signal_a.col(col).minCoeff(), p->signal_b.col(col).minCoeff());
-  double hi = std::max(p->signal_a.col(col).maxCoeff(), p->signal_b.col(col).maxCoeff());
+  const double lo = std::min(sa.col(col).minCoeff(), sb.col(col).minCoeff());
+  double hi = std::max(sa.col(col).maxCoeff(), sb.col(col).maxCoeff());
   if (hi <= lo) hi = lo + 1.0;
   const double span = hi - lo;
-  const int current = state.takes.empty() ? 0 : frame_at(state.takes[kTakeA], state.playback.time_s);
+  const int current = state.takes.empty() ? 0 : frame_at(state.takes[kTakeBlend], state.playback.time_s);
+  const double current_u = blend != nullptr && current < blend->sample.size() ? blend->sample[current] : 0.0;
   const float line = ImGui::GetTextLineHeightWithSpacing();
   const float plot_h = std::max(50.0f, (ImGui::GetContentRegionAvail().y - 2.0f * line) * 0.36f);
-  int hovered_i = -1;
+  double hovered_u = -1.0;  // a warp sample under the mouse
 
-  // Before warping: A above, B below, each on its own timeline; matched frames joined.
+  // Before warping: A above, B below, each on its own timeline; matched frames joined, the
+  // matched ranges shaded.
   ImGui::TextUnformatted("before warping: matched frames joined");
   const int frames = std::max(fa, fb);
   PlotArea before = begin_plot("##before", -1.0f, plot_h, 0.0, frames - 1, lo - 1.15 * span, hi + 0.1 * span);
   {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     dl->PushClipRect(before.min, before.max, true);
-    const size_t n = p->path.steps.size();
+    dl->AddRectFilled(before.to_screen(al.a_first, hi + 0.1 * span), before.to_screen(al.a_last, lo - 0.05 * span),
+                      IM_COL32(230, 140, 60, 28));
+    dl->AddRectFilled(before.to_screen(al.b_first, hi - 1.1 * span), before.to_screen(al.b_last, lo - 1.15 * span),
+                      IM_COL32(80, 150, 240, 28));
+    const size_t n = al.path.size();
     const size_t stride = std::max<size_t>(1, n / kMatchLines);
     for (size_t s = 0; s < n; s += stride) {
-      const auto [i, j] = p->path.steps[s];
-      dl->AddLine(before.to_screen(i, p->signal_a(i, col)), before.to_screen(j, p->signal_b(j, col) - 1.05 * span),
+      const auto [i, j] = al.path[s];
+      dl->AddLine(before.to_screen(i, sa(i, col)), before.to_screen(j, sb(j, col) - 1.05 * span),
                   IM_COL32(150, 155, 165, 90), 1.0f);
     }
     dl->PopClipRect();
   }
-  plot_line(before, fa, [&](int i, double* x, double* y) { *x = i; *y = p->signal_a(i, col); }, color_a());
-  plot_line(before, fb, [&](int j, double* x, double* y) { *x = j; *y = p->signal_b(j, col) - 1.05 * span; }, color_b());
+  plot_line(before, fa, [&](int i, double* x, double* y) { *x = i; *y = sa(i, col); }, color_a());
+  plot_line(before, fb, [&](int j, double* x, double* y) { *x = j; *y = sb(j, col) - 1.05 * span; }, color_b());
   plot_legend(before, 0, "A", color_a());
   plot_legend(before, 1, "B", color_b());
-  if (before.hovered) hovered_i = std::clamp(static_cast<int>(std::lround(before.x_at(ImGui::GetIO().MousePos.x))), 0, fa - 1);
-  if (before.clicked && hovered_i >= 0) state.playback.time_s = (hovered_i + 0.5) / p->fps;
+  if (before.hovered) {
+    const int i = std::clamp(static_cast<int>(std::lround(before.x_at(ImGui::GetIO().MousePos.x))), 0, fa - 1);
+    const double* at = std::lower_bound(warp.a.data(), warp.a.data() + samples, double(i));
+    hovered_u = static_cast<double>(std::min<std::ptrdiff_t>(at - warp.a.data(), samples - 1));
+  }
 
-  // Below: the cost matrix (A frames down, B frames across, the optimal path and the playhead
-  // on it) beside the signals after warping (B resampled onto A's timeline, on top of A).
+  // Below: the cost matrix (A frames down, B frames across, the path and the playhead on it)
+  // beside the signals after warping, over the warp's samples, with the match quality under them.
   const float side = std::clamp(std::min(ImGui::GetContentRegionAvail().y - line - 4.0f,
                                          0.5f * ImGui::GetContentRegionAvail().x),
                                 60.0f, 600.0f);
@@ -106,38 +133,56 @@ void DtwPanel::draw(EditorState& state) {
       for (int k = 0; k < img.cols; ++k)
         dl->AddRectFilled(ImVec2(cost.min.x + k * cw, cost.min.y + r * ch),
                           ImVec2(cost.min.x + (k + 1) * cw + 0.5f, cost.min.y + (r + 1) * ch + 0.5f), heat(img.cost(r, k)));
-    const size_t n = p->path.steps.size();
-    plot_line(cost, static_cast<int>(n),
-              [&](int s, double* x, double* y) {
-                *x = p->path.steps[static_cast<size_t>(s)].second + 0.5;
-                *y = p->path.steps[static_cast<size_t>(s)].first + 0.5;
+    plot_line(cost, samples,
+              [&](int u, double* x, double* y) {
+                *x = warp.b[u] + 0.5;
+                *y = warp.a[u] + 0.5;
               },
               IM_COL32(255, 255, 255, 230), 2.0f);
-    const auto [ci, cj] = match_of(p->path, current);
-    dl->AddCircleFilled(cost.to_screen(cj + 0.5, ci + 0.5), 4.5f, color_blend());
+    const int u = std::clamp(static_cast<int>(std::lround(current_u)), 0, samples - 1);
+    dl->AddCircleFilled(cost.to_screen(warp.b[u] + 0.5, warp.a[u] + 0.5), 4.5f, color_blend());
   }
   ImGui::EndGroup();
   ImGui::SameLine();
   ImGui::BeginGroup();
-  ImGui::TextUnformatted("after warping");
-  PlotArea after = begin_plot("##after", -1.0f, side, 0.0, fa - 1, lo - 0.08 * span, hi + 0.08 * span);
-  plot_line(after, fa, [&](int i, double* x, double* y) { *x = i; *y = p->signal_a(i, col); }, color_a(), 2.0f);
-  if (p->warp.size() == fa)
-    plot_line(after, fa, [&](int i, double* x, double* y) { *x = i; *y = sample(p->signal_b, p->warp[i], col); },
-              color_b());
-  plot_vline(after, current, IM_COL32(255, 255, 255, 140));
+  ImGui::TextUnformatted("after warping, and the match quality");
+  const float quality_h = std::max(24.0f, 0.18f * side);
+  PlotArea after = begin_plot("##after", -1.0f, side - quality_h - 4.0f, 0.0, samples - 1, lo - 0.08 * span,
+                              hi + 0.08 * span);
+  plot_line(after, samples, [&](int u, double* x, double* y) { *x = u; *y = sample(sa, warp.a[u], col); }, color_a(), 2.0f);
+  plot_line(after, samples, [&](int u, double* x, double* y) { *x = u; *y = sample(sb, warp.b[u], col); }, color_b());
+  plot_vline(after, current_u, IM_COL32(255, 255, 255, 140));
   plot_legend(after, 0, "A", color_a());
-  plot_legend(after, 1, "B warped", color_b());
-  if (after.hovered) hovered_i = std::clamp(static_cast<int>(std::lround(after.x_at(ImGui::GetIO().MousePos.x))), 0, fa - 1);
-  if (after.clicked && hovered_i >= 0) state.playback.time_s = (hovered_i + 0.5) / p->fps;
+  plot_legend(after, 1, "B", color_b());
+  if (after.hovered) hovered_u = std::clamp(after.x_at(ImGui::GetIO().MousePos.x), 0.0, samples - 1.0);
+  // Local cost over the path's typical cost: 1 is a typical match, above kPoorMatchRatio poor.
+  const double top = std::max(kPoorMatchRatio * 1.5, al.cost_ratio.size() ? al.cost_ratio.maxCoeff() : 1.0);
+  PlotArea quality = begin_plot("##quality", -1.0f, quality_h, 0.0, samples - 1, 0.0, top);
+  {
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    for (const auto& [first, last] : al.poor)
+      dl->AddRectFilled(quality.to_screen(first, top), quality.to_screen(last, 0.0), IM_COL32(230, 80, 60, 70));
+    dl->AddLine(quality.to_screen(0, kPoorMatchRatio), quality.to_screen(samples - 1, kPoorMatchRatio),
+                IM_COL32(230, 80, 60, 120), 1.0f);
+  }
+  plot_line(quality, samples, [&](int u, double* x, double* y) { *x = u; *y = al.cost_ratio[u]; },
+            IM_COL32(220, 220, 225, 220));
+  plot_vline(quality, current_u, IM_COL32(255, 255, 255, 140));
+  if (quality.hovered) hovered_u = std::clamp(quality.x_at(ImGui::GetIO().MousePos.x), 0.0, samples - 1.0);
   ImGui::EndGroup();
   if (cost.hovered) {
-    hovered_i = std::clamp(static_cast<int>(cost.y_at(ImGui::GetIO().MousePos.y)), 0, fa - 1);
-    if (cost.clicked) state.playback.time_s = (hovered_i + 0.5) / p->fps;
+    const int i = std::clamp(static_cast<int>(cost.y_at(ImGui::GetIO().MousePos.y)), 0, fa - 1);
+    const double* at = std::lower_bound(warp.a.data(), warp.a.data() + samples, double(i));
+    hovered_u = static_cast<double>(std::min<std::ptrdiff_t>(at - warp.a.data(), samples - 1));
   }
-  if (hovered_i >= 0) {
-    const auto [i, j] = match_of(p->path, hovered_i);
-    ImGui::SetTooltip("A frame %d  <->  B frame %d\nclick: jump there", i, j);
+  if (hovered_u >= 0) {
+    const int u = std::clamp(static_cast<int>(std::lround(hovered_u)), 0, samples - 1);
+    ImGui::SetTooltip("A frame %.1f  <->  B frame %.1f\nmatch cost %.2f x the typical, B runs %.2f x A's speed\n"
+                      "click: jump there",
+                      warp.a[u], warp.b[u], al.cost_ratio[u], al.slope[u]);
+    const bool clicked = before.clicked || after.clicked || quality.clicked || cost.clicked;
+    const int frame = output_frame_at(blend, hovered_u);
+    if (clicked && frame >= 0) state.playback.time_s = (frame + 0.5) / p->fps;
   }
   ImGui::End();
 }

@@ -43,7 +43,35 @@ void ParametersPanel::draw(EditorState& state) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("shared: one component set for A and B (alpha 1 is B)\npaper: separate decompositions, "
                       "cores blended (paper 3.6)");
+  int align_on = static_cast<int>(c.align.on);
+  if (ImGui::Combo("align on", &align_on, "auto\0left foot\0feet\0hands\0body\0")) {
+    c.align.on = static_cast<AlignOn>(align_on);
+    s.realign();
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("What the two takes are matched in time on.\nauto: the left foot for walks and runs, "
+                      "the joints that move most for other actions.");
+  int method = c.align.method == DtwMethod::kSlope ? 0 : 1;
+  if (ImGui::Combo("time warp", &method, "smooth\0paper\0")) {
+    c.align.method = method == 0 ? DtwMethod::kSlope : DtwMethod::kPaper;
+    s.realign();
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("smooth: neither take runs more than twice as fast as the other, extra material at the ends "
+                      "is left out, and poses are sampled between frames (no jumps).\npaper: the paper's plain "
+                      "left-foot DTW, end to end, as published.");
   ImGui::Checkbox("foot lock", &c.foot_lock);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Pin planted feet in place so the blend does not skate");
+  ImGui::SameLine();
+  ImGui::Checkbox("A's timing", &c.timing_a);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Off: the blend's timing moves from A's (alpha 0) to B's (alpha 1), as style does.\n"
+                      "On: keep A's timeline, to stay in sync with other material.");
+  ImGui::SameLine();
+  ImGui::Checkbox("seamless loop", &c.loop);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Cut 1 to 4 whole gait cycles that play seamlessly on repeat (root travel kept).\n"
+                      "Playback and export then use the loop.");
   if (ImGui::RadioButton("side by side", !state.view.overlay)) state.view.overlay = false;
   ImGui::SameLine();
   if (ImGui::RadioButton("overlay", state.view.overlay)) state.view.overlay = true;

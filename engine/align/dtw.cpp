@@ -17,6 +17,58 @@
 // linear for takes of any length at about twice the time.
 
 namespace mostyle {
+namespace detail {
+
+void check_series(const Eigen::MatrixXd& x, const char* name) {
+  if (x.rows() == 0 || x.cols() == 0) {
+    std::ostringstream s;
+    s << "DTW input " << name << " is empty (" << x.rows() << " frames x " << x.cols()
+      << " features); both series need at least one frame and one feature.";
+    throw InputError(s.str());
+  }
+  if (x.rows() >= std::numeric_limits<int>::max()) {
+    std::ostringstream s;
+    s << "DTW input " << name << " has " << x.rows() << " frames, more than DTW can index.";
+    throw InputError(s.str());
+  }
+  for (Eigen::Index k = 0; k < x.cols(); ++k)
+    for (Eigen::Index i = 0; i < x.rows(); ++i)
+      if (!std::isfinite(x(i, k))) {
+        std::ostringstream s;
+        s << "DTW input " << name << " has a non-finite value (" << x(i, k) << ") at frame " << i
+          << ", feature " << k << ".";
+        throw InputError(s.str());
+      }
+}
+
+// Local costs of frame i of a against frames [j, j + len) of b, into c[0, len). Eigen's array
+// expressions vectorise this part; the sum runs over features in order, as a scalar loop would.
+void local_costs(const Eigen::MatrixXd& a, int i, const Eigen::MatrixXd& b, int j, int len,
+                 double* c) {
+  Eigen::Map<Eigen::ArrayXd> out(c, len);
+  const auto diff = [&](Eigen::Index k) { return b.col(k).segment(j, len).array() - a(i, k); };
+  switch (b.cols()) {
+    case 1:
+      out = diff(0).square().sqrt();
+      break;
+    case 2:
+      out = (diff(0).square() + diff(1).square()).sqrt();
+      break;
+    case 3:
+      out = (diff(0).square() + diff(1).square() + diff(2).square()).sqrt();
+      break;
+    default:
+      out = diff(0).square();
+      for (Eigen::Index k = 1; k < b.cols(); ++k) out += diff(k).square();
+      out = out.sqrt();
+  }
+}
+
+}  // namespace detail
+
+using detail::check_series;
+using detail::local_costs;
+
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -76,28 +128,6 @@ int least_connecting_band(int n, int m) {
       lo = mid + 1;
   }
   return lo;
-}
-
-void check_series(const Eigen::MatrixXd& x, const char* name) {
-  if (x.rows() == 0 || x.cols() == 0) {
-    std::ostringstream s;
-    s << "DTW input " << name << " is empty (" << x.rows() << " frames x " << x.cols()
-      << " features); both series need at least one frame and one feature.";
-    throw InputError(s.str());
-  }
-  if (x.rows() >= std::numeric_limits<int>::max()) {
-    std::ostringstream s;
-    s << "DTW input " << name << " has " << x.rows() << " frames, more than DTW can index.";
-    throw InputError(s.str());
-  }
-  for (Eigen::Index k = 0; k < x.cols(); ++k)
-    for (Eigen::Index i = 0; i < x.rows(); ++i)
-      if (!std::isfinite(x(i, k))) {
-        std::ostringstream s;
-        s << "DTW input " << name << " has a non-finite value (" << x(i, k) << ") at frame " << i
-          << ", feature " << k << ".";
-        throw InputError(s.str());
-      }
 }
 
 Band checked_band(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, const DtwOptions& o) {
@@ -167,29 +197,6 @@ struct Progress {
     report_progress(control, static_cast<float>(std::min(1.0, done / total)));
   }
 };
-
-// Local costs of frame i of a against frames [j, j + len) of b, into c[0, len). Eigen's array
-// expressions vectorise this part; the sum runs over features in order, as a scalar loop would.
-void local_costs(const Eigen::MatrixXd& a, int i, const Eigen::MatrixXd& b, int j, int len,
-                 double* c) {
-  Eigen::Map<Eigen::ArrayXd> out(c, len);
-  const auto diff = [&](Eigen::Index k) { return b.col(k).segment(j, len).array() - a(i, k); };
-  switch (b.cols()) {
-    case 1:
-      out = diff(0).square().sqrt();
-      break;
-    case 2:
-      out = (diff(0).square() + diff(1).square()).sqrt();
-      break;
-    case 3:
-      out = (diff(0).square() + diff(1).square() + diff(2).square()).sqrt();
-      break;
-    default:
-      out = diff(0).square();
-      for (Eigen::Index k = 1; k < b.cols(); ++k) out += diff(k).square();
-      out = out.sqrt();
-  }
-}
 
 double local_cost(const Eigen::MatrixXd& a, int i, const Eigen::MatrixXd& b, int j) {
   double sum = 0.0;

@@ -51,4 +51,12 @@ Eigen::VectorXd warp_map(const DtwPath& path, int n);
 // matches a frame j >= m. O(n*d + path length).
 Eigen::MatrixXd warp_onto(const Eigen::MatrixXd& b, const DtwPath& path, int n);
 
+namespace detail {
+// Shared with slope_dtw.cpp. Throws InputError naming `name` when x is empty, too long to index
+// or holds a non-finite value.
+void check_series(const Eigen::MatrixXd& x, const char* name);
+// Local costs |a_i - b_j| of frame i of a against frames [j, j + len) of b, into c[0, len).
+void local_costs(const Eigen::MatrixXd& a, int i, const Eigen::MatrixXd& b, int j, int len, double* c);
+}  // namespace detail
+
 }  // namespace mostyle

@@ -220,6 +220,8 @@ void check_targets(const Clip& clip, const std::vector<int>& joints, const Eigen
   if (!world.allFinite()) throw InputError(std::string(where) + ": the target positions are not all finite numbers");
 }
 
+ExportResult solve_on(Clip sampled, const Clip& clip, const std::vector<int>& joints, const Eigen::MatrixXd& world);
+
 }  // namespace
 
 ExportResult solve_export(const Clip& clip, const std::vector<int>& joints, const Eigen::MatrixXd& world,
@@ -227,8 +229,23 @@ ExportResult solve_export(const Clip& clip, const std::vector<int>& joints, cons
   check_targets(clip, joints, world, "export");
   // The same rule as extract_major_take, so frames line up with the blend's.
   const bool same_rate = fps <= 0 || std::abs(fps - clip.fps()) < 1e-9;
+  return solve_on(same_rate ? clip : resample_clip(clip, fps), clip, joints, world);
+}
+
+ExportResult solve_export_at(const Clip& clip, const std::vector<int>& joints, const Eigen::MatrixXd& world,
+                             const Eigen::VectorXd& at, double fps) {
+  check_targets(clip, joints, world, "export");
+  if (at.size() != world.rows())
+    throw InputError("export: " + std::to_string(world.rows()) + " frames of positions for " +
+                     std::to_string(at.size()) + " source times");
+  return solve_on(sample_clip(clip, at, fps), clip, joints, world);
+}
+
+namespace {
+
+ExportResult solve_on(Clip sampled, const Clip& clip, const std::vector<int>& joints, const Eigen::MatrixXd& world) {
   ExportResult result;
-  result.clip = same_rate ? clip : resample_clip(clip, fps);
+  result.clip = std::move(sampled);
   Clip& out = result.clip;
   const Clip source = out;  // A's values at the output rate; `out` is overwritten frame by frame
   if (world.rows() != out.frames())
@@ -408,14 +425,11 @@ ExportResult solve_export(const Clip& clip, const std::vector<int>& joints, cons
   return result;
 }
 
-ExportResult export_blend(const PreparedPair& prepared, const Eigen::MatrixXd& world) {
-  std::vector<int> joints;
-  for (int major : prepared.majors) joints.push_back(prepared.mapping_a.joint[major]);
-  return solve_export(*prepared.clip_a, joints, world, prepared.fps);
-}
+}  // namespace
 
-ExportResult export_blend_bvh(const PreparedPair& prepared, const Eigen::MatrixXd& world, const std::string& path) {
-  ExportResult result = export_blend(prepared, world);
+ExportResult export_blend_bvh(const Clip& clip, const std::vector<int>& joints, const Eigen::MatrixXd& world,
+                              const Eigen::VectorXd& at, double fps, const std::string& path) {
+  ExportResult result = solve_export_at(clip, joints, world, at, fps);
   write_bvh_file(result.clip, path);
   return result;
 }

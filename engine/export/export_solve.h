@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "engine/io/clip.h"
-#include "engine/run/pipeline.h"
 
 namespace mostyle {
 
@@ -54,14 +53,16 @@ struct ExportResult {
 ExportResult solve_export(const Clip& clip, const std::vector<int>& joints, const Eigen::MatrixXd& world,
                           double fps);
 
-// The same for a blend: A's clip and major joints from `prepared`, world: the blend's final
-// positions (BlendResult::world, F x 3M at prepared.fps).
-ExportResult export_blend(const PreparedPair& prepared, const Eigen::MatrixXd& world);
+// The same with A's rotations taken at fractional frames `at` of A's clip (one per row of
+// world; kinematics/resample.h sample_clip), frame time 1 / fps: a blend whose timing is not A's
+// (align/timing.h) takes A's rotations where the blend is in A's motion.
+ExportResult solve_export_at(const Clip& clip, const std::vector<int>& joints, const Eigen::MatrixXd& world,
+                             const Eigen::VectorXd& at, double fps);
 
-// export_blend, then the clip written atomically to `path` (bvh_io.h write_bvh_file). What the
-// CLI's --out and the editor's export call. Throws InputError when the file cannot be written.
-ExportResult export_blend_bvh(const PreparedPair& prepared, const Eigen::MatrixXd& world,
-                              const std::string& path);
+// solve_export_at, then the clip written atomically to `path` (bvh_io.h write_bvh_file). What
+// the CLI's --out and the editor's export call. Throws InputError when the file cannot be written.
+ExportResult export_blend_bvh(const Clip& clip, const std::vector<int>& joints, const Eigen::MatrixXd& world,
+                              const Eigen::VectorXd& at, double fps, const std::string& path);
 
 // max and mean distance between the clip's joints (FK at every frame) and `world`'s columns.
 // Throws InputError on a shape mismatch. O(F x joints).

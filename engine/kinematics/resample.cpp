@@ -47,9 +47,24 @@ Clip resample_clip(const Clip& clip, double fps) {
   if (!(frames * std::max<double>(1, clip.motion.cols()) <= kMaxOutputValues))
     throw InputError(clip.source + ": resampling " + number(duration) + " s to " + number(fps) +
                      " fps gives " + number(frames) + " frames, too many");
-  const int m = static_cast<int>(frames);
-  out.motion.resize(m, clip.motion.cols());
+  Eigen::VectorXd at(static_cast<int>(frames));
+  for (int f = 0; f < at.size(); ++f) at[f] = std::min(f * source_fps / fps, static_cast<double>(n - 1));
+  return sample_clip(clip, at, fps);
+}
 
+Clip sample_clip(const Clip& clip, const Eigen::VectorXd& at, double fps) {
+  if (!(fps > 0.0) || !std::isfinite(fps))
+    throw InputError("expected a positive frame rate, found " + number(fps));
+  const int n = clip.frames();
+  if (n == 0) throw InputError(clip.source + ": cannot sample a clip with no frames");
+  if (!(double(at.size()) * std::max<double>(1, clip.motion.cols()) <= kMaxOutputValues))
+    throw InputError(clip.source + ": sampling " + number(double(at.size())) + " frames is too many");
+  Clip out;
+  out.source = clip.source;
+  out.skeleton = clip.skeleton;
+  out.frame_time = 1.0 / fps;
+  const int m = static_cast<int>(at.size());
+  out.motion.resize(m, clip.motion.cols());
   struct Rotating {
     EulerOrder order;
     int columns[3];  // motion columns of the three rotation channels, in order
@@ -70,7 +85,8 @@ Clip resample_clip(const Clip& clip, double fps) {
   }
 
   for (int f = 0; f < m; ++f) {
-    const double u = std::min(f * source_fps / fps, static_cast<double>(n - 1));
+    if (!std::isfinite(at[f])) throw InputError(clip.source + ": cannot sample at a non-finite frame");
+    const double u = std::clamp(at[f], 0.0, static_cast<double>(n - 1));
     int i0 = static_cast<int>(std::floor(u + kTimeEpsilon));
     i0 = std::min(i0, n - 1);
     const int i1 = std::min(i0 + 1, n - 1);

@@ -1,5 +1,7 @@
 #pragma once
 // Changing a clip's frame rate.
+#include <Eigen/Core>
+
 #include "engine/io/clip.h"
 
 namespace mostyle {
@@ -12,5 +14,11 @@ namespace mostyle {
 // time is not a positive number or the result would hold over 1e8 values.
 // O(output frames * channels).
 Clip resample_clip(const Clip& clip, double fps);
+
+// The clip sampled at fractional frames `at` of its own (clamped to its range), interpolated as
+// resample_clip does, with frame time 1 / fps: what a time warp needs (take A's rotations at a
+// blend's output frames). Throws InputError on no frames, a bad fps, a non-finite frame or too
+// many values. O(at.size() * channels).
+Clip sample_clip(const Clip& clip, const Eigen::VectorXd& at, double fps);
 
 }  // namespace mostyle

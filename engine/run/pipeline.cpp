@@ -8,6 +8,8 @@
 #include "engine/kinematics/limb_length.h"
 #include "engine/prepare/major_take.h"
 #include "engine/prepare/retarget.h"
+#include "engine/align/timing.h"
+#include <algorithm>
 
 namespace mostyle {
 namespace {
@@ -18,15 +20,15 @@ double ms_since(Clock::time_point t0) {
 }
 
 constexpr double kMaxFps = 1000.0;
+constexpr double kPi = 3.14159265358979323846;
 
-Eigen::MatrixXd column_block(const Eigen::MatrixXd& m, int joint) { return m.middleCols(3 * joint, 3); }
 
 }  // namespace
 
 void PrepareOptions::Validate() const {
   if (!(fps >= 0) || fps > kMaxFps || !std::isfinite(fps))
     throw InputError("expected a frame rate from 1 to 1000 (or 0 to keep A's), found " + std::to_string(fps));
-  if (dtw_band < -1) throw InputError("expected a DTW band of 0 or more frames, found " + std::to_string(dtw_band));
+  align.Validate();
   foot_contacts.Validate();
 }
 
@@ -89,44 +91,63 @@ std::shared_ptr<const PreparedPair> prepare_pair(std::shared_ptr<const Clip> a,
   apply_limb_lengths(p->world_b, p->parents, p->lengths_a);
   p->canonical_a = to_canonical(p->world_a, 0, leg[0], leg[3]);
   p->canonical_b = to_canonical(p->world_b, 0, leg[0], leg[3]);
-  p->signal_a = column_block(p->canonical_a.local, p->left_ankle);
-  p->signal_b = column_block(p->canonical_b.local, p->left_ankle);
+  p->feet = make_foot_rig(p->majors, p->lengths_a, fps, options.foot_contacts);
   p->times.preprocess_ms = ms_since(t0);
   report_progress(control, 0.3f);
 
   const auto t1 = Clock::now();
-  DtwOptions dtw;
-  dtw.band = options.dtw_band;
-  p->path = align_dtw(p->signal_a, p->signal_b, dtw, control);
+  FeatureJoints feature_joints;
+  feature_joints.left_ankle = p->left_ankle;
+  feature_joints.right_ankle = p->right_ankle;
+  feature_joints.left_wrist = column(MajorJoint::kLeftWrist);
+  feature_joints.right_wrist = column(MajorJoint::kRightWrist);
+  p->alignment = align_takes(p->canonical_a, p->canonical_b, feature_joints, p->feet.leg_length, fps, options.align,
+                             control);
   p->times.dtw_ms = ms_since(t1);
   report_progress(control, 0.8f);
 
   const auto t2 = Clock::now();
-  const int frames = static_cast<int>(p->world_a.rows());
-  p->warp = warp_map(p->path, frames);
-  p->local_b = warp_onto(p->canonical_b.local, p->path, frames);
-  const Eigen::MatrixXd ground_b = warp_onto(p->canonical_b.ground, p->path, frames);
-  const Eigen::VectorXd heading_b = warp_onto(Eigen::MatrixXd(p->canonical_b.heading), p->path, frames);
-  p->steps_a = root_steps(p->canonical_a);
-  // B's root on A's timeline: no teleport where the warp skips B frames, and facings that blend
-  // along the short arc (canonical_frame.h).
-  p->steps_b = match_turns(limit_warped_steps(root_steps(ground_b, heading_b), p->warp, kMaxWarpSpeedup), p->steps_a);
-  p->normalization = fit_normalization(p->canonical_a.local, p->local_b);
-  p->x_a = normalize(p->canonical_a.local, p->normalization.mean_a, p->normalization.scale);
-  p->x_b = normalize(p->local_b, p->normalization.mean_b, p->normalization.scale);
-  Eigen::MatrixXd ground;
-  Eigen::VectorXd heading;
-  integrate_root(p->steps_b, p->canonical_a.ground.row(0).transpose(), p->canonical_a.heading[0], &ground,
-                 &heading);
-  to_world(p->local_b, ground, heading, &p->world_b_on_a);
-  apply_limb_lengths(p->world_b_on_a, p->parents, p->lengths_a);  // the warp interpolates positions
-  p->ground_b_on_a = ground;
-  // Foot contacts of each take on its own motion, B's carried onto A's timeline by the warp, so
-  // blend_pair only mixes them (foot_contact.h).
-  p->feet = make_foot_rig(p->majors, p->lengths_a, fps, options.foot_contacts);
+  const TimeWarp& warp = p->alignment.warp;
+  // B moved rigidly so that where the warp starts, B stands where A stands and faces where A
+  // faces: both takes then walk from one place, and the blend's root lies between them.
+  const Eigen::MatrixXd ground_a0 = sample_rows(p->canonical_a.ground, warp.a.head(1));
+  const Eigen::MatrixXd ground_b0 = sample_rows(p->canonical_b.ground, warp.b.head(1));
+  const double turn = sample_rows(p->canonical_a.heading, warp.a.head(1))(0, 0) -
+                      sample_rows(p->canonical_b.heading, warp.b.head(1))(0, 0);
+  const double c = std::cos(turn), s = std::sin(turn);
+  Eigen::MatrixXd placed_ground(p->canonical_b.ground.rows(), 2);
+  for (Eigen::Index t = 0; t < placed_ground.rows(); ++t) {
+    const double x = p->canonical_b.ground(t, 0) - ground_b0(0, 0), z = p->canonical_b.ground(t, 1) - ground_b0(0, 1);
+    placed_ground(t, 0) = ground_a0(0, 0) + c * x + s * z;
+    placed_ground(t, 1) = ground_a0(0, 1) - s * x + c * z;
+  }
+  const Eigen::VectorXd placed_heading = p->canonical_b.heading.array() + turn;
+  to_world(p->canonical_b.local, placed_ground, placed_heading, &p->world_b_placed);
+
+  // Both takes on the warp's samples: poses, root paths and steps, contacts.
+  p->ground_a = sample_rows(p->canonical_a.ground, warp.a);
+  p->ground_b = sample_rows(placed_ground, warp.b);
+  const Eigen::VectorXd heading_a = sample_rows(p->canonical_a.heading, warp.a);
+  p->start_heading = heading_a[0];
+  const Eigen::VectorXd heading_b = sample_rows(placed_heading, warp.b);
+  p->steps_a = root_steps(p->ground_a, heading_a);
+  // The paper's warp may skip B frames from one sample to the next; its root must not teleport
+  // (canonical_frame.h). The smooth warp never skips, so there this changes nothing.
+  p->steps_b = limit_warped_steps(root_steps(p->ground_b, heading_b), warp.b, kMaxWarpSpeedup);
+  // Whole turns that keep B's facing within about half a turn of A's (match_turns), kept apart:
+  // blend_pair spreads each over a moment so a blend in between turns smoothly where it flips.
+  p->turn_flips = match_turns(p->steps_b, p->steps_a).col(2) - p->steps_b.col(2);
+  const Eigen::MatrixXd local_a = sample_rows(p->canonical_a.local, warp.a);
+  const Eigen::MatrixXd local_b = sample_rows(p->canonical_b.local, warp.b);
+  p->normalization = fit_normalization(local_a, local_b);
+  p->x_a = normalize(local_a, p->normalization.mean_a, p->normalization.scale);
+  p->x_b = normalize(local_b, p->normalization.mean_b, p->normalization.scale);
+  // Foot contacts of each take on its own motion, carried onto the warp, so blend_pair only
+  // mixes them (foot_contact.h).
   p->contacts_a = detect_foot_contacts(p->world_a, p->feet);
   p->contacts_b = detect_foot_contacts(p->world_b, p->feet);
-  p->contacts_b_on_a = carry_contacts(p->contacts_b, p->warp);
+  p->warped_contacts_a = carry_contacts(p->contacts_a, warp.a);
+  p->warped_contacts_b = carry_contacts(p->contacts_b, warp.b);
   p->foot_sliding_a = foot_sliding(p->world_a, p->contacts_a, p->feet);
   p->foot_sliding_b = foot_sliding(p->world_b, p->contacts_b, p->feet);
   p->times.preprocess_ms += ms_since(t2);
@@ -201,22 +222,51 @@ std::shared_ptr<const DecomposedPair> decompose_pair(const PreparedPair& prepare
   return d;
 }
 
+namespace {
+
+// Rows of x at fractional rows u, nearest row (for 0/1 contacts).
+void nearest_rows(const Eigen::MatrixXd& x, const Eigen::VectorXd& u, Eigen::MatrixXd& out) {
+  out.resize(u.size(), x.cols());
+  const double last = static_cast<double>(x.rows() - 1);
+  for (Eigen::Index k = 0; k < u.size(); ++k) out.row(k) = x.row(static_cast<Eigen::Index>(std::lround(std::clamp(u[k], 0.0, last))));
+}
+
+// v linearly interpolated at fractional index u (clamped).
+double value_at(const Eigen::VectorXd& v, double u) {
+  const Eigen::Index last = v.size() - 1;
+  if (last <= 0) return v[0];
+  const double at = std::clamp(u, 0.0, double(last));
+  const Eigen::Index i = std::min<Eigen::Index>(static_cast<Eigen::Index>(at), last - 1);
+  const double f = at - double(i);
+  return (1 - f) * v[i] + f * v[i + 1];
+}
+
+}  // namespace
+
 void blend_pair(const PreparedPair& p, const DecomposedPair& d, const BlendParams& params,
                 BlendScratch& s, BlendResult& out) {
   if (!std::isfinite(params.alpha)) throw InputError("expected a finite alpha");
   const auto t0 = Clock::now();
   const double alpha = params.alpha;
   const Normalization& n = p.normalization;
+  const TimeWarp& warp = p.alignment.warp;
   const bool affine = d.params.mode == BlendMode::kShared && params.component_alpha.empty();
-  if (affine) {
-    // local = (W_A + alpha (W_B - W_A)) C scale + mean_a + alpha (mean_b - mean_a), folded.
-    s.local.resize(d.local_a.rows(), d.local_a.cols());
-    s.local.noalias() = d.local_a + alpha * d.local_delta;
-  } else if (d.params.mode == BlendMode::kShared) {  // one alpha per component
+  // The output timeline: output frame k sits at warp sample u[k] (align/timing.h).
+  double timing = params.timing_a ? 0.0 : alpha;
+  if (d.params.mode == BlendMode::kShared && !params.component_alpha.empty()) {
     if (static_cast<int>(params.component_alpha.size()) != d.components())
       throw InputError("expected " + std::to_string(d.components()) + " component alphas, found " +
                        std::to_string(params.component_alpha.size()));
     s.alphas = Eigen::Map<const Eigen::VectorXd>(params.component_alpha.data(), d.components());
+    if (!params.timing_a) timing = s.alphas.mean();
+  }
+  blended_timeline(warp, timing, s.u);
+  s.sampler.set(s.u, warp.samples());
+  if (affine) {
+    // local = (W_A + alpha (W_B - W_A)) C scale + mean_a + alpha (mean_b - mean_a), folded, at
+    // the output frames only.
+    s.sampler.apply_add(d.local_a, d.local_delta, alpha, out.local);
+  } else if (d.params.mode == BlendMode::kShared) {  // one alpha per component
     synthesize_shared(d.shared_synthesis, s.alphas, s.x);
   } else if (d.params.basic_motions > 0) {
     synthesize_basic_motions(d.basic_synthesis, params.swap_level, alpha, s.x);
@@ -229,26 +279,73 @@ void blend_pair(const PreparedPair& p, const DecomposedPair& d, const BlendParam
   const auto t1 = Clock::now();
   if (!affine) {
     s.mean.noalias() = (1 - alpha) * n.mean_a + alpha * n.mean_b;
-    s.local.resize(s.x.rows(), s.x.cols());
-    s.local.noalias() = s.x * n.scale;
-    s.local.rowwise() += s.mean;
+    s.samples.resize(s.x.rows(), s.x.cols());
+    s.samples.noalias() = s.x * n.scale;
+    s.samples.rowwise() += s.mean;
+    s.sampler.apply(s.samples, out.local);
   }
+  // The root on the warp's samples, then at the output frames.
   s.steps.resize(p.steps_a.rows(), 3);
   s.steps.noalias() = (1 - alpha) * p.steps_a + alpha * p.steps_b;
-  integrate_blended_root(s.steps, p.canonical_a.ground, p.ground_b_on_a, alpha, p.canonical_a.heading[0], p.fps,
-                         params.root_pull_seconds, &s.ground, &s.heading);
-  to_world(s.local, s.ground, s.heading, &out.world);
+  // B's whole-turn flips (prepare_pair), each spread over 2h + 1 samples, h growing to half a
+  // second at alpha 1/2: at alpha 0 and 1 a whole turn is invisible, in between a flip in one
+  // frame would turn the body by 2 pi alpha at once.
+  const int h = static_cast<int>(std::lround(0.5 * p.fps * 4.0 * alpha * (1.0 - alpha)));
+  const Eigen::Index samples = s.steps.rows();
+  for (Eigen::Index r = 0; r < samples; ++r) {
+    const double flip = p.turn_flips[r];
+    if (flip == 0.0) continue;
+    const Eigen::Index width = std::min<Eigen::Index>(2 * h + 1, samples);
+    const Eigen::Index first = std::clamp<Eigen::Index>(r - h, 0, samples - width);
+    for (Eigen::Index t = first; t < first + width; ++t) s.steps(t, 2) += alpha * flip / double(width);
+  }
+  integrate_blended_root(s.steps, p.ground_a, p.ground_b, alpha, p.start_heading, p.fps,
+                         params.root_pull_seconds, &s.ground_u, &s.heading_u);
+  s.sampler.apply(s.ground_u, s.ground);
+  s.heading.resize(s.u.size());
+  // Headings along the shorter arc between samples: where the blended turns carry a whole turn
+  // (match_turns), a plain interpolation would spin the body round within one frame.
+  for (Eigen::Index k = 0; k < s.u.size(); ++k) {
+    const int i = s.sampler.row[k];
+    const double h0 = s.heading_u[i];
+    const double h1 = s.heading_u.size() > 1 ? s.heading_u[i + 1] : h0;
+    s.heading[k] = h0 + s.sampler.frac[k] * std::remainder(h1 - h0, 2.0 * kPi);
+  }
+  // Foot contacts mixed with the same alpha (the mean one when each component has its own).
+  const double contact_alpha = d.params.mode == BlendMode::kShared && !params.component_alpha.empty() ? s.alphas.mean() : alpha;
+  blend_contacts(p.warped_contacts_a, p.warped_contacts_b, contact_alpha, s.contacts_u);
+  nearest_rows(s.contacts_u, s.u, out.contacts);
+  out.loop = LoopCut();
+  if (params.loop) {
+    out.loop = find_loop(out.contacts, out.local, s.heading);
+    close_loop(out.loop, out.local, s.ground, s.heading, out.contacts);
+    s.u = s.u.segment(out.loop.begin, out.loop.frames()).eval();
+  }
+  out.sample = s.u;
+  out.source_a.resize(s.u.size());
+  out.source_b.resize(s.u.size());
+  for (Eigen::Index k = 0; k < s.u.size(); ++k) {
+    out.source_a[k] = value_at(warp.a, s.u[k]);
+    out.source_b[k] = value_at(warp.b, s.u[k]);
+  }
+  to_world(out.local, s.ground, s.heading, &out.world);
   if (params.limb_lengths) apply_limb_lengths(out.world, p.parents, p.lengths_a);
-  // Foot lock (beyond the paper): contacts mixed with the same alpha (the mean one when each
-  // component has its own), planted ankles pinned by two-bone IK, which keeps bone lengths.
-  double contact_alpha = alpha;
-  if (d.params.mode == BlendMode::kShared && !params.component_alpha.empty()) contact_alpha = s.alphas.mean();
-  blend_contacts(p.contacts_a, p.contacts_b_on_a, contact_alpha, out.contacts);
+  // Foot lock (beyond the paper): planted ankles pinned by two-bone IK, which keeps bone lengths.
   out.foot_sliding_raw = foot_sliding(out.world, out.contacts, p.feet);
   if (params.foot_lock) apply_foot_lock(out.world, out.contacts, p.feet, s.foot);
   out.foot_sliding_cleaned = params.foot_lock ? foot_sliding(out.world, out.contacts, p.feet) : out.foot_sliding_raw;
   out.limb_length_max_error = max_bone_length_error(out.world, p.parents, p.lengths_a);
   out.postprocess_ms = ms_since(t1);
+}
+
+std::vector<int> export_joints(const PreparedPair& p) {
+  std::vector<int> joints;
+  for (int major : p.majors) joints.push_back(p.mapping_a.joint[major]);
+  return joints;
+}
+
+Eigen::VectorXd source_frames_in_clip(const PreparedPair& p, const BlendResult& blend) {
+  return blend.source_a * (p.clip_a->fps() / p.fps);
 }
 
 }  // namespace mostyle

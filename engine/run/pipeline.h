@@ -15,8 +15,9 @@
 #include "engine/prepare/canonical_frame.h"
 #include "engine/io/clip.h"
 #include "engine/decompose/decomposition.h"
-#include "engine/align/dtw.h"
+#include "engine/align/alignment.h"
 #include "engine/post/foot_contact.h"
+#include "engine/post/loop.h"
 #include "engine/io/job_control.h"
 #include "engine/prepare/major_skeleton.h"
 #include "engine/prepare/normalize.h"
@@ -26,11 +27,11 @@ namespace mostyle {
 
 struct PrepareOptions {
   double fps = 30.0;      // working and output frame rate; 0 keeps A's own rate
-  int dtw_band = -1;      // Sakoe-Chiba half-width in frames, -1: none
+  AlignmentOptions align;  // DTW method, feature, slope limit, open ends (align/alignment.h)
   MappingOverrides mapping_a;  // empty: name rules only
   MappingOverrides mapping_b;
   FootContactOptions foot_contacts;  // detection thresholds and the lock's fade (foot_contact.h)
-  void Validate() const;  // throws InputError on a bad fps or band
+  void Validate() const;  // throws InputError on a bad fps or alignment option
 };
 
 struct StageTimes {
@@ -38,7 +39,8 @@ struct StageTimes {
          postprocess_ms = 0, export_ms = 0;
 };
 
-// Everything up to the decomposition. F = A's frames at the working rate, M = shared joints.
+// Everything up to the decomposition. Fa, Fb = the takes' frames at the working rate, U = the
+// time warp's samples (the common timeline both takes are sampled on), M = shared joints.
 struct PreparedPair {
   std::shared_ptr<const Clip> clip_a, clip_b;  // as loaded
   MajorMapping mapping_a, mapping_b;
@@ -49,31 +51,31 @@ struct PreparedPair {
   std::vector<double> lengths_a;           // A's bone lengths per joint, A's units
   int left_ankle = -1, right_ankle = -1, left_toe = -1, right_toe = -1;  // columns, -1: absent
 
-  Eigen::MatrixXd world_a;          // F x 3M: A in its world frame, A's units
-  Eigen::MatrixXd world_b;          // Fb x 3M: B retargeted to A's bones, B's own timeline
-  CanonicalMotion canonical_a;      // F frames
+  Eigen::MatrixXd world_a;          // Fa x 3M: A in its world frame, A's units
+  Eigen::MatrixXd world_b;          // Fb x 3M: B retargeted to A's bones, B's own timeline and world
+  Eigen::MatrixXd world_b_placed;   // Fb x 3M: the same moved rigidly so its matched start is A's
+  CanonicalMotion canonical_a;      // Fa frames
   CanonicalMotion canonical_b;      // Fb frames (B's own timeline)
-  Eigen::MatrixXd signal_a;         // F x 3: A's left-foot DTW signal (canonical frame)
-  Eigen::MatrixXd signal_b;         // Fb x 3: B's
-  DtwPath path;                     // A frames i to B frames j
-  Eigen::VectorXd warp;             // F: B's (fractional) frame for each A frame
-  Eigen::MatrixXd local_b;          // F x 3M: B's canonical pose warped onto A's timeline
-  Eigen::MatrixXd steps_a, steps_b; // F x 3: root steps (B warped)
+  Alignment alignment;              // B onto A: feature, path, warp (U samples), matched ranges
+  // On the warp's U samples (A at warp.a, B at warp.b):
+  Eigen::MatrixXd steps_a, steps_b;    // U x 3 root steps
+  Eigen::VectorXd turn_flips;          // U: whole turns (multiples of 2 pi) match_turns adds to B's turns
+  Eigen::MatrixXd ground_a, ground_b;  // U x 2 hips ground paths, B's placed at A's start
+  double start_heading = 0.0;          // A's heading at the warp's first sample, radians
   Normalization normalization;
-  Eigen::MatrixXd x_a, x_b;         // F x 3M normalized motion matrices
-  Eigen::MatrixXd world_b_on_a;     // F x 3M: warped B walking from A's start (for display)
-  Eigen::MatrixXd ground_b_on_a;    // F x 2: its hips' ground path (x, z)
+  Eigen::MatrixXd x_a, x_b;            // U x 3M normalized motion matrices
   // Foot contacts (foot_contact.h), columns left and right foot, 1 planted, 0 not.
   FootRig feet;                     // leg columns, leg length, thresholds
-  Eigen::MatrixXd contacts_a;       // F x 2: A's, from world_a
+  Eigen::MatrixXd contacts_a;       // Fa x 2: A's, from world_a
   Eigen::MatrixXd contacts_b;       // Fb x 2: B's on its own timeline, from world_b
-  Eigen::MatrixXd contacts_b_on_a;  // F x 2: B's carried onto A's timeline with `warp`
+  Eigen::MatrixXd warped_contacts_a, warped_contacts_b;  // U x 2: each carried onto the warp
   double foot_sliding_a = 0, foot_sliding_b = 0;  // A's units per second (B retargeted)
   StageTimes times;                 // load (if read here), preprocess, dtw
+  int samples() const { return alignment.warp.samples(); }
 };
 
 // Prepares clips already loaded. Throws InputError (missing joints, no frames, degenerate hips)
-// or Cancelled. Cost: FK O(frames x joints) and DTW O(F x Fb).
+// or Cancelled. Cost: FK O(frames x joints) and DTW O(Fa x Fb).
 std::shared_ptr<const PreparedPair> prepare_pair(std::shared_ptr<const Clip> a,
                                                  std::shared_ptr<const Clip> b,
                                                  const PrepareOptions& options,
@@ -103,7 +105,7 @@ struct DecomposedPair {
   // One alpha for every component: the blend's local pose (before the root, limb lengths and
   // foot lock) is local_a + alpha * local_delta, W_A C and W_B C de-normalized once here, so that
   // a slider move is one pass over F x 3M values instead of two products.
-  Eigen::MatrixXd local_a, local_delta;  // F x 3M, A's units
+  Eigen::MatrixXd local_a, local_delta;  // U x 3M, A's units, on the warp's samples
   // Paper mode.
   Decomposition paper_a, paper_b;
   PaperSynthesis paper_synthesis;
@@ -131,31 +133,49 @@ struct BlendParams {
   bool limb_lengths = true;              // paper 3.7
   double root_pull_seconds = kRootPullSeconds;  // keeps the path between A's and B's (canonical_frame.h)
   bool foot_lock = true;                 // pin planted feet after the limb lengths (foot_contact.h)
+  // Timing (align/timing.h): false blends A's and B's timing with alpha (alpha 0 plays at A's
+  // timing and length, 1 at B's); true keeps A's timeline, for a blend that must stay in sync.
+  bool timing_a = false;
+  bool loop = false;                     // cut a seamless loop of whole gait cycles (post/loop.h)
 };
 
 // Buffers blend_pair reuses between calls so a slider move allocates nothing.
 struct BlendScratch {
-  Eigen::MatrixXd x, local, ground, steps;
-  Eigen::VectorXd heading, alphas;
+  Eigen::MatrixXd x, samples, ground, steps, ground_u, contacts_u;
+  Eigen::VectorXd heading, heading_u, alphas, u;
   Eigen::RowVectorXd mean;
+  RowSampler sampler;  // the output frames' places on the warp
   FootLockScratch foot;
 };
 
 struct BlendResult {
-  Eigen::MatrixXd world;            // F x 3M: the blend in A's world frame, A's units
+  Eigen::MatrixXd world;            // K x 3M: the blend in A's world frame, A's units, K output frames
+  Eigen::VectorXd source_a;         // K: A's frame (fractional, working rate) each output frame shows
+  Eigen::VectorXd source_b;         // K: B's frame
+  Eigen::VectorXd sample;           // K: the warp sample (fractional) each output frame is at
+  Eigen::MatrixXd local;            // K x 3M: the blend's canonical poses (before root and clean-up)
   double limb_length_max_error = 0; // after the constraint (before it when off), A's units
-  Eigen::MatrixXd contacts;         // F x 2: the blend's foot contacts (A's and B's blended)
+  Eigen::MatrixXd contacts;         // K x 2: the blend's foot contacts (A's and B's blended)
   double foot_sliding_raw = 0;      // foot sliding before the foot lock, A's units per second
   double foot_sliding_cleaned = 0;  // after it (the same as raw when the lock is off)
+  LoopCut loop;                     // with BlendParams::loop: where the loop was cut (output frames before the cut)
   double synthesize_ms = 0, postprocess_ms = 0;
 };
 
-// Synthesizes one blend (paper 3.6) and post-processes it (de-normalize, blended root
-// trajectory from A's start, limb lengths, foot lock). Throws InputError on a bad alpha or swap level.
-// Cost O(F x 3M) in shared mode with one alpha (about 0.5 ms for a minute at 30 fps), else
-// O(F x k x 3M); allocation-free once `scratch` and `out` have the right sizes (per-component
-// alphas allocate one 2k x 3M matrix).
+// Synthesizes one blend (paper 3.6) on the warp's samples, plays it along the blended timeline
+// and post-processes it (de-normalize, blended root trajectory from A's start, limb lengths,
+// foot lock, and the loop when asked). Throws InputError on a bad alpha or swap level, or a loop
+// asked of a blend without two foot strikes. Cost O((U + K) x 3M) in shared mode with one alpha
+// (about 0.5 ms for a minute at 30 fps), else O(U x k x 3M); allocation-free once `scratch`
+// and `out` have the right sizes (per-component alphas allocate one 2k x 3M matrix, a loop
+// allocates).
 void blend_pair(const PreparedPair& prepared, const DecomposedPair& decomposed,
                 const BlendParams& params, BlendScratch& scratch, BlendResult& out);
+
+// A's joint index of each major column (for export).
+std::vector<int> export_joints(const PreparedPair& prepared);
+// The blend's output frames in A's own clip frames (for export's A rotations): source_a scaled
+// from the working rate to A's rate.
+Eigen::VectorXd source_frames_in_clip(const PreparedPair& prepared, const BlendResult& blend);
 
 }  // namespace mostyle

@@ -7,6 +7,8 @@
 #include <random>
 
 #include "engine/align/dtw.h"
+#include "engine/align/slope_dtw.h"
+#include "engine/align/time_warp.h"
 
 namespace {
 
@@ -66,7 +68,33 @@ void BM_DtwCost(benchmark::State& state) {
   set_cells(state, double(n) * m);
 }
 
+// The default alignment (slope-limited, open ends, automatic end penalty: two passes).
+// Arg 2: the back-pointer budget in MB (0: checkpoints every few rows, the bounded-memory path).
+void BM_AlignSlopeDtw(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0)), m = static_cast<int>(state.range(1));
+  const Eigen::MatrixXd a = foot_signal(n, 1.0, 1), b = foot_signal(m, 1.1, 2);
+  mostyle::SlopeDtwOptions o;
+  if (state.range(2) >= 0) o.pointer_budget_bytes = static_cast<std::size_t>(state.range(2)) << 20;
+  for (auto _ : state) benchmark::DoNotOptimize(mostyle::align_slope_dtw(a, b, o));
+  set_cells(state, 2.0 * n * m);  // two passes
+}
+
+// The path turned into the smooth fractional warp.
+void BM_SmoothWarp(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const Eigen::MatrixXd a = foot_signal(n, 1.0, 1), b = foot_signal(n, 1.1, 2);
+  const mostyle::SlopeDtwPath path = mostyle::align_slope_dtw(a, b);
+  for (auto _ : state) benchmark::DoNotOptimize(mostyle::smooth_warp(path.steps));
+  state.counters["samples"] = mostyle::smooth_warp(path.steps).samples();
+}
+
 }  // namespace
+
+BENCHMARK(BM_AlignSlopeDtw)->Args({1800, 1800, -1})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_AlignSlopeDtw)->Args({1800, 1800, 0})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_AlignSlopeDtw)->Args({20000, 18000, -1})->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_AlignSlopeDtw)->Args({20000, 18000, 16})->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SmoothWarp)->Arg(1800)->Unit(benchmark::kMicrosecond);
 
 BENCHMARK(BM_AlignDtw)->Args({2000, 2000, -1})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_AlignDtw)->Args({2000, 2000, 100})->Unit(benchmark::kMillisecond);

@@ -57,7 +57,7 @@ void BM_ExportSolveCmu(benchmark::State& state) {
   const Pair p = cmu_pair(&ok);
   if (!ok) return state.SkipWithError("no CMU motions");
   for (auto _ : state) {
-    const mostyle::ExportResult r = mostyle::export_blend(*p.prepared, p.blend.world);
+    const mostyle::ExportResult r = mostyle::solve_export_at(*p.prepared->clip_a, mostyle::export_joints(*p.prepared), p.blend.world, mostyle::source_frames_in_clip(*p.prepared, p.blend), p.prepared->fps);
     benchmark::DoNotOptimize(r.clip.motion.data());
   }
   state.counters["frames"] = static_cast<double>(p.blend.world.rows());
@@ -70,7 +70,7 @@ void BM_ExportSolveBandai(benchmark::State& state) {
   const Pair p = load_pair(kShared + "/bandai_walk_normal.bvh", kShared + "/bandai_walk_tired.bvh", &ok);
   if (!ok) return state.SkipWithError("../shared/motions is absent");
   for (auto _ : state) {
-    const mostyle::ExportResult r = mostyle::export_blend(*p.prepared, p.blend.world);
+    const mostyle::ExportResult r = mostyle::solve_export_at(*p.prepared->clip_a, mostyle::export_joints(*p.prepared), p.blend.world, mostyle::source_frames_in_clip(*p.prepared, p.blend), p.prepared->fps);
     benchmark::DoNotOptimize(r.clip.motion.data());
   }
   state.counters["frames"] = static_cast<double>(p.blend.world.rows());

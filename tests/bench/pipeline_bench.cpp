@@ -1,7 +1,9 @@
 // Speed of the pair pipeline on a minute of motion at 30 fps (1800 frames, 20 major joints):
 // prepare_pair (resample, FK, retarget, canonical frame, DTW), decompose_pair (shared mode, k = 10)
-// and blend_pair for one alpha, the slider move, which must stay well under 1 ms and allocate
-// nothing once its scratch has the right size (counted here by wrapping malloc).
+// and blend_pair for one alpha, the slider move, which must stay well under 1 ms. With the timing
+// blended the output's length changes with alpha, and its buffers are resized then (the
+// allocations are counted here by wrapping malloc); with A's timing it allocates nothing once
+// its scratch has the right size.
 //
 // Data: two CMU takes from ../shared/motions (marching and happy, 27 s and 25 s at 120 fps)
 // played slower so that each lasts a minute, then resampled to 30 fps by the pipeline: 1800 frames.
@@ -107,13 +109,16 @@ void BM_DecomposePair(benchmark::State& state) {
 }
 BENCHMARK(BM_DecomposePair)->Unit(benchmark::kMillisecond);
 
-// One slider move. Arg 0: everything (synthesis, root, limb lengths, foot lock); 1: no foot lock;
-// 2: no foot lock and no limb lengths.
+// One slider move. Arg 0: everything (synthesis, timing, root, limb lengths, foot lock); 1: no
+// foot lock; 2: no foot lock and no limb lengths; 3: everything on A's timeline (--timing a);
+// 4: everything and a seamless loop cut.
 void BM_BlendPair(benchmark::State& state) {
   const Pair& pair = minute_pair();
   BlendParams params;
-  params.foot_lock = state.range(0) < 1;
-  params.limb_lengths = state.range(0) < 2;
+  params.foot_lock = state.range(0) < 1 || state.range(0) >= 3;
+  params.limb_lengths = state.range(0) < 2 || state.range(0) >= 3;
+  params.timing_a = state.range(0) == 3;
+  params.loop = state.range(0) == 4;
   BlendScratch scratch;
   BlendResult out;
   blend_pair(*pair.prepared, *pair.decomposed, params, scratch, out);  // sizes the scratch
@@ -128,13 +133,13 @@ void BM_BlendPair(benchmark::State& state) {
     postprocess_ms += out.postprocess_ms;
   }
   const long allocations = g_allocations.load() - before;
-  if (allocations != 0) state.SkipWithError("blend_pair allocated with a sized scratch");
-  state.counters["allocations"] = static_cast<double>(allocations);
+  if (allocations != 0 && params.timing_a) state.SkipWithError("blend_pair allocated with a sized scratch");
+  state.counters["allocations_per_move"] = static_cast<double>(allocations) / std::max(1, step);
   state.counters["frames"] = static_cast<double>(out.world.rows());
   state.counters["synthesize_ms"] = synthesize_ms / std::max(1, step);
   state.counters["postprocess_ms"] = postprocess_ms / std::max(1, step);
 }
-BENCHMARK(BM_BlendPair)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_BlendPair)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Unit(benchmark::kMicrosecond);
 
 // Per-component alphas (each component its own): one 2k x 3N mixing matrix is allocated.
 void BM_BlendPairComponentAlphas(benchmark::State& state) {

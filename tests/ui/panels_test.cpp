@@ -55,14 +55,15 @@ double joint_distance(const Take& a, const Take& b, int frame, int joint) {
 
 }  // namespace
 
-TEST_CASE("the session turns a loaded pair into A, B on A's timeline and the blend") {
+TEST_CASE("the session turns a loaded pair into A, B and the blend, in step on the blend's timeline") {
   LoadedSession s;
   REQUIRE(s.session.error().empty());
   REQUIRE(s.state.takes.size() == 3);
   const PreparedPair& p = *s.session.snapshot().prepared;
+  REQUIRE(s.session.blend() != nullptr);
   for (const Take& t : s.state.takes) {
     CHECK(t.ok());
-    CHECK(t.frames() == p.world_a.rows());  // all three in step on A's aligned timeline
+    CHECK(t.frames() == s.session.blend()->world.rows());  // all three in step on the blend's timeline
     CHECK(t.positions.cols() == p.world_a.cols());
     CHECK(t.rate() == p.fps);
     CHECK(t.parents == p.parents);

@@ -302,7 +302,9 @@ Blended blend_files(const std::string& path_a, const std::string& path_b, double
 // the read-back clip's major positions.
 Eigen::MatrixXd check_blend_export(const Blended& blend) {
   const PreparedPair& p = *blend.prepared;
-  const ExportResult r = export_blend(p, blend.result.world);
+  // A's rotations where the blend is in A's motion (its own timeline, align/timing.h).
+  const ExportResult r =
+      solve_export_at(*p.clip_a, export_joints(p), blend.result.world, source_frames_in_clip(p, blend.result), p.fps);
   const Clip back = parse_bvh(format_bvh(r.clip), "blend.bvh");
   REQUIRE(back.frames() == blend.result.world.rows());
   std::vector<int> joints;
@@ -325,7 +327,8 @@ TEST_CASE("a real take paired with itself exports back to itself, fingers includ
   // CMU 142 (assets): near-gimbal-lock root, zero-length bones, fingers and thumbs at 120 fps.
   auto a = std::make_shared<const Clip>(read_bvh_file(test::asset("motions/cmu142_walk_happy.bvh")));
   const auto p = prepare_pair(a, a, PrepareOptions{});
-  const ExportResult r = export_blend(*p, p->world_a);  // the blend at alpha 0, before synthesis
+  // The blend at alpha 0 before synthesis: A itself, on A's own frames.
+  const ExportResult r = solve_export(*p->clip_a, export_joints(*p), p->world_a, p->fps);
   const Clip a30 = resample_clip(*a, p->fps);
   const double h = guess_units(*a).height;
   CHECK(r.fit.max <= kExactFit * h);
@@ -369,7 +372,9 @@ TEST_CASE("export_blend_bvh writes a file Blender-style readers see as the blend
   const Blended blend = blend_files(test::asset("motions/cmu142_walk_marching.bvh"),
                                     test::asset("motions/cmu142_walk_clumsy.bvh"), 0.3);
   const std::string path = (std::filesystem::temp_directory_path() / "mostyle_export_solve_test.bvh").string();
-  const ExportResult r = export_blend_bvh(*blend.prepared, blend.result.world, path);
+  const PreparedPair& p = *blend.prepared;
+  const ExportResult r = export_blend_bvh(*p.clip_a, export_joints(p), blend.result.world,
+                                          source_frames_in_clip(p, blend.result), p.fps, path);
   const Clip back = read_bvh_file(path);
   CHECK(back.frames() == blend.result.world.rows());
   CHECK(back.fps() == blend.prepared->fps);

@@ -143,6 +143,44 @@ TEST_CASE("resample: bad rates, empty and one-frame clips", "[resample]") {
   CHECK(resample_clip(none, 30).frames() == 0);
 }
 
+TEST_CASE("sample_clip: fractional frames, clamped, at any frame time", "[resample]") {
+  // Z turns 10 degrees a frame at 100 fps; x moves 1 a frame.
+  std::vector<double> z, x;
+  for (int f = 0; f < 10; ++f) {
+    z.push_back(10.0 * f);
+    x.push_back(f);
+  }
+  const Clip clip = spinning_clip(z, x, 0.01);
+  Eigen::VectorXd at(6);
+  at << 2.0, 2.5, 2.5, 0.25, -3.0, 20.0;  // repeated, backwards and out of range are all allowed
+  const Clip out = sample_clip(clip, at, 24.0);
+  REQUIRE(out.frames() == 6);
+  CHECK(out.frame_time == 1.0 / 24.0);
+  CHECK(out.skeleton.channel_count == clip.skeleton.channel_count);
+  const double expected_x[] = {2, 2.5, 2.5, 0.25, 0, 9};
+  const double expected_z[] = {20, 25, 25, 2.5, 0, 90};
+  for (int f = 0; f < 6; ++f) {
+    INFO("frame " << f << " at " << at[f]);
+    CHECK(out.motion(f, 0) == Approx(expected_x[f]).margin(1e-12));
+    CHECK(out.motion(f, 1) == Approx(expected_z[f]).margin(1e-12));
+  }
+  // The frames resample_clip would take give what it gives.
+  const Clip half = resample_clip(clip, 30);
+  Eigen::VectorXd same(half.frames());
+  for (int f = 0; f < half.frames(); ++f) same[f] = f * 100.0 / 30.0;
+  CHECK(sample_clip(clip, same, 30).motion == half.motion);
+  // Errors.
+  CHECK_THROWS_AS(sample_clip(clip, at, 0.0), InputError);
+  CHECK_THROWS_AS(sample_clip(clip, at, std::nan("")), InputError);
+  Eigen::VectorXd bad = at;
+  bad[1] = std::nan("");
+  CHECK_THROWS_AS(sample_clip(clip, bad, 30), InputError);
+  Clip none = clip;
+  none.motion.resize(0, clip.motion.cols());
+  CHECK_THROWS_AS(sample_clip(none, at, 30), InputError);
+  CHECK(sample_clip(clip, Eigen::VectorXd(0), 30).frames() == 0);
+}
+
 TEST_CASE("resample every shared file to 30 fps and 24 fps", "[resample]") {
   MOSTYLE_REQUIRE_SHARED_MOTIONS();
   for (const std::string& path : test::shared_motions()) {

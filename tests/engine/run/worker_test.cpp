@@ -104,7 +104,9 @@ TEST_CASE("loads the bundled pair, decomposes and blends it", "[worker]") {
   CHECK(s->blend_params.alpha == BlendParams().alpha);
   CHECK(s->decomposed->params.components == s->decompose_params.components);
   CHECK(s->prepared->times.load_ms > 0);
-  CHECK(s->blend->world.rows() == s->prepared->world_a.rows());
+  // The blend plays on its own timeline (timing blended with alpha), within A's frames.
+  CHECK(s->blend->world.rows() == s->blend->source_a.size());
+  CHECK(s->blend->source_a.maxCoeff() <= s->prepared->world_a.rows() - 1);
   CHECK(s->blend->world.cols() == 3 * static_cast<Eigen::Index>(s->prepared->majors.size()));
   CHECK(s->blend->world == direct_blend(*s));
   CHECK(max_bone_length_error(s->blend->world, s->prepared->parents, s->prepared->lengths_a) < 1e-9);
@@ -292,7 +294,8 @@ TEST_CASE("a thousand parameter changes while another thread reads results", "[w
       if (ok) last_version = s->version;
       if (ok && s->blend) {
         // A published blend comes with the pair and decomposition it was made from; read all of it.
-        ok = s->prepared && s->decomposed && s->blend->world.rows() == s->prepared->world_a.rows() &&
+        ok = s->prepared && s->decomposed && s->blend->world.rows() == s->blend->source_a.size() &&
+             s->blend->source_a.maxCoeff() <= s->prepared->world_a.rows() - 1 &&
              s->blend_params.alpha >= 0.0 && s->blend_params.alpha <= 1.0;
         double sum = 0;
         for (Eigen::Index i = 0; i < s->blend->world.size(); ++i) sum += s->blend->world.data()[i];

@@ -1,0 +1,120 @@
+#include "engine/align/alignment.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "engine/io/error.h"
+
+namespace mostyle {
+namespace {
+
+std::string seconds(double frames, double fps) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%.1f s", frames / fps);
+  return s;
+}
+
+double median(Eigen::VectorXd v) {
+  if (v.size() == 0) return 0.0;
+  auto mid = v.data() + v.size() / 2;
+  std::nth_element(v.data(), mid, v.data() + v.size());
+  return *mid;
+}
+
+// Per-sample quality, the poor stretches and the warnings.
+void assess(Alignment& al, int frames_a, int frames_b, double fps) {
+  const TimeWarp& w = al.warp;
+  const int u = w.samples();
+  const Eigen::MatrixXd fa = sample_rows(al.feature.a, w.a), fb = sample_rows(al.feature.b, w.b);
+  const Eigen::VectorXd cost = (fa - fb).rowwise().norm();
+  al.typical_cost = median(cost);
+  const double typical = al.typical_cost > 0 ? al.typical_cost : std::max(cost.maxCoeff(), 1e-300);
+  al.cost_ratio = cost / typical;
+  al.slope.resize(u);
+  for (int k = 0; k < u; ++k) {
+    const int lo = std::max(0, k - 1), hi = std::min(u - 1, k + 1);
+    const double da = w.a[hi] - w.a[lo], db = w.b[hi] - w.b[lo];
+    al.slope[k] = da > 1e-12 ? db / da : (db > 0 ? 1e9 : 1.0);
+  }
+  const int min_run = std::max(1, static_cast<int>(std::lround(kPoorMatchSeconds * fps)));
+  for (int k = 0; k < u;) {
+    if (al.cost_ratio[k] <= kPoorMatchRatio) {
+      ++k;
+      continue;
+    }
+    int end = k;
+    while (end + 1 < u && al.cost_ratio[end + 1] > kPoorMatchRatio) ++end;
+    if (end - k + 1 >= min_run) {
+      al.poor.emplace_back(k, end);
+      char s[256];
+      std::snprintf(s, sizeof s,
+                    "A's frames %d-%d (%s to %s) match B's frames %d-%d poorly: the %s differ %.1f times as much as "
+                    "along the rest of the alignment",
+                    int(std::lround(w.a[k])), int(std::lround(w.a[end])), seconds(w.a[k], fps).c_str(),
+                    seconds(w.a[end], fps).c_str(), int(std::lround(w.b[k])), int(std::lround(w.b[end])),
+                    align_on_name(al.feature.on), al.cost_ratio.segment(k, end - k + 1).mean());
+      al.warnings.push_back(s);
+    }
+    k = end + 1;
+  }
+  auto left_out = [&](const char* take, int first, int last, int frames) {
+    const int matched = last - first + 1;
+    if (matched >= kMatchedFractionWarning * frames) return;
+    char s[256];
+    std::snprintf(s, sizeof s, "only %s's frames %d-%d (%s of %s) match the other take; the rest is left out", take,
+                  first, last, seconds(matched, fps).c_str(), seconds(frames, fps).c_str());
+    al.warnings.push_back(s);
+  };
+  left_out("A", al.a_first, al.a_last, frames_a);
+  left_out("B", al.b_first, al.b_last, frames_b);
+}
+
+}  // namespace
+
+const char* dtw_method_name(DtwMethod method) { return method == DtwMethod::kSlope ? "slope" : "paper"; }
+
+DtwMethod parse_dtw_method(const std::string& name) {
+  if (name == "slope") return DtwMethod::kSlope;
+  if (name == "paper") return DtwMethod::kPaper;
+  throw InputError("expected a DTW method slope or paper, found '" + name + "'");
+}
+
+void AlignmentOptions::Validate() const {
+  if (band < -1) throw InputError("expected a DTW band of 0 or more frames, found " + std::to_string(band));
+  slope.Validate();
+  if (!(smoothing_frames >= 0) || !std::isfinite(smoothing_frames))
+    throw InputError("expected a warp smoothing of 0 or more frames");
+}
+
+Alignment align_takes(const CanonicalMotion& a, const CanonicalMotion& b, const FeatureJoints& joints,
+                      double leg_length, double fps, const AlignmentOptions& options, JobControl* control) {
+  options.Validate();
+  Alignment al;
+  al.options = options;
+  const bool paper = options.method == DtwMethod::kPaper;
+  al.feature = alignment_feature(a, b, joints, paper ? AlignOn::kLeftFoot : options.on, leg_length, fps);
+  const int frames_a = static_cast<int>(a.local.rows()), frames_b = static_cast<int>(b.local.rows());
+  if (paper) {
+    DtwOptions o;
+    o.band = options.band;
+    const DtwPath path = align_dtw(al.feature.a, al.feature.b, o, control);
+    al.path = path.steps;
+    al.cost = path.cost;
+    al.warp = paper_warp(path, frames_a);
+  } else {
+    const SlopeDtwPath path = align_slope_dtw(al.feature.a, al.feature.b, options.slope, control);
+    al.path = path.steps;
+    al.cost = path.cost;
+    al.end_penalty = path.end_penalty;
+    al.warp = smooth_warp(path.steps, options.smoothing_frames);
+  }
+  al.a_first = al.path.front().first;
+  al.a_last = al.path.back().first;
+  al.b_first = al.path.front().second;
+  al.b_last = al.path.back().second;
+  assess(al, frames_a, frames_b, fps);
+  return al;
+}
+
+}  // namespace mostyle

@@ -1,0 +1,65 @@
+#pragma once
+// One take's alignment onto the reference (issue #8): the feature aligned on, the DTW path, the
+// smooth time warp, the matched ranges and how well each part matched. An immutable stage value
+// between preparation and decomposition.
+#include <Eigen/Core>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "engine/align/alignment_feature.h"
+#include "engine/align/dtw.h"
+#include "engine/align/slope_dtw.h"
+#include "engine/align/time_warp.h"
+#include "engine/io/job_control.h"
+
+namespace mostyle {
+
+enum class DtwMethod {
+  kSlope,  // slope-limited, open-ended, smooth fractional warp (the default)
+  kPaper,  // the paper's plain end-to-end DTW and B's frames averaged per A frame (--dtw paper)
+};
+const char* dtw_method_name(DtwMethod method);       // "slope", "paper"
+DtwMethod parse_dtw_method(const std::string& name);  // throws InputError
+
+struct AlignmentOptions {
+  DtwMethod method = DtwMethod::kSlope;
+  AlignOn on = AlignOn::kAuto;  // kPaper always uses the left foot, as the paper does
+  int band = -1;                // kPaper: Sakoe-Chiba half-width in frames, -1: none
+  SlopeDtwOptions slope;        // kSlope
+  double smoothing_frames = kWarpSmoothingFrames;
+  void Validate() const;  // throws InputError
+};
+
+// A local cost this many times the path's median marks a poor match; a stretch of it lasting
+// kPoorMatchSeconds is reported.
+constexpr double kPoorMatchRatio = 3.0;
+constexpr double kPoorMatchSeconds = 0.5;
+// A take whose matched part is shorter than this fraction of it is reported.
+constexpr double kMatchedFractionWarning = 0.6;
+
+struct Alignment {
+  AlignmentOptions options;
+  AlignmentFeature feature;
+  std::vector<std::pair<int, int>> path;  // the DTW path's vertices (i in A, j in B)
+  double cost = 0.0;                      // along the path, feature units
+  double end_penalty = 0.0;               // per frame left out (kSlope)
+  TimeWarp warp;                          // U samples
+  // Matched ranges, first and last frame, at the working rate.
+  int a_first = 0, a_last = 0, b_first = 0, b_last = 0;
+  // Per warp sample: |feature_a(a(u)) - feature_b(b(u))| over the median of it, and the warp's
+  // slope db/da (B frames per A frame).
+  Eigen::VectorXd cost_ratio, slope;
+  double typical_cost = 0.0;  // that median, feature units
+  // Sample ranges [first, last] where cost_ratio stays above kPoorMatchRatio for long enough.
+  std::vector<std::pair<int, int>> poor;
+  std::vector<std::string> warnings;  // plain sentences: poor stretches, much left out
+};
+
+// Aligns B onto A (both canonical, B retargeted to A's bones, fps their common rate). Throws
+// InputError (bad options, missing joints, takes too short) or Cancelled.
+// Cost: the DTW, O(Fa x Fb x features) time, bounded memory (slope_dtw.h, dtw.h).
+Alignment align_takes(const CanonicalMotion& a, const CanonicalMotion& b, const FeatureJoints& joints,
+                      double leg_length, double fps, const AlignmentOptions& options, JobControl* control = nullptr);
+
+}  // namespace mostyle

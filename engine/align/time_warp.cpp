@@ -1,0 +1,157 @@
+#include "engine/align/time_warp.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "engine/io/error.h"
+
+namespace mostyle {
+
+TimeWarp smooth_warp(const std::vector<std::pair<int, int>>& steps, double smoothing_frames) {
+  if (steps.empty()) throw InputError("cannot build a time warp from an empty DTW path");
+  if (!(smoothing_frames >= 0) || !std::isfinite(smoothing_frames))
+    throw InputError("expected a warp smoothing of 0 or more frames");
+  for (size_t k = 1; k < steps.size(); ++k)
+    if (steps[k].first < steps[k - 1].first || steps[k].second < steps[k - 1].second ||
+        steps[k].first + steps[k].second <= steps[k - 1].first + steps[k - 1].second)
+      throw InputError("DTW path is not monotone at vertex " + std::to_string(k));
+  // Dense polyline at every integer s = i + j (the vertices are on it).
+  const int s0 = steps.front().first + steps.front().second;
+  const int count = steps.back().first + steps.back().second - s0 + 1;
+  Eigen::VectorXd pa(count), pb(count);
+  pa[0] = steps.front().first;
+  pb[0] = steps.front().second;
+  for (size_t k = 0; k + 1 < steps.size(); ++k) {
+    const auto [i0, j0] = steps[k];
+    const auto [i1, j1] = steps[k + 1];
+    const int span = (i1 + j1) - (i0 + j0);
+    for (int t = 1; t <= span; ++t) {
+      const int s = i0 + j0 + t - s0;
+      pa[s] = i0 + (i1 - i0) * double(t) / span;
+      pb[s] = j0 + (j1 - j0) * double(t) / span;
+    }
+  }
+  // Moving average over 2 h + 1 points, the window shrinking symmetrically at the ends so they
+  // stay put; a window that slides or grows towards later points only adds larger values, so
+  // the averages stay monotone. s advances about 2 per frame of each take.
+  const int h = static_cast<int>(std::lround(2.0 * smoothing_frames));
+  Eigen::VectorXd ca(count + 1), cb(count + 1);  // prefix sums
+  ca[0] = cb[0] = 0.0;
+  for (int t = 0; t < count; ++t) {
+    ca[t + 1] = ca[t] + pa[t];
+    cb[t + 1] = cb[t] + pb[t];
+  }
+  Eigen::VectorXd sa(count), sb(count);
+  for (int t = 0; t < count; ++t) {
+    const int w = std::min({h, t, count - 1 - t});
+    sa[t] = (ca[t + w + 1] - ca[t - w]) / (2 * w + 1);
+    sb[t] = (cb[t + w + 1] - cb[t - w]) / (2 * w + 1);
+  }
+  // Resample evenly in Chebyshev length: one sample per frame of whichever take moves faster.
+  Eigen::VectorXd length(count);
+  length[0] = 0.0;
+  for (int t = 1; t < count; ++t)
+    length[t] = length[t - 1] + std::max(sa[t] - sa[t - 1], sb[t] - sb[t - 1]);
+  const double total = length[count - 1];
+  const int samples = std::max(1, static_cast<int>(std::ceil(total - 1e-9)) + 1);
+  TimeWarp warp;
+  warp.a.resize(samples);
+  warp.b.resize(samples);
+  int t = 0;
+  for (int u = 0; u < samples; ++u) {
+    const double at = samples == 1 ? 0.0 : total * u / (samples - 1);
+    while (t + 1 < count - 1 && length[t + 1] <= at) ++t;
+    if (count == 1) {
+      warp.a[u] = sa[0];
+      warp.b[u] = sb[0];
+      continue;
+    }
+    const double span = length[t + 1] - length[t];
+    const double f = span > 0 ? std::clamp((at - length[t]) / span, 0.0, 1.0) : 0.0;
+    warp.a[u] = sa[t] + f * (sa[t + 1] - sa[t]);
+    warp.b[u] = sb[t] + f * (sb[t + 1] - sb[t]);
+  }
+  warp.a[samples - 1] = sa[count - 1];
+  warp.b[samples - 1] = sb[count - 1];
+  return warp;
+}
+
+TimeWarp paper_warp(const DtwPath& path, int frames_a) {
+  TimeWarp warp;
+  warp.b = warp_map(path, frames_a);
+  warp.a = Eigen::VectorXd::LinSpaced(frames_a, 0.0, frames_a - 1.0);
+  return warp;
+}
+
+void sample_rows(const Eigen::MatrixXd& x, const Eigen::VectorXd& t, Eigen::MatrixXd& out) {
+  if (x.rows() == 0) throw InputError("cannot sample a motion with no frames");
+  out.resize(t.size(), x.cols());
+  // Column by column: the matrices are column-major, so both sides are read and written in
+  // order; the row and fraction are recomputed per column, cheaper than strided access.
+  const Eigen::Index last = x.rows() - 1;
+  for (Eigen::Index c = 0; c < x.cols(); ++c) {
+    const double* in = x.col(c).data();
+    double* o = out.col(c).data();
+    for (Eigen::Index k = 0; k < t.size(); ++k) {
+      const double at = std::clamp(t[k], 0.0, static_cast<double>(last));
+      const Eigen::Index i = std::min<Eigen::Index>(static_cast<Eigen::Index>(at), std::max<Eigen::Index>(last - 1, 0));
+      const double f = at - static_cast<double>(i);
+      o[k] = last == 0 ? in[0] : in[i] + f * (in[i + 1] - in[i]);
+    }
+  }
+}
+
+void RowSampler::set(const Eigen::VectorXd& t, Eigen::Index rows) {
+  if (rows < 1) throw InputError("cannot sample a motion with no frames");
+  row.resize(t.size());
+  frac.resize(t.size());
+  const Eigen::Index last = rows - 1;
+  for (Eigen::Index k = 0; k < t.size(); ++k) {
+    const double at = std::clamp(t[k], 0.0, static_cast<double>(last));
+    const Eigen::Index i = std::min<Eigen::Index>(static_cast<Eigen::Index>(at), std::max<Eigen::Index>(last - 1, 0));
+    row[k] = static_cast<int>(i);
+    frac[k] = last == 0 ? 0.0 : at - static_cast<double>(i);
+  }
+}
+
+void RowSampler::apply(const Eigen::MatrixXd& x, Eigen::MatrixXd& out) const {
+  const Eigen::Index n = row.size();
+  out.resize(n, x.cols());
+  const bool single = x.rows() == 1;
+  for (Eigen::Index c = 0; c < x.cols(); ++c) {
+    const double* in = x.col(c).data();
+    double* o = out.col(c).data();
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const double* p = in + row[k];
+      o[k] = single ? p[0] : p[0] + frac[k] * (p[1] - p[0]);
+    }
+  }
+}
+
+void RowSampler::apply_add(const Eigen::MatrixXd& x, const Eigen::MatrixXd& y, double weight,
+                           Eigen::MatrixXd& out) const {
+  const Eigen::Index n = row.size();
+  out.resize(n, x.cols());
+  const bool single = x.rows() == 1;
+  for (Eigen::Index c = 0; c < x.cols(); ++c) {
+    const double* in = x.col(c).data();
+    const double* add = y.col(c).data();
+    double* o = out.col(c).data();
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const Eigen::Index i = row[k];
+      const double f = single ? 0.0 : frac[k];
+      const double a = in[i] + f * (in[i + (single ? 0 : 1)] - in[i]);
+      const double b = add[i] + f * (add[i + (single ? 0 : 1)] - add[i]);
+      o[k] = a + weight * b;
+    }
+  }
+}
+
+Eigen::MatrixXd sample_rows(const Eigen::MatrixXd& x, const Eigen::VectorXd& t) {
+  Eigen::MatrixXd out;
+  sample_rows(x, t, out);
+  return out;
+}
+
+}  // namespace mostyle

@@ -1,0 +1,23 @@
+#pragma once
+// Timing blended with alpha (issue #8, after Kovar and Gleicher's registration curves, 2003):
+// along a time warp the output advances at (1 - w) times A's rate plus w times B's, so w = 0
+// plays at A's timing and length and w = 1 at B's. Where one take advances faster along the
+// warp than the other, the output's velocity is then a weighted mean of the two takes' own
+// velocities, never faster than the faster of them.
+#include <Eigen/Core>
+
+#include "engine/align/time_warp.h"
+
+namespace mostyle {
+
+// Output frame k sits where the blended clock T(u) = (1 - w)(a(u) - a(0)) + w (b(u) - b(0))
+// reaches k; T is linear between samples. Writes each output frame's fractional sample position
+// into u (floor(T(U - 1)) + 1 frames; no allocation when it has that size). w may lie outside
+// [0, 1] (exaggeration) as long as T keeps increasing; where it would not, the clock holds.
+// Throws InputError on a non-finite w or an empty warp. O(U + frames).
+void blended_timeline(const TimeWarp& warp, double w, Eigen::VectorXd& u);
+
+// The clock itself at every sample (U values, T(0) = 0), for tests and displays.
+Eigen::VectorXd blended_clock(const TimeWarp& warp, double w);
+
+}  // namespace mostyle

@@ -1,0 +1,150 @@
+#include "engine/align/timing.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "engine/align/slope_dtw.h"
+#include "engine/io/error.h"
+
+using namespace mostyle;
+
+namespace {
+
+constexpr double kExact = 1e-9;  // frames: piecewise-linear arithmetic, rounding only
+
+TimeWarp warp_of(std::initializer_list<double> a, std::initializer_list<double> b) {
+  TimeWarp w;
+  w.a.resize(static_cast<Eigen::Index>(a.size()));
+  w.b.resize(static_cast<Eigen::Index>(b.size()));
+  Eigen::Index i = 0;
+  for (double v : a) w.a[i++] = v;
+  i = 0;
+  for (double v : b) w.b[i++] = v;
+  return w;
+}
+
+// v linearly interpolated at fractional sample u, written here independently of the engine.
+double at(const Eigen::VectorXd& v, double u) {
+  const Eigen::Index i = std::min<Eigen::Index>(static_cast<Eigen::Index>(std::floor(u)), v.size() - 2);
+  const double f = u - static_cast<double>(i);
+  return (1 - f) * v[i] + f * v[i + 1];
+}
+
+Eigen::VectorXd timeline(const TimeWarp& w, double weight) {
+  Eigen::VectorXd u;
+  blended_timeline(w, weight, u);
+  return u;
+}
+
+bool non_decreasing(const Eigen::VectorXd& v) {
+  for (Eigen::Index k = 1; k < v.size(); ++k)
+    if (v[k] < v[k - 1]) return false;
+  return true;
+}
+
+// A realistic warp: a walk against a version of it 1.4 times slower in its middle part.
+TimeWarp walk_warp() {
+  Eigen::MatrixXd a(80, 2), b(100, 2);
+  auto pose = [](double t) { return Eigen::RowVector2d(std::sin(2 * M_PI * t / 25), std::cos(2 * M_PI * t / 25)); };
+  for (int t = 0; t < 80; ++t) a.row(t) = pose(t);
+  for (int t = 0; t < 100; ++t) {
+    const double slow = t < 30 ? t : t < 86 ? 30 + (t - 30) / 1.4 : 70 + (t - 86);
+    b.row(t) = pose(slow);
+  }
+  return smooth_warp(align_slope_dtw(a, b).steps);
+}
+
+}  // namespace
+
+TEST_CASE("timing: the hand-worked warp a = 0 1 2 3, b = 0 2 4 6", "[timing]") {
+  // B advances two frames a sample (steeper than smooth_warp makes; the timeline must not care).
+  const TimeWarp w = warp_of({0, 1, 2, 3}, {0, 2, 4, 6});
+  SECTION("w = 1: B's clock, 7 frames at every half sample") {
+    const Eigen::VectorXd u = timeline(w, 1.0);
+    REQUIRE(u.size() == 7);
+    for (int k = 0; k < 7; ++k) CHECK(u[k] == Approx(0.5 * k).margin(kExact));
+    CHECK((blended_clock(w, 1.0) - Eigen::Vector4d(0, 2, 4, 6)).cwiseAbs().maxCoeff() < kExact);
+  }
+  SECTION("w = 0: A's clock, one frame a sample") {
+    const Eigen::VectorXd u = timeline(w, 0.0);
+    REQUIRE(u.size() == 4);
+    for (int k = 0; k < 4; ++k) CHECK(u[k] == Approx(k).margin(kExact));
+  }
+  SECTION("w = 0.5: the clock advances 1.5 a sample, 5 frames") {
+    // T = 0, 1.5, 3, 4.5: frame k at u = k / 1.5.
+    const Eigen::VectorXd u = timeline(w, 0.5);
+    REQUIRE(u.size() == 5);
+    for (int k = 0; k < 5; ++k) CHECK(u[k] == Approx(k / 1.5).margin(kExact));
+  }
+}
+
+TEST_CASE("timing: where the blended clock would run backwards, it holds", "[timing]") {
+  // w = 2 (exaggerating B): steps -1 + 2 x 2 = 3, then -1 + 2 x 0.2 < 0 twice: T = 0 3 3 3.
+  const TimeWarp w = warp_of({0, 1, 2, 3}, {0, 2, 2.2, 2.4});
+  CHECK((blended_clock(w, 2.0) - Eigen::Vector4d(0, 3, 3, 3)).cwiseAbs().maxCoeff() < kExact);
+  const Eigen::VectorXd u = timeline(w, 2.0);
+  REQUIRE(u.size() == 4);
+  for (int k = 0; k < 4; ++k) CHECK(u[k] == Approx(k / 3.0).margin(kExact));
+}
+
+TEST_CASE("timing: w = 0 plays A's frames, w = 1 B's, 0.5 in between", "[timing]") {
+  const TimeWarp w = walk_warp();
+  REQUIRE(w.samples() > 1);
+  const double a0 = w.a[0], b0 = w.b[0];
+  const double range_a = w.a[w.samples() - 1] - a0, range_b = w.b[w.samples() - 1] - b0;
+  INFO("A " << a0 << " + " << range_a << ", B " << b0 << " + " << range_b << ", " << w.samples() << " samples");
+  REQUIRE(range_b > range_a + 5);  // the warp really has two timings
+
+  const Eigen::VectorXd u0 = timeline(w, 0.0);
+  CHECK(u0.size() == static_cast<Eigen::Index>(std::floor(range_a + 1e-9)) + 1);
+  for (Eigen::Index k = 0; k < u0.size(); ++k) {
+    INFO("output frame " << k << " at sample " << u0[k]);
+    CHECK(at(w.a, u0[k]) - a0 == Approx(k).margin(kExact));  // on A's frames, one per output frame
+  }
+
+  const Eigen::VectorXd u1 = timeline(w, 1.0);
+  CHECK(u1.size() == static_cast<Eigen::Index>(std::floor(range_b + 1e-9)) + 1);
+  for (Eigen::Index k = 0; k < u1.size(); ++k) CHECK(at(w.b, u1[k]) - b0 == Approx(k).margin(kExact));
+
+  const Eigen::VectorXd half = timeline(w, 0.5);
+  CHECK(half.size() >= u0.size());
+  CHECK(half.size() <= u1.size());
+  CHECK(half.size() == static_cast<Eigen::Index>(std::floor(0.5 * (range_a + range_b) + 1e-9)) + 1);
+
+  for (double weight : {0.0, 0.25, 0.5, 0.75, 1.0, 1.3, -0.3}) {
+    INFO("w " << weight);
+    const Eigen::VectorXd u = timeline(w, weight);
+    CHECK(non_decreasing(u));
+    CHECK(u[0] == 0.0);
+    CHECK(u.minCoeff() >= 0.0);
+    CHECK(u.maxCoeff() <= w.samples() - 1.0);
+    // The clock at each output frame is the frame's number.
+    const Eigen::VectorXd clock = blended_clock(w, weight);
+    CHECK(non_decreasing(clock));
+    for (Eigen::Index k = 0; k < u.size(); ++k) CHECK(at(clock, u[k]) == Approx(k).margin(1e-7));
+  }
+}
+
+TEST_CASE("timing: no allocation when u has the right size", "[timing]") {
+  const TimeWarp w = warp_of({0, 1, 2, 3}, {0, 2, 4, 6});
+  Eigen::VectorXd u(7);
+  const double* data = u.data();
+  blended_timeline(w, 1.0, u);
+  CHECK(u.data() == data);
+}
+
+TEST_CASE("timing: a one-sample warp gives one frame; bad input throws InputError", "[timing]") {
+  const TimeWarp one = warp_of({4}, {9});
+  const Eigen::VectorXd u = timeline(one, 0.5);
+  REQUIRE(u.size() == 1);
+  CHECK(u[0] == 0.0);
+  CHECK(blended_clock(one, 0.5).size() == 1);
+  Eigen::VectorXd out;
+  CHECK_THROWS_AS(blended_timeline(TimeWarp{}, 0.5, out), InputError);
+  CHECK_THROWS_AS(blended_clock(TimeWarp{}, 0.5), InputError);
+  CHECK_THROWS_AS(blended_timeline(one, std::nan(""), out), InputError);
+  CHECK_THROWS_AS(blended_timeline(one, INFINITY, out), InputError);
+}

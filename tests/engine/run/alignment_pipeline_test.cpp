@@ -1,0 +1,253 @@
+// Time alignment through the whole pipeline on the bundled takes (issue #8): no pops, timing
+// blended with alpha, alpha 0 is A on A's matched range, standing at the ends left out, loops.
+// The takes are in assets/, so these always run.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/align/time_warp.h"
+#include "engine/io/bvh_io.h"
+#include "engine/io/clip.h"
+#include "engine/kinematics/units.h"
+#include "engine/run/pipeline.h"
+#include "tests/test_data.h"
+
+using namespace mostyle;
+
+namespace {
+
+// The issue's acceptance bounds.
+constexpr double kPopRatio = 1.25;         // blend's fastest joint (99.9th percentile) vs the takes' fastest
+constexpr double kPopPercentile = 0.999;
+constexpr double kAlphaZeroMean = 0.03;    // alpha 0 against A at the same source frames, of height
+constexpr double kLengthSlack = 1.0;       // frames: a blend at alpha 0 or 1 vs the matched range
+constexpr double kPadSeconds = 2.0;        // standing added before and after a take
+constexpr int kPadSlack = 10;              // working-rate frames the match may reach into it
+constexpr double kSeamRatio = 1.5;         // loop seam vs the largest joint move inside the loop
+
+std::shared_ptr<const Clip> load(const std::string& name) {
+  return std::make_shared<const Clip>(read_bvh_file(test::asset("motions/" + name)));
+}
+
+BlendResult blend_at(const PreparedPair& p, const DecomposedPair& d, double alpha, BlendParams params = {}) {
+  params.alpha = alpha;
+  BlendScratch scratch;
+  BlendResult out;
+  blend_pair(p, d, params, scratch, out);
+  return out;
+}
+
+// Per frame t >= 1: the largest distance a joint moves from frame t - 1 (F - 1 values).
+Eigen::VectorXd joint_speeds(const Eigen::MatrixXd& world) {
+  const Eigen::Index joints = world.cols() / 3;
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(std::max<Eigen::Index>(0, world.rows() - 1));
+  for (Eigen::Index t = 1; t < world.rows(); ++t)
+    for (Eigen::Index j = 0; j < joints; ++j)
+      v[t - 1] = std::max(v[t - 1], (world.block<1, 3>(t, 3 * j) - world.block<1, 3>(t - 1, 3 * j)).norm());
+  return v;
+}
+
+// Nearest-rank percentile, q in (0, 1].
+double percentile(Eigen::VectorXd v, double q) {
+  REQUIRE(v.size() > 0);
+  std::sort(v.data(), v.data() + v.size());
+  const Eigen::Index rank = static_cast<Eigen::Index>(std::ceil(q * static_cast<double>(v.size())));
+  return v[std::clamp<Eigen::Index>(rank - 1, 0, v.size() - 1)];
+}
+
+// Mean joint distance between two F x 3M matrices.
+double mean_joint_distance(const Eigen::MatrixXd& x, const Eigen::MatrixXd& y) {
+  REQUIRE(x.rows() == y.rows());
+  REQUIRE(x.cols() == y.cols());
+  const Eigen::Index joints = x.cols() / 3;
+  double sum = 0.0;
+  for (Eigen::Index t = 0; t < x.rows(); ++t)
+    for (Eigen::Index j = 0; j < joints; ++j) sum += (x.block<1, 3>(t, 3 * j) - y.block<1, 3>(t, 3 * j)).norm();
+  return sum / static_cast<double>(x.rows() * joints);
+}
+
+bool non_decreasing(const Eigen::VectorXd& v) {
+  for (Eigen::Index k = 1; k < v.size(); ++k)
+    if (v[k] < v[k - 1]) return false;
+  return true;
+}
+
+// The clip with its first frame repeated `frames` times before and its last after: standing still
+// before and after the take.
+Clip padded(const Clip& clip, int frames) {
+  Clip out = clip;
+  const int n = clip.frames();
+  out.motion.resize(n + 2 * frames, clip.motion.cols());
+  for (int f = 0; f < frames; ++f) {
+    out.motion.row(f) = clip.motion.row(0);
+    out.motion.row(frames + n + f) = clip.motion.row(n - 1);
+  }
+  out.motion.middleRows(frames, n) = clip.motion;
+  out.source = clip.source + " (padded)";
+  return out;
+}
+
+struct Pair {
+  std::shared_ptr<const Clip> a, b;
+  std::shared_ptr<const PreparedPair> p;
+  std::shared_ptr<const DecomposedPair> d;
+  double height = 0;
+};
+
+Pair happy_marching() {
+  Pair pair;
+  pair.a = load("cmu142_walk_happy.bvh");
+  pair.b = load("cmu142_walk_marching.bvh");
+  pair.p = prepare_pair(pair.a, pair.b, {});
+  pair.d = decompose_pair(*pair.p, DecomposeParams());
+  pair.height = guess_units(*pair.a).height;
+  return pair;
+}
+
+}  // namespace
+
+TEST_CASE("alignment pipeline: the blend's sources run forward within the matched ranges", "[alignment]") {
+  const Pair x = happy_marching();
+  const PreparedPair& p = *x.p;
+  const Alignment& al = p.alignment;
+  INFO("A " << al.a_first << ".." << al.a_last << " of " << p.world_a.rows() << ", B " << al.b_first << ".."
+            << al.b_last << " of " << p.world_b.rows() << ", " << p.samples() << " samples");
+  CHECK(al.a_first >= 0);
+  CHECK(al.a_last < p.world_a.rows());
+  CHECK(al.b_first >= 0);
+  CHECK(al.b_last < p.world_b.rows());
+  CHECK(al.feature.on == AlignOn::kLeftFoot);  // two walks
+  CHECK(p.x_a.rows() == p.samples());
+  CHECK(p.ground_b.rows() == p.samples());
+  CHECK(p.warped_contacts_b.rows() == p.samples());
+  for (double alpha : {0.0, 0.5, 1.0}) {
+    INFO("alpha " << alpha);
+    const BlendResult r = blend_at(p, *x.d, alpha);
+    REQUIRE(r.source_a.size() == r.world.rows());
+    REQUIRE(r.source_b.size() == r.world.rows());
+    REQUIRE(r.sample.size() == r.world.rows());
+    CHECK(non_decreasing(r.sample));
+    CHECK(non_decreasing(r.source_a));
+    CHECK(non_decreasing(r.source_b));
+    CHECK(r.source_a.minCoeff() >= al.a_first - 1e-9);
+    CHECK(r.source_a.maxCoeff() <= al.a_last + 1e-9);
+    CHECK(r.source_b.minCoeff() >= al.b_first - 1e-9);
+    CHECK(r.source_b.maxCoeff() <= al.b_last + 1e-9);
+    CHECK(r.contacts.rows() == r.world.rows());
+    CHECK(r.world.allFinite());
+  }
+}
+
+TEST_CASE("alignment pipeline: no pops at alpha 0, 0.5 and 1", "[alignment]") {
+  const Pair x = happy_marching();
+  const PreparedPair& p = *x.p;
+  const double takes = std::max(joint_speeds(p.world_a).maxCoeff(), joint_speeds(p.world_b).maxCoeff());
+  for (double alpha : {0.0, 0.5, 1.0}) {
+    const BlendResult r = blend_at(p, *x.d, alpha);
+    const Eigen::VectorXd speeds = joint_speeds(r.world);
+    const double blend = percentile(speeds, kPopPercentile);
+    INFO("alpha " << alpha << ": blend's fastest joint move " << blend << " (max " << speeds.maxCoeff()
+                  << "), the takes' " << takes << ", " << 100 * blend / x.height << "% of height per frame");
+    CHECK(blend <= kPopRatio * takes);
+  }
+}
+
+TEST_CASE("alignment pipeline: alpha 0 is as long as A's matched range, alpha 1 as B's", "[alignment]") {
+  const Pair x = happy_marching();
+  const PreparedPair& p = *x.p;
+  const Alignment& al = p.alignment;
+  const double range_a = al.a_last - al.a_first + 1, range_b = al.b_last - al.b_first + 1;
+  const BlendResult r0 = blend_at(p, *x.d, 0.0), r1 = blend_at(p, *x.d, 1.0), half = blend_at(p, *x.d, 0.5);
+  INFO("A's range " << range_a << ", B's " << range_b << "; frames at alpha 0: " << r0.world.rows() << ", 0.5: "
+                    << half.world.rows() << ", 1: " << r1.world.rows());
+  CHECK(std::abs(r0.world.rows() - range_a) <= kLengthSlack);
+  CHECK(std::abs(r1.world.rows() - range_b) <= kLengthSlack);
+  CHECK(half.world.rows() >= std::min(r0.world.rows(), r1.world.rows()));
+  CHECK(half.world.rows() <= std::max(r0.world.rows(), r1.world.rows()));
+  // At alpha 0 the output frames are A's own frames, one apart.
+  for (Eigen::Index k = 1; k < r0.source_a.size(); ++k) CHECK(r0.source_a[k] - r0.source_a[k - 1] == Approx(1.0));
+}
+
+TEST_CASE("alignment pipeline: timing_a keeps A's timeline at every alpha", "[alignment]") {
+  const Pair x = happy_marching();
+  const PreparedPair& p = *x.p;
+  BlendParams keep;
+  keep.timing_a = true;
+  const BlendResult r0 = blend_at(p, *x.d, 0.0, keep), r1 = blend_at(p, *x.d, 1.0, keep);
+  INFO("frames at alpha 0: " << r0.world.rows() << ", at 1: " << r1.world.rows());
+  CHECK(r0.world.rows() == r1.world.rows());
+  CHECK(r0.source_a == r1.source_a);
+  CHECK(r0.world.rows() == blend_at(p, *x.d, 0.0).world.rows());  // alpha 0 is A's timing either way
+}
+
+TEST_CASE("alignment pipeline: alpha 0 reproduces A at the frames it shows", "[alignment]") {
+  const Pair x = happy_marching();
+  const PreparedPair& p = *x.p;
+  for (bool timing_a : {false, true}) {
+    BlendParams params;
+    params.timing_a = timing_a;
+    const BlendResult r = blend_at(p, *x.d, 0.0, params);
+    const Eigen::MatrixXd a_there = sample_rows(p.world_a, r.source_a);
+    const double e = mean_joint_distance(r.world, a_there) / x.height;
+    INFO("timing_a " << timing_a << ": mean " << 100 * e << "% of height " << x.height);
+    CHECK(e < kAlphaZeroMean);
+  }
+}
+
+TEST_CASE("alignment pipeline: standing before and after a take is left out of the match", "[alignment]") {
+  const Clip happy = read_bvh_file(test::asset("motions/cmu142_walk_happy.bvh"));
+  const int pad = static_cast<int>(std::lround(kPadSeconds * happy.fps()));  // 240 frames at 120 fps
+  const auto walk = std::make_shared<const Clip>(happy);
+  const auto standing = std::make_shared<const Clip>(padded(happy, pad));
+  SECTION("the padded take as A") {
+    const auto p = prepare_pair(standing, walk, {});
+    const int first = static_cast<int>(std::lround(kPadSeconds * p->fps));  // 60 at 30 fps
+    const int last = first + static_cast<int>(p->world_b.rows()) - 1;        // the walk's last frame
+    const Alignment& al = p->alignment;
+    INFO("A (padded, " << p->world_a.rows() << " frames) matched " << al.a_first << ".." << al.a_last
+                       << ", walking " << first << ".." << last << "; B matched " << al.b_first << ".." << al.b_last);
+    CHECK(std::abs(al.a_first - first) <= kPadSlack);
+    CHECK(std::abs(al.a_last - last) <= kPadSlack);
+  }
+  SECTION("the padded take as B") {
+    const auto p = prepare_pair(walk, standing, {});
+    const int first = static_cast<int>(std::lround(kPadSeconds * p->fps));
+    const int last = first + static_cast<int>(p->world_a.rows()) - 1;
+    const Alignment& al = p->alignment;
+    INFO("B (padded, " << p->world_b.rows() << " frames) matched " << al.b_first << ".." << al.b_last
+                       << ", walking " << first << ".." << last << "; A matched " << al.a_first << ".." << al.a_last);
+    CHECK(std::abs(al.b_first - first) <= kPadSlack);
+    CHECK(std::abs(al.b_last - last) <= kPadSlack);
+  }
+}
+
+TEST_CASE("alignment pipeline: a loop of whole cycles with a seamless seam", "[alignment]") {
+  const Pair x = happy_marching();
+  const PreparedPair& p = *x.p;
+  BlendParams params;
+  params.loop = true;
+  const BlendResult r = blend_at(p, *x.d, 0.5, params);
+  const LoopCut& cut = r.loop;
+  INFO("loop " << cut.begin << ".." << cut.end << ", " << cut.cycles << " cycles, travel (" << cut.travel.x() << ", "
+               << cut.travel.y() << "), turn removed " << cut.turn_removed);
+  CHECK(cut.cycles >= 1);
+  CHECK(cut.cycles <= kLoopMaxCycles);
+  REQUIRE(r.world.rows() == cut.frames());
+  CHECK(r.source_a.size() == cut.frames());
+  CHECK(r.contacts.rows() == cut.frames());
+  // Played on repeat, the next frame after the last is the first moved by the travel per loop.
+  const Eigen::Index last = r.world.rows() - 1, joints = r.world.cols() / 3;
+  const Eigen::RowVector3d travel(cut.travel.x(), 0.0, cut.travel.y());
+  double seam = 0.0;
+  for (Eigen::Index j = 0; j < joints; ++j)
+    seam = std::max(seam, (r.world.block<1, 3>(0, 3 * j) + travel - r.world.block<1, 3>(last, 3 * j)).norm());
+  const double inside = joint_speeds(r.world).maxCoeff();
+  INFO("seam move " << seam << ", largest move inside " << inside);
+  CHECK(seam <= kSeamRatio * inside);
+  // The travel is a walk's: a good part of a body height per cycle.
+  CHECK(cut.travel.norm() > 0.2 * x.height * cut.cycles);
+}
