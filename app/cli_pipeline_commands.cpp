@@ -307,6 +307,7 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
     bool no_foot_lock = false;
     std::string timing = "blend";
     bool loop = false;
+    bool components_only = false;
     std::string out, positions_out, report;
   };
   auto args = std::make_shared<Args>();
@@ -329,6 +330,9 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
                   "blend: the output's timing moves from A's (alpha 0) to B's (alpha 1); a: keep A's timeline")
       ->check(CLI::IsMember({"blend", "a"}))
       ->capture_default_str();
+  cmd->add_flag("--components-only", args->components_only,
+                "Shared mode: blend only what the k components reconstruct (the paper's synthesis), "
+                "leaving out each take's residual detail");
   cmd->add_flag("--loop", args->loop,
                 "Cut a seamless loop of 1 to 4 whole gait cycles (root travel per cycle kept)");
   cmd->add_option("--out", args->out, "BVH file of the blend on A's skeleton (A's channels and rotation orders)");
@@ -358,6 +362,7 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
       bp.foot_lock = !args->no_foot_lock;
       bp.timing_a = args->timing == "a";
       bp.loop = args->loop;
+      bp.residual = !args->components_only;
       BlendScratch scratch;
       BlendResult result;
       blend_pair(*p, *d, bp, scratch, result);
@@ -392,6 +397,7 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
       }
       r["joints"] = p->names_a;
       r["timing"] = args->timing;
+      r["residual"] = bp.residual;
       r["dtw"] = {{"cost", p->alignment.cost}, {"path_length", p->alignment.path.size()}};
       Json alignment = alignment_json(*p);
       // Per output frame: where in A and B it is, how well they match there, the warp's slope.

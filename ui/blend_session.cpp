@@ -263,8 +263,10 @@ void BlendSession::update_blend(EditorState& state) {
     params.foot_lock = controls_.foot_lock;
     params.timing_a = controls_.timing_a;
     params.loop = controls_.loop;
+    params.residual = controls_.residual;
     const bool changed = d != blended_decomposed_ || params.alpha != blended_params_.alpha ||
                          params.timing_a != blended_params_.timing_a || params.loop != blended_params_.loop ||
+                         params.residual != blended_params_.residual ||
                          params.component_alpha != blended_params_.component_alpha ||
                          params.swap_level != blended_params_.swap_level || params.foot_lock != blended_params_.foot_lock;
     if (changed) {

@@ -33,6 +33,7 @@ struct SessionControls {
   AlignmentOptions align;                // what the takes are aligned on and how (a change re-aligns)
   bool timing_a = false;                 // keep A's timeline instead of blending the timing
   bool loop = false;                     // cut a seamless loop of whole gait cycles
+  bool residual = true;                  // blend the takes' residual detail too (BlendParams)
   int selected_component = -1;           // components view; -1: none
   int dtw_coordinate = 1;                // DTW view: 0 lateral, 1 height, 2 forward
 };

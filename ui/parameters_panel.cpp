@@ -43,6 +43,12 @@ void ParametersPanel::draw(EditorState& state) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("shared: one component set for A and B (alpha 1 is B)\npaper: separate decompositions, "
                       "cores blended (paper 3.6)");
+  bool components_only = !c.residual;
+  if (ImGui::Checkbox("components only", &components_only)) c.residual = !components_only;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Off: each take's detail that the k components do not hold is blended with alpha too,\n"
+                      "so alpha 0 is exactly A and 1 exactly B.\nOn: only what the components reconstruct "
+                      "(the paper's synthesis); k and sparsity then shape the whole blend.");
   int align_on = static_cast<int>(c.align.on);
   if (ImGui::Combo("align on", &align_on, "auto\0left foot\0feet\0hands\0body\0")) {
     c.align.on = static_cast<AlignOn>(align_on);

@@ -174,11 +174,17 @@ std::shared_ptr<const DecomposedPair> decompose_pair(const PreparedPair& prepare
     d->shared = decompose_shared(prepared.x_a, prepared.x_b, o, control);
     d->shared_synthesis = prepare_shared_synthesis(d->shared.weights_a, d->shared.weights_b, d->shared.components);
     const Normalization& n = prepared.normalization;
-    d->local_a = synthesize_shared(d->shared_synthesis, 0.0) * scale;
-    d->local_a.rowwise() += n.mean_a;
-    d->local_delta = synthesize_shared(d->shared_synthesis, 1.0) * scale;
-    d->local_delta.rowwise() += n.mean_b;
-    d->local_delta -= d->local_a;
+    const Eigen::MatrixXd reconstructed_a = synthesize_shared(d->shared_synthesis, 0.0);
+    const Eigen::MatrixXd reconstructed_b = synthesize_shared(d->shared_synthesis, 1.0);
+    d->residual_a = (prepared.x_a - reconstructed_a) * scale;
+    d->residual_b = (prepared.x_b - reconstructed_b) * scale;
+    d->local_a_components = reconstructed_a * scale;
+    d->local_a_components.rowwise() += n.mean_a;
+    d->local_delta_components = reconstructed_b * scale;
+    d->local_delta_components.rowwise() += n.mean_b;
+    d->local_delta_components -= d->local_a_components;
+    d->local_a = d->local_a_components + d->residual_a;
+    d->local_delta = d->local_delta_components + d->residual_b - d->residual_a;
     d->rmse_a = d->shared.rmse_a * scale;
     d->rmse_b = d->shared.rmse_b * scale;
     d->nonzero_a = d->nonzero_b = d->shared.nonzero_fraction;
@@ -265,7 +271,10 @@ void blend_pair(const PreparedPair& p, const DecomposedPair& d, const BlendParam
   if (affine) {
     // local = (W_A + alpha (W_B - W_A)) C scale + mean_a + alpha (mean_b - mean_a), folded, at
     // the output frames only.
-    s.sampler.apply_add(d.local_a, d.local_delta, alpha, out.local);
+    if (params.residual)
+      s.sampler.apply_add(d.local_a, d.local_delta, alpha, out.local);
+    else
+      s.sampler.apply_add(d.local_a_components, d.local_delta_components, alpha, out.local);
   } else if (d.params.mode == BlendMode::kShared) {  // one alpha per component
     synthesize_shared(d.shared_synthesis, s.alphas, s.x);
   } else if (d.params.basic_motions > 0) {
@@ -282,6 +291,10 @@ void blend_pair(const PreparedPair& p, const DecomposedPair& d, const BlendParam
     s.samples.resize(s.x.rows(), s.x.cols());
     s.samples.noalias() = s.x * n.scale;
     s.samples.rowwise() += s.mean;
+    if (params.residual && d.params.mode == BlendMode::kShared) {  // per-component alphas
+      const double mean_alpha = s.alphas.mean();
+      s.samples += (1 - mean_alpha) * d.residual_a + mean_alpha * d.residual_b;
+    }
     s.sampler.apply(s.samples, out.local);
   }
   // The root on the warp's samples, then at the output frames.

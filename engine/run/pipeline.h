@@ -103,9 +103,12 @@ struct DecomposedPair {
   SharedDecomposition shared;
   SharedSynthesis shared_synthesis;
   // One alpha for every component: the blend's local pose (before the root, limb lengths and
-  // foot lock) is local_a + alpha * local_delta, W_A C and W_B C de-normalized once here, so that
-  // a slider move is one pass over F x 3M values instead of two products.
-  Eigen::MatrixXd local_a, local_delta;  // U x 3M, A's units, on the warp's samples
+  // foot lock) is local_a + alpha * local_delta, de-normalized once here, so that a slider move
+  // is one pass over the values instead of two products. The *_components pair holds W_A C and
+  // W_B C alone (BlendParams::residual off), the other one adds each take's residual X - W C.
+  Eigen::MatrixXd local_a, local_delta;                        // U x 3M, A's units, with residuals
+  Eigen::MatrixXd local_a_components, local_delta_components;  // U x 3M, A's units, W C only
+  Eigen::MatrixXd residual_a, residual_b;                      // U x 3M, A's units: X - W C
   // Paper mode.
   Decomposition paper_a, paper_b;
   PaperSynthesis paper_synthesis;
@@ -137,6 +140,12 @@ struct BlendParams {
   // timing and length, 1 at B's); true keeps A's timeline, for a blend that must stay in sync.
   bool timing_a = false;
   bool loop = false;                     // cut a seamless loop of whole gait cycles (post/loop.h)
+  // Shared mode: blend each take's residual (what the k components do not hold, X - W C) with
+  // the same alpha (the mean one with per-component alphas), so alpha 0 is exactly A and 1
+  // exactly B, and the blend never moves faster than the faster take; off: the components'
+  // reconstruction alone, as the paper's synthesis has it. Paper mode never adds residuals
+  // (basic motions add A's, as the paper's chain does).
+  bool residual = true;
 };
 
 // Buffers blend_pair reuses between calls so a slider move allocates nothing.

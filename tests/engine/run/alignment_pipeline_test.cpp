@@ -251,3 +251,30 @@ TEST_CASE("alignment pipeline: a loop of whole cycles with a seamless seam", "[a
   // The travel is a walk's: a good part of a body height per cycle.
   CHECK(cut.travel.norm() > 0.2 * x.height * cut.cycles);
 }
+
+TEST_CASE("alignment pipeline: with the residuals alpha 0 is A and one alpha per component agrees", "[alignment]") {
+  const Pair x = happy_marching();
+  const PreparedPair& p = *x.p;
+  BlendParams exact;
+  exact.foot_lock = false;  // the lock pins planted feet at their mean place, A's own included
+  const BlendResult r = blend_at(p, *x.d, 0.0, exact);
+  const double with_residual = mean_joint_distance(r.world, sample_rows(p.world_a, r.source_a)) / x.height;
+  BlendParams components = exact;
+  components.residual = false;
+  const BlendResult c = blend_at(p, *x.d, 0.0, components);
+  const double components_only = mean_joint_distance(c.world, sample_rows(p.world_a, c.source_a)) / x.height;
+  INFO("alpha 0 against A: " << 100 * with_residual << "% of height with residuals, " << 100 * components_only
+                             << "% from the components alone");
+  // What is left is the sampling of A between its frames along the warp and back (0.1 s of
+  // smoothing of the warp moves no frame of A at alpha 0 by more than a fraction of a frame).
+  CHECK(with_residual < 0.005);
+  CHECK(with_residual < components_only);
+  // Per-component alphas all equal to alpha give the single-alpha blend.
+  for (double alpha : {0.0, 0.3, 1.0}) {
+    BlendParams each = exact;
+    each.component_alpha.assign(static_cast<size_t>(x.d->components()), alpha);
+    const BlendResult per = blend_at(p, *x.d, alpha, each), one = blend_at(p, *x.d, alpha, exact);
+    REQUIRE(per.world.rows() == one.world.rows());
+    CHECK((per.world - one.world).cwiseAbs().maxCoeff() < 1e-9 * x.height);
+  }
+}
