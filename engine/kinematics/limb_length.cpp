@@ -54,6 +54,10 @@ void apply_limb_lengths(Eigen::MatrixXd& positions, const std::vector<int>& pare
     throw InputError("limb-length constraint: degenerate_fraction must be a finite number >= 0, "
                      "got " + std::to_string(options.degenerate_fraction) + ".");
   }
+  if (!(options.short_fraction >= 0.0) || !(options.short_fraction <= 1.0)) {
+    throw InputError("limb-length constraint: short_fraction must be from 0 to 1, got " +
+                     std::to_string(options.short_fraction) + ".");
+  }
   if (options.fallback_pose.size() != 0 && options.fallback_pose.size() != positions.cols()) {
     throw InputError("limb-length constraint: the fallback pose has " +
                      std::to_string(options.fallback_pose.size()) + " values, expected " +
@@ -94,7 +98,22 @@ void apply_limb_lengths(Eigen::MatrixXd& positions, const std::vector<int>& pare
         const Eigen::Vector3d parent(parent_column[0][f], parent_column[1][f], parent_column[2][f]);
         const double norm = bone.norm();
         Eigen::Vector3d direction;
-        if (norm > options.degenerate_fraction * length && norm > 0.0) {
+        const double short_length = options.short_fraction * length;
+        if (norm < short_length && f > 0 && length > 0.0) {
+          // The previous output frame is final and its bone has length `length` > 0.
+          // Turn from the previous direction towards the bone's own by the fraction s of the
+          // angle between them: s = (|bone| / short length)^2, so a stub hardly turns and the
+          // bone takes its own direction again as it grows back to the short length.
+          const Eigen::Vector3d previous = (joint_at(positions, f - 1, j) - joint_at(positions, f - 1, p)) / length;
+          const double s = (norm / short_length) * (norm / short_length);
+          const double angle = norm > 0.0 ? std::acos(std::clamp(previous.dot(bone / norm), -1.0, 1.0)) : 0.0;
+          const double sine = std::sin(angle);
+          if (sine > 1e-9)
+            direction = (std::sin((1.0 - s) * angle) * previous + std::sin(s * angle) * (bone / norm)) / sine;
+          else
+            direction = previous;  // the same way, or exactly opposite (no plane to turn in): hold
+          direction.normalize();
+        } else if (norm > options.degenerate_fraction * length && norm > 0.0) {
           direction = bone * (1.0 / norm);  // one division, not three
         } else if (f > 0 && length > 0.0) {
           // The previous output frame is final and its bone has length `length` > 0.

@@ -16,6 +16,12 @@ struct LimbLengthOptions {
   // and itself usable, else +Y (the up axis). The rule keeps the skeleton continuous in time.
   double degenerate_fraction = 1e-9;
   Eigen::RowVectorXd fallback_pose;  // empty, or 1 x 3J positions
+  // A bone shorter than short_fraction * its length turns from its previous output frame's
+  // direction towards its own by the fraction (|bone| / (short_fraction L))^2 of the angle
+  // between them: blending two takes whose limbs point different ways can shorten a bone to
+  // almost nothing, and stretching it back along its own direction would swing the limb round
+  // within a frame. 0: off (every usable bone keeps its own direction).
+  double short_fraction = 0.0;
 };
 
 // Applies the constraint in place. positions: frames x 3J, file units; lengths: J values (file

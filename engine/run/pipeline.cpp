@@ -21,6 +21,9 @@ double ms_since(Clock::time_point t0) {
 
 constexpr double kMaxFps = 1000.0;
 constexpr double kPi = 3.14159265358979323846;
+// The blend's bones shorter than this fraction of their length lean on their previous direction
+// (limb_length.h): two takes' hands pointing different ways average to a stub that would spin.
+constexpr double kShortBoneFraction = 0.5;
 
 
 }  // namespace
@@ -342,7 +345,11 @@ void blend_pair(const PreparedPair& p, const DecomposedPair& d, const BlendParam
     out.source_b[k] = value_at(warp.b, s.u[k]);
   }
   to_world(out.local, s.ground, s.heading, &out.world);
-  if (params.limb_lengths) apply_limb_lengths(out.world, p.parents, p.lengths_a);
+  if (params.limb_lengths) {
+    LimbLengthOptions limbs;
+    limbs.short_fraction = kShortBoneFraction;
+    apply_limb_lengths(out.world, p.parents, p.lengths_a, limbs);
+  }
   // Foot lock (beyond the paper): planted ankles pinned by two-bone IK, which keeps bone lengths.
   out.foot_sliding_raw = foot_sliding(out.world, out.contacts, p.feet);
   if (params.foot_lock) apply_foot_lock(out.world, out.contacts, p.feet, s.foot);

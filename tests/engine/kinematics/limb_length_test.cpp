@@ -132,3 +132,31 @@ TEST_CASE("limb-length functions reject bad skeletons", "[limb_length]") {
   CHECK_THROWS_AS(bone_lengths(p, {-1, 0}), InputError);
   CHECK_THROWS_AS(max_bone_length_error(p, parents, {0.0}), InputError);
 }
+
+TEST_CASE("a short bone leans on its previous direction instead of spinning round", "[limb_length]") {
+  // A two-joint "hand" whose bone vector passes close by its parent: from (1, 0.05, 0) to
+  // (-1, 0.05, 0) over 21 frames, so its own direction swings through half a turn in the two
+  // frames around the middle. L = 1.
+  const std::vector<int> parents = {-1, 0};
+  const std::vector<double> lengths = {0.0, 1.0};
+  Eigen::MatrixXd p(21, 6);
+  for (int f = 0; f < 21; ++f) p.row(f) << 0, 0, 0, 1.0 - 0.1 * f, 0.05, 0;
+  auto largest_turn = [&](const Eigen::MatrixXd& m) {
+    double worst = 0;
+    for (int f = 1; f < m.rows(); ++f)
+      worst = std::max(worst, std::acos(std::clamp(joint(m, f, 1).normalized().dot(joint(m, f - 1, 1).normalized()), -1.0, 1.0)));
+    return worst;
+  };
+  const Eigen::MatrixXd own = with_limb_lengths(p, parents, lengths);
+  LimbLengthOptions lean;
+  lean.short_fraction = 0.5;
+  const Eigen::MatrixXd leaned = with_limb_lengths(p, parents, lengths, lean);
+  INFO("largest turn per frame: " << largest_turn(own) << " rad on its own, " << largest_turn(leaned) << " leaning");
+  CHECK(largest_turn(own) > 1.0);                          // half a turn within about two frames
+  CHECK(largest_turn(leaned) < 0.9 * largest_turn(own));  // spread over more of the frames where it is short
+  for (int f = 0; f < 21; ++f) CHECK(joint(leaned, f, 1).norm() == Approx(1.0).epsilon(kRelativeExact));
+  // Long bones keep their own direction exactly.
+  for (int f : {0, 1, 2, 3}) CHECK((joint(leaned, f, 1) - joint(own, f, 1)).norm() < kRelativeExact);
+  lean.short_fraction = 1.5;
+  CHECK_THROWS_AS(with_limb_lengths(p, parents, lengths, lean), InputError);
+}

@@ -278,3 +278,28 @@ TEST_CASE("alignment pipeline: with the residuals alpha 0 is A and one alpha per
     CHECK((per.world - one.world).cwiseAbs().maxCoeff() < 1e-9 * x.height);
   }
 }
+
+TEST_CASE("alignment pipeline: no pops on the shared motions' hardest pairs, across conventions", "[alignment]") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  // The pairs that popped before the fixes of issue #8 (turn flips, foot-lock fades, short
+  // bones, reconstruction error), both conventions, 30 and 120 fps.
+  const std::pair<const char*, const char*> pairs[] = {
+      {"bandai_walk_happy.bvh", "cmu142_walk_joy.bvh"},   {"cmu142_walk_joy.bvh", "cmu142_walk_clumsy.bvh"},
+      {"cmu142_walk_clumsy.bvh", "bandai_walk_normal.bvh"}, {"bandai_walk_old.bvh", "bandai_walk_proud.bvh"},
+      {"cmu142_walk_joy.bvh", "bandai_walk_old.bvh"},     {"bandai_walk_normal.bvh", "cmu142_walk_happy.bvh"},
+      {"bandai_walk_normal.bvh", "bandai_walk_tired.bvh"}};
+  for (const auto& [name_a, name_b] : pairs) {
+    auto a = std::make_shared<const Clip>(read_bvh_file(test::shared_motion(name_a)));
+    auto b = std::make_shared<const Clip>(read_bvh_file(test::shared_motion(name_b)));
+    const auto p = prepare_pair(a, b, {});
+    const auto d = decompose_pair(*p, DecomposeParams());
+    // The pop measure of ../shared/hooks/pop_check.py: 99.9th percentiles, inputs at 30 fps.
+    const double takes = std::max(percentile(joint_speeds(p->world_a), kPopPercentile),
+                                  percentile(joint_speeds(p->world_b), kPopPercentile));
+    for (double alpha : {0.0, 0.5, 1.0}) {
+      const double blend = percentile(joint_speeds(blend_at(*p, *d, alpha).world), kPopPercentile);
+      INFO(name_a << " + " << name_b << " at alpha " << alpha << ": " << blend / takes << "x the faster take");
+      CHECK(blend <= kPopRatio * takes);
+    }
+  }
+}
