@@ -30,13 +30,14 @@ using detail::local_costs;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr unsigned kStart = 0, kDiagonal = 1;  // then (1, k): k; (k, 1): max_slope + k - 1
 constexpr int kPairSamples = 64;
+constexpr double kCoarseCells = 250000.0;  // cells of the automatic penalty's first pass, at most about
 
 // The grid and its recurrence, row by row.
 class Grid {
  public:
   Grid(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, int slope, bool open, double penalty, JobControl* control)
       : a_(a), b_(b), n_(static_cast<int>(a.rows())), m_(static_cast<int>(b.rows())), s_(slope), open_(open),
-        penalty_(penalty), control_(control), d_((s_ + 1) * stride()), c_(s_ * stride()) {}
+        penalty_(penalty), control_(control), d_((s_ + 1) * stride()), c_(s_ * stride(), kInf) {}
 
   int n() const { return n_; }
   int m() const { return m_; }
@@ -73,6 +74,10 @@ class Grid {
       up[k] = i - k >= 0 ? d_row(i - k) : nullptr;
       cup[k] = i - k + 1 >= 0 ? c_row(i - k + 1) : nullptr;  // cup[1] == c
     }
+    if (s_ == 2 && i >= 2 && open_) {  // the default, off the first rows: no branches on j
+      relax_slope2(c, up[1], up[2], cup[2], d, codes);
+      return;
+    }
     for (int j = 0; j < m_; ++j) {
       double best = (open_ || (i == 0 && j == 0)) ? 2.0 * c[j] : kInf;
       unsigned code = kStart;
@@ -101,6 +106,37 @@ class Grid {
             run_a += cup[k][j];
           }
         }
+      }
+      d[j] = best;
+      if (codes != nullptr) {
+        std::uint8_t& byte = codes[j >> 1];
+        byte = static_cast<std::uint8_t>((j & 1) ? (byte & 0x0f) | (code << 4) : (byte & 0xf0) | code);
+      }
+    }
+  }
+
+  // relax() for max_slope 2 and open ends: c and c1 are rows i and i-1 of local costs, d1 and
+  // d2 rows i-1 and i-2 of D; the left padding (+inf in D, in c) stands in for j - 1, j - 2 < 0.
+  void relax_slope2(const double* c, const double* d1, const double* d2, const double* c1, double* d,
+                    std::uint8_t* codes) const {
+    for (int j = 0; j < m_; ++j) {
+      const double cj = c[j];
+      double best = 2.0 * cj;
+      unsigned code = kStart;
+      const double diagonal = d1[j - 1] + 2.0 * cj;
+      if (diagonal <= best) {
+        best = diagonal;
+        code = kDiagonal;
+      }
+      const double across = d1[j - 2] + 2.0 * c[j - 1] + cj;  // (1, 2)
+      if (across < best) {
+        best = across;
+        code = 2;
+      }
+      const double down = d2[j - 1] + 2.0 * c1[j] + cj;  // (2, 1)
+      if (down < best) {
+        best = down;
+        code = 3;
       }
       d[j] = best;
       if (codes != nullptr) {
@@ -209,11 +245,21 @@ SlopeDtwPath align_slope_dtw(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
   if (o.end_penalty >= 0) return solve(a, b, o, o.end_penalty, control);
   // Automatic: a generous first pass finds the part that matches; frames at the ends that match
   // kEndPenaltyOfPath times worse than that part does are then left out (within the bounds).
+  // The first pass only estimates the cost per matched frame: on long takes it runs on every
+  // q-th frame of both (about kCoarseCells cells), the second at full resolution.
   const double random = median_pair_cost(a, b);
-  const SlopeDtwPath first = solve(a, b, o, kEndPenaltyMax * random, control);
+  const double cells = static_cast<double>(a.rows()) * static_cast<double>(b.rows());
+  const int q = std::max(1, static_cast<int>(std::floor(std::sqrt(cells / kCoarseCells))));
+  auto every = [q](const Eigen::MatrixXd& x) {
+    Eigen::MatrixXd out((x.rows() + q - 1) / q, x.cols());
+    for (Eigen::Index r = 0; r < out.rows(); ++r) out.row(r) = x.row(r * q);
+    return out;
+  };
+  const SlopeDtwPath first =
+      q == 1 ? solve(a, b, o, kEndPenaltyMax * random, control) : solve(every(a), every(b), o, kEndPenaltyMax * random, control);
   const double per_frame = first.cost / std::max(1, covered_frames(first));
   const double penalty = std::clamp(kEndPenaltyOfPath * per_frame, kEndPenaltyMin * random, kEndPenaltyMax * random);
-  if (penalty == first.end_penalty) return first;
+  if (q == 1 && penalty == first.end_penalty) return first;
   return solve(a, b, o, penalty, control);
 }
 

@@ -26,8 +26,8 @@ struct SlopeDtwOptions {
   int max_slope = 2;
   bool open_ends = true;
   // Cost of leaving out one frame of either take, in feature units; < 0: automatic. Automatic
-  // runs twice: first with kEndPenaltyMax times the median cost of frames at random phases
-  // (median_pair_cost), then with kEndPenaltyOfPath times the mean cost per frame along that
+  // runs twice: first (on every q-th frame of long takes, about 250 000 cells) with
+  // kEndPenaltyMax times the median cost of frames at random phases (median_pair_cost), then with kEndPenaltyOfPath times the mean cost per frame along that
   // first path, kept between kEndPenaltyMin and kEndPenaltyMax times the random median: frames
   // at the ends that match several times worse than the rest of the match are left out, however
   // different the two styles are overall.

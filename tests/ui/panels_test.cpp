@@ -229,3 +229,48 @@ TEST_CASE("space plays and pauses, the arrow keys step one frame") {
   press(3);
   CHECK(frame_at(*reference, state.playback.time_s) == 1);
 }
+
+TEST_CASE("timing, loop and alignment controls reach the blend and the alignment") {
+  LoadedSession s;
+  REQUIRE(s.session.blend() != nullptr);
+  const PreparedPair& p = *s.session.snapshot().prepared;
+  const Alignment& al = p.alignment;
+  SessionControls& c = s.session.controls();
+  // alpha 0: A's timing, as long as A's matched range; with A's timing kept at alpha 1 too.
+  s.state.parameters.alpha = 0.0;
+  s.session.update_blend(s.state);
+  const Eigen::Index at_a = s.session.blend()->world.rows();
+  CHECK(at_a == al.a_last - al.a_first + 1);
+  s.state.parameters.alpha = 1.0;
+  s.session.update_blend(s.state);
+  CHECK(s.session.blend()->world.rows() == al.b_last - al.b_first + 1);
+  c.timing_a = true;
+  s.session.update_blend(s.state);
+  CHECK(s.session.blend()->world.rows() == at_a);
+  for (const Take& t : s.state.takes) CHECK(t.frames() == at_a);  // A and B follow the blend's timeline
+  // A seamless loop: whole cycles, every take cut to it.
+  c.timing_a = false;
+  c.loop = true;
+  s.state.parameters.alpha = 0.5;
+  s.session.update_blend(s.state);
+  REQUIRE(s.session.blend() != nullptr);
+  CHECK(s.session.blend()->loop.cycles >= 1);
+  CHECK(s.session.blend()->loop.cycles <= kLoopMaxCycles);
+  for (const Take& t : s.state.takes) CHECK(t.frames() == s.session.blend()->loop.frames());
+  // Aligning on the body re-prepares the pair on the worker.
+  c.loop = false;
+  c.align.on = AlignOn::kBody;
+  s.session.realign();
+  s.session.wait_idle(s.state);
+  REQUIRE(s.session.snapshot().prepared != nullptr);
+  CHECK(s.session.snapshot().prepared->alignment.feature.on == AlignOn::kBody);
+  CHECK(s.session.error().empty());
+  // The panels draw over it, warnings and quality strip included.
+  test::HeadlessImGui imgui;
+  auto panels = all_panels(s.session);
+  for (int frame = 0; frame < 3; ++frame) {
+    imgui.begin_frame();
+    for (auto& panel : panels) panel->draw(s.state);
+    CHECK(imgui.end_frame() > 0);
+  }
+}
