@@ -1,6 +1,8 @@
 #include "app/cli_pipeline_commands.h"
 
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -140,6 +142,46 @@ Json alignment_json(const PreparedPair& p) {
   return j;
 }
 
+// One alpha per component from "PART:alpha" entries (comma separated or repeated).
+std::vector<double> part_alphas(const std::vector<std::string>& entries, const std::vector<ComponentJoints>& parts,
+                                double rest) {
+  std::vector<std::pair<BodyPart, double>> given;
+  for (const std::string& entry : entries)
+    for (size_t begin = 0; begin <= entry.size();) {
+      const size_t comma = std::min(entry.find(',', begin), entry.size());
+      const std::string e = entry.substr(begin, comma - begin);
+      begin = comma + 1;
+      const size_t colon = e.find(':');
+      if (colon == std::string::npos) throw InputError("expected PART:alpha in --part-alpha, found '" + e + "'");
+      const std::string number_text = e.substr(colon + 1);
+      char* end = nullptr;
+      const double v = std::strtod(number_text.c_str(), &end);
+      if (number_text.empty() || *end != '\0' || !std::isfinite(v))
+        throw InputError("expected a number after '" + e.substr(0, colon + 1) + "' in --part-alpha, found '" +
+                         number_text + "'");
+      given.emplace_back(parse_body_part(e.substr(0, colon)), v);
+    }
+  return weights_for_parts(given, parts, rest);
+}
+
+// One list of joint names per component (issue #9's `component_joints`).
+Json component_joints_json(const std::vector<ComponentJoints>& parts, const std::vector<std::string>& names) {
+  Json out = Json::array();
+  for (const ComponentJoints& c : parts) {
+    Json joints = Json::array();
+    for (int column : c.columns) joints.push_back(names[static_cast<size_t>(column)]);
+    out.push_back(joints);
+  }
+  return out;
+}
+
+// Per component: its plain name, body region and centre joint.
+Json component_regions_json(const std::vector<ComponentJoints>& parts) {
+  Json out = Json::array();
+  for (const ComponentJoints& c : parts) out.push_back({{"name", c.name}, {"region", body_region_name(c.region)}});
+  return out;
+}
+
 Json vector_json(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
 
 }  // namespace
@@ -240,9 +282,13 @@ void add_decompose_command(CLI::App& app, std::function<int()>* run) {
     double fps = 30;
     std::string mapping;
     bool json = false;
+    bool no_local = false;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("FILE", args->file, "BVH take")->required();
+  cmd->add_flag("--no-local", args->no_local,
+                "Components may take channels anywhere (the paper's plain sparsity) instead of one connected piece "
+                "of the skeleton each");
   cmd->add_option("--components,-k", args->components, "Number of components k")->capture_default_str();
   cmd->add_option("--sparsity,-f", args->sparsity, "Fraction of non-zeros kept in C, in (0, 1]")->capture_default_str();
   cmd->add_option("--iterations", args->iterations, "Iteration cap")->capture_default_str();
@@ -261,7 +307,9 @@ void add_decompose_command(CLI::App& app, std::function<int()>* run) {
       d.components = args->components;
       d.sparsity = args->sparsity;
       d.max_iterations = args->iterations;
+      if (!args->no_local) d.locality_parents = p->parents;
       const Decomposition r = decompose(p->x_a, d);
+      const std::vector<ComponentJoints> parts = describe_components(r.components, p->majors);
       const double rmse = r.rmse * p->normalization.scale;
       if (args->json) {
         Json j;
@@ -277,6 +325,9 @@ void add_decompose_command(CLI::App& app, std::function<int()>* run) {
         j["iterations"] = r.iterations;
         j["converged"] = r.converged;
         j["time_ms"] = r.elapsed_ms;
+        j["local"] = !args->no_local;
+        j["component_joints"] = component_joints_json(parts, p->names_a);
+        j["component_regions"] = component_regions_json(parts);
         std::cout << j.dump(2) << "\n";
       } else {
         std::cout << args->file << ": " << p->x_a.rows() << " frames x " << p->names_a.size()
@@ -303,11 +354,13 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
     std::vector<double> basic_sparsities;
     int swap = 0;
     std::vector<double> component_alpha;
+    std::vector<std::string> part_alpha;
     bool no_limb = false;
     bool no_foot_lock = false;
     std::string timing = "blend";
     bool loop = false;
     bool components_only = false;
+    bool no_local = false;
     std::string out, positions_out, report;
   };
   auto args = std::make_shared<Args>();
@@ -322,6 +375,10 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
   cmd->add_option("--basic", args->basic, "Paper mode: decompose into M basic motions")->capture_default_str();
   cmd->add_option("--basic-sparsity", args->basic_sparsities, "Sparsity of each basic motion")->delimiter(',');
   cmd->add_option("--swap", args->swap, "Basic motion (0-based) whose core is taken from B")->capture_default_str();
+  cmd->add_option("--part-alpha", args->part_alpha,
+                  "Shared mode: PART:a, the alpha of one body part's components (legs, arms, spine, left-leg, "
+                  "right-leg, left-arm, right-arm; repeat for several, a side wins over both sides); the rest "
+                  "take --alpha");
   cmd->add_option("--component-alpha", args->component_alpha, "Shared mode: one alpha per component, comma separated")
       ->delimiter(',');
   cmd->add_flag("--no-limb-constraint", args->no_limb, "Skip the limb-length constraint (paper 3.7)");
@@ -330,6 +387,9 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
                   "blend: the output's timing moves from A's (alpha 0) to B's (alpha 1); a: keep A's timeline")
       ->check(CLI::IsMember({"blend", "a"}))
       ->capture_default_str();
+  cmd->add_flag("--no-local", args->no_local,
+                "Shared mode: components may take channels anywhere instead of one connected piece of the "
+                "skeleton each");
   cmd->add_flag("--components-only", args->components_only,
                 "Shared mode: blend only what the k components reconstruct (the paper's synthesis), "
                 "leaving out each take's residual detail");
@@ -352,11 +412,17 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
       dp.max_iterations = args->iterations;
       dp.basic_motions = args->basic;
       dp.basic_sparsities = args->basic_sparsities;
+      dp.local = !args->no_local;
       const auto d = decompose_pair(*p, dp);
       times.decompose_ms = d->elapsed_ms;
       BlendParams bp;
       bp.alpha = args->alpha;
       bp.component_alpha = args->component_alpha;
+      if (!args->part_alpha.empty()) {
+        if (!args->component_alpha.empty()) throw InputError("give --part-alpha or --component-alpha, not both");
+        if (dp.mode != BlendMode::kShared) throw InputError("--part-alpha needs shared mode (--mode shared)");
+        bp.component_alpha = part_alphas(args->part_alpha, d->component_joints, args->alpha);
+      }
       bp.swap_level = args->swap;
       bp.limb_lengths = !args->no_limb;
       bp.foot_lock = !args->no_foot_lock;
@@ -426,6 +492,9 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
       r["reconstruction_rmse"] = {{"a", d->rmse_a}, {"b", d->rmse_b}};
       r["component_nonzero_fraction"] = {{"a", d->nonzero_a}, {"b", d->nonzero_b}};
       r["iterations"] = d->iterations;
+      r["local"] = dp.local && dp.mode == BlendMode::kShared;
+      r["component_joints"] = component_joints_json(d->component_joints, p->names_a);
+      r["component_regions"] = component_regions_json(d->component_joints);
       r["limb_length_max_error"] = result.limb_length_max_error;
       if (!args->out.empty()) r["export_fit"] = {{"max", fit.max}, {"mean", fit.mean}};
       r["foot_lock"] = bp.foot_lock;

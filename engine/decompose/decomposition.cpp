@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -38,7 +39,10 @@ double nonzero_fraction(const Eigen::MatrixXd& c) {
 // neighbour moving with the same signal (which left whole limbs to one component and others to
 // none, a local minimum the alternation could not leave).
 // r: frames x 3N, in: x, out: the residual x - w c. w: frames x k, c: k x 3N, both zeroed first.
-void greedy_init(int keep, Eigen::MatrixXd& r, Eigen::MatrixXd& w, Eigen::MatrixXd& c) {
+// With neighbours (local components), the component instead grows from the joint through
+// neighbouring joints, whole joints at a time (keep_connected on those coefficients).
+void greedy_init(int keep, const std::vector<std::vector<int>>* neighbours, Eigen::MatrixXd& r, Eigen::MatrixXd& w,
+                 Eigen::MatrixXd& c) {
   const Eigen::Index joints = r.cols() / 3;
   w.setZero();
   c.setZero();
@@ -48,6 +52,7 @@ void greedy_init(int keep, Eigen::MatrixXd& r, Eigen::MatrixXd& w, Eigen::Matrix
   };
   update_energy();
   std::vector<double> scratch;
+  std::vector<char> chosen;
   Eigen::MatrixXd others(r.cols(), 1);
 
   for (Eigen::Index component = 0; component < w.cols(); ++component) {
@@ -79,10 +84,19 @@ void greedy_init(int keep, Eigen::MatrixXd& r, Eigen::MatrixXd& w, Eigen::Matrix
     if (keep > 3 && scale > 0.0) {
       others.noalias() = r.transpose() * weight;
       others /= weight.squaredNorm();
-      others.block<3, 1>(3 * joint, 0).setZero();
-      keep_largest(others, keep - 3, SparseGroup::kColumn, scratch);
-      for (Eigen::Index j = 0; j < r.cols(); ++j) {
-        if (others(j, 0) != 0.0) c(component, j) = others(j, 0);
+      if (neighbours != nullptr) {
+        // Grown from this joint: its own entries are the largest so it is the centre.
+        Eigen::RowVectorXd row = others.col(0).transpose();
+        row.segment<3>(3 * joint).setConstant(std::numeric_limits<double>::infinity());  // the centre
+        keep_connected(row, keep, *neighbours, chosen);
+        for (Eigen::Index j = 0; j < r.cols(); ++j)
+          if (row[j] != 0.0 && (j < 3 * joint || j >= 3 * joint + 3)) c(component, j) = others(j, 0);
+      } else {
+        others.block<3, 1>(3 * joint, 0).setZero();
+        keep_largest(others, keep - 3, SparseGroup::kColumn, scratch);
+        for (Eigen::Index j = 0; j < r.cols(); ++j) {
+          if (others(j, 0) != 0.0) c(component, j) = others(j, 0);
+        }
       }
     }
     for (Eigen::Index j = 0; j < r.cols(); ++j) {
@@ -154,7 +168,9 @@ Decomposition run_decomposition(const Eigen::MatrixXd& x, const DecompositionOpt
   w.resize(frames, k);
   c.resize(k, channels);
   Eigen::MatrixXd r = x;
-  greedy_init(keep, r, w, c);
+  const std::vector<std::vector<int>> neighbours = neighbours_of(options.locality_parents);
+  const std::vector<std::vector<int>>* local = options.locality_parents.empty() ? nullptr : &neighbours;
+  greedy_init(keep, local, r, w, c);
   double objective = r.squaredNorm();
   result.objective_history.reserve(static_cast<size_t>(options.max_iterations) + 1);
   result.objective_history.push_back(objective);
@@ -167,6 +183,7 @@ Decomposition run_decomposition(const Eigen::MatrixXd& x, const DecompositionOpt
   coding.group = SparseGroup::kRow;
   coding.max_iterations = options.sparse_coding_iterations;
   coding.tolerance = 0.0;
+  coding.joint_neighbours = local;
 
   Eigen::MatrixXd gram(k, k);
   Eigen::MatrixXd correlation(k, channels);
@@ -242,6 +259,16 @@ void DecompositionOptions::Validate(const Eigen::MatrixXd& x) const {
   }
   if (!x.allFinite()) {
     throw InputError("decomposition: the motion matrix holds a NaN or infinite value.");
+  }
+  if (!locality_parents.empty()) {
+    if (static_cast<Eigen::Index>(locality_parents.size()) * 3 != x.cols())
+      throw InputError("decomposition: the skeleton for local components has " + std::to_string(locality_parents.size()) +
+                       " joints, the motion matrix " + std::to_string(x.cols() / 3) + ".");
+    for (size_t j = 0; j < locality_parents.size(); ++j)
+      if (locality_parents[j] < -1 || locality_parents[j] >= static_cast<int>(locality_parents.size()) ||
+          locality_parents[j] == static_cast<int>(j))
+        throw InputError("decomposition: joint " + std::to_string(j) + " of the skeleton for local components has "
+                         "parent " + std::to_string(locality_parents[j]) + ".");
   }
 }
 

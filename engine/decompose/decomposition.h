@@ -19,6 +19,11 @@ struct DecompositionOptions {
   // Sparse-coding sweeps per C update, >= 1: warm-started, each sweep updates every component
   // row once (sparse_code_normal with SparseGroup::kRow).
   int sparse_coding_iterations = 5;
+  // Local components (SPLOCS's support maps, on the skeleton): when given (one parent per joint,
+  // -1 for a root; 3N / 3 entries), each component's support is whole joints forming one
+  // connected piece of the skeleton around its centre, max(1, round(f * 3N / 3)) joints.
+  // Empty: channels anywhere, the largest ones (the paper's plain sparsity).
+  std::vector<int> locality_parents;
 
   // Throws InputError when an option is out of range for x (frames x 3N), or x is empty, has a
   // column count that is not a multiple of 3, or holds a NaN or infinite value.

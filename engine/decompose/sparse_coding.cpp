@@ -72,6 +72,49 @@ void keep_largest(Eigen::MatrixXd& x, int nonzeros, SparseGroup group,
   }
 }
 
+void keep_connected(Eigen::Ref<Eigen::RowVectorXd> row, int nonzeros, const std::vector<std::vector<int>>& neighbours,
+                    std::vector<char>& chosen) {
+  const int joints = static_cast<int>(row.size() / 3);
+  assert(static_cast<int>(neighbours.size()) == joints);
+  const int budget = std::max(1, static_cast<int>(std::lround(nonzeros / 3.0)));
+  auto energy = [&](int j) { return row.segment<3>(3 * j).squaredNorm(); };
+  chosen.assign(static_cast<size_t>(joints), 0);
+  int centre = 0;
+  for (int j = 1; j < joints; ++j)
+    if (energy(j) > energy(centre)) centre = j;
+  chosen[static_cast<size_t>(centre)] = 1;
+  for (int held = 1; held < budget; ++held) {
+    int best = -1;
+    double best_energy = 0.0;
+    for (int j = 0; j < joints; ++j) {
+      if (!chosen[static_cast<size_t>(j)]) continue;
+      for (int n : neighbours[static_cast<size_t>(j)]) {
+        if (chosen[static_cast<size_t>(n)]) continue;
+        const double e = energy(n);
+        if (e > best_energy || (e == best_energy && e > 0.0 && n < best)) {
+          best = n;
+          best_energy = e;
+        }
+      }
+    }
+    if (best < 0) break;
+    chosen[static_cast<size_t>(best)] = 1;
+  }
+  for (int j = 0; j < joints; ++j)
+    if (!chosen[static_cast<size_t>(j)]) row.segment<3>(3 * j).setZero();
+}
+
+std::vector<std::vector<int>> neighbours_of(const std::vector<int>& parents) {
+  std::vector<std::vector<int>> out(parents.size());
+  for (size_t j = 0; j < parents.size(); ++j) {
+    const int p = parents[j];
+    if (p < 0) continue;
+    out[j].push_back(p);
+    out[static_cast<size_t>(p)].push_back(static_cast<int>(j));
+  }
+  return out;
+}
+
 int sparse_code_normal(const Eigen::MatrixXd& gram, const Eigen::MatrixXd& correlation,
                        Eigen::MatrixXd& codes, const SparseCodingOptions& options) {
   assert(gram.rows() == gram.cols());
@@ -129,7 +172,8 @@ int sparse_code_normal(const Eigen::MatrixXd& gram, const Eigen::MatrixXd& corre
     return iteration;
   }
 
-  Eigen::RowVectorXd row(codes.cols());
+  Eigen::RowVectorXd row(codes.cols()), target(codes.cols());
+  std::vector<char> chosen;
   while (iteration < options.max_iterations) {
     ++iteration;
     previous = codes;
@@ -139,7 +183,16 @@ int sparse_code_normal(const Eigen::MatrixXd& gram, const Eigen::MatrixXd& corre
       // row_i - (1/G_ii) (G_i X - B_i): the gradient of row i at the current (partly updated) X.
       row.noalias() = gram.row(i) * codes;
       row = codes.row(i) - (row - correlation.row(i)) / curvature;
-      keep_largest_in_group(row, options.nonzeros, scratch);
+      if (options.joint_neighbours != nullptr) {
+        // The row's cost is curvature/2 |row - target|^2 + const with target the unprojected
+        // step: keep the projection only when it is at least as close as the current row (the
+        // greedy connected projection is not exact), so the objective still never increases.
+        target = row;
+        keep_connected(row, options.nonzeros, *options.joint_neighbours, chosen);
+        if ((row - target).squaredNorm() > (codes.row(i) - target).squaredNorm()) continue;
+      } else {
+        keep_largest_in_group(row, options.nonzeros, scratch);
+      }
       codes.row(i) = row;
     }
     if (options.tolerance > 0.0 &&

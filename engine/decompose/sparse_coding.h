@@ -19,6 +19,10 @@ struct SparseCodingOptions {
   int max_iterations = 200;                  // passes over X (one step per group), >= 1
   // Stop early when ||X_new - X_old||_F <= tolerance * ||X_new||_F; 0 runs every iteration.
   double tolerance = 1e-12;
+  // Row groups only: when given (one list of neighbouring joints per joint, the columns being
+  // x, y, z triples of those joints), each row keeps whole joints that form one connected piece
+  // of that graph (keep_connected) instead of its largest entries. Not owned.
+  const std::vector<std::vector<int>>* joint_neighbours = nullptr;
 
   // Throws InputError when a value is out of range for codes of size code_rows x code_cols.
   void Validate(int code_rows, int code_cols) const;
@@ -58,5 +62,18 @@ int sparse_code_normal(const Eigen::MatrixXd& gram, const Eigen::MatrixXd& corre
 // scratch is resized as needed and may be reused between calls to avoid allocation.
 void keep_largest(Eigen::MatrixXd& x, int nonzeros, SparseGroup group,
                   std::vector<double>& scratch);
+
+// The local projection of one row (a component over joints' x, y, z triples): grows a connected
+// set of joints from the joint with the most energy (sum of its squared entries), adding the
+// neighbouring joint with the most energy (ties to the lower index) until it holds
+// max(1, round(nonzeros / 3)) joints or no neighbour has any energy, and zeroes every other
+// joint. neighbours: one list per joint (row.size() / 3 joints). Greedy, not the exact
+// projection onto connected supports; the sparse coding keeps a row's previous value whenever
+// the projected step would not lower its cost. O(joints^2) worst case.
+void keep_connected(Eigen::Ref<Eigen::RowVectorXd> row, int nonzeros, const std::vector<std::vector<int>>& neighbours,
+                    std::vector<char>& chosen);
+
+// Neighbour lists of a tree given by parent indices (-1: root).
+std::vector<std::vector<int>> neighbours_of(const std::vector<int>& parents);
 
 }  // namespace mostyle

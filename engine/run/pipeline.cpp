@@ -174,6 +174,7 @@ std::shared_ptr<const DecomposedPair> decompose_pair(const PreparedPair& prepare
   const double scale = prepared.normalization.scale;
   const Eigen::MatrixXd* support_source = nullptr;
   if (params.mode == BlendMode::kShared) {
+    if (params.local) o.locality_parents = prepared.parents;
     d->shared = decompose_shared(prepared.x_a, prepared.x_b, o, control);
     d->shared_synthesis = prepare_shared_synthesis(d->shared.weights_a, d->shared.weights_b, d->shared.components);
     const Normalization& n = prepared.normalization;
@@ -226,6 +227,7 @@ std::shared_ptr<const DecomposedPair> decompose_pair(const PreparedPair& prepare
     support_source = &d->paper_a.components;
   }
   d->support = (support_source->array() != 0.0).cast<double>();
+  d->component_joints = describe_components(*support_source, prepared.majors);
   d->elapsed_ms = ms_since(t0);
   report_progress(control, 1.0f);
   return d;
@@ -294,9 +296,22 @@ void blend_pair(const PreparedPair& p, const DecomposedPair& d, const BlendParam
     s.samples.resize(s.x.rows(), s.x.cols());
     s.samples.noalias() = s.x * n.scale;
     s.samples.rowwise() += s.mean;
-    if (params.residual && d.params.mode == BlendMode::kShared) {  // per-component alphas
+    if (params.residual && d.params.mode == BlendMode::kShared) {
+      // Per-component alphas: each joint's residual takes the mean alpha of the components
+      // that move it (a body part's detail follows that part), the overall mean elsewhere.
       const double mean_alpha = s.alphas.mean();
-      s.samples += (1 - mean_alpha) * d.residual_a + mean_alpha * d.residual_b;
+      const Eigen::Index joints = d.support.cols() / 3;
+      for (Eigen::Index j = 0; j < joints; ++j) {
+        double sum = 0.0;
+        int count = 0;
+        for (Eigen::Index k = 0; k < d.support.rows(); ++k)
+          if (d.support(k, 3 * j) != 0 || d.support(k, 3 * j + 1) != 0 || d.support(k, 3 * j + 2) != 0) {
+            sum += s.alphas[k];
+            ++count;
+          }
+        const double a = count > 0 ? sum / count : mean_alpha;
+        s.samples.middleCols(3 * j, 3) += (1 - a) * d.residual_a.middleCols(3 * j, 3) + a * d.residual_b.middleCols(3 * j, 3);
+      }
     }
     s.sampler.apply(s.samples, out.local);
   }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "engine/decompose/basic_motions.h"
+#include "engine/decompose/body_parts.h"
 #include "engine/prepare/canonical_frame.h"
 #include "engine/io/clip.h"
 #include "engine/decompose/decomposition.h"
@@ -94,6 +95,10 @@ struct DecomposeParams {
   // sparsities (missing entries take `sparsity`) instead of one decomposition.
   int basic_motions = 0;
   std::vector<double> basic_sparsities;
+  // Shared mode: local components, each one connected piece of the skeleton (decomposition.h
+  // locality_parents), so that a component is a body part. Paper mode is never local (the
+  // paper's decomposition keeps the largest entries anywhere).
+  bool local = true;
   void Validate(int channels) const;  // throws InputError
 };
 
@@ -121,6 +126,8 @@ struct DecomposedPair {
   double elapsed_ms = 0;
   // The components' channels (3M) that are non-zero, per component (k x 3M booleans as 0/1).
   Eigen::MatrixXd support;
+  // Per component: its joints, centre, body region and plain name (body_parts.h).
+  std::vector<ComponentJoints> component_joints;
   int components() const { return params.components; }
 };
 
@@ -141,7 +148,7 @@ struct BlendParams {
   bool timing_a = false;
   bool loop = false;                     // cut a seamless loop of whole gait cycles (post/loop.h)
   // Shared mode: blend each take's residual (what the k components do not hold, X - W C) with
-  // the same alpha (the mean one with per-component alphas), so alpha 0 is exactly A and 1
+  // the same alpha (with per-component alphas, each joint's the mean of its components'), so alpha 0 is exactly A and 1
   // exactly B, and the blend never moves faster than the faster take; off: the components'
   // reconstruction alone, as the paper's synthesis has it. Paper mode never adds residuals
   // (basic motions add A's, as the paper's chain does).
