@@ -32,17 +32,21 @@ void ComponentsPanel::draw(EditorState& state) {
   const bool shared = d->params.mode == BlendMode::kShared;
   const int k = d->components();
   ImGui::SetNextItemWidth(140.0f);
-  char preview[32];
-  std::snprintf(preview, sizeof preview, c.selected_component < 0 ? "none" : "component %d", c.selected_component);
-  if (ImGui::BeginCombo("component", preview)) {
+  // Components by their plain names ("left leg 2"), from the body region they move.
+  auto name_of = [&](int i) {
+    return i >= 0 && i < static_cast<int>(d->component_joints.size()) ? d->component_joints[static_cast<size_t>(i)].name
+                                                                       : std::string("none");
+  };
+  if (ImGui::BeginCombo("component", name_of(c.selected_component).c_str())) {
     if (ImGui::Selectable("none", c.selected_component < 0)) c.selected_component = -1;
     for (int i = 0; i < k; ++i) {
-      char label[32];
-      std::snprintf(label, sizeof label, "component %d", i);
-      if (ImGui::Selectable(label, c.selected_component == i)) c.selected_component = i;
+      ImGui::PushID(i);
+      if (ImGui::Selectable(name_of(i).c_str(), c.selected_component == i)) c.selected_component = i;
+      ImGui::PopID();
     }
     ImGui::EndCombo();
   }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Pick a component: its joints light up on the blend");
   ImGui::SameLine();
   if (ImGui::ArrowButton("##prev", ImGuiDir_Left)) c.selected_component = std::max(-1, c.selected_component - 1);
   ImGui::SameLine();

@@ -43,12 +43,6 @@ void ParametersPanel::draw(EditorState& state) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("shared: one component set for A and B (alpha 1 is B)\npaper: separate decompositions, "
                       "cores blended (paper 3.6)");
-  bool components_only = !c.residual;
-  if (ImGui::Checkbox("components only", &components_only)) c.residual = !components_only;
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Off: each take's detail that the k components do not hold is blended with alpha too,\n"
-                      "so alpha 0 is exactly A and 1 exactly B.\nOn: only what the components reconstruct "
-                      "(the paper's synthesis); k and sparsity then shape the whole blend.");
   int align_on = static_cast<int>(c.align.on);
   if (ImGui::Combo("align on", &align_on, "auto\0left foot\0feet\0hands\0body\0")) {
     c.align.on = static_cast<AlignOn>(align_on);
@@ -73,11 +67,17 @@ void ParametersPanel::draw(EditorState& state) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Off: the blend's timing moves from A's (alpha 0) to B's (alpha 1), as style does.\n"
                       "On: keep A's timeline, to stay in sync with other material.");
-  ImGui::SameLine();
   ImGui::Checkbox("seamless loop", &c.loop);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Cut 1 to 4 whole gait cycles that play seamlessly on repeat (root travel kept).\n"
                       "Playback and export then use the loop.");
+  ImGui::SameLine();
+  bool components_only = !c.residual;
+  if (ImGui::Checkbox("components only", &components_only)) c.residual = !components_only;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Off: each take's detail that the k components do not hold is blended with alpha too,\n"
+                      "so alpha 0 is exactly A and 1 exactly B.\nOn: only what the components reconstruct "
+                      "(the paper's synthesis); k and sparsity then shape the whole blend.");
   if (ImGui::RadioButton("side by side", !state.view.overlay)) state.view.overlay = false;
   ImGui::SameLine();
   if (ImGui::RadioButton("overlay", state.view.overlay)) state.view.overlay = true;
@@ -99,16 +99,37 @@ void ParametersPanel::draw(EditorState& state) {
   }
 
   if (c.mode == BlendMode::kShared) {
-    if (ImGui::CollapsingHeader("Per-component alpha")) {
-      ImGui::Checkbox("use per-component alphas", &c.per_component);
+    if (ImGui::CollapsingHeader("Body parts")) {
+      ImGui::Checkbox("alpha per body part", &c.per_component);
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Take each body part's style from A or B on its own: legs from one, arms from the other.");
       if (d != nullptr && d->params.mode == BlendMode::kShared) {
         c.component_alpha.resize(static_cast<size_t>(d->components()), p.alpha);
         if (ImGui::SmallButton("all = alpha")) std::fill(c.component_alpha.begin(), c.component_alpha.end(), p.alpha);
+        // One slider per part (legs, arms, spine): it sets every component of that part.
+        for (BodyPart part : {BodyPart::kLegs, BodyPart::kArms, BodyPart::kSpine}) {
+          int first = -1;
+          for (int i = 0; i < d->components(); ++i)
+            if (part_covers(part, d->component_joints[static_cast<size_t>(i)].region)) {
+              first = i;
+              break;
+            }
+          if (first < 0) continue;
+          float a = static_cast<float>(c.component_alpha[static_cast<size_t>(first)]);
+          if (ImGui::SliderFloat(body_part_name(part), &a, 0.0f, 1.0f, "%.2f")) {
+            for (int i = 0; i < d->components(); ++i)
+              if (part_covers(part, d->component_joints[static_cast<size_t>(i)].region))
+                c.component_alpha[static_cast<size_t>(i)] = a;
+            c.per_component = true;
+          }
+        }
+        ImGui::TextColored(kDimColor, "each component:");
         for (int i = 0; i < d->components(); ++i) {
           ImGui::PushID(i);
           float a = static_cast<float>(c.component_alpha[static_cast<size_t>(i)]);
-          char label[32];
-          std::snprintf(label, sizeof label, "c%d%s", i, i == c.selected_component ? " *" : "");
+          char label[64];
+          std::snprintf(label, sizeof label, "%s%s", d->component_joints[static_cast<size_t>(i)].name.c_str(),
+                        i == c.selected_component ? " *" : "");
           if (ImGui::SliderFloat(label, &a, 0.0f, 1.0f, "%.2f")) {
             c.component_alpha[static_cast<size_t>(i)] = a;
             c.per_component = true;
