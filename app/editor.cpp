@@ -166,6 +166,12 @@ void Editor::frame_camera(float aspect) {
   camera_.frame(b, aspect, kFrameFill);
 }
 
+bool Editor::animating() const {
+  const WorkerStatus status = session_->status();
+  return state_.playback.playing || status.stage != WorkerStage::kIdle || status.pending || session_->sweeping() ||
+         !session_->dropped().empty();
+}
+
 void Editor::frame(const FrameInput& input) {
   if (!graphics_ready_) throw std::logic_error("Editor::frame before init_graphics");
   const glm::ivec2 size = glm::max(input.framebuffer_size, glm::ivec2(1));

@@ -73,6 +73,10 @@ class Editor {
   // as B (one) by the files panel on the next frame.
   void drop_files(const std::vector<std::string>& paths);
   const render::OrbitCamera& camera() const { return camera_; }
+  // Whether the next frame differs from this one without any input: playing, or the engine
+  // (a load, a decomposition, the error sweep) still working. When not, the window platform
+  // waits for events instead of drawing (an editor at rest uses next to no CPU).
+  bool animating() const;
 
  private:
   void build_scene();

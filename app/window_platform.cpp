@@ -20,6 +20,9 @@
 namespace mostyle::app {
 namespace {
 
+constexpr double kRestWakeSeconds = 0.5;  // at rest, how often to look up from waiting
+constexpr int kSettleFrames = 3;          // frames drawn after an event before resting again
+
 constexpr const char* kNoDisplay = "mostyle: no display; run under xvfb-run or pass --offscreen";
 
 std::string g_glfw_error;  // last GLFW error, for the one-line message
@@ -33,7 +36,32 @@ bool have_display() {
 
 // Screenshot frames must not depend on where the pointer is or how fast the machine is.
 // Files dropped on the window go to the editor's queue; the files panel loads them.
+// Input events since the start, counted by callbacks installed before ImGui's (which calls
+// them on after its own): at rest, a wake-up with no event draws nothing.
+int g_events = 0;
+void count_key(GLFWwindow*, int, int, int, int) { ++g_events; }
+void count_char(GLFWwindow*, unsigned int) { ++g_events; }
+void count_button(GLFWwindow*, int, int, int) { ++g_events; }
+void count_cursor(GLFWwindow*, double, double) { ++g_events; }
+void count_scroll(GLFWwindow*, double, double) { ++g_events; }
+void count_enter(GLFWwindow*, int) { ++g_events; }
+void count_focus(GLFWwindow*, int) { ++g_events; }
+void count_size(GLFWwindow*, int, int) { ++g_events; }
+void count_refresh(GLFWwindow*) { ++g_events; }
+void count_events(GLFWwindow* window) {
+  glfwSetKeyCallback(window, count_key);
+  glfwSetCharCallback(window, count_char);
+  glfwSetMouseButtonCallback(window, count_button);
+  glfwSetCursorPosCallback(window, count_cursor);
+  glfwSetScrollCallback(window, count_scroll);
+  glfwSetCursorEnterCallback(window, count_enter);
+  glfwSetWindowFocusCallback(window, count_focus);
+  glfwSetFramebufferSizeCallback(window, count_size);
+  glfwSetWindowRefreshCallback(window, count_refresh);
+}
+
 void on_drop(GLFWwindow* window, int count, const char** paths) {
+  ++g_events;
   auto* editor = static_cast<Editor*>(glfwGetWindowUserPointer(window));
   if (editor == nullptr || count <= 0) return;
   editor->drop_files(std::vector<std::string>(paths, paths + count));
@@ -81,14 +109,26 @@ int run_window(const EditorOptions& options) {
     Editor editor(options);
     editor.set_deterministic(screenshot);
     if (screenshot) editor.wait_for_engine();  // the same aligned, decomposed pair every run
+    count_events(window);
     ImGui_ImplGlfw_InitForOpenGL(window, /*install_callbacks=*/true);
     glfwSetWindowUserPointer(window, &editor);
     glfwSetDropCallback(window, on_drop);
     try {
       editor.init_graphics();
       double last = glfwGetTime();
+      int settle = 0;  // frames still drawn after the last event (ImGui needs a few to settle)
       for (int frame = 0; !glfwWindowShouldClose(window); ++frame) {
-        glfwPollEvents();
+        // At rest (paused, engine idle) wait for input instead of drawing 60 frames a second;
+        // the timeout keeps a finished background job from waiting long to be shown.
+        if (!screenshot && !editor.animating() && settle <= 0) {
+          const int before = g_events;
+          glfwWaitEventsTimeout(kRestWakeSeconds);
+          if (g_events == before) continue;  // nothing happened: nothing to draw
+          settle = kSettleFrames;
+        } else {
+          glfwPollEvents();
+          --settle;
+        }
         ImGui_ImplGlfw_NewFrame();
         const double now = glfwGetTime();
         FrameInput input;
