@@ -14,9 +14,11 @@
 #include "engine/io/clip.h"
 #include "engine/kinematics/units.h"
 #include "engine/run/pipeline.h"
+#include "tests/engine/run/blend_at.h"
 #include "tests/test_data.h"
 
 using namespace mostyle;
+using mostyle::test::blend_at;
 
 namespace {
 
@@ -31,14 +33,6 @@ constexpr double kSeamRatio = 1.5;         // loop seam vs the largest joint mov
 
 std::shared_ptr<const Clip> load(const std::string& name) {
   return std::make_shared<const Clip>(read_bvh_file(test::asset("motions/" + name)));
-}
-
-BlendResult blend_at(const PreparedPair& p, const DecomposedPair& d, double alpha, BlendParams params = {}) {
-  params.alpha = alpha;
-  BlendScratch scratch;
-  BlendResult out;
-  blend_pair(p, d, params, scratch, out);
-  return out;
 }
 
 // Per frame t >= 1: the largest distance a joint moves from frame t - 1 (F - 1 values).

@@ -19,9 +19,11 @@
 #include "engine/kinematics/resample.h"
 #include "engine/kinematics/units.h"
 #include "tests/engine/skeleton_builder.h"
+#include "tests/engine/run/blend_at.h"
 #include "tests/test_data.h"
 
 using namespace mostyle;
+using mostyle::test::blend_at;
 
 namespace {
 
@@ -96,14 +98,6 @@ Eigen::MatrixXd canonical_pose(const PreparedPair& p, const Eigen::MatrixXd& wor
   const int left = major_column(p.majors, static_cast<int>(MajorJoint::kLeftHip));
   const int right = major_column(p.majors, static_cast<int>(MajorJoint::kRightHip));
   return to_canonical(world, 0, left, right).local;
-}
-
-BlendResult blend_at(const PreparedPair& p, const DecomposedPair& d, double alpha, BlendParams params = {}) {
-  params.alpha = alpha;
-  BlendScratch scratch;
-  BlendResult out;
-  blend_pair(p, d, params, scratch, out);
-  return out;
 }
 
 // A clip turned 180 degrees about +Y through the origin: root position (x, z) -> (-x, -z), root
