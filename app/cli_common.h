@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/io/bvh_io.h"
 #include "engine/io/clip.h"
 
 namespace mostyle::cli {
@@ -19,7 +20,13 @@ void write_output(const std::string& path, const std::string& content);
 std::string positions_csv(const Eigen::MatrixXd& positions, const std::vector<int>& joints,
                           const std::vector<std::string>& names);
 
-// Reads a BVH file and prints its warnings to stderr as "mostyle: warning: ...".
+// The BVH reader's options from the environment: MOSTYLE_MAX_MEMORY_MB, when set, bounds the
+// memory one take's frames may need (default 4096). Throws InputError when it is not a whole
+// number of megabytes from 1 up.
+BvhReadOptions bvh_read_options_from_environment();
+
+// Reads a BVH file (with the options above) and prints its warnings to stderr as
+// "mostyle: warning: ...".
 Clip load_clip(const std::string& path);
 
 }  // namespace mostyle::cli

@@ -4,6 +4,7 @@
 #include <functional>
 #include <iostream>
 
+#include "app/cli_batch_commands.h"
 #include "app/cli_clip_commands.h"
 #include "app/cli_pipeline_commands.h"
 #include "engine/io/error.h"
@@ -19,6 +20,8 @@ int main(int argc, char** argv) {
   mostyle::cli::add_align_command(app, &run);
   mostyle::cli::add_decompose_command(app, &run);
   mostyle::cli::add_blend_command(app, &run);
+  mostyle::cli::add_batch_command(app, &run);
+  mostyle::cli::add_grid_command(app, &run);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

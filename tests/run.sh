@@ -3,7 +3,7 @@
 #   tests/run.sh                               normal build (build/), all tests
 #   tests/run.sh --sanitize address,undefined  ASan+UBSan build (build-address-undefined/), all tests
 #   tests/run.sh --sanitize thread             TSan build (build-thread/), the threaded tests
-#                                              (worker, editor, ui)
+#                                              (worker, job runner, editor, ui)
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 sanitize=""
@@ -19,8 +19,8 @@ if [ -n "$sanitize" ]; then
   flags+=(-DMOSTYLE_SANITIZE="$sanitize" -DMOSTYLE_BUILD_BENCH=OFF)
 fi
 if [ "$sanitize" = "thread" ]; then
-  filter=(-R "worker|editor|ui:")
-  targets=(--target mostyle_worker_tests mostyle_editor_tests mostyle_ui_tests mostyle mostyle-cli)
+  filter=(-R "worker|jobs:|editor|ui:")
+  targets=(--target mostyle_worker_tests mostyle_job_runner_tests mostyle_editor_tests mostyle_ui_tests mostyle mostyle-cli)
   # Mesa's llvmpipe threads are not instrumented; render on the calling thread.
   export LP_NUM_THREADS=0
   export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1"

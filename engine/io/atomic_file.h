@@ -1,5 +1,7 @@
 #pragma once
 // Writing output files so that a failure never leaves a partial file behind.
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -10,7 +12,9 @@ namespace mostyle {
 // on any failure.
 void write_file_atomically(const std::string& path, std::string_view content);
 
-// Reads a whole file as bytes. Throws InputError ("PATH: cannot read: reason").
-std::string read_file(const std::string& path);
+// Reads a whole file as bytes, in one pass into one buffer of the file's size (a pipe or a file
+// that grows meanwhile is read on in chunks). Throws InputError ("PATH: cannot read: reason"),
+// also when the file holds more than max_bytes, before reading it. O(size) time and memory.
+std::string read_file(const std::string& path, size_t max_bytes = SIZE_MAX);
 
 }  // namespace mostyle

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -121,6 +122,32 @@ TEST_CASE("cli: bad input exits 1 with one line naming file and line", "[cli][bv
   const Run warned = box.cli("info \"" + cut + "\"");
   CHECK(warned.status == 0);
   CHECK(warned.err == "mostyle: warning: " + cut + ":8: Frames: says 3 but the file has 2 complete frames; loaded 2\n");
+}
+
+TEST_CASE("cli: MOSTYLE_MAX_MEMORY_MB bounds the memory a take's frames may need", "[cli][bvh]") {
+  Sandbox box;
+  std::string text =
+      "HIERARCHY\nROOT Hips\n{\nOFFSET 0 0 0\nCHANNELS 6 Xposition Yposition Zposition Zrotation "
+      "Xrotation Yrotation\n}\nMOTION\nFrames: 30000\nFrame Time: 0.01\n";
+  for (int f = 0; f < 30000; ++f) text += "0 0 0 0 0 0\n";  // 30000 x 6 x 8 bytes: 1.4 MB
+  const std::string file = box.write("long.bvh", text);
+  struct Environment {
+    ~Environment() { ::unsetenv("MOSTYLE_MAX_MEMORY_MB"); }
+  } restore;
+  ::setenv("MOSTYLE_MAX_MEMORY_MB", "1", 1);
+  Run r = box.cli("info \"" + file + "\"");
+  CHECK(r.status == 1);
+  CHECK(r.err == "mostyle: " + file + ":8: expected frames within the memory limit of 1 MB, found Frames: 30000 "
+                                      "of 6 values each (1.4 MB)\n");
+  ::setenv("MOSTYLE_MAX_MEMORY_MB", "2", 1);
+  CHECK(box.cli("info \"" + file + "\"").status == 0);
+  for (const char* bad : {"0", "-1", "1.5", "lots", "99999999999999999999"}) {
+    ::setenv("MOSTYLE_MAX_MEMORY_MB", bad, 1);
+    r = box.cli("info \"" + file + "\"");
+    CHECK(r.status == 1);
+    CHECK(r.err == std::string("mostyle: MOSTYLE_MAX_MEMORY_MB: expected a whole number of megabytes from 1 up, "
+                               "found '") + bad + "'\n");
+  }
 }
 
 TEST_CASE("cli: bad usage exits 2", "[cli][bvh]") {

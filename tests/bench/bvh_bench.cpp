@@ -1,11 +1,14 @@
 // BVH parse speed in MB/s (SetBytesProcessed): the CMU files read once into memory and parsed
-// repeatedly, the Bandai files likewise, and a synthetic 100 MB file; plus the writer and FK.
+// repeatedly, the Bandai files likewise, and a synthetic 100 MB file; reading a pair of 22 MB
+// takes from files (issue 11: under 150 ms); plus the writer and FK.
 // For scale: three.js's loader reads about 14 MB/s, Blender's importer about 2.4 MB/s.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
 #include "engine/io/atomic_file.h"
@@ -61,6 +64,47 @@ const std::string& synthetic_100mb() {
   return text;
 }
 
+// The marching CMU take as its exporter wrote it (CRLF, tabs, 6 decimals), its frame lines
+// repeated up to `bytes` and its Frames: line set to match: what a long real take looks like.
+std::string repeated_cmu_take(size_t bytes) {
+  const std::string& take = cmu_texts().back();  // cmu142_walk_marching.bvh when present
+  size_t body = take.find("Frame Time:");
+  body = take.find('\n', body) + 1;
+  const size_t frames_at = take.find("Frames:");
+  const std::string frame_lines = take.substr(body);
+  std::string repeated;
+  while (repeated.size() + frame_lines.size() <= bytes) repeated += frame_lines;
+  for (size_t at = 0; repeated.size() < bytes;) {  // the rest, whole lines
+    const size_t next = frame_lines.find('\n', at) + 1;
+    repeated.append(frame_lines, at, next - at);
+    at = next;
+  }
+  const long frames = static_cast<long>(std::count(repeated.begin(), repeated.end(), '\n'));
+  return take.substr(0, frames_at) + "Frames: " + std::to_string(frames) + "\r\n" +
+         take.substr(take.find("Frame Time:"), body - take.find("Frame Time:")) + repeated;
+}
+
+// Two such 22 MB takes written to the temporary folder once, removed at exit.
+const std::vector<std::string>& pair_of_22mb_files() {
+  struct Files {
+    std::vector<std::string> paths;
+    ~Files() {
+      for (const std::string& p : paths) fs::remove(p);
+    }
+  };
+  static const Files files = [] {
+    Files f;
+    const std::string text = repeated_cmu_take(22'000'000);
+    for (const char* name : {"a", "b"}) {
+      f.paths.push_back((fs::temp_directory_path() / ("mostyle_bench_22mb_" + std::to_string(::getpid()) +
+                                                       "_" + name + ".bvh")).string());
+      std::ofstream(f.paths.back(), std::ios::binary) << text;
+    }
+    return f;
+  }();
+  return files.paths;
+}
+
 void parse_all(benchmark::State& state, const std::vector<std::string>& texts) {
   if (texts.empty()) {
     state.SkipWithError("no input files");
@@ -88,6 +132,25 @@ void BM_ParseSynthetic100MB(benchmark::State& state) {
   parse_all(state, one);
 }
 BENCHMARK(BM_ParseSynthetic100MB)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+
+// What loading a pair of long takes costs, file reading included (page cache warm).
+void BM_ReadPair22MB(benchmark::State& state) {
+  if (cmu_texts().empty()) {
+    state.SkipWithError("no input files");
+    return;
+  }
+  const std::vector<std::string>& paths = pair_of_22mb_files();
+  size_t bytes = 0;
+  for (const std::string& p : paths) bytes += fs::file_size(p);
+  for (auto _ : state) {
+    for (const std::string& p : paths) {
+      Clip clip = mostyle::read_bvh_file(p);
+      benchmark::DoNotOptimize(clip.motion.data());
+    }
+  }
+  state.SetBytesProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(bytes));
+}
+BENCHMARK(BM_ReadPair22MB)->Unit(benchmark::kMillisecond);
 
 void BM_FormatCmu(benchmark::State& state) {
   const Clip clip = mostyle::parse_bvh(cmu_texts().front(), "cmu.bvh");

@@ -160,6 +160,14 @@ TEST_CASE("nameless joints", "[bvh]") {
   CHECK(error_of(with("JOINT Spine\n  {", "JOINT {")) == "bad.bvh:6: expected a joint name, found end of line");
 }
 
+TEST_CASE("a joint name ending in '{', which no BVH text can hold", "[bvh]") {
+  // Found by tests/fuzz (regressions/bvh/): the writer could not write it back.
+  CHECK(error_of(with("ROOT Hips\n{", "ROOT Hips {{")) == "bad.bvh:2: expected a joint name not ending in '{', found 'Hips {'");
+  CHECK(error_of(with("JOINT Spine\n  {", "JOINT Spine{ {")) ==
+        "bad.bvh:6: expected a joint name not ending in '{', found 'Spine{'");
+  CHECK(error_of(with("JOINT Spine\n  {", "JOINT { {")) == "bad.bvh:6: expected a joint name not ending in '{', found '{'");
+}
+
 TEST_CASE("negative, absurd and malformed frame counts and frame times", "[bvh]") {
   CHECK(error_of(with("Frames: 2", "Frames: -1")) == "bad.bvh:17: expected a frame count of 0 or more, found '-1'");
   CHECK(error_of(with("Frames: 2", "Frames: 1000000000")) ==
@@ -280,4 +288,36 @@ TEST_CASE("malformed variants of a Bandai file load or fail cleanly", "[bvh]") {
     if (trial % 2) text = text.substr(0, position(rng));
     loads_or_refuses(text, "trial " + std::to_string(trial));
   }
+}
+
+TEST_CASE("frames over the memory limit are refused at the Frames: line, before allocation", "[bvh]") {
+  // kSmall's frames: 2 x 9 values x 8 bytes = 144 bytes.
+  BvhReadOptions o;
+  o.max_bytes = 143;
+  CHECK_THROWS_WITH(parse_bvh(kSmall, "bad.bvh", nullptr, o),
+                    "bad.bvh:17: expected frames within the memory limit of 143 bytes, found Frames: 2 "
+                    "of 9 values each (144 bytes)");
+  o.max_bytes = 144;
+  CHECK(parse_bvh(kSmall, "bad.bvh", nullptr, o).frames() == 2);
+  // A declared count the text cannot hold is judged by what the text can hold (37 bytes of frame
+  // lines: at most 3 frames of 9 values), never by the count.
+  o.max_bytes = 100;
+  CHECK_THROWS_WITH(parse_bvh(with("Frames: 2", "Frames: 99999999"), "bad.bvh", nullptr, o),
+                    "bad.bvh:17: expected frames within the memory limit of 100 bytes, found Frames: "
+                    "99999999 of 9 values each (216 bytes for the frames this file can hold)");
+  // More frames than declared: refused at the first frame past the limit.
+  CHECK_THROWS_WITH(parse_bvh(with("Frames: 2", "Frames: 1"), "bad.bvh", nullptr, o),
+                    "bad.bvh:20: expected frames within the memory limit of 100 bytes, found frame 2 "
+                    "of 9 values (144 bytes)");
+  // A real take: 1080 frames of 96 values need 810 KB.
+  const std::string file = test::asset("motions/cmu142_walk_clumsy.bvh");
+  o.max_bytes = 512 << 10;
+  CHECK_THROWS_WITH(parse_bvh(read_file(file), file, nullptr, o),
+                    file + ":186: expected frames within the memory limit of 512 KB, found Frames: 1080 "
+                           "of 96 values each (810 KB)");
+  // read_bvh_file refuses a file larger than the limit before reading it.
+  CHECK_THROWS_WITH(read_bvh_file(file, nullptr, o),
+                    file + ": cannot read: its 1004 KB exceed the memory limit of 512 KB");
+  o.max_bytes = 1 << 20;
+  CHECK(read_bvh_file(file, nullptr, o).frames() == 1080);
 }

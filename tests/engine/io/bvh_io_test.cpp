@@ -1,8 +1,11 @@
 #include "engine/io/bvh_io.h"
 
 #include <catch2/catch.hpp>
+#include <charconv>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <random>
 #include <string>
 #include <unistd.h>
 
@@ -218,6 +221,51 @@ TEST_CASE("numbers: scientific notation, -0, no leading zero, '+', tiny and huge
   // OFFSET in scientific notation, as Bandai writes it.
   const Clip offsets = parse_bvh(replace_all(kSmall, "OFFSET 0 10 0", "OFFSET 1e1 -0 8.98455e-01"), "x.bvh");
   CHECK(offsets.skeleton.joints[1].offset == Eigen::Vector3d(10, 0, 0.898455));
+}
+
+TEST_CASE("numbers: every value reads as std::from_chars reads it, bit for bit", "[bvh]") {
+  // The reader's fast path for plain decimals against std::from_chars on random tokens
+  // (fixed seed) and on the edges of the fast path: 19 and 20 digits, 2^53 and 2^53 + 1,
+  // 22 and 23 decimals, signed zeros, no integer or no fraction digits, exponents.
+  std::vector<std::string> tokens = {
+      "9007199254740992", "9007199254740993", "-9007199254740993", "900719925474099.3",
+      "1234567890123456789", "12345678901234567890", "0.1234567890123456789", "0.0000000000000000000001",
+      "0.000000000000000000001", "1.0000000000000000000000001", "-0", "-0.0", "0.", "-.5", ".5", "5.",
+      "00000000000000000000000001", "0.30000000000000004", "2.2250738585072014e-308", "1e22", "1e23",
+      "179769313486231570000000000000000000000000000000000000000000000000000000000000000000000",
+      "-23.251000", "0.008333", "93.9241"};
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> digit(0, 9), count(0, 24), coin(0, 3), exponent(-30, 30);
+  while (tokens.size() % 6 != 0 || tokens.size() < 60000) {
+    std::string t = coin(rng) == 0 ? "-" : "";
+    const int integer = count(rng), fraction = coin(rng) == 0 ? -1 : count(rng);
+    for (int i = 0; i < integer; ++i) t += static_cast<char>('0' + digit(rng));
+    if (fraction >= 0) t += '.';
+    for (int i = 0; i < fraction; ++i) t += static_cast<char>('0' + digit(rng));
+    if (integer == 0 && fraction <= 0) t += '7';
+    if (coin(rng) == 0) t += (coin(rng) < 2 ? "e" : "E") + std::to_string(exponent(rng));
+    tokens.push_back(t);
+  }
+  std::string text =
+      "HIERARCHY\nROOT Hips\n{\nOFFSET 0 0 0\nCHANNELS 6 Xposition Yposition Zposition Zrotation "
+      "Yrotation Xrotation\n}\nMOTION\nFrames: " + std::to_string(tokens.size() / 6) + "\nFrame Time: 0.01\n";
+  for (size_t i = 0; i < tokens.size(); ++i) text += tokens[i] + (i % 6 == 5 ? "\n" : " ");
+  std::vector<std::string> warnings;
+  const Clip clip = parse_bvh(text, "n.bvh", &warnings);
+  CHECK(warnings.empty());
+  REQUIRE(clip.motion.size() == static_cast<Eigen::Index>(tokens.size()));
+  int mismatches = 0;
+  for (size_t i = 0; i < tokens.size(); ++i) {
+    double expected = 0;
+    const auto r = std::from_chars(tokens[i].data(), tokens[i].data() + tokens[i].size(), expected);
+    REQUIRE(r.ptr == tokens[i].data() + tokens[i].size());
+    const double got = clip.motion.data()[i];
+    if (std::memcmp(&got, &expected, sizeof got) != 0) {
+      UNSCOPED_INFO(tokens[i]);
+      ++mismatches;
+    }
+  }
+  CHECK(mismatches == 0);
 }
 
 TEST_CASE("names with spaces and colons, 0 to 6 channels in any order, each joint its order",

@@ -1,0 +1,300 @@
+// mostyle-cli batch | grid, run as a user runs them: shards that share one JOBS file run every
+// job exactly once, a failed job is reported and never stops the others, exit 1 when one
+// failed, 2 on bad usage.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "engine/io/bvh_io.h"
+#include "tests/test_data.h"
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+using namespace mostyle;
+
+namespace {
+
+struct Run {
+  int status = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+class Sandbox {
+ public:
+  Sandbox() : dir_(fs::temp_directory_path() / ("mostyle_batch_test_" + std::to_string(::getpid()))) {
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  ~Sandbox() { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string write(const std::string& name, const std::string& content) const {
+    std::ofstream(dir_ / name, std::ios::binary) << content;
+    return path(name);
+  }
+  // Runs mostyle-cli with `args` (already quoted as needed) and collects exit status and output.
+  Run cli(const std::string& args) const {
+    const std::string out = path("stdout.txt"), err = path("stderr.txt");
+    const std::string command = "\"" MOSTYLE_CLI "\" " + args + " >\"" + out + "\" 2>\"" + err + "\"";
+    const int raw = std::system(command.c_str());
+    Run r;
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    r.out = slurp(out);
+    r.err = slurp(err);
+    fs::remove(out);
+    fs::remove(err);
+    return r;
+  }
+
+ private:
+  fs::path dir_;
+};
+
+std::string job(const std::vector<std::string>& args) { return Json(args).dump() + "\n"; }
+
+std::vector<std::string> files_in(const std::string& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+const std::vector<std::string> kFast = {"--components", "4", "--iterations", "20"};
+
+std::vector<std::string> blend(const std::string& a, const std::string& b, const std::string& alpha,
+                               const std::string& out) {
+  std::vector<std::string> args = {"blend", a, b, "--alpha", alpha, "--out", out};
+  args.insert(args.end(), kFast.begin(), kFast.end());
+  return args;
+}
+
+}  // namespace
+
+TEST_CASE("cli batch: two shards run every job once, failures reported, the rest go on", "[batch][cli]") {
+  Sandbox box;
+  const std::vector<std::string> takes = test::asset_motions();
+  REQUIRE(takes.size() == 4);
+  fs::create_directory(box.path("out"));
+  const std::string missing = box.path("missing.bvh");
+  const std::string not_bvh = box.write("not_bvh.bvh", "hello\n");
+  // Jobs 0..7 (shard 0 runs the even ones, shard 1 the odd ones); a blank line after job 0, so
+  // job k >= 1 is on line k + 2. Both bad jobs fall in shard 1.
+  const std::vector<std::vector<std::string>> jobs = {
+      blend(takes[0], takes[1], "0.5", box.path("out/g0.bvh")),
+      blend(takes[1], takes[2], "0.25", box.path("out/g1.bvh")),
+      blend(takes[2], takes[3], "0.75", box.path("out/g2.bvh")),
+      blend(missing, takes[0], "0.5", box.path("out/bad_missing.bvh")),
+      blend(takes[3], takes[0], "1", box.path("out/g3.bvh")),
+      blend(takes[1], not_bvh, "0.5", box.path("out/bad_not_bvh.bvh")),
+      blend(takes[0], takes[2], "0", box.path("out/g4.bvh")),
+      blend(takes[2], takes[1], "0.5", box.path("out/g5.bvh")),
+  };
+  std::string text;
+  for (size_t k = 0; k < jobs.size(); ++k) text += job(jobs[k]) + (k == 0 ? "\n" : "");
+  const std::string file = box.write("jobs.jsonl", text);
+
+  const Run s0 = box.cli("batch " + quoted(file) + " --shard 0/2 --jobs 2 --summary " + quoted(box.path("s0.json")));
+  CHECK(s0.status == 0);
+  CHECK(s0.out.empty());
+  CHECK(s0.err.empty());
+  const Run s1 = box.cli("batch " + quoted(file) + " --shard 1/2 --jobs 2 --summary " + quoted(box.path("s1.json")));
+  CHECK(s1.status == 1);
+  CHECK(s1.err == "mostyle: " + file + ": 2 of 4 jobs of shard 1/2 failed (lines 5, 7)\n");
+
+  std::map<int, Json> records;  // line -> record, over both shards
+  for (const std::string& summary : {box.path("s0.json"), box.path("s1.json")}) {
+    const Json s = Json::parse(slurp(summary));
+    CHECK(s["totals"]["jobs"] == 4);
+    CHECK(s["parallel"] == 2);
+    for (const Json& r : s["jobs"]) CHECK(records.emplace(r["line"].get<int>(), r).second);  // once only
+  }
+  REQUIRE(records.size() == 8);
+  CHECK(Json::parse(slurp(box.path("s0.json")))["totals"]["failed"] == 0);
+  CHECK(Json::parse(slurp(box.path("s1.json")))["totals"]["failed"] == 2);
+  for (size_t k = 0; k < jobs.size(); ++k) {
+    const int line = k == 0 ? 1 : static_cast<int>(k) + 2;
+    INFO("line " << line);
+    const Json& r = records.at(line);
+    CHECK(r["args"] == Json(jobs[k]));
+    CHECK(r["seconds"].get<double>() > 0.0);
+    if (k == 3 || k == 5) continue;
+    CHECK(r["status"] == "ok");
+    CHECK(r["error"] == "");
+  }
+  CHECK(records.at(5)["status"] == "failed");
+  CHECK(records.at(5)["error"].get<std::string>().rfind(missing + ": cannot read: ", 0) == 0);
+  CHECK(records.at(7)["status"] == "failed");
+  CHECK(records.at(7)["error"] == not_bvh + ":1: expected HIERARCHY, found 'hello'");
+  // Exactly the six good outputs, no temporary files left.
+  CHECK(files_in(box.path("out")) ==
+        std::vector<std::string>{"g0.bvh", "g1.bvh", "g2.bvh", "g3.bvh", "g4.bvh", "g5.bvh"});
+  for (int g = 0; g < 6; ++g) CHECK(read_bvh_file(box.path("out/g" + std::to_string(g) + ".bvh")).frames() > 100);
+
+  // Without --summary: the failures and a total on stdout.
+  const Run human = box.cli("batch " + quoted(file) + " --shard 1/2 --jobs 2");
+  CHECK(human.status == 1);
+  std::istringstream lines(human.out);
+  std::string line;
+  std::getline(lines, line);
+  CHECK(line.rfind(file + ":5: blend failed: " + missing + ": cannot read: ", 0) == 0);
+  std::getline(lines, line);
+  CHECK(line == file + ":7: blend failed: " + not_bvh + ":1: expected HIERARCHY, found 'hello'");
+  std::getline(lines, line);
+  CHECK(line.rfind(file + " of shard 1/2: 4 jobs, 2 ok, 2 failed, ", 0) == 0);
+  CHECK(line.find(" s, 2 at a time") != std::string::npos);
+  CHECK_FALSE(std::getline(lines, line));
+}
+
+TEST_CASE("cli batch: a line that is not a job is a failed job naming its line", "[batch][cli]") {
+  Sandbox box;
+  const std::string take = test::asset("motions/cmu142_walk_joy.bvh");
+  const std::string file = box.write("jobs.jsonl", job({"info", take}) +
+                                                       "{\"blend\": 1}\n"
+                                                       "\n"
+                                                       "[\"blend\", 3]\r\n"
+                                                       "not json\n"
+                                                       "[]\n"
+                                                       "[\"batch\", \"other.jsonl\"]\n"
+                                                       "[1e400, \"x\"]\n"
+                                                       // No newline at the end of the file.
+                                                       "[\"blend\", \"a.bvh\", \"b.bvh\", \"--bogus\"]");
+  const Run r = box.cli("batch " + quoted(file) + " --summary " + quoted(box.path("s.json")));
+  CHECK(r.status == 1);
+  CHECK(r.err == "mostyle: " + file + ": 7 of 8 jobs failed (lines 2, 4, 5, 6, 7, 8, 9)\n");
+  const Json s = Json::parse(slurp(box.path("s.json")));
+  CHECK(s["shard"] == "0/1");
+  CHECK(s["totals"]["jobs"] == 8);
+  CHECK(s["totals"]["ok"] == 1);
+  CHECK(s["totals"]["failed"] == 7);
+  const Json& j = s["jobs"];
+  REQUIRE(j.size() == 8);
+  const std::string expected = "expected a JSON array of strings (the arguments of one mostyle-cli command), found ";
+  CHECK(j[0]["line"] == 1);
+  CHECK(j[0]["status"] == "ok");
+  CHECK(j[1]["line"] == 2);
+  CHECK(j[1]["status"] == "failed");
+  CHECK(j[1]["args"] == Json::array());
+  CHECK(j[1]["error"] == file + ":2: " + expected + "an object");
+  CHECK(j[2]["line"] == 4);
+  CHECK(j[2]["error"] == file + ":4: " + expected + "a number as item 2");
+  CHECK(j[3]["line"] == 5);
+  CHECK(j[3]["error"].get<std::string>().rfind(file + ":5: " + expected + "invalid JSON at column ", 0) == 0);
+  CHECK(j[4]["error"] == file + ":6: expected a mostyle-cli command such as [\"blend\", ...], found an empty array");
+  CHECK(j[5]["error"] == file + ":7: a job cannot be a batch itself");
+  CHECK(j[6]["error"] == file + ":8: " + expected + "a number too large for JSON");
+  CHECK(j[7]["line"] == 9);
+  CHECK(j[7]["args"] == Json({"blend", "a.bvh", "b.bvh", "--bogus"}));
+  CHECK(j[7]["error"] == "bad usage: The following argument was not expected: --bogus");
+}
+
+TEST_CASE("cli batch: bad usage exits 2, an unreadable JOBS file 1", "[batch][cli]") {
+  Sandbox box;
+  const std::string file = box.write("jobs.jsonl", "");
+  for (const char* shard : {"2/2", "1/0", "-1/2", "1", "a/b", "0/2/3", "/2", "0/"}) {
+    INFO(shard);
+    const Run r = box.cli("batch " + quoted(file) + " --shard " + quoted(shard));
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+  }
+  CHECK(box.cli("batch " + quoted(file) + " --jobs 0").status == 2);
+  CHECK(box.cli("batch").status == 2);
+  const Run missing = box.cli("batch " + quoted(box.path("none.jsonl")));
+  CHECK(missing.status == 1);
+  CHECK(missing.err.rfind("mostyle: " + box.path("none.jsonl") + ": cannot read: ", 0) == 0);
+  CHECK(std::count(missing.err.begin(), missing.err.end(), '\n') == 1);
+  // No jobs (here: none in this shard) is success.
+  const Run empty = box.cli("batch " + quoted(file) + " --shard 1/3");
+  CHECK(empty.status == 0);
+  CHECK(empty.out.rfind(file + " of shard 1/3: 0 jobs, 0 ok, 0 failed, ", 0) == 0);
+}
+
+TEST_CASE("cli grid: one blend per ordered pair and alpha, run by batch", "[batch][cli]") {
+  Sandbox box;
+  const std::vector<std::string> takes = test::asset_motions();
+  const std::string a = takes[0], b = takes[1], c = takes[2];
+  const std::string out = box.path("grid");
+  const Run r = box.cli("grid --takes " + quoted(a) + " " + quoted(b) + " " + quoted(c) + " --alphas 0,0.5 --out-dir " +
+                        quoted(out) + " --jobs-out " + quoted(box.path("grid.jsonl")) +
+                        " -- --components 4 --iterations 20");
+  CHECK(r.status == 0);
+  CHECK(r.out.empty());
+  CHECK(fs::is_directory(out));
+  std::vector<Json> lines;
+  std::istringstream in(slurp(box.path("grid.jsonl")));
+  for (std::string line; std::getline(in, line);) lines.push_back(Json::parse(line));
+  REQUIRE(lines.size() == 3 * 2 * 2);
+  const std::string base = out + "/cmu142_walk_clumsy__cmu142_walk_happy__a";
+  CHECK(lines[0] == Json({"blend", a, b, "--alpha", "0", "--out", base + "0.bvh", "--report", base + "0.json",
+                          "--components", "4", "--iterations", "20"}));
+  CHECK(lines[1][4] == "0.5");
+  CHECK(lines[1][6] == base + "0.5.bvh");
+  std::set<std::string> outputs;
+  for (const Json& l : lines) {
+    CHECK(l[1] != l[2]);
+    outputs.insert(l[6].get<std::string>());
+  }
+  CHECK(outputs.size() == lines.size());
+  CHECK(outputs.count(out + "/cmu142_walk_joy__cmu142_walk_clumsy__a0.5.bvh") == 1);
+
+  // To stdout without --jobs-out; two takes and two alphas, then run.
+  const Run small = box.cli("grid --takes " + quoted(a) + " " + quoted(b) + " --alphas 0.25,1 --out-dir " +
+                            quoted(out) + " -- --components 4 --iterations 20");
+  CHECK(small.status == 0);
+  CHECK(std::count(small.out.begin(), small.out.end(), '\n') == 4);
+  const std::string jobs = box.write("small.jsonl", small.out);
+  const Run ran = box.cli("batch " + quoted(jobs) + " --jobs 2");
+  CHECK(ran.status == 0);
+  CHECK(ran.out.rfind(jobs + ": 4 jobs, 4 ok, 0 failed, ", 0) == 0);
+  CHECK(files_in(out) == std::vector<std::string>{
+                             "cmu142_walk_clumsy__cmu142_walk_happy__a0.25.bvh",
+                             "cmu142_walk_clumsy__cmu142_walk_happy__a0.25.json",
+                             "cmu142_walk_clumsy__cmu142_walk_happy__a1.bvh",
+                             "cmu142_walk_clumsy__cmu142_walk_happy__a1.json",
+                             "cmu142_walk_happy__cmu142_walk_clumsy__a0.25.bvh",
+                             "cmu142_walk_happy__cmu142_walk_clumsy__a0.25.json",
+                             "cmu142_walk_happy__cmu142_walk_clumsy__a1.bvh",
+                             "cmu142_walk_happy__cmu142_walk_clumsy__a1.json",
+                         });
+}
+
+TEST_CASE("cli grid: bad usage exits 2 and writes nothing", "[batch][cli]") {
+  Sandbox box;
+  const std::vector<std::string> takes = test::asset_motions();
+  const std::string two = " --takes " + quoted(takes[0]) + " " + quoted(takes[1]);
+  const std::string rest = " --out-dir " + quoted(box.path("out")) + " --jobs-out " + quoted(box.path("g.jsonl"));
+  for (const std::string& args : {
+           "grid --takes " + quoted(takes[0]) + " --alphas 0.5" + rest,        // one take
+           "grid" + two + " --takes " + quoted(box.path("x/" + fs::path(takes[0]).filename().string())) +
+               " --alphas 0.5" + rest,                                          // same name twice
+           "grid" + two + " --alphas 0,nan" + rest,                             // not finite
+           "grid" + two + " --alphas 0.5,0.50" + rest,                          // same alpha twice
+           "grid" + two + " --alphas 0.5" + rest + " -- --out x.bvh",           // set by grid
+           "grid" + two + " --alphas 0.5" + rest + " -- --report=x.json",       // set by grid
+           "grid" + two + " --alphas 0.5" + rest + " -- --bogus",               // not a blend option
+           "grid" + two + " --alphas 0.5" + rest + " -- --mode fancy",          // not a blend value
+           "grid" + two + rest,                                                 // no --alphas
+       }) {
+    INFO(args);
+    const Run r = box.cli(args);
+    CHECK(r.status == 2);
+    CHECK_FALSE(fs::exists(box.path("g.jsonl")));
+    CHECK_FALSE(fs::exists(box.path("out")));
+  }
+}

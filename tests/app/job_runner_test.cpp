@@ -1,0 +1,112 @@
+// app/job_runner: child processes a few at a time, results in job order, a failed, killed or
+// missing program is that job's result. Jobs here are /bin/sh scripts; CI runs this under
+// ThreadSanitizer (tests/run.sh --sanitize thread).
+#include "app/job_runner.h"
+
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "engine/io/error.h"
+
+namespace fs = std::filesystem;
+using namespace mostyle;
+using namespace mostyle::cli;
+
+namespace {
+
+std::vector<std::string> sh(const std::string& script) { return {"-c", script}; }
+
+JobRunnerOptions shell(int parallel) {
+  JobRunnerOptions o;
+  o.program = "/bin/sh";
+  o.parallel = parallel;
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("job runner: results in job order, exit status and error line", "[batch][jobs]") {
+  std::vector<std::vector<std::string>> jobs;
+  for (int i = 0; i < 24; ++i)
+    jobs.push_back(sh(i % 3 == 0 ? "exit 0" : "echo 'mostyle: job" + std::to_string(i) + ".bvh:1: bad' >&2; exit 1"));
+  const std::vector<JobResult> r = run_jobs(jobs, shell(4));
+  REQUIRE(r.size() == jobs.size());
+  for (int i = 0; i < 24; ++i) {
+    INFO(i);
+    CHECK(r[i].ok == (i % 3 == 0));
+    CHECK(r[i].exit_status == (i % 3 == 0 ? 0 : 1));
+    CHECK(r[i].error == (i % 3 == 0 ? "" : "job" + std::to_string(i) + ".bvh:1: bad"));
+    CHECK(r[i].seconds >= 0.0);
+  }
+  CHECK(run_jobs({}, shell(4)).empty());
+}
+
+TEST_CASE("job runner: warnings, usage errors, silent failures, stdout", "[batch][jobs]") {
+  const std::vector<JobResult> r = run_jobs(
+      {sh("echo 'mostyle: warning: w.bvh:8: short' >&2; exit 0"),
+       sh("echo 'mostyle: warning: w.bvh:8: short' >&2; echo 'mostyle: a.bvh:2: wrong' >&2; exit 1"),
+       sh("echo 'The following argument was not expected: --bogus' >&2; echo 'Run with --help' >&2; exit 2"),
+       sh("exit 3"),
+       // Lots of output on both streams: stdout goes nowhere, stderr keeps its end.
+       sh("i=0; while [ $i -lt 3000 ]; do echo 'mostyle: warning: xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx'; "
+          "echo 'mostyle: warning: yyyyyyyyyyyyyyyyyyyyyyyyyyyyyyyyyyyyyyyy' >&2; i=$((i+1)); done; "
+          "echo 'mostyle: last.bvh:9: the end' >&2; exit 1")},
+      shell(2));
+  CHECK(r[0].ok);
+  CHECK(r[0].error.empty());
+  CHECK(r[1].error == "a.bvh:2: wrong");
+  CHECK(r[2].error == "bad usage: The following argument was not expected: --bogus");
+  CHECK(r[2].exit_status == 2);
+  CHECK(r[3].error == "exit status 3 and no message");
+  CHECK(r[4].error == "last.bvh:9: the end");
+}
+
+TEST_CASE("job runner: a killed job and a missing program are that job's failure", "[batch][jobs]") {
+  std::vector<JobResult> r = run_jobs({sh("echo 'mostyle: x' >&2; kill -KILL $$"), sh("exit 0")}, shell(2));
+  CHECK_FALSE(r[0].ok);
+  CHECK(r[0].exit_status == -1);
+  CHECK(r[0].error == "killed by signal 9 (Killed): x");
+  CHECK(r[1].ok);
+  JobRunnerOptions missing;
+  missing.program = "/no/such/program";
+  r = run_jobs({{}, {"a"}}, missing);
+  for (const JobResult& m : r) {
+    CHECK_FALSE(m.ok);
+    CHECK(m.error == "cannot start /no/such/program: No such file or directory");
+  }
+}
+
+TEST_CASE("job runner: jobs run at the same time", "[batch][jobs]") {
+  // The first job waits (5 s at most) for a file that only the second job creates: it succeeds
+  // only when both run at once.
+  const fs::path flag = fs::temp_directory_path() / ("mostyle_job_runner_" + std::to_string(::getpid()));
+  fs::remove(flag);
+  const std::string f = "'" + flag.string() + "'";
+  const std::vector<JobResult> r = run_jobs(
+      {sh("i=0; while [ ! -e " + f + " ]; do sleep 0.01; i=$((i+1)); [ $i -gt 500 ] && exit 1; done; exit 0"),
+       sh("touch " + f)},
+      shell(2));
+  fs::remove(flag);
+  CHECK(r[0].ok);
+  CHECK(r[1].ok);
+}
+
+TEST_CASE("job runner: error_line and options", "[batch][jobs]") {
+  CHECK(error_line("") == "");
+  CHECK(error_line("mostyle: warning: a\n") == "");
+  CHECK(error_line("mostyle: warning: a\r\nmostyle: b.bvh:1: c\r\n") == "b.bvh:1: c");
+  CHECK(error_line("first\nsecond\n") == "first");
+  CHECK(error_line("terminate called\nmostyle: internal error: x") == "internal error: x");
+  JobRunnerOptions o;
+  CHECK_NOTHROW(o.Validate());
+  o.parallel = 0;
+  CHECK_THROWS_AS(o.Validate(), InputError);
+  CHECK_THROWS_AS(run_jobs({{"x"}}, o), InputError);
+  o.parallel = 1;
+  o.program.clear();
+  CHECK_THROWS_AS(o.Validate(), InputError);
+}

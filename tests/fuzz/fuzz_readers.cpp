@@ -1,0 +1,137 @@
+#include "tests/fuzz/fuzz_readers.h"
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "app/job_line.h"
+#include "engine/io/bvh_io.h"
+#include "engine/io/csv_io.h"
+#include "engine/io/error.h"
+#include "engine/prepare/major_skeleton.h"
+
+namespace mostyle::fuzz {
+namespace {
+
+void check(bool ok, const std::string& what) {
+  if (!ok) throw std::logic_error("fuzz check failed: " + what);
+}
+
+// An InputError as the edges show it: one line that starts with "SOURCE:".
+void check_refusal(const InputError& e, const std::string& source) {
+  const std::string message = e.what();
+  check(message.rfind(source + ":", 0) == 0, "the message names " + source + ": " + message);
+  check(message.find_first_of("\r\n") == std::string::npos, "the message is one line: " + message);
+}
+
+void check_same_clip(const Clip& a, const Clip& b) {
+  check(a.skeleton.joints.size() == b.skeleton.joints.size(), "round trip: joint count");
+  for (size_t i = 0; i < a.skeleton.joints.size(); ++i) {
+    const Joint& x = a.skeleton.joints[i];
+    const Joint& y = b.skeleton.joints[i];
+    check(x.name == y.name, "round trip: name of joint " + std::to_string(i));
+    check(x.parent == y.parent && x.end_site == y.end_site, "round trip: tree at joint " + std::to_string(i));
+    check(x.channels == y.channels && x.first_channel == y.first_channel,
+          "round trip: channels of joint " + std::to_string(i));
+    // The writer zeroes a root's OFFSET when position channels place it (bvh_io.h).
+    const bool moot = x.parent < 0 && !x.channels.empty() &&
+                      std::any_of(x.channels.begin(), x.channels.end(), is_position);
+    check(moot || x.offset == y.offset, "round trip: OFFSET of joint " + std::to_string(i));
+  }
+  check(a.skeleton.channel_count == b.skeleton.channel_count, "round trip: channel count");
+  check(a.frame_time == b.frame_time, "round trip: frame time");
+  check(a.motion.rows() == b.motion.rows() && a.motion.cols() == b.motion.cols() && a.motion == b.motion,
+        "round trip: frames");
+}
+
+}  // namespace
+
+bool read_bvh(std::string_view bytes) {
+  const std::string source = "fuzz.bvh";
+  Clip clip;
+  try {
+    std::vector<std::string> warnings;
+    clip = parse_bvh(bytes, source, &warnings);
+    for (const std::string& w : warnings) check_refusal(InputError(w), source);
+  } catch (const InputError& e) {
+    check_refusal(e, source);
+    return false;
+  }
+  const Skeleton& s = clip.skeleton;
+  check(clip.motion.cols() == s.channel_count, "motion has channel_count columns");
+  check(clip.motion.allFinite(), "every value is finite");
+  check(std::isfinite(clip.frame_time) && clip.frame_time > 0, "the frame time is positive");
+  int channels = 0;
+  for (size_t i = 0; i < s.joints.size(); ++i) {
+    const Joint& j = s.joints[i];
+    check(j.parent < static_cast<int>(i), "parents come before children");
+    check(j.first_channel == channels, "channels are numbered in file order");
+    check(j.offset.allFinite(), "offsets are finite");
+    channels += static_cast<int>(j.channels.size());
+  }
+  check(channels == s.channel_count, "channel_count adds up");
+  // What loads can be written, and the writer's text reads back as the same clip.
+  std::vector<std::string> warnings;
+  check_same_clip(clip, parse_bvh(format_bvh(clip), "again.bvh", &warnings));
+  check(warnings.empty(), "the written text reads back without warnings");
+  return true;
+}
+
+bool read_mapping(std::string_view bytes) {
+  const std::string source = "fuzz.txt";
+  try {
+    const MappingOverrides m = parse_mapping_overrides(std::string(bytes), source);
+    check(m.entries.size() == m.lines.size(), "one line number per entry");
+    for (size_t i = 0; i < m.entries.size(); ++i) {
+      check(!m.entries[i].second.empty(), "every entry names a joint");
+      check(i == 0 || m.lines[i] > m.lines[i - 1], "entries in line order");
+    }
+    return true;
+  } catch (const InputError& e) {
+    check_refusal(e, source);
+    return false;
+  }
+}
+
+bool read_csv(std::string_view bytes) {
+  const std::string source = "fuzz.csv";
+  try {
+    const Eigen::MatrixXd m = parse_csv_matrix(bytes, source);
+    check(m.rows() > 0 && m.cols() > 0, "a loaded series has rows and columns");
+    check(m.allFinite(), "every value is finite");
+    return true;
+  } catch (const InputError& e) {
+    check_refusal(e, source);
+    return false;
+  }
+}
+
+bool read_job_line(std::string_view bytes) {
+  const std::string source = "fuzz.jsonl";
+  try {
+    const std::vector<std::string> args = cli::parse_job_line(bytes, source, 1);
+    check(!args.empty() && args[0] != "batch", "a job is one command, not a batch");
+    // The batch summary writes the arguments back as JSON: what was read must be writable.
+    (void)nlohmann::json(args).dump();
+    return true;
+  } catch (const InputError& e) {
+    check_refusal(e, source);
+    return false;
+  }
+}
+
+const std::vector<std::string>& target_names() {
+  static const std::vector<std::string> names = {"bvh", "mapping", "csv", "job_line"};
+  return names;
+}
+
+bool read_as(const std::string& target, std::string_view bytes) {
+  if (target == "bvh") return read_bvh(bytes);
+  if (target == "mapping") return read_mapping(bytes);
+  if (target == "csv") return read_csv(bytes);
+  if (target == "job_line") return read_job_line(bytes);
+  throw std::logic_error("no fuzz target named " + target);
+}
+
+}  // namespace mostyle::fuzz

@@ -1,0 +1,26 @@
+#pragma once
+// The readers of outside input as the fuzz targets (tests/fuzz/*_fuzz.cpp) and the regression
+// test (tests/fuzz/regressions_test.cpp) call them: bytes in, and a check of what every caller
+// relies on. A file that loads is consistent (and, for BVH, is written and read back the same);
+// one that is refused gives one InputError line naming the source. Session files (issue 10) do
+// not exist yet: add their reader here and a target beside the others when they do.
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mostyle::fuzz {
+
+// Each returns true when `bytes` loaded and false when the reader refused them with InputError.
+// A broken check throws std::logic_error (std::terminate in a fuzz target: a reported crash);
+// any other exception escapes. No file is touched.
+bool read_bvh(std::string_view bytes);       // parse_bvh (engine/io/bvh_io.h), as "fuzz.bvh"
+bool read_mapping(std::string_view bytes);   // parse_mapping_overrides (engine/prepare/major_skeleton.h)
+bool read_csv(std::string_view bytes);       // parse_csv_matrix (engine/io/csv_io.h)
+bool read_job_line(std::string_view bytes);  // parse_job_line (app/job_line.h)
+
+// The targets by the name of their folder in tests/fuzz/regressions/: "bvh", "mapping", "csv",
+// "job_line".
+const std::vector<std::string>& target_names();
+bool read_as(const std::string& target, std::string_view bytes);
+
+}  // namespace mostyle::fuzz

@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (tests/fuzz/CMakeLists.txt: clang, ASan, UBSan) in build-fuzz/
+# and runs each for SECONDS (default 30), seeded from tests/fuzz/seeds/, the repository's real
+# files (assemble_seeds.sh) and tests/fuzz/regressions/. Exits 1 when any target crashed, leaked,
+# timed out (10 s on one input) or went over 2 GB; the input is left in build-fuzz/findings/.
+#   tests/fuzz/run.sh [SECONDS [TARGET...]]     targets: bvh mapping csv job_line
+# A finding: fix the reader, copy the input to tests/fuzz/regressions/TARGET/ (the normal test
+# build replays it: tests/fuzz/regressions_test.cpp). Session files (issue 10) have no target yet.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/../.." && pwd)"
+seconds="${1:-30}"
+shift $(($# > 0 ? 1 : 0))
+targets=("$@")
+[ ${#targets[@]} -gt 0 ] || targets=(bvh mapping csv job_line)
+# Longest input per target: a BVH header of 38 joints and a few frames; a mapping file; a short
+# CSV; a JOBS line.
+declare -A max_len=([bvh]=16384 [mapping]=4096 [csv]=4096 [job_line]=4096)
+
+"$root/app/install-deps.sh"
+build="$root/build-fuzz"
+CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMOSTYLE_FUZZ=ON \
+  -DMOSTYLE_BUILD_GUI=OFF -DMOSTYLE_BUILD_TESTS=OFF -DMOSTYLE_BUILD_BENCH=OFF >/dev/null
+cmake --build "$build" -j"${MOSTYLE_BUILD_JOBS:-$(nproc)}" --target "${targets[@]/#/mostyle_fuzz_}"
+rm -rf "$build/seeds"
+"$root/tests/fuzz/assemble_seeds.sh" "$build/seeds"
+
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+failed=()
+for t in "${targets[@]}"; do
+  corpus="$build/corpus/$t"      # grows from run to run; new inputs are written here
+  findings="$build/findings/$t"
+  log="$build/fuzz-$t.log"
+  mkdir -p "$corpus" "$findings"
+  inputs=("$corpus")
+  for d in "$build/seeds/$t" "$root/tests/fuzz/seeds/$t" "$root/tests/fuzz/regressions/$t"; do
+    [ -d "$d" ] && inputs+=("$d")
+  done
+  dict=()
+  [ -f "$root/tests/fuzz/$t.dict" ] && dict=(-dict="$root/tests/fuzz/$t.dict")
+  if "$build/tests/fuzz/mostyle_fuzz_$t" -max_total_time="$seconds" -max_len="${max_len[$t]}" \
+       -rss_limit_mb=2048 -timeout=10 -print_final_stats=1 -artifact_prefix="$findings/" \
+       "${dict[@]}" "${inputs[@]}" >"$log" 2>&1; then
+    echo "fuzz $t: ok, $(sed -n 's/^stat::number_of_executed_units: *//p' "$log") inputs in ${seconds} s"
+  else
+    echo "fuzz $t: FAILED (log: $log, input: $findings/)"
+    grep -E "^(==[0-9]+==ERROR|SUMMARY|.*runtime error)" "$log" | head -5 || true
+    failed+=("$t")
+  fi
+done
+if [ ${#failed[@]} -gt 0 ]; then
+  echo "fuzz: ${failed[*]} failed"
+  exit 1
+fi
