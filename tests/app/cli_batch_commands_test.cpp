@@ -15,6 +15,7 @@
 #include <string>
 
 #include "engine/io/bvh_io.h"
+#include "tests/app/cli_sandbox.h"
 #include "tests/test_data.h"
 
 namespace fs = std::filesystem;
@@ -23,48 +24,15 @@ using namespace mostyle;
 
 namespace {
 
-struct Run {
-  int status = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using Run = test::CliRun;
+using test::slurp;
 
 std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
-class Sandbox {
+// A scratch folder of this test file's own.
+class Sandbox : public test::CliSandbox {
  public:
-  Sandbox() : dir_(fs::temp_directory_path() / ("mostyle_batch_test_" + std::to_string(::getpid()))) {
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  ~Sandbox() { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  std::string write(const std::string& name, const std::string& content) const {
-    std::ofstream(dir_ / name, std::ios::binary) << content;
-    return path(name);
-  }
-  // Runs mostyle-cli with `args` (already quoted as needed) and collects exit status and output.
-  Run cli(const std::string& args) const {
-    const std::string out = path("stdout.txt"), err = path("stderr.txt");
-    const std::string command = "\"" MOSTYLE_CLI "\" " + args + " >\"" + out + "\" 2>\"" + err + "\"";
-    const int raw = std::system(command.c_str());
-    Run r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    fs::remove(out);
-    fs::remove(err);
-    return r;
-  }
-
- private:
-  fs::path dir_;
+  Sandbox() : test::CliSandbox("mostyle_batch_test") {}
 };
 
 std::string job(const std::vector<std::string>& args) { return Json(args).dump() + "\n"; }

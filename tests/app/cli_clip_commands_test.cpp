@@ -13,6 +13,7 @@
 
 #include "engine/io/bvh_io.h"
 #include "engine/kinematics/kinematics.h"
+#include "tests/app/cli_sandbox.h"
 #include "tests/test_data.h"
 
 namespace fs = std::filesystem;
@@ -20,51 +21,12 @@ using namespace mostyle;
 
 namespace {
 
-struct Run {
-  int status = -1;
-  std::string out, err;
-};
+using Run = test::CliRun;
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-class Sandbox {
+// A scratch folder of this test file's own.
+class Sandbox : public test::CliSandbox {
  public:
-  Sandbox() : dir_(fs::temp_directory_path() / ("mostyle_cli_test_" + std::to_string(::getpid()))) {
-    fs::create_directories(dir_);
-  }
-  ~Sandbox() { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  std::string write(const std::string& name, const std::string& content) const {
-    std::ofstream(dir_ / name, std::ios::binary) << content;
-    return path(name);
-  }
-  // Runs mostyle-cli with `args` (already quoted as needed) and collects exit status and output.
-  Run cli(const std::string& args) const {
-    const std::string out = path("stdout.txt"), err = path("stderr.txt");
-    const std::string command = "\"" MOSTYLE_CLI "\" " + args + " >\"" + out + "\" 2>\"" + err + "\"";
-    const int raw = std::system(command.c_str());
-    Run r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    fs::remove(out);
-    fs::remove(err);
-    return r;
-  }
-  // Files other than the given ones: leftovers such as temporary outputs.
-  int count_files() const {
-    int n = 0;
-    for (const auto& e : fs::directory_iterator(dir_)) n += e.is_regular_file();
-    return n;
-  }
-
- private:
-  fs::path dir_;
+  Sandbox() : test::CliSandbox("mostyle_cli_test") {}
 };
 
 int lines_in(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
