@@ -57,4 +57,14 @@ inline Eigen::MatrixXd synthetic_motion(int frames, int joints, int sources, dou
   return x;
 }
 
+// A random-walk series (frames x features): smooth like motion, for alignment tests.
+inline Eigen::MatrixXd random_series(Random& random, int frames, int features) {
+  Eigen::MatrixXd x(frames, features);
+  for (int k = 0; k < features; ++k) {
+    double v = 0.0;
+    for (int i = 0; i < frames; ++i) x(i, k) = v += random.gaussian();
+  }
+  return x;
+}
+
 }  // namespace mostyle::test

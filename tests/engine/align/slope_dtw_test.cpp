@@ -13,6 +13,7 @@
 #include "tests/engine/synthetic_motion.h"
 
 using namespace mostyle;
+using mostyle::test::random_series;
 using mostyle::test::Random;
 
 namespace {
@@ -130,15 +131,6 @@ Eigen::MatrixXd column(std::initializer_list<double> values) {
   return x;
 }
 
-// Random-walk series: smooth like motion.
-Eigen::MatrixXd random_series(Random& random, int frames, int features) {
-  Eigen::MatrixXd x(frames, features);
-  for (int k = 0; k < features; ++k) {
-    double v = 0.0;
-    for (int i = 0; i < frames; ++i) x(i, k) = v += random.gaussian();
-  }
-  return x;
-}
 
 Steps diagonal(int n) {
   Steps s;
