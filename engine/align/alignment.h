@@ -30,6 +30,13 @@ struct AlignmentOptions {
   double smoothing_frames = kWarpSmoothingFrames;
   void Validate() const;  // throws InputError
 };
+// Field by field, the slope options' too (the editor's undo compares the options it edits).
+inline bool operator==(const AlignmentOptions& x, const AlignmentOptions& y) {
+  return x.method == y.method && x.on == y.on && x.band == y.band && x.slope.max_slope == y.slope.max_slope &&
+         x.slope.open_ends == y.slope.open_ends && x.slope.end_penalty == y.slope.end_penalty &&
+         x.slope.pointer_budget_bytes == y.slope.pointer_budget_bytes && x.smoothing_frames == y.smoothing_frames;
+}
+inline bool operator!=(const AlignmentOptions& x, const AlignmentOptions& y) { return !(x == y); }
 
 // A local cost this many times the path's median marks a poor match; a stretch of it lasting
 // kPoorMatchSeconds is reported.

@@ -148,6 +148,20 @@ void RowSampler::apply_add(const Eigen::MatrixXd& x, const Eigen::MatrixXd& y, d
   }
 }
 
+void RowSampler::accumulate(const Eigen::MatrixXd& x, double weight, Eigen::MatrixXd& out) const {
+  const Eigen::Index n = row.size();
+  const bool single = x.rows() == 1;
+  for (Eigen::Index c = 0; c < x.cols(); ++c) {
+    const double* in = x.col(c).data();
+    double* o = out.col(c).data();
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const Eigen::Index i = row[k];
+      const double f = single ? 0.0 : frac[k];
+      o[k] += weight * (in[i] + f * (in[i + (single ? 0 : 1)] - in[i]));
+    }
+  }
+}
+
 Eigen::MatrixXd sample_rows(const Eigen::MatrixXd& x, const Eigen::VectorXd& t) {
   Eigen::MatrixXd out;
   sample_rows(x, t, out);

@@ -47,6 +47,8 @@ struct RowSampler {
   // out = x at the times, plus `weight` times y at them when y is given (same shape as x).
   void apply(const Eigen::MatrixXd& x, Eigen::MatrixXd& out) const;
   void apply_add(const Eigen::MatrixXd& x, const Eigen::MatrixXd& y, double weight, Eigen::MatrixXd& out) const;
+  // out += weight times x at the times (out already K x x.cols()).
+  void accumulate(const Eigen::MatrixXd& x, double weight, Eigen::MatrixXd& out) const;
 };
 
 }  // namespace mostyle

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "engine/io/error.h"
 
@@ -19,24 +20,25 @@ Eigen::VectorXd blended_clock(const TimeWarp& warp, double w) {
   return clock;
 }
 
-void blended_timeline(const TimeWarp& warp, double w, Eigen::VectorXd& u) {
-  if (!std::isfinite(w)) throw InputError("expected a finite timing weight");
-  const int samples = warp.samples();
-  if (samples == 0) throw InputError("cannot time a blend along an empty warp");
-  // One pass: the clock is accumulated as the walk goes, so nothing is allocated but u.
+namespace {
+
+// Output frame f at the sample position where the clock reaches f; step(k) is the clock's
+// advance from sample k - 1 to k (negative advances hold). One pass to count the frames, one to
+// place them: nothing is allocated but u.
+template <typename Step>
+void timeline_from_steps(int samples, const Step& step, Eigen::VectorXd& u) {
   double total = 0.0;
-  for (int k = 1; k < samples; ++k)
-    total += std::max(0.0, (1.0 - w) * (warp.a[k] - warp.a[k - 1]) + w * (warp.b[k] - warp.b[k - 1]));
+  for (int k = 1; k < samples; ++k) total += std::max(0.0, step(k));
   const int frames = static_cast<int>(std::floor(total + 1e-9)) + 1;
   u.resize(frames);
   int k = 0;
   double before = 0.0, after = 0.0;  // clock at samples k and k + 1
-  if (samples > 1) after = std::max(0.0, (1.0 - w) * (warp.a[1] - warp.a[0]) + w * (warp.b[1] - warp.b[0]));
+  if (samples > 1) after = std::max(0.0, step(1));
   for (int f = 0; f < frames; ++f) {
     while (k + 1 < samples - 1 && after < f) {
       ++k;
       before = after;
-      after += std::max(0.0, (1.0 - w) * (warp.a[k + 1] - warp.a[k]) + w * (warp.b[k + 1] - warp.b[k]));
+      after += std::max(0.0, step(k + 1));
     }
     if (samples == 1) {
       u[f] = 0.0;
@@ -45,6 +47,38 @@ void blended_timeline(const TimeWarp& warp, double w, Eigen::VectorXd& u) {
     const double span = after - before;
     u[f] = k + (span > 0 ? std::clamp((f - before) / span, 0.0, 1.0) : 0.0);
   }
+}
+
+}  // namespace
+
+void blended_timeline(const TimeWarp& warp, double w, Eigen::VectorXd& u) {
+  if (!std::isfinite(w)) throw InputError("expected a finite timing weight");
+  const int samples = warp.samples();
+  if (samples == 0) throw InputError("cannot time a blend along an empty warp");
+  timeline_from_steps(
+      samples, [&](int k) { return (1.0 - w) * (warp.a[k] - warp.a[k - 1]) + w * (warp.b[k] - warp.b[k - 1]); }, u);
+}
+
+void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& weights, int first, int last,
+                    Eigen::VectorXd& u) {
+  if (static_cast<int>(weights.size()) != timeline.takes())
+    throw InputError("expected " + std::to_string(timeline.takes()) + " timing weights, found " +
+                     std::to_string(weights.size()));
+  for (double w : weights)
+    if (!std::isfinite(w)) throw InputError("expected finite timing weights");
+  if (first < 0 || last < first || last >= timeline.samples())
+    throw InputError("cannot time a mix over samples " + std::to_string(first) + " to " + std::to_string(last) +
+                     " of a timeline of " + std::to_string(timeline.samples()));
+  timeline_from_steps(
+      last - first + 1,
+      [&](int k) {
+        double step = 0.0;
+        for (size_t i = 0; i < weights.size(); ++i)
+          step += weights[i] * (timeline.frames[i][first + k] - timeline.frames[i][first + k - 1]);
+        return step;
+      },
+      u);
+  u.array() += first;
 }
 
 }  // namespace mostyle

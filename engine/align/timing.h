@@ -6,6 +6,9 @@
 // velocities, never faster than the faster of them.
 #include <Eigen/Core>
 
+#include <vector>
+
+#include "engine/align/common_timeline.h"
 #include "engine/align/time_warp.h"
 
 namespace mostyle {
@@ -16,6 +19,15 @@ namespace mostyle {
 // [0, 1] (exaggeration) as long as T keeps increasing; where it would not, the clock holds.
 // Throws InputError on a non-finite w or an empty warp. O(U + frames).
 void blended_timeline(const TimeWarp& warp, double w, Eigen::VectorXd& u);
+
+// The same for several takes (the style palette) over samples first..last of their common
+// timeline: the clock advances by sum_i w_i times take i's frames from one sample to the next
+// (weights: one per take, summing to 1; negative ones exaggerate); u holds sample positions
+// (first..last). Two takes with weights (1 - w, w) on a one-warp timeline are blended_timeline's
+// frames exactly. Throws InputError on a weight count that is not the takes', a non-finite
+// weight, or an empty or out-of-range stretch. O((last - first) x N + frames).
+void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& weights, int first, int last,
+                    Eigen::VectorXd& u);
 
 // The clock itself at every sample (U values, T(0) = 0), for tests and displays.
 Eigen::VectorXd blended_clock(const TimeWarp& warp, double w);

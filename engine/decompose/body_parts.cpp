@@ -135,4 +135,22 @@ bool connected_in(const std::vector<int>& columns, const std::vector<int>& paren
   return tops == 1;
 }
 
+Eigen::MatrixXd joint_values(const Eigen::MatrixXd& support, const Eigen::MatrixXd& values) {
+  const Eigen::Index joints = support.cols() / 3;
+  Eigen::MatrixXd out(joints, values.cols());
+  const Eigen::RowVectorXd mean = values.colwise().mean();
+  for (Eigen::Index j = 0; j < joints; ++j) {
+    out.row(j).setZero();
+    int count = 0;
+    for (Eigen::Index k = 0; k < support.rows(); ++k)
+      if (support(k, 3 * j) != 0 || support(k, 3 * j + 1) != 0 || support(k, 3 * j + 2) != 0) {
+        out.row(j) += values.row(k);
+        ++count;
+      }
+    if (count > 0) out.row(j) /= double(count);
+    else out.row(j) = mean;
+  }
+  return out;
+}
+
 }  // namespace mostyle

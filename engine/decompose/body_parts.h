@@ -37,6 +37,12 @@ std::vector<ComponentJoints> describe_components(const Eigen::MatrixXd& componen
 std::vector<double> weights_for_parts(const std::vector<std::pair<BodyPart, double>>& given,
                                       const std::vector<ComponentJoints>& components, double rest);
 
+// Per joint, values given per component: support is k x 3M (non-zero where component c moves a
+// channel), values k x n (n values per component, e.g. one weight per take). Row j of the result
+// (M x n) is the mean of the rows of the components that move joint j, or the mean of all rows
+// when none does: a body part's residual detail follows its part. O(k x 3M x n).
+Eigen::MatrixXd joint_values(const Eigen::MatrixXd& support, const Eigen::MatrixXd& values);
+
 // Whether `columns` form one connected piece of the tree `parents` (within-column parents, -1
 // for a root). Empty: false.
 bool connected_in(const std::vector<int>& columns, const std::vector<int>& parents);

@@ -289,43 +289,79 @@ Decomposition decompose_part(const Eigen::MatrixXd& x, const DecompositionOption
 }
 }  // namespace detail
 
+StackedDecomposition decompose_stacked(const std::vector<const Eigen::MatrixXd*>& takes,
+                                       const DecompositionOptions& options, JobControl* control) {
+  const Clock::time_point start = Clock::now();
+  if (takes.empty()) throw InputError("a shared decomposition needs at least one take");
+  Eigen::Index rows = 0;
+  for (size_t i = 0; i < takes.size(); ++i) {
+    try {
+      options.Validate(*takes[i]);
+    } catch (const InputError& e) {
+      throw InputError("take " + std::to_string(i + 1) + ": " + e.what());
+    }
+    if (takes[i]->cols() != takes[0]->cols())
+      throw InputError("shared decomposition: take 1 has " + std::to_string(takes[0]->cols()) + " channels and take " +
+                       std::to_string(i + 1) + " has " + std::to_string(takes[i]->cols()) +
+                       "; all need the same joints.");
+    rows += takes[i]->rows();
+  }
+  Eigen::MatrixXd stacked(rows, takes[0]->cols());
+  Eigen::Index row = 0;
+  for (const Eigen::MatrixXd* x : takes) {
+    stacked.middleRows(row, x->rows()) = *x;
+    row += x->rows();
+  }
+  Decomposition d = run_decomposition(stacked, options, control, 0.0f, 1.0f);
+
+  StackedDecomposition result;
+  row = 0;
+  for (const Eigen::MatrixXd* x : takes) {
+    result.weights.push_back(d.weights.middleRows(row, x->rows()));
+    row += x->rows();
+  }
+  result.components = std::move(d.components);
+  for (size_t i = 0; i < takes.size(); ++i)
+    result.rmse.push_back(std::sqrt((*takes[i] - result.weights[i] * result.components).squaredNorm() /
+                                    static_cast<double>(takes[i]->size())));
+  result.iterations = d.iterations;
+  result.converged = d.converged;
+  result.objective = d.objective;
+  result.nonzero_fraction = d.nonzero_fraction;
+  result.objective_history = std::move(d.objective_history);
+  result.elapsed_ms = milliseconds_since(start);
+  return result;
+}
+
 SharedDecomposition decompose_shared(const Eigen::MatrixXd& x_a, const Eigen::MatrixXd& x_b,
                                      const DecompositionOptions& options, JobControl* control) {
-  const Clock::time_point start = Clock::now();
-  try {
-    options.Validate(x_a);
-  } catch (const InputError& e) {
-    throw InputError(std::string("take A: ") + e.what());
-  }
-  try {
-    options.Validate(x_b);
-  } catch (const InputError& e) {
-    throw InputError(std::string("take B: ") + e.what());
-  }
   if (x_a.cols() != x_b.cols()) {
     throw InputError("shared decomposition: take A has " + std::to_string(x_a.cols()) +
                      " channels and take B has " + std::to_string(x_b.cols()) +
                      "; both need the same joints.");
   }
-  Eigen::MatrixXd stacked(x_a.rows() + x_b.rows(), x_a.cols());
-  stacked.topRows(x_a.rows()) = x_a;
-  stacked.bottomRows(x_b.rows()) = x_b;
-  Decomposition d = run_decomposition(stacked, options, control, 0.0f, 1.0f);
-
+  StackedDecomposition s;
+  try {
+    s = decompose_stacked({&x_a, &x_b}, options, control);
+  } catch (const InputError& e) {
+    // Name the takes A and B, as the pair's callers do.
+    std::string what = e.what();
+    if (what.rfind("take 1: ", 0) == 0) what = "take A: " + what.substr(8);
+    else if (what.rfind("take 2: ", 0) == 0) what = "take B: " + what.substr(8);
+    throw InputError(what);
+  }
   SharedDecomposition result;
-  result.weights_a = d.weights.topRows(x_a.rows());
-  result.weights_b = d.weights.bottomRows(x_b.rows());
-  result.components = std::move(d.components);
-  result.iterations = d.iterations;
-  result.converged = d.converged;
-  result.objective = d.objective;
-  result.rmse_a = std::sqrt((x_a - result.weights_a * result.components).squaredNorm() /
-                            static_cast<double>(x_a.size()));
-  result.rmse_b = std::sqrt((x_b - result.weights_b * result.components).squaredNorm() /
-                            static_cast<double>(x_b.size()));
-  result.nonzero_fraction = d.nonzero_fraction;
-  result.objective_history = std::move(d.objective_history);
-  result.elapsed_ms = milliseconds_since(start);
+  result.weights_a = std::move(s.weights[0]);
+  result.weights_b = std::move(s.weights[1]);
+  result.components = std::move(s.components);
+  result.iterations = s.iterations;
+  result.converged = s.converged;
+  result.objective = s.objective;
+  result.rmse_a = s.rmse[0];
+  result.rmse_b = s.rmse[1];
+  result.nonzero_fraction = s.nonzero_fraction;
+  result.objective_history = std::move(s.objective_history);
+  result.elapsed_ms = s.elapsed_ms;
   return result;
 }
 

@@ -80,6 +80,25 @@ SharedDecomposition decompose_shared(const Eigen::MatrixXd& x_a, const Eigen::Ma
                                      const DecompositionOptions& options = {},
                                      JobControl* control = nullptr);
 
+// The same for any number of takes (the style palette): one C for the stacked [x_0; ...; x_n-1].
+struct StackedDecomposition {
+  std::vector<Eigen::MatrixXd> weights;  // W_i: frames_i x k, one per take
+  Eigen::MatrixXd components;            // C: k x 3N, shared
+  int iterations = 0;
+  bool converged = false;
+  double objective = 0.0;                // sum_i ||x_i - W_i C||_F^2
+  std::vector<double> rmse;              // per take, x's units
+  double nonzero_fraction = 0.0;
+  double elapsed_ms = 0.0;
+  std::vector<double> objective_history;
+};
+
+// Throws InputError (naming the take, 1-based) when fewer than one take is given, the channel
+// counts differ, or options.Validate fails on a take. With two takes, decompose_shared's result.
+// Same cost as decompose() on the sum of the frames.
+StackedDecomposition decompose_stacked(const std::vector<const Eigen::MatrixXd*>& takes,
+                                       const DecompositionOptions& options = {}, JobControl* control = nullptr);
+
 namespace detail {
 // decompose() reporting its progress inside [progress_begin, progress_end] of the job, for jobs
 // that chain several decompositions (basic motions).

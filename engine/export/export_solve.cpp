@@ -428,8 +428,12 @@ ExportResult solve_on(Clip sampled, const Clip& clip, const std::vector<int>& jo
 }  // namespace
 
 ExportResult export_blend_bvh(const Clip& clip, const std::vector<int>& joints, const Eigen::MatrixXd& world,
-                              const Eigen::VectorXd& at, double fps, const std::string& path) {
+                              const Eigen::VectorXd& at, double fps, const std::string& path,
+                              ChannelLayout layout) {
   ExportResult result = solve_export_at(clip, joints, world, at, fps);
+  // The layout is applied to the solved clip, not to A: the solve moves the joint that carries
+  // the trajectory (Bandai's Hips, the trajectory child there), which A's values would not show.
+  if (layout == ChannelLayout::kRotations) result.clip = with_rotation_channels(result.clip);
   write_bvh_file(result.clip, path);
   return result;
 }

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/export/channel_layout.h"
 #include "engine/io/clip.h"
 
 namespace mostyle {
@@ -60,9 +61,16 @@ ExportResult solve_export_at(const Clip& clip, const std::vector<int>& joints, c
                              const Eigen::VectorXd& at, double fps);
 
 // solve_export_at, then the clip written atomically to `path` (bvh_io.h write_bvh_file). What
-// the CLI's --out and the editor's export call. Throws InputError when the file cannot be written.
+// the CLI's --out and the editor's export call. `layout`: kAsSource writes A's channel layout;
+// kRotations writes with_rotation_channels of the solved clip (channel_layout.h), which readers
+// that add position channels to the OFFSET (three.js) read as we do; the result's clip is then
+// the one written (same joint positions, fit unchanged). The caller picks the default with
+// default_channel_layout(clip). Throws InputError when the file cannot be written, or with
+// kRotations when the solved clip has a changing position channel that layout cannot hold
+// (nothing is written then).
 ExportResult export_blend_bvh(const Clip& clip, const std::vector<int>& joints, const Eigen::MatrixXd& world,
-                              const Eigen::VectorXd& at, double fps, const std::string& path);
+                              const Eigen::VectorXd& at, double fps, const std::string& path,
+                              ChannelLayout layout = ChannelLayout::kAsSource);
 
 // max and mean distance between the clip's joints (FK at every frame) and `world`'s columns.
 // Throws InputError on a shape mismatch. O(F x joints).

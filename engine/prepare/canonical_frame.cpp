@@ -96,31 +96,99 @@ void integrate_root(const Eigen::MatrixXd& steps, const Eigen::Vector2d& start_g
   }
 }
 
-void integrate_blended_root(const Eigen::MatrixXd& steps, const Eigen::MatrixXd& ground_a,
-                            const Eigen::MatrixXd& ground_b, double alpha, double start_heading,
-                            double fps, double pull_seconds, Eigen::MatrixXd* ground,
-                            Eigen::VectorXd* heading) {
+namespace {
+
+// integrate_root's steps from target(0), each pulled towards target_at(t + 1) (x, z).
+template <typename Target>
+void integrate_towards(const Eigen::MatrixXd& steps, const Target& target_at, double start_heading, double fps,
+                       double pull_seconds, Eigen::MatrixXd* ground, Eigen::VectorXd* heading) {
   const Eigen::Index frames = steps.rows();
-  assert(steps.cols() == 3 && ground_a.rows() == frames && ground_b.rows() == frames &&
-         ground_a.cols() == 2 && ground_b.cols() == 2);
   ground->resize(frames, 2);
   heading->resize(frames);
   if (frames == 0) return;
   const double pull = pull_seconds > 0 && fps > 0 ? 1.0 - std::exp(-1.0 / (fps * pull_seconds)) : 0.0;
-  (*ground)(0, 0) = ground_a(0, 0);
-  (*ground)(0, 1) = ground_a(0, 1);
+  const Eigen::Vector2d start = target_at(0);
+  (*ground)(0, 0) = start.x();
+  (*ground)(0, 1) = start.y();
   (*heading)[0] = start_heading;
   for (Eigen::Index t = 0; t + 1 < frames; ++t) {
     const double c = std::cos((*heading)[t]), s = std::sin((*heading)[t]);
-    // integrate_root's step, then a first-order pull towards the blended paths.
+    // integrate_root's step, then a first-order pull towards the target path.
     const double x = (*ground)(t, 0) + c * steps(t, 0) + s * steps(t, 1);
     const double z = (*ground)(t, 1) - s * steps(t, 0) + c * steps(t, 1);
-    const double target_x = (1 - alpha) * ground_a(t + 1, 0) + alpha * ground_b(t + 1, 0);
-    const double target_z = (1 - alpha) * ground_a(t + 1, 1) + alpha * ground_b(t + 1, 1);
-    (*ground)(t + 1, 0) = x + pull * (target_x - x);
-    (*ground)(t + 1, 1) = z + pull * (target_z - z);
+    const Eigen::Vector2d target = target_at(t + 1);
+    (*ground)(t + 1, 0) = x + pull * (target.x() - x);
+    (*ground)(t + 1, 1) = z + pull * (target.y() - z);
     (*heading)[t + 1] = (*heading)[t] + steps(t, 2);
   }
+}
+
+}  // namespace
+
+void integrate_blended_root(const Eigen::MatrixXd& steps, const Eigen::MatrixXd& ground_a,
+                            const Eigen::MatrixXd& ground_b, double alpha, double start_heading,
+                            double fps, double pull_seconds, Eigen::MatrixXd* ground,
+                            Eigen::VectorXd* heading) {
+  assert(steps.cols() == 3 && ground_a.rows() == steps.rows() && ground_b.rows() == steps.rows() &&
+         ground_a.cols() == 2 && ground_b.cols() == 2);
+  // Starts on A's path: the blend starts where A does.
+  integrate_towards(
+      steps,
+      [&](Eigen::Index t) -> Eigen::Vector2d {
+        if (t == 0) return ground_a.row(0).transpose();
+        return ((1 - alpha) * ground_a.row(t) + alpha * ground_b.row(t)).transpose();
+      },
+      start_heading, fps, pull_seconds, ground, heading);
+}
+
+void integrate_root_towards(const Eigen::MatrixXd& steps, const Eigen::MatrixXd& target, double start_heading,
+                            double fps, double pull_seconds, Eigen::MatrixXd* ground, Eigen::VectorXd* heading) {
+  assert(steps.cols() == 3 && target.rows() == steps.rows() && target.cols() == 2);
+  integrate_towards(
+      steps, [&](Eigen::Index t) -> Eigen::Vector2d { return target.row(t).transpose(); }, start_heading, fps,
+      pull_seconds, ground, heading);
+}
+
+namespace {
+// Row `at` (fractional, clamped) of x, linearly interpolated.
+Eigen::RowVectorXd row_at(const Eigen::MatrixXd& x, double at) {
+  const Eigen::Index last = x.rows() - 1;
+  const double t = std::clamp(at, 0.0, double(last));
+  const Eigen::Index i = std::min<Eigen::Index>(static_cast<Eigen::Index>(t), std::max<Eigen::Index>(last - 1, 0));
+  if (last == 0) return x.row(0);
+  const double f = t - double(i);
+  return (1 - f) * x.row(i) + f * x.row(i + 1);
+}
+}  // namespace
+
+void add_spread_turns(const Eigen::VectorXd& flips, double weight, double fps, Eigen::MatrixXd& steps) {
+  const double spread = std::max(0.0, 4.0 * weight * (1.0 - weight));
+  const int h = static_cast<int>(std::lround(0.5 * fps * spread));
+  const Eigen::Index samples = steps.rows();
+  for (Eigen::Index r = 0; r < samples && r < flips.size(); ++r) {
+    const double flip = flips[r];
+    if (flip == 0.0) continue;
+    const Eigen::Index width = std::min<Eigen::Index>(2 * h + 1, samples);
+    const Eigen::Index first = std::clamp<Eigen::Index>(r - h, 0, samples - width);
+    for (Eigen::Index t = first; t < first + width; ++t) steps(t, 2) += weight * flip / double(width);
+  }
+}
+
+PlacedRoot place_at(const CanonicalMotion& a, double a_frame, const CanonicalMotion& b, double b_frame) {
+  if (a.ground.rows() == 0 || b.ground.rows() == 0) throw InputError("cannot place a take without frames");
+  const Eigen::RowVectorXd ground_a0 = row_at(a.ground, a_frame);
+  const Eigen::RowVectorXd ground_b0 = row_at(b.ground, b_frame);
+  const double turn = row_at(a.heading, a_frame)(0) - row_at(b.heading, b_frame)(0);
+  const double c = std::cos(turn), s = std::sin(turn);
+  PlacedRoot placed;
+  placed.ground.resize(b.ground.rows(), 2);
+  for (Eigen::Index t = 0; t < b.ground.rows(); ++t) {
+    const double x = b.ground(t, 0) - ground_b0(0), z = b.ground(t, 1) - ground_b0(1);
+    placed.ground(t, 0) = ground_a0(0) + c * x + s * z;
+    placed.ground(t, 1) = ground_a0(1) - s * x + c * z;
+  }
+  placed.heading = b.heading.array() + turn;
+  return placed;
 }
 
 Eigen::MatrixXd limit_warped_steps(const Eigen::MatrixXd& steps, const Eigen::VectorXd& warp,

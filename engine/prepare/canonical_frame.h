@@ -55,6 +55,12 @@ Eigen::MatrixXd limit_warped_steps(const Eigen::MatrixXd& steps, const Eigen::Ve
 constexpr double kTurnHysteresis = 0.78539816339744831;  // pi / 4: radians beyond pi before the arc changes sides
 Eigen::MatrixXd match_turns(const Eigen::MatrixXd& steps_b, const Eigen::MatrixXd& steps_a);
 
+// Adds weight times a take's whole-turn flips (U: match_turns's change of its turn channel, 0
+// where none) to mixed steps' turns (U x 3), each flip spread over 2h + 1 samples, h growing to
+// half a second at weight 1/2: at weights 0 and 1 a whole turn is invisible, in between a flip in
+// one frame would turn the body by 2 pi weight at once. O(U + flips x h), no allocation.
+void add_spread_turns(const Eigen::VectorXd& flips, double weight, double fps, Eigen::MatrixXd& steps);
+
 // The root trajectory of a blend of A and B (B warped onto A's timeline, both F frames): the
 // blended steps (F x 3, (1 - alpha) steps_a + alpha steps_b after match_turns) integrated from A's
 // start as integrate_root does, each step then pulled towards the blend of the two takes' own
@@ -72,6 +78,21 @@ void integrate_blended_root(const Eigen::MatrixXd& steps, const Eigen::MatrixXd&
                             const Eigen::MatrixXd& ground_b, double alpha, double start_heading,
                             double fps, double pull_seconds, Eigen::MatrixXd* ground,
                             Eigen::VectorXd* heading);
+
+// The same with the path to pull towards given whole (F x 2, e.g. the weighted sum of several
+// takes' paths, the style palette's mix), integrated from target's first row. integrate_blended_root
+// is this with target (1 - alpha) ground_a + alpha ground_b. Allocation-free once sized. O(F).
+void integrate_root_towards(const Eigen::MatrixXd& steps, const Eigen::MatrixXd& target, double start_heading,
+                            double fps, double pull_seconds, Eigen::MatrixXd* ground, Eigen::VectorXd* heading);
+
+// Take B's root path moved rigidly so that at B's (fractional) frame b_frame it stands where A
+// stands at a_frame and faces where A faces: both then walk from one place. Ground: B's frames x 2,
+// heading: B's frames.
+struct PlacedRoot {
+  Eigen::MatrixXd ground;
+  Eigen::VectorXd heading;
+};
+PlacedRoot place_at(const CanonicalMotion& a, double a_frame, const CanonicalMotion& b, double b_frame);
 
 // Places local poses (F x 3J) in the world: p = ground + R_y(heading) local. Writes into `world`
 // (resized to F x 3J).

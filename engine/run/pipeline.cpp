@@ -9,6 +9,7 @@
 #include "engine/prepare/major_take.h"
 #include "engine/prepare/retarget.h"
 #include "engine/align/timing.h"
+#include "engine/post/finish.h"
 #include <algorithm>
 
 namespace mostyle {
@@ -20,7 +21,6 @@ double ms_since(Clock::time_point t0) {
 }
 
 constexpr double kMaxFps = 1000.0;
-constexpr double kPi = 3.14159265358979323846;
 // The blend's bones shorter than this fraction of their length lean on their previous direction
 // (limb_length.h): two takes' hands pointing different ways average to a stub that would spin.
 constexpr double kShortBoneFraction = 0.5;
@@ -66,6 +66,13 @@ std::shared_ptr<const PreparedPair> prepare_pair(std::shared_ptr<const Clip> a,
   p->mapping_a = map_major_joints(a->skeleton, options.mapping_a.entries.empty() ? nullptr : &options.mapping_a);
   p->mapping_b = map_major_joints(b->skeleton, options.mapping_b.entries.empty() ? nullptr : &options.mapping_b);
   p->majors = shared_major_joints(p->mapping_a, a->source, p->mapping_b, b->source);
+  if (!options.only_majors.empty()) {
+    std::vector<int> kept;
+    for (int m : p->majors)
+      if (std::find(options.only_majors.begin(), options.only_majors.end(), m) != options.only_majors.end())
+        kept.push_back(m);
+    p->majors = std::move(kept);
+  }
   p->parents = subset_parents(p->majors);
   const double fps = options.fps > 0 ? options.fps : a->fps();
   p->fps = fps;
@@ -113,18 +120,9 @@ std::shared_ptr<const PreparedPair> prepare_pair(std::shared_ptr<const Clip> a,
   const TimeWarp& warp = p->alignment.warp;
   // B moved rigidly so that where the warp starts, B stands where A stands and faces where A
   // faces: both takes then walk from one place, and the blend's root lies between them.
-  const Eigen::MatrixXd ground_a0 = sample_rows(p->canonical_a.ground, warp.a.head(1));
-  const Eigen::MatrixXd ground_b0 = sample_rows(p->canonical_b.ground, warp.b.head(1));
-  const double turn = sample_rows(p->canonical_a.heading, warp.a.head(1))(0, 0) -
-                      sample_rows(p->canonical_b.heading, warp.b.head(1))(0, 0);
-  const double c = std::cos(turn), s = std::sin(turn);
-  Eigen::MatrixXd placed_ground(p->canonical_b.ground.rows(), 2);
-  for (Eigen::Index t = 0; t < placed_ground.rows(); ++t) {
-    const double x = p->canonical_b.ground(t, 0) - ground_b0(0, 0), z = p->canonical_b.ground(t, 1) - ground_b0(0, 1);
-    placed_ground(t, 0) = ground_a0(0, 0) + c * x + s * z;
-    placed_ground(t, 1) = ground_a0(0, 1) - s * x + c * z;
-  }
-  const Eigen::VectorXd placed_heading = p->canonical_b.heading.array() + turn;
+  const PlacedRoot placed = place_at(p->canonical_a, warp.a[0], p->canonical_b, warp.b[0]);
+  const Eigen::MatrixXd& placed_ground = placed.ground;
+  const Eigen::VectorXd& placed_heading = placed.heading;
   to_world(p->canonical_b.local, placed_ground, placed_heading, &p->world_b_placed);
 
   // Both takes on the warp's samples: poses, root paths and steps, contacts.
@@ -235,13 +233,6 @@ std::shared_ptr<const DecomposedPair> decompose_pair(const PreparedPair& prepare
 
 namespace {
 
-// Rows of x at fractional rows u, nearest row (for 0/1 contacts).
-void nearest_rows(const Eigen::MatrixXd& x, const Eigen::VectorXd& u, Eigen::MatrixXd& out) {
-  out.resize(u.size(), x.cols());
-  const double last = static_cast<double>(x.rows() - 1);
-  for (Eigen::Index k = 0; k < u.size(); ++k) out.row(k) = x.row(static_cast<Eigen::Index>(std::lround(std::clamp(u[k], 0.0, last))));
-}
-
 // v linearly interpolated at fractional index u (clamped).
 double value_at(const Eigen::VectorXd& v, double u) {
   const Eigen::Index last = v.size() - 1;
@@ -261,7 +252,10 @@ void blend_pair(const PreparedPair& p, const DecomposedPair& d, const BlendParam
   const double alpha = params.alpha;
   const Normalization& n = p.normalization;
   const TimeWarp& warp = p.alignment.warp;
-  const bool affine = d.params.mode == BlendMode::kShared && params.component_alpha.empty();
+  // Per-component alphas all equal to alpha are the plain blend.
+  const bool uniform = std::all_of(params.component_alpha.begin(), params.component_alpha.end(),
+                                   [&](double a) { return a == alpha; });
+  const bool affine = d.params.mode == BlendMode::kShared && uniform;
   // The output timeline: output frame k sits at warp sample u[k] (align/timing.h).
   double timing = params.timing_a ? 0.0 : alpha;
   if (d.params.mode == BlendMode::kShared && !params.component_alpha.empty()) {
@@ -273,13 +267,25 @@ void blend_pair(const PreparedPair& p, const DecomposedPair& d, const BlendParam
   }
   blended_timeline(warp, timing, s.u);
   s.sampler.set(s.u, warp.samples());
-  if (affine) {
+  if (affine && params.residual) {
+    // With the residuals, W_A C + residual_A is A's own pose: each take is read straight at the
+    // (fractional) frame the output frame shows, (1 - alpha) A + alpha B, so alpha 0 is A's own
+    // frames, not an interpolation of its warp samples.
+    s.source_a.resize(s.u.size());
+    s.source_b.resize(s.u.size());
+    for (Eigen::Index k = 0; k < s.u.size(); ++k) {
+      s.source_a[k] = value_at(warp.a, s.u[k]);
+      s.source_b[k] = value_at(warp.b, s.u[k]);
+    }
+    s.sampler_a.set(s.source_a, p.canonical_a.local.rows());
+    s.sampler_b.set(s.source_b, p.canonical_b.local.rows());
+    s.sampler_a.apply(p.canonical_a.local, out.local);
+    out.local *= 1.0 - alpha;
+    s.sampler_b.accumulate(p.canonical_b.local, alpha, out.local);
+  } else if (affine) {
     // local = (W_A + alpha (W_B - W_A)) C scale + mean_a + alpha (mean_b - mean_a), folded, at
     // the output frames only.
-    if (params.residual)
-      s.sampler.apply_add(d.local_a, d.local_delta, alpha, out.local);
-    else
-      s.sampler.apply_add(d.local_a_components, d.local_delta_components, alpha, out.local);
+    s.sampler.apply_add(d.local_a_components, d.local_delta_components, alpha, out.local);
   } else if (d.params.mode == BlendMode::kShared) {  // one alpha per component
     synthesize_shared(d.shared_synthesis, s.alphas, s.x);
   } else if (d.params.basic_motions > 0) {
@@ -299,17 +305,9 @@ void blend_pair(const PreparedPair& p, const DecomposedPair& d, const BlendParam
     if (params.residual && d.params.mode == BlendMode::kShared) {
       // Per-component alphas: each joint's residual takes the mean alpha of the components
       // that move it (a body part's detail follows that part), the overall mean elsewhere.
-      const double mean_alpha = s.alphas.mean();
-      const Eigen::Index joints = d.support.cols() / 3;
-      for (Eigen::Index j = 0; j < joints; ++j) {
-        double sum = 0.0;
-        int count = 0;
-        for (Eigen::Index k = 0; k < d.support.rows(); ++k)
-          if (d.support(k, 3 * j) != 0 || d.support(k, 3 * j + 1) != 0 || d.support(k, 3 * j + 2) != 0) {
-            sum += s.alphas[k];
-            ++count;
-          }
-        const double a = count > 0 ? sum / count : mean_alpha;
+      s.joint_alpha = joint_values(d.support, s.alphas);
+      for (Eigen::Index j = 0; j < s.joint_alpha.rows(); ++j) {
+        const double a = s.joint_alpha(j, 0);
         s.samples.middleCols(3 * j, 3) += (1 - a) * d.residual_a.middleCols(3 * j, 3) + a * d.residual_b.middleCols(3 * j, 3);
       }
     }
@@ -318,40 +316,29 @@ void blend_pair(const PreparedPair& p, const DecomposedPair& d, const BlendParam
   // The root on the warp's samples, then at the output frames.
   s.steps.resize(p.steps_a.rows(), 3);
   s.steps.noalias() = (1 - alpha) * p.steps_a + alpha * p.steps_b;
-  // B's whole-turn flips (prepare_pair), each spread over 2h + 1 samples, h growing to half a
-  // second at alpha 1/2: at alpha 0 and 1 a whole turn is invisible, in between a flip in one
-  // frame would turn the body by 2 pi alpha at once.
-  const int h = static_cast<int>(std::lround(0.5 * p.fps * 4.0 * alpha * (1.0 - alpha)));
-  const Eigen::Index samples = s.steps.rows();
-  for (Eigen::Index r = 0; r < samples; ++r) {
-    const double flip = p.turn_flips[r];
-    if (flip == 0.0) continue;
-    const Eigen::Index width = std::min<Eigen::Index>(2 * h + 1, samples);
-    const Eigen::Index first = std::clamp<Eigen::Index>(r - h, 0, samples - width);
-    for (Eigen::Index t = first; t < first + width; ++t) s.steps(t, 2) += alpha * flip / double(width);
-  }
+  // B's whole-turn flips (prepare_pair), spread over a moment (canonical_frame.h).
+  add_spread_turns(p.turn_flips, alpha, p.fps, s.steps);
   integrate_blended_root(s.steps, p.ground_a, p.ground_b, alpha, p.start_heading, p.fps,
                          params.root_pull_seconds, &s.ground_u, &s.heading_u);
-  s.sampler.apply(s.ground_u, s.ground);
-  s.heading.resize(s.u.size());
-  // Headings along the shorter arc between samples: where the blended turns carry a whole turn
-  // (match_turns), a plain interpolation would spin the body round within one frame.
-  for (Eigen::Index k = 0; k < s.u.size(); ++k) {
-    const int i = s.sampler.row[k];
-    const double h0 = s.heading_u[i];
-    const double h1 = s.heading_u.size() > 1 ? s.heading_u[i + 1] : h0;
-    s.heading[k] = h0 + s.sampler.frac[k] * std::remainder(h1 - h0, 2.0 * kPi);
-  }
   // Foot contacts mixed with the same alpha (the mean one when each component has its own).
   const double contact_alpha = d.params.mode == BlendMode::kShared && !params.component_alpha.empty() ? s.alphas.mean() : alpha;
   blend_contacts(p.warped_contacts_a, p.warped_contacts_b, contact_alpha, s.contacts_u);
-  nearest_rows(s.contacts_u, s.u, out.contacts);
-  out.loop = LoopCut();
-  if (params.loop) {
-    out.loop = find_loop(out.contacts, out.local, s.heading);
-    close_loop(out.loop, out.local, s.ground, s.heading, out.contacts);
-    s.u = s.u.segment(out.loop.begin, out.loop.frames()).eval();
-  }
+  FinishRig rig;
+  rig.parents = &p.parents;
+  rig.lengths = &p.lengths_a;
+  rig.feet = &p.feet;
+  rig.short_bone_fraction = kShortBoneFraction;
+  FinishOptions finish;
+  finish.limb_lengths = params.limb_lengths;
+  finish.foot_lock = params.foot_lock;
+  finish.loop = params.loop;
+  finish_motion(s.sampler, s.ground_u, s.heading_u, s.contacts_u, rig, finish, out.local, s.u, s.finish, s.finished);
+  out.world.swap(s.finished.world);
+  out.contacts.swap(s.finished.contacts);
+  out.loop = s.finished.loop;
+  out.limb_length_max_error = s.finished.limb_length_max_error;
+  out.foot_sliding_raw = s.finished.foot_sliding_raw;
+  out.foot_sliding_cleaned = s.finished.foot_sliding_cleaned;
   out.sample = s.u;
   out.source_a.resize(s.u.size());
   out.source_b.resize(s.u.size());
@@ -359,17 +346,6 @@ void blend_pair(const PreparedPair& p, const DecomposedPair& d, const BlendParam
     out.source_a[k] = value_at(warp.a, s.u[k]);
     out.source_b[k] = value_at(warp.b, s.u[k]);
   }
-  to_world(out.local, s.ground, s.heading, &out.world);
-  if (params.limb_lengths) {
-    LimbLengthOptions limbs;
-    limbs.short_fraction = kShortBoneFraction;
-    apply_limb_lengths(out.world, p.parents, p.lengths_a, limbs);
-  }
-  // Foot lock (beyond the paper): planted ankles pinned by two-bone IK, which keeps bone lengths.
-  out.foot_sliding_raw = foot_sliding(out.world, out.contacts, p.feet);
-  if (params.foot_lock) apply_foot_lock(out.world, out.contacts, p.feet, s.foot);
-  out.foot_sliding_cleaned = params.foot_lock ? foot_sliding(out.world, out.contacts, p.feet) : out.foot_sliding_raw;
-  out.limb_length_max_error = max_bone_length_error(out.world, p.parents, p.lengths_a);
   out.postprocess_ms = ms_since(t1);
 }
 

@@ -17,6 +17,7 @@
 #include "engine/io/clip.h"
 #include "engine/decompose/decomposition.h"
 #include "engine/align/alignment.h"
+#include "engine/post/finish.h"
 #include "engine/post/foot_contact.h"
 #include "engine/post/loop.h"
 #include "engine/io/job_control.h"
@@ -32,6 +33,9 @@ struct PrepareOptions {
   MappingOverrides mapping_a;  // empty: name rules only
   MappingOverrides mapping_b;
   FootContactOptions foot_contacts;  // detection thresholds and the lock's fade (foot_contact.h)
+  // Non-empty: only these canonical joints (major_skeleton.h), of those both takes have, so that
+  // several pairs with one reference share their joints (the style palette).
+  std::vector<int> only_majors;
   void Validate() const;  // throws InputError on a bad fps or alignment option
 };
 
@@ -160,8 +164,12 @@ struct BlendScratch {
   Eigen::MatrixXd x, samples, ground, steps, ground_u, contacts_u;
   Eigen::VectorXd heading, heading_u, alphas, u;
   Eigen::RowVectorXd mean;
+  Eigen::MatrixXd joint_alpha;  // per-component alphas: each joint's
   RowSampler sampler;  // the output frames' places on the warp
-  FootLockScratch foot;
+  RowSampler sampler_a, sampler_b;  // their frames in each take
+  Eigen::VectorXd source_a, source_b;
+  FinishScratch finish;
+  FinishedMotion finished;
 };
 
 struct BlendResult {

@@ -7,6 +7,33 @@
 #include "engine/io/error.h"
 
 namespace mostyle {
+namespace {
+
+// Reads a palette's files, each once: a path given twice shares its clip, as the pair's A with
+// itself does. Checks for cancellation between files, so that a new load does not wait for all.
+std::vector<std::shared_ptr<const Clip>> read_palette_clips(const std::vector<std::string>& paths,
+                                                            std::vector<std::string>* warnings,
+                                                            const JobControl* control) {
+  std::vector<std::shared_ptr<const Clip>> clips;
+  for (size_t i = 0; i < paths.size(); ++i) {
+    check_cancel(control);
+    size_t same = 0;
+    while (same < i && paths[same] != paths[i]) ++same;
+    clips.push_back(same < i ? clips[same] : std::make_shared<const Clip>(read_bvh_file(paths[i], warnings)));
+  }
+  return clips;
+}
+
+// decompose_palette mixes shared components only; paper mode and basic motions are the pair's,
+// so a palette leaves them out of the request instead of refusing it.
+DecomposeParams palette_decompose_params(DecomposeParams params) {
+  params.mode = BlendMode::kShared;
+  params.basic_motions = 0;
+  params.basic_sparsities.clear();
+  return params;
+}
+
+}  // namespace
 
 const char* worker_stage_name(WorkerStage stage) {
   switch (stage) {
@@ -39,6 +66,19 @@ void Worker::load(const std::string& path_a, const std::string& path_b, const Pr
     // A successful load asks for the decomposition and blend itself; asking here would, when the
     // load fails, re-run them on the previous pair and wipe the error off the snapshot.
     need_load_ = true;
+    load_is_palette_ = false;
+    if (running_ == WorkerStage::kLoading || running_ == WorkerStage::kDecomposing) control_.cancel = true;
+  }
+  wake_.notify_all();
+}
+
+void Worker::load_palette(const std::vector<std::string>& paths, const PrepareOptions& options) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    palette_paths_ = paths;
+    prepare_options_ = options;
+    need_load_ = true;  // the decomposition and mix follow a success (see load)
+    load_is_palette_ = true;
     if (running_ == WorkerStage::kLoading || running_ == WorkerStage::kDecomposing) control_.cancel = true;
   }
   wake_.notify_all();
@@ -48,7 +88,7 @@ void Worker::decompose(const DecomposeParams& params) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     decompose_params_ = params;
-    need_decompose_ = true;  // a successful decomposition asks for the blend (see load)
+    need_decompose_ = true;  // a successful decomposition asks for the blend or mix (see load)
     if (running_ == WorkerStage::kDecomposing) control_.cancel = true;
   }
   wake_.notify_all();
@@ -63,6 +103,15 @@ void Worker::blend(const BlendParams& params) {
   wake_.notify_all();
 }
 
+void Worker::mix(const MixParams& params) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    mix_params_ = params;
+    need_mix_ = true;
+  }
+  wake_.notify_all();
+}
+
 std::shared_ptr<const WorkerSnapshot> Worker::snapshot() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return snapshot_;
@@ -73,17 +122,20 @@ WorkerStatus Worker::status() const {
   WorkerStatus s;
   s.stage = running_;
   s.progress = running_ == WorkerStage::kIdle ? 0.0f : control_.progress.load();
-  s.pending = need_load_ || (need_decompose_ && snapshot_->prepared) || (need_blend_ && snapshot_->decomposed);
+  s.pending = has_work();
   return s;
 }
 
 void Worker::wait_idle() const {
   std::unique_lock<std::mutex> lock(mutex_);
-  idle_.wait(lock, [this] {
-    const bool pending = need_load_ || (need_decompose_ && snapshot_->prepared) ||
-                         (need_blend_ && snapshot_->decomposed);
-    return running_ == WorkerStage::kIdle && !pending;
-  });
+  idle_.wait(lock, [this] { return running_ == WorkerStage::kIdle && !has_work(); });
+}
+
+// Parameters without something to apply them to wait for it; they are not work yet.
+bool Worker::has_work() const {
+  const WorkerSnapshot& s = *snapshot_;
+  return need_load_ || (need_decompose_ && (s.prepared || s.palette)) || (need_blend_ && s.decomposed) ||
+         (need_mix_ && s.palette_decomposition);
 }
 
 // Called with mutex_ held: a new snapshot made from the current one.
@@ -97,73 +149,18 @@ void Worker::publish(const std::function<void(WorkerSnapshot&)>& change) {
 void Worker::run() {
   std::unique_lock<std::mutex> lock(mutex_);
   for (;;) {
-    wake_.wait(lock, [this] {
-      return stop_ || need_load_ || (need_decompose_ && snapshot_->prepared) ||
-             (need_blend_ && snapshot_->decomposed);
-    });
+    wake_.wait(lock, [this] { return stop_ || has_work(); });
     if (stop_) return;
     control_.cancel = false;
     control_.progress = 0.0f;
     try {
-      if (need_load_) {
-        need_load_ = false;
-        running_ = WorkerStage::kLoading;
-        const std::string a = path_a_, b = path_b_;
-        const PrepareOptions options = prepare_options_;
-        lock.unlock();
-        const auto t0 = std::chrono::steady_clock::now();
-        std::vector<std::string> warnings;
-        auto clip_a = std::make_shared<const Clip>(read_bvh_file(a, &warnings));
-        auto clip_b = b == a ? clip_a : std::make_shared<const Clip>(read_bvh_file(b, &warnings));
-        const double load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        auto prepared = prepare_pair(clip_a, clip_b, options, &control_);
-        std::const_pointer_cast<PreparedPair>(prepared)->times.load_ms = load_ms;
-        lock.lock();
-        publish([&](WorkerSnapshot& s) {
-          s.prepared = prepared;
-          s.decomposed = nullptr;
-          s.blend = nullptr;
-          s.path_a = a;
-          s.path_b = b;
-          s.warnings = warnings;
-          s.error.clear();
-        });
-        need_decompose_ = need_blend_ = true;
-      } else if (need_decompose_ && snapshot_->prepared) {
-        need_decompose_ = false;
-        running_ = WorkerStage::kDecomposing;
-        const DecomposeParams params = decompose_params_;
-        const auto prepared = snapshot_->prepared;
-        lock.unlock();
-        auto decomposed = decompose_pair(*prepared, params, &control_);
-        lock.lock();
-        if (snapshot_->prepared == prepared) {
-          publish([&](WorkerSnapshot& s) {
-            s.decomposed = decomposed;
-            s.decompose_params = params;
-            s.error.clear();
-          });
-          need_blend_ = true;
-        }
-      } else if (need_blend_ && snapshot_->decomposed) {
-        need_blend_ = false;
-        running_ = WorkerStage::kBlending;
-        const BlendParams params = blend_params_;
-        const auto prepared = snapshot_->prepared;
-        const auto decomposed = snapshot_->decomposed;
-        lock.unlock();
-        BlendScratch scratch;
-        auto result = std::make_shared<BlendResult>();
-        blend_pair(*prepared, *decomposed, params, scratch, *result);
-        lock.lock();
-        if (snapshot_->decomposed == decomposed) {
-          publish([&](WorkerSnapshot& s) {
-            s.blend = result;
-            s.blend_params = params;
-            s.error.clear();
-          });
-        }
-      }
+      // A snapshot holds a pair or a palette, so at most one of each pair of branches can run.
+      if (need_load_ && load_is_palette_) run_load_palette(lock);
+      else if (need_load_) run_load(lock);
+      else if (need_decompose_ && snapshot_->prepared) run_decompose(lock);
+      else if (need_decompose_ && snapshot_->palette) run_decompose_palette(lock);
+      else if (need_blend_ && snapshot_->decomposed) run_blend(lock);
+      else if (need_mix_ && snapshot_->palette_decomposition) run_mix(lock);
     } catch (const Cancelled&) {
       if (!lock.owns_lock()) lock.lock();
     } catch (const InputError& e) {
@@ -177,6 +174,148 @@ void Worker::run() {
     }
     running_ = WorkerStage::kIdle;
     idle_.notify_all();
+  }
+}
+
+// The pair.
+
+void Worker::run_load(std::unique_lock<std::mutex>& lock) {
+  need_load_ = false;
+  running_ = WorkerStage::kLoading;
+  const std::string a = path_a_, b = path_b_;
+  const PrepareOptions options = prepare_options_;
+  lock.unlock();
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<std::string> warnings;
+  auto clip_a = std::make_shared<const Clip>(read_bvh_file(a, &warnings));
+  auto clip_b = b == a ? clip_a : std::make_shared<const Clip>(read_bvh_file(b, &warnings));
+  const double load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  auto prepared = prepare_pair(clip_a, clip_b, options, &control_);
+  std::const_pointer_cast<PreparedPair>(prepared)->times.load_ms = load_ms;
+  lock.lock();
+  publish([&](WorkerSnapshot& s) {
+    s.prepared = prepared;
+    s.decomposed = nullptr;
+    s.blend = nullptr;
+    s.path_a = a;
+    s.path_b = b;
+    s.palette = nullptr;
+    s.palette_decomposition = nullptr;
+    s.mix = nullptr;
+    s.palette_paths.clear();
+    s.warnings = warnings;
+    s.error.clear();
+  });
+  need_decompose_ = need_blend_ = true;
+}
+
+void Worker::run_decompose(std::unique_lock<std::mutex>& lock) {
+  need_decompose_ = false;
+  running_ = WorkerStage::kDecomposing;
+  const DecomposeParams params = decompose_params_;
+  const auto prepared = snapshot_->prepared;
+  lock.unlock();
+  auto decomposed = decompose_pair(*prepared, params, &control_);
+  lock.lock();
+  if (snapshot_->prepared == prepared) {
+    publish([&](WorkerSnapshot& s) {
+      s.decomposed = decomposed;
+      s.decompose_params = params;
+      s.error.clear();
+    });
+    need_blend_ = true;
+  }
+}
+
+void Worker::run_blend(std::unique_lock<std::mutex>& lock) {
+  need_blend_ = false;
+  running_ = WorkerStage::kBlending;
+  const BlendParams params = blend_params_;
+  const auto prepared = snapshot_->prepared;
+  const auto decomposed = snapshot_->decomposed;
+  lock.unlock();
+  BlendScratch scratch;
+  auto result = std::make_shared<BlendResult>();
+  blend_pair(*prepared, *decomposed, params, scratch, *result);
+  lock.lock();
+  if (snapshot_->decomposed == decomposed) {
+    publish([&](WorkerSnapshot& s) {
+      s.blend = result;
+      s.blend_params = params;
+      s.error.clear();
+    });
+  }
+}
+
+// The palette: the same three stages, with prepare_palette, decompose_palette and mix_palette.
+
+void Worker::run_load_palette(std::unique_lock<std::mutex>& lock) {
+  need_load_ = false;
+  running_ = WorkerStage::kLoading;
+  const std::vector<std::string> paths = palette_paths_;
+  const PrepareOptions options = prepare_options_;
+  lock.unlock();
+  std::vector<std::string> warnings;
+  auto palette = prepare_palette(read_palette_clips(paths, &warnings, &control_), options, &control_);
+  lock.lock();
+  publish([&](WorkerSnapshot& s) {
+    s.palette = palette;
+    s.palette_decomposition = nullptr;
+    s.mix = nullptr;
+    s.palette_paths = paths;
+    s.prepared = nullptr;
+    s.decomposed = nullptr;
+    s.blend = nullptr;
+    s.path_a.clear();
+    s.path_b.clear();
+    s.warnings = warnings;
+    s.error.clear();
+  });
+  // Weights for another number of takes (or none yet) mean nothing for this palette: start from
+  // equal weights. Weights of the right count stay, and mix_palette judges them.
+  const int takes = palette->size();
+  if (static_cast<int>(mix_params_.weights.size()) != takes) {
+    mix_params_.weights.assign(static_cast<size_t>(takes), 1.0 / takes);
+    mix_params_.component_weights.resize(0, 0);
+  }
+  need_decompose_ = need_mix_ = true;
+}
+
+void Worker::run_decompose_palette(std::unique_lock<std::mutex>& lock) {
+  need_decompose_ = false;
+  running_ = WorkerStage::kDecomposing;
+  const DecomposeParams params = decompose_params_;
+  const auto palette = snapshot_->palette;
+  lock.unlock();
+  auto decomposition = decompose_palette(*palette, palette_decompose_params(params), &control_);
+  lock.lock();
+  if (snapshot_->palette == palette) {
+    publish([&](WorkerSnapshot& s) {
+      s.palette_decomposition = decomposition;
+      s.decompose_params = params;
+      s.error.clear();
+    });
+    need_mix_ = true;
+  }
+}
+
+void Worker::run_mix(std::unique_lock<std::mutex>& lock) {
+  need_mix_ = false;
+  running_ = WorkerStage::kBlending;
+  const MixParams params = mix_params_;
+  const auto palette = snapshot_->palette;
+  const auto decomposition = snapshot_->palette_decomposition;
+  lock.unlock();
+  MixScratch scratch;
+  auto result = std::make_shared<MixResult>();
+  mix_palette(*palette, *decomposition, params, scratch, *result);
+  lock.lock();
+  if (snapshot_->palette_decomposition == decomposition) {
+    publish([&](WorkerSnapshot& s) {
+      s.mix = result;
+      s.mix_params = params;
+      s.error.clear();
+    });
   }
 }
 

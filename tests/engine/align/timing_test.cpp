@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "engine/align/common_timeline.h"
 #include "engine/align/slope_dtw.h"
 #include "engine/io/error.h"
 
@@ -147,4 +148,35 @@ TEST_CASE("timing: a one-sample warp gives one frame; bad input throws InputErro
   CHECK_THROWS_AS(blended_clock(TimeWarp{}, 0.5), InputError);
   CHECK_THROWS_AS(blended_timeline(one, std::nan(""), out), InputError);
   CHECK_THROWS_AS(blended_timeline(one, INFINITY, out), InputError);
+}
+
+TEST_CASE("timing: a mix of two takes on one warp is the blended timeline", "[timing]") {
+  const TimeWarp w = warp_of({0, 1, 2, 3, 3.5, 4}, {0, 2, 4, 5, 6, 7});
+  const CommonTimeline t = common_timeline({&w});
+  for (double alpha : {0.0, 0.3, 0.5, 1.0, 1.4}) {
+    Eigen::VectorXd blended, mixed;
+    blended_timeline(w, alpha, blended);
+    mixed_timeline(t, {1.0 - alpha, alpha}, 0, t.samples() - 1, mixed);
+    REQUIRE(mixed.size() == blended.size());
+    CHECK((mixed - blended).cwiseAbs().maxCoeff() < kExact);
+  }
+}
+
+TEST_CASE("timing: three takes' clock advances by the weighted frames", "[timing]") {
+  // Reference 0..4, take 1 twice as fast, take 2 as fast as the reference: weights (0.5, 0.5, 0)
+  // give 1.5 frames per reference frame, 6 frames in all (7 output frames).
+  CommonTimeline t;
+  t.frames = {Eigen::VectorXd::LinSpaced(9, 0, 4), Eigen::VectorXd::LinSpaced(9, 0, 8),
+              Eigen::VectorXd::LinSpaced(9, 10, 14)};
+  Eigen::VectorXd u;
+  mixed_timeline(t, {0.5, 0.5, 0.0}, 0, 8, u);
+  REQUIRE(u.size() == 7);
+  for (Eigen::Index f = 0; f < u.size(); ++f) CHECK(u[f] == Approx(f * 8.0 / 6.0).margin(kExact));
+  CHECK_THROWS_AS(mixed_timeline(t, {0.5, 0.5}, 0, 8, u), InputError);
+  CHECK_THROWS_AS(mixed_timeline(t, {0.5, 0.5, 0.0}, 2, 9, u), InputError);
+  mixed_timeline(t, {0.0, 1.0, 0.0}, 2, 6, u);  // take 1 from its frame 2 to 6: 5 frames
+  REQUIRE(u.size() == 5);
+  CHECK(u[0] == Approx(2.0));
+  CHECK(u[4] == Approx(6.0));
+  CHECK_THROWS_AS(mixed_timeline(t, {0.5, NAN, 0.5}, 0, 8, u), InputError);
 }

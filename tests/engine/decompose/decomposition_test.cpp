@@ -333,3 +333,37 @@ TEST_CASE("shared decomposition gives one component set and weights per take",
   bad(0, 0) = std::nan("");
   CHECK_THROWS_WITH(decompose_shared(a, bad, options), Catch::Contains("take B"));
 }
+
+TEST_CASE("a stacked decomposition of several takes against brute force", "[decomposition]") {
+  const Eigen::MatrixXd a = synthetic_motion(60, 6, 3, 0.01, 3), b = synthetic_motion(45, 6, 3, 0.01, 4),
+                        c = synthetic_motion(30, 6, 3, 0.01, 5);
+  DecompositionOptions o;
+  o.components = 4;
+  o.sparsity = 0.5;
+  const StackedDecomposition s = decompose_stacked({&a, &b, &c}, o);
+  REQUIRE(s.weights.size() == 3);
+  CHECK(s.weights[0].rows() == 60);
+  CHECK(s.weights[1].rows() == 45);
+  CHECK(s.weights[2].rows() == 30);
+  // Brute force: the one decomposition of the stacked matrix, split by rows.
+  Eigen::MatrixXd stacked(135, a.cols());
+  stacked << a, b, c;
+  const Decomposition d = decompose(stacked, o);
+  CHECK((s.components - d.components).cwiseAbs().maxCoeff() < 1e-12);
+  CHECK((s.weights[1] - d.weights.middleRows(60, 45)).cwiseAbs().maxCoeff() < 1e-12);
+  double objective = 0;
+  const Eigen::MatrixXd* takes[] = {&a, &b, &c};
+  for (int i = 0; i < 3; ++i) {
+    const double e = (*takes[i] - s.weights[i] * s.components).squaredNorm();
+    objective += e;
+    CHECK(s.rmse[i] == Approx(std::sqrt(e / double(takes[i]->size()))));
+  }
+  CHECK(s.objective == Approx(objective).epsilon(1e-9));
+  // Two takes: the shared decomposition exactly.
+  const SharedDecomposition two = decompose_shared(a, b, o);
+  const StackedDecomposition stacked_two = decompose_stacked({&a, &b}, o);
+  CHECK((two.weights_b - stacked_two.weights[1]).cwiseAbs().maxCoeff() == 0.0);
+  const Eigen::MatrixXd wrong(10, 9);
+  CHECK_THROWS_AS(decompose_stacked({&a, &wrong}, o), InputError);
+  CHECK_THROWS_AS(decompose_stacked({}, o), InputError);
+}

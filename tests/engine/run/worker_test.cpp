@@ -11,6 +11,7 @@
 #include <random>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "engine/kinematics/limb_length.h"
 #include "tests/test_data.h"
@@ -45,6 +46,20 @@ bool wait_for_stage(const Worker& w, WorkerStage stage, double timeout = 30.0) {
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
   return true;
+}
+
+// The mix a snapshot should hold: mix_palette on its own palette and decomposition.
+Eigen::MatrixXd direct_mix(const WorkerSnapshot& s) {
+  MixScratch scratch;
+  MixResult out;
+  mix_palette(*s.palette, *s.palette_decomposition, s.mix_params, scratch, out);
+  return out.motion.world;
+}
+
+std::vector<std::string> assets(const std::vector<std::string>& names) {
+  std::vector<std::string> paths;
+  for (const std::string& n : names) paths.push_back(test::asset(n));
+  return paths;
 }
 
 std::string temporary_file(const std::string& name, const std::string& content) {
@@ -346,5 +361,404 @@ TEST_CASE("a thousand parameter changes while another thread reads results", "[w
   CHECK(s->decomposed->components() == last_decompose.components);
   CHECK(s->blend_params.alpha == last_blend.alpha);
   CHECK(s->blend->world == direct_blend(*s));
+  CHECK_FALSE(w.status().pending);
+}
+
+// The style palette: the same worker, with prepare_palette, decompose_palette and mix_palette.
+
+TEST_CASE("loads a palette of three bundled takes, decomposes and mixes it", "[worker][palette]") {
+  Worker w;
+  const std::vector<std::string> paths = assets({kHappy, kMarching, kJoy});
+  w.load_palette(paths);
+  w.wait_idle();
+  const auto s = w.snapshot();
+  INFO(s->error);
+  REQUIRE(s->error.empty());
+  REQUIRE(s->palette);
+  REQUIRE(s->palette_decomposition);
+  REQUIRE(s->mix);
+  CHECK(s->palette->size() == 3);
+  CHECK(s->palette_paths == paths);
+  CHECK(s->palette->takes.front().clip->source == paths.front());
+  CHECK(s->version >= 3);  // loaded, decomposed, mixed
+  // No pair alongside.
+  CHECK_FALSE(s->prepared);
+  CHECK_FALSE(s->decomposed);
+  CHECK_FALSE(s->blend);
+  CHECK(s->path_a.empty());
+  // The current parameters: the default decomposition, and equal weights (none were given).
+  CHECK(s->palette_decomposition->components() == DecomposeParams().components);
+  CHECK(s->palette_decomposition->params.mode == BlendMode::kShared);
+  CHECK(s->mix_params.weights == std::vector<double>(3, 1.0 / 3.0));
+  // The mix has frames, one pose column per shared joint, and is mix_palette's own.
+  CHECK(s->mix->motion.world.rows() > 0);
+  CHECK(s->mix->motion.world.cols() == 3 * static_cast<Eigen::Index>(s->palette->majors.size()));
+  CHECK(s->mix->sources.cols() == 3);
+  CHECK(s->mix->motion.world == direct_mix(*s));
+  const WorkerStatus status = w.status();
+  CHECK(status.stage == WorkerStage::kIdle);
+  CHECK_FALSE(status.pending);
+}
+
+TEST_CASE("mix parameters without a palette wait for one", "[worker][palette]") {
+  Worker w;
+  MixParams m;
+  m.weights = {0.5, 0.5};
+  w.mix(m);
+  w.wait_idle();
+  CHECK(w.snapshot()->error.empty());
+  CHECK_FALSE(w.status().pending);
+  CHECK(w.snapshot()->version == 0);
+}
+
+TEST_CASE("new mix weights re-run only the mix", "[worker][palette]") {
+  Worker w;
+  w.load_palette(assets({kHappy, kMarching, kJoy}));
+  w.wait_idle();
+  const auto before = w.snapshot();
+  REQUIRE(before->mix);
+  MixParams m;
+  m.weights = {0.2, 0.5, 0.3};
+  w.mix(m);
+  w.wait_idle();
+  const auto after = w.snapshot();
+  INFO(after->error);
+  CHECK(after->error.empty());
+  CHECK(after->palette == before->palette);
+  CHECK(after->palette_decomposition == before->palette_decomposition);  // not decomposed again
+  REQUIRE(after->mix);
+  CHECK(after->mix != before->mix);
+  CHECK(after->mix_params.weights == m.weights);
+  CHECK(after->version == before->version + 1);
+  CHECK(after->mix->motion.world == direct_mix(*after));
+  // Another mix (mixed timing may also give it another length; compare sizes before values).
+  const Eigen::MatrixXd& new_world = after->mix->motion.world;
+  const Eigen::MatrixXd& old_world = before->mix->motion.world;
+  CHECK((new_world.rows() != old_world.rows() || new_world != old_world));
+  // The old snapshot is untouched: results are immutable.
+  CHECK(before->mix_params.weights == std::vector<double>(3, 1.0 / 3.0));
+  CHECK(before->mix->motion.world == direct_mix(*before));
+}
+
+TEST_CASE("mix weights mix_palette refuses become an error and keep the mix", "[worker][palette]") {
+  Worker w;
+  w.load_palette(assets({kHappy, kMarching, kJoy}));
+  w.wait_idle();
+  const auto good = w.snapshot();
+  REQUIRE(good->mix);
+  MixParams m;
+  SECTION("weights that do not sum to 1") {
+    m.weights = {0.5, 0.5, 0.5};
+  }
+  SECTION("weights of the wrong count") {
+    m.weights = {0.5, 0.5};  // given for a palette already loaded: refused, not replaced
+  }
+  SECTION("a weight that is not finite") {
+    m.weights = {0.5, std::nan(""), 0.5};
+  }
+  w.mix(m);
+  w.wait_idle();
+  const auto s = w.snapshot();
+  INFO(s->error);
+  CHECK_FALSE(s->error.empty());
+  CHECK(s->mix == good->mix);
+  CHECK(s->mix_params.weights == good->mix_params.weights);
+  CHECK(s->palette_decomposition == good->palette_decomposition);
+  CHECK_FALSE(w.status().pending);
+  // A later success clears the error.
+  m.weights = {0.0, 1.0, 0.0};
+  w.mix(m);
+  w.wait_idle();
+  CHECK(w.snapshot()->error.empty());
+  CHECK(w.snapshot()->mix_params.weights == m.weights);
+}
+
+TEST_CASE("new decomposition parameters re-decompose and re-mix the palette, in shared mode", "[worker][palette]") {
+  Worker w;
+  w.load_palette(assets({kHappy, kMarching, kJoy}));
+  w.wait_idle();
+  const auto before = w.snapshot();
+  REQUIRE(before->mix);
+  DecomposeParams d;
+  d.components = 4;
+  d.sparsity = 0.3;
+  SECTION("shared mode") {}
+  SECTION("paper mode with basic motions, which are the pair's, decomposes shared components") {
+    d.mode = BlendMode::kPaper;
+    d.basic_motions = 2;
+  }
+  w.decompose(d);
+  w.wait_idle();
+  const auto after = w.snapshot();
+  INFO(after->error);
+  CHECK(after->error.empty());
+  CHECK(after->palette == before->palette);
+  REQUIRE(after->palette_decomposition);
+  CHECK(after->palette_decomposition != before->palette_decomposition);
+  CHECK(after->palette_decomposition->components() == 4);
+  CHECK(after->palette_decomposition->params.sparsity == 0.3);
+  CHECK(after->palette_decomposition->params.mode == BlendMode::kShared);
+  CHECK(after->palette_decomposition->params.basic_motions == 0);
+  CHECK(after->decompose_params.mode == d.mode);  // the request, as made
+  CHECK_FALSE(after->decomposed);                 // no pair made on the way
+  REQUIRE(after->mix);
+  CHECK(after->mix != before->mix);
+  CHECK(after->mix->motion.world == direct_mix(*after));
+
+  // Parameters decompose_palette refuses keep the decomposition and the mix.
+  DecomposeParams bad;
+  bad.components = 1000;
+  w.decompose(bad);
+  w.wait_idle();
+  const auto s = w.snapshot();
+  CHECK(s->error.rfind("expected from 1 to", 0) == 0);
+  CHECK(s->palette_decomposition == after->palette_decomposition);
+  CHECK(s->mix == after->mix);
+}
+
+TEST_CASE("a pair load clears the palette, and a palette load clears the pair", "[worker][palette]") {
+  Worker w;
+  w.load(test::asset(kHappy), test::asset(kJoy));
+  w.wait_idle();
+  REQUIRE(w.snapshot()->blend);
+
+  const std::vector<std::string> paths = assets({kClumsy, kMarching, kJoy});
+  w.load_palette(paths);
+  w.wait_idle();
+  const auto palette = w.snapshot();
+  INFO(palette->error);
+  REQUIRE(palette->mix);
+  CHECK(palette->palette_paths == paths);
+  CHECK_FALSE(palette->prepared);
+  CHECK_FALSE(palette->decomposed);
+  CHECK_FALSE(palette->blend);
+  CHECK(palette->path_a.empty());
+  CHECK(palette->path_b.empty());
+  // Blend parameters wait for a pair; they do not touch the palette.
+  BlendParams b;
+  b.alpha = 0.75;
+  w.blend(b);
+  w.wait_idle();
+  CHECK(w.snapshot()->version == palette->version);
+  CHECK_FALSE(w.status().pending);
+
+  w.load(test::asset(kHappy), test::asset(kJoy));
+  w.wait_idle();
+  const auto pair = w.snapshot();
+  INFO(pair->error);
+  REQUIRE(pair->blend);
+  CHECK(pair->blend_params.alpha == 0.75);
+  CHECK(pair->blend->world == direct_blend(*pair));
+  CHECK_FALSE(pair->palette);
+  CHECK_FALSE(pair->palette_decomposition);
+  CHECK_FALSE(pair->mix);
+  CHECK(pair->palette_paths.empty());
+  // Mix parameters wait for a palette; they do not touch the pair.
+  MixParams m;
+  m.weights = {0.25, 0.25, 0.5};
+  w.mix(m);
+  w.wait_idle();
+  CHECK(w.snapshot()->version == pair->version);
+
+  // They apply to the next palette of that many takes; a palette of another count starts from
+  // equal weights.
+  SECTION("three takes") {
+    w.load_palette(paths);
+    w.wait_idle();
+    REQUIRE(w.snapshot()->mix);
+    CHECK(w.snapshot()->mix_params.weights == m.weights);
+  }
+  SECTION("two takes") {
+    w.load_palette(assets({kClumsy, kMarching}));
+    w.wait_idle();
+    REQUIRE(w.snapshot()->mix);
+    CHECK(w.snapshot()->mix_params.weights == std::vector<double>{0.5, 0.5});
+  }
+  CHECK_FALSE(w.snapshot()->prepared);
+}
+
+TEST_CASE("a failing palette load keeps what was loaded and names the file", "[worker][palette]") {
+  Worker w;
+  const std::string missing = "/nonexistent/walk.bvh";
+  SECTION("after a palette") {
+    w.load_palette(assets({kHappy, kMarching, kJoy}));
+    w.wait_idle();
+    const auto good = w.snapshot();
+    REQUIRE(good->mix);
+    w.load_palette({test::asset(kHappy), missing, test::asset(kJoy)});
+    w.wait_idle();
+    const auto s = w.snapshot();
+    INFO(s->error);
+    CHECK(s->error.find(missing) != std::string::npos);
+    CHECK(s->palette == good->palette);
+    CHECK(s->palette_decomposition == good->palette_decomposition);
+    CHECK(s->mix == good->mix);
+    CHECK(s->palette_paths == good->palette_paths);
+    CHECK_FALSE(w.status().pending);
+    // One take is no palette.
+    w.load_palette({test::asset(kHappy)});
+    w.wait_idle();
+    CHECK_FALSE(w.snapshot()->error.empty());
+    CHECK(w.snapshot()->palette == good->palette);
+  }
+  SECTION("after a pair") {
+    w.load(test::asset(kHappy), test::asset(kJoy));
+    w.wait_idle();
+    const auto good = w.snapshot();
+    REQUIRE(good->blend);
+    w.load_palette({test::asset(kHappy), test::asset(kJoy), missing});
+    w.wait_idle();
+    const auto s = w.snapshot();
+    INFO(s->error);
+    CHECK(s->error.find(missing) != std::string::npos);
+    CHECK(s->prepared == good->prepared);
+    CHECK(s->blend == good->blend);
+    CHECK(s->path_a == good->path_a);
+    CHECK_FALSE(s->palette);
+    // The pair still takes parameters (nothing of the failed palette waits to run).
+    BlendParams b;
+    b.alpha = 0.25;
+    w.blend(b);
+    w.wait_idle();
+    CHECK(w.snapshot()->error.empty());
+    CHECK(w.snapshot()->blend_params.alpha == 0.25);
+  }
+}
+
+TEST_CASE("a new palette load replaces a running one and ends with the latest", "[worker][palette]") {
+  Worker w;
+  const std::vector<std::string> first = assets({kHappy, kMarching, kJoy});
+  const std::vector<std::string> latest = assets({kClumsy, kJoy});
+  w.load_palette(first);
+  // The first load is usually seen running; when it is not, the second one replaced it pending.
+  const bool seen = wait_for_stage(w, WorkerStage::kLoading, 5.0);
+  INFO("first load seen running: " << seen);
+  w.load_palette(latest);
+  w.wait_idle();
+  const auto s = w.snapshot();
+  INFO(s->error);
+  CHECK(s->error.empty());
+  CHECK(s->palette_paths == latest);
+  REQUIRE(s->palette);
+  CHECK(s->palette->size() == 2);
+  CHECK(s->palette->takes.front().clip->source == latest.front());
+  REQUIRE(s->mix);
+  CHECK(s->mix->motion.world == direct_mix(*s));
+  CHECK_FALSE(w.status().pending);
+}
+
+TEST_CASE("a palette load cancels a long decomposition, and so does a new decomposition", "[worker][palette]") {
+  Worker w;
+  w.load_palette(assets({kHappy, kMarching, kJoy}));
+  w.wait_idle();
+  DecomposeParams endless;
+  endless.components = 20;
+  endless.max_iterations = 100000000;
+  endless.tolerance = 0;  // never converges: hours of work
+  w.decompose(endless);
+  REQUIRE(wait_for_stage(w, WorkerStage::kDecomposing));
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  const WorkerStatus running = w.status();
+  CHECK(running.progress >= 0.0f);
+  CHECK(running.progress <= 1.0f);
+
+  DecomposeParams quick;
+  quick.components = 3;
+  quick.max_iterations = 5;
+  SECTION("a palette load") {
+    const std::vector<std::string> paths = assets({kClumsy, kHappy});
+    w.load_palette(paths);
+    w.decompose(quick);
+    w.wait_idle();
+    CHECK(w.snapshot()->palette_paths == paths);
+  }
+  SECTION("a new decomposition") {
+    const auto t0 = Clock::now();
+    w.decompose(quick);
+    w.wait_idle();
+    INFO("cancelled and redone in " << seconds_since(t0) << " s");
+    CHECK(seconds_since(t0) < 5.0);  // an iteration is milliseconds (more under sanitizers)
+  }
+  const auto s = w.snapshot();
+  INFO(s->error);
+  CHECK(s->error.empty());
+  REQUIRE(s->palette_decomposition);
+  CHECK(s->palette_decomposition->components() == 3);
+  CHECK(s->decompose_params.max_iterations == 5);
+  REQUIRE(s->mix);
+  CHECK(s->mix->motion.world == direct_mix(*s));
+}
+
+TEST_CASE("mix, decomposition and load requests on a palette while another thread reads results",
+          "[worker][palette]") {
+  Worker w;
+  const std::vector<std::string> palette_a = assets({kHappy, kMarching, kJoy});
+  const std::vector<std::string> palette_b = assets({kClumsy, kJoy, kHappy});
+  w.load_palette(palette_a);
+
+  std::atomic<bool> stop{false};
+  std::atomic<long> reads{0}, bad_reads{0};
+  std::thread reader([&] {
+    std::uint64_t last_version = 0;
+    while (!stop.load()) {
+      const auto s = w.snapshot();
+      const WorkerStatus status = w.status();
+      bool ok = s && s->version >= last_version && status.progress >= 0.0f && status.progress <= 1.0f;
+      if (ok) last_version = s->version;
+      // A snapshot holds a pair or a palette, never both.
+      ok = ok && !(s->prepared && s->palette);
+      if (ok && s->mix) {
+        // A published mix comes with the palette and decomposition it was made from.
+        ok = s->palette && s->palette_decomposition && s->palette_paths.size() == 3 &&
+             s->mix->sources.cols() == s->palette->size() &&
+             s->mix_params.weights.size() == static_cast<size_t>(s->palette->size()) &&
+             s->palette_decomposition->stacked.weights.size() == static_cast<size_t>(s->palette->size());
+        double sum = 0;
+        for (Eigen::Index i = 0; i < s->mix->motion.world.size(); ++i) sum += s->mix->motion.world.data()[i];
+        ok = ok && std::isfinite(sum);
+      }
+      bad_reads += ok ? 0 : 1;
+      ++reads;
+    }
+  });
+
+  std::mt19937 random(7);
+  MixParams last_mix;
+  DecomposeParams last_decompose;
+  std::vector<std::string> last_paths = palette_a;
+  for (int i = 0; i < 200; ++i) {
+    if (i == 60) {
+      w.load(test::asset(kHappy), test::asset(kJoy));  // a pair in between
+    } else if (i == 100) {
+      last_paths = palette_b;
+      w.load_palette(last_paths);
+    } else if (i % 20 == 7) {
+      last_decompose.components = 2 + static_cast<int>(random() % 9);
+      last_decompose.max_iterations = 20;
+      w.decompose(last_decompose);
+    } else {
+      const double a = static_cast<double>(random() % 1001) / 1000.0;
+      const double b = static_cast<double>(random() % 1001) / 1000.0 * (1.0 - a);
+      last_mix.weights = {a, b, 1.0 - a - b};
+      w.mix(last_mix);
+    }
+    if (i % 10 == 0) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  w.wait_idle();
+  stop = true;
+  reader.join();
+
+  INFO(reads.load() << " reads");
+  CHECK(reads.load() > 0);
+  CHECK(bad_reads.load() == 0);
+  const auto s = w.snapshot();
+  INFO(s->error);
+  CHECK(s->error.empty());
+  REQUIRE(s->mix);
+  CHECK_FALSE(s->prepared);
+  CHECK(s->palette_paths == last_paths);
+  CHECK(s->palette_decomposition->components() == last_decompose.components);
+  CHECK(s->mix_params.weights == last_mix.weights);
+  CHECK(s->mix->motion.world == direct_mix(*s));
   CHECK_FALSE(w.status().pending);
 }

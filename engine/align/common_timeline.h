@@ -1,0 +1,36 @@
+#pragma once
+// One timeline for several takes (issue #9, the style palette): each take is aligned onto the
+// reference (take 0) by its own time warp (time_warp.h); the common timeline's samples give,
+// for every take, the (fractional) frame that matches the reference there.
+#include <Eigen/Core>
+#include <vector>
+
+#include "engine/align/time_warp.h"
+
+namespace mostyle {
+
+// U samples; frames[i] holds take i's frame at each (take 0 is the reference). Every column is
+// non-decreasing and, where a warp's slope is finite, no take advances more than one of its
+// frames from one sample to the next. Take i matches the reference over samples first[i] to
+// last[i]; outside them it holds its first or last matched frame.
+struct CommonTimeline {
+  std::vector<Eigen::VectorXd> frames;  // N vectors of U frames (working rate)
+  std::vector<int> first, last;         // N: the samples where each take is matched
+  int samples() const { return frames.empty() ? 0 : static_cast<int>(frames[0].size()); }
+  int takes() const { return static_cast<int>(frames.size()); }
+};
+
+// The common timeline of warps[i - 1] (reference onto take i, warp.a the reference's frames).
+// One warp: its own samples, unchanged (so a palette of two takes is the pair's blend exactly).
+// Several: the reference's frames that any warp matches (the union of their matched ranges,
+// each range's ends among the samples), stepped by at most one reference frame and by less where
+// a matched take runs faster (1 / its largest slope over the step), but never below
+// kMinCommonStep, so a warp that skips frames (the paper's) does not multiply the samples. Each
+// take's frame is its warp read at the reference's frame, linearly between samples, held at its
+// ends outside its range. A mix then plays the stretch every take with a weight matches, so a
+// take with weight 0 does not shorten it. Throws InputError on no warps or an empty warp.
+// O(sum of warp lengths + U x N).
+constexpr double kMinCommonStep = 0.25;
+CommonTimeline common_timeline(const std::vector<const TimeWarp*>& warps);
+
+}  // namespace mostyle

@@ -1,0 +1,57 @@
+#include "engine/post/finish.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/kinematics/limb_length.h"
+#include "engine/prepare/canonical_frame.h"
+
+namespace mostyle {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Rows of x at fractional rows u, nearest row (for 0/1 contacts).
+void nearest_rows(const Eigen::MatrixXd& x, const Eigen::VectorXd& u, Eigen::MatrixXd& out) {
+  out.resize(u.size(), x.cols());
+  const double last = static_cast<double>(x.rows() - 1);
+  for (Eigen::Index k = 0; k < u.size(); ++k)
+    out.row(k) = x.row(static_cast<Eigen::Index>(std::lround(std::clamp(u[k], 0.0, last))));
+}
+
+}  // namespace
+
+void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, const Eigen::VectorXd& heading_u,
+                   const Eigen::MatrixXd& contacts_u, const FinishRig& rig, const FinishOptions& options,
+                   Eigen::MatrixXd& local, Eigen::VectorXd& u, FinishScratch& s, FinishedMotion& out) {
+  sampler.apply(ground_u, s.ground);
+  s.heading.resize(u.size());
+  // Headings along the shorter arc between samples: where the mixed turns carry a whole turn
+  // (match_turns), a plain interpolation would spin the body round within one frame.
+  for (Eigen::Index k = 0; k < u.size(); ++k) {
+    const int i = sampler.row[k];
+    const double h0 = heading_u[i];
+    const double h1 = heading_u.size() > 1 ? heading_u[i + 1] : h0;
+    s.heading[k] = h0 + sampler.frac[k] * std::remainder(h1 - h0, 2.0 * kPi);
+  }
+  nearest_rows(contacts_u, u, out.contacts);
+  out.loop = LoopCut();
+  if (options.loop) {
+    out.loop = find_loop(out.contacts, local, s.heading);
+    close_loop(out.loop, local, s.ground, s.heading, out.contacts);
+    u = u.segment(out.loop.begin, out.loop.frames()).eval();
+  }
+  to_world(local, s.ground, s.heading, &out.world);
+  if (options.limb_lengths) {
+    LimbLengthOptions limbs;
+    limbs.short_fraction = rig.short_bone_fraction;
+    apply_limb_lengths(out.world, *rig.parents, *rig.lengths, limbs);
+  }
+  // Foot lock (beyond the paper): planted ankles pinned by two-bone IK, which keeps bone lengths.
+  out.foot_sliding_raw = foot_sliding(out.world, out.contacts, *rig.feet);
+  if (options.foot_lock) apply_foot_lock(out.world, out.contacts, *rig.feet, s.foot);
+  out.foot_sliding_cleaned = options.foot_lock ? foot_sliding(out.world, out.contacts, *rig.feet) : out.foot_sliding_raw;
+  out.limb_length_max_error = max_bone_length_error(out.world, *rig.parents, *rig.lengths);
+}
+
+}  // namespace mostyle

@@ -1,0 +1,51 @@
+#pragma once
+// The last steps every synthesized motion takes, a pair's blend or a palette's mix: the root
+// and the foot contacts read at the output frames, the loop cut when asked, the poses placed
+// in the world, the limb-length constraint (paper 3.7) and the foot lock.
+#include <Eigen/Core>
+#include <vector>
+
+#include "engine/align/time_warp.h"
+#include "engine/post/foot_contact.h"
+#include "engine/post/loop.h"
+
+namespace mostyle {
+
+struct FinishOptions {
+  bool limb_lengths = true;  // paper 3.7
+  bool foot_lock = true;     // pin planted feet after the limb lengths (foot_contact.h)
+  bool loop = false;         // cut a seamless loop of whole gait cycles (loop.h)
+};
+
+// What the motion is measured and rigged with.
+struct FinishRig {
+  const std::vector<int>* parents = nullptr;    // within the motion's columns
+  const std::vector<double>* lengths = nullptr;  // the reference's bone lengths per column
+  const FootRig* feet = nullptr;
+  double short_bone_fraction = 0.5;             // limb_length.h LimbLengthOptions::short_fraction
+};
+
+struct FinishedMotion {
+  Eigen::MatrixXd world;            // K x 3M
+  Eigen::MatrixXd contacts;         // K x 2
+  LoopCut loop;                     // with FinishOptions::loop: where it was cut
+  double limb_length_max_error = 0; // after the constraint (before it when off)
+  double foot_sliding_raw = 0;      // before the foot lock, units per second
+  double foot_sliding_cleaned = 0;  // after it
+};
+
+struct FinishScratch {
+  Eigen::MatrixXd ground;
+  Eigen::VectorXd heading;
+  FootLockScratch foot;
+};
+
+// local: K x 3M canonical poses at the output frames, u: their K sample positions (sampler set
+// on them); ground_u (U x 2), heading_u (U) and contacts_u (U x 2) on the samples. With a loop,
+// local and u are cut to the loop's frames. Throws InputError when a loop is asked of a motion
+// without two foot strikes. O(K x M); allocation-free once sized, except the loop.
+void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, const Eigen::VectorXd& heading_u,
+                   const Eigen::MatrixXd& contacts_u, const FinishRig& rig, const FinishOptions& options,
+                   Eigen::MatrixXd& local, Eigen::VectorXd& u, FinishScratch& scratch, FinishedMotion& out);
+
+}  // namespace mostyle

@@ -1,0 +1,339 @@
+#include "engine/run/palette.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "engine/align/timing.h"
+#include "engine/io/error.h"
+#include "engine/prepare/canonical_frame.h"
+#include "engine/prepare/major_skeleton.h"
+
+namespace mostyle {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+constexpr double kShortBoneFraction = 0.5;  // as the pair's blend (pipeline.cpp)
+constexpr double kWeightSumTolerance = 1e-6;
+
+std::string take_name(int i, const Clip& clip) {
+  return "take " + std::to_string(i + 1) + " (" + clip.source + ")";
+}
+
+// Take i's values on the common timeline, from its pair (the reference as A, the take as B; the
+// reference itself from the first pair's A side).
+PaletteTake read_take(const PreparedPair& pair, bool reference, const Eigen::VectorXd& frames, bool paper_warp) {
+  PaletteTake t;
+  t.clip = reference ? pair.clip_a : pair.clip_b;
+  t.names = reference ? pair.names_a : pair.names_b;
+  t.frames = frames;
+  const CanonicalMotion& motion = reference ? pair.canonical_a : pair.canonical_b;
+  // Placed as its pair places it: where its match starts, it stands and faces where the
+  // reference does.
+  const TimeWarp& warp = pair.alignment.warp;
+  const PlacedRoot placed =
+      reference ? place_at(pair.canonical_a, 0.0, motion, 0.0) : place_at(pair.canonical_a, warp.a[0], motion, warp.b[0]);
+  t.own_local = motion.local;
+  t.local = sample_rows(motion.local, frames);
+  t.ground = sample_rows(placed.ground, frames);
+  const Eigen::VectorXd heading = sample_rows(placed.heading, frames);
+  t.steps = root_steps(t.ground, heading);
+  // The paper's warp may skip frames from one sample to the next; the root must not teleport
+  // (canonical_frame.h). The smooth warp never skips, so there this changes nothing.
+  if (paper_warp) t.steps = limit_warped_steps(t.steps, frames, kMaxWarpSpeedup);
+  const Eigen::MatrixXd& contacts = reference ? pair.contacts_a : pair.contacts_b;
+  t.contacts = carry_contacts(contacts, frames);
+  to_world(motion.local, placed.ground, placed.heading, &t.world_placed);
+  t.foot_sliding = reference ? pair.foot_sliding_a : pair.foot_sliding_b;
+  return t;
+}
+
+// Each take's frame (K x N) at the sampler's output frames; the sampler's rows count from
+// sample `first`.
+void write_sources(const PreparedPalette& p, const RowSampler& at, int first, Eigen::MatrixXd& sources) {
+  const Eigen::Index frames = at.row.size();
+  sources.resize(frames, p.size());
+  for (int i = 0; i < p.size(); ++i) {
+    const Eigen::VectorXd& f = p.timeline.frames[i];
+    for (Eigen::Index k = 0; k < frames; ++k) {
+      const Eigen::Index r = first + at.row[k];
+      sources(k, i) = r + 1 < f.size() ? (1 - at.frac[k]) * f[r] + at.frac[k] * f[r + 1] : f[r];
+    }
+  }
+}
+
+}  // namespace
+
+std::shared_ptr<const PreparedPalette> prepare_palette(const std::vector<std::shared_ptr<const Clip>>& clips,
+                                                       const PrepareOptions& options, JobControl* control) {
+  const int n = static_cast<int>(clips.size());
+  if (n < 2 || n > kMaxPaletteTakes)
+    throw InputError("a palette takes from 2 to " + std::to_string(kMaxPaletteTakes) + " takes, found " +
+                     std::to_string(n));
+  auto p = std::make_shared<PreparedPalette>();
+  // The canonical joints every take has (each checked against the reference as a pair).
+  const MajorMapping reference = map_major_joints(clips[0]->skeleton, options.mapping_a.entries.empty() ? nullptr : &options.mapping_a);
+  std::vector<int> common;
+  for (int i = 1; i < n; ++i) {
+    const MappingOverrides* overrides = i == 1 && !options.mapping_b.entries.empty() ? &options.mapping_b : nullptr;
+    std::vector<int> shared;
+    try {
+      shared = shared_major_joints(reference, clips[0]->source, map_major_joints(clips[i]->skeleton, overrides),
+                                   clips[i]->source);
+    } catch (const InputError& e) {
+      throw InputError(take_name(i, *clips[i]) + ": " + e.what());
+    }
+    if (i == 1) common = shared;
+    else common.erase(std::remove_if(common.begin(), common.end(),
+                                     [&](int m) { return std::find(shared.begin(), shared.end(), m) == shared.end(); }),
+                      common.end());
+  }
+  for (int i = 1; i < n; ++i) {
+    PrepareOptions o = options;
+    if (i > 1) o.mapping_b = {};  // mapping_b names the second take's joints only
+    o.only_majors = common;
+    p->pairs.push_back(prepare_pair(clips[0], clips[i], o, control));
+  }
+  const PreparedPair& first = *p->pairs.front();
+  p->majors = first.majors;
+  p->parents = first.parents;
+  p->lengths = first.lengths_a;
+  p->feet = first.feet;
+  p->fps = first.fps;
+  std::vector<const TimeWarp*> warps;
+  for (const auto& pair : p->pairs) warps.push_back(&pair->alignment.warp);
+  p->timeline = common_timeline(warps);
+  const bool paper = options.align.method == DtwMethod::kPaper;
+  const Eigen::VectorXd& reference_frames = p->timeline.frames[0];
+  p->takes.push_back(read_take(first, true, reference_frames, paper));
+  for (int i = 1; i < n; ++i) p->takes.push_back(read_take(*p->pairs[i - 1], false, p->timeline.frames[i], paper));
+  p->reference_heading = sample_rows(first.canonical_a.heading, reference_frames);
+  // Whole turns that keep each take's facing within about half a turn of the reference's.
+  const PaletteTake& ref = p->takes.front();
+  for (PaletteTake& t : p->takes) t.turn_flips = match_turns(t.steps, ref.steps).col(2) - t.steps.col(2);
+  // Normalization (normalize.h, for N takes): each take's own mean pose, one scale for all.
+  double sum = 0.0, count = 0.0;
+  for (PaletteTake& t : p->takes) {
+    t.mean = t.local.colwise().mean();
+    sum += (t.local.rowwise() - t.mean).squaredNorm();
+    count += static_cast<double>(t.local.size());
+  }
+  p->scale = count > 0 ? std::sqrt(sum / count) : 1.0;
+  if (!(p->scale > 0) || !std::isfinite(p->scale)) p->scale = 1.0;
+  for (PaletteTake& t : p->takes) t.x = (t.local.rowwise() - t.mean) / p->scale;
+  check_cancel(control);
+  return p;
+}
+
+std::shared_ptr<const PaletteDecomposition> decompose_palette(const PreparedPalette& palette,
+                                                              const DecomposeParams& params, JobControl* control) {
+  const int channels = static_cast<int>(palette.takes.front().x.cols());
+  params.Validate(channels);
+  if (params.mode != BlendMode::kShared)
+    throw InputError("a palette of several takes mixes shared components; paper mode and basic motions blend two "
+                     "takes (use blend)");
+  const auto t0 = Clock::now();
+  auto d = std::make_shared<PaletteDecomposition>();
+  d->params = params;
+  DecompositionOptions o;
+  o.components = params.components;
+  o.sparsity = params.sparsity;
+  o.max_iterations = params.max_iterations;
+  o.tolerance = params.tolerance;
+  if (params.local) o.locality_parents = palette.parents;
+  std::vector<const Eigen::MatrixXd*> xs;
+  for (const PaletteTake& t : palette.takes) xs.push_back(&t.x);
+  d->stacked = decompose_stacked(xs, o, control);
+  for (size_t i = 0; i < palette.takes.size(); ++i) {
+    const PaletteTake& t = palette.takes[i];
+    const Eigen::MatrixXd wc = d->stacked.weights[i] * d->stacked.components;
+    d->residual.push_back((t.x - wc) * palette.scale);
+    Eigen::MatrixXd r = wc * palette.scale;
+    r.rowwise() += t.mean;
+    d->reconstructed.push_back(std::move(r));
+    d->rmse.push_back(d->stacked.rmse[i] * palette.scale);
+  }
+  d->support = (d->stacked.components.array() != 0.0).cast<double>();
+  d->component_joints = describe_components(d->stacked.components, palette.majors);
+  d->elapsed_ms = ms_since(t0);
+  report_progress(control, 1.0f);
+  return d;
+}
+
+void MixParams::Validate(int takes, int components) const {
+  if (static_cast<int>(weights.size()) != takes)
+    throw InputError("expected " + std::to_string(takes) + " weights, one per take, found " +
+                     std::to_string(weights.size()));
+  auto check_row = [&](const double* w, const std::string& what) {
+    double sum = 0.0;
+    for (int i = 0; i < takes; ++i) {
+      if (!std::isfinite(w[i])) throw InputError("expected finite " + what);
+      if (w[i] < min_weight - 1e-12 || w[i] > max_weight + 1e-12)
+        throw InputError("expected " + what + " from " + std::to_string(min_weight).substr(0, 5) + " to " +
+                         std::to_string(max_weight).substr(0, 4) + ", found " + std::to_string(w[i]) + " for take " +
+                         std::to_string(i + 1));
+      sum += w[i];
+    }
+    if (std::abs(sum - 1.0) > kWeightSumTolerance)
+      throw InputError("expected " + what + " that sum to 1, found a sum of " + std::to_string(sum));
+  };
+  check_row(weights.data(), "weights");
+  if (component_weights.size() > 0) {
+    if (component_weights.rows() != components || component_weights.cols() != takes)
+      throw InputError("expected per-component weights of " + std::to_string(components) + " components x " +
+                       std::to_string(takes) + " takes");
+    for (Eigen::Index c = 0; c < component_weights.rows(); ++c) {
+      const Eigen::RowVectorXd row = component_weights.row(c);
+      check_row(row.data(), "part weights");
+    }
+  }
+}
+
+void mix_palette(const PreparedPalette& p, const PaletteDecomposition& d, const MixParams& params, MixScratch& s,
+                 MixResult& out) {
+  const int n = p.size();
+  params.Validate(n, d.components());
+  const auto t0 = Clock::now();
+  // Per-component weights that are all the overall weights are the plain mix.
+  bool per_component = false;
+  for (Eigen::Index c = 0; c < params.component_weights.rows(); ++c)
+    for (int i = 0; i < n; ++i) per_component |= params.component_weights(c, i) != params.weights[i];
+  // The body's overall weights (each take's mean over the components when they differ per
+  // part) mix the root, the contacts and, unless the reference's is kept, the timing.
+  s.overall = params.weights;
+  if (per_component)
+    for (int i = 0; i < n; ++i) s.overall[i] = params.component_weights.col(i).mean();
+  s.timing.assign(n, 0.0);
+  if (params.reference_timing) s.timing[0] = 1.0;
+  else s.timing = s.overall;
+  // The stretch every take with a weight matches (a take at weight 0 does not shorten it).
+  int first = 0, last = p.samples() - 1;
+  for (int i = 0; i < n; ++i) {
+    bool weighted = params.weights[i] != 0.0 || s.timing[i] != 0.0;
+    for (Eigen::Index c = 0; per_component && c < params.component_weights.rows(); ++c)
+      weighted |= params.component_weights(c, i) != 0.0;
+    if (!weighted) continue;
+    first = std::max(first, p.timeline.first[i]);
+    last = std::min(last, p.timeline.last[i]);
+  }
+  if (first >= last)
+    throw InputError("the takes given a weight match no common stretch of the reference; give weight to takes "
+                     "whose matches overlap");
+  out.first_sample = first;
+  out.last_sample = last;
+  const Eigen::Index length = last - first + 1;
+  mixed_timeline(p.timeline, s.timing, first, last, s.u);
+  s.u_stretch = s.u.array() - double(first);
+  s.sampler.set(s.u_stretch, length);
+  if (!per_component) {
+    // sum_i w_i (W_i C scale + mean_i [+ residual_i]) at the output frames only. With the
+    // residual that is each take's own pose, read straight at the frame the output frame shows
+    // (one-hot weights give the take's own frames).
+    write_sources(p, s.sampler, first, out.sources);
+    s.take_samplers.resize(n);
+    for (int i = 0; i < n; ++i) {
+      const bool own = params.residual;
+      if (own) s.take_samplers[i].set(out.sources.col(i), p.takes[i].own_local.rows());
+      if (!own) s.stretch = d.reconstructed[i].middleRows(first, length);
+      const RowSampler& at = own ? s.take_samplers[i] : s.sampler;
+      const Eigen::MatrixXd& x = own ? p.takes[i].own_local : s.stretch;
+      if (i == 0) {
+        at.apply(x, out.local);
+        out.local *= params.weights[0];
+      } else {
+        at.accumulate(x, params.weights[i], out.local);
+      }
+    }
+  } else {
+    // Each component's weight column mixed per take, each joint's mean and residual with its
+    // components' mean weights (body_parts.h joint_values).
+    s.joint_weights = joint_values(d.support, params.component_weights);
+    Eigen::MatrixXd w = Eigen::MatrixXd::Zero(length, d.components());
+    for (int i = 0; i < n; ++i)
+      w += d.stacked.weights[i].middleRows(first, length) * params.component_weights.col(i).asDiagonal();
+    s.samples.noalias() = w * d.stacked.components * p.scale;
+    for (int i = 0; i < n; ++i)
+      for (Eigen::Index j = 0; j < s.joint_weights.rows(); ++j) {
+        const double wj = s.joint_weights(j, i);
+        s.samples.middleCols(3 * j, 3).rowwise() += wj * p.takes[i].mean.segment(3 * j, 3);
+        if (params.residual)
+          s.samples.middleCols(3 * j, 3) += wj * d.residual[i].block(first, 3 * j, length, 3);
+      }
+    s.sampler.apply(s.samples, out.local);
+  }
+  out.synthesize_ms = ms_since(t0);
+
+  const auto t1 = Clock::now();
+  // The root over the stretch: steps, whole-turn flips and the paths pulled towards.
+  const std::vector<double>& root_w = s.overall;
+  s.steps.setZero(length, 3);
+  s.target.setZero(length, 2);
+  s.contacts_u.setZero(length, 2);
+  for (int i = 0; i < n; ++i) {
+    s.steps += root_w[i] * p.takes[i].steps.middleRows(first, length);
+    s.target += root_w[i] * p.takes[i].ground.middleRows(first, length);
+    s.contacts_u += root_w[i] * p.takes[i].contacts.middleRows(first, length);
+  }
+  for (int i = 1; i < n; ++i) {
+    s.flips = p.takes[i].turn_flips.segment(first, length);
+    add_spread_turns(s.flips, root_w[i], p.fps, s.steps);
+  }
+  integrate_root_towards(s.steps, s.target, p.reference_heading[first], p.fps, params.root_pull_seconds, &s.ground_u,
+                         &s.heading_u);
+  s.contacts_u = (s.contacts_u.array() > 0.5).cast<double>();
+  FinishRig rig;
+  rig.parents = &p.parents;
+  rig.lengths = &p.lengths;
+  rig.feet = &p.feet;
+  rig.short_bone_fraction = kShortBoneFraction;
+  finish_motion(s.sampler, s.ground_u, s.heading_u, s.contacts_u, rig, params.finish, out.local, s.u_stretch, s.finish,
+                out.motion);
+  s.sampler.set(s.u_stretch, length);
+  write_sources(p, s.sampler, first, out.sources);
+  out.sample = s.u_stretch.array() + double(first);
+  out.postprocess_ms = ms_since(t1);
+}
+
+Eigen::MatrixXd part_weights(const std::vector<std::pair<BodyPart, std::vector<double>>>& given,
+                             const std::vector<ComponentJoints>& components, const std::vector<double>& rest) {
+  const Eigen::Index n = static_cast<Eigen::Index>(rest.size());
+  std::vector<BodyPart> parts;
+  for (const auto& [part, weights] : given) {
+    if (static_cast<Eigen::Index>(weights.size()) != n)
+      throw InputError("expected " + std::to_string(n) + " weights for " + body_part_name(part) + ", one per take, found " +
+                       std::to_string(weights.size()));
+    parts.push_back(part);
+  }
+  Eigen::MatrixXd out(static_cast<Eigen::Index>(components.size()), n);
+  for (size_t c = 0; c < components.size(); ++c) {
+    const int deciding = deciding_part(parts, components[c].region);
+    const std::vector<double>& row = deciding >= 0 ? given[deciding].second : rest;
+    for (Eigen::Index i = 0; i < n; ++i) out(static_cast<Eigen::Index>(c), i) = row[i];
+  }
+  return out;
+}
+
+std::vector<double> transfer_weights(const std::vector<double>& strengths) {
+  if (strengths.empty()) throw InputError("a transfer needs at least one style (--style)");
+  std::vector<double> w{1.0, 0.0};
+  for (double s : strengths) {
+    if (!std::isfinite(s) || s < kMinStrength || s > kMaxStrength)
+      throw InputError("expected a strength from -1 to 2, found " + std::to_string(s));
+    w[1] -= s;
+    w.push_back(s);
+  }
+  return w;
+}
+
+std::vector<int> export_joints(const PreparedPalette& palette) { return export_joints(palette.reference_pair()); }
+
+Eigen::VectorXd source_frames_in_clip(const PreparedPalette& palette, const MixResult& mix) {
+  return mix.sources.col(0) * (palette.takes.front().clip->fps() / palette.fps);
+}
+
+}  // namespace mostyle

@@ -1,0 +1,110 @@
+// Speed of the style palette (issue #9) on eight one-minute takes at 30 fps (20 major joints):
+// the shared decomposition of all eight (goal: under 200 ms) and one mix for new weights, what
+// a weight slider or the blend pad does (goal: under 1 ms), with the timing mixed and with the
+// reference's timing.
+//
+// Data: the eight takes of ../shared/motions it has (Bandai and CMU, two conventions, 30 and
+// 120 fps), each played slower or faster so that it lasts a minute; without ../shared, the
+// four bundled CMU takes twice over.
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/io/bvh_io.h"
+#include "engine/run/palette.h"
+
+namespace {
+
+using namespace mostyle;
+
+constexpr double kSeconds = 1799.0 / 30.0;  // 1800 frames at 30 fps
+
+std::shared_ptr<const Clip> minute_take(const std::string& path) {
+  Clip clip = read_bvh_file(path);
+  clip.frame_time = kSeconds / (clip.frames() - 1);
+  return std::make_shared<const Clip>(std::move(clip));
+}
+
+std::vector<std::shared_ptr<const Clip>> eight_takes() {
+  const std::string shared = MOSTYLE_SHARED_MOTIONS;
+  std::vector<std::string> names;
+  if (std::filesystem::exists(shared + "/bandai_walk_normal.bvh")) {
+    for (const char* n : {"bandai_walk_normal.bvh", "bandai_walk_old.bvh", "cmu142_walk_happy.bvh",
+                          "bandai_walk_proud.bvh", "cmu142_walk_marching.bvh", "bandai_walk_tired.bvh",
+                          "bandai_walk_sad.bvh", "cmu142_walk_joy.bvh"})
+      names.push_back(shared + "/" + n);
+  } else {
+    const std::string assets = std::string(MOSTYLE_ASSETS_DIR) + "/motions/";
+    for (int twice = 0; twice < 2; ++twice)
+      for (const char* n : {"cmu142_walk_happy.bvh", "cmu142_walk_marching.bvh", "cmu142_walk_joy.bvh",
+                            "cmu142_walk_clumsy.bvh"})
+        names.push_back(assets + n);
+  }
+  std::vector<std::shared_ptr<const Clip>> clips;
+  for (const std::string& n : names) clips.push_back(minute_take(n));
+  return clips;
+}
+
+DecomposeParams bench_params() {
+  DecomposeParams d;
+  d.components = 10;
+  return d;
+}
+
+const PreparedPalette& palette() {
+  static const auto p = prepare_palette(eight_takes(), {});
+  return *p;
+}
+
+const PaletteDecomposition& decomposition() {
+  static const auto d = decompose_palette(palette(), bench_params());
+  return *d;
+}
+
+void BM_PrepareEightTakes(benchmark::State& state) {
+  const auto clips = eight_takes();
+  for (auto _ : state) benchmark::DoNotOptimize(prepare_palette(clips, {}));
+  state.counters["samples"] = palette().samples();
+}
+BENCHMARK(BM_PrepareEightTakes)->Unit(benchmark::kMillisecond)->Iterations(2);
+
+void BM_DecomposeEightTakes(benchmark::State& state) {
+  const PreparedPalette& p = palette();
+  for (auto _ : state) benchmark::DoNotOptimize(decompose_palette(p, bench_params()));
+  state.counters["frames"] = double(p.samples()) * p.size();
+}
+BENCHMARK(BM_DecomposeEightTakes)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+// A new weight set every iteration (as a drag on the blend pad gives), the whole slider path:
+// poses, timing, root, limb lengths and foot lock.
+void mix_bench(benchmark::State& state, bool reference_timing) {
+  const PreparedPalette& p = palette();
+  const PaletteDecomposition& d = decomposition();
+  MixParams params;
+  params.reference_timing = reference_timing;
+  MixScratch scratch;
+  MixResult out;
+  int step = 0;
+  for (auto _ : state) {
+    const double t = (step++ % 16) / 16.0;
+    params.weights.assign(p.size(), (1.0 - t) / (p.size() - 1));
+    params.weights[step % p.size()] = t;
+    double sum = 0;
+    for (double w : params.weights) sum += w;
+    params.weights[0] += 1.0 - sum;
+    mix_palette(p, d, params, scratch, out);
+    benchmark::DoNotOptimize(out.motion.world.data());
+  }
+  state.counters["output_frames"] = double(out.motion.world.rows());
+  state.counters["synthesize_ms"] = out.synthesize_ms;
+  state.counters["postprocess_ms"] = out.postprocess_ms;
+}
+void BM_MixEightTakes(benchmark::State& state) { mix_bench(state, false); }
+void BM_MixEightTakesReferenceTiming(benchmark::State& state) { mix_bench(state, true); }
+BENCHMARK(BM_MixEightTakes)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MixEightTakesReferenceTiming)->Unit(benchmark::kMicrosecond);
+
+}  // namespace

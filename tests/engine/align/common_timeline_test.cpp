@@ -1,0 +1,112 @@
+#include "engine/align/common_timeline.h"
+
+#include <catch2/catch.hpp>
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "engine/io/error.h"
+
+using namespace mostyle;
+
+namespace {
+
+TimeWarp warp_of(std::vector<double> a, std::vector<double> b) {
+  TimeWarp w;
+  w.a = Eigen::Map<Eigen::VectorXd>(a.data(), static_cast<Eigen::Index>(a.size()));
+  w.b = Eigen::Map<Eigen::VectorXd>(b.data(), static_cast<Eigen::Index>(b.size()));
+  return w;
+}
+
+// Brute force: b at reference frame r by scanning every segment.
+double brute_at(const TimeWarp& w, double r) {
+  for (int s = 0; s + 1 < w.samples(); ++s)
+    if (w.a[s] <= r && r <= w.a[s + 1] && w.a[s + 1] > w.a[s]) {
+      // the last segment that contains r, as the reader moves on at a segment's end
+      int last = s;
+      while (last + 2 < w.samples() && w.a[last + 1] <= r && w.a[last + 2] > w.a[last + 1] && r >= w.a[last + 1])
+        ++last;
+      const double f = (r - w.a[last]) / (w.a[last + 1] - w.a[last]);
+      return w.b[last] + std::clamp(f, 0.0, 1.0) * (w.b[last + 1] - w.b[last]);
+    }
+  return r <= w.a[0] ? w.b[0] : w.b[w.samples() - 1];
+}
+
+// A random smooth-warp-like curve: slopes between 1/2 and 2, starting somewhere in 0..10.
+TimeWarp random_warp(std::mt19937& rng, int samples) {
+  std::uniform_real_distribution<double> start(0.0, 10.0), slope(0.5, 2.0);
+  std::vector<double> a{start(rng)}, b{start(rng)};
+  for (int s = 1; s < samples; ++s) {
+    const double k = slope(rng);
+    // the faster advances by one frame per sample
+    a.push_back(a.back() + (k > 1 ? 1.0 / k : 1.0));
+    b.push_back(b.back() + (k > 1 ? 1.0 : k));
+  }
+  return warp_of(a, b);
+}
+
+}  // namespace
+
+TEST_CASE("one warp is its own common timeline") {
+  const TimeWarp w = warp_of({0, 1, 2, 2.5, 3}, {0, 0.5, 1.5, 2.5, 3.5});
+  const CommonTimeline t = common_timeline({&w});
+  REQUIRE(t.takes() == 2);
+  CHECK(t.frames[0] == w.a);
+  CHECK(t.frames[1] == w.b);
+}
+
+TEST_CASE("a hand-worked common timeline of two warps") {
+  // Take 1 runs with the reference over 0..10; take 2 matches reference frames 2..8 at twice
+  // its speed. The timeline covers 0..10; over 2..8 it steps by half a frame so take 2 moves one
+  // frame a sample; outside, take 2 holds its first or last matched frame.
+  const TimeWarp one = warp_of({0, 10}, {0, 10});
+  const TimeWarp two = warp_of({2, 8}, {4, 16});
+  const CommonTimeline t = common_timeline({&one, &two});
+  REQUIRE(t.takes() == 3);
+  CHECK(t.frames[0][0] == 0.0);
+  CHECK(t.frames[0][t.samples() - 1] == 10.0);
+  CHECK(t.first[1] == 0);
+  CHECK(t.last[1] == t.samples() - 1);
+  REQUIRE(t.frames[0][t.first[2]] == Approx(2.0));
+  REQUIRE(t.frames[0][t.last[2]] == Approx(8.0));
+  CHECK(t.last[2] - t.first[2] == 12);
+  for (int s = 0; s < t.samples(); ++s) {
+    const double r = t.frames[0][s];
+    CHECK(t.frames[1][s] == Approx(r));
+    CHECK(t.frames[2][s] == Approx(std::clamp(2.0 * r, 4.0, 16.0)));
+    if (s > 0) CHECK(t.frames[2][s] - t.frames[2][s - 1] <= 1.0 + 1e-9);
+  }
+}
+
+TEST_CASE("common timelines of random warps against brute force") {
+  std::mt19937 rng(9);
+  for (int trial = 0; trial < 100; ++trial) {
+    const int takes = 2 + trial % 5;
+    std::vector<TimeWarp> warps;
+    for (int i = 0; i < takes; ++i) warps.push_back(random_warp(rng, 40 + trial % 30));
+    std::vector<const TimeWarp*> pointers;
+    for (const TimeWarp& w : warps) pointers.push_back(&w);
+    const CommonTimeline t = common_timeline(pointers);
+    REQUIRE(t.takes() == takes + 1);
+    for (int i = 0; i < takes; ++i) {
+      // Each warp's matched range is a stretch of samples, its ends among them.
+      CHECK(t.frames[0][t.first[i + 1]] == Approx(warps[i].a[0]).margin(1e-9));
+      CHECK(t.frames[0][t.last[i + 1]] == Approx(warps[i].a[warps[i].samples() - 1]).margin(1e-9));
+    }
+    for (int s = 0; s < t.samples(); ++s)
+      for (int i = 0; i < takes; ++i) CHECK(t.frames[i + 1][s] == Approx(brute_at(warps[i], t.frames[0][s])).margin(1e-9));
+    for (int s = 1; s < t.samples(); ++s)
+      for (int i = 0; i <= takes; ++i) {
+        const double step = t.frames[i][s] - t.frames[i][s - 1];
+        CHECK(step >= -1e-12);
+        CHECK(step <= 1.0 + 1e-9);  // no take skips a frame
+      }
+  }
+}
+
+TEST_CASE("a common timeline needs warps with samples") {
+  const TimeWarp empty;
+  CHECK_THROWS_AS(common_timeline({&empty}), InputError);
+  CHECK_THROWS_AS(common_timeline({}), InputError);
+}

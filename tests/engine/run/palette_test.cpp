@@ -1,0 +1,247 @@
+#include "engine/run/palette.h"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/io/bvh_io.h"
+#include "engine/io/error.h"
+#include "engine/kinematics/units.h"
+#include "engine/prepare/major_skeleton.h"
+#include "engine/prepare/major_take.h"
+#include "tests/engine/run/blend_at.h"
+#include "tests/test_data.h"
+
+using namespace mostyle;
+using mostyle::test::blend_at;
+
+namespace {
+
+constexpr double kExact = 1e-9;        // file units: the same arithmetic, rounding only
+constexpr double kSameAsBlend = 0.005;  // the issue: mix of two = blend, 0.5% of height
+constexpr double kOneHot = 0.02;        // the issue: one-hot = blend T1 Ti --alpha 1, 2% of height
+constexpr double kStrengthZero = 0.03;  // the issue: transfer at strength 0 = content, 3% of height
+
+std::shared_ptr<const Clip> load(const std::string& path) { return std::make_shared<const Clip>(read_bvh_file(path)); }
+
+std::vector<std::shared_ptr<const Clip>> bundled() {
+  std::vector<std::shared_ptr<const Clip>> clips;
+  for (const char* n : {"cmu142_walk_happy.bvh", "cmu142_walk_marching.bvh", "cmu142_walk_joy.bvh",
+                        "cmu142_walk_clumsy.bvh"})
+    clips.push_back(load(test::asset(std::string("motions/") + n)));
+  return clips;
+}
+
+DecomposeParams params() {
+  DecomposeParams d;
+  d.components = 10;
+  return d;
+}
+
+MixResult mix(const PreparedPalette& p, const PaletteDecomposition& d, std::vector<double> weights,
+              MixParams params = {}) {
+  params.weights = std::move(weights);
+  MixScratch scratch;
+  MixResult out;
+  mix_palette(p, d, params, scratch, out);
+  return out;
+}
+
+std::vector<double> one_hot(int n, int i) {
+  std::vector<double> w(static_cast<size_t>(n), 0.0);
+  w[static_cast<size_t>(i)] = 1.0;
+  return w;
+}
+
+// Largest joint distance over all frames as a fraction of the height; the frame counts must agree.
+double max_distance(const Eigen::MatrixXd& x, const Eigen::MatrixXd& y, double height) {
+  REQUIRE(x.rows() == y.rows());
+  REQUIRE(x.cols() == y.cols());
+  double worst = 0;
+  for (Eigen::Index j = 0; j < x.cols() / 3; ++j)
+    worst = std::max(worst, (x.middleCols(3 * j, 3) - y.middleCols(3 * j, 3)).rowwise().norm().maxCoeff());
+  return worst / height;
+}
+
+// A take's canonical pose read at fractional frames of its own.
+Eigen::MatrixXd own_pose_at(const PaletteTake& t, const Eigen::VectorXd& frames) {
+  RowSampler at;
+  at.set(frames, t.own_local.rows());
+  Eigen::MatrixXd out;
+  at.apply(t.own_local, out);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("palette: two takes with weights 1 - a, a are the pair's blend at alpha a") {
+  const auto clips = bundled();
+  const auto p = prepare_palette({clips[0], clips[1]}, {});
+  const auto d = decompose_palette(*p, params());
+  const auto pair_d = decompose_pair(p->reference_pair(), params());
+  const double height = guess_units(*clips[0]).height;
+  for (double a : {0.0, 0.3, 0.5, 1.0, 1.2}) {
+    const MixResult m = mix(*p, *d, {1.0 - a, a});
+    const BlendResult b = blend_at(p->reference_pair(), *pair_d, a);
+    REQUIRE(m.motion.world.rows() == b.world.rows());
+    CHECK(max_distance(m.motion.world, b.world, height) < kExact);
+    CHECK(max_distance(m.motion.world, b.world, height) < kSameAsBlend);
+  }
+}
+
+TEST_CASE("palette: four takes, weights checked, one-hot gives the take, equal weights lie among them") {
+  const auto clips = bundled();
+  const auto p = prepare_palette(clips, {});
+  const auto d = decompose_palette(*p, params());
+  REQUIRE(p->size() == 4);
+  const double height = guess_units(*clips[0]).height;
+
+  SECTION("weights that do not sum to 1, out of range or of the wrong count are refused") {
+    CHECK_THROWS_AS(mix(*p, *d, {0.5, 0.5, 0.5, 0.5}), InputError);
+    CHECK_THROWS_AS(mix(*p, *d, {1.6, -0.2, -0.2, -0.2}), InputError);
+    CHECK_THROWS_AS(mix(*p, *d, {1.4, -0.6, 0.1, 0.1}), InputError);
+    CHECK_THROWS_AS(mix(*p, *d, {0.5, 0.5}), InputError);
+    CHECK_THROWS_AS(mix(*p, *d, {0.5, 0.5, NAN, 0.0}), InputError);
+    CHECK_NOTHROW(mix(*p, *d, {1.5, -0.5, 0.0, 0.0}));
+    CHECK_NOTHROW(mix(*p, *d, {0.25, 0.25, 0.25, 0.25}));
+  }
+
+  SECTION("one-hot weights give each take as its pair's blend at alpha 1 gives it") {
+    for (int i = 1; i < 4; ++i) {
+      const MixResult m = mix(*p, *d, one_hot(4, i));
+      const PreparedPair& pair = *p->pairs[static_cast<size_t>(i - 1)];
+      const BlendResult b = blend_at(pair, *decompose_pair(pair, params()), 1.0);
+      INFO("take " << i);
+      REQUIRE(m.motion.world.rows() == b.world.rows());
+      CHECK(max_distance(m.motion.world, b.world, height) < kOneHot);
+      // Before the clean-up, it is the take's own pose at the frames shown.
+      CHECK((m.local - own_pose_at(p->takes[static_cast<size_t>(i)], m.sources.col(i))).cwiseAbs().maxCoeff() < kExact);
+    }
+  }
+
+  SECTION("equal weights are the takes' mean pose at the frames each shows") {
+    const MixResult m = mix(*p, *d, {0.25, 0.25, 0.25, 0.25});
+    Eigen::MatrixXd mean = Eigen::MatrixXd::Zero(m.local.rows(), m.local.cols());
+    for (int i = 0; i < 4; ++i) mean += 0.25 * own_pose_at(p->takes[static_cast<size_t>(i)], m.sources.col(i));
+    CHECK((m.local - mean).cwiseAbs().maxCoeff() < kExact);
+    // Its length lies among the takes' lengths over the common stretch.
+    double shortest = 1e9, longest = 0;
+    for (int i = 0; i < 4; ++i) {
+      const Eigen::VectorXd& f = p->timeline.frames[static_cast<size_t>(i)];
+      shortest = std::min(shortest, f[f.size() - 1] - f[0]);
+      longest = std::max(longest, f[f.size() - 1] - f[0]);
+    }
+    CHECK(m.motion.world.rows() >= std::floor(shortest));
+    CHECK(m.motion.world.rows() <= std::ceil(longest) + 1);
+  }
+
+  SECTION("per-part weights: the legs from one take, the rest from another") {
+    std::vector<std::pair<BodyPart, std::vector<double>>> given{{BodyPart::kLegs, one_hot(4, 1)}};
+    MixParams mp;
+    mp.component_weights = part_weights(given, d->component_joints, one_hot(4, 0));
+    const MixResult m = mix(*p, *d, one_hot(4, 0), mp);
+    for (size_t c = 0; c < d->component_joints.size(); ++c) {
+      const BodyRegion region = d->component_joints[c].region;
+      const bool leg = region == BodyRegion::kLeftLeg || region == BodyRegion::kRightLeg;
+      CHECK(mp.component_weights(static_cast<Eigen::Index>(c), 1) == (leg ? 1.0 : 0.0));
+    }
+    // The ankles follow take 1, the wrists take 0 (closer to it than to take 1).
+    const Eigen::MatrixXd take0 = own_pose_at(p->takes[0], m.sources.col(0));
+    const Eigen::MatrixXd take1 = own_pose_at(p->takes[1], m.sources.col(1));
+    auto distance = [&](const Eigen::MatrixXd& x, MajorJoint joint) {
+      const int column = major_column(p->majors, static_cast<int>(joint));
+      return (m.local.middleCols(3 * column, 3) - x.middleCols(3 * column, 3)).rowwise().norm().mean();
+    };
+    CHECK(distance(take1, MajorJoint::kLeftAnkle) < distance(take0, MajorJoint::kLeftAnkle));
+    CHECK(distance(take0, MajorJoint::kLeftWrist) < distance(take1, MajorJoint::kLeftWrist));
+  }
+}
+
+TEST_CASE("palette: transfer identities") {
+  const auto clips = bundled();
+  const double height = guess_units(*clips[0]).height;
+  SECTION("strength 0 is the content take") {
+    const auto p = prepare_palette({clips[3], clips[0], clips[1]}, {});
+    const auto d = decompose_palette(*p, params());
+    MixParams mp;
+    mp.min_weight = -kMaxStrength;
+    mp.max_weight = kMaxStrength + 1;
+    mp.finish.foot_lock = false;  // the lock cleans the content's own sliding (checked below with it on)
+    const MixResult m = mix(*p, *d, transfer_weights({0.0}), mp);
+    CHECK((m.local - own_pose_at(p->takes[0], m.sources.col(0))).cwiseAbs().maxCoeff() < kExact);
+    // In the world, against the content's own positions at the frames shown.
+    const Eigen::MatrixXd& world = p->reference_pair().world_a;
+    RowSampler at;
+    at.set(m.sources.col(0), world.rows());
+    Eigen::MatrixXd content;
+    at.apply(world, content);
+    CHECK(max_distance(m.motion.world, content, height) < kStrengthZero);
+    // With the foot lock on, the mean joint distance stays within the bound too.
+    mp.finish.foot_lock = true;
+    const MixResult locked = mix(*p, *d, transfer_weights({0.0}), mp);
+    REQUIRE(locked.motion.world.rows() == content.rows());
+    double mean = 0;
+    for (Eigen::Index j = 0; j < content.cols() / 3; ++j)
+      mean += (locked.motion.world.middleCols(3 * j, 3) - content.middleCols(3 * j, 3)).rowwise().norm().mean();
+    CHECK(mean / double(content.cols() / 3) / height < kStrengthZero);
+  }
+  SECTION("content equal to neutral at strength 1 is the style on the neutral take's path") {
+    const auto p = prepare_palette({clips[0], clips[0], clips[1]}, {});
+    const auto d = decompose_palette(*p, params());
+    MixParams mp;
+    mp.min_weight = -kMaxStrength;
+    mp.max_weight = kMaxStrength + 1;
+    const MixResult m = mix(*p, *d, transfer_weights({1.0}), mp);
+    // Content and neutral are one file, aligned onto itself (not exactly frame for frame).
+    CHECK((m.local - own_pose_at(p->takes[2], m.sources.col(2))).cwiseAbs().maxCoeff() < 0.01 * height);
+    const PreparedPair& pair = *p->pairs[1];
+    const BlendResult b = blend_at(pair, *decompose_pair(pair, params()), 1.0);
+    REQUIRE(m.motion.world.rows() == b.world.rows());
+    CHECK(max_distance(m.motion.world, b.world, height) < kOneHot);
+  }
+  CHECK(transfer_weights({0.5, 0.25}) == std::vector<double>{1.0, -0.75, 0.5, 0.25});
+  CHECK_THROWS_AS(transfer_weights({}), InputError);
+  CHECK_THROWS_AS(transfer_weights({2.5}), InputError);
+}
+
+TEST_CASE("palette: components are connected body parts on each convention, and parts map to their joints") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  for (const auto& names : std::vector<std::vector<std::string>>{
+           {"bandai_walk_normal.bvh", "bandai_walk_old.bvh", "bandai_walk_happy.bvh"},
+           {"cmu142_walk_happy.bvh", "cmu142_walk_marching.bvh", "bandai_walk_proud.bvh"},
+           {"bandai_walk_sad.bvh", "cmu142_walk_joy.bvh", "cmu142_walk_clumsy.bvh", "bandai_walk_tired.bvh"}}) {
+    std::vector<std::shared_ptr<const Clip>> clips;
+    for (const std::string& n : names) clips.push_back(load(test::shared_motion(n)));
+    const auto p = prepare_palette(clips, {});
+    const auto d = decompose_palette(*p, params());
+    INFO(names[0]);
+    for (const ComponentJoints& c : d->component_joints) {
+      CHECK(connected_in(c.columns, p->parents));
+      CHECK(body_region_of(p->majors[static_cast<size_t>(c.centre)]) == c.region);
+    }
+    // The legs' canonical joints are the hips, knees, ankles and toes of the file's skeleton.
+    for (int column = 0; column < static_cast<int>(p->majors.size()); ++column) {
+      const BodyRegion region = body_region_of(p->majors[static_cast<size_t>(column)]);
+      const std::string& name = p->takes[0].names[static_cast<size_t>(column)];
+      if (region == BodyRegion::kLeftLeg) CHECK((name.find("Left") != std::string::npos || name.find("_L") != std::string::npos));
+      if (region == BodyRegion::kRightArm)
+        CHECK((name.find("Right") != std::string::npos || name.find("_R") != std::string::npos));
+    }
+    // One-hot on the last take gives its pair's alpha-1 blend.
+    const int last = p->size() - 1;
+    const MixResult m = mix(*p, *d, one_hot(p->size(), last));
+    const PreparedPair& pair = *p->pairs[static_cast<size_t>(last - 1)];
+    const BlendResult b = blend_at(pair, *decompose_pair(pair, params()), 1.0);
+    REQUIRE(m.motion.world.rows() == b.world.rows());
+    CHECK(max_distance(m.motion.world, b.world, guess_units(*clips[0]).height) < kOneHot);
+  }
+}
+
+TEST_CASE("palette: a count out of range is refused") {
+  const auto clips = bundled();
+  CHECK_THROWS_AS(prepare_palette({clips[0]}, {}), InputError);
+  std::vector<std::shared_ptr<const Clip>> many(17, clips[0]);
+  CHECK_THROWS_AS(prepare_palette(many, {}), InputError);
+}
