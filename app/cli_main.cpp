@@ -6,6 +6,7 @@
 
 #include "app/cli_batch_commands.h"
 #include "app/cli_clip_commands.h"
+#include "app/cli_palette_commands.h"
 #include "app/cli_pipeline_commands.h"
 #include "engine/io/error.h"
 
@@ -20,6 +21,8 @@ int main(int argc, char** argv) {
   mostyle::cli::add_align_command(app, &run);
   mostyle::cli::add_decompose_command(app, &run);
   mostyle::cli::add_blend_command(app, &run);
+  mostyle::cli::add_mix_command(app, &run);
+  mostyle::cli::add_transfer_command(app, &run);
   mostyle::cli::add_batch_command(app, &run);
   mostyle::cli::add_grid_command(app, &run);
   try {

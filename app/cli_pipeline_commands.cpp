@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "app/cli_common.h"
+#include "app/cli_pipeline_common.h"
 #include "engine/io/atomic_file.h"
 #include "engine/io/csv_io.h"
 #include "engine/align/dtw.h"
@@ -21,7 +22,6 @@
 namespace mostyle::cli {
 namespace {
 
-using Json = nlohmann::ordered_json;
 using Clock = std::chrono::steady_clock;
 
 double ms_since(Clock::time_point t0) {
@@ -44,54 +44,23 @@ Json rows_json(const Eigen::MatrixXd& m) {
   return rows;
 }
 
-MappingOverrides load_mapping(const std::string& path) {
-  if (path.empty()) return {};
-  return parse_mapping_overrides(read_file(path), path);
-}
 
-// Options shared by align and blend: how the pair is prepared and aligned.
+// Options shared by align and blend: the pair's files and how it is prepared and aligned.
 struct PairOptions {
   std::string a, b;
-  double fps = 30.0;
-  int band = -1;
-  std::string dtw = "slope";
-  std::string align_on = "auto";
-  int max_slope = 2;
-  bool closed_ends = false;
+  AlignFlags align;
   std::string mapping_a, mapping_b;
 
   void add_to(CLI::App* cmd) {
     cmd->add_option("A", a, "BVH take A (the reference: its skeleton, units and world frame)")->required();
     cmd->add_option("B", b, "BVH take B (retargeted onto A and aligned onto it in time)")->required();
-    cmd->add_option("--fps", fps, "Working and output frame rate (0 keeps A's)")->capture_default_str();
-    cmd->add_option("--dtw", dtw,
-                    "slope: slope-limited, open-ended DTW with a smooth warp; paper: the paper's plain "
-                    "end-to-end left-foot DTW")
-        ->check(CLI::IsMember({"slope", "paper"}))
-        ->capture_default_str();
-    cmd->add_option("--align-on", align_on,
-                    "What to align on: auto (left foot for locomotion, else the joints that move), left-foot, "
-                    "feet, hands or body")
-        ->check(CLI::IsMember({"auto", "left-foot", "feet", "hands", "body"}))
-        ->capture_default_str();
-    cmd->add_option("--max-slope", max_slope, "Neither take runs more than this many times faster than the other (2-4)")
-        ->capture_default_str();
-    cmd->add_flag("--closed-ends", closed_ends, "Align first frames to first and last to last (no open ends)");
-    cmd->add_option("--band", band, "--dtw paper: Sakoe-Chiba band half-width in frames (-1: none)")
-        ->capture_default_str();
+    align.add_to(cmd);
     cmd->add_option("--mapping-a", mapping_a, "Major-joint mapping file for A (see assets/mappings)");
     cmd->add_option("--mapping-b", mapping_b, "Major-joint mapping file for B");
   }
 
   std::shared_ptr<const PreparedPair> prepare(double* load_ms) const {
-    PrepareOptions o;
-    o.fps = fps;
-    o.align.method = parse_dtw_method(dtw);
-    o.align.on = parse_align_on(align_on);
-    o.align.band = band;
-    o.align.slope.max_slope = max_slope;
-    o.align.slope.open_ends = !closed_ends;
-    o.align.Validate();
+    PrepareOptions o = align.options();
     const auto t0 = Clock::now();
     auto clip_a = std::make_shared<const Clip>(load_clip(a));
     auto clip_b = std::make_shared<const Clip>(load_clip(b));
@@ -103,86 +72,6 @@ struct PairOptions {
     return p;
   }
 };
-
-Json range_json(int first, int last, double fps) {
-  return {{"first", first}, {"last", last}, {"first_s", first / fps}, {"last_s", last / fps}};
-}
-
-// The alignment's summary: what it aligned on, the matched ranges, its quality.
-Json alignment_json(const PreparedPair& p) {
-  const Alignment& al = p.alignment;
-  Json j;
-  j["method"] = dtw_method_name(al.options.method);
-  j["feature"] = align_on_name(al.feature.on);
-  j["locomotion"] = al.feature.locomotion;
-  Json joints = Json::array();
-  for (int c : al.feature.columns) joints.push_back(p.names_a[c]);
-  j["joints"] = joints;
-  j["weights"] = al.feature.weights;
-  if (al.options.method == DtwMethod::kSlope) {
-    j["max_slope"] = al.options.slope.max_slope;
-    j["open_ends"] = al.options.slope.open_ends;
-    j["end_penalty"] = al.end_penalty;
-  }
-  j["cost"] = al.cost;
-  j["typical_cost"] = al.typical_cost;
-  j["frames_a"] = p.canonical_a.local.rows();
-  j["frames_b"] = p.canonical_b.local.rows();
-  j["matched_a"] = range_json(al.a_first, al.a_last, p.fps);
-  j["matched_b"] = range_json(al.b_first, al.b_last, p.fps);
-  j["samples"] = al.warp.samples();
-  j["max_cost_ratio"] = al.cost_ratio.size() ? al.cost_ratio.maxCoeff() : 0.0;
-  j["slope_range"] = {al.slope.size() ? al.slope.minCoeff() : 0.0, al.slope.size() ? al.slope.maxCoeff() : 0.0};
-  Json poor = Json::array();
-  for (const auto& [first, last] : al.poor)
-    poor.push_back({{"a", {al.warp.a[first], al.warp.a[last]}}, {"b", {al.warp.b[first], al.warp.b[last]}},
-                    {"cost_ratio", al.cost_ratio.segment(first, last - first + 1).mean()}});
-  j["poor_matches"] = poor;
-  j["warnings"] = al.warnings;
-  return j;
-}
-
-// One alpha per component from "PART:alpha" entries (comma separated or repeated).
-std::vector<double> part_alphas(const std::vector<std::string>& entries, const std::vector<ComponentJoints>& parts,
-                                double rest) {
-  std::vector<std::pair<BodyPart, double>> given;
-  for (const std::string& entry : entries)
-    for (size_t begin = 0; begin <= entry.size();) {
-      const size_t comma = std::min(entry.find(',', begin), entry.size());
-      const std::string e = entry.substr(begin, comma - begin);
-      begin = comma + 1;
-      const size_t colon = e.find(':');
-      if (colon == std::string::npos) throw InputError("expected PART:alpha in --part-alpha, found '" + e + "'");
-      const std::string number_text = e.substr(colon + 1);
-      char* end = nullptr;
-      const double v = std::strtod(number_text.c_str(), &end);
-      if (number_text.empty() || *end != '\0' || !std::isfinite(v))
-        throw InputError("expected a number after '" + e.substr(0, colon + 1) + "' in --part-alpha, found '" +
-                         number_text + "'");
-      given.emplace_back(parse_body_part(e.substr(0, colon)), v);
-    }
-  return weights_for_parts(given, parts, rest);
-}
-
-// One list of joint names per component (issue #9's `component_joints`).
-Json component_joints_json(const std::vector<ComponentJoints>& parts, const std::vector<std::string>& names) {
-  Json out = Json::array();
-  for (const ComponentJoints& c : parts) {
-    Json joints = Json::array();
-    for (int column : c.columns) joints.push_back(names[static_cast<size_t>(column)]);
-    out.push_back(joints);
-  }
-  return out;
-}
-
-// Per component: its plain name, body region and centre joint.
-Json component_regions_json(const std::vector<ComponentJoints>& parts) {
-  Json out = Json::array();
-  for (const ComponentJoints& c : parts) out.push_back({{"name", c.name}, {"region", body_region_name(c.region)}});
-  return out;
-}
-
-Json vector_json(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
 
 }  // namespace
 
@@ -362,6 +251,7 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
     bool components_only = false;
     bool no_local = false;
     std::string out, positions_out, report;
+    ChannelsFlag channels;
   };
   auto args = std::make_shared<Args>();
   args->pair.add_to(cmd);
@@ -395,7 +285,8 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
                 "leaving out each take's residual detail");
   cmd->add_flag("--loop", args->loop,
                 "Cut a seamless loop of 1 to 4 whole gait cycles (root travel per cycle kept)");
-  cmd->add_option("--out", args->out, "BVH file of the blend on A's skeleton (A's channels and rotation orders)");
+  cmd->add_option("--out", args->out, "BVH file of the blend on A's skeleton (A's rotation orders)");
+  args->channels.add_to(cmd);
   cmd->add_option("--positions-out", args->positions_out,
                   "CSV frame,joint,x,y,z of the blend's final major-joint positions (after the foot lock)");
   cmd->add_option("--report", args->report, "JSON report");
@@ -421,7 +312,17 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
       if (!args->part_alpha.empty()) {
         if (!args->component_alpha.empty()) throw InputError("give --part-alpha or --component-alpha, not both");
         if (dp.mode != BlendMode::kShared) throw InputError("--part-alpha needs shared mode (--mode shared)");
-        bp.component_alpha = part_alphas(args->part_alpha, d->component_joints, args->alpha);
+        std::vector<std::pair<BodyPart, double>> given;
+        std::vector<std::string> entries;  // "legs:0.2,arms:0.8" or repeated
+        for (const std::string& e : args->part_alpha)
+          for (size_t begin = 0; begin <= e.size();) {
+            const size_t comma = std::min(e.find(',', begin), e.size());
+            entries.push_back(e.substr(begin, comma - begin));
+            begin = comma + 1;
+          }
+        for (const auto& [part, values] : parse_part_entries(entries, "--part-alpha", 1))
+          given.emplace_back(part, values[0]);
+        bp.component_alpha = weights_for_parts(given, d->component_joints, args->alpha);
       }
       bp.swap_level = args->swap;
       bp.limb_lengths = !args->no_limb;
@@ -438,10 +339,11 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
       std::vector<int> columns(p->majors.size());
       for (size_t i = 0; i < columns.size(); ++i) columns[i] = static_cast<int>(i);
       ExportFit fit;
+      const ChannelLayout layout = args->channels.layout(*p->clip_a);
       if (!args->out.empty()) {
         const auto t_export = Clock::now();
         fit = export_blend_bvh(*p->clip_a, export_joints(*p), result.world, source_frames_in_clip(*p, result),
-                               p->fps, args->out)
+                               p->fps, args->out, layout)
                   .fit;
         times.export_ms = ms_since(t_export);
       }
@@ -479,16 +381,7 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
                                 {"slope", vector_json(slope)}};
       r["alignment"] = alignment;
       r["duration_s"] = result.world.rows() / p->fps;
-      if (args->loop)
-        r["loop"] = {{"cycles", result.loop.cycles},
-                     {"frames", result.loop.frames()},
-                     {"seconds", result.loop.frames() / p->fps},
-                     {"cycle_seconds", result.loop.frames() / p->fps / std::max(1, result.loop.cycles)},
-                     {"begin", result.loop.begin},
-                     {"end", result.loop.end},
-                     {"travel", {result.loop.travel.x(), result.loop.travel.y()}},
-                     {"travel_distance", result.loop.travel.norm()},
-                     {"turn_removed_degrees", result.loop.turn_removed * 57.29577951308232}};
+      if (args->loop) r["loop"] = loop_json(result.loop, p->fps);
       r["reconstruction_rmse"] = {{"a", d->rmse_a}, {"b", d->rmse_b}};
       r["component_nonzero_fraction"] = {{"a", d->nonzero_a}, {"b", d->nonzero_b}};
       r["iterations"] = d->iterations;
@@ -496,7 +389,10 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
       r["component_joints"] = component_joints_json(d->component_joints, p->names_a);
       r["component_regions"] = component_regions_json(d->component_joints);
       r["limb_length_max_error"] = result.limb_length_max_error;
-      if (!args->out.empty()) r["export_fit"] = {{"max", fit.max}, {"mean", fit.mean}};
+      if (!args->out.empty()) {
+        r["export_fit"] = {{"max", fit.max}, {"mean", fit.mean}};
+        r["channels"] = channel_layout_name(layout);
+      }
       r["foot_lock"] = bp.foot_lock;
       r["foot_sliding"] = {{"a", p->foot_sliding_a},
                            {"b", p->foot_sliding_b},

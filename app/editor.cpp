@@ -4,20 +4,24 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <iterator>
 #include <limits>
 #include <stdexcept>
+#include <system_error>
 
 #include <imgui.h>
 #include <imgui_impl_opengl3.h>
 
+#include "engine/io/error.h"
 #include "render/gl.h"
 #include "render/skeleton_pose.h"
 #include "ui/playback_panel.h"
 #include "ui/components_panel.h"
 #include "ui/dtw_panel.h"
 #include "ui/files_panel.h"
+#include "ui/layout.h"
 #include "ui/metrics_panel.h"
 #include "ui/parameters_panel.h"
 #include "ui/takes_panel.h"
@@ -55,19 +59,71 @@ Eigen::Vector2d travel_direction(const ui::Take& take) {
 
 }  // namespace
 
+namespace {
+
+// A session's message that is not an error (saved, opened) fades after this long.
+constexpr std::chrono::seconds kSessionMessageSeconds(4);
+
+std::string absolute_path(const std::string& path) {
+  std::error_code ec;
+  const std::filesystem::path p = std::filesystem::absolute(path, ec);
+  return (ec ? std::filesystem::path(path) : p).lexically_normal().string();
+}
+
+ui::SessionCamera session_camera(const render::OrbitCamera& c) {
+  ui::SessionCamera s;
+  s.target = {c.target.x, c.target.y, c.target.z};
+  s.yaw = c.yaw;
+  s.pitch = c.pitch;
+  s.distance = c.distance;
+  s.fov_y = c.fov_y;
+  return s;
+}
+
+void set_camera(render::OrbitCamera& c, const ui::SessionCamera& s) {
+  c.target = glm::vec3(s.target[0], s.target[1], s.target[2]);
+  c.yaw = s.yaw;
+  c.pitch = s.pitch;
+  c.distance = s.distance;
+  c.fov_y = s.fov_y;
+}
+
+void copy_to(char* field, size_t size, const std::string& text) {
+  std::strncpy(field, text.c_str(), size - 1);
+  field[size - 1] = '\0';
+}
+
+}  // namespace
+
 Editor::Editor(const EditorOptions& options) : session_(std::make_unique<ui::BlendSession>()) {
   state_.parameters = options.initial.parameters;
+  state_.playback.playing = !options.initial.paused;
   initial_frame_ = options.initial.frame;
-  // The pair goes to the engine's worker: aligned, decomposed and blended off this thread.
-  const std::vector<std::string> files = options.files.empty() ? default_motion_files() : options.files;
-  session_->request_decomposition(state_);
-  session_->load(files.empty() ? std::string() : files[0], files.size() > 1 ? files[1] : std::string());
-  std::string folder = files.empty() ? std::string(".") : std::filesystem::path(files[0]).parent_path().string();
+  recent_path_ = options.recent_path;
+  recent_ = ui::read_recent_files(recent_path_);  // missing or broken: empty
+  session_->set_recent(recent_.takes);
+  seen_recent_ = recent_.takes;
+  // The takes go to the engine's worker: aligned, decomposed and blended off this thread. A
+  // session brings its own, with every parameter; one that cannot be read says why (on the first
+  // frame) and the editor starts as it would without it.
+  std::string first_take;
+  if (!options.session_path.empty() && open_session(options.session_path)) {
+    session_->request_decomposition(state_);  // the session's k and sparsity, for its takes
+    first_take = session_->requested_a().empty() ? session_path_ : session_->requested_a();
+  } else {
+    const std::vector<std::string> files = options.files.empty() ? default_motion_files() : options.files;
+    session_->request_decomposition(state_);
+    session_->load(files.empty() ? std::string() : files[0], files.size() > 1 ? files[1] : std::string());
+    first_take = files.empty() ? std::string() : files[0];
+  }
+  std::string folder = std::filesystem::path(first_take).parent_path().string();
   if (folder.empty()) folder = ".";
   // The panels, drawn in this order each frame. New panels go here.
   add_panel(std::make_unique<ui::TakesPanel>());
   add_panel(std::make_unique<ui::ParametersPanel>(*session_));
-  add_panel(std::make_unique<ui::FilesPanel>(*session_, folder));
+  auto files_panel = std::make_unique<ui::FilesPanel>(*session_, folder);
+  files_panel_ = files_panel.get();
+  add_panel(std::move(files_panel));
   add_panel(std::make_unique<ui::DtwPanel>(*session_));
   add_panel(std::make_unique<ui::ComponentsPanel>(*session_));
   add_panel(std::make_unique<ui::MetricsPanel>(*session_));
@@ -75,6 +131,8 @@ Editor::Editor(const EditorOptions& options) : session_(std::make_unique<ui::Ble
 }
 
 void Editor::update_engine() {
+  // Before poll(): a load the worker has published by now is in the snapshot poll() takes up.
+  const bool loading = ui::load_pending(*session_);
   session_->poll(state_);
   session_->update_blend(state_);
   const void* pair = session_->snapshot().prepared.get();
@@ -87,6 +145,14 @@ void Editor::update_engine() {
       initial_frame_applied_ = true;
     }
   }
+  // An opened session's playback, once its takes are in (the new pair has just reset the
+  // playhead); its camera follows in frame(), over the skeletons placed.
+  if (restore_ && !restore_->takes_in && !loading) {
+    state_.playback = restore_->playback;
+    if (deterministic_) state_.playback.playing = false;
+    restore_->takes_in = true;
+  }
+  keep_recent_files();
 }
 
 void Editor::wait_for_engine() {
@@ -169,7 +235,64 @@ void Editor::frame_camera(float aspect) {
 bool Editor::animating() const {
   const WorkerStatus status = session_->status();
   return state_.playback.playing || status.stage != WorkerStage::kIdle || status.pending || session_->sweeping() ||
-         !session_->dropped().empty();
+         !session_->dropped().empty() || (files_panel_ != nullptr && files_panel_->export_dialog().busy());
+}
+
+void Editor::handle_keys() {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (io.WantTextInput || io.WantCaptureKeyboard) return;  // typing in a field, holding a slider
+  bool toggle_keys = ImGui::IsKeyPressed(kKeyF1, false);
+  for (ImWchar c : io.InputQueueCharacters) toggle_keys |= c == '?';  // '?' on any keyboard layout
+  if (toggle_keys) ui::command_toggle_keys(state_);
+  if (state_.view.show_keys && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false))
+    state_.view.show_keys = false;
+  const bool modifier = io.KeyCtrl || io.KeyAlt || io.KeySuper;
+  if (!modifier && ImGui::IsKeyPressed(kKeyF, false)) ui::command_frame_all(state_);
+  if (io.KeyCtrl && (ImGui::IsKeyPressed(kKeyZero, false) || ImGui::IsKeyPressed(kKeyKeypadZero, false)))
+    ui::command_reset_layout(state_);
+  if (io.KeyCtrl && ImGui::IsKeyPressed(kKeyE, false)) ui::command_open_export(state_);
+  if (io.KeyCtrl && !io.KeyAlt) {
+    const bool z = ImGui::IsKeyPressed(kKeyZ, true);  // held down, undo and redo repeat
+    if (z && !io.KeyShift) undo();
+    if ((z && io.KeyShift) || ImGui::IsKeyPressed(kKeyY, true)) redo();
+    if (ImGui::IsKeyPressed(kKeyS, false)) command_save(/*ask=*/io.KeyShift);
+    if (ImGui::IsKeyPressed(kKeyO, false)) command_open();
+  }
+}
+
+void Editor::draw_keys_window() {
+  if (!state_.view.show_keys) return;
+  // Top centre, over the viewport (it is shown when asked for, and closes with Esc).
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(0.5f * display.x, ui::kLayoutMargin), ImGuiCond_Appearing, ImVec2(0.5f, 0.0f));
+  bool open = true;
+  const ImGuiWindowFlags flags =
+      ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings;
+  if (ImGui::Begin("Keys", &open, flags)) {
+    if (ImGui::BeginTable("##keys", 2, ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_RowBg)) {
+      for (const KeyHelp& k : editor_keys()) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(k.keys);
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(k.action);
+      }
+      ImGui::EndTable();
+    }
+    ImGui::Separator();
+    if (ImGui::Button("Frame all (F)")) ui::command_frame_all(state_);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Turn and move the camera so that every skeleton is in view");
+    ImGui::SameLine();
+    if (ImGui::Button("Reset layout (Ctrl+0)")) ui::command_reset_layout(state_);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Put every panel back in its place and size for this window: the sides and the bottom,\n"
+                        "leaving the middle to the skeletons");
+    ImGui::SameLine();
+    if (ImGui::Button("Close (Esc)")) open = false;
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Hide this list; F1 or ? shows it again");
+  }
+  ImGui::End();
+  if (!open) state_.view.show_keys = false;
 }
 
 void Editor::frame(const FrameInput& input) {
@@ -183,16 +306,22 @@ void Editor::frame(const FrameInput& input) {
   const auto cpu_start = std::chrono::steady_clock::now();
   update_engine();  // the worker's latest pair and decomposition, never waiting for it
 
-  // Playback on A's aligned timeline.
-  ui::Playback& playback = state_.playback;
-  if (const ui::Take* reference = state_.reference_take(); reference && playback.playing) {
-    playback.time_s += static_cast<double>(input.delta_s) * playback.speed;
-    const double length = (reference->frames() - 1) / reference->rate();
-    if (playback.time_s > length) playback.time_s = playback.loop ? 0.0 : length;
-  }
+  // A new display size (the first frame's too) lays the panels out again; then the keys.
+  ui::track_display_size(state_, &layout_display_);
+  handle_keys();
+
+  // Playback on A's aligned timeline; with loop off it stops on the last frame.
+  if (const ui::Take* reference = state_.reference_take())
+    ui::advance_playback(state_.playback, static_cast<double>(input.delta_s), ui::take_length_s(*reference));
 
   // Panels first: an alpha moved in this frame is blended and drawn in this frame.
   for (auto& panel : panels_) panel->draw(state_);
+  state_.view.reset_layout = false;  // laid out; a Reset layout from the keys window: next frame
+  draw_keys_window();
+  draw_session_dialog();
+  draw_session_message();
+  // After the panels: what they changed is an undo step once nothing is held (a drag is one).
+  edits_.record(state_, *session_, ImGui::IsAnyItemActive());
   session_->update_blend(state_);
   build_scene();
 
@@ -202,6 +331,7 @@ void Editor::frame(const FrameInput& input) {
     camera_framed_ = !scene_.skeletons.empty();
     state_.view.request_reframe = scene_.skeletons.empty() && state_.view.request_reframe;
   }
+  restore_camera(aspect);
   ui::apply_camera_input(camera_);
   if (state_.view.follow && !scene_.skeletons.empty()) {
     glm::vec3 centre(0.0f);
@@ -243,6 +373,221 @@ void Editor::frame(const FrameInput& input) {
   session_->frame_ms = deterministic_ ? -1.0f
                                       : std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - cpu_start).count();
   session_->viewport_ms = deterministic_ ? -1.0f : viewport_timer_->milliseconds();
+}
+
+bool Editor::undo() { return edits_.undo(state_, *session_); }
+
+bool Editor::redo() { return edits_.redo(state_, *session_); }
+
+bool Editor::save_session(const std::string& path) {
+  namespace fs = std::filesystem;
+  if (path.empty() || !fs::path(path).has_filename()) {
+    set_session_message("Save: no file name given for the session.", true);
+    return false;
+  }
+  std::string target = path;
+  if (fs::path(target).extension().empty()) target += ui::kSessionExtension;
+  if (!ui::is_session_path(target)) {  // never over a take or an export by a slip of the keyboard
+    set_session_message("Save: a session's file name ends in .mostyle, not '" + path + "'.", true);
+    return false;
+  }
+  target = absolute_path(target);
+  ui::SessionFile file;
+  file.document = ui::capture_document(state_, *session_);
+  for (std::string& f : file.document.files) f = absolute_path(f);  // written relative to the session
+  file.camera = session_camera(camera_);
+  file.playback = state_.playback;
+  try {
+    ui::write_session_file(target, file);
+  } catch (const InputError& e) {
+    set_session_message(e.what(), true);
+    return false;
+  }
+  session_path_ = target;
+  ui::remember(recent_.sessions, target, ui::kRecentSessions);
+  save_recent_files();
+  set_session_message("Saved the session to " + target, false);
+  return true;
+}
+
+bool Editor::open_session(const std::string& path) {
+  if (path.empty()) {
+    set_session_message("Open: no file name given for the session.", true);
+    return false;
+  }
+  const std::string where = absolute_path(path);  // its takes resolve to absolute paths
+  ui::SessionFile file;
+  try {
+    file = ui::read_session_file(where);
+  } catch (const InputError& e) {  // unreadable or malformed: nothing changes
+    set_session_message(e.what(), true);
+    return false;
+  }
+  const std::string missing = ui::apply_session_document(file.document, where, state_, *session_);
+  edits_.mark_edited();  // opening is one undo step
+  restore_ = ViewRestore{file.camera, file.playback, false};
+  session_path_ = where;
+  ui::remember(recent_.sessions, where, ui::kRecentSessions);
+  save_recent_files();
+  set_session_message(missing.empty() ? "Opened the session " + where : missing, !missing.empty());
+  return true;
+}
+
+void Editor::command_save(bool ask) {
+  if (!ask && !session_path_.empty()) {
+    save_session(session_path_);
+    return;
+  }
+  std::string path = session_path_;
+  if (path.empty()) {  // beside take A
+    const std::string& a = session_->snapshot().path_a;
+    path = a.empty() ? std::string("untitled.mostyle") : (std::filesystem::path(a).parent_path() / "untitled.mostyle").string();
+  }
+  copy_to(dialog_path_, sizeof dialog_path_, path);
+  dialog_ = SessionDialog::kSave;
+  dialog_opening_ = true;
+  dialog_error_.clear();
+}
+
+void Editor::command_open() {
+  const std::string path = !session_path_.empty()     ? session_path_
+                           : !recent_.sessions.empty() ? recent_.sessions.front()
+                                                       : std::string();
+  copy_to(dialog_path_, sizeof dialog_path_, path);
+  dialog_ = SessionDialog::kOpen;
+  dialog_opening_ = true;
+  dialog_error_.clear();
+}
+
+void Editor::set_session_message(const std::string& message, bool error) {
+  session_message_ = message;
+  session_error_ = error;
+  if (error)
+    session_message_until_.reset();  // stays until read and closed
+  else
+    session_message_until_ = std::chrono::steady_clock::now() + kSessionMessageSeconds;
+}
+
+void Editor::draw_session_dialog() {
+  if (dialog_ == SessionDialog::kNone) return;
+  const bool save = dialog_ == SessionDialog::kSave;
+  const char* title = save ? "Save session" : "Open session";
+  bool focus = false;
+  if (dialog_opening_) {
+    ImGui::OpenPopup(title);
+    dialog_opening_ = false;
+    focus = true;
+  }
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(0.5f * display.x, 0.3f * display.y), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings)) {
+    dialog_ = SessionDialog::kNone;  // closed
+    return;
+  }
+  ImGui::TextUnformatted(save ? "Save the takes, every parameter, the camera and the playback to:"
+                              : "Open the session (.mostyle) in:");
+  if (focus) ImGui::SetKeyboardFocusHere();
+  ImGui::SetNextItemWidth(std::min(640.0f, 0.8f * display.x));
+  bool confirm = ImGui::InputText("##session_path", dialog_path_, sizeof dialog_path_,
+                                  ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_AutoSelectAll);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("A path, absolute or from the folder mostyle was started in; Enter %s", save ? "saves" : "opens");
+  std::error_code ec;
+  if (save && std::filesystem::exists(dialog_path_, ec))
+    ImGui::TextColored(ImVec4(0.95f, 0.80f, 0.40f, 1.0f), "A file of that name is there: saving replaces it.");
+  if (!save && !recent_.sessions.empty()) {
+    ImGui::TextDisabled("Recent sessions (a click fills the field, a double click opens):");
+    for (const std::string& r : recent_.sessions) {
+      ImGui::PushID(r.c_str());
+      if (ImGui::Selectable(std::filesystem::path(r).filename().string().c_str(), r == dialog_path_,
+                            ImGuiSelectableFlags_AllowDoubleClick | ImGuiSelectableFlags_DontClosePopups)) {
+        copy_to(dialog_path_, sizeof dialog_path_, r);
+        confirm |= ImGui::IsMouseDoubleClicked(0);
+      }
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", r.c_str());
+      ImGui::PopID();
+    }
+  }
+  if (!dialog_error_.empty()) {
+    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + std::min(640.0f, 0.8f * display.x));
+    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.40f, 1.0f), "%s", dialog_error_.c_str());
+    ImGui::PopTextWrapPos();
+  }
+  confirm |= ImGui::Button(save ? "Save" : "Open", ImVec2(96.0f, 0.0f));
+  ImGui::SameLine();
+  const bool cancel =
+      ImGui::Button("Cancel", ImVec2(96.0f, 0.0f)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false);
+  if (confirm) {
+    const bool done = save ? save_session(dialog_path_) : open_session(dialog_path_);
+    if (done) {
+      ImGui::CloseCurrentPopup();
+      dialog_ = SessionDialog::kNone;
+    } else {  // said here, where the path can be corrected
+      dialog_error_ = session_message_;
+      session_message_.clear();
+    }
+  } else if (cancel) {
+    ImGui::CloseCurrentPopup();
+    dialog_ = SessionDialog::kNone;
+  }
+  ImGui::EndPopup();
+}
+
+void Editor::draw_session_message() {
+  if (session_message_.empty() || dialog_ != SessionDialog::kNone) return;
+  if (session_message_until_ && std::chrono::steady_clock::now() > *session_message_until_) {
+    session_message_.clear();
+    return;
+  }
+  if (deterministic_ && !session_error_) return;  // screenshots: the same picture every run
+  // Above the timeline, in the middle: read without covering the panels.
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(0.5f * display.x, display.y - ui::playback_bar_height() - ui::kLayoutMargin),
+                          ImGuiCond_Always, ImVec2(0.5f, 1.0f));
+  bool open = true;
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse |
+                                 ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing;
+  if (ImGui::Begin("Session", &open, flags)) {
+    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 0.5f * display.x);
+    ImGui::TextColored(session_error_ ? ImVec4(1.0f, 0.45f, 0.40f, 1.0f) : ImVec4(0.55f, 0.85f, 0.55f, 1.0f), "%s",
+                       session_message_.c_str());
+    ImGui::PopTextWrapPos();
+  }
+  ImGui::End();
+  if (!open) session_message_.clear();
+}
+
+void Editor::restore_camera(float aspect) {
+  if (!restore_ || !restore_->takes_in) return;
+  if (restore_->camera) {
+    if (!scene_.skeletons.empty()) frame_camera(aspect);  // the zoom limits and clip planes for what is shown
+    set_camera(camera_, *restore_->camera);
+    camera_framed_ = true;
+    state_.view.request_reframe = false;
+  }
+  restore_.reset();
+}
+
+void Editor::keep_recent_files() {
+  const std::deque<std::string>& loaded = session_->recent();
+  if (std::equal(loaded.begin(), loaded.end(), seen_recent_.begin(), seen_recent_.end())) return;
+  seen_recent_.assign(loaded.begin(), loaded.end());
+  recent_.takes.clear();
+  for (const std::string& p : seen_recent_) {  // absolute: a restart may be in another folder
+    const std::string a = absolute_path(p);
+    if (std::find(recent_.takes.begin(), recent_.takes.end(), a) == recent_.takes.end()) recent_.takes.push_back(a);
+  }
+  save_recent_files();
+}
+
+void Editor::save_recent_files() {
+  if (recent_path_.empty()) return;
+  try {
+    ui::write_recent_files(recent_path_, recent_);
+  } catch (const InputError& e) {  // a read-only home: the list lives for this run only
+    std::fprintf(stderr, "mostyle: %s (recent files are not kept)\n", e.what());
+    recent_path_.clear();
+  }
 }
 
 }  // namespace mostyle::app

@@ -6,9 +6,12 @@
 // The platform (app/window_platform.cpp, app/offscreen_platform.cpp) creates the GL context
 // and the ImGui context, feeds ImGui its display size and input, then calls frame() in a loop.
 //
-// To add a panel: write a ui::Panel in ui/, then add_panel() it in Editor::Editor() (or from
-// the platform). Panels see and change the EditorState; the viewport follows it every frame.
+// To add a panel: write a ui::Panel in ui/, give it a PanelId and a rectangle in ui/layout.h
+// (clear of the centre: tests/ui/layout_test.cpp), then add_panel() it in Editor::Editor() (or
+// from the platform). Panels see and change the EditorState; the viewport follows it every frame.
+#include <chrono>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,10 +23,30 @@
 #include "render/render_target.h"
 #include "render/scene_renderer.h"
 #include "ui/blend_session.h"
+#include "ui/edit_history.h"
 #include "ui/editor_state.h"
 #include "ui/panel.h"
+#include "ui/recent_files.h"
+#include "ui/session_file.h"
+
+namespace mostyle::ui {
+class FilesPanel;
+}  // namespace mostyle::ui
 
 namespace mostyle::app {
+
+// Keys the editor reads beyond the few that ImGui 1.86 names (io.KeyMap), as indices into
+// io.KeysDown: GLFW's key codes, which the window platform feeds (app/window_platform.cpp checks
+// them at compile time; ASCII for letters and digits). The offscreen platform feeds no keys.
+constexpr int kKeyF = 'F';           // GLFW_KEY_F
+constexpr int kKeyZero = '0';        // GLFW_KEY_0
+constexpr int kKeyF1 = 290;          // GLFW_KEY_F1
+constexpr int kKeyKeypadZero = 320;  // GLFW_KEY_KP_0
+constexpr int kKeyE = 'E';           // GLFW_KEY_E
+constexpr int kKeyZ = 'Z';           // GLFW_KEY_Z: Ctrl+Z undo, Ctrl+Shift+Z redo
+constexpr int kKeyY = 'Y';           // GLFW_KEY_Y: Ctrl+Y redo
+constexpr int kKeyS = 'S';           // GLFW_KEY_S: Ctrl+S save the session, Ctrl+Shift+S save as
+constexpr int kKeyO = 'O';           // GLFW_KEY_O: Ctrl+O open a session
 
 struct FrameInput {
   glm::ivec2 framebuffer_size{0};  // pixels of the default framebuffer to draw into
@@ -47,9 +70,11 @@ class Editor {
   // Before the GL context goes away.
   void shutdown_graphics();
 
-  // One frame: ImGui::NewFrame, panels, camera input, ImGui::Render, viewport, ImGui draw
-  // data. Draws into framebuffer 0 at input.framebuffer_size. The platform has already set
-  // ImGui's display size and input (its own NewFrame).
+  // One frame: ImGui::NewFrame, keys, panels, the keys window, camera input, ImGui::Render,
+  // viewport, ImGui draw data. Draws into framebuffer 0 at input.framebuffer_size. The platform
+  // has already set ImGui's display size and input (its own NewFrame). The panels are laid out
+  // again (ui/layout.h) on the first frame, whenever the display size changes, and on Reset
+  // layout. Keys (editor_keys()) count only when ImGui does not want the keyboard.
   void frame(const FrameInput& input);
 
   // Screenshots: playback starts paused where --frame put it, and no timing text is shown,
@@ -74,20 +99,57 @@ class Editor {
   void drop_files(const std::vector<std::string>& paths);
   const render::OrbitCamera& camera() const { return camera_; }
   // Whether the next frame differs from this one without any input: playing, or the engine
-  // (a load, a decomposition, the error sweep) still working. When not, the window platform
+  // (a load, a decomposition, the error sweep, an export) still working. When not, the window platform
   // waits for events instead of drawing (an editor at rest uses next to no CPU).
   bool animating() const;
+
+  // Undo and redo (Ctrl+Z; Ctrl+Shift+Z or Ctrl+Y) of every parameter, weight, mode, option and
+  // load (ui/edit_history.h: a slider drag is one step). false: nothing to undo (redo). A load
+  // undone or redone arrives from the worker later, as any load does.
+  bool undo();
+  bool redo();
+  const ui::EditHistory& edits() const { return edits_; }
+
+  // Sessions (.mostyle, ui/session_file.h). save_session writes the takes, every parameter, the
+  // camera and the playback to `path` (atomically; ".mostyle" added to a name without an
+  // extension) and makes it the file Ctrl+S saves to. open_session reads one and applies it: its
+  // takes load on the worker, and the playback and the camera are restored once they are in.
+  // Both return false with session_message() saying why, one line, and then change nothing (a
+  // malformed file: "FILE:LINE: ..."). A session whose take is missing opens (true) with the rest
+  // restored, the takes loaded before kept, and session_message() naming the file.
+  bool save_session(const std::string& path);
+  bool open_session(const std::string& path);
+  const std::string& session_path() const { return session_path_; }  // absolute; "" before a save or open
+  const std::string& session_message() const { return session_message_; }
+  bool session_message_is_error() const { return session_error_; }
+  // The takes and sessions opened before (options.recent_path: kept across restarts there).
+  const ui::RecentFiles& recent_files() const { return recent_; }
 
  private:
   void build_scene();
   void frame_camera(float aspect);
+  // F, F1 / ?, Esc, Ctrl+0, Ctrl+E, Ctrl+Z / Ctrl+Shift+Z / Ctrl+Y, Ctrl+S / Ctrl+Shift+S, Ctrl+O
+  // (space and the arrows: the playback panel)
+  void handle_keys();
+  void draw_keys_window();  // the list of keys, with Frame all and Reset layout
+  // Sessions: Ctrl+S / Ctrl+Shift+S / Ctrl+O, the path dialog they open, the message window.
+  void command_save(bool ask);
+  void command_open();
+  void draw_session_dialog();
+  void draw_session_message();
+  void set_session_message(const std::string& message, bool error);
+  void restore_camera(float aspect);  // an opened session's camera, once its takes are in
+  void keep_recent_files();           // recent.json follows the session's recent takes
+  void save_recent_files();
 
   ui::EditorState state_;
   std::unique_ptr<ui::BlendSession> session_;  // before panels_: they hold references to it
   std::vector<std::unique_ptr<ui::Panel>> panels_;
+  ui::FilesPanel* files_panel_ = nullptr;  // in panels_; owns the export dialog (animating())
   const void* framed_pair_ = nullptr;  // the prepared pair the camera was framed on
   int initial_frame_ = 0;              // --frame, applied when the first pair arrives
   bool initial_frame_applied_ = false;
+  glm::vec2 layout_display_{0.0f};  // the display size the panels were last laid out for
   render::OrbitCamera camera_;
   render::Scene scene_;
   render::SceneStyle style_;
@@ -98,6 +160,29 @@ class Editor {
   bool camera_framed_ = false;
   bool deterministic_ = false;
   bool software_renderer_ = false;  // llvmpipe & co: no multisampling unless asked
+
+  ui::EditHistory edits_;  // undo and redo
+  // Sessions. What an opened session restores once its takes are in (the new pair resets the
+  // playhead and frames the camera): the playback in update_engine(), the camera in frame().
+  struct ViewRestore {
+    std::optional<ui::SessionCamera> camera;
+    ui::Playback playback;
+    bool takes_in = false;
+  };
+  std::optional<ViewRestore> restore_;
+  std::string session_path_;
+  std::string session_message_;
+  bool session_error_ = false;
+  std::optional<std::chrono::steady_clock::time_point> session_message_until_;  // fades; none: until closed
+  enum class SessionDialog { kNone, kSave, kOpen };
+  SessionDialog dialog_ = SessionDialog::kNone;
+  bool dialog_opening_ = false;  // OpenPopup on the next draw_session_dialog()
+  char dialog_path_[1024] = "";
+  std::string dialog_error_;
+  // Recent takes and sessions; recent_path_ empty: not kept across restarts (tests, screenshots).
+  std::string recent_path_;
+  ui::RecentFiles recent_;
+  std::vector<std::string> seen_recent_;  // session_->recent() when recent_ last followed it
 };
 
 }  // namespace mostyle::app

@@ -1,10 +1,13 @@
 #include "app/editor_options.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <system_error>
+
+#include "ui/session_file.h"
 
 namespace mostyle::app {
 namespace {
@@ -18,6 +21,14 @@ bool parse_double(const std::string& text, double* out) {
 bool parse_int(const std::string& text, int* out) {
   auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), *out);
   return !text.empty() && ec == std::errc() && ptr == text.data() + text.size();
+}
+
+// "WIDTHxHEIGHT", each a whole number in [kMinWindowSide, kMaxWindowSide].
+bool parse_size(const std::string& text, int* width, int* height) {
+  const size_t x = text.find_first_of("xX");
+  if (x == std::string::npos) return false;
+  return parse_int(text.substr(0, x), width) && parse_int(text.substr(x + 1), height) && *width >= kMinWindowSide &&
+         *width <= kMaxWindowSide && *height >= kMinWindowSide && *height <= kMaxWindowSide;
 }
 
 std::filesystem::path program_directory() {
@@ -72,6 +83,16 @@ ParseResult parse_editor_options(int argc, const char* const* argv) {
     } else if (name == "--offscreen") {
       if (has_value) return fail("--offscreen takes no value");
       o.offscreen = true;
+    } else if (name == "--paused") {
+      if (has_value) return fail("--paused takes no value");
+      o.initial.paused = true;
+    } else if (name == "--window-size") {
+      int w = 0, h = 0;
+      if (!take_value() || !parse_size(value, &w, &h))
+        return fail("--window-size: expected WIDTHxHEIGHT in pixels, each " + std::to_string(kMinWindowSide) + " to " +
+                    std::to_string(kMaxWindowSide) + " (e.g. 1920x1080), got '" + value + "'");
+      o.width = w;
+      o.height = h;
     } else if (name == "--screenshot") {
       if (!take_value() || value.empty()) return fail("--screenshot: expected an output file name");
       o.screenshot_path = value;
@@ -101,25 +122,67 @@ ParseResult parse_editor_options(int argc, const char* const* argv) {
   }
   if (o.offscreen && o.screenshot_path.empty())
     return fail("--offscreen renders for a screenshot: add --screenshot OUT.png");
+  // A session brings its own takes: it is the one file given.
+  for (const std::string& f : o.files) {
+    if (!ui::is_session_path(f)) continue;
+    if (o.files.size() != 1) return fail("'" + f + "' is a session: it opens alone, without other files");
+    o.session_path = f;
+    o.files.clear();
+    break;
+  }
   return result;
 }
 
+const std::vector<KeyHelp>& editor_keys() {
+  static const std::vector<KeyHelp> kKeys = {
+      {"Space", "play or pause (from the start again on the last frame)"},
+      {"Left / Right arrow", "step one frame back / forward (pauses)"},
+      {"F", "frame all: turn and move the camera to show every skeleton"},
+      {"F1 or ?", "show or hide this list of keys"},
+      {"Esc", "close this list"},
+      {"Ctrl+0", "reset the layout: every panel back in its place for this window size"},
+      {"Ctrl+E", "export the blend: the export dialog (file, frame rate, frames, channels)"},
+      {"Ctrl+Z", "undo: a parameter, weight, mode, option or load back as it was (a slider drag is one step)"},
+      {"Ctrl+Shift+Z or Ctrl+Y", "redo what was undone"},
+      {"Ctrl+S", "save the session (.mostyle: takes, parameters, camera, playback); asks where the first time"},
+      {"Ctrl+Shift+S", "save the session under another name"},
+      {"Ctrl+O", "open a session (.mostyle)"},
+      {"Enter", "in a file field: load that file; in the export field: open the export dialog"},
+      {"Left drag", "in the 3D view: turn the camera around the skeletons"},
+      {"Right or middle drag", "in the 3D view: move the camera sideways and up or down"},
+      {"Mouse wheel", "in the 3D view: move the camera closer or further"},
+      {"Drop .bvh files", "on the window: two load as the pair, one as B"},
+  };
+  return kKeys;
+}
+
 std::string editor_usage() {
-  return "usage: mostyle [A.bvh B.bvh ...] [options]\n"
+  std::string keys;
+  for (const KeyHelp& k : editor_keys()) {
+    std::string line = std::string("  ") + k.keys;
+    line.resize(std::max<size_t>(line.size() + 1, 24), ' ');
+    keys += line + k.action + "\n";
+  }
+  return "usage: mostyle [A.bvh B.bvh ... | SESSION.mostyle] [options]\n"
          "\n"
          "Blend the styles of motion-capture takes live. With no files, opens the bundled\n"
-         "example pair (CMU subject 142: happy and marching walks).\n"
+         "example pair (CMU subject 142: happy and marching walks). A session (.mostyle, saved\n"
+         "with Ctrl+S) opens its takes with every parameter, the camera and the playback.\n"
          "\n"
          "options:\n"
          "  --screenshot OUT.png  render the first frames, write a PNG of the whole window, exit\n"
          "  --offscreen           no display needed (OSMesa); use with --screenshot\n"
+         "  --window-size WxH     window and screenshot size in pixels (default 1280x720)\n"
+         "  --paused              start with playback paused\n"
          "  --alpha A             initial blend, 0 = first take, 1 = second (default 0.5)\n"
          "  --components K        initial number of components (default 10)\n"
          "  --sparsity F          initial fraction of non-zeros per component, (0, 1] (default 0.1)\n"
          "  --frame N             initial frame (default 0)\n"
          "  --help                this text\n"
          "\n"
-         "mouse: left drag orbits, right or middle drag pans, the wheel zooms.\n"
+         "keys and mouse (F1 in the editor lists them too):\n" +
+         keys +
+         "\n"
          "exit status: 0 success, 1 failure (no display, unwritable screenshot), 2 bad usage.\n";
 }
 

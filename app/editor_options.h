@@ -1,6 +1,7 @@
 #pragma once
-// The editor's command line: `mostyle [A.bvh B.bvh ...] [--screenshot OUT.png] [--offscreen]
-// [--alpha A] [--components K] [--sparsity F] [--frame N] [--help]`.
+// The editor's command line: `mostyle [A.bvh B.bvh ... | SESSION.mostyle] [--screenshot OUT.png] [--offscreen]
+// [--window-size WxH] [--paused] [--alpha A] [--components K] [--sparsity F] [--frame N]
+// [--help]`, and the list of the editor's keys (the keys window and --help show it).
 #include <string>
 #include <vector>
 
@@ -12,15 +13,23 @@ namespace mostyle::app {
 struct InitialState {
   ui::BlendParameters parameters;
   int frame = 0;  // first frame shown, of the reference (first) take
+  bool paused = false;  // start with playback paused (screenshots always are)
 };
 
+constexpr int kMinWindowSide = 320;    // --window-size bounds, pixels
+constexpr int kMaxWindowSide = 16384;
+
 struct EditorOptions {
-  std::vector<std::string> files;   // empty: the bundled example pair
+  std::vector<std::string> files;   // empty: the bundled example pair (or the session's takes)
+  std::string session_path;         // a session to open (the one argument, ending in .mostyle)
+  // Where the recent takes and sessions are kept across restarts (ui/recent_files.h); empty: not
+  // kept. Not a flag: the window program sets it, tests and screenshots leave it empty.
+  std::string recent_path;
   std::string screenshot_path;      // non-empty: render a few frames, write this PNG, exit
   bool offscreen = false;           // no display: OSMesa (needs screenshot_path)
   InitialState initial;
-  int width = 1280;                 // window / offscreen size, pixels
-  int height = 720;
+  int width = 1280;                 // window / offscreen size, pixels (--window-size), also the
+  int height = 720;                 // screenshot's; each in [kMinWindowSide, kMaxWindowSide]
 };
 
 enum class ParseStatus { kRun, kHelp, kUsageError };
@@ -36,6 +45,15 @@ ParseResult parse_editor_options(int argc, const char* const* argv);
 
 // The --help text.
 std::string editor_usage();
+
+// One line of the keys list: what to press and what it does, in plain words.
+struct KeyHelp {
+  const char* keys;    // "Space", "Ctrl+0", "Left drag"
+  const char* action;  // "play or pause"
+};
+
+// Every key and mouse gesture the editor has, in the order the keys window (F1) lists them.
+const std::vector<KeyHelp>& editor_keys();
 
 // The bundled example pair (assets/motions/cmu142_walk_happy.bvh and ..._marching.bvh), found
 // from $MOSTYLE_ASSETS, the source tree the program was built from, or beside the program.

@@ -13,6 +13,7 @@
 
 #include "app/editor_options.h"
 #include "app/window_platform.h"
+#include "ui/recent_files.h"
 
 namespace {
 
@@ -46,5 +47,7 @@ int main(int argc, char** argv) {
       break;
   }
   if (parsed.options.offscreen) return exec_offscreen(argc, argv);
+  // The recent takes and sessions outlive the window; a screenshot run leaves them alone.
+  if (parsed.options.screenshot_path.empty()) parsed.options.recent_path = mostyle::ui::recent_files_path();
   return run_window(parsed.options);
 }

@@ -20,6 +20,13 @@
 namespace mostyle::app {
 namespace {
 
+// The editor reads these keys from io.KeysDown by GLFW's codes (app/editor.h).
+static_assert(kKeyF == GLFW_KEY_F && kKeyZero == GLFW_KEY_0 && kKeyF1 == GLFW_KEY_F1 && kKeyKeypadZero == GLFW_KEY_KP_0,
+              "app/editor.h's key codes must be GLFW's");
+static_assert(kKeyE == GLFW_KEY_E, "app/editor.h's key codes must be GLFW's");
+static_assert(kKeyZ == GLFW_KEY_Z && kKeyY == GLFW_KEY_Y && kKeyS == GLFW_KEY_S && kKeyO == GLFW_KEY_O,
+              "app/editor.h's key codes must be GLFW's");
+
 constexpr double kRestWakeSeconds = 0.5;  // at rest, how often to look up from waiting
 constexpr int kSettleFrames = 3;          // frames drawn after an event before resting again
 

@@ -70,17 +70,31 @@ void OrbitCamera::frame(const Bounds& b, float aspect, float fill) {
 
 void OrbitCamera::orbit(float dx_pixels, float dy_pixels) {
   yaw -= dx_pixels * kOrbitRadiansPerPixel;
-  pitch = std::clamp(pitch + dy_pixels * kOrbitRadiansPerPixel, -kMaxPitch, kMaxPitch);
+  pitch = std::clamp(pitch + dy_pixels * kOrbitRadiansPerPixel, kMinPitch, kMaxPitch);
+  keep_above_floor();
+}
+
+void OrbitCamera::keep_above_floor() {
+  // eye.y = target.y + distance * sin(pitch) >= distance * sin(kMinPitch): with the target on or
+  // above the floor the pitch limit alone does it; a target panned below the floor needs more.
+  const float clearance = distance * std::sin(kMinPitch);
+  const float needed = (clearance - target.y) / std::max(distance, 1e-6f);  // sin of the lowest pitch
+  const float lowest = needed >= std::sin(kMaxPitch) ? kMaxPitch : std::asin(std::max(needed, -1.0f));
+  pitch = std::clamp(pitch, std::max(lowest, kMinPitch), kMaxPitch);
+  const float eye_height = target.y + distance * std::sin(pitch);
+  if (eye_height < clearance) target.y += clearance - eye_height;  // even looking straight down
 }
 
 void OrbitCamera::pan(float dx_pixels, float dy_pixels, float viewport_height) {
   float world_per_pixel = 2.0f * distance * std::tan(fov_y * 0.5f) / std::max(viewport_height, 1.0f);
   target += world_per_pixel * (-dx_pixels * right() + dy_pixels * up());
+  keep_above_floor();
 }
 
 void OrbitCamera::zoom(float wheel_steps) {
   distance *= std::pow(kZoomPerStep, wheel_steps);
   distance = std::clamp(distance, kMinDistanceFactor * scene_radius_, kMaxDistanceFactor * scene_radius_);
+  keep_above_floor();
 }
 
 void OrbitCamera::follow(const glm::vec3& point, float dt_s, float half_life_s) {

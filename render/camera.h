@@ -45,10 +45,18 @@ class OrbitCamera {
   // planes from its size. No-op on an empty box. O(1).
   void frame(const Bounds& b, float aspect, float fill = 0.8f);
 
-  // Mouse gestures, in pixels of a viewport `viewport_height` pixels high.
-  void orbit(float dx_pixels, float dy_pixels);  // drag right turns the scene right
+  // Mouse gestures, in pixels of a viewport `viewport_height` pixels high. None of them puts
+  // the eye under the floor (the plane y = 0, where the editor stands the feet): pitch stays
+  // between a few degrees above the horizon and just short of straight down, and more when the
+  // target is below the floor (see keep_above_floor()).
+  void orbit(float dx_pixels, float dy_pixels);  // drag right turns the scene right, drag up lowers the eye
   void pan(float dx_pixels, float dy_pixels, float viewport_height);  // the scene follows the cursor
   void zoom(float wheel_steps);  // positive zooms in; each step is ~12%, within the limits
+  // Raises the pitch (and, at the steepest pitch, the target) until the eye is at least
+  // sin(kMinPitch) x distance above the floor. What the gestures call after moving; frame()
+  // does not (its caller chooses the angles). O(1).
+  void keep_above_floor();
+  static constexpr float kMinPitch = 0.06f;  // radians (3.4 degrees): lowest look at the floor
 
   // Moves the target smoothly towards `point` in x and z (the height stays: following the
   // vertical bob of a walk is tiring to watch). half_life_s: time to cover half the gap.

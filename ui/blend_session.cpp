@@ -8,8 +8,10 @@
 #include <iterator>
 
 #include "engine/io/error.h"
+#include "engine/export/channel_layout.h"
 #include "engine/export/export_solve.h"
 #include "render/skeleton_pose.h"
+#include "ui/export_job.h"
 
 namespace mostyle::ui {
 namespace {
@@ -49,12 +51,6 @@ BlendSession::BlendSession() : snapshot_(worker_.snapshot()) {}
 BlendSession::~BlendSession() = default;
 
 void BlendSession::load(const std::string& path_a, const std::string& path_b) {
-  for (const std::string& p : {path_b, path_a}) {
-    if (p.empty()) continue;
-    recent_.erase(std::remove(recent_.begin(), recent_.end(), p), recent_.end());
-    recent_.push_front(p);
-  }
-  while (recent_.size() > kRecentFiles) recent_.pop_back();
   requested_a_ = path_a;
   requested_b_ = path_b;
   worker_.load(path_a, path_b, prepare_options());
@@ -83,6 +79,11 @@ void BlendSession::request_decomposition(const EditorState& state) {
   }
   requested_ = p;
   worker_.decompose(p);
+}
+
+void BlendSession::set_recent(const std::vector<std::string>& paths) {
+  recent_.assign(paths.begin(), paths.end());
+  while (recent_.size() > kRecentFiles) recent_.pop_back();
 }
 
 bool BlendSession::decomposition_outdated() const {
@@ -167,8 +168,17 @@ void BlendSession::take_up_prepared(EditorState& state) {
   state.takes.clear();
   error_curve_.clear();  // of the previous pair
   has_blend_ = false;
+  export_message_.clear();  // it spoke of the previous takes
+  export_ok_ = false;
   blended_decomposed_ = nullptr;
   if (p == nullptr) return;
+  // Remembered once loaded: a mistyped path never joins the recent files.
+  for (const std::string& path : {snapshot_->path_b, snapshot_->path_a}) {
+    if (path.empty()) continue;
+    recent_.erase(std::remove(recent_.begin(), recent_.end(), path), recent_.end());
+    recent_.push_front(path);
+  }
+  while (recent_.size() > kRecentFiles) recent_.pop_back();
   const int joints = static_cast<int>(p->majors.size());
   auto make = [&](const std::string& label, const glm::vec3& color, const Eigen::MatrixXd& contacts) {
     Take t;
@@ -351,29 +361,25 @@ void BlendSession::compute_dtw_image() {
 }
 
 bool BlendSession::export_bvh(const std::string& path) {
-  export_ok_ = false;
-  const PreparedPair* p = snapshot_->prepared.get();
-  if (path.empty()) {
-    export_message_ = "Export: no file name given.";
-    return false;
-  }
-  if (p == nullptr || !has_blend_) {
-    export_message_ = "Export: nothing to export yet (no blend).";
-    return false;
-  }
-  const auto t0 = Clock::now();
+  ExportOutcome outcome;
   try {
-    ExportResult r = export_blend_bvh(*p->clip_a, export_joints(*p), blend_.world, source_frames_in_clip(*p, blend_),
-                                      p->fps, path);
-    export_ms_ = ms_since(t0);
-    char fit[96];
-    std::snprintf(fit, sizeof fit, " (%d frames, fit max %.3g)", r.clip.frames(), r.fit.max);
-    export_message_ = "Exported to " + std::filesystem::absolute(path).string() + fit;
-    export_ok_ = true;
-  } catch (const std::exception& e) {
-    export_message_ = e.what();
+    ExportOptions options;
+    options.path = path;
+    const PreparedPair* p = snapshot_->prepared.get();
+    if (p != nullptr) options.fps = p->fps;  // the blend's own frames
+    if (p != nullptr && p->clip_a != nullptr) options.layout = default_channel_layout(*p->clip_a);
+    outcome = run_export(make_export_request(*this, options));
+  } catch (const std::exception& e) {  // InputError: no file name, no blend yet
+    outcome.message = e.what();
   }
+  set_export_result(outcome.ok, outcome.message, outcome.ok ? outcome.ms : export_ms_);
   return export_ok_;
+}
+
+void BlendSession::set_export_result(bool ok, const std::string& message, double ms) {
+  export_ok_ = ok;
+  export_message_ = message;
+  export_ms_ = ms;
 }
 
 }  // namespace mostyle::ui

@@ -21,7 +21,20 @@
 
 namespace mostyle::ui {
 
-// What the parameter panels edit beyond EditorState::parameters (alpha, k, sparsity).
+// The style palette (issue #9): three or more takes mixed with weights, or a transfer (a style
+// change from a neutral take to a styled one put on a content take).
+struct PaletteControls {
+  std::vector<double> weights;                 // one per take, summing to 1
+  bool per_part = false;                       // weights per body part (legs, arms, spine)
+  std::vector<std::vector<double>> part_weights;  // [legs, arms, spine] x takes
+  bool transfer = false;                       // transfer mode instead of a mix
+  int content = 0, neutral = 1;                // transfer: takes by index; every other take is a style
+  std::vector<double> strengths;               // transfer: one per take (used for the styles)
+  bool ghosts = false;                         // show each take's warped ghost in the viewport
+};
+
+// What the parameter panels edit beyond EditorState::parameters (alpha, k, sparsity). Undo
+// compares them field by field (ui/document.cpp): a new field goes into its operator== too.
 struct SessionControls {
   BlendMode mode = BlendMode::kShared;
   bool per_component = false;            // shared mode: one alpha per component
@@ -36,6 +49,7 @@ struct SessionControls {
   bool residual = true;                  // blend the takes' residual detail too (BlendParams)
   int selected_component = -1;           // components view; -1: none
   int dtw_coordinate = 1;                // DTW view: 0 lateral, 1 height, 2 forward
+  PaletteControls palette;               // with three or more takes
 };
 
 // One decomposition's reconstruction error, recorded as decompositions arrive.
@@ -63,7 +77,7 @@ class BlendSession {
   BlendSession& operator=(const BlendSession&) = delete;
 
   // Asks the worker for a pair (b empty: A with itself). What was loaded stays until it succeeds;
-  // a failure shows up as error() on a later poll(). Remembers both paths in recent().
+  // a failure shows up as error() on a later poll(). The paths join recent() once they loaded.
   void load(const std::string& path_a, const std::string& path_b);
   // Aligns the loaded pair again with controls().align (the worker re-prepares, then decomposes).
   void realign();
@@ -99,14 +113,22 @@ class BlendSession {
   // The decomposition the panels' sliders ask for differs from the one shown.
   bool decomposition_outdated() const;
 
-  // Writes the blend as BVH on A's skeleton (engine export, atomic). Returns false and sets
-  // export_message() to the error sentence on failure; on success, where it went.
+  // Writes the blend as BVH on A's skeleton (engine export, atomic), here and now, with the
+  // export dialog's defaults: the blend's own frames, all of them, default_channel_layout(A)
+  // (ui/export_job.h run_export). Returns false and sets export_message() to the error sentence
+  // on failure; on success, where it went. The dialog exports on a thread of its own instead.
   bool export_bvh(const std::string& path);
+  // The last export's outcome (export_bvh's or the export dialog's, which posts it here so the
+  // files panel shows it too). A new pair clears it: it spoke of the previous takes.
+  void set_export_result(bool ok, const std::string& message, double ms);
   const std::string& export_message() const { return export_message_; }
   bool export_ok() const { return export_ok_; }
   double export_ms() const { return export_ms_; }
 
+  // Takes that loaded, newest first (a pair's two paths join when it arrives), at most 8.
   const std::deque<std::string>& recent() const { return recent_; }
+  // Replaces recent(), newest first (the editor reads it from recent.json at start).
+  void set_recent(const std::vector<std::string>& paths);
   // The pair last asked for (what the files panel's fields show), loaded or not.
   const std::string& requested_a() const { return requested_a_; }
   const std::string& requested_b() const { return requested_b_; }

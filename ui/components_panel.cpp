@@ -16,8 +16,8 @@ const ImVec4 kDimColor(0.60f, 0.62f, 0.66f, 1.0f);
 }  // namespace
 
 void ComponentsPanel::draw(EditorState& state) {
-  place_next_window(Column::kRight, 0.54f, 0.27f);
-  if (!ImGui::Begin("Components")) {
+  place_panel(PanelId::kComponents, state);
+  if (!ImGui::Begin(panel_title(PanelId::kComponents))) {
     ImGui::End();
     return;
   }
@@ -49,8 +49,10 @@ void ComponentsPanel::draw(EditorState& state) {
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Pick a component: its joints light up on the blend");
   ImGui::SameLine();
   if (ImGui::ArrowButton("##prev", ImGuiDir_Left)) c.selected_component = std::max(-1, c.selected_component - 1);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Previous component");
   ImGui::SameLine();
   if (ImGui::ArrowButton("##next", ImGuiDir_Right)) c.selected_component = std::min(k - 1, c.selected_component + 1);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Next component");
 
   // Its joints (lit on the blend skeleton) and its weights over A's timeline.
   const int sel = c.selected_component;
@@ -74,8 +76,9 @@ void ComponentsPanel::draw(EditorState& state) {
     plot_line(w, static_cast<int>(wa->rows()), [&](int i, double* x, double* y) { *x = i; *y = (*wa)(i, sel); }, color_a());
     plot_line(w, static_cast<int>(wb->rows()), [&](int i, double* x, double* y) { *x = i; *y = (*wb)(i, sel); }, color_b());
     plot_vline(w, frame_at(state.takes[kTakeA], state.playback.time_s), IM_COL32(255, 255, 255, 140));
-    plot_legend(w, 0, "W_A", color_a());
-    plot_legend(w, 1, "W_B", color_b());
+    plot_legend(w, 0, "weight in A", color_a());
+    plot_legend(w, 1, "weight in B", color_b());
+    if (w.hovered) ImGui::SetTooltip("How much of this component A and B use over time; click: jump there");
     if (w.clicked) state.playback.time_s = (std::clamp(w.x_at(ImGui::GetIO().MousePos.x), 0.0, 1e9) + 0.5) / p->fps;
   } else {
     ImGui::TextColored(kDimColor, "Pick a component to see its joints and weights.");
@@ -85,11 +88,14 @@ void ComponentsPanel::draw(EditorState& state) {
   std::vector<const ErrorPoint*> points;
   for (const ErrorPoint& e : session_.error_curve())
     if (e.mode == d->params.mode && e.sparsity == d->params.sparsity) points.push_back(&e);
-  ImGui::Text("RMSE against k (f = %.2f)", d->params.sparsity);
+  ImGui::Text("Fit error against components (sparsity %.2f)", d->params.sparsity);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("How far what the components rebuild is from each take (root mean square, file units),\n"
+                      "for each number of components tried so far: the curve flattens where more stop helping.");
   if (!points.empty()) {
     ImGui::SameLine();
     if (session_.sweeping()) ImGui::TextColored(kDimColor, "computing...");
-    else ImGui::TextColored(kDimColor, "k %d..%d", points.front()->components, points.back()->components);
+    else ImGui::TextColored(kDimColor, "%d to %d", points.front()->components, points.back()->components);
   }
   if (!points.empty()) {
     double top = 1e-9;
@@ -113,7 +119,8 @@ void ComponentsPanel::draw(EditorState& state) {
       const double k = r.x_at(ImGui::GetIO().MousePos.x);
       for (const ErrorPoint* e : points)
         if (std::abs(e->components - k) < std::abs(nearest->components - k)) nearest = e;
-      ImGui::SetTooltip("k = %d\nRMSE A %.4g\nRMSE B %.4g", nearest->components, nearest->rmse_a, nearest->rmse_b);
+      ImGui::SetTooltip("%d components\nfit error A %.4g\nfit error B %.4g (file units)", nearest->components,
+                        nearest->rmse_a, nearest->rmse_b);
     }
   }
   ImGui::End();

@@ -42,8 +42,8 @@ int output_frame_at(const BlendResult* blend, double u) {
 }  // namespace
 
 void DtwPanel::draw(EditorState& state) {
-  place_next_window(Column::kRight, 0.0f, 0.54f);
-  if (!ImGui::Begin("DTW alignment")) {
+  place_panel(PanelId::kDtw, state);
+  if (!ImGui::Begin(panel_title(PanelId::kDtw))) {
     ImGui::End();
     return;
   }
@@ -67,13 +67,15 @@ void DtwPanel::draw(EditorState& state) {
   ImGui::SameLine();
   std::string joints;
   for (int k : al.feature.columns) joints += (joints.empty() ? "" : ", ") + p->names_a[static_cast<size_t>(k)];
-  ImGui::TextColored(ImVec4(0.6f, 0.62f, 0.66f, 1.0f), "aligned on %s (%s)  matched A %d-%d, B %d-%d",
+  ImGui::TextColored(ImVec4(0.6f, 0.62f, 0.66f, 1.0f), "aligned on %s (%s); matched frames: A %d to %d, B %d to %d",
                      align_on_name(al.feature.on), joints.c_str(), al.a_first, al.a_last, al.b_first, al.b_last);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("%s DTW. Frames outside the matched ranges (shaded) are left out of the blend.\n"
                       "%d x %d frames at %.0f fps, cost %.3g",
                       dtw_method_name(al.options.method), fa, fb, p->fps, al.cost);
+  ImGui::PushTextWrapPos(0.0f);  // warnings wrap inside the panel
   for (const std::string& w : al.warnings) ImGui::TextColored(ImVec4(0.95f, 0.7f, 0.3f, 1.0f), "%s", w.c_str());
+  ImGui::PopTextWrapPos();
   const int col = std::clamp(c.dtw_coordinate, 0, static_cast<int>(sa.cols()) - 1);
 
   const double lo = std::min(sa.col(col).minCoeff(), sb.col(col).minCoeff());
@@ -83,14 +85,20 @@ void DtwPanel::draw(EditorState& state) {
   const int current = state.takes.empty() ? 0 : frame_at(state.takes[kTakeBlend], state.playback.time_s);
   const double current_u = blend != nullptr && current < blend->sample.size() ? blend->sample[current] : 0.0;
   const float line = ImGui::GetTextLineHeightWithSpacing();
-  const float plot_h = std::max(50.0f, (ImGui::GetContentRegionAvail().y - 2.0f * line) * 0.36f);
+  // In the layout's bottom strip (much wider than high) the views stand side by side; a panel
+  // the animator made tall stacks "before" above the others.
+  const ImVec2 room = ImGui::GetContentRegionAvail();
+  const bool wide = room.x > 2.5f * room.y;
+  const float plot_h = wide ? std::max(40.0f, room.y - line - 4.0f) : std::max(50.0f, (room.y - 2.0f * line) * 0.36f);
   double hovered_u = -1.0;  // a warp sample under the mouse
 
   // Before warping: A above, B below, each on its own timeline; matched frames joined, the
   // matched ranges shaded.
+  ImGui::BeginGroup();
   ImGui::TextUnformatted("before warping: matched frames joined");
   const int frames = std::max(fa, fb);
-  PlotArea before = begin_plot("##before", -1.0f, plot_h, 0.0, frames - 1, lo - 1.15 * span, hi + 0.1 * span);
+  PlotArea before = begin_plot("##before", wide ? 0.45f * room.x : -1.0f, plot_h, 0.0, frames - 1, lo - 1.15 * span,
+                               hi + 0.1 * span);
   {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     dl->PushClipRect(before.min, before.max, true);
@@ -111,13 +119,15 @@ void DtwPanel::draw(EditorState& state) {
   plot_line(before, fb, [&](int j, double* x, double* y) { *x = j; *y = sb(j, col) - 1.05 * span; }, color_b());
   plot_legend(before, 0, "A", color_a());
   plot_legend(before, 1, "B", color_b());
+  ImGui::EndGroup();
+  if (wide) ImGui::SameLine();
   if (before.hovered) {
     const int i = std::clamp(static_cast<int>(std::lround(before.x_at(ImGui::GetIO().MousePos.x))), 0, fa - 1);
     const double* at = std::lower_bound(warp.a.data(), warp.a.data() + samples, double(i));
     hovered_u = static_cast<double>(std::min<std::ptrdiff_t>(at - warp.a.data(), samples - 1));
   }
 
-  // Below: the cost matrix (A frames down, B frames across, the path and the playhead on it)
+  // Below (or beside): the cost matrix (A frames down, B frames across, the path and the playhead on it)
   // beside the signals after warping, over the warp's samples, with the match quality under them.
   const float side = std::clamp(std::min(ImGui::GetContentRegionAvail().y - line - 4.0f,
                                          0.5f * ImGui::GetContentRegionAvail().x),

@@ -62,6 +62,11 @@ struct ViewOptions {
   bool overlay = false;   // the takes drawn on top of each other instead of side by side
   int samples = 0;        // viewport MSAA samples; 0: automatic (4 on a GPU, 1 on llvmpipe)
   bool request_reframe = false;  // set by a panel: frame the skeletons on the next frame
+  bool show_keys = false;        // the window listing every key (F1 or ?)
+  bool show_export = false;      // the export dialog (Ctrl+E, the files panel's Export button)
+  // Panels take their place from ui/layout.h this frame (ImGuiCond_Always) instead of only the
+  // first time: set when the display size changed or on Reset layout, cleared after the panels.
+  bool reset_layout = false;
 };
 
 struct EditorState {
@@ -77,6 +82,38 @@ struct EditorState {
     return nullptr;
   }
 };
+
+// Commands a button and a key both give: one function each, so that they do the same. The
+// editor carries them out in the frame they are given (the layout: in the next one when given
+// after the panels were drawn).
+inline void command_frame_all(EditorState& state) { state.view.request_reframe = true; }
+inline void command_reset_layout(EditorState& state) { state.view.reset_layout = true; }
+inline void command_toggle_keys(EditorState& state) { state.view.show_keys = !state.view.show_keys; }
+inline void command_open_export(EditorState& state) { state.view.show_export = true; }
+
+// Time of the last frame of `take`, seconds from the first; 0 without frames.
+inline double take_length_s(const Take& take) { return take.frames() > 1 ? (take.frames() - 1) / take.rate() : 0.0; }
+
+// Moves the playhead on by dt_s x speed while playing. Past the end: back to the start with loop
+// on; with loop off it stays on the last frame and playback stops (the button reads Play).
+inline void advance_playback(Playback& p, double dt_s, double length_s) {
+  if (!p.playing) return;
+  p.time_s += dt_s * p.speed;
+  if (p.time_s <= length_s) return;
+  if (p.loop) {
+    p.time_s = 0.0;
+  } else {
+    p.time_s = length_s;
+    p.playing = false;
+  }
+}
+
+// Play or pause, as the button and the space bar do. Play on the last frame starts again from
+// the first (stepping there puts the playhead half a frame past length_s).
+inline void toggle_playback(Playback& p, double length_s) {
+  if (!p.playing && p.time_s >= length_s) p.time_s = 0.0;
+  p.playing = !p.playing;
+}
 
 // Frame of `take` at time t (seconds), clamped to its range; 0 for a take without frames.
 inline int frame_at(const Take& take, double time_s) {

@@ -1,6 +1,7 @@
 #include "ui/files_panel.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cstring>
 #include <filesystem>
 #include <system_error>
@@ -27,20 +28,68 @@ bool is_bvh(const fs::path& p) {
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
   return ext == ".bvh";
 }
+
+// A folder's own name with a slash ("motions/"), for the panel's text; "/" and "." as they are.
+std::string folder_name(const std::string& folder) {
+  fs::path p(folder);
+  if (!p.has_filename() && p.has_parent_path() && p.parent_path() != p) p = p.parent_path();  // "a/b/" -> "a/b"
+  const std::string name = p.filename().string();
+  return name.empty() || name == "." || name == ".." ? folder : name + "/";
+}
+
+// A sentence that may name files, without their folders; the whole sentence on hover.
+void sentence(const ImVec4& color, const std::string& text, const std::vector<std::string>& folders) {
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextColored(color, "%s", without_folders(text, folders).c_str());
+  ImGui::PopTextWrapPos();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text.c_str());
+}
 }  // namespace
 
-FilesPanel::FilesPanel(BlendSession& session, std::string folder) : session_(session), folder_(std::move(folder)) {}
+void PathField::set(const std::string& path) {
+  const fs::path p(path);
+  if (p.has_filename() && p.has_parent_path()) {
+    folder = p.parent_path().string();
+    copy_to(text, sizeof text, p.filename().string());
+  } else {
+    folder.clear();
+    copy_to(text, sizeof text, path);
+  }
+}
+
+std::string PathField::path() const {
+  const fs::path t(text);
+  if (t.empty()) return std::string();
+  if (t.has_parent_path() || folder.empty()) return t.string();
+  return (fs::path(folder) / t).string();
+}
+
+std::string without_folders(std::string text, std::vector<std::string> folders) {
+  // Longest first: "/data/" must not eat the start of "/data/walks/".
+  std::sort(folders.begin(), folders.end(),
+            [](const std::string& x, const std::string& y) { return x.size() > y.size(); });
+  for (std::string f : folders) {
+    if (f.empty() || f == "." || f == "/") continue;
+    if (f.back() != '/') f += '/';
+    for (size_t at = text.find(f); at != std::string::npos; at = text.find(f, at)) text.erase(at, f.size());
+  }
+  return text;
+}
+
+FilesPanel::FilesPanel(BlendSession& session, std::string folder)
+    : session_(session), folder_(std::move(folder)), export_dialog_(session) {}
 
 void FilesPanel::draw(EditorState& state) {
   BlendSession& s = session_;
+  export_dialog_.draw(state);  // its own window; polled even while hidden, so an outcome arrives
   // The fields follow the pair last asked for (not while the animator types): after a failed
   // load they hold the bad path, to correct.
   const WorkerSnapshot& snap = s.snapshot();
   if (s.requested_a() != synced_a_ || s.requested_b() != synced_b_) {
     synced_a_ = s.requested_a();
     synced_b_ = s.requested_b();
-    copy_to(path_a_, sizeof path_a_, synced_a_);
-    copy_to(path_b_, sizeof path_b_, synced_b_);
+    a_.set(synced_a_);
+    b_.set(synced_b_);
   }
 
   // Dropped files: two replace the pair, one replaces B (the style blended in).
@@ -48,60 +97,85 @@ void FilesPanel::draw(EditorState& state) {
     std::vector<std::string> files;
     files.swap(s.dropped());
     if (files.size() >= 2) {
-      copy_to(path_a_, sizeof path_a_, files[0]);
-      copy_to(path_b_, sizeof path_b_, files[1]);
+      a_.set(files[0]);
+      b_.set(files[1]);
     } else {
-      copy_to(path_b_, sizeof path_b_, files[0]);
+      b_.set(files[0]);
     }
-    s.load(path_a_, path_b_);
+    s.load(a_.path(), b_.path());
   }
-  place_next_window(Column::kLeft, 0.68f, 0.32f);
-  if (!ImGui::Begin("Files")) {
+  place_panel(PanelId::kFiles, state);
+  if (!ImGui::Begin(panel_title(PanelId::kFiles))) {
     ImGui::End();
     return;
   }
-  if (!s.error().empty()) {
-    ImGui::PushTextWrapPos(0.0f);
-    ImGui::TextColored(kErrorColor, "%s", s.error().c_str());
-    ImGui::PopTextWrapPos();
-  }
+  // Folders left out of the panel's sentences (shown whole on hover).
+  std::error_code ec;
+  char* export_path = export_dialog_.settings().path;
+  const std::string export_folder = fs::absolute(fs::path(export_path), ec).parent_path().string();
+  const std::vector<std::string> folders = {a_.folder, b_.folder, folder_, export_folder,
+                                            fs::path(snap.path_a).parent_path().string(),
+                                            fs::path(snap.path_b).parent_path().string()};
+  if (!s.error().empty()) sentence(kErrorColor, s.error(), folders);
+
+  // A path field: the file's name; on hover, its folder and what typing does. Enter loads.
+  auto path_field = [&](const char* id, PathField& field) {
+    const bool entered = ImGui::InputText(id, field.text, sizeof field.text, ImGuiInputTextFlags_EnterReturnsTrue);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Folder: %s\nType a file name in that folder, or a path; Enter loads it.",
+                        field.folder.empty() ? "(where mostyle was started)" : field.folder.c_str());
+    return entered;
+  };
   ImGui::PushItemWidth(-92.0f);
-  ImGui::InputText("##a", path_a_, sizeof path_a_);
+  const bool enter_a = path_field("##a", a_);
   ImGui::SameLine();
   ImGui::TextColored(ImVec4(0.96f, 0.60f, 0.28f, 1.0f), "A");
   ImGui::SameLine();
-  if (ImGui::Button("Load##a")) s.load(path_a_, snap.path_b.empty() ? path_b_ : snap.path_b);
-  ImGui::InputText("##b", path_b_, sizeof path_b_);
+  if (ImGui::Button("Load##a") || enter_a) s.load(a_.path(), snap.path_b.empty() ? b_.path() : snap.path_b);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Load this file as A, the take whose timing and skeleton lead");
+  const bool enter_b = path_field("##b", b_);
   ImGui::SameLine();
   ImGui::TextColored(ImVec4(0.36f, 0.64f, 0.97f, 1.0f), "B");
   ImGui::SameLine();
-  if (ImGui::Button("Load##b")) s.load(snap.path_a.empty() ? path_a_ : snap.path_a, path_b_);
+  if (ImGui::Button("Load##b") || enter_b) s.load(snap.path_a.empty() ? a_.path() : snap.path_a, b_.path());
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Load this file as B, the style blended in");
   ImGui::PopItemWidth();
-  if (ImGui::Button("Load pair")) s.load(path_a_, path_b_);
+  if (ImGui::Button("Load pair")) s.load(a_.path(), b_.path());
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Load both fields as the new pair");
   ImGui::SameLine();
   ImGui::TextColored(kDimColor, "or drop .bvh files here");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Two files: the new pair. One file: the new B.");
   ImGui::SetNextItemWidth(-92.0f);
-  ImGui::InputText("##export", export_path_, sizeof export_path_);
+  const bool enter_export = ImGui::InputText("##export", export_path, sizeof export_dialog_.settings().path,
+                                            ImGuiInputTextFlags_EnterReturnsTrue);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("File to export the blend to (a name: in %s); Enter opens the export dialog.",
+                      export_folder.c_str());
   ImGui::SameLine();
-  if (ImGui::Button("Export BVH")) s.export_bvh(export_path_);
-  if (!s.export_message().empty()) {
-    ImGui::PushTextWrapPos(0.0f);
-    ImGui::TextColored(s.export_ok() ? kOkColor : kErrorColor, "%s", s.export_message().c_str());
-    ImGui::PopTextWrapPos();
-  }
+  if (ImGui::Button("Export...") || enter_export) command_open_export(state);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Choose the frame rate, the frames and the channels, then write the blend\n"
+                      "as a BVH file on A's skeleton (Ctrl+E)");
+  if (export_dialog_.job().running())
+    ImGui::ProgressBar(export_dialog_.job().progress(), ImVec2(-FLT_MIN, 0.0f), "exporting");
+  else if (!s.export_message().empty())
+    sentence(s.export_ok() ? kOkColor : kErrorColor, s.export_message(), folders);
 
-  if (ImGui::CollapsingHeader("Browse", ImGuiTreeNodeFlags_DefaultOpen)) {
-    ImGui::PushTextWrapPos(0.0f);
-    ImGui::TextColored(kDimColor, "%s", folder_.c_str());
-    ImGui::PopTextWrapPos();
+  const bool browse = ImGui::CollapsingHeader("Browse", ImGuiTreeNodeFlags_DefaultOpen);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("The .bvh files of a folder, to load as A or B");
+  if (browse) {
+    ImGui::TextColored(kDimColor, "in %s", folder_name(folder_).c_str());
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Folder: %s", folder_.c_str());
+    ImGui::SameLine();
     if (ImGui::SmallButton("Refresh")) listed_folder_.clear();
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Read the folder again");
     if (listed_folder_ != folder_) {
       listed_folder_ = folder_;
       dirs_.clear();
       files_.clear();
       list_error_.clear();
-      std::error_code ec;
-      for (fs::directory_iterator it(folder_, ec), end; !ec && it != end; it.increment(ec)) {
+      std::error_code list_ec;
+      for (fs::directory_iterator it(folder_, list_ec), end; !list_ec && it != end; it.increment(list_ec)) {
         std::error_code e2;
         if (it->is_directory(e2)) {
           if (it->path().filename().string().rfind('.', 0) != 0) dirs_.push_back(it->path().string());
@@ -109,26 +183,31 @@ void FilesPanel::draw(EditorState& state) {
           files_.push_back(it->path().string());
         }
       }
-      if (ec) list_error_ = folder_ + ": " + ec.message();
+      if (list_ec) list_error_ = "Cannot read " + folder_name(folder_) + ": " + list_ec.message();
       std::sort(dirs_.begin(), dirs_.end());
       std::sort(files_.begin(), files_.end());
     }
-    if (!list_error_.empty()) ImGui::TextColored(kErrorColor, "%s", list_error_.c_str());
+    if (!list_error_.empty()) sentence(kErrorColor, list_error_, {});
     ImGui::BeginChild("##browser", ImVec2(0.0f, ImGui::GetTextLineHeightWithSpacing() * 5.0f), true);
     if (ImGui::Selectable("..")) {
       fs::path up = fs::absolute(folder_).lexically_normal();
       if (!up.has_filename()) up = up.parent_path();  // "a/b/" -> "a/b"
       folder_ = up.parent_path().string();
     }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Up to the folder above");
     std::string next_folder;
-    for (const std::string& d : dirs_)
+    for (const std::string& d : dirs_) {
       if (ImGui::Selectable((fs::path(d).filename().string() + "/").c_str())) next_folder = d;
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Open this folder");
+    }
     for (const std::string& name : files_) {
       const fs::path f(name);
       ImGui::PushID(f.string().c_str());
       if (ImGui::SmallButton("A")) s.load(f.string(), snap.path_b.empty() ? f.string() : snap.path_b);
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Load as A");
       ImGui::SameLine();
       if (ImGui::SmallButton("B")) s.load(snap.path_a.empty() ? f.string() : snap.path_a, f.string());
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Load as B");
       ImGui::SameLine();
       ImGui::TextUnformatted(f.filename().string().c_str());
       ImGui::PopID();
@@ -137,19 +216,22 @@ void FilesPanel::draw(EditorState& state) {
     ImGui::EndChild();
     if (!next_folder.empty()) folder_ = next_folder;
   }
-  if (ImGui::CollapsingHeader("Recent")) {
+  const bool recent = ImGui::CollapsingHeader("Recent");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Files loaded before, newest first");
+  if (recent) {
     for (const std::string& r : s.recent()) {
       ImGui::PushID(r.c_str());
-      if (ImGui::SmallButton("A")) copy_to(path_a_, sizeof path_a_, r);
+      if (ImGui::SmallButton("A")) a_.set(r);
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Put in the A field (then Load or Enter)");
       ImGui::SameLine();
-      if (ImGui::SmallButton("B")) copy_to(path_b_, sizeof path_b_, r);
+      if (ImGui::SmallButton("B")) b_.set(r);
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Put in the B field (then Load or Enter)");
       ImGui::SameLine();
       ImGui::TextUnformatted(fs::path(r).filename().string().c_str());
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", r.c_str());
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Folder: %s", fs::path(r).parent_path().string().c_str());
       ImGui::PopID();
     }
   }
-  (void)state;
   ImGui::End();
 }
 

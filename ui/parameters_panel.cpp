@@ -14,8 +14,8 @@ const ImVec4 kDimColor(0.60f, 0.62f, 0.66f, 1.0f);
 }  // namespace
 
 void ParametersPanel::draw(EditorState& state) {
-  place_next_window(Column::kLeft, 0.235f, 0.445f);
-  if (!ImGui::Begin("Parameters")) {
+  place_panel(PanelId::kParameters, state);
+  if (!ImGui::Begin(panel_title(PanelId::kParameters))) {
     ImGui::End();
     return;
   }
@@ -23,18 +23,24 @@ void ParametersPanel::draw(EditorState& state) {
   SessionControls& c = s.controls();
   BlendParameters& p = state.parameters;
   const DecomposedPair* d = s.snapshot().decomposed.get();
-  ImGui::PushItemWidth(-80.0f);
+  ImGui::PushItemWidth(-120.0f);  // room for the labels on the right
 
   float alpha = static_cast<float>(p.alpha);
   if (ImGui::SliderFloat("alpha", &alpha, 0.0f, 1.0f, "%.2f")) p.alpha = alpha;  // blended this frame
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: style A, 1: style B. Applied immediately.");
 
   bool redecompose = false;
-  ImGui::SliderInt("k", &p.components, 1, 40);
+  ImGui::SliderInt("components (k)", &p.components, 1, 40);
   redecompose |= ImGui::IsItemDeactivatedAfterEdit();
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("How many components the takes are split into. More: closer to the takes, less general.\n"
+                      "Recomputed when you let go of the slider.");
   float sparsity = static_cast<float>(p.sparsity);
   if (ImGui::SliderFloat("sparsity", &sparsity, 0.01f, 1.0f, "%.2f")) p.sparsity = sparsity;
   redecompose |= ImGui::IsItemDeactivatedAfterEdit();
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Share of the joints' channels each component may move (0.1: a tenth).\n"
+                      "Small: each component is a small body part. Recomputed when you let go.");
   int mode = c.mode == BlendMode::kShared ? 0 : 1;
   if (ImGui::Combo("mode", &mode, "shared\0paper\0")) {
     c.mode = mode == 0 ? BlendMode::kShared : BlendMode::kPaper;
@@ -79,8 +85,10 @@ void ParametersPanel::draw(EditorState& state) {
                       "so alpha 0 is exactly A and 1 exactly B.\nOn: only what the components reconstruct "
                       "(the paper's synthesis); k and sparsity then shape the whole blend.");
   if (ImGui::RadioButton("side by side", !state.view.overlay)) state.view.overlay = false;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("A, the blend and B stand next to each other");
   ImGui::SameLine();
   if (ImGui::RadioButton("overlay", state.view.overlay)) state.view.overlay = true;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("A, the blend and B on the same spot, to compare poses");
 
   // Worker progress; the previous decomposition stays on screen until the new one arrives.
   const WorkerStatus status = s.status();
@@ -89,8 +97,9 @@ void ParametersPanel::draw(EditorState& state) {
     std::snprintf(overlay, sizeof overlay, "%s %.0f%%", worker_stage_name(status.stage), 100.0 * status.progress);
     ImGui::ProgressBar(status.progress, ImVec2(-1.0f, 0.0f), overlay);
   } else if (d != nullptr) {
-    ImGui::TextColored(kDimColor, "k=%d  f=%.2f  %s: %d iterations", d->params.components, d->params.sparsity,
-                       blend_mode_name(d->params.mode), d->iterations);
+    ImGui::TextColored(kDimColor, "shown: %d components, sparsity %.2f, %s, %d iterations", d->params.components,
+                       d->params.sparsity, blend_mode_name(d->params.mode), d->iterations);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("The decomposition the blend uses now");
   }
   if (!s.blend_error().empty()) {
     ImGui::PushTextWrapPos(0.0f);
@@ -99,13 +108,16 @@ void ParametersPanel::draw(EditorState& state) {
   }
 
   if (c.mode == BlendMode::kShared) {
-    if (ImGui::CollapsingHeader("Body parts")) {
+    const bool parts = ImGui::CollapsingHeader("Body parts");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("A different alpha for the legs, the arms, the spine, or each component");
+    if (parts) {
       ImGui::Checkbox("alpha per body part", &c.per_component);
       if (ImGui::IsItemHovered())
         ImGui::SetTooltip("Take each body part's style from A or B on its own: legs from one, arms from the other.");
       if (d != nullptr && d->params.mode == BlendMode::kShared) {
         c.component_alpha.resize(static_cast<size_t>(d->components()), p.alpha);
         if (ImGui::SmallButton("all = alpha")) std::fill(c.component_alpha.begin(), c.component_alpha.end(), p.alpha);
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Set every body part and component back to the main alpha");
         // One slider per part (legs, arms, spine): it sets every component of that part.
         for (BodyPart part : {BodyPart::kLegs, BodyPart::kArms, BodyPart::kSpine}) {
           int first = -1;
@@ -122,6 +134,8 @@ void ParametersPanel::draw(EditorState& state) {
                 c.component_alpha[static_cast<size_t>(i)] = a;
             c.per_component = true;
           }
+          if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("This body part's style: 0 from A, 1 from B (sets all its components)");
         }
         ImGui::TextColored(kDimColor, "each component:");
         for (int i = 0; i < d->components(); ++i) {
@@ -134,25 +148,41 @@ void ParametersPanel::draw(EditorState& state) {
             c.component_alpha[static_cast<size_t>(i)] = a;
             c.per_component = true;
           }
+          if (ImGui::IsItemHovered()) ImGui::SetTooltip("This component's style: 0 from A, 1 from B (its joints light up)");
           if (ImGui::IsItemHovered() || ImGui::IsItemActive()) c.selected_component = i;
           ImGui::PopID();
         }
       }
     }
-  } else if (ImGui::CollapsingHeader("Basic motions", ImGuiTreeNodeFlags_DefaultOpen)) {
-    ImGui::SliderInt("levels m", &c.basic_motions, 0, 5);
-    redecompose |= ImGui::IsItemDeactivatedAfterEdit();
-    c.basic_sparsities.resize(static_cast<size_t>(c.basic_motions), p.sparsity);
-    for (int i = 0; i < c.basic_motions; ++i) {
-      ImGui::PushID(i);
-      float f = static_cast<float>(c.basic_sparsities[static_cast<size_t>(i)]);
-      char label[32];
-      std::snprintf(label, sizeof label, "sparsity %d", i);
-      if (ImGui::SliderFloat(label, &f, 0.01f, 1.0f, "%.2f")) c.basic_sparsities[static_cast<size_t>(i)] = f;
+  } else {
+    const bool basic = ImGui::CollapsingHeader("Basic motions", ImGuiTreeNodeFlags_DefaultOpen);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Paper mode: the takes in levels of motion, one level from B");
+    if (basic) {
+      ImGui::SliderInt("motion levels", &c.basic_motions, 0, 5);
       redecompose |= ImGui::IsItemDeactivatedAfterEdit();
-      ImGui::PopID();
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Split each take into this many levels of basic motions (paper 3.5): level 1 holds the\n"
+                          "most, each next level what the ones before left. 0: one decomposition.\n"
+                          "Recomputed when you let go.");
+      c.basic_sparsities.resize(static_cast<size_t>(c.basic_motions), p.sparsity);
+      for (int i = 0; i < c.basic_motions; ++i) {
+        ImGui::PushID(i);
+        float f = static_cast<float>(c.basic_sparsities[static_cast<size_t>(i)]);
+        char label[32];
+        std::snprintf(label, sizeof label, "level %d sparsity", i + 1);
+        if (ImGui::SliderFloat(label, &f, 0.01f, 1.0f, "%.2f")) c.basic_sparsities[static_cast<size_t>(i)] = f;
+        redecompose |= ImGui::IsItemDeactivatedAfterEdit();
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Share of the channels each component of this level may move");
+        ImGui::PopID();
+      }
+      if (c.basic_motions > 0) {
+        // Shown from 1 like the levels above; stored from 0.
+        int level = c.swap_level + 1;
+        if (ImGui::SliderInt("level from B", &level, 1, c.basic_motions)) c.swap_level = level - 1;
+        if (ImGui::IsItemHovered())
+          ImGui::SetTooltip("The level whose style moves towards B with alpha (1: B's); the other levels stay A's");
+      }
     }
-    if (c.basic_motions > 0) ImGui::SliderInt("swap level", &c.swap_level, 0, c.basic_motions - 1);
   }
   if (redecompose) s.request_decomposition(state);
 

@@ -1,6 +1,7 @@
 #pragma once
-// The timeline along the bottom of the window: play/pause, rewind, the frame slider of the
-// reference take, time and rate, speed and loop.
+// The timeline along the bottom of the window: the Keys button, play/pause, rewind, the frame
+// slider of the reference take, time and rate, speed and loop. Space plays and pauses, the left
+// and right arrow keys step one frame (not while a text field or a slider has the keyboard).
 #include "ui/panel.h"
 
 namespace mostyle::ui {

@@ -1,8 +1,11 @@
 #include "ui/takes_panel.h"
 
-#include <cfloat>
+#include <filesystem>
+#include <string>
 
 #include <imgui.h>
+
+#include "ui/layout.h"
 
 namespace mostyle::ui {
 namespace {
@@ -12,9 +15,9 @@ const ImVec4 kDimColor(0.60f, 0.62f, 0.66f, 1.0f);
 }  // namespace
 
 void TakesPanel::draw(EditorState& state) {
-  ImGui::SetNextWindowPos(ImVec2(12.0f, 12.0f), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSizeConstraints(ImVec2(260.0f, 0.0f), ImVec2(520.0f, FLT_MAX));
-  if (!ImGui::Begin("Takes", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+  // A fixed place and size from the layout: many warnings scroll inside, never push other panels.
+  place_panel(PanelId::kTakes, state);
+  if (!ImGui::Begin(panel_title(PanelId::kTakes))) {
     ImGui::End();
     return;
   }
@@ -22,16 +25,27 @@ void TakesPanel::draw(EditorState& state) {
     ImGui::PushID(&take);
     if (take.ok()) {
       ImGui::ColorEdit3("##color", &take.color.x, ImGuiColorEditFlags_NoInputs | ImGuiColorEditFlags_NoLabel);
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Colour of this take's skeleton and label; click to change it");
       ImGui::SameLine();
       ImGui::Checkbox(take.label.c_str(), &take.visible);
       if (ImGui::IsItemHovered()) {
-        ImGui::SetTooltip("%s\n%d frames at %.0f fps, %zu joints", take.path.c_str(), take.frames(),
-                          take.rate(), take.parents.size());
+        ImGui::SetTooltip("Show or hide this take\nFolder: %s\n%d frames at %.0f fps, %zu joints",
+                          std::filesystem::path(take.path).parent_path().string().c_str(), take.frames(), take.rate(),
+                          take.parents.size());
       }
-      for (const std::string& w : take.warnings) {
-        ImGui::PushTextWrapPos(0.0f);
-        ImGui::TextColored(kWarningColor, "%s", w.c_str());
-        ImGui::PopTextWrapPos();
+      if (!take.warnings.empty()) {
+        // Collapsed to one line; opened, the sentences wrap inside this panel.
+        ImGui::PushStyleColor(ImGuiCol_Text, kWarningColor);
+        const bool open = ImGui::TreeNode("##warnings", "%zu load warning%s", take.warnings.size(),
+                                          take.warnings.size() == 1 ? "" : "s");
+        ImGui::PopStyleColor();
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("What the file reader repaired or left out; click to read");
+        if (open) {
+          ImGui::PushTextWrapPos(0.0f);
+          for (const std::string& w : take.warnings) ImGui::TextColored(kWarningColor, "%s", w.c_str());
+          ImGui::PopTextWrapPos();
+          ImGui::TreePop();
+        }
       }
     } else {
       ImGui::PushTextWrapPos(0.0f);
@@ -42,16 +56,24 @@ void TakesPanel::draw(EditorState& state) {
   }
   if (state.takes.empty()) ImGui::TextColored(kDimColor, "No takes.");
 
-  if (ImGui::CollapsingHeader("View")) {
+  if (ImGui::Button("Frame all (F)")) command_frame_all(state);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Turn and move the camera so that every skeleton is in view");
+  const bool view = ImGui::CollapsingHeader("View");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("What the 3D view shows");
+  if (view) {
     ImGui::Checkbox("follow", &state.view.follow);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("The camera follows the skeletons as they walk");
     ImGui::SameLine();
     ImGui::Checkbox("labels", &state.view.labels);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Each take's name above its skeleton");
     ImGui::SameLine();
     ImGui::Checkbox("grid", &state.view.grid);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Lines on the floor");
     ImGui::Checkbox("shadows", &state.view.shadows);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Shadows of the skeletons on the floor");
     ImGui::SameLine();
     ImGui::Checkbox("contacts", &state.view.contacts);
-    if (ImGui::Button("Frame all")) state.view.request_reframe = true;
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Rings under the feet while they are planted on the floor");
   }
   ImGui::End();
 }

@@ -1,6 +1,7 @@
 #pragma once
 // The "Takes" window: each loaded take with its colour, visibility and size, load errors and
-// warnings as the engine worded them, and the viewport's display toggles.
+// warnings as the engine worded them (folded, inside the panel), Frame all, and the viewport's
+// display toggles.
 #include "ui/panel.h"
 
 namespace mostyle::ui {

@@ -4,6 +4,8 @@
 
 #include <imgui.h>
 
+#include "ui/layout.h"
+
 namespace mostyle::ui {
 namespace {
 ImU32 to_imgui_color(const glm::vec3& c, float alpha = 1.0f) {
@@ -68,9 +70,9 @@ void draw_skeleton_labels(const std::vector<render::SkeletonPose>& poses, const 
 }
 
 void draw_viewport_status(const char* text) {
-  ImGuiIO& io = ImGui::GetIO();
+  // Left of the right column (the layout's), where no panel covers it.
   ImVec2 extent = ImGui::CalcTextSize(text);
-  ImVec2 at(io.DisplaySize.x - extent.x - 12.0f, 10.0f);
+  ImVec2 at(panel_rect(PanelId::kComponents).x - extent.x - kLayoutMargin, 10.0f);
   ImGui::GetBackgroundDrawList()->AddText(at, IM_COL32(150, 154, 162, 255), text);
 }
 

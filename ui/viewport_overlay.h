@@ -17,7 +17,7 @@ bool apply_camera_input(render::OrbitCamera& camera);
 // (under every panel). Uses the camera as the viewport was drawn with it.
 void draw_skeleton_labels(const std::vector<render::SkeletonPose>& poses, const render::OrbitCamera& camera);
 
-// A line of text in the top-right corner of the viewport (frame time, hints).
+// A line of text at the top right of the viewport, left of the right column (frame time, hints).
 void draw_viewport_status(const char* text);
 
 }  // namespace mostyle::ui

@@ -4,6 +4,7 @@
 #include "app/editor_options.h"
 #include "app/imgui_session.h"
 
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -13,11 +14,14 @@
 
 #include <catch2/catch.hpp>
 #include <imgui.h>
+#include <imgui_internal.h>  // ImGui::FindWindowByName
 
 #include "tests/render/osmesa_context.h"
 
 #include "render/png_io.h"
 #include "tests/test_data.h"
+#include "ui/export_dialog.h"
+#include "ui/layout.h"
 
 using namespace mostyle::app;
 namespace fs = std::filesystem;
@@ -58,6 +62,29 @@ TEST_CASE("editor options: files and flags, both spellings") {
   CHECK_FALSE(r.options.offscreen);
 }
 
+TEST_CASE("editor options: --window-size sets the window and screenshot size, --paused starts paused") {
+  ParseResult r = parse({"--window-size", "1920x1080", "--paused"});
+  REQUIRE(r.status == ParseStatus::kRun);
+  CHECK(r.options.width == 1920);
+  CHECK(r.options.height == 1080);
+  CHECK(r.options.initial.paused);
+  r = parse({"--window-size=2560X1440"});
+  REQUIRE(r.status == ParseStatus::kRun);
+  CHECK(r.options.width == 2560);
+  CHECK(r.options.height == 1440);
+  CHECK_FALSE(r.options.initial.paused);
+  r = parse({});
+  CHECK(r.options.width == 1280);
+  CHECK(r.options.height == 720);
+  // The editor starts paused without a GL context; playing by default.
+  EditorOptions options;
+  options.files = {"/nonexistent/a.bvh"};
+  options.initial.paused = true;
+  CHECK_FALSE(Editor(options).state().playback.playing);
+  options.initial.paused = false;
+  CHECK(Editor(options).state().playback.playing);
+}
+
 TEST_CASE("editor options: defaults are the paper's, and --help") {
   ParseResult r = parse({});
   REQUIRE(r.status == ParseStatus::kRun);
@@ -68,6 +95,10 @@ TEST_CASE("editor options: defaults are the paper's, and --help") {
   CHECK(parse({"--help"}).status == ParseStatus::kHelp);
   CHECK(parse({"-h"}).status == ParseStatus::kHelp);
   CHECK_THAT(editor_usage(), Catch::Contains("--offscreen") && Catch::Contains("--screenshot"));
+  CHECK_THAT(editor_usage(), Catch::Contains("--window-size WxH") && Catch::Contains("--paused"));
+  // --help lists every key the keys window (F1) lists.
+  REQUIRE_FALSE(editor_keys().empty());
+  for (const KeyHelp& k : editor_keys()) CHECK_THAT(editor_usage(), Catch::Contains(k.keys) && Catch::Contains(k.action));
 }
 
 TEST_CASE("editor options: bad values and unknown flags are usage errors that say which") {
@@ -82,6 +113,11 @@ TEST_CASE("editor options: bad values and unknown flags are usage errors that sa
       {{"--frame", "-1"}, "--frame"},       {{"--screenshot"}, "--screenshot"},
       {{"--bogus"}, "--bogus"},             {{"-x"}, "-x"},
       {{"--offscreen"}, "--screenshot"},    {{"--offscreen=1", "--screenshot", "a.png"}, "--offscreen"},
+      {{"--window-size"}, "--window-size"}, {{"--window-size", "1280"}, "--window-size"},
+      {{"--window-size", "1280x"}, "--window-size"}, {{"--window-size", "x720"}, "--window-size"},
+      {{"--window-size", "100x100"}, "--window-size"}, {{"--window-size", "1280x720x3"}, "--window-size"},
+      {{"--window-size", "-1280x720"}, "--window-size"}, {{"--window-size=99999x720"}, "--window-size"},
+      {{"--paused=yes"}, "--paused"},
   };
   for (const Case& c : cases) {
     ParseResult r = parse(c.args);
@@ -165,6 +201,116 @@ TEST_CASE("the editor keeps rendering offscreen for hundreds of frames while dec
   CHECK(shown.sparsity == state.parameters.sparsity);
 }
 
+TEST_CASE("keys: F1 and ? show the keys list, Esc hides it, F frames all, Ctrl+0 resets the layout") {
+  const glm::ivec2 size(960, 540);
+  mostyle::test::OsMesaContext gl(size);
+  REQUIRE(gl.ok());
+  ImGuiSession imgui(/*persist_layout=*/false);
+  EditorOptions options;
+  options.initial.parameters.components = 4;
+  options.initial.paused = true;
+  Editor editor(options);
+  editor.wait_for_engine();
+  editor.init_graphics();
+  auto& state = editor.state();
+  ImGuiIO& io = ImGui::GetIO();
+  io.KeyMap[ImGuiKey_Escape] = 256;  // as GLFW's back-end maps it (GLFW_KEY_ESCAPE)
+  auto frame = [&]() {
+    io.DisplaySize = ImVec2(static_cast<float>(size.x), static_cast<float>(size.y));
+    io.DeltaTime = 1.0f / 60.0f;
+    editor.frame(FrameInput{size, 1.0f / 60.0f});
+  };
+  auto press = [&](int key) {
+    io.KeysDown[key] = true;
+    frame();
+    io.KeysDown[key] = false;
+    frame();
+  };
+  auto keys_shown = [&]() {
+    const ImGuiWindow* w = ImGui::FindWindowByName("Keys");
+    return w != nullptr && w->Active;
+  };
+  frame();
+  frame();
+  CHECK_FALSE(state.playback.playing);  // --paused
+  CHECK_FALSE(keys_shown());
+
+  press(kKeyF1);
+  CHECK(state.view.show_keys);
+  CHECK(keys_shown());
+  io.AddInputCharacter('?');
+  frame();
+  CHECK_FALSE(state.view.show_keys);
+  CHECK_FALSE(keys_shown());
+  io.AddInputCharacter('?');
+  frame();
+  CHECK(keys_shown());
+  press(256);
+  CHECK_FALSE(keys_shown());
+
+  // Dragging in the viewport turns the camera, never under the floor; F frames all again.
+  const float framed_yaw = editor.camera().yaw;
+  io.MousePos = ImVec2(480.0f, 230.0f);  // between the columns, above the DTW view: no panel
+  frame();
+  io.MouseDown[0] = true;
+  io.MousePos = ImVec2(560.0f, 200.0f);
+  frame();
+  io.MousePos = ImVec2(560.0f, 20.0f);  // far up: the eye goes down as far as it may
+  frame();
+  io.MouseDown[0] = false;
+  frame();
+  CHECK(editor.camera().yaw != Approx(framed_yaw));
+  CHECK(editor.camera().pitch == Approx(mostyle::render::OrbitCamera::kMinPitch));
+  CHECK(editor.camera().eye().y > 0.0f);
+  io.MousePos = ImVec2(-FLT_MAX, -FLT_MAX);
+  press(kKeyF);
+  CHECK(editor.camera().yaw == Approx(framed_yaw));
+  CHECK(editor.camera().pitch > mostyle::render::OrbitCamera::kMinPitch);
+
+  // A moved panel stays; Ctrl+0 puts it back.
+  using mostyle::ui::PanelId;
+  const char* files = mostyle::ui::panel_title(PanelId::kFiles);
+  const mostyle::ui::PanelRect home = mostyle::ui::compute_layout(
+      static_cast<float>(size.x), static_cast<float>(size.y),
+      mostyle::ui::playback_bar_height())[static_cast<size_t>(PanelId::kFiles)];
+  REQUIRE(ImGui::FindWindowByName(files) != nullptr);
+  CHECK(ImGui::FindWindowByName(files)->Pos.x == Approx(home.x).margin(1.0f));
+  ImGui::SetWindowPos(files, ImVec2(420.0f, 120.0f));
+  frame();
+  CHECK(ImGui::FindWindowByName(files)->Pos.x == 420.0f);
+  io.KeyCtrl = true;
+  press(kKeyZero);
+  io.KeyCtrl = false;
+  CHECK(ImGui::FindWindowByName(files)->Pos.x == Approx(home.x).margin(1.0f));
+  CHECK(ImGui::FindWindowByName(files)->Pos.y == Approx(home.y).margin(1.0f));
+
+  // With loop off, playback stops on the last frame: the button reads Play again.
+  state.playback.loop = false;
+  state.playback.playing = true;
+  for (int i = 0; i < 20 && state.playback.playing; ++i) {
+    state.playback.time_s = mostyle::ui::take_length_s(*state.reference_take()) - 0.001;
+    frame();
+  }
+  CHECK_FALSE(state.playback.playing);
+  CHECK(mostyle::ui::frame_at(*state.reference_take(), state.playback.time_s) == state.reference_take()->frames() - 1);
+
+  // Ctrl+E opens the export dialog; it goes when closed.
+  auto export_shown = [&]() {
+    const ImGuiWindow* w = ImGui::FindWindowByName(mostyle::ui::kExportDialogTitle);
+    return w != nullptr && w->Active;
+  };
+  CHECK_FALSE(export_shown());
+  io.KeyCtrl = true;
+  press(kKeyE);
+  io.KeyCtrl = false;
+  CHECK(state.view.show_export);
+  CHECK(export_shown());
+  state.view.show_export = false;
+  frame();
+  CHECK_FALSE(export_shown());
+  editor.shutdown_graphics();
+}
+
 TEST_CASE("mostyle-offscreen writes a 1280x720 screenshot of the editor") {
   const std::string out = (fs::temp_directory_path() / "mostyle_editor_test_offscreen.png").string();
   fs::remove(out);
@@ -194,4 +340,19 @@ TEST_CASE("mostyle without a display says so in one line and exits 1, --offscree
   fs::remove(out);
   CHECK(run(std::string(MOSTYLE_EXE) + " --alpha 7", &err) == 2);
   CHECK(err == "mostyle: --alpha: expected a number in [0, 1], got '7'\n");
+  CHECK(run(std::string(MOSTYLE_EXE) + " --window-size 12x7", &err) == 2);
+  CHECK(err == "mostyle: --window-size: expected WIDTHxHEIGHT in pixels, each 320 to 16384 (e.g. 1920x1080), got '12x7'\n");
+}
+
+TEST_CASE("a screenshot takes the size --window-size gives") {
+  const std::string out = (fs::temp_directory_path() / "mostyle_editor_test_size.png").string();
+  fs::remove(out);
+  std::string err;
+  CHECK(run(std::string(MOSTYLE_OFFSCREEN_EXE) + " --screenshot " + out + " --window-size 960x540 --paused", &err) == 0);
+  INFO(err);
+  REQUIRE(fs::exists(out));
+  mostyle::render::Image image = mostyle::render::read_png(out);
+  CHECK(image.width == 960);
+  CHECK(image.height == 540);
+  fs::remove(out);
 }

@@ -10,6 +10,7 @@
 #include "engine/io/csv_io.h"
 #include "engine/io/error.h"
 #include "engine/prepare/major_skeleton.h"
+#include "ui/session_file.h"
 
 namespace mostyle::fuzz {
 namespace {
@@ -121,8 +122,47 @@ bool read_job_line(std::string_view bytes) {
   }
 }
 
+bool read_session(std::string_view bytes) {
+  const std::string source = "fuzz.mostyle";
+  ui::SessionFile session;
+  try {
+    session = ui::parse_session(bytes, source);
+  } catch (const InputError& e) {
+    check_refusal(e, source);
+    return false;
+  }
+  const ui::Document& d = session.document;
+  const ui::SessionControls& c = d.controls;
+  check(d.parameters.alpha >= 0.0 && d.parameters.alpha <= 1.0, "alpha in [0, 1]");
+  check(d.parameters.components >= 1, "at least one component");
+  check(d.parameters.sparsity > 0.0 && d.parameters.sparsity <= 1.0, "sparsity in (0, 1]");
+  for (double a : c.component_alpha) check(a >= 0.0 && a <= 1.0, "component alphas in [0, 1]");
+  for (double f : c.basic_sparsities) check(f > 0.0 && f <= 1.0, "basic sparsities in (0, 1]");
+  check(c.basic_motions >= 0 && c.swap_level >= 0 && (c.swap_level == 0 || c.swap_level < c.basic_motions),
+        "the level from B is one of the basic motions");
+  check(c.selected_component == -1 && c.dtw_coordinate == 1, "a document keeps the view's own state at defaults");
+  for (const std::string& f : d.files) check(!f.empty(), "no empty take");
+  check(std::isfinite(session.playback.time_s) && session.playback.time_s >= 0.0, "the playhead is a time");
+  check(std::isfinite(session.playback.speed) && session.playback.speed > 0.0f, "the speed is positive");
+  if (session.camera) {
+    const ui::SessionCamera& cam = *session.camera;
+    check(std::isfinite(cam.distance) && cam.distance > 0.0f, "the camera distance is positive");
+    check(std::isfinite(cam.yaw) && std::isfinite(cam.pitch) && std::isfinite(cam.fov_y) && cam.fov_y > 0.0f,
+          "the camera angles are finite");
+    for (float x : cam.target) check(std::isfinite(x), "the camera target is finite");
+  }
+  // What was read is written, and the text written reads back as the same session.
+  const ui::SessionFile again = ui::parse_session(ui::format_session(session, source), source);
+  check(again.document == d, "round trip: the document");
+  check(again.camera == session.camera, "round trip: the camera");
+  check(again.playback.time_s == session.playback.time_s && again.playback.playing == session.playback.playing &&
+            again.playback.speed == session.playback.speed && again.playback.loop == session.playback.loop,
+        "round trip: the playback");
+  return true;
+}
+
 const std::vector<std::string>& target_names() {
-  static const std::vector<std::string> names = {"bvh", "mapping", "csv", "job_line"};
+  static const std::vector<std::string> names = {"bvh", "mapping", "csv", "job_line", "session"};
   return names;
 }
 
@@ -131,6 +171,7 @@ bool read_as(const std::string& target, std::string_view bytes) {
   if (target == "mapping") return read_mapping(bytes);
   if (target == "csv") return read_csv(bytes);
   if (target == "job_line") return read_job_line(bytes);
+  if (target == "session") return read_session(bytes);
   throw std::logic_error("no fuzz target named " + target);
 }
 

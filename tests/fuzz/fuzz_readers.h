@@ -2,8 +2,8 @@
 // The readers of outside input as the fuzz targets (tests/fuzz/*_fuzz.cpp) and the regression
 // test (tests/fuzz/regressions_test.cpp) call them: bytes in, and a check of what every caller
 // relies on. A file that loads is consistent (and, for BVH, is written and read back the same);
-// one that is refused gives one InputError line naming the source. Session files (issue 10) do
-// not exist yet: add their reader here and a target beside the others when they do.
+// one that is refused gives one InputError line naming the source. A session file that loads is
+// in range, and is written and read back the same.
 #include <string>
 #include <string_view>
 #include <vector>
@@ -17,9 +17,10 @@ bool read_bvh(std::string_view bytes);       // parse_bvh (engine/io/bvh_io.h), 
 bool read_mapping(std::string_view bytes);   // parse_mapping_overrides (engine/prepare/major_skeleton.h)
 bool read_csv(std::string_view bytes);       // parse_csv_matrix (engine/io/csv_io.h)
 bool read_job_line(std::string_view bytes);  // parse_job_line (app/job_line.h)
+bool read_session(std::string_view bytes);   // parse_session (ui/session_file.h), as "fuzz.mostyle"
 
 // The targets by the name of their folder in tests/fuzz/regressions/: "bvh", "mapping", "csv",
-// "job_line".
+// "job_line", "session".
 const std::vector<std::string>& target_names();
 bool read_as(const std::string& target, std::string_view bytes);
 

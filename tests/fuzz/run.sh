@@ -3,18 +3,18 @@
 # and runs each for SECONDS (default 30), seeded from tests/fuzz/seeds/, the repository's real
 # files (assemble_seeds.sh) and tests/fuzz/regressions/. Exits 1 when any target crashed, leaked,
 # timed out (10 s on one input) or went over 2 GB; the input is left in build-fuzz/findings/.
-#   tests/fuzz/run.sh [SECONDS [TARGET...]]     targets: bvh mapping csv job_line
+#   tests/fuzz/run.sh [SECONDS [TARGET...]]     targets: bvh mapping csv job_line session
 # A finding: fix the reader, copy the input to tests/fuzz/regressions/TARGET/ (the normal test
-# build replays it: tests/fuzz/regressions_test.cpp). Session files (issue 10) have no target yet.
+# build replays it: tests/fuzz/regressions_test.cpp).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 seconds="${1:-30}"
 shift $(($# > 0 ? 1 : 0))
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(bvh mapping csv job_line)
+[ ${#targets[@]} -gt 0 ] || targets=(bvh mapping csv job_line session)
 # Longest input per target: a BVH header of 38 joints and a few frames; a mapping file; a short
-# CSV; a JOBS line.
-declare -A max_len=([bvh]=16384 [mapping]=4096 [csv]=4096 [job_line]=4096)
+# CSV; a JOBS line; a session with per-component alphas and a palette.
+declare -A max_len=([bvh]=16384 [mapping]=4096 [csv]=4096 [job_line]=4096 [session]=8192)
 
 "$root/app/install-deps.sh"
 build="$root/build-fuzz"

@@ -133,3 +133,27 @@ TEST_CASE("follow halves the horizontal gap per half-life and keeps the height")
   camera.follow(glm::vec3(8.0f, 5.0f, -4.0f), 1.0f, 0.0f);  // no smoothing: snaps
   CHECK(camera.target.x == Approx(8.0f));
 }
+
+TEST_CASE("no gesture puts the eye under the floor") {
+  OrbitCamera camera;
+  camera.frame(box(glm::vec3(-0.3f, 0.0f, -0.2f), glm::vec3(0.3f, 1.8f, 0.2f)), kAspect);
+  // Dragging up as far as it goes: the eye stops a few degrees above the horizon.
+  camera.orbit(0.0f, -100000.0f);
+  CHECK(camera.pitch == Approx(OrbitCamera::kMinPitch));
+  CHECK(camera.eye().y > 0.0f);
+  // Zoomed right in and out, and panned down below the floor, still above it.
+  for (float steps : {40.0f, -80.0f}) {
+    camera.zoom(steps);
+    CHECK(camera.eye().y >= camera.distance * std::sin(OrbitCamera::kMinPitch) * 0.999f);
+  }
+  for (int i = 0; i < 50; ++i) {
+    camera.pan(0.0f, -400.0f, static_cast<float>(kViewport.y));
+    camera.orbit(0.0f, -400.0f);
+    CHECK(camera.eye().y > 0.0f);
+    CHECK(camera.pitch <= 1.5708f);
+  }
+  // Dragging down still looks from above, short of the pole.
+  camera.orbit(0.0f, 100000.0f);
+  CHECK(camera.eye().y > 0.0f);
+  CHECK(camera.pitch < 1.5708f);
+}

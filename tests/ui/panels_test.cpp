@@ -1,6 +1,7 @@
 // The blending editor's panels and its link to the engine (ui/blend_session.h), run as ImGui
 // frames with no window: the panels build over a loaded pair, alpha moves the blend in the same
 // frame, and a failed load shows its sentence while the previous pair stays.
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -10,43 +11,14 @@
 
 #include "tests/test_data.h"
 #include "tests/ui/imgui_frame.h"
-#include "ui/blend_session.h"
-#include "ui/playback_panel.h"
-#include "ui/components_panel.h"
-#include "ui/dtw_panel.h"
-#include "ui/files_panel.h"
-#include "ui/metrics_panel.h"
-#include "ui/parameters_panel.h"
-#include "ui/takes_panel.h"
+#include "tests/ui/loaded_session.h"
 
 using namespace mostyle;
 using namespace mostyle::ui;
+using test::all_panels;
+using test::LoadedSession;
 
 namespace {
-
-struct LoadedSession {
-  EditorState state;
-  BlendSession session;
-  LoadedSession() {
-    state.parameters.components = 6;  // small and quick
-    state.parameters.sparsity = 0.2;
-    session.request_decomposition(state);
-    session.load(test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"));
-    session.wait_idle(state);
-  }
-};
-
-std::vector<std::unique_ptr<Panel>> all_panels(BlendSession& session) {
-  std::vector<std::unique_ptr<Panel>> panels;
-  panels.push_back(std::make_unique<TakesPanel>());
-  panels.push_back(std::make_unique<ParametersPanel>(session));
-  panels.push_back(std::make_unique<FilesPanel>(session, test::asset("motions")));
-  panels.push_back(std::make_unique<DtwPanel>(session));
-  panels.push_back(std::make_unique<ComponentsPanel>(session));
-  panels.push_back(std::make_unique<MetricsPanel>(session));
-  panels.push_back(std::make_unique<PlaybackPanel>());
-  return panels;
-}
 
 // Distance between the same joint of two takes at one frame.
 double joint_distance(const Take& a, const Take& b, int frame, int joint) {
@@ -149,13 +121,16 @@ TEST_CASE("a failing load shows its error and keeps the previous pair") {
   CHECK(s.session.snapshot().prepared == before);
   REQUIRE(s.state.takes.size() == 3);
   CHECK(s.state.takes[kTakeBlend].positions == blend_before);
-  // The panels still draw (the files panel shows the sentence) and the recent list has the path.
+  // The panels still draw (the files panel shows the sentence); the mistyped path never joins the
+  // recent files, the pair that loaded is there.
   test::HeadlessImGui imgui;
   auto panels = all_panels(s.session);
   imgui.begin_frame();
   for (auto& panel : panels) panel->draw(s.state);
   CHECK(imgui.end_frame() > 1000);
-  CHECK(s.session.recent().front() == "/nonexistent/walk.bvh");
+  CHECK(std::find(s.session.recent().begin(), s.session.recent().end(), "/nonexistent/walk.bvh") ==
+        s.session.recent().end());
+  CHECK(s.session.recent().front() == test::asset("motions/cmu142_walk_happy.bvh"));
   // And a good pair after it clears the error.
   s.session.load(test::asset("motions/cmu142_walk_joy.bvh"), test::asset("motions/cmu142_walk_happy.bvh"));
   s.session.wait_idle(s.state);

@@ -1,0 +1,296 @@
+#include "app/cli_palette_commands.h"
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <memory>
+
+#include "app/cli_common.h"
+#include "app/cli_pipeline_common.h"
+#include "engine/export/export_solve.h"
+#include "engine/io/error.h"
+#include "engine/kinematics/units.h"
+#include "engine/run/palette.h"
+
+namespace mostyle::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// The options mix and transfer share with blend: decomposition, clean-up, outputs.
+struct MixFlags {
+  AlignFlags align;
+  int components = 10;
+  double sparsity = 0.1;
+  int iterations = 100;
+  bool no_limb = false, no_foot_lock = false, loop = false, components_only = false, no_local = false;
+  std::string timing = "mix";
+  std::string out, positions_out, report;
+  ChannelsFlag channels;
+
+  void add_to(CLI::App* cmd, const std::string& reference_timing_name) {
+    align.add_to(cmd);
+    cmd->add_option("--components,-k", components, "Number of shared components k")->capture_default_str();
+    cmd->add_option("--sparsity,-f", sparsity, "Fraction of non-zeros kept in C, in (0, 1]")->capture_default_str();
+    cmd->add_option("--iterations", iterations, "Decomposition iteration cap")->capture_default_str();
+    cmd->add_flag("--no-limb-constraint", no_limb, "Skip the limb-length constraint (paper 3.7)");
+    cmd->add_flag("--no-foot-lock", no_foot_lock, "Leave planted feet free (no foot-contact IK clean-up)");
+    cmd->add_option("--timing", timing,
+                    "mix: the output's timing is mixed with the weights; " + reference_timing_name +
+                        ": keep the first take's timeline")
+        ->check(CLI::IsMember(std::vector<std::string>{"mix", reference_timing_name}))
+        ->capture_default_str();
+    cmd->add_flag("--no-local", no_local,
+                  "Components may take channels anywhere instead of one connected piece of the skeleton each");
+    cmd->add_flag("--components-only", components_only,
+                  "Mix only what the k components reconstruct, leaving out each take's residual detail");
+    cmd->add_flag("--loop", loop, "Cut a seamless loop of 1 to 4 whole gait cycles (root travel per cycle kept)");
+    cmd->add_option("--out", out, "BVH file of the result on the first take's skeleton");
+    channels.add_to(cmd);
+    cmd->add_option("--positions-out", positions_out,
+                    "CSV frame,joint,x,y,z of the result's final major-joint positions (after the foot lock)");
+    cmd->add_option("--report", report, "JSON report");
+  }
+
+  DecomposeParams decompose_params() const {
+    DecomposeParams dp;
+    dp.components = components;
+    dp.sparsity = sparsity;
+    dp.max_iterations = iterations;
+    dp.local = !no_local;
+    return dp;
+  }
+
+  void set(MixParams& mp) const {
+    mp.reference_timing = timing != "mix";
+    mp.residual = !components_only;
+    mp.finish.limb_lengths = !no_limb;
+    mp.finish.foot_lock = !no_foot_lock;
+    mp.finish.loop = loop;
+  }
+};
+
+struct Palette {
+  std::shared_ptr<const PreparedPalette> prepared;
+  std::shared_ptr<const PaletteDecomposition> decomposition;
+  StageTimes times;
+};
+
+Palette prepare(const std::vector<std::string>& files, const MixFlags& flags) {
+  Palette p;
+  PrepareOptions o = flags.align.options();
+  const auto t0 = Clock::now();
+  std::vector<std::shared_ptr<const Clip>> clips;
+  for (const std::string& f : files) clips.push_back(std::make_shared<const Clip>(load_clip(f)));
+  p.times.load_ms = ms_since(t0);
+  p.prepared = prepare_palette(clips, o);
+  for (const auto& pair : p.prepared->pairs) {
+    p.times.preprocess_ms += pair->times.preprocess_ms;
+    p.times.dtw_ms += pair->times.dtw_ms;
+    for (const std::string& w : pair->alignment.warnings)
+      std::cerr << "mostyle: warning: " << pair->clip_b->source << ": " << w << "\n";
+  }
+  p.decomposition = decompose_palette(*p.prepared, flags.decompose_params());
+  p.times.decompose_ms = p.decomposition->elapsed_ms;
+  return p;
+}
+
+// Mixes, writes the outputs and the report. `r` already holds the command's own fields.
+int run_mix(const Palette& p, const std::vector<std::string>& files, const MixFlags& flags, const MixParams& mp,
+            Json r) {
+  const PreparedPalette& palette = *p.prepared;
+  const PaletteDecomposition& d = *p.decomposition;
+  StageTimes times = p.times;
+  MixScratch scratch;
+  MixResult result;
+  mix_palette(palette, d, mp, scratch, result);
+  times.synthesize_ms = result.synthesize_ms;
+  times.postprocess_ms = result.postprocess_ms;
+  const Eigen::MatrixXd& world = result.motion.world;
+  ExportFit fit;
+  const Clip& reference = *palette.takes.front().clip;
+  const ChannelLayout layout = flags.channels.layout(reference);
+  if (!flags.out.empty()) {
+    const auto t_export = Clock::now();
+    fit = export_blend_bvh(reference, export_joints(palette), world, source_frames_in_clip(palette, result),
+                           palette.fps, flags.out, layout)
+              .fit;
+    times.export_ms = ms_since(t_export);
+  }
+  const std::vector<std::string>& names = palette.takes.front().names;
+  if (!flags.positions_out.empty()) {
+    std::vector<int> columns(names.size());
+    for (size_t i = 0; i < columns.size(); ++i) columns[i] = static_cast<int>(i);
+    write_output(flags.positions_out, positions_csv(world, columns, names));
+  }
+  r["frames"] = world.rows();
+  r["fps"] = palette.fps;
+  r["duration_s"] = world.rows() / palette.fps;
+  r["components"] = flags.components;
+  r["sparsity"] = flags.sparsity;
+  r["joints"] = names;
+  r["timing"] = flags.timing;
+  r["residual"] = mp.residual;
+  Json takes = Json::array();
+  for (int i = 0; i < palette.size(); ++i) {
+    Json t;
+    t["file"] = files[static_cast<size_t>(i)];
+    t["weight"] = mp.weights[static_cast<size_t>(i)];
+    t["reconstruction_rmse"] = d.rmse[static_cast<size_t>(i)];
+    t["foot_sliding"] = palette.takes[static_cast<size_t>(i)].foot_sliding;
+    if (i > 0) t["alignment"] = alignment_json(*palette.pairs[static_cast<size_t>(i - 1)]);
+    t["source_frames"] = vector_json(result.sources.col(i));
+    takes.push_back(t);
+  }
+  r["takes"] = takes;
+  r["common_timeline"] = {{"samples", palette.samples()},
+                          {"reference_first", palette.timeline.frames[0][0]},
+                          {"reference_last", palette.timeline.frames[0][palette.samples() - 1]}};
+  if (flags.loop) r["loop"] = loop_json(result.motion.loop, palette.fps);
+  r["iterations"] = d.stacked.iterations;
+  r["local"] = d.params.local;
+  r["component_joints"] = component_joints_json(d.component_joints, names);
+  r["component_regions"] = component_regions_json(d.component_joints);
+  r["limb_length_max_error"] = result.motion.limb_length_max_error;
+  if (!flags.out.empty()) {
+    r["export_fit"] = {{"max", fit.max}, {"mean", fit.mean}};
+    r["channels"] = channel_layout_name(layout);
+  }
+  r["foot_lock"] = mp.finish.foot_lock;
+  r["foot_sliding"] = {{"raw", result.motion.foot_sliding_raw}, {"cleaned", result.motion.foot_sliding_cleaned}};
+  r["skeleton_height"] = guess_units(*palette.takes.front().clip).height;
+  r["timings_ms"] = {{"load", times.load_ms},         {"preprocess", times.preprocess_ms},
+                     {"dtw", times.dtw_ms},           {"decompose", times.decompose_ms},
+                     {"synthesize", times.synthesize_ms}, {"postprocess", times.postprocess_ms},
+                     {"export", times.export_ms}};
+  if (!flags.report.empty()) write_output(flags.report, r.dump(2) + "\n");
+  if (flags.report.empty() && flags.positions_out.empty()) std::cout << r.dump(2) << "\n";
+  return 0;
+}
+
+}  // namespace
+
+void add_mix_command(CLI::App& app, std::function<int()>* run) {
+  auto* cmd = app.add_subcommand("mix", "Mix the styles of 2 to 16 takes with weights (the style palette)");
+  struct Args {
+    std::vector<std::string> files;
+    std::vector<double> weights;
+    std::vector<std::string> part_weights;
+    MixFlags flags;
+  };
+  auto args = std::make_shared<Args>();
+  cmd->add_option("TAKES", args->files,
+                  "BVH takes; the first is the reference (its skeleton, units, world frame and start)")
+      ->required();
+  cmd->add_option("--weights", args->weights,
+                  "One weight per take, comma separated, summing to 1, each from -0.5 to 1.5 (default: equal)")
+      ->delimiter(',');
+  cmd->add_option("--part-weights", args->part_weights,
+                  "PART:w1,w2,...: one body part's weights, one per take (legs, arms, spine, left-leg, right-leg, "
+                  "left-arm, right-arm; repeat for several, a side wins over both sides); the rest take --weights");
+  args->flags.add_to(cmd, "reference");
+  cmd->callback([=] {
+    *run = [=] {
+      const size_t n = args->files.size();
+      if (n < 2 || n > static_cast<size_t>(kMaxPaletteTakes))
+        throw InputError("mix takes from 2 to " + std::to_string(kMaxPaletteTakes) + " BVH files, found " +
+                         std::to_string(n));
+      MixParams mp;
+      mp.weights = args->weights.empty() ? std::vector<double>(n, 1.0 / double(n)) : args->weights;
+      const auto given = parse_part_entries(args->part_weights, "--part-weights", n);
+      // Refuse bad weights before the files are read.
+      mp.Validate(static_cast<int>(n), 0);
+      for (const auto& [part, w] : given) {
+        MixParams check = mp;
+        check.weights = w;
+        try {
+          check.Validate(static_cast<int>(n), 0);
+        } catch (const InputError& e) {
+          throw InputError(std::string("--part-weights ") + body_part_name(part) + ": " + e.what());
+        }
+      }
+      args->flags.set(mp);
+      const Palette p = prepare(args->files, args->flags);
+      if (!given.empty()) mp.component_weights = part_weights(given, p.decomposition->component_joints, mp.weights);
+      Json r;
+      r["command"] = "mix";
+      r["weights"] = mp.weights;
+      if (!given.empty()) {
+        Json parts = Json::object();
+        for (const auto& [part, w] : given) parts[body_part_name(part)] = w;
+        r["part_weights"] = parts;
+      }
+      return run_mix(p, args->files, args->flags, mp, r);
+    };
+  });
+}
+
+void add_transfer_command(CLI::App& app, std::function<int()>* run) {
+  auto* cmd = app.add_subcommand(
+      "transfer", "Put the style change from a neutral take to a styled one onto a take of your own");
+  struct Args {
+    std::string content, neutral;
+    std::vector<std::string> styles;
+    std::vector<double> strengths;
+    std::vector<std::string> part_strengths;
+    MixFlags flags;
+  };
+  auto args = std::make_shared<Args>();
+  cmd->add_option("CONTENT", args->content,
+                  "BVH take that keeps its skeleton, path, length and timing base and takes on the style")
+      ->required();
+  cmd->add_option("--neutral", args->neutral, "BVH take of the action without the style")->required();
+  cmd->add_option("--style", args->styles, "BVH take of the action in the style (repeat for several styles)")
+      ->required();
+  cmd->add_option("--strength", args->strengths,
+                  "How much of each style, one per --style (comma separated or repeated), from -1 to 2; 0 leaves "
+                  "CONTENT as it is, 1 adds the whole change (default 1)")
+      ->delimiter(',');
+  cmd->add_option("--part-strength", args->part_strengths,
+                  "PART:s1,...: one body part's strengths, one per style (legs, arms, spine, left-leg, right-leg, "
+                  "left-arm, right-arm); the rest take --strength");
+  args->flags.add_to(cmd, "content");
+  cmd->callback([=] {
+    *run = [=] {
+      const size_t styles = args->styles.size();
+      std::vector<double> strengths = args->strengths.empty() ? std::vector<double>(styles, 1.0) : args->strengths;
+      if (strengths.size() != styles)
+        throw InputError("expected " + std::to_string(styles) + " strengths, one per --style, found " +
+                         std::to_string(strengths.size()));
+      if (styles + 2 > static_cast<size_t>(kMaxPaletteTakes))
+        throw InputError("transfer takes at most " + std::to_string(kMaxPaletteTakes - 2) + " styles");
+      MixParams mp;
+      mp.weights = transfer_weights(strengths);
+      // Content 1, neutral minus the strengths' sum, each style its strength.
+      mp.min_weight = -kMaxStrength * double(styles);
+      mp.max_weight = kMaxStrength + 1.0;
+      const auto given = parse_part_entries(args->part_strengths, "--part-strength", styles);
+      std::vector<std::pair<BodyPart, std::vector<double>>> given_weights;
+      for (const auto& [part, s] : given) given_weights.emplace_back(part, transfer_weights(s));
+      args->flags.set(mp);
+      std::vector<std::string> files{args->content, args->neutral};
+      files.insert(files.end(), args->styles.begin(), args->styles.end());
+      const Palette p = prepare(files, args->flags);
+      if (!given_weights.empty())
+        mp.component_weights = part_weights(given_weights, p.decomposition->component_joints, mp.weights);
+      Json r;
+      r["command"] = "transfer";
+      r["content"] = args->content;
+      r["neutral"] = args->neutral;
+      r["styles"] = args->styles;
+      r["strengths"] = strengths;
+      r["weights"] = mp.weights;
+      if (!given.empty()) {
+        Json parts = Json::object();
+        for (const auto& [part, s] : given) parts[body_part_name(part)] = s;
+        r["part_strengths"] = parts;
+      }
+      return run_mix(p, files, args->flags, mp, r);
+    };
+  });
+}
+
+}  // namespace mostyle::cli

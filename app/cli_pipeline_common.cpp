@@ -1,0 +1,156 @@
+#include "app/cli_pipeline_common.h"
+
+#include <cmath>
+#include <cstdlib>
+
+#include "engine/io/atomic_file.h"
+#include "engine/io/error.h"
+
+namespace mostyle::cli {
+
+void AlignFlags::add_to(CLI::App* cmd) {
+  cmd->add_option("--fps", fps, "Working and output frame rate (0 keeps the reference's)")->capture_default_str();
+  cmd->add_option("--dtw", dtw,
+                  "slope: slope-limited, open-ended DTW with a smooth warp; paper: the paper's plain "
+                  "end-to-end left-foot DTW")
+      ->check(CLI::IsMember({"slope", "paper"}))
+      ->capture_default_str();
+  cmd->add_option("--align-on", align_on,
+                  "What to align on: auto (left foot for locomotion, else the joints that move), left-foot, "
+                  "feet, hands or body")
+      ->check(CLI::IsMember({"auto", "left-foot", "feet", "hands", "body"}))
+      ->capture_default_str();
+  cmd->add_option("--max-slope", max_slope, "Neither take runs more than this many times faster than the other (2-4)")
+      ->capture_default_str();
+  cmd->add_flag("--closed-ends", closed_ends, "Align first frames to first and last to last (no open ends)");
+  cmd->add_option("--band", band, "--dtw paper: Sakoe-Chiba band half-width in frames (-1: none)")
+      ->capture_default_str();
+}
+
+PrepareOptions AlignFlags::options() const {
+  PrepareOptions o;
+  o.fps = fps;
+  o.align.method = parse_dtw_method(dtw);
+  o.align.on = parse_align_on(align_on);
+  o.align.band = band;
+  o.align.slope.max_slope = max_slope;
+  o.align.slope.open_ends = !closed_ends;
+  o.Validate();
+  return o;
+}
+
+void ChannelsFlag::add_to(CLI::App* cmd) {
+  cmd->add_option("--channels", value,
+                  "Channel layout of --out: rotations (rotations only below the root, constant translations in "
+                  "OFFSET, so every BVH reader agrees) or as-source (the reference's own channels); default "
+                  "rotations where the reference's position channels below the root keep one value")
+      ->check(CLI::IsMember({"as-source", "rotations"}));
+}
+
+ChannelLayout ChannelsFlag::layout(const Clip& reference) const {
+  return value.empty() ? default_channel_layout(reference) : parse_channel_layout(value);
+}
+
+MappingOverrides load_mapping(const std::string& path) {
+  if (path.empty()) return {};
+  return parse_mapping_overrides(read_file(path), path);
+}
+
+std::vector<std::pair<BodyPart, std::vector<double>>> parse_part_entries(const std::vector<std::string>& entries,
+                                                                         const std::string& flag, size_t count) {
+  std::vector<std::pair<BodyPart, std::vector<double>>> out;
+  for (const std::string& e : entries) {
+    const size_t colon = e.find(':');
+    if (colon == std::string::npos) throw InputError("expected PART:value in " + flag + ", found '" + e + "'");
+    std::vector<double> values;
+    const std::string list = e.substr(colon + 1);
+    for (size_t begin = 0; begin <= list.size();) {
+      const size_t comma = std::min(list.find(',', begin), list.size());
+      const std::string text = list.substr(begin, comma - begin);
+      begin = comma + 1;
+      char* end = nullptr;
+      const double v = std::strtod(text.c_str(), &end);
+      if (text.empty() || *end != '\0' || !std::isfinite(v))
+        throw InputError("expected a number after '" + e.substr(0, colon + 1) + "' in " + flag + ", found '" + text +
+                         "'");
+      values.push_back(v);
+    }
+    if (count > 0 && values.size() != count)
+      throw InputError("expected " + std::to_string(count) + (count == 1 ? " number" : " numbers") + " after '" +
+                       e.substr(0, colon + 1) + "' in " + flag + ", found " + std::to_string(values.size()));
+    out.emplace_back(parse_body_part(e.substr(0, colon)), std::move(values));
+  }
+  return out;
+}
+
+Json range_json(int first, int last, double fps) {
+  return {{"first", first}, {"last", last}, {"first_s", first / fps}, {"last_s", last / fps}};
+}
+
+// The alignment's summary: what it aligned on, the matched ranges, its quality.
+Json alignment_json(const PreparedPair& p) {
+  const Alignment& al = p.alignment;
+  Json j;
+  j["method"] = dtw_method_name(al.options.method);
+  j["feature"] = align_on_name(al.feature.on);
+  j["locomotion"] = al.feature.locomotion;
+  Json joints = Json::array();
+  for (int c : al.feature.columns) joints.push_back(p.names_a[c]);
+  j["joints"] = joints;
+  j["weights"] = al.feature.weights;
+  if (al.options.method == DtwMethod::kSlope) {
+    j["max_slope"] = al.options.slope.max_slope;
+    j["open_ends"] = al.options.slope.open_ends;
+    j["end_penalty"] = al.end_penalty;
+  }
+  j["cost"] = al.cost;
+  j["typical_cost"] = al.typical_cost;
+  j["frames_a"] = p.canonical_a.local.rows();
+  j["frames_b"] = p.canonical_b.local.rows();
+  j["matched_a"] = range_json(al.a_first, al.a_last, p.fps);
+  j["matched_b"] = range_json(al.b_first, al.b_last, p.fps);
+  j["samples"] = al.warp.samples();
+  j["max_cost_ratio"] = al.cost_ratio.size() ? al.cost_ratio.maxCoeff() : 0.0;
+  j["slope_range"] = {al.slope.size() ? al.slope.minCoeff() : 0.0, al.slope.size() ? al.slope.maxCoeff() : 0.0};
+  Json poor = Json::array();
+  for (const auto& [first, last] : al.poor)
+    poor.push_back({{"a", {al.warp.a[first], al.warp.a[last]}}, {"b", {al.warp.b[first], al.warp.b[last]}},
+                    {"cost_ratio", al.cost_ratio.segment(first, last - first + 1).mean()}});
+  j["poor_matches"] = poor;
+  j["warnings"] = al.warnings;
+  return j;
+}
+
+// One list of joint names per component (issue #9's `component_joints`).
+Json component_joints_json(const std::vector<ComponentJoints>& parts, const std::vector<std::string>& names) {
+  Json out = Json::array();
+  for (const ComponentJoints& c : parts) {
+    Json joints = Json::array();
+    for (int column : c.columns) joints.push_back(names[static_cast<size_t>(column)]);
+    out.push_back(joints);
+  }
+  return out;
+}
+
+// Per component: its plain name, body region and centre joint.
+Json component_regions_json(const std::vector<ComponentJoints>& parts) {
+  Json out = Json::array();
+  for (const ComponentJoints& c : parts) out.push_back({{"name", c.name}, {"region", body_region_name(c.region)}});
+  return out;
+}
+
+Json vector_json(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
+
+Json loop_json(const LoopCut& loop, double fps) {
+  return {{"cycles", loop.cycles},
+          {"frames", loop.frames()},
+          {"seconds", loop.frames() / fps},
+          {"cycle_seconds", loop.frames() / fps / std::max(1, loop.cycles)},
+          {"begin", loop.begin},
+          {"end", loop.end},
+          {"travel", {loop.travel.x(), loop.travel.y()}},
+          {"travel_distance", loop.travel.norm()},
+          {"turn_removed_degrees", loop.turn_removed * 57.29577951308232}};
+}
+
+}  // namespace mostyle::cli

@@ -1,0 +1,56 @@
+#pragma once
+// Pieces the style-pipeline subcommands (align, blend, mix, transfer) share: the alignment
+// flags, the clean-up flags, body-part entries and the report's JSON parts.
+#include <CLI/CLI.hpp>
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "engine/decompose/body_parts.h"
+#include "engine/export/channel_layout.h"
+#include "engine/post/loop.h"
+#include "engine/run/pipeline.h"
+
+namespace mostyle::cli {
+
+using Json = nlohmann::ordered_json;
+
+// --fps, --dtw, --align-on, --max-slope, --closed-ends, --band.
+struct AlignFlags {
+  double fps = 30.0;
+  int band = -1;
+  std::string dtw = "slope";
+  std::string align_on = "auto";
+  int max_slope = 2;
+  bool closed_ends = false;
+  void add_to(CLI::App* cmd);
+  PrepareOptions options() const;  // validated; throws InputError
+};
+
+// --channels as-source|rotations (unset: rotations where the reference's position channels below
+// the root keep one value, export/channel_layout.h).
+struct ChannelsFlag {
+  std::string value;
+  void add_to(CLI::App* cmd);
+  ChannelLayout layout(const Clip& reference) const;
+};
+
+// A mapping file's overrides (empty path: none).
+MappingOverrides load_mapping(const std::string& path);
+
+// "PART:v1,v2,..." entries (repeated) split into a part and its numbers; `flag` names the option
+// in errors. Each entry needs `count` numbers (0: any number). Throws InputError.
+std::vector<std::pair<BodyPart, std::vector<double>>> parse_part_entries(const std::vector<std::string>& entries,
+                                                                         const std::string& flag, size_t count);
+
+Json range_json(int first, int last, double fps);
+// The pair's alignment: what it aligned on, the matched ranges, its quality.
+Json alignment_json(const PreparedPair& p);
+Json component_joints_json(const std::vector<ComponentJoints>& parts, const std::vector<std::string>& names);
+Json component_regions_json(const std::vector<ComponentJoints>& parts);
+Json vector_json(const Eigen::VectorXd& v);
+Json loop_json(const LoopCut& loop, double fps);
+
+}  // namespace mostyle::cli

@@ -1,0 +1,117 @@
+// mostyle-cli mix and transfer, run as a user runs them (issue #9): mix of two is blend, weights
+// are checked before anything is read, transfer at strength 0 is the content take, bad input
+// exits 1 with one line and leaves no file.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/app/cli_sandbox.h"
+#include "tests/test_data.h"
+
+using namespace mostyle;
+
+namespace {
+
+class Sandbox : public test::CliSandbox {
+ public:
+  Sandbox() : test::CliSandbox("mostyle_cli_palette_test") {}
+};
+
+// The x, y, z columns of a positions CSV (frame,joint,x,y,z; names without commas).
+std::vector<double> positions(const std::string& csv) {
+  std::vector<double> values;
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    size_t at = line.find(',');
+    at = line.find(',', at + 1);
+    std::istringstream fields(line.substr(at + 1));
+    std::string v;
+    while (std::getline(fields, v, ',')) values.push_back(std::stod(v));
+  }
+  return values;
+}
+
+double max_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  REQUIRE(a.size() == b.size());
+  double worst = 0;
+  for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(a[i] - b[i]));
+  return worst;
+}
+
+std::string quoted(const std::string& path) { return "\"" + path + "\""; }
+
+const std::string kHappy = quoted(test::asset("motions/cmu142_walk_happy.bvh"));
+const std::string kMarching = quoted(test::asset("motions/cmu142_walk_marching.bvh"));
+const std::string kJoy = quoted(test::asset("motions/cmu142_walk_joy.bvh"));
+const std::string kClumsy = quoted(test::asset("motions/cmu142_walk_clumsy.bvh"));
+
+}  // namespace
+
+TEST_CASE("cli mix A B --weights 0.5,0.5 is blend A B --alpha 0.5", "[cli][palette]") {
+  Sandbox box;
+  const auto blend = box.cli("blend " + kHappy + " " + kMarching + " --alpha 0.5 --positions-out " +
+                             quoted(box.path("blend.csv")) + " --report " + quoted(box.path("blend.json")));
+  REQUIRE(blend.status == 0);
+  const auto mix = box.cli("mix " + kHappy + " " + kMarching + " --weights 0.5,0.5 --positions-out " +
+                           quoted(box.path("mix.csv")) + " --report " + quoted(box.path("mix.json")));
+  INFO(mix.err);
+  REQUIRE(mix.status == 0);
+  const auto report = nlohmann::json::parse(test::slurp(box.path("blend.json")));
+  const double height = report["skeleton_height"];
+  const auto mix_report = nlohmann::json::parse(test::slurp(box.path("mix.json")));
+  CHECK(mix_report["frames"] == report["frames"]);
+  CHECK(max_difference(positions(test::slurp(box.path("mix.csv"))), positions(test::slurp(box.path("blend.csv")))) <
+        0.005 * height);
+  CHECK(mix_report["takes"].size() == 2);
+  CHECK(mix_report["component_joints"].size() == 10);
+}
+
+TEST_CASE("cli mix: bad weights exit 1 with one line and write nothing", "[cli][palette]") {
+  Sandbox box;
+  const std::string out = " --out " + quoted(box.path("out.bvh"));
+  for (const std::string& weights : {"0.5,0.6,0", "2,-0.5,-0.5", "0.5,0.5", "a,b,c"}) {
+    const auto r = box.cli("mix " + kHappy + " " + kMarching + " " + kJoy + " --weights " + weights + out);
+    INFO(weights << ": " << r.err);
+    CHECK(r.status != 0);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') <= 2);
+    CHECK(box.count_files() == 0);
+  }
+  const auto one = box.cli("mix " + kHappy + out);
+  CHECK(one.status == 1);
+  CHECK(one.err.find("from 2 to 16") != std::string::npos);
+  const auto part = box.cli("mix " + kHappy + " " + kMarching + " --part-weights legs:0.5" + out);
+  CHECK(part.status == 1);
+  CHECK(part.err.find("--part-weights") != std::string::npos);
+  CHECK(box.count_files() == 0);
+}
+
+TEST_CASE("cli mix of four takes with per-part weights, and transfer, write BVH files", "[cli][palette]") {
+  Sandbox box;
+  const auto mix = box.cli("mix " + kHappy + " " + kMarching + " " + kJoy + " " + kClumsy +
+                           " --weights 0.4,0.2,0.2,0.2 --part-weights legs:0,1,0,0 --out " + quoted(box.path("mix.bvh")) +
+                           " --report " + quoted(box.path("mix.json")));
+  INFO(mix.err);
+  REQUIRE(mix.status == 0);
+  const auto report = nlohmann::json::parse(test::slurp(box.path("mix.json")));
+  CHECK(report["takes"].size() == 4);
+  CHECK(report["part_weights"]["legs"].size() == 4);
+  CHECK(report["export_fit"]["max"].get<double>() < 0.05 * report["skeleton_height"].get<double>());
+  CHECK(report["channels"] == "rotations");
+
+  const auto transfer = box.cli("transfer " + kClumsy + " --neutral " + kHappy + " --style " + kMarching +
+                                " --strength 0 --no-foot-lock --positions-out " + quoted(box.path("t.csv")) +
+                                " --report " + quoted(box.path("t.json")));
+  INFO(transfer.err);
+  REQUIRE(transfer.status == 0);
+  const auto t = nlohmann::json::parse(test::slurp(box.path("t.json")));
+  CHECK(t["weights"] == std::vector<double>{1.0, 0.0, 0.0});
+  const auto bad = box.cli("transfer " + kClumsy + " --neutral " + kHappy + " --style " + kMarching +
+                           " --strength 3 --out " + quoted(box.path("bad.bvh")));
+  CHECK(bad.status == 1);
+  CHECK(!std::filesystem::exists(box.path("bad.bvh")));
+}

@@ -1,0 +1,276 @@
+// The export dialog (ui/export_dialog.h) and its job (ui/export_job.h) over a loaded pair, with
+// no window: the file's frame rate and frames, the confirmation before an overwrite, the export
+// on its own thread, and the message that a new pair clears.
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include <catch2/catch.hpp>
+#include <imgui.h>
+#include <imgui_internal.h>  // ImGui::FindWindowByName
+
+#include "engine/io/bvh_io.h"
+#include "engine/io/job_control.h"
+#include "tests/test_data.h"
+#include "tests/ui/imgui_frame.h"
+#include "tests/ui/loaded_session.h"
+#include "ui/export_dialog.h"
+#include "ui/export_job.h"
+
+using namespace mostyle;
+using namespace mostyle::ui;
+using test::LoadedSession;
+namespace fs = std::filesystem;
+
+namespace {
+
+using Pressed = ExportDialog::Pressed;
+
+// A file in the temporary folder, removed before and after the test.
+struct TempFile {
+  std::string path;
+  explicit TempFile(const std::string& name) : path((fs::temp_directory_path() / name).string()) { fs::remove(path); }
+  ~TempFile() { fs::remove(path); }
+};
+
+void set_path(ExportDialog& dialog, const std::string& path) {
+  ExportSettings& s = dialog.settings();
+  path.copy(s.path, sizeof s.path - 1);
+  s.path[std::min(path.size(), sizeof s.path - 1)] = '\0';
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Export with the dialog's settings, waiting for its thread; the written clip.
+Clip export_and_read(ExportDialog& dialog, BlendSession& session, const std::string& path) {
+  set_path(dialog, path);
+  REQUIRE(dialog.press_export() == Pressed::kStarted);
+  dialog.job().wait();
+  dialog.poll();
+  INFO(session.export_message());
+  REQUIRE(session.export_ok());
+  return read_bvh_file(path);
+}
+
+}  // namespace
+
+TEST_CASE("export dialog: at 60 fps the file has twice the blend's frames less one, at 30 the blend's own") {
+  LoadedSession s;
+  REQUIRE(s.session.blend() != nullptr);
+  const int blend_frames = static_cast<int>(s.session.blend()->world.rows());
+  REQUIRE(s.session.snapshot().prepared->fps == 30.0);
+  ExportDialog dialog(s.session);
+  dialog.poll();
+  TempFile file("mostyle_export_dialog_rate.bvh");
+
+  dialog.settings().rate = ExportRate::k60;
+  const Clip at_60 = export_and_read(dialog, s.session, file.path);
+  CHECK(at_60.frames() == 2 * blend_frames - 1);
+  CHECK(at_60.fps() == Approx(60.0));
+  // Where it went, the rate, and how closely the file follows the blend, in metric units.
+  CHECK_THAT(s.session.export_message(), Catch::Contains("mostyle_export_dialog_rate.bvh"));
+  CHECK_THAT(s.session.export_message(), Catch::Contains("at 60 fps"));
+  CHECK_THAT(s.session.export_message(), Catch::Contains("m (worst joint and frame"));
+
+  dialog.settings().rate = ExportRate::k30;
+  fs::remove(file.path);
+  const Clip at_30 = export_and_read(dialog, s.session, file.path);
+  CHECK(at_30.frames() == blend_frames);
+
+  // A's own rate: CMU's 120 fps.
+  dialog.settings().rate = ExportRate::kSource;
+  fs::remove(file.path);
+  const Clip at_source = export_and_read(dialog, s.session, file.path);
+  CHECK(at_source.fps() == Approx(120.0));
+  CHECK(at_source.frames() == 4 * (blend_frames - 1) + 1);
+
+  // A rate the export refuses: said in a sentence, nothing written.
+  dialog.settings().rate = ExportRate::kCustom;
+  dialog.settings().custom_fps = 0.0;
+  fs::remove(file.path);
+  set_path(dialog, file.path);
+  REQUIRE(dialog.press_export() == Pressed::kStarted);
+  dialog.job().wait();
+  dialog.poll();
+  CHECK_FALSE(s.session.export_ok());
+  CHECK_THAT(s.session.export_message(), Catch::Contains("frame rate"));
+  CHECK_FALSE(fs::exists(file.path));
+}
+
+TEST_CASE("export dialog: an in and an out point give the frames between them, both included") {
+  LoadedSession s;
+  ExportDialog dialog(s.session);
+  dialog.poll();  // the range starts as all of the blend
+  REQUIRE(s.session.blend() != nullptr);
+  REQUIRE(s.session.blend()->world.rows() > 61);  // over 2 s at 30 fps
+  CHECK(dialog.settings().in_s == 0.0);
+  CHECK(dialog.settings().out_s == Approx((s.session.blend()->world.rows() - 1) / 30.0));
+  TempFile file("mostyle_export_dialog_range.bvh");
+  dialog.settings().range = ExportRange::kInOut;
+  dialog.settings().in_s = 1.0;
+  dialog.settings().out_s = 2.0;
+  CHECK(export_and_read(dialog, s.session, file.path).frames() == 31);
+  fs::remove(file.path);
+  dialog.settings().rate = ExportRate::k60;
+  CHECK(export_and_read(dialog, s.session, file.path).frames() == 61);
+  // An out point past the blend is brought back inside it by the next poll.
+  dialog.settings().out_s = 1e6;
+  dialog.poll();
+  CHECK(dialog.settings().out_s == Approx((s.session.blend()->world.rows() - 1) / 30.0));
+}
+
+TEST_CASE("export dialog: the loop is written whole, so it repeats at any rate") {
+  LoadedSession s;
+  s.session.controls().loop = true;
+  s.session.update_blend(s.state);
+  REQUIRE(s.session.blend() != nullptr);
+  REQUIRE(s.session.blend()->loop.cycles >= 1);
+  const int loop_frames = static_cast<int>(s.session.blend()->world.rows());
+  ExportDialog dialog(s.session);
+  dialog.poll();
+  TempFile file("mostyle_export_dialog_loop.bvh");
+  dialog.settings().range = ExportRange::kLoop;
+  dialog.settings().rate = ExportRate::k60;
+  CHECK(export_and_read(dialog, s.session, file.path).frames() == 2 * loop_frames);
+  CHECK_THAT(s.session.export_message(), Catch::Contains("loop"));
+  // Without a loop, the loop cannot be asked for.
+  s.session.controls().loop = false;
+  s.session.update_blend(s.state);
+  fs::remove(file.path);
+  set_path(dialog, file.path);
+  CHECK(dialog.press_export() == Pressed::kFailed);
+  CHECK_THAT(s.session.export_message(), Catch::Contains("no loop"));
+  CHECK_FALSE(fs::exists(file.path));
+}
+
+TEST_CASE("export dialog: an existing file is overwritten only once confirmed") {
+  LoadedSession s;
+  ExportDialog dialog(s.session);
+  dialog.poll();
+  TempFile file("mostyle_export_dialog_overwrite.bvh");
+  { std::ofstream(file.path) << "old\n"; }
+  set_path(dialog, file.path);
+  CHECK(dialog.press_export() == Pressed::kConfirm);
+  CHECK(dialog.confirming_overwrite());
+  CHECK_FALSE(dialog.job().running());
+  CHECK(read_text(file.path) == "old\n");
+  // Keep it: nothing written, and Overwrite alone asks again.
+  dialog.press_cancel();
+  CHECK_FALSE(dialog.confirming_overwrite());
+  CHECK(dialog.press_overwrite() == Pressed::kConfirm);
+  CHECK(read_text(file.path) == "old\n");
+  // Confirmed: written.
+  CHECK(dialog.press_overwrite() == Pressed::kStarted);
+  dialog.job().wait();
+  dialog.poll();
+  CHECK(s.session.export_ok());
+  CHECK(read_text(file.path).rfind("HIERARCHY", 0) == 0);
+  // The next export over it asks again.
+  CHECK(dialog.press_export() == Pressed::kConfirm);
+}
+
+TEST_CASE("export dialog: its message, and the session's, clears when new takes load") {
+  LoadedSession s;
+  ExportDialog dialog(s.session);
+  dialog.poll();
+  TempFile file("mostyle_export_dialog_message.bvh");
+  export_and_read(dialog, s.session, file.path);
+  CHECK_FALSE(s.session.export_message().empty());
+  s.session.load(test::asset("motions/cmu142_walk_joy.bvh"), test::asset("motions/cmu142_walk_happy.bvh"));
+  s.session.wait_idle(s.state);
+  REQUIRE(s.session.error().empty());
+  CHECK(s.session.export_message().empty());
+  CHECK_FALSE(s.session.export_ok());
+  dialog.poll();
+  CHECK(s.session.export_message().empty());
+  // A failure's sentence clears too.
+  set_path(dialog, "/nonexistent/dir/out.bvh");
+  REQUIRE(dialog.press_export() == Pressed::kStarted);
+  dialog.job().wait();
+  dialog.poll();
+  CHECK_FALSE(s.session.export_message().empty());
+  CHECK_FALSE(s.session.export_ok());
+  s.session.load(test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"));
+  s.session.wait_idle(s.state);
+  CHECK(s.session.export_message().empty());
+}
+
+TEST_CASE("export job: the job copies the blend, and a cancel before the solve writes nothing") {
+  LoadedSession s;
+  TempFile file("mostyle_export_job_cancel.bvh");
+  ExportOptions options;
+  options.path = file.path;
+  options.fps = s.session.snapshot().prepared->fps;
+  const ExportRequest request = make_export_request(s.session, options);
+  CHECK(request.options.path == fs::absolute(file.path).string());
+  CHECK(request.world == s.session.blend()->world);
+  JobControl cancelled;
+  cancelled.cancel = true;
+  const ExportOutcome outcome = run_export(request, &cancelled);
+  CHECK(outcome.cancelled);
+  CHECK_FALSE(outcome.ok);
+  CHECK_FALSE(fs::exists(file.path));
+  // The job runs one export at a time and hands its outcome over once.
+  ExportJob job;
+  CHECK(job.start(request));
+  job.wait();
+  ExportOutcome done;
+  CHECK(job.take_outcome(&done));
+  CHECK(done.ok);
+  CHECK(done.frames == s.session.blend()->world.rows());
+  CHECK_FALSE(job.take_outcome(&done));
+  CHECK(fs::exists(file.path));
+  // BlendSession::export_bvh: the same export, here and now.
+  fs::remove(file.path);
+  CHECK(s.session.export_bvh(file.path));
+  CHECK(read_bvh_file(file.path).frames() == s.session.blend()->world.rows());
+}
+
+TEST_CASE("export dialog: the window draws in every mode, and the files panel opens it") {
+  LoadedSession s;
+  test::HeadlessImGui imgui;
+  FilesPanel files(s.session, test::asset("motions"));
+  TempFile file("mostyle_export_dialog_window.bvh");
+  set_path(files.export_dialog(), file.path);
+  auto frame = [&]() {
+    imgui.begin_frame();
+    files.draw(s.state);
+    return imgui.end_frame();
+  };
+  frame();
+  CHECK(ImGui::FindWindowByName(kExportDialogTitle) == nullptr);  // closed until asked for
+  command_open_export(s.state);
+  CHECK(frame() > 0);
+  const ImGuiWindow* window = ImGui::FindWindowByName(kExportDialogTitle);
+  REQUIRE(window != nullptr);
+  CHECK(window->Active);
+  ExportDialog& dialog = files.export_dialog();
+  for (ExportRange range : {ExportRange::kAll, ExportRange::kInOut, ExportRange::kLoop}) {
+    dialog.settings().range = range;
+    dialog.settings().range_in_frames = range == ExportRange::kInOut;
+    CHECK(frame() > 0);
+  }
+  dialog.settings().range = ExportRange::kInOut;
+  dialog.settings().range_in_frames = false;
+  dialog.settings().rate = ExportRate::kCustom;
+  CHECK(frame() > 0);
+  dialog.settings().range = ExportRange::kAll;
+  dialog.settings().rate = ExportRate::k30;
+  // An export running under the window, then its outcome in both places.
+  REQUIRE(dialog.press_export() == Pressed::kStarted);
+  CHECK(frame() > 0);
+  dialog.job().wait();
+  frame();
+  CHECK(s.session.export_ok());
+  CHECK(fs::exists(file.path));
+  // Asking before an overwrite, drawn.
+  CHECK(dialog.press_export() == Pressed::kConfirm);
+  CHECK(frame() > 0);
+  CHECK(dialog.confirming_overwrite());
+  CHECK(s.state.view.show_export);
+}

@@ -1,0 +1,43 @@
+#pragma once
+// A BlendSession with the bundled pair loaded and decomposed (small k, quick), and every editor
+// panel over it, in the order the editor draws them: for the panel and layout tests.
+#include <memory>
+#include <vector>
+
+#include "tests/test_data.h"
+#include "ui/blend_session.h"
+#include "ui/components_panel.h"
+#include "ui/dtw_panel.h"
+#include "ui/files_panel.h"
+#include "ui/metrics_panel.h"
+#include "ui/parameters_panel.h"
+#include "ui/playback_panel.h"
+#include "ui/takes_panel.h"
+
+namespace mostyle::test {
+
+struct LoadedSession {
+  ui::EditorState state;
+  ui::BlendSession session;
+  LoadedSession() {
+    state.parameters.components = 6;  // small and quick
+    state.parameters.sparsity = 0.2;
+    session.request_decomposition(state);
+    session.load(asset("motions/cmu142_walk_happy.bvh"), asset("motions/cmu142_walk_marching.bvh"));
+    session.wait_idle(state);
+  }
+};
+
+inline std::vector<std::unique_ptr<ui::Panel>> all_panels(ui::BlendSession& session) {
+  std::vector<std::unique_ptr<ui::Panel>> panels;
+  panels.push_back(std::make_unique<ui::TakesPanel>());
+  panels.push_back(std::make_unique<ui::ParametersPanel>(session));
+  panels.push_back(std::make_unique<ui::FilesPanel>(session, asset("motions")));
+  panels.push_back(std::make_unique<ui::DtwPanel>(session));
+  panels.push_back(std::make_unique<ui::ComponentsPanel>(session));
+  panels.push_back(std::make_unique<ui::MetricsPanel>(session));
+  panels.push_back(std::make_unique<ui::PlaybackPanel>());
+  return panels;
+}
+
+}  // namespace mostyle::test

@@ -1,0 +1,51 @@
+#pragma once
+// What the animator edits in the editor, as one plain value: the blend parameters, the session's
+// controls (mode, weights, options, alignment, palette), the loaded takes and the view options
+// one expects to undo. Undo and redo (ui/history.h) keep a list of them; a session file
+// (ui/session_file.h) holds one. Plain data: no ImGui, no GL, no engine work.
+//
+// Left out, because they are where one looks rather than what one made: the playback (position,
+// speed, loop), the camera, the picked component (SessionControls::selected_component, which
+// hovering changes) and the coordinate the DTW view plots (SessionControls::dtw_coordinate). A
+// Document keeps those two at their defaults; the session files keep the camera and the playback
+// beside the Document.
+#include <string>
+#include <vector>
+
+#include "ui/blend_session.h"
+#include "ui/editor_state.h"
+
+namespace mostyle::ui {
+
+struct Document {
+  BlendParameters parameters;        // alpha, k, sparsity
+  SessionControls controls;          // selected_component and dtw_coordinate at their defaults
+  // The loaded takes as paths: a pair is A then B (A twice for A with itself); a palette is every
+  // take, the reference first. Empty: nothing loaded.
+  std::vector<std::string> files;
+  bool overlay = false;              // ViewOptions::overlay: the takes on one spot, not side by side
+};
+
+// Field by field. C++17 has no defaulted comparisons: a field added to one of these structs goes
+// into its operator== in ui/document.cpp too, or undo does not see it change.
+bool operator==(const BlendParameters& x, const BlendParameters& y);
+bool operator==(const PaletteControls& x, const PaletteControls& y);
+bool operator==(const SessionControls& x, const SessionControls& y);
+bool operator==(const Document& x, const Document& y);
+inline bool operator!=(const BlendParameters& x, const BlendParameters& y) { return !(x == y); }
+inline bool operator!=(const PaletteControls& x, const PaletteControls& y) { return !(x == y); }
+inline bool operator!=(const SessionControls& x, const SessionControls& y) { return !(x == y); }
+inline bool operator!=(const Document& x, const Document& y) { return !(x == y); }
+
+// `controls` with what a Document leaves out (selected_component, dtw_coordinate) at defaults.
+SessionControls document_controls(SessionControls controls);
+
+// Whether two lists of takes name the same files in the same order, whatever the spelling
+// ("a/../b.bvh" and "b.bvh", relative to the working folder or absolute). No file is opened.
+bool same_files(const std::vector<std::string>& x, const std::vector<std::string>& y);
+
+// Whether going from `x` to `y` needs a new decomposition: k, sparsity, the mode, the basic
+// motions or their sparsities differ.
+bool decomposition_differs(const Document& x, const Document& y);
+
+}  // namespace mostyle::ui

@@ -1,0 +1,158 @@
+#include "ui/export_job.h"
+
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <system_error>
+#include <utility>
+
+#include "engine/export/export_frames.h"
+#include "engine/io/error.h"
+#include "engine/kinematics/units.h"
+#include "engine/run/pipeline.h"
+#include "ui/blend_session.h"
+#include "ui/metrics_panel.h"
+
+namespace mostyle::ui {
+namespace fs = std::filesystem;
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// Progress once the frames are resampled: the solve and the write are the rest.
+constexpr float kResampledProgress = 0.1f;
+
+}  // namespace
+
+ExportRequest make_export_request(const BlendSession& session, const ExportOptions& options) {
+  if (options.path.empty()) throw InputError("Export: no file name given.");
+  const std::shared_ptr<const PreparedPair> pair = session.snapshot().prepared;
+  const BlendResult* blend = session.blend();
+  if (pair == nullptr || pair->clip_a == nullptr || blend == nullptr || blend->world.rows() == 0)
+    throw InputError("Export: nothing to export yet (no blend).");
+  if (options.range == ExportRange::kLoop && blend->loop.cycles <= 0)
+    throw InputError("Export: the blend has no loop; turn on Loop in the parameters panel, or export all frames.");
+  ExportRequest r;
+  r.clip = pair->clip_a;
+  r.joints = export_joints(*pair);
+  r.world = blend->world;
+  r.at = source_frames_in_clip(*pair, *blend);
+  r.working_fps = pair->fps;
+  r.loop_travel = blend->loop.travel;
+  r.options = options;
+  // Resolved now: the working folder is the one the person saw when they pressed Export.
+  std::error_code ec;
+  const fs::path absolute = fs::absolute(fs::path(options.path), ec);
+  if (!ec) r.options.path = absolute.string();
+  return r;
+}
+
+ExportOutcome run_export(const ExportRequest& request, JobControl* control) {
+  const auto t0 = Clock::now();
+  const ExportOptions& o = request.options;
+  ExportOutcome out;
+  out.path = o.path;
+  try {
+    if (request.clip == nullptr) throw InputError("Export: nothing to export yet (no blend).");
+    check_cancel(control);
+    const double fps = o.fps;  // checked by export_frames: a sentence for 0, a negative or a typo
+    ExportFrames frames;
+    switch (o.range) {
+      case ExportRange::kAll:
+        frames = export_frames(request.world, request.at, request.working_fps, fps, 0.0,
+                               motion_length_s(request.world.rows(), request.working_fps));
+        break;
+      case ExportRange::kInOut:
+        frames = export_frames(request.world, request.at, request.working_fps, fps, o.in_s, o.out_s);
+        break;
+      case ExportRange::kLoop:
+        frames = export_loop_frames(request.world, request.at, request.working_fps, fps, request.loop_travel);
+        break;
+    }
+    report_progress(control, kResampledProgress);
+    check_cancel(control);
+    const ExportResult result =
+        export_blend_bvh(*request.clip, request.joints, frames.world, frames.at, fps, o.path, o.layout);
+    report_progress(control, 1.0f);
+    out.ok = true;
+    out.frames = result.clip.frames();
+    out.fps = fps;
+    out.fit = result.fit;
+
+    // The fit in metric units when A's unit can be guessed (as the metrics panel says lengths).
+    const UnitsGuess units = guess_units(*request.clip);
+    const double cm_per_unit = centimetres_per_unit(units.name);
+    const std::string worst = length_in_words(result.fit.max, cm_per_unit, units.height);
+    const std::string mean = length_in_words(result.fit.mean, cm_per_unit, units.height);
+    // A loop lasts all its frames (the next repeat follows the last); a clip, first to last.
+    const double seconds = o.range == ExportRange::kLoop ? out.frames / fps : motion_length_s(out.frames, fps);
+    char text[160];
+    std::snprintf(text, sizeof text, "Exported %d frames at %g fps (%.2f s%s, %s) to ", out.frames, fps, seconds,
+                  o.range == ExportRange::kLoop ? ", a seamless loop" : "",
+                  o.layout == ChannelLayout::kRotations ? "rotation channels" : "A's channels");
+    out.message = text + o.path + ". A's skeleton in the file follows the blend within " + worst +
+                  " (worst joint and frame; " + mean + " on average).";
+  } catch (const Cancelled&) {
+    out.cancelled = true;
+    out.message = "Export cancelled: nothing was written.";
+  } catch (const std::exception& e) {  // InputError: a bad rate or range, a file that cannot be written
+    out.message = e.what();
+  }
+  out.ms = ms_since(t0);
+  return out;
+}
+
+ExportJob::~ExportJob() {
+  cancel();
+  wait();
+}
+
+bool ExportJob::start(ExportRequest request) {
+  if (running_.load()) return false;
+  if (thread_.joinable()) thread_.join();  // the previous export, finished: its outcome is stored
+  control_.cancel.store(false);
+  control_.progress.store(0.0f);
+  running_.store(true);
+  try {
+    thread_ = std::thread([this, r = std::move(request)]() {
+      ExportOutcome outcome = run_export(r, &control_);
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        outcome_ = std::move(outcome);
+        has_outcome_ = true;
+      }
+      running_.store(false);
+    });
+  } catch (const std::system_error& e) {  // no thread to be had: said as any failed export
+    std::lock_guard<std::mutex> lock(mutex_);
+    outcome_ = ExportOutcome();
+    outcome_.message = std::string("Export: could not start it (") + e.what() + ").";
+    has_outcome_ = true;
+    running_.store(false);
+  }
+  return true;
+}
+
+bool ExportJob::take_outcome(ExportOutcome* out) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!has_outcome_) return false;
+  *out = std::move(outcome_);
+  outcome_ = ExportOutcome();
+  has_outcome_ = false;
+  return true;
+}
+
+bool ExportJob::has_outcome() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return has_outcome_;
+}
+
+void ExportJob::wait() {
+  if (thread_.joinable()) thread_.join();
+}
+
+}  // namespace mostyle::ui
