@@ -20,6 +20,7 @@
 #include "ui/playback_panel.h"
 #include "ui/components_panel.h"
 #include "ui/dtw_panel.h"
+#include "ui/palette_panel.h"
 #include "ui/files_panel.h"
 #include "ui/layout.h"
 #include "ui/metrics_panel.h"
@@ -113,7 +114,7 @@ Editor::Editor(const EditorOptions& options) : session_(std::make_unique<ui::Ble
   } else {
     const std::vector<std::string> files = options.files.empty() ? default_motion_files() : options.files;
     session_->request_decomposition(state_);
-    session_->load(files.empty() ? std::string() : files[0], files.size() > 1 ? files[1] : std::string());
+    session_->load_files(files);  // three or more: the style palette
     first_take = files.empty() ? std::string() : files[0];
   }
   std::string folder = std::filesystem::path(first_take).parent_path().string();
@@ -125,6 +126,7 @@ Editor::Editor(const EditorOptions& options) : session_(std::make_unique<ui::Ble
   files_panel_ = files_panel.get();
   add_panel(std::move(files_panel));
   add_panel(std::make_unique<ui::DtwPanel>(*session_));
+  add_panel(std::make_unique<ui::PalettePanel>(*session_));
   add_panel(std::make_unique<ui::ComponentsPanel>(*session_));
   add_panel(std::make_unique<ui::MetricsPanel>(*session_));
   add_panel(std::make_unique<ui::PlaybackPanel>());
@@ -229,7 +231,7 @@ void Editor::frame_camera(float aspect) {
   }
   camera_.yaw = heading + 0.65f;
   camera_.pitch = 0.22f;
-  camera_.frame(b, aspect, kFrameFill);
+  camera_.frame(b, aspect, kFrameFill * free_fraction_);
 }
 
 bool Editor::animating() const {
@@ -325,6 +327,20 @@ void Editor::frame(const FrameInput& input) {
   session_->update_blend(state_);
   build_scene();
 
+  // The view's centre in the middle of the part of the window no panel covers (between the side
+  // columns, above the bottom strip), and framing sized to that part.
+  {
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    const auto rects = ui::compute_layout(display.x, display.y, ui::playback_bar_height());
+    const ui::PanelRect& left = rects[static_cast<size_t>(ui::PanelId::kTakes)];
+    const ui::PanelRect& right = rects[static_cast<size_t>(ui::PanelId::kComponents)];
+    const ui::PanelRect& strip = rects[static_cast<size_t>(ui::PanelId::kDtw)];
+    const float x0 = left.x + left.w, x1 = right.x, y0 = 0.0f, y1 = strip.y;
+    if (display.x > 0 && display.y > 0 && x1 > x0 && y1 > y0) {
+      camera_.lens_shift = glm::vec2((x0 + x1) / display.x - 1.0f, 1.0f - (y0 + y1) / display.y);
+      free_fraction_ = std::clamp(std::min((x1 - x0) / display.x, (y1 - y0) / display.y), 0.3f, 1.0f);
+    }
+  }
   // Camera: framed once on the first poses, then the mouse and the follow mode move it.
   if (!camera_framed_ || state_.view.request_reframe) {
     frame_camera(aspect);

@@ -158,6 +158,7 @@ class Editor {
   std::unique_ptr<render::GpuTimer> viewport_timer_;  // the viewport's cost, shown in a corner
   bool graphics_ready_ = false;
   bool camera_framed_ = false;
+  float free_fraction_ = 1.0f;  // of the window's size that no panel covers (framing)
   bool deterministic_ = false;
   bool software_renderer_ = false;  // llvmpipe & co: no multisampling unless asked
 

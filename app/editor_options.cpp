@@ -151,7 +151,7 @@ const std::vector<KeyHelp>& editor_keys() {
       {"Left drag", "in the 3D view: turn the camera around the skeletons"},
       {"Right or middle drag", "in the 3D view: move the camera sideways and up or down"},
       {"Mouse wheel", "in the 3D view: move the camera closer or further"},
-      {"Drop .bvh files", "on the window: two load as the pair, one as B"},
+      {"Drop .bvh files", "on the window: three or more open the style palette, two the pair, one B"},
   };
   return kKeys;
 }
@@ -166,7 +166,8 @@ std::string editor_usage() {
   return "usage: mostyle [A.bvh B.bvh ... | SESSION.mostyle] [options]\n"
          "\n"
          "Blend the styles of motion-capture takes live. With no files, opens the bundled\n"
-         "example pair (CMU subject 142: happy and marching walks). A session (.mostyle, saved\n"
+         "example pair (CMU subject 142: happy and marching walks). Three to sixteen files open\n"
+         "the style palette (the first is the reference). A session (.mostyle, saved\n"
          "with Ctrl+S) opens its takes with every parameter, the camera and the playback.\n"
          "\n"
          "options:\n"

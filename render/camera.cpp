@@ -46,7 +46,8 @@ glm::mat4 OrbitCamera::view() const { return glm::lookAt(eye(), target, glm::vec
 glm::mat4 OrbitCamera::projection(float aspect) const {
   float near_plane = std::max(distance * 0.01f, scene_radius_ * 1e-4f);
   float far_plane = std::max(distance, scene_radius_) * 200.0f;
-  return glm::perspective(fov_y, std::max(aspect, 1e-3f), near_plane, far_plane);
+  const glm::mat4 shift = glm::translate(glm::mat4(1.0f), glm::vec3(lens_shift, 0.0f));
+  return shift * glm::perspective(fov_y, std::max(aspect, 1e-3f), near_plane, far_plane);
 }
 
 void OrbitCamera::frame(const Bounds& b, float aspect, float fill) {

@@ -29,6 +29,9 @@ class OrbitCamera {
   float pitch = 0.0f;
   float distance = 10.0f;    // world units, > 0
   float fov_y = 0.61f;       // vertical field of view, radians (35 degrees)
+  // Where the view's centre sits in the window, in normalized device coordinates (0, 0: the
+  // window's centre): the editor puts it in the middle of the part no panel covers.
+  glm::vec2 lens_shift{0.0f};
 
   glm::vec3 eye() const;
   glm::vec3 forward() const;  // unit, eye -> target

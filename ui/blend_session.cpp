@@ -12,6 +12,7 @@
 #include "engine/export/export_solve.h"
 #include "render/skeleton_pose.h"
 #include "ui/export_job.h"
+#include "ui/joint_contacts.h"
 
 namespace mostyle::ui {
 namespace {
@@ -31,28 +32,27 @@ double ms_since(Clock::time_point t0) {
 
 std::string stem(const std::string& path) { return std::filesystem::path(path).stem().string(); }
 
-// frames x joints contact matrix from the engine's F x 2 foot contacts: ankle and toe columns.
-Eigen::MatrixXd joint_contacts(const Eigen::MatrixXd& feet, const FootRig& rig, int joints) {
-  Eigen::MatrixXd out;
-  if (feet.rows() == 0 || feet.cols() < 2) return out;
-  out = Eigen::MatrixXd::Zero(feet.rows(), joints);
-  for (int side = 0; side < 2; ++side) {
-    for (int column : {rig.legs[side].ankle, rig.legs[side].toe}) {
-      if (column < 0 || column >= joints) continue;
-      out.col(column) = (feet.col(side).array() > 0.5).cast<double>().matrix();
-    }
-  }
-  return out;
-}
-
 }  // namespace
 
 BlendSession::BlendSession() : snapshot_(worker_.snapshot()) {}
 BlendSession::~BlendSession() = default;
 
+void BlendSession::load_files(const std::vector<std::string>& paths) {
+  if (paths.size() <= 2) {
+    load(paths.empty() ? std::string() : paths[0], paths.size() > 1 ? paths[1] : std::string());
+    return;
+  }
+  requested_files_ = paths;
+  requested_a_ = paths[0];
+  requested_b_ = paths[1];
+  worker_.load_palette(paths, prepare_options());
+}
+
 void BlendSession::load(const std::string& path_a, const std::string& path_b) {
   requested_a_ = path_a;
   requested_b_ = path_b;
+  requested_files_ = {path_a};
+  if (!path_b.empty()) requested_files_.push_back(path_b);
   worker_.load(path_a, path_b, prepare_options());
 }
 
@@ -63,6 +63,10 @@ PrepareOptions BlendSession::prepare_options() const {
 }
 
 void BlendSession::realign() {
+  if (snapshot_->palette) {
+    worker_.load_palette(snapshot_->palette_paths, prepare_options());
+    return;
+  }
   if (!snapshot_->prepared) return;
   worker_.load(snapshot_->path_a, snapshot_->path_b, prepare_options());
 }
@@ -79,6 +83,16 @@ void BlendSession::request_decomposition(const EditorState& state) {
   }
   requested_ = p;
   worker_.decompose(p);
+}
+
+// Remembered once loaded: a mistyped path never joins the recent files. paths: first the newest.
+void BlendSession::remember_recent(const std::vector<std::string>& paths) {
+  for (auto path = paths.rbegin(); path != paths.rend(); ++path) {
+    if (path->empty()) continue;
+    recent_.erase(std::remove(recent_.begin(), recent_.end(), *path), recent_.end());
+    recent_.push_front(*path);
+  }
+  while (recent_.size() > kRecentFiles) recent_.pop_back();
 }
 
 void BlendSession::set_recent(const std::vector<std::string>& paths) {
@@ -139,6 +153,14 @@ void BlendSession::poll(EditorState& state) {
     seen_prepared_ = snapshot_->prepared.get();
     take_up_prepared(state);
   }
+  if (snapshot_->palette.get() != seen_palette_) {
+    seen_palette_ = snapshot_->palette.get();
+    palette_view_.clear();
+    if (seen_palette_ != nullptr) {
+      remember_recent(snapshot_->palette_paths);
+      palette_view_.take_up(*seen_palette_, snapshot_->palette_paths, snapshot_->warnings, controls_.palette, state);
+    }
+  }
   const DecomposedPair* d = snapshot_->decomposed.get();
   if (d != nullptr && d != seen_decomposed_) {
     seen_decomposed_ = d;
@@ -172,13 +194,7 @@ void BlendSession::take_up_prepared(EditorState& state) {
   export_ok_ = false;
   blended_decomposed_ = nullptr;
   if (p == nullptr) return;
-  // Remembered once loaded: a mistyped path never joins the recent files.
-  for (const std::string& path : {snapshot_->path_b, snapshot_->path_a}) {
-    if (path.empty()) continue;
-    recent_.erase(std::remove(recent_.begin(), recent_.end(), path), recent_.end());
-    recent_.push_front(path);
-  }
-  while (recent_.size() > kRecentFiles) recent_.pop_back();
+  remember_recent({snapshot_->path_a, snapshot_->path_b});
   const int joints = static_cast<int>(p->majors.size());
   auto make = [&](const std::string& label, const glm::vec3& color, const Eigen::MatrixXd& contacts) {
     Take t;
@@ -259,6 +275,10 @@ void BlendSession::place(EditorState& state) {
 }
 
 void BlendSession::update_blend(EditorState& state) {
+  if (snapshot_->palette) {
+    palette_view_.update(*snapshot_->palette, snapshot_->palette_decomposition.get(), controls_, state);
+    return;
+  }
   const PreparedPair* p = snapshot_->prepared.get();
   const DecomposedPair* d = snapshot_->decomposed.get();
   if (p == nullptr || state.takes.size() != 3) return;

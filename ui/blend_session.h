@@ -18,6 +18,7 @@
 #include "engine/run/pipeline.h"
 #include "engine/run/worker.h"
 #include "ui/editor_state.h"
+#include "ui/palette_view.h"
 
 namespace mostyle::ui {
 
@@ -26,7 +27,7 @@ namespace mostyle::ui {
 struct PaletteControls {
   std::vector<double> weights;                 // one per take, summing to 1
   bool per_part = false;                       // weights per body part (legs, arms, spine)
-  std::vector<std::vector<double>> part_weights;  // [legs, arms, spine] x takes
+  std::vector<std::vector<double>> part_weights;  // [legs, arms, spine] x takes; empty row: the overall weights
   bool transfer = false;                       // transfer mode instead of a mix
   int content = 0, neutral = 1;                // transfer: takes by index; every other take is a style
   std::vector<double> strengths;               // transfer: one per take (used for the styles)
@@ -79,6 +80,14 @@ class BlendSession {
   // Asks the worker for a pair (b empty: A with itself). What was loaded stays until it succeeds;
   // a failure shows up as error() on a later poll(). The paths join recent() once they loaded.
   void load(const std::string& path_a, const std::string& path_b);
+  // Several files: one or two load as the pair (one: A with itself); three to sixteen as the
+  // style palette (the first the reference), mixed with controls().palette's weights.
+  void load_files(const std::vector<std::string>& paths);
+  // The files last asked for (pair or palette), loaded or not.
+  const std::vector<std::string>& requested_files() const { return requested_files_; }
+  // The palette when one is loaded (then no pair is: snapshot().prepared is null), its mix.
+  const PreparedPalette* palette() const { return snapshot_->palette.get(); }
+  const PaletteView& palette_view() const { return palette_view_; }
   // Aligns the loaded pair again with controls().align (the worker re-prepares, then decomposes).
   void realign();
   // The preparation options the controls ask for.
@@ -145,6 +154,7 @@ class BlendSession {
   void compute_dtw_image();
 
   void poll_sweep();
+  void remember_recent(const std::vector<std::string>& paths);
 
   Worker worker_;
   std::unique_ptr<Worker> sweep_worker_;  // error against k, off the main worker
@@ -177,6 +187,9 @@ class BlendSession {
   double export_ms_ = -1.0;
   std::deque<std::string> recent_;
   std::string requested_a_, requested_b_;
+  std::vector<std::string> requested_files_;
+  PaletteView palette_view_;
+  const PreparedPalette* seen_palette_ = nullptr;
   std::vector<std::string> dropped_;
 };
 

@@ -24,8 +24,25 @@ void ComponentsPanel::draw(EditorState& state) {
   const PreparedPair* p = session_.snapshot().prepared.get();
   const DecomposedPair* d = session_.snapshot().decomposed.get();
   SessionControls& c = session_.controls();
+  if (const PaletteDecomposition* pd = session_.snapshot().palette_decomposition.get()) {
+    // The style palette: its shared components by body part, with their joints.
+    const PreparedPalette* palette = session_.palette();
+    ImGui::TextColored(kDimColor, "%d components shared by %d takes", pd->components(), palette->size());
+    ImGui::PushTextWrapPos(0.0f);
+    for (const ComponentJoints& cj : pd->component_joints) {
+      std::string joints;
+      for (int column : cj.columns) joints += (joints.empty() ? "" : ", ") + palette->takes.front().names[static_cast<size_t>(column)];
+      ImGui::Text("%s", cj.name.c_str());
+      ImGui::SameLine();
+      ImGui::TextColored(kDimColor, "%s", joints.c_str());
+    }
+    ImGui::PopTextWrapPos();
+    ImGui::End();
+    return;
+  }
   if (p == nullptr || d == nullptr) {
-    ImGui::TextColored(kDimColor, "Waiting for the decomposition...");
+    ImGui::TextColored(kDimColor, session_.palette() ? "Waiting for the palette's decomposition..."
+                                                     : "Waiting for the decomposition...");
     ImGui::End();
     return;
   }

@@ -42,6 +42,7 @@ int output_frame_at(const BlendResult* blend, double u) {
 }  // namespace
 
 void DtwPanel::draw(EditorState& state) {
+  if (session_.palette() != nullptr) return;  // the style palette has the strip (palette_panel.h)
   place_panel(PanelId::kDtw, state);
   if (!ImGui::Begin(panel_title(PanelId::kDtw))) {
     ImGui::End();

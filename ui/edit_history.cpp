@@ -7,10 +7,19 @@
 namespace mostyle::ui {
 namespace {
 
-// The takes the worker was last asked for, as a Document lists them; empty before any load.
+// The takes the worker was last asked for, as a Document lists them (A twice for A with itself);
+// empty before any load.
 std::vector<std::string> requested_files(const BlendSession& session) {
+  if (session.requested_files().size() >= 3) return session.requested_files();  // a palette
   if (session.requested_a().empty()) return {};
   return {session.requested_a(), session.requested_b().empty() ? session.requested_a() : session.requested_b()};
+}
+
+// The takes of a snapshot, as a Document lists them.
+std::vector<std::string> loaded_files(const WorkerSnapshot& snap) {
+  if (snap.palette) return snap.palette_paths;
+  if (snap.prepared) return {snap.path_a, snap.path_b};
+  return {};
 }
 
 }  // namespace
@@ -19,11 +28,7 @@ Document capture_document(const EditorState& state, BlendSession& session) {
   Document d;
   d.parameters = state.parameters;
   d.controls = document_controls(session.controls());
-  const WorkerSnapshot& snap = session.snapshot();
-  if (snap.palette)
-    d.files = snap.palette_paths;
-  else if (snap.prepared)
-    d.files = {snap.path_a, snap.path_b};
+  d.files = loaded_files(session.snapshot());
   d.overlay = state.view.overlay;
   return d;
 }
@@ -42,7 +47,7 @@ void apply_document(const Document& document, EditorState& state, BlendSession& 
   // The decomposition first: a load decomposes with the parameters last asked for.
   if (decomposition_differs(before, document)) session.request_decomposition(state);
   if (!document.files.empty() && !same_files(takes, document.files)) {
-    session.load(document.files[0], document.files.size() > 1 ? document.files[1] : std::string());
+    session.load_files(document.files);  // a pair, or a palette of three or more
   } else if (before.controls.align != document.controls.align) {
     session.realign();
   }
@@ -66,9 +71,7 @@ bool load_pending(const BlendSession& session) {
   const WorkerStatus status = session.status();
   if (status.stage == WorkerStage::kLoading) return true;
   if (!status.pending || session.requested_a().empty()) return false;
-  const WorkerSnapshot& snap = session.snapshot();
-  const std::vector<std::string> asked = requested_files(session);
-  return asked[0] != snap.path_a || asked[1] != snap.path_b;
+  return requested_files(session) != loaded_files(session.snapshot());
 }
 
 void EditHistory::record(const EditorState& state, BlendSession& session, bool item_active) {

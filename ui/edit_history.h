@@ -25,11 +25,10 @@ Document capture_document(const EditorState& state, BlendSession& session);
 
 // Makes `document` the editor's: the parameters, the controls (the picked component and the DTW
 // view's coordinate stay), the overlay; then asks the worker for what that changes: a load when
-// the takes differ from those loaded or being loaded (the load aligns them with the new options),
-// else a re-alignment when the alignment options differ; and a decomposition when k, sparsity,
-// the mode or the basic motions differ. Returns at once: the takes arrive on a later poll().
-// A palette (three or more files) loads as the pair of its first two for now: TODO(#9), load it
-// whole when BlendSession loads palettes.
+// the takes differ from those loaded or being loaded (a pair, or a palette of three or more:
+// BlendSession::load_files; the load aligns them with the new options), else a re-alignment when
+// the alignment options differ; and a decomposition when k, sparsity, the mode or the basic
+// motions differ. Returns at once: the takes arrive on a later poll().
 void apply_document(const Document& document, EditorState& state, BlendSession& session);
 
 // A document read from a session file at `session_path`: apply_document, except that when one

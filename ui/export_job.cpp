@@ -30,6 +30,24 @@ constexpr float kResampledProgress = 0.1f;
 
 ExportRequest make_export_request(const BlendSession& session, const ExportOptions& options) {
   if (options.path.empty()) throw InputError("Export: no file name given.");
+  if (const PreparedPalette* palette = session.palette()) {  // the style palette's mix
+    const MixResult* mix = session.palette_view().mix();
+    if (mix == nullptr || mix->motion.world.rows() == 0) throw InputError("Export: nothing to export yet (no mix).");
+    if (options.range == ExportRange::kLoop && mix->motion.loop.cycles <= 0)
+      throw InputError("Export: the mix has no loop; turn on Loop in the parameters panel, or export all frames.");
+    ExportRequest r;
+    r.clip = palette->takes.front().clip;
+    r.joints = export_joints(*palette);
+    r.world = mix->motion.world;
+    r.at = source_frames_in_clip(*palette, *mix);
+    r.working_fps = palette->fps;
+    r.loop_travel = mix->motion.loop.travel;
+    r.options = options;
+    std::error_code ec;
+    const fs::path absolute = fs::absolute(fs::path(options.path), ec);
+    if (!ec) r.options.path = absolute.string();
+    return r;
+  }
   const std::shared_ptr<const PreparedPair> pair = session.snapshot().prepared;
   const BlendResult* blend = session.blend();
   if (pair == nullptr || pair->clip_a == nullptr || blend == nullptr || blend->world.rows() == 0)

@@ -92,17 +92,22 @@ void FilesPanel::draw(EditorState& state) {
     b_.set(synced_b_);
   }
 
-  // Dropped files: two replace the pair, one replaces B (the style blended in).
+  // Dropped files: three or more open the style palette (the first the reference), two replace
+  // the pair, one replaces B (the style blended in).
   if (!s.dropped().empty()) {
     std::vector<std::string> files;
     files.swap(s.dropped());
-    if (files.size() >= 2) {
-      a_.set(files[0]);
-      b_.set(files[1]);
+    if (files.size() >= 3) {
+      s.load_files(files);
     } else {
-      b_.set(files[0]);
+      if (files.size() >= 2) {
+        a_.set(files[0]);
+        b_.set(files[1]);
+      } else {
+        b_.set(files[0]);
+      }
+      s.load(a_.path(), b_.path());
     }
-    s.load(a_.path(), b_.path());
   }
   place_panel(PanelId::kFiles, state);
   if (!ImGui::Begin(panel_title(PanelId::kFiles))) {

@@ -25,9 +25,14 @@ void ParametersPanel::draw(EditorState& state) {
   const DecomposedPair* d = s.snapshot().decomposed.get();
   ImGui::PushItemWidth(-120.0f);  // room for the labels on the right
 
-  float alpha = static_cast<float>(p.alpha);
-  if (ImGui::SliderFloat("alpha", &alpha, 0.0f, 1.0f, "%.2f")) p.alpha = alpha;  // blended this frame
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: style A, 1: style B. Applied immediately.");
+  // With the style palette loaded, its panel holds the weights; alpha, the mode and the body
+  // parts' alphas are the pair's.
+  const bool palette = s.palette() != nullptr;
+  if (!palette) {
+    float alpha = static_cast<float>(p.alpha);
+    if (ImGui::SliderFloat("alpha", &alpha, 0.0f, 1.0f, "%.2f")) p.alpha = alpha;  // blended this frame
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: style A, 1: style B. Applied immediately.");
+  }
 
   bool redecompose = false;
   ImGui::SliderInt("components (k)", &p.components, 1, 40);
@@ -42,11 +47,11 @@ void ParametersPanel::draw(EditorState& state) {
     ImGui::SetTooltip("Share of the joints' channels each component may move (0.1: a tenth).\n"
                       "Small: each component is a small body part. Recomputed when you let go.");
   int mode = c.mode == BlendMode::kShared ? 0 : 1;
-  if (ImGui::Combo("mode", &mode, "shared\0paper\0")) {
+  if (!palette && ImGui::Combo("mode", &mode, "shared\0paper\0")) {
     c.mode = mode == 0 ? BlendMode::kShared : BlendMode::kPaper;
     redecompose = true;
   }
-  if (ImGui::IsItemHovered())
+  if (!palette && ImGui::IsItemHovered())
     ImGui::SetTooltip("shared: one component set for A and B (alpha 1 is B)\npaper: separate decompositions, "
                       "cores blended (paper 3.6)");
   int align_on = static_cast<int>(c.align.on);
@@ -107,7 +112,7 @@ void ParametersPanel::draw(EditorState& state) {
     ImGui::PopTextWrapPos();
   }
 
-  if (c.mode == BlendMode::kShared) {
+  if (c.mode == BlendMode::kShared && !palette) {
     const bool parts = ImGui::CollapsingHeader("Body parts");
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("A different alpha for the legs, the arms, the spine, or each component");
     if (parts) {
@@ -154,7 +159,7 @@ void ParametersPanel::draw(EditorState& state) {
         }
       }
     }
-  } else {
+  } else if (!palette) {
     const bool basic = ImGui::CollapsingHeader("Basic motions", ImGuiTreeNodeFlags_DefaultOpen);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Paper mode: the takes in levels of motion, one level from B");
     if (basic) {

@@ -356,3 +356,166 @@ TEST_CASE("a screenshot takes the size --window-size gives") {
   CHECK(image.height == 540);
   fs::remove(out);
 }
+
+TEST_CASE("editor options: a .mostyle argument opens that session, alone") {
+  ParseResult r = parse({"day.mostyle", "--paused"});
+  REQUIRE(r.status == ParseStatus::kRun);
+  CHECK(r.options.session_path == "day.mostyle");
+  CHECK(r.options.files.empty());
+  CHECK(parse({"work/Day.MOSTYLE"}).options.session_path == "work/Day.MOSTYLE");
+  CHECK(parse({"a.bvh"}).options.session_path.empty());
+  r = parse({"a.bvh", "day.mostyle"});
+  CHECK(r.status == ParseStatus::kUsageError);
+  CHECK_THAT(r.error, Catch::Contains("day.mostyle"));
+  CHECK_THAT(editor_usage(), Catch::Contains("SESSION.mostyle"));
+}
+
+TEST_CASE("sessions and undo: Ctrl+Z / Ctrl+Y undo and redo a load, a saved session opens as it was") {
+  namespace ui = mostyle::ui;
+  const glm::ivec2 size(960, 540);
+  mostyle::test::OsMesaContext gl(size);
+  REQUIRE(gl.ok());
+  ImGuiSession imgui(/*persist_layout=*/false);
+  const fs::path dir = fs::temp_directory_path() / "mostyle_editor_test_sessions";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string happy = mostyle::test::asset("motions/cmu142_walk_happy.bvh");
+  const std::string marching = mostyle::test::asset("motions/cmu142_walk_marching.bvh");
+  const std::string joy = mostyle::test::asset("motions/cmu142_walk_joy.bvh");
+  const std::string day = (dir / "day.mostyle").string();
+  EditorOptions options;
+  options.files = {happy, marching};
+  options.initial.parameters.components = 4;
+  options.initial.paused = true;
+  options.recent_path = (dir / "config" / "recent.json").string();
+  ImGuiIO& io = ImGui::GetIO();
+  io.KeyMap[ImGuiKey_Escape] = 256;  // as GLFW's back-end maps it (GLFW_KEY_ESCAPE)
+  auto frame = [&](Editor& editor) {
+    io.DisplaySize = ImVec2(static_cast<float>(size.x), static_cast<float>(size.y));
+    io.DeltaTime = 1.0f / 60.0f;
+    editor.frame(FrameInput{size, 1.0f / 60.0f});
+  };
+  auto press = [&](Editor& editor, int key, bool ctrl, bool shift) {
+    io.KeyCtrl = ctrl;
+    io.KeyShift = shift;
+    io.KeysDown[key] = true;
+    frame(editor);
+    io.KeysDown[key] = false;
+    frame(editor);
+    io.KeyCtrl = io.KeyShift = false;
+  };
+  auto shown = [](const char* window) {
+    const ImGuiWindow* w = ImGui::FindWindowByName(window);
+    return w != nullptr && w->Active;
+  };
+
+  ui::SessionFile saved;
+  {
+    Editor editor(options);
+    editor.wait_for_engine();
+    editor.init_graphics();
+    frame(editor);
+    frame(editor);
+    CHECK_FALSE(editor.edits().can_undo());
+    // The pair that loaded is a recent take, kept across restarts.
+    REQUIRE_FALSE(ui::read_recent_files(options.recent_path).takes.empty());
+    CHECK(ui::read_recent_files(options.recent_path).takes.front() == happy);
+
+    // A pair dropped on the window loads: one step. Ctrl+Z brings the first pair back, Ctrl+Y
+    // the dropped one again, Ctrl+Shift+Z then has nothing left to redo.
+    editor.drop_files({joy, marching});
+    frame(editor);
+    editor.wait_for_engine();
+    frame(editor);
+    REQUIRE(editor.session().snapshot().path_a == joy);
+    CHECK(editor.edits().can_undo());
+    press(editor, kKeyZ, true, false);
+    editor.wait_for_engine();
+    frame(editor);
+    CHECK(editor.session().snapshot().path_a == happy);
+    CHECK(editor.edits().can_redo());
+    press(editor, kKeyY, true, false);
+    editor.wait_for_engine();
+    frame(editor);
+    CHECK(editor.session().snapshot().path_a == joy);
+    press(editor, kKeyZ, true, true);
+    CHECK_FALSE(editor.edits().can_redo());
+    CHECK(editor.session().snapshot().path_a == joy);
+
+    // Saved: the takes, every parameter, the camera and the playback. ".mostyle" is added.
+    editor.state().parameters.alpha = 0.8;
+    editor.state().view.overlay = true;
+    frame(editor);
+    CHECK_FALSE(editor.save_session((dir / "day.bvh").string()));  // never over a take
+    REQUIRE(editor.save_session((dir / "day").string()));
+    CHECK(editor.session_path() == day);
+    CHECK_THAT(editor.session_message(), Catch::Contains("day.mostyle"));
+    CHECK(ui::read_recent_files(options.recent_path).sessions.front() == day);
+    // Ctrl+S saves there again without asking; Ctrl+O asks which session, Esc closes it.
+    fs::remove(day);
+    press(editor, kKeyS, true, false);
+    CHECK(fs::exists(day));
+    CHECK_FALSE(shown("Save session"));
+    press(editor, kKeyO, true, false);
+    CHECK(shown("Open session"));
+    press(editor, 256, false, false);
+    CHECK_FALSE(shown("Open session"));
+    saved = ui::read_session_file(day);
+    editor.shutdown_graphics();
+  }
+  REQUIRE(saved.camera.has_value());
+  CHECK(saved.document.parameters.alpha == 0.8);
+  CHECK(saved.document.overlay);
+  CHECK(saved.document.files == std::vector<std::string>{joy, marching});
+
+  // A new editor opens it as it was: the takes, the parameters, the playback, the camera.
+  EditorOptions again;
+  again.session_path = day;
+  again.recent_path = options.recent_path;
+  Editor reopened(again);
+  CHECK(reopened.session_path() == day);
+  CHECK_FALSE(reopened.session_message_is_error());
+  CHECK(reopened.state().parameters.alpha == 0.8);
+  CHECK(reopened.state().parameters.components == 4);
+  CHECK(reopened.state().view.overlay);
+  CHECK(reopened.recent_files().sessions.front() == day);
+  reopened.wait_for_engine();
+  reopened.init_graphics();
+  frame(reopened);
+  CHECK(reopened.session().snapshot().path_a == joy);
+  CHECK(reopened.state().playback.time_s == saved.playback.time_s);
+  CHECK_FALSE(reopened.state().playback.playing);
+  CHECK(reopened.camera().yaw == Approx(saved.camera->yaw));
+  CHECK(reopened.camera().pitch == Approx(saved.camera->pitch));
+  CHECK(reopened.camera().distance == Approx(saved.camera->distance));
+
+  // A malformed session: one line naming the file and the line, and nothing changes.
+  const std::string bad = (dir / "bad.mostyle").string();
+  if (std::FILE* f = std::fopen(bad.c_str(), "w")) {
+    std::fputs("{\n  \"version\": 1,\n  \"parameters\": {\"alpha\": 2}\n}\n", f);
+    std::fclose(f);
+  }
+  CHECK_FALSE(reopened.open_session(bad));
+  CHECK_THAT(reopened.session_message(), Catch::StartsWith(bad + ":3: "));
+  CHECK(reopened.session_message().find('\n') == std::string::npos);
+  CHECK(reopened.state().parameters.alpha == 0.8);
+  CHECK(reopened.session_path() == day);
+
+  // A session whose take moved away: it opens, names the file, restores the rest and keeps the
+  // takes loaded; Ctrl+Z goes back to before it was opened.
+  ui::SessionFile moved = saved;
+  moved.document.files = {(dir / "gone.bvh").string(), marching};
+  moved.document.parameters.alpha = 0.1;
+  ui::write_session_file((dir / "moved.mostyle").string(), moved);
+  CHECK(reopened.open_session((dir / "moved.mostyle").string()));
+  CHECK(reopened.session_message_is_error());
+  CHECK_THAT(reopened.session_message(), Catch::Contains("gone.bvh"));
+  CHECK(reopened.state().parameters.alpha == 0.1);
+  reopened.wait_for_engine();
+  frame(reopened);
+  CHECK(reopened.session().snapshot().path_a == joy);
+  press(reopened, kKeyZ, true, false);
+  CHECK(reopened.state().parameters.alpha == 0.8);
+  reopened.shutdown_graphics();
+  fs::remove_all(dir);
+}
