@@ -8,14 +8,23 @@
 
 namespace mostyle {
 
+namespace {
+// The blended clock's advance from sample k - 1 to k: never slower than the slower take with a
+// weight (only extrapolation, w outside [0, 1], reaches that bound), as mixed_timeline's.
+double blend_step(const TimeWarp& warp, double w, int k) {
+  const double da = warp.a[k] - warp.a[k - 1], db = warp.b[k] - warp.b[k - 1];
+  const double slowest = w == 0.0 ? da : w == 1.0 ? db : std::min(da, db);
+  return std::max((1.0 - w) * da + w * db, slowest);
+}
+}  // namespace
+
 Eigen::VectorXd blended_clock(const TimeWarp& warp, double w) {
   if (!std::isfinite(w)) throw InputError("expected a finite timing weight");
   if (warp.samples() == 0) throw InputError("cannot time a blend along an empty warp");
   Eigen::VectorXd clock(warp.samples());
   clock[0] = 0.0;
   for (int k = 1; k < warp.samples(); ++k) {
-    const double step = (1.0 - w) * (warp.a[k] - warp.a[k - 1]) + w * (warp.b[k] - warp.b[k - 1]);
-    clock[k] = clock[k - 1] + std::max(0.0, step);
+    clock[k] = clock[k - 1] + std::max(0.0, blend_step(warp, w, k));
   }
   return clock;
 }
@@ -55,8 +64,7 @@ void blended_timeline(const TimeWarp& warp, double w, Eigen::VectorXd& u) {
   if (!std::isfinite(w)) throw InputError("expected a finite timing weight");
   const int samples = warp.samples();
   if (samples == 0) throw InputError("cannot time a blend along an empty warp");
-  timeline_from_steps(
-      samples, [&](int k) { return (1.0 - w) * (warp.a[k] - warp.a[k - 1]) + w * (warp.b[k] - warp.b[k - 1]); }, u);
+  timeline_from_steps(samples, [&](int k) { return blend_step(warp, w, k); }, u);
 }
 
 void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& weights, int first, int last,
@@ -69,13 +77,19 @@ void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& w
   if (first < 0 || last < first || last >= timeline.samples())
     throw InputError("cannot time a mix over samples " + std::to_string(first) + " to " + std::to_string(last) +
                      " of a timeline of " + std::to_string(timeline.samples()));
+  // Never slower than the slowest take with a weight: a negative weight (a transfer's -s on the
+  // neutral take) could stall the clock, and the output would then run through the takes' frames
+  // faster than any of them moves. Weights within [0, 1] never reach the bound.
   timeline_from_steps(
       last - first + 1,
       [&](int k) {
-        double step = 0.0;
-        for (size_t i = 0; i < weights.size(); ++i)
-          step += weights[i] * (timeline.frames[i][first + k] - timeline.frames[i][first + k - 1]);
-        return step;
+        double step = 0.0, slowest = INFINITY;
+        for (size_t i = 0; i < weights.size(); ++i) {
+          const double advance = timeline.frames[i][first + k] - timeline.frames[i][first + k - 1];
+          step += weights[i] * advance;
+          if (weights[i] != 0.0) slowest = std::min(slowest, advance);
+        }
+        return std::max(step, slowest);
       },
       u);
   u.array() += first;

@@ -22,7 +22,9 @@ void blended_timeline(const TimeWarp& warp, double w, Eigen::VectorXd& u);
 
 // The same for several takes (the style palette) over samples first..last of their common
 // timeline: the clock advances by sum_i w_i times take i's frames from one sample to the next
-// (weights: one per take, summing to 1; negative ones exaggerate); u holds sample positions
+// (weights: one per take, summing to 1; negative ones exaggerate), but never less than the
+// slowest weighted take advances, so that negative weights cannot stall the clock; u holds sample
+// positions
 // (first..last). Two takes with weights (1 - w, w) on a one-warp timeline are blended_timeline's
 // frames exactly. Throws InputError on a weight count that is not the takes', a non-finite
 // weight, or an empty or out-of-range stretch. O((last - first) x N + frames).

@@ -162,7 +162,9 @@ Eigen::RowVectorXd row_at(const Eigen::MatrixXd& x, double at) {
 }  // namespace
 
 void add_spread_turns(const Eigen::VectorXd& flips, double weight, double fps, Eigen::MatrixXd& steps) {
-  const double spread = std::max(0.0, 4.0 * weight * (1.0 - weight));
+  // What a flip shows is the weight's fraction of a whole turn (weight 1.5 turns by half a turn).
+  const double fraction = weight - std::floor(weight);
+  const double spread = 4.0 * fraction * (1.0 - fraction);
   const int h = static_cast<int>(std::lround(0.5 * fps * spread));
   const Eigen::Index samples = steps.rows();
   for (Eigen::Index r = 0; r < samples && r < flips.size(); ++r) {

@@ -58,7 +58,8 @@ Eigen::MatrixXd match_turns(const Eigen::MatrixXd& steps_b, const Eigen::MatrixX
 // Adds weight times a take's whole-turn flips (U: match_turns's change of its turn channel, 0
 // where none) to mixed steps' turns (U x 3), each flip spread over 2h + 1 samples, h growing to
 // half a second at weight 1/2: at weights 0 and 1 a whole turn is invisible, in between a flip in
-// one frame would turn the body by 2 pi weight at once. O(U + flips x h), no allocation.
+// one frame would turn the body by 2 pi weight at once (for weights outside [0, 1], h follows
+// the weight's fraction: 1.5 turns by half a turn). O(U + flips x h), no allocation.
 void add_spread_turns(const Eigen::VectorXd& flips, double weight, double fps, Eigen::MatrixXd& steps);
 
 // The root trajectory of a blend of A and B (B warped onto A's timeline, both F frames): the

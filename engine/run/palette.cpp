@@ -5,6 +5,8 @@
 #include <cmath>
 #include <string>
 
+#include <Eigen/QR>
+
 #include "engine/align/timing.h"
 #include "engine/io/error.h"
 #include "engine/prepare/canonical_frame.h"
@@ -39,6 +41,7 @@ PaletteTake read_take(const PreparedPair& pair, bool reference, const Eigen::Vec
   const PlacedRoot placed =
       reference ? place_at(pair.canonical_a, 0.0, motion, 0.0) : place_at(pair.canonical_a, warp.a[0], motion, warp.b[0]);
   t.own_local = motion.local;
+  t.own_local_t = motion.local.transpose();
   t.local = sample_rows(motion.local, frames);
   t.ground = sample_rows(placed.ground, frames);
   const Eigen::VectorXd heading = sample_rows(placed.heading, frames);
@@ -146,9 +149,33 @@ std::shared_ptr<const PaletteDecomposition> decompose_palette(const PreparedPale
   o.max_iterations = params.max_iterations;
   o.tolerance = params.tolerance;
   if (params.local) o.locality_parents = palette.parents;
+  // Fitted on every stride-th sample when the takes are long (kMaxDecompositionFrames).
+  const Eigen::Index total = static_cast<Eigen::Index>(palette.samples()) * palette.size();
+  d->stride = static_cast<int>(std::max<Eigen::Index>(1, (total + kMaxDecompositionFrames - 1) / kMaxDecompositionFrames));
+  std::vector<Eigen::MatrixXd> strided;
   std::vector<const Eigen::MatrixXd*> xs;
-  for (const PaletteTake& t : palette.takes) xs.push_back(&t.x);
+  for (const PaletteTake& t : palette.takes) {
+    if (d->stride == 1) {
+      xs.push_back(&t.x);
+      continue;
+    }
+    const Eigen::Index rows = (t.x.rows() + d->stride - 1) / d->stride;
+    strided.emplace_back(rows, t.x.cols());
+    for (Eigen::Index r = 0; r < rows; ++r) strided.back().row(r) = t.x.row(r * d->stride);
+  }
+  for (const Eigen::MatrixXd& x : strided) xs.push_back(&x);
   d->stacked = decompose_stacked(xs, o, control);
+  if (d->stride > 1) {
+    // Every sample's weights: the least-squares fit to the components, W = X C^T (C C^T)^+.
+    const Eigen::MatrixXd& c = d->stacked.components;
+    const Eigen::MatrixXd gram = c * c.transpose();
+    const auto solver = gram.completeOrthogonalDecomposition();
+    for (size_t i = 0; i < palette.takes.size(); ++i) {
+      const Eigen::MatrixXd& x = palette.takes[i].x;
+      d->stacked.weights[i] = solver.solve(c * x.transpose()).transpose();
+      d->stacked.rmse[i] = std::sqrt((x - d->stacked.weights[i] * c).squaredNorm() / double(x.size()));
+    }
+  }
   for (size_t i = 0; i < palette.takes.size(); ++i) {
     const PaletteTake& t = palette.takes[i];
     const Eigen::MatrixXd wc = d->stacked.weights[i] * d->stacked.components;
@@ -233,20 +260,36 @@ void mix_palette(const PreparedPalette& p, const PaletteDecomposition& d, const 
   if (!per_component) {
     // sum_i w_i (W_i C scale + mean_i [+ residual_i]) at the output frames only. With the
     // residual that is each take's own pose, read straight at the frame the output frame shows
-    // (one-hot weights give the take's own frames).
+    // (one-hot weights give the take's own frames), one output frame at a time over the takes'
+    // transposed poses (a frame is a contiguous column).
     write_sources(p, s.sampler, first, out.sources);
-    s.take_samplers.resize(n);
-    for (int i = 0; i < n; ++i) {
-      const bool own = params.residual;
-      if (own) s.take_samplers[i].set(out.sources.col(i), p.takes[i].own_local.rows());
-      if (!own) s.stretch = d.reconstructed[i].middleRows(first, length);
-      const RowSampler& at = own ? s.take_samplers[i] : s.sampler;
-      const Eigen::MatrixXd& x = own ? p.takes[i].own_local : s.stretch;
-      if (i == 0) {
-        at.apply(x, out.local);
-        out.local *= params.weights[0];
-      } else {
-        at.accumulate(x, params.weights[i], out.local);
+    if (params.residual) {
+      const Eigen::Index channels = p.takes.front().own_local_t.rows();
+      s.local_t.setZero(channels, out.sources.rows());
+      for (Eigen::Index k = 0; k < out.sources.rows(); ++k) {
+        auto column = s.local_t.col(k);
+        for (int i = 0; i < n; ++i) {
+          const double w = params.weights[i];
+          if (w == 0.0) continue;
+          const Eigen::MatrixXd& x = p.takes[i].own_local_t;
+          const Eigen::Index last = x.cols() - 1;
+          const double at = std::clamp(out.sources(k, i), 0.0, double(last));
+          const Eigen::Index r = std::min<Eigen::Index>(static_cast<Eigen::Index>(at), std::max<Eigen::Index>(last - 1, 0));
+          const double f = last == 0 ? 0.0 : at - double(r);
+          column.noalias() += (w * (1.0 - f)) * x.col(r);
+          if (f != 0.0) column.noalias() += (w * f) * x.col(r + 1);
+        }
+      }
+      out.local = s.local_t.transpose();
+    } else {
+      for (int i = 0; i < n; ++i) {
+        s.stretch = d.reconstructed[i].middleRows(first, length);
+        if (i == 0) {
+          s.sampler.apply(s.stretch, out.local);
+          out.local *= params.weights[0];
+        } else {
+          s.sampler.accumulate(s.stretch, params.weights[i], out.local);
+        }
       }
     }
   } else {

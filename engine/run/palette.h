@@ -32,6 +32,7 @@ struct PaletteTake {
   std::vector<std::string> names;  // the file's names of the shared joints
   Eigen::VectorXd frames;          // U: the take's frame at each sample (fractional, working rate)
   Eigen::MatrixXd own_local;       // the take's own frames x 3M canonical poses (retargeted onto the reference's bones)
+  Eigen::MatrixXd own_local_t;     // the same transposed (3M x frames): one frame a contiguous column, for the mix
   Eigen::MatrixXd local;           // U x 3M: the same on the timeline
   Eigen::MatrixXd ground;          // U x 2 hips path, placed at the reference's start
   Eigen::MatrixXd steps;           // U x 3 root steps (canonical_frame.h)
@@ -64,6 +65,12 @@ struct PreparedPalette {
 std::shared_ptr<const PreparedPalette> prepare_palette(const std::vector<std::shared_ptr<const Clip>>& clips,
                                                        const PrepareOptions& options, JobControl* control = nullptr);
 
+// The stacked decomposition's components are fitted on at most this many frames (every take's
+// samples at a stride): eight one-minute takes are 23 000 samples, and the components (body
+// parts' shapes) need no more than a few per gait phase. The weights of every sample are then
+// the least-squares fit to those components.
+constexpr int kMaxDecompositionFrames = 6000;
+
 struct PaletteDecomposition {
   DecomposeParams params;          // shared mode (local unless params.local is off)
   StackedDecomposition stacked;    // W_i and C
@@ -71,6 +78,7 @@ struct PaletteDecomposition {
   // residual (what the components do not hold). Their sum is the take's pose exactly.
   std::vector<Eigen::MatrixXd> reconstructed, residual;
   std::vector<double> rmse;        // per take, file units
+  int stride = 1;                  // the components were fitted on every stride-th sample
   Eigen::MatrixXd support;         // k x 3M, 1 where a component is non-zero
   std::vector<ComponentJoints> component_joints;
   double elapsed_ms = 0;
@@ -99,11 +107,10 @@ struct MixParams {
 };
 
 struct MixScratch {
-  Eigen::MatrixXd samples, steps, ground_u, target, contacts_u, joint_weights, stretch;
+  Eigen::MatrixXd samples, steps, ground_u, target, contacts_u, joint_weights, stretch, local_t;
   Eigen::VectorXd heading_u, u, u_stretch, flips;
   std::vector<double> overall, timing;
   RowSampler sampler;
-  std::vector<RowSampler> take_samplers;  // the output frames in each take's own frames
   FinishScratch finish;
 };
 

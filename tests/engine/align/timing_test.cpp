@@ -82,10 +82,11 @@ TEST_CASE("timing: the hand-worked warp a = 0 1 2 3, b = 0 2 4 6", "[timing]") {
   }
 }
 
-TEST_CASE("timing: where the blended clock would run backwards, it holds", "[timing]") {
-  // w = 2 (exaggerating B): steps -1 + 2 x 2 = 3, then -1 + 2 x 0.2 < 0 twice: T = 0 3 3 3.
+TEST_CASE("timing: where the blended clock would run backwards, it advances as the slower take", "[timing]") {
+  // w = 2 (exaggerating B): steps -1 + 2 x 2 = 3, then -1 + 2 x 0.2 < 0 twice, where B, the
+  // slower, advances by 0.2: T = 0 3 3.2 3.4.
   const TimeWarp w = warp_of({0, 1, 2, 3}, {0, 2, 2.2, 2.4});
-  CHECK((blended_clock(w, 2.0) - Eigen::Vector4d(0, 3, 3, 3)).cwiseAbs().maxCoeff() < kExact);
+  CHECK((blended_clock(w, 2.0) - Eigen::Vector4d(0, 3, 3.2, 3.4)).cwiseAbs().maxCoeff() < kExact);
   const Eigen::VectorXd u = timeline(w, 2.0);
   REQUIRE(u.size() == 4);
   for (int k = 0; k < 4; ++k) CHECK(u[k] == Approx(k / 3.0).margin(kExact));
