@@ -249,8 +249,9 @@ void mix_palette(const PreparedPalette& p, const PaletteDecomposition& d, const 
     last = std::min(last, p.timeline.last[i]);
   }
   if (first >= last)
-    throw InputError("the takes given a weight match no common stretch of the reference; give weight to takes "
-                     "whose matches overlap");
+    throw InputError("the takes given a weight match no common stretch of the reference (each matched a "
+                     "different part of it); give weight to takes whose matches overlap, or align them end to "
+                     "end (closed ends)");
   out.first_sample = first;
   out.last_sample = last;
   const Eigen::Index length = last - first + 1;
