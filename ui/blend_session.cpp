@@ -13,6 +13,7 @@
 #include "render/skeleton_pose.h"
 #include "ui/export_job.h"
 #include "ui/joint_contacts.h"
+#include "ui/lanes.h"
 
 namespace mostyle::ui {
 namespace {
@@ -264,6 +265,22 @@ void BlendSession::place(EditorState& state) {
   state.takes[kTakeB].contacts = joint_contacts(nearest(p->contacts_b, at_b), p->feet, joints);
   const double slots[3] = {-1.0, 1.0, 0.0};  // A, B, blend
   const Eigen::MatrixXd* sources[3] = {&shown_a_, &shown_b_, has_blend_ ? &blend_.world : &shown_a_};
+  if (!state.view.overlay && has_blend_) {
+    // Side by side: A and B in lanes beside the blend's path (ui/lanes.h).
+    const Lanes lanes = lanes_along(blend_.world, Eigen::Vector2d(side_.x(), side_.z()));
+    for (int t = 0; t < 3; ++t) {
+      Eigen::MatrixXd& out = state.takes[static_cast<size_t>(t)].positions;
+      if (t == kTakeBlend) {
+        out = blend_.world;
+        for (Eigen::Index j = 0; 3 * j < out.cols(); ++j)
+          for (int a = 0; a < 3; ++a) out.col(3 * j + a).array() += shift_[a];
+      } else {
+        place_in_lane(*sources[t], lanes, slots[t] * spacing_, shift_, out);
+      }
+    }
+    placed_overlay_ = state.view.overlay;
+    return;
+  }
   for (int t = 0; t < 3; ++t) {
     const Eigen::Vector3d offset = shift_ + (state.view.overlay ? 0.0 : slots[t] * spacing_) * side_;
     Eigen::MatrixXd& out = state.takes[static_cast<size_t>(t)].positions;

@@ -10,6 +10,7 @@
 #include "render/skeleton_pose.h"
 #include "ui/blend_session.h"
 #include "ui/joint_contacts.h"
+#include "ui/lanes.h"
 
 namespace mostyle::ui {
 namespace {
@@ -178,6 +179,10 @@ void PaletteView::place(const PreparedPalette& p, const SessionControls& control
   const int n = p.size();
   const bool ghosts = controls.palette.ghosts;
   Eigen::MatrixXd sampled;
+  // Side by side: every take in a lane beside the mix's path (ui/lanes.h).
+  const bool lanes_on = !state.view.overlay && has_mix_;
+  Lanes lanes;
+  if (lanes_on) lanes = lanes_along(mix_.motion.world, Eigen::Vector2d(side_.x(), side_.z()));
   for (int i = -1; i < n; ++i) {
     Take& t = state.takes[static_cast<size_t>(kPaletteFirst + i)];
     const double slot = i < 0 ? 0.0 : i == 0 ? -1.0 : double(i);
@@ -189,6 +194,10 @@ void PaletteView::place(const PreparedPalette& p, const SessionControls& control
       if (has_mix_) sample_rows(take.world_placed, mix_.sources.col(i), sampled);
       else sampled = take.world_placed;
       t.visible = i == 0 || ghosts;
+    }
+    if (lanes_on && i >= 0) {
+      place_in_lane(sampled, lanes, slot * spacing_, shift_, t.positions);
+      continue;
     }
     const Eigen::Vector3d offset = shift_ + (state.view.overlay ? 0.0 : slot * spacing_) * side_;
     t.positions = sampled;
