@@ -1,5 +1,7 @@
 #include "app/window_platform.h"
 
+#include <algorithm>
+#include <array>
 #include <cfloat>
 #include <cstdio>
 #include <cstdlib>
@@ -67,6 +69,25 @@ void count_events(GLFWwindow* window) {
   glfwSetWindowRefreshCallback(window, count_refresh);
 }
 
+// A key pressed and released within one batch of events (a quick tap while the editor waits at
+// rest, or a shortcut whose Ctrl comes up in the same batch as its letter) would never be down
+// together in a frame: ImGui's callback sets and clears it before NewFrame. Every release is held
+// back until the next batch, so a key is down for at least the frame after its press.
+std::vector<std::array<int, 4>> g_held_releases;  // key, scancode, action, mods
+void on_key(GLFWwindow* window, int key, int scancode, int action, int mods) {
+  if (action == GLFW_RELEASE) {
+    ++g_events;
+    g_held_releases.push_back({key, scancode, action, mods});
+    return;
+  }
+  ImGui_ImplGlfw_KeyCallback(window, key, scancode, action, mods);  // counts the event (count_key)
+}
+// Before each batch of events: the releases held back from the previous one.
+void release_held_keys(GLFWwindow* window) {
+  for (const auto& k : g_held_releases) ImGui_ImplGlfw_KeyCallback(window, k[0], k[1], k[2], k[3]);
+  g_held_releases.clear();
+}
+
 void on_drop(GLFWwindow* window, int count, const char** paths) {
   ++g_events;
   auto* editor = static_cast<Editor*>(glfwGetWindowUserPointer(window));
@@ -118,6 +139,7 @@ int run_window(const EditorOptions& options) {
     if (screenshot) editor.wait_for_engine();  // the same aligned, decomposed pair every run
     count_events(window);
     ImGui_ImplGlfw_InitForOpenGL(window, /*install_callbacks=*/true);
+    glfwSetKeyCallback(window, on_key);  // before ImGui's, which it calls (see on_key)
     glfwSetWindowUserPointer(window, &editor);
     glfwSetDropCallback(window, on_drop);
     try {
@@ -127,6 +149,7 @@ int run_window(const EditorOptions& options) {
       for (int frame = 0; !glfwWindowShouldClose(window); ++frame) {
         // At rest (paused, engine idle) wait for input instead of drawing 60 frames a second;
         // the timeout keeps a finished background job from waiting long to be shown.
+        release_held_keys(window);
         if (!screenshot && !editor.animating() && settle <= 0) {
           const int before = g_events;
           glfwWaitEventsTimeout(kRestWakeSeconds);
