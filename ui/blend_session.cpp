@@ -10,7 +10,6 @@
 #include "engine/io/error.h"
 #include "engine/export/channel_layout.h"
 #include "engine/export/export_solve.h"
-#include "render/skeleton_pose.h"
 #include "ui/export_job.h"
 #include "ui/joint_contacts.h"
 #include "ui/lanes.h"
@@ -23,7 +22,6 @@ const glm::vec3 kColorA(0.96f, 0.60f, 0.28f);
 const glm::vec3 kColorB(0.36f, 0.64f, 0.97f);
 const glm::vec3 kColorBlend(0.50f, 0.88f, 0.46f);
 const glm::vec4 kHighlight(1.0f, 0.92f, 0.25f, 1.0f);
-constexpr float kSpacing = 0.6f;     // side by side: lateral distance, times the skeleton's size
 constexpr size_t kRecentFiles = 8;
 
 using Clock = std::chrono::steady_clock;
@@ -219,24 +217,12 @@ void BlendSession::take_up_prepared(EditorState& state) {
   blend.positions = p->world_a;  // until the first blend arrives
   state.takes = {std::move(a), std::move(b), std::move(blend)};
 
-  // Shared floor and start: A's lowest joint on y = 0, A's first body centre at the origin;
-  // side by side goes across A's direction of travel.
-  const Eigen::MatrixXd& w = p->world_a;
-  double lowest = 0.0;
-  for (int j = 0; j < joints; ++j) lowest = j == 0 ? w.col(1).minCoeff() : std::min(lowest, w.col(3 * j + 1).minCoeff());
-  Eigen::Vector3d start = Eigen::Vector3d::Zero(), end = Eigen::Vector3d::Zero();
-  for (int j = 0; j < joints; ++j) {
-    start += w.row(0).segment<3>(3 * j).transpose();
-    end += w.row(w.rows() - 1).segment<3>(3 * j).transpose();
-  }
-  start /= std::max(joints, 1);
-  end /= std::max(joints, 1);
-  shift_ = Eigen::Vector3d(-start.x(), -lowest, -start.z());
-  const float size = render::clip_size(w);
-  spacing_ = kSpacing * (size > 0.0f ? size : 1.0f);
-  Eigen::Vector2d travel(end.x() - start.x(), end.z() - start.z());
-  side_ = travel.norm() > 1e-9 ? Eigen::Vector3d(travel.y(), 0.0, -travel.x()).normalized() : Eigen::Vector3d::UnitX();
-  for (Take& t : state.takes) t.size = size;
+  // Shared floor and start, side-by-side spacing and direction (ui/lanes.h).
+  const Placement placed = placement_of(p->world_a);
+  shift_ = placed.shift;
+  side_ = placed.side;
+  spacing_ = placed.spacing;
+  for (Take& t : state.takes) t.size = placed.size;
   placed_overlay_ = state.view.overlay;
   place(state);
   compute_dtw_image();

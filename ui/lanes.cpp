@@ -2,7 +2,30 @@
 
 #include <algorithm>
 
+#include "render/skeleton_pose.h"
+
 namespace mostyle::ui {
+
+Placement placement_of(const Eigen::MatrixXd& w, float spacing_factor) {
+  Placement p;
+  const Eigen::Index joints = w.cols() / 3;
+  if (w.rows() == 0 || joints == 0) return p;
+  double lowest = w.col(1).minCoeff();
+  for (Eigen::Index j = 1; j < joints; ++j) lowest = std::min(lowest, w.col(3 * j + 1).minCoeff());
+  Eigen::Vector3d start = Eigen::Vector3d::Zero(), end = Eigen::Vector3d::Zero();
+  for (Eigen::Index j = 0; j < joints; ++j) {
+    start += w.row(0).segment<3>(3 * j).transpose();
+    end += w.row(w.rows() - 1).segment<3>(3 * j).transpose();
+  }
+  start /= double(joints);
+  end /= double(joints);
+  p.shift = Eigen::Vector3d(-start.x(), -lowest, -start.z());
+  p.size = render::clip_size(w);
+  p.spacing = spacing_factor * (p.size > 0.0f ? p.size : 1.0f);
+  const Eigen::Vector2d travel(end.x() - start.x(), end.z() - start.z());
+  if (travel.norm() > 1e-9) p.side = Eigen::Vector3d(travel.y(), 0.0, -travel.x()).normalized();
+  return p;
+}
 
 Lanes lanes_along(const Eigen::MatrixXd& world, const Eigen::Vector2d& fallback, int half_window) {
   Lanes lanes;

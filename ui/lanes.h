@@ -7,6 +7,19 @@
 
 namespace mostyle::ui {
 
+// Where the takes stand, from the reference's world positions (F x 3J, J joints): its lowest
+// joint on y = 0 and its first body centre at the origin (shift), its size (render::clip_size)
+// and side-by-side spacing (spacing_factor times the size), and the direction across its overall
+// travel (side; +X when it stands still). O(F x J).
+struct Placement {
+  Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+  Eigen::Vector3d side = Eigen::Vector3d::UnitX();
+  float size = 1.0f;
+  float spacing = 1.0f;
+};
+constexpr float kSideBySideSpacing = 0.6f;  // side by side: lateral distance, times the skeleton's size
+Placement placement_of(const Eigen::MatrixXd& world, float spacing_factor = kSideBySideSpacing);
+
 // The result's hips path (K x 2, x and z: column 0's ground position) and, per frame, the unit
 // direction across it (K x 2): to the right of the direction of travel, smoothed over
 // half_window frames each side; where the result stands still, `fallback` (x, z). O(K).

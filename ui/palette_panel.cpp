@@ -188,7 +188,7 @@ void PalettePanel::draw_pad(PaletteControls& c, int n) {
   for (int i = 0; i < n; ++i) {
     const ImVec2 v = screen(pad_vertex(i, n));
     draw->AddCircleFilled(v, 6.0f, color_u32(i));
-    char label[8];
+    char label[12];
     std::snprintf(label, sizeof label, "%d", i + 1);
     draw->AddText(ImVec2(v.x + 7.0f, v.y - 7.0f), IM_COL32(220, 220, 220, 255), label);
   }

@@ -7,7 +7,6 @@
 #include <filesystem>
 
 #include "engine/io/error.h"
-#include "render/skeleton_pose.h"
 #include "ui/blend_session.h"
 #include "ui/joint_contacts.h"
 #include "ui/lanes.h"
@@ -15,7 +14,6 @@
 namespace mostyle::ui {
 namespace {
 
-constexpr float kSpacing = 0.6f;  // side by side: lateral distance, times the skeleton's size
 const glm::vec3 kMixColor(0.50f, 0.88f, 0.46f);
 
 using Clock = std::chrono::steady_clock;
@@ -96,7 +94,6 @@ void PaletteView::take_up(const PreparedPalette& p, const std::vector<std::strin
   for (auto& w : controls.part_weights)
     if (static_cast<int>(w.size()) != n) w.clear();  // empty: the part follows the overall weights
   controls.neutral = std::clamp(controls.neutral, 1, n - 1);
-  const int joints = static_cast<int>(p.majors.size());
   state.takes.clear();
   Take mix;
   mix.label = "mix";
@@ -124,24 +121,12 @@ void PaletteView::take_up(const PreparedPalette& p, const std::vector<std::strin
     }
     state.takes.push_back(std::move(t));
   }
-  // Shared floor and start: the reference's lowest joint on y = 0, its first body centre at the
-  // origin; side by side goes across its direction of travel.
-  const Eigen::MatrixXd& w = p.takes.front().world_placed;
-  double lowest = w.col(1).minCoeff();
-  for (int j = 1; j < joints; ++j) lowest = std::min(lowest, w.col(3 * j + 1).minCoeff());
-  Eigen::Vector3d start = Eigen::Vector3d::Zero(), end = Eigen::Vector3d::Zero();
-  for (int j = 0; j < joints; ++j) {
-    start += w.row(0).segment<3>(3 * j).transpose();
-    end += w.row(w.rows() - 1).segment<3>(3 * j).transpose();
-  }
-  start /= std::max(joints, 1);
-  end /= std::max(joints, 1);
-  shift_ = Eigen::Vector3d(-start.x(), -lowest, -start.z());
-  const float size = render::clip_size(w);
-  spacing_ = kSpacing * (size > 0.0f ? size : 1.0f);
-  const Eigen::Vector2d travel(end.x() - start.x(), end.z() - start.z());
-  side_ = travel.norm() > 1e-9 ? Eigen::Vector3d(travel.y(), 0.0, -travel.x()).normalized() : Eigen::Vector3d::UnitX();
-  for (Take& t : state.takes) t.size = size;
+  // Shared floor and start, side-by-side spacing and direction (ui/lanes.h).
+  const Placement placed = placement_of(p.takes.front().world_placed);
+  shift_ = placed.shift;
+  side_ = placed.side;
+  spacing_ = placed.spacing;
+  for (Take& t : state.takes) t.size = placed.size;
 }
 
 void PaletteView::update(const PreparedPalette& p, const PaletteDecomposition* d, const SessionControls& controls,

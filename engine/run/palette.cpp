@@ -143,12 +143,7 @@ std::shared_ptr<const PaletteDecomposition> decompose_palette(const PreparedPale
   const auto t0 = Clock::now();
   auto d = std::make_shared<PaletteDecomposition>();
   d->params = params;
-  DecompositionOptions o;
-  o.components = params.components;
-  o.sparsity = params.sparsity;
-  o.max_iterations = params.max_iterations;
-  o.tolerance = params.tolerance;
-  if (params.local) o.locality_parents = palette.parents;
+  const DecompositionOptions o = params.options(palette.parents);
   // Fitted on every stride-th sample when the takes are long (kMaxDecompositionFrames).
   const Eigen::Index total = static_cast<Eigen::Index>(palette.samples()) * palette.size();
   d->stride = static_cast<int>(std::max<Eigen::Index>(1, (total + kMaxDecompositionFrames - 1) / kMaxDecompositionFrames));

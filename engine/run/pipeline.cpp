@@ -54,6 +54,16 @@ void DecomposeParams::Validate(int channels) const {
     if (!(f > 0 && f <= 1)) throw InputError("expected basic-motion sparsities in (0, 1], found " + std::to_string(f));
 }
 
+DecompositionOptions DecomposeParams::options(const std::vector<int>& parents) const {
+  DecompositionOptions o;
+  o.components = components;
+  o.sparsity = sparsity;
+  o.max_iterations = max_iterations;
+  o.tolerance = tolerance;
+  if (local) o.locality_parents = parents;
+  return o;
+}
+
 std::shared_ptr<const PreparedPair> prepare_pair(std::shared_ptr<const Clip> a,
                                                  std::shared_ptr<const Clip> b,
                                                  const PrepareOptions& options,
@@ -164,15 +174,12 @@ std::shared_ptr<const DecomposedPair> decompose_pair(const PreparedPair& prepare
   const auto t0 = Clock::now();
   auto d = std::make_shared<DecomposedPair>();
   d->params = params;
-  DecompositionOptions o;
-  o.components = params.components;
-  o.sparsity = params.sparsity;
-  o.max_iterations = params.max_iterations;
-  o.tolerance = params.tolerance;
+  // Paper mode is never local (DecomposeParams::local).
+  const DecompositionOptions o =
+      params.options(params.mode == BlendMode::kShared ? prepared.parents : std::vector<int>());
   const double scale = prepared.normalization.scale;
   const Eigen::MatrixXd* support_source = nullptr;
   if (params.mode == BlendMode::kShared) {
-    if (params.local) o.locality_parents = prepared.parents;
     d->shared = decompose_shared(prepared.x_a, prepared.x_b, o, control);
     d->shared_synthesis = prepare_shared_synthesis(d->shared.weights_a, d->shared.weights_b, d->shared.components);
     const Normalization& n = prepared.normalization;

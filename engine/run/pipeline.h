@@ -104,6 +104,9 @@ struct DecomposeParams {
   // paper's decomposition keeps the largest entries anywhere).
   bool local = true;
   void Validate(int channels) const;  // throws InputError
+  // The decomposition's options: k, sparsity, iterations, tolerance, and the skeleton's parents
+  // (within the shared joints) when components are local.
+  DecompositionOptions options(const std::vector<int>& parents) const;
 };
 
 struct DecomposedPair {
