@@ -27,7 +27,7 @@ Placement placement_of(const Eigen::MatrixXd& w, float spacing_factor) {
   return p;
 }
 
-Lanes lanes_along(const Eigen::MatrixXd& world, const Eigen::Vector2d& fallback, int half_window) {
+Lanes lanes_along(const Eigen::MatrixXd& world, const Eigen::Vector2d& fallback) {
   Lanes lanes;
   const Eigen::Index frames = world.rows();
   lanes.path.resize(frames, 2);
@@ -35,15 +35,11 @@ Lanes lanes_along(const Eigen::MatrixXd& world, const Eigen::Vector2d& fallback,
   if (frames == 0) return lanes;
   lanes.path.col(0) = world.col(0);
   lanes.path.col(1) = world.col(2);
-  Eigen::Vector2d previous = fallback.normalized();
-  for (Eigen::Index t = 0; t < frames; ++t) {
-    const Eigen::Index a = std::max<Eigen::Index>(0, t - half_window), b = std::min(frames - 1, t + half_window);
-    const Eigen::Vector2d travel = (lanes.path.row(b) - lanes.path.row(a)).transpose();
-    // Across = (travel.z, -travel.x): the side the editor's fixed layout used (blend_session).
-    Eigen::Vector2d across(travel.y(), -travel.x());
-    if (across.norm() > 1e-9) previous = across.normalized();
-    lanes.across.row(t) = previous.transpose();
-  }
+  // One direction across for the whole take (the reference's overall travel, which the camera's
+  // three-quarter view is chosen from): lanes that turned with every sway of the path would line
+  // the takes up along the view.
+  const Eigen::Vector2d across = fallback.norm() > 1e-12 ? fallback.normalized() : Eigen::Vector2d::UnitX();
+  lanes.across.rowwise() = across.transpose();
   return lanes;
 }
 

@@ -20,14 +20,14 @@ struct Placement {
 constexpr float kSideBySideSpacing = 0.6f;  // side by side: lateral distance, times the skeleton's size
 Placement placement_of(const Eigen::MatrixXd& world, float spacing_factor = kSideBySideSpacing);
 
-// The result's hips path (K x 2, x and z: column 0's ground position) and, per frame, the unit
-// direction across it (K x 2): to the right of the direction of travel, smoothed over
-// half_window frames each side; where the result stands still, `fallback` (x, z). O(K).
+// The result's hips path (K x 2, x and z: column 0's ground position) and the direction across
+// the lanes (K x 2, unit, the same at every frame): `fallback` (x, z), the reference's overall
+// travel turned to the right, so the lanes stand across the camera's view. O(K).
 struct Lanes {
   Eigen::MatrixXd path;    // K x 2
   Eigen::MatrixXd across;  // K x 2, unit
 };
-Lanes lanes_along(const Eigen::MatrixXd& result_world, const Eigen::Vector2d& fallback, int half_window = 15);
+Lanes lanes_along(const Eigen::MatrixXd& result_world, const Eigen::Vector2d& across);
 
 // world (K x 3J, the take at the result's frames) moved so that at every frame its hips (column
 // 0) stand on the lane `offset` units across the path, then shifted by `shift`; frames beyond
