@@ -4,7 +4,7 @@ set -euo pipefail
 # clang and libclang-rt-14-dev (libFuzzer, only a Recommends of clang): tests/fuzz/run.sh.
 packages=(build-essential cmake pkg-config libeigen3-dev libglfw3-dev libglm-dev libimgui-dev
           libstb-dev libosmesa6-dev libgl-dev catch2 libbenchmark-dev nlohmann-json3-dev
-          libcli11-dev xvfb xauth clang libclang-rt-14-dev)
+          libcli11-dev xvfb xauth clang libclang-rt-14-dev ccache)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

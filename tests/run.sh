@@ -9,6 +9,8 @@ root="$(cd "$(dirname "$0")/.." && pwd)"
 sanitize=""
 if [ "${1:-}" = "--sanitize" ]; then sanitize="${2:?--sanitize needs a value}"; fi
 "$root/app/install-deps.sh"
+# ccache keys on paths relative to the clone, so another clone (CI's, a work tree) reuses its objects.
+export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=1
 
 build="$root/build"
 flags=(-DCMAKE_BUILD_TYPE=RelWithDebInfo)
