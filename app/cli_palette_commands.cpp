@@ -90,8 +90,10 @@ Palette prepare(const std::vector<std::string>& files, const MixFlags& flags) {
   for (const auto& pair : p.prepared->pairs) {
     p.times.preprocess_ms += pair->times.preprocess_ms;
     p.times.dtw_ms += pair->times.dtw_ms;
-    for (const std::string& w : pair->alignment.warnings)
-      std::cerr << "mostyle: warning: " << pair->clip_b->source << ": " << w << "\n";
+    // Named by their files, frames as their files count them.
+    auto named = [](const Clip& clip) { return AlignedTake{clip.source, clip.fps()}; };
+    for (const std::string& w : alignment_warnings(pair->alignment, pair->fps, named(*pair->clip_a), named(*pair->clip_b)))
+      std::cerr << "mostyle: warning: " << w << "\n";
   }
   p.decomposition = decompose_palette(*p.prepared, flags.decompose_params());
   p.times.decompose_ms = p.decomposition->elapsed_ms;
@@ -167,7 +169,7 @@ int run_mix(const Palette& p, const std::vector<std::string>& files, const MixFl
                      {"synthesize", times.synthesize_ms}, {"postprocess", times.postprocess_ms},
                      {"export", times.export_ms}};
   if (!flags.report.empty()) write_output(flags.report, r.dump(2) + "\n");
-  if (flags.report.empty() && flags.positions_out.empty()) std::cout << r.dump(2) << "\n";
+  else std::cout << report_summary(r, flags.out, flags.positions_out);
   return 0;
 }
 
@@ -177,7 +179,7 @@ void add_mix_command(CLI::App& app, std::function<int()>* run) {
   auto* cmd = app.add_subcommand("mix", "Mix the styles of 2 to 16 takes with weights (the style palette)");
   struct Args {
     std::vector<std::string> files;
-    std::vector<double> weights;
+    std::string weights;
     std::vector<std::string> part_weights;
     MixFlags flags;
   };
@@ -186,8 +188,8 @@ void add_mix_command(CLI::App& app, std::function<int()>* run) {
                   "BVH takes; the first is the reference (its skeleton, units, world frame and start)")
       ->required();
   cmd->add_option("--weights", args->weights,
-                  "One weight per take, comma separated, summing to 1, each from -0.5 to 1.5 (default: equal)")
-      ->delimiter(',');
+                  "One weight per take, comma separated, decimals or fractions (1/3), summing to 1 (within 0.001, "
+                  "then divided by their sum), each from -0.5 to 1.5 (default: equal)");
   cmd->add_option("--part-weights", args->part_weights,
                   "PART:w1,w2,...: one body part's weights, one per take (legs, arms, spine, left-leg, right-leg, "
                   "left-arm, right-arm; repeat for several, a side wins over both sides); the rest take --weights");
@@ -199,8 +201,11 @@ void add_mix_command(CLI::App& app, std::function<int()>* run) {
         throw InputError("mix takes from 2 to " + std::to_string(kMaxPaletteTakes) + " BVH files, found " +
                          std::to_string(n));
       MixParams mp;
-      mp.weights = args->weights.empty() ? std::vector<double>(n, 1.0 / double(n)) : args->weights;
-      const auto given = parse_part_entries(args->part_weights, "--part-weights", n);
+      const std::vector<double> typed =
+          args->weights.empty() ? std::vector<double>(n, 1.0 / double(n)) : parse_numbers(args->weights, "--weights");
+      mp.weights = normalized_weights(typed);
+      auto given = parse_part_entries(args->part_weights, "--part-weights", n);
+      for (auto& entry : given) entry.second = normalized_weights(entry.second);
       // Refuse bad weights before the files are read.
       mp.Validate(static_cast<int>(n), 0);
       for (const auto& [part, w] : given) {
@@ -218,6 +223,7 @@ void add_mix_command(CLI::App& app, std::function<int()>* run) {
       Json r;
       r["command"] = "mix";
       r["weights"] = mp.weights;
+      r["weights_typed"] = typed;
       if (!given.empty()) {
         Json parts = Json::object();
         for (const auto& [part, w] : given) parts[body_part_name(part)] = w;
@@ -234,7 +240,7 @@ void add_transfer_command(CLI::App& app, std::function<int()>* run) {
   struct Args {
     std::string content, neutral;
     std::vector<std::string> styles;
-    std::vector<double> strengths;
+    std::vector<std::string> strengths;
     std::vector<std::string> part_strengths;
     MixFlags flags;
   };
@@ -246,9 +252,8 @@ void add_transfer_command(CLI::App& app, std::function<int()>* run) {
   cmd->add_option("--style", args->styles, "BVH take of the action in the style (repeat for several styles)")
       ->required();
   cmd->add_option("--strength", args->strengths,
-                  "How much of each style, one per --style (comma separated or repeated), from -1 to 2; 0 leaves "
-                  "CONTENT as it is, 1 adds the whole change (default 1)")
-      ->delimiter(',');
+                  "How much of each style, one per --style (comma separated or repeated, decimals or fractions), "
+                  "from -1 to 2; 0 leaves CONTENT as it is, 1 adds the whole change (default 1)");
   cmd->add_option("--part-strength", args->part_strengths,
                   "PART:s1,...: one body part's strengths, one per style (legs, arms, spine, left-leg, right-leg, "
                   "left-arm, right-arm); the rest take --strength");
@@ -256,7 +261,10 @@ void add_transfer_command(CLI::App& app, std::function<int()>* run) {
   cmd->callback([=] {
     *run = [=] {
       const size_t styles = args->styles.size();
-      std::vector<double> strengths = args->strengths.empty() ? std::vector<double>(styles, 1.0) : args->strengths;
+      std::vector<double> strengths;
+      for (const std::string& s : args->strengths)
+        for (double v : parse_numbers(s, "--strength")) strengths.push_back(v);
+      if (args->strengths.empty()) strengths.assign(styles, 1.0);
       if (strengths.size() != styles)
         throw InputError("expected " + std::to_string(styles) + " strengths, one per --style, found " +
                          std::to_string(strengths.size()));

@@ -351,6 +351,7 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
         write_output(args->positions_out, positions_csv(result.world, columns, p->names_a));
 
       Json r;
+      r["command"] = "blend";
       r["a"] = args->pair.a;
       r["b"] = args->pair.b;
       r["frames"] = result.world.rows();
@@ -404,7 +405,7 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
                          {"synthesize", times.synthesize_ms}, {"postprocess", times.postprocess_ms},
                          {"export", times.export_ms}};
       if (!args->report.empty()) write_output(args->report, r.dump(2) + "\n");
-      if (args->report.empty() && args->positions_out.empty()) std::cout << r.dump(2) << "\n";
+      else std::cout << report_summary(r, args->out, args->positions_out);
       return 0;
     };
   });

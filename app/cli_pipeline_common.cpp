@@ -1,10 +1,15 @@
 #include "app/cli_pipeline_common.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 
 #include "engine/io/atomic_file.h"
 #include "engine/io/error.h"
+#include "engine/io/numbers.h"
 
 namespace mostyle::cli {
 
@@ -56,25 +61,78 @@ MappingOverrides load_mapping(const std::string& path) {
   return parse_mapping_overrides(read_file(path), path);
 }
 
+std::vector<double> parse_numbers(const std::string& list, const std::string& flag) {
+  std::vector<double> values;
+  for (size_t begin = 0; begin <= list.size();) {
+    const size_t comma = std::min(list.find(',', begin), list.size());
+    const std::string text = list.substr(begin, comma - begin);
+    begin = comma + 1;
+    double v = 0.0;
+    if (!parse_number(text, &v))
+      throw InputError("expected a number or a fraction such as 1/3 in " + flag + ", found '" + text + "'");
+    values.push_back(v);
+  }
+  return values;
+}
+
+namespace {
+
+std::string fixed(double v, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, v);
+  return text;
+}
+
+std::string file_name(const std::string& path) { return std::filesystem::path(path).filename().string(); }
+
+}  // namespace
+
+std::string report_summary(const Json& r, const std::string& out, const std::string& positions_out) {
+  const double height = r.value("skeleton_height", 0.0);
+  auto of_height = [&](double v) { return height > 0 ? fixed(100.0 * v / height, 2) + "% of height" : fixed(v, 3); };
+  const std::string command = r.value("command", std::string("blend"));
+  std::string text;
+  if (command == "blend") {
+    text = "blend of " + file_name(r["a"]) + " and " + file_name(r["b"]) + " at alpha " +
+           fixed(r["alpha"].get<double>(), 2);
+  } else if (command == "mix") {
+    text = "mix of " + std::to_string(r["takes"].size()) + " takes onto " + file_name(r["takes"][0]["file"]) +
+           ", weights";
+    for (const Json& t : r["takes"]) text += " " + fixed(t["weight"].get<double>(), 3);
+  } else {
+    text = "transfer onto " + file_name(r["content"]) + " from " + file_name(r["neutral"]) + " to";
+    for (const Json& s : r["styles"]) text += " " + file_name(s);
+    text += ", strength";
+    for (const Json& s : r["strengths"]) text += " " + fixed(s.get<double>(), 2);
+  }
+  text += "\n  " + std::to_string(r["frames"].get<long>()) + " frames at " + fixed(r["fps"].get<double>(), 0) +
+          " fps (" + fixed(r["duration_s"].get<double>(), 2) + " s)";
+  if (r.contains("loop")) text += ", a loop of " + std::to_string(r["loop"].value("cycles", 0)) + " cycles";
+  text += "\n  limb lengths within " + of_height(r["limb_length_max_error"].get<double>());
+  const Json& sliding = r["foot_sliding"];
+  const char* raw = sliding.contains("raw") ? "raw" : "raw_blend";
+  const char* cleaned = sliding.contains("cleaned") ? "cleaned" : "cleaned_blend";
+  text += "; foot sliding " + of_height(sliding[raw].get<double>()) + "/s, " +
+          (r.value("foot_lock", false) ? "locked to " + of_height(sliding[cleaned].get<double>()) + "/s"
+                                       : std::string("not locked"));
+  if (!out.empty()) {
+    text += "\n  wrote " + out;
+    if (r.contains("export_fit"))
+      text += " (follows the result within " + of_height(r["export_fit"]["mean"].get<double>()) + " mean, " +
+              of_height(r["export_fit"]["max"].get<double>()) + " at worst)";
+  }
+  if (!positions_out.empty()) text += "\n  wrote " + positions_out;
+  if (out.empty() && positions_out.empty()) text += "\n  nothing written: give --out, --positions-out or --report";
+  return text + "\n";
+}
+
 std::vector<std::pair<BodyPart, std::vector<double>>> parse_part_entries(const std::vector<std::string>& entries,
                                                                          const std::string& flag, size_t count) {
   std::vector<std::pair<BodyPart, std::vector<double>>> out;
   for (const std::string& e : entries) {
     const size_t colon = e.find(':');
     if (colon == std::string::npos) throw InputError("expected PART:value in " + flag + ", found '" + e + "'");
-    std::vector<double> values;
-    const std::string list = e.substr(colon + 1);
-    for (size_t begin = 0; begin <= list.size();) {
-      const size_t comma = std::min(list.find(',', begin), list.size());
-      const std::string text = list.substr(begin, comma - begin);
-      begin = comma + 1;
-      char* end = nullptr;
-      const double v = std::strtod(text.c_str(), &end);
-      if (text.empty() || *end != '\0' || !std::isfinite(v))
-        throw InputError("expected a number after '" + e.substr(0, colon + 1) + "' in " + flag + ", found '" + text +
-                         "'");
-      values.push_back(v);
-    }
+    std::vector<double> values = parse_numbers(e.substr(colon + 1), flag + " " + e.substr(0, colon));
     if (count > 0 && values.size() != count)
       throw InputError("expected " + std::to_string(count) + (count == 1 ? " number" : " numbers") + " after '" +
                        e.substr(0, colon + 1) + "' in " + flag + ", found " + std::to_string(values.size()));

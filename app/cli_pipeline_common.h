@@ -40,6 +40,14 @@ struct ChannelsFlag {
 // A mapping file's overrides (empty path: none).
 MappingOverrides load_mapping(const std::string& path);
 
+// Numbers separated by commas, each a decimal or a fraction ("0.2,1/3,...", io/numbers.h);
+// `flag` names the option in the error. Throws InputError on an entry that is neither.
+std::vector<double> parse_numbers(const std::string& list, const std::string& flag);
+
+// A few lines for a person (what was made, how long, how well, where it went) from a blend's,
+// mix's or transfer's report, for stdout when no --report is asked for.
+std::string report_summary(const Json& report, const std::string& out, const std::string& positions_out);
+
 // "PART:v1,v2,..." entries (repeated) split into a part and its numbers; `flag` names the option
 // in errors. Each entry needs `count` numbers (0: any number). Throws InputError.
 std::vector<std::pair<BodyPart, std::vector<double>>> parse_part_entries(const std::vector<std::string>& entries,

@@ -45,32 +45,46 @@ void assess(Alignment& al, int frames_a, int frames_b, double fps) {
     }
     int end = k;
     while (end + 1 < u && al.cost_ratio[end + 1] > kPoorMatchRatio) ++end;
-    if (end - k + 1 >= min_run) {
-      al.poor.emplace_back(k, end);
-      char s[256];
-      std::snprintf(s, sizeof s,
-                    "A's frames %d-%d (%s to %s) match B's frames %d-%d poorly: the %s differ %.1f times as much as "
-                    "along the rest of the alignment",
-                    int(std::lround(w.a[k])), int(std::lround(w.a[end])), seconds(w.a[k], fps).c_str(),
-                    seconds(w.a[end], fps).c_str(), int(std::lround(w.b[k])), int(std::lround(w.b[end])),
-                    align_on_name(al.feature.on), al.cost_ratio.segment(k, end - k + 1).mean());
-      al.warnings.push_back(s);
-    }
+    if (end - k + 1 >= min_run) al.poor.emplace_back(k, end);
     k = end + 1;
   }
-  auto left_out = [&](const char* take, int first, int last, int frames) {
-    const int matched = last - first + 1;
-    if (matched >= kMatchedFractionWarning * frames) return;
-    char s[256];
-    std::snprintf(s, sizeof s, "only %s's frames %d-%d (%s of %s) match the other take; the rest is left out", take,
-                  first, last, seconds(matched, fps).c_str(), seconds(frames, fps).c_str());
-    al.warnings.push_back(s);
-  };
-  left_out("A", al.a_first, al.a_last, frames_a);
-  left_out("B", al.b_first, al.b_last, frames_b);
+  al.frames_a = frames_a;
+  al.frames_b = frames_b;
+  al.warnings = alignment_warnings(al, fps, {"A", 0.0}, {"B", 0.0});
 }
 
 }  // namespace
+
+std::vector<std::string> alignment_warnings(const Alignment& al, double fps, const AlignedTake& a, const AlignedTake& b) {
+  // A frame at the working rate as its file counts it.
+  auto in_file = [&](double frame, const AlignedTake& take) {
+    return static_cast<int>(std::lround(take.file_fps > 0 ? frame * take.file_fps / fps : frame));
+  };
+  const TimeWarp& w = al.warp;
+  std::vector<std::string> out;
+  for (const auto& [k, end] : al.poor) {
+    char s[512];
+    std::snprintf(s, sizeof s,
+                  "%s's frames %d-%d (%s to %s) match %s's frames %d-%d poorly: the %s differ %.1f times as much as "
+                  "along the rest of the alignment",
+                  a.name.c_str(), in_file(w.a[k], a), in_file(w.a[end], a), seconds(w.a[k], fps).c_str(),
+                  seconds(w.a[end], fps).c_str(), b.name.c_str(), in_file(w.b[k], b), in_file(w.b[end], b),
+                  align_on_name(al.feature.on), al.cost_ratio.segment(k, end - k + 1).mean());
+    out.push_back(s);
+  }
+  auto left_out = [&](const AlignedTake& take, int first, int last, int frames, const AlignedTake& other) {
+    const int matched = last - first + 1;
+    if (matched >= kMatchedFractionWarning * frames) return;
+    char s[512];
+    std::snprintf(s, sizeof s, "only %s's frames %d-%d (%s of %s) match %s; the rest is left out", take.name.c_str(),
+                  in_file(first, take), in_file(last, take), seconds(matched, fps).c_str(), seconds(frames, fps).c_str(),
+                  other.name == "A" || other.name == "B" ? "the other take" : other.name.c_str());
+    out.push_back(s);
+  };
+  left_out(a, al.a_first, al.a_last, al.frames_a, b);
+  left_out(b, al.b_first, al.b_last, al.frames_b, a);
+  return out;
+}
 
 const char* dtw_method_name(DtwMethod method) { return method == DtwMethod::kSlope ? "slope" : "paper"; }
 

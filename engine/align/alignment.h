@@ -60,8 +60,19 @@ struct Alignment {
   double typical_cost = 0.0;  // that median, feature units
   // Sample ranges [first, last] where cost_ratio stays above kPoorMatchRatio for long enough.
   std::vector<std::pair<int, int>> poor;
-  std::vector<std::string> warnings;  // plain sentences: poor stretches, much left out
+  int frames_a = 0, frames_b = 0;     // the takes' lengths at the working rate
+  std::vector<std::string> warnings;  // plain sentences: poor stretches, much left out ("A", "B")
 };
+
+// A take as an alignment's warnings name it: its name and its file's frame rate, so that frames
+// are counted as the file counts them (0: at the working rate).
+struct AlignedTake {
+  std::string name;
+  double file_fps = 0.0;
+};
+// The warnings of `al` (poor stretches, much left out) in plain sentences naming the takes, frames
+// counted in their files and times in seconds; fps: the working rate. O(poor stretches).
+std::vector<std::string> alignment_warnings(const Alignment& al, double fps, const AlignedTake& a, const AlignedTake& b);
 
 // Aligns B onto A (both canonical, B retargeted to A's bones, fps their common rate). Throws
 // InputError (bad options, missing joints, takes too short) or Cancelled.

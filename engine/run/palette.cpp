@@ -187,6 +187,15 @@ std::shared_ptr<const PaletteDecomposition> decompose_palette(const PreparedPale
   return d;
 }
 
+std::vector<double> normalized_weights(const std::vector<double>& typed) {
+  double sum = 0.0;
+  for (double w : typed) sum += w;
+  if (std::abs(sum - 1.0) > kTypedWeightSumTolerance || sum == 1.0) return typed;
+  std::vector<double> out = typed;
+  for (double& w : out) w /= sum;
+  return out;
+}
+
 void MixParams::Validate(int takes, int components) const {
   if (static_cast<int>(weights.size()) != takes)
     throw InputError("expected " + std::to_string(takes) + " weights, one per take, found " +

@@ -91,6 +91,13 @@ std::shared_ptr<const PaletteDecomposition> decompose_palette(const PreparedPale
                                                               const DecomposeParams& params,
                                                               JobControl* control = nullptr);
 
+// Weights typed as decimals may miss 1 by their rounding (six times 0.166667 is 1.000002): a sum
+// within this of 1 is taken as meant.
+constexpr double kTypedWeightSumTolerance = 1e-3;
+// `typed` divided by its sum when that is within kTypedWeightSumTolerance of 1, so that the
+// weights sum to 1 as MixParams::Validate asks; as typed otherwise, for Validate to refuse.
+std::vector<double> normalized_weights(const std::vector<double>& typed);
+
 struct MixParams {
   std::vector<double> weights;       // one per take, summing to 1
   // Per component, one weight per take (k x N, each row summing to 1), from per-part weights

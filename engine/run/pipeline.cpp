@@ -123,6 +123,7 @@ std::shared_ptr<const PreparedPair> prepare_pair(std::shared_ptr<const Clip> a,
   feature_joints.right_wrist = column(MajorJoint::kRightWrist);
   p->alignment = align_takes(p->canonical_a, p->canonical_b, feature_joints, p->feet.leg_length, fps, options.align,
                              control);
+  p->alignment.warnings = alignment_warnings(p->alignment, fps, {"A", a->fps()}, {"B", b->fps()});
   p->times.dtw_ms = ms_since(t1);
   report_progress(control, 0.8f);
 

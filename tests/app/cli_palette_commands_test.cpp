@@ -2,6 +2,7 @@
 // are checked before anything is read, transfer at strength 0 is the content take, bad input
 // exits 1 with one line and leaves no file.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -114,4 +115,48 @@ TEST_CASE("cli mix of four takes with per-part weights, and transfer, write BVH 
                            " --strength 3 --out " + quoted(box.path("bad.bvh")));
   CHECK(bad.status == 1);
   CHECK(!std::filesystem::exists(box.path("bad.bvh")));
+}
+
+TEST_CASE("cli mix: typed weights within 0.001 of a sum of 1 and fractions are taken and normalized",
+          "[cli][palette]") {
+  Sandbox box;
+  // Three thirds typed as fractions: the report gives the weights typed and the ones used.
+  const auto thirds = box.cli("mix " + kHappy + " " + kMarching + " " + kJoy +
+                              " --weights 1/3,1/3,1/3 --part-weights legs:1/2,1/4,1/4 --report " +
+                              quoted(box.path("thirds.json")));
+  INFO(thirds.err);
+  REQUIRE(thirds.status == 0);
+  CHECK(thirds.out.empty());  // the report went to its file
+  const auto r = nlohmann::json::parse(test::slurp(box.path("thirds.json")));
+  CHECK(r["weights"][0].get<double>() == Approx(1.0 / 3.0).epsilon(1e-12));
+  CHECK(r["part_weights"]["legs"][1].get<double>() == Approx(0.25));
+  // Six-digit decimals whose sum is 1.000002: divided by their sum, and a summary on stdout
+  // instead of the JSON.
+  const auto rounded = box.cli("mix " + kHappy + " " + kMarching + " " + kJoy + " --weights 0.333334,0.333334,0.333334");
+  INFO(rounded.err);
+  REQUIRE(rounded.status == 0);
+  CHECK(rounded.out.find('{') == std::string::npos);
+  CHECK(rounded.out.find("mix of 3 takes") != std::string::npos);
+  CHECK(rounded.out.find("frames at 30 fps") != std::string::npos);
+  CHECK(rounded.out.find("nothing written") != std::string::npos);
+  CHECK(std::count(rounded.out.begin(), rounded.out.end(), '\n') <= 6);
+  // Further off than 0.001, a fraction over zero, or no number: refused before anything is read.
+  for (const std::string& weights : {"0.33,0.33,0.33", "1/0,0,0", "1/3,1/3,x"}) {
+    const auto bad = box.cli("mix " + kHappy + " " + kMarching + " " + kJoy + " --weights " + weights);
+    INFO(weights << ": " << bad.err);
+    CHECK(bad.status == 1);
+    CHECK(std::count(bad.err.begin(), bad.err.end(), '\n') == 1);
+  }
+}
+
+TEST_CASE("cli blend without --report prints a short summary, not the JSON", "[cli][palette]") {
+  Sandbox box;
+  const auto blend = box.cli("blend " + kHappy + " " + kMarching + " --alpha 0.3 --out " + quoted(box.path("b.bvh")));
+  INFO(blend.err);
+  REQUIRE(blend.status == 0);
+  CHECK(blend.out.find("blend of cmu142_walk_happy.bvh and cmu142_walk_marching.bvh at alpha 0.30") !=
+        std::string::npos);
+  CHECK(blend.out.find("wrote " + box.path("b.bvh")) != std::string::npos);
+  CHECK(blend.out.find('{') == std::string::npos);
+  CHECK(blend.out.size() < 1000);
 }

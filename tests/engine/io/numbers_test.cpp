@@ -1,0 +1,43 @@
+// Numbers as a person types them (engine/io/numbers.h): decimals and fractions, nothing else.
+#include <catch2/catch.hpp>
+
+#include "engine/io/error.h"
+#include "engine/io/numbers.h"
+#include "engine/run/palette.h"
+
+using namespace mostyle;
+
+TEST_CASE("parse_number: decimals and fractions") {
+  double v = 0.0;
+  CHECK(parse_number("0.25", &v));
+  CHECK(v == 0.25);
+  CHECK(parse_number("-1e-3", &v));
+  CHECK(v == -1e-3);
+  CHECK(parse_number("1/3", &v));
+  CHECK(v == 1.0 / 3.0);
+  CHECK(parse_number("-2/3", &v));
+  CHECK(v == -2.0 / 3.0);
+  CHECK(parse_number("1.5/0.5", &v));
+  CHECK(v == 3.0);
+  for (const char* bad : {"", " 1", "1 ", "a", "1/", "/3", "1/0", "1/3/4", "1//3", "inf", "nan", "1e400", "0x", "1,2"}) {
+    INFO(bad);
+    CHECK_FALSE(parse_number(bad, &v));
+  }
+}
+
+TEST_CASE("normalized_weights: a sum within 0.001 of 1 is divided out, anything else is left for Validate") {
+  const std::vector<double> six(6, 0.166667);  // sums to 1.000002
+  const std::vector<double> w = normalized_weights(six);
+  double sum = 0.0;
+  for (double x : w) sum += x;
+  CHECK(sum == Approx(1.0).margin(1e-15));
+  MixParams mp;
+  mp.weights = w;
+  CHECK_NOTHROW(mp.Validate(6, 0));
+  const std::vector<double> exact = {0.25, 0.75};
+  CHECK(normalized_weights(exact) == exact);
+  const std::vector<double> off = {0.5, 0.6};  // 1.1: refused by Validate, not normalized
+  CHECK(normalized_weights(off) == off);
+  mp.weights = normalized_weights(off);
+  CHECK_THROWS_AS(mp.Validate(2, 0), InputError);
+}
