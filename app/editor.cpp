@@ -100,6 +100,7 @@ Editor::Editor(const EditorOptions& options) : session_(std::make_unique<ui::Ble
   state_.parameters = options.initial.parameters;
   state_.playback.playing = !options.initial.paused;
   initial_frame_ = options.initial.frame;
+  scripted_save_path_ = options.save_session_path;
   recent_path_ = options.recent_path;
   recent_ = ui::read_recent_files(recent_path_);  // missing or broken: empty
   session_->set_recent(recent_.takes);
@@ -113,6 +114,11 @@ Editor::Editor(const EditorOptions& options) : session_(std::make_unique<ui::Ble
     first_take = session_->requested_a().empty() ? session_path_ : session_->requested_a();
   } else {
     const std::vector<std::string> files = options.files.empty() ? default_motion_files() : options.files;
+    // --weights: a pair's are (1 - alpha, alpha), a palette's its sliders' (parse_editor_options
+    // checked their count).
+    const std::vector<double>& weights = options.initial.weights;
+    if (weights.size() == 2) state_.parameters.alpha = weights[1];
+    else if (!weights.empty()) session_->controls().palette.weights = weights;
     session_->request_decomposition(state_);
     session_->load_files(files);  // three or more: the style palette
     first_take = files.empty() ? std::string() : files[0];
@@ -137,8 +143,10 @@ void Editor::update_engine() {
   const bool loading = ui::load_pending(*session_);
   session_->poll(state_);
   session_->update_blend(state_);
-  const void* pair = session_->snapshot().prepared.get();
-  if (pair != nullptr && pair != framed_pair_) {  // a new pair: frame it, start at --frame once
+  // The takes, a pair or a palette alike.
+  const void* pair = session_->palette() != nullptr ? static_cast<const void*>(session_->palette())
+                                                    : static_cast<const void*>(session_->snapshot().prepared.get());
+  if (pair != nullptr && pair != framed_pair_) {  // new takes: frame them, start at --frame once
     framed_pair_ = pair;
     state_.view.request_reframe = true;
     if (const ui::Take* reference = state_.reference_take()) {
@@ -236,7 +244,8 @@ void Editor::frame_camera(float aspect) {
 
 bool Editor::animating() const {
   const WorkerStatus status = session_->status();
-  return state_.playback.playing || status.stage != WorkerStage::kIdle || status.pending || session_->sweeping() ||
+  return state_.playback.playing || status.stage != WorkerStage::kIdle || status.pending || session_->has_news() ||
+         session_->sweeping() || scripted_save_pending() ||
          !session_->dropped().empty() || (files_panel_ != nullptr && files_panel_->export_dialog().busy());
 }
 
@@ -349,7 +358,11 @@ void Editor::frame(const FrameInput& input) {
   }
   restore_camera(aspect);
   ui::apply_camera_input(camera_);
-  if (state_.view.follow && !scene_.skeletons.empty()) {
+  // Follow the skeletons while they move (playing, or the playhead stepped or dragged); at rest
+  // the view stays where it was put, so a restored session's camera is the one drawn.
+  const bool moved = state_.playback.playing || state_.playback.time_s != followed_time_s_;
+  followed_time_s_ = state_.playback.time_s;
+  if (state_.view.follow && moved && !scene_.skeletons.empty()) {
     glm::vec3 centre(0.0f);
     for (const render::SkeletonPose& pose : scene_.skeletons) centre += render::pose_bounds(pose).center();
     camera_.follow(centre / static_cast<float>(scene_.skeletons.size()), input.delta_s);
@@ -386,9 +399,21 @@ void Editor::frame(const FrameInput& input) {
   glViewport(0, 0, size.x, size.y);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   // Shown by the metrics panel on the next frame; not in screenshots (they differ run to run).
+  ++frames_drawn_;
+  save_session_when_ready();
   session_->frame_ms = deterministic_ ? -1.0f
                                       : std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - cpu_start).count();
   session_->viewport_ms = deterministic_ ? -1.0f : viewport_timer_->milliseconds();
+}
+
+void Editor::save_session_when_ready() {
+  if (scripted_save_path_.empty() || frames_drawn_ < 2) return;
+  const WorkerStatus status = session_->status();
+  const bool loaded = session_->snapshot().prepared != nullptr || session_->palette() != nullptr;
+  if (status.stage != WorkerStage::kIdle || status.pending || ui::load_pending(*session_)) return;
+  if (!loaded && session_->error().empty()) return;
+  if (!save_session(scripted_save_path_)) scripted_save_error_ = session_message_;
+  scripted_save_path_.clear();
 }
 
 bool Editor::undo() { return edits_.undo(state_, *session_); }
@@ -578,6 +603,7 @@ void Editor::restore_camera(float aspect) {
   if (restore_->camera) {
     if (!scene_.skeletons.empty()) frame_camera(aspect);  // the zoom limits and clip planes for what is shown
     set_camera(camera_, *restore_->camera);
+    followed_time_s_ = state_.playback.time_s;  // drawn as it was saved, not followed on from it
     camera_framed_ = true;
     state_.view.request_reframe = false;
   }

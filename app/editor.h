@@ -10,6 +10,7 @@
 // (clear of the centre: tests/ui/layout_test.cpp), then add_panel() it in Editor::Editor() (or
 // from the platform). Panels see and change the EditorState; the viewport follows it every frame.
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -97,9 +98,13 @@ class Editor {
   // Files dropped on the window (the platform's drop callback): loaded as the pair (two) or
   // as B (one) by the files panel on the next frame.
   void drop_files(const std::vector<std::string>& paths);
+  // A thread-safe wake-up for an event loop that waits for input at rest (glfwPostEmptyEvent):
+  // called on the engine's threads when a job finishes, so its result is drawn at once.
+  void set_wake(std::function<void()> wake) { session_->set_wake(std::move(wake)); }
   const render::OrbitCamera& camera() const { return camera_; }
-  // Whether the next frame differs from this one without any input: playing, or the engine
-  // (a load, a decomposition, the error sweep, an export) still working. When not, the window platform
+  // Whether the next frame differs from this one without any input: playing, the engine (a
+  // load, a decomposition, the error sweep, an export) still working, or a result of it not yet
+  // taken up. When not, the window platform
   // waits for events instead of drawing (an editor at rest uses next to no CPU).
   bool animating() const;
 
@@ -120,6 +125,10 @@ class Editor {
   bool save_session(const std::string& path);
   bool open_session(const std::string& path);
   const std::string& session_path() const { return session_path_; }  // absolute; "" before a save or open
+  // --save-session (EditorOptions::save_session_path): saved once the takes are in, the engine is
+  // idle and two frames are drawn. pending until then; the error sentence when it failed.
+  bool scripted_save_pending() const { return !scripted_save_path_.empty(); }
+  const std::string& scripted_save_error() const { return scripted_save_error_; }
   const std::string& session_message() const { return session_message_; }
   bool session_message_is_error() const { return session_error_; }
   // The takes and sessions opened before (options.recent_path: kept across restarts there).
@@ -139,6 +148,7 @@ class Editor {
   void draw_session_message();
   void set_session_message(const std::string& message, bool error);
   void restore_camera(float aspect);  // an opened session's camera, once its takes are in
+  void save_session_when_ready();     // --save-session
   void keep_recent_files();           // recent.json follows the session's recent takes
   void save_recent_files();
 
@@ -146,7 +156,7 @@ class Editor {
   std::unique_ptr<ui::BlendSession> session_;  // before panels_: they hold references to it
   std::vector<std::unique_ptr<ui::Panel>> panels_;
   ui::FilesPanel* files_panel_ = nullptr;  // in panels_; owns the export dialog (animating())
-  const void* framed_pair_ = nullptr;  // the prepared pair the camera was framed on
+  const void* framed_pair_ = nullptr;  // the prepared pair or palette the camera was framed on
   int initial_frame_ = 0;              // --frame, applied when the first pair arrives
   bool initial_frame_applied_ = false;
   glm::vec2 layout_display_{0.0f};  // the display size the panels were last laid out for
@@ -158,6 +168,7 @@ class Editor {
   std::unique_ptr<render::GpuTimer> viewport_timer_;  // the viewport's cost, shown in a corner
   bool graphics_ready_ = false;
   bool camera_framed_ = false;
+  double followed_time_s_ = -1.0;  // the playhead when the camera last followed the skeletons
   float free_fraction_ = 1.0f;  // of the window's size that no panel covers (framing)
   bool deterministic_ = false;
   bool software_renderer_ = false;  // llvmpipe & co: no multisampling unless asked
@@ -172,6 +183,8 @@ class Editor {
   };
   std::optional<ViewRestore> restore_;
   std::string session_path_;
+  std::string scripted_save_path_, scripted_save_error_;  // --save-session
+  int frames_drawn_ = 0;
   std::string session_message_;
   bool session_error_ = false;
   std::optional<std::chrono::steady_clock::time_point> session_message_until_;  // fades; none: until closed

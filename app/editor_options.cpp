@@ -7,6 +7,9 @@
 #include <filesystem>
 #include <system_error>
 
+#include "engine/io/error.h"
+#include "engine/io/numbers.h"
+#include "engine/run/palette.h"
 #include "ui/session_file.h"
 
 namespace mostyle::app {
@@ -111,6 +114,28 @@ ParseResult parse_editor_options(int argc, const char* const* argv) {
       if (!take_value() || !parse_double(value, &v) || v <= 0.0 || v > 1.0)
         return fail("--sparsity: expected a number in (0, 1], got '" + value + "'");
       o.initial.parameters.sparsity = v;
+    } else if (name == "--weights") {
+      std::vector<double> weights;
+      bool ok = take_value() && !value.empty();
+      for (size_t begin = 0; ok && begin <= value.size();) {
+        const size_t comma = std::min(value.find(',', begin), value.size());
+        double w = 0.0;
+        ok = parse_number(value.substr(begin, comma - begin), &w) && w >= kMinMixWeight && w <= kMaxMixWeight;
+        weights.push_back(w);
+        begin = comma + 1;
+      }
+      weights = normalized_weights(weights);
+      double sum = 0.0;
+      for (double w : weights) sum += w;
+      if (!ok || weights.size() < 2 || std::abs(sum - 1.0) > 1e-9)
+        return fail("--weights: expected one weight per take, comma separated (decimals or fractions such as 1/3), "
+                    "each from -0.5 to 1.5, summing to 1, got '" + value + "'");
+      o.initial.weights = weights;
+    } else if (name == "--save-session") {
+      if (!take_value() || value.empty()) return fail("--save-session: expected a session file name (.mostyle)");
+      if (!ui::is_session_path(value) && !std::filesystem::path(value).extension().empty())
+        return fail("--save-session: a session's file name ends in .mostyle, got '" + value + "'");
+      o.save_session_path = value;
     } else if (name == "--frame") {
       int v = 0;
       if (!take_value() || !parse_int(value, &v) || v < 0)
@@ -130,7 +155,27 @@ ParseResult parse_editor_options(int argc, const char* const* argv) {
     o.files.clear();
     break;
   }
+  if (!o.initial.weights.empty()) {
+    if (!o.session_path.empty()) return fail("--weights: a session brings its own weights; give takes instead");
+    const size_t takes = o.files.empty() ? 2 : std::max<size_t>(o.files.size(), 2);
+    if (o.initial.weights.size() != takes)
+      return fail("--weights: expected " + std::to_string(takes) + " weights, one per take, got " +
+                  std::to_string(o.initial.weights.size()));
+    if (takes == 2 && (o.initial.weights[1] < 0.0 || o.initial.weights[1] > 1.0))
+      return fail("--weights: a pair's weights are 1 - alpha and alpha, alpha from 0 to 1, got " +
+                  std::to_string(o.initial.weights[1]));
+  }
   return result;
+}
+
+std::string session_argument_error(const EditorOptions& options) {
+  if (options.session_path.empty()) return "";
+  try {
+    ui::read_session_file(options.session_path);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
 }
 
 const std::vector<KeyHelp>& editor_keys() {
@@ -179,12 +224,15 @@ std::string editor_usage() {
          "  --components K        initial number of components (default 10)\n"
          "  --sparsity F          initial fraction of non-zeros per component, (0, 1] (default 0.1)\n"
          "  --frame N             initial frame (default 0)\n"
+         "  --weights W1,W2,...   initial weights, one per take, summing to 1 (a pair's: 1-alpha,alpha)\n"
+         "  --save-session FILE   once the takes are in, save the session to FILE (.mostyle)\n"
          "  --help                this text\n"
          "\n"
          "keys and mouse (F1 in the editor lists them too):\n" +
          keys +
          "\n"
-         "exit status: 0 success, 1 failure (no display, unwritable screenshot), 2 bad usage.\n";
+         "exit status: 0 success, 1 failure (no display, a session that cannot be opened, an unwritable\n"
+         "screenshot or session), 2 bad usage.\n";
 }
 
 std::vector<std::string> default_motion_files() {

@@ -12,6 +12,8 @@ namespace mostyle::app {
 // Where the editor starts, so a screenshot is reproducible. Panels take it from EditorState.
 struct InitialState {
   ui::BlendParameters parameters;
+  // --weights: one per take, summing to 1 (a pair's are 1 - alpha, alpha); empty: the defaults.
+  std::vector<double> weights;
   int frame = 0;  // first frame shown, of the reference (first) take
   bool paused = false;  // start with playback paused (screenshots always are)
 };
@@ -26,6 +28,9 @@ struct EditorOptions {
   // kept. Not a flag: the window program sets it, tests and screenshots leave it empty.
   std::string recent_path;
   std::string screenshot_path;      // non-empty: render a few frames, write this PNG, exit
+  // Non-empty: once the takes are in and the first frames drawn, the session is saved here
+  // (--save-session), so that a state set up by flags can be reopened (scripted use).
+  std::string save_session_path;
   bool offscreen = false;           // no display: OSMesa (needs screenshot_path)
   InitialState initial;
   int width = 1280;                 // window / offscreen size, pixels (--window-size), also the
@@ -42,6 +47,11 @@ struct ParseResult {
 
 // Parses argv (argv[0] is the program). Accepts "--flag value" and "--flag=value".
 ParseResult parse_editor_options(int argc, const char* const* argv);
+
+// Why the session given on the command line cannot be opened (unreadable or malformed, one
+// line "FILE:LINE: ..."), or "" when it can (or none is given). A take of it that is missing is
+// not a reason: the session opens without it. Reads the file.
+std::string session_argument_error(const EditorOptions& options);
 
 // The --help text.
 std::string editor_usage();

@@ -46,6 +46,11 @@ int main(int argc, char** argv) {
     case ParseStatus::kRun:
       break;
   }
+  // A session that cannot be opened is said here, before any window: nothing else opens instead.
+  if (const std::string error = session_argument_error(parsed.options); !error.empty()) {
+    std::fprintf(stderr, "mostyle: %s\n", error.c_str());
+    return 1;
+  }
   if (parsed.options.offscreen) return exec_offscreen(argc, argv);
   // The recent takes and sessions outlive the window; a screenshot run leaves them alone.
   if (parsed.options.screenshot_path.empty()) parsed.options.recent_path = mostyle::ui::recent_files_path();

@@ -1,6 +1,7 @@
 // mostyle-offscreen: the editor with no display (OSMesa), for `mostyle --offscreen` (which
 // runs this program) and for CI screenshots. Same flags as mostyle; --offscreen is implied.
 #include <cstdio>
+#include <string>
 
 #include "app/editor_options.h"
 #include "app/offscreen_platform.h"
@@ -19,6 +20,11 @@ int main(int argc, char** argv) {
   if (parsed.options.screenshot_path.empty()) {
     std::fprintf(stderr, "mostyle: --offscreen renders for a screenshot: add --screenshot OUT.png\n");
     return 2;
+  }
+  // A session that cannot be opened is said here, before any window: nothing else opens instead.
+  if (const std::string error = session_argument_error(parsed.options); !error.empty()) {
+    std::fprintf(stderr, "mostyle: %s\n", error.c_str());
+    return 1;
   }
   return run_offscreen(parsed.options);
 }

@@ -56,6 +56,10 @@ int run_offscreen(const EditorOptions& options) {
         editor.frame(FrameInput{size, kScreenshotDeltaS});
       }
       status = write_screenshot(size, options.screenshot_path);
+      if (!editor.scripted_save_error().empty() || editor.scripted_save_pending()) {
+        std::fprintf(stderr, "mostyle: %s\n", editor.scripted_save_pending() ? "the session was not saved: the takes did not finish loading" : editor.scripted_save_error().c_str());
+        status = 1;
+      }
     } catch (const std::exception& e) {
       std::fprintf(stderr, "mostyle: %s\n", e.what());
       status = 1;

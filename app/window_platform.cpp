@@ -16,6 +16,7 @@
 #include <imgui_impl_glfw.h>
 
 #include "app/editor.h"
+#include "app/input_queue.h"
 #include "app/imgui_session.h"
 #include "app/screenshot.h"
 
@@ -26,6 +27,10 @@ namespace {
 static_assert(kKeyF == GLFW_KEY_F && kKeyZero == GLFW_KEY_0 && kKeyF1 == GLFW_KEY_F1 && kKeyKeypadZero == GLFW_KEY_KP_0,
               "app/editor.h's key codes must be GLFW's");
 static_assert(kKeyE == GLFW_KEY_E, "app/editor.h's key codes must be GLFW's");
+static_assert(kActionRelease == GLFW_RELEASE && kActionPress == GLFW_PRESS && kActionRepeat == GLFW_REPEAT &&
+                  kModShift == GLFW_MOD_SHIFT && kModControl == GLFW_MOD_CONTROL && kModAlt == GLFW_MOD_ALT &&
+                  kModSuper == GLFW_MOD_SUPER && GLFW_KEY_LEFT_SHIFT == 340 && GLFW_KEY_RIGHT_SUPER == 347,
+              "app/input_queue.h's values must be GLFW's");
 static_assert(kKeyZ == GLFW_KEY_Z && kKeyY == GLFW_KEY_Y && kKeyS == GLFW_KEY_S && kKeyO == GLFW_KEY_O,
               "app/editor.h's key codes must be GLFW's");
 
@@ -69,23 +74,24 @@ void count_events(GLFWwindow* window) {
   glfwSetWindowRefreshCallback(window, count_refresh);
 }
 
-// A key pressed and released within one batch of events (a quick tap while the editor waits at
-// rest, or a shortcut whose Ctrl comes up in the same batch as its letter) would never be down
-// together in a frame: ImGui's callback sets and clears it before NewFrame. Every release is held
-// back until the next batch, so a key is down for at least the frame after its press.
-std::vector<std::array<int, 4>> g_held_releases;  // key, scancode, action, mods
-void on_key(GLFWwindow* window, int key, int scancode, int action, int mods) {
-  if (action == GLFW_RELEASE) {
-    ++g_events;
-    g_held_releases.push_back({key, scancode, action, mods});
-    return;
-  }
-  ImGui_ImplGlfw_KeyCallback(window, key, scancode, action, mods);  // counts the event (count_key)
+// Keys and characters reach ImGui through a queue, a frame's worth at a time (app/input_queue.h):
+// no press is lost when keys come faster than frames, and what is typed after a shortcut waits
+// for the field the shortcut opens.
+InputQueue g_keys;
+void on_key(GLFWwindow*, int key, int scancode, int action, int mods) {
+  ++g_events;
+  g_keys.push({KeyEvent::Kind::kKey, key, scancode, action, mods, 0});
 }
-// Before each batch of events: the releases held back from the previous one.
-void release_held_keys(GLFWwindow* window) {
-  for (const auto& k : g_held_releases) ImGui_ImplGlfw_KeyCallback(window, k[0], k[1], k[2], k[3]);
-  g_held_releases.clear();
+void on_char(GLFWwindow*, unsigned int codepoint) {
+  ++g_events;
+  g_keys.push({KeyEvent::Kind::kChar, 0, 0, 0, 0, codepoint});
+}
+// Before each frame: the events it takes, through ImGui's GLFW back-end.
+void deliver_keys(GLFWwindow* window) {
+  for (const KeyEvent& e : g_keys.take_frame()) {
+    if (e.kind == KeyEvent::Kind::kKey) ImGui_ImplGlfw_KeyCallback(window, e.key, e.scancode, e.action, e.mods);
+    else ImGui_ImplGlfw_CharCallback(window, e.codepoint);
+  }
 }
 
 void on_drop(GLFWwindow* window, int count, const char** paths) {
@@ -139,8 +145,12 @@ int run_window(const EditorOptions& options) {
     if (screenshot) editor.wait_for_engine();  // the same aligned, decomposed pair every run
     count_events(window);
     ImGui_ImplGlfw_InitForOpenGL(window, /*install_callbacks=*/true);
-    glfwSetKeyCallback(window, on_key);  // before ImGui's, which it calls (see on_key)
+    glfwSetKeyCallback(window, on_key);  // instead of ImGui's, which deliver_keys calls
+    glfwSetCharCallback(window, on_char);
     glfwSetWindowUserPointer(window, &editor);
+    // A finished background job wakes the loop below from waiting (glfwPostEmptyEvent may be
+    // called from any thread), so its result shows at once, not at the next input.
+    editor.set_wake([] { glfwPostEmptyEvent(); });
     glfwSetDropCallback(window, on_drop);
     try {
       editor.init_graphics();
@@ -149,16 +159,16 @@ int run_window(const EditorOptions& options) {
       for (int frame = 0; !glfwWindowShouldClose(window); ++frame) {
         // At rest (paused, engine idle) wait for input instead of drawing 60 frames a second;
         // the timeout keeps a finished background job from waiting long to be shown.
-        release_held_keys(window);
-        if (!screenshot && !editor.animating() && settle <= 0) {
+        if (!screenshot && !editor.animating() && settle <= 0 && g_keys.empty()) {
           const int before = g_events;
           glfwWaitEventsTimeout(kRestWakeSeconds);
-          if (g_events == before) continue;  // nothing happened: nothing to draw
+          if (g_events == before && !editor.animating()) continue;  // nothing happened: nothing to draw
           settle = kSettleFrames;
         } else {
           glfwPollEvents();
           --settle;
         }
+        deliver_keys(window);
         ImGui_ImplGlfw_NewFrame();
         const double now = glfwGetTime();
         FrameInput input;
@@ -170,8 +180,12 @@ int run_window(const EditorOptions& options) {
           input.delta_s = kScreenshotDeltaS;
         }
         if (input.framebuffer_size.x > 0 && input.framebuffer_size.y > 0) editor.frame(input);  // minimised: skip
+        if (status == 0 && !editor.scripted_save_error().empty()) {  // --save-session: said once, on stderr too
+          std::fprintf(stderr, "mostyle: %s\n", editor.scripted_save_error().c_str());
+          status = 1;
+        }
         if (screenshot && frame + 1 == kScreenshotFrames) {
-          status = write_screenshot(input.framebuffer_size, options.screenshot_path);
+          status = std::max(status, write_screenshot(input.framebuffer_size, options.screenshot_path));
           break;
         }
         glfwSwapBuffers(window);

@@ -112,13 +112,27 @@ void BlendSession::start_error_sweep(const DecomposeParams& base) {
   sweep_params_.components = kSweepComponents[0];
   sweep_next_ = 0;
   sweep_worker_ = std::make_unique<Worker>();  // the previous one (if any) is cancelled and joined
+  sweep_seen_version_ = 0;
+  if (wake_) sweep_worker_->set_on_change(wake_);
   sweep_worker_->decompose(sweep_params_);
   sweep_worker_->load(snapshot_->path_a, snapshot_->path_b, prepare_options());
+}
+
+void BlendSession::set_wake(std::function<void()> wake) {
+  wake_ = std::move(wake);
+  worker_.set_on_change(wake_);
+  if (sweep_worker_) sweep_worker_->set_on_change(wake_);
+}
+
+bool BlendSession::has_news() const {
+  if (worker_.snapshot()->version != seen_version_) return true;
+  return sweep_next_ >= 0 && sweep_worker_ && sweep_worker_->snapshot()->version != sweep_seen_version_;
 }
 
 void BlendSession::poll_sweep() {
   if (sweep_next_ < 0 || !sweep_worker_) return;
   auto snap = sweep_worker_->snapshot();
+  sweep_seen_version_ = snap->version;
   if (!snap->error.empty()) {  // e.g. k larger than the channels: the sweep stops there
     sweep_next_ = -1;
     return;

@@ -9,6 +9,7 @@
 // at the working rate): [0] A and [1] B where the blend is in each, [2] the blend.
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -103,6 +104,12 @@ class BlendSession {
   // Blocks until the worker is idle (tests, screenshots), then poll() + update_blend().
   void wait_idle(EditorState& state);
 
+  // Called on a worker's thread whenever one of them finishes a job (engine Worker::set_on_change),
+  // so a window waiting for input wakes to show it; the window passes a thread-safe wake-up.
+  void set_wake(std::function<void()> wake);
+  // A worker has published something poll() has not taken up yet: the next frame differs.
+  bool has_news() const;
+
   const WorkerSnapshot& snapshot() const { return *snapshot_; }
   WorkerStatus status() const { return worker_.status(); }
   const std::string& error() const { return snapshot_->error; }
@@ -157,7 +164,9 @@ class BlendSession {
   void remember_recent(const std::vector<std::string>& paths);
 
   Worker worker_;
+  std::function<void()> wake_;            // set_wake(); given to the sweep worker too
   std::unique_ptr<Worker> sweep_worker_;  // error against k, off the main worker
+  std::uint64_t sweep_seen_version_ = 0;  // of the sweep worker's snapshot, at the last poll_sweep
   int sweep_next_ = -1;                   // index into kSweepComponents being computed; -1: none
   DecomposeParams sweep_params_;
   const PreparedPair* sweep_pair_ = nullptr;  // the pair the sweep was started for

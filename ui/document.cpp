@@ -51,6 +51,25 @@ bool same_files(const std::vector<std::string>& x, const std::vector<std::string
   return true;
 }
 
+PaletteControls reorder_takes(const PaletteControls& c, const std::vector<int>& order) {
+  const size_t n = order.size();
+  auto reordered = [&](const std::vector<double>& v) {
+    if (v.size() != n) return v;
+    std::vector<double> out(n);
+    for (size_t k = 0; k < n; ++k) out[k] = v[static_cast<size_t>(order[k])];
+    return out;
+  };
+  PaletteControls out = c;
+  out.weights = reordered(c.weights);
+  out.strengths = reordered(c.strengths);
+  for (std::vector<double>& row : out.part_weights) row = reordered(row);
+  for (size_t k = 0; k < n; ++k) {
+    if (order[k] == c.neutral) out.neutral = static_cast<int>(k);
+    if (order[k] == c.content) out.content = static_cast<int>(k);
+  }
+  return out;
+}
+
 bool decomposition_differs(const Document& x, const Document& y) {
   return x.parameters.components != y.parameters.components || x.parameters.sparsity != y.parameters.sparsity ||
          x.controls.mode != y.controls.mode || x.controls.basic_motions != y.controls.basic_motions ||

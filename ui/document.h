@@ -44,6 +44,13 @@ SessionControls document_controls(SessionControls controls);
 // ("a/../b.bvh" and "b.bvh", relative to the working folder or absolute). No file is opened.
 bool same_files(const std::vector<std::string>& x, const std::vector<std::string>& y);
 
+// The palette's controls with its takes in another order: take k of the result is take order[k]
+// of `c`. Every per-take value follows its take (weights, per-part weights, strengths, the
+// neutral take's index; the content is the reference, take 0), so a take keeps its weight when
+// another becomes the content. order: a permutation of 0..n-1 for n takes; a per-take vector of
+// another length (not yet sized for these takes) is left as it is.
+PaletteControls reorder_takes(const PaletteControls& c, const std::vector<int>& order);
+
 // Whether going from `x` to `y` needs a new decomposition: k, sparsity, the mode, the basic
 // motions or their sparsities differ.
 bool decomposition_differs(const Document& x, const Document& y);

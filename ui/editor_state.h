@@ -67,6 +67,7 @@ struct ViewOptions {
   // Panels take their place from ui/layout.h this frame (ImGuiCond_Always) instead of only the
   // first time: set when the display size changed or on Reset layout, cleared after the panels.
   bool reset_layout = false;
+  int laid_out_takes = -1;  // the number of takes the panels were last laid out for (ui/layout.h)
 };
 
 struct EditorState {

@@ -56,11 +56,10 @@ double export_rate_fps(ExportRate rate, double source_fps, double custom_fps) {
 ExportDialog::ExportDialog(BlendSession& session) : session_(session) {}
 
 ExportOptions ExportDialog::options() const {
-  const PreparedPair* p = session_.snapshot().prepared.get();
+  const ExportSubject subject = export_subject(session_);
   ExportOptions o;
   o.path = settings_.path;
-  o.fps = export_rate_fps(settings_.rate, p != nullptr && p->clip_a != nullptr ? p->clip_a->fps() : 0.0,
-                          settings_.custom_fps);
+  o.fps = export_rate_fps(settings_.rate, subject.clip != nullptr ? subject.clip->fps() : 0.0, settings_.custom_fps);
   o.range = settings_.range;
   o.in_s = settings_.in_s;
   o.out_s = settings_.out_s;
@@ -69,23 +68,22 @@ ExportOptions ExportDialog::options() const {
 }
 
 void ExportDialog::poll() {
-  const PreparedPair* p = session_.snapshot().prepared.get();
-  if (p != seen_pair_) {
-    seen_pair_ = p;
+  const ExportSubject subject = export_subject(session_);
+  if (subject.identity != seen_pair_) {
+    seen_pair_ = subject.identity;
     confirm_ = false;
     reset_range_ = true;
-    // Once per pair: O(frames x channels) of A.
-    if (p != nullptr && p->clip_a != nullptr) settings_.layout = default_channel_layout(*p->clip_a);
+    // Once per pair or palette: O(frames x channels) of the reference.
+    if (subject.clip != nullptr) settings_.layout = default_channel_layout(*subject.clip);
   }
-  const BlendResult* b = session_.blend();
-  if (p != nullptr && b != nullptr) {
-    const double length = motion_length_s(b->world.rows(), p->fps);
+  if (subject.frames > 0) {
+    const double length = motion_length_s(subject.frames, subject.working_fps);
     if (reset_range_) {
       settings_.in_s = 0.0;
       settings_.out_s = length;
       reset_range_ = false;
     }
-    // The blend's length follows alpha when the timing is blended: the points stay inside it.
+    // The result's length follows the weights when the timing is mixed: the points stay inside it.
     settings_.out_s = std::clamp(settings_.out_s, 0.0, length);
     settings_.in_s = std::clamp(settings_.in_s, 0.0, settings_.out_s);
   }
@@ -145,11 +143,10 @@ void ExportDialog::draw(EditorState& state) {
 }
 
 void ExportDialog::draw_contents(EditorState& state, bool* open) {
-  const PreparedPair* p = session_.snapshot().prepared.get();
-  const BlendResult* b = session_.blend();
-  const double working = p != nullptr ? p->fps : 30.0;
-  const double source = p != nullptr && p->clip_a != nullptr ? p->clip_a->fps() : 0.0;
-  const int blend_frames = b != nullptr ? static_cast<int>(b->world.rows()) : 0;
+  const ExportSubject subject = export_subject(session_);
+  const double working = subject.working_fps;
+  const double source = subject.clip != nullptr ? subject.clip->fps() : 0.0;
+  const int blend_frames = subject.frames;
   const double length = motion_length_s(blend_frames, working);
   const bool busy = job_.running();
   // A path edited after the question was asked: the question was about another file.
@@ -173,10 +170,12 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
     tooltip(tip);
   };
   char source_label[48];
-  std::snprintf(source_label, sizeof source_label, "A's own (%g)", source);
-  rate_button(ExportRate::kSource, source_label, "The rate of take A's file");
+  const bool pair = subject.takes <= 2;
+  std::snprintf(source_label, sizeof source_label, "%s own (%g)", pair ? "A's" : "The reference's", source);
+  const std::string source_tip = "The rate of " + (subject.name.empty() ? std::string("the reference take") : subject.name);
+  rate_button(ExportRate::kSource, source_label, source_tip.c_str());
   ImGui::SameLine();
-  rate_button(ExportRate::k30, "30", working == 30.0 ? "30 frames per second: the blend's own frames" : "30 frames per second");
+  rate_button(ExportRate::k30, "30", working == 30.0 ? "30 frames per second: the result's own frames" : "30 frames per second");
   ImGui::SameLine();
   rate_button(ExportRate::k60, "60", "60 frames per second (frames in between are interpolated)");
   ImGui::SameLine();
@@ -196,12 +195,12 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
   char all_label[64];
   std::snprintf(all_label, sizeof all_label, "All (%.2f s)", length);
   if (ImGui::RadioButton(all_label, settings_.range == ExportRange::kAll)) settings_.range = ExportRange::kAll;
-  tooltip("The whole blend, first frame to last");
+  tooltip("The whole result, first frame to last");
   ImGui::SameLine();
   if (ImGui::RadioButton("In to out", settings_.range == ExportRange::kInOut)) settings_.range = ExportRange::kInOut;
   tooltip("From the in point to the out point, both included");
   ImGui::SameLine();
-  const int cycles = b != nullptr ? b->loop.cycles : 0;
+  const int cycles = subject.loop_cycles;
   char loop_label[64];
   if (cycles > 0)
     std::snprintf(loop_label, sizeof loop_label, "The loop (%d cycle%s)", cycles, cycles == 1 ? "" : "s");
@@ -211,9 +210,9 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
   if (ImGui::RadioButton(loop_label, settings_.range == ExportRange::kLoop)) settings_.range = ExportRange::kLoop;
   ImGui::EndDisabled();
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-    ImGui::SetTooltip("%s", cycles > 0 ? "The blend's seamless loop of whole gait cycles: the file repeats without a\n"
+    ImGui::SetTooltip("%s", cycles > 0 ? "The result's seamless loop of whole gait cycles: the file repeats without a\n"
                                          "hitch, at any frame rate"
-                                       : "Turn on Loop in the parameters panel to cut a seamless loop of the blend");
+                                       : "Turn on Loop in the parameters panel to cut a seamless loop of the result");
   if (settings_.range == ExportRange::kInOut) {
     double in = settings_.in_s, out = settings_.out_s;
     if (settings_.range_in_frames) {
@@ -222,7 +221,7 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
       const int last = std::max(blend_frames - 1, 0);
       ImGui::SetNextItemWidth(kFieldWidth);
       if (ImGui::DragInt("In##frames", &in_f, 0.25f, 0, last)) in = std::clamp(in_f, 0, last) / working;
-      tooltip("The first frame written, a frame of the blend as the playback bar counts them; drag or type");
+      tooltip("The first frame written, a frame of the result as the playback bar counts them; drag or type");
       ImGui::SameLine();
       ImGui::SetNextItemWidth(kFieldWidth);
       if (ImGui::DragInt("Out##frames", &out_f, 0.25f, 0, last)) out = std::clamp(out_f, 0, last) / working;
@@ -232,7 +231,7 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
       ImGui::SetNextItemWidth(kFieldWidth);
       if (ImGui::DragScalar("In##s", ImGuiDataType_Double, &in, 0.01f, &zero, &length, "%.3f s"))
         in = std::clamp(in, 0.0, length);
-      tooltip("Where the file starts, seconds from the blend's first frame; drag or type");
+      tooltip("Where the file starts, seconds from the result's first frame; drag or type");
       ImGui::SameLine();
       ImGui::SetNextItemWidth(kFieldWidth);
       if (ImGui::DragScalar("Out##s", ImGuiDataType_Double, &out, 0.01f, &zero, &length, "%.3f s"))
@@ -259,13 +258,14 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
     tooltip("The out point at the frame the playback shows");
     ImGui::SameLine();
     ImGui::Checkbox("in frames", &settings_.range_in_frames);
-    tooltip("Count the in and out points in the blend's frames; off: in seconds");
+    tooltip("Count the in and out points in the result's frames; off: in seconds");
   }
 
   // The channels.
   ImGui::Spacing();
   ImGui::TextColored(kDimColor, "Channels");
-  const char* layout_names[2] = {"Rotations (positions on the root only)", "As take A's file"};
+  const std::string as_source = "As " + (subject.name.empty() ? std::string("the reference take's file") : subject.name);
+  const char* layout_names[2] = {"Rotations (positions on the root only)", as_source.c_str()};
   const int current = settings_.layout == ChannelLayout::kRotations ? 0 : 1;
   ImGui::SetNextItemWidth(kWrapWidth - 60.0f);
   if (ImGui::BeginCombo("##layout", layout_names[current])) {
@@ -276,11 +276,11 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
         tooltip("Position channels only where the body travels, so Blender, three.js and game engines\n"
                 "all place the joints alike (a joint's constant positions go into its offset)");
       else
-        tooltip("The channels of take A's file, joint by joint (needed when A's bones change length)");
+        tooltip("The channels of the reference take's file, joint by joint (needed when its bones change length)");
     }
     ImGui::EndCombo();
   }
-  tooltip("How the file's channels are laid out; the default is what suits take A");
+  tooltip("How the file's channels are laid out; the default is what suits the reference take");
   ImGui::EndDisabled();
 
   // What will be written.
@@ -288,7 +288,7 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
   const bool rate_ok = std::isfinite(o.fps) && o.fps > 0.0 && o.fps <= kMaxExportFps;
   if (!rate_ok) {
     wrapped(kErrorColor, "The frame rate must be above 0 and at most 1000 frames per second.");
-  } else if (b != nullptr) {
+  } else if (subject.frames > 0) {
     int frames = 0;
     if (o.range == ExportRange::kLoop)
       frames = std::max(1, static_cast<int>(std::lround(blend_frames * o.fps / working)));
@@ -311,13 +311,13 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
   } else if (confirm_) {
     wrapped(kWarnColor, fs::path(confirm_path_).filename().string() + " exists. Overwrite it?");
     if (ImGui::Button("Overwrite")) press_overwrite();
-    tooltip("Replace the file with the blend");
+    tooltip("Replace the file with the result");
     ImGui::SameLine();
     if (ImGui::Button("Keep it")) press_cancel();
     tooltip("Do not write; choose another file name");
   } else {
     if (ImGui::Button("Export") || enter) press_export();
-    tooltip("Write the blend as a BVH file on take A's skeleton, in the background");
+    tooltip("Write the result as a BVH file on the reference take's skeleton, in the background");
     ImGui::SameLine();
     if (ImGui::Button("Close")) *open = false;
   }

@@ -28,6 +28,31 @@ constexpr float kResampledProgress = 0.1f;
 
 }  // namespace
 
+ExportSubject export_subject(const BlendSession& session) {
+  ExportSubject subject;
+  if (const PreparedPalette* palette = session.palette()) {
+    subject.identity = palette;
+    subject.clip = palette->takes.front().clip.get();
+    subject.working_fps = palette->fps;
+    subject.takes = palette->size();
+    if (const MixResult* mix = session.palette_view().mix()) {
+      subject.frames = static_cast<int>(mix->motion.world.rows());
+      subject.loop_cycles = mix->motion.loop.cycles;
+    }
+  } else if (const PreparedPair* pair = session.snapshot().prepared.get()) {
+    subject.identity = pair;
+    subject.clip = pair->clip_a.get();
+    subject.working_fps = pair->fps;
+    subject.takes = 2;
+    if (const BlendResult* blend = session.blend()) {
+      subject.frames = static_cast<int>(blend->world.rows());
+      subject.loop_cycles = blend->loop.cycles;
+    }
+  }
+  if (subject.clip != nullptr) subject.name = fs::path(subject.clip->source).filename().string();
+  return subject;
+}
+
 ExportRequest make_export_request(const BlendSession& session, const ExportOptions& options) {
   if (options.path.empty()) throw InputError("Export: no file name given.");
   if (const PreparedPalette* palette = session.palette()) {  // the style palette's mix
@@ -108,12 +133,13 @@ ExportOutcome run_export(const ExportRequest& request, JobControl* control) {
     const std::string mean = length_in_words(result.fit.mean, cm_per_unit, units.height);
     // A loop lasts all its frames (the next repeat follows the last); a clip, first to last.
     const double seconds = o.range == ExportRange::kLoop ? out.frames / fps : motion_length_s(out.frames, fps);
+    const std::string reference = fs::path(request.clip->source).filename().string();
     char text[160];
-    std::snprintf(text, sizeof text, "Exported %d frames at %g fps (%.2f s%s, %s) to ", out.frames, fps, seconds,
-                  o.range == ExportRange::kLoop ? ", a seamless loop" : "",
-                  o.layout == ChannelLayout::kRotations ? "rotation channels" : "A's channels");
-    out.message = text + o.path + ". A's skeleton in the file follows the blend within " + worst +
-                  " (worst joint and frame; " + mean + " on average).";
+    std::snprintf(text, sizeof text, "Exported %d frames at %g fps (%.2f s%s, ", out.frames, fps, seconds,
+                  o.range == ExportRange::kLoop ? ", a seamless loop" : "");
+    out.message = text + (o.layout == ChannelLayout::kRotations ? "rotation channels" : "the channels of " + reference) +
+                  ") to " + o.path + ". The skeleton of " + reference + " in the file follows the result within " +
+                  worst + " (worst joint and frame; " + mean + " on average).";
   } catch (const Cancelled&) {
     out.cancelled = true;
     out.message = "Export cancelled: nothing was written.";

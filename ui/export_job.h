@@ -39,6 +39,20 @@ struct ExportOptions {
   ChannelLayout layout = ChannelLayout::kAsSource;  // the caller's default: default_channel_layout(A)
 };
 
+// What the session shows, as the export dialog needs it each frame, whatever the number of takes:
+// the reference take (A, or a palette's first) and the result on it (the blend or the mix).
+struct ExportSubject {
+  const void* identity = nullptr;  // the prepared pair or palette: a new one resets the dialog
+  const Clip* clip = nullptr;      // the reference take as loaded; null: nothing loaded
+  std::string name;                // its file's name, for the dialog's words
+  double working_fps = 30.0;       // the result's rate
+  int frames = 0;                  // the result's frames; 0: none yet
+  int loop_cycles = 0;             // of the result's loop; 0: none
+  int takes = 0;                   // 2 for a pair, N for a palette
+};
+// O(1): no copy of the result.
+ExportSubject export_subject(const BlendSession& session);
+
 // Everything one export needs, copied out of the session: the job never reads the session.
 struct ExportRequest {
   std::shared_ptr<const Clip> clip;  // take A as loaded (immutable, shared with the session)

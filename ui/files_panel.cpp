@@ -10,6 +10,7 @@
 #include <imgui.h>
 
 #include "ui/layout.h"
+#include "ui/palette_view.h"
 
 namespace mostyle::ui {
 namespace fs = std::filesystem;
@@ -76,38 +77,73 @@ std::string without_folders(std::string text, std::vector<std::string> folders) 
   return text;
 }
 
+std::string take_role(int take, int takes) {
+  if (takes <= 2) return take == 0 ? "A" : "B";
+  return std::to_string(take + 1);
+}
+
+std::vector<std::string> with_take(std::vector<std::string> takes, size_t index, const std::string& path) {
+  if (takes.size() == 2 && takes[1].empty() && index == 2) index = 1;  // A with itself: the B it lacked
+  if (index >= takes.size()) takes.push_back(path);
+  else takes[index] = path;
+  return takes;
+}
+
 FilesPanel::FilesPanel(BlendSession& session, std::string folder)
     : session_(session), folder_(std::move(folder)), export_dialog_(session) {}
+
+void FilesPanel::take_buttons(const std::string& path, const std::vector<std::string>& takes) {
+  BlendSession& s = session_;
+  const int n = static_cast<int>(takes.size());
+  if (n <= 2) {
+    for (int i = 0; i < 2; ++i) {
+      if (ImGui::SmallButton(take_role(i, 2).c_str())) s.load_files(with_take(takes, static_cast<size_t>(i), path));
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip(i == 0 ? "Load as A, the take whose timing and skeleton lead" : "Load as B, the style blended in");
+      ImGui::SameLine();
+    }
+  }
+  if (ImGui::SmallButton("+")) s.load_files(with_take(takes, takes.size(), path));
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(n <= 2 && !takes[1].empty() ? "Add as a third take: the pair becomes a style palette"
+                                                  : "Add as one more take of the palette");
+  ImGui::SameLine();
+  if (n > 2) {
+    if (ImGui::SmallButton("Replace...")) ImGui::OpenPopup("##replace");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Put this file in place of one take of the palette");
+    if (ImGui::BeginPopup("##replace")) {
+      for (int i = 0; i < n; ++i) {
+        const std::string label = take_role(i, n) + "  " + fs::path(takes[static_cast<size_t>(i)]).filename().string() +
+                                  (i == 0 ? "  (reference)" : "");
+        if (ImGui::Selectable(label.c_str())) s.load_files(with_take(takes, static_cast<size_t>(i), path));
+      }
+      ImGui::EndPopup();
+    }
+    ImGui::SameLine();
+  }
+}
 
 void FilesPanel::draw(EditorState& state) {
   BlendSession& s = session_;
   export_dialog_.draw(state);  // its own window; polled even while hidden, so an outcome arrives
-  // The fields follow the pair last asked for (not while the animator types): after a failed
+  // The fields follow the takes last asked for (not while the animator types): after a failed
   // load they hold the bad path, to correct.
-  const WorkerSnapshot& snap = s.snapshot();
-  if (s.requested_a() != synced_a_ || s.requested_b() != synced_b_) {
-    synced_a_ = s.requested_a();
-    synced_b_ = s.requested_b();
-    a_.set(synced_a_);
-    b_.set(synced_b_);
+  std::vector<std::string> requested = s.requested_files();
+  if (requested.size() < 2) requested.resize(2);  // a pair's B field, empty: A with itself
+  if (requested != synced_) {
+    synced_ = requested;
+    fields_.assign(requested.size(), PathField());
+    for (size_t i = 0; i < requested.size(); ++i) fields_[i].set(requested[i]);
   }
+  const std::vector<std::string>& takes = synced_;
+  const int n = static_cast<int>(takes.size());
 
-  // Dropped files: three or more open the style palette (the first the reference), two replace
-  // the pair, one replaces B (the style blended in).
+  // Dropped files: two or more are the new takes (three or more the style palette, the first the
+  // reference); one is the pair's new B, or one more take of a palette.
   if (!s.dropped().empty()) {
     std::vector<std::string> files;
     files.swap(s.dropped());
-    if (files.size() >= 3) {
-      s.load_files(files);
-    } else {
-      if (files.size() >= 2) {
-        a_.set(files[0]);
-        b_.set(files[1]);
-      } else {
-        b_.set(files[0]);
-      }
-      s.load(a_.path(), b_.path());
-    }
+    if (files.size() >= 2) s.load_files(files);
+    else s.load_files(with_take(takes, n <= 2 ? 1 : takes.size(), files[0]));
   }
   place_panel(PanelId::kFiles, state);
   if (!ImGui::Begin(panel_title(PanelId::kFiles))) {
@@ -118,56 +154,77 @@ void FilesPanel::draw(EditorState& state) {
   std::error_code ec;
   char* export_path = export_dialog_.settings().path;
   const std::string export_folder = fs::absolute(fs::path(export_path), ec).parent_path().string();
-  const std::vector<std::string> folders = {a_.folder, b_.folder, folder_, export_folder,
-                                            fs::path(snap.path_a).parent_path().string(),
-                                            fs::path(snap.path_b).parent_path().string()};
-  if (!s.error().empty()) sentence(kErrorColor, s.error(), folders);
+  std::vector<std::string> folders = {folder_, export_folder};
+  for (const PathField& f : fields_) folders.push_back(f.folder);
 
-  // A path field: the file's name; on hover, its folder and what typing does. Enter loads.
-  auto path_field = [&](const char* id, PathField& field) {
-    const bool entered = ImGui::InputText(id, field.text, sizeof field.text, ImGuiInputTextFlags_EnterReturnsTrue);
+  // One path field per take: the file's name; on hover, its folder and what typing does. Enter
+  // or Load loads the takes with this one as typed.
+  std::vector<std::string> typed;
+  for (const PathField& f : fields_) typed.push_back(f.path());
+  ImGui::PushItemWidth(n > 2 ? -116.0f : -92.0f);
+  int remove = -1;
+  for (int i = 0; i < n; ++i) {
+    PathField& field = fields_[static_cast<size_t>(i)];
+    ImGui::PushID(i);
+    const glm::vec3 c = n <= 2 ? (i == 0 ? glm::vec3(0.96f, 0.60f, 0.28f) : glm::vec3(0.36f, 0.64f, 0.97f)) : palette_color(i);
+    ImGui::TextColored(ImVec4(c.x, c.y, c.z, 1.0f), "%s", take_role(i, n).c_str());
+    ImGui::SameLine(ImGui::GetFontSize() * 1.6f);
+    const bool entered = ImGui::InputText("##take", field.text, sizeof field.text, ImGuiInputTextFlags_EnterReturnsTrue);
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("Folder: %s\nType a file name in that folder, or a path; Enter loads it.",
                         field.folder.empty() ? "(where mostyle was started)" : field.folder.c_str());
-    return entered;
-  };
-  ImGui::PushItemWidth(-92.0f);
-  const bool enter_a = path_field("##a", a_);
-  ImGui::SameLine();
-  ImGui::TextColored(ImVec4(0.96f, 0.60f, 0.28f, 1.0f), "A");
-  ImGui::SameLine();
-  if (ImGui::Button("Load##a") || enter_a) s.load(a_.path(), snap.path_b.empty() ? b_.path() : snap.path_b);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Load this file as A, the take whose timing and skeleton lead");
-  const bool enter_b = path_field("##b", b_);
-  ImGui::SameLine();
-  ImGui::TextColored(ImVec4(0.36f, 0.64f, 0.97f, 1.0f), "B");
-  ImGui::SameLine();
-  if (ImGui::Button("Load##b") || enter_b) s.load(snap.path_a.empty() ? a_.path() : snap.path_a, b_.path());
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Load this file as B, the style blended in");
+    ImGui::SameLine();
+    if (ImGui::Button("Load") || entered) s.load_files(with_take(takes, static_cast<size_t>(i), field.path()));
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("%s", n <= 2 ? (i == 0 ? "Load this file as A, the take whose timing and skeleton lead"
+                                              : "Load this file as B, the style blended in")
+                                     : (i == 0 ? "Load this file as the reference (its skeleton, timing and path lead)"
+                                               : "Load this file as this take of the palette"));
+    if (n > 2) {
+      ImGui::SameLine();
+      if (ImGui::SmallButton("x")) remove = i;
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Take this take out (two left: a pair)");
+    }
+    ImGui::PopID();
+  }
   ImGui::PopItemWidth();
-  if (ImGui::Button("Load pair")) s.load(a_.path(), b_.path());
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Load both fields as the new pair");
+  if (remove >= 0) {
+    std::vector<std::string> rest = takes;
+    rest.erase(rest.begin() + remove);
+    s.load_files(rest);
+  }
+  if (ImGui::Button(n <= 2 ? "Load pair" : "Load all")) s.load_files(typed);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Load every field as typed, as the new takes");
   ImGui::SameLine();
   ImGui::TextColored(kDimColor, "or drop .bvh files here");
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Two files: the new pair. One file: the new B.");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(n <= 2 ? "Two or more files: the new takes. One file: the new B."
+                             : "Two or more files: the new takes. One file: one more take.");
   ImGui::SetNextItemWidth(-92.0f);
   const bool enter_export = ImGui::InputText("##export", export_path, sizeof export_dialog_.settings().path,
                                             ImGuiInputTextFlags_EnterReturnsTrue);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("File to export the blend to (a name: in %s); Enter opens the export dialog.",
+    ImGui::SetTooltip("File to export the result to (a name: in %s); Enter opens the export dialog.",
                       export_folder.c_str());
   ImGui::SameLine();
   if (ImGui::Button("Export...") || enter_export) command_open_export(state);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Choose the frame rate, the frames and the channels, then write the blend\n"
-                      "as a BVH file on A's skeleton (Ctrl+E)");
+    ImGui::SetTooltip("Choose the frame rate, the frames and the channels, then write the result\n"
+                      "as a BVH file on the %s's skeleton (Ctrl+E)", n <= 2 ? "A take" : "reference take");
+
+  // Messages in a space of their own that is always there: a load error (with the folder it
+  // tried), the export's progress or outcome. Hover shows a message whole.
+  ImGui::BeginChild("##messages", ImVec2(0.0f, ImGui::GetTextLineHeightWithSpacing() * 2.2f), false,
+                    ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
+  if (!s.error().empty()) sentence(kErrorColor, s.error(), {});
   if (export_dialog_.job().running())
     ImGui::ProgressBar(export_dialog_.job().progress(), ImVec2(-FLT_MIN, 0.0f), "exporting");
   else if (!s.export_message().empty())
     sentence(s.export_ok() ? kOkColor : kErrorColor, s.export_message(), folders);
+  ImGui::EndChild();
 
   const bool browse = ImGui::CollapsingHeader("Browse", ImGuiTreeNodeFlags_DefaultOpen);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("The .bvh files of a folder, to load as A or B");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("The .bvh files of a folder, to load as a take or add to the takes");
   if (browse) {
     ImGui::TextColored(kDimColor, "in %s", folder_name(folder_).c_str());
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Folder: %s", folder_.c_str());
@@ -208,12 +265,7 @@ void FilesPanel::draw(EditorState& state) {
     for (const std::string& name : files_) {
       const fs::path f(name);
       ImGui::PushID(f.string().c_str());
-      if (ImGui::SmallButton("A")) s.load(f.string(), snap.path_b.empty() ? f.string() : snap.path_b);
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Load as A");
-      ImGui::SameLine();
-      if (ImGui::SmallButton("B")) s.load(snap.path_a.empty() ? f.string() : snap.path_a, f.string());
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Load as B");
-      ImGui::SameLine();
+      take_buttons(f.string(), takes);
       ImGui::TextUnformatted(f.filename().string().c_str());
       ImGui::PopID();
     }
@@ -226,12 +278,7 @@ void FilesPanel::draw(EditorState& state) {
   if (recent) {
     for (const std::string& r : s.recent()) {
       ImGui::PushID(r.c_str());
-      if (ImGui::SmallButton("A")) a_.set(r);
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Put in the A field (then Load or Enter)");
-      ImGui::SameLine();
-      if (ImGui::SmallButton("B")) b_.set(r);
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Put in the B field (then Load or Enter)");
-      ImGui::SameLine();
+      take_buttons(r, takes);
       ImGui::TextUnformatted(fs::path(r).filename().string().c_str());
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("Folder: %s", fs::path(r).parent_path().string().c_str());
       ImGui::PopID();

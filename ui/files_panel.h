@@ -1,8 +1,11 @@
 #pragma once
-// Paths for A and B with Load (Enter in a field loads too), a small .bvh browser, recent files,
-// dropped files, load errors, and the export of the blend as BVH: the export field and button
-// open the export dialog (ui/export_dialog.h), which this panel owns and draws. Files show by
-// name; their folder is in the tooltip, never in the panel's text.
+// The takes as one list of path fields, whatever their number (A and B for two, numbered for a
+// palette), each with Load (Enter in a field loads too) and, in a palette, a remove button; a
+// small .bvh browser and the recent files, whose buttons replace a take or add one; dropped
+// files; and the export of the result: the export field and button open the export dialog
+// (ui/export_dialog.h), which this panel owns and draws. Files show by name, their folder on
+// hover; a load error names the folder tried. Messages sit in a space of their own below the
+// fields, so nothing moves under the mouse when one comes or goes.
 #include <string>
 #include <vector>
 
@@ -22,6 +25,12 @@ struct PathField {
   std::string path() const;           // what to load; "" when the field is empty
 };
 
+// What a take is called in the panel: "A" and "B" in a pair, "1" to "N" in a palette.
+std::string take_role(int take, int takes);
+// `takes` with take `index` replaced by `path` (index == size: `path` added). A pair whose B is
+// empty (A with itself) stays a pair when its B is set.
+std::vector<std::string> with_take(std::vector<std::string> takes, size_t index, const std::string& path);
+
 // `text` with each of `folders` (and the slash after it) taken out, longest first: error and
 // export sentences name files without their folders ("/data/walk.bvh:3: ..." -> "walk.bvh:3: ...").
 std::string without_folders(std::string text, std::vector<std::string> folders);
@@ -33,11 +42,15 @@ class FilesPanel : public Panel {
   ExportDialog& export_dialog() { return export_dialog_; }
 
  private:
+  // The buttons that put `path` among `takes`: A and B (replace) and + (add) for a pair, + and
+  // Replace... (which take) for a palette.
+  void take_buttons(const std::string& path, const std::vector<std::string>& takes);
+
   BlendSession& session_;
   std::string folder_;  // the browser's folder
-  PathField a_, b_;
+  std::vector<PathField> fields_;  // one per take (at least two: a pair's B may be empty)
   ExportDialog export_dialog_;  // its file is the export field's (settings().path)
-  std::string synced_a_, synced_b_;  // the requested paths the fields were last filled from
+  std::vector<std::string> synced_;  // the requested takes the fields were last filled from
   // The browser's listing of folder_, read when the folder changes or on Refresh (not per frame).
   std::string listed_folder_;
   std::vector<std::string> dirs_, files_;

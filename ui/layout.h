@@ -2,7 +2,7 @@
 // Where the editor's panels go, as a pure function of the display size (compute_layout): a left
 // column (takes, parameters, files), a right column (components, metrics), and along the bottom
 // the DTW view between the columns over the playback bar, which spans the window. The side
-// columns take about a quarter of the width each (300 to 420 px), and the central 30% x 30% of
+// columns take about a quarter of the width each (340 to 420 px), and the central 30% x 30% of
 // the window stays clear for the skeletons at every size from 1280x720 to 2560x1440
 // (tests/ui/layout_test.cpp).
 //
@@ -23,7 +23,7 @@ namespace mostyle::ui {
 constexpr float kLayoutMargin = 12.0f;      // panels to the window's edges, pixels
 constexpr float kLayoutGap = 8.0f;          // between panels, pixels
 constexpr float kSideFraction = 0.24f;      // a side column's share of the width...
-constexpr float kSideMin = 300.0f;          // ...within these bounds, pixels
+constexpr float kSideMin = 340.0f;          // ...within these bounds, pixels
 constexpr float kSideMax = 420.0f;
 constexpr float kClearFraction = 0.30f;     // the centre left clear: this share of width and height
 constexpr float kPlaybackBarHeight = 44.0f; // the playback bar with the editor's 16 px font
@@ -59,8 +59,10 @@ inline PanelRect clear_centre(float width, float height) {
 // Every panel's rectangle for a width x height display, indexed by PanelId; bar_height is the
 // playback bar's (its font and padding). Inside the display and clear of clear_centre() for any
 // display of at least 640x360; the panels do not overlap one another. Pure, O(1).
+// takes: the rows the Takes panel lists (a pair's A, B and blend: 3; a palette's mix and takes),
+// so that it is as tall as they need (within 18% to 40% of the left column).
 inline std::array<PanelRect, kPanelCount> compute_layout(float width, float height,
-                                                         float bar_height = kPlaybackBarHeight) {
+                                                         float bar_height = kPlaybackBarHeight, int takes = 3) {
   const float m = kLayoutMargin, g = kLayoutGap;
   const PanelRect centre = clear_centre(width, height);
   // Side columns: a share of the width within bounds, but never into the centre (small windows).
@@ -75,14 +77,17 @@ inline std::array<PanelRect, kPanelCount> compute_layout(float width, float heig
 
   // Left: takes (small; warnings scroll inside it), parameters, files.
   const float left_h = column - 2.0f * g;
-  const float takes_h = 0.22f * left_h, parameters_h = 0.46f * left_h;
+  // Title, padding, one row per take, Frame all and the View header (rows of the 16 px font).
+  const float takes_want = 48.0f + 30.0f * static_cast<float>(std::max(takes, 1) + 2);
+  const float takes_h = std::clamp(takes_want, 0.18f * left_h, 0.40f * left_h);
+  const float parameters_h = 0.59f * (left_h - takes_h);
   at(PanelId::kTakes) = PanelRect{m, top, side, takes_h};
   at(PanelId::kParameters) = PanelRect{m, top + takes_h + g, side, parameters_h};
   at(PanelId::kFiles) = PanelRect{m, top + takes_h + parameters_h + 2.0f * g, side, left_h - takes_h - parameters_h};
 
   // Right: components over metrics.
   const float right_x = width - m - side;
-  const float components_h = 0.6f * (column - g);
+  const float components_h = 0.48f * (column - g);
   at(PanelId::kComponents) = PanelRect{right_x, top, side, components_h};
   at(PanelId::kMetrics) = PanelRect{right_x, top + components_h + g, side, column - g - components_h};
 
@@ -100,15 +105,15 @@ inline float playback_bar_height() {
 }
 
 // The rectangle of `id` for the current display (ImGui's DisplaySize).
-inline PanelRect panel_rect(PanelId id) {
+inline PanelRect panel_rect(PanelId id, int takes = 3) {
   const ImVec2 display = ImGui::GetIO().DisplaySize;
-  return compute_layout(display.x, display.y, playback_bar_height())[static_cast<size_t>(id)];
+  return compute_layout(display.x, display.y, playback_bar_height(), takes)[static_cast<size_t>(id)];
 }
 
 // Before a panel's ImGui::Begin: its place and size from the layout, forced when
 // state.view.reset_layout is set, else only the first time the window appears.
 inline void place_panel(PanelId id, const EditorState& state) {
-  const PanelRect r = panel_rect(id);
+  const PanelRect r = panel_rect(id, static_cast<int>(state.takes.size()));
   const ImGuiCond cond = state.view.reset_layout ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
   ImGui::SetNextWindowPos(ImVec2(r.x, r.y), cond);
   ImGui::SetNextWindowSize(ImVec2(r.w, r.h), cond);
@@ -116,9 +121,15 @@ inline void place_panel(PanelId id, const EditorState& state) {
 
 // Once per frame, before the panels: sets state.view.reset_layout when ImGui's display size
 // differs from *last (the size of the previous frame; start it at zero so that the first frame
-// lays the panels out too), so that panels follow a resized window.
+// lays the panels out too), so that panels follow a resized window, or when the number of takes
+// changed (the Takes panel's height follows it).
 inline void track_display_size(EditorState& state, glm::vec2* last) {
   const ImVec2 display = ImGui::GetIO().DisplaySize;
+  const int takes = static_cast<int>(state.takes.size());
+  if (takes != state.view.laid_out_takes) {
+    state.view.reset_layout = true;
+    state.view.laid_out_takes = takes;
+  }
   if (display.x != last->x || display.y != last->y) {
     state.view.reset_layout = true;
     *last = glm::vec2(display.x, display.y);

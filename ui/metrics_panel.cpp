@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include <imgui.h>
 
@@ -32,8 +33,8 @@ std::string milliseconds(double ms, const char* format = "%.1f ms") {
 
 bool begin_table(const char* id) {
   if (!ImGui::BeginTable(id, 2, ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_BordersInnerV)) return false;
-  ImGui::TableSetupColumn("what", ImGuiTableColumnFlags_WidthStretch, 1.5f);
-  ImGui::TableSetupColumn("value", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+  ImGui::TableSetupColumn("what", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+  ImGui::TableSetupColumn("value", ImGuiTableColumnFlags_WidthStretch, 1.3f);
   return true;
 }
 }  // namespace
@@ -65,55 +66,121 @@ std::string length_in_words(double value, double cm_per_unit, double height, con
   return text;
 }
 
+Metrics gather_metrics(const BlendSession& session) {
+  Metrics m;
+  if (const PreparedPalette* p = session.palette()) {
+    const PaletteDecomposition* d = session.snapshot().palette_decomposition.get();
+    m.reference = p->takes.front().clip.get();
+    m.result = p->size() > 2 ? "mix" : "blend";
+    for (int i = 0; i < p->size(); ++i) {
+      Metrics::Take t;
+      t.name = std::filesystem::path(p->takes[static_cast<size_t>(i)].clip->source).stem().string();
+      t.fit_error = d != nullptr ? d->rmse[static_cast<size_t>(i)] : -1.0;
+      t.foot_sliding = p->takes[static_cast<size_t>(i)].foot_sliding;
+      m.takes.push_back(t);
+    }
+    m.preprocess_ms = m.dtw_ms = 0.0;  // the loading of a palette's files is not timed
+    for (const auto& pair : p->pairs) {
+      m.preprocess_ms += pair->times.preprocess_ms;
+      m.dtw_ms += pair->times.dtw_ms;
+    }
+    if (d != nullptr) m.decompose_ms = d->elapsed_ms;
+    if (const MixResult* mix = session.palette_view().mix()) {
+      m.bone_error = mix->motion.limb_length_max_error;
+      m.sliding_raw = mix->motion.foot_sliding_raw;
+      m.sliding_cleaned = mix->motion.foot_sliding_cleaned;
+      m.synthesize_ms = mix->synthesize_ms;
+      m.postprocess_ms = mix->postprocess_ms;
+      m.result_ms = session.palette_view().mix_ms();
+    }
+    return m;
+  }
+  const PreparedPair* p = session.snapshot().prepared.get();
+  if (p == nullptr) return m;
+  const DecomposedPair* d = session.snapshot().decomposed.get();
+  m.reference = p->clip_a.get();
+  m.takes = {{"A", d != nullptr ? d->rmse_a : -1.0, p->foot_sliding_a}, {"B", d != nullptr ? d->rmse_b : -1.0, p->foot_sliding_b}};
+  m.load_ms = p->times.load_ms;
+  m.preprocess_ms = p->times.preprocess_ms;
+  m.dtw_ms = p->times.dtw_ms;
+  if (d != nullptr) m.decompose_ms = d->elapsed_ms;
+  if (const BlendResult* b = session.blend()) {
+    m.bone_error = b->limb_length_max_error;
+    m.sliding_raw = b->foot_sliding_raw;
+    m.sliding_cleaned = b->foot_sliding_cleaned;
+    m.synthesize_ms = b->synthesize_ms;
+    m.postprocess_ms = b->postprocess_ms;
+    m.result_ms = session.blend_ms();
+  }
+  return m;
+}
+
 void MetricsPanel::draw(EditorState& state) {
   place_panel(PanelId::kMetrics, state);
   if (!ImGui::Begin(panel_title(PanelId::kMetrics))) {
     ImGui::End();
     return;
   }
-  const PreparedPair* p = session_.snapshot().prepared.get();
-  const DecomposedPair* d = session_.snapshot().decomposed.get();
-  const BlendResult* b = session_.blend();
-  if (p != unit_pair_) {  // a new pair: guess A's unit once (one pose of forward kinematics)
-    unit_pair_ = p;
+  const Metrics m = gather_metrics(session_);
+  if (m.reference != unit_clip_) {  // a new reference: guess its unit once (one pose of forward kinematics)
+    unit_clip_ = m.reference;
     cm_per_unit_ = height_ = 0.0;
     unit_name_.clear();
-    if (p != nullptr && p->clip_a != nullptr) {
-      const UnitsGuess guess = guess_units(*p->clip_a);
+    if (m.reference != nullptr) {
+      const UnitsGuess guess = guess_units(*m.reference);
       unit_name_ = guess.name;
       height_ = guess.height;
       cm_per_unit_ = centimetres_per_unit(guess.name);
     }
   }
   auto length = [&](double value, const char* per = "") { return length_in_words(value, cm_per_unit_, height_, per); };
-  if (p != nullptr) {
+  const bool pair = m.takes.size() <= 2;
+  const char* reference = pair ? "take A" : "the reference take";
+  if (m.reference != nullptr) {
     ImGui::PushTextWrapPos(0.0f);
     if (cm_per_unit_ > 0.0)
       ImGui::TextColored(kDimColor, "Lengths in metric units; the file is in %s.", unit_name_.c_str());
     else
-      ImGui::TextColored(kDimColor, "Unknown length unit: lengths as a share of A's height.");
+      ImGui::TextColored(kDimColor, "Unknown length unit: lengths as a share of %s's height.", pair ? "A" : "the reference");
     ImGui::PopTextWrapPos();
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("BVH files do not say their unit: it is guessed from take A's height\n"
-                        "(%.3g file units tall, taken to be a person of 1.5 to 1.9 m).", height_);
+      ImGui::SetTooltip("BVH files do not say their unit: it is guessed from %s's height\n"
+                        "(%.3g file units tall, taken to be a person of 1.5 to 1.9 m).", reference, height_);
   }
 
+  // Per take: its fit error and foot sliding, one row each (names clipped to the column, whole
+  // on hover).
+  if (ImGui::BeginTable("##takes", 3, ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_BordersInnerV)) {
+    ImGui::TableSetupColumn("take", ImGuiTableColumnFlags_WidthStretch, 1.2f);
+    ImGui::TableSetupColumn("fit error", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+    ImGui::TableSetupColumn("foot sliding", ImGuiTableColumnFlags_WidthStretch, 1.1f);
+    ImGui::TableHeadersRow();
+    for (const Metrics::Take& t : m.takes) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextColored(kDimColor, "%s", t.name.c_str());
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", t.name.c_str());
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(length(t.fit_error).c_str());
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Fit error: how far this take is from what the components rebuild of it (root mean\n"
+                          "square). Lower: the components hold more of it.");
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(length(t.foot_sliding, "/s").c_str());
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("How fast this take's planted feet slide over the floor, on average (on the reference's\n"
+                          "skeleton).");
+    }
+    ImGui::EndTable();
+  }
   if (begin_table("##quality")) {
-    row("Fit error A", d ? length(d->rmse_a) : "-",
-        "How far A is from what the components rebuild of it (root mean square).\n"
-        "Lower: the components hold more of A.");
-    row("Fit error B", d ? length(d->rmse_b) : "-",
-        "How far B is from what the components rebuild of it (root mean square).");
-    row("Bone length, worst", b ? length(b->limb_length_max_error) : "-",
-        "The most any bone of the blend differs from its length in A.");
-    if (p) {
-      row("Foot sliding A | B", length(p->foot_sliding_a, "/s") + " | " + length(p->foot_sliding_b, "/s"),
-          "How fast planted feet slide over the floor, on average: A, and B on A's skeleton.");
-    }
-    if (b) {
-      row("Foot sliding, blend", length(b->foot_sliding_raw, "/s") + " -> " + length(b->foot_sliding_cleaned, "/s"),
-          "How fast the blend's planted feet slide: before -> after the foot lock\n(the same when foot lock is off).");
-    }
+    const std::string bones = "The most any bone of the " + m.result + " differs from its length in " + reference + ".";
+    row("Bone length, worst", length(m.bone_error), bones.c_str());
+    const std::string label = "Foot sliding, " + m.result;
+    const std::string tip = "How fast the " + m.result + "'s planted feet slide: before -> after the foot lock\n"
+                            "(the same when foot lock is off).";
+    row(label.c_str(), m.sliding_raw < 0.0 ? "-" : length(m.sliding_raw, "/s") + " -> " + length(m.sliding_cleaned, "/s"),
+        tip.c_str());
     ImGui::EndTable();
   }
   // Timings differ run to run: a screenshot run (frame_ms < 0) shows none of them.
@@ -123,17 +190,20 @@ void MetricsPanel::draw(EditorState& state) {
     return;
   }
   if (begin_table("##times")) {
-    row("Loading", milliseconds(p ? p->times.load_ms : -1.0), "Reading the two BVH files");
-    row("Preparing", milliseconds(p ? p->times.preprocess_ms : -1.0),
-        "Matching the skeletons, putting B on A's bones, facing and normalising");
-    row("Time alignment", milliseconds(p ? p->times.dtw_ms : -1.0), "Matching the takes' steps in time (DTW)");
-    row("Decomposition", milliseconds(d ? d->elapsed_ms : -1.0, "%.0f ms"),
+    row("Loading", milliseconds(m.load_ms), "Reading the takes' files");
+    row("Preparing", milliseconds(m.preprocess_ms),
+        "Matching the skeletons, putting every take on the reference's bones, facing and normalising");
+    row("Time alignment", milliseconds(m.dtw_ms), "Matching the takes' steps in time (DTW)");
+    row("Decomposition", milliseconds(m.decompose_ms, "%.0f ms"),
         "Splitting the takes into components (on the worker, not in the way of the editor)");
-    row("Synthesis", milliseconds(b ? b->synthesize_ms : -1.0, "%.3f ms"), "Making the blend from the components");
-    row("Clean-up", milliseconds(b ? b->postprocess_ms : -1.0, "%.3f ms"), "Bone lengths and foot lock on the blend");
-    row("Blend, all", milliseconds(b ? session_.blend_ms() : -1.0, "%.3f ms"),
-        "The whole blend after a slider move, on the editor's thread");
-    row("Export", milliseconds(session_.export_ms()), "The last BVH export");
+    const std::string synthesis = "Making the " + m.result + " from the components";
+    row("Synthesis", milliseconds(m.synthesize_ms, "%.3f ms"), synthesis.c_str());
+    const std::string cleanup = "Bone lengths and foot lock on the " + m.result;
+    row("Clean-up", milliseconds(m.postprocess_ms, "%.3f ms"), cleanup.c_str());
+    const std::string all = pair ? "Blend, all" : "Mix, all";
+    const std::string all_tip = "The whole " + m.result + " after a slider move, on the editor's thread";
+    row(all.c_str(), milliseconds(m.result_ms, "%.3f ms"), all_tip.c_str());
+    row("Export", milliseconds(session_.export_ms()), "The last export");
     row("Frame, CPU", milliseconds(session_.frame_ms, "%.2f ms"), "Building one editor frame");
     row("Viewport, GPU", milliseconds(session_.viewport_ms, "%.2f ms"), "Drawing the 3D view");
     ImGui::EndTable();

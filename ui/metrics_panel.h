@@ -3,6 +3,7 @@
 // plain words with units: lengths in centimetres when the file's unit can be guessed from the
 // skeleton's height (engine/kinematics/units.h), else as a percentage of that height.
 #include <string>
+#include <vector>
 
 #include "ui/blend_session.h"
 #include "ui/panel.h"
@@ -18,6 +19,24 @@ double centimetres_per_unit(const std::string& unit_name);
 // ("-" when neither is known).
 std::string length_in_words(double value, double cm_per_unit, double height, const char* per = "");
 
+// What the metrics panel shows, gathered from the session for a pair or a palette alike; a
+// negative number is not known yet ("-").
+struct Metrics {
+  struct Take {
+    std::string name;           // "A", "B", or the file's name in a palette
+    double fit_error = -1.0;    // what the components do not rebuild (RMSE), reference units
+    double foot_sliding = -1.0; // reference units per second
+  };
+  const Clip* reference = nullptr;  // the take whose units every length is in
+  std::string result = "blend";     // "blend" for two takes, "mix" for more
+  std::vector<Take> takes;
+  double bone_error = -1.0, sliding_raw = -1.0, sliding_cleaned = -1.0;  // the result's
+  double load_ms = -1.0, preprocess_ms = -1.0, dtw_ms = -1.0, decompose_ms = -1.0;
+  double synthesize_ms = -1.0, postprocess_ms = -1.0, result_ms = -1.0;
+};
+// O(takes): no copy of any motion.
+Metrics gather_metrics(const BlendSession& session);
+
 class MetricsPanel : public Panel {
  public:
   explicit MetricsPanel(BlendSession& session) : session_(session) {}
@@ -25,8 +44,8 @@ class MetricsPanel : public Panel {
 
  private:
   BlendSession& session_;
-  // A's unit, guessed once per loaded pair.
-  const PreparedPair* unit_pair_ = nullptr;
+  // The reference's unit, guessed once per loaded reference take.
+  const Clip* unit_clip_ = nullptr;
   double cm_per_unit_ = 0.0;
   double height_ = 0.0;  // A's standing height, file units
   std::string unit_name_;

@@ -1,5 +1,7 @@
 #include "ui/palette_panel.h"
 
+#include "ui/document.h"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -18,8 +20,21 @@ constexpr float kPi = 3.14159265358979f;
 constexpr const char* kTitle = "Style palette";
 const char* const kPartNames[] = {"Legs", "Arms", "Spine and head"};
 
+// Take i's file name without its extension and without the start every take's name shares up to
+// a '_' or '-' ("cmu142_walk_happy", "cmu142_walk_marching": "happy", "marching"), so that
+// names fit the narrow columns; the whole name is in the tooltips.
 std::string name_of(const PreparedPalette& p, int i) {
-  return std::filesystem::path(p.takes[static_cast<size_t>(i)].clip->source).stem().string();
+  auto stem = [&](int k) { return std::filesystem::path(p.takes[static_cast<size_t>(k)].clip->source).stem().string(); };
+  const std::string own = stem(i);
+  size_t common = own.size();
+  for (int k = 0; k < p.size(); ++k) {
+    const std::string other = stem(k);
+    size_t n = 0;
+    while (n < common && n < other.size() && other[n] == own[n]) ++n;
+    common = n;
+  }
+  while (common > 0 && own[common - 1] != '_' && own[common - 1] != '-') --common;
+  return common < own.size() ? own.substr(common) : own;
 }
 
 ImU32 color_u32(int take) {
@@ -115,9 +130,14 @@ void PalettePanel::draw(EditorState& state) {
   ImGui::Checkbox("Ghosts", &c.ghosts);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Show every take beside the result, at the moment the result is in it");
   ImGui::SameLine();
+  if (!c.transfer) {
+    if (ImGui::SmallButton("Equal weights")) c.weights.assign(static_cast<size_t>(n), 1.0 / n);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Every take the same weight");
+    ImGui::SameLine();
+  }
   const PaletteView& view = session_.palette_view();
   if (const MixResult* m = view.mix())
-    ImGui::TextColored(kDimColor, "%d takes, %.1f s, mixed in %.2f ms", n, m->motion.world.rows() / p->fps, view.mix_ms());
+    ImGui::TextColored(kDimColor, "%d takes, %.1f s", n, m->motion.world.rows() / p->fps);
   if (!view.error().empty()) {
     ImGui::PushTextWrapPos(0.0f);
     ImGui::TextColored(kErrorColor, "%s", view.error().c_str());
@@ -138,22 +158,27 @@ void PalettePanel::draw_mix(PaletteControls& c, const PreparedPalette& p) {
     ImGui::TableSetupColumn("parts", ImGuiTableColumnFlags_WidthStretch, 1.5f);
     ImGui::TableNextColumn();
     ImGui::BeginChild("##weights", ImVec2(0, pad));
+    // Compact rows, so that eight takes fit the strip of a 1280x720 window without scrolling.
+    ImGui::PushStyleVar(ImGuiStyleVar_ItemSpacing, ImVec2(ImGui::GetStyle().ItemSpacing.x, 2.0f));
+    ImGui::PushStyleVar(ImGuiStyleVar_FramePadding, ImVec2(ImGui::GetStyle().FramePadding.x, 1.0f));
     for (int i = 0; i < n; ++i) {
       ImGui::PushID(i);
       swatch(i);
       float w = static_cast<float>(c.weights[static_cast<size_t>(i)]);
-      ImGui::SetNextItemWidth(std::max(60.0f, ImGui::GetContentRegionAvail().x * 0.45f));
+      ImGui::SetNextItemWidth(std::clamp(ImGui::GetContentRegionAvail().x * 0.35f, 56.0f, 80.0f));
       if (ImGui::SliderFloat("##w", &w, static_cast<float>(kMinMixWeight), static_cast<float>(kMaxMixWeight), "%.2f"))
         c.weights = set_weight_keeping_sum(c.weights, i, w);
       if (ImGui::IsItemHovered())
         ImGui::SetTooltip("How much of this take's style; the others follow so that the weights sum to 1 (from -0.5 "
                           "to 1.5: beyond 0 and 1 exaggerates)");
       ImGui::SameLine();
-      ImGui::TextUnformatted((name_of(p, i) + (i == 0 ? "  (reference)" : "")).c_str());
+      ImGui::TextUnformatted((name_of(p, i) + (i == 0 ? " (ref.)" : "")).c_str());
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("%s%s", p.takes[static_cast<size_t>(i)].clip->source.c_str(),
+                          i == 0 ? "\nThe reference: its skeleton, path and length lead" : "");
       ImGui::PopID();
     }
-    if (ImGui::SmallButton("Equal weights")) c.weights.assign(static_cast<size_t>(n), 1.0 / n);
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Every take the same weight");
+    ImGui::PopStyleVar(2);
     ImGui::EndChild();
     if (n >= 3) {
       ImGui::TableNextColumn();
@@ -242,9 +267,14 @@ void PalettePanel::draw_transfer(PaletteControls& c, const PreparedPalette& p) {
     for (int i = 1; i < n; ++i)
       if (ImGui::Selectable(name_of(p, i).c_str())) {
         // The content is the reference: the palette is prepared again with it first.
+        // Every take keeps its weight and strength in its new place (ui/document.h).
         std::vector<std::string> files = session_.snapshot().palette_paths;
         if (static_cast<size_t>(i) < files.size()) {
+          std::vector<int> order(files.size());
+          for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
+          std::rotate(order.begin(), order.begin() + i, order.begin() + i + 1);
           std::rotate(files.begin(), files.begin() + i, files.begin() + i + 1);
+          c = reorder_takes(c, order);
           session_.load_files(files);
         }
       }

@@ -115,9 +115,12 @@ void PaletteView::take_up(const PreparedPalette& p, const std::vector<std::strin
     t.parents = p.parents;
     if (i == 0) {
       t.warnings = warnings;
+      // Named by their files, frames as their files count them (not "B" and the working rate).
+      auto named = [](const Clip& clip) { return AlignedTake{std::filesystem::path(clip.source).filename().string(), clip.fps()}; };
       for (const auto& pair : p.pairs)
-        for (const std::string& w : pair->alignment.warnings)
-          t.warnings.push_back(std::filesystem::path(pair->clip_b->source).filename().string() + ": " + w);
+        for (const std::string& w :
+             alignment_warnings(pair->alignment, pair->fps, named(*pair->clip_a), named(*pair->clip_b)))
+          t.warnings.push_back(w);
     }
     state.takes.push_back(std::move(t));
   }

@@ -15,6 +15,7 @@
 #include "engine/align/alignment.h"
 #include "engine/io/atomic_file.h"
 #include "engine/io/error.h"
+#include "engine/run/palette.h"
 
 namespace mostyle::ui {
 namespace fs = std::filesystem;
@@ -23,15 +24,15 @@ namespace {
 using Json = nlohmann::json;
 using OrderedJson = nlohmann::ordered_json;
 
-// Ranges a value must be in. Wide where the panels are narrow: a session written by a later
-// editor, or by hand, may go further than today's sliders.
+// Ranges a value must be in. The palette's weights and strengths are read with the ranges their
+// sliders allow (engine/run/palette.h), so every session the editor writes reopens; elsewhere
+// wide where the panels are narrow: a session written by hand may go further than the sliders.
 constexpr int kMaxComponents = 1000;
 constexpr int kMaxBasicMotions = 16;
 constexpr std::size_t kMaxTakes = 64;
 constexpr int kMaxBand = 1000000;        // DTW band, frames
 constexpr double kMaxFrames = 1e6;       // warp smoothing, frames
 constexpr double kMaxPenalty = 1e300;    // DTW end penalty, feature units (negative: automatic)
-constexpr double kMaxStrength = 100.0;   // palette transfer strengths
 constexpr double kMaxCoordinate = 1e9;   // camera target and distance, world units
 constexpr double kMaxAngle = 1e6;        // camera yaw and pitch, radians (orbiting adds up)
 constexpr double kMaxFov = 3.1;          // radians
@@ -409,17 +410,17 @@ PaletteControls read_palette(const Reader& r, const Json& j, const Where& w) {
   r.only_keys(j, w, {"weights", "per_part", "part_weights", "transfer", "content", "neutral", "strengths", "ghosts"});
   PaletteControls p;
   const int last_take = static_cast<int>(kMaxTakes) - 1;
-  r.member(j, w, "weights", [&](const Json& v, const Where& at) { p.weights = r.numbers(v, at, 0.0, 1.0); });
+  r.member(j, w, "weights", [&](const Json& v, const Where& at) { p.weights = r.numbers(v, at, kMinMixWeight, kMaxMixWeight); });
   r.member(j, w, "per_part", [&](const Json& v, const Where& at) { p.per_part = r.boolean(v, at); });
   r.member(j, w, "part_weights", [&](const Json& v, const Where& at) {
     if (!v.is_array()) r.expected(at, "an array of arrays of numbers", v);
-    for (std::size_t i = 0; i < v.size(); ++i) p.part_weights.push_back(r.numbers(v[i], at.item(i), 0.0, 1.0));
+    for (std::size_t i = 0; i < v.size(); ++i) p.part_weights.push_back(r.numbers(v[i], at.item(i), kMinMixWeight, kMaxMixWeight));
   });
   r.member(j, w, "transfer", [&](const Json& v, const Where& at) { p.transfer = r.boolean(v, at); });
   r.member(j, w, "content", [&](const Json& v, const Where& at) { p.content = r.whole(v, at, 0, last_take); });
   r.member(j, w, "neutral", [&](const Json& v, const Where& at) { p.neutral = r.whole(v, at, 0, last_take); });
   r.member(j, w, "strengths",
-           [&](const Json& v, const Where& at) { p.strengths = r.numbers(v, at, -kMaxStrength, kMaxStrength); });
+           [&](const Json& v, const Where& at) { p.strengths = r.numbers(v, at, kMinStrength, kMaxStrength); });
   r.member(j, w, "ghosts", [&](const Json& v, const Where& at) { p.ghosts = r.boolean(v, at); });
   return p;
 }

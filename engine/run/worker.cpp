@@ -174,7 +174,18 @@ void Worker::run() {
     }
     running_ = WorkerStage::kIdle;
     idle_.notify_all();
+    if (on_change_) {  // outside the lock: the callback may ask for the snapshot or the status
+      const std::function<void()> notify = on_change_;
+      lock.unlock();
+      notify();
+      lock.lock();
+    }
   }
+}
+
+void Worker::set_on_change(std::function<void()> notify) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  on_change_ = std::move(notify);
 }
 
 // The pair.

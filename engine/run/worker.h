@@ -85,6 +85,11 @@ class Worker {
   WorkerStatus status() const;
   // Blocks until nothing is running or pending (tests, batch use, screenshots).
   void wait_idle() const;
+  // Called on the worker's thread after each job (a load, a decomposition, a blend or mix, a
+  // failure or a cancellation), once its snapshot and status are published, so that an event
+  // loop waiting for input can wake and show it. Empty: none. Must be safe to call from another
+  // thread (a GLFW empty event is); it may read the snapshot and the status.
+  void set_on_change(std::function<void()> notify);
 
  private:
   void run();
@@ -114,6 +119,7 @@ class Worker {
   WorkerStage running_ = WorkerStage::kIdle;
   JobControl control_;
   std::shared_ptr<const WorkerSnapshot> snapshot_;
+  std::function<void()> on_change_;
   std::thread thread_;
 };
 

@@ -4,12 +4,15 @@
 #include "app/editor_options.h"
 #include "app/imgui_session.h"
 
+#include <atomic>
 #include <cfloat>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <unistd.h>
@@ -526,5 +529,141 @@ TEST_CASE("sessions and undo: Ctrl+Z / Ctrl+Y undo and redo a load, a saved sess
   press(reopened, kKeyZ, true, false);
   CHECK(reopened.state().parameters.alpha == 0.8);
   reopened.shutdown_graphics();
+  fs::remove_all(dir);
+}
+
+TEST_CASE("at rest, a finished decomposition wakes the editor and shows at once (no input needed)") {
+  const glm::ivec2 size(800, 450);
+  mostyle::test::OsMesaContext gl(size);
+  REQUIRE(gl.ok());
+  ImGuiSession imgui(/*persist_layout=*/false);
+  EditorOptions options;
+  options.initial.parameters.components = 4;
+  options.initial.paused = true;
+  Editor editor(options);
+  std::atomic<int> wakes{0};
+  editor.set_wake([&] { ++wakes; });
+  editor.wait_for_engine();
+  editor.init_graphics();
+  auto frame = [&] {
+    ImGuiIO& io = ImGui::GetIO();
+    io.DisplaySize = ImVec2(static_cast<float>(size.x), static_cast<float>(size.y));
+    io.DeltaTime = 1.0f / 60.0f;
+    editor.frame(FrameInput{size, 1.0f / 60.0f});
+  };
+  // Paused with the engine idle and everything taken up: at rest, the window may wait.
+  for (int i = 0; i < 3 && editor.animating(); ++i) {
+    editor.session().wait_idle(editor.state());
+    frame();
+  }
+  REQUIRE_FALSE(editor.animating());
+  // A new k (as the slider gives it): the worker decomposes while no input comes.
+  const int before = wakes;
+  editor.state().parameters.components = 6;
+  editor.session().request_decomposition(editor.state());
+  frame();
+  const auto t0 = std::chrono::steady_clock::now();
+  while (editor.session().status().stage != mostyle::WorkerStage::kIdle || editor.session().status().pending) {
+    REQUIRE(std::chrono::steady_clock::now() - t0 < std::chrono::seconds(60));
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  // The worker is done and nothing has polled it: the window is woken, and the next frame is
+  // drawn (animating) and shows the new components, not the old ones with "decomposing 80%".
+  const auto t1 = std::chrono::steady_clock::now();
+  while (wakes == before && std::chrono::steady_clock::now() - t1 < std::chrono::seconds(10))
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  CHECK(wakes > before);
+  CHECK(editor.animating());
+  frame();
+  CHECK(editor.session().snapshot().decompose_params.components == 6);
+  CHECK_FALSE(editor.session().decomposition_outdated());
+  editor.shutdown_graphics();
+}
+
+TEST_CASE("editor options: --weights and --save-session") {
+  ParseResult r = parse({"a.bvh", "b.bvh", "c.bvh", "d.bvh", "--weights", "1.3,-0.5,0.1,0.1"});
+  REQUIRE(r.status == ParseStatus::kRun);
+  CHECK(r.options.initial.weights == std::vector<double>{1.3, -0.5, 0.1, 0.1});
+  r = parse({"--weights=1/3,2/3"});  // the bundled pair: alpha 2/3
+  REQUIRE(r.status == ParseStatus::kRun);
+  CHECK(r.options.initial.weights[1] == Approx(2.0 / 3.0));
+  r = parse({"a.bvh", "b.bvh", "c.bvh", "--weights", "0.333334,0.333334,0.333334"});  // within 0.001: normalized
+  REQUIRE(r.status == ParseStatus::kRun);
+  CHECK(r.options.initial.weights[0] == Approx(1.0 / 3.0).epsilon(1e-12));
+  for (const std::vector<const char*>& bad :
+       {std::vector<const char*>{"a.bvh", "b.bvh", "c.bvh", "--weights", "0.5,0.5"},
+        std::vector<const char*>{"a.bvh", "b.bvh", "c.bvh", "--weights", "0.5,0.6,0"},
+        std::vector<const char*>{"a.bvh", "b.bvh", "c.bvh", "--weights", "2,-0.5,-0.5"},
+        std::vector<const char*>{"a.bvh", "b.bvh", "--weights", "1.3,-0.3"},
+        std::vector<const char*>{"day.mostyle", "--weights", "0.5,0.5"},
+        std::vector<const char*>{"--save-session", "day.bvh"}, std::vector<const char*>{"--save-session"}}) {
+    const ParseResult p = parse(bad);
+    INFO(p.error);
+    CHECK(p.status == ParseStatus::kUsageError);
+  }
+  r = parse({"--save-session", "out/day", "--paused"});
+  REQUIRE(r.status == ParseStatus::kRun);
+  CHECK(r.options.save_session_path == "out/day");
+}
+
+TEST_CASE("a session given on the command line that cannot be opened: one line, exit 1, nothing else opens") {
+  const fs::path dir = fs::temp_directory_path() / ("mostyle_editor_test_bad_session_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string bad = (dir / "bad.mostyle").string();
+  if (std::FILE* f = std::fopen(bad.c_str(), "w")) {
+    std::fputs("{\n  \"version\": 1,\n  \"parameters\": {\"alpha\": 2}\n}\n", f);
+    std::fclose(f);
+  }
+  const std::string png = (dir / "out.png").string();
+  std::string err;
+  CHECK(run(std::string("env ASAN_OPTIONS=detect_leaks=0 ") + MOSTYLE_OFFSCREEN_EXE + " " + bad + " --screenshot " + png,
+            &err) == 1);
+  CHECK(err == "mostyle: " + bad + ":3: parameters.alpha: expected a number from 0 to 1, found 2\n");
+  CHECK_FALSE(fs::exists(png));
+  CHECK(run(std::string("env -u DISPLAY -u WAYLAND_DISPLAY ") + MOSTYLE_EXE + " " + (dir / "none.mostyle").string(),
+            &err) == 1);
+  CHECK_THAT(err, Catch::StartsWith("mostyle: " + (dir / "none.mostyle").string() + ": cannot read"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a state set up by flags, saved with --save-session, reopens to the same picture") {
+  const fs::path dir = fs::temp_directory_path() / ("mostyle_editor_test_scripted_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string happy = mostyle::test::asset("motions/cmu142_walk_happy.bvh");
+  const std::string marching = mostyle::test::asset("motions/cmu142_walk_marching.bvh");
+  const std::string joy = mostyle::test::asset("motions/cmu142_walk_joy.bvh");
+  const std::string clumsy = mostyle::test::asset("motions/cmu142_walk_clumsy.bvh");
+  struct Case {
+    std::string name, takes, flags;
+  };
+  // A palette with a weight beyond 1 (the sliders allow -0.5 to 1.5), and a pair at alpha 0.7.
+  const std::vector<Case> cases = {
+      {"palette", happy + " " + marching + " " + joy + " " + clumsy, "--weights 1.3,-0.5,0.1,0.1"},
+      {"pair", happy + " " + marching, "--weights 0.3,0.7"}};
+  const std::string program = std::string("env ASAN_OPTIONS=detect_leaks=0 ") + MOSTYLE_OFFSCREEN_EXE;
+  for (const Case& c : cases) {
+    INFO(c.name);
+    const std::string session = (dir / (c.name + ".mostyle")).string();
+    const std::string first = (dir / (c.name + "_set_up.png")).string();
+    const std::string again = (dir / (c.name + "_reopened.png")).string();
+    std::string err;
+    REQUIRE(run(program + " " + c.takes + " " + c.flags + " --components 4 --frame 20 --window-size 640x360 --save-session " +
+                    session + " --screenshot " + first,
+                &err) == 0);
+    INFO(err);
+    REQUIRE(fs::exists(session));
+    const mostyle::ui::SessionFile saved = mostyle::ui::read_session_file(session);
+    if (c.name == "palette") CHECK(saved.document.controls.palette.weights[0] == Approx(1.3));
+    else CHECK(saved.document.parameters.alpha == Approx(0.7));
+    REQUIRE(run(program + " " + session + " --window-size 640x360 --screenshot " + again, &err) == 0);
+    const mostyle::render::Image a = mostyle::render::read_png(first), b = mostyle::render::read_png(again);
+    REQUIRE(a.rgba.size() == b.rgba.size());
+    size_t differing = 0;
+    for (size_t i = 0; i < a.rgba.size(); i += 4)
+      differing += a.rgba[i] != b.rgba[i] || a.rgba[i + 1] != b.rgba[i + 1] || a.rgba[i + 2] != b.rgba[i + 2];
+    CHECK(differing == 0);
+  }
   fs::remove_all(dir);
 }

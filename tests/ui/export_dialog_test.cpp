@@ -274,3 +274,47 @@ TEST_CASE("export dialog: the window draws in every mode, and the files panel op
   CHECK(dialog.confirming_overwrite());
   CHECK(s.state.view.show_export);
 }
+
+TEST_CASE("export dialog: a palette's mix exports whole or from an in to an out point") {
+  LoadedSession s;
+  s.session.load_files({test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"),
+                        test::asset("motions/cmu142_walk_joy.bvh")});
+  s.session.wait_idle(s.state);
+  REQUIRE(s.session.palette() != nullptr);
+  const MixResult* mix = s.session.palette_view().mix();
+  REQUIRE(mix != nullptr);
+  const int mix_frames = static_cast<int>(mix->motion.world.rows());
+  REQUIRE(mix_frames > 61);
+  ExportDialog dialog(s.session);
+  dialog.poll();
+  // The range is all of the mix, not 0 to 0.
+  CHECK(dialog.settings().in_s == 0.0);
+  CHECK(dialog.settings().out_s == Approx((mix_frames - 1) / 30.0));
+  TempFile file("mostyle_export_dialog_palette.bvh");
+  dialog.settings().rate = ExportRate::k30;
+  CHECK(export_and_read(dialog, s.session, file.path).frames() == mix_frames);
+  CHECK_THAT(s.session.export_message(), Catch::Contains("The skeleton of cmu142_walk_happy.bvh"));
+  // From 1 s to 2 s: 31 frames at 30 fps; the overwrite asks first and then replaces the file.
+  dialog.settings().range = ExportRange::kInOut;
+  dialog.settings().in_s = 1.0;
+  dialog.settings().out_s = 2.0;
+  dialog.poll();  // the points stay inside the mix: unchanged here
+  CHECK(dialog.settings().out_s == 2.0);
+  REQUIRE(dialog.press_export() == Pressed::kConfirm);
+  REQUIRE(dialog.press_overwrite() == Pressed::kStarted);
+  dialog.job().wait();
+  dialog.poll();
+  REQUIRE(s.session.export_ok());
+  CHECK(read_bvh_file(file.path).frames() == 31);
+  // The dialog draws in palette mode, with the reference's words (an auto-sized window shows
+  // from its second frame).
+  test::HeadlessImGui imgui;
+  s.state.view.show_export = true;
+  int drawn = 0;
+  for (int frame = 0; frame < 2; ++frame) {
+    imgui.begin_frame();
+    dialog.draw(s.state);
+    drawn = imgui.end_frame();
+  }
+  CHECK(drawn > 0);
+}

@@ -61,7 +61,7 @@ TEST_CASE("the layout keeps every panel inside the display, off the centre and o
       CHECK_FALSE(r.overlaps(centre));
       for (int j = i + 1; j < kPanelCount; ++j) CHECK_FALSE(r.overlaps(rects[static_cast<size_t>(j)]));
     }
-    // Side columns of about a quarter of the width, 300 to 420 px; the bar spans the window.
+    // Side columns of about a quarter of the width, 340 to 420 px; the bar spans the window.
     const PanelRect& left = rects[static_cast<size_t>(PanelId::kParameters)];
     const PanelRect& right = rects[static_cast<size_t>(PanelId::kMetrics)];
     CHECK(left.w >= kSideMin);

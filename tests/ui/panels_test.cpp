@@ -8,10 +8,13 @@
 #include <vector>
 
 #include <catch2/catch.hpp>
+#include <imgui_internal.h>  // ImGui::FindWindowByName
 
 #include "tests/test_data.h"
 #include "tests/ui/imgui_frame.h"
 #include "tests/ui/loaded_session.h"
+#include "ui/layout.h"
+#include "ui/metrics_panel.h"
 
 using namespace mostyle;
 using namespace mostyle::ui;
@@ -248,4 +251,72 @@ TEST_CASE("timing, loop and alignment controls reach the blend and the alignment
     for (auto& panel : panels) panel->draw(s.state);
     CHECK(imgui.end_frame() > 0);
   }
+}
+
+TEST_CASE("files panel: a take is named by its role, and one take is replaced or added") {
+  CHECK(take_role(0, 2) == "A");
+  CHECK(take_role(1, 2) == "B");
+  CHECK(take_role(0, 4) == "1");
+  CHECK(take_role(3, 4) == "4");
+  const std::vector<std::string> palette = {"n.bvh", "t.bvh", "o.bvh", "p.bvh"};
+  CHECK(with_take(palette, 0, "x.bvh") == std::vector<std::string>{"x.bvh", "t.bvh", "o.bvh", "p.bvh"});
+  CHECK(with_take(palette, 4, "x.bvh") == std::vector<std::string>{"n.bvh", "t.bvh", "o.bvh", "p.bvh", "x.bvh"});
+  CHECK(with_take({"a.bvh", "b.bvh"}, 2, "x.bvh") == std::vector<std::string>{"a.bvh", "b.bvh", "x.bvh"});
+  CHECK(with_take({"a.bvh", ""}, 2, "x.bvh") == std::vector<std::string>{"a.bvh", "x.bvh"});  // A with itself
+}
+
+TEST_CASE("files panel: a file dropped on a palette is one more take, and a load error moves nothing") {
+  LoadedSession s;
+  test::HeadlessImGui imgui;
+  FilesPanel files(s.session, test::asset("motions"));
+  auto draw = [&] {
+    for (int i = 0; i < 2; ++i) {
+      imgui.begin_frame();
+      files.draw(s.state);
+      imgui.end_frame();
+    }
+  };
+  auto content_height = [] {
+    const ImGuiWindow* w = ImGui::FindWindowByName(panel_title(PanelId::kFiles));
+    REQUIRE(w != nullptr);
+    return w->ContentSize.y;
+  };
+  draw();
+  const float height = content_height();
+  // A load that fails: its sentence appears in the messages' own space; the fields and what is
+  // under them stay where they were.
+  s.session.load("/nonexistent/walk.bvh", test::asset("motions/cmu142_walk_marching.bvh"));
+  s.session.wait_idle(s.state);
+  REQUIRE_FALSE(s.session.error().empty());
+  CHECK_THAT(s.session.error(), Catch::Contains("/nonexistent/walk.bvh"));
+  draw();
+  CHECK(content_height() == height);
+
+  const std::vector<std::string> palette = {test::asset("motions/cmu142_walk_happy.bvh"),
+                                            test::asset("motions/cmu142_walk_marching.bvh"),
+                                            test::asset("motions/cmu142_walk_joy.bvh")};
+  s.session.load_files(palette);
+  s.session.wait_idle(s.state);
+  REQUIRE(s.session.palette() != nullptr);
+  draw();
+  const std::string clumsy = test::asset("motions/cmu142_walk_clumsy.bvh");
+  s.session.dropped() = {clumsy};
+  draw();
+  std::vector<std::string> four = palette;
+  four.push_back(clumsy);
+  CHECK(s.session.requested_files() == four);  // added, not a pair of the dropped file
+  s.session.wait_idle(s.state);
+  REQUIRE(s.session.palette() != nullptr);
+  CHECK(s.session.palette()->size() == 4);
+  // The metrics speak of the palette: each take's fit error and foot sliding, the mix's bones.
+  const Metrics m = gather_metrics(s.session);
+  CHECK(m.result == "mix");
+  REQUIRE(m.takes.size() == 4);
+  for (const Metrics::Take& t : m.takes) {
+    CHECK(t.fit_error >= 0.0);
+    CHECK(t.foot_sliding >= 0.0);
+  }
+  CHECK(m.takes[3].name == "cmu142_walk_clumsy");
+  CHECK(m.bone_error >= 0.0);
+  CHECK(m.sliding_cleaned >= 0.0);
 }

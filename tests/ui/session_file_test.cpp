@@ -44,13 +44,14 @@ SessionFile full_session() {
   c.timing_a = true;
   c.loop = true;
   c.residual = false;
-  c.palette.weights = {0.5, 0.3, 0.2};
+  // The ends of the sliders' ranges, as a float slider leaves them (1.3f is 1.2999999523...).
+  c.palette.weights = {static_cast<double>(1.3f), -0.5, 1.0 - static_cast<double>(1.3f) + 0.5};
   c.palette.per_part = true;
   c.palette.part_weights = {{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.2, 0.2, 0.6}};
   c.palette.transfer = true;
   c.palette.content = 2;
   c.palette.neutral = 0;
-  c.palette.strengths = {0.0, 1.5, 0.8};
+  c.palette.strengths = {0.0, -1.0, 2.0};
   c.palette.ghosts = true;
   d.files = {"/data/day1/takes/walk_happy.bvh", "/data/shared/walk_marching.bvh"};
   d.overlay = true;
@@ -165,6 +166,11 @@ TEST_CASE("session files: a bad file is refused with one line naming the file an
       {"{\"version\": 1,\n\"playback\": {\"playing\": \"yes\"}}", 2, "playback.playing: expected true or false"},
       {"{\"version\": 1,\n\"playback\": {\n\"time_s\": 1e400}}", 3, "a number too large"},
       {"{\"version\": 1,\n\"view\": []}", 2, "view: expected an object"},
+      // Beyond what the palette's sliders allow (-0.5 to 1.5; strengths -1 to 2).
+      {"{\"version\": 1,\n\"controls\": {\"palette\": {\n\"weights\": [1.6, -0.6]}}}", 3,
+       "controls.palette.weights[0]: expected a number from -0.5 to 1.5, found 1.6"},
+      {"{\"version\": 1,\n\"controls\": {\"palette\": {\"strengths\": [\n0, 2.5]}}}", 3,
+       "controls.palette.strengths[1]"},
   };
   for (const Case& c : cases) {
     INFO(c.text);

@@ -762,3 +762,36 @@ TEST_CASE("mix, decomposition and load requests on a palette while another threa
   CHECK(s->mix->motion.world == direct_mix(*s));
   CHECK_FALSE(w.status().pending);
 }
+
+TEST_CASE("the worker calls its change callback after each job, with the result published", "[worker]") {
+  Worker w;
+  std::atomic<int> calls{0};
+  std::atomic<std::uint64_t> seen_version{0};
+  std::atomic<bool> idle_when_called{true};
+  w.set_on_change([&] {
+    // What an event loop woken by it reads: the job's snapshot is there already.
+    seen_version = w.snapshot()->version;
+    idle_when_called = idle_when_called && w.status().stage == WorkerStage::kIdle;
+    ++calls;
+  });
+  w.load(test::asset(kHappy), test::asset(kJoy));
+  w.wait_idle();
+  // Each call happens after the job's end; wait_idle may return just before the last call.
+  const auto t0 = Clock::now();
+  while (calls < 3 && seconds_since(t0) < 30.0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  CHECK(calls >= 3);  // load, decomposition, blend
+  const auto t1 = Clock::now();
+  while (seen_version != w.snapshot()->version && seconds_since(t1) < 30.0)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  CHECK(seen_version == w.snapshot()->version);
+  CHECK(idle_when_called);
+  // A failed request calls it too (the error is news as well).
+  const int before = calls;
+  w.load(test::asset("motions/no_such_take.bvh"), "");
+  w.wait_idle();
+  const auto t2 = Clock::now();
+  while (calls == before && seconds_since(t2) < 30.0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  CHECK(calls > before);
+  CHECK_FALSE(w.snapshot()->error.empty());
+  w.set_on_change(nullptr);
+}
