@@ -11,9 +11,11 @@
 #include <set>
 #include <thread>
 
+#include "app/batch_summary.h"
 #include "app/cli_common.h"
 #include "app/cli_pipeline_commands.h"
 #include "app/job_line.h"
+#include "app/job_outputs.h"
 #include "app/job_runner.h"
 #include "engine/io/atomic_file.h"
 #include "engine/io/error.h"
@@ -92,54 +94,86 @@ std::string json_line(const std::vector<std::string>& args) {
 struct ShardRun {
   std::vector<JobLine> jobs;
   std::vector<JobResult> results;  // results[k]: how jobs[k] went
+  std::vector<JobStatus> status;   // status[k]: ok, failed or skipped
   std::vector<int> failed_lines;   // lines (from 1) of the failed jobs, in order
+  size_t skipped = 0;
   double seconds = 0.0;            // wall time, reading JOBS included
 };
 
+struct BatchSettings {
+  Shard shard;
+  JobRunnerOptions runner;
+  bool skip_existing = false;
+  SummaryJournal* journal = nullptr;  // null without --summary
+};
+
+// A job whose output options all name files that exist; a job that names none is always run.
+bool outputs_exist(const std::vector<std::string>& args) {
+  const std::vector<std::string> outputs = job_outputs(args);
+  std::error_code ec;
+  return !outputs.empty() &&
+         std::all_of(outputs.begin(), outputs.end(), [&](const std::string& f) { return fs::exists(f, ec); });
+}
+
 // Reads JOBS (InputError when it cannot) and runs the shard's jobs; a line that is not a job is
-// a failed job with its parse error.
-ShardRun run_shard(const std::string& jobs_file, const Shard& shard, const JobRunnerOptions& o) {
+// a failed job with its parse error. Each record goes to the journal as soon as it is known.
+ShardRun run_shard(const std::string& jobs_file, const BatchSettings& settings) {
   const auto t0 = Clock::now();
   ShardRun r;
   const std::vector<JobLine> all = parse_jobs(read_file(jobs_file), jobs_file);
+  const Shard& shard = settings.shard;
   for (size_t k = 0; k < all.size(); ++k)
     if (static_cast<int>(k % static_cast<size_t>(shard.count)) == shard.index) r.jobs.push_back(all[k]);
   std::vector<std::vector<std::string>> commands;
   std::vector<size_t> slot;  // slot[k]: the index in r.jobs of commands[k]
   r.results.resize(r.jobs.size());
+  r.status.assign(r.jobs.size(), JobStatus::kFailed);
+  auto record = [&](size_t k) {
+    if (settings.journal) settings.journal->append(job_record(r.jobs[k].line, r.jobs[k].args, r.status[k], r.results[k]));
+  };
   for (size_t k = 0; k < r.jobs.size(); ++k) {
     r.results[k].error = r.jobs[k].error;
-    if (!r.jobs[k].error.empty()) continue;
-    commands.push_back(r.jobs[k].args);
-    slot.push_back(k);
+    if (!r.jobs[k].error.empty()) {
+      record(k);
+    } else if (settings.skip_existing && outputs_exist(r.jobs[k].args)) {
+      r.status[k] = JobStatus::kSkipped;
+      r.results[k].ok = true;
+      ++r.skipped;
+      record(k);
+    } else {
+      commands.push_back(r.jobs[k].args);
+      slot.push_back(k);
+    }
   }
-  const std::vector<JobResult> ran = run_jobs(commands, o);
-  for (size_t k = 0; k < ran.size(); ++k) r.results[slot[k]] = ran[k];
+  JobRunnerOptions o = settings.runner;
+  // Called one at a time (run_jobs serializes them); each writes only its own job's slot.
+  o.on_finished = [&](size_t index, const JobResult& result) {
+    const size_t k = slot[index];
+    r.results[k] = result;
+    r.status[k] = result.ok ? JobStatus::kOk : JobStatus::kFailed;
+    record(k);
+  };
+  run_jobs(commands, o);
   for (size_t k = 0; k < r.jobs.size(); ++k)
-    if (!r.results[k].ok) r.failed_lines.push_back(r.jobs[k].line);
+    if (r.status[k] == JobStatus::kFailed) r.failed_lines.push_back(r.jobs[k].line);
   r.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return r;
 }
 
 Json records_json(const ShardRun& r) {
   Json records = Json::array();
-  for (size_t k = 0; k < r.jobs.size(); ++k) {
-    Json record;
-    record["line"] = r.jobs[k].line;
-    record["args"] = r.jobs[k].args;
-    record["status"] = r.results[k].ok ? "ok" : "failed";
-    record["error"] = r.results[k].error;
-    record["seconds"] = r.results[k].seconds;
-    records.push_back(record);
-  }
+  for (size_t k = 0; k < r.jobs.size(); ++k)
+    records.push_back(job_record(r.jobs[k].line, r.jobs[k].args, r.status[k], r.results[k]));
   return records;
 }
+
+size_t ok_count(const ShardRun& r) { return r.jobs.size() - r.failed_lines.size() - r.skipped; }
 
 // The failures, one line each naming JOBS:LINE, then the totals.
 // of_shard: "" or " of shard I/N".
 void print_summary(const ShardRun& r, const std::string& jobs_file, const std::string& of_shard, int parallel) {
   for (size_t k = 0; k < r.jobs.size(); ++k) {
-    if (r.results[k].ok) continue;
+    if (r.status[k] != JobStatus::kFailed) continue;
     const JobLine& job = r.jobs[k];
     // A line that is not a job already has its error naming JOBS:LINE.
     if (!job.error.empty())
@@ -147,8 +181,8 @@ void print_summary(const ShardRun& r, const std::string& jobs_file, const std::s
     else
       std::cout << jobs_file << ":" << job.line << ": " << job.args[0] << " failed: " << r.results[k].error << "\n";
   }
-  std::cout << jobs_file << of_shard << ": " << plural(r.jobs.size(), "job") << ", "
-            << r.jobs.size() - r.failed_lines.size() << " ok, " << r.failed_lines.size() << " failed, "
+  std::cout << jobs_file << of_shard << ": " << plural(r.jobs.size(), "job") << ", " << ok_count(r) << " ok, "
+            << r.failed_lines.size() << " failed, " << r.skipped << " skipped, "
             << number(std::round(r.seconds * 100) / 100) << " s, " << parallel << " at a time\n";
 }
 
@@ -161,6 +195,9 @@ void add_batch_command(CLI::App& app, std::function<int()>* run) {
     std::string shard = "0/1";
     int parallel = 0;
     std::string summary;
+    double timeout = 0.0;
+    int retries = 0;
+    bool skip_existing = false;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("JOBS", args->jobs_file,
@@ -181,31 +218,64 @@ void add_batch_command(CLI::App& app, std::function<int()>* run) {
   cmd->add_option("--jobs,-j", args->parallel, "Jobs at once (default: the number of cores)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--summary", args->summary,
-                  "JSON file: totals, and per job its line, args, status (ok or failed), error and seconds; "
-                  "without it a short summary goes to stdout");
+                  "JSON file: totals, and per job its line, args, status (ok, failed or skipped), error, seconds, "
+                  "attempts and peak memory (max_rss_mb); kept current while jobs run in SUMMARY.journal (one "
+                  "record per finished job, JSON lines), removed once the summary is written. Without it a "
+                  "short summary goes to stdout");
+  const CLI::Validator finite_seconds(
+      [](std::string& text) {
+        double v = 0;
+        const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+        const bool good = r.ec == std::errc() && r.ptr == text.data() + text.size() && std::isfinite(v) && v > 0;
+        return good ? std::string() : "expected a number of seconds above 0, found " + text;
+      },
+      "SECONDS");
+  cmd->add_option("--timeout", args->timeout,
+                  "Seconds a job may run: one still running then is stopped (SIGTERM to its process group, SIGKILL "
+                  "5 s later) and recorded as failed, \"timed out after SECONDS s\"; the others go on")
+      ->check(finite_seconds);
+  cmd->add_option("--retries", args->retries,
+                  "Run a job killed by a signal (a crash, an out-of-memory kill) again, up to this many times; a job "
+                  "that fails on its input (exit status 1), its usage (2) or the timeout is not run again")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_flag("--skip-existing", args->skip_existing,
+                "Do not run a job whose outputs (--out, --positions-out, --report, --jobs-out) all exist: it is "
+                "recorded as skipped. A job that names no output so is always run");
   cmd->footer(
-      "Each job runs as a child process of this program (its stdout discarded, its error line kept), so a crash "
-      "in one is that job's failure only. A failed job does not stop the others. Exit status 1 when any job "
-      "failed (one line on stderr naming the lines), 0 when all succeeded.");
+      "Each job runs as a child process of this program in a process group of its own (its stdout discarded, its "
+      "error line kept), so a crash in one is that job's failure only. A failed job does not stop the others. "
+      "Exit status 1 when any job failed (one line on stderr naming the lines), 0 when all succeeded or were "
+      "skipped.");
   cmd->callback([=] {
     *run = [=] {
-      Shard shard;
-      parse_shard(args->shard, &shard);
-      JobRunnerOptions o;
+      BatchSettings settings;
+      parse_shard(args->shard, &settings.shard);
+      JobRunnerOptions& o = settings.runner;
       o.parallel = args->parallel > 0 ? args->parallel
                                       : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-      const ShardRun r = run_shard(args->jobs_file, shard, o);
-      const std::string of_shard = shard.count > 1 ? " of shard " + args->shard : "";
+      o.timeout_seconds = args->timeout;
+      o.retries = args->retries;
+      settings.skip_existing = args->skip_existing;
+      std::unique_ptr<SummaryJournal> journal;
       if (!args->summary.empty()) {
+        journal = std::make_unique<SummaryJournal>(journal_path(args->summary));
+        settings.journal = journal.get();
+      }
+      const ShardRun r = run_shard(args->jobs_file, settings);
+      const std::string of_shard = settings.shard.count > 1 ? " of shard " + args->shard : "";
+      if (journal) {
+        if (!journal->error().empty()) std::cerr << "mostyle: warning: " << journal->error() << "\n";
         Json s;
         s["jobs_file"] = args->jobs_file;
         s["shard"] = args->shard;
         s["parallel"] = o.parallel;
-        s["totals"] = {{"jobs", r.jobs.size()}, {"ok", r.jobs.size() - r.failed_lines.size()},
-                       {"failed", r.failed_lines.size()}, {"seconds", r.seconds}};
+        s["totals"] = {{"jobs", r.jobs.size()}, {"ok", ok_count(r)}, {"failed", r.failed_lines.size()},
+                       {"skipped", r.skipped}, {"seconds", r.seconds}};
         s["jobs"] = records_json(r);
         // Messages quote file contents (joint names): invalid UTF-8 is replaced, not thrown on.
         write_output(args->summary, s.dump(2, ' ', false, Json::error_handler_t::replace) + "\n");
+        journal->remove();
       } else {
         print_summary(r, args->jobs_file, of_shard, o.parallel);
       }
