@@ -1,5 +1,6 @@
 #pragma once
-// mostyle-cli grid: writes a JOBS file for batch, one blend per ordered pair of takes and alpha.
+// mostyle-cli grid: writes a JOBS file for batch, one blend per ordered pair of takes and alpha,
+// or (--transfer) one style transfer per content, style and strength.
 #include <CLI/CLI.hpp>
 #include <functional>
 
