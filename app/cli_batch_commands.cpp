@@ -15,6 +15,7 @@
 #include "app/job_line.h"
 #include "app/job_outputs.h"
 #include "app/job_runner.h"
+#include "app/stop_signal.h"
 #include "engine/io/atomic_file.h"
 #include "engine/io/error.h"
 
@@ -139,7 +140,9 @@ ShardRun run_shard(const std::string& jobs_file, const BatchSettings& settings) 
     r.status[k] = result.ok ? JobStatus::kOk : JobStatus::kFailed;
     record(k);
   };
-  run_jobs(commands, o);
+  // Jobs a stop request kept from starting have a result but no on_finished call.
+  const std::vector<JobResult> ran = run_jobs(commands, o);
+  for (size_t k = 0; k < ran.size(); ++k) r.results[slot[k]] = ran[k];
   for (size_t k = 0; k < r.jobs.size(); ++k)
     if (r.status[k] == JobStatus::kFailed) r.failed_lines.push_back(r.jobs[k].line);
   r.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
@@ -231,10 +234,15 @@ void add_batch_command(CLI::App& app, std::function<int()>* run) {
   cmd->footer(
       "Each job runs as a child process of this program in a process group of its own (its stdout discarded, its "
       "error line kept), so a crash in one is that job's failure only. A failed job does not stop the others. "
+      "SIGINT, SIGTERM or SIGHUP stops the running jobs with the same signal and starts no more; the summary is "
+      "written, then batch ends by that signal. "
       "Exit status 1 when any job failed (one line on stderr naming the lines), 0 when all succeeded or were "
       "skipped.");
   cmd->callback([=] {
     *run = [=] {
+      // First, so that it is the last to go: the summary is written before a stop signal ends
+      // the process.
+      StopSignal stop;
       BatchSettings settings;
       parse_shard(args->shard, &settings.shard);
       JobRunnerOptions& o = settings.runner;
@@ -242,6 +250,7 @@ void add_batch_command(CLI::App& app, std::function<int()>* run) {
                                       : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
       o.timeout_seconds = args->timeout;
       o.retries = args->retries;
+      o.stop = &stop.requested();
       settings.skip_existing = args->skip_existing;
       std::unique_ptr<SummaryJournal> journal;
       if (!args->summary.empty()) {

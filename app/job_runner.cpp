@@ -38,6 +38,12 @@ std::string number_text(double v) {
   return std::string(buffer, r.ptr);
 }
 
+// "signal 9 (Killed)".
+std::string signal_text(int sig) {
+  const char* name = ::sigdescr_np(sig);  // thread-safe, unlike strsignal
+  return "signal " + std::to_string(sig) + (name ? std::string(" (") + name + ")" : "");
+}
+
 bool starts_with(std::string_view s, std::string_view prefix) { return s.substr(0, prefix.size()) == prefix; }
 
 std::string system_message(int error) { return std::system_category().message(error); }
@@ -139,11 +145,26 @@ Attempt run_attempt(const std::string& program, const std::vector<std::string>& 
     next = stop_signal == SIGTERM ? Clock::now() + seconds(o.grace_seconds) : kNever;
     stop_signal = SIGKILL;
   };
+  // A stop request is passed on to the group once, and looked for at least every kStopCheck.
+  constexpr int kStopCheckMs = 100;
+  bool stop_passed = false;
+  auto on_stop = [&] {
+    if (stop_passed || o.stop == nullptr) return;
+    const int sig = o.stop->load();
+    if (sig == 0) return;
+    ::kill(-pid, sig);
+    stop_passed = true;
+  };
+  auto wait_ms = [&] {
+    const int until_next = next == kNever ? -1 : ms_until(next);
+    if (o.stop == nullptr || stop_passed) return until_next;
+    return until_next < 0 ? kStopCheckMs : std::min(until_next, kStopCheckMs);
+  };
   StderrTail err;
   char buffer[4096];
   for (bool open = true; open;) {
     pollfd p{res.read_fd, POLLIN, 0};
-    const int ready = ::poll(&p, 1, next == kNever ? -1 : ms_until(next));
+    const int ready = ::poll(&p, 1, wait_ms());
     if (ready > 0) {
       const ssize_t n = ::read(res.read_fd, buffer, sizeof buffer);
       if (n > 0) err.append(buffer, static_cast<size_t>(n));
@@ -152,19 +173,21 @@ Attempt run_attempt(const std::string& program, const std::vector<std::string>& 
       open = false;
     }
     on_deadline();
+    on_stop();
   }
   int status = 0;
   rusage usage{};
   for (;;) {
-    const pid_t done = ::wait4(pid, &status, next == kNever ? 0 : WNOHANG, &usage);
+    const pid_t done = ::wait4(pid, &status, wait_ms() < 0 ? 0 : WNOHANG, &usage);
     if (done == pid) break;
     if (done < 0 && errno != EINTR) {
       r.error = "cannot wait for the job: " + system_message(errno);
       return a;
     }
     if (done == 0) {  // it closed stderr but runs on: look again shortly, or at the deadline
-      std::this_thread::sleep_for(std::chrono::milliseconds(std::min(10, ms_until(next))));
+      std::this_thread::sleep_for(std::chrono::milliseconds(std::min(10, wait_ms())));
       on_deadline();
+      on_stop();
     }
   }
   r.max_rss_mb = static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux: kilobytes
@@ -180,9 +203,7 @@ Attempt run_attempt(const std::string& program, const std::vector<std::string>& 
     else if (!r.ok) r.error = message.empty() ? "exit status " + std::to_string(r.exit_status) + " and no message" : message;
     return a;
   }
-  const int sig = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
-  const char* name = ::sigdescr_np(sig);  // thread-safe, unlike strsignal
-  r.error = "killed by signal " + std::to_string(sig) + (name ? std::string(" (") + name + ")" : "");
+  r.error = "killed by " + signal_text(WIFSIGNALED(status) ? WTERMSIG(status) : 0);
   if (!message.empty()) r.error += ": " + message;
   a.signaled = true;
   return a;
@@ -196,7 +217,7 @@ JobResult run_job(const std::vector<std::string>& args, const JobRunnerOptions& 
   do {
     a = run_attempt(o.program, args, o);
     ++attempts;
-  } while (a.signaled && attempts <= o.retries);
+  } while (a.signaled && attempts <= o.retries && !(o.stop && o.stop->load() != 0));
   a.result.attempts = attempts;
   a.result.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return a.result;
@@ -241,6 +262,10 @@ std::vector<JobResult> run_jobs(const std::vector<std::vector<std::string>>& job
   std::mutex finished;  // one on_finished call at a time
   auto work = [&] {
     for (size_t i; (i = next.fetch_add(1)) < jobs.size();) {
+      if (const int sig = o.stop ? o.stop->load() : 0) {
+        results[i].error = "not run: stopped by " + signal_text(sig);
+        continue;
+      }
       results[i] = run_job(jobs[i], o);
       if (!o.on_finished) continue;
       std::lock_guard<std::mutex> lock(finished);

@@ -1,6 +1,7 @@
 #pragma once
 // Runs many commands as child processes, a few at a time (mostyle-cli batch). Each job is its
 // own process, so a crash or an out-of-memory kill in one is that job's failure only.
+#include <atomic>
 #include <cstddef>
 #include <functional>
 #include <string>
@@ -25,6 +26,10 @@ struct JobRunnerOptions {
   // Called once per job as it finishes (after its last attempt), one call at a time, from the
   // thread that ran it; `index` is the job's place in `jobs`. Must not throw. May be empty.
   std::function<void(size_t index, const JobResult& result)> on_finished;
+  // When another thread stores a signal number here, every running job's process group is sent
+  // that signal (and is not run again), and the jobs not started yet are not started: their
+  // error is "not run: stopped by signal N (name)". Null: never stopped. Checked every 100 ms.
+  const std::atomic<int>* stop = nullptr;
 
   // Throws InputError on an empty program, parallel < 1, a negative or non-finite timeout, a
   // grace that is not positive and finite, or retries < 0.
@@ -47,7 +52,8 @@ struct JobResult {
 // timeout stops whatever it started too; its stdin and stdout are /dev/null; its stderr is read
 // through a pipe (the last 64 KiB kept) for the error line. A timed-out job's error is "timed
 // out after S s". A job that fails, is killed or cannot start is that job's result: run_jobs
-// throws only InputError from o.Validate(). Threads: the caller and min(parallel, jobs) - 1
+// throws only InputError from o.Validate(); on_finished is not called for a job that was not
+// started. Threads: the caller and min(parallel, jobs) - 1
 // more, each waiting on one child at a time (polling its stderr while a timeout runs).
 std::vector<JobResult> run_jobs(const std::vector<std::vector<std::string>>& jobs, const JobRunnerOptions& o);
 

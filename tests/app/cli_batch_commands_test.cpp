@@ -44,6 +44,39 @@ class Sandbox : public test::CliSandbox {
 
 std::string job(const std::vector<std::string>& args) { return Json(args).dump() + "\n"; }
 
+// Starts mostyle-cli with `args` as a child of this test, its output discarded; its process id.
+pid_t start_cli(std::vector<std::string> args) {
+  args.insert(args.begin(), MOSTYLE_CLI);
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  pid_t pid = 0;
+  const int error = ::posix_spawn(&pid, MOSTYLE_CLI, &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  return error == 0 ? pid : -1;
+}
+
+// Waits (60 s at most) until `file` holds `lines` lines.
+void wait_for_lines(const std::string& file, long lines) {
+  for (int i = 0; i < 6000; ++i) {
+    const std::string text = slurp(file);
+    if (std::count(text.begin(), text.end(), '\n') >= lines) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+}
+
+// Whether a process has `fifo` open for reading (a writer can then open it without waiting).
+bool fifo_has_reader(const std::string& fifo) {
+  const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+  if (fd < 0) return false;
+  ::close(fd);
+  return true;
+}
+
 std::vector<std::string> files_in(const std::string& dir) {
   std::vector<std::string> names;
   for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
@@ -282,6 +315,38 @@ TEST_CASE("cli batch: --skip-existing runs only the jobs whose outputs are not a
   CHECK(r.out.find(": 5 jobs, 1 ok, 1 failed, 3 skipped, ") != std::string::npos);
 }
 
+TEST_CASE("cli batch: SIGTERM stops the running jobs, the summary is written, batch ends by it", "[batch][cli]") {
+  Sandbox box;
+  const std::vector<std::string> takes = test::asset_motions();
+  const std::string fifo = box.path("hang.bvh");
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  const std::string file =
+      box.write("jobs.jsonl", job({"info", takes[0]}) + job({"info", fifo}) + job({"info", takes[1]}));
+  const std::string summary = box.path("s.json");
+  const pid_t pid = start_cli({"batch", file, "--jobs", "1", "--summary", summary, "--retries", "2"});
+  REQUIRE(pid > 0);
+  wait_for_lines(summary + ".journal", 1);
+  // The second job is then waiting on the FIFO (or about to).
+  for (int i = 0; i < 500 && !fifo_has_reader(fifo); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ::kill(pid, SIGTERM);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  CHECK(WIFSIGNALED(status));
+  CHECK(WTERMSIG(status) == SIGTERM);
+  CHECK_FALSE(fifo_has_reader(fifo));  // the job went with it
+  const Json s = Json::parse(slurp(summary));
+  CHECK(s["totals"]["ok"] == 1);
+  CHECK(s["totals"]["failed"] == 2);
+  const Json& j = s["jobs"];
+  REQUIRE(j.size() == 3);
+  CHECK(j[0]["status"] == "ok");
+  CHECK(j[1]["error"] == "killed by signal 15 (Terminated)");
+  CHECK(j[1]["attempts"] == 1);
+  CHECK(j[2]["error"] == "not run: stopped by signal 15 (Terminated)");
+  CHECK(j[2]["attempts"] == 0);
+  CHECK_FALSE(fs::exists(summary + ".journal"));
+}
+
 TEST_CASE("cli batch: a shard killed with SIGKILL keeps the records of its finished jobs", "[batch][cli]") {
   Sandbox box;
   const std::vector<std::string> takes = test::asset_motions();
@@ -292,37 +357,16 @@ TEST_CASE("cli batch: a shard killed with SIGKILL keeps the records of its finis
                                                        job({"info", box.path("none.bvh")}) + job({"info", fifo}) +
                                                        job({"info", takes[2]}));
   const std::string summary = box.path("s.json");
-  std::vector<std::string> args = {MOSTYLE_CLI, "batch", file, "--jobs", "1", "--summary", summary};
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-  pid_t pid = 0;
-  REQUIRE(::posix_spawn(&pid, MOSTYLE_CLI, &actions, nullptr, argv.data(), environ) == 0);
-  posix_spawn_file_actions_destroy(&actions);
-  // Waits (60 s at most) until the journal holds the three finished jobs.
+  const pid_t pid = start_cli({"batch", file, "--jobs", "1", "--summary", summary});
+  REQUIRE(pid > 0);
   const std::string journal = summary + ".journal";
-  auto count_lines = [&] {
-    const std::string text = slurp(journal);
-    return std::count(text.begin(), text.end(), '\n');
-  };
-  for (int i = 0; i < 6000 && count_lines() < 3; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  wait_for_lines(journal, 3);
   ::kill(pid, SIGKILL);
   int status = 0;
   ::waitpid(pid, &status, 0);
   CHECK(WIFSIGNALED(status));
   // The job still waiting on the FIFO outlived the batch: a writer that comes and goes ends it.
-  for (int i = 0; i < 500; ++i) {
-    const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
-    if (fd >= 0) {
-      ::close(fd);
-      break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
+  for (int i = 0; i < 500 && !fifo_has_reader(fifo); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
   CHECK_FALSE(fs::exists(summary));
   std::vector<Json> records;
   std::istringstream in(slurp(journal));

@@ -5,6 +5,9 @@
 
 #include <unistd.h>
 
+#include <signal.h>
+
+#include <atomic>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
@@ -200,6 +203,40 @@ TEST_CASE("job runner: on_finished sees every job once, and its peak memory", "[
     CHECK(j.attempts == 1);
     CHECK(j.max_rss_mb > 0.0);  // a shell takes at least some pages
   }
+}
+
+TEST_CASE("job runner: a stop request signals the running jobs and starts no more", "[batch][jobs]") {
+  std::atomic<int> stop{0};
+  JobRunnerOptions o = shell(2);
+  o.stop = &stop;
+  o.retries = 3;  // a stopped job is not run again
+  int finished = 0;
+  o.on_finished = [&](size_t, const JobResult&) { ++finished; };
+  // Each job says it started (a line on stdout would be lost: stderr goes to the runner) by
+  // creating a file; the stop comes once both running jobs have.
+  Scratch scratch;
+  std::thread stopper([&] {
+    for (int i = 0; i < 3000; ++i) {
+      if (fs::exists(scratch.dir / "0") && fs::exists(scratch.dir / "1")) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    stop.store(SIGTERM);
+  });
+  const std::vector<JobResult> r =
+      run_jobs({sh("touch " + scratch.path("0") + "; sleep 30"), sh("touch " + scratch.path("1") + "; sleep 30"),
+                sh("touch " + scratch.path("2") + "; exit 0")},
+               o);
+  stopper.join();
+  for (int i : {0, 1}) {
+    INFO(i);
+    CHECK(r[i].error == "killed by signal 15 (Terminated)");
+    CHECK(r[i].attempts == 1);
+  }
+  CHECK_FALSE(r[2].ok);
+  CHECK(r[2].attempts == 0);
+  CHECK(r[2].error == "not run: stopped by signal 15 (Terminated)");
+  CHECK_FALSE(fs::exists(scratch.dir / "2"));
+  CHECK(finished == 2);
 }
 
 TEST_CASE("job runner: error_line and options", "[batch][jobs]") {
