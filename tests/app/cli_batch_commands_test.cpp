@@ -69,6 +69,20 @@ void wait_for_lines(const std::string& file, long lines) {
   }
 }
 
+// Whether `parent` has a child process (Linux: /proc/PID/stat's fourth field is the parent).
+bool has_child(pid_t parent) {
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    const std::string stat = slurp(e.path() / "stat");
+    const size_t paren = stat.rfind(')');
+    if (paren == std::string::npos) continue;
+    std::istringstream fields(stat.substr(paren + 1));
+    std::string state;
+    long ppid = 0;
+    if (fields >> state >> ppid && ppid == parent) return true;
+  }
+  return false;
+}
+
 // Whether a process has `fifo` open for reading (a writer can then open it without waiting).
 bool fifo_has_reader(const std::string& fifo) {
   const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
@@ -326,8 +340,8 @@ TEST_CASE("cli batch: SIGTERM stops the running jobs, the summary is written, ba
   const pid_t pid = start_cli({"batch", file, "--jobs", "1", "--summary", summary, "--retries", "2"});
   REQUIRE(pid > 0);
   wait_for_lines(summary + ".journal", 1);
-  // The second job is then waiting on the FIFO (or about to).
-  for (int i = 0; i < 500 && !fifo_has_reader(fifo); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  // The second job then starts and waits on the FIFO. (Opening the FIFO to look would end it.)
+  for (int i = 0; i < 500 && !has_child(pid); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
   ::kill(pid, SIGTERM);
   int status = 0;
   ::waitpid(pid, &status, 0);
