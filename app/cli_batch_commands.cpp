@@ -136,6 +136,10 @@ ShardRun run_shard(const std::string& jobs_file, const BatchSettings& settings) 
   // Called one at a time (run_jobs serializes them); each writes only its own job's slot.
   o.on_finished = [&](size_t index, const JobResult& result) {
     const size_t k = slot[index];
+    // A killed job (a crash, the timeout, a stop) may have been between writing an output's
+    // temporary file and renaming it.
+    if (result.exit_status == -1)
+      for (int pid : result.pids) remove_leftovers(job_outputs(r.jobs[k].args), pid);
     r.results[k] = result;
     r.status[k] = result.ok ? JobStatus::kOk : JobStatus::kFailed;
     record(k);

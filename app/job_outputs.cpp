@@ -1,5 +1,7 @@
 #include "app/job_outputs.h"
 
+#include <algorithm>
+#include <filesystem>
 #include <string_view>
 
 namespace mostyle::cli {
@@ -22,6 +24,27 @@ std::vector<std::string> job_outputs(const std::vector<std::string>& args) {
     }
   }
   return outputs;
+}
+
+int remove_leftovers(const std::vector<std::string>& outputs, int pid) {
+  namespace fs = std::filesystem;
+  int removed = 0;
+  for (const std::string& output : outputs) {
+    const fs::path path(output);
+    const std::string prefix = path.filename().string() + ".tmp" + std::to_string(pid) + "_";
+    const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
+    std::error_code ec;
+    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+      const std::string name = it->path().filename().string();
+      const std::string_view counter = std::string_view(name).substr(std::min(prefix.size(), name.size()));
+      if (name.compare(0, prefix.size(), prefix) != 0 || counter.empty() ||
+          counter.find_first_not_of("0123456789") != std::string_view::npos)
+        continue;
+      std::error_code removing;
+      removed += fs::remove(it->path(), removing) ? 1 : 0;
+    }
+  }
+  return removed;
 }
 
 }  // namespace mostyle::cli

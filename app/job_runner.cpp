@@ -129,6 +129,7 @@ Attempt run_attempt(const std::string& program, const std::vector<std::string>& 
     r.error = "cannot start " + program + ": " + system_message(spawn_error);
     return a;
   }
+  r.pids.push_back(static_cast<int>(pid));
 
   // Reads stderr until its end, then reaps the child. With a timeout, each wait ends at the next
   // deadline: SIGTERM to the group at the timeout, SIGKILL after the grace. Its end comes when
@@ -214,11 +215,14 @@ JobResult run_job(const std::vector<std::string>& args, const JobRunnerOptions& 
   const auto t0 = Clock::now();
   Attempt a;
   int attempts = 0;
+  std::vector<int> pids;
   do {
     a = run_attempt(o.program, args, o);
+    pids.insert(pids.end(), a.result.pids.begin(), a.result.pids.end());
     ++attempts;
   } while (a.signaled && attempts <= o.retries && !(o.stop && o.stop->load() != 0));
   a.result.attempts = attempts;
+  a.result.pids = std::move(pids);
   a.result.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return a.result;
 }

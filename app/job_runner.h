@@ -44,6 +44,7 @@ struct JobResult {
   int attempts = 0;        // times the job was started: 1 + retries used
   bool timed_out = false;  // the last attempt was stopped at the timeout
   double max_rss_mb = 0.0;  // peak resident memory of the last attempt's process, MB (2^20 bytes)
+  std::vector<int> pids;    // process id of each attempt that started, in order
 };
 
 // Runs o.program once per entry of `jobs` (the arguments after argv[0]), at most o.parallel at a

@@ -83,6 +83,7 @@ TEST_CASE("job runner: a killed job and a missing program are that job's failure
   r = run_jobs({{}, {"a"}}, missing);
   for (const JobResult& m : r) {
     CHECK_FALSE(m.ok);
+    CHECK(m.pids.empty());
     CHECK(m.error == "cannot start /no/such/program: No such file or directory");
   }
 }
@@ -164,6 +165,7 @@ TEST_CASE("job runner: a job killed by a signal is run again, a failed one never
       o);
   CHECK(r[0].ok);
   CHECK(r[0].attempts == 3);
+  CHECK(r[0].pids.size() == 3);
   CHECK(lines("a") == 3);
   CHECK(r[1].error == "in.bvh:3: wrong");
   CHECK(r[1].attempts == 1);
