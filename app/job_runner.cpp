@@ -1,10 +1,10 @@
 #include "app/job_runner.h"
 
 #include <fcntl.h>
+#include <poll.h>
 #include <signal.h>
 #include <spawn.h>
 #include <string.h>
-#include <poll.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -136,7 +136,10 @@ Attempt run_attempt(const std::string& program, const std::vector<std::string>& 
   // every process of the group has closed it (or died).
   constexpr auto kNever = Clock::time_point::max();
   const bool limited = o.timeout_seconds > 0;
-  auto seconds = [](double s) { return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s)); };
+  // At most 10^9 s (32 years): more would overflow the clock's nanoseconds, and is no limit anyway.
+  auto seconds = [](double s) {
+    return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(std::min(s, 1e9)));
+  };
   Clock::time_point next = limited ? start + seconds(o.timeout_seconds) : kNever;
   int stop_signal = SIGTERM;  // the next one a timeout sends
   auto on_deadline = [&] {

@@ -139,6 +139,9 @@ TEST_CASE("job runner: a job still running at the timeout is stopped with its pr
   CHECK_FALSE(r[2].timed_out);
   CHECK(r[3].ok);
   CHECK_FALSE(r[3].timed_out);
+  // A timeout too long for the clock is no limit, not an overflow.
+  o.timeout_seconds = 1e300;
+  CHECK(run_jobs({sh("exit 0")}, o)[0].ok);
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
   CHECK_FALSE(fs::exists(scratch.dir / "late"));
 }
