@@ -63,7 +63,7 @@ void check_job_options(const std::vector<std::string>& options, std::vector<std:
   for (const std::string& option : options)
     for (const std::string& own : set_by_grid)
       if (option == own || option.rfind(own + "=", 0) == 0)
-        throw CLI::ValidationError("OPTIONS", own + " cannot be given: grid sets " + names +
+        throw CLI::ValidationError("JOB_OPTIONS", own + " cannot be given: grid sets " + names +
                                                   " per job (one --positions-out would be shared by all)");
   CLI::App probe;
   std::function<int()> unused;
@@ -73,7 +73,7 @@ void check_job_options(const std::vector<std::string>& options, std::vector<std:
   try {
     probe.parse(argv);
   } catch (const CLI::ParseError& e) {
-    throw CLI::ValidationError("OPTIONS", e.what());
+    throw CLI::ValidationError("JOB_OPTIONS", e.what());
   }
 }
 
@@ -121,11 +121,11 @@ void add_grid_command(CLI::App& app, std::function<int()>* run) {
                   "OUT_DIR/<CONTENT>__<STYLE>__s<strength>.bvh, and its report, .json")
       ->required();
   cmd->add_option("--jobs-out", args->jobs_out, "JOBS file to write (default: stdout)");
-  cmd->add_option("OPTIONS", args->options,
+  cmd->add_option("JOB_OPTIONS", args->options,
                   "After --: blend (or with --transfer, transfer) options for every job, e.g. -- --components 4 --loop");
-  cmd->footer("Each line is [\"blend\", A, B, \"--alpha\", a, \"--out\", ..., \"--report\", ..., OPTIONS], or "
+  cmd->footer("Each line is [\"blend\", A, B, \"--alpha\", a, \"--out\", ..., \"--report\", ..., JOB_OPTIONS], or "
               "[\"transfer\", CONTENT, \"--neutral\", N, \"--style\", S, \"--strength\", s, \"--out\", ..., "
-              "\"--report\", ..., OPTIONS].");
+              "\"--report\", ..., JOB_OPTIONS].");
   cmd->callback([=] {
     // Bad values are usage errors (exit 2), found before any file is written.
     const bool blend_given = !args->takes.empty() || !args->alphas.empty();
