@@ -11,6 +11,7 @@
 set -euo pipefail
 jobs_file="${1:?usage: sbatch --array=0-(N-1) $0 JOBS.jsonl [batch options]}"
 shift
+: "${SLURM_ARRAY_TASK_ID:?not an array task: submit this script with sbatch --array=0-(N-1)}"
 if [ "${SLURM_ARRAY_TASK_MIN:-0}" != 0 ] || [ "${SLURM_ARRAY_TASK_MAX:-}" != "$((SLURM_ARRAY_TASK_COUNT - 1))" ]; then
   echo "mostyle: the array's indices must run from 0 to N-1 (--array=0-$((SLURM_ARRAY_TASK_COUNT - 1))), found" \
        "${SLURM_ARRAY_TASK_MIN:-?}-${SLURM_ARRAY_TASK_MAX:-?}" >&2

@@ -14,7 +14,7 @@ if [ "$(id -u)" -ne 0 ]; then
 fi
 cli="$(realpath "${1:-${MOSTYLE_CLI:-$root/build/app/mostyle-cli}}")"
 [ -x "$cli" ] || { echo "slurm test: no mostyle-cli at $cli (build it first)"; exit 1; }
-for tool in munged mungekey slurmctld slurmd sbatch squeue scontrol; do
+for tool in munged mungekey slurmctld slurmd sbatch squeue sinfo; do
   command -v "$tool" >/dev/null || { echo "slurm test: $tool is missing (app/install-deps.sh installs slurm-wlm and munge)"; exit 1; }
 done
 
