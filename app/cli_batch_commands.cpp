@@ -8,13 +8,14 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <set>
 #include <thread>
 
+#include "app/batch_summary.h"
 #include "app/cli_common.h"
-#include "app/cli_pipeline_commands.h"
 #include "app/job_line.h"
+#include "app/job_outputs.h"
 #include "app/job_runner.h"
+#include "app/stop_signal.h"
 #include "engine/io/atomic_file.h"
 #include "engine/io/error.h"
 
@@ -76,70 +77,96 @@ std::string plural(size_t n, const std::string& word) {
   return std::to_string(n) + " " + word + (n == 1 ? "" : "s");
 }
 
-// Checks one JSON string per argument so that an invalid one is named, not just refused.
-std::string json_line(const std::vector<std::string>& args) {
-  for (const std::string& a : args) {
-    try {
-      (void)Json(a).dump();
-    } catch (const Json::type_error&) {
-      throw InputError(a + ": the name is not valid UTF-8, which a JOBS file (JSON) cannot hold");
-    }
-  }
-  return Json(args).dump() + "\n";
-}
-
 // The jobs of one shard and how each went, in JOBS order.
 struct ShardRun {
   std::vector<JobLine> jobs;
   std::vector<JobResult> results;  // results[k]: how jobs[k] went
+  std::vector<JobStatus> status;   // status[k]: ok, failed or skipped
   std::vector<int> failed_lines;   // lines (from 1) of the failed jobs, in order
+  size_t skipped = 0;
   double seconds = 0.0;            // wall time, reading JOBS included
 };
 
+struct BatchSettings {
+  Shard shard;
+  JobRunnerOptions runner;
+  bool skip_existing = false;
+  SummaryJournal* journal = nullptr;  // null without --summary
+};
+
+// A job whose output options all name files that exist; a job that names none is always run.
+bool outputs_exist(const std::vector<std::string>& args) {
+  const std::vector<std::string> outputs = job_outputs(args);
+  std::error_code ec;
+  return !outputs.empty() &&
+         std::all_of(outputs.begin(), outputs.end(), [&](const std::string& f) { return fs::exists(f, ec); });
+}
+
 // Reads JOBS (InputError when it cannot) and runs the shard's jobs; a line that is not a job is
-// a failed job with its parse error.
-ShardRun run_shard(const std::string& jobs_file, const Shard& shard, const JobRunnerOptions& o) {
+// a failed job with its parse error. Each record goes to the journal as soon as it is known.
+ShardRun run_shard(const std::string& jobs_file, const BatchSettings& settings) {
   const auto t0 = Clock::now();
   ShardRun r;
   const std::vector<JobLine> all = parse_jobs(read_file(jobs_file), jobs_file);
+  const Shard& shard = settings.shard;
   for (size_t k = 0; k < all.size(); ++k)
     if (static_cast<int>(k % static_cast<size_t>(shard.count)) == shard.index) r.jobs.push_back(all[k]);
   std::vector<std::vector<std::string>> commands;
   std::vector<size_t> slot;  // slot[k]: the index in r.jobs of commands[k]
   r.results.resize(r.jobs.size());
+  r.status.assign(r.jobs.size(), JobStatus::kFailed);
+  auto record = [&](size_t k) {
+    if (settings.journal) settings.journal->append(job_record(r.jobs[k].line, r.jobs[k].args, r.status[k], r.results[k]));
+  };
   for (size_t k = 0; k < r.jobs.size(); ++k) {
     r.results[k].error = r.jobs[k].error;
-    if (!r.jobs[k].error.empty()) continue;
-    commands.push_back(r.jobs[k].args);
-    slot.push_back(k);
+    if (!r.jobs[k].error.empty()) {
+      record(k);
+    } else if (settings.skip_existing && outputs_exist(r.jobs[k].args)) {
+      r.status[k] = JobStatus::kSkipped;
+      r.results[k].ok = true;
+      ++r.skipped;
+      record(k);
+    } else {
+      commands.push_back(r.jobs[k].args);
+      slot.push_back(k);
+    }
   }
+  JobRunnerOptions o = settings.runner;
+  // Called one at a time (run_jobs serializes them); each writes only its own job's slot.
+  o.on_finished = [&](size_t index, const JobResult& result) {
+    const size_t k = slot[index];
+    // A killed job (a crash, the timeout, a stop) may have been between writing an output's
+    // temporary file and renaming it.
+    if (result.exit_status == -1)
+      for (int pid : result.pids) remove_leftovers(job_outputs(r.jobs[k].args), pid);
+    r.results[k] = result;
+    r.status[k] = result.ok ? JobStatus::kOk : JobStatus::kFailed;
+    record(k);
+  };
+  // Jobs a stop request kept from starting have a result but no on_finished call.
   const std::vector<JobResult> ran = run_jobs(commands, o);
   for (size_t k = 0; k < ran.size(); ++k) r.results[slot[k]] = ran[k];
   for (size_t k = 0; k < r.jobs.size(); ++k)
-    if (!r.results[k].ok) r.failed_lines.push_back(r.jobs[k].line);
+    if (r.status[k] == JobStatus::kFailed) r.failed_lines.push_back(r.jobs[k].line);
   r.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return r;
 }
 
 Json records_json(const ShardRun& r) {
   Json records = Json::array();
-  for (size_t k = 0; k < r.jobs.size(); ++k) {
-    Json record;
-    record["line"] = r.jobs[k].line;
-    record["args"] = r.jobs[k].args;
-    record["status"] = r.results[k].ok ? "ok" : "failed";
-    record["error"] = r.results[k].error;
-    record["seconds"] = r.results[k].seconds;
-    records.push_back(record);
-  }
+  for (size_t k = 0; k < r.jobs.size(); ++k)
+    records.push_back(job_record(r.jobs[k].line, r.jobs[k].args, r.status[k], r.results[k]));
   return records;
 }
+
+size_t ok_count(const ShardRun& r) { return r.jobs.size() - r.failed_lines.size() - r.skipped; }
 
 // The failures, one line each naming JOBS:LINE, then the totals.
 // of_shard: "" or " of shard I/N".
 void print_summary(const ShardRun& r, const std::string& jobs_file, const std::string& of_shard, int parallel) {
   for (size_t k = 0; k < r.jobs.size(); ++k) {
-    if (r.results[k].ok) continue;
+    if (r.status[k] != JobStatus::kFailed) continue;
     const JobLine& job = r.jobs[k];
     // A line that is not a job already has its error naming JOBS:LINE.
     if (!job.error.empty())
@@ -147,8 +174,8 @@ void print_summary(const ShardRun& r, const std::string& jobs_file, const std::s
     else
       std::cout << jobs_file << ":" << job.line << ": " << job.args[0] << " failed: " << r.results[k].error << "\n";
   }
-  std::cout << jobs_file << of_shard << ": " << plural(r.jobs.size(), "job") << ", "
-            << r.jobs.size() - r.failed_lines.size() << " ok, " << r.failed_lines.size() << " failed, "
+  std::cout << jobs_file << of_shard << ": " << plural(r.jobs.size(), "job") << ", " << ok_count(r) << " ok, "
+            << r.failed_lines.size() << " failed, " << r.skipped << " skipped, "
             << number(std::round(r.seconds * 100) / 100) << " s, " << parallel << " at a time\n";
 }
 
@@ -161,6 +188,9 @@ void add_batch_command(CLI::App& app, std::function<int()>* run) {
     std::string shard = "0/1";
     int parallel = 0;
     std::string summary;
+    double timeout = 0.0;
+    int retries = 0;
+    bool skip_existing = false;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("JOBS", args->jobs_file,
@@ -181,31 +211,70 @@ void add_batch_command(CLI::App& app, std::function<int()>* run) {
   cmd->add_option("--jobs,-j", args->parallel, "Jobs at once (default: the number of cores)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--summary", args->summary,
-                  "JSON file: totals, and per job its line, args, status (ok or failed), error and seconds; "
-                  "without it a short summary goes to stdout");
+                  "JSON file: totals, and per job its line, args, status (ok, failed or skipped), error, seconds, "
+                  "attempts and peak memory (max_rss_mb); kept current while jobs run in SUMMARY.journal (one "
+                  "record per finished job, JSON lines), removed once the summary is written. Without it a "
+                  "short summary goes to stdout");
+  const CLI::Validator finite_seconds(
+      [](std::string& text) {
+        double v = 0;
+        const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+        const bool good = r.ec == std::errc() && r.ptr == text.data() + text.size() && std::isfinite(v) && v > 0;
+        return good ? std::string() : "expected a number of seconds above 0, found " + text;
+      },
+      "SECONDS");
+  cmd->add_option("--timeout", args->timeout,
+                  "Seconds a job may run: one still running then is stopped (SIGTERM to its process group, SIGKILL "
+                  "5 s later) and recorded as failed, \"timed out after SECONDS s\"; the others go on")
+      ->check(finite_seconds);
+  cmd->add_option("--retries", args->retries,
+                  "Run a job killed by a signal (a crash, an out-of-memory kill) again, up to this many times; a job "
+                  "that fails on its input (exit status 1), its usage (2) or the timeout is not run again")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_flag("--skip-existing", args->skip_existing,
+                "Do not run a job whose outputs (--out, --positions-out, --report, --jobs-out) all exist: it is "
+                "recorded as skipped. A job that names no output so is always run");
   cmd->footer(
-      "Each job runs as a child process of this program (its stdout discarded, its error line kept), so a crash "
-      "in one is that job's failure only. A failed job does not stop the others. Exit status 1 when any job "
-      "failed (one line on stderr naming the lines), 0 when all succeeded.");
+      "Each job runs as a child process of this program in a process group of its own (its stdout discarded, its "
+      "error line kept), so a crash in one is that job's failure only. A failed job does not stop the others. "
+      "SIGINT, SIGTERM or SIGHUP stops the running jobs with the same signal and starts no more; the summary is "
+      "written, then batch ends by that signal. "
+      "Exit status 1 when any job failed (one line on stderr naming the lines), 0 when all succeeded or were "
+      "skipped.");
   cmd->callback([=] {
     *run = [=] {
-      Shard shard;
-      parse_shard(args->shard, &shard);
-      JobRunnerOptions o;
+      // First, so that it is the last to go: the summary is written before a stop signal ends
+      // the process.
+      StopSignal stop;
+      BatchSettings settings;
+      parse_shard(args->shard, &settings.shard);
+      JobRunnerOptions& o = settings.runner;
       o.parallel = args->parallel > 0 ? args->parallel
                                       : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-      const ShardRun r = run_shard(args->jobs_file, shard, o);
-      const std::string of_shard = shard.count > 1 ? " of shard " + args->shard : "";
+      o.timeout_seconds = args->timeout;
+      o.retries = args->retries;
+      o.stop = &stop.requested();
+      settings.skip_existing = args->skip_existing;
+      std::unique_ptr<SummaryJournal> journal;
       if (!args->summary.empty()) {
+        journal = std::make_unique<SummaryJournal>(journal_path(args->summary));
+        settings.journal = journal.get();
+      }
+      const ShardRun r = run_shard(args->jobs_file, settings);
+      const std::string of_shard = settings.shard.count > 1 ? " of shard " + args->shard : "";
+      if (journal) {
+        if (!journal->error().empty()) std::cerr << "mostyle: warning: " << journal->error() << "\n";
         Json s;
         s["jobs_file"] = args->jobs_file;
         s["shard"] = args->shard;
         s["parallel"] = o.parallel;
-        s["totals"] = {{"jobs", r.jobs.size()}, {"ok", r.jobs.size() - r.failed_lines.size()},
-                       {"failed", r.failed_lines.size()}, {"seconds", r.seconds}};
+        s["totals"] = {{"jobs", r.jobs.size()}, {"ok", ok_count(r)}, {"failed", r.failed_lines.size()},
+                       {"skipped", r.skipped}, {"seconds", r.seconds}};
         s["jobs"] = records_json(r);
         // Messages quote file contents (joint names): invalid UTF-8 is replaced, not thrown on.
         write_output(args->summary, s.dump(2, ' ', false, Json::error_handler_t::replace) + "\n");
+        journal->remove();
       } else {
         print_summary(r, args->jobs_file, of_shard, o.parallel);
       }
@@ -218,88 +287,6 @@ void add_batch_command(CLI::App& app, std::function<int()>* run) {
                 << plural(r.jobs.size(), "job") << of_shard
                 << " failed (line" << (r.failed_lines.size() == 1 ? " " : "s ") << lines << ")\n";
       return 1;
-    };
-  });
-}
-
-void add_grid_command(CLI::App& app, std::function<int()>* run) {
-  auto* cmd = app.add_subcommand(
-      "grid", "Write a JOBS file for batch: one blend per ordered pair of different takes and alpha");
-  struct Args {
-    std::vector<std::string> takes;
-    std::vector<double> alphas;
-    std::string out_dir, jobs_out;
-    std::vector<std::string> blend_options;
-  };
-  auto args = std::make_shared<Args>();
-  cmd->add_option("--takes", args->takes, "BVH takes, 2 or more; each is A with every other one as B")->required();
-  cmd->add_option("--alphas", args->alphas, "Alpha values, comma separated, e.g. 0,0.25,0.5")
-      ->required()
-      ->delimiter(',');
-  cmd->add_option("--out-dir", args->out_dir,
-                  "Folder of the outputs (created): OUT_DIR/<A>__<B>__a<alpha>.bvh and its report, .json")
-      ->required();
-  cmd->add_option("--jobs-out", args->jobs_out, "JOBS file to write (default: stdout)");
-  cmd->add_option("BLEND_OPTIONS", args->blend_options,
-                  "After --: blend options for every job, e.g. -- --components 4 --loop");
-  cmd->footer("Each line is [\"blend\", A, B, \"--alpha\", a, \"--out\", ..., \"--report\", ..., BLEND_OPTIONS]. "
-              "A grid of style transfers will come with the transfer subcommand.");
-  cmd->callback([=] {
-    // Bad values are usage errors (exit 2), found before any file is written.
-    if (args->takes.size() < 2)
-      throw CLI::ValidationError("--takes", "expected 2 or more takes, found " + std::to_string(args->takes.size()));
-    std::set<std::string> stems, alphas;
-    for (const std::string& t : args->takes)
-      if (!stems.insert(fs::path(t).stem().string()).second)
-        throw CLI::ValidationError("--takes", "two takes are named '" + fs::path(t).stem().string() +
-                                                  "', so their outputs would have the same names");
-    for (double a : args->alphas) {
-      if (!std::isfinite(a)) throw CLI::ValidationError("--alphas", "expected finite numbers, found " + number(a));
-      if (!alphas.insert(number(a)).second) throw CLI::ValidationError("--alphas", number(a) + " is given twice");
-    }
-    for (const std::string& option : args->blend_options)
-      for (const char* own : {"--alpha", "--out", "--report", "--positions-out"})
-        if (option == own || option.rfind(std::string(own) + "=", 0) == 0)
-          throw CLI::ValidationError("BLEND_OPTIONS", std::string(own) +
-                                                          " cannot be given: grid sets --alpha, --out and --report "
-                                                          "per job, and one --positions-out would be shared by all");
-    // The options must parse as blend's, or every job would fail the same way.
-    CLI::App probe;
-    std::function<int()> unused;
-    add_blend_command(probe, &unused);
-    std::vector<std::string> argv = {"blend", args->takes[0], args->takes[1]};
-    argv.insert(argv.end(), args->blend_options.begin(), args->blend_options.end());
-    std::reverse(argv.begin(), argv.end());  // CLI11 takes them last first
-    try {
-      probe.parse(argv);
-    } catch (const CLI::ParseError& e) {
-      throw CLI::ValidationError("BLEND_OPTIONS", e.what());
-    }
-    *run = [=] {
-      std::error_code ec;
-      fs::create_directories(args->out_dir, ec);
-      if (ec) throw InputError(args->out_dir + ": cannot create: " + ec.message());
-      std::string text;
-      for (size_t i = 0; i < args->takes.size(); ++i)
-        for (size_t j = 0; j < args->takes.size(); ++j) {
-          if (i == j) continue;
-          const std::string& a = args->takes[i];
-          const std::string& b = args->takes[j];
-          for (double alpha : args->alphas) {
-            const std::string name =
-                fs::path(a).stem().string() + "__" + fs::path(b).stem().string() + "__a" + number(alpha);
-            const std::string base = (fs::path(args->out_dir) / name).string();
-            std::vector<std::string> job = {"blend", a, b, "--alpha", number(alpha), "--out", base + ".bvh",
-                                            "--report", base + ".json"};
-            job.insert(job.end(), args->blend_options.begin(), args->blend_options.end());
-            text += json_line(job);
-          }
-        }
-      if (args->jobs_out.empty())
-        std::cout << text;
-      else
-        write_output(args->jobs_out, text);
-      return 0;
     };
   });
 }

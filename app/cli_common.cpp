@@ -1,13 +1,13 @@
 #include "app/cli_common.h"
 
 #include <charconv>
-#include <cstdint>
 #include <cstdlib>
 #include <iostream>
 
 #include "engine/io/atomic_file.h"
 #include "engine/io/bvh_io.h"
 #include "engine/io/error.h"
+#include "engine/io/memory_limit.h"
 
 namespace mostyle::cli {
 
@@ -48,20 +48,14 @@ std::string positions_csv(const Eigen::MatrixXd& positions, const std::vector<in
   return csv;
 }
 
+size_t memory_limit_from_environment() {
+  const char* text = std::getenv(kMemoryLimitVariable);
+  return parse_memory_limit(text ? text : "");
+}
+
 BvhReadOptions bvh_read_options_from_environment() {
   BvhReadOptions options;
-  const char* text = std::getenv("MOSTYLE_MAX_MEMORY_MB");
-  if (text == nullptr || *text == '\0') return options;
-  const std::string_view value(text);
-  constexpr size_t kMaxMegabytes = SIZE_MAX >> 20;
-  size_t megabytes = 0;
-  const auto r = std::from_chars(value.data(), value.data() + value.size(), megabytes);
-  if (r.ec != std::errc() || r.ptr != value.data() + value.size() || megabytes == 0 ||
-      megabytes > kMaxMegabytes) {
-    throw InputError("MOSTYLE_MAX_MEMORY_MB: expected a whole number of megabytes from 1 up, found '" +
-                     std::string(value.substr(0, 40)) + "'");
-  }
-  options.max_bytes = megabytes << 20;
+  options.max_bytes = memory_limit_from_environment();
   return options;
 }
 

@@ -20,9 +20,11 @@ void write_output(const std::string& path, const std::string& content);
 std::string positions_csv(const Eigen::MatrixXd& positions, const std::vector<int>& joints,
                           const std::vector<std::string>& names);
 
-// The BVH reader's options from the environment: MOSTYLE_MAX_MEMORY_MB, when set, bounds the
-// memory one take's frames may need (default 4096). Throws InputError when it is not a whole
-// number of megabytes from 1 up.
+// The memory limit of a reader of outside input from the environment: MOSTYLE_MAX_MEMORY_MB,
+// when set, bounds the memory one file's values may need (default 4096). Throws InputError when
+// it is not a whole number of megabytes from 1 up (engine/io/memory_limit.h).
+size_t memory_limit_from_environment();
+// The BVH reader's options with that limit.
 BvhReadOptions bvh_read_options_from_environment();
 
 // Reads a BVH file (with the options above) and prints its warnings to stderr as

@@ -89,8 +89,9 @@ void add_dtw_command(CLI::App& app, std::function<int()>* run) {
   cmd->add_flag("--json", args->json, "Print {\"cost\": c, \"path\": [[i, j], ...]}");
   cmd->callback([=] {
     *run = [=] {
-      const Eigen::MatrixXd a = read_csv_matrix(args->a);
-      const Eigen::MatrixXd b = read_csv_matrix(args->b);
+      const size_t limit = memory_limit_from_environment();
+      const Eigen::MatrixXd a = read_csv_matrix(args->a, limit);
+      const Eigen::MatrixXd b = read_csv_matrix(args->b, limit);
       if (a.cols() != b.cols())
         throw InputError(args->b + ": expected " + std::to_string(a.cols()) + " columns like " + args->a +
                          ", found " + std::to_string(b.cols()));

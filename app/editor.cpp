@@ -14,6 +14,7 @@
 #include <imgui.h>
 #include <imgui_impl_opengl3.h>
 
+#include "engine/io/bvh_io.h"
 #include "engine/io/error.h"
 #include "render/gl.h"
 #include "render/skeleton_pose.h"
@@ -96,7 +97,8 @@ void copy_to(char* field, size_t size, const std::string& text) {
 
 }  // namespace
 
-Editor::Editor(const EditorOptions& options) : session_(std::make_unique<ui::BlendSession>()) {
+Editor::Editor(const EditorOptions& options)
+    : session_(std::make_unique<ui::BlendSession>(BvhReadOptions{options.max_memory_bytes})) {
   state_.parameters = options.initial.parameters;
   state_.playback.playing = !options.initial.paused;
   initial_frame_ = options.initial.frame;

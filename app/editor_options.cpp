@@ -147,6 +147,12 @@ ParseResult parse_editor_options(int argc, const char* const* argv) {
   }
   if (o.offscreen && o.screenshot_path.empty())
     return fail("--offscreen renders for a screenshot: add --screenshot OUT.png");
+  try {
+    const char* limit = std::getenv(kMemoryLimitVariable);
+    o.max_memory_bytes = parse_memory_limit(limit ? limit : "");
+  } catch (const InputError& e) {
+    return fail(e.what());
+  }
   // A session brings its own takes: it is the one file given.
   for (const std::string& f : o.files) {
     if (!ui::is_session_path(f)) continue;

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/io/memory_limit.h"
 #include "ui/editor_state.h"
 
 namespace mostyle::app {
@@ -35,6 +36,9 @@ struct EditorOptions {
   InitialState initial;
   int width = 1280;                 // window / offscreen size, pixels (--window-size), also the
   int height = 720;                 // screenshot's; each in [kMinWindowSide, kMaxWindowSide]
+  // The most memory one take's frames may need (engine/io/bvh_io.h): MOSTYLE_MAX_MEMORY_MB from
+  // the environment, as mostyle-cli takes it; not a flag.
+  size_t max_memory_bytes = kDefaultMaxBytes;
 };
 
 enum class ParseStatus { kRun, kHelp, kUsageError };

@@ -1,10 +1,14 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages mostyle builds with, when any is missing (sudo when not root).
+#   app/install-deps.sh            what the build and tests/run.sh need
+#   app/install-deps.sh --cluster  and a one-node Slurm for tests/cluster/slurm_test.sh
 set -euo pipefail
 # clang and libclang-rt-14-dev (libFuzzer, only a Recommends of clang): tests/fuzz/run.sh.
 packages=(build-essential cmake pkg-config libeigen3-dev libglfw3-dev libglm-dev libimgui-dev
           libstb-dev libosmesa6-dev libgl-dev catch2 libbenchmark-dev nlohmann-json3-dev
           libcli11-dev xvfb xauth clang libclang-rt-14-dev ccache)
+# slurm-wlm (slurmctld, slurmd, sbatch) and munge (its authentication): CI's real Slurm.
+if [ "${1:-}" = "--cluster" ]; then packages+=(slurm-wlm munge); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

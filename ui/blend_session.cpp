@@ -33,7 +33,7 @@ std::string stem(const std::string& path) { return std::filesystem::path(path).s
 
 }  // namespace
 
-BlendSession::BlendSession() : snapshot_(worker_.snapshot()) {}
+BlendSession::BlendSession(const BvhReadOptions& read) : read_(read), worker_(read), snapshot_(worker_.snapshot()) {}
 BlendSession::~BlendSession() = default;
 
 void BlendSession::load_files(const std::vector<std::string>& paths) {
@@ -111,7 +111,7 @@ void BlendSession::start_error_sweep(const DecomposeParams& base) {
   sweep_params_ = base;
   sweep_params_.components = kSweepComponents[0];
   sweep_next_ = 0;
-  sweep_worker_ = std::make_unique<Worker>();  // the previous one (if any) is cancelled and joined
+  sweep_worker_ = std::make_unique<Worker>(read_);  // the previous one (if any) is cancelled and joined
   sweep_seen_version_ = 0;
   if (wake_) sweep_worker_->set_on_change(wake_);
   sweep_worker_->decompose(sweep_params_);

@@ -73,7 +73,8 @@ struct DtwCostImage {
 
 class BlendSession {
  public:
-  BlendSession();
+  // Takes are read with `read` (the editor passes the memory limit MOSTYLE_MAX_MEMORY_MB sets).
+  explicit BlendSession(const BvhReadOptions& read = {});
   ~BlendSession();
   BlendSession(const BlendSession&) = delete;
   BlendSession& operator=(const BlendSession&) = delete;
@@ -163,6 +164,7 @@ class BlendSession {
   void poll_sweep();
   void remember_recent(const std::vector<std::string>& paths);
 
+  const BvhReadOptions read_;
   Worker worker_;
   std::function<void()> wake_;            // set_wake(); given to the sweep worker too
   std::unique_ptr<Worker> sweep_worker_;  // error against k, off the main worker

@@ -27,7 +27,7 @@ bool parse_number(std::string_view token, double* v) {
 
 }  // namespace
 
-Eigen::MatrixXd parse_csv_matrix(std::string_view text, const std::string& source) {
+Eigen::MatrixXd parse_csv_matrix(std::string_view text, const std::string& source, size_t max_bytes) {
   std::vector<double> values;
   long long columns = -1, rows = 0;
   int line_number = 0;
@@ -76,6 +76,11 @@ Eigen::MatrixXd parse_csv_matrix(std::string_view text, const std::string& sourc
     if (static_cast<long long>(tokens.size()) != columns)
       throw InputError(where + "expected " + std::to_string(columns) + " values, found " +
                        std::to_string(tokens.size()));
+    if (row.size() > max_bytes / sizeof(double) - values.size())
+      throw InputError(where + "expected values within the memory limit of " + describe_bytes(max_bytes) + ", found " +
+                       std::to_string(rows + 1) + " rows of " + std::to_string(row.size()) +
+                       (row.size() == 1 ? " value each (" : " values each (") +
+                       describe_bytes((values.size() + row.size()) * sizeof(double)) + ")");
     values.insert(values.end(), row.begin(), row.end());
     ++rows;
   }
@@ -86,6 +91,8 @@ Eigen::MatrixXd parse_csv_matrix(std::string_view text, const std::string& sourc
   return m;
 }
 
-Eigen::MatrixXd read_csv_matrix(const std::string& path) { return parse_csv_matrix(read_file(path), path); }
+Eigen::MatrixXd read_csv_matrix(const std::string& path, size_t max_bytes) {
+  return parse_csv_matrix(read_file(path, max_bytes), path, max_bytes);
+}
 
 }  // namespace mostyle

@@ -1,9 +1,25 @@
 #include "engine/io/memory_limit.h"
 
+#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 
+#include "engine/io/error.h"
+
 namespace mostyle {
+
+size_t parse_memory_limit(std::string_view value) {
+  if (value.empty()) return kDefaultMaxBytes;
+  constexpr size_t kMaxMegabytes = SIZE_MAX >> 20;
+  size_t megabytes = 0;
+  const auto r = std::from_chars(value.data(), value.data() + value.size(), megabytes);
+  if (r.ec != std::errc() || r.ptr != value.data() + value.size() || megabytes == 0 || megabytes > kMaxMegabytes) {
+    throw InputError(std::string(kMemoryLimitVariable) + ": expected a whole number of megabytes from 1 up, found '" +
+                     std::string(value.substr(0, 40)) + "'");
+  }
+  return megabytes << 20;
+}
 
 std::string describe_bytes(size_t bytes) {
   if (bytes < 1024) return std::to_string(bytes) + (bytes == 1 ? " byte" : " bytes");

@@ -13,13 +13,13 @@ namespace {
 // itself does. Checks for cancellation between files, so that a new load does not wait for all.
 std::vector<std::shared_ptr<const Clip>> read_palette_clips(const std::vector<std::string>& paths,
                                                             std::vector<std::string>* warnings,
-                                                            const JobControl* control) {
+                                                            const BvhReadOptions& read, const JobControl* control) {
   std::vector<std::shared_ptr<const Clip>> clips;
   for (size_t i = 0; i < paths.size(); ++i) {
     check_cancel(control);
     size_t same = 0;
     while (same < i && paths[same] != paths[i]) ++same;
-    clips.push_back(same < i ? clips[same] : std::make_shared<const Clip>(read_bvh_file(paths[i], warnings)));
+    clips.push_back(same < i ? clips[same] : std::make_shared<const Clip>(read_bvh_file(paths[i], warnings, read)));
   }
   return clips;
 }
@@ -45,7 +45,9 @@ const char* worker_stage_name(WorkerStage stage) {
   return "?";
 }
 
-Worker::Worker() : snapshot_(std::make_shared<WorkerSnapshot>()) { thread_ = std::thread([this] { run(); }); }
+Worker::Worker(const BvhReadOptions& read) : read_options_(read), snapshot_(std::make_shared<WorkerSnapshot>()) {
+  thread_ = std::thread([this] { run(); });
+}
 
 Worker::~Worker() {
   {
@@ -198,8 +200,8 @@ void Worker::run_load(std::unique_lock<std::mutex>& lock) {
   lock.unlock();
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<std::string> warnings;
-  auto clip_a = std::make_shared<const Clip>(read_bvh_file(a, &warnings));
-  auto clip_b = b == a ? clip_a : std::make_shared<const Clip>(read_bvh_file(b, &warnings));
+  auto clip_a = std::make_shared<const Clip>(read_bvh_file(a, &warnings, read_options_));
+  auto clip_b = b == a ? clip_a : std::make_shared<const Clip>(read_bvh_file(b, &warnings, read_options_));
   const double load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   auto prepared = prepare_pair(clip_a, clip_b, options, &control_);
   std::const_pointer_cast<PreparedPair>(prepared)->times.load_ms = load_ms;
@@ -267,7 +269,7 @@ void Worker::run_load_palette(std::unique_lock<std::mutex>& lock) {
   const PrepareOptions options = prepare_options_;
   lock.unlock();
   std::vector<std::string> warnings;
-  auto palette = prepare_palette(read_palette_clips(paths, &warnings, &control_), options, &control_);
+  auto palette = prepare_palette(read_palette_clips(paths, &warnings, read_options_, &control_), options, &control_);
   lock.lock();
   publish([&](WorkerSnapshot& s) {
     s.palette = palette;

@@ -13,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "engine/io/bvh_io.h"
 #include "engine/io/job_control.h"
 #include "engine/run/palette.h"
 #include "engine/run/pipeline.h"
@@ -55,7 +56,9 @@ struct WorkerStatus {
 
 class Worker {
  public:
-  Worker();
+  // Every take it loads is read with `read` (its memory limit: the editor passes the one
+  // MOSTYLE_MAX_MEMORY_MB sets, as the CLI does).
+  explicit Worker(const BvhReadOptions& read = {});
   ~Worker();  // cancels the running job and joins the thread
   Worker(const Worker&) = delete;
   Worker& operator=(const Worker&) = delete;
@@ -112,6 +115,7 @@ class Worker {
   bool load_is_palette_ = false;  // the pending load is palette_paths_, not path_a_ and path_b_
   std::string path_a_, path_b_;
   std::vector<std::string> palette_paths_;
+  const BvhReadOptions read_options_;  // set before the thread starts, never changed
   PrepareOptions prepare_options_;
   DecomposeParams decompose_params_;
   BlendParams blend_params_;

@@ -1,6 +1,10 @@
 // mostyle-cli batch | grid, run as a user runs them: shards that share one JOBS file run every
 // job exactly once, a failed job is reported and never stops the others, exit 1 when one
 // failed, 2 on bad usage.
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -13,10 +17,13 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "engine/io/bvh_io.h"
 #include "tests/app/cli_sandbox.h"
 #include "tests/test_data.h"
+
+extern char** environ;
 
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
@@ -36,6 +43,53 @@ class Sandbox : public test::CliSandbox {
 };
 
 std::string job(const std::vector<std::string>& args) { return Json(args).dump() + "\n"; }
+
+// Starts mostyle-cli with `args` as a child of this test, its output discarded; its process id.
+pid_t start_cli(std::vector<std::string> args) {
+  args.insert(args.begin(), MOSTYLE_CLI);
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  pid_t pid = 0;
+  const int error = ::posix_spawn(&pid, MOSTYLE_CLI, &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  return error == 0 ? pid : -1;
+}
+
+// Waits (60 s at most) until `file` holds `lines` lines.
+void wait_for_lines(const std::string& file, long lines) {
+  for (int i = 0; i < 6000; ++i) {
+    const std::string text = slurp(file);
+    if (std::count(text.begin(), text.end(), '\n') >= lines) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+}
+
+// Whether `parent` has a child process (Linux: /proc/PID/stat's fourth field is the parent).
+bool has_child(pid_t parent) {
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    const std::string stat = slurp(e.path() / "stat");
+    const size_t paren = stat.rfind(')');
+    if (paren == std::string::npos) continue;
+    std::istringstream fields(stat.substr(paren + 1));
+    std::string state;
+    long ppid = 0;
+    if (fields >> state >> ppid && ppid == parent) return true;
+  }
+  return false;
+}
+
+// Whether a process has `fifo` open for reading (a writer can then open it without waiting).
+bool fifo_has_reader(const std::string& fifo) {
+  const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+  if (fd < 0) return false;
+  ::close(fd);
+  return true;
+}
 
 std::vector<std::string> files_in(const std::string& dir) {
   std::vector<std::string> names;
@@ -182,6 +236,14 @@ TEST_CASE("cli batch: bad usage exits 2, an unreadable JOBS file 1", "[batch][cl
     CHECK(r.out.empty());
   }
   CHECK(box.cli("batch " + quoted(file) + " --jobs 0").status == 2);
+  for (const char* bad : {"0", "-1", "nan", "inf", "soon", "1s"}) {
+    INFO(bad);
+    CHECK(box.cli("batch " + quoted(file) + " --timeout " + bad).status == 2);
+  }
+  for (const char* bad : {"-1", "1.5", "many"}) {
+    INFO(bad);
+    CHECK(box.cli("batch " + quoted(file) + " --retries " + bad).status == 2);
+  }
   CHECK(box.cli("batch").status == 2);
   const Run missing = box.cli("batch " + quoted(box.path("none.jsonl")));
   CHECK(missing.status == 1);
@@ -193,76 +255,142 @@ TEST_CASE("cli batch: bad usage exits 2, an unreadable JOBS file 1", "[batch][cl
   CHECK(empty.out.rfind(file + " of shard 1/3: 0 jobs, 0 ok, 0 failed, ", 0) == 0);
 }
 
-TEST_CASE("cli grid: one blend per ordered pair and alpha, run by batch", "[batch][cli]") {
+TEST_CASE("cli batch: a job that hangs is stopped at the timeout, the others finish", "[batch][cli]") {
   Sandbox box;
   const std::vector<std::string> takes = test::asset_motions();
-  const std::string a = takes[0], b = takes[1], c = takes[2];
-  const std::string out = box.path("grid");
-  const Run r = box.cli("grid --takes " + quoted(a) + " " + quoted(b) + " " + quoted(c) + " --alphas 0,0.5 --out-dir " +
-                        quoted(out) + " --jobs-out " + quoted(box.path("grid.jsonl")) +
-                        " -- --components 4 --iterations 20");
-  CHECK(r.status == 0);
-  CHECK(r.out.empty());
-  CHECK(fs::is_directory(out));
-  std::vector<Json> lines;
-  std::istringstream in(slurp(box.path("grid.jsonl")));
-  for (std::string line; std::getline(in, line);) lines.push_back(Json::parse(line));
-  REQUIRE(lines.size() == 3 * 2 * 2);
-  const std::string base = out + "/cmu142_walk_clumsy__cmu142_walk_happy__a";
-  CHECK(lines[0] == Json({"blend", a, b, "--alpha", "0", "--out", base + "0.bvh", "--report", base + "0.json",
-                          "--components", "4", "--iterations", "20"}));
-  CHECK(lines[1][4] == "0.5");
-  CHECK(lines[1][6] == base + "0.5.bvh");
-  std::set<std::string> outputs;
-  for (const Json& l : lines) {
-    CHECK(l[1] != l[2]);
-    outputs.insert(l[6].get<std::string>());
+  // A FIFO that no one writes: reading it waits forever.
+  const std::string fifo = box.path("hang.bvh");
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  const std::string file = box.write("jobs.jsonl", job({"info", takes[0]}) + job({"info", fifo}) +
+                                                       job({"fk", takes[1], "--out", box.path("p.csv")}) +
+                                                       job({"info", takes[2]}));
+  const Run r = box.cli("batch " + quoted(file) + " --jobs 2 --timeout 1 --retries 2 --summary " +
+                        quoted(box.path("s.json")));
+  CHECK(r.status == 1);
+  CHECK(r.err == "mostyle: " + file + ": 1 of 4 jobs failed (line 2)\n");
+  const Json s = Json::parse(slurp(box.path("s.json")));
+  CHECK(s["totals"]["ok"] == 3);
+  CHECK(s["totals"]["failed"] == 1);
+  CHECK(s["totals"]["skipped"] == 0);
+  const Json& j = s["jobs"];
+  REQUIRE(j.size() == 4);
+  CHECK(j[1]["status"] == "failed");
+  CHECK(j[1]["error"] == "timed out after 1 s");
+  CHECK(j[1]["attempts"] == 1);  // a timeout is not retried
+  for (int k : {0, 2, 3}) {
+    INFO(k);
+    CHECK(j[k]["status"] == "ok");
+    CHECK(j[k]["attempts"] == 1);
+    CHECK(j[k]["max_rss_mb"].get<double>() > 0.0);
   }
-  CHECK(outputs.size() == lines.size());
-  CHECK(outputs.count(out + "/cmu142_walk_joy__cmu142_walk_clumsy__a0.5.bvh") == 1);
-
-  // To stdout without --jobs-out; two takes and two alphas, then run.
-  const Run small = box.cli("grid --takes " + quoted(a) + " " + quoted(b) + " --alphas 0.25,1 --out-dir " +
-                            quoted(out) + " -- --components 4 --iterations 20");
-  CHECK(small.status == 0);
-  CHECK(std::count(small.out.begin(), small.out.end(), '\n') == 4);
-  const std::string jobs = box.write("small.jsonl", small.out);
-  const Run ran = box.cli("batch " + quoted(jobs) + " --jobs 2");
-  CHECK(ran.status == 0);
-  CHECK(ran.out.rfind(jobs + ": 4 jobs, 4 ok, 0 failed, ", 0) == 0);
-  CHECK(files_in(out) == std::vector<std::string>{
-                             "cmu142_walk_clumsy__cmu142_walk_happy__a0.25.bvh",
-                             "cmu142_walk_clumsy__cmu142_walk_happy__a0.25.json",
-                             "cmu142_walk_clumsy__cmu142_walk_happy__a1.bvh",
-                             "cmu142_walk_clumsy__cmu142_walk_happy__a1.json",
-                             "cmu142_walk_happy__cmu142_walk_clumsy__a0.25.bvh",
-                             "cmu142_walk_happy__cmu142_walk_clumsy__a0.25.json",
-                             "cmu142_walk_happy__cmu142_walk_clumsy__a1.bvh",
-                             "cmu142_walk_happy__cmu142_walk_clumsy__a1.json",
-                         });
+  CHECK(fs::exists(box.path("p.csv")));
+  CHECK_FALSE(fs::exists(box.path("s.json.journal")));  // merged into the summary
 }
 
-TEST_CASE("cli grid: bad usage exits 2 and writes nothing", "[batch][cli]") {
+TEST_CASE("cli batch: --skip-existing runs only the jobs whose outputs are not all there", "[batch][cli]") {
   Sandbox box;
   const std::vector<std::string> takes = test::asset_motions();
-  const std::string two = " --takes " + quoted(takes[0]) + " " + quoted(takes[1]);
-  const std::string rest = " --out-dir " + quoted(box.path("out")) + " --jobs-out " + quoted(box.path("g.jsonl"));
-  for (const std::string& args : {
-           "grid --takes " + quoted(takes[0]) + " --alphas 0.5" + rest,        // one take
-           "grid" + two + " --takes " + quoted(box.path("x/" + fs::path(takes[0]).filename().string())) +
-               " --alphas 0.5" + rest,                                          // same name twice
-           "grid" + two + " --alphas 0,nan" + rest,                             // not finite
-           "grid" + two + " --alphas 0.5,0.50" + rest,                          // same alpha twice
-           "grid" + two + " --alphas 0.5" + rest + " -- --out x.bvh",           // set by grid
-           "grid" + two + " --alphas 0.5" + rest + " -- --report=x.json",       // set by grid
-           "grid" + two + " --alphas 0.5" + rest + " -- --bogus",               // not a blend option
-           "grid" + two + " --alphas 0.5" + rest + " -- --mode fancy",          // not a blend value
-           "grid" + two + rest,                                                 // no --alphas
-       }) {
-    INFO(args);
-    const Run r = box.cli(args);
-    CHECK(r.status == 2);
-    CHECK_FALSE(fs::exists(box.path("g.jsonl")));
-    CHECK_FALSE(fs::exists(box.path("out")));
+  const std::string old_csv = box.write("old.csv", "kept\n");
+  std::vector<std::string> partial = blend(takes[0], takes[1], "0.5", box.path("ab.bvh"));
+  partial.insert(partial.end(), {"--report", box.path("ab.json")});
+  box.write("ab.bvh", "an older blend\n");  // its report is missing: the job runs again
+  const std::string bad = box.path("missing.bvh");
+  const std::string file = box.write("jobs.jsonl", job({"fk", takes[0], "--out", box.path("new.csv")}) +
+                                                       job({"fk", takes[1], "--out=" + old_csv}) +
+                                                       job({"info", takes[2]}) + job(partial) +
+                                                       job({"fk", bad, "--out", box.path("bad.csv")}));
+  const std::string summary = " --summary " + quoted(box.path("s.json"));
+  Run r = box.cli("batch " + quoted(file) + " --skip-existing --jobs 2" + summary);
+  CHECK(r.status == 1);
+  Json s = Json::parse(slurp(box.path("s.json")));
+  CHECK(s["totals"]["jobs"] == 5);
+  CHECK(s["totals"]["ok"] == 3);
+  CHECK(s["totals"]["failed"] == 1);
+  CHECK(s["totals"]["skipped"] == 1);
+  std::vector<std::string> status;
+  for (const Json& record : s["jobs"]) status.push_back(record["status"]);
+  CHECK(status == std::vector<std::string>{"ok", "skipped", "ok", "ok", "failed"});
+  CHECK(s["jobs"][1]["attempts"] == 0);
+  CHECK(s["jobs"][1]["error"] == "");
+  CHECK(slurp(old_csv) == "kept\n");
+  CHECK(read_bvh_file(box.path("ab.bvh")).frames() > 100);
+  CHECK(fs::exists(box.path("ab.json")));
+
+  // Again: every job with outputs is skipped (the failed one still has none, so it runs and
+  // fails again); the job without output options runs.
+  r = box.cli("batch " + quoted(file) + " --skip-existing --jobs 2" + summary);
+  CHECK(r.status == 1);
+  s = Json::parse(slurp(box.path("s.json")));
+  status.clear();
+  for (const Json& record : s["jobs"]) status.push_back(record["status"]);
+  CHECK(status == std::vector<std::string>{"skipped", "skipped", "ok", "skipped", "failed"});
+  // Without --summary: the skipped jobs counted on stdout.
+  r = box.cli("batch " + quoted(file) + " --skip-existing");
+  CHECK(r.out.find(": 5 jobs, 1 ok, 1 failed, 3 skipped, ") != std::string::npos);
+}
+
+TEST_CASE("cli batch: SIGTERM stops the running jobs, the summary is written, batch ends by it", "[batch][cli]") {
+  Sandbox box;
+  const std::vector<std::string> takes = test::asset_motions();
+  const std::string fifo = box.path("hang.bvh");
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  const std::string file =
+      box.write("jobs.jsonl", job({"info", takes[0]}) + job({"info", fifo}) + job({"info", takes[1]}));
+  const std::string summary = box.path("s.json");
+  const pid_t pid = start_cli({"batch", file, "--jobs", "1", "--summary", summary, "--retries", "2"});
+  REQUIRE(pid > 0);
+  wait_for_lines(summary + ".journal", 1);
+  // The second job then starts and waits on the FIFO. (Opening the FIFO to look would end it.)
+  for (int i = 0; i < 500 && !has_child(pid); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ::kill(pid, SIGTERM);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  CHECK(WIFSIGNALED(status));
+  CHECK(WTERMSIG(status) == SIGTERM);
+  CHECK_FALSE(fifo_has_reader(fifo));  // the job went with it
+  const Json s = Json::parse(slurp(summary));
+  CHECK(s["totals"]["ok"] == 1);
+  CHECK(s["totals"]["failed"] == 2);
+  const Json& j = s["jobs"];
+  REQUIRE(j.size() == 3);
+  CHECK(j[0]["status"] == "ok");
+  CHECK(j[1]["error"] == "killed by signal 15 (Terminated)");
+  CHECK(j[1]["attempts"] == 1);
+  CHECK(j[2]["error"] == "not run: stopped by signal 15 (Terminated)");
+  CHECK(j[2]["attempts"] == 0);
+  CHECK_FALSE(fs::exists(summary + ".journal"));
+}
+
+TEST_CASE("cli batch: a shard killed with SIGKILL keeps the records of its finished jobs", "[batch][cli]") {
+  Sandbox box;
+  const std::vector<std::string> takes = test::asset_motions();
+  const std::string fifo = box.path("hang.bvh");
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  // One at a time: three quick jobs, then one that waits on the FIFO until it is killed.
+  const std::string file = box.write("jobs.jsonl", job({"info", takes[0]}) + job({"info", takes[1]}) +
+                                                       job({"info", box.path("none.bvh")}) + job({"info", fifo}) +
+                                                       job({"info", takes[2]}));
+  const std::string summary = box.path("s.json");
+  const pid_t pid = start_cli({"batch", file, "--jobs", "1", "--summary", summary});
+  REQUIRE(pid > 0);
+  const std::string journal = summary + ".journal";
+  wait_for_lines(journal, 3);
+  ::kill(pid, SIGKILL);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  CHECK(WIFSIGNALED(status));
+  // The job still waiting on the FIFO outlived the batch: a writer that comes and goes ends it.
+  for (int i = 0; i < 500 && !fifo_has_reader(fifo); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  CHECK_FALSE(fs::exists(summary));
+  std::vector<Json> records;
+  std::istringstream in(slurp(journal));
+  for (std::string line; std::getline(in, line);) records.push_back(Json::parse(line));
+  REQUIRE(records.size() == 3);
+  for (int k = 0; k < 3; ++k) {
+    INFO(k);
+    CHECK(records[k]["line"] == k + 1);
+    CHECK(records[k]["status"] == (k == 2 ? "failed" : "ok"));
+    CHECK(records[k]["args"][0] == "info");
   }
+  CHECK(records[2]["error"].get<std::string>().rfind(box.path("none.bvh") + ": cannot read: ", 0) == 0);
 }

@@ -101,6 +101,15 @@ TEST_CASE("cli: MOSTYLE_MAX_MEMORY_MB bounds the memory a take's frames may need
   CHECK(r.status == 1);
   CHECK(r.err == "mostyle: " + file + ":8: expected frames within the memory limit of 1 MB, found Frames: 30000 "
                                       "of 6 values each (1.4 MB)\n");
+  // dtw's CSV series too: 140000 rows of one value, 1.1 MB of values.
+  std::string series;
+  for (int r = 0; r < 140000; ++r) series += "0\n";
+  const std::string csv = box.write("long.csv", series);
+  r = box.cli("dtw \"" + csv + "\" \"" + csv + "\" --json");
+  CHECK(r.status == 1);
+  CHECK(r.err == "mostyle: " + csv + ":131073: expected values within the memory limit of 1 MB, found 131073 rows "
+                                     "of 1 value each (1.1 MB)\n");
+  CHECK(r.out.empty());
   ::setenv("MOSTYLE_MAX_MEMORY_MB", "2", 1);
   CHECK(box.cli("info \"" + file + "\"").status == 0);
   for (const char* bad : {"0", "-1", "1.5", "lots", "99999999999999999999"}) {

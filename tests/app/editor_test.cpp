@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -158,6 +159,37 @@ TEST_CASE("the editor loads the pair on the worker, and a load error keeps the p
   editor.wait_for_engine();
   CHECK_THAT(editor.session().error(), Catch::Contains("/nonexistent/walk.bvh"));
   CHECK(editor.state().takes.size() == 3);
+}
+
+TEST_CASE("editor options and loads: MOSTYLE_MAX_MEMORY_MB bounds a take's frames, as in mostyle-cli") {
+  struct Environment {
+    ~Environment() { ::unsetenv("MOSTYLE_MAX_MEMORY_MB"); }
+  } restore;
+  ::unsetenv("MOSTYLE_MAX_MEMORY_MB");
+  CHECK(parse({}).options.max_memory_bytes == mostyle::kDefaultMaxBytes);
+  ::setenv("MOSTYLE_MAX_MEMORY_MB", "lots", 1);
+  const ParseResult bad = parse({});
+  CHECK(bad.status == ParseStatus::kUsageError);
+  CHECK(bad.error == "MOSTYLE_MAX_MEMORY_MB: expected a whole number of megabytes from 1 up, found 'lots'");
+  ::setenv("MOSTYLE_MAX_MEMORY_MB", "1", 1);
+  const ParseResult one = parse({});
+  REQUIRE(one.status == ParseStatus::kRun);
+  CHECK(one.options.max_memory_bytes == size_t{1} << 20);
+
+  // 30000 frames x 6 channels x 8 bytes: 1.4 MB of frames, over 1 MB.
+  std::string text =
+      "HIERARCHY\nROOT Hips\n{\nOFFSET 0 0 0\nCHANNELS 6 Xposition Yposition Zposition Zrotation "
+      "Xrotation Yrotation\n}\nMOTION\nFrames: 30000\nFrame Time: 0.01\n";
+  for (int f = 0; f < 30000; ++f) text += "0 0 0 0 0 0\n";
+  const std::string long_take = (fs::temp_directory_path() / ("mostyle_editor_limit_" + std::to_string(::getpid()) + ".bvh")).string();
+  { std::ofstream(long_take, std::ios::binary) << text; }
+  EditorOptions options = one.options;
+  options.files = {long_take, mostyle::test::asset("motions/cmu142_walk_marching.bvh")};
+  Editor editor(options);
+  editor.wait_for_engine();
+  CHECK(editor.session().error() == long_take + ":8: expected frames within the memory limit of 1 MB, found Frames: "
+                                                "30000 of 6 values each (1.4 MB)");
+  fs::remove(long_take);
 }
 
 TEST_CASE("the editor keeps rendering offscreen for hundreds of frames while decompositions run") {

@@ -1,6 +1,8 @@
 #include "engine/io/csv_io.h"
 
 #include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "engine/io/error.h"
@@ -41,4 +43,26 @@ TEST_CASE("CSV series: every defect is an error with file and line", "[csv_io]")
   CHECK(error_of("") == "s.csv:1: expected rows of numbers, found none");
   CHECK(error_of("x,y\n\n") == "s.csv:2: expected rows of numbers, found none");
   CHECK_THROWS_WITH(read_csv_matrix("/nonexistent/s.csv"), Catch::StartsWith("/nonexistent/s.csv"));
+}
+
+TEST_CASE("CSV series: values over the memory limit are refused at their line, before they are stored",
+          "[csv_io]") {
+  // 100 rows of 4 values: 3200 bytes. A limit of 1000 bytes holds 125 values: 31 rows.
+  std::string text = "a,b,c,d\n";
+  for (int r = 0; r < 100; ++r) text += "1,2,3,4\n";
+  CHECK(parse_csv_matrix(text, "m.csv", 3200).rows() == 100);
+  try {
+    parse_csv_matrix(text, "m.csv", 1000);
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()) ==
+          "m.csv:33: expected values within the memory limit of 1000 bytes, found 32 rows of 4 values each (1 KB)");
+  }
+  // A file larger than the limit is not read at all.
+  const std::string path = (std::filesystem::temp_directory_path() / "mostyle_csv_limit_test.csv").string();
+  std::ofstream(path, std::ios::binary) << text;
+  CHECK_THROWS_WITH(read_csv_matrix(path, 500), path + ": cannot read: its 808 bytes exceed the memory limit of 500 bytes");
+  CHECK_THROWS_WITH(read_csv_matrix(path, 1000), Catch::StartsWith(path + ":33: expected values within the memory"));
+  CHECK(read_csv_matrix(path).rows() == 100);
+  std::filesystem::remove(path);
 }

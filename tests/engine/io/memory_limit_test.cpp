@@ -2,6 +2,7 @@
 
 #include <catch2/catch.hpp>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include "engine/io/huge_pages.h"
@@ -33,4 +34,15 @@ TEST_CASE("advise_huge_pages is a hint: contents kept, any pointer and size acce
   for (size_t i = 0; i < big.size(); i += 4096) CHECK(big[i] == 'a');
   std::memset(big.data(), 'b', big.size());
   CHECK(big.back() == 'b');
+}
+
+TEST_CASE("parse_memory_limit: whole megabytes from 1 up, the default when empty", "[io]") {
+  CHECK(parse_memory_limit("") == kDefaultMaxBytes);
+  CHECK(parse_memory_limit("1") == size_t{1} << 20);
+  CHECK(parse_memory_limit("4096") == kDefaultMaxBytes);
+  for (const char* bad : {"0", "-1", "1.5", "lots", " 1", "1 ", "99999999999999999999"}) {
+    INFO(bad);
+    CHECK_THROWS_WITH(parse_memory_limit(bad), std::string("MOSTYLE_MAX_MEMORY_MB: expected a whole number of "
+                                                           "megabytes from 1 up, found '") + bad + "'");
+  }
 }

@@ -240,6 +240,40 @@ TEST_CASE("errors become sentences in the snapshot and keep what was loaded", "[
   CHECK(w.snapshot()->blend_params.alpha == 0.25);
 }
 
+TEST_CASE("loads are bounded by the memory limit the worker was given", "[worker]") {
+  // 2000 frames x 6 channels x 8 bytes = 94 KB of frames; the file itself is 24 KB.
+  std::string text = "HIERARCHY\nROOT Hips\n{\nOFFSET 0 0 0\nCHANNELS 6 Xposition Yposition Zposition "
+                     "Zrotation Xrotation Yrotation\nEnd Site\n{\nOFFSET 0 1 0\n}\n}\nMOTION\nFrames: 2000\n"
+                     "Frame Time: 0.01\n";
+  for (int f = 0; f < 2000; ++f) text += "0 0 0 0 0 0\n";
+  const std::string big = temporary_file("mostyle_worker_test_limit.bvh", text);
+  BvhReadOptions read;
+  read.max_bytes = 64 << 10;
+  Worker w(read);
+  SECTION("a pair") {
+    w.load(big, test::asset(kJoy));
+    w.wait_idle();
+    CHECK(w.snapshot()->error == big + ":12: expected frames within the memory limit of 64 KB, found Frames: 2000 "
+                                       "of 6 values each (93.8 KB)");
+    CHECK_FALSE(w.snapshot()->prepared);
+  }
+  SECTION("a palette") {
+    // The big take first: the bundled ones are larger than 64 KB too.
+    w.load_palette({big, test::asset(kJoy), test::asset(kHappy)});
+    w.wait_idle();
+    INFO(w.snapshot()->error);
+    CHECK(w.snapshot()->error.rfind(big + ":12: expected frames within the memory limit of 64 KB", 0) == 0);
+    CHECK_FALSE(w.snapshot()->palette);
+  }
+  SECTION("a file larger than the limit is not read") {
+    Worker tiny(BvhReadOptions{16 << 10});
+    tiny.load(big, "");
+    tiny.wait_idle();
+    CHECK(tiny.snapshot()->error == big + ": cannot read: its 23.7 KB exceed the memory limit of 16 KB");
+  }
+  std::filesystem::remove(big);
+}
+
 TEST_CASE("a new request cancels a long decomposition at its next iteration", "[worker]") {
   Worker w;
   w.load(test::asset(kHappy), test::asset(kJoy));
