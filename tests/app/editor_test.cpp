@@ -593,7 +593,7 @@ TEST_CASE("at rest, a finished decomposition wakes the editor and shows at once 
   const int before = wakes;
   editor.state().parameters.components = 6;
   editor.session().request_decomposition(editor.state());
-  frame();
+  CHECK(editor.animating());  // the worker has work
   const auto t0 = std::chrono::steady_clock::now();
   while (editor.session().status().stage != mostyle::WorkerStage::kIdle || editor.session().status().pending) {
     REQUIRE(std::chrono::steady_clock::now() - t0 < std::chrono::seconds(60));

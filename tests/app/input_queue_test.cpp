@@ -76,7 +76,7 @@ TEST_CASE("input queue: one press a frame, no key changing twice, only releases 
   CHECK(q.take_frame().empty());
 }
 
-TEST_CASE("keys at rest: ten quick presses step ten frames; typing after Ctrl+S names the session") {
+TEST_CASE("keys at rest: ten quick presses step ten frames, and typing after Ctrl+S names the session") {
   const glm::ivec2 size(960, 540);
   mostyle::test::OsMesaContext gl(size);
   REQUIRE(gl.ok());

@@ -138,7 +138,7 @@ TEST_CASE("timing: no allocation when u has the right size", "[timing]") {
   CHECK(u.data() == data);
 }
 
-TEST_CASE("timing: a one-sample warp gives one frame; bad input throws InputError", "[timing]") {
+TEST_CASE("timing: a one-sample warp gives one frame, bad input throws InputError", "[timing]") {
   const TimeWarp one = warp_of({4}, {9});
   const Eigen::VectorXd u = timeline(one, 0.5);
   REQUIRE(u.size() == 1);

@@ -282,7 +282,7 @@ TEST_CASE("the rotations layout keeps every joint where our FK puts it, on a Ban
   CHECK(joints[rig.toes].channels == std::vector<Channel>{C::kZrotation, C::kXrotation, C::kYrotation});
 }
 
-TEST_CASE("on the rotations layout three.js-style readers agree with ours; on Bandai's own they do not",
+TEST_CASE("on the rotations layout three.js-style readers agree with ours, on Bandai's own they do not",
           "[export][layout]") {
   const Rig rig = make_rig();
   const Clip a = make_motion(rig, 90, 11);

@@ -125,7 +125,7 @@ TEST_CASE("unknown and miscounted channels", "[bvh]") {
         "bad.bvh:13: expected OFFSET or '}' in an End Site, found 'CHANNELS'");
 }
 
-TEST_CASE("short, long and non-numeric OFFSETs; structure out of place", "[bvh]") {
+TEST_CASE("short, long and non-numeric OFFSETs, structure out of place", "[bvh]") {
   CHECK(error_of(with("OFFSET 0 10 0", "OFFSET 0 10")) ==
         "bad.bvh:8: expected 3 numbers after OFFSET of joint 'Spine', found 2");
   CHECK(error_of(with("OFFSET 0 10 0", "OFFSET 0 10 0 0")) ==

@@ -182,7 +182,7 @@ TEST_CASE("layout oddities: tabs, blank lines, trailing spaces, no indent, brace
   check_same_clip(parse_bvh(replace_all(kSmall, "End Site\n", "End Site Spine_end\n"), "x.bvh"), reference);
 }
 
-TEST_CASE("Frames: and Frame Time: in any case and spacing; Frames: 0", "[bvh]") {
+TEST_CASE("Frames: and Frame Time: in any case and spacing, Frames: 0", "[bvh]") {
   for (const char* frames : {"Frames: 2", "FRAMES:\t2", "frames:2", "Frames :  2", "Frames 2"}) {
     for (const char* time : {"Frame Time: 0.0333333", "FRAME TIME:\t0.0333333", "frame  time:.0333333",
                              "Frame\tTime :\t\t3.33333e-2"}) {

@@ -96,7 +96,7 @@ TEST_CASE("a bone with no direction takes the previous frame's, or the fallback"
   CHECK(max_bone_length_error(with_pose, parents, lengths) == 0.0);
 }
 
-TEST_CASE("bone lengths average over frames; the error is the worst deviation",
+TEST_CASE("bone lengths average over frames, the error is the worst deviation",
           "[limb_length]") {
   Eigen::MatrixXd p(2, 9);
   p << 0, 0, 0, 1, 0, 0, 1, 2, 0,  //
