@@ -60,7 +60,7 @@ void ParametersPanel::draw(EditorState& state) {
     s.realign();
   }
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("What the two takes are matched in time on.\nauto: the left foot for walks and runs, "
+    ImGui::SetTooltip("What the takes are matched in time on.\nauto: the left foot for walks and runs, "
                       "the joints that move most for other actions.");
   int method = c.align.method == DtwMethod::kSlope ? 0 : 1;
   if (ImGui::Combo("time warp", &method, "smooth\0paper\0")) {
@@ -72,12 +72,14 @@ void ParametersPanel::draw(EditorState& state) {
                       "is left out, and poses are sampled between frames (no jumps).\npaper: the paper's plain "
                       "left-foot DTW, end to end, as published.");
   ImGui::Checkbox("foot lock", &c.foot_lock);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Pin planted feet in place so the blend does not skate");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Pin planted feet in place so the result does not skate");
   ImGui::SameLine();
-  ImGui::Checkbox("A's timing", &c.timing_a);
+  ImGui::Checkbox(palette ? "reference timing" : "A's timing", &c.timing_a);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Off: the blend's timing moves from A's (alpha 0) to B's (alpha 1), as style does.\n"
-                      "On: keep A's timeline, to stay in sync with other material.");
+    ImGui::SetTooltip("%s", palette ? "Off: the mix's timing is mixed with the weights, as style is.\n"
+                                      "On: keep the reference take's timeline, to stay in sync with other material."
+                                    : "Off: the blend's timing moves from A's (alpha 0) to B's (alpha 1), as style does.\n"
+                                      "On: keep A's timeline, to stay in sync with other material.");
   ImGui::Checkbox("seamless loop", &c.loop);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Cut 1 to 4 whole gait cycles that play seamlessly on repeat (root travel kept).\n"
@@ -86,14 +88,17 @@ void ParametersPanel::draw(EditorState& state) {
   bool components_only = !c.residual;
   if (ImGui::Checkbox("components only", &components_only)) c.residual = !components_only;
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Off: each take's detail that the k components do not hold is blended with alpha too,\n"
-                      "so alpha 0 is exactly A and 1 exactly B.\nOn: only what the components reconstruct "
-                      "(the paper's synthesis); k and sparsity then shape the whole blend.");
+    ImGui::SetTooltip("Off: each take's detail that the k components do not hold is mixed with the weights too,\n"
+                      "so a take's whole weight gives exactly that take.\nOn: only what the components reconstruct "
+                      "(the paper's synthesis); k and sparsity then shape the whole result.");
   if (ImGui::RadioButton("side by side", !state.view.overlay)) state.view.overlay = false;
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("A, the blend and B stand next to each other");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("%s", palette ? "The mix and the takes stand next to each other" : "A, the blend and B stand next to each other");
   ImGui::SameLine();
   if (ImGui::RadioButton("overlay", state.view.overlay)) state.view.overlay = true;
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("A, the blend and B on the same spot, to compare poses");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("%s", palette ? "The mix and the takes on the same spot, to compare poses"
+                                    : "A, the blend and B on the same spot, to compare poses");
 
   // Worker progress; the previous decomposition stays on screen until the new one arrives.
   const WorkerStatus status = s.status();

@@ -22,6 +22,7 @@
 #include <imgui.h>
 #include <imgui_internal.h>  // ImGui::FindWindowByName
 
+#include "tests/app/offscreen_editor.h"
 #include "tests/render/osmesa_context.h"
 
 #include "render/png_io.h"
@@ -240,24 +241,16 @@ TEST_CASE("the editor keeps rendering offscreen for hundreds of frames while dec
 }
 
 TEST_CASE("keys: F1 and ? show the keys list, Esc hides it, F frames all, Ctrl+0 resets the layout") {
-  const glm::ivec2 size(960, 540);
-  mostyle::test::OsMesaContext gl(size);
-  REQUIRE(gl.ok());
-  ImGuiSession imgui(/*persist_layout=*/false);
-  EditorOptions options;
-  options.initial.parameters.components = 4;
-  options.initial.paused = true;
-  Editor editor(options);
+  mostyle::test::OffscreenEditor e;
+  REQUIRE(e.gl.ok());
+  const glm::ivec2 size = e.size;
+  Editor& editor = e.editor;
   editor.wait_for_engine();
   editor.init_graphics();
   auto& state = editor.state();
   ImGuiIO& io = ImGui::GetIO();
   io.KeyMap[ImGuiKey_Escape] = 256;  // as GLFW's back-end maps it (GLFW_KEY_ESCAPE)
-  auto frame = [&]() {
-    io.DisplaySize = ImVec2(static_cast<float>(size.x), static_cast<float>(size.y));
-    io.DeltaTime = 1.0f / 60.0f;
-    editor.frame(FrameInput{size, 1.0f / 60.0f});
-  };
+  auto frame = [&] { e.frame(); };
   auto press = [&](int key) {
     io.KeysDown[key] = true;
     frame();
@@ -565,24 +558,14 @@ TEST_CASE("sessions and undo: Ctrl+Z / Ctrl+Y undo and redo a load, a saved sess
 }
 
 TEST_CASE("at rest, a finished decomposition wakes the editor and shows at once (no input needed)") {
-  const glm::ivec2 size(800, 450);
-  mostyle::test::OsMesaContext gl(size);
-  REQUIRE(gl.ok());
-  ImGuiSession imgui(/*persist_layout=*/false);
-  EditorOptions options;
-  options.initial.parameters.components = 4;
-  options.initial.paused = true;
-  Editor editor(options);
+  mostyle::test::OffscreenEditor e({800, 450});
+  REQUIRE(e.gl.ok());
+  Editor& editor = e.editor;
   std::atomic<int> wakes{0};
   editor.set_wake([&] { ++wakes; });
   editor.wait_for_engine();
   editor.init_graphics();
-  auto frame = [&] {
-    ImGuiIO& io = ImGui::GetIO();
-    io.DisplaySize = ImVec2(static_cast<float>(size.x), static_cast<float>(size.y));
-    io.DeltaTime = 1.0f / 60.0f;
-    editor.frame(FrameInput{size, 1.0f / 60.0f});
-  };
+  auto frame = [&] { e.frame(); };
   // Paused with the engine idle and everything taken up: at rest, the window may wait.
   for (int i = 0; i < 3 && editor.animating(); ++i) {
     editor.session().wait_idle(editor.state());

@@ -12,9 +12,7 @@
 #include <catch2/catch.hpp>
 #include <imgui.h>
 
-#include "app/editor.h"
-#include "app/imgui_session.h"
-#include "tests/render/osmesa_context.h"
+#include "tests/app/offscreen_editor.h"
 #include "tests/test_data.h"
 
 using namespace mostyle::app;
@@ -77,39 +75,32 @@ TEST_CASE("input queue: one press a frame, no key changing twice, only releases 
 }
 
 TEST_CASE("keys at rest: ten quick presses step ten frames, and typing after Ctrl+S names the session") {
-  const glm::ivec2 size(960, 540);
-  mostyle::test::OsMesaContext gl(size);
-  REQUIRE(gl.ok());
-  ImGuiSession imgui(/*persist_layout=*/false);
+  const fs::path dir = fs::temp_directory_path() / ("mostyle_input_queue_test_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  mostyle::test::OffscreenEditor e;
+  REQUIRE(e.gl.ok());
+  Editor& editor = e.editor;
   ImGuiIO& io = ImGui::GetIO();
   io.KeyMap[ImGuiKey_RightArrow] = kRight;  // as ImGui's GLFW back-end maps them
   io.KeyMap[ImGuiKey_Enter] = kEnter;
   io.KeyMap[ImGuiKey_Escape] = kEscape;
-  const fs::path dir = fs::temp_directory_path() / ("mostyle_input_queue_test_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  EditorOptions options;
-  options.initial.parameters.components = 4;
-  options.initial.paused = true;
-  Editor editor(options);
   editor.wait_for_engine();
   editor.init_graphics();
   InputQueue queue;
   // What the GLFW back-end's callbacks do with an event (imgui_impl_glfw 1.86).
   auto frame = [&] {
-    for (const KeyEvent& e : queue.take_frame()) {
-      if (e.kind == KeyEvent::Kind::kChar) {
-        io.AddInputCharacter(e.codepoint);
+    for (const KeyEvent& ev : queue.take_frame()) {
+      if (ev.kind == KeyEvent::Kind::kChar) {
+        io.AddInputCharacter(ev.codepoint);
         continue;
       }
-      if (e.action == kActionPress) io.KeysDown[e.key] = true;
-      if (e.action == kActionRelease) io.KeysDown[e.key] = false;
+      if (ev.action == kActionPress) io.KeysDown[ev.key] = true;
+      if (ev.action == kActionRelease) io.KeysDown[ev.key] = false;
       io.KeyCtrl = io.KeysDown[kLeftControl];
     }
-    io.DisplaySize = ImVec2(static_cast<float>(size.x), static_cast<float>(size.y));
-    io.DeltaTime = 1.0f / 60.0f;
     io.MousePos = ImVec2(-FLT_MAX, -FLT_MAX);
-    editor.frame(FrameInput{size, 1.0f / 60.0f});
+    e.frame();
   };
   auto drain = [&] {
     for (int i = 0; i < 500 && !queue.empty(); ++i) frame();
