@@ -117,7 +117,7 @@ struct Scratch {
 TEST_CASE("job runner: a job still running at the timeout is stopped with its process group", "[batch][jobs]") {
   Scratch scratch;
   JobRunnerOptions o = shell(3);
-  o.timeout_seconds = 0.3;
+  o.timeout_seconds = 0.8;
   o.grace_seconds = 0.2;
   // A job that starts a grandchild holding stderr open: the group is stopped, not just the job.
   // One that ignores SIGTERM: SIGKILL after the grace. The grandchild would create a file if it
@@ -132,7 +132,7 @@ TEST_CASE("job runner: a job still running at the timeout is stopped with its pr
     CHECK_FALSE(r[i].ok);
     CHECK(r[i].timed_out);
     CHECK(r[i].exit_status == -1);
-    CHECK(r[i].error == "timed out after 0.3 s");
+    CHECK(r[i].error == "timed out after 0.8 s");
     CHECK(r[i].attempts == 1);
   }
   CHECK(r[2].error == "quick.bvh:1: bad");
