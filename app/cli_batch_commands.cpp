@@ -237,8 +237,8 @@ void add_batch_command(CLI::App& app, std::function<int()>* run) {
   cmd->footer(
       "Each job runs as a child process of this program in a process group of its own (its stdout discarded, its "
       "error line kept), so a crash in one is that job's failure only. A failed job does not stop the others. "
-      "SIGINT, SIGTERM or SIGHUP stops the running jobs with the same signal and starts no more; the summary is "
-      "written, then batch ends by that signal. "
+      "SIGINT, SIGTERM or SIGHUP stops the running jobs with the same signal (a second one with SIGKILL) and starts "
+      "no more; the summary is written, then batch ends by that signal. "
       "Exit status 1 when any job failed (one line on stderr naming the lines), 0 when all succeeded or were "
       "skipped.");
   cmd->callback([=] {

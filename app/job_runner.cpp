@@ -100,7 +100,7 @@ Clock::duration seconds(double s) {
 }
 
 // The signals a running child's process group is due: with a timeout, SIGTERM then and SIGKILL
-// a grace later; on a stop request, its signal, once.
+// a grace later; on a stop request, its signal, once (and again when the request changes).
 class GroupSignals {
  public:
   GroupSignals(pid_t group, Clock::time_point start, const JobRunnerOptions& o)
@@ -114,17 +114,18 @@ class GroupSignals {
       next_ = timeout_signal_ == SIGTERM ? Clock::now() + seconds(o_.grace_seconds) : kNever;
       timeout_signal_ = SIGKILL;
     }
-    if (!stop_passed_ && o_.stop != nullptr) {
-      if (const int sig = o_.stop->load()) {
+    if (o_.stop != nullptr) {
+      const int sig = o_.stop->load();
+      if (sig != 0 && sig != stop_passed_) {
         ::kill(-group_, sig);
-        stop_passed_ = true;
+        stop_passed_ = sig;
       }
     }
   }
   // How long a wait may last before send_due has something to do, ms; -1: for ever.
   int wait_ms() const {
     const int until_next = next_ == kNever ? -1 : ms_until(next_);
-    if (o_.stop == nullptr || stop_passed_) return until_next;
+    if (o_.stop == nullptr || stop_passed_ == SIGKILL) return until_next;
     return until_next < 0 ? kStopCheckMs : std::min(until_next, kStopCheckMs);
   }
   bool timed_out() const { return timed_out_; }
@@ -136,7 +137,8 @@ class GroupSignals {
   const JobRunnerOptions& o_;
   Clock::time_point next_;          // the timeout's next signal; kNever: none
   int timeout_signal_ = SIGTERM;    // which one it is
-  bool timed_out_ = false, stop_passed_ = false;
+  bool timed_out_ = false;
+  int stop_passed_ = 0;             // the stop request's signal last sent
 };
 
 // Reads fd until every process holding its write end has closed it (or died), sending the

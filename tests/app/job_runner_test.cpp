@@ -244,6 +244,24 @@ TEST_CASE("job runner: a stop request signals the running jobs and starts no mor
   CHECK(finished == 2);
 }
 
+TEST_CASE("job runner: a stop request that changes is passed on again (SIGTERM, then SIGKILL)", "[batch][jobs]") {
+  Scratch scratch;
+  std::atomic<int> stop{0};
+  JobRunnerOptions o = shell(1);
+  o.stop = &stop;
+  std::thread stopper([&] {
+    for (int i = 0; i < 3000 && !fs::exists(scratch.dir / "started"); ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    stop.store(SIGTERM);  // ignored by the job
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    stop.store(SIGKILL);
+  });
+  const std::vector<JobResult> r =
+      run_jobs({sh("trap '' TERM; touch " + scratch.path("started") + "; sleep 30; exit 0")}, o);
+  stopper.join();
+  CHECK(r[0].error == "killed by signal 9 (Killed)");
+}
+
 TEST_CASE("job runner: error_line and options", "[batch][jobs]") {
   CHECK(error_line("") == "");
   CHECK(error_line("mostyle: warning: a\n") == "");
