@@ -102,12 +102,11 @@ bool outputs_exist(const std::vector<std::string>& args) {
          std::all_of(outputs.begin(), outputs.end(), [&](const std::string& f) { return fs::exists(f, ec); });
 }
 
-// Reads JOBS (InputError when it cannot) and runs the shard's jobs; a line that is not a job is
-// a failed job with its parse error. Each record goes to the journal as soon as it is known.
-ShardRun run_shard(const std::string& jobs_file, const BatchSettings& settings) {
-  const auto t0 = Clock::now();
+// Runs the shard's jobs of `all` (every line of JOBS); a line that is not a job is a failed job
+// with its parse error. Each record goes to the journal as soon as it is known. t0: when batch
+// began reading JOBS.
+ShardRun run_shard(const std::vector<JobLine>& all, const BatchSettings& settings, Clock::time_point t0) {
   ShardRun r;
-  const std::vector<JobLine> all = parse_jobs(read_file(jobs_file), jobs_file);
   const Shard& shard = settings.shard;
   for (size_t k = 0; k < all.size(); ++k)
     if (static_cast<int>(k % static_cast<size_t>(shard.count)) == shard.index) r.jobs.push_back(all[k]);
@@ -238,8 +237,8 @@ void add_batch_command(CLI::App& app, std::function<int()>* run) {
   cmd->footer(
       "Each job runs as a child process of this program in a process group of its own (its stdout discarded, its "
       "error line kept), so a crash in one is that job's failure only. A failed job does not stop the others. "
-      "SIGINT, SIGTERM or SIGHUP stops the running jobs with the same signal and starts no more; the summary is "
-      "written, then batch ends by that signal. "
+      "SIGINT, SIGTERM or SIGHUP stops the running jobs with the same signal (a second one with SIGKILL) and starts "
+      "no more; the summary is written, then batch ends by that signal. "
       "Exit status 1 when any job failed (one line on stderr naming the lines), 0 when all succeeded or were "
       "skipped.");
   cmd->callback([=] {
@@ -247,6 +246,9 @@ void add_batch_command(CLI::App& app, std::function<int()>* run) {
       // First, so that it is the last to go: the summary is written before a stop signal ends
       // the process.
       StopSignal stop;
+      const auto t0 = Clock::now();
+      // Read first: a JOBS file that cannot be read leaves no journal behind.
+      const std::vector<JobLine> all = parse_jobs(read_file(args->jobs_file), args->jobs_file);
       BatchSettings settings;
       parse_shard(args->shard, &settings.shard);
       JobRunnerOptions& o = settings.runner;
@@ -261,7 +263,7 @@ void add_batch_command(CLI::App& app, std::function<int()>* run) {
         journal = std::make_unique<SummaryJournal>(journal_path(args->summary));
         settings.journal = journal.get();
       }
-      const ShardRun r = run_shard(args->jobs_file, settings);
+      const ShardRun r = run_shard(all, settings, t0);
       const std::string of_shard = settings.shard.count > 1 ? " of shard " + args->shard : "";
       if (journal) {
         if (!journal->error().empty()) std::cerr << "mostyle: warning: " << journal->error() << "\n";

@@ -94,16 +94,99 @@ int ms_until(Clock::time_point t) {
   return static_cast<int>(std::clamp<long long>(ms, 0, 60 * 1000));
 }
 
-Attempt run_attempt(const std::string& program, const std::vector<std::string>& args, const JobRunnerOptions& o) {
+// At most 10^9 s (32 years): more would overflow the clock's nanoseconds, and is no limit anyway.
+Clock::duration seconds(double s) {
+  return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(std::min(s, 1e9)));
+}
+
+// The signals a running child's process group is due: with a timeout, SIGTERM then and SIGKILL
+// a grace later; on a stop request, its signal, once (and again when the request changes).
+class GroupSignals {
+ public:
+  GroupSignals(pid_t group, Clock::time_point start, const JobRunnerOptions& o)
+      : group_(group), o_(o), next_(o.timeout_seconds > 0 ? start + seconds(o.timeout_seconds) : kNever) {}
+
+  // Sends what is due now.
+  void send_due() {
+    if (next_ != kNever && Clock::now() >= next_) {
+      ::kill(-group_, timeout_signal_);
+      timed_out_ = true;
+      next_ = timeout_signal_ == SIGTERM ? Clock::now() + seconds(o_.grace_seconds) : kNever;
+      timeout_signal_ = SIGKILL;
+    }
+    if (o_.stop != nullptr) {
+      const int sig = o_.stop->load();
+      if (sig != 0 && sig != stop_passed_) {
+        ::kill(-group_, sig);
+        stop_passed_ = sig;
+      }
+    }
+  }
+  // How long a wait may last before send_due has something to do, ms; -1: for ever.
+  int wait_ms() const {
+    const int until_next = next_ == kNever ? -1 : ms_until(next_);
+    if (o_.stop == nullptr || stop_passed_ == SIGKILL) return until_next;
+    return until_next < 0 ? kStopCheckMs : std::min(until_next, kStopCheckMs);
+  }
+  bool timed_out() const { return timed_out_; }
+
+ private:
+  static constexpr Clock::time_point kNever = Clock::time_point::max();
+  static constexpr int kStopCheckMs = 100;  // how often a stop request is looked for
+  const pid_t group_;
+  const JobRunnerOptions& o_;
+  Clock::time_point next_;          // the timeout's next signal; kNever: none
+  int timeout_signal_ = SIGTERM;    // which one it is
+  bool timed_out_ = false;
+  int stop_passed_ = 0;             // the stop request's signal last sent
+};
+
+// Reads fd until every process holding its write end has closed it (or died), sending the
+// group's signals as they fall due; keeps the text's end.
+std::string read_until_closed(int fd, GroupSignals& signals) {
+  StderrTail err;
+  char buffer[4096];
+  for (bool open = true; open;) {
+    pollfd p{fd, POLLIN, 0};
+    const int ready = ::poll(&p, 1, signals.wait_ms());
+    if (ready > 0) {
+      const ssize_t n = ::read(fd, buffer, sizeof buffer);
+      if (n > 0) err.append(buffer, static_cast<size_t>(n));
+      else if (n == 0 || errno != EINTR) open = false;
+    } else if (ready < 0 && errno != EINTR) {
+      open = false;
+    }
+    signals.send_due();
+  }
+  return err.text();
+}
+
+// How a child that ended with wait status `status` went; message: its error line.
+Attempt describe_end(int status, const std::string& message) {
   Attempt a;
   JobResult& r = a.result;
+  if (WIFEXITED(status)) {
+    r.exit_status = WEXITSTATUS(status);
+    r.ok = r.exit_status == 0;
+    if (r.exit_status == 2) r.error = "bad usage: " + (message.empty() ? "exit status 2" : message);
+    else if (!r.ok) r.error = message.empty() ? "exit status " + std::to_string(r.exit_status) + " and no message" : message;
+    return a;
+  }
+  r.error = "killed by " + signal_text(WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+  if (!message.empty()) r.error += ": " + message;
+  a.signaled = true;
+  return a;
+}
+
+Attempt run_attempt(const std::string& program, const std::vector<std::string>& args, const JobRunnerOptions& o) {
+  Attempt failed;
   SpawnResources res;
   // O_CLOEXEC: a child spawned meanwhile by another worker thread must not inherit this pipe,
   // or our read would wait for that child too. dup2 onto fd 2 clears the flag in our own child.
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0) {
-    r.error = "cannot start: " + system_message(errno);
-    return a;
+    failed.result.error = "cannot start: " + system_message(errno);
+    return failed;
   }
   res.read_fd = fds[0];
   posix_spawn_file_actions_addopen(&res.actions, 0, "/dev/null", O_RDONLY, 0);
@@ -126,90 +209,37 @@ Attempt run_attempt(const std::string& program, const std::vector<std::string>& 
   const int spawn_error = ::posix_spawn(&pid, program.c_str(), &res.actions, &res.attributes, argv.data(), environ);
   ::close(fds[1]);
   if (spawn_error != 0) {
-    r.error = "cannot start " + program + ": " + system_message(spawn_error);
-    return a;
+    failed.result.error = "cannot start " + program + ": " + system_message(spawn_error);
+    return failed;
   }
-  r.pids.push_back(static_cast<int>(pid));
 
-  // Reads stderr until its end, then reaps the child. With a timeout, each wait ends at the next
-  // deadline: SIGTERM to the group at the timeout, SIGKILL after the grace. Its end comes when
-  // every process of the group has closed it (or died).
-  constexpr auto kNever = Clock::time_point::max();
-  const bool limited = o.timeout_seconds > 0;
-  // At most 10^9 s (32 years): more would overflow the clock's nanoseconds, and is no limit anyway.
-  auto seconds = [](double s) {
-    return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(std::min(s, 1e9)));
-  };
-  Clock::time_point next = limited ? start + seconds(o.timeout_seconds) : kNever;
-  int stop_signal = SIGTERM;  // the next one a timeout sends
-  auto on_deadline = [&] {
-    if (next == kNever || Clock::now() < next) return;
-    ::kill(-pid, stop_signal);
-    r.timed_out = true;
-    next = stop_signal == SIGTERM ? Clock::now() + seconds(o.grace_seconds) : kNever;
-    stop_signal = SIGKILL;
-  };
-  // A stop request is passed on to the group once, and looked for at least every kStopCheck.
-  constexpr int kStopCheckMs = 100;
-  bool stop_passed = false;
-  auto on_stop = [&] {
-    if (stop_passed || o.stop == nullptr) return;
-    const int sig = o.stop->load();
-    if (sig == 0) return;
-    ::kill(-pid, sig);
-    stop_passed = true;
-  };
-  auto wait_ms = [&] {
-    const int until_next = next == kNever ? -1 : ms_until(next);
-    if (o.stop == nullptr || stop_passed) return until_next;
-    return until_next < 0 ? kStopCheckMs : std::min(until_next, kStopCheckMs);
-  };
-  StderrTail err;
-  char buffer[4096];
-  for (bool open = true; open;) {
-    pollfd p{res.read_fd, POLLIN, 0};
-    const int ready = ::poll(&p, 1, wait_ms());
-    if (ready > 0) {
-      const ssize_t n = ::read(res.read_fd, buffer, sizeof buffer);
-      if (n > 0) err.append(buffer, static_cast<size_t>(n));
-      else if (n == 0 || errno != EINTR) open = false;
-    } else if (ready < 0 && errno != EINTR) {
-      open = false;
-    }
-    on_deadline();
-    on_stop();
-  }
+  GroupSignals signals(pid, start, o);
+  const std::string err = read_until_closed(res.read_fd, signals);
+  // Reaps the child; it may have closed stderr and run on, so the signals still fall due.
   int status = 0;
   rusage usage{};
   for (;;) {
-    const pid_t done = ::wait4(pid, &status, wait_ms() < 0 ? 0 : WNOHANG, &usage);
+    const pid_t done = ::wait4(pid, &status, signals.wait_ms() < 0 ? 0 : WNOHANG, &usage);
     if (done == pid) break;
     if (done < 0 && errno != EINTR) {
-      r.error = "cannot wait for the job: " + system_message(errno);
-      return a;
+      failed.result.error = "cannot wait for the job: " + system_message(errno);
+      failed.result.pids = {static_cast<int>(pid)};
+      return failed;
     }
-    if (done == 0) {  // it closed stderr but runs on: look again shortly, or at the deadline
-      std::this_thread::sleep_for(std::chrono::milliseconds(std::min(10, wait_ms())));
-      on_deadline();
-      on_stop();
+    if (done == 0) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(std::min(10, signals.wait_ms())));
+      signals.send_due();
     }
   }
-  r.max_rss_mb = static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux: kilobytes
-  const std::string message = error_line(err.text());
-  if (r.timed_out) {
-    r.error = "timed out after " + number_text(o.timeout_seconds) + " s";
-    return a;
+  Attempt a;
+  if (signals.timed_out()) {
+    a.result.timed_out = true;
+    a.result.error = "timed out after " + number_text(o.timeout_seconds) + " s";
+  } else {
+    a = describe_end(status, error_line(err));
   }
-  if (WIFEXITED(status)) {
-    r.exit_status = WEXITSTATUS(status);
-    r.ok = r.exit_status == 0;
-    if (r.exit_status == 2) r.error = "bad usage: " + (message.empty() ? "exit status 2" : message);
-    else if (!r.ok) r.error = message.empty() ? "exit status " + std::to_string(r.exit_status) + " and no message" : message;
-    return a;
-  }
-  r.error = "killed by " + signal_text(WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-  if (!message.empty()) r.error += ": " + message;
-  a.signaled = true;
+  a.result.pids = {static_cast<int>(pid)};
+  a.result.max_rss_mb = static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux: kilobytes
   return a;
 }
 

@@ -27,8 +27,9 @@ struct JobRunnerOptions {
   // thread that ran it; `index` is the job's place in `jobs`. Must not throw. May be empty.
   std::function<void(size_t index, const JobResult& result)> on_finished;
   // When another thread stores a signal number here, every running job's process group is sent
-  // that signal (and is not run again), and the jobs not started yet are not started: their
-  // error is "not run: stopped by signal N (name)". Null: never stopped. Checked every 100 ms.
+  // that signal (and is not run again; a later, other number is sent too), and the jobs not
+  // started yet are not started: their error is "not run: stopped by signal N (name)". Null:
+  // never stopped. Checked every 100 ms until SIGKILL was sent.
   const std::atomic<int>* stop = nullptr;
 
   // Throws InputError on an empty program, parallel < 1, a negative or non-finite timeout, a

@@ -245,8 +245,10 @@ TEST_CASE("cli batch: bad usage exits 2, an unreadable JOBS file 1", "[batch][cl
     CHECK(box.cli("batch " + quoted(file) + " --retries " + bad).status == 2);
   }
   CHECK(box.cli("batch").status == 2);
-  const Run missing = box.cli("batch " + quoted(box.path("none.jsonl")));
+  const Run missing = box.cli("batch " + quoted(box.path("none.jsonl")) + " --summary " + quoted(box.path("s.json")));
   CHECK(missing.status == 1);
+  CHECK_FALSE(fs::exists(box.path("s.json")));
+  CHECK_FALSE(fs::exists(box.path("s.json.journal")));
   CHECK(missing.err.rfind("mostyle: " + box.path("none.jsonl") + ": cannot read: ", 0) == 0);
   CHECK(std::count(missing.err.begin(), missing.err.end(), '\n') == 1);
   // No jobs (here: none in this shard) is success.
@@ -264,7 +266,7 @@ TEST_CASE("cli batch: a job that hangs is stopped at the timeout, the others fin
   const std::string file = box.write("jobs.jsonl", job({"info", takes[0]}) + job({"info", fifo}) +
                                                        job({"fk", takes[1], "--out", box.path("p.csv")}) +
                                                        job({"info", takes[2]}));
-  const Run r = box.cli("batch " + quoted(file) + " --jobs 2 --timeout 1 --retries 2 --summary " +
+  const Run r = box.cli("batch " + quoted(file) + " --jobs 2 --timeout 3 --retries 2 --summary " +
                         quoted(box.path("s.json")));
   CHECK(r.status == 1);
   CHECK(r.err == "mostyle: " + file + ": 1 of 4 jobs failed (line 2)\n");
@@ -275,7 +277,7 @@ TEST_CASE("cli batch: a job that hangs is stopped at the timeout, the others fin
   const Json& j = s["jobs"];
   REQUIRE(j.size() == 4);
   CHECK(j[1]["status"] == "failed");
-  CHECK(j[1]["error"] == "timed out after 1 s");
+  CHECK(j[1]["error"] == "timed out after 3 s");
   CHECK(j[1]["attempts"] == 1);  // a timeout is not retried
   for (int k : {0, 2, 3}) {
     INFO(k);

@@ -117,7 +117,7 @@ struct Scratch {
 TEST_CASE("job runner: a job still running at the timeout is stopped with its process group", "[batch][jobs]") {
   Scratch scratch;
   JobRunnerOptions o = shell(3);
-  o.timeout_seconds = 0.3;
+  o.timeout_seconds = 0.8;
   o.grace_seconds = 0.2;
   // A job that starts a grandchild holding stderr open: the group is stopped, not just the job.
   // One that ignores SIGTERM: SIGKILL after the grace. The grandchild would create a file if it
@@ -132,7 +132,7 @@ TEST_CASE("job runner: a job still running at the timeout is stopped with its pr
     CHECK_FALSE(r[i].ok);
     CHECK(r[i].timed_out);
     CHECK(r[i].exit_status == -1);
-    CHECK(r[i].error == "timed out after 0.3 s");
+    CHECK(r[i].error == "timed out after 0.8 s");
     CHECK(r[i].attempts == 1);
   }
   CHECK(r[2].error == "quick.bvh:1: bad");
@@ -242,6 +242,24 @@ TEST_CASE("job runner: a stop request signals the running jobs and starts no mor
   CHECK(r[2].error == "not run: stopped by signal 15 (Terminated)");
   CHECK_FALSE(fs::exists(scratch.dir / "2"));
   CHECK(finished == 2);
+}
+
+TEST_CASE("job runner: a stop request that changes is passed on again (SIGTERM, then SIGKILL)", "[batch][jobs]") {
+  Scratch scratch;
+  std::atomic<int> stop{0};
+  JobRunnerOptions o = shell(1);
+  o.stop = &stop;
+  std::thread stopper([&] {
+    for (int i = 0; i < 3000 && !fs::exists(scratch.dir / "started"); ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    stop.store(SIGTERM);  // ignored by the job
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    stop.store(SIGKILL);
+  });
+  const std::vector<JobResult> r =
+      run_jobs({sh("trap '' TERM; touch " + scratch.path("started") + "; sleep 30; exit 0")}, o);
+  stopper.join();
+  CHECK(r[0].error == "killed by signal 9 (Killed)");
 }
 
 TEST_CASE("job runner: error_line and options", "[batch][jobs]") {
