@@ -9,6 +9,10 @@
 
 #include <imgui.h>
 
+#include <chrono>
+
+#include "engine/io/motion_file.h"
+
 #include "ui/layout.h"
 
 namespace mostyle::ui {
@@ -23,11 +27,7 @@ void copy_to(char* field, size_t size, const std::string& text) {
   field[size - 1] = '\0';
 }
 
-bool is_bvh(const fs::path& p) {
-  std::string ext = p.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-  return ext == ".bvh";
-}
+bool is_motion(const fs::path& p) { return is_motion_file(p.string()); }
 
 // A folder's own name with a slash ("motions/"), for the panel's text; "/" and "." as they are.
 std::string folder_name(const std::string& folder) {
@@ -148,7 +148,7 @@ void FilesPanel::draw(EditorState& state) {
   if (ImGui::Button("Load pair")) s.load(a_.path(), b_.path());
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Load both fields as the new pair");
   ImGui::SameLine();
-  ImGui::TextColored(kDimColor, "or drop .bvh files here");
+  ImGui::TextColored(kDimColor, "or drop motion files here");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Two files: the new pair. One file: the new B.");
   ImGui::SetNextItemWidth(-92.0f);
   const bool enter_export = ImGui::InputText("##export", export_path, sizeof export_dialog_.settings().path,
@@ -160,14 +160,14 @@ void FilesPanel::draw(EditorState& state) {
   if (ImGui::Button("Export...") || enter_export) command_open_export(state);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Choose the frame rate, the frames and the channels, then write the blend\n"
-                      "as a BVH file on A's skeleton (Ctrl+E)");
+                      "on A's skeleton as BVH or glTF (.glb), by the file's extension (Ctrl+E)");
   if (export_dialog_.job().running())
     ImGui::ProgressBar(export_dialog_.job().progress(), ImVec2(-FLT_MIN, 0.0f), "exporting");
   else if (!s.export_message().empty())
     sentence(s.export_ok() ? kOkColor : kErrorColor, s.export_message(), folders);
 
   const bool browse = ImGui::CollapsingHeader("Browse", ImGuiTreeNodeFlags_DefaultOpen);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("The .bvh files of a folder, to load as A or B");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("The motion files of a folder (BVH, FBX, glTF), to load as A or B;\nopen a file with animations to pick one");
   if (browse) {
     ImGui::TextColored(kDimColor, "in %s", folder_name(folder_).c_str());
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Folder: %s", folder_.c_str());
@@ -176,6 +176,7 @@ void FilesPanel::draw(EditorState& state) {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Read the folder again");
     if (listed_folder_ != folder_) {
       listed_folder_ = folder_;
+      takes_.clear();  // a pending read finishes in its future's destructor
       dirs_.clear();
       files_.clear();
       list_error_.clear();
@@ -184,7 +185,7 @@ void FilesPanel::draw(EditorState& state) {
         std::error_code e2;
         if (it->is_directory(e2)) {
           if (it->path().filename().string().rfind('.', 0) != 0) dirs_.push_back(it->path().string());
-        } else if (is_bvh(it->path())) {
+        } else if (is_motion(it->path())) {
           files_.push_back(it->path().string());
         }
       }
@@ -205,19 +206,52 @@ void FilesPanel::draw(EditorState& state) {
       if (ImGui::Selectable((fs::path(d).filename().string() + "/").c_str())) next_folder = d;
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("Open this folder");
     }
-    for (const std::string& name : files_) {
-      const fs::path f(name);
-      ImGui::PushID(f.string().c_str());
-      if (ImGui::SmallButton("A")) s.load(f.string(), snap.path_b.empty() ? f.string() : snap.path_b);
+    // One row: A and B buttons and a label; `take` is "" for a whole file.
+    auto take_row = [&](const std::string& path, const std::string& label) {
+      ImGui::PushID(path.c_str());
+      if (ImGui::SmallButton("A")) s.load(path, snap.path_b.empty() ? path : snap.path_b);
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("Load as A");
       ImGui::SameLine();
-      if (ImGui::SmallButton("B")) s.load(snap.path_a.empty() ? f.string() : snap.path_a, f.string());
+      if (ImGui::SmallButton("B")) s.load(snap.path_a.empty() ? path : snap.path_a, path);
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("Load as B");
       ImGui::SameLine();
-      ImGui::TextUnformatted(f.filename().string().c_str());
+      ImGui::TextUnformatted(label.c_str());
+      ImGui::PopID();
+    };
+    for (const std::string& name : files_) {
+      const fs::path f(name);
+      if (!has_takes(motion_format(name))) {
+        take_row(f.string(), f.filename().string());
+        continue;
+      }
+      // FBX and glTF: the file's row opens to its animations, read on a thread the first time.
+      ImGui::PushID(name.c_str());
+      const bool open = ImGui::TreeNode("##takes", "%s", f.filename().string().c_str());
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Open to list the file's animations");
+      if (open) {
+        FileTakes& t = takes_[name];
+        if (!t.pending.valid() && t.takes.empty() && t.error.empty()) {
+          t.pending = std::async(std::launch::async, [name] { return read_motion_takes(name); });
+        }
+        if (t.pending.valid() && t.pending.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+          try {
+            t.takes = t.pending.get();
+          } catch (const std::exception& e) {
+            t.error = e.what();
+          }
+        }
+        if (t.pending.valid()) ImGui::TextColored(kDimColor, "reading...");
+        if (!t.error.empty()) sentence(kErrorColor, t.error, {folder_});
+        for (const TakeInfo& take : t.takes) {
+          char label[320];
+          std::snprintf(label, sizeof label, "%s (%.1f s)", take.name.c_str(), take.seconds);
+          take_row(join_take_path(name, take.name), label);
+        }
+        ImGui::TreePop();
+      }
       ImGui::PopID();
     }
-    if (dirs_.empty() && files_.empty()) ImGui::TextColored(kDimColor, "no .bvh files here");
+    if (dirs_.empty() && files_.empty()) ImGui::TextColored(kDimColor, "no motion files here");
     ImGui::EndChild();
     if (!next_folder.empty()) folder_ = next_folder;
   }

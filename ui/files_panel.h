@@ -1,10 +1,16 @@
 #pragma once
-// Paths for A and B with Load (Enter in a field loads too), a small .bvh browser, recent files,
+// Paths for A and B with Load (Enter in a field loads too), a small browser of motion files (BVH,
+// FBX, glTF; a file with several animations lists them, read on a thread when its row is opened,
+// each loadable as FILE#ANIMATION), recent files,
 // dropped files, load errors, and the export of the blend as BVH: the export field and button
 // open the export dialog (ui/export_dialog.h), which this panel owns and draws. Files show by
 // name; their folder is in the tooltip, never in the panel's text.
+#include <future>
+#include <map>
 #include <string>
 #include <vector>
+
+#include "engine/io/scene_animation.h"
 
 #include "ui/blend_session.h"
 #include "ui/export_dialog.h"
@@ -42,6 +48,14 @@ class FilesPanel : public Panel {
   std::string listed_folder_;
   std::vector<std::string> dirs_, files_;
   std::string list_error_;
+  // The animations of the FBX and glTF files whose rows were opened, by path: read on a thread
+  // (engine/io/motion_file.h read_motion_takes), polled each frame.
+  struct FileTakes {
+    std::future<std::vector<TakeInfo>> pending;
+    std::vector<TakeInfo> takes;
+    std::string error;
+  };
+  std::map<std::string, FileTakes> takes_;
 };
 
 }  // namespace mostyle::ui
