@@ -4,6 +4,7 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <cctype>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -15,11 +16,25 @@
 #include "app/cli_pipeline_commands.h"
 #include "app/job_line.h"
 #include "app/job_runner.h"
+#include "engine/io/motion_file.h"
 #include "engine/io/atomic_file.h"
 #include "engine/io/error.h"
 
 namespace mostyle::cli {
 namespace {
+
+// A take's name in the grid's output names: the file's stem, and for FILE#ANIMATION "_" and the
+// animation's name with characters a file name should not hold replaced ("walks_run").
+std::string take_stem(const std::string& take) {
+  const TakePath tp = split_take_path(take);
+  std::string stem = std::filesystem::path(tp.path).stem().string();
+  if (!tp.take.empty()) {
+    stem += '_';
+    for (char c : tp.take)
+      stem += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.' ? c : '_';
+  }
+  return stem;
+}
 
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
@@ -232,7 +247,7 @@ void add_grid_command(CLI::App& app, std::function<int()>* run) {
     std::vector<std::string> blend_options;
   };
   auto args = std::make_shared<Args>();
-  cmd->add_option("--takes", args->takes, "BVH takes, 2 or more; each is A with every other one as B")->required();
+  cmd->add_option("--takes", args->takes, "Takes (BVH, FBX, glTF; FILE#ANIMATION for one animation), 2 or more; each is A with every other one as B")->required();
   cmd->add_option("--alphas", args->alphas, "Alpha values, comma separated, e.g. 0,0.25,0.5")
       ->required()
       ->delimiter(',');
@@ -250,8 +265,8 @@ void add_grid_command(CLI::App& app, std::function<int()>* run) {
       throw CLI::ValidationError("--takes", "expected 2 or more takes, found " + std::to_string(args->takes.size()));
     std::set<std::string> stems, alphas;
     for (const std::string& t : args->takes)
-      if (!stems.insert(fs::path(t).stem().string()).second)
-        throw CLI::ValidationError("--takes", "two takes are named '" + fs::path(t).stem().string() +
+      if (!stems.insert(take_stem(t)).second)
+        throw CLI::ValidationError("--takes", "two takes are named '" + take_stem(t) +
                                                   "', so their outputs would have the same names");
     for (double a : args->alphas) {
       if (!std::isfinite(a)) throw CLI::ValidationError("--alphas", "expected finite numbers, found " + number(a));
@@ -287,7 +302,7 @@ void add_grid_command(CLI::App& app, std::function<int()>* run) {
           const std::string& b = args->takes[j];
           for (double alpha : args->alphas) {
             const std::string name =
-                fs::path(a).stem().string() + "__" + fs::path(b).stem().string() + "__a" + number(alpha);
+                take_stem(a) + "__" + take_stem(b) + "__a" + number(alpha);
             const std::string base = (fs::path(args->out_dir) / name).string();
             std::vector<std::string> job = {"blend", a, b, "--alpha", number(alpha), "--out", base + ".bvh",
                                             "--report", base + ".json"};

@@ -25,6 +25,7 @@ namespace {
 // What tinygltf may read besides the file itself: a .gltf's buffers, within the memory limit.
 struct FileBudget {
   size_t left = 0;
+  bool allowed = false;  // no base folder: bytes from memory (a fuzzer, a test) reach no file
 };
 
 bool file_exists(const std::string& path, void*) {
@@ -36,6 +37,10 @@ std::string expand_nothing(const std::string& path, void*) { return path; }
 
 bool read_buffer_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
   auto* budget = static_cast<FileBudget*>(user);
+  if (!budget->allowed) {
+    if (err) *err += "external buffers are not read here: '" + path + "'";
+    return false;
+  }
   try {
     const std::string bytes = read_file(path, budget->left);
     budget->left -= bytes.size();
@@ -279,7 +284,7 @@ AnimatedScene parse_gltf(std::string_view bytes, const std::string& source, cons
   bool ok = false;
   try {
     tinygltf::TinyGLTF loader;
-    FileBudget budget{max_bytes > bytes.size() ? max_bytes - bytes.size() : 0};
+    FileBudget budget{max_bytes > bytes.size() ? max_bytes - bytes.size() : 0, !base_dir.empty()};
     tinygltf::FsCallbacks fs{&file_exists, &expand_nothing, &read_buffer_file, &refuse_write, &budget};
     loader.SetFsCallbacks(fs);
     loader.SetImageLoader(&skip_image, nullptr);

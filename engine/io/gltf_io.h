@@ -17,8 +17,8 @@ namespace mostyle {
 
 // Parses glTF bytes: a GLB container, or glTF JSON text (bytes not starting with "glTF").
 // `source` names the file in messages; `base_dir` is where a .gltf's relative buffer URIs are
-// found ("" for none). Accessors may be float or normalized integers (KHR_mesh_quantization),
-// interleaved (byteStride) or not; sparse accessors are refused. Nodes come back parents first;
+// found ("": no file is read, a buffer URI that is not a data URI is an error). Accessors may
+// be float or normalized integers (KHR_mesh_quantization), interleaved (byteStride) or not; sparse accessors are refused. Nodes come back parents first;
 // a node without a name is called "node N" (its index). Throws InputError
 // "SOURCE: what is wrong" (one sentence, tinygltf's first error line quoted) on a file that is
 // not glTF, is cut, has a bad hierarchy (a cycle, a node with two parents), an animation

@@ -16,7 +16,7 @@ targets=("$@")
 # CSV; a JOBS line; a session with per-component alphas and a palette; a GLB or FBX of a short
 # take (the seeds: a few frames of a CMU skeleton, about 20 to 40 KB).
 declare -A max_len=([bvh]=16384 [mapping]=4096 [csv]=4096 [job_line]=4096 [session]=8192 [gltf]=65536
-                    [fbx]=65536)
+                    [fbx]=786432)
 
 "$root/app/install-deps.sh"
 build="$root/build-fuzz"
