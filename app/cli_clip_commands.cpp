@@ -1,6 +1,7 @@
 #include "app/cli_clip_commands.h"
 
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -59,7 +60,15 @@ void add_info_command(CLI::App& app, std::function<int()>* run) {
   cmd->callback([=] {
     *run = [=] {
       const Clip clip = load_clip(*path, *take, *fps);
-      const std::vector<TakeInfo> takes = read_motion_takes(*path, motion_read_options_from_environment());
+      // A BVH is one take, the clip just read (not read again: a BVH may be 100 MB).
+      const TakePath file = split_take_path(*path);
+      std::vector<TakeInfo> takes;
+      if (has_takes(motion_format(file.path))) {
+        takes = read_motion_takes(file.path, motion_read_options_from_environment());
+      } else {
+        takes.push_back({std::filesystem::path(file.path).stem().string(),
+                         clip.frames() > 1 ? (clip.frames() - 1) * clip.frame_time : 0.0, clip.frames()});
+      }
       const Skeleton& s = clip.skeleton;
       const UnitsGuess units = guess_units(clip);
       const double duration = clip.frames() > 1 ? (clip.frames() - 1) / clip.fps() : 0.0;

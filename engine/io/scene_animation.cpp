@@ -118,13 +118,15 @@ int find_take(const AnimatedScene& scene, const std::string& name) {
   return -1;
 }
 
-Eigen::VectorXd sample_track(const KeyTrack& track, double t) {
+Eigen::VectorXd sample_track(const KeyTrack& track, double t, double snap) {
   const auto& times = track.times;
   const Eigen::Index keys = static_cast<Eigen::Index>(times.size());
-  if (t <= times.front() || keys == 1) return normalized_if_rotation(track, key_value(track, 0));
-  if (t >= times.back()) return normalized_if_rotation(track, key_value(track, keys - 1));
+  if (t <= times.front() + snap || keys == 1) return normalized_if_rotation(track, key_value(track, 0));
+  if (t >= times.back() - snap) return normalized_if_rotation(track, key_value(track, keys - 1));
   // k: the last key at or before t, so times[k] <= t < times[k + 1].
   const Eigen::Index k = std::upper_bound(times.begin(), times.end(), t) - times.begin() - 1;
+  if (t - times[k] <= snap) return normalized_if_rotation(track, key_value(track, k));
+  if (times[k + 1] - t <= snap) return normalized_if_rotation(track, key_value(track, k + 1));
   const double t0 = times[k], t1 = times[k + 1], dt = t1 - t0;
   const double s = (t - t0) / dt;
   switch (track.interpolation) {
@@ -157,6 +159,19 @@ Eigen::VectorXd sample_track(const KeyTrack& track, double t) {
 
 double default_take_rate(const AnimatedScene& scene, int take) {
   if (scene.frame_rate > 0 && std::isfinite(scene.frame_rate)) return scene.frame_rate;
+  const auto usable = [](double rate) { return rate >= 1.0 && rate <= 1000.0; };
+  // Evenly spaced keys: their exact rate, so every sample lands on a key.
+  const KeyTrack* longest = nullptr;
+  for (const KeyTrack& t : scene.takes[take].tracks)
+    if (longest == nullptr || t.times.size() > longest->times.size()) longest = &t;
+  if (longest != nullptr && longest->times.size() >= 3) {
+    const auto& times = longest->times;
+    const double step = (times.back() - times.front()) / static_cast<double>(times.size() - 1);
+    bool even = step > 0 && std::isfinite(step);
+    for (size_t k = 1; k < times.size() && even; ++k)
+      even = std::abs(times[k] - times[k - 1] - step) <= 0.01 * step;
+    if (even && usable(1.0 / step)) return 1.0 / step;
+  }
   std::vector<double> spacing;
   for (const KeyTrack& t : scene.takes[take].tracks) {
     for (size_t k = 1; k < t.times.size() && spacing.size() < 100000; ++k) {
@@ -168,7 +183,7 @@ double default_take_rate(const AnimatedScene& scene, int take) {
   std::nth_element(spacing.begin(), spacing.begin() + spacing.size() / 2, spacing.end());
   const double rate = frame_rate_from_frame_time(spacing[spacing.size() / 2]);
   // A rate from keys far apart (a pose every few seconds) or far too dense is no capture rate.
-  return rate >= 1.0 && rate <= 1000.0 ? rate : 30.0;
+  return usable(rate) ? rate : 30.0;
 }
 
 Clip scene_take_to_clip(const AnimatedScene& scene, int take, const SceneClipOptions& options) {
@@ -282,14 +297,15 @@ Clip scene_take_to_clip(const AnimatedScene& scene, int take, const SceneClipOpt
   std::vector<Eigen::Affine3d> global(n, Eigen::Affine3d::Identity());
   for (Eigen::Index f = 0; f < frames; ++f) {
     const double t = first + static_cast<double>(f) / fps;
+    const double snap = kFrameTolerance / fps;
     for (int i = 0; i < n; ++i) {
       if (!needed[i]) continue;
       const SceneNode& node = scene.nodes[i];
       Eigen::Vector3d tr = node.translation, sc = node.scale;
       Eigen::Quaterniond q = node.rotation;
-      if (const KeyTrack* k = track_of[3 * i]) tr = sample_track(*k, t);
-      if (const KeyTrack* k = track_of[3 * i + 1]) q = as_quaternion(sample_track(*k, t));
-      if (const KeyTrack* k = track_of[3 * i + 2]) sc = sample_track(*k, t);
+      if (const KeyTrack* k = track_of[3 * i]) tr = sample_track(*k, t, snap);
+      if (const KeyTrack* k = track_of[3 * i + 1]) q = as_quaternion(sample_track(*k, t, snap));
+      if (const KeyTrack* k = track_of[3 * i + 2]) sc = sample_track(*k, t, snap);
       Eigen::Affine3d local = Eigen::Affine3d::Identity();
       local.translate(tr);
       local.rotate(q.normalized());

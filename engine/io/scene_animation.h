@@ -68,8 +68,11 @@ int find_take(const AnimatedScene& scene, const std::string& name);
 // The value of a track at time t (seconds): STEP holds the key at or before t; LINEAR
 // interpolates (slerp on the shorter arc for rotations); CUBICSPLINE is glTF's Hermite spline,
 // tangents scaled by the key interval (glTF 2.0 Appendix C). Before the first key the first
-// value, after the last the last. Rotations come back normalized. O(log K).
-Eigen::VectorXd sample_track(const KeyTrack& track, double t);
+// value, after the last the last. A key within `snap` seconds of t is taken as it is: key times
+// stored as float32 or FBX ticks miss the sampling grid by a hair, and the next key may be far
+// (assimp adds keys between two frames where an Euler curve turns more than 180 degrees).
+// Rotations come back normalized. O(log K).
+Eigen::VectorXd sample_track(const KeyTrack& track, double t, double snap = 0.0);
 
 struct SceneClipOptions {
   double fps = 0.0;  // sampling rate; 0: the file's (AnimatedScene::frame_rate), else the keys' spacing, else 30
@@ -90,8 +93,11 @@ struct SceneClipOptions {
 // than options.max_bytes (checked before allocating them). O(frames x nodes).
 Clip scene_take_to_clip(const AnimatedScene& scene, int take, const SceneClipOptions& options = {});
 
-// The rate a take is sampled at when the caller gives none: scene.frame_rate, else one over the
-// median spacing of the take's keys (snapped by frame_rate_from_frame_time), else 30.
+// The rate a take is sampled at when the caller gives none: scene.frame_rate; else, when the
+// track with the most keys has them evenly spaced (within 1% of a step), keys minus one over its
+// span, unrounded, so samples land on keys (120.0048 for a BVH's 0.008333 s written as glTF);
+// else one over the median spacing of the take's keys (snapped by frame_rate_from_frame_time);
+// else 30. Rates outside [1, 1000] give 30.
 double default_take_rate(const AnimatedScene& scene, int take);
 
 }  // namespace mostyle

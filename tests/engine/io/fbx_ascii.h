@@ -2,12 +2,15 @@
 // A clip as an ASCII FBX 7.4 file, for tests and benchmarks of the FBX reader (no FBX writer ships:
 // mostyle writes BVH and glTF). Each joint (End Sites left out) a LimbNode Model with its OFFSET
 // as Lcl Translation and its Euler order as RotationOrder; one animation stack `take` whose
-// curves key every frame: Lcl Rotation (degrees) of every joint, Lcl Translation of joints with
-// position channels. Time mode: custom, the clip's rate. Joints need 3 rotation channels.
+// curves key every frame: Lcl Rotation (degrees, unwrapped frame to frame as exporters write
+// them: FBX curves interpolate Euler angles, so a jump of 360 degrees would be a turn) of every
+// joint, Lcl Translation of joints with position channels. Time mode: custom, the clip's rate.
+// Joints need 3 rotation channels.
 #include <cmath>
 #include <string>
 
 #include "engine/io/clip.h"
+#include "engine/kinematics/euler.h"
 #include "engine/kinematics/kinematics.h"
 
 namespace mostyle::test {
@@ -16,6 +19,18 @@ inline std::string format_fbx_ascii(const Clip& clip, const std::string& take) {
   constexpr long long kTicksPerSecond = 46186158000LL;
   const Skeleton& s = clip.skeleton;
   const int frames = clip.frames();
+  MotionMatrix motion = clip.motion;  // rotation triples unwrapped
+  for (const Joint& joint : s.joints) {
+    std::vector<int> r;
+    for (size_t c = 0; c < joint.channels.size(); ++c)
+      if (is_rotation(joint.channels[c])) r.push_back(joint.first_channel + static_cast<int>(c));
+    if (r.size() != 3) continue;
+    for (int f = 1; f < frames; ++f) {
+      const Eigen::Vector3d prev(motion(f - 1, r[0]), motion(f - 1, r[1]), motion(f - 1, r[2]));
+      const Eigen::Vector3d near = euler_near(Eigen::Vector3d(motion(f, r[0]), motion(f, r[1]), motion(f, r[2])), prev);
+      for (int a = 0; a < 3; ++a) motion(f, r[a]) = near(a);
+    }
+  }
   std::string out;
   out.reserve(4096 + static_cast<size_t>(frames) * s.channel_count * 24);
   const auto num = [](double v) {
@@ -86,7 +101,7 @@ inline std::string format_fbx_ascii(const Clip& clip, const std::string& take) {
         const long long curve = next_id++;
         curves += "\tAnimationCurve: " + std::to_string(curve) + ", \"AnimCurve::\", \"\" {\n\t\tDefault: 0\n";
         curves += "\t\tKeyVer: 4008\n" + times + "\t\tKeyValueFloat: *" + std::to_string(frames) + " {\n\t\t\ta: ";
-        for (int f = 0; f < frames; ++f) curves += (f ? "," : "") + num(clip.motion(f, columns[a]));
+        for (int f = 0; f < frames; ++f) curves += (f ? "," : "") + num(motion(f, columns[a]));
         curves += "\n\t\t}\n\t}\n";
         connections += "\tC: \"OP\"," + std::to_string(curve) + "," + std::to_string(node) + ", \"d|" +
                        static_cast<char>('X' + a) + "\"\n";

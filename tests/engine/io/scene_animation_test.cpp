@@ -139,7 +139,7 @@ TEST_CASE("default_take_rate: the file's, else the keys' spacing, else 30", "[sc
   take.tracks.push_back(track(0, TrackTarget::kTranslation, KeyInterpolation::kLinear, {0, 0.04, 0.08},
                               {0, 0, 0, 1, 1, 1, 2, 2, 2}));
   scene.takes.push_back(take);
-  CHECK(default_take_rate(scene, 0) == 25.0);
+  CHECK(default_take_rate(scene, 0) == Approx(25.0).epsilon(1e-12));
   scene.frame_rate = 24;
   CHECK(default_take_rate(scene, 0) == 24.0);
   scene.frame_rate = 0;

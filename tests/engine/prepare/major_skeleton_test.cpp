@@ -143,7 +143,17 @@ TEST_CASE("name rules: Unreal's mannequin (pelvis, spine_01, thigh_l, calf_l, ba
 }
 
 TEST_CASE("name rules: rig prefixes (mixamorigHips, mixamorig1:, Bip001, Blender's DEF-)", "[major_skeleton]") {
-  for (const char* prefix : {"mixamorig", "mixamorig1:", "Bip001 ", "DEF-"}) {
+  // Mixamo without the colon (three.js and some glTF exporters drop it): "mixamorigHips".
+  Skeleton mixamo = test::mixamo_skeleton();
+  for (Joint& j : mixamo.joints) {
+    const size_t colon = j.name.find(':');
+    if (colon != std::string::npos) j.name.erase(colon, 1);
+  }
+  const std::vector<std::string> names = mapped_names(mixamo);
+  CHECK(names[0] == "mixamorigHips");
+  CHECK(names[7] == "mixamorigLeftHandMiddle1");
+  CHECK(names[19] == "mixamorigRightToeBase");
+  for (const char* prefix : {"mixamorig1:", "Bip001 ", "DEF-"}) {
     Skeleton s = unreal_skeleton();
     for (Joint& j : s.joints)
       if (!j.end_site) j.name = prefix + j.name;
