@@ -274,11 +274,44 @@ AnimatedScene scene_from_model(const tinygltf::Model& model, const std::string& 
   return scene;
 }
 
+// How deep the JSON's arrays and objects nest (strings skipped). tinygltf turns "extras" into
+// its own values recursively: a file nesting thousands deep would take the stack with it.
+int json_depth(std::string_view text) {
+  int depth = 0, deepest = 0;
+  bool in_string = false, escaped = false;
+  for (char c : text) {
+    if (in_string) {
+      if (escaped) escaped = false;
+      else if (c == '\\') escaped = true;
+      else if (c == '"') in_string = false;
+      continue;
+    }
+    if (c == '"') in_string = true;
+    else if (c == '[' || c == '{') deepest = std::max(deepest, ++depth);
+    else if (c == ']' || c == '}') --depth;
+  }
+  return deepest;
+}
+
+// The JSON of a GLB (its first chunk) or the whole text of a .gltf; "" when the GLB is cut.
+std::string_view gltf_json(std::string_view bytes) {
+  if (bytes.size() < 4 || bytes.substr(0, 4) != "glTF") return bytes;
+  if (bytes.size() < 20) return {};
+  uint32_t length = 0;
+  std::memcpy(&length, bytes.data() + 12, 4);
+  return bytes.substr(20, std::min<size_t>(length, bytes.size() - 20));
+}
+
+constexpr int kMaxJsonDepth = 256;
+
 }  // namespace
 
 AnimatedScene parse_gltf(std::string_view bytes, const std::string& source, const std::string& base_dir,
                          size_t max_bytes) {
   if (bytes.size() > UINT32_MAX) throw InputError(source + ": is larger than 4 GB, more than glTF can hold");
+  if (json_depth(gltf_json(bytes)) > kMaxJsonDepth)
+    throw InputError(source + ": not a readable glTF file: its JSON nests deeper than " +
+                     std::to_string(kMaxJsonDepth) + " levels");
   tinygltf::Model model;
   std::string err, warn;
   bool ok = false;

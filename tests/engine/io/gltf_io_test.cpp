@@ -148,6 +148,9 @@ TEST_CASE("glTF: bad files are one sentence naming the file", "[gltf][errors]") 
   CHECK_THROWS_WITH(parse_gltf(R"({"asset": {"version": "2.0"}, "nodes": [{"children": [1]}, {"children": [0]}]})",
                                "loop.gltf"),
                     Contains("loop.gltf: "));
+  const std::string deep = R"({"asset": {"version": "2.0"}, "extras": )" + std::string(5000, '[') +
+                           std::string(5000, ']') + "}";
+  CHECK_THROWS_WITH(parse_gltf(deep, "deep.gltf"), Contains("deep.gltf: not a readable glTF file: its JSON nests deeper"));
   CHECK_THROWS_WITH(read_motion_file(tmp.write("w.glb", glb) + "#run"), Contains("w.glb: has no animation 'run'; it has 'walk'"));
   CHECK_THROWS_WITH(read_motion_file(tmp.path("missing.glb")), Contains("missing.glb: cannot read"));
   // The memory limit holds before the frames are sampled.
