@@ -35,21 +35,25 @@ const char* target_name(TrackTarget target) {
 }
 
 // Row k of a track's values (the value row for cubic splines).
-Eigen::VectorXd key_value(const KeyTrack& track, Eigen::Index k) {
-  const Eigen::Index row = track.interpolation == KeyInterpolation::kCubicSpline ? 3 * k + 1 : k;
-  return track.values.row(row).transpose();
+// Row r of a track's values, the 4th entry 0 for 3-wide tracks.
+Eigen::Vector4d value_row(const KeyTrack& track, Eigen::Index r) {
+  Eigen::Vector4d v = Eigen::Vector4d::Zero();
+  for (Eigen::Index c = 0; c < track.values.cols() && c < 4; ++c) v(c) = track.values(r, c);
+  return v;
 }
 
-Eigen::VectorXd normalized_if_rotation(const KeyTrack& track, Eigen::VectorXd v) {
+Eigen::Vector4d key_value(const KeyTrack& track, Eigen::Index k) {
+  return value_row(track, track.interpolation == KeyInterpolation::kCubicSpline ? 3 * k + 1 : k);
+}
+
+Eigen::Vector4d normalized_if_rotation(const KeyTrack& track, const Eigen::Vector4d& v) {
   if (track.target != TrackTarget::kRotation) return v;
   const double n = v.norm();
   if (n > 0 && std::isfinite(n)) return v / n;
-  Eigen::VectorXd identity(4);
-  identity << 0, 0, 0, 1;
-  return identity;
+  return Eigen::Vector4d(0, 0, 0, 1);
 }
 
-Eigen::Quaterniond as_quaternion(const Eigen::VectorXd& v) { return Eigen::Quaterniond(v(3), v(0), v(1), v(2)); }
+Eigen::Quaterniond as_quaternion(const Eigen::Vector4d& v) { return Eigen::Quaterniond(v(3), v(0), v(1), v(2)); }
 
 void check_track(const AnimatedScene& scene, int take, const KeyTrack& track) {
   const auto fail = [&](const std::string& what) {
@@ -118,7 +122,7 @@ int find_take(const AnimatedScene& scene, const std::string& name) {
   return -1;
 }
 
-Eigen::VectorXd sample_track(const KeyTrack& track, double t, double snap) {
+Eigen::Vector4d sample_track(const KeyTrack& track, double t, double snap) {
   const auto& times = track.times;
   const Eigen::Index keys = static_cast<Eigen::Index>(times.size());
   if (t <= times.front() + snap || keys == 1) return normalized_if_rotation(track, key_value(track, 0));
@@ -132,24 +136,20 @@ Eigen::VectorXd sample_track(const KeyTrack& track, double t, double snap) {
   switch (track.interpolation) {
     case KeyInterpolation::kStep: return normalized_if_rotation(track, key_value(track, k));
     case KeyInterpolation::kLinear: {
-      const Eigen::VectorXd a = key_value(track, k), b = key_value(track, k + 1);
+      const Eigen::Vector4d a = key_value(track, k), b = key_value(track, k + 1);
       if (track.target != TrackTarget::kRotation) return (1 - s) * a + s * b;
       const Eigen::Quaterniond q = as_quaternion(normalized_if_rotation(track, a))
                                        .slerp(s, as_quaternion(normalized_if_rotation(track, b)));
-      Eigen::VectorXd v(4);
-      v << q.x(), q.y(), q.z(), q.w();
-      return normalized_if_rotation(track, v);
+      return normalized_if_rotation(track, Eigen::Vector4d(q.x(), q.y(), q.z(), q.w()));
     }
     case KeyInterpolation::kCubicSpline: {
       // glTF 2.0 Appendix C: p(s) = (2s^3 - 3s^2 + 1) v_k + dt (s^3 - 2s^2 + s) b_k
       //                            + (-2s^3 + 3s^2) v_k+1 + dt (s^3 - s^2) a_k+1,
       // b_k the out-tangent of key k, a_k+1 the in-tangent of key k+1.
       const double s2 = s * s, s3 = s2 * s;
-      const Eigen::VectorXd v0 = track.values.row(3 * k + 1).transpose();
-      const Eigen::VectorXd b0 = track.values.row(3 * k + 2).transpose();
-      const Eigen::VectorXd v1 = track.values.row(3 * (k + 1) + 1).transpose();
-      const Eigen::VectorXd a1 = track.values.row(3 * (k + 1)).transpose();
-      const Eigen::VectorXd p = (2 * s3 - 3 * s2 + 1) * v0 + dt * (s3 - 2 * s2 + s) * b0 +
+      const Eigen::Vector4d v0 = value_row(track, 3 * k + 1), b0 = value_row(track, 3 * k + 2);
+      const Eigen::Vector4d v1 = value_row(track, 3 * (k + 1) + 1), a1 = value_row(track, 3 * (k + 1));
+      const Eigen::Vector4d p = (2 * s3 - 3 * s2 + 1) * v0 + dt * (s3 - 2 * s2 + s) * b0 +
                                 (-2 * s3 + 3 * s2) * v1 + dt * (s3 - s2) * a1;
       return normalized_if_rotation(track, p);
     }
@@ -278,9 +278,9 @@ Clip scene_take_to_clip(const AnimatedScene& scene, int take, const SceneClipOpt
   // a whole frame (15.6666665 s at 30 fps is frame 469.99999): it still counts as that frame.
   const Eigen::Index frames = static_cast<Eigen::Index>(std::floor(span + kFrameTolerance)) + 1;
 
-  // Channels: root 6, others 3 (+3 where the offset changes, decided after sampling).
-  // Memory: the world transforms of the joints (frames x joints x 12 doubles) and the motion.
-  const double need = static_cast<double>(frames) * joints * (12 + 6) * sizeof(double);
+  // Channels: root 6, others 3 (+3 where the offset changes, decided after sampling): the
+  // motion takes at most frames x joints x 6 doubles.
+  const double need = static_cast<double>(frames) * joints * 6 * sizeof(double);
   if (need > static_cast<double>(options.max_bytes))
     throw InputError(take_label(scene, take) + ": " + std::to_string(frames) + " frames of " +
                      std::to_string(joints) + " joints need " + describe_bytes(static_cast<size_t>(need)) +
@@ -291,21 +291,24 @@ Clip scene_take_to_clip(const AnimatedScene& scene, int take, const SceneClipOpt
   std::vector<const KeyTrack*> track_of(3 * static_cast<size_t>(n), nullptr);
   for (const KeyTrack& t : st.tracks) track_of[3 * t.node + static_cast<int>(t.target)] = &t;
 
-  // World rotations (orthonormal) and positions of the joints per frame.
-  std::vector<Eigen::Matrix3d> rot(static_cast<size_t>(frames) * joints);
-  std::vector<Eigen::Vector3d> pos(static_cast<size_t>(frames) * joints);
+  // World rotations (orthonormal) and positions of the joints at one frame. Computed twice per
+  // frame (once to find the joints whose offsets change, once to write the channels) rather than
+  // kept for all frames: that store took more memory than the clip and its page faults most of
+  // the time on a 20 MB file.
   std::vector<Eigen::Affine3d> global(n, Eigen::Affine3d::Identity());
-  for (Eigen::Index f = 0; f < frames; ++f) {
+  std::vector<Eigen::Matrix3d> rot(joints);
+  std::vector<Eigen::Vector3d> pos(joints);
+  const double snap = kFrameTolerance / fps;
+  const auto world_pose = [&](Eigen::Index f) {
     const double t = first + static_cast<double>(f) / fps;
-    const double snap = kFrameTolerance / fps;
     for (int i = 0; i < n; ++i) {
       if (!needed[i]) continue;
       const SceneNode& node = scene.nodes[i];
       Eigen::Vector3d tr = node.translation, sc = node.scale;
       Eigen::Quaterniond q = node.rotation;
-      if (const KeyTrack* k = track_of[3 * i]) tr = sample_track(*k, t, snap);
+      if (const KeyTrack* k = track_of[3 * i]) tr = sample_track(*k, t, snap).head<3>();
       if (const KeyTrack* k = track_of[3 * i + 1]) q = as_quaternion(sample_track(*k, t, snap));
-      if (const KeyTrack* k = track_of[3 * i + 2]) sc = sample_track(*k, t, snap);
+      if (const KeyTrack* k = track_of[3 * i + 2]) sc = sample_track(*k, t, snap).head<3>();
       Eigen::Affine3d local = Eigen::Affine3d::Identity();
       local.translate(tr);
       local.rotate(q.normalized());
@@ -314,28 +317,31 @@ Clip scene_take_to_clip(const AnimatedScene& scene, int take, const SceneClipOpt
     }
     for (int j = 0; j < joints; ++j) {
       const Eigen::Affine3d& g = global[order[j]];
-      rot[f * joints + j] = rotation_part(g.linear());
-      pos[f * joints + j] = g.translation();
+      rot[j] = rotation_part(g.linear());
+      pos[j] = g.translation();
     }
-  }
+  };
+  std::vector<int> parent_joint(joints, -1);
+  for (int j = 1; j < joints; ++j) parent_joint[j] = joint_of[scene.nodes[order[j]].parent];
+  const auto local_offset = [&](int j) {
+    return Eigen::Vector3d(rot[parent_joint[j]].transpose() * (pos[j] - pos[parent_joint[j]]));
+  };
 
   // Offsets in the parent's frame at frame 0, and which joints need position channels.
   std::vector<Eigen::Vector3d> offset(joints, Eigen::Vector3d::Zero());
+  world_pose(0);
   double size = 0;
   for (int j = 1; j < joints; ++j) {
-    const int p = joint_of[scene.nodes[order[j]].parent];
-    offset[j] = rot[p].transpose() * (pos[j] - pos[p]);
+    offset[j] = local_offset(j);
     size = std::max(size, offset[j].norm());
   }
   if (!(size > 0)) size = 1;
   std::vector<char> moving(joints, 0);
   moving[0] = 1;
-  for (int j = 1; j < joints; ++j) {
-    const int p = joint_of[scene.nodes[order[j]].parent];
-    for (Eigen::Index f = 1; f < frames && !moving[j]; ++f) {
-      const Eigen::Vector3d o = rot[f * joints + p].transpose() * (pos[f * joints + j] - pos[f * joints + p]);
-      if ((o - offset[j]).norm() > kOffsetTolerance * size) moving[j] = 1;
-    }
+  for (Eigen::Index f = 1; f < frames; ++f) {
+    world_pose(f);
+    for (int j = 1; j < joints; ++j)
+      if (!moving[j] && (local_offset(j) - offset[j]).norm() > kOffsetTolerance * size) moving[j] = 1;
   }
 
   Clip clip;
@@ -345,7 +351,7 @@ Clip scene_take_to_clip(const AnimatedScene& scene, int take, const SceneClipOpt
   for (int j = 0; j < joints; ++j) {
     Joint joint;
     joint.name = scene.nodes[order[j]].name;
-    joint.parent = j == 0 ? -1 : joint_of[scene.nodes[order[j]].parent];
+    joint.parent = parent_joint[j];
     joint.offset = j == 0 ? Eigen::Vector3d::Zero() : offset[j];
     joint.first_channel = sk.channel_count;
     if (moving[j]) joint.channels = {Channel::kXposition, Channel::kYposition, Channel::kZposition};
@@ -356,20 +362,19 @@ Clip scene_take_to_clip(const AnimatedScene& scene, int take, const SceneClipOpt
   clip.motion.resize(frames, sk.channel_count);
   std::vector<Eigen::Vector3d> previous(joints, Eigen::Vector3d::Zero());
   for (Eigen::Index f = 0; f < frames; ++f) {
+    world_pose(f);
     for (int j = 0; j < joints; ++j) {
       const Joint& joint = sk.joints[j];
       int c = joint.first_channel;
-      const Eigen::Matrix3d& r = rot[f * joints + j];
-      Eigen::Matrix3d local = r;
+      Eigen::Matrix3d local = rot[j];
       if (joint.parent >= 0) {
-        const Eigen::Matrix3d& rp = rot[f * joints + joint.parent];
-        local = rp.transpose() * r;
+        local = rot[joint.parent].transpose() * rot[j];
         if (moving[j]) {
-          const Eigen::Vector3d o = rp.transpose() * (pos[f * joints + j] - pos[f * joints + joint.parent]);
+          const Eigen::Vector3d o = local_offset(j);
           for (int d = 0; d < 3; ++d) clip.motion(f, c++) = o(d);
         }
       } else {
-        for (int d = 0; d < 3; ++d) clip.motion(f, c++) = pos[f * joints](d);
+        for (int d = 0; d < 3; ++d) clip.motion(f, c++) = pos[j](d);
       }
       const Eigen::Vector3d angles = f == 0 ? matrix_to_euler(EulerOrder::kZXY, local)
                                             : matrix_to_euler_near(EulerOrder::kZXY, local, previous[j]);

@@ -72,7 +72,8 @@ int find_take(const AnimatedScene& scene, const std::string& name);
 // stored as float32 or FBX ticks miss the sampling grid by a hair, and the next key may be far
 // (assimp adds keys between two frames where an Euler curve turns more than 180 degrees).
 // Rotations come back normalized. O(log K).
-Eigen::VectorXd sample_track(const KeyTrack& track, double t, double snap = 0.0);
+// Returns x, y, z (and w for a rotation; 0 for translation and scale).
+Eigen::Vector4d sample_track(const KeyTrack& track, double t, double snap = 0.0);
 
 struct SceneClipOptions {
   double fps = 0.0;  // sampling rate; 0: the file's (AnimatedScene::frame_rate), else the keys' spacing, else 30
