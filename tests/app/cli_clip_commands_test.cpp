@@ -249,6 +249,13 @@ TEST_CASE("cli: a blend of two animations of one GLB exports a GLB that validate
   CHECK(r.status == 0);
   REQUIRE(fs::exists(out));
   MOSTYLE_CHECK_GLTF_VALID(out);
+  // Without a take: the first, and a note naming the others.
+  r = box.cli("info \"" + glb + "\"");
+  CHECK(r.status == 0);
+  CHECK(r.err.find("mostyle: note: ") == 0);
+  CHECK(r.err.find("'cmu142_walk_happy', 'cmu142_walk_joy': pick one with FILE#NAME or --take NAME") !=
+        std::string::npos);
+  CHECK(r.out.find("    cmu142_walk_joy  (") != std::string::npos);
   // And it reads back: the reference's 31 joints.
   r = box.cli("info --json \"" + out + "\"");
   CHECK(r.status == 0);
