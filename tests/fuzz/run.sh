@@ -28,6 +28,8 @@ rm -rf "$build/seeds"
 
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+# Leaks inside system libraries, as the tests suppress them (assimp's FBX parser on bad input).
+export LSAN_OPTIONS="suppressions=$root/tests/lsan.supp:print_suppressions=0"
 failed=()
 for t in "${targets[@]}"; do
   corpus="$build/corpus/$t"      # grows from run to run; new inputs are written here
