@@ -19,7 +19,7 @@ bool read_csv(std::string_view bytes);       // parse_csv_matrix (engine/io/csv_
 bool read_job_line(std::string_view bytes);  // parse_job_line (app/job_line.h)
 bool read_session(std::string_view bytes);   // parse_session (ui/session_file.h), as "fuzz.mostyle"
 // parse_gltf (engine/io/gltf_io.h) as "fuzz.glb", then every take sampled into a clip
-// (scene_animation.h, 64 MB limit), written as GLB and read back with the same skeleton.
+// (scene_animation.h, 2 MB limit), written as GLB and read back with the same skeleton.
 bool read_gltf(std::string_view bytes);
 // parse_fbx (engine/io/fbx_io.h) as "fuzz.fbx", then every take sampled as for glTF.
 bool read_fbx(std::string_view bytes);
