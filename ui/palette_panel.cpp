@@ -7,6 +7,7 @@
 
 #include <imgui.h>
 
+#include "engine/io/motion_file.h"
 #include "ui/layout.h"
 
 namespace mostyle::ui {
@@ -19,7 +20,7 @@ constexpr const char* kTitle = "Style palette";
 const char* const kPartNames[] = {"Legs", "Arms", "Spine and head"};
 
 std::string name_of(const PreparedPalette& p, int i) {
-  return std::filesystem::path(p.takes[static_cast<size_t>(i)].clip->source).stem().string();
+  return take_label(p.takes[static_cast<size_t>(i)].clip->source);
 }
 
 ImU32 color_u32(int take) {

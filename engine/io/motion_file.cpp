@@ -64,6 +64,11 @@ TakePath split_take_path(const std::string& text) {
   return {path, text.substr(hash + 1)};
 }
 
+std::string take_label(const std::string& text) {
+  const TakePath tp = split_take_path(text);
+  return tp.take.empty() ? std::filesystem::path(tp.path).stem().string() : tp.take;
+}
+
 std::string join_take_path(const std::string& path, const std::string& take) {
   return take.empty() ? path : path + "#" + take;
 }

@@ -32,6 +32,10 @@ struct TakePath {
 };
 TakePath split_take_path(const std::string& text);
 
+// What a take is called on screen: the animation's name for FILE#ANIMATION ("run"), else the
+// file's name without folder and extension ("walk" for "data/walk.bvh").
+std::string take_label(const std::string& text);
+
 // "walk.glb" + "run" -> "walk.glb#run"; the path alone when take is empty.
 std::string join_take_path(const std::string& path, const std::string& take);
 

@@ -24,6 +24,8 @@ TEST_CASE("motion_format and FILE#ANIMATION", "[motion_file]") {
   CHECK(split_take_path("walk.bvh#x").take.empty());
   CHECK(join_take_path("a.glb", "run") == "a.glb#run");
   CHECK(join_take_path("a.bvh", "") == "a.bvh");
+  CHECK(take_label("data/walks.glb#run") == "run");
+  CHECK(take_label("data/walk.bvh") == "walk");
 }
 
 TEST_CASE("read_motion_file: BVH through the BVH reader; a take of a BVH is an error", "[motion_file]") {
