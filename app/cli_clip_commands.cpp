@@ -1,6 +1,7 @@
 #include "app/cli_clip_commands.h"
 
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -8,6 +9,7 @@
 #include "engine/io/bvh_io.h"
 #include "engine/kinematics/convert.h"
 #include "engine/io/error.h"
+#include "engine/io/motion_file.h"
 #include "engine/kinematics/euler.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/resample.h"
@@ -32,17 +34,41 @@ std::string rotation_order(const Joint& j) {
   return s;
 }
 
+// CLI::PositiveNumber lets "nan" through (every comparison with it is false).
+CLI::Validator positive_finite_rate() {
+  return CLI::Validator(
+      [](std::string& text) {
+        double v = 0;
+        if (CLI::detail::lexical_cast(text, v) && v > 0 && std::isfinite(v)) return std::string();
+        return "expected a positive frame rate, found " + text;
+      },
+      "POSITIVE");
+}
+
 }  // namespace
 
 void add_info_command(CLI::App& app, std::function<int()>* run) {
-  auto* cmd = app.add_subcommand("info", "Print a BVH file's joints, channels, frames and units");
+  auto* cmd = app.add_subcommand("info", "Print a take's joints, channels, frames and units, and a file's animations");
   auto path = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
-  cmd->add_option("FILE", *path, "BVH file")->required();
+  auto take = std::make_shared<std::string>();
+  auto fps = std::make_shared<double>(0.0);
+  cmd->add_option("FILE", *path, "BVH, FBX, GLB or glTF file (FILE#ANIMATION picks one animation)")->required();
   cmd->add_flag("--json", *json, "Print JSON");
+  cmd->add_option("--take", *take, "The animation to describe (FBX, glTF); default the first");
+  cmd->add_option("--fps", *fps, "Rate to sample FBX and glTF keys at; default the file's")->check(positive_finite_rate());
   cmd->callback([=] {
     *run = [=] {
-      const Clip clip = load_clip(*path);
+      const Clip clip = load_clip(*path, *take, *fps);
+      // A BVH is one take, the clip just read (not read again: a BVH may be 100 MB).
+      const TakePath file = split_take_path(*path);
+      std::vector<TakeInfo> takes;
+      if (has_takes(motion_format(file.path))) {
+        takes = read_motion_takes(file.path, motion_read_options_from_environment());
+      } else {
+        takes.push_back({std::filesystem::path(file.path).stem().string(),
+                         clip.frames() > 1 ? (clip.frames() - 1) * clip.frame_time : 0.0, clip.frames()});
+      }
       const Skeleton& s = clip.skeleton;
       const UnitsGuess units = guess_units(clip);
       const double duration = clip.frames() > 1 ? (clip.frames() - 1) / clip.fps() : 0.0;
@@ -56,6 +82,8 @@ void add_info_command(CLI::App& app, std::function<int()>* run) {
         j["channels"] = s.channel_count;
         j["units_guess"] = units.name;
         j["height"] = units.height;
+        auto& tk = j["takes"] = nlohmann::ordered_json::array();
+        for (const TakeInfo& t : takes) tk.push_back({{"name", t.name}, {"seconds", t.seconds}, {"keys", t.keys}});
         auto& joints = j["joints"] = nlohmann::ordered_json::array();
         for (const Joint& jt : s.joints) {
           if (jt.end_site) continue;
@@ -78,7 +106,10 @@ void add_info_command(CLI::App& app, std::function<int()>* run) {
                   << "  frames: " << clip.frames() << "\n"
                   << "  frame time: " << number(clip.frame_time) << " s (" << number(clip.fps())
                   << " fps)\n"
-                  << "  duration: " << number(duration) << " s\n"
+                  << "  takes: " << takes.size() << "\n";
+        for (const TakeInfo& t : takes)
+          std::cout << "    " << t.name << "  (" << number(t.seconds) << " s, " << t.keys << " keys)\n";
+        std::cout << "  duration: " << number(duration) << " s\n"
                   << "  units (guess): " << units.name << " (height " << number(units.height)
                   << ")\n";
         // Depths in one pass (parents come first): walking up per joint is quadratic in depth.
@@ -103,11 +134,16 @@ void add_fk_command(CLI::App& app, std::function<int()>* run) {
   auto* cmd = app.add_subcommand("fk", "Write every joint's global position per frame as CSV");
   auto path = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
-  cmd->add_option("FILE", *path, "BVH file")->required();
+  auto take = std::make_shared<std::string>();
+  auto fps = std::make_shared<double>(0.0);
+  cmd->add_option("FILE", *path, "BVH, FBX, GLB or glTF file (FILE#ANIMATION picks one animation)")->required();
   cmd->add_option("--out", *out, "CSV file: frame,joint,x,y,z (file units and axes)")->required();
+  cmd->add_option("--take", *take, "The animation to read (FBX, glTF); default the first");
+  cmd->add_option("--fps", *fps, "Frame rate of the rows; default the file's")->check(positive_finite_rate());
   cmd->callback([=] {
     *run = [=] {
-      const Clip clip = load_clip(*path);
+      Clip clip = load_clip(*path, *take, *fps);
+      if (*fps > 0 && motion_format(split_take_path(*path).path) == MotionFormat::kBvh) clip = resample_clip(clip, *fps);
       std::vector<int> joints;
       std::vector<std::string> names;
       for (size_t i = 0; i < clip.skeleton.joints.size(); ++i) {
@@ -122,34 +158,28 @@ void add_fk_command(CLI::App& app, std::function<int()>* run) {
 }
 
 void add_convert_command(CLI::App& app, std::function<int()>* run) {
-  auto* cmd = app.add_subcommand("convert", "Rewrite a BVH file in another Euler order or frame rate");
+  auto* cmd = app.add_subcommand("convert", "Rewrite a take as BVH or glTF, in another Euler order or frame rate");
   auto in = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   auto order = std::make_shared<std::string>();
   auto fps = std::make_shared<double>(0.0);
-  cmd->add_option("IN", *in, "BVH file to read")->required();
-  cmd->add_option("OUT", *out, "BVH file to write")->required();
+  auto take = std::make_shared<std::string>();
+  cmd->add_option("IN", *in, "BVH, FBX, GLB or glTF file to read (FILE#ANIMATION picks one animation)")->required();
+  cmd->add_option("OUT", *out, "File to write: .glb or .gltf (with its .bin) as glTF 2.0, else BVH")->required();
+  cmd->add_option("--take", *take, "The animation to read (FBX, glTF); default the first");
   cmd->add_option("--order", *order, "Rotation order: XYZ, XZY, YXZ, YZX, ZXY or ZYX")
       ->check(CLI::IsMember({"XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX"}, CLI::ignore_case));
-  // CLI::PositiveNumber lets "nan" through (every comparison with it is false).
-  const CLI::Validator positive_finite(
-      [](std::string& text) {
-        double v = 0;
-        if (CLI::detail::lexical_cast(text, v) && v > 0 && std::isfinite(v)) return std::string();
-        return "expected a positive frame rate, found " + text;
-      },
-      "POSITIVE");
-  cmd->add_option("--fps", *fps, "Frame rate of the output")->check(positive_finite);
+  cmd->add_option("--fps", *fps, "Frame rate of the output")->check(positive_finite_rate());
   cmd->callback([=] {
     *run = [=] {
-      Clip clip = load_clip(*in);
-      if (*fps > 0) clip = resample_clip(clip, *fps);
+      Clip clip = load_clip(*in, *take, *fps);
+      if (*fps > 0 && motion_format(split_take_path(*in).path) == MotionFormat::kBvh) clip = resample_clip(clip, *fps);
       if (!order->empty()) {
         EulerOrder o;
         parse_euler_order(*order, &o);
         clip = convert_euler_order(clip, o);
       }
-      write_bvh_file(clip, *out);
+      write_motion_file(clip, *out);
       return 0;
     };
   });

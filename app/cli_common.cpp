@@ -8,6 +8,7 @@
 #include "engine/io/bvh_io.h"
 #include "engine/io/error.h"
 #include "engine/io/memory_limit.h"
+#include "engine/io/motion_file.h"
 
 namespace mostyle::cli {
 
@@ -59,10 +60,20 @@ BvhReadOptions bvh_read_options_from_environment() {
   return options;
 }
 
-Clip load_clip(const std::string& path) {
-  std::vector<std::string> warnings;
-  Clip clip = read_bvh_file(path, &warnings, bvh_read_options_from_environment());
+MotionReadOptions motion_read_options_from_environment() {
+  MotionReadOptions options;
+  options.max_bytes = bvh_read_options_from_environment().max_bytes;
+  return options;
+}
+
+Clip load_clip(const std::string& path, const std::string& take, double fps) {
+  std::vector<std::string> warnings, notes;
+  MotionReadOptions options = motion_read_options_from_environment();
+  options.take = take;
+  options.fps = fps;
+  Clip clip = read_motion_file(path, &warnings, options, &notes);
   for (const std::string& w : warnings) std::cerr << "mostyle: warning: " << w << "\n";
+  for (const std::string& n : notes) std::cerr << "mostyle: note: " << n << "\n";
   return clip;
 }
 

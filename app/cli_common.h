@@ -6,6 +6,7 @@
 
 #include "engine/io/bvh_io.h"
 #include "engine/io/clip.h"
+#include "engine/io/motion_file.h"
 
 namespace mostyle::cli {
 
@@ -26,9 +27,14 @@ std::string positions_csv(const Eigen::MatrixXd& positions, const std::vector<in
 size_t memory_limit_from_environment();
 // The BVH reader's options with that limit.
 BvhReadOptions bvh_read_options_from_environment();
+// The same limit for any motion file (engine/io/motion_file.h).
+MotionReadOptions motion_read_options_from_environment();
 
-// Reads a BVH file (with the options above) and prints its warnings to stderr as
-// "mostyle: warning: ...".
-Clip load_clip(const std::string& path);
+// Reads a take (engine/io/motion_file.h: BVH, FBX, glTF; `path` may be FILE#ANIMATION), with
+// the memory limit above, `take` (--take; "" for FILE#ANIMATION's or the first) and `fps` (the
+// sampling rate of FBX and glTF keys; 0 for the file's own). Prints the reader's warnings to
+// stderr as "mostyle: warning: ..." and its notes (which animation of several it took) as
+// "mostyle: note: ...".
+Clip load_clip(const std::string& path, const std::string& take = "", double fps = 0.0);
 
 }  // namespace mostyle::cli

@@ -1,6 +1,7 @@
 #include "app/cli_grid_command.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -12,12 +13,26 @@
 #include "app/cli_palette_commands.h"
 #include "app/cli_pipeline_commands.h"
 #include "engine/io/error.h"
+#include "engine/io/motion_file.h"
 #include "engine/run/palette.h"
 
 namespace mostyle::cli {
 namespace {
 
 namespace fs = std::filesystem;
+
+// A take's name in the grid's output names: the file's stem, and for FILE#ANIMATION "_" and the
+// animation's name with characters a file name should not hold replaced ("walks_run").
+std::string take_stem(const std::string& take) {
+  const TakePath tp = split_take_path(take);
+  std::string stem = std::filesystem::path(tp.path).stem().string();
+  if (!tp.take.empty()) {
+    stem += '_';
+    for (char c : tp.take)
+      stem += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.' ? c : '_';
+  }
+  return stem;
+}
 using Json = nlohmann::ordered_json;
 
 // Checks one JSON string per argument so that an invalid one is named, not just refused.
@@ -36,8 +51,8 @@ std::string json_line(const std::vector<std::string>& args) {
 void check_stems(const std::vector<std::string>& files, const std::string& option) {
   std::set<std::string> stems;
   for (const std::string& f : files)
-    if (!stems.insert(fs::path(f).stem().string()).second)
-      throw CLI::ValidationError(option, "two files are named '" + fs::path(f).stem().string() +
+    if (!stems.insert(take_stem(f)).second)
+      throw CLI::ValidationError(option, "two files are named '" + take_stem(f) +
                                              "', so their outputs would have the same names");
 }
 
@@ -86,7 +101,6 @@ std::string job_line(std::vector<std::string> job, const std::string& out_dir, c
   return json_line(job);
 }
 
-std::string stem(const std::string& path) { return fs::path(path).stem().string(); }
 
 }  // namespace
 
@@ -106,13 +120,13 @@ void add_grid_command(CLI::App& app, std::function<int()>* run) {
     std::vector<std::string> options;
   };
   auto args = std::make_shared<Args>();
-  cmd->add_option("--takes", args->takes, "Blends: BVH takes, 2 or more; each is A with every other one as B");
+  cmd->add_option("--takes", args->takes, "Blends: takes (BVH, FBX, glTF; FILE#ANIMATION for one animation), 2 or more; each is A with every other one as B");
   cmd->add_option("--alphas", args->alphas, "Blends: alpha values, comma separated, e.g. 0,0.25,0.5")->delimiter(',');
   cmd->add_flag("--transfer", args->transfer, "Style transfers instead of blends (--contents, --neutral, --styles, "
                                               "--strengths)");
-  cmd->add_option("--contents", args->contents, "Transfers: BVH takes that take on the styles, 1 or more");
-  cmd->add_option("--neutral", args->neutral, "Transfers: BVH take of the action without the styles");
-  cmd->add_option("--styles", args->styles, "Transfers: BVH takes of the action in each style, comma separated")
+  cmd->add_option("--contents", args->contents, "Transfers: takes (BVH, FBX, glTF, FILE#ANIMATION) that take on the styles, 1 or more");
+  cmd->add_option("--neutral", args->neutral, "Transfers: take of the action without the styles");
+  cmd->add_option("--styles", args->styles, "Transfers: takes of the action in each style, comma separated")
       ->delimiter(',');
   cmd->add_option("--strengths", args->strengths, "Transfers: strengths, comma separated, each from -1 to 2")
       ->delimiter(',');
@@ -166,7 +180,7 @@ void add_grid_command(CLI::App& app, std::function<int()>* run) {
             if (&a == &b) continue;
             for (double alpha : args->alphas)
               text += job_line({"blend", a, b, "--alpha", number(alpha)}, args->out_dir,
-                               stem(a) + "__" + stem(b) + "__a" + number(alpha), args->options);
+                               take_stem(a) + "__" + take_stem(b) + "__a" + number(alpha), args->options);
           }
       } else {
         for (const std::string& content : args->contents)
@@ -174,7 +188,7 @@ void add_grid_command(CLI::App& app, std::function<int()>* run) {
             for (double s : args->strengths)
               text += job_line({"transfer", content, "--neutral", args->neutral, "--style", style, "--strength",
                                 number(s)},
-                               args->out_dir, stem(content) + "__" + stem(style) + "__s" + number(s), args->options);
+                               args->out_dir, take_stem(content) + "__" + take_stem(style) + "__s" + number(s), args->options);
       }
       if (args->jobs_out.empty())
         std::cout << text;

@@ -48,7 +48,7 @@ struct MixFlags {
     cmd->add_flag("--components-only", components_only,
                   "Mix only what the k components reconstruct, leaving out each take's residual detail");
     cmd->add_flag("--loop", loop, "Cut a seamless loop of 1 to 4 whole gait cycles (root travel per cycle kept)");
-    cmd->add_option("--out", out, "BVH file of the result on the first take's skeleton");
+    cmd->add_option("--out", out, "File of the result on the first take's skeleton: BVH, or glTF 2.0 when it ends in .glb or .gltf");
     channels.add_to(cmd);
     cmd->add_option("--positions-out", positions_out,
                     "CSV frame,joint,x,y,z of the result's final major-joint positions (after the foot lock)");

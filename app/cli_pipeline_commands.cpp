@@ -286,7 +286,7 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
                 "leaving out each take's residual detail");
   cmd->add_flag("--loop", args->loop,
                 "Cut a seamless loop of 1 to 4 whole gait cycles (root travel per cycle kept)");
-  cmd->add_option("--out", args->out, "BVH file of the blend on A's skeleton (A's rotation orders)");
+  cmd->add_option("--out", args->out, "File of the blend on A's skeleton: BVH (A's rotation orders), or glTF 2.0 when it ends in .glb or .gltf");
   args->channels.add_to(cmd);
   cmd->add_option("--positions-out", args->positions_out,
                   "CSV frame,joint,x,y,z of the blend's final major-joint positions (after the foot lock)");

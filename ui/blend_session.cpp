@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iterator>
 
+#include "engine/io/motion_file.h"
 #include "engine/io/error.h"
 #include "engine/export/channel_layout.h"
 #include "engine/export/export_solve.h"
@@ -29,7 +30,7 @@ double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-std::string stem(const std::string& path) { return std::filesystem::path(path).stem().string(); }
+std::string stem(const std::string& path) { return take_label(path); }
 
 }  // namespace
 

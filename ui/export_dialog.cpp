@@ -11,6 +11,7 @@
 #include <imgui.h>
 
 #include "engine/export/export_frames.h"
+#include "engine/io/motion_file.h"
 #include "ui/files_panel.h"
 
 namespace mostyle::ui {
@@ -41,6 +42,18 @@ void wrapped(const ImVec4& color, const std::string& text) {
 }
 
 }  // namespace
+
+ExportFormat export_format(const std::string& path) {
+  return is_gltf_path(path) ? ExportFormat::kGltf : ExportFormat::kBvh;
+}
+
+std::string with_export_format(const std::string& path, ExportFormat format) {
+  if (path.empty() || export_format(path) == format) return path;
+  fs::path p(path);
+  if (p.has_extension()) p.replace_extension(format == ExportFormat::kGltf ? ".glb" : ".bvh");
+  else p += format == ExportFormat::kGltf ? ".glb" : ".bvh";
+  return p.string();
+}
 
 double export_rate_fps(ExportRate rate, double source_fps, double custom_fps) {
   switch (rate) {
@@ -158,9 +171,23 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
   const bool enter = ImGui::InputText("File", settings_.path, sizeof settings_.path, ImGuiInputTextFlags_EnterReturnsTrue);
   if (ImGui::IsItemHovered()) {
     std::error_code ec;
-    ImGui::SetTooltip("The BVH file to write; a name alone goes in %s.\nEnter exports.",
+    ImGui::SetTooltip("The file to write (.bvh, or .glb / .gltf for glTF); a name alone goes in %s.\nEnter exports.",
                       fs::current_path(ec).string().c_str());
   }
+  // The format: the file's extension, which these buttons change.
+  const ExportFormat format = export_format(settings_.path);
+  auto format_button = [&](ExportFormat f, const char* label, const char* tip) {
+    if (ImGui::RadioButton(label, format == f) && format != f) {
+      const std::string path = with_export_format(settings_.path, f);
+      std::snprintf(settings_.path, sizeof settings_.path, "%s", path.c_str());
+    }
+    tooltip(tip);
+  };
+  format_button(ExportFormat::kBvh, "BVH", "BVH on take A's skeleton, A's rotation orders and channels");
+  ImGui::SameLine();
+  format_button(ExportFormat::kGltf, "glTF (.glb)",
+                "glTF 2.0: A's skeleton as nodes, one animation (root translation, rotations as\n"
+                "quaternions), for game engines, three.js and Blender");
 
   // The frame rate.
   ImGui::Spacing();
@@ -261,8 +288,9 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
     tooltip("Count the in and out points in the result's frames; off: in seconds");
   }
 
-  // The channels.
+  // The channels (BVH; glTF has translations on the root and rotations everywhere).
   ImGui::Spacing();
+  ImGui::BeginDisabled(format == ExportFormat::kGltf);
   ImGui::TextColored(kDimColor, "Channels");
   const std::string as_source = "As " + (subject.name.empty() ? std::string("the reference take's file") : subject.name);
   const char* layout_names[2] = {"Rotations (positions on the root only)", as_source.c_str()};
@@ -281,6 +309,7 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
     ImGui::EndCombo();
   }
   tooltip("How the file's channels are laid out; the default is what suits the reference take");
+  ImGui::EndDisabled();
   ImGui::EndDisabled();
 
   // What will be written.
@@ -317,7 +346,8 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
     tooltip("Do not write; choose another file name");
   } else {
     if (ImGui::Button("Export") || enter) press_export();
-    tooltip("Write the result as a BVH file on the reference take's skeleton, in the background");
+    tooltip("Write the result on the reference take's skeleton (BVH or glTF, by the file's extension), in the\n"
+            "background");
     ImGui::SameLine();
     if (ImGui::Button("Close")) *open = false;
   }

@@ -9,6 +9,10 @@
 
 #include <imgui.h>
 
+#include <chrono>
+
+#include "engine/io/motion_file.h"
+
 #include "ui/layout.h"
 #include "ui/palette_view.h"
 
@@ -24,11 +28,7 @@ void copy_to(char* field, size_t size, const std::string& text) {
   field[size - 1] = '\0';
 }
 
-bool is_bvh(const fs::path& p) {
-  std::string ext = p.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-  return ext == ".bvh";
-}
+bool is_motion(const fs::path& p) { return is_motion_file(p.string()); }
 
 // A folder's own name with a slash ("motions/"), for the panel's text; "/" and "." as they are.
 std::string folder_name(const std::string& folder) {
@@ -196,10 +196,10 @@ void FilesPanel::draw(EditorState& state) {
   if (ImGui::Button(n <= 2 ? "Load pair" : "Load all")) s.load_files(typed);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Load every field as typed, as the new takes");
   ImGui::SameLine();
-  ImGui::TextColored(kDimColor, "or drop .bvh files here");
+  ImGui::TextColored(kDimColor, "or drop motion files here");
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip(n <= 2 ? "Two or more files: the new takes. One file: the new B."
-                             : "Two or more files: the new takes. One file: one more take.");
+    ImGui::SetTooltip(n <= 2 ? "Two or more files (BVH, FBX, glTF): the new takes. One file: the new B."
+                             : "Two or more files (BVH, FBX, glTF): the new takes. One file: one more take.");
   ImGui::SetNextItemWidth(-92.0f);
   const bool enter_export = ImGui::InputText("##export", export_path, sizeof export_dialog_.settings().path,
                                             ImGuiInputTextFlags_EnterReturnsTrue);
@@ -209,8 +209,9 @@ void FilesPanel::draw(EditorState& state) {
   ImGui::SameLine();
   if (ImGui::Button("Export...") || enter_export) command_open_export(state);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Choose the frame rate, the frames and the channels, then write the result\n"
-                      "as a BVH file on the %s's skeleton (Ctrl+E)", n <= 2 ? "A take" : "reference take");
+    ImGui::SetTooltip("Choose the frame rate, the frames and the channels, then write the result on the\n"
+                      "%s's skeleton as BVH or glTF (.glb), by the file's extension (Ctrl+E)",
+                      n <= 2 ? "A take" : "reference take");
 
   // Messages in a space of their own that is always there: a load error (with the folder it
   // tried), the export's progress or outcome. Hover shows a message whole.
@@ -224,7 +225,9 @@ void FilesPanel::draw(EditorState& state) {
   ImGui::EndChild();
 
   const bool browse = ImGui::CollapsingHeader("Browse", ImGuiTreeNodeFlags_DefaultOpen);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("The .bvh files of a folder, to load as a take or add to the takes");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("The motion files of a folder (BVH, FBX, glTF), to load as a take or add to the takes;\n"
+                      "open a file with animations to pick one");
   if (browse) {
     ImGui::TextColored(kDimColor, "in %s", folder_name(folder_).c_str());
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Folder: %s", folder_.c_str());
@@ -233,6 +236,7 @@ void FilesPanel::draw(EditorState& state) {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Read the folder again");
     if (listed_folder_ != folder_) {
       listed_folder_ = folder_;
+      takes_.clear();  // a pending read finishes in its future's destructor
       dirs_.clear();
       files_.clear();
       list_error_.clear();
@@ -241,7 +245,7 @@ void FilesPanel::draw(EditorState& state) {
         std::error_code e2;
         if (it->is_directory(e2)) {
           if (it->path().filename().string().rfind('.', 0) != 0) dirs_.push_back(it->path().string());
-        } else if (is_bvh(it->path())) {
+        } else if (is_motion(it->path())) {
           files_.push_back(it->path().string());
         }
       }
@@ -262,14 +266,47 @@ void FilesPanel::draw(EditorState& state) {
       if (ImGui::Selectable((fs::path(d).filename().string() + "/").c_str())) next_folder = d;
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("Open this folder");
     }
+    // One row: the buttons that put a take among the takes, and a label.
+    auto take_row = [&](const std::string& path, const std::string& label) {
+      ImGui::PushID(path.c_str());
+      take_buttons(path, takes);
+      ImGui::TextUnformatted(label.c_str());
+      ImGui::PopID();
+    };
     for (const std::string& name : files_) {
       const fs::path f(name);
-      ImGui::PushID(f.string().c_str());
-      take_buttons(f.string(), takes);
-      ImGui::TextUnformatted(f.filename().string().c_str());
+      if (!has_takes(motion_format(name))) {
+        take_row(f.string(), f.filename().string());
+        continue;
+      }
+      // FBX and glTF: the file's row opens to its animations, read on a thread the first time.
+      ImGui::PushID(name.c_str());
+      const bool open = ImGui::TreeNode("##takes", "%s", f.filename().string().c_str());
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Open to list the file's animations");
+      if (open) {
+        FileTakes& t = takes_[name];
+        if (!t.pending.valid() && t.takes.empty() && t.error.empty()) {
+          t.pending = std::async(std::launch::async, [name] { return read_motion_takes(name); });
+        }
+        if (t.pending.valid() && t.pending.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+          try {
+            t.takes = t.pending.get();
+          } catch (const std::exception& e) {
+            t.error = e.what();
+          }
+        }
+        if (t.pending.valid()) ImGui::TextColored(kDimColor, "reading...");
+        if (!t.error.empty()) sentence(kErrorColor, t.error, {folder_});
+        for (const TakeInfo& take : t.takes) {
+          char label[320];
+          std::snprintf(label, sizeof label, "%s (%.1f s)", take.name.c_str(), take.seconds);
+          take_row(join_take_path(name, take.name), label);
+        }
+        ImGui::TreePop();
+      }
       ImGui::PopID();
     }
-    if (dirs_.empty() && files_.empty()) ImGui::TextColored(kDimColor, "no .bvh files here");
+    if (dirs_.empty() && files_.empty()) ImGui::TextColored(kDimColor, "no motion files here");
     ImGui::EndChild();
     if (!next_folder.empty()) folder_ = next_folder;
   }

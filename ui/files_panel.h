@@ -1,13 +1,19 @@
 #pragma once
 // The takes as one list of path fields, whatever their number (A and B for two, numbered for a
 // palette), each with Load (Enter in a field loads too) and, in a palette, a remove button; a
-// small .bvh browser and the recent files, whose buttons replace a take or add one; dropped
-// files; and the export of the result: the export field and button open the export dialog
-// (ui/export_dialog.h), which this panel owns and draws. Files show by name, their folder on
-// hover; a load error names the folder tried. Messages sit in a space of their own below the
-// fields, so nothing moves under the mouse when one comes or goes.
+// small browser of motion files (BVH, FBX, glTF; a file with several animations lists them, read
+// on a thread when its row is opened, each loadable as FILE#ANIMATION) and the recent files,
+// whose buttons replace a take or add one; dropped files; and the export of the result: the
+// export field and button open the export dialog (ui/export_dialog.h), which this panel owns and
+// draws. Files show by name, their folder on hover; a load error names the folder tried.
+// Messages sit in a space of their own below the fields, so nothing moves under the mouse when
+// one comes or goes.
+#include <future>
+#include <map>
 #include <string>
 #include <vector>
+
+#include "engine/io/scene_animation.h"
 
 #include "ui/blend_session.h"
 #include "ui/export_dialog.h"
@@ -55,6 +61,14 @@ class FilesPanel : public Panel {
   std::string listed_folder_;
   std::vector<std::string> dirs_, files_;
   std::string list_error_;
+  // The animations of the FBX and glTF files whose rows were opened, by path: read on a thread
+  // (engine/io/motion_file.h read_motion_takes), polled each frame.
+  struct FileTakes {
+    std::future<std::vector<TakeInfo>> pending;
+    std::vector<TakeInfo> takes;
+    std::string error;
+  };
+  std::map<std::string, FileTakes> takes_;
 };
 
 }  // namespace mostyle::ui

@@ -9,6 +9,7 @@
 
 #include <imgui.h>
 
+#include "engine/io/motion_file.h"
 #include "ui/layout.h"
 
 namespace mostyle::ui {
@@ -20,11 +21,12 @@ constexpr float kPi = 3.14159265358979f;
 constexpr const char* kTitle = "Style palette";
 const char* const kPartNames[] = {"Legs", "Arms", "Spine and head"};
 
-// Take i's file name without its extension and without the start every take's name shares up to
+// Take i's label (ui: the animation's name, or the file's name without its extension) without the
+// start every take's label shares up to
 // a '_' or '-' ("cmu142_walk_happy", "cmu142_walk_marching": "happy", "marching"), so that
 // names fit the narrow columns; the whole name is in the tooltips.
 std::string name_of(const PreparedPalette& p, int i) {
-  auto stem = [&](int k) { return std::filesystem::path(p.takes[static_cast<size_t>(k)].clip->source).stem().string(); };
+  auto stem = [&](int k) { return take_label(p.takes[static_cast<size_t>(k)].clip->source); };
   const std::string own = stem(i);
   size_t common = own.size();
   for (int k = 0; k < p.size(); ++k) {

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "engine/io/motion_file.h"
 #include "engine/io/error.h"
 #include "ui/blend_session.h"
 #include "ui/joint_contacts.h"
@@ -108,7 +109,7 @@ void PaletteView::take_up(const PreparedPalette& p, const std::vector<std::strin
     Take t;
     const std::string& path = static_cast<size_t>(i) < paths.size() ? paths[static_cast<size_t>(i)] : std::string();
     t.path = path;
-    t.label = (i == 0 ? "reference  " : "") + std::filesystem::path(path).stem().string();
+    t.label = (i == 0 ? "reference  " : "") + take_label(path);
     t.color = palette_color(i);
     t.clip = p.takes[static_cast<size_t>(i)].clip;
     t.fps = p.fps;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 
+#include "engine/io/motion_file.h"
 #include "engine/io/bvh_io.h"
 #include "engine/kinematics/convert.h"
 #include "engine/io/error.h"
@@ -434,7 +435,7 @@ ExportResult export_blend_bvh(const Clip& clip, const std::vector<int>& joints, 
   // The layout is applied to the solved clip, not to A: the solve moves the joint that carries
   // the trajectory (Bandai's Hips, the trajectory child there), which A's values would not show.
   if (layout == ChannelLayout::kRotations) result.clip = with_rotation_channels(result.clip);
-  write_bvh_file(result.clip, path);
+  write_motion_file(result.clip, path);
   return result;
 }
 

@@ -60,8 +60,9 @@ ExportResult solve_export(const Clip& clip, const std::vector<int>& joints, cons
 ExportResult solve_export_at(const Clip& clip, const std::vector<int>& joints, const Eigen::MatrixXd& world,
                              const Eigen::VectorXd& at, double fps);
 
-// solve_export_at, then the clip written atomically to `path` (bvh_io.h write_bvh_file). What
-// the CLI's --out and the editor's export call. `layout`: kAsSource writes A's channel layout;
+// solve_export_at, then the clip written atomically to `path`: glTF 2.0 when it ends in .glb or
+// .gltf, else BVH (io/motion_file.h write_motion_file). What the CLI's --out and the editor's
+// export call. `layout`: kAsSource writes A's channel layout;
 // kRotations writes with_rotation_channels of the solved clip (channel_layout.h), which readers
 // that add position channels to the OFFSET (three.js) read as we do; the result's clip is then
 // the one written (same joint positions, fit unchanged). The caller picks the default with

@@ -74,7 +74,14 @@ NameParts split_name(const std::string& raw) {
       parts.side = Side::kRight;
       continue;
     }
-    if (w == "bip01" || w == "bip" || w == "mixamorig" || (w == "joint" && i == 0)) continue;
+    // Prefixes that name the rig, not the part: 3ds Max Biped's "Bip01" / "Bip001", Mixamo's
+    // "mixamorig" (also "mixamorig1", and without the colon: "mixamorigHips"), Blender Rigify's
+    // deform bones "DEF-thigh.L".
+    const bool rig_prefix = (w.rfind("bip", 0) == 0 && w.find_first_not_of("0123456789", 3) == std::string::npos) ||
+                            (w.rfind("mixamorig", 0) == 0 &&
+                             w.find_first_not_of("0123456789", 9) == std::string::npos) ||
+                            (w == "def" && i == 0);
+    if (rig_prefix || (w == "joint" && i == 0)) continue;
     joined += w;
   }
   parts.part = joined;
@@ -95,15 +102,19 @@ const std::vector<Role>& roles() {
       // more specific spellings come first so that CMU's LeftHand / LeftFoot (wrist / ankle,
       // no such joints) still map, and a spelling never matches the canonical parent itself.
       {0, -1, {"hips", "hip", "pelvis", "hipcenter", "spinebase", "root", "hipsroot"}},
-      {1, -1, {"spine", "abdomen", "spine0", "spinemid", "lowerback", "torso", "waist"}},
+      // Unreal's mannequins number their spine spine_01 .. spine_03 (UE4) or spine_05 (UE5), the
+      // clavicles on the last; Blender Rigify's deform spine is spine.001 .. spine.003.
+      {1, -1, {"spine", "abdomen", "spine0", "spinemid", "lowerback", "torso", "waist", "spine01", "spine001"}},
       {2, -1, {"chest", "spine2", "spine1", "upperchest", "thorax", "spine3", "upperback", "chest2",
-               "shouldercenter", "spineshoulder"}},
+               "shouldercenter", "spineshoulder", "spine05", "spine04", "spine03", "spine02", "spine003",
+               "spine002"}},
       {3, -1, {"head"}},
       {4, 8, {"upperarm", "arm", "shldr", "uparm", "humerus", "shoulderjoint", "shoulder"}},
       {5, 9, {"forearm", "lowerarm", "elbow", "radius", "lowarm"}},
       {6, 10, {"wrist", "hand"}},
       {7, 11, {"handmiddle1", "handindex1", "fingerbase", "handend", "fingers", "finger1",
-               "finger0", "middle1", "mid1", "index1", "handtip", "handsite", "hand"}},
+               "finger0", "middle1", "mid1", "index1", "middle01", "index01", "fmiddle01", "handtip",
+               "handsite", "hand"}},
       {12, 16, {"upleg", "upperleg", "thigh", "femur", "hip", "uleg", "hipjoint", "buttock"}},
       {13, 17, {"leg", "lowerleg", "shin", "knee", "calf", "tibia", "lleg", "lowleg"}},
       {14, 18, {"ankle", "foot"}},

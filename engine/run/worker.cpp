@@ -3,11 +3,22 @@
 #include <chrono>
 #include <functional>
 
-#include "engine/io/bvh_io.h"
+#include "engine/io/motion_file.h"
 #include "engine/io/error.h"
 
 namespace mostyle {
 namespace {
+
+// One take of any format (FILE#ANIMATION too); which animation of several was taken is told
+// with the warnings, which the editor shows.
+Clip read_take(const std::string& path, std::vector<std::string>* warnings, const BvhReadOptions& read) {
+  std::vector<std::string> notes;
+  MotionReadOptions options;
+  options.max_bytes = read.max_bytes;  // the editor's memory limit, every format alike
+  Clip clip = read_motion_file(path, warnings, options, &notes);
+  if (warnings != nullptr) warnings->insert(warnings->end(), notes.begin(), notes.end());
+  return clip;
+}
 
 // Reads a palette's files, each once: a path given twice shares its clip, as the pair's A with
 // itself does. Checks for cancellation between files, so that a new load does not wait for all.
@@ -19,7 +30,7 @@ std::vector<std::shared_ptr<const Clip>> read_palette_clips(const std::vector<st
     check_cancel(control);
     size_t same = 0;
     while (same < i && paths[same] != paths[i]) ++same;
-    clips.push_back(same < i ? clips[same] : std::make_shared<const Clip>(read_bvh_file(paths[i], warnings, read)));
+    clips.push_back(same < i ? clips[same] : std::make_shared<const Clip>(read_take(paths[i], warnings, read)));
   }
   return clips;
 }
@@ -200,8 +211,8 @@ void Worker::run_load(std::unique_lock<std::mutex>& lock) {
   lock.unlock();
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<std::string> warnings;
-  auto clip_a = std::make_shared<const Clip>(read_bvh_file(a, &warnings, read_options_));
-  auto clip_b = b == a ? clip_a : std::make_shared<const Clip>(read_bvh_file(b, &warnings, read_options_));
+  auto clip_a = std::make_shared<const Clip>(read_take(a, &warnings, read_options_));
+  auto clip_b = b == a ? clip_a : std::make_shared<const Clip>(read_take(b, &warnings, read_options_));
   const double load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   auto prepared = prepare_pair(clip_a, clip_b, options, &control_);
   std::const_pointer_cast<PreparedPair>(prepared)->times.load_ms = load_ms;

@@ -14,6 +14,7 @@
 #include "engine/io/bvh_io.h"
 #include "engine/kinematics/kinematics.h"
 #include "tests/app/cli_sandbox.h"
+#include "tests/engine/io/gltf_validator.h"
 #include "tests/test_data.h"
 
 namespace fs = std::filesystem;
@@ -207,4 +208,71 @@ TEST_CASE("cli: a failed write exits 1 and leaves no file", "[cli][bvh]") {
   CHECK(r.status == 1);
   CHECK(lines_in(r.err) == 1);
   CHECK(box.count_files() == 0);
+}
+
+TEST_CASE("cli: glTF and FBX in, glTF out; FILE#ANIMATION and --take", "[cli][gltf]") {
+  Sandbox box;
+  const std::string bvh = test::asset("motions/cmu142_walk_clumsy.bvh");
+  const std::string glb = box.path("clumsy.glb");
+  Run r = box.cli("convert \"" + bvh + "\" \"" + glb + "\"");
+  REQUIRE(r.status == 0);
+  r = box.cli("info --json \"" + glb + "\"");
+  CHECK(r.status == 0);
+  CHECK(r.out.find("\"takes\": [") != std::string::npos);
+  CHECK(r.out.find("\"name\": \"clumsy\"") != std::string::npos);
+  CHECK(r.out.find("\"frames\": 1080") != std::string::npos);
+  r = box.cli("info --take clumsy --fps 30 --json \"" + glb + "\"");
+  CHECK(r.status == 0);
+  CHECK(r.out.find("\"frames\": 270") != std::string::npos);
+  r = box.cli("fk \"" + glb + "#clumsy\" --fps 30 --out \"" + box.path("p.csv") + "\"");
+  CHECK(r.status == 0);
+  CHECK(lines_in(test::slurp(box.path("p.csv"))) == 1 + 270 * 31);
+  // A take the file does not have: one line naming file and animations, exit 1, nothing written.
+  const int files = box.count_files();
+  r = box.cli("convert \"" + glb + "#run\" \"" + box.path("run.bvh") + "\"");
+  CHECK(r.status == 1);
+  CHECK(lines_in(r.err) == 1);
+  CHECK(r.err.find("clumsy.glb: has no animation 'run'; it has 'clumsy'") != std::string::npos);
+  CHECK(box.count_files() == files);
+  // A corrupt file: the same.
+  const std::string bad = box.write("bad.glb", "glTF\x02\x00\x00\x00garbage");
+  r = box.cli("info \"" + bad + "\"");
+  CHECK(r.status == 1);
+  CHECK(lines_in(r.err) == 1);
+  CHECK(r.err.find("bad.glb: not a readable glTF file") != std::string::npos);
+  const std::string bad_fbx = box.write("bad.fbx", "Kaydara FBX Binary  \0\x1a\x00garbage");
+  r = box.cli("fk \"" + bad_fbx + "\" --out \"" + box.path("q.csv") + "\"");
+  CHECK(r.status == 1);
+  CHECK(lines_in(r.err) == 1);
+  CHECK(r.err.find("bad.fbx: not a readable FBX file") != std::string::npos);
+  CHECK_FALSE(fs::exists(box.path("q.csv")));
+}
+
+TEST_CASE("cli: a blend of two animations of one GLB exports a GLB that validates", "[cli][gltf][shared]") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  Sandbox box;
+  const std::string glb = test::shared_motion("formats/cmu142_walks_30fps.glb");
+  const std::string out = box.path("blend.glb");
+  Run r = box.cli("blend \"" + glb + "#cmu142_walk_happy\" \"" + glb + "#cmu142_walk_joy\" --alpha 0.5 --out \"" +
+                  out + "\"");
+  CHECK(r.status == 0);
+  REQUIRE(fs::exists(out));
+  MOSTYLE_CHECK_GLTF_VALID(out);
+  // Without a take: the first, and a note naming the others.
+  r = box.cli("info \"" + glb + "\"");
+  CHECK(r.status == 0);
+  CHECK(r.err.find("mostyle: note: ") == 0);
+  CHECK(r.err.find("'cmu142_walk_happy', 'cmu142_walk_joy': pick one with FILE#NAME or --take NAME") !=
+        std::string::npos);
+  CHECK(r.out.find("    cmu142_walk_joy  (") != std::string::npos);
+  // And it reads back: the reference's 31 joints.
+  r = box.cli("info --json \"" + out + "\"");
+  CHECK(r.status == 0);
+  CHECK(r.out.find("\"name\": \"blend\"") != std::string::npos);
+  // The same with mix, one take of the GLB and one FBX (FILE#ANIMATION names the FBX's stack).
+  const std::string fbx = test::shared_motion("formats/cmu142_walk_happy_30fps.fbx");
+  r = box.cli("mix \"" + glb + "#cmu142_walk_clumsy\" \"" + fbx + "#Scene\" --weights 0.5,0.5 --out \"" +
+              box.path("mix.glb") + "\"");
+  CHECK(r.status == 0);
+  MOSTYLE_CHECK_GLTF_VALID(box.path("mix.glb"));
 }

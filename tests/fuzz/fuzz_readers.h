@@ -18,9 +18,14 @@ bool read_mapping(std::string_view bytes);   // parse_mapping_overrides (engine/
 bool read_csv(std::string_view bytes);       // parse_csv_matrix (engine/io/csv_io.h)
 bool read_job_line(std::string_view bytes);  // parse_job_line (app/job_line.h)
 bool read_session(std::string_view bytes);   // parse_session (ui/session_file.h), as "fuzz.mostyle"
+// parse_gltf (engine/io/gltf_io.h) as "fuzz.glb", then every take sampled into a clip
+// (scene_animation.h, 2 MB limit), written as GLB and read back with the same skeleton.
+bool read_gltf(std::string_view bytes);
+// parse_fbx (engine/io/fbx_io.h) as "fuzz.fbx", then every take sampled as for glTF.
+bool read_fbx(std::string_view bytes);
 
 // The targets by the name of their folder in tests/fuzz/regressions/: "bvh", "mapping", "csv",
-// "job_line", "session".
+// "job_line", "session", "gltf", "fbx".
 const std::vector<std::string>& target_names();
 bool read_as(const std::string& target, std::string_view bytes);
 

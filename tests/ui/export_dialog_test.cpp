@@ -13,6 +13,8 @@
 
 #include "engine/io/bvh_io.h"
 #include "engine/io/job_control.h"
+#include "engine/io/motion_file.h"
+#include "engine/kinematics/kinematics.h"
 #include "tests/test_data.h"
 #include "tests/ui/imgui_frame.h"
 #include "tests/ui/loaded_session.h"
@@ -317,4 +319,40 @@ TEST_CASE("export dialog: a palette's mix exports whole or from an in to an out 
     drawn = imgui.end_frame();
   }
   CHECK(drawn > 0);
+}
+
+TEST_CASE("export dialog: the format is the file's extension; glTF exports read back as the same blend") {
+  CHECK(export_format("blend.bvh") == ExportFormat::kBvh);
+  CHECK(export_format("blend.GLB") == ExportFormat::kGltf);
+  CHECK(export_format("blend.gltf") == ExportFormat::kGltf);
+  CHECK(with_export_format("out/blend.bvh", ExportFormat::kGltf) == "out/blend.glb");
+  CHECK(with_export_format("out/blend.glb", ExportFormat::kBvh) == "out/blend.bvh");
+  CHECK(with_export_format("blend.gltf", ExportFormat::kGltf) == "blend.gltf");
+  CHECK(with_export_format("blend", ExportFormat::kGltf) == "blend.glb");
+  CHECK(with_export_format("", ExportFormat::kGltf).empty());
+
+  LoadedSession s;
+  REQUIRE(s.session.blend() != nullptr);
+  ExportDialog dialog(s.session);
+  dialog.poll();
+  TempFile bvh("mostyle_export_dialog_format.bvh"), glb("mostyle_export_dialog_format.glb");
+  dialog.settings().rate = ExportRate::k30;
+  const Clip as_bvh = export_and_read(dialog, s.session, bvh.path);
+  set_path(dialog, glb.path);
+  REQUIRE(dialog.press_export() == Pressed::kStarted);
+  dialog.job().wait();
+  dialog.poll();
+  INFO(s.session.export_message());
+  REQUIRE(s.session.export_ok());
+  const Clip as_glb = read_motion_file(glb.path);
+  REQUIRE(as_glb.frames() == as_bvh.frames());
+  const Eigen::MatrixXd a = joint_positions(as_bvh), b = joint_positions(as_glb);
+  double worst = 0;
+  for (size_t i = 0; i < as_bvh.skeleton.joints.size(); ++i) {
+    if (as_bvh.skeleton.joints[i].end_site) continue;
+    const int j = as_glb.skeleton.find(as_bvh.skeleton.joints[i].name);
+    REQUIRE(j >= 0);
+    worst = std::max(worst, (a.middleCols(3 * i, 3) - b.middleCols(3 * j, 3)).rowwise().norm().maxCoeff());
+  }
+  CHECK(worst < 1e-3);  // file units (cm-like CMU units): float32 keys
 }

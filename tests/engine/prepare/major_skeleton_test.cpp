@@ -101,6 +101,74 @@ TEST_CASE("name rules: 3ds Max Biped", "[major_skeleton]") {
   CHECK(mapped_names(test::biped_skeleton()) == expected);
 }
 
+// Unreal's mannequin (UE4) as FBX and glTF exports name it; `prefix` makes Mixamo-like and
+// Biped-like variants of the same tree. Twist and IK bones beside the chain must not be taken.
+Skeleton unreal_skeleton() {
+  test::SkeletonBuilder b;
+  b.joint("root", "", 0, 0, 0)
+      .joint("pelvis", "root", 0, 95, 0)
+      .joint("spine_01", "pelvis", 0, 10, 0)
+      .joint("spine_02", "spine_01", 0, 10, 0)
+      .joint("spine_03", "spine_02", 0, 10, 0)
+      .joint("neck_01", "spine_03", 0, 15, 0)
+      .joint("head", "neck_01", 0, 10, 0)
+      .joint("ik_foot_root", "root", 0, 0, 0)
+      .joint("ik_foot_l", "ik_foot_root", 9, 8, 0);
+  for (const char* side : {"l", "r"}) {
+    const std::string s = side;
+    const double sign = s == "l" ? 1 : -1;
+    b.joint("clavicle_" + s, "spine_03", sign * 3, 12, 0)
+        .joint("upperarm_" + s, "clavicle_" + s, sign * 15, 0, 0)
+        .joint("upperarm_twist_01_" + s, "upperarm_" + s, sign * 5, 0, 0)
+        .joint("lowerarm_" + s, "upperarm_" + s, sign * 28, 0, 0)
+        .joint("hand_" + s, "lowerarm_" + s, sign * 25, 0, 0)
+        .joint("middle_01_" + s, "hand_" + s, sign * 9, 0, 0)
+        .joint("thigh_" + s, "pelvis", sign * 9, -3, 0)
+        .joint("calf_" + s, "thigh_" + s, 0, -42, 0)
+        .joint("calf_twist_01_" + s, "calf_" + s, 0, -10, 0)
+        .joint("foot_" + s, "calf_" + s, 0, -42, 0)
+        .joint("ball_" + s, "foot_" + s, 0, -6, 13);
+  }
+  return b.skeleton();
+}
+
+TEST_CASE("name rules: Unreal's mannequin (pelvis, spine_01, thigh_l, calf_l, ball_l)", "[major_skeleton]") {
+  const std::vector<std::string> expected = {
+      "pelvis",     "spine_01",   "spine_03", "head",
+      "upperarm_l", "lowerarm_l", "hand_l",   "middle_01_l",
+      "upperarm_r", "lowerarm_r", "hand_r",   "middle_01_r",
+      "thigh_l",    "calf_l",     "foot_l",   "ball_l",
+      "thigh_r",    "calf_r",     "foot_r",   "ball_r"};
+  CHECK(mapped_names(unreal_skeleton()) == expected);
+}
+
+TEST_CASE("name rules: rig prefixes (mixamorigHips, mixamorig1:, Bip001, Blender's DEF-)", "[major_skeleton]") {
+  // Mixamo without the colon (three.js and some glTF exporters drop it): "mixamorigHips".
+  Skeleton mixamo = test::mixamo_skeleton();
+  for (Joint& j : mixamo.joints) {
+    const size_t colon = j.name.find(':');
+    if (colon != std::string::npos) j.name.erase(colon, 1);
+  }
+  const std::vector<std::string> names = mapped_names(mixamo);
+  CHECK(names[0] == "mixamorigHips");
+  CHECK(names[7] == "mixamorigLeftHandMiddle1");
+  CHECK(names[19] == "mixamorigRightToeBase");
+  for (const char* prefix : {"mixamorig1:", "Bip001 ", "DEF-"}) {
+    Skeleton s = unreal_skeleton();
+    for (Joint& j : s.joints)
+      if (!j.end_site) j.name = prefix + j.name;
+    const std::vector<std::string> names = mapped_names(s);
+    INFO(prefix);
+    CHECK(names[0] == prefix + std::string("pelvis"));
+    CHECK(names[13] == prefix + std::string("calf_l"));
+    CHECK(names[19] == prefix + std::string("ball_r"));
+  }
+  // Biped's own root "Bip001" names no part.
+  test::SkeletonBuilder b;
+  b.joint("Bip001", "", 0, 0, 0).joint("Bip001 Pelvis", "Bip001", 0, 95, 0);
+  CHECK(mapped_names(b.skeleton())[0] == "Bip001 Pelvis");
+}
+
 TEST_CASE("name rules: CMU in 3ds Max/Poser naming (no toes, no fingers)", "[major_skeleton]") {
   const std::vector<std::string> expected = {
       "hip",    "abdomen",  "chest", "head",

@@ -1,0 +1,53 @@
+#pragma once
+// Reading and writing glTF 2.0 skeletal animation (issue #17): `.glb`, and `.gltf` with its
+// `.bin` or data URIs. Reading parses with tinygltf (Debian's libtinygltf-dev, a faithful reader
+// of the format) and keeps only nodes and animations: meshes, skins, cameras, materials and
+// images are never decoded, so a file whose mesh data is faulty still gives its animation.
+// Writing is our own (nlohmann json): nodes only, one animation, laid out so the Khronos
+// validator reports nothing.
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+#include "engine/io/clip.h"
+#include "engine/io/memory_limit.h"
+#include "engine/io/scene_animation.h"
+
+namespace mostyle {
+
+// Parses glTF bytes: a GLB container, or glTF JSON text (bytes not starting with "glTF").
+// `source` names the file in messages; `base_dir` is where a .gltf's relative buffer URIs are
+// found ("": no file is read, a buffer URI that is not a data URI is an error). Accessors may
+// be float or normalized integers (KHR_mesh_quantization), interleaved (byteStride) or not; sparse accessors are refused. Nodes come back parents first;
+// a node without a name is called "node N" (its index). Throws InputError
+// "SOURCE: what is wrong" (one sentence, tinygltf's first error line quoted) on a file that is
+// not glTF, is cut, has a bad hierarchy (a cycle, a node with two parents), an animation
+// channel pointing outside the file, accessor data outside its buffer, or no animation at all.
+// Library exceptions never escape. O(size); memory: the file's buffers, bounded by max_bytes.
+AnimatedScene parse_gltf(std::string_view bytes, const std::string& source, const std::string& base_dir = "",
+                         size_t max_bytes = kDefaultMaxBytes);
+
+// Reads a .glb or .gltf file (refused before reading when larger than max_bytes).
+AnimatedScene read_gltf_file(const std::string& path, size_t max_bytes = kDefaultMaxBytes);
+
+// A clip as one glTF document: every joint of the skeleton a node (End Sites too) with its
+// rest translation (the joint's local translation at frame 0), children in skeleton order, one
+// scene holding the root; one animation named `animation_name` whose samplers are LINEAR, key
+// times i / fps (float32, min and max given): the root's translation, every other joint's
+// translation when its position channels change, and every joint's rotation as a unit
+// quaternion, the sign chosen so consecutive keys have a non-negative dot product (no flips in
+// slerp). `bin_uri`: "" writes the binary chunk of a GLB (the buffer has no uri); otherwise the
+// JSON's buffer names that file. Returns the JSON text and fills *bin with the buffer's bytes.
+// O(frames x joints).
+std::string format_gltf(const Clip& clip, const std::string& animation_name, const std::string& bin_uri,
+                        std::string* bin);
+
+// The same as one GLB container (12-byte header, JSON chunk padded with spaces, BIN chunk).
+std::string format_glb(const Clip& clip, const std::string& animation_name);
+
+// Writes `path` atomically: `.glb` as one file; `.gltf` with its buffer beside it in
+// `<stem>.bin` (written first, also atomically). The animation is named after the file's stem.
+// Throws InputError when the path ends in neither or a file cannot be written.
+void write_gltf_file(const Clip& clip, const std::string& path);
+
+}  // namespace mostyle

@@ -1,0 +1,104 @@
+#pragma once
+// Keyed node animation as FBX and glTF files hold it (issue #17): a tree of nodes with rest
+// transforms, and takes whose tracks key a node's translation, rotation or scale at times. The
+// readers (gltf_io.h, fbx_io.h) fill this value; scene_take_to_clip samples one take at a frame
+// rate into the engine's Clip, so every later stage sees what a BVH file gives.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "engine/io/clip.h"
+#include "engine/io/memory_limit.h"
+
+namespace mostyle {
+
+// glTF's sampler interpolations (FBX keys, as assimp gives them, are linear).
+enum class KeyInterpolation { kStep, kLinear, kCubicSpline };
+enum class TrackTarget { kTranslation, kRotation, kScale };
+
+// One animated property of one node.
+struct KeyTrack {
+  int node = -1;  // index into AnimatedScene::nodes
+  TrackTarget target = TrackTarget::kTranslation;
+  KeyInterpolation interpolation = KeyInterpolation::kLinear;
+  std::vector<double> times;  // K key times, seconds, strictly increasing
+  // Rows are keys, columns the value: 3 (x, y, z) for translation and scale, 4 (x, y, z, w) for
+  // a rotation quaternion. kCubicSpline: 3K rows, (in-tangent, value, out-tangent) per key as
+  // glTF stores them; tangents are per second.
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> values;
+};
+
+struct SceneNode {
+  std::string name;  // as in the file
+  int parent = -1;   // index into AnimatedScene::nodes, -1 for a root
+  // Rest transform: local = T * R * S (file units).
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+};
+
+struct SceneTake {
+  std::string name;  // as in the file ("animation 2" when it has none)
+  std::vector<KeyTrack> tracks;
+};
+
+struct AnimatedScene {
+  std::string source;            // file name for messages
+  std::vector<SceneNode> nodes;  // parents before children
+  std::vector<SceneTake> takes;  // in file order
+  double frame_rate = 0.0;       // the rate the file states (FBX time mode), 0 when none
+  // A node that stands for the whole scene (assimp's root node), never a skeleton's root
+  // unless a take keys it; -1 when the file has none (glTF: the scene's nodes are roots).
+  int scene_root = -1;
+};
+
+// One take as `info` lists it.
+struct TakeInfo {
+  std::string name;
+  double seconds = 0.0;  // last key time - first key time
+  int keys = 0;          // the most keys on one track
+};
+std::vector<TakeInfo> scene_take_infos(const AnimatedScene& scene);
+
+// The take named `name`: its index, or -1.
+int find_take(const AnimatedScene& scene, const std::string& name);
+
+// The value of a track at time t (seconds): STEP holds the key at or before t; LINEAR
+// interpolates (slerp on the shorter arc for rotations); CUBICSPLINE is glTF's Hermite spline,
+// tangents scaled by the key interval (glTF 2.0 Appendix C). Before the first key the first
+// value, after the last the last. A key within `snap` seconds of t is taken as it is: key times
+// stored as float32 or FBX ticks miss the sampling grid by a hair, and the next key may be far
+// (assimp adds keys between two frames where an Euler curve turns more than 180 degrees).
+// Rotations come back normalized. O(log K).
+// Returns x, y, z (and w for a rotation; 0 for translation and scale).
+Eigen::Vector4d sample_track(const KeyTrack& track, double t, double snap = 0.0);
+
+struct SceneClipOptions {
+  double fps = 0.0;  // sampling rate; 0: the file's (AnimatedScene::frame_rate), else the keys' spacing, else 30
+  size_t max_bytes = kDefaultMaxBytes;  // the sampled frames (frames x channels x 8) may take at most this
+};
+
+// Samples take `take` at options.fps from its first key to its last into a Clip.
+// The skeleton is the nodes the take keys and the nodes between them, rooted at their lowest
+// common ancestor; nodes above it only place it (their transforms, scale included, are folded
+// into the root's channels). Every joint gets rotation channels Z X Y (degrees, unwrapped frame
+// to frame); the root gets position channels in world units; a joint whose offset from its
+// parent changes over the take (beyond 1e-5 of the skeleton's size) keeps position channels too.
+// Offsets are each joint's position in its parent's frame at the first frame, world units, so
+// positions by FK equal the file's world positions of those nodes (under uniform scale).
+// Throws InputError naming the source and the take when the take keys no node, when its nodes
+// have no common ancestor in the file but the scene root (several skeletons), on a bad track
+// (times not increasing, non-finite values, wrong sizes) or when the frames would take more
+// than options.max_bytes (checked before allocating them). O(frames x nodes).
+Clip scene_take_to_clip(const AnimatedScene& scene, int take, const SceneClipOptions& options = {});
+
+// The rate a take is sampled at when the caller gives none: scene.frame_rate; else, when the
+// track with the most keys has them evenly spaced (within 1% of a step), keys minus one over its
+// span, unrounded, so samples land on keys (120.0048 for a BVH's 0.008333 s written as glTF);
+// else one over the median spacing of the take's keys (snapped by frame_rate_from_frame_time);
+// else 30. Rates outside [1, 1000] give 30.
+double default_take_rate(const AnimatedScene& scene, int take);
+
+}  // namespace mostyle

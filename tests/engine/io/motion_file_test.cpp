@@ -1,0 +1,41 @@
+#include "engine/io/motion_file.h"
+
+#include <catch2/catch.hpp>
+
+#include "engine/io/error.h"
+#include "tests/test_data.h"
+
+using namespace mostyle;
+using Catch::Matchers::Contains;
+
+TEST_CASE("motion_format and FILE#ANIMATION", "[motion_file]") {
+  CHECK(motion_format("a/walk.BVH") == MotionFormat::kBvh);
+  CHECK(motion_format("walk.Fbx") == MotionFormat::kFbx);
+  CHECK(motion_format("walk.glb") == MotionFormat::kGltf);
+  CHECK(motion_format("walk.gltf") == MotionFormat::kGltf);
+  CHECK(motion_format("walk") == MotionFormat::kBvh);
+  CHECK(is_motion_file("x/y.glb"));
+  CHECK_FALSE(is_motion_file("x/y.txt"));
+  CHECK(split_take_path("walks.glb#run").path == "walks.glb");
+  CHECK(split_take_path("walks.glb#run").take == "run");
+  CHECK(split_take_path("dir#1/walks.fbx#Take 001").path == "dir#1/walks.fbx");
+  CHECK(split_take_path("dir#1/walks.fbx#Take 001").take == "Take 001");
+  CHECK(split_take_path("walk#2.bvh").path == "walk#2.bvh");  // a BVH has no takes: '#' is in the name
+  CHECK(split_take_path("walk.bvh#x").take.empty());
+  CHECK(join_take_path("a.glb", "run") == "a.glb#run");
+  CHECK(join_take_path("a.bvh", "") == "a.bvh");
+  CHECK(take_label("data/walks.glb#run") == "run");
+  CHECK(take_label("data/walk.bvh") == "walk");
+}
+
+TEST_CASE("read_motion_file: BVH through the BVH reader; a take of a BVH is an error", "[motion_file]") {
+  const std::string file = test::asset("motions/cmu142_walk_clumsy.bvh");
+  CHECK(read_motion_file(file).frames() == 1080);
+  MotionReadOptions o;
+  o.take = "run";
+  CHECK_THROWS_WITH(read_motion_file(file, nullptr, o), Contains("a BVH file holds one take, so it has no animation 'run'"));
+  const std::vector<TakeInfo> takes = read_motion_takes(file);
+  REQUIRE(takes.size() == 1);
+  CHECK(takes[0].name == "cmu142_walk_clumsy");
+  CHECK(takes[0].keys == 1080);
+}

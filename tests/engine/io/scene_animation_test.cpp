@@ -1,0 +1,149 @@
+#include "engine/io/scene_animation.h"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "engine/io/error.h"
+#include "engine/kinematics/kinematics.h"
+
+using namespace mostyle;
+using Catch::Matchers::Contains;
+
+namespace {
+
+constexpr double kTight = 1e-12;
+
+KeyTrack track(int node, TrackTarget target, KeyInterpolation interpolation, std::vector<double> times,
+               std::vector<double> values) {
+  KeyTrack t;
+  t.node = node;
+  t.target = target;
+  t.interpolation = interpolation;
+  t.times = std::move(times);
+  const int width = target == TrackTarget::kRotation ? 4 : 3;
+  t.values = Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+      values.data(), static_cast<Eigen::Index>(values.size() / width), width);
+  return t;
+}
+
+SceneNode node(const std::string& name, int parent, Eigen::Vector3d t = Eigen::Vector3d::Zero()) {
+  SceneNode n;
+  n.name = name;
+  n.parent = parent;
+  n.translation = t;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("sample_track: STEP holds the key at or before t", "[scene_animation]") {
+  const KeyTrack t = track(0, TrackTarget::kTranslation, KeyInterpolation::kStep, {0, 1}, {0, 0, 0, 2, 4, 6});
+  CHECK(sample_track(t, -1)(0) == 0);
+  CHECK(sample_track(t, 0.99)(1) == 0);
+  CHECK(sample_track(t, 1)(2) == 6);
+  CHECK(sample_track(t, 5)(1) == 4);
+}
+
+TEST_CASE("sample_track: LINEAR interpolates, slerps rotations on the shorter arc", "[scene_animation]") {
+  const KeyTrack t = track(0, TrackTarget::kTranslation, KeyInterpolation::kLinear, {0, 1}, {0, 0, 0, 2, 4, 6});
+  const Eigen::VectorXd v = sample_track(t, 0.25);
+  CHECK(v(0) == Approx(0.5).epsilon(kTight));
+  CHECK(v(1) == Approx(1.0).epsilon(kTight));
+  CHECK(v(2) == Approx(1.5).epsilon(kTight));
+  const double s45 = std::sin(M_PI / 4), c45 = std::cos(M_PI / 4);
+  // Identity to 90 degrees about Z, the second key written with the opposite sign: halfway is
+  // 45 degrees about Z, not the long way round.
+  const KeyTrack r =
+      track(0, TrackTarget::kRotation, KeyInterpolation::kLinear, {0, 2}, {0, 0, 0, 1, 0, 0, -s45, -c45});
+  Eigen::VectorXd q = sample_track(r, 1.0);
+  if (q(3) < 0) q = -q;
+  CHECK(q(2) == Approx(std::sin(M_PI / 8)).margin(kTight));
+  CHECK(q(3) == Approx(std::cos(M_PI / 8)).margin(kTight));
+  CHECK(q.norm() == Approx(1.0).epsilon(kTight));
+}
+
+TEST_CASE("sample_track: CUBICSPLINE is glTF's Hermite spline with tangents times the interval", "[scene_animation]") {
+  // x: value 0 with out-tangent 1 at t = 0, value 1 with in-tangent 0 at t = 2. At s = 0.5
+  // (t = 1), dt = 2: 2 * (1/8 - 1/2 + 1/2) * 1 + (-1/4 + 3/4) * 1 = 0.25 + 0.5 = 0.75.
+  // Rows per key: in-tangent, value, out-tangent.
+  const KeyTrack t = track(0, TrackTarget::kTranslation, KeyInterpolation::kCubicSpline, {0, 2},
+                           {9, 9, 9, 0, 0, 0, 1, 0, 0,  //
+                            0, 0, 0, 1, 0, 0, 9, 9, 9});
+  CHECK(sample_track(t, 1.0)(0) == Approx(0.75).epsilon(kTight));
+  CHECK(sample_track(t, 0.0)(0) == 0.0);  // keys are values, tangents never leak in
+  CHECK(sample_track(t, 2.0)(0) == 1.0);
+  // A quarter: s = 0.25: 2 * (1/64 - 2/16 + 1/4) + (-2/64 + 3/16) = 0.28125 + 0.15625 = 0.4375.
+  CHECK(sample_track(t, 0.5)(0) == Approx(0.4375).epsilon(kTight));
+}
+
+TEST_CASE("scene_take_to_clip: the keyed nodes as a skeleton, the nodes above folded in", "[scene_animation]") {
+  AnimatedScene scene;
+  scene.source = "rig.glb";
+  SceneNode armature = node("Armature", -1);
+  armature.scale = Eigen::Vector3d::Constant(100);
+  armature.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()));
+  scene.nodes = {armature, node("Hips", 0, {1, 2, 3}), node("Spine", 1, {0, 1, 0}), node("Mesh", 0)};
+  SceneTake take;
+  take.name = "walk";
+  take.tracks.push_back(track(1, TrackTarget::kTranslation, KeyInterpolation::kLinear, {0, 1}, {1, 2, 3, 1, 2, 4}));
+  const double s = std::sin(M_PI / 4), c = std::cos(M_PI / 4);
+  take.tracks.push_back(track(2, TrackTarget::kRotation, KeyInterpolation::kLinear, {0, 1}, {0, 0, 0, 1, 0, 0, s, c}));
+  scene.takes.push_back(take);
+  SceneClipOptions o;
+  o.fps = 10;
+  const Clip clip = scene_take_to_clip(scene, 0, o);
+  REQUIRE(clip.skeleton.joints.size() == 2);
+  CHECK(clip.skeleton.joints[0].name == "Hips");
+  CHECK(clip.skeleton.joints[1].name == "Spine");
+  CHECK(clip.frames() == 11);
+  CHECK(clip.frame_time == Approx(0.1));
+  // Hips in the world: 100 * Rx(90) * (1, 2, 3 + t); Spine 100 above it along the Armature's Y.
+  const Eigen::MatrixXd p = joint_positions(clip);
+  const Eigen::Matrix3d rx = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  for (int f : {0, 5, 10}) {
+    const Eigen::Vector3d hips = 100 * rx * Eigen::Vector3d(1, 2, 3 + f / 10.0);
+    CHECK((p.block<1, 3>(f, 0).transpose() - hips).norm() < 1e-9);
+    CHECK((p.block<1, 3>(f, 3).transpose() - (hips + 100 * rx * Eigen::Vector3d(0, 1, 0))).norm() < 1e-9);
+  }
+  CHECK(clip.skeleton.joints[1].channels.size() == 3);  // a rigid bone: no position channels
+}
+
+TEST_CASE("scene_take_to_clip: bad takes are one sentence naming file and animation", "[scene_animation]") {
+  AnimatedScene scene;
+  scene.source = "two.glb";
+  scene.nodes = {node("A", -1), node("B", -1)};
+  SceneTake take;
+  take.name = "both";
+  take.tracks.push_back(track(0, TrackTarget::kTranslation, KeyInterpolation::kLinear, {0}, {0, 0, 0}));
+  take.tracks.push_back(track(1, TrackTarget::kTranslation, KeyInterpolation::kLinear, {0}, {0, 0, 0}));
+  scene.takes.push_back(take);
+  CHECK_THROWS_WITH(scene_take_to_clip(scene, 0), Contains("two.glb: animation 'both' moves several skeletons"));
+  scene.takes[0].tracks.pop_back();
+  scene.takes[0].tracks[0].times = {0, 1};
+  scene.takes[0].tracks[0].values.resize(2, 3);
+  scene.takes[0].tracks[0].values.setZero();
+  SceneClipOptions o;
+  o.fps = 1000;
+  o.max_bytes = 1000;
+  CHECK_THROWS_WITH(scene_take_to_clip(scene, 0, o), Contains("more than the limit of 1000 bytes"));
+  scene.takes[0].tracks[0].times = {1, 0};
+  CHECK_THROWS_WITH(scene_take_to_clip(scene, 0), Contains("two.glb: animation 'both': the translation keys of node 'A' have times that do not increase"));
+  scene.takes[0].tracks.clear();
+  CHECK_THROWS_WITH(scene_take_to_clip(scene, 0), Contains("keys no node"));
+}
+
+TEST_CASE("default_take_rate: the file's, else the keys' spacing, else 30", "[scene_animation]") {
+  AnimatedScene scene;
+  scene.nodes = {node("A", -1)};
+  SceneTake take;
+  take.tracks.push_back(track(0, TrackTarget::kTranslation, KeyInterpolation::kLinear, {0, 0.04, 0.08},
+                              {0, 0, 0, 1, 1, 1, 2, 2, 2}));
+  scene.takes.push_back(take);
+  CHECK(default_take_rate(scene, 0) == Approx(25.0).epsilon(1e-12));
+  scene.frame_rate = 24;
+  CHECK(default_take_rate(scene, 0) == 24.0);
+  scene.frame_rate = 0;
+  scene.takes[0].tracks[0].times = {0};
+  scene.takes[0].tracks[0].values.conservativeResize(1, 3);
+  CHECK(default_take_rate(scene, 0) == 30.0);
+}

@@ -1,0 +1,12 @@
+// libFuzzer target: the bytes as a fbx file (fuzz_readers.h read_fbx). Built and run by
+// tests/fuzz/run.sh; the checks are in fuzz_readers.cpp.
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+#include "tests/fuzz/fuzz_readers.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  mostyle::fuzz::read_fbx(std::string_view(reinterpret_cast<const char*>(data), size));
+  return 0;
+}
