@@ -210,7 +210,7 @@ TEST_CASE("cli: a failed write exits 1 and leaves no file", "[cli][bvh]") {
   CHECK(box.count_files() == 0);
 }
 
-TEST_CASE("cli: glTF and FBX in, glTF out; FILE#ANIMATION and --take", "[cli][gltf]") {
+TEST_CASE("cli: glTF and FBX in, glTF out, FILE#ANIMATION and --take", "[cli][gltf]") {
   Sandbox box;
   const std::string bvh = test::asset("motions/cmu142_walk_clumsy.bvh");
   const std::string glb = box.path("clumsy.glb");

@@ -321,7 +321,7 @@ TEST_CASE("export dialog: a palette's mix exports whole or from an in to an out 
   CHECK(drawn > 0);
 }
 
-TEST_CASE("export dialog: the format is the file's extension; glTF exports read back as the same blend") {
+TEST_CASE("export dialog: the format is the file's extension, glTF exports read back as the same blend") {
   CHECK(export_format("blend.bvh") == ExportFormat::kBvh);
   CHECK(export_format("blend.GLB") == ExportFormat::kGltf);
   CHECK(export_format("blend.gltf") == ExportFormat::kGltf);

@@ -28,7 +28,7 @@ TEST_CASE("motion_format and FILE#ANIMATION", "[motion_file]") {
   CHECK(take_label("data/walk.bvh") == "walk");
 }
 
-TEST_CASE("read_motion_file: BVH through the BVH reader; a take of a BVH is an error", "[motion_file]") {
+TEST_CASE("read_motion_file: BVH through the BVH reader, a take of a BVH is an error", "[motion_file]") {
   const std::string file = test::asset("motions/cmu142_walk_clumsy.bvh");
   CHECK(read_motion_file(file).frames() == 1080);
   MotionReadOptions o;
