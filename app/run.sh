@@ -4,6 +4,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 "$root/app/install-deps.sh"
+export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=1  # ccache keys relative to the clone
 cmake -S "$root" -B "$root/build" >/dev/null
 cmake --build "$root/build" -j"$(nproc)" --target mostyle mostyle-cli
 exec "$root/build/app/mostyle" "$@"

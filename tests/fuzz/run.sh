@@ -19,6 +19,7 @@ declare -A max_len=([bvh]=16384 [mapping]=4096 [csv]=4096 [job_line]=4096 [sessi
                     [fbx]=786432)
 
 "$root/app/install-deps.sh"
+export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=1  # ccache keys relative to the clone
 build="$root/build-fuzz"
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMOSTYLE_FUZZ=ON \
   -DMOSTYLE_BUILD_GUI=OFF -DMOSTYLE_BUILD_TESTS=OFF -DMOSTYLE_BUILD_BENCH=OFF >/dev/null
