@@ -34,7 +34,7 @@ namespace {
 using Run = test::CliRun;
 using test::slurp;
 
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
+std::string quoted(const std::string& s) { return test::shell_quoted(s); }
 
 // A scratch folder of this test file's own.
 class Sandbox : public test::CliSandbox {

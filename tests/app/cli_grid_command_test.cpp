@@ -20,7 +20,7 @@ namespace {
 using Run = test::CliRun;
 using test::slurp;
 
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
+std::string quoted(const std::string& s) { return test::shell_quoted(s); }
 
 class Sandbox : public test::CliSandbox {
  public:

@@ -23,6 +23,9 @@ inline std::string slurp(const std::filesystem::path& path) {
   return s.str();
 }
 
+// A path or word in single quotes, for the shell line CliSandbox::cli runs (no ' inside).
+inline std::string shell_quoted(const std::string& s) { return "'" + s + "'"; }
+
 class CliSandbox {
  public:
   // A fresh folder named after `name` and this process, removed with the sandbox.

@@ -23,9 +23,8 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-// Issue #17's bounds, as fractions of the skeleton's height.
-constexpr double kMeanBound = 1e-3;
-constexpr double kMaxBound = 5e-3;
+using test::kMaxBound;
+using test::kMeanBound;
 // What Blender's thinned FBX curves keep of the BVH (see the test on its files): measured 1.3e-3
 // and 1.5e-2 on cmu142_walk_joy.fbx.
 constexpr double kBlenderFbxMeanBound = 2e-3;

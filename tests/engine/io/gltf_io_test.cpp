@@ -23,9 +23,8 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-// Issue #17's bounds, as fractions of the skeleton's height.
-constexpr double kMeanBound = 1e-3;
-constexpr double kMaxBound = 5e-3;
+using test::kMaxBound;
+using test::kMeanBound;
 // float32 storage: a round trip keeps positions to about 1e-7 of the height.
 constexpr double kRoundTrip = 1e-5;
 

@@ -14,6 +14,10 @@
 
 namespace mostyle::test {
 
+// Issue #17's bounds on a read file's motion against its source, as fractions of the height.
+constexpr double kMeanBound = 1e-3;
+constexpr double kMaxBound = 5e-3;
+
 struct MotionDifference {
   double mean = 0.0;  // mean distance after the fit / height
   double max = 0.0;   // largest distance after the fit / height
