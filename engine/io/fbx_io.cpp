@@ -10,6 +10,7 @@
 
 #include "engine/io/atomic_file.h"
 #include "engine/io/error.h"
+#include "engine/io/fbx_structure.h"
 
 namespace mostyle {
 namespace {
@@ -128,6 +129,7 @@ AnimatedScene parse_fbx(std::string_view bytes, const std::string& source) {
     const bool binary = bytes.size() >= 18 && bytes.substr(0, 18) == "Kaydara FBX Binary";
     const bool ascii = !binary && bytes.substr(0, 4096).find("FBXHeaderExtension") != std::string_view::npos;
     if (!binary && !ascii) throw InputError(source + ": not a readable FBX file: no FBX header");
+    check_fbx_structure(bytes, source);  // what would make assimp recurse without end
     const aiScene* ai = importer.ReadFileFromMemory(bytes.data(), bytes.size(), 0, "fbx");
     if (ai == nullptr) throw InputError(source + ": not a readable FBX file: " + first_line(importer.GetErrorString()));
     return scene_from_assimp(*ai, source);
