@@ -74,7 +74,7 @@ struct MixFlags {
 };
 
 struct Palette {
-  std::shared_ptr<const PreparedPalette> prepared;
+  std::shared_ptr<const PreparedTakes> prepared;
   std::shared_ptr<const PaletteDecomposition> decomposition;
   StageTimes times;
 };
@@ -86,15 +86,11 @@ Palette prepare(const std::vector<std::string>& files, const MixFlags& flags) {
   std::vector<std::shared_ptr<const Clip>> clips;
   for (const std::string& f : files) clips.push_back(std::make_shared<const Clip>(load_clip(f)));
   p.times.load_ms = ms_since(t0);
-  p.prepared = prepare_palette(clips, o);
-  for (const auto& pair : p.prepared->pairs) {
-    p.times.preprocess_ms += pair->times.preprocess_ms;
-    p.times.dtw_ms += pair->times.dtw_ms;
-    // Named by their files, frames as their files count them.
-    auto named = [](const Clip& clip) { return AlignedTake{clip.source, clip.fps()}; };
-    for (const std::string& w : alignment_warnings(pair->alignment, pair->fps, named(*pair->clip_a), named(*pair->clip_b)))
-      std::cerr << "mostyle: warning: " << w << "\n";
-  }
+  p.prepared = prepare_takes(clips, o);
+  p.times.preprocess_ms = p.prepared->times.preprocess_ms;
+  p.times.dtw_ms = p.prepared->times.dtw_ms;
+  for (const PreparedTake& t : p.prepared->takes)
+    for (const std::string& w : t.alignment.warnings) std::cerr << "mostyle: warning: " << w << "\n";
   p.decomposition = decompose_palette(*p.prepared, flags.decompose_params());
   p.times.decompose_ms = p.decomposition->elapsed_ms;
   return p;
@@ -103,7 +99,7 @@ Palette prepare(const std::vector<std::string>& files, const MixFlags& flags) {
 // Mixes, writes the outputs and the report. `r` already holds the command's own fields.
 int run_mix(const Palette& p, const std::vector<std::string>& files, const MixFlags& flags, const MixParams& mp,
             Json r) {
-  const PreparedPalette& palette = *p.prepared;
+  const PreparedTakes& palette = *p.prepared;
   const PaletteDecomposition& d = *p.decomposition;
   StageTimes times = p.times;
   MixScratch scratch;
@@ -143,7 +139,7 @@ int run_mix(const Palette& p, const std::vector<std::string>& files, const MixFl
     t["weight"] = mp.weights[static_cast<size_t>(i)];
     t["reconstruction_rmse"] = d.rmse[static_cast<size_t>(i)];
     t["foot_sliding"] = palette.takes[static_cast<size_t>(i)].foot_sliding;
-    if (i > 0) t["alignment"] = alignment_json(*palette.pairs[static_cast<size_t>(i - 1)]);
+    if (i > 0) t["alignment"] = alignment_json(palette, i);
     t["source_frames"] = vector_json(result.sources.col(i));
     takes.push_back(t);
   }

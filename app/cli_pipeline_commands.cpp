@@ -59,7 +59,7 @@ struct PairOptions {
     cmd->add_option("--mapping-b", mapping_b, "Major-joint mapping file for B");
   }
 
-  std::shared_ptr<const PreparedPair> prepare(double* load_ms) const {
+  std::shared_ptr<const PreparedTakes> prepare(double* load_ms) const {
     PrepareOptions o = align.options();
     const auto t0 = Clock::now();
     auto clip_a = std::make_shared<const Clip>(load_clip(a));
@@ -67,8 +67,8 @@ struct PairOptions {
     *load_ms = ms_since(t0);
     o.mapping_a = load_mapping(mapping_a);
     o.mapping_b = load_mapping(mapping_b);
-    auto p = prepare_pair(clip_a, clip_b, o);
-    for (const std::string& w : p->alignment.warnings) std::cerr << "mostyle: warning: " << w << "\n";
+    auto p = prepare_takes({clip_a, clip_b}, o);
+    for (const std::string& w : p->takes[1].alignment.warnings) std::cerr << "mostyle: warning: " << w << "\n";
     return p;
   }
 };
@@ -124,13 +124,13 @@ void add_align_command(CLI::App& app, std::function<int()>* run) {
     *run = [=] {
       double load_ms = 0;
       const auto p = pair->prepare(&load_ms);
-      const Alignment& al = p->alignment;
+      const Alignment& al = p->takes[1].alignment;
       if (*json) {
         Json j;
         j["a"] = pair->a;
         j["b"] = pair->b;
         j["fps"] = p->fps;
-        j["alignment"] = alignment_json(*p);
+        j["alignment"] = alignment_json(*p, 1);
         Json path = Json::array();
         for (const auto& [i, k] : al.path) path.push_back({i, k});
         j["path"] = path;
@@ -147,10 +147,10 @@ void add_align_command(CLI::App& app, std::function<int()>* run) {
         std::cout << j.dump() << "\n";
       } else {
         std::string joints;
-        for (int c : al.feature.columns) joints += (joints.empty() ? "" : ", ") + p->names_a[c];
+        for (int c : al.feature.columns) joints += (joints.empty() ? "" : ", ") + p->reference().names[c];
         std::cout << "aligned on: " << align_on_name(al.feature.on) << " (" << joints << "), "
                   << dtw_method_name(al.options.method) << " DTW\n"
-                  << "frames: " << p->canonical_a.local.rows() << " / " << p->canonical_b.local.rows() << " at "
+                  << "frames: " << al.frames_a << " / " << al.frames_b << " at "
                   << number(p->fps) << " fps\n"
                   << "matched: A " << al.a_first << "-" << al.a_last << ", B " << al.b_first << "-" << al.b_last
                   << "\n"
@@ -192,21 +192,22 @@ void add_decompose_command(CLI::App& app, std::function<int()>* run) {
       o.fps = args->fps;
       o.mapping_a = o.mapping_b = load_mapping(args->mapping);
       // A take paired with itself: the same preprocessing as a blend, normalized on its own.
-      const auto p = prepare_pair(clip, clip, o);
+      const auto p = prepare_takes({clip, clip}, o);
+      const PreparedTake& take = p->reference();
       DecompositionOptions d;
       d.components = args->components;
       d.sparsity = args->sparsity;
       d.max_iterations = args->iterations;
       if (!args->no_local) d.locality_parents = p->parents;
-      const Decomposition r = decompose(p->x_a, d);
+      const Decomposition r = decompose(take.x, d);
       const std::vector<ComponentJoints> parts = describe_components(r.components, p->majors);
-      const double rmse = r.rmse * p->normalization.scale;
+      const double rmse = r.rmse * p->scale;
       if (args->json) {
         Json j;
         j["file"] = args->file;
-        j["frames"] = p->x_a.rows();
+        j["frames"] = take.x.rows();
         j["fps"] = p->fps;
-        j["joints"] = p->names_a;
+        j["joints"] = take.names;
         j["components"] = args->components;
         j["sparsity"] = args->sparsity;
         j["reconstruction_rmse"] = rmse;
@@ -216,11 +217,11 @@ void add_decompose_command(CLI::App& app, std::function<int()>* run) {
         j["converged"] = r.converged;
         j["time_ms"] = r.elapsed_ms;
         j["local"] = !args->no_local;
-        j["component_joints"] = component_joints_json(parts, p->names_a);
+        j["component_joints"] = component_joints_json(parts, take.names);
         j["component_regions"] = component_regions_json(parts);
         std::cout << j.dump(2) << "\n";
       } else {
-        std::cout << args->file << ": " << p->x_a.rows() << " frames x " << p->names_a.size()
+        std::cout << args->file << ": " << take.x.rows() << " frames x " << take.names.size()
                   << " joints at " << number(p->fps) << " fps\n"
                   << "reconstruction RMSE " << number(rmse) << " (file units), non-zero fraction "
                   << number(r.nonzero_fraction) << ", " << r.iterations << " iterations"
@@ -340,16 +341,19 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
       std::vector<int> columns(p->majors.size());
       for (size_t i = 0; i < columns.size(); ++i) columns[i] = static_cast<int>(i);
       ExportFit fit;
-      const ChannelLayout layout = args->channels.layout(*p->clip_a);
+      const Clip& clip_a = *p->reference().clip;
+      const std::vector<std::string>& names = p->reference().names;
+      const Alignment& al = p->takes[1].alignment;
+      const ChannelLayout layout = args->channels.layout(clip_a);
       if (!args->out.empty()) {
         const auto t_export = Clock::now();
-        fit = export_blend_bvh(*p->clip_a, export_joints(*p), result.world, source_frames_in_clip(*p, result),
+        fit = export_blend_bvh(clip_a, export_joints(*p), result.world, source_frames_in_clip(*p, result),
                                p->fps, args->out, layout)
                   .fit;
         times.export_ms = ms_since(t_export);
       }
       if (!args->positions_out.empty())
-        write_output(args->positions_out, positions_csv(result.world, columns, p->names_a));
+        write_output(args->positions_out, positions_csv(result.world, columns, names));
 
       Json r;
       r["command"] = "blend";
@@ -365,17 +369,17 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
         r["basic_motions"] = args->basic;
         r["swap"] = args->swap;
       }
-      r["joints"] = p->names_a;
+      r["joints"] = names;
       r["timing"] = args->timing;
       r["residual"] = bp.residual;
-      r["dtw"] = {{"cost", p->alignment.cost}, {"path_length", p->alignment.path.size()}};
-      Json alignment = alignment_json(*p);
+      r["dtw"] = {{"cost", al.cost}, {"path_length", al.path.size()}};
+      Json alignment = alignment_json(*p, 1);
       // Per output frame: where in A and B it is, how well they match there, the warp's slope.
       Eigen::VectorXd ratio(result.sample.size()), slope(result.sample.size());
       for (Eigen::Index k = 0; k < result.sample.size(); ++k) {
         const Eigen::Index u = std::lround(result.sample[k]);
-        ratio[k] = p->alignment.cost_ratio[u];
-        slope[k] = p->alignment.slope[u];
+        ratio[k] = al.cost_ratio[u];
+        slope[k] = al.slope[u];
       }
       alignment["per_frame"] = {{"source_a", vector_json(result.source_a)},
                                 {"source_b", vector_json(result.source_b)},
@@ -388,7 +392,7 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
       r["component_nonzero_fraction"] = {{"a", d->nonzero_a}, {"b", d->nonzero_b}};
       r["iterations"] = d->iterations;
       r["local"] = dp.local && dp.mode == BlendMode::kShared;
-      r["component_joints"] = component_joints_json(d->component_joints, p->names_a);
+      r["component_joints"] = component_joints_json(d->component_joints, names);
       r["component_regions"] = component_regions_json(d->component_joints);
       r["limb_length_max_error"] = result.limb_length_max_error;
       if (!args->out.empty()) {
@@ -396,11 +400,11 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
         r["channels"] = channel_layout_name(layout);
       }
       r["foot_lock"] = bp.foot_lock;
-      r["foot_sliding"] = {{"a", p->foot_sliding_a},
-                           {"b", p->foot_sliding_b},
+      r["foot_sliding"] = {{"a", p->takes[0].foot_sliding},
+                           {"b", p->takes[1].foot_sliding},
                            {"raw_blend", result.foot_sliding_raw},
                            {"cleaned_blend", result.foot_sliding_cleaned}};
-      r["skeleton_height"] = guess_units(*p->clip_a).height;
+      r["skeleton_height"] = guess_units(clip_a).height;
       r["timings_ms"] = {{"load", times.load_ms},         {"preprocess", times.preprocess_ms},
                          {"dtw", times.dtw_ms},           {"decompose", times.decompose_ms},
                          {"synthesize", times.synthesize_ms}, {"postprocess", times.postprocess_ms},

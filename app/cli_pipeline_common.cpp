@@ -145,15 +145,15 @@ Json range_json(int first, int last, double fps) {
   return {{"first", first}, {"last", last}, {"first_s", first / fps}, {"last_s", last / fps}};
 }
 
-// The alignment's summary: what it aligned on, the matched ranges, its quality.
-Json alignment_json(const PreparedPair& p) {
-  const Alignment& al = p.alignment;
+// Take `take`'s alignment onto the reference: what it aligned on, the matched ranges, its quality.
+Json alignment_json(const PreparedTakes& p, int take) {
+  const Alignment& al = p.takes[static_cast<size_t>(take)].alignment;
   Json j;
   j["method"] = dtw_method_name(al.options.method);
   j["feature"] = align_on_name(al.feature.on);
   j["locomotion"] = al.feature.locomotion;
   Json joints = Json::array();
-  for (int c : al.feature.columns) joints.push_back(p.names_a[c]);
+  for (int c : al.feature.columns) joints.push_back(p.reference().names[c]);
   j["joints"] = joints;
   j["weights"] = al.feature.weights;
   if (al.options.method == DtwMethod::kSlope) {
@@ -163,8 +163,8 @@ Json alignment_json(const PreparedPair& p) {
   }
   j["cost"] = al.cost;
   j["typical_cost"] = al.typical_cost;
-  j["frames_a"] = p.canonical_a.local.rows();
-  j["frames_b"] = p.canonical_b.local.rows();
+  j["frames_a"] = al.frames_a;
+  j["frames_b"] = al.frames_b;
   j["matched_a"] = range_json(al.a_first, al.a_last, p.fps);
   j["matched_b"] = range_json(al.b_first, al.b_last, p.fps);
   j["samples"] = al.warp.samples();

@@ -54,8 +54,9 @@ std::vector<std::pair<BodyPart, std::vector<double>>> parse_part_entries(const s
                                                                          const std::string& flag, size_t count);
 
 Json range_json(int first, int last, double fps);
-// The pair's alignment: what it aligned on, the matched ranges, its quality.
-Json alignment_json(const PreparedPair& p);
+// Take `take`'s alignment onto the reference (take 0): what it aligned on, the matched ranges,
+// its quality.
+Json alignment_json(const PreparedTakes& p, int take);
 Json component_joints_json(const std::vector<ComponentJoints>& parts, const std::vector<std::string>& names);
 Json component_regions_json(const std::vector<ComponentJoints>& parts);
 Json vector_json(const Eigen::VectorXd& v);

@@ -200,7 +200,7 @@ void BlendSession::poll(EditorState& state) {
 
 // A new pair: the three takes on A's timeline, the placement, the DTW image.
 void BlendSession::take_up_prepared(EditorState& state) {
-  const PreparedPair* p = snapshot_->prepared.get();
+  const PreparedTakes* p = snapshot_->prepared.get();
   state.takes.clear();
   error_curve_.clear();  // of the previous pair
   has_blend_ = false;
@@ -214,26 +214,26 @@ void BlendSession::take_up_prepared(EditorState& state) {
     Take t;
     t.label = label;
     t.color = color;
-    t.clip = p->clip_a;
+    t.clip = p->takes[0].clip;
     t.fps = p->fps;
     t.parents = p->parents;
     t.contacts = joint_contacts(contacts, p->feet, joints);
     return t;
   };
-  Take a = make("A  " + stem(snapshot_->path_a), kColorA, p->contacts_a);
+  Take a = make("A  " + stem(snapshot_->path_a), kColorA, p->takes[0].own_contacts);
   a.path = snapshot_->path_a;
   a.warnings = snapshot_->warnings;
   // What could not be matched well is said where the takes are listed, not only in the DTW view.
-  a.warnings.insert(a.warnings.end(), p->alignment.warnings.begin(), p->alignment.warnings.end());
+  a.warnings.insert(a.warnings.end(), p->takes[1].alignment.warnings.begin(), p->takes[1].alignment.warnings.end());
   Take b = make("B  " + stem(snapshot_->path_b), kColorB, Eigen::MatrixXd());
   b.path = snapshot_->path_b;
   Take blend = make("blend", kColorBlend, Eigen::MatrixXd());
   blend.path = "(blend of A and B)";
-  blend.positions = p->world_a;  // until the first blend arrives
+  blend.positions = p->takes[0].world;  // until the first blend arrives
   state.takes = {std::move(a), std::move(b), std::move(blend)};
 
   // Shared floor and start, side-by-side spacing and direction (ui/lanes.h).
-  const Placement placed = placement_of(p->world_a);
+  const Placement placed = placement_of(p->takes[0].world);
   shift_ = placed.shift;
   side_ = placed.side;
   spacing_ = placed.spacing;
@@ -248,13 +248,13 @@ void BlendSession::take_up_prepared(EditorState& state) {
 // source_a, source_b), so the three stay in step whatever the timing. Before the first blend,
 // the warp's own samples. Slots across the travel: A left, the blend in the middle, B right.
 void BlendSession::place(EditorState& state) {
-  const PreparedPair* p = snapshot_->prepared.get();
+  const PreparedTakes* p = snapshot_->prepared.get();
   if (p == nullptr || state.takes.size() != 3) return;
-  const TimeWarp& warp = p->alignment.warp;
+  const TimeWarp& warp = p->takes[1].alignment.warp;
   const Eigen::VectorXd& at_a = has_blend_ ? blend_.source_a : warp.a;
   const Eigen::VectorXd& at_b = has_blend_ ? blend_.source_b : warp.b;
-  sample_rows(p->world_a, at_a, shown_a_);
-  sample_rows(p->world_b_placed, at_b, shown_b_);
+  sample_rows(p->takes[0].world, at_a, shown_a_);
+  sample_rows(p->takes[1].world_placed, at_b, shown_b_);
   const int joints = static_cast<int>(p->majors.size());
   auto nearest = [](const Eigen::MatrixXd& contacts, const Eigen::VectorXd& at) {
     Eigen::MatrixXd out(at.size(), contacts.cols());
@@ -262,8 +262,8 @@ void BlendSession::place(EditorState& state) {
       out.row(k) = contacts.row(std::clamp<Eigen::Index>(std::lround(at[k]), 0, contacts.rows() - 1));
     return out;
   };
-  state.takes[kTakeA].contacts = joint_contacts(nearest(p->contacts_a, at_a), p->feet, joints);
-  state.takes[kTakeB].contacts = joint_contacts(nearest(p->contacts_b, at_b), p->feet, joints);
+  state.takes[kTakeA].contacts = joint_contacts(nearest(p->takes[0].own_contacts, at_a), p->feet, joints);
+  state.takes[kTakeB].contacts = joint_contacts(nearest(p->takes[1].own_contacts, at_b), p->feet, joints);
   const double slots[3] = {-1.0, 1.0, 0.0};  // A, B, blend
   const Eigen::MatrixXd* sources[3] = {&shown_a_, &shown_b_, has_blend_ ? &blend_.world : &shown_a_};
   if (!state.view.overlay && has_blend_) {
@@ -297,7 +297,7 @@ void BlendSession::update_blend(EditorState& state) {
     palette_view_.update(*snapshot_->palette, snapshot_->palette_decomposition.get(), controls_, state);
     return;
   }
-  const PreparedPair* p = snapshot_->prepared.get();
+  const PreparedTakes* p = snapshot_->prepared.get();
   const DecomposedPair* d = snapshot_->decomposed.get();
   if (p == nullptr || state.takes.size() != 3) return;
   if (d != nullptr) {
@@ -349,7 +349,7 @@ void BlendSession::update_blend(EditorState& state) {
 }
 
 void BlendSession::refresh_blend_take(EditorState& state) {
-  const PreparedPair* p = snapshot_->prepared.get();
+  const PreparedTakes* p = snapshot_->prepared.get();
   Take& t = state.takes[kTakeBlend];
   char label[64];
   if (controls_.per_component && snapshot_->decomposed && snapshot_->decomposed->params.mode == BlendMode::kShared)
@@ -376,10 +376,10 @@ void BlendSession::wait_idle(EditorState& state) {
 // O(F x Fb), so a long take does not stall the frame that takes it up.
 void BlendSession::compute_dtw_image() {
   dtw_image_ = DtwCostImage();
-  const PreparedPair* p = snapshot_->prepared.get();
+  const PreparedTakes* p = snapshot_->prepared.get();
   if (p == nullptr) return;
-  const Eigen::MatrixXd& fa = p->alignment.feature.a;
-  const Eigen::MatrixXd& fb = p->alignment.feature.b;
+  const Eigen::MatrixXd& fa = p->takes[1].alignment.feature.a;
+  const Eigen::MatrixXd& fb = p->takes[1].alignment.feature.b;
   if (fa.rows() == 0 || fb.rows() == 0) return;
   DtwCostImage& img = dtw_image_;
   img.frames_a = static_cast<int>(fa.rows());
@@ -403,9 +403,9 @@ bool BlendSession::export_bvh(const std::string& path) {
   try {
     ExportOptions options;
     options.path = path;
-    const PreparedPair* p = snapshot_->prepared.get();
+    const PreparedTakes* p = snapshot_->prepared.get();
     if (p != nullptr) options.fps = p->fps;  // the blend's own frames
-    if (p != nullptr && p->clip_a != nullptr) options.layout = default_channel_layout(*p->clip_a);
+    if (p != nullptr && p->takes[0].clip != nullptr) options.layout = default_channel_layout(*p->takes[0].clip);
     outcome = run_export(make_export_request(*this, options));
   } catch (const std::exception& e) {  // InputError: no file name, no blend yet
     outcome.message = e.what();

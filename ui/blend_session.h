@@ -88,7 +88,7 @@ class BlendSession {
   // The files last asked for (pair or palette), loaded or not.
   const std::vector<std::string>& requested_files() const { return requested_files_; }
   // The palette when one is loaded (then no pair is: snapshot().prepared is null), its mix.
-  const PreparedPalette* palette() const { return snapshot_->palette.get(); }
+  const PreparedTakes* palette() const { return snapshot_->palette.get(); }
   const PaletteView& palette_view() const { return palette_view_; }
   // Aligns the loaded pair again with controls().align (the worker re-prepares, then decomposes).
   void realign();
@@ -171,10 +171,10 @@ class BlendSession {
   std::uint64_t sweep_seen_version_ = 0;  // of the sweep worker's snapshot, at the last poll_sweep
   int sweep_next_ = -1;                   // index into kSweepComponents being computed; -1: none
   DecomposeParams sweep_params_;
-  const PreparedPair* sweep_pair_ = nullptr;  // the pair the sweep was started for
+  const PreparedTakes* sweep_pair_ = nullptr;  // the pair the sweep was started for
   std::shared_ptr<const WorkerSnapshot> snapshot_;
   std::uint64_t seen_version_ = ~std::uint64_t(0);
-  const PreparedPair* seen_prepared_ = nullptr;
+  const PreparedTakes* seen_prepared_ = nullptr;
   const DecomposedPair* seen_decomposed_ = nullptr;
   const DecomposedPair* blended_decomposed_ = nullptr;
   DecomposeParams requested_;
@@ -200,7 +200,7 @@ class BlendSession {
   std::string requested_a_, requested_b_;
   std::vector<std::string> requested_files_;
   PaletteView palette_view_;
-  const PreparedPalette* seen_palette_ = nullptr;
+  const PreparedTakes* seen_palette_ = nullptr;
   std::vector<std::string> dropped_;
 };
 

@@ -21,12 +21,12 @@ void ComponentsPanel::draw(EditorState& state) {
     ImGui::End();
     return;
   }
-  const PreparedPair* p = session_.snapshot().prepared.get();
+  const PreparedTakes* p = session_.snapshot().prepared.get();
   const DecomposedPair* d = session_.snapshot().decomposed.get();
   SessionControls& c = session_.controls();
   if (const PaletteDecomposition* pd = session_.snapshot().palette_decomposition.get()) {
     // The style palette: its shared components by body part, with their joints.
-    const PreparedPalette* palette = session_.palette();
+    const PreparedTakes* palette = session_.palette();
     ImGui::TextColored(kDimColor, "%d components shared by %d takes", pd->components(), palette->size());
     ImGui::PushTextWrapPos(0.0f);
     for (const ComponentJoints& cj : pd->component_joints) {
@@ -75,10 +75,10 @@ void ComponentsPanel::draw(EditorState& state) {
   const int sel = c.selected_component;
   if (sel >= 0 && sel < d->support.rows()) {
     std::string joints;
-    for (size_t j = 0; j < p->names_a.size() && 3 * j + 2 < static_cast<size_t>(d->support.cols()); ++j) {
+    for (size_t j = 0; j < p->takes[0].names.size() && 3 * j + 2 < static_cast<size_t>(d->support.cols()); ++j) {
       const Eigen::Index col = 3 * static_cast<Eigen::Index>(j);
       if (d->support(sel, col) != 0 || d->support(sel, col + 1) != 0 || d->support(sel, col + 2) != 0)
-        joints += (joints.empty() ? "" : ", ") + p->names_a[j];
+        joints += (joints.empty() ? "" : ", ") + p->takes[0].names[j];
     }
     ImGui::PushTextWrapPos(0.0f);
     ImGui::TextColored(kDimColor, "joints: %s", joints.empty() ? "(none)" : joints.c_str());

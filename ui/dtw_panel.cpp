@@ -48,14 +48,14 @@ void DtwPanel::draw(EditorState& state) {
     ImGui::End();
     return;
   }
-  const PreparedPair* p = session_.snapshot().prepared.get();
-  if (p == nullptr || p->alignment.feature.a.rows() < 2 || p->alignment.feature.b.rows() < 2 ||
-      p->alignment.path.empty()) {
+  const PreparedTakes* p = session_.snapshot().prepared.get();
+  if (p == nullptr || p->takes[1].alignment.feature.a.rows() < 2 || p->takes[1].alignment.feature.b.rows() < 2 ||
+      p->takes[1].alignment.path.empty()) {
     ImGui::TextColored(ImVec4(0.6f, 0.62f, 0.66f, 1.0f), "No pair aligned yet.");
     ImGui::End();
     return;
   }
-  const Alignment& al = p->alignment;
+  const Alignment& al = p->takes[1].alignment;
   const Eigen::MatrixXd& sa = al.feature.a;
   const Eigen::MatrixXd& sb = al.feature.b;
   const TimeWarp& warp = al.warp;
@@ -67,7 +67,7 @@ void DtwPanel::draw(EditorState& state) {
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Which coordinate of the aligned joint the plots show");
   ImGui::SameLine();
   std::string joints;
-  for (int k : al.feature.columns) joints += (joints.empty() ? "" : ", ") + p->names_a[static_cast<size_t>(k)];
+  for (int k : al.feature.columns) joints += (joints.empty() ? "" : ", ") + p->takes[0].names[static_cast<size_t>(k)];
   ImGui::TextColored(ImVec4(0.6f, 0.62f, 0.66f, 1.0f), "aligned on %s (%s); matched frames: A %d to %d, B %d to %d",
                      align_on_name(al.feature.on), joints.c_str(), al.a_first, al.a_last, al.b_first, al.b_last);
   if (ImGui::IsItemHovered())

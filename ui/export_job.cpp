@@ -30,7 +30,7 @@ constexpr float kResampledProgress = 0.1f;
 
 ExportSubject export_subject(const BlendSession& session) {
   ExportSubject subject;
-  if (const PreparedPalette* palette = session.palette()) {
+  if (const PreparedTakes* palette = session.palette()) {
     subject.identity = palette;
     subject.clip = palette->takes.front().clip.get();
     subject.working_fps = palette->fps;
@@ -39,9 +39,9 @@ ExportSubject export_subject(const BlendSession& session) {
       subject.frames = static_cast<int>(mix->motion.world.rows());
       subject.loop_cycles = mix->motion.loop.cycles;
     }
-  } else if (const PreparedPair* pair = session.snapshot().prepared.get()) {
+  } else if (const PreparedTakes* pair = session.snapshot().prepared.get()) {
     subject.identity = pair;
-    subject.clip = pair->clip_a.get();
+    subject.clip = pair->reference().clip.get();
     subject.working_fps = pair->fps;
     subject.takes = 2;
     if (const BlendResult* blend = session.blend()) {
@@ -55,7 +55,7 @@ ExportSubject export_subject(const BlendSession& session) {
 
 ExportRequest make_export_request(const BlendSession& session, const ExportOptions& options) {
   if (options.path.empty()) throw InputError("Export: no file name given.");
-  if (const PreparedPalette* palette = session.palette()) {  // the style palette's mix
+  if (const PreparedTakes* palette = session.palette()) {  // the style palette's mix
     const MixResult* mix = session.palette_view().mix();
     if (mix == nullptr || mix->motion.world.rows() == 0) throw InputError("Export: nothing to export yet (no mix).");
     if (options.range == ExportRange::kLoop && mix->motion.loop.cycles <= 0)
@@ -73,14 +73,14 @@ ExportRequest make_export_request(const BlendSession& session, const ExportOptio
     if (!ec) r.options.path = absolute.string();
     return r;
   }
-  const std::shared_ptr<const PreparedPair> pair = session.snapshot().prepared;
+  const std::shared_ptr<const PreparedTakes> pair = session.snapshot().prepared;
   const BlendResult* blend = session.blend();
-  if (pair == nullptr || pair->clip_a == nullptr || blend == nullptr || blend->world.rows() == 0)
+  if (pair == nullptr || pair->reference().clip == nullptr || blend == nullptr || blend->world.rows() == 0)
     throw InputError("Export: nothing to export yet (no blend).");
   if (options.range == ExportRange::kLoop && blend->loop.cycles <= 0)
     throw InputError("Export: the blend has no loop; turn on Loop in the parameters panel, or export all frames.");
   ExportRequest r;
-  r.clip = pair->clip_a;
+  r.clip = pair->reference().clip;
   r.joints = export_joints(*pair);
   r.world = blend->world;
   r.at = source_frames_in_clip(*pair, *blend);

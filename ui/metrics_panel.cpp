@@ -68,7 +68,7 @@ std::string length_in_words(double value, double cm_per_unit, double height, con
 
 Metrics gather_metrics(const BlendSession& session) {
   Metrics m;
-  if (const PreparedPalette* p = session.palette()) {
+  if (const PreparedTakes* p = session.palette()) {
     const PaletteDecomposition* d = session.snapshot().palette_decomposition.get();
     m.reference = p->takes.front().clip.get();
     m.result = p->size() > 2 ? "mix" : "blend";
@@ -79,11 +79,8 @@ Metrics gather_metrics(const BlendSession& session) {
       t.foot_sliding = p->takes[static_cast<size_t>(i)].foot_sliding;
       m.takes.push_back(t);
     }
-    m.preprocess_ms = m.dtw_ms = 0.0;  // the loading of a palette's files is not timed
-    for (const auto& pair : p->pairs) {
-      m.preprocess_ms += pair->times.preprocess_ms;
-      m.dtw_ms += pair->times.dtw_ms;
-    }
+    m.preprocess_ms = p->times.preprocess_ms;  // the loading of a palette's files is not timed
+    m.dtw_ms = p->times.dtw_ms;
     if (d != nullptr) m.decompose_ms = d->elapsed_ms;
     if (const MixResult* mix = session.palette_view().mix()) {
       m.bone_error = mix->motion.limb_length_max_error;
@@ -95,11 +92,11 @@ Metrics gather_metrics(const BlendSession& session) {
     }
     return m;
   }
-  const PreparedPair* p = session.snapshot().prepared.get();
+  const PreparedTakes* p = session.snapshot().prepared.get();
   if (p == nullptr) return m;
   const DecomposedPair* d = session.snapshot().decomposed.get();
-  m.reference = p->clip_a.get();
-  m.takes = {{"A", d != nullptr ? d->rmse_a : -1.0, p->foot_sliding_a}, {"B", d != nullptr ? d->rmse_b : -1.0, p->foot_sliding_b}};
+  m.reference = p->takes[0].clip.get();
+  m.takes = {{"A", d != nullptr ? d->rmse_a : -1.0, p->takes[0].foot_sliding}, {"B", d != nullptr ? d->rmse_b : -1.0, p->takes[1].foot_sliding}};
   m.load_ms = p->times.load_ms;
   m.preprocess_ms = p->times.preprocess_ms;
   m.dtw_ms = p->times.dtw_ms;

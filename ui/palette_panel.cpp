@@ -25,7 +25,7 @@ const char* const kPartNames[] = {"Legs", "Arms", "Spine and head"};
 // start every take's label shares up to
 // a '_' or '-' ("cmu142_walk_happy", "cmu142_walk_marching": "happy", "marching"), so that
 // names fit the narrow columns; the whole name is in the tooltips.
-std::string name_of(const PreparedPalette& p, int i) {
+std::string name_of(const PreparedTakes& p, int i) {
   auto stem = [&](int k) { return take_label(p.takes[static_cast<size_t>(k)].clip->source); };
   const std::string own = stem(i);
   size_t common = own.size();
@@ -113,7 +113,7 @@ glm::vec2 pad_point(const std::vector<double>& weights) {
 }
 
 void PalettePanel::draw(EditorState& state) {
-  const PreparedPalette* p = session_.palette();
+  const PreparedTakes* p = session_.palette();
   if (p == nullptr) return;  // the DTW view has the strip while a pair is loaded
   place_panel(PanelId::kDtw, state);
   if (!ImGui::Begin(kTitle)) {
@@ -150,7 +150,7 @@ void PalettePanel::draw(EditorState& state) {
   ImGui::End();
 }
 
-void PalettePanel::draw_mix(PaletteControls& c, const PreparedPalette& p) {
+void PalettePanel::draw_mix(PaletteControls& c, const PreparedTakes& p) {
   const int n = p.size();
   if (static_cast<int>(c.weights.size()) != n) c.weights.assign(static_cast<size_t>(n), 1.0 / n);
   const float pad = std::clamp(ImGui::GetContentRegionAvail().y - 4.0f, 80.0f, 220.0f);
@@ -224,7 +224,7 @@ void PalettePanel::draw_pad(PaletteControls& c, int n) {
   draw->AddCircle(marker, 8.0f, IM_COL32(255, 255, 255, 200), 20, 1.5f);
 }
 
-void PalettePanel::draw_parts(PaletteControls& c, const PreparedPalette& p) {
+void PalettePanel::draw_parts(PaletteControls& c, const PreparedTakes& p) {
   const int n = p.size();
   ImGui::Checkbox("Per body part", &c.per_part);
   if (ImGui::IsItemHovered())
@@ -254,7 +254,7 @@ void PalettePanel::draw_parts(PaletteControls& c, const PreparedPalette& p) {
   }
 }
 
-void PalettePanel::draw_transfer(PaletteControls& c, const PreparedPalette& p) {
+void PalettePanel::draw_transfer(PaletteControls& c, const PreparedTakes& p) {
   const int n = p.size();
   if (static_cast<int>(c.strengths.size()) != n) c.strengths.assign(static_cast<size_t>(n), 1.0);
   c.neutral = std::clamp(c.neutral, 1, n - 1);

@@ -29,10 +29,10 @@ class PalettePanel : public Panel {
   void draw(EditorState& state) override;
 
  private:
-  void draw_mix(PaletteControls& c, const PreparedPalette& p);
+  void draw_mix(PaletteControls& c, const PreparedTakes& p);
   void draw_pad(PaletteControls& c, int n);
-  void draw_parts(PaletteControls& c, const PreparedPalette& p);
-  void draw_transfer(PaletteControls& c, const PreparedPalette& p);
+  void draw_parts(PaletteControls& c, const PreparedTakes& p);
+  void draw_transfer(PaletteControls& c, const PreparedTakes& p);
   BlendSession& session_;
 };
 

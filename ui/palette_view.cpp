@@ -85,7 +85,7 @@ void PaletteView::clear() {
   error_.clear();
 }
 
-void PaletteView::take_up(const PreparedPalette& p, const std::vector<std::string>& paths,
+void PaletteView::take_up(const PreparedTakes& p, const std::vector<std::string>& paths,
                           const std::vector<std::string>& warnings, PaletteControls& controls, EditorState& state) {
   clear();
   const int n = p.size();
@@ -116,12 +116,9 @@ void PaletteView::take_up(const PreparedPalette& p, const std::vector<std::strin
     t.parents = p.parents;
     if (i == 0) {
       t.warnings = warnings;
-      // Named by their files, frames as their files count them (not "B" and the working rate).
-      auto named = [](const Clip& clip) { return AlignedTake{std::filesystem::path(clip.source).filename().string(), clip.fps()}; };
-      for (const auto& pair : p.pairs)
-        for (const std::string& w :
-             alignment_warnings(pair->alignment, pair->fps, named(*pair->clip_a), named(*pair->clip_b)))
-          t.warnings.push_back(w);
+      // Each take's alignment onto the reference (prepare_takes names the takes).
+      for (const PreparedTake& aligned : p.takes)
+        t.warnings.insert(t.warnings.end(), aligned.alignment.warnings.begin(), aligned.alignment.warnings.end());
     }
     state.takes.push_back(std::move(t));
   }
@@ -133,7 +130,7 @@ void PaletteView::take_up(const PreparedPalette& p, const std::vector<std::strin
   for (Take& t : state.takes) t.size = placed.size;
 }
 
-void PaletteView::update(const PreparedPalette& p, const PaletteDecomposition* d, const SessionControls& controls,
+void PaletteView::update(const PreparedTakes& p, const PaletteDecomposition* d, const SessionControls& controls,
                          EditorState& state) {
   if (static_cast<int>(state.takes.size()) != p.size() + 1) return;
   if (d != nullptr) {
@@ -164,7 +161,7 @@ void PaletteView::update(const PreparedPalette& p, const PaletteDecomposition* d
 
 // Every take at the frame the mix shows of it, on the reference's floor: the reference left of
 // the mix, the other takes (ghosts, on demand) to its right, or all on one spot when overlaid.
-void PaletteView::place(const PreparedPalette& p, const SessionControls& controls, EditorState& state) {
+void PaletteView::place(const PreparedTakes& p, const SessionControls& controls, EditorState& state) {
   const int n = p.size();
   const bool ghosts = controls.palette.ghosts;
   Eigen::MatrixXd sampled;
@@ -179,7 +176,7 @@ void PaletteView::place(const PreparedPalette& p, const SessionControls& control
       if (has_mix_) sampled = mix_.motion.world;
       else continue;
     } else {
-      const PaletteTake& take = p.takes[static_cast<size_t>(i)];
+      const PreparedTake& take = p.takes[static_cast<size_t>(i)];
       if (has_mix_) sample_rows(take.world_placed, mix_.sources.col(i), sampled);
       else sampled = take.world_placed;
       t.visible = i == 0 || ghosts;

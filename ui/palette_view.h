@@ -34,11 +34,11 @@ glm::vec3 palette_color(int take);
 class PaletteView {
  public:
   // A new palette: the mix and one take per palette take, on the reference's floor and start.
-  void take_up(const PreparedPalette& palette, const std::vector<std::string>& paths,
+  void take_up(const PreparedTakes& palette, const std::vector<std::string>& paths,
                const std::vector<std::string>& warnings, PaletteControls& controls, EditorState& state);
   // After the panels: mixes again when the controls' mix differs from the one shown, then
   // refreshes positions, visibility (ghosts) and placement.
-  void update(const PreparedPalette& palette, const PaletteDecomposition* decomposition,
+  void update(const PreparedTakes& palette, const PaletteDecomposition* decomposition,
               const SessionControls& controls, EditorState& state);
   void clear();
 
@@ -47,7 +47,7 @@ class PaletteView {
   double mix_ms() const { return mix_ms_; }
 
  private:
-  void place(const PreparedPalette& palette, const SessionControls& controls, EditorState& state);
+  void place(const PreparedTakes& palette, const SessionControls& controls, EditorState& state);
 
   const PaletteDecomposition* mixed_decomposition_ = nullptr;
   MixParams mixed_;

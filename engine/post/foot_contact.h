@@ -25,7 +25,7 @@ struct FootContactOptions {
   void Validate() const;              // throws InputError on a negative or non-finite value
 };
 
-// What contact detection and the lock need to know about a pair, fixed in prepare_pair.
+// What contact detection and the lock need to know about the takes, fixed in prepare_takes.
 struct FootRig {
   std::array<LegColumns, 2> legs;  // 0: left, 1: right
   double leg_length = 0.0;         // thigh + shin, averaged over the legs, file units

@@ -23,42 +23,9 @@ double ms_since(Clock::time_point t0) {
 constexpr double kShortBoneFraction = 0.5;  // as the pair's blend (pipeline.cpp)
 constexpr double kWeightSumTolerance = 1e-6;
 
-std::string take_name(int i, const Clip& clip) {
-  return "take " + std::to_string(i + 1) + " (" + clip.source + ")";
-}
-
-// Take i's values on the common timeline, from its pair (the reference as A, the take as B; the
-// reference itself from the first pair's A side).
-PaletteTake read_take(const PreparedPair& pair, bool reference, const Eigen::VectorXd& frames, bool paper_warp) {
-  PaletteTake t;
-  t.clip = reference ? pair.clip_a : pair.clip_b;
-  t.names = reference ? pair.names_a : pair.names_b;
-  t.frames = frames;
-  const CanonicalMotion& motion = reference ? pair.canonical_a : pair.canonical_b;
-  // Placed as its pair places it: where its match starts, it stands and faces where the
-  // reference does.
-  const TimeWarp& warp = pair.alignment.warp;
-  const PlacedRoot placed =
-      reference ? place_at(pair.canonical_a, 0.0, motion, 0.0) : place_at(pair.canonical_a, warp.a[0], motion, warp.b[0]);
-  t.own_local = motion.local;
-  t.own_local_t = motion.local.transpose();
-  t.local = sample_rows(motion.local, frames);
-  t.ground = sample_rows(placed.ground, frames);
-  const Eigen::VectorXd heading = sample_rows(placed.heading, frames);
-  t.steps = root_steps(t.ground, heading);
-  // The paper's warp may skip frames from one sample to the next; the root must not teleport
-  // (canonical_frame.h). The smooth warp never skips, so there this changes nothing.
-  if (paper_warp) t.steps = limit_warped_steps(t.steps, frames, kMaxWarpSpeedup);
-  const Eigen::MatrixXd& contacts = reference ? pair.contacts_a : pair.contacts_b;
-  t.contacts = carry_contacts(contacts, frames);
-  to_world(motion.local, placed.ground, placed.heading, &t.world_placed);
-  t.foot_sliding = reference ? pair.foot_sliding_a : pair.foot_sliding_b;
-  return t;
-}
-
 // Each take's frame (K x N) at the sampler's output frames; the sampler's rows count from
 // sample `first`.
-void write_sources(const PreparedPalette& p, const RowSampler& at, int first, Eigen::MatrixXd& sources) {
+void write_sources(const PreparedTakes& p, const RowSampler& at, int first, Eigen::MatrixXd& sources) {
   const Eigen::Index frames = at.row.size();
   sources.resize(frames, p.size());
   for (int i = 0; i < p.size(); ++i) {
@@ -72,68 +39,7 @@ void write_sources(const PreparedPalette& p, const RowSampler& at, int first, Ei
 
 }  // namespace
 
-std::shared_ptr<const PreparedPalette> prepare_palette(const std::vector<std::shared_ptr<const Clip>>& clips,
-                                                       const PrepareOptions& options, JobControl* control) {
-  const int n = static_cast<int>(clips.size());
-  if (n < 2 || n > kMaxPaletteTakes)
-    throw InputError("a palette takes from 2 to " + std::to_string(kMaxPaletteTakes) + " takes, found " +
-                     std::to_string(n));
-  auto p = std::make_shared<PreparedPalette>();
-  // The canonical joints every take has (each checked against the reference as a pair).
-  const MajorMapping reference = map_major_joints(clips[0]->skeleton, options.mapping_a.entries.empty() ? nullptr : &options.mapping_a);
-  std::vector<int> common;
-  for (int i = 1; i < n; ++i) {
-    const MappingOverrides* overrides = i == 1 && !options.mapping_b.entries.empty() ? &options.mapping_b : nullptr;
-    std::vector<int> shared;
-    try {
-      shared = shared_major_joints(reference, clips[0]->source, map_major_joints(clips[i]->skeleton, overrides),
-                                   clips[i]->source);
-    } catch (const InputError& e) {
-      throw InputError(take_name(i, *clips[i]) + ": " + e.what());
-    }
-    if (i == 1) common = shared;
-    else common.erase(std::remove_if(common.begin(), common.end(),
-                                     [&](int m) { return std::find(shared.begin(), shared.end(), m) == shared.end(); }),
-                      common.end());
-  }
-  for (int i = 1; i < n; ++i) {
-    PrepareOptions o = options;
-    if (i > 1) o.mapping_b = {};  // mapping_b names the second take's joints only
-    o.only_majors = common;
-    p->pairs.push_back(prepare_pair(clips[0], clips[i], o, control));
-  }
-  const PreparedPair& first = *p->pairs.front();
-  p->majors = first.majors;
-  p->parents = first.parents;
-  p->lengths = first.lengths_a;
-  p->feet = first.feet;
-  p->fps = first.fps;
-  std::vector<const TimeWarp*> warps;
-  for (const auto& pair : p->pairs) warps.push_back(&pair->alignment.warp);
-  p->timeline = common_timeline(warps);
-  const bool paper = options.align.method == DtwMethod::kPaper;
-  const Eigen::VectorXd& reference_frames = p->timeline.frames[0];
-  p->takes.push_back(read_take(first, true, reference_frames, paper));
-  for (int i = 1; i < n; ++i) p->takes.push_back(read_take(*p->pairs[i - 1], false, p->timeline.frames[i], paper));
-  p->reference_heading = sample_rows(first.canonical_a.heading, reference_frames);
-  // Whole turns that keep each take's facing within about half a turn of the reference's.
-  const PaletteTake& ref = p->takes.front();
-  for (PaletteTake& t : p->takes) t.turn_flips = match_turns(t.steps, ref.steps).col(2) - t.steps.col(2);
-  // Normalization (normalize.h, for N takes): each take's own mean pose, one scale for all.
-  double sum = 0.0, count = 0.0;
-  for (PaletteTake& t : p->takes) {
-    t.mean = t.local.colwise().mean();
-    sum += (t.local.rowwise() - t.mean).squaredNorm();
-    count += static_cast<double>(t.local.size());
-  }
-  p->scale = count > 0 ? std::sqrt(sum / count) : 1.0;
-  if (!(p->scale > 0) || !std::isfinite(p->scale)) p->scale = 1.0;
-  for (PaletteTake& t : p->takes) t.x = (t.local.rowwise() - t.mean) / p->scale;
-  check_cancel(control);
-  return p;
-}
-
-std::shared_ptr<const PaletteDecomposition> decompose_palette(const PreparedPalette& palette,
+std::shared_ptr<const PaletteDecomposition> decompose_palette(const PreparedTakes& palette,
                                                               const DecomposeParams& params, JobControl* control) {
   const int channels = static_cast<int>(palette.takes.front().x.cols());
   params.Validate(channels);
@@ -149,7 +55,7 @@ std::shared_ptr<const PaletteDecomposition> decompose_palette(const PreparedPale
   d->stride = static_cast<int>(std::max<Eigen::Index>(1, (total + kMaxDecompositionFrames - 1) / kMaxDecompositionFrames));
   std::vector<Eigen::MatrixXd> strided;
   std::vector<const Eigen::MatrixXd*> xs;
-  for (const PaletteTake& t : palette.takes) {
+  for (const PreparedTake& t : palette.takes) {
     if (d->stride == 1) {
       xs.push_back(&t.x);
       continue;
@@ -172,7 +78,7 @@ std::shared_ptr<const PaletteDecomposition> decompose_palette(const PreparedPale
     }
   }
   for (size_t i = 0; i < palette.takes.size(); ++i) {
-    const PaletteTake& t = palette.takes[i];
+    const PreparedTake& t = palette.takes[i];
     const Eigen::MatrixXd wc = d->stacked.weights[i] * d->stacked.components;
     d->residual.push_back((t.x - wc) * palette.scale);
     Eigen::MatrixXd r = wc * palette.scale;
@@ -225,7 +131,7 @@ void MixParams::Validate(int takes, int components) const {
   }
 }
 
-void mix_palette(const PreparedPalette& p, const PaletteDecomposition& d, const MixParams& params, MixScratch& s,
+void mix_palette(const PreparedTakes& p, const PaletteDecomposition& d, const MixParams& params, MixScratch& s,
                  MixResult& out) {
   const int n = p.size();
   params.Validate(n, d.components());
@@ -378,9 +284,7 @@ std::vector<double> transfer_weights(const std::vector<double>& strengths) {
   return w;
 }
 
-std::vector<int> export_joints(const PreparedPalette& palette) { return export_joints(palette.reference_pair()); }
-
-Eigen::VectorXd source_frames_in_clip(const PreparedPalette& palette, const MixResult& mix) {
+Eigen::VectorXd source_frames_in_clip(const PreparedTakes& palette, const MixResult& mix) {
   return mix.sources.col(0) * (palette.takes.front().clip->fps() / palette.fps);
 }
 

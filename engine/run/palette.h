@@ -1,8 +1,7 @@
 #pragma once
-// The style palette (issue #9): any number of takes (2 to 16) mixed with weights, as three
-// cached stages, each an immutable value built from the one before:
-//   prepare_palette    every take aligned onto the reference (take 0) by prepare_pair, then all
-//                      of them read on one common timeline (align/common_timeline.h);
+// The style palette (issue #9): any number of takes (2 to 16, prepared by prepare_takes,
+// prepare_takes.h) mixed with weights, as two cached stages, each an immutable value built from
+// the one before:
 //   decompose_palette  one shared, local decomposition of the stacked takes (W_i per take, C);
 //   mix_palette        one mix for a set of weights: poses, timing, root path and foot contacts
 //                      mixed with the weights, then the pair's clean-up (post/finish.h).
@@ -22,48 +21,8 @@
 
 namespace mostyle {
 
-constexpr int kMaxPaletteTakes = 16;
 constexpr double kMinMixWeight = -0.5;  // mild exaggeration away from a take
 constexpr double kMaxMixWeight = 1.5;   // mild exaggeration beyond a take
-
-// One take on the palette's common timeline (U samples), in the reference's units and world.
-struct PaletteTake {
-  std::shared_ptr<const Clip> clip;
-  std::vector<std::string> names;  // the file's names of the shared joints
-  Eigen::VectorXd frames;          // U: the take's frame at each sample (fractional, working rate)
-  Eigen::MatrixXd own_local;       // the take's own frames x 3M canonical poses (retargeted onto the reference's bones)
-  Eigen::MatrixXd own_local_t;     // the same transposed (3M x frames): one frame a contiguous column, for the mix
-  Eigen::MatrixXd local;           // U x 3M: the same on the timeline
-  Eigen::MatrixXd ground;          // U x 2 hips path, placed at the reference's start
-  Eigen::MatrixXd steps;           // U x 3 root steps (canonical_frame.h)
-  Eigen::VectorXd turn_flips;      // U: whole turns match_turns adds to keep its facing near the reference's
-  Eigen::MatrixXd contacts;        // U x 2 foot contacts carried onto the timeline
-  Eigen::RowVectorXd mean;         // normalization: the take's mean pose
-  Eigen::MatrixXd x;               // U x 3M normalized
-  Eigen::MatrixXd world_placed;    // the take's own frames x 3M, placed at the reference's start (ghosts)
-  double foot_sliding = 0;         // units per second, on its own timeline
-};
-
-struct PreparedPalette {
-  std::vector<std::shared_ptr<const PreparedPair>> pairs;  // pairs[i - 1]: the reference with take i
-  std::vector<PaletteTake> takes;                          // takes[0]: the reference
-  CommonTimeline timeline;
-  std::vector<int> majors, parents;  // shared joints (M) and their parents within them
-  std::vector<double> lengths;       // the reference's bone lengths per joint
-  FootRig feet;
-  double fps = 30.0;
-  double scale = 1.0;                // normalization scale, shared by every take
-  Eigen::VectorXd reference_heading;  // U: the reference's heading at each sample (a mix starts facing it)
-  int samples() const { return timeline.samples(); }
-  int size() const { return static_cast<int>(takes.size()); }
-  const PreparedPair& reference_pair() const { return *pairs.front(); }
-};
-
-// clips: 2 to 16 takes, the first the reference. Throws InputError (naming the take) on a count
-// out of range, takes without the same major joints, or what prepare_pair throws; Cancelled.
-// Cost: N - 1 prepare_pair calls, then O(U x N x M).
-std::shared_ptr<const PreparedPalette> prepare_palette(const std::vector<std::shared_ptr<const Clip>>& clips,
-                                                       const PrepareOptions& options, JobControl* control = nullptr);
 
 // The stacked decomposition's components are fitted on at most this many frames (every take's
 // samples at a stride): eight one-minute takes are 23 000 samples, and the components (body
@@ -87,7 +46,7 @@ struct PaletteDecomposition {
 
 // Throws InputError on bad parameters (paper mode and basic motions are the pair's), Cancelled.
 // Cost: decompose() on N x U frames, then N U x k by k x 3M products.
-std::shared_ptr<const PaletteDecomposition> decompose_palette(const PreparedPalette& palette,
+std::shared_ptr<const PaletteDecomposition> decompose_palette(const PreparedTakes& palette,
                                                               const DecomposeParams& params,
                                                               JobControl* control = nullptr);
 
@@ -134,7 +93,7 @@ struct MixResult {
 // two foot strikes. One weight set: the poses at the output frames only, O(K x N x 3M), and the
 // root on the samples, O(U x N); per-component weights add O(U x k x (3M + N)).
 // Allocation-free once scratch and out are sized (per-component weights and a loop allocate).
-void mix_palette(const PreparedPalette& palette, const PaletteDecomposition& decomposition, const MixParams& params,
+void mix_palette(const PreparedTakes& palette, const PaletteDecomposition& decomposition, const MixParams& params,
                  MixScratch& scratch, MixResult& out);
 
 // Per-component weights (k x N) from weights given per body part: each component takes the
@@ -152,7 +111,7 @@ std::vector<double> transfer_weights(const std::vector<double>& strengths);
 
 // The reference's joint index of each major column (for export), and the output frames in the
 // reference's own clip frames (its rotations at fractional frames).
-std::vector<int> export_joints(const PreparedPalette& palette);
-Eigen::VectorXd source_frames_in_clip(const PreparedPalette& palette, const MixResult& mix);
+std::vector<int> export_joints(const PreparedTakes& palette);
+Eigen::VectorXd source_frames_in_clip(const PreparedTakes& palette, const MixResult& mix);
 
 }  // namespace mostyle

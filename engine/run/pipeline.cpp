@@ -20,20 +20,12 @@ double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-constexpr double kMaxFps = 1000.0;
 // The blend's bones shorter than this fraction of their length lean on their previous direction
 // (limb_length.h): two takes' hands pointing different ways average to a stub that would spin.
 constexpr double kShortBoneFraction = 0.5;
 
 
 }  // namespace
-
-void PrepareOptions::Validate() const {
-  if (!(fps >= 0) || fps > kMaxFps || !std::isfinite(fps))
-    throw InputError("expected a frame rate from 1 to 1000 (or 0 to keep A's), found " + std::to_string(fps));
-  align.Validate();
-  foot_contacts.Validate();
-}
 
 const char* blend_mode_name(BlendMode mode) { return mode == BlendMode::kShared ? "shared" : "paper"; }
 
@@ -64,113 +56,23 @@ DecompositionOptions DecomposeParams::options(const std::vector<int>& parents) c
   return o;
 }
 
-std::shared_ptr<const PreparedPair> prepare_pair(std::shared_ptr<const Clip> a,
-                                                 std::shared_ptr<const Clip> b,
-                                                 const PrepareOptions& options,
-                                                 JobControl* control) {
-  options.Validate();
-  const auto t0 = Clock::now();
-  auto p = std::make_shared<PreparedPair>();
-  p->clip_a = a;
-  p->clip_b = b;
-  p->mapping_a = map_major_joints(a->skeleton, options.mapping_a.entries.empty() ? nullptr : &options.mapping_a);
-  p->mapping_b = map_major_joints(b->skeleton, options.mapping_b.entries.empty() ? nullptr : &options.mapping_b);
-  p->majors = shared_major_joints(p->mapping_a, a->source, p->mapping_b, b->source);
-  if (!options.only_majors.empty()) {
-    std::vector<int> kept;
-    for (int m : p->majors)
-      if (std::find(options.only_majors.begin(), options.only_majors.end(), m) != options.only_majors.end())
-        kept.push_back(m);
-    p->majors = std::move(kept);
-  }
-  p->parents = subset_parents(p->majors);
-  const double fps = options.fps > 0 ? options.fps : a->fps();
-  p->fps = fps;
-  report_progress(control, 0.1f);
-  const MajorTake take_a = extract_major_take(*a, p->mapping_a, p->majors, fps);
-  check_cancel(control);
-  const MajorTake take_b = extract_major_take(*b, p->mapping_b, p->majors, fps);
-  check_cancel(control);
-  p->names_a = take_a.names;
-  p->names_b = take_b.names;
-  p->world_a = take_a.world;
+namespace {
 
-  auto column = [&](MajorJoint j) { return major_column(p->majors, static_cast<int>(j)); };
-  const int leg[6] = {column(MajorJoint::kLeftHip), column(MajorJoint::kLeftKnee),
-                      column(MajorJoint::kLeftAnkle), column(MajorJoint::kRightHip),
-                      column(MajorJoint::kRightKnee), column(MajorJoint::kRightAnkle)};
-  p->left_ankle = leg[2];
-  p->right_ankle = leg[5];
-  p->left_toe = column(MajorJoint::kLeftToe);
-  p->right_toe = column(MajorJoint::kRightToe);
-  p->lengths_a = bone_lengths(take_a.world, p->parents);
-  const std::vector<double> lengths_b = bone_lengths(take_b.world, p->parents);
-  p->world_b = retarget_positions(take_b.world, p->parents, p->lengths_a, leg_length(p->lengths_a, leg),
-                                  leg_length(lengths_b, leg));
-  adopt_group_shapes(p->world_b, p->world_a, p->parents);
-  apply_limb_lengths(p->world_b, p->parents, p->lengths_a);
-  p->canonical_a = to_canonical(p->world_a, 0, leg[0], leg[3]);
-  p->canonical_b = to_canonical(p->world_b, 0, leg[0], leg[3]);
-  p->feet = make_foot_rig(p->majors, p->lengths_a, fps, options.foot_contacts);
-  p->times.preprocess_ms = ms_since(t0);
-  report_progress(control, 0.3f);
-
-  const auto t1 = Clock::now();
-  FeatureJoints feature_joints;
-  feature_joints.left_ankle = p->left_ankle;
-  feature_joints.right_ankle = p->right_ankle;
-  feature_joints.left_wrist = column(MajorJoint::kLeftWrist);
-  feature_joints.right_wrist = column(MajorJoint::kRightWrist);
-  p->alignment = align_takes(p->canonical_a, p->canonical_b, feature_joints, p->feet.leg_length, fps, options.align,
-                             control);
-  p->alignment.warnings = alignment_warnings(p->alignment, fps, {"A", a->fps()}, {"B", b->fps()});
-  p->times.dtw_ms = ms_since(t1);
-  report_progress(control, 0.8f);
-
-  const auto t2 = Clock::now();
-  const TimeWarp& warp = p->alignment.warp;
-  // B moved rigidly so that where the warp starts, B stands where A stands and faces where A
-  // faces: both takes then walk from one place, and the blend's root lies between them.
-  const PlacedRoot placed = place_at(p->canonical_a, warp.a[0], p->canonical_b, warp.b[0]);
-  const Eigen::MatrixXd& placed_ground = placed.ground;
-  const Eigen::VectorXd& placed_heading = placed.heading;
-  to_world(p->canonical_b.local, placed_ground, placed_heading, &p->world_b_placed);
-
-  // Both takes on the warp's samples: poses, root paths and steps, contacts.
-  p->ground_a = sample_rows(p->canonical_a.ground, warp.a);
-  p->ground_b = sample_rows(placed_ground, warp.b);
-  const Eigen::VectorXd heading_a = sample_rows(p->canonical_a.heading, warp.a);
-  p->start_heading = heading_a[0];
-  const Eigen::VectorXd heading_b = sample_rows(placed_heading, warp.b);
-  p->steps_a = root_steps(p->ground_a, heading_a);
-  // The paper's warp may skip B frames from one sample to the next; its root must not teleport
-  // (canonical_frame.h). The smooth warp never skips, so there this changes nothing.
-  p->steps_b = limit_warped_steps(root_steps(p->ground_b, heading_b), warp.b, kMaxWarpSpeedup);
-  // Whole turns that keep B's facing within about half a turn of A's (match_turns), kept apart:
-  // blend_pair spreads each over a moment so a blend in between turns smoothly where it flips.
-  p->turn_flips = match_turns(p->steps_b, p->steps_a).col(2) - p->steps_b.col(2);
-  const Eigen::MatrixXd local_a = sample_rows(p->canonical_a.local, warp.a);
-  const Eigen::MatrixXd local_b = sample_rows(p->canonical_b.local, warp.b);
-  p->normalization = fit_normalization(local_a, local_b);
-  p->x_a = normalize(local_a, p->normalization.mean_a, p->normalization.scale);
-  p->x_b = normalize(local_b, p->normalization.mean_b, p->normalization.scale);
-  // Foot contacts of each take on its own motion, carried onto the warp, so blend_pair only
-  // mixes them (foot_contact.h).
-  p->contacts_a = detect_foot_contacts(p->world_a, p->feet);
-  p->contacts_b = detect_foot_contacts(p->world_b, p->feet);
-  p->warped_contacts_a = carry_contacts(p->contacts_a, warp.a);
-  p->warped_contacts_b = carry_contacts(p->contacts_b, warp.b);
-  p->foot_sliding_a = foot_sliding(p->world_a, p->contacts_a, p->feet);
-  p->foot_sliding_b = foot_sliding(p->world_b, p->contacts_b, p->feet);
-  p->times.preprocess_ms += ms_since(t2);
-  report_progress(control, 1.0f);
-  return p;
+void require_two(const PreparedTakes& prepared) {
+  if (prepared.size() != 2)
+    throw InputError("a blend of two takes was asked of " + std::to_string(prepared.size()) +
+                     " takes; mix them with weights (mix)");
 }
 
-std::shared_ptr<const DecomposedPair> decompose_pair(const PreparedPair& prepared,
+}  // namespace
+
+std::shared_ptr<const DecomposedPair> decompose_pair(const PreparedTakes& prepared,
                                                      const DecomposeParams& params,
                                                      JobControl* control) {
-  const int channels = static_cast<int>(prepared.x_a.cols());
+  require_two(prepared);
+  const Eigen::MatrixXd& x_a = prepared.takes[0].x;
+  const Eigen::MatrixXd& x_b = prepared.takes[1].x;
+  const int channels = static_cast<int>(x_a.cols());
   params.Validate(channels);
   const auto t0 = Clock::now();
   auto d = std::make_shared<DecomposedPair>();
@@ -178,20 +80,19 @@ std::shared_ptr<const DecomposedPair> decompose_pair(const PreparedPair& prepare
   // Paper mode is never local (DecomposeParams::local).
   const DecompositionOptions o =
       params.options(params.mode == BlendMode::kShared ? prepared.parents : std::vector<int>());
-  const double scale = prepared.normalization.scale;
+  const double scale = prepared.scale;
   const Eigen::MatrixXd* support_source = nullptr;
   if (params.mode == BlendMode::kShared) {
-    d->shared = decompose_shared(prepared.x_a, prepared.x_b, o, control);
+    d->shared = decompose_shared(x_a, x_b, o, control);
     d->shared_synthesis = prepare_shared_synthesis(d->shared.weights_a, d->shared.weights_b, d->shared.components);
-    const Normalization& n = prepared.normalization;
     const Eigen::MatrixXd reconstructed_a = synthesize_shared(d->shared_synthesis, 0.0);
     const Eigen::MatrixXd reconstructed_b = synthesize_shared(d->shared_synthesis, 1.0);
-    d->residual_a = (prepared.x_a - reconstructed_a) * scale;
-    d->residual_b = (prepared.x_b - reconstructed_b) * scale;
+    d->residual_a = (x_a - reconstructed_a) * scale;
+    d->residual_b = (x_b - reconstructed_b) * scale;
     d->local_a_components = reconstructed_a * scale;
-    d->local_a_components.rowwise() += n.mean_a;
+    d->local_a_components.rowwise() += prepared.takes[0].mean;
     d->local_delta_components = reconstructed_b * scale;
-    d->local_delta_components.rowwise() += n.mean_b;
+    d->local_delta_components.rowwise() += prepared.takes[1].mean;
     d->local_delta_components -= d->local_a_components;
     d->local_a = d->local_a_components + d->residual_a;
     d->local_delta = d->local_delta_components + d->residual_b - d->residual_a;
@@ -208,8 +109,8 @@ std::shared_ptr<const DecomposedPair> decompose_pair(const PreparedPair& prepare
     bo.sparsities.assign(params.basic_motions, params.sparsity);
     for (size_t i = 0; i < params.basic_sparsities.size() && i < bo.sparsities.size(); ++i)
       bo.sparsities[i] = params.basic_sparsities[i];
-    d->basic_a = decompose_basic_motions(prepared.x_a, bo, control);
-    d->basic_b = decompose_basic_motions(prepared.x_b, bo, control);
+    d->basic_a = decompose_basic_motions(x_a, bo, control);
+    d->basic_b = decompose_basic_motions(x_b, bo, control);
     d->basic_synthesis = prepare_basic_motion_synthesis(d->basic_a, d->basic_b);
     auto rmse = [&](const BasicMotions& m) {
       return std::sqrt(m.residual.squaredNorm() / std::max<double>(1, m.residual.size())) * scale;
@@ -221,8 +122,8 @@ std::shared_ptr<const DecomposedPair> decompose_pair(const PreparedPair& prepare
     for (const auto& level : d->basic_a.levels) d->iterations += level.iterations;
     support_source = &d->basic_a.levels.front().components;
   } else {
-    d->paper_a = detail::decompose_part(prepared.x_a, o, control, 0.0f, 0.5f);
-    d->paper_b = detail::decompose_part(prepared.x_b, o, control, 0.5f, 1.0f);
+    d->paper_a = detail::decompose_part(x_a, o, control, 0.0f, 0.5f);
+    d->paper_b = detail::decompose_part(x_b, o, control, 0.5f, 1.0f);
     d->paper_synthesis = prepare_paper_synthesis(d->paper_a.weights, core_components(d->paper_a.components),
                                                  core_components(d->paper_b.components));
     d->rmse_a = d->paper_a.rmse * scale;
@@ -253,13 +154,15 @@ double value_at(const Eigen::VectorXd& v, double u) {
 
 }  // namespace
 
-void blend_pair(const PreparedPair& p, const DecomposedPair& d, const BlendParams& params,
+void blend_pair(const PreparedTakes& p, const DecomposedPair& d, const BlendParams& params,
                 BlendScratch& s, BlendResult& out) {
+  require_two(p);
   if (!std::isfinite(params.alpha)) throw InputError("expected a finite alpha");
   const auto t0 = Clock::now();
   const double alpha = params.alpha;
-  const Normalization& n = p.normalization;
-  const TimeWarp& warp = p.alignment.warp;
+  const PreparedTake& a = p.takes[0];
+  const PreparedTake& b = p.takes[1];
+  const TimeWarp& warp = b.alignment.warp;
   // Per-component alphas all equal to alpha are the plain blend.
   const bool uniform = std::all_of(params.component_alpha.begin(), params.component_alpha.end(),
                                    [&](double a) { return a == alpha; });
@@ -285,11 +188,11 @@ void blend_pair(const PreparedPair& p, const DecomposedPair& d, const BlendParam
       s.source_a[k] = value_at(warp.a, s.u[k]);
       s.source_b[k] = value_at(warp.b, s.u[k]);
     }
-    s.sampler_a.set(s.source_a, p.canonical_a.local.rows());
-    s.sampler_b.set(s.source_b, p.canonical_b.local.rows());
-    s.sampler_a.apply(p.canonical_a.local, out.local);
+    s.sampler_a.set(s.source_a, a.canonical.local.rows());
+    s.sampler_b.set(s.source_b, b.canonical.local.rows());
+    s.sampler_a.apply(a.canonical.local, out.local);
     out.local *= 1.0 - alpha;
-    s.sampler_b.accumulate(p.canonical_b.local, alpha, out.local);
+    s.sampler_b.accumulate(b.canonical.local, alpha, out.local);
   } else if (affine) {
     // local = (W_A + alpha (W_B - W_A)) C scale + mean_a + alpha (mean_b - mean_a), folded, at
     // the output frames only.
@@ -306,9 +209,9 @@ void blend_pair(const PreparedPair& p, const DecomposedPair& d, const BlendParam
 
   const auto t1 = Clock::now();
   if (!affine) {
-    s.mean.noalias() = (1 - alpha) * n.mean_a + alpha * n.mean_b;
+    s.mean.noalias() = (1 - alpha) * a.mean + alpha * b.mean;
     s.samples.resize(s.x.rows(), s.x.cols());
-    s.samples.noalias() = s.x * n.scale;
+    s.samples.noalias() = s.x * p.scale;
     s.samples.rowwise() += s.mean;
     if (params.residual && d.params.mode == BlendMode::kShared) {
       // Per-component alphas: each joint's residual takes the mean alpha of the components
@@ -322,18 +225,18 @@ void blend_pair(const PreparedPair& p, const DecomposedPair& d, const BlendParam
     s.sampler.apply(s.samples, out.local);
   }
   // The root on the warp's samples, then at the output frames.
-  s.steps.resize(p.steps_a.rows(), 3);
-  s.steps.noalias() = (1 - alpha) * p.steps_a + alpha * p.steps_b;
-  // B's whole-turn flips (prepare_pair), spread over a moment (canonical_frame.h).
-  add_spread_turns(p.turn_flips, alpha, p.fps, s.steps);
-  integrate_blended_root(s.steps, p.ground_a, p.ground_b, alpha, p.start_heading, p.fps,
+  s.steps.resize(a.steps.rows(), 3);
+  s.steps.noalias() = (1 - alpha) * a.steps + alpha * b.steps;
+  // B's whole-turn flips (prepare_takes), spread over a moment (canonical_frame.h).
+  add_spread_turns(b.turn_flips, alpha, p.fps, s.steps);
+  integrate_blended_root(s.steps, a.ground, b.ground, alpha, p.reference_heading[0], p.fps,
                          params.root_pull_seconds, &s.ground_u, &s.heading_u);
   // Foot contacts mixed with the same alpha (the mean one when each component has its own).
   const double contact_alpha = d.params.mode == BlendMode::kShared && !params.component_alpha.empty() ? s.alphas.mean() : alpha;
-  blend_contacts(p.warped_contacts_a, p.warped_contacts_b, contact_alpha, s.contacts_u);
+  blend_contacts(a.contacts, b.contacts, contact_alpha, s.contacts_u);
   FinishRig rig;
   rig.parents = &p.parents;
-  rig.lengths = &p.lengths_a;
+  rig.lengths = &p.lengths;
   rig.feet = &p.feet;
   rig.short_bone_fraction = kShortBoneFraction;
   FinishOptions finish;
@@ -357,14 +260,8 @@ void blend_pair(const PreparedPair& p, const DecomposedPair& d, const BlendParam
   out.postprocess_ms = ms_since(t1);
 }
 
-std::vector<int> export_joints(const PreparedPair& p) {
-  std::vector<int> joints;
-  for (int major : p.majors) joints.push_back(p.mapping_a.joint[major]);
-  return joints;
-}
-
-Eigen::VectorXd source_frames_in_clip(const PreparedPair& p, const BlendResult& blend) {
-  return blend.source_a * (p.clip_a->fps() / p.fps);
+Eigen::VectorXd source_frames_in_clip(const PreparedTakes& p, const BlendResult& blend) {
+  return blend.source_a * (p.reference().clip->fps() / p.fps);
 }
 
 }  // namespace mostyle

@@ -1,7 +1,6 @@
 #pragma once
-// The paper's whole pipeline on a pair of takes, as three cached stages:
-//   prepare_pair   load-independent preprocessing: major skeleton, resample, FK, retarget B to A,
-//                  canonical frame, left-foot DTW, B warped onto A's timeline, normalization;
+// The paper's synthesis of two takes (A the reference, B the other) prepared by prepare_takes
+// (prepare_takes.h), as two cached stages:
 //   decompose_pair sparse-coding decomposition (shared or paper mode, basic motions);
 //   blend_pair     synthesis for one alpha, de-normalization, root trajectory, limb lengths.
 // Each stage takes the previous one's immutable value. A slider move re-runs only blend_pair,
@@ -23,68 +22,10 @@
 #include "engine/io/job_control.h"
 #include "engine/prepare/major_skeleton.h"
 #include "engine/prepare/normalize.h"
+#include "engine/run/prepare_takes.h"
 #include "engine/synthesize/synthesis.h"
 
 namespace mostyle {
-
-struct PrepareOptions {
-  double fps = 30.0;      // working and output frame rate; 0 keeps A's own rate
-  AlignmentOptions align;  // DTW method, feature, slope limit, open ends (align/alignment.h)
-  MappingOverrides mapping_a;  // empty: name rules only
-  MappingOverrides mapping_b;
-  FootContactOptions foot_contacts;  // detection thresholds and the lock's fade (foot_contact.h)
-  // Non-empty: only these canonical joints (major_skeleton.h), of those both takes have, so that
-  // several pairs with one reference share their joints (the style palette).
-  std::vector<int> only_majors;
-  void Validate() const;  // throws InputError on a bad fps or alignment option
-};
-
-struct StageTimes {
-  double load_ms = 0, preprocess_ms = 0, dtw_ms = 0, decompose_ms = 0, synthesize_ms = 0,
-         postprocess_ms = 0, export_ms = 0;
-};
-
-// Everything up to the decomposition. Fa, Fb = the takes' frames at the working rate, U = the
-// time warp's samples (the common timeline both takes are sampled on), M = shared joints.
-struct PreparedPair {
-  std::shared_ptr<const Clip> clip_a, clip_b;  // as loaded
-  MajorMapping mapping_a, mapping_b;
-  std::vector<int> majors;                 // canonical joints both takes have (M)
-  std::vector<int> parents;                // within majors
-  std::vector<std::string> names_a, names_b;  // the files' names of those joints
-  double fps = 30.0;                       // working rate
-  std::vector<double> lengths_a;           // A's bone lengths per joint, A's units
-  int left_ankle = -1, right_ankle = -1, left_toe = -1, right_toe = -1;  // columns, -1: absent
-
-  Eigen::MatrixXd world_a;          // Fa x 3M: A in its world frame, A's units
-  Eigen::MatrixXd world_b;          // Fb x 3M: B retargeted to A's bones, B's own timeline and world
-  Eigen::MatrixXd world_b_placed;   // Fb x 3M: the same moved rigidly so its matched start is A's
-  CanonicalMotion canonical_a;      // Fa frames
-  CanonicalMotion canonical_b;      // Fb frames (B's own timeline)
-  Alignment alignment;              // B onto A: feature, path, warp (U samples), matched ranges
-  // On the warp's U samples (A at warp.a, B at warp.b):
-  Eigen::MatrixXd steps_a, steps_b;    // U x 3 root steps
-  Eigen::VectorXd turn_flips;          // U: whole turns (multiples of 2 pi) match_turns adds to B's turns
-  Eigen::MatrixXd ground_a, ground_b;  // U x 2 hips ground paths, B's placed at A's start
-  double start_heading = 0.0;          // A's heading at the warp's first sample, radians
-  Normalization normalization;
-  Eigen::MatrixXd x_a, x_b;            // U x 3M normalized motion matrices
-  // Foot contacts (foot_contact.h), columns left and right foot, 1 planted, 0 not.
-  FootRig feet;                     // leg columns, leg length, thresholds
-  Eigen::MatrixXd contacts_a;       // Fa x 2: A's, from world_a
-  Eigen::MatrixXd contacts_b;       // Fb x 2: B's on its own timeline, from world_b
-  Eigen::MatrixXd warped_contacts_a, warped_contacts_b;  // U x 2: each carried onto the warp
-  double foot_sliding_a = 0, foot_sliding_b = 0;  // A's units per second (B retargeted)
-  StageTimes times;                 // load (if read here), preprocess, dtw
-  int samples() const { return alignment.warp.samples(); }
-};
-
-// Prepares clips already loaded. Throws InputError (missing joints, no frames, degenerate hips)
-// or Cancelled. Cost: FK O(frames x joints) and DTW O(Fa x Fb).
-std::shared_ptr<const PreparedPair> prepare_pair(std::shared_ptr<const Clip> a,
-                                                 std::shared_ptr<const Clip> b,
-                                                 const PrepareOptions& options,
-                                                 JobControl* control = nullptr);
 
 enum class BlendMode { kShared, kPaper };
 const char* blend_mode_name(BlendMode mode);  // "shared", "paper"
@@ -138,8 +79,8 @@ struct DecomposedPair {
   int components() const { return params.components; }
 };
 
-// Throws InputError on bad parameters, or Cancelled.
-std::shared_ptr<const DecomposedPair> decompose_pair(const PreparedPair& prepared,
+// prepared: two takes. Throws InputError on bad parameters or more takes, or Cancelled.
+std::shared_ptr<const DecomposedPair> decompose_pair(const PreparedTakes& prepared,
                                                      const DecomposeParams& params,
                                                      JobControl* control = nullptr);
 
@@ -196,13 +137,11 @@ struct BlendResult {
 // (about 0.5 ms for a minute at 30 fps), else O(U x k x 3M); allocation-free once `scratch`
 // and `out` have the right sizes (per-component alphas allocate one 2k x 3M matrix, a loop
 // allocates).
-void blend_pair(const PreparedPair& prepared, const DecomposedPair& decomposed,
+void blend_pair(const PreparedTakes& prepared, const DecomposedPair& decomposed,
                 const BlendParams& params, BlendScratch& scratch, BlendResult& out);
 
-// A's joint index of each major column (for export).
-std::vector<int> export_joints(const PreparedPair& prepared);
 // The blend's output frames in A's own clip frames (for export's A rotations): source_a scaled
 // from the working rate to A's rate.
-Eigen::VectorXd source_frames_in_clip(const PreparedPair& prepared, const BlendResult& blend);
+Eigen::VectorXd source_frames_in_clip(const PreparedTakes& prepared, const BlendResult& blend);
 
 }  // namespace mostyle

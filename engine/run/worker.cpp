@@ -214,8 +214,8 @@ void Worker::run_load(std::unique_lock<std::mutex>& lock) {
   auto clip_a = std::make_shared<const Clip>(read_take(a, &warnings, read_options_));
   auto clip_b = b == a ? clip_a : std::make_shared<const Clip>(read_take(b, &warnings, read_options_));
   const double load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  auto prepared = prepare_pair(clip_a, clip_b, options, &control_);
-  std::const_pointer_cast<PreparedPair>(prepared)->times.load_ms = load_ms;
+  auto prepared = prepare_takes({clip_a, clip_b}, options, &control_);
+  std::const_pointer_cast<PreparedTakes>(prepared)->times.load_ms = load_ms;
   lock.lock();
   publish([&](WorkerSnapshot& s) {
     s.prepared = prepared;
@@ -271,7 +271,7 @@ void Worker::run_blend(std::unique_lock<std::mutex>& lock) {
   }
 }
 
-// The palette: the same three stages, with prepare_palette, decompose_palette and mix_palette.
+// The palette: the same three stages, with prepare_takes, decompose_palette and mix_palette.
 
 void Worker::run_load_palette(std::unique_lock<std::mutex>& lock) {
   need_load_ = false;
@@ -280,7 +280,7 @@ void Worker::run_load_palette(std::unique_lock<std::mutex>& lock) {
   const PrepareOptions options = prepare_options_;
   lock.unlock();
   std::vector<std::string> warnings;
-  auto palette = prepare_palette(read_palette_clips(paths, &warnings, read_options_, &control_), options, &control_);
+  auto palette = prepare_takes(read_palette_clips(paths, &warnings, read_options_, &control_), options, &control_);
   lock.lock();
   publish([&](WorkerSnapshot& s) {
     s.palette = palette;

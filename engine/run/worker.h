@@ -23,7 +23,7 @@ namespace mostyle {
 // Holds a pair or a palette, never both: a successful load of one clears the other's fields.
 struct WorkerSnapshot {
   // The pair.
-  std::shared_ptr<const PreparedPair> prepared;      // null unless a pair is loaded
+  std::shared_ptr<const PreparedTakes> prepared;     // null unless a pair is loaded
   std::shared_ptr<const DecomposedPair> decomposed;  // of `prepared`; null until its first one
   std::shared_ptr<const BlendResult> blend;          // of `decomposed` with blend_params
   // The parameters of the request `decomposed` (or `palette_decomposition`) was made from. A
@@ -33,7 +33,7 @@ struct WorkerSnapshot {
   BlendParams blend_params;                          // the parameters `blend` was made with
   std::string path_a, path_b;                        // files of `prepared`
   // The palette.
-  std::shared_ptr<const PreparedPalette> palette;                     // null unless a palette is loaded
+  std::shared_ptr<const PreparedTakes> palette;                    // null unless a palette is loaded
   std::shared_ptr<const PaletteDecomposition> palette_decomposition;  // of `palette`; null until its first one
   std::shared_ptr<const MixResult> mix;                               // of `palette_decomposition` with mix_params
   MixParams mix_params;                                               // the parameters `mix` was made with
@@ -43,7 +43,7 @@ struct WorkerSnapshot {
   std::uint64_t version = 0;          // grows with every published change
 };
 
-// A palette's stages run as the pair's: kLoading (read and prepare_palette), kDecomposing, and
+// A palette's stages run as the pair's: kLoading (read and prepare_takes), kDecomposing, and
 // kBlending (mix_palette).
 enum class WorkerStage { kIdle, kLoading, kDecomposing, kBlending };
 const char* worker_stage_name(WorkerStage stage);  // "idle", "loading", ...
@@ -72,7 +72,7 @@ class Worker {
   // without basic motions, which are the pair's) and mixes it with the current mix parameters;
   // when their weights are not one per take, the mix parameters become equal weights (and no
   // per-component weights). Replaces a pending load (pair or palette); cancels a running load or
-  // decomposition. A success clears the pair. Cost: reading the files, then N - 1 prepare_pair.
+  // decomposition. A success clears the pair. Cost: reading the files, then one prepare_takes.
   void load_palette(const std::vector<std::string>& paths, const PrepareOptions& options = {});
   // New decomposition parameters: re-decomposes and re-blends the pair, or re-decomposes and
   // re-mixes the palette. Cancels a running decomposition.

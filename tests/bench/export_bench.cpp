@@ -19,7 +19,7 @@ const std::string kAssets = MOSTYLE_ASSETS_DIR;
 const std::string kShared = MOSTYLE_SHARED_MOTIONS;
 
 struct Pair {
-  std::shared_ptr<const mostyle::PreparedPair> prepared;
+  std::shared_ptr<const mostyle::PreparedTakes> prepared;
   std::shared_ptr<const mostyle::DecomposedPair> decomposed;
   mostyle::BlendResult blend;
 };
@@ -31,7 +31,7 @@ Pair load_pair(const std::string& a, const std::string& b, bool* ok) {
   try {
     auto clip_a = std::make_shared<const mostyle::Clip>(mostyle::read_bvh_file(a));
     auto clip_b = std::make_shared<const mostyle::Clip>(mostyle::read_bvh_file(b));
-    p.prepared = mostyle::prepare_pair(clip_a, clip_b, mostyle::PrepareOptions{});
+    p.prepared = mostyle::prepare_takes({clip_a, clip_b}, mostyle::PrepareOptions{});
   } catch (const mostyle::InputError&) {
     return p;
   }
@@ -57,7 +57,7 @@ void BM_ExportSolveCmu(benchmark::State& state) {
   const Pair p = cmu_pair(&ok);
   if (!ok) return state.SkipWithError("no CMU motions");
   for (auto _ : state) {
-    const mostyle::ExportResult r = mostyle::solve_export_at(*p.prepared->clip_a, mostyle::export_joints(*p.prepared), p.blend.world, mostyle::source_frames_in_clip(*p.prepared, p.blend), p.prepared->fps);
+    const mostyle::ExportResult r = mostyle::solve_export_at(*p.prepared->reference().clip, mostyle::export_joints(*p.prepared), p.blend.world, mostyle::source_frames_in_clip(*p.prepared, p.blend), p.prepared->fps);
     benchmark::DoNotOptimize(r.clip.motion.data());
   }
   state.counters["frames"] = static_cast<double>(p.blend.world.rows());
@@ -70,7 +70,7 @@ void BM_ExportSolveBandai(benchmark::State& state) {
   const Pair p = load_pair(kShared + "/bandai_walk_normal.bvh", kShared + "/bandai_walk_tired.bvh", &ok);
   if (!ok) return state.SkipWithError("../shared/motions is absent");
   for (auto _ : state) {
-    const mostyle::ExportResult r = mostyle::solve_export_at(*p.prepared->clip_a, mostyle::export_joints(*p.prepared), p.blend.world, mostyle::source_frames_in_clip(*p.prepared, p.blend), p.prepared->fps);
+    const mostyle::ExportResult r = mostyle::solve_export_at(*p.prepared->reference().clip, mostyle::export_joints(*p.prepared), p.blend.world, mostyle::source_frames_in_clip(*p.prepared, p.blend), p.prepared->fps);
     benchmark::DoNotOptimize(r.clip.motion.data());
   }
   state.counters["frames"] = static_cast<double>(p.blend.world.rows());
@@ -124,7 +124,7 @@ void BM_DetectFootContacts(benchmark::State& state) {
   const Pair p = cmu_pair(&ok);
   if (!ok) return state.SkipWithError("no CMU motions");
   for (auto _ : state) {
-    const Eigen::MatrixXd c = mostyle::detect_foot_contacts(p.prepared->world_a, p.prepared->feet);
+    const Eigen::MatrixXd c = mostyle::detect_foot_contacts(p.prepared->reference().world, p.prepared->feet);
     benchmark::DoNotOptimize(c.data());
   }
 }

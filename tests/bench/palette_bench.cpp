@@ -54,8 +54,8 @@ DecomposeParams bench_params() {
   return d;
 }
 
-const PreparedPalette& palette() {
-  static const auto p = prepare_palette(eight_takes(), {});
+const PreparedTakes& palette() {
+  static const auto p = prepare_takes(eight_takes(), {});
   return *p;
 }
 
@@ -66,13 +66,13 @@ const PaletteDecomposition& decomposition() {
 
 void BM_PrepareEightTakes(benchmark::State& state) {
   const auto clips = eight_takes();
-  for (auto _ : state) benchmark::DoNotOptimize(prepare_palette(clips, {}));
+  for (auto _ : state) benchmark::DoNotOptimize(prepare_takes(clips, {}));
   state.counters["samples"] = palette().samples();
 }
 BENCHMARK(BM_PrepareEightTakes)->Unit(benchmark::kMillisecond)->Iterations(2);
 
 void BM_DecomposeEightTakes(benchmark::State& state) {
-  const PreparedPalette& p = palette();
+  const PreparedTakes& p = palette();
   for (auto _ : state) benchmark::DoNotOptimize(decompose_palette(p, bench_params()));
   state.counters["frames"] = double(p.samples()) * p.size();
 }
@@ -81,7 +81,7 @@ BENCHMARK(BM_DecomposeEightTakes)->Unit(benchmark::kMillisecond)->Iterations(3);
 // A new weight set every iteration (as a drag on the blend pad gives), the whole slider path:
 // poses, timing, root, limb lengths and foot lock.
 void mix_bench(benchmark::State& state, bool reference_timing) {
-  const PreparedPalette& p = palette();
+  const PreparedTakes& p = palette();
   const PaletteDecomposition& d = decomposition();
   MixParams params;
   params.reference_timing = reference_timing;

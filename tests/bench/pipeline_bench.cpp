@@ -1,5 +1,5 @@
 // Speed of the pair pipeline on a minute of motion at 30 fps (1800 frames, 20 major joints):
-// prepare_pair (resample, FK, retarget, canonical frame, DTW), decompose_pair (shared mode, k = 10)
+// prepare_takes of two takes (resample, FK, retarget, canonical frame, DTW), decompose_pair (shared mode, k = 10)
 // and blend_pair for one alpha, the slider move, which must stay well under 1 ms. With the timing
 // blended the output's length changes with alpha, and its buffers are resized then (the
 // allocations are counted here by wrapping malloc); with A's timing it allocates nothing once
@@ -62,7 +62,7 @@ std::shared_ptr<const Clip> minute_take(const std::string& name) {
 }
 
 struct Pair {
-  std::shared_ptr<const PreparedPair> prepared;
+  std::shared_ptr<const PreparedTakes> prepared;
   std::shared_ptr<const DecomposedPair> decomposed;
 };
 
@@ -75,7 +75,7 @@ DecomposeParams bench_params() {
 const Pair& minute_pair() {
   static const Pair pair = [] {
     Pair p;
-    p.prepared = prepare_pair(minute_take("cmu142_walk_marching.bvh"), minute_take("cmu142_walk_happy.bvh"), {});
+    p.prepared = prepare_takes({minute_take("cmu142_walk_marching.bvh"), minute_take("cmu142_walk_happy.bvh")}, {});
     p.decomposed = decompose_pair(*p.prepared, bench_params());
     return p;
   }();
@@ -85,25 +85,25 @@ const Pair& minute_pair() {
 void BM_PreparePair(benchmark::State& state) {
   const auto a = minute_take("cmu142_walk_marching.bvh");
   const auto b = minute_take("cmu142_walk_happy.bvh");
-  std::shared_ptr<const PreparedPair> p;
+  std::shared_ptr<const PreparedTakes> p;
   for (auto _ : state) {
-    p = prepare_pair(a, b, {});
+    p = prepare_takes({a, b}, {});
     benchmark::DoNotOptimize(p.get());
   }
-  state.counters["frames"] = static_cast<double>(p->world_a.rows());
+  state.counters["frames"] = static_cast<double>(p->reference().world.rows());
   state.counters["joints"] = static_cast<double>(p->majors.size());
   state.counters["dtw_ms"] = p->times.dtw_ms;
 }
 BENCHMARK(BM_PreparePair)->Unit(benchmark::kMillisecond);
 
 void BM_DecomposePair(benchmark::State& state) {
-  const PreparedPair& p = *minute_pair().prepared;
+  const PreparedTakes& p = *minute_pair().prepared;
   std::shared_ptr<const DecomposedPair> d;
   for (auto _ : state) {
     d = decompose_pair(p, bench_params());
     benchmark::DoNotOptimize(d.get());
   }
-  state.counters["frames"] = static_cast<double>(p.x_a.rows());
+  state.counters["frames"] = static_cast<double>(p.reference().x.rows());
   state.counters["k"] = d->components();
   state.counters["iterations"] = d->iterations;
 }

@@ -34,12 +34,12 @@ TEST_CASE("the session turns a loaded pair into A, B and the blend, in step on t
   LoadedSession s;
   REQUIRE(s.session.error().empty());
   REQUIRE(s.state.takes.size() == 3);
-  const PreparedPair& p = *s.session.snapshot().prepared;
+  const PreparedTakes& p = *s.session.snapshot().prepared;
   REQUIRE(s.session.blend() != nullptr);
   for (const Take& t : s.state.takes) {
     CHECK(t.ok());
     CHECK(t.frames() == s.session.blend()->world.rows());  // all three in step on the blend's timeline
-    CHECK(t.positions.cols() == p.world_a.cols());
+    CHECK(t.positions.cols() == p.takes[0].world.cols());
     CHECK(t.rate() == p.fps);
     CHECK(t.parents == p.parents);
   }
@@ -211,8 +211,8 @@ TEST_CASE("space plays and pauses, the arrow keys step one frame") {
 TEST_CASE("timing, loop and alignment controls reach the blend and the alignment") {
   LoadedSession s;
   REQUIRE(s.session.blend() != nullptr);
-  const PreparedPair& p = *s.session.snapshot().prepared;
-  const Alignment& al = p.alignment;
+  const PreparedTakes& p = *s.session.snapshot().prepared;
+  const Alignment& al = p.takes[1].alignment;
   SessionControls& c = s.session.controls();
   // alpha 0: A's timing, as long as A's matched range; with A's timing kept at alpha 1 too.
   s.state.parameters.alpha = 0.0;
@@ -241,7 +241,7 @@ TEST_CASE("timing, loop and alignment controls reach the blend and the alignment
   s.session.realign();
   s.session.wait_idle(s.state);
   REQUIRE(s.session.snapshot().prepared != nullptr);
-  CHECK(s.session.snapshot().prepared->alignment.feature.on == AlignOn::kBody);
+  CHECK(s.session.snapshot().prepared->takes[1].alignment.feature.on == AlignOn::kBody);
   CHECK(s.session.error().empty());
   // The panels draw over it, warnings and quality strip included.
   test::HeadlessImGui imgui;

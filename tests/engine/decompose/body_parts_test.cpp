@@ -121,13 +121,13 @@ TEST_CASE("local components on real takes of every convention: connected, and wh
   for (const std::string& f : test::shared_motions()) files.push_back(f);
   for (const std::string& file : files) {
     auto clip = std::make_shared<const Clip>(read_bvh_file(file));
-    const auto p = prepare_pair(clip, clip, {});
+    const auto p = prepare_takes({clip, clip}, {});
     DecompositionOptions o;
     o.components = 10;
     o.sparsity = 0.1;
-    const double plain = decompose(p->x_a, o).rmse;
+    const double plain = decompose(p->takes[0].x, o).rmse;
     o.locality_parents = p->parents;
-    const Decomposition local = decompose(p->x_a, o);
+    const Decomposition local = decompose(p->takes[0].x, o);
     INFO(file << ": RMSE " << local.rmse << " local against " << plain << " anywhere (normalized units)");
     for (const ComponentJoints& c : describe_components(local.components, p->majors)) CHECK(connected_in(c.columns, p->parents));
     // What locality costs at k = 10, f = 0.1 (two joints a component): measured 1.08x (Bandai

@@ -278,7 +278,7 @@ TEST_CASE("export rejects bad targets", "[export]") {
 namespace {
 
 struct Blended {
-  std::shared_ptr<const PreparedPair> prepared;
+  std::shared_ptr<const PreparedTakes> prepared;
   BlendResult result;
 };
 
@@ -286,7 +286,7 @@ Blended blend_files(const std::string& path_a, const std::string& path_b, double
   auto a = std::make_shared<const Clip>(read_bvh_file(path_a));
   auto b = std::make_shared<const Clip>(read_bvh_file(path_b));
   Blended out;
-  out.prepared = prepare_pair(a, b, PrepareOptions{});
+  out.prepared = prepare_takes({a, b}, PrepareOptions{});
   DecomposeParams dp;
   dp.components = 8;
   dp.max_iterations = 30;
@@ -301,18 +301,18 @@ Blended blend_files(const std::string& path_a, const std::string& path_b, double
 // Exports a blend, writes and reads it back, and checks the issue's acceptance bounds. Returns
 // the read-back clip's major positions.
 Eigen::MatrixXd check_blend_export(const Blended& blend) {
-  const PreparedPair& p = *blend.prepared;
+  const PreparedTakes& p = *blend.prepared;
   // A's rotations where the blend is in A's motion (its own timeline, align/timing.h).
   const ExportResult r =
-      solve_export_at(*p.clip_a, export_joints(p), blend.result.world, source_frames_in_clip(p, blend.result), p.fps);
+      solve_export_at(*p.takes[0].clip, export_joints(p), blend.result.world, source_frames_in_clip(p, blend.result), p.fps);
   const Clip back = parse_bvh(format_bvh(r.clip), "blend.bvh");
   REQUIRE(back.frames() == blend.result.world.rows());
   std::vector<int> joints;
-  for (int major : p.majors) joints.push_back(p.mapping_a.joint[major]);
+  for (int major : p.majors) joints.push_back(p.takes[0].mapping.joint[major]);
   const Eigen::MatrixXd positions = major_positions(back, joints);
-  const double h = guess_units(*p.clip_a).height;
+  const double h = guess_units(*p.takes[0].clip).height;
   const ExportFit fit = export_fit(back, joints, blend.result.world);
-  INFO(p.clip_a->source << " / " << p.clip_b->source << ": fit max " << fit.max << ", mean " << fit.mean
+  INFO(p.takes[0].clip->source << " / " << p.takes[1].clip->source << ": fit max " << fit.max << ", mean " << fit.mean
                         << ", height " << h);
   CHECK(fit.max <= kMaxFit * h);
   CHECK(fit.mean <= kMeanFit * h);
@@ -326,9 +326,9 @@ Eigen::MatrixXd check_blend_export(const Blended& blend) {
 TEST_CASE("a real take paired with itself exports back to itself, fingers included", "[export]") {
   // CMU 142 (assets): near-gimbal-lock root, zero-length bones, fingers and thumbs at 120 fps.
   auto a = std::make_shared<const Clip>(read_bvh_file(test::asset("motions/cmu142_walk_happy.bvh")));
-  const auto p = prepare_pair(a, a, PrepareOptions{});
+  const auto p = prepare_takes({a, a}, PrepareOptions{});
   // The blend at alpha 0 before synthesis: A itself, on A's own frames.
-  const ExportResult r = solve_export(*p->clip_a, export_joints(*p), p->world_a, p->fps);
+  const ExportResult r = solve_export(*p->takes[0].clip, export_joints(*p), p->takes[0].world, p->fps);
   const Clip a30 = resample_clip(*a, p->fps);
   const double h = guess_units(*a).height;
   CHECK(r.fit.max <= kExactFit * h);
@@ -339,15 +339,15 @@ TEST_CASE("a real take paired with itself exports back to itself, fingers includ
 TEST_CASE("export of a real blend (assets, CMU): bounds, single-child chains tight", "[export]") {
   const Blended blend = blend_files(test::asset("motions/cmu142_walk_happy.bvh"),
                                     test::asset("motions/cmu142_walk_joy.bvh"), 0.5);
-  const PreparedPair& p = *blend.prepared;
+  const PreparedTakes& p = *blend.prepared;
   const Eigen::MatrixXd positions = check_blend_export(blend);
   // Every major joint below a joint with a single major child is placed by one rigid chain (or,
   // under the hips and chest, behind a pivot): it lands on the blend to rounding. Only the head
   // rests on CMU's two neck joints, whose bend A keeps.
-  const double h = guess_units(*p.clip_a).height;
+  const double h = guess_units(*p.takes[0].clip).height;
   for (size_t c = 1; c < p.majors.size(); ++c) {
     if (p.majors[c] == static_cast<int>(MajorJoint::kHead)) continue;
-    INFO(p.names_a[c]);
+    INFO(p.takes[0].names[c]);
     double worst = 0;
     for (Eigen::Index f = 0; f < positions.rows(); ++f)
       worst = std::max(worst, (positions.block<1, 3>(f, 3 * c) - blend.result.world.block<1, 3>(f, 3 * c)).norm());
@@ -372,12 +372,12 @@ TEST_CASE("export_blend_bvh writes a file Blender-style readers see as the blend
   const Blended blend = blend_files(test::asset("motions/cmu142_walk_marching.bvh"),
                                     test::asset("motions/cmu142_walk_clumsy.bvh"), 0.3);
   const std::string path = (std::filesystem::temp_directory_path() / "mostyle_export_solve_test.bvh").string();
-  const PreparedPair& p = *blend.prepared;
-  const ExportResult r = export_blend_bvh(*p.clip_a, export_joints(p), blend.result.world,
+  const PreparedTakes& p = *blend.prepared;
+  const ExportResult r = export_blend_bvh(*p.takes[0].clip, export_joints(p), blend.result.world,
                                           source_frames_in_clip(p, blend.result), p.fps, path);
   const Clip back = read_bvh_file(path);
   CHECK(back.frames() == blend.result.world.rows());
   CHECK(back.fps() == blend.prepared->fps);
-  CHECK(r.fit.max <= kMaxFit * guess_units(*blend.prepared->clip_a).height);
+  CHECK(r.fit.max <= kMaxFit * guess_units(*blend.prepared->takes[0].clip).height);
   std::remove(path.c_str());
 }

@@ -257,16 +257,16 @@ namespace {
 void check_pipeline_foot_lock(const std::string& path_a, const std::string& path_b) {
   auto a = std::make_shared<const Clip>(read_bvh_file(path_a));
   auto b = std::make_shared<const Clip>(read_bvh_file(path_b));
-  const auto p = prepare_pair(a, b, PrepareOptions{});
-  const Eigen::Index frames = p->world_a.rows();
-  REQUIRE(p->contacts_a.rows() == frames);
-  REQUIRE(p->contacts_b.rows() == p->world_b.rows());
-  REQUIRE(p->warped_contacts_a.rows() == p->samples());  // both carried onto the time warp
-  REQUIRE(p->warped_contacts_b.rows() == p->samples());
+  const auto p = prepare_takes({a, b}, PrepareOptions{});
+  const Eigen::Index frames = p->takes[0].world.rows();
+  REQUIRE(p->takes[0].own_contacts.rows() == frames);
+  REQUIRE(p->takes[1].own_contacts.rows() == p->takes[1].world.rows());
+  REQUIRE(p->takes[0].contacts.rows() == p->samples());  // both carried onto the time warp
+  REQUIRE(p->takes[1].contacts.rows() == p->samples());
   // A walk: each foot planted for a good part of the take.
-  CHECK(p->contacts_a.col(0).mean() > 0.2);
-  CHECK(p->contacts_a.col(1).mean() > 0.2);
-  CHECK(p->foot_sliding_a > 0);
+  CHECK(p->takes[0].own_contacts.col(0).mean() > 0.2);
+  CHECK(p->takes[0].own_contacts.col(1).mean() > 0.2);
+  CHECK(p->takes[0].foot_sliding > 0);
   DecomposeParams dp;
   dp.components = 8;
   dp.max_iterations = 30;
@@ -278,11 +278,11 @@ void check_pipeline_foot_lock(const std::string& path_a, const std::string& path
   blend_pair(*p, *d, bp, scratch, locked);
   bp.foot_lock = false;
   blend_pair(*p, *d, bp, scratch, free);
-  INFO(path_a << " / " << path_b << ": sliding A " << p->foot_sliding_a << ", B " << p->foot_sliding_b
+  INFO(path_a << " / " << path_b << ": sliding A " << p->takes[0].foot_sliding << ", B " << p->takes[1].foot_sliding
               << ", raw " << locked.foot_sliding_raw << ", cleaned " << locked.foot_sliding_cleaned);
   CHECK(free.foot_sliding_cleaned == free.foot_sliding_raw);
   CHECK(locked.foot_sliding_raw == Approx(free.foot_sliding_raw));
-  CHECK(locked.foot_sliding_cleaned <= std::max(p->foot_sliding_a, p->foot_sliding_b));
+  CHECK(locked.foot_sliding_cleaned <= std::max(p->takes[0].foot_sliding, p->takes[1].foot_sliding));
   CHECK(locked.foot_sliding_cleaned <= 0.1 * locked.foot_sliding_raw);
   // The lock keeps the limb lengths and touches only the legs below the hips.
   CHECK(locked.limb_length_max_error <= 1e-9 * p->feet.leg_length);

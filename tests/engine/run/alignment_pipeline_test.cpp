@@ -87,7 +87,7 @@ Clip padded(const Clip& clip, int frames) {
 
 struct Pair {
   std::shared_ptr<const Clip> a, b;
-  std::shared_ptr<const PreparedPair> p;
+  std::shared_ptr<const PreparedTakes> p;
   std::shared_ptr<const DecomposedPair> d;
   double height = 0;
 };
@@ -96,7 +96,7 @@ Pair happy_marching() {
   Pair pair;
   pair.a = load("cmu142_walk_happy.bvh");
   pair.b = load("cmu142_walk_marching.bvh");
-  pair.p = prepare_pair(pair.a, pair.b, {});
+  pair.p = prepare_takes({pair.a, pair.b}, {});
   pair.d = decompose_pair(*pair.p, DecomposeParams());
   pair.height = guess_units(*pair.a).height;
   return pair;
@@ -106,18 +106,18 @@ Pair happy_marching() {
 
 TEST_CASE("alignment pipeline: the blend's sources run forward within the matched ranges", "[alignment]") {
   const Pair x = happy_marching();
-  const PreparedPair& p = *x.p;
-  const Alignment& al = p.alignment;
-  INFO("A " << al.a_first << ".." << al.a_last << " of " << p.world_a.rows() << ", B " << al.b_first << ".."
-            << al.b_last << " of " << p.world_b.rows() << ", " << p.samples() << " samples");
+  const PreparedTakes& p = *x.p;
+  const Alignment& al = p.takes[1].alignment;
+  INFO("A " << al.a_first << ".." << al.a_last << " of " << p.takes[0].world.rows() << ", B " << al.b_first << ".."
+            << al.b_last << " of " << p.takes[1].world.rows() << ", " << p.samples() << " samples");
   CHECK(al.a_first >= 0);
-  CHECK(al.a_last < p.world_a.rows());
+  CHECK(al.a_last < p.takes[0].world.rows());
   CHECK(al.b_first >= 0);
-  CHECK(al.b_last < p.world_b.rows());
+  CHECK(al.b_last < p.takes[1].world.rows());
   CHECK(al.feature.on == AlignOn::kLeftFoot);  // two walks
-  CHECK(p.x_a.rows() == p.samples());
-  CHECK(p.ground_b.rows() == p.samples());
-  CHECK(p.warped_contacts_b.rows() == p.samples());
+  CHECK(p.takes[0].x.rows() == p.samples());
+  CHECK(p.takes[1].ground.rows() == p.samples());
+  CHECK(p.takes[1].contacts.rows() == p.samples());
   for (double alpha : {0.0, 0.5, 1.0}) {
     INFO("alpha " << alpha);
     const BlendResult r = blend_at(p, *x.d, alpha);
@@ -138,8 +138,8 @@ TEST_CASE("alignment pipeline: the blend's sources run forward within the matche
 
 TEST_CASE("alignment pipeline: no pops at alpha 0, 0.5 and 1", "[alignment]") {
   const Pair x = happy_marching();
-  const PreparedPair& p = *x.p;
-  const double takes = std::max(joint_speeds(p.world_a).maxCoeff(), joint_speeds(p.world_b).maxCoeff());
+  const PreparedTakes& p = *x.p;
+  const double takes = std::max(joint_speeds(p.takes[0].world).maxCoeff(), joint_speeds(p.takes[1].world).maxCoeff());
   for (double alpha : {0.0, 0.5, 1.0}) {
     const BlendResult r = blend_at(p, *x.d, alpha);
     const Eigen::VectorXd speeds = joint_speeds(r.world);
@@ -152,8 +152,8 @@ TEST_CASE("alignment pipeline: no pops at alpha 0, 0.5 and 1", "[alignment]") {
 
 TEST_CASE("alignment pipeline: alpha 0 is as long as A's matched range, alpha 1 as B's", "[alignment]") {
   const Pair x = happy_marching();
-  const PreparedPair& p = *x.p;
-  const Alignment& al = p.alignment;
+  const PreparedTakes& p = *x.p;
+  const Alignment& al = p.takes[1].alignment;
   const double range_a = al.a_last - al.a_first + 1, range_b = al.b_last - al.b_first + 1;
   const BlendResult r0 = blend_at(p, *x.d, 0.0), r1 = blend_at(p, *x.d, 1.0), half = blend_at(p, *x.d, 0.5);
   INFO("A's range " << range_a << ", B's " << range_b << "; frames at alpha 0: " << r0.world.rows() << ", 0.5: "
@@ -168,7 +168,7 @@ TEST_CASE("alignment pipeline: alpha 0 is as long as A's matched range, alpha 1 
 
 TEST_CASE("alignment pipeline: timing_a keeps A's timeline at every alpha", "[alignment]") {
   const Pair x = happy_marching();
-  const PreparedPair& p = *x.p;
+  const PreparedTakes& p = *x.p;
   BlendParams keep;
   keep.timing_a = true;
   const BlendResult r0 = blend_at(p, *x.d, 0.0, keep), r1 = blend_at(p, *x.d, 1.0, keep);
@@ -180,12 +180,12 @@ TEST_CASE("alignment pipeline: timing_a keeps A's timeline at every alpha", "[al
 
 TEST_CASE("alignment pipeline: alpha 0 reproduces A at the frames it shows", "[alignment]") {
   const Pair x = happy_marching();
-  const PreparedPair& p = *x.p;
+  const PreparedTakes& p = *x.p;
   for (bool timing_a : {false, true}) {
     BlendParams params;
     params.timing_a = timing_a;
     const BlendResult r = blend_at(p, *x.d, 0.0, params);
-    const Eigen::MatrixXd a_there = sample_rows(p.world_a, r.source_a);
+    const Eigen::MatrixXd a_there = sample_rows(p.takes[0].world, r.source_a);
     const double e = mean_joint_distance(r.world, a_there) / x.height;
     INFO("timing_a " << timing_a << ": mean " << 100 * e << "% of height " << x.height);
     CHECK(e < kAlphaZeroMean);
@@ -198,21 +198,21 @@ TEST_CASE("alignment pipeline: standing before and after a take is left out of t
   const auto walk = std::make_shared<const Clip>(happy);
   const auto standing = std::make_shared<const Clip>(padded(happy, pad));
   SECTION("the padded take as A") {
-    const auto p = prepare_pair(standing, walk, {});
+    const auto p = prepare_takes({standing, walk}, {});
     const int first = static_cast<int>(std::lround(kPadSeconds * p->fps));  // 60 at 30 fps
-    const int last = first + static_cast<int>(p->world_b.rows()) - 1;        // the walk's last frame
-    const Alignment& al = p->alignment;
-    INFO("A (padded, " << p->world_a.rows() << " frames) matched " << al.a_first << ".." << al.a_last
+    const int last = first + static_cast<int>(p->takes[1].world.rows()) - 1;        // the walk's last frame
+    const Alignment& al = p->takes[1].alignment;
+    INFO("A (padded, " << p->takes[0].world.rows() << " frames) matched " << al.a_first << ".." << al.a_last
                        << ", walking " << first << ".." << last << "; B matched " << al.b_first << ".." << al.b_last);
     CHECK(std::abs(al.a_first - first) <= kPadSlack);
     CHECK(std::abs(al.a_last - last) <= kPadSlack);
   }
   SECTION("the padded take as B") {
-    const auto p = prepare_pair(walk, standing, {});
+    const auto p = prepare_takes({walk, standing}, {});
     const int first = static_cast<int>(std::lround(kPadSeconds * p->fps));
-    const int last = first + static_cast<int>(p->world_a.rows()) - 1;
-    const Alignment& al = p->alignment;
-    INFO("B (padded, " << p->world_b.rows() << " frames) matched " << al.b_first << ".." << al.b_last
+    const int last = first + static_cast<int>(p->takes[0].world.rows()) - 1;
+    const Alignment& al = p->takes[1].alignment;
+    INFO("B (padded, " << p->takes[1].world.rows() << " frames) matched " << al.b_first << ".." << al.b_last
                        << ", walking " << first << ".." << last << "; A matched " << al.a_first << ".." << al.a_last);
     CHECK(std::abs(al.b_first - first) <= kPadSlack);
     CHECK(std::abs(al.b_last - last) <= kPadSlack);
@@ -221,7 +221,7 @@ TEST_CASE("alignment pipeline: standing before and after a take is left out of t
 
 TEST_CASE("alignment pipeline: a loop of whole cycles with a seamless seam", "[alignment]") {
   const Pair x = happy_marching();
-  const PreparedPair& p = *x.p;
+  const PreparedTakes& p = *x.p;
   BlendParams params;
   params.loop = true;
   const BlendResult r = blend_at(p, *x.d, 0.5, params);
@@ -248,15 +248,15 @@ TEST_CASE("alignment pipeline: a loop of whole cycles with a seamless seam", "[a
 
 TEST_CASE("alignment pipeline: with the residuals alpha 0 is A and one alpha per component agrees", "[alignment]") {
   const Pair x = happy_marching();
-  const PreparedPair& p = *x.p;
+  const PreparedTakes& p = *x.p;
   BlendParams exact;
   exact.foot_lock = false;  // the lock pins planted feet at their mean place, A's own included
   const BlendResult r = blend_at(p, *x.d, 0.0, exact);
-  const double with_residual = mean_joint_distance(r.world, sample_rows(p.world_a, r.source_a)) / x.height;
+  const double with_residual = mean_joint_distance(r.world, sample_rows(p.takes[0].world, r.source_a)) / x.height;
   BlendParams components = exact;
   components.residual = false;
   const BlendResult c = blend_at(p, *x.d, 0.0, components);
-  const double components_only = mean_joint_distance(c.world, sample_rows(p.world_a, c.source_a)) / x.height;
+  const double components_only = mean_joint_distance(c.world, sample_rows(p.takes[0].world, c.source_a)) / x.height;
   INFO("alpha 0 against A: " << 100 * with_residual << "% of height with residuals, " << 100 * components_only
                              << "% from the components alone");
   // What is left is the sampling of A between its frames along the warp and back (0.1 s of
@@ -285,11 +285,11 @@ TEST_CASE("alignment pipeline: no pops on the shared motions' hardest pairs, acr
   for (const auto& [name_a, name_b] : pairs) {
     auto a = std::make_shared<const Clip>(read_bvh_file(test::shared_motion(name_a)));
     auto b = std::make_shared<const Clip>(read_bvh_file(test::shared_motion(name_b)));
-    const auto p = prepare_pair(a, b, {});
+    const auto p = prepare_takes({a, b}, {});
     const auto d = decompose_pair(*p, DecomposeParams());
     // The pop measure of ../shared/hooks/pop_check.py: 99.9th percentiles, inputs at 30 fps.
-    const double takes = std::max(percentile(joint_speeds(p->world_a), kPopPercentile),
-                                  percentile(joint_speeds(p->world_b), kPopPercentile));
+    const double takes = std::max(percentile(joint_speeds(p->takes[0].world), kPopPercentile),
+                                  percentile(joint_speeds(p->takes[1].world), kPopPercentile));
     for (double alpha : {0.0, 0.5, 1.0}) {
       const double blend = percentile(joint_speeds(blend_at(*p, *d, alpha).world), kPopPercentile);
       INFO(name_a << " + " << name_b << " at alpha " << alpha << ": " << blend / takes << "x the faster take");

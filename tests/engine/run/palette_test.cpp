@@ -40,7 +40,7 @@ DecomposeParams params() {
   return d;
 }
 
-MixResult mix(const PreparedPalette& p, const PaletteDecomposition& d, std::vector<double> weights,
+MixResult mix(const PreparedTakes& p, const PaletteDecomposition& d, std::vector<double> weights,
               MixParams params = {}) {
   params.weights = std::move(weights);
   MixScratch scratch;
@@ -65,12 +65,19 @@ double max_distance(const Eigen::MatrixXd& x, const Eigen::MatrixXd& y, double h
   return worst / height;
 }
 
+// The reference and take i prepared as a pair, on the palette's joints.
+std::shared_ptr<const PreparedTakes> pair_of(const PreparedTakes& palette, int i) {
+  PrepareOptions o;
+  o.only_majors = palette.majors;
+  return prepare_takes({palette.takes[0].clip, palette.takes[static_cast<size_t>(i)].clip}, o);
+}
+
 // A take's canonical pose read at fractional frames of its own.
-Eigen::MatrixXd own_pose_at(const PaletteTake& t, const Eigen::VectorXd& frames) {
+Eigen::MatrixXd own_pose_at(const PreparedTake& t, const Eigen::VectorXd& frames) {
   RowSampler at;
-  at.set(frames, t.own_local.rows());
+  at.set(frames, t.canonical.local.rows());
   Eigen::MatrixXd out;
-  at.apply(t.own_local, out);
+  at.apply(t.canonical.local, out);
   return out;
 }
 
@@ -78,13 +85,13 @@ Eigen::MatrixXd own_pose_at(const PaletteTake& t, const Eigen::VectorXd& frames)
 
 TEST_CASE("palette: two takes with weights 1 - a, a are the pair's blend at alpha a") {
   const auto clips = bundled();
-  const auto p = prepare_palette({clips[0], clips[1]}, {});
+  const auto p = prepare_takes({clips[0], clips[1]}, {});
   const auto d = decompose_palette(*p, params());
-  const auto pair_d = decompose_pair(p->reference_pair(), params());
+  const auto pair_d = decompose_pair(*p, params());
   const double height = guess_units(*clips[0]).height;
   for (double a : {0.0, 0.3, 0.5, 1.0, 1.2}) {
     const MixResult m = mix(*p, *d, {1.0 - a, a});
-    const BlendResult b = blend_at(p->reference_pair(), *pair_d, a);
+    const BlendResult b = blend_at(*p, *pair_d, a);
     REQUIRE(m.motion.world.rows() == b.world.rows());
     CHECK(max_distance(m.motion.world, b.world, height) < kExact);
     CHECK(max_distance(m.motion.world, b.world, height) < kSameAsBlend);
@@ -93,7 +100,7 @@ TEST_CASE("palette: two takes with weights 1 - a, a are the pair's blend at alph
 
 TEST_CASE("palette: four takes, weights checked, one-hot gives the take, equal weights lie among them") {
   const auto clips = bundled();
-  const auto p = prepare_palette(clips, {});
+  const auto p = prepare_takes(clips, {});
   const auto d = decompose_palette(*p, params());
   REQUIRE(p->size() == 4);
   const double height = guess_units(*clips[0]).height;
@@ -111,7 +118,8 @@ TEST_CASE("palette: four takes, weights checked, one-hot gives the take, equal w
   SECTION("one-hot weights give each take as its pair's blend at alpha 1 gives it") {
     for (int i = 1; i < 4; ++i) {
       const MixResult m = mix(*p, *d, one_hot(4, i));
-      const PreparedPair& pair = *p->pairs[static_cast<size_t>(i - 1)];
+      const auto owned = pair_of(*p, i);
+      const PreparedTakes& pair = *owned;
       const BlendResult b = blend_at(pair, *decompose_pair(pair, params()), 1.0);
       INFO("take " << i);
       REQUIRE(m.motion.world.rows() == b.world.rows());
@@ -163,7 +171,7 @@ TEST_CASE("palette: transfer identities") {
   const auto clips = bundled();
   const double height = guess_units(*clips[0]).height;
   SECTION("strength 0 is the content take") {
-    const auto p = prepare_palette({clips[3], clips[0], clips[1]}, {});
+    const auto p = prepare_takes({clips[3], clips[0], clips[1]}, {});
     const auto d = decompose_palette(*p, params());
     MixParams mp;
     mp.min_weight = -kMaxStrength;
@@ -172,7 +180,7 @@ TEST_CASE("palette: transfer identities") {
     const MixResult m = mix(*p, *d, transfer_weights({0.0}), mp);
     CHECK((m.local - own_pose_at(p->takes[0], m.sources.col(0))).cwiseAbs().maxCoeff() < kExact);
     // In the world, against the content's own positions at the frames shown.
-    const Eigen::MatrixXd& world = p->reference_pair().world_a;
+    const Eigen::MatrixXd& world = p->takes[0].world;
     RowSampler at;
     at.set(m.sources.col(0), world.rows());
     Eigen::MatrixXd content;
@@ -188,7 +196,7 @@ TEST_CASE("palette: transfer identities") {
     CHECK(mean / double(content.cols() / 3) / height < kStrengthZero);
   }
   SECTION("content equal to neutral at strength 1 is the style on the neutral take's path") {
-    const auto p = prepare_palette({clips[0], clips[0], clips[1]}, {});
+    const auto p = prepare_takes({clips[0], clips[0], clips[1]}, {});
     const auto d = decompose_palette(*p, params());
     MixParams mp;
     mp.min_weight = -kMaxStrength;
@@ -196,7 +204,8 @@ TEST_CASE("palette: transfer identities") {
     const MixResult m = mix(*p, *d, transfer_weights({1.0}), mp);
     // Content and neutral are one file, aligned onto itself (not exactly frame for frame).
     CHECK((m.local - own_pose_at(p->takes[2], m.sources.col(2))).cwiseAbs().maxCoeff() < 0.01 * height);
-    const PreparedPair& pair = *p->pairs[1];
+    const auto owned = pair_of(*p, 2);
+    const PreparedTakes& pair = *owned;
     const BlendResult b = blend_at(pair, *decompose_pair(pair, params()), 1.0);
     REQUIRE(m.motion.world.rows() == b.world.rows());
     CHECK(max_distance(m.motion.world, b.world, height) < kOneHot);
@@ -214,7 +223,7 @@ TEST_CASE("palette: components are connected body parts on each convention, and 
            {"bandai_walk_sad.bvh", "cmu142_walk_joy.bvh", "cmu142_walk_clumsy.bvh", "bandai_walk_tired.bvh"}}) {
     std::vector<std::shared_ptr<const Clip>> clips;
     for (const std::string& n : names) clips.push_back(load(test::shared_motion(n)));
-    const auto p = prepare_palette(clips, {});
+    const auto p = prepare_takes(clips, {});
     const auto d = decompose_palette(*p, params());
     INFO(names[0]);
     for (const ComponentJoints& c : d->component_joints) {
@@ -232,7 +241,8 @@ TEST_CASE("palette: components are connected body parts on each convention, and 
     // One-hot on the last take gives its pair's alpha-1 blend.
     const int last = p->size() - 1;
     const MixResult m = mix(*p, *d, one_hot(p->size(), last));
-    const PreparedPair& pair = *p->pairs[static_cast<size_t>(last - 1)];
+    const auto owned = pair_of(*p, last);
+    const PreparedTakes& pair = *owned;
     const BlendResult b = blend_at(pair, *decompose_pair(pair, params()), 1.0);
     REQUIRE(m.motion.world.rows() == b.world.rows());
     CHECK(max_distance(m.motion.world, b.world, guess_units(*clips[0]).height) < kOneHot);
@@ -241,7 +251,7 @@ TEST_CASE("palette: components are connected body parts on each convention, and 
 
 TEST_CASE("palette: a count out of range is refused") {
   const auto clips = bundled();
-  CHECK_THROWS_AS(prepare_palette({clips[0]}, {}), InputError);
+  CHECK_THROWS_AS(prepare_takes({clips[0]}, {}), InputError);
   std::vector<std::shared_ptr<const Clip>> many(17, clips[0]);
-  CHECK_THROWS_AS(prepare_palette(many, {}), InputError);
+  CHECK_THROWS_AS(prepare_takes(many, {}), InputError);
 }

@@ -72,29 +72,29 @@ Distance distance(const Eigen::MatrixXd& x, const Eigen::MatrixXd& reference, do
 
 // A's own FK, resampled to the working rate, at its mapped major joints: what a blend at
 // alpha = 0 must reproduce. Computed here from resample_clip and joint_positions directly.
-Eigen::MatrixXd reference_positions(const Clip& a, const PreparedPair& p) {
+Eigen::MatrixXd reference_positions(const Clip& a, const PreparedTakes& p) {
   const Clip resampled = std::abs(a.fps() - p.fps) < 1e-9 ? a : resample_clip(a, p.fps);
   const Eigen::MatrixXd all = joint_positions(resampled);
   Eigen::MatrixXd out(all.rows(), 3 * static_cast<Eigen::Index>(p.majors.size()));
   for (size_t i = 0; i < p.majors.size(); ++i)
-    out.middleCols(3 * i, 3) = all.middleCols(3 * p.mapping_a.joint[p.majors[i]], 3);
+    out.middleCols(3 * i, 3) = all.middleCols(3 * p.takes[0].mapping.joint[p.majors[i]], 3);
   return out;
 }
 
 // The reference at the frames of A a blend shows (BlendResult::source_a): a blend plays only A's
 // matched range, on its own timeline (align/timing.h).
-Eigen::MatrixXd reference_at(const Clip& a, const PreparedPair& p, const BlendResult& r) {
+Eigen::MatrixXd reference_at(const Clip& a, const PreparedTakes& p, const BlendResult& r) {
   return sample_rows(reference_positions(a, p), r.source_a);
 }
 
-double relative_bone_error(const PreparedPair& p, const Eigen::MatrixXd& world) {
+double relative_bone_error(const PreparedTakes& p, const Eigen::MatrixXd& world) {
   double longest = 0;
-  for (double l : p.lengths_a) longest = std::max(longest, l);
-  return max_bone_length_error(world, p.parents, p.lengths_a) / longest;
+  for (double l : p.lengths) longest = std::max(longest, l);
+  return max_bone_length_error(world, p.parents, p.lengths) / longest;
 }
 
 // Root-relative, heading-aligned pose of a result (its own canonical frame).
-Eigen::MatrixXd canonical_pose(const PreparedPair& p, const Eigen::MatrixXd& world) {
+Eigen::MatrixXd canonical_pose(const PreparedTakes& p, const Eigen::MatrixXd& world) {
   const int left = major_column(p.majors, static_cast<int>(MajorJoint::kLeftHip));
   const int right = major_column(p.majors, static_cast<int>(MajorJoint::kRightHip));
   return to_canonical(world, 0, left, right).local;
@@ -151,7 +151,7 @@ struct PairCheck {
 // frames and the distances between them measure the poses, not the timing.
 PairCheck check_pair(const std::shared_ptr<const Clip>& a, const std::shared_ptr<const Clip>& b,
                      const PrepareOptions& options = {}, bool paper = true) {
-  const auto p = prepare_pair(a, b, options);
+  const auto p = prepare_takes({a, b}, options);
   const auto d = decompose_pair(*p, reproduction_params());
   const double height = guess_units(*a).height;
   PairCheck c;
@@ -208,11 +208,11 @@ void require_pair(const std::string& path_a, const std::string& path_b) {
 void require_self_blend(const std::string& path) {
   INFO(base_name(path));
   const auto clip = load(path);
-  const auto p = prepare_pair(clip, clip, {});
+  const auto p = prepare_takes({clip, clip}, {});
   const auto d = decompose_pair(*p, reproduction_params());
   const double height = guess_units(*clip).height;
   const Eigen::MatrixXd reference = reference_positions(*clip, *p);
-  CHECK((p->world_a - reference).cwiseAbs().maxCoeff() == 0.0);  // the pipeline's own FK
+  CHECK((p->takes[0].world - reference).cwiseAbs().maxCoeff() == 0.0);  // the pipeline's own FK
   for (double alpha : {0.0, 0.5, 1.0}) {
     const BlendResult r = blend_at(*p, *d, alpha);
     CHECK(r.world.rows() == reference.rows());  // a take matches itself from end to end
@@ -290,24 +290,24 @@ TEST_CASE("every ordered pair of shared takes: alpha 0 is A, the pose moves stea
 TEST_CASE("shared mode at alpha 1 is B, from A's start", "[pipeline]") {
   const auto a = load(test::asset("motions/cmu142_walk_happy.bvh"));
   const auto b = load(test::asset("motions/cmu142_walk_marching.bvh"));
-  const auto p = prepare_pair(a, b, {});
+  const auto p = prepare_takes({a, b}, {});
   const auto d = decompose_pair(*p, reproduction_params());
   const double height = guess_units(*a).height;
   BlendParams no_lock;
   no_lock.foot_lock = false;  // compare the synthesis itself
   const BlendResult r = blend_at(*p, *d, 1.0, no_lock);
-  const Distance e = distance(r.world, sample_rows(p->world_b_placed, r.source_b), height);
+  const Distance e = distance(r.world, sample_rows(p->takes[1].world_placed, r.source_b), height);
   INFO("alpha 1: mean " << 100 * e.mean << "%, max " << 100 * e.max << "%");
   CHECK(e.mean < kAlphaZeroMean);
   CHECK(e.max < kGrossError);
   // world_b_placed stands where A stands at the start of the match and keeps A's bone lengths.
-  const TimeWarp& warp = p->alignment.warp;
-  const Eigen::MatrixXd b_start = sample_rows(p->world_b_placed, warp.b.head(1));
-  const Eigen::MatrixXd a_start = sample_rows(p->world_a, warp.a.head(1));
+  const TimeWarp& warp = p->takes[1].alignment.warp;
+  const Eigen::MatrixXd b_start = sample_rows(p->takes[1].world_placed, warp.b.head(1));
+  const Eigen::MatrixXd a_start = sample_rows(p->takes[0].world, warp.a.head(1));
   CHECK((b_start.block(0, 0, 1, 3) - a_start.block(0, 0, 1, 3)).norm() < 0.05 * height);
-  CHECK(relative_bone_error(*p, p->world_b_placed) < kBonesExact);
-  CHECK(p->world_b_placed.rows() == p->world_b.rows());
-  CHECK(p->ground_b.rows() == p->samples());
+  CHECK(relative_bone_error(*p, p->takes[1].world_placed) < kBonesExact);
+  CHECK(p->takes[1].world_placed.rows() == p->takes[1].world.rows());
+  CHECK(p->takes[1].ground.rows() == p->samples());
 }
 
 TEST_CASE("B is retargeted to A's bones across units and frame rates", "[pipeline]") {
@@ -316,13 +316,13 @@ TEST_CASE("B is retargeted to A's bones across units and frame rates", "[pipelin
   const Clip joy = read_bvh_file(test::asset("motions/cmu142_walk_joy.bvh"));
   const auto b = std::make_shared<const Clip>(resample_clip(in_other_units(joy, 5.6444), 100.0));
   REQUIRE(b->fps() == 100.0);
-  const auto p = prepare_pair(a, b, {});
+  const auto p = prepare_takes({a, b}, {});
   CHECK(p->fps == 30.0);
-  CHECK(p->world_a.rows() == resample_clip(*a, 30).frames());
+  CHECK(p->takes[0].world.rows() == resample_clip(*a, 30).frames());
   // B on its own timeline at 30 fps, in A's units and bone lengths.
-  CHECK(p->world_b.rows() == resample_clip(*b, 30).frames());
-  CHECK(relative_bone_error(*p, p->world_b) < kBonesExact);
-  const double hips_a = p->world_a.col(1).mean(), hips_b = p->world_b.col(1).mean();
+  CHECK(p->takes[1].world.rows() == resample_clip(*b, 30).frames());
+  CHECK(relative_bone_error(*p, p->takes[1].world) < kBonesExact);
+  const double hips_a = p->takes[0].world.col(1).mean(), hips_b = p->takes[1].world.col(1).mean();
   CHECK(hips_b / hips_a == Approx(1.0).epsilon(0.1));  // not 5.6 times as high
   // The blend behaves as with the original B.
   const PairCheck scaled = check_pair(a, b);
@@ -348,9 +348,9 @@ TEST_CASE("cross-convention pairs: CMU at 120 and 100 fps against Bandai at 30 f
                         {"Bandai + CMU 100", bandai, cmu100}};
   for (const Case& c : cases) {
     INFO(c.name);
-    const auto p = prepare_pair(c.a, c.b, {});
+    const auto p = prepare_takes({c.a, c.b}, {});
     CHECK(p->majors.size() == 18);  // no hand tips in Bandai
-    CHECK(relative_bone_error(*p, p->world_b) < kBonesExact);
+    CHECK(relative_bone_error(*p, p->takes[1].world) < kBonesExact);
     const PairCheck r = check_pair(c.a, c.b);
     INFO("alpha 0: mean " << 100 * r.alpha0.mean << "%, max " << 100 * r.alpha0.max << "%");
     INFO("world distance to alpha 1: " << describe(r.world_to_b));
@@ -373,7 +373,7 @@ TEST_CASE("a take turned around walks the other way and blends the same", "[pipe
     CHECK((fk_turned.col(j + 2) + fk.col(j + 2)).cwiseAbs().maxCoeff() < 1e-9);
   }
   SECTION("blended with the original, every alpha is A (the same walk, the other way)") {
-    const auto p = prepare_pair(a, turned, {});
+    const auto p = prepare_takes({a, turned}, {});
     const auto d = decompose_pair(*p, reproduction_params());
     const Eigen::MatrixXd reference = reference_positions(*a, *p);
     const double height = guess_units(*a).height;
@@ -395,7 +395,7 @@ TEST_CASE("a take turned around walks the other way and blends the same", "[pipe
       CHECK(r.bones < kBonesExact);
     }
     // The result of the turned pair is the original pair's, turned around.
-    const auto p = prepare_pair(a, joy, {}), q = prepare_pair(turned, joy, {});
+    const auto p = prepare_takes({a, joy}, {}), q = prepare_takes({turned, joy}, {});
     const auto dp = decompose_pair(*p, reproduction_params()), dq = decompose_pair(*q, reproduction_params());
     const Eigen::MatrixXd r = blend_at(*p, *dp, 0.5).world, s = blend_at(*q, *dq, 0.5).world;
     Eigen::MatrixXd s_back = s;
@@ -425,9 +425,9 @@ TEST_CASE("working frame rate: 0 keeps A's", "[pipeline]") {
   const auto b = load(test::asset("motions/cmu142_walk_clumsy.bvh"));
   PrepareOptions o;
   o.fps = 0;
-  const auto p = prepare_pair(a, b, o);
+  const auto p = prepare_takes({a, b}, o);
   CHECK(p->fps == 24.0);
-  CHECK(p->world_a.rows() == a->frames());
+  CHECK(p->takes[0].world.rows() == a->frames());
   const PairCheck r = check_pair(a, b, o);
   CHECK(r.alpha0.mean < kAlphaZeroMean);
 }
@@ -439,12 +439,12 @@ TEST_CASE("mapping overrides reach the pipeline", "[pipeline]") {
   PrepareOptions o;
   o.mapping_a = parse_mapping_overrides(read_file(file), file);
   o.mapping_b = parse_mapping_overrides("left_toe = -\nright_toe = -\n", "no_toes.txt");
-  const auto p = prepare_pair(a, b, o);
+  const auto p = prepare_takes({a, b}, o);
   CHECK(p->majors.size() == 18);
-  CHECK(p->left_toe == -1);
-  CHECK(p->right_toe == -1);
-  CHECK(p->names_a.front() == "Hips");
-  CHECK(p->names_b[p->left_ankle] == "LeftFoot");
+  CHECK(major_column(p->majors, static_cast<int>(MajorJoint::kLeftToe)) == -1);
+  CHECK(major_column(p->majors, static_cast<int>(MajorJoint::kRightToe)) == -1);
+  CHECK(p->takes[0].names.front() == "Hips");
+  CHECK(p->takes[1].names[p->feature_joints.left_ankle] == "LeftFoot");
   const auto d = decompose_pair(*p, reproduction_params());
   const BlendResult r = blend_at(*p, *d, 0.0);
   const Distance e = distance(r.world, reference_at(*a, *p, r), guess_units(*a).height);
@@ -465,7 +465,7 @@ TEST_CASE("pipeline errors are sentences, not crashes", "[pipeline]") {
         .joint("RightFoot", "RightUpLeg", 0, -80, 0);
     auto b = std::make_shared<Clip>(test::still_clip(legs.skeleton(), 30, 1.0));
     b->source = "stilts.bvh";
-    CHECK_THROWS_WITH(prepare_pair(a, b, {}),
+    CHECK_THROWS_WITH(prepare_takes({a, b}, {}),
                       Catch::Contains("stilts.bvh: too few major joints") &&
                           Catch::Contains("left_knee (stilts.bvh), right_knee (stilts.bvh)"));
   }
@@ -473,13 +473,13 @@ TEST_CASE("pipeline errors are sentences, not crashes", "[pipeline]") {
     auto b = std::make_shared<Clip>(*a);
     b->motion.resize(0, b->motion.cols());
     b->source = "empty.bvh";
-    CHECK_THROWS_WITH(prepare_pair(a, b, {}), "empty.bvh: has no frames to blend");
+    CHECK_THROWS_WITH(prepare_takes({a, b}, {}), "empty.bvh: has no frames to blend");
   }
   SECTION("bad options and parameters") {
     PrepareOptions o;
     o.fps = -1;
-    CHECK_THROWS_AS(prepare_pair(a, a, o), InputError);
-    const auto p = prepare_pair(a, a, {});
+    CHECK_THROWS_AS(prepare_takes({a, a}, o), InputError);
+    const auto p = prepare_takes({a, a}, {});
     DecomposeParams d;
     d.components = 0;
     CHECK_THROWS_AS(decompose_pair(*p, d), InputError);
@@ -507,7 +507,7 @@ TEST_CASE("pipeline errors are sentences, not crashes", "[pipeline]") {
 TEST_CASE("per-component alphas, limb lengths off, the root pull off", "[pipeline]") {
   const auto a = load(test::asset("motions/cmu142_walk_clumsy.bvh"));
   const auto b = load(test::asset("motions/cmu142_walk_happy.bvh"));
-  const auto p = prepare_pair(a, b, {});
+  const auto p = prepare_takes({a, b}, {});
   const auto d = decompose_pair(*p, DecomposeParams());
   SECTION("the same alpha for every component is the plain blend") {
     BlendParams each;
@@ -520,7 +520,7 @@ TEST_CASE("per-component alphas, limb lengths off, the root pull off", "[pipelin
     loose.foot_lock = false;
     const BlendResult r = blend_at(*p, *d, 0.5, loose);
     CHECK(relative_bone_error(*p, r.world) > 1e-4);
-    CHECK(r.limb_length_max_error == Approx(max_bone_length_error(r.world, p->parents, p->lengths_a)));
+    CHECK(r.limb_length_max_error == Approx(max_bone_length_error(r.world, p->parents, p->lengths)));
   }
   SECTION("no root pull: alpha 0 is still A") {
     BlendParams free;

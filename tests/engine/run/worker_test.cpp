@@ -121,10 +121,10 @@ TEST_CASE("loads the bundled pair, decomposes and blends it", "[worker]") {
   CHECK(s->prepared->times.load_ms > 0);
   // The blend plays on its own timeline (timing blended with alpha), within A's frames.
   CHECK(s->blend->world.rows() == s->blend->source_a.size());
-  CHECK(s->blend->source_a.maxCoeff() <= s->prepared->world_a.rows() - 1);
+  CHECK(s->blend->source_a.maxCoeff() <= s->prepared->takes[0].world.rows() - 1);
   CHECK(s->blend->world.cols() == 3 * static_cast<Eigen::Index>(s->prepared->majors.size()));
   CHECK(s->blend->world == direct_blend(*s));
-  CHECK(max_bone_length_error(s->blend->world, s->prepared->parents, s->prepared->lengths_a) < 1e-9);
+  CHECK(max_bone_length_error(s->blend->world, s->prepared->parents, s->prepared->lengths) < 1e-9);
   const WorkerStatus status = w.status();
   CHECK(status.stage == WorkerStage::kIdle);
   CHECK_FALSE(status.pending);
@@ -139,7 +139,7 @@ TEST_CASE("one file is blended with itself", "[worker]") {
   const auto s = w.snapshot();
   REQUIRE(s->blend);
   CHECK(s->path_b == a);
-  CHECK(s->prepared->clip_a == s->prepared->clip_b);  // read once
+  CHECK(s->prepared->takes[0].clip == s->prepared->takes[1].clip);  // read once
 }
 
 TEST_CASE("an alpha change re-runs only synthesis and post-processing", "[worker]") {
@@ -344,7 +344,7 @@ TEST_CASE("a thousand parameter changes while another thread reads results", "[w
       if (ok && s->blend) {
         // A published blend comes with the pair and decomposition it was made from; read all of it.
         ok = s->prepared && s->decomposed && s->blend->world.rows() == s->blend->source_a.size() &&
-             s->blend->source_a.maxCoeff() <= s->prepared->world_a.rows() - 1 &&
+             s->blend->source_a.maxCoeff() <= s->prepared->takes[0].world.rows() - 1 &&
              s->blend_params.alpha >= 0.0 && s->blend_params.alpha <= 1.0;
         double sum = 0;
         for (Eigen::Index i = 0; i < s->blend->world.size(); ++i) sum += s->blend->world.data()[i];

@@ -1,0 +1,189 @@
+#include "engine/run/prepare_takes.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "engine/io/error.h"
+#include "engine/kinematics/limb_length.h"
+#include "engine/prepare/major_take.h"
+#include "engine/prepare/retarget.h"
+
+namespace mostyle {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+constexpr double kMaxFps = 1000.0;
+
+std::string take_name(int i, const Clip& clip) {
+  return "take " + std::to_string(i + 1) + " (" + clip.source + ")";
+}
+
+// How an alignment's warnings name a take: A and B for two takes (as the editor shows a pair),
+// its file's name for more; frames are counted as its file counts them.
+AlignedTake aligned_name(int i, int takes, const Clip& clip) {
+  if (takes == 2) return {i == 0 ? "A" : "B", clip.fps()};
+  return {std::filesystem::path(clip.source).filename().string(), clip.fps()};
+}
+
+// The canonical joints every take shares with the reference; the mapping overrides name the
+// reference's joints and the second take's.
+std::vector<int> shared_majors(const std::vector<std::shared_ptr<const Clip>>& clips,
+                               const std::vector<MajorMapping>& mappings, const std::vector<int>& only) {
+  const int n = static_cast<int>(clips.size());
+  std::vector<int> common;
+  for (int i = 1; i < n; ++i) {
+    std::vector<int> shared;
+    try {
+      shared = shared_major_joints(mappings[0], clips[0]->source, mappings[i], clips[i]->source);
+    } catch (const InputError& e) {
+      if (n == 2) throw;
+      throw InputError(take_name(i, *clips[i]) + ": " + e.what());
+    }
+    if (i == 1) common = shared;
+    else common.erase(std::remove_if(common.begin(), common.end(),
+                                     [&](int m) { return std::find(shared.begin(), shared.end(), m) == shared.end(); }),
+                      common.end());
+  }
+  if (!only.empty())
+    common.erase(std::remove_if(common.begin(), common.end(),
+                                [&](int m) { return std::find(only.begin(), only.end(), m) == only.end(); }),
+                 common.end());
+  return common;
+}
+
+}  // namespace
+
+void PrepareOptions::Validate() const {
+  if (!(fps >= 0) || fps > kMaxFps || !std::isfinite(fps))
+    throw InputError("expected a frame rate from 1 to 1000 (or 0 to keep A's), found " + std::to_string(fps));
+  align.Validate();
+  foot_contacts.Validate();
+}
+
+std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared_ptr<const Clip>>& clips,
+                                                   const PrepareOptions& options, JobControl* control) {
+  const int n = static_cast<int>(clips.size());
+  if (n < 2 || n > kMaxPaletteTakes)
+    throw InputError("a palette takes from 2 to " + std::to_string(kMaxPaletteTakes) + " takes, found " +
+                     std::to_string(n));
+  options.Validate();
+  const auto t0 = Clock::now();
+  auto p = std::make_shared<PreparedTakes>();
+  std::vector<MajorMapping> mappings;
+  for (int i = 0; i < n; ++i) {
+    const MappingOverrides& given = i == 0 ? options.mapping_a : options.mapping_b;
+    const bool overridden = i <= 1 && !given.entries.empty();
+    mappings.push_back(map_major_joints(clips[i]->skeleton, overridden ? &given : nullptr));
+  }
+  p->majors = shared_majors(clips, mappings, options.only_majors);
+  p->parents = subset_parents(p->majors);
+  const double fps = options.fps > 0 ? options.fps : clips[0]->fps();
+  p->fps = fps;
+  report_progress(control, 0.1f);
+
+  auto column = [&](MajorJoint j) { return major_column(p->majors, static_cast<int>(j)); };
+  const int leg[6] = {column(MajorJoint::kLeftHip), column(MajorJoint::kLeftKnee),
+                      column(MajorJoint::kLeftAnkle), column(MajorJoint::kRightHip),
+                      column(MajorJoint::kRightKnee), column(MajorJoint::kRightAnkle)};
+  p->feature_joints.left_ankle = leg[2];
+  p->feature_joints.right_ankle = leg[5];
+  p->feature_joints.left_wrist = column(MajorJoint::kLeftWrist);
+  p->feature_joints.right_wrist = column(MajorJoint::kRightWrist);
+
+  // Each take on its own timeline, in the reference's bones.
+  p->takes.resize(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    PreparedTake& t = p->takes[static_cast<size_t>(i)];
+    t.clip = clips[static_cast<size_t>(i)];
+    t.mapping = mappings[static_cast<size_t>(i)];
+    MajorTake major = extract_major_take(*t.clip, t.mapping, p->majors, fps);
+    check_cancel(control);
+    t.names = std::move(major.names);
+    if (i == 0) {
+      t.world = std::move(major.world);
+      p->lengths = bone_lengths(t.world, p->parents);
+      p->feet = make_foot_rig(p->majors, p->lengths, fps, options.foot_contacts);
+    } else {
+      const std::vector<double> own_lengths = bone_lengths(major.world, p->parents);
+      t.world = retarget_positions(major.world, p->parents, p->lengths, leg_length(p->lengths, leg),
+                                   leg_length(own_lengths, leg));
+      adopt_group_shapes(t.world, p->takes.front().world, p->parents);
+      apply_limb_lengths(t.world, p->parents, p->lengths);
+    }
+    t.canonical = to_canonical(t.world, 0, leg[0], leg[3]);
+    t.own_local_t = t.canonical.local.transpose();
+    t.own_contacts = detect_foot_contacts(t.world, p->feet);
+    t.foot_sliding = foot_sliding(t.world, t.own_contacts, p->feet);
+  }
+  p->times.preprocess_ms = ms_since(t0);
+  report_progress(control, 0.3f);
+
+  // Each other take aligned onto the reference.
+  const auto t1 = Clock::now();
+  const PreparedTake& reference = p->takes.front();
+  std::vector<const TimeWarp*> warps;
+  for (int i = 1; i < n; ++i) {
+    PreparedTake& t = p->takes[static_cast<size_t>(i)];
+    t.alignment = align_takes(reference.canonical, t.canonical, p->feature_joints, p->feet.leg_length, fps,
+                              options.align, control);
+    t.alignment.warnings = alignment_warnings(t.alignment, fps, aligned_name(0, n, *reference.clip),
+                                              aligned_name(i, n, *t.clip));
+    warps.push_back(&t.alignment.warp);
+  }
+  p->times.dtw_ms = ms_since(t1);
+  report_progress(control, 0.8f);
+
+  // Every take on the common timeline, placed where the reference stands when its match starts.
+  const auto t2 = Clock::now();
+  p->timeline = common_timeline(warps);
+  for (int i = 0; i < n; ++i) {
+    PreparedTake& t = p->takes[static_cast<size_t>(i)];
+    PlacedRoot placed{t.canonical.ground, t.canonical.heading};
+    if (i > 0) {
+      const TimeWarp& warp = t.alignment.warp;
+      placed = place_at(reference.canonical, warp.a[0], t.canonical, warp.b[0]);
+    }
+    to_world(t.canonical.local, placed.ground, placed.heading, &t.world_placed);
+    t.frames = p->timeline.frames[static_cast<size_t>(i)];
+    t.local = sample_rows(t.canonical.local, t.frames);
+    t.ground = sample_rows(placed.ground, t.frames);
+    const Eigen::VectorXd heading = sample_rows(placed.heading, t.frames);
+    // A warp may skip frames from one sample to the next (the paper's); the root must not
+    // teleport (canonical_frame.h). Where no take skips, this changes nothing.
+    t.steps = limit_warped_steps(root_steps(t.ground, heading), t.frames, kMaxWarpSpeedup);
+    t.contacts = carry_contacts(t.own_contacts, t.frames);
+  }
+  p->reference_heading = sample_rows(reference.canonical.heading, reference.frames);
+  // Whole turns that keep each take's facing within about half a turn of the reference's, kept
+  // apart: the synthesis spreads each over a moment so a mix in between turns smoothly where it flips.
+  for (PreparedTake& t : p->takes) t.turn_flips = match_turns(t.steps, reference.steps).col(2) - t.steps.col(2);
+  // Normalization (normalize.h): each take's own mean pose, one scale for all.
+  double sum = 0.0, count = 0.0;
+  for (PreparedTake& t : p->takes) {
+    t.mean = t.local.colwise().mean();
+    sum += (t.local.rowwise() - t.mean).squaredNorm();
+    count += static_cast<double>(t.local.size());
+  }
+  p->scale = count > 0 ? std::sqrt(sum / count) : 1.0;
+  if (!(p->scale > 0) || !std::isfinite(p->scale)) p->scale = 1.0;
+  for (PreparedTake& t : p->takes) t.x = (t.local.rowwise() - t.mean) / p->scale;
+  p->times.preprocess_ms += ms_since(t2);
+  check_cancel(control);
+  report_progress(control, 1.0f);
+  return p;
+}
+
+std::vector<int> export_joints(const PreparedTakes& prepared) {
+  std::vector<int> joints;
+  for (int major : prepared.majors) joints.push_back(prepared.reference().mapping.joint[major]);
+  return joints;
+}
+
+}  // namespace mostyle

@@ -1,0 +1,98 @@
+#pragma once
+// The first stage of the one chain (issue 15), for 2 to 16 takes of one action; take 0 is the
+// reference, whose skeleton, bones, world and timeline the others are brought onto:
+//   each take, once: its major joints at the working rate (FK), retargeted onto the reference's
+//   bones (the reference as it is), in the canonical frame (canonical_frame.h), its foot contacts;
+//   each other take: aligned onto the reference (left-foot DTW or the smooth warp, alignment.h)
+//   and placed where the reference stands when their match starts;
+//   all of them read on one common timeline (U samples, common_timeline.h): poses, root paths
+//   and steps, whole-turn flips, contacts, then normalized with one scale (normalize.h).
+// A pair is two takes: its common timeline is the alignment's own warp, unchanged. The
+// decomposition (pipeline.h for the paper's two-take modes, palette.h for shared components)
+// and the synthesis read this value; nothing here knows of them.
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/align/alignment.h"
+#include "engine/align/common_timeline.h"
+#include "engine/io/clip.h"
+#include "engine/io/job_control.h"
+#include "engine/post/foot_contact.h"
+#include "engine/prepare/canonical_frame.h"
+#include "engine/prepare/major_skeleton.h"
+
+namespace mostyle {
+
+constexpr int kMaxPaletteTakes = 16;
+
+struct PrepareOptions {
+  double fps = 30.0;      // working and output frame rate; 0 keeps the reference's own rate
+  AlignmentOptions align;  // DTW method, feature, slope limit, open ends (align/alignment.h)
+  MappingOverrides mapping_a;  // the reference's joints; empty: name rules only
+  MappingOverrides mapping_b;  // the second take's (take 1) joints
+  FootContactOptions foot_contacts;  // detection thresholds and the lock's fade (foot_contact.h)
+  // Non-empty: only these canonical joints (major_skeleton.h), of those the takes share, so that
+  // two of a palette's takes prepared on their own have the palette's joints.
+  std::vector<int> only_majors;
+  void Validate() const;  // throws InputError on a bad fps or alignment option
+};
+
+struct StageTimes {
+  double load_ms = 0, preprocess_ms = 0, dtw_ms = 0, decompose_ms = 0, synthesize_ms = 0,
+         postprocess_ms = 0, export_ms = 0;
+};
+
+// One take. Its own frames (F, at the working rate) are in the reference's bones; on the
+// common timeline (U samples) in the reference's world.
+struct PreparedTake {
+  std::shared_ptr<const Clip> clip;  // as loaded
+  MajorMapping mapping;
+  std::vector<std::string> names;    // the file's names of the shared joints
+  // Its own timeline.
+  Eigen::MatrixXd world;             // F x 3M: retargeted onto the reference's bones, its own world
+  Eigen::MatrixXd world_placed;      // F x 3M: the same moved rigidly so its matched start is the reference's (ghosts)
+  CanonicalMotion canonical;         // F frames
+  Eigen::MatrixXd own_local_t;       // 3M x F: canonical.local transposed (a frame a contiguous column, for the mix)
+  Eigen::MatrixXd own_contacts;      // F x 2: foot contacts, left and right, 1 planted
+  double foot_sliding = 0;           // units per second
+  Alignment alignment;               // onto the reference (the reference's own: empty)
+  // The common timeline.
+  Eigen::VectorXd frames;            // U: the take's frame at each sample (fractional)
+  Eigen::MatrixXd local;             // U x 3M canonical poses
+  Eigen::MatrixXd ground;            // U x 2 hips ground path, placed at the reference's start
+  Eigen::MatrixXd steps;             // U x 3 root steps (canonical_frame.h)
+  Eigen::VectorXd turn_flips;        // U: whole turns match_turns adds to keep its facing near the reference's
+  Eigen::MatrixXd contacts;          // U x 2 foot contacts carried onto the timeline
+  Eigen::RowVectorXd mean;           // normalization: the take's mean pose
+  Eigen::MatrixXd x;                 // U x 3M normalized: (local - mean) / scale
+};
+
+struct PreparedTakes {
+  std::vector<PreparedTake> takes;   // takes[0]: the reference
+  CommonTimeline timeline;
+  std::vector<int> majors, parents;  // shared joints (M) and their parents within them
+  std::vector<double> lengths;       // the reference's bone lengths per joint, its units
+  FootRig feet;                      // leg columns, leg length, contact thresholds
+  FeatureJoints feature_joints;      // the columns the alignment's feature reads
+  double fps = 30.0;                 // working rate
+  double scale = 1.0;                // normalization scale, shared by every take
+  Eigen::VectorXd reference_heading; // U: the reference's heading at each sample (a mix starts facing it)
+  StageTimes times;                  // preprocess and dtw, summed over the takes
+  int samples() const { return timeline.samples(); }
+  int size() const { return static_cast<int>(takes.size()); }
+  const PreparedTake& reference() const { return takes.front(); }
+};
+
+// clips: 2 to 16 takes, the first the reference. Throws InputError (naming the take when there
+// are more than two) on a count out of range, takes without the major joints the reference has,
+// no frames, degenerate hips, bad options; Cancelled. Cost: FK O(frames x joints) per take, one
+// DTW O(F0 x Fi) per other take, then O(U x N x M).
+std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared_ptr<const Clip>>& clips,
+                                                   const PrepareOptions& options, JobControl* control = nullptr);
+
+// The reference's joint index of each major column (for export).
+std::vector<int> export_joints(const PreparedTakes& prepared);
+
+}  // namespace mostyle
