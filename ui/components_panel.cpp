@@ -84,8 +84,8 @@ void ComponentsPanel::draw(EditorState& state) {
     ImGui::TextColored(kDimColor, "joints: %s", joints.empty() ? "(none)" : joints.c_str());
     ImGui::PopTextWrapPos();
   }
-  const Eigen::MatrixXd* wa = shared ? &d->shared.weights_a : &d->paper_a.weights;
-  const Eigen::MatrixXd* wb = shared ? &d->shared.weights_b : &d->paper_b.weights;
+  const Eigen::MatrixXd* wa = shared ? &d->shared->stacked.weights[0] : &d->paper_a.weights;
+  const Eigen::MatrixXd* wb = shared ? &d->shared->stacked.weights[1] : &d->paper_b.weights;
   const float plot_h = std::max(50.0f, (ImGui::GetContentRegionAvail().y - 2.0f * ImGui::GetTextLineHeightWithSpacing()) * 0.5f);
   if (sel >= 0 && sel < wa->cols() && sel < wb->cols() && wa->rows() > 1) {
     const double top = std::max({1e-9, wa->col(sel).cwiseAbs().maxCoeff(), wb->col(sel).cwiseAbs().maxCoeff()});

@@ -17,7 +17,8 @@
 #include "engine/decompose/body_parts.h"
 #include "engine/decompose/decomposition.h"
 #include "engine/post/finish.h"
-#include "engine/run/pipeline.h"
+#include "engine/run/decompose_params.h"
+#include "engine/run/prepare_takes.h"
 
 namespace mostyle {
 

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "engine/io/error.h"
@@ -26,35 +27,6 @@ constexpr double kShortBoneFraction = 0.5;
 
 
 }  // namespace
-
-const char* blend_mode_name(BlendMode mode) { return mode == BlendMode::kShared ? "shared" : "paper"; }
-
-void DecomposeParams::Validate(int channels) const {
-  if (components < 1 || components > channels)
-    throw InputError("expected from 1 to " + std::to_string(channels) + " components, found " +
-                     std::to_string(components));
-  if (!(sparsity > 0 && sparsity <= 1))
-    throw InputError("expected a sparsity in (0, 1], found " + std::to_string(sparsity));
-  if (max_iterations < 0) throw InputError("expected 0 or more iterations, found " + std::to_string(max_iterations));
-  if (!(tolerance >= 0) || !std::isfinite(tolerance))
-    throw InputError("expected a tolerance of 0 or more, found " + std::to_string(tolerance));
-  if (basic_motions < 0 || basic_motions > 16)
-    throw InputError("expected from 0 to 16 basic motions, found " + std::to_string(basic_motions));
-  if (basic_motions > 0 && mode != BlendMode::kPaper)
-    throw InputError("basic motions are a paper-mode synthesis; use --mode paper with --basic");
-  for (double f : basic_sparsities)
-    if (!(f > 0 && f <= 1)) throw InputError("expected basic-motion sparsities in (0, 1], found " + std::to_string(f));
-}
-
-DecompositionOptions DecomposeParams::options(const std::vector<int>& parents) const {
-  DecompositionOptions o;
-  o.components = components;
-  o.sparsity = sparsity;
-  o.max_iterations = max_iterations;
-  o.tolerance = tolerance;
-  if (local) o.locality_parents = parents;
-  return o;
-}
 
 namespace {
 
@@ -83,24 +55,14 @@ std::shared_ptr<const DecomposedPair> decompose_pair(const PreparedTakes& prepar
   const double scale = prepared.scale;
   const Eigen::MatrixXd* support_source = nullptr;
   if (params.mode == BlendMode::kShared) {
-    d->shared = decompose_shared(x_a, x_b, o, control);
-    d->shared_synthesis = prepare_shared_synthesis(d->shared.weights_a, d->shared.weights_b, d->shared.components);
-    const Eigen::MatrixXd reconstructed_a = synthesize_shared(d->shared_synthesis, 0.0);
-    const Eigen::MatrixXd reconstructed_b = synthesize_shared(d->shared_synthesis, 1.0);
-    d->residual_a = (x_a - reconstructed_a) * scale;
-    d->residual_b = (x_b - reconstructed_b) * scale;
-    d->local_a_components = reconstructed_a * scale;
-    d->local_a_components.rowwise() += prepared.takes[0].mean;
-    d->local_delta_components = reconstructed_b * scale;
-    d->local_delta_components.rowwise() += prepared.takes[1].mean;
-    d->local_delta_components -= d->local_a_components;
-    d->local_a = d->local_a_components + d->residual_a;
-    d->local_delta = d->local_delta_components + d->residual_b - d->residual_a;
-    d->rmse_a = d->shared.rmse_a * scale;
-    d->rmse_b = d->shared.rmse_b * scale;
-    d->nonzero_a = d->nonzero_b = d->shared.nonzero_fraction;
-    d->iterations = d->shared.iterations;
-    support_source = &d->shared.components;
+    d->shared = decompose_palette(prepared, params, control);
+    const StackedDecomposition& stacked = d->shared->stacked;
+    d->shared_synthesis = prepare_shared_synthesis(stacked.weights[0], stacked.weights[1], stacked.components);
+    d->rmse_a = d->shared->rmse[0];
+    d->rmse_b = d->shared->rmse[1];
+    d->nonzero_a = d->nonzero_b = stacked.nonzero_fraction;
+    d->iterations = stacked.iterations;
+    support_source = &stacked.components;
   } else if (params.basic_motions > 0) {
     BasicMotionOptions bo;
     bo.components = params.components;
@@ -152,6 +114,35 @@ double value_at(const Eigen::VectorXd& v, double u) {
   return (1 - f) * v[i] + f * v[i + 1];
 }
 
+// One alpha in shared mode: the mix of the two takes with weights (1 - alpha, alpha) (palette.h).
+void blend_as_mix(const PreparedTakes& p, const DecomposedPair& d, const BlendParams& params, BlendScratch& s,
+                  BlendResult& out) {
+  MixParams& mix = s.mix_params;
+  mix.weights.assign({1.0 - params.alpha, params.alpha});
+  mix.min_weight = -std::numeric_limits<double>::infinity();  // any alpha: how far to exaggerate is the person's call
+  mix.max_weight = std::numeric_limits<double>::infinity();
+  mix.reference_timing = params.timing_a;
+  mix.residual = params.residual;
+  mix.root_pull_seconds = params.root_pull_seconds;
+  mix.finish.limb_lengths = params.limb_lengths;
+  mix.finish.foot_lock = params.foot_lock;
+  mix.finish.loop = params.loop;
+  mix_palette(p, *d.shared, mix, s.mix_scratch, s.mix);
+  FinishedMotion& m = s.mix.motion;
+  out.world.swap(m.world);
+  out.contacts.swap(m.contacts);
+  out.loop = m.loop;
+  out.limb_length_max_error = m.limb_length_max_error;
+  out.foot_sliding_raw = m.foot_sliding_raw;
+  out.foot_sliding_cleaned = m.foot_sliding_cleaned;
+  out.local.swap(s.mix.local);
+  out.sample.swap(s.mix.sample);
+  out.source_a = s.mix.sources.col(0);
+  out.source_b = s.mix.sources.col(1);
+  out.synthesize_ms = s.mix.synthesize_ms;
+  out.postprocess_ms = s.mix.postprocess_ms;
+}
+
 }  // namespace
 
 void blend_pair(const PreparedTakes& p, const DecomposedPair& d, const BlendParams& params,
@@ -166,38 +157,23 @@ void blend_pair(const PreparedTakes& p, const DecomposedPair& d, const BlendPara
   // Per-component alphas all equal to alpha are the plain blend.
   const bool uniform = std::all_of(params.component_alpha.begin(), params.component_alpha.end(),
                                    [&](double a) { return a == alpha; });
-  const bool affine = d.params.mode == BlendMode::kShared && uniform;
+  if (d.params.mode == BlendMode::kShared && !params.component_alpha.empty() &&
+      static_cast<int>(params.component_alpha.size()) != d.components())
+    throw InputError("expected " + std::to_string(d.components()) + " component alphas, found " +
+                     std::to_string(params.component_alpha.size()));
+  if (d.params.mode == BlendMode::kShared && uniform) {
+    blend_as_mix(p, d, params, s, out);
+    return;
+  }
   // The output timeline: output frame k sits at warp sample u[k] (align/timing.h).
   double timing = params.timing_a ? 0.0 : alpha;
   if (d.params.mode == BlendMode::kShared && !params.component_alpha.empty()) {
-    if (static_cast<int>(params.component_alpha.size()) != d.components())
-      throw InputError("expected " + std::to_string(d.components()) + " component alphas, found " +
-                       std::to_string(params.component_alpha.size()));
     s.alphas = Eigen::Map<const Eigen::VectorXd>(params.component_alpha.data(), d.components());
     if (!params.timing_a) timing = s.alphas.mean();
   }
   blended_timeline(warp, timing, s.u);
   s.sampler.set(s.u, warp.samples());
-  if (affine && params.residual) {
-    // With the residuals, W_A C + residual_A is A's own pose: each take is read straight at the
-    // (fractional) frame the output frame shows, (1 - alpha) A + alpha B, so alpha 0 is A's own
-    // frames, not an interpolation of its warp samples.
-    s.source_a.resize(s.u.size());
-    s.source_b.resize(s.u.size());
-    for (Eigen::Index k = 0; k < s.u.size(); ++k) {
-      s.source_a[k] = value_at(warp.a, s.u[k]);
-      s.source_b[k] = value_at(warp.b, s.u[k]);
-    }
-    s.sampler_a.set(s.source_a, a.canonical.local.rows());
-    s.sampler_b.set(s.source_b, b.canonical.local.rows());
-    s.sampler_a.apply(a.canonical.local, out.local);
-    out.local *= 1.0 - alpha;
-    s.sampler_b.accumulate(b.canonical.local, alpha, out.local);
-  } else if (affine) {
-    // local = (W_A + alpha (W_B - W_A)) C scale + mean_a + alpha (mean_b - mean_a), folded, at
-    // the output frames only.
-    s.sampler.apply_add(d.local_a_components, d.local_delta_components, alpha, out.local);
-  } else if (d.params.mode == BlendMode::kShared) {  // one alpha per component
+  if (d.params.mode == BlendMode::kShared) {  // one alpha per component
     synthesize_shared(d.shared_synthesis, s.alphas, s.x);
   } else if (d.params.basic_motions > 0) {
     synthesize_basic_motions(d.basic_synthesis, params.swap_level, alpha, s.x);
@@ -208,7 +184,7 @@ void blend_pair(const PreparedTakes& p, const DecomposedPair& d, const BlendPara
   out.synthesize_ms = ms_since(t0);
 
   const auto t1 = Clock::now();
-  if (!affine) {
+  {
     s.mean.noalias() = (1 - alpha) * a.mean + alpha * b.mean;
     s.samples.resize(s.x.rows(), s.x.cols());
     s.samples.noalias() = s.x * p.scale;
@@ -219,7 +195,8 @@ void blend_pair(const PreparedTakes& p, const DecomposedPair& d, const BlendPara
       s.joint_alpha = joint_values(d.support, s.alphas);
       for (Eigen::Index j = 0; j < s.joint_alpha.rows(); ++j) {
         const double a = s.joint_alpha(j, 0);
-        s.samples.middleCols(3 * j, 3) += (1 - a) * d.residual_a.middleCols(3 * j, 3) + a * d.residual_b.middleCols(3 * j, 3);
+        s.samples.middleCols(3 * j, 3) +=
+            (1 - a) * d.shared->residual[0].middleCols(3 * j, 3) + a * d.shared->residual[1].middleCols(3 * j, 3);
       }
     }
     s.sampler.apply(s.samples, out.local);

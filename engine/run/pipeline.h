@@ -22,46 +22,19 @@
 #include "engine/io/job_control.h"
 #include "engine/prepare/major_skeleton.h"
 #include "engine/prepare/normalize.h"
+#include "engine/run/decompose_params.h"
+#include "engine/run/palette.h"
 #include "engine/run/prepare_takes.h"
 #include "engine/synthesize/synthesis.h"
 
 namespace mostyle {
 
-enum class BlendMode { kShared, kPaper };
-const char* blend_mode_name(BlendMode mode);  // "shared", "paper"
-
-struct DecomposeParams {
-  BlendMode mode = BlendMode::kShared;
-  int components = 10;     // k
-  double sparsity = 0.1;   // fraction of non-zeros kept in C (the paper's figures use 0.1)
-  int max_iterations = 100;
-  double tolerance = 1e-6;  // stop on a relative objective change below this (0: run to the cap)
-  // Paper mode only: m > 0 decomposes each take into m basic motions (paper 3.5) with these
-  // sparsities (missing entries take `sparsity`) instead of one decomposition.
-  int basic_motions = 0;
-  std::vector<double> basic_sparsities;
-  // Shared mode: local components, each one connected piece of the skeleton (decomposition.h
-  // locality_parents), so that a component is a body part. Paper mode is never local (the
-  // paper's decomposition keeps the largest entries anywhere).
-  bool local = true;
-  void Validate(int channels) const;  // throws InputError
-  // The decomposition's options: k, sparsity, iterations, tolerance, and the skeleton's parents
-  // (within the shared joints) when components are local.
-  DecompositionOptions options(const std::vector<int>& parents) const;
-};
-
 struct DecomposedPair {
   DecomposeParams params;
-  // Shared mode.
-  SharedDecomposition shared;
+  // Shared mode: the two takes' shared components, as a palette's (palette.h); one alpha is
+  // the mix with weights (1 - alpha, alpha). Per-component alphas synthesize from the weights.
+  std::shared_ptr<const PaletteDecomposition> shared;
   SharedSynthesis shared_synthesis;
-  // One alpha for every component: the blend's local pose (before the root, limb lengths and
-  // foot lock) is local_a + alpha * local_delta, de-normalized once here, so that a slider move
-  // is one pass over the values instead of two products. The *_components pair holds W_A C and
-  // W_B C alone (BlendParams::residual off), the other one adds each take's residual X - W C.
-  Eigen::MatrixXd local_a, local_delta;                        // U x 3M, A's units, with residuals
-  Eigen::MatrixXd local_a_components, local_delta_components;  // U x 3M, A's units, W C only
-  Eigen::MatrixXd residual_a, residual_b;                      // U x 3M, A's units: X - W C
   // Paper mode.
   Decomposition paper_a, paper_b;
   PaperSynthesis paper_synthesis;
@@ -114,6 +87,9 @@ struct BlendScratch {
   Eigen::VectorXd source_a, source_b;
   FinishScratch finish;
   FinishedMotion finished;
+  MixParams mix_params;  // one alpha in shared mode: the mix of two (palette.h)
+  MixScratch mix_scratch;
+  MixResult mix;
 };
 
 struct BlendResult {
