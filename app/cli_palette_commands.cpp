@@ -75,7 +75,7 @@ struct MixFlags {
 
 struct Palette {
   std::shared_ptr<const PreparedTakes> prepared;
-  std::shared_ptr<const PaletteDecomposition> decomposition;
+  std::shared_ptr<const Decomposed> decomposition;
   StageTimes times;
 };
 
@@ -91,7 +91,7 @@ Palette prepare(const std::vector<std::string>& files, const MixFlags& flags) {
   p.times.dtw_ms = p.prepared->times.dtw_ms;
   for (const PreparedTake& t : p.prepared->takes)
     for (const std::string& w : t.alignment.warnings) std::cerr << "mostyle: warning: " << w << "\n";
-  p.decomposition = decompose_palette(*p.prepared, flags.decompose_params());
+  p.decomposition = decompose_takes(*p.prepared, flags.decompose_params());
   p.times.decompose_ms = p.decomposition->elapsed_ms;
   return p;
 }
@@ -100,7 +100,7 @@ Palette prepare(const std::vector<std::string>& files, const MixFlags& flags) {
 int run_mix(const Palette& p, const std::vector<std::string>& files, const MixFlags& flags, const MixParams& mp,
             Json r) {
   const PreparedTakes& palette = *p.prepared;
-  const PaletteDecomposition& d = *p.decomposition;
+  const Decomposed& d = *p.decomposition;
   StageTimes times = p.times;
   MixScratch scratch;
   MixResult result;
@@ -148,7 +148,7 @@ int run_mix(const Palette& p, const std::vector<std::string>& files, const MixFl
                           {"reference_first", palette.timeline.frames[0][0]},
                           {"reference_last", palette.timeline.frames[0][palette.samples() - 1]}};
   if (flags.loop) r["loop"] = loop_json(result.motion.loop, palette.fps);
-  r["iterations"] = d.stacked.iterations;
+  r["iterations"] = d.iterations;
   r["local"] = d.params.local;
   r["component_joints"] = component_joints_json(d.component_joints, names);
   r["component_regions"] = component_regions_json(d.component_joints);

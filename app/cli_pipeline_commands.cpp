@@ -306,7 +306,7 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
       dp.basic_motions = args->basic;
       dp.basic_sparsities = args->basic_sparsities;
       dp.local = !args->no_local;
-      const auto d = decompose_pair(*p, dp);
+      const auto d = decompose_takes(*p, dp);
       times.decompose_ms = d->elapsed_ms;
       BlendParams bp;
       bp.alpha = args->alpha;
@@ -388,8 +388,8 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
       r["alignment"] = alignment;
       r["duration_s"] = result.world.rows() / p->fps;
       if (args->loop) r["loop"] = loop_json(result.loop, p->fps);
-      r["reconstruction_rmse"] = {{"a", d->rmse_a}, {"b", d->rmse_b}};
-      r["component_nonzero_fraction"] = {{"a", d->nonzero_a}, {"b", d->nonzero_b}};
+      r["reconstruction_rmse"] = {{"a", d->rmse[0]}, {"b", d->rmse[1]}};
+      r["component_nonzero_fraction"] = {{"a", d->nonzero[0]}, {"b", d->nonzero[1]}};
       r["iterations"] = d->iterations;
       r["local"] = dp.local && dp.mode == BlendMode::kShared;
       r["component_joints"] = component_joints_json(d->component_joints, names);

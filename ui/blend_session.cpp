@@ -138,9 +138,9 @@ void BlendSession::poll_sweep() {
     sweep_next_ = -1;
     return;
   }
-  const DecomposedPair* d = snap->decomposed.get();
+  const Decomposed* d = snap->decomposed.get();
   if (d == nullptr || d->params.components != sweep_params_.components) return;
-  ErrorPoint point{d->params.components, d->params.sparsity, d->params.mode, d->rmse_a, d->rmse_b};
+  ErrorPoint point{d->params.components, d->params.sparsity, d->params.mode, d->rmse[0], d->rmse[1]};
   auto same = [&](const ErrorPoint& e) {
     return e.components == point.components && e.sparsity == point.sparsity && e.mode == point.mode;
   };
@@ -175,12 +175,12 @@ void BlendSession::poll(EditorState& state) {
       palette_view_.take_up(*seen_palette_, snapshot_->palette_paths, snapshot_->warnings, controls_.palette, state);
     }
   }
-  const DecomposedPair* d = snapshot_->decomposed.get();
+  const Decomposed* d = snapshot_->decomposed.get();
   if (d != nullptr && d != seen_decomposed_) {
     seen_decomposed_ = d;
     controls_.component_alpha.resize(static_cast<size_t>(d->components()), state.parameters.alpha);
     if (controls_.selected_component >= d->components()) controls_.selected_component = -1;
-    ErrorPoint point{d->params.components, d->params.sparsity, d->params.mode, d->rmse_a, d->rmse_b};
+    ErrorPoint point{d->params.components, d->params.sparsity, d->params.mode, d->rmse[0], d->rmse[1]};
     auto same = [&](const ErrorPoint& e) {
       return e.components == point.components && e.sparsity == point.sparsity && e.mode == point.mode;
     };
@@ -298,7 +298,7 @@ void BlendSession::update_blend(EditorState& state) {
     return;
   }
   const PreparedTakes* p = snapshot_->prepared.get();
-  const DecomposedPair* d = snapshot_->decomposed.get();
+  const Decomposed* d = snapshot_->decomposed.get();
   if (p == nullptr || state.takes.size() != 3) return;
   if (d != nullptr) {
     BlendParams params;

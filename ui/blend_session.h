@@ -175,8 +175,8 @@ class BlendSession {
   std::shared_ptr<const WorkerSnapshot> snapshot_;
   std::uint64_t seen_version_ = ~std::uint64_t(0);
   const PreparedTakes* seen_prepared_ = nullptr;
-  const DecomposedPair* seen_decomposed_ = nullptr;
-  const DecomposedPair* blended_decomposed_ = nullptr;
+  const Decomposed* seen_decomposed_ = nullptr;
+  const Decomposed* blended_decomposed_ = nullptr;
   DecomposeParams requested_;
   SessionControls controls_;
   BlendParams blended_params_;

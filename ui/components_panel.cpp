@@ -22,9 +22,9 @@ void ComponentsPanel::draw(EditorState& state) {
     return;
   }
   const PreparedTakes* p = session_.snapshot().prepared.get();
-  const DecomposedPair* d = session_.snapshot().decomposed.get();
+  const Decomposed* d = session_.snapshot().decomposed.get();
   SessionControls& c = session_.controls();
-  if (const PaletteDecomposition* pd = session_.snapshot().palette_decomposition.get()) {
+  if (const Decomposed* pd = session_.snapshot().palette_decomposition.get()) {
     // The style palette: its shared components by body part, with their joints.
     const PreparedTakes* palette = session_.palette();
     ImGui::TextColored(kDimColor, "%d components shared by %d takes", pd->components(), palette->size());
@@ -84,8 +84,8 @@ void ComponentsPanel::draw(EditorState& state) {
     ImGui::TextColored(kDimColor, "joints: %s", joints.empty() ? "(none)" : joints.c_str());
     ImGui::PopTextWrapPos();
   }
-  const Eigen::MatrixXd* wa = shared ? &d->shared->stacked.weights[0] : &d->paper_a.weights;
-  const Eigen::MatrixXd* wb = shared ? &d->shared->stacked.weights[1] : &d->paper_b.weights;
+  const Eigen::MatrixXd* wa = shared ? &d->shared()->stacked.weights[0] : &d->paper()->a.weights;
+  const Eigen::MatrixXd* wb = shared ? &d->shared()->stacked.weights[1] : &d->paper()->b.weights;
   const float plot_h = std::max(50.0f, (ImGui::GetContentRegionAvail().y - 2.0f * ImGui::GetTextLineHeightWithSpacing()) * 0.5f);
   if (sel >= 0 && sel < wa->cols() && sel < wb->cols() && wa->rows() > 1) {
     const double top = std::max({1e-9, wa->col(sel).cwiseAbs().maxCoeff(), wb->col(sel).cwiseAbs().maxCoeff()});

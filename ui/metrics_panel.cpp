@@ -69,7 +69,7 @@ std::string length_in_words(double value, double cm_per_unit, double height, con
 Metrics gather_metrics(const BlendSession& session) {
   Metrics m;
   if (const PreparedTakes* p = session.palette()) {
-    const PaletteDecomposition* d = session.snapshot().palette_decomposition.get();
+    const Decomposed* d = session.snapshot().palette_decomposition.get();
     m.reference = p->takes.front().clip.get();
     m.result = p->size() > 2 ? "mix" : "blend";
     for (int i = 0; i < p->size(); ++i) {
@@ -94,9 +94,9 @@ Metrics gather_metrics(const BlendSession& session) {
   }
   const PreparedTakes* p = session.snapshot().prepared.get();
   if (p == nullptr) return m;
-  const DecomposedPair* d = session.snapshot().decomposed.get();
+  const Decomposed* d = session.snapshot().decomposed.get();
   m.reference = p->takes[0].clip.get();
-  m.takes = {{"A", d != nullptr ? d->rmse_a : -1.0, p->takes[0].foot_sliding}, {"B", d != nullptr ? d->rmse_b : -1.0, p->takes[1].foot_sliding}};
+  m.takes = {{"A", d != nullptr ? d->rmse[0] : -1.0, p->takes[0].foot_sliding}, {"B", d != nullptr ? d->rmse[1] : -1.0, p->takes[1].foot_sliding}};
   m.load_ms = p->times.load_ms;
   m.preprocess_ms = p->times.preprocess_ms;
   m.dtw_ms = p->times.dtw_ms;

@@ -43,7 +43,7 @@ glm::vec3 palette_color(int take) {
   return kColors[static_cast<size_t>(take) % (sizeof kColors / sizeof kColors[0])];
 }
 
-MixParams mix_params_for(const SessionControls& controls, const PaletteDecomposition& decomposition, int takes) {
+MixParams mix_params_for(const SessionControls& controls, const Decomposed& decomposition, int takes) {
   const PaletteControls& c = controls.palette;
   MixParams m;
   if (c.transfer) {
@@ -130,7 +130,7 @@ void PaletteView::take_up(const PreparedTakes& p, const std::vector<std::string>
   for (Take& t : state.takes) t.size = placed.size;
 }
 
-void PaletteView::update(const PreparedTakes& p, const PaletteDecomposition* d, const SessionControls& controls,
+void PaletteView::update(const PreparedTakes& p, const Decomposed* d, const SessionControls& controls,
                          EditorState& state) {
   if (static_cast<int>(state.takes.size()) != p.size() + 1) return;
   if (d != nullptr) {

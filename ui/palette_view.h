@@ -26,7 +26,7 @@ constexpr int kPaletteFirst = 1;  // index of the reference; take i is at kPalet
 // The engine's mix parameters the controls ask for (weights kept to the palette's size, per-part
 // weights, a transfer's weights, the clean-up options). Throws InputError when the weights are
 // refused (MixParams::Validate says why).
-MixParams mix_params_for(const SessionControls& controls, const PaletteDecomposition& decomposition, int takes);
+MixParams mix_params_for(const SessionControls& controls, const Decomposed& decomposition, int takes);
 
 // The palette's colour of take i (the reference first).
 glm::vec3 palette_color(int take);
@@ -38,7 +38,7 @@ class PaletteView {
                const std::vector<std::string>& warnings, PaletteControls& controls, EditorState& state);
   // After the panels: mixes again when the controls' mix differs from the one shown, then
   // refreshes positions, visibility (ghosts) and placement.
-  void update(const PreparedTakes& palette, const PaletteDecomposition* decomposition,
+  void update(const PreparedTakes& palette, const Decomposed* decomposition,
               const SessionControls& controls, EditorState& state);
   void clear();
 
@@ -49,7 +49,7 @@ class PaletteView {
  private:
   void place(const PreparedTakes& palette, const SessionControls& controls, EditorState& state);
 
-  const PaletteDecomposition* mixed_decomposition_ = nullptr;
+  const Decomposed* mixed_decomposition_ = nullptr;
   MixParams mixed_;
   MixScratch scratch_;
   MixResult mix_;

@@ -22,7 +22,7 @@ void ParametersPanel::draw(EditorState& state) {
   BlendSession& s = session_;
   SessionControls& c = s.controls();
   BlendParameters& p = state.parameters;
-  const DecomposedPair* d = s.snapshot().decomposed.get();
+  const Decomposed* d = s.snapshot().decomposed.get();
   ImGui::PushItemWidth(-120.0f);  // room for the labels on the right
 
   // With the style palette loaded, its panel holds the weights; alpha, the mode and the body

@@ -39,60 +39,6 @@ void write_sources(const PreparedTakes& p, const RowSampler& at, int first, Eige
 
 }  // namespace
 
-std::shared_ptr<const PaletteDecomposition> decompose_palette(const PreparedTakes& palette,
-                                                              const DecomposeParams& params, JobControl* control) {
-  const int channels = static_cast<int>(palette.takes.front().x.cols());
-  params.Validate(channels);
-  if (params.mode != BlendMode::kShared)
-    throw InputError("a palette of several takes mixes shared components; paper mode and basic motions blend two "
-                     "takes (use blend)");
-  const auto t0 = Clock::now();
-  auto d = std::make_shared<PaletteDecomposition>();
-  d->params = params;
-  const DecompositionOptions o = params.options(palette.parents);
-  // Fitted on every stride-th sample when the takes are long (kMaxDecompositionFrames).
-  const Eigen::Index total = static_cast<Eigen::Index>(palette.samples()) * palette.size();
-  d->stride = static_cast<int>(std::max<Eigen::Index>(1, (total + kMaxDecompositionFrames - 1) / kMaxDecompositionFrames));
-  std::vector<Eigen::MatrixXd> strided;
-  std::vector<const Eigen::MatrixXd*> xs;
-  for (const PreparedTake& t : palette.takes) {
-    if (d->stride == 1) {
-      xs.push_back(&t.x);
-      continue;
-    }
-    const Eigen::Index rows = (t.x.rows() + d->stride - 1) / d->stride;
-    strided.emplace_back(rows, t.x.cols());
-    for (Eigen::Index r = 0; r < rows; ++r) strided.back().row(r) = t.x.row(r * d->stride);
-  }
-  for (const Eigen::MatrixXd& x : strided) xs.push_back(&x);
-  d->stacked = decompose_stacked(xs, o, control);
-  if (d->stride > 1) {
-    // Every sample's weights: the least-squares fit to the components, W = X C^T (C C^T)^+.
-    const Eigen::MatrixXd& c = d->stacked.components;
-    const Eigen::MatrixXd gram = c * c.transpose();
-    const auto solver = gram.completeOrthogonalDecomposition();
-    for (size_t i = 0; i < palette.takes.size(); ++i) {
-      const Eigen::MatrixXd& x = palette.takes[i].x;
-      d->stacked.weights[i] = solver.solve(c * x.transpose()).transpose();
-      d->stacked.rmse[i] = std::sqrt((x - d->stacked.weights[i] * c).squaredNorm() / double(x.size()));
-    }
-  }
-  for (size_t i = 0; i < palette.takes.size(); ++i) {
-    const PreparedTake& t = palette.takes[i];
-    const Eigen::MatrixXd wc = d->stacked.weights[i] * d->stacked.components;
-    d->residual.push_back((t.x - wc) * palette.scale);
-    Eigen::MatrixXd r = wc * palette.scale;
-    r.rowwise() += t.mean;
-    d->reconstructed.push_back(std::move(r));
-    d->rmse.push_back(d->stacked.rmse[i] * palette.scale);
-  }
-  d->support = (d->stacked.components.array() != 0.0).cast<double>();
-  d->component_joints = describe_components(d->stacked.components, palette.majors);
-  d->elapsed_ms = ms_since(t0);
-  report_progress(control, 1.0f);
-  return d;
-}
-
 std::vector<double> normalized_weights(const std::vector<double>& typed) {
   double sum = 0.0;
   for (double w : typed) sum += w;
@@ -131,10 +77,15 @@ void MixParams::Validate(int takes, int components) const {
   }
 }
 
-void mix_palette(const PreparedTakes& p, const PaletteDecomposition& d, const MixParams& params, MixScratch& s,
+void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& params, MixScratch& s,
                  MixResult& out) {
   const int n = p.size();
   params.Validate(n, d.components());
+  const SharedComponents* shared = d.shared();
+  const PaperComponents* paper = d.paper();
+  if (paper != nullptr && (n != 2 || params.component_weights.size() > 0))
+    throw InputError("paper mode blends two takes with one weight; mix several takes, or weights per body part, in "
+                     "shared mode");
   const auto t0 = Clock::now();
   // Per-component weights that are all the overall weights are the plain mix.
   bool per_component = false;
@@ -168,7 +119,23 @@ void mix_palette(const PreparedTakes& p, const PaletteDecomposition& d, const Mi
   mixed_timeline(p.timeline, s.timing, first, last, s.u);
   s.u_stretch = s.u.array() - double(first);
   s.sampler.set(s.u_stretch, length);
-  if (!per_component) {
+  if (paper != nullptr) {
+    // The paper's synthesis (3.6) on the samples with alpha the second take's weight: A's
+    // weights on a blend of the takes' cores, or B's basic-motion core at one level (3.5; the
+    // chain sums back to X with A's residual). No residuals otherwise, as the paper has it.
+    const double alpha = params.weights[1];
+    if (d.params.basic_motions > 0) {
+      synthesize_basic_motions(paper->basic_synthesis, params.swap_level, alpha, s.x);
+      s.x += paper->basic_a.residual;
+    } else {
+      synthesize_paper(paper->synthesis, alpha, s.x);
+    }
+    s.samples.resize(s.x.rows(), s.x.cols());
+    s.samples.noalias() = s.x * p.scale;
+    s.samples.rowwise() += params.weights[0] * p.takes[0].mean + alpha * p.takes[1].mean;
+    s.stretch = s.samples.middleRows(first, length);
+    s.sampler.apply(s.stretch, out.local);
+  } else if (!per_component) {
     // sum_i w_i (W_i C scale + mean_i [+ residual_i]) at the output frames only. With the
     // residual that is each take's own pose, read straight at the frame the output frame shows
     // (one-hot weights give the take's own frames), one output frame at a time over the takes'
@@ -194,7 +161,7 @@ void mix_palette(const PreparedTakes& p, const PaletteDecomposition& d, const Mi
       out.local = s.local_t.transpose();
     } else {
       for (int i = 0; i < n; ++i) {
-        s.stretch = d.reconstructed[i].middleRows(first, length);
+        s.stretch = shared->reconstructed[i].middleRows(first, length);
         if (i == 0) {
           s.sampler.apply(s.stretch, out.local);
           out.local *= params.weights[0];
@@ -209,14 +176,14 @@ void mix_palette(const PreparedTakes& p, const PaletteDecomposition& d, const Mi
     s.joint_weights = joint_values(d.support, params.component_weights);
     Eigen::MatrixXd w = Eigen::MatrixXd::Zero(length, d.components());
     for (int i = 0; i < n; ++i)
-      w += d.stacked.weights[i].middleRows(first, length) * params.component_weights.col(i).asDiagonal();
-    s.samples.noalias() = w * d.stacked.components * p.scale;
+      w += shared->stacked.weights[i].middleRows(first, length) * params.component_weights.col(i).asDiagonal();
+    s.samples.noalias() = w * shared->stacked.components * p.scale;
     for (int i = 0; i < n; ++i)
       for (Eigen::Index j = 0; j < s.joint_weights.rows(); ++j) {
         const double wj = s.joint_weights(j, i);
         s.samples.middleCols(3 * j, 3).rowwise() += wj * p.takes[i].mean.segment(3 * j, 3);
         if (params.residual)
-          s.samples.middleCols(3 * j, 3) += wj * d.residual[i].block(first, 3 * j, length, 3);
+          s.samples.middleCols(3 * j, 3) += wj * shared->residual[i].block(first, 3 * j, length, 3);
       }
     s.sampler.apply(s.samples, out.local);
   }

@@ -1,13 +1,12 @@
 #pragma once
-// The style palette (issue #9): any number of takes (2 to 16, prepared by prepare_takes,
-// prepare_takes.h) mixed with weights, as two cached stages, each an immutable value built from
-// the one before:
-//   decompose_palette  one shared, local decomposition of the stacked takes (W_i per take, C);
-//   mix_palette        one mix for a set of weights: poses, timing, root path and foot contacts
-//                      mixed with the weights, then the pair's clean-up (post/finish.h).
-// Two takes with weights (1 - a, a) give blend_pair's shared-mode blend at alpha a, frame for
-// frame. A transfer (a style put on a take of one's own) is a mix whose reference is the content
-// take, with weights (1, -s, s) on content, neutral and style (transfer_weights).
+// The synthesis, the last stage of the one chain (issue 15): the takes prepared by
+// prepare_takes and decomposed by decompose_takes, mixed with one weight per take (or per body
+// part): poses, timing, root path and foot contacts mixed with the weights, then the clean-up
+// (post/finish.h). Shared mode mixes the takes' component weights (any number of takes); paper
+// mode (two takes) is the paper's synthesis with alpha the second take's weight. A blend of two
+// takes at alpha is the mix with weights (1 - alpha, alpha) (pipeline.h); a transfer (a style
+// put on a take of one's own) is a mix whose reference is the content take, with weights
+// (1, -s, s) on content, neutral and style (transfer_weights).
 #include <Eigen/Core>
 #include <memory>
 #include <string>
@@ -17,39 +16,13 @@
 #include "engine/decompose/body_parts.h"
 #include "engine/decompose/decomposition.h"
 #include "engine/post/finish.h"
-#include "engine/run/decompose_params.h"
+#include "engine/run/decompose_takes.h"
 #include "engine/run/prepare_takes.h"
 
 namespace mostyle {
 
 constexpr double kMinMixWeight = -0.5;  // mild exaggeration away from a take
 constexpr double kMaxMixWeight = 1.5;   // mild exaggeration beyond a take
-
-// The stacked decomposition's components are fitted on at most this many frames (every take's
-// samples at a stride): eight one-minute takes are 23 000 samples, and the components (body
-// parts' shapes) need no more than a few per gait phase. The weights of every sample are then
-// the least-squares fit to those components.
-constexpr int kMaxDecompositionFrames = 6000;
-
-struct PaletteDecomposition {
-  DecomposeParams params;          // shared mode (local unless params.local is off)
-  StackedDecomposition stacked;    // W_i and C
-  // Per take, A's units, U x 3M: the components' reconstruction W_i C de-normalized, and the
-  // residual (what the components do not hold). Their sum is the take's pose exactly.
-  std::vector<Eigen::MatrixXd> reconstructed, residual;
-  std::vector<double> rmse;        // per take, file units
-  int stride = 1;                  // the components were fitted on every stride-th sample
-  Eigen::MatrixXd support;         // k x 3M, 1 where a component is non-zero
-  std::vector<ComponentJoints> component_joints;
-  double elapsed_ms = 0;
-  int components() const { return params.components; }
-};
-
-// Throws InputError on bad parameters (paper mode and basic motions are the pair's), Cancelled.
-// Cost: decompose() on N x U frames, then N U x k by k x 3M products.
-std::shared_ptr<const PaletteDecomposition> decompose_palette(const PreparedTakes& palette,
-                                                              const DecomposeParams& params,
-                                                              JobControl* control = nullptr);
 
 // Weights typed as decimals may miss 1 by their rounding (six times 0.166667 is 1.000002): a sum
 // within this of 1 is taken as meant.
@@ -64,6 +37,7 @@ struct MixParams {
   // (part_weights); empty: `weights` for every component.
   Eigen::MatrixXd component_weights;
   double min_weight = kMinMixWeight, max_weight = kMaxMixWeight;  // transfers allow more
+  int swap_level = 0;                // paper mode with basic motions: the level whose core comes from take 1
   bool reference_timing = false;     // keep the reference's timeline instead of mixing timing
   bool residual = true;              // mix each take's residual too (BlendParams::residual)
   double root_pull_seconds = kRootPullSeconds;
@@ -74,7 +48,7 @@ struct MixParams {
 };
 
 struct MixScratch {
-  Eigen::MatrixXd samples, steps, ground_u, target, contacts_u, joint_weights, stretch, local_t;
+  Eigen::MatrixXd x, samples, steps, ground_u, target, contacts_u, joint_weights, stretch, local_t;
   Eigen::VectorXd heading_u, u, u_stretch, flips;
   std::vector<double> overall, timing;
   RowSampler sampler;
@@ -94,7 +68,7 @@ struct MixResult {
 // two foot strikes. One weight set: the poses at the output frames only, O(K x N x 3M), and the
 // root on the samples, O(U x N); per-component weights add O(U x k x (3M + N)).
 // Allocation-free once scratch and out are sized (per-component weights and a loop allocate).
-void mix_palette(const PreparedTakes& palette, const PaletteDecomposition& decomposition, const MixParams& params,
+void mix_palette(const PreparedTakes& palette, const Decomposed& decomposition, const MixParams& params,
                  MixScratch& scratch, MixResult& out);
 
 // Per-component weights (k x N) from weights given per body part: each component takes the

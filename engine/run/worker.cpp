@@ -239,7 +239,7 @@ void Worker::run_decompose(std::unique_lock<std::mutex>& lock) {
   const DecomposeParams params = decompose_params_;
   const auto prepared = snapshot_->prepared;
   lock.unlock();
-  auto decomposed = decompose_pair(*prepared, params, &control_);
+  auto decomposed = decompose_takes(*prepared, params, &control_);
   lock.lock();
   if (snapshot_->prepared == prepared) {
     publish([&](WorkerSnapshot& s) {
@@ -311,7 +311,7 @@ void Worker::run_decompose_palette(std::unique_lock<std::mutex>& lock) {
   const DecomposeParams params = decompose_params_;
   const auto palette = snapshot_->palette;
   lock.unlock();
-  auto decomposition = decompose_palette(*palette, palette_decompose_params(params), &control_);
+  auto decomposition = decompose_takes(*palette, palette_decompose_params(params), &control_);
   lock.lock();
   if (snapshot_->palette == palette) {
     publish([&](WorkerSnapshot& s) {

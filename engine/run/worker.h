@@ -24,7 +24,7 @@ namespace mostyle {
 struct WorkerSnapshot {
   // The pair.
   std::shared_ptr<const PreparedTakes> prepared;     // null unless a pair is loaded
-  std::shared_ptr<const DecomposedPair> decomposed;  // of `prepared`; null until its first one
+  std::shared_ptr<const Decomposed> decomposed;  // of `prepared`; null until its first one
   std::shared_ptr<const BlendResult> blend;          // of `decomposed` with blend_params
   // The parameters of the request `decomposed` (or `palette_decomposition`) was made from. A
   // palette is decomposed in shared mode without basic motions whatever this says; its
@@ -34,7 +34,7 @@ struct WorkerSnapshot {
   std::string path_a, path_b;                        // files of `prepared`
   // The palette.
   std::shared_ptr<const PreparedTakes> palette;                    // null unless a palette is loaded
-  std::shared_ptr<const PaletteDecomposition> palette_decomposition;  // of `palette`; null until its first one
+  std::shared_ptr<const Decomposed> palette_decomposition;  // of `palette`; null until its first one
   std::shared_ptr<const MixResult> mix;                               // of `palette_decomposition` with mix_params
   MixParams mix_params;                                               // the parameters `mix` was made with
   std::vector<std::string> palette_paths;                             // files of `palette`, the reference first

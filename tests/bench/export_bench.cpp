@@ -20,7 +20,7 @@ const std::string kShared = MOSTYLE_SHARED_MOTIONS;
 
 struct Pair {
   std::shared_ptr<const mostyle::PreparedTakes> prepared;
-  std::shared_ptr<const mostyle::DecomposedPair> decomposed;
+  std::shared_ptr<const mostyle::Decomposed> decomposed;
   mostyle::BlendResult blend;
 };
 
@@ -37,7 +37,7 @@ Pair load_pair(const std::string& a, const std::string& b, bool* ok) {
   }
   mostyle::DecomposeParams dp;
   dp.max_iterations = 30;
-  p.decomposed = mostyle::decompose_pair(*p.prepared, dp);
+  p.decomposed = mostyle::decompose_takes(*p.prepared, dp);
   mostyle::BlendScratch scratch;
   mostyle::blend_pair(*p.prepared, *p.decomposed, mostyle::BlendParams{}, scratch, p.blend);
   *ok = true;

@@ -59,8 +59,8 @@ const PreparedTakes& palette() {
   return *p;
 }
 
-const PaletteDecomposition& decomposition() {
-  static const auto d = decompose_palette(palette(), bench_params());
+const Decomposed& decomposition() {
+  static const auto d = decompose_takes(palette(), bench_params());
   return *d;
 }
 
@@ -73,7 +73,7 @@ BENCHMARK(BM_PrepareEightTakes)->Unit(benchmark::kMillisecond)->Iterations(2);
 
 void BM_DecomposeEightTakes(benchmark::State& state) {
   const PreparedTakes& p = palette();
-  for (auto _ : state) benchmark::DoNotOptimize(decompose_palette(p, bench_params()));
+  for (auto _ : state) benchmark::DoNotOptimize(decompose_takes(p, bench_params()));
   state.counters["frames"] = double(p.samples()) * p.size();
 }
 BENCHMARK(BM_DecomposeEightTakes)->Unit(benchmark::kMillisecond)->Iterations(3);
@@ -82,7 +82,7 @@ BENCHMARK(BM_DecomposeEightTakes)->Unit(benchmark::kMillisecond)->Iterations(3);
 // poses, timing, root, limb lengths and foot lock.
 void mix_bench(benchmark::State& state, bool reference_timing) {
   const PreparedTakes& p = palette();
-  const PaletteDecomposition& d = decomposition();
+  const Decomposed& d = decomposition();
   MixParams params;
   params.reference_timing = reference_timing;
   MixScratch scratch;

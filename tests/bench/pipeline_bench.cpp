@@ -1,5 +1,5 @@
 // Speed of the pair pipeline on a minute of motion at 30 fps (1800 frames, 20 major joints):
-// prepare_takes of two takes (resample, FK, retarget, canonical frame, DTW), decompose_pair (shared mode, k = 10)
+// prepare_takes of two takes (resample, FK, retarget, canonical frame, DTW), decompose_takes (shared mode, k = 10)
 // and blend_pair for one alpha, the slider move, which must stay well under 1 ms. With the timing
 // blended the output's length changes with alpha, and its buffers are resized then (the
 // allocations are counted here by wrapping malloc); with A's timing it allocates nothing once
@@ -63,7 +63,7 @@ std::shared_ptr<const Clip> minute_take(const std::string& name) {
 
 struct Pair {
   std::shared_ptr<const PreparedTakes> prepared;
-  std::shared_ptr<const DecomposedPair> decomposed;
+  std::shared_ptr<const Decomposed> decomposed;
 };
 
 DecomposeParams bench_params() {
@@ -76,7 +76,7 @@ const Pair& minute_pair() {
   static const Pair pair = [] {
     Pair p;
     p.prepared = prepare_takes({minute_take("cmu142_walk_marching.bvh"), minute_take("cmu142_walk_happy.bvh")}, {});
-    p.decomposed = decompose_pair(*p.prepared, bench_params());
+    p.decomposed = decompose_takes(*p.prepared, bench_params());
     return p;
   }();
   return pair;
@@ -98,9 +98,9 @@ BENCHMARK(BM_PreparePair)->Unit(benchmark::kMillisecond);
 
 void BM_DecomposePair(benchmark::State& state) {
   const PreparedTakes& p = *minute_pair().prepared;
-  std::shared_ptr<const DecomposedPair> d;
+  std::shared_ptr<const Decomposed> d;
   for (auto _ : state) {
-    d = decompose_pair(p, bench_params());
+    d = decompose_takes(p, bench_params());
     benchmark::DoNotOptimize(d.get());
   }
   state.counters["frames"] = static_cast<double>(p.reference().x.rows());

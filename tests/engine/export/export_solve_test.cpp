@@ -290,7 +290,7 @@ Blended blend_files(const std::string& path_a, const std::string& path_b, double
   DecomposeParams dp;
   dp.components = 8;
   dp.max_iterations = 30;
-  const auto d = decompose_pair(*out.prepared, dp);
+  const auto d = decompose_takes(*out.prepared, dp);
   BlendParams bp;
   bp.alpha = alpha;
   BlendScratch scratch;

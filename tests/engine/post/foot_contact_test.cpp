@@ -270,7 +270,7 @@ void check_pipeline_foot_lock(const std::string& path_a, const std::string& path
   DecomposeParams dp;
   dp.components = 8;
   dp.max_iterations = 30;
-  const auto d = decompose_pair(*p, dp);
+  const auto d = decompose_takes(*p, dp);
   BlendParams bp;
   bp.alpha = 0.5;
   BlendScratch scratch;

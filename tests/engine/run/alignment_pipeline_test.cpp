@@ -88,7 +88,7 @@ Clip padded(const Clip& clip, int frames) {
 struct Pair {
   std::shared_ptr<const Clip> a, b;
   std::shared_ptr<const PreparedTakes> p;
-  std::shared_ptr<const DecomposedPair> d;
+  std::shared_ptr<const Decomposed> d;
   double height = 0;
 };
 
@@ -97,7 +97,7 @@ Pair happy_marching() {
   pair.a = load("cmu142_walk_happy.bvh");
   pair.b = load("cmu142_walk_marching.bvh");
   pair.p = prepare_takes({pair.a, pair.b}, {});
-  pair.d = decompose_pair(*pair.p, DecomposeParams());
+  pair.d = decompose_takes(*pair.p, DecomposeParams());
   pair.height = guess_units(*pair.a).height;
   return pair;
 }
@@ -286,7 +286,7 @@ TEST_CASE("alignment pipeline: no pops on the shared motions' hardest pairs, acr
     auto a = std::make_shared<const Clip>(read_bvh_file(test::shared_motion(name_a)));
     auto b = std::make_shared<const Clip>(read_bvh_file(test::shared_motion(name_b)));
     const auto p = prepare_takes({a, b}, {});
-    const auto d = decompose_pair(*p, DecomposeParams());
+    const auto d = decompose_takes(*p, DecomposeParams());
     // The pop measure of ../shared/hooks/pop_check.py: 99.9th percentiles, inputs at 30 fps.
     const double takes = std::max(percentile(joint_speeds(p->takes[0].world), kPopPercentile),
                                   percentile(joint_speeds(p->takes[1].world), kPopPercentile));

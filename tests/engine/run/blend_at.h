@@ -4,7 +4,7 @@
 
 namespace mostyle::test {
 
-inline BlendResult blend_at(const PreparedTakes& p, const DecomposedPair& d, double alpha, BlendParams params = {}) {
+inline BlendResult blend_at(const PreparedTakes& p, const Decomposed& d, double alpha, BlendParams params = {}) {
   params.alpha = alpha;
   BlendScratch scratch;
   BlendResult out;

@@ -40,7 +40,7 @@ DecomposeParams params() {
   return d;
 }
 
-MixResult mix(const PreparedTakes& p, const PaletteDecomposition& d, std::vector<double> weights,
+MixResult mix(const PreparedTakes& p, const Decomposed& d, std::vector<double> weights,
               MixParams params = {}) {
   params.weights = std::move(weights);
   MixScratch scratch;
@@ -86,8 +86,8 @@ Eigen::MatrixXd own_pose_at(const PreparedTake& t, const Eigen::VectorXd& frames
 TEST_CASE("palette: two takes with weights 1 - a, a are the pair's blend at alpha a") {
   const auto clips = bundled();
   const auto p = prepare_takes({clips[0], clips[1]}, {});
-  const auto d = decompose_palette(*p, params());
-  const auto pair_d = decompose_pair(*p, params());
+  const auto d = decompose_takes(*p, params());
+  const auto pair_d = decompose_takes(*p, params());
   const double height = guess_units(*clips[0]).height;
   for (double a : {0.0, 0.3, 0.5, 1.0, 1.2}) {
     const MixResult m = mix(*p, *d, {1.0 - a, a});
@@ -101,7 +101,7 @@ TEST_CASE("palette: two takes with weights 1 - a, a are the pair's blend at alph
 TEST_CASE("palette: four takes, weights checked, one-hot gives the take, equal weights lie among them") {
   const auto clips = bundled();
   const auto p = prepare_takes(clips, {});
-  const auto d = decompose_palette(*p, params());
+  const auto d = decompose_takes(*p, params());
   REQUIRE(p->size() == 4);
   const double height = guess_units(*clips[0]).height;
 
@@ -120,7 +120,7 @@ TEST_CASE("palette: four takes, weights checked, one-hot gives the take, equal w
       const MixResult m = mix(*p, *d, one_hot(4, i));
       const auto owned = pair_of(*p, i);
       const PreparedTakes& pair = *owned;
-      const BlendResult b = blend_at(pair, *decompose_pair(pair, params()), 1.0);
+      const BlendResult b = blend_at(pair, *decompose_takes(pair, params()), 1.0);
       INFO("take " << i);
       REQUIRE(m.motion.world.rows() == b.world.rows());
       CHECK(max_distance(m.motion.world, b.world, height) < kOneHot);
@@ -172,7 +172,7 @@ TEST_CASE("palette: transfer identities") {
   const double height = guess_units(*clips[0]).height;
   SECTION("strength 0 is the content take") {
     const auto p = prepare_takes({clips[3], clips[0], clips[1]}, {});
-    const auto d = decompose_palette(*p, params());
+    const auto d = decompose_takes(*p, params());
     MixParams mp;
     mp.min_weight = -kMaxStrength;
     mp.max_weight = kMaxStrength + 1;
@@ -197,7 +197,7 @@ TEST_CASE("palette: transfer identities") {
   }
   SECTION("content equal to neutral at strength 1 is the style on the neutral take's path") {
     const auto p = prepare_takes({clips[0], clips[0], clips[1]}, {});
-    const auto d = decompose_palette(*p, params());
+    const auto d = decompose_takes(*p, params());
     MixParams mp;
     mp.min_weight = -kMaxStrength;
     mp.max_weight = kMaxStrength + 1;
@@ -206,7 +206,7 @@ TEST_CASE("palette: transfer identities") {
     CHECK((m.local - own_pose_at(p->takes[2], m.sources.col(2))).cwiseAbs().maxCoeff() < 0.01 * height);
     const auto owned = pair_of(*p, 2);
     const PreparedTakes& pair = *owned;
-    const BlendResult b = blend_at(pair, *decompose_pair(pair, params()), 1.0);
+    const BlendResult b = blend_at(pair, *decompose_takes(pair, params()), 1.0);
     REQUIRE(m.motion.world.rows() == b.world.rows());
     CHECK(max_distance(m.motion.world, b.world, height) < kOneHot);
   }
@@ -224,7 +224,7 @@ TEST_CASE("palette: components are connected body parts on each convention, and 
     std::vector<std::shared_ptr<const Clip>> clips;
     for (const std::string& n : names) clips.push_back(load(test::shared_motion(n)));
     const auto p = prepare_takes(clips, {});
-    const auto d = decompose_palette(*p, params());
+    const auto d = decompose_takes(*p, params());
     INFO(names[0]);
     for (const ComponentJoints& c : d->component_joints) {
       CHECK(connected_in(c.columns, p->parents));
@@ -243,7 +243,7 @@ TEST_CASE("palette: components are connected body parts on each convention, and 
     const MixResult m = mix(*p, *d, one_hot(p->size(), last));
     const auto owned = pair_of(*p, last);
     const PreparedTakes& pair = *owned;
-    const BlendResult b = blend_at(pair, *decompose_pair(pair, params()), 1.0);
+    const BlendResult b = blend_at(pair, *decompose_takes(pair, params()), 1.0);
     REQUIRE(m.motion.world.rows() == b.world.rows());
     CHECK(max_distance(m.motion.world, b.world, guess_units(*clips[0]).height) < kOneHot);
   }

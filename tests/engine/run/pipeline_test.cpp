@@ -152,7 +152,7 @@ struct PairCheck {
 PairCheck check_pair(const std::shared_ptr<const Clip>& a, const std::shared_ptr<const Clip>& b,
                      const PrepareOptions& options = {}, bool paper = true) {
   const auto p = prepare_takes({a, b}, options);
-  const auto d = decompose_pair(*p, reproduction_params());
+  const auto d = decompose_takes(*p, reproduction_params());
   const double height = guess_units(*a).height;
   PairCheck c;
   std::vector<BlendResult> results;
@@ -169,7 +169,7 @@ PairCheck check_pair(const std::shared_ptr<const Clip>& a, const std::shared_ptr
   if (paper) {
     DecomposeParams params = reproduction_params();
     params.mode = BlendMode::kPaper;
-    const auto dp = decompose_pair(*p, params);
+    const auto dp = decompose_takes(*p, params);
     c.paper_finite = blend_at(*p, *dp, 0.5).world.allFinite() && blend_at(*p, *dp, 1.0).world.allFinite();
   }
   return c;
@@ -209,7 +209,7 @@ void require_self_blend(const std::string& path) {
   INFO(base_name(path));
   const auto clip = load(path);
   const auto p = prepare_takes({clip, clip}, {});
-  const auto d = decompose_pair(*p, reproduction_params());
+  const auto d = decompose_takes(*p, reproduction_params());
   const double height = guess_units(*clip).height;
   const Eigen::MatrixXd reference = reference_positions(*clip, *p);
   CHECK((p->takes[0].world - reference).cwiseAbs().maxCoeff() == 0.0);  // the pipeline's own FK
@@ -291,7 +291,7 @@ TEST_CASE("shared mode at alpha 1 is B, from A's start", "[pipeline]") {
   const auto a = load(test::asset("motions/cmu142_walk_happy.bvh"));
   const auto b = load(test::asset("motions/cmu142_walk_marching.bvh"));
   const auto p = prepare_takes({a, b}, {});
-  const auto d = decompose_pair(*p, reproduction_params());
+  const auto d = decompose_takes(*p, reproduction_params());
   const double height = guess_units(*a).height;
   BlendParams no_lock;
   no_lock.foot_lock = false;  // compare the synthesis itself
@@ -374,7 +374,7 @@ TEST_CASE("a take turned around walks the other way and blends the same", "[pipe
   }
   SECTION("blended with the original, every alpha is A (the same walk, the other way)") {
     const auto p = prepare_takes({a, turned}, {});
-    const auto d = decompose_pair(*p, reproduction_params());
+    const auto d = decompose_takes(*p, reproduction_params());
     const Eigen::MatrixXd reference = reference_positions(*a, *p);
     const double height = guess_units(*a).height;
     for (double alpha : kAlphas) {
@@ -396,7 +396,7 @@ TEST_CASE("a take turned around walks the other way and blends the same", "[pipe
     }
     // The result of the turned pair is the original pair's, turned around.
     const auto p = prepare_takes({a, joy}, {}), q = prepare_takes({turned, joy}, {});
-    const auto dp = decompose_pair(*p, reproduction_params()), dq = decompose_pair(*q, reproduction_params());
+    const auto dp = decompose_takes(*p, reproduction_params()), dq = decompose_takes(*q, reproduction_params());
     const Eigen::MatrixXd r = blend_at(*p, *dp, 0.5).world, s = blend_at(*q, *dq, 0.5).world;
     Eigen::MatrixXd s_back = s;
     for (Eigen::Index j = 0; j < s.cols(); j += 3) {
@@ -445,7 +445,7 @@ TEST_CASE("mapping overrides reach the pipeline", "[pipeline]") {
   CHECK(major_column(p->majors, static_cast<int>(MajorJoint::kRightToe)) == -1);
   CHECK(p->takes[0].names.front() == "Hips");
   CHECK(p->takes[1].names[p->feature_joints.left_ankle] == "LeftFoot");
-  const auto d = decompose_pair(*p, reproduction_params());
+  const auto d = decompose_takes(*p, reproduction_params());
   const BlendResult r = blend_at(*p, *d, 0.0);
   const Distance e = distance(r.world, reference_at(*a, *p, r), guess_units(*a).height);
   CHECK(e.mean < kAlphaZeroMean);
@@ -482,17 +482,17 @@ TEST_CASE("pipeline errors are sentences, not crashes", "[pipeline]") {
     const auto p = prepare_takes({a, a}, {});
     DecomposeParams d;
     d.components = 0;
-    CHECK_THROWS_AS(decompose_pair(*p, d), InputError);
+    CHECK_THROWS_AS(decompose_takes(*p, d), InputError);
     d = DecomposeParams();
     d.sparsity = 1.5;
-    CHECK_THROWS_AS(decompose_pair(*p, d), InputError);
+    CHECK_THROWS_AS(decompose_takes(*p, d), InputError);
     d = DecomposeParams();
     d.tolerance = -1;
-    CHECK_THROWS_AS(decompose_pair(*p, d), InputError);
+    CHECK_THROWS_AS(decompose_takes(*p, d), InputError);
     d = DecomposeParams();
     d.basic_motions = 2;  // shared mode
-    CHECK_THROWS_AS(decompose_pair(*p, d), InputError);
-    const auto decomposed = decompose_pair(*p, DecomposeParams());
+    CHECK_THROWS_AS(decompose_takes(*p, d), InputError);
+    const auto decomposed = decompose_takes(*p, DecomposeParams());
     BlendParams bp;
     bp.alpha = std::nan("");
     BlendScratch scratch;
@@ -508,7 +508,7 @@ TEST_CASE("per-component alphas, limb lengths off, the root pull off", "[pipelin
   const auto a = load(test::asset("motions/cmu142_walk_clumsy.bvh"));
   const auto b = load(test::asset("motions/cmu142_walk_happy.bvh"));
   const auto p = prepare_takes({a, b}, {});
-  const auto d = decompose_pair(*p, DecomposeParams());
+  const auto d = decompose_takes(*p, DecomposeParams());
   SECTION("the same alpha for every component is the plain blend") {
     BlendParams each;
     each.component_alpha.assign(d->components(), 0.3);

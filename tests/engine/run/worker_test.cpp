@@ -348,7 +348,7 @@ TEST_CASE("a thousand parameter changes while another thread reads results", "[w
              s->blend_params.alpha >= 0.0 && s->blend_params.alpha <= 1.0;
         double sum = 0;
         for (Eigen::Index i = 0; i < s->blend->world.size(); ++i) sum += s->blend->world.data()[i];
-        ok = ok && std::isfinite(sum) && s->decomposed->shared_synthesis.components.rows() == s->decomposed->components();
+        ok = ok && std::isfinite(sum) && s->decomposed->support.rows() == s->decomposed->components();
       }
       bad_reads += ok ? 0 : 1;
       ++reads;
@@ -746,7 +746,7 @@ TEST_CASE("mix, decomposition and load requests on a palette while another threa
         ok = s->palette && s->palette_decomposition && s->palette_paths.size() == 3 &&
              s->mix->sources.cols() == s->palette->size() &&
              s->mix_params.weights.size() == static_cast<size_t>(s->palette->size()) &&
-             s->palette_decomposition->stacked.weights.size() == static_cast<size_t>(s->palette->size());
+             s->palette_decomposition->rmse.size() == static_cast<size_t>(s->palette->size());
         double sum = 0;
         for (Eigen::Index i = 0; i < s->mix->motion.world.size(); ++i) sum += s->mix->motion.world.data()[i];
         ok = ok && std::isfinite(sum);
