@@ -10,7 +10,7 @@
 #include <set>
 
 #include "app/cli_common.h"
-#include "app/cli_palette_commands.h"
+#include "app/cli_synthesis_commands.h"
 #include "app/cli_pipeline_commands.h"
 #include "engine/io/error.h"
 #include "engine/io/motion_file.h"

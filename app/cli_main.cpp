@@ -7,7 +7,7 @@
 #include "app/cli_batch_commands.h"
 #include "app/cli_clip_commands.h"
 #include "app/cli_grid_command.h"
-#include "app/cli_palette_commands.h"
+#include "app/cli_synthesis_commands.h"
 #include "app/cli_pipeline_commands.h"
 #include "engine/io/error.h"
 

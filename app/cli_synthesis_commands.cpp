@@ -1,7 +1,8 @@
-#include "app/cli_palette_commands.h"
+#include "app/cli_synthesis_commands.h"
 
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <memory>
 
@@ -10,7 +11,9 @@
 #include "engine/export/export_solve.h"
 #include "engine/io/error.h"
 #include "engine/kinematics/units.h"
+#include "engine/run/decompose_takes.h"
 #include "engine/run/palette.h"
+#include "engine/run/pipeline.h"
 
 namespace mostyle::cli {
 namespace {
@@ -20,35 +23,43 @@ double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-// The options mix and transfer share with blend: decomposition, clean-up, outputs.
-struct MixFlags {
+// How a command names its takes and its timing choices in --help.
+struct Words {
+  std::string mixed_timing;      // --timing's value that mixes the takes' timing ("blend", "mix")
+  std::string reference_timing;  // the value that keeps the reference's timeline ("a", "reference", "content")
+  std::string timing_help;
+  std::string out_help;
+};
+
+// The options blend, mix and transfer share: alignment, decomposition, clean-up, outputs.
+struct SynthesisFlags {
   AlignFlags align;
   int components = 10;
   double sparsity = 0.1;
   int iterations = 100;
   bool no_limb = false, no_foot_lock = false, loop = false, components_only = false, no_local = false;
-  std::string timing = "mix";
+  std::string timing, mixed_timing;
   std::string out, positions_out, report;
   ChannelsFlag channels;
 
-  void add_to(CLI::App* cmd, const std::string& reference_timing_name) {
+  void add_to(CLI::App* cmd, const Words& words) {
+    timing = mixed_timing = words.mixed_timing;
     align.add_to(cmd);
-    cmd->add_option("--components,-k", components, "Number of shared components k")->capture_default_str();
+    cmd->add_option("--components,-k", components, "Number of components k")->capture_default_str();
     cmd->add_option("--sparsity,-f", sparsity, "Fraction of non-zeros kept in C, in (0, 1]")->capture_default_str();
     cmd->add_option("--iterations", iterations, "Decomposition iteration cap")->capture_default_str();
     cmd->add_flag("--no-limb-constraint", no_limb, "Skip the limb-length constraint (paper 3.7)");
     cmd->add_flag("--no-foot-lock", no_foot_lock, "Leave planted feet free (no foot-contact IK clean-up)");
-    cmd->add_option("--timing", timing,
-                    "mix: the output's timing is mixed with the weights; " + reference_timing_name +
-                        ": keep the first take's timeline")
-        ->check(CLI::IsMember(std::vector<std::string>{"mix", reference_timing_name}))
+    cmd->add_option("--timing", timing, words.timing_help)
+        ->check(CLI::IsMember(std::vector<std::string>{words.mixed_timing, words.reference_timing}))
         ->capture_default_str();
     cmd->add_flag("--no-local", no_local,
-                  "Components may take channels anywhere instead of one connected piece of the skeleton each");
+                  "Shared components may take channels anywhere instead of one connected piece of the skeleton each");
     cmd->add_flag("--components-only", components_only,
-                  "Mix only what the k components reconstruct, leaving out each take's residual detail");
+                  "Shared mode: mix only what the k components reconstruct (the paper's synthesis), leaving out "
+                  "each take's residual detail");
     cmd->add_flag("--loop", loop, "Cut a seamless loop of 1 to 4 whole gait cycles (root travel per cycle kept)");
-    cmd->add_option("--out", out, "File of the result on the first take's skeleton: BVH, or glTF 2.0 when it ends in .glb or .gltf");
+    cmd->add_option("--out", out, words.out_help);
     channels.add_to(cmd);
     cmd->add_option("--positions-out", positions_out,
                     "CSV frame,joint,x,y,z of the result's final major-joint positions (after the foot lock)");
@@ -65,7 +76,7 @@ struct MixFlags {
   }
 
   void set(MixParams& mp) const {
-    mp.reference_timing = timing != "mix";
+    mp.reference_timing = timing != mixed_timing;
     mp.residual = !components_only;
     mp.finish.limb_lengths = !no_limb;
     mp.finish.foot_lock = !no_foot_lock;
@@ -73,32 +84,38 @@ struct MixFlags {
   }
 };
 
-struct Palette {
+struct Prepared {
   std::shared_ptr<const PreparedTakes> prepared;
   std::shared_ptr<const Decomposed> decomposition;
   StageTimes times;
 };
 
-Palette prepare(const std::vector<std::string>& files, const MixFlags& flags) {
-  Palette p;
+// Reads the takes (the first the reference), prepares and decomposes them; the alignment's
+// warnings go to stderr. Mapping files name the reference's joints and the second take's.
+Prepared prepare(const std::vector<std::string>& files, const SynthesisFlags& flags, const DecomposeParams& dp,
+                 const std::string& mapping_a = "", const std::string& mapping_b = "") {
+  Prepared p;
   PrepareOptions o = flags.align.options();
   const auto t0 = Clock::now();
   std::vector<std::shared_ptr<const Clip>> clips;
   for (const std::string& f : files) clips.push_back(std::make_shared<const Clip>(load_clip(f)));
   p.times.load_ms = ms_since(t0);
+  o.mapping_a = load_mapping(mapping_a);
+  o.mapping_b = load_mapping(mapping_b);
   p.prepared = prepare_takes(clips, o);
   p.times.preprocess_ms = p.prepared->times.preprocess_ms;
   p.times.dtw_ms = p.prepared->times.dtw_ms;
   for (const PreparedTake& t : p.prepared->takes)
     for (const std::string& w : t.alignment.warnings) std::cerr << "mostyle: warning: " << w << "\n";
-  p.decomposition = decompose_takes(*p.prepared, flags.decompose_params());
+  p.decomposition = decompose_takes(*p.prepared, dp);
   p.times.decompose_ms = p.decomposition->elapsed_ms;
   return p;
 }
 
-// Mixes, writes the outputs and the report. `r` already holds the command's own fields.
-int run_mix(const Palette& p, const std::vector<std::string>& files, const MixFlags& flags, const MixParams& mp,
-            Json r) {
+// Mixes, writes the outputs and the report. `r` already holds the command's own fields;
+// `words` adds the fields only it reports, once the mix is made.
+int run_synthesis(const Prepared& p, const std::vector<std::string>& files, const SynthesisFlags& flags,
+                  const MixParams& mp, Json r, const std::function<void(const MixResult&, Json&)>& words = {}) {
   const PreparedTakes& palette = *p.prepared;
   const Decomposed& d = *p.decomposition;
   StageTimes times = p.times;
@@ -149,7 +166,7 @@ int run_mix(const Palette& p, const std::vector<std::string>& files, const MixFl
                           {"reference_last", palette.timeline.frames[0][palette.samples() - 1]}};
   if (flags.loop) r["loop"] = loop_json(result.motion.loop, palette.fps);
   r["iterations"] = d.iterations;
-  r["local"] = d.params.local;
+  r["local"] = d.params.local && d.shared() != nullptr;
   r["component_joints"] = component_joints_json(d.component_joints, names);
   r["component_regions"] = component_regions_json(d.component_joints);
   r["limb_length_max_error"] = result.motion.limb_length_max_error;
@@ -164,6 +181,7 @@ int run_mix(const Palette& p, const std::vector<std::string>& files, const MixFl
                      {"dtw", times.dtw_ms},           {"decompose", times.decompose_ms},
                      {"synthesize", times.synthesize_ms}, {"postprocess", times.postprocess_ms},
                      {"export", times.export_ms}};
+  if (words) words(result, r);
   if (!flags.report.empty()) write_output(flags.report, r.dump(2) + "\n");
   else std::cout << report_summary(r, flags.out, flags.positions_out);
   return 0;
@@ -171,13 +189,116 @@ int run_mix(const Palette& p, const std::vector<std::string>& files, const MixFl
 
 }  // namespace
 
+void add_blend_command(CLI::App& app, std::function<int()>* run) {
+  auto* cmd = app.add_subcommand("blend", "Blend the styles of two takes");
+  struct Args {
+    std::string a, b, mapping_a, mapping_b;
+    double alpha = 0.5;
+    std::string mode = "shared";
+    int basic = 0;
+    std::vector<double> basic_sparsities;
+    int swap = 0;
+    std::vector<double> component_alpha;
+    std::vector<std::string> part_alpha;
+    SynthesisFlags flags;
+  };
+  auto args = std::make_shared<Args>();
+  cmd->add_option("A", args->a, "Take A (the reference: its skeleton, units and world frame)")->required();
+  cmd->add_option("B", args->b, "Take B (retargeted onto A and aligned onto it in time)")->required();
+  cmd->add_option("--mapping-a", args->mapping_a, "Major-joint mapping file for A (see assets/mappings)");
+  cmd->add_option("--mapping-b", args->mapping_b, "Major-joint mapping file for B");
+  cmd->add_option("--alpha", args->alpha, "0 gives A, 1 gives B")->capture_default_str();
+  cmd->add_option("--mode", args->mode, "shared (one component set, alpha 1 is B) or paper (core components)")
+      ->check(CLI::IsMember({"shared", "paper"}))
+      ->capture_default_str();
+  cmd->add_option("--basic", args->basic, "Paper mode: decompose into M basic motions")->capture_default_str();
+  cmd->add_option("--basic-sparsity", args->basic_sparsities, "Sparsity of each basic motion")->delimiter(',');
+  cmd->add_option("--swap", args->swap, "Basic motion (0-based) whose core is taken from B")->capture_default_str();
+  cmd->add_option("--part-alpha", args->part_alpha,
+                  "Shared mode: PART:a, the alpha of one body part's components (legs, arms, spine, left-leg, "
+                  "right-leg, left-arm, right-arm; repeat for several, a side wins over both sides); the rest "
+                  "take --alpha");
+  cmd->add_option("--component-alpha", args->component_alpha, "Shared mode: one alpha per component, comma separated")
+      ->delimiter(',');
+  args->flags.add_to(cmd, {"blend", "a", "blend: the output's timing moves from A's (alpha 0) to B's (alpha 1); a: keep A's timeline",
+                           "File of the blend on A's skeleton: BVH (A's rotation orders), or glTF 2.0 when it ends in .glb or .gltf"});
+  cmd->callback([=] {
+    *run = [=] {
+      DecomposeParams dp = args->flags.decompose_params();
+      dp.mode = args->mode == "paper" ? BlendMode::kPaper : BlendMode::kShared;
+      dp.basic_motions = args->basic;
+      dp.basic_sparsities = args->basic_sparsities;
+      if (!args->part_alpha.empty()) {
+        if (!args->component_alpha.empty()) throw InputError("give --part-alpha or --component-alpha, not both");
+        if (dp.mode != BlendMode::kShared) throw InputError("--part-alpha needs shared mode (--mode shared)");
+      }
+      const std::vector<std::string> files{args->a, args->b};
+      const Prepared p = prepare(files, args->flags, dp, args->mapping_a, args->mapping_b);
+      const Decomposed& d = *p.decomposition;
+      BlendParams bp;
+      bp.alpha = args->alpha;
+      bp.component_alpha = args->component_alpha;
+      if (!args->part_alpha.empty()) {
+        std::vector<std::pair<BodyPart, double>> given;
+        std::vector<std::string> entries;  // "legs:0.2,arms:0.8" or repeated
+        for (const std::string& e : args->part_alpha)
+          for (size_t begin = 0; begin <= e.size();) {
+            const size_t comma = std::min(e.find(',', begin), e.size());
+            entries.push_back(e.substr(begin, comma - begin));
+            begin = comma + 1;
+          }
+        for (const auto& [part, values] : parse_part_entries(entries, "--part-alpha", 1))
+          given.emplace_back(part, values[0]);
+        bp.component_alpha = weights_for_parts(given, d.component_joints, args->alpha);
+      }
+      bp.swap_level = args->swap;
+      MixParams mp = blend_mix_params(bp, d);
+      args->flags.set(mp);
+      Json r;
+      r["command"] = "blend";
+      r["a"] = args->a;
+      r["b"] = args->b;
+      r["alpha"] = args->alpha;
+      r["mode"] = args->mode;
+      if (args->basic > 0) {
+        r["basic_motions"] = args->basic;
+        r["swap"] = args->swap;
+      }
+      // A's and B's words: the alignment per output frame, each take's fit and sliding.
+      return run_synthesis(p, files, args->flags, mp, r, [&](const MixResult& result, Json& report) {
+        const Alignment& al = p.prepared->takes[1].alignment;
+        report["dtw"] = {{"cost", al.cost}, {"path_length", al.path.size()}};
+        Json alignment = alignment_json(*p.prepared, 1);
+        // Per output frame: where in A and B it is, how well they match there, the warp's slope.
+        Eigen::VectorXd ratio(result.sample.size()), slope(result.sample.size());
+        for (Eigen::Index k = 0; k < result.sample.size(); ++k) {
+          const Eigen::Index u = std::lround(result.sample[k]);
+          ratio[k] = al.cost_ratio[u];
+          slope[k] = al.slope[u];
+        }
+        alignment["per_frame"] = {{"source_a", vector_json(result.sources.col(0))},
+                                  {"source_b", vector_json(result.sources.col(1))},
+                                  {"cost_ratio", vector_json(ratio)},
+                                  {"slope", vector_json(slope)}};
+        report["alignment"] = alignment;
+        report["reconstruction_rmse"] = {{"a", d.rmse[0]}, {"b", d.rmse[1]}};
+        report["component_nonzero_fraction"] = {{"a", d.nonzero[0]}, {"b", d.nonzero[1]}};
+        report["foot_sliding"] = {{"a", p.prepared->takes[0].foot_sliding},
+                                  {"b", p.prepared->takes[1].foot_sliding},
+                                  {"raw_blend", result.motion.foot_sliding_raw},
+                                  {"cleaned_blend", result.motion.foot_sliding_cleaned}};
+      });
+    };
+  });
+}
+
 void add_mix_command(CLI::App& app, std::function<int()>* run) {
   auto* cmd = app.add_subcommand("mix", "Mix the styles of 2 to 16 takes with weights (the style palette)");
   struct Args {
     std::vector<std::string> files;
     std::string weights;
     std::vector<std::string> part_weights;
-    MixFlags flags;
+    SynthesisFlags flags;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("TAKES", args->files,
@@ -189,7 +310,8 @@ void add_mix_command(CLI::App& app, std::function<int()>* run) {
   cmd->add_option("--part-weights", args->part_weights,
                   "PART:w1,w2,...: one body part's weights, one per take (legs, arms, spine, left-leg, right-leg, "
                   "left-arm, right-arm; repeat for several, a side wins over both sides); the rest take --weights");
-  args->flags.add_to(cmd, "reference");
+  args->flags.add_to(cmd, {"mix", "reference", "mix: the output's timing is mixed with the weights; reference: keep the first take's timeline",
+                          "File of the result on the first take's skeleton: BVH, or glTF 2.0 when it ends in .glb or .gltf"});
   cmd->callback([=] {
     *run = [=] {
       const size_t n = args->files.size();
@@ -214,7 +336,7 @@ void add_mix_command(CLI::App& app, std::function<int()>* run) {
         }
       }
       args->flags.set(mp);
-      const Palette p = prepare(args->files, args->flags);
+      const Prepared p = prepare(args->files, args->flags, args->flags.decompose_params());
       if (!given.empty()) mp.component_weights = part_weights(given, p.decomposition->component_joints, mp.weights);
       Json r;
       r["command"] = "mix";
@@ -225,7 +347,7 @@ void add_mix_command(CLI::App& app, std::function<int()>* run) {
         for (const auto& [part, w] : given) parts[body_part_name(part)] = w;
         r["part_weights"] = parts;
       }
-      return run_mix(p, args->files, args->flags, mp, r);
+      return run_synthesis(p, args->files, args->flags, mp, r);
     };
   });
 }
@@ -238,7 +360,7 @@ void add_transfer_command(CLI::App& app, std::function<int()>* run) {
     std::vector<std::string> styles;
     std::vector<std::string> strengths;
     std::vector<std::string> part_strengths;
-    MixFlags flags;
+    SynthesisFlags flags;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("CONTENT", args->content,
@@ -253,7 +375,8 @@ void add_transfer_command(CLI::App& app, std::function<int()>* run) {
   cmd->add_option("--part-strength", args->part_strengths,
                   "PART:s1,...: one body part's strengths, one per style (legs, arms, spine, left-leg, right-leg, "
                   "left-arm, right-arm); the rest take --strength");
-  args->flags.add_to(cmd, "content");
+  args->flags.add_to(cmd, {"mix", "content", "mix: the output's timing is mixed with the weights; content: keep CONTENT's timeline",
+                          "File of the result on CONTENT's skeleton: BVH, or glTF 2.0 when it ends in .glb or .gltf"});
   cmd->callback([=] {
     *run = [=] {
       const size_t styles = args->styles.size();
@@ -277,7 +400,7 @@ void add_transfer_command(CLI::App& app, std::function<int()>* run) {
       args->flags.set(mp);
       std::vector<std::string> files{args->content, args->neutral};
       files.insert(files.end(), args->styles.begin(), args->styles.end());
-      const Palette p = prepare(files, args->flags);
+      const Prepared p = prepare(files, args->flags, args->flags.decompose_params());
       if (!given_weights.empty())
         mp.component_weights = part_weights(given_weights, p.decomposition->component_joints, mp.weights);
       Json r;
@@ -292,7 +415,7 @@ void add_transfer_command(CLI::App& app, std::function<int()>* run) {
         for (const auto& [part, s] : given) parts[body_part_name(part)] = s;
         r["part_strengths"] = parts;
       }
-      return run_mix(p, files, args->flags, mp, r);
+      return run_synthesis(p, files, args->flags, mp, r);
     };
   });
 }
