@@ -146,8 +146,7 @@ void Editor::update_engine() {
   session_->poll(state_);
   session_->update_blend(state_);
   // The takes, a pair or a palette alike.
-  const void* pair = session_->palette() != nullptr ? static_cast<const void*>(session_->palette())
-                                                    : static_cast<const void*>(session_->snapshot().prepared.get());
+  const void* pair = session_->snapshot().prepared.get();
   if (pair != nullptr && pair != framed_pair_) {  // new takes: frame them, start at --frame once
     framed_pair_ = pair;
     state_.view.request_reframe = true;
@@ -411,7 +410,7 @@ void Editor::frame(const FrameInput& input) {
 void Editor::save_session_when_ready() {
   if (scripted_save_path_.empty() || frames_drawn_ < 2) return;
   const WorkerStatus status = session_->status();
-  const bool loaded = session_->snapshot().prepared != nullptr || session_->palette() != nullptr;
+  const bool loaded = session_->snapshot().prepared != nullptr;
   if (status.stage != WorkerStage::kIdle || status.pending || ui::load_pending(*session_)) return;
   if (!loaded && session_->error().empty()) return;
   if (!save_session(scripted_save_path_)) scripted_save_error_ = session_message_;
@@ -483,7 +482,7 @@ void Editor::command_save(bool ask) {
   }
   std::string path = session_path_;
   if (path.empty()) {  // beside take A
-    const std::string& a = session_->snapshot().path_a;
+    const std::string& a = session_->loaded_path(0);
     path = a.empty() ? std::string("untitled.mostyle") : (std::filesystem::path(a).parent_path() / "untitled.mostyle").string();
   }
   copy_to(dialog_path_, sizeof dialog_path_, path);

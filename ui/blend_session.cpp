@@ -45,7 +45,7 @@ void BlendSession::load_files(const std::vector<std::string>& paths) {
   requested_files_ = paths;
   requested_a_ = paths[0];
   requested_b_ = paths[1];
-  worker_.load_palette(paths, prepare_options());
+  worker_.load(paths, prepare_options());
 }
 
 void BlendSession::load(const std::string& path_a, const std::string& path_b) {
@@ -53,7 +53,7 @@ void BlendSession::load(const std::string& path_a, const std::string& path_b) {
   requested_b_ = path_b;
   requested_files_ = {path_a};
   if (!path_b.empty()) requested_files_.push_back(path_b);
-  worker_.load(path_a, path_b, prepare_options());
+  worker_.load({path_a, path_b.empty() ? path_a : path_b}, prepare_options());
 }
 
 PrepareOptions BlendSession::prepare_options() const {
@@ -63,12 +63,8 @@ PrepareOptions BlendSession::prepare_options() const {
 }
 
 void BlendSession::realign() {
-  if (snapshot_->palette) {
-    worker_.load_palette(snapshot_->palette_paths, prepare_options());
-    return;
-  }
   if (!snapshot_->prepared) return;
-  worker_.load(snapshot_->path_a, snapshot_->path_b, prepare_options());
+  worker_.load(snapshot_->paths, prepare_options());
 }
 
 void BlendSession::request_decomposition(const EditorState& state) {
@@ -108,7 +104,7 @@ bool BlendSession::decomposition_outdated() const {
 }
 
 void BlendSession::start_error_sweep(const DecomposeParams& base) {
-  if (!snapshot_->prepared) return;
+  if (pair() == nullptr) return;
   sweep_params_ = base;
   sweep_params_.components = kSweepComponents[0];
   sweep_next_ = 0;
@@ -116,7 +112,7 @@ void BlendSession::start_error_sweep(const DecomposeParams& base) {
   sweep_seen_version_ = 0;
   if (wake_) sweep_worker_->set_on_change(wake_);
   sweep_worker_->decompose(sweep_params_);
-  sweep_worker_->load(snapshot_->path_a, snapshot_->path_b, prepare_options());
+  sweep_worker_->load(snapshot_->paths, prepare_options());
 }
 
 void BlendSession::set_wake(std::function<void()> wake) {
@@ -163,19 +159,19 @@ void BlendSession::poll(EditorState& state) {
   if (snap->version == seen_version_) return;
   seen_version_ = snap->version;
   snapshot_ = std::move(snap);
-  if (snapshot_->prepared.get() != seen_prepared_) {
-    seen_prepared_ = snapshot_->prepared.get();
+  if (pair() != seen_prepared_) {
+    seen_prepared_ = pair();
     take_up_prepared(state);
   }
-  if (snapshot_->palette.get() != seen_palette_) {
-    seen_palette_ = snapshot_->palette.get();
+  if (palette() != seen_palette_) {
+    seen_palette_ = palette();
     palette_view_.clear();
     if (seen_palette_ != nullptr) {
-      remember_recent(snapshot_->palette_paths);
-      palette_view_.take_up(*seen_palette_, snapshot_->palette_paths, snapshot_->warnings, controls_.palette, state);
+      remember_recent(snapshot_->paths);
+      palette_view_.take_up(*seen_palette_, snapshot_->paths, snapshot_->warnings, controls_.palette, state);
     }
   }
-  const Decomposed* d = snapshot_->decomposed.get();
+  const Decomposed* d = pair() != nullptr ? snapshot_->decomposed.get() : nullptr;
   if (d != nullptr && d != seen_decomposed_) {
     seen_decomposed_ = d;
     controls_.component_alpha.resize(static_cast<size_t>(d->components()), state.parameters.alpha);
@@ -200,7 +196,8 @@ void BlendSession::poll(EditorState& state) {
 
 // A new pair: the three takes on A's timeline, the placement, the DTW image.
 void BlendSession::take_up_prepared(EditorState& state) {
-  const PreparedTakes* p = snapshot_->prepared.get();
+  const PreparedTakes* p = pair();
+  if (p == nullptr && palette() != nullptr) return;  // the palette's view has the takes
   state.takes.clear();
   error_curve_.clear();  // of the previous pair
   has_blend_ = false;
@@ -208,7 +205,7 @@ void BlendSession::take_up_prepared(EditorState& state) {
   export_ok_ = false;
   blended_decomposed_ = nullptr;
   if (p == nullptr) return;
-  remember_recent({snapshot_->path_a, snapshot_->path_b});
+  remember_recent(snapshot_->paths);
   const int joints = static_cast<int>(p->majors.size());
   auto make = [&](const std::string& label, const glm::vec3& color, const Eigen::MatrixXd& contacts) {
     Take t;
@@ -220,13 +217,13 @@ void BlendSession::take_up_prepared(EditorState& state) {
     t.contacts = joint_contacts(contacts, p->feet, joints);
     return t;
   };
-  Take a = make("A  " + stem(snapshot_->path_a), kColorA, p->takes[0].own_contacts);
-  a.path = snapshot_->path_a;
+  Take a = make("A  " + stem(loaded_path(0)), kColorA, p->takes[0].own_contacts);
+  a.path = loaded_path(0);
   a.warnings = snapshot_->warnings;
   // What could not be matched well is said where the takes are listed, not only in the DTW view.
   a.warnings.insert(a.warnings.end(), p->takes[1].alignment.warnings.begin(), p->takes[1].alignment.warnings.end());
-  Take b = make("B  " + stem(snapshot_->path_b), kColorB, Eigen::MatrixXd());
-  b.path = snapshot_->path_b;
+  Take b = make("B  " + stem(loaded_path(1)), kColorB, Eigen::MatrixXd());
+  b.path = loaded_path(1);
   Take blend = make("blend", kColorBlend, Eigen::MatrixXd());
   blend.path = "(blend of A and B)";
   blend.positions = p->takes[0].world;  // until the first blend arrives
@@ -248,7 +245,7 @@ void BlendSession::take_up_prepared(EditorState& state) {
 // source_a, source_b), so the three stay in step whatever the timing. Before the first blend,
 // the warp's own samples. Slots across the travel: A left, the blend in the middle, B right.
 void BlendSession::place(EditorState& state) {
-  const PreparedTakes* p = snapshot_->prepared.get();
+  const PreparedTakes* p = pair();
   if (p == nullptr || state.takes.size() != 3) return;
   const TimeWarp& warp = p->takes[1].alignment.warp;
   const Eigen::VectorXd& at_a = has_blend_ ? blend_.source_a : warp.a;
@@ -293,11 +290,11 @@ void BlendSession::place(EditorState& state) {
 }
 
 void BlendSession::update_blend(EditorState& state) {
-  if (snapshot_->palette) {
-    palette_view_.update(*snapshot_->palette, snapshot_->palette_decomposition.get(), controls_, state);
+  if (const PreparedTakes* p = palette()) {
+    palette_view_.update(*p, snapshot_->decomposed.get(), controls_, state);
     return;
   }
-  const PreparedTakes* p = snapshot_->prepared.get();
+  const PreparedTakes* p = pair();
   const Decomposed* d = snapshot_->decomposed.get();
   if (p == nullptr || state.takes.size() != 3) return;
   if (d != nullptr) {
@@ -349,7 +346,7 @@ void BlendSession::update_blend(EditorState& state) {
 }
 
 void BlendSession::refresh_blend_take(EditorState& state) {
-  const PreparedTakes* p = snapshot_->prepared.get();
+  const PreparedTakes* p = pair();
   Take& t = state.takes[kTakeBlend];
   char label[64];
   if (controls_.per_component && snapshot_->decomposed && snapshot_->decomposed->params.mode == BlendMode::kShared)
@@ -376,7 +373,7 @@ void BlendSession::wait_idle(EditorState& state) {
 // O(F x Fb), so a long take does not stall the frame that takes it up.
 void BlendSession::compute_dtw_image() {
   dtw_image_ = DtwCostImage();
-  const PreparedTakes* p = snapshot_->prepared.get();
+  const PreparedTakes* p = pair();
   if (p == nullptr) return;
   const Eigen::MatrixXd& fa = p->takes[1].alignment.feature.a;
   const Eigen::MatrixXd& fb = p->takes[1].alignment.feature.b;
@@ -403,7 +400,7 @@ bool BlendSession::export_bvh(const std::string& path) {
   try {
     ExportOptions options;
     options.path = path;
-    const PreparedTakes* p = snapshot_->prepared.get();
+    const PreparedTakes* p = pair();
     if (p != nullptr) options.fps = p->fps;  // the blend's own frames
     if (p != nullptr && p->takes[0].clip != nullptr) options.layout = default_channel_layout(*p->takes[0].clip);
     outcome = run_export(make_export_request(*this, options));

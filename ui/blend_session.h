@@ -87,8 +87,18 @@ class BlendSession {
   void load_files(const std::vector<std::string>& paths);
   // The files last asked for (pair or palette), loaded or not.
   const std::vector<std::string>& requested_files() const { return requested_files_; }
-  // The palette when one is loaded (then no pair is: snapshot().prepared is null), its mix.
-  const PreparedTakes* palette() const { return snapshot_->palette.get(); }
+  // The takes loaded: two are the pair (A and B), three or more the palette.
+  const PreparedTakes* pair() const {
+    return snapshot_->prepared && snapshot_->prepared->size() == 2 ? snapshot_->prepared.get() : nullptr;
+  }
+  const PreparedTakes* palette() const {
+    return snapshot_->prepared && snapshot_->prepared->size() > 2 ? snapshot_->prepared.get() : nullptr;
+  }
+  // The file of loaded take i ("" when there is none).
+  const std::string& loaded_path(size_t i) const {
+    static const std::string kNone;
+    return i < snapshot_->paths.size() ? snapshot_->paths[i] : kNone;
+  }
   const PaletteView& palette_view() const { return palette_view_; }
   // Aligns the loaded pair again with controls().align (the worker re-prepares, then decomposes).
   void realign();

@@ -21,10 +21,10 @@ void ComponentsPanel::draw(EditorState& state) {
     ImGui::End();
     return;
   }
-  const PreparedTakes* p = session_.snapshot().prepared.get();
+  const PreparedTakes* p = session_.pair();
   const Decomposed* d = session_.snapshot().decomposed.get();
   SessionControls& c = session_.controls();
-  if (const Decomposed* pd = session_.snapshot().palette_decomposition.get()) {
+  if (const Decomposed* pd = session_.palette() != nullptr ? session_.snapshot().decomposed.get() : nullptr) {
     // The style palette: its shared components by body part, with their joints.
     const PreparedTakes* palette = session_.palette();
     ImGui::TextColored(kDimColor, "%d components shared by %d takes", pd->components(), palette->size());

@@ -48,7 +48,7 @@ void DtwPanel::draw(EditorState& state) {
     ImGui::End();
     return;
   }
-  const PreparedTakes* p = session_.snapshot().prepared.get();
+  const PreparedTakes* p = session_.pair();
   if (p == nullptr || p->takes[1].alignment.feature.a.rows() < 2 || p->takes[1].alignment.feature.b.rows() < 2 ||
       p->takes[1].alignment.path.empty()) {
     ImGui::TextColored(ImVec4(0.6f, 0.62f, 0.66f, 1.0f), "No pair aligned yet.");

@@ -17,8 +17,7 @@ std::vector<std::string> requested_files(const BlendSession& session) {
 
 // The takes of a snapshot, as a Document lists them.
 std::vector<std::string> loaded_files(const WorkerSnapshot& snap) {
-  if (snap.palette) return snap.palette_paths;
-  if (snap.prepared) return {snap.path_a, snap.path_b};
+  if (snap.prepared) return snap.paths;
   return {};
 }
 

@@ -39,7 +39,7 @@ ExportSubject export_subject(const BlendSession& session) {
       subject.frames = static_cast<int>(mix->motion.world.rows());
       subject.loop_cycles = mix->motion.loop.cycles;
     }
-  } else if (const PreparedTakes* pair = session.snapshot().prepared.get()) {
+  } else if (const PreparedTakes* pair = session.pair()) {
     subject.identity = pair;
     subject.clip = pair->reference().clip.get();
     subject.working_fps = pair->fps;
@@ -73,7 +73,7 @@ ExportRequest make_export_request(const BlendSession& session, const ExportOptio
     if (!ec) r.options.path = absolute.string();
     return r;
   }
-  const std::shared_ptr<const PreparedTakes> pair = session.snapshot().prepared;
+  const std::shared_ptr<const PreparedTakes> pair = session.pair() != nullptr ? session.snapshot().prepared : nullptr;
   const BlendResult* blend = session.blend();
   if (pair == nullptr || pair->reference().clip == nullptr || blend == nullptr || blend->world.rows() == 0)
     throw InputError("Export: nothing to export yet (no blend).");

@@ -69,7 +69,7 @@ std::string length_in_words(double value, double cm_per_unit, double height, con
 Metrics gather_metrics(const BlendSession& session) {
   Metrics m;
   if (const PreparedTakes* p = session.palette()) {
-    const Decomposed* d = session.snapshot().palette_decomposition.get();
+    const Decomposed* d = session.snapshot().decomposed.get();
     m.reference = p->takes.front().clip.get();
     m.result = p->size() > 2 ? "mix" : "blend";
     for (int i = 0; i < p->size(); ++i) {
@@ -92,7 +92,7 @@ Metrics gather_metrics(const BlendSession& session) {
     }
     return m;
   }
-  const PreparedTakes* p = session.snapshot().prepared.get();
+  const PreparedTakes* p = session.pair();
   if (p == nullptr) return m;
   const Decomposed* d = session.snapshot().decomposed.get();
   m.reference = p->takes[0].clip.get();

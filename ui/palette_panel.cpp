@@ -270,7 +270,7 @@ void PalettePanel::draw_transfer(PaletteControls& c, const PreparedTakes& p) {
       if (ImGui::Selectable(name_of(p, i).c_str())) {
         // The content is the reference: the palette is prepared again with it first.
         // Every take keeps its weight and strength in its new place (ui/document.h).
-        std::vector<std::string> files = session_.snapshot().palette_paths;
+        std::vector<std::string> files = session_.snapshot().paths;
         if (static_cast<size_t>(i) < files.size()) {
           std::vector<int> order(files.size());
           for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);

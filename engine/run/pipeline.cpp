@@ -8,14 +8,11 @@
 
 namespace mostyle {
 
-void blend_pair(const PreparedTakes& p, const Decomposed& d, const BlendParams& params, BlendScratch& s,
-                BlendResult& out) {
-  if (p.size() != 2)
-    throw InputError("a blend of two takes was asked of " + std::to_string(p.size()) +
-                     " takes; mix them with weights (mix)");
-  if (!std::isfinite(params.alpha)) throw InputError("expected a finite alpha");
+namespace {
+
+// Into `mix` (its vectors reused, so a slider move allocates nothing once they are sized).
+void set_blend_mix_params(const BlendParams& params, const Decomposed& d, MixParams& mix) {
   const double alpha = params.alpha;
-  MixParams& mix = s.mix_params;
   mix.weights.assign({1.0 - alpha, alpha});
   if (d.shared() != nullptr && !params.component_alpha.empty()) {
     if (static_cast<int>(params.component_alpha.size()) != d.components())
@@ -41,6 +38,25 @@ void blend_pair(const PreparedTakes& p, const Decomposed& d, const BlendParams& 
   mix.finish.limb_lengths = params.limb_lengths;
   mix.finish.foot_lock = params.foot_lock;
   mix.finish.loop = params.loop;
+}
+
+}  // namespace
+
+MixParams blend_mix_params(const BlendParams& params, const Decomposed& d) {
+  if (!std::isfinite(params.alpha)) throw InputError("expected a finite alpha");
+  MixParams mix;
+  set_blend_mix_params(params, d, mix);
+  return mix;
+}
+
+void blend_pair(const PreparedTakes& p, const Decomposed& d, const BlendParams& params, BlendScratch& s,
+                BlendResult& out) {
+  if (p.size() != 2)
+    throw InputError("a blend of two takes was asked of " + std::to_string(p.size()) +
+                     " takes; mix them with weights (mix)");
+  if (!std::isfinite(params.alpha)) throw InputError("expected a finite alpha");
+  MixParams& mix = s.mix_params;
+  set_blend_mix_params(params, d, mix);
   mix_palette(p, d, mix, s.mix_scratch, s.mix);
   FinishedMotion& m = s.mix.motion;
   out.world.swap(m.world);

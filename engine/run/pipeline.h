@@ -55,6 +55,11 @@ struct BlendResult {
   double synthesize_ms = 0, postprocess_ms = 0;
 };
 
+// The mix parameters of a blend: weights (1 - alpha, alpha), per component (1 - alpha_c,
+// alpha_c) in shared mode, any alpha (how far to exaggerate is the person's call). Throws
+// InputError on a non-finite alpha or a wrong count of component alphas.
+MixParams blend_mix_params(const BlendParams& params, const Decomposed& decomposed);
+
 // One blend: the mix with weights (1 - alpha, alpha), per component (1 - alpha_c, alpha_c), B's
 // basic-motion core at swap_level in paper mode (mix_palette). Throws InputError on a
 // non-finite alpha, a wrong count of component alphas, a bad swap level, more than two takes,

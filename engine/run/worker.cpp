@@ -20,9 +20,8 @@ Clip read_take(const std::string& path, std::vector<std::string>* warnings, cons
   return clip;
 }
 
-// Reads a palette's files, each once: a path given twice shares its clip, as the pair's A with
-// itself does. Checks for cancellation between files, so that a new load does not wait for all.
-std::vector<std::shared_ptr<const Clip>> read_palette_clips(const std::vector<std::string>& paths,
+// Reads the files, each once: a path given twice shares its clip. Checks for cancellation between files, so that a new load does not wait for all.
+std::vector<std::shared_ptr<const Clip>> read_clips(const std::vector<std::string>& paths,
                                                             std::vector<std::string>* warnings,
                                                             const BvhReadOptions& read, const JobControl* control) {
   std::vector<std::shared_ptr<const Clip>> clips;
@@ -35,9 +34,10 @@ std::vector<std::shared_ptr<const Clip>> read_palette_clips(const std::vector<st
   return clips;
 }
 
-// decompose_palette mixes shared components only; paper mode and basic motions are the pair's,
+// More than two takes mix shared components only; paper mode and basic motions are two takes',
 // so a palette leaves them out of the request instead of refusing it.
-DecomposeParams palette_decompose_params(DecomposeParams params) {
+DecomposeParams decompose_params_for(int takes, DecomposeParams params) {
+  if (takes <= 2) return params;
   params.mode = BlendMode::kShared;
   params.basic_motions = 0;
   params.basic_sparsities.clear();
@@ -70,28 +70,15 @@ Worker::~Worker() {
   thread_.join();
 }
 
-void Worker::load(const std::string& path_a, const std::string& path_b, const PrepareOptions& options) {
+void Worker::load(const std::vector<std::string>& paths, const PrepareOptions& options) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    path_a_ = path_a;
-    path_b_ = path_b.empty() ? path_a : path_b;
+    paths_ = paths;
+    if (paths_.size() == 1) paths_.push_back(paths_.front());  // the take with itself
     prepare_options_ = options;
-    // A successful load asks for the decomposition and blend itself; asking here would, when the
-    // load fails, re-run them on the previous pair and wipe the error off the snapshot.
+    // A successful load asks for the decomposition and mix itself; asking here would, when the
+    // load fails, re-run them on the previous takes and wipe the error off the snapshot.
     need_load_ = true;
-    load_is_palette_ = false;
-    if (running_ == WorkerStage::kLoading || running_ == WorkerStage::kDecomposing) control_.cancel = true;
-  }
-  wake_.notify_all();
-}
-
-void Worker::load_palette(const std::vector<std::string>& paths, const PrepareOptions& options) {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    palette_paths_ = paths;
-    prepare_options_ = options;
-    need_load_ = true;  // the decomposition and mix follow a success (see load)
-    load_is_palette_ = true;
     if (running_ == WorkerStage::kLoading || running_ == WorkerStage::kDecomposing) control_.cancel = true;
   }
   wake_.notify_all();
@@ -101,7 +88,7 @@ void Worker::decompose(const DecomposeParams& params) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     decompose_params_ = params;
-    need_decompose_ = true;  // a successful decomposition asks for the blend or mix (see load)
+    need_decompose_ = true;  // a successful decomposition asks for the mix (see load)
     if (running_ == WorkerStage::kDecomposing) control_.cancel = true;
   }
   wake_.notify_all();
@@ -111,7 +98,7 @@ void Worker::blend(const BlendParams& params) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     blend_params_ = params;
-    need_blend_ = true;
+    need_mix_ = true;
   }
   wake_.notify_all();
 }
@@ -120,6 +107,7 @@ void Worker::mix(const MixParams& params) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     mix_params_ = params;
+    blend_params_.reset();
     need_mix_ = true;
   }
   wake_.notify_all();
@@ -147,8 +135,7 @@ void Worker::wait_idle() const {
 // Parameters without something to apply them to wait for it; they are not work yet.
 bool Worker::has_work() const {
   const WorkerSnapshot& s = *snapshot_;
-  return need_load_ || (need_decompose_ && (s.prepared || s.palette)) || (need_blend_ && s.decomposed) ||
-         (need_mix_ && s.palette_decomposition);
+  return need_load_ || (need_decompose_ && s.prepared) || (need_mix_ && s.decomposed);
 }
 
 // Called with mutex_ held: a new snapshot made from the current one.
@@ -167,13 +154,9 @@ void Worker::run() {
     control_.cancel = false;
     control_.progress = 0.0f;
     try {
-      // A snapshot holds a pair or a palette, so at most one of each pair of branches can run.
-      if (need_load_ && load_is_palette_) run_load_palette(lock);
-      else if (need_load_) run_load(lock);
+      if (need_load_) run_load(lock);
       else if (need_decompose_ && snapshot_->prepared) run_decompose(lock);
-      else if (need_decompose_ && snapshot_->palette) run_decompose_palette(lock);
-      else if (need_blend_ && snapshot_->decomposed) run_blend(lock);
-      else if (need_mix_ && snapshot_->palette_decomposition) run_mix(lock);
+      else if (need_mix_ && snapshot_->decomposed) run_mix(lock);
     } catch (const Cancelled&) {
       if (!lock.owns_lock()) lock.lock();
     } catch (const InputError& e) {
@@ -201,36 +184,36 @@ void Worker::set_on_change(std::function<void()> notify) {
   on_change_ = std::move(notify);
 }
 
-// The pair.
-
 void Worker::run_load(std::unique_lock<std::mutex>& lock) {
   need_load_ = false;
   running_ = WorkerStage::kLoading;
-  const std::string a = path_a_, b = path_b_;
+  const std::vector<std::string> paths = paths_;
   const PrepareOptions options = prepare_options_;
   lock.unlock();
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<std::string> warnings;
-  auto clip_a = std::make_shared<const Clip>(read_take(a, &warnings, read_options_));
-  auto clip_b = b == a ? clip_a : std::make_shared<const Clip>(read_take(b, &warnings, read_options_));
+  const auto clips = read_clips(paths, &warnings, read_options_, &control_);
   const double load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  auto prepared = prepare_takes({clip_a, clip_b}, options, &control_);
+  auto prepared = prepare_takes(clips, options, &control_);
   std::const_pointer_cast<PreparedTakes>(prepared)->times.load_ms = load_ms;
   lock.lock();
   publish([&](WorkerSnapshot& s) {
+    s.paths = paths;
     s.prepared = prepared;
     s.decomposed = nullptr;
-    s.blend = nullptr;
-    s.path_a = a;
-    s.path_b = b;
-    s.palette = nullptr;
-    s.palette_decomposition = nullptr;
     s.mix = nullptr;
-    s.palette_paths.clear();
     s.warnings = warnings;
     s.error.clear();
   });
-  need_decompose_ = need_blend_ = true;
+  // Weights for another number of takes (or none yet) mean nothing for these takes: start from
+  // equal weights. Weights of the right count stay, and mix_palette judges them.
+  const int takes = prepared->size();
+  if (blend_params_ && takes != 2) blend_params_.reset();
+  if (static_cast<int>(mix_params_.weights.size()) != takes) {
+    mix_params_.weights.assign(static_cast<size_t>(takes), 1.0 / takes);
+    mix_params_.component_weights.resize(0, 0);
+  }
+  need_decompose_ = need_mix_ = true;
 }
 
 void Worker::run_decompose(std::unique_lock<std::mutex>& lock) {
@@ -239,83 +222,11 @@ void Worker::run_decompose(std::unique_lock<std::mutex>& lock) {
   const DecomposeParams params = decompose_params_;
   const auto prepared = snapshot_->prepared;
   lock.unlock();
-  auto decomposed = decompose_takes(*prepared, params, &control_);
+  auto decomposed = decompose_takes(*prepared, decompose_params_for(prepared->size(), params), &control_);
   lock.lock();
   if (snapshot_->prepared == prepared) {
     publish([&](WorkerSnapshot& s) {
       s.decomposed = decomposed;
-      s.decompose_params = params;
-      s.error.clear();
-    });
-    need_blend_ = true;
-  }
-}
-
-void Worker::run_blend(std::unique_lock<std::mutex>& lock) {
-  need_blend_ = false;
-  running_ = WorkerStage::kBlending;
-  const BlendParams params = blend_params_;
-  const auto prepared = snapshot_->prepared;
-  const auto decomposed = snapshot_->decomposed;
-  lock.unlock();
-  BlendScratch scratch;
-  auto result = std::make_shared<BlendResult>();
-  blend_pair(*prepared, *decomposed, params, scratch, *result);
-  lock.lock();
-  if (snapshot_->decomposed == decomposed) {
-    publish([&](WorkerSnapshot& s) {
-      s.blend = result;
-      s.blend_params = params;
-      s.error.clear();
-    });
-  }
-}
-
-// The palette: the same three stages, with prepare_takes, decompose_palette and mix_palette.
-
-void Worker::run_load_palette(std::unique_lock<std::mutex>& lock) {
-  need_load_ = false;
-  running_ = WorkerStage::kLoading;
-  const std::vector<std::string> paths = palette_paths_;
-  const PrepareOptions options = prepare_options_;
-  lock.unlock();
-  std::vector<std::string> warnings;
-  auto palette = prepare_takes(read_palette_clips(paths, &warnings, read_options_, &control_), options, &control_);
-  lock.lock();
-  publish([&](WorkerSnapshot& s) {
-    s.palette = palette;
-    s.palette_decomposition = nullptr;
-    s.mix = nullptr;
-    s.palette_paths = paths;
-    s.prepared = nullptr;
-    s.decomposed = nullptr;
-    s.blend = nullptr;
-    s.path_a.clear();
-    s.path_b.clear();
-    s.warnings = warnings;
-    s.error.clear();
-  });
-  // Weights for another number of takes (or none yet) mean nothing for this palette: start from
-  // equal weights. Weights of the right count stay, and mix_palette judges them.
-  const int takes = palette->size();
-  if (static_cast<int>(mix_params_.weights.size()) != takes) {
-    mix_params_.weights.assign(static_cast<size_t>(takes), 1.0 / takes);
-    mix_params_.component_weights.resize(0, 0);
-  }
-  need_decompose_ = need_mix_ = true;
-}
-
-void Worker::run_decompose_palette(std::unique_lock<std::mutex>& lock) {
-  need_decompose_ = false;
-  running_ = WorkerStage::kDecomposing;
-  const DecomposeParams params = decompose_params_;
-  const auto palette = snapshot_->palette;
-  lock.unlock();
-  auto decomposition = decompose_takes(*palette, palette_decompose_params(params), &control_);
-  lock.lock();
-  if (snapshot_->palette == palette) {
-    publish([&](WorkerSnapshot& s) {
-      s.palette_decomposition = decomposition;
       s.decompose_params = params;
       s.error.clear();
     });
@@ -326,15 +237,17 @@ void Worker::run_decompose_palette(std::unique_lock<std::mutex>& lock) {
 void Worker::run_mix(std::unique_lock<std::mutex>& lock) {
   need_mix_ = false;
   running_ = WorkerStage::kBlending;
-  const MixParams params = mix_params_;
-  const auto palette = snapshot_->palette;
-  const auto decomposition = snapshot_->palette_decomposition;
+  const std::optional<BlendParams> blend = blend_params_;
+  MixParams params = mix_params_;
+  const auto prepared = snapshot_->prepared;
+  const auto decomposed = snapshot_->decomposed;
   lock.unlock();
+  if (blend) params = blend_mix_params(*blend, *decomposed);
   MixScratch scratch;
   auto result = std::make_shared<MixResult>();
-  mix_palette(*palette, *decomposition, params, scratch, *result);
+  mix_palette(*prepared, *decomposed, params, scratch, *result);
   lock.lock();
-  if (snapshot_->palette_decomposition == decomposition) {
+  if (snapshot_->decomposed == decomposed) {
     publish([&](WorkerSnapshot& s) {
       s.mix = result;
       s.mix_params = params;

@@ -464,20 +464,20 @@ TEST_CASE("sessions and undo: Ctrl+Z / Ctrl+Y undo and redo a load, a saved sess
     frame(editor);
     editor.wait_for_engine();
     frame(editor);
-    REQUIRE(editor.session().snapshot().path_a == joy);
+    REQUIRE(editor.session().snapshot().paths[0] == joy);
     CHECK(editor.edits().can_undo());
     press(editor, kKeyZ, true, false);
     editor.wait_for_engine();
     frame(editor);
-    CHECK(editor.session().snapshot().path_a == happy);
+    CHECK(editor.session().snapshot().paths[0] == happy);
     CHECK(editor.edits().can_redo());
     press(editor, kKeyY, true, false);
     editor.wait_for_engine();
     frame(editor);
-    CHECK(editor.session().snapshot().path_a == joy);
+    CHECK(editor.session().snapshot().paths[0] == joy);
     press(editor, kKeyZ, true, true);
     CHECK_FALSE(editor.edits().can_redo());
-    CHECK(editor.session().snapshot().path_a == joy);
+    CHECK(editor.session().snapshot().paths[0] == joy);
 
     // Saved: the takes, every parameter, the camera and the playback. ".mostyle" is added.
     editor.state().parameters.alpha = 0.8;
@@ -519,7 +519,7 @@ TEST_CASE("sessions and undo: Ctrl+Z / Ctrl+Y undo and redo a load, a saved sess
   reopened.wait_for_engine();
   reopened.init_graphics();
   frame(reopened);
-  CHECK(reopened.session().snapshot().path_a == joy);
+  CHECK(reopened.session().snapshot().paths[0] == joy);
   CHECK(reopened.state().playback.time_s == saved.playback.time_s);
   CHECK_FALSE(reopened.state().playback.playing);
   CHECK(reopened.camera().yaw == Approx(saved.camera->yaw));
@@ -550,7 +550,7 @@ TEST_CASE("sessions and undo: Ctrl+Z / Ctrl+Y undo and redo a load, a saved sess
   CHECK(reopened.state().parameters.alpha == 0.1);
   reopened.wait_for_engine();
   frame(reopened);
-  CHECK(reopened.session().snapshot().path_a == joy);
+  CHECK(reopened.session().snapshot().paths[0] == joy);
   press(reopened, kKeyZ, true, false);
   CHECK(reopened.state().parameters.alpha == 0.8);
   reopened.shutdown_graphics();

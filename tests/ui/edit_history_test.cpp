@@ -117,13 +117,13 @@ TEST_CASE("undo and redo a load: the takes come back through the worker, and no 
   edits.record(s.state, s.session, false);  // on its way: nothing recorded
   s.session.wait_idle(s.state);
   CHECK(s.session.error().empty());
-  CHECK(s.session.snapshot().path_a == happy);
+  CHECK(s.session.snapshot().paths[0] == happy);
   edits.record(s.state, s.session, false);
   CHECK(edits.history().undo_steps() == 0);
   CHECK(edits.history().redo_steps() == 1);
   REQUIRE(edits.redo(s.state, s.session));
   s.session.wait_idle(s.state);
-  CHECK(s.session.snapshot().path_a == joy);
+  CHECK(s.session.snapshot().paths[0] == joy);
   edits.record(s.state, s.session, false);
   CHECK(edits.history().undo_steps() == 1);
   CHECK_FALSE(edits.can_redo());

@@ -169,7 +169,7 @@ TEST_CASE("files dropped on the window load as the pair (two) or as B (one)") {
   CHECK(s.session.requested_b() == joy);
   s.session.wait_idle(s.state);
   CHECK(s.session.error().empty());
-  CHECK(s.session.snapshot().path_b == joy);
+  CHECK(s.session.snapshot().paths[1] == joy);
   CHECK(s.state.takes.size() == 3);
   CHECK_THAT(s.state.takes[kTakeB].label, Catch::Contains("joy"));
 }

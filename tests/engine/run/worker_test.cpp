@@ -30,12 +30,12 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// The blend a snapshot should hold: blend_pair on its own prepared and decomposed pair.
+// The mix a snapshot should hold: mix_palette on its own prepared and decomposed takes.
 Eigen::MatrixXd direct_blend(const WorkerSnapshot& s) {
-  BlendScratch scratch;
-  BlendResult out;
-  blend_pair(*s.prepared, *s.decomposed, s.blend_params, scratch, out);
-  return out.world;
+  MixScratch scratch;
+  MixResult out;
+  mix_palette(*s.prepared, *s.decomposed, s.mix_params, scratch, out);
+  return out.motion.world;
 }
 
 // Waits (polling, as the UI does) until the worker runs `stage`; false after `timeout` seconds.
@@ -48,13 +48,7 @@ bool wait_for_stage(const Worker& w, WorkerStage stage, double timeout = 30.0) {
   return true;
 }
 
-// The mix a snapshot should hold: mix_palette on its own palette and decomposition.
-Eigen::MatrixXd direct_mix(const WorkerSnapshot& s) {
-  MixScratch scratch;
-  MixResult out;
-  mix_palette(*s.palette, *s.palette_decomposition, s.mix_params, scratch, out);
-  return out.motion.world;
-}
+Eigen::MatrixXd direct_mix(const WorkerSnapshot& s) { return direct_blend(s); }
 
 std::vector<std::string> assets(const std::vector<std::string>& names) {
   std::vector<std::string> paths;
@@ -87,7 +81,7 @@ TEST_CASE("a new worker is idle with an empty snapshot", "[worker]") {
   REQUIRE(s);
   CHECK_FALSE(s->prepared);
   CHECK_FALSE(s->decomposed);
-  CHECK_FALSE(s->blend);
+  CHECK_FALSE(s->mix);
   CHECK(s->error.empty());
   CHECK(s->version == 0);
   // Parameters without a pair wait for one; they are not an error.
@@ -103,28 +97,28 @@ TEST_CASE("a new worker is idle with an empty snapshot", "[worker]") {
 TEST_CASE("loads the bundled pair, decomposes and blends it", "[worker]") {
   Worker w;
   const std::string a = test::asset(kHappy), b = test::asset(kJoy);
-  w.load(a, b);
+  w.load({a, b});
   w.wait_idle();
   const auto s = w.snapshot();
   INFO(s->error);
   REQUIRE(s->error.empty());
   REQUIRE(s->prepared);
   REQUIRE(s->decomposed);
-  REQUIRE(s->blend);
-  CHECK(s->path_a == a);
-  CHECK(s->path_b == b);
+  REQUIRE(s->mix);
+  CHECK(s->paths[0] == a);
+  CHECK(s->paths[1] == b);
   CHECK(s->version >= 3);  // loaded, decomposed, blended
   CHECK(s->decompose_params.components == DecomposeParams().components);
   CHECK(s->decompose_params.sparsity == DecomposeParams().sparsity);
-  CHECK(s->blend_params.alpha == BlendParams().alpha);
+  CHECK(s->mix_params.weights[1] == BlendParams().alpha);
   CHECK(s->decomposed->params.components == s->decompose_params.components);
   CHECK(s->prepared->times.load_ms > 0);
   // The blend plays on its own timeline (timing blended with alpha), within A's frames.
-  CHECK(s->blend->world.rows() == s->blend->source_a.size());
-  CHECK(s->blend->source_a.maxCoeff() <= s->prepared->takes[0].world.rows() - 1);
-  CHECK(s->blend->world.cols() == 3 * static_cast<Eigen::Index>(s->prepared->majors.size()));
-  CHECK(s->blend->world == direct_blend(*s));
-  CHECK(max_bone_length_error(s->blend->world, s->prepared->parents, s->prepared->lengths) < 1e-9);
+  CHECK(s->mix->motion.world.rows() == s->mix->sources.col(0).size());
+  CHECK(s->mix->sources.col(0).maxCoeff() <= s->prepared->takes[0].world.rows() - 1);
+  CHECK(s->mix->motion.world.cols() == 3 * static_cast<Eigen::Index>(s->prepared->majors.size()));
+  CHECK(s->mix->motion.world == direct_blend(*s));
+  CHECK(max_bone_length_error(s->mix->motion.world, s->prepared->parents, s->prepared->lengths) < 1e-9);
   const WorkerStatus status = w.status();
   CHECK(status.stage == WorkerStage::kIdle);
   CHECK_FALSE(status.pending);
@@ -134,20 +128,20 @@ TEST_CASE("loads the bundled pair, decomposes and blends it", "[worker]") {
 TEST_CASE("one file is blended with itself", "[worker]") {
   Worker w;
   const std::string a = test::asset(kClumsy);
-  w.load(a, "");
+  w.load({a});
   w.wait_idle();
   const auto s = w.snapshot();
-  REQUIRE(s->blend);
-  CHECK(s->path_b == a);
+  REQUIRE(s->mix);
+  CHECK(s->paths[1] == a);
   CHECK(s->prepared->takes[0].clip == s->prepared->takes[1].clip);  // read once
 }
 
 TEST_CASE("an alpha change re-runs only synthesis and post-processing", "[worker]") {
   Worker w;
-  w.load(test::asset(kHappy), test::asset(kJoy));
+  w.load({test::asset(kHappy), test::asset(kJoy)});
   w.wait_idle();
   const auto before = w.snapshot();
-  REQUIRE(before->blend);
+  REQUIRE(before->mix);
   BlendParams params;
   params.alpha = 0.9;
   w.blend(params);
@@ -155,18 +149,18 @@ TEST_CASE("an alpha change re-runs only synthesis and post-processing", "[worker
   const auto after = w.snapshot();
   CHECK(after->prepared == before->prepared);
   CHECK(after->decomposed == before->decomposed);  // the same decomposition, not a new one
-  CHECK(after->blend != before->blend);
-  CHECK(after->blend_params.alpha == 0.9);
+  CHECK(after->mix != before->mix);
+  CHECK(after->mix_params.weights[1] == 0.9);
   CHECK(after->version == before->version + 1);
-  CHECK(after->blend->world == direct_blend(*after));
+  CHECK(after->mix->motion.world == direct_blend(*after));
   // The old snapshot is untouched: results are immutable.
-  CHECK(before->blend_params.alpha == BlendParams().alpha);
-  CHECK(before->blend->world == direct_blend(*before));
+  CHECK(before->mix_params.weights[1] == BlendParams().alpha);
+  CHECK(before->mix->motion.world == direct_blend(*before));
 }
 
 TEST_CASE("new decomposition parameters re-decompose and re-blend", "[worker]") {
   Worker w;
-  w.load(test::asset(kHappy), test::asset(kJoy));
+  w.load({test::asset(kHappy), test::asset(kJoy)});
   w.wait_idle();
   const auto before = w.snapshot();
   DecomposeParams d;
@@ -179,33 +173,33 @@ TEST_CASE("new decomposition parameters re-decompose and re-blend", "[worker]") 
   CHECK(after->decomposed != before->decomposed);
   CHECK(after->decomposed->components() == 4);
   CHECK(after->decompose_params.sparsity == 0.3);
-  REQUIRE(after->blend);
-  CHECK(after->blend->world == direct_blend(*after));
+  REQUIRE(after->mix);
+  CHECK(after->mix->motion.world == direct_blend(*after));
 }
 
 TEST_CASE("errors become sentences in the snapshot and keep what was loaded", "[worker]") {
   Worker w;
-  w.load(test::asset(kHappy), test::asset(kJoy));
+  w.load({test::asset(kHappy), test::asset(kJoy)});
   w.wait_idle();
   const auto good = w.snapshot();
-  REQUIRE(good->blend);
+  REQUIRE(good->mix);
 
   SECTION("a malformed file") {
     const std::string bad = temporary_file("mostyle_worker_test_bad.bvh", "HIERARCHY\nROOT Hips\n{\n  OFFSET 0 0\n");
-    w.load(bad, test::asset(kJoy));
+    w.load({bad, test::asset(kJoy)});
     w.wait_idle();
     const auto s = w.snapshot();
     INFO(s->error);
     CHECK(s->error.rfind(bad + ":", 0) == 0);  // "FILE:LINE: ..."
     CHECK(s->prepared == good->prepared);
     CHECK(s->decomposed == good->decomposed);
-    CHECK(s->blend == good->blend);
-    CHECK(s->path_a == good->path_a);
+    CHECK(s->mix == good->mix);
+    CHECK(s->paths[0] == good->paths[0]);
     CHECK_FALSE(w.status().pending);
     std::filesystem::remove(bad);
   }
   SECTION("a missing file") {
-    w.load("/nonexistent/walk.bvh", "");
+    w.load({"/nonexistent/walk.bvh"});
     w.wait_idle();
     const auto s = w.snapshot();
     CHECK(s->error.find("/nonexistent/walk.bvh") != std::string::npos);
@@ -220,7 +214,7 @@ TEST_CASE("errors become sentences in the snapshot and keep what was loaded", "[
     INFO(s->error);
     CHECK(s->error.rfind("expected from 1 to", 0) == 0);
     CHECK(s->decomposed == good->decomposed);
-    CHECK(s->blend == good->blend);
+    CHECK(s->mix == good->mix);
   }
   SECTION("a bad alpha") {
     BlendParams b;
@@ -229,7 +223,7 @@ TEST_CASE("errors become sentences in the snapshot and keep what was loaded", "[
     w.wait_idle();
     const auto s = w.snapshot();
     CHECK(s->error == "expected a finite alpha");
-    CHECK(s->blend == good->blend);
+    CHECK(s->mix == good->mix);
   }
   // A later success clears the error.
   BlendParams b;
@@ -237,7 +231,7 @@ TEST_CASE("errors become sentences in the snapshot and keep what was loaded", "[
   w.blend(b);
   w.wait_idle();
   CHECK(w.snapshot()->error.empty());
-  CHECK(w.snapshot()->blend_params.alpha == 0.25);
+  CHECK(w.snapshot()->mix_params.weights[1] == 0.25);
 }
 
 TEST_CASE("loads are bounded by the memory limit the worker was given", "[worker]") {
@@ -251,7 +245,7 @@ TEST_CASE("loads are bounded by the memory limit the worker was given", "[worker
   read.max_bytes = 64 << 10;
   Worker w(read);
   SECTION("a pair") {
-    w.load(big, test::asset(kJoy));
+    w.load({big, test::asset(kJoy)});
     w.wait_idle();
     CHECK(w.snapshot()->error == big + ":12: expected frames within the memory limit of 64 KB, found Frames: 2000 "
                                        "of 6 values each (93.8 KB)");
@@ -259,15 +253,15 @@ TEST_CASE("loads are bounded by the memory limit the worker was given", "[worker
   }
   SECTION("a palette") {
     // The big take first: the bundled ones are larger than 64 KB too.
-    w.load_palette({big, test::asset(kJoy), test::asset(kHappy)});
+    w.load({big, test::asset(kJoy), test::asset(kHappy)});
     w.wait_idle();
     INFO(w.snapshot()->error);
     CHECK(w.snapshot()->error.rfind(big + ":12: expected frames within the memory limit of 64 KB", 0) == 0);
-    CHECK_FALSE(w.snapshot()->palette);
+    CHECK_FALSE(w.snapshot()->prepared);
   }
   SECTION("a file larger than the limit is not read") {
     Worker tiny(BvhReadOptions{16 << 10});
-    tiny.load(big, "");
+    tiny.load({big});
     tiny.wait_idle();
     CHECK(tiny.snapshot()->error == big + ": cannot read: its 23.7 KB exceed the memory limit of 16 KB");
   }
@@ -276,7 +270,7 @@ TEST_CASE("loads are bounded by the memory limit the worker was given", "[worker
 
 TEST_CASE("a new request cancels a long decomposition at its next iteration", "[worker]") {
   Worker w;
-  w.load(test::asset(kHappy), test::asset(kJoy));
+  w.load({test::asset(kHappy), test::asset(kJoy)});
   w.wait_idle();
   DecomposeParams endless;
   endless.components = 20;
@@ -308,7 +302,7 @@ TEST_CASE("a load cancels a long decomposition, and so does the destructor", "[w
   const auto t0 = Clock::now();
   {
     Worker w;
-    w.load(test::asset(kHappy), test::asset(kJoy));
+    w.load({test::asset(kHappy), test::asset(kJoy)});
     DecomposeParams endless;
     endless.max_iterations = 100000000;
     endless.tolerance = 0;
@@ -317,10 +311,10 @@ TEST_CASE("a load cancels a long decomposition, and so does the destructor", "[w
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
     DecomposeParams quick;
     quick.max_iterations = 3;
-    w.load(test::asset(kClumsy), test::asset(kMarching));
+    w.load({test::asset(kClumsy), test::asset(kMarching)});
     w.decompose(quick);
     w.wait_idle();
-    CHECK(w.snapshot()->path_a == test::asset(kClumsy));
+    CHECK(w.snapshot()->paths[0] == test::asset(kClumsy));
     CHECK(w.snapshot()->decompose_params.max_iterations == 3);
     w.decompose(endless);
     REQUIRE(wait_for_stage(w, WorkerStage::kDecomposing));
@@ -330,7 +324,7 @@ TEST_CASE("a load cancels a long decomposition, and so does the destructor", "[w
 
 TEST_CASE("a thousand parameter changes while another thread reads results", "[worker]") {
   Worker w;
-  w.load(test::asset(kHappy), test::asset(kJoy));
+  w.load({test::asset(kHappy), test::asset(kJoy)});
 
   std::atomic<bool> stop{false};
   std::atomic<long> reads{0}, bad_reads{0};
@@ -341,13 +335,13 @@ TEST_CASE("a thousand parameter changes while another thread reads results", "[w
       const WorkerStatus status = w.status();
       bool ok = s && s->version >= last_version && status.progress >= 0.0f && status.progress <= 1.0f;
       if (ok) last_version = s->version;
-      if (ok && s->blend) {
+      if (ok && s->mix) {
         // A published blend comes with the pair and decomposition it was made from; read all of it.
-        ok = s->prepared && s->decomposed && s->blend->world.rows() == s->blend->source_a.size() &&
-             s->blend->source_a.maxCoeff() <= s->prepared->takes[0].world.rows() - 1 &&
-             s->blend_params.alpha >= 0.0 && s->blend_params.alpha <= 1.0;
+        ok = s->prepared && s->decomposed && s->mix->motion.world.rows() == s->mix->sources.col(0).size() &&
+             s->mix->sources.col(0).maxCoeff() <= s->prepared->takes[0].world.rows() - 1 &&
+             s->mix_params.weights[1] >= 0.0 && s->mix_params.weights[1] <= 1.0;
         double sum = 0;
-        for (Eigen::Index i = 0; i < s->blend->world.size(); ++i) sum += s->blend->world.data()[i];
+        for (Eigen::Index i = 0; i < s->mix->motion.world.size(); ++i) sum += s->mix->motion.world.data()[i];
         ok = ok && std::isfinite(sum) && s->decomposed->support.rows() == s->decomposed->components();
       }
       bad_reads += ok ? 0 : 1;
@@ -364,7 +358,7 @@ TEST_CASE("a thousand parameter changes while another thread reads results", "[w
       const bool first = (i / 250) % 2 == 0;
       last_a = test::asset(first ? kClumsy : kHappy);
       last_b = test::asset(first ? kMarching : kJoy);
-      w.load(last_a, last_b);
+      w.load({last_a, last_b});
     } else if (i % 10 == 3) {
       last_decompose.components = 2 + static_cast<int>(random() % 11);
       last_decompose.sparsity = 0.2 + 0.1 * static_cast<double>(random() % 9);
@@ -386,15 +380,15 @@ TEST_CASE("a thousand parameter changes while another thread reads results", "[w
   const auto s = w.snapshot();
   INFO(s->error);
   CHECK(s->error.empty());
-  REQUIRE(s->blend);
-  CHECK(s->path_a == last_a);
-  CHECK(s->path_b == last_b);
+  REQUIRE(s->mix);
+  CHECK(s->paths[0] == last_a);
+  CHECK(s->paths[1] == last_b);
   CHECK(s->decompose_params.components == last_decompose.components);
   CHECK(s->decompose_params.sparsity == last_decompose.sparsity);
   CHECK(s->decompose_params.max_iterations == last_decompose.max_iterations);
   CHECK(s->decomposed->components() == last_decompose.components);
-  CHECK(s->blend_params.alpha == last_blend.alpha);
-  CHECK(s->blend->world == direct_blend(*s));
+  CHECK(s->mix_params.weights[1] == last_blend.alpha);
+  CHECK(s->mix->motion.world == direct_blend(*s));
   CHECK_FALSE(w.status().pending);
 }
 
@@ -403,30 +397,25 @@ TEST_CASE("a thousand parameter changes while another thread reads results", "[w
 TEST_CASE("loads a palette of three bundled takes, decomposes and mixes it", "[worker][palette]") {
   Worker w;
   const std::vector<std::string> paths = assets({kHappy, kMarching, kJoy});
-  w.load_palette(paths);
+  w.load(paths);
   w.wait_idle();
   const auto s = w.snapshot();
   INFO(s->error);
   REQUIRE(s->error.empty());
-  REQUIRE(s->palette);
-  REQUIRE(s->palette_decomposition);
+  REQUIRE(s->prepared);
+  REQUIRE(s->decomposed);
   REQUIRE(s->mix);
-  CHECK(s->palette->size() == 3);
-  CHECK(s->palette_paths == paths);
-  CHECK(s->palette->takes.front().clip->source == paths.front());
+  CHECK(s->prepared->size() == 3);
+  CHECK(s->paths == paths);
+  CHECK(s->prepared->takes.front().clip->source == paths.front());
   CHECK(s->version >= 3);  // loaded, decomposed, mixed
-  // No pair alongside.
-  CHECK_FALSE(s->prepared);
-  CHECK_FALSE(s->decomposed);
-  CHECK_FALSE(s->blend);
-  CHECK(s->path_a.empty());
   // The current parameters: the default decomposition, and equal weights (none were given).
-  CHECK(s->palette_decomposition->components() == DecomposeParams().components);
-  CHECK(s->palette_decomposition->params.mode == BlendMode::kShared);
+  CHECK(s->decomposed->components() == DecomposeParams().components);
+  CHECK(s->decomposed->params.mode == BlendMode::kShared);
   CHECK(s->mix_params.weights == std::vector<double>(3, 1.0 / 3.0));
   // The mix has frames, one pose column per shared joint, and is mix_palette's own.
   CHECK(s->mix->motion.world.rows() > 0);
-  CHECK(s->mix->motion.world.cols() == 3 * static_cast<Eigen::Index>(s->palette->majors.size()));
+  CHECK(s->mix->motion.world.cols() == 3 * static_cast<Eigen::Index>(s->prepared->majors.size()));
   CHECK(s->mix->sources.cols() == 3);
   CHECK(s->mix->motion.world == direct_mix(*s));
   const WorkerStatus status = w.status();
@@ -447,7 +436,7 @@ TEST_CASE("mix parameters without a palette wait for one", "[worker][palette]") 
 
 TEST_CASE("new mix weights re-run only the mix", "[worker][palette]") {
   Worker w;
-  w.load_palette(assets({kHappy, kMarching, kJoy}));
+  w.load(assets({kHappy, kMarching, kJoy}));
   w.wait_idle();
   const auto before = w.snapshot();
   REQUIRE(before->mix);
@@ -458,8 +447,8 @@ TEST_CASE("new mix weights re-run only the mix", "[worker][palette]") {
   const auto after = w.snapshot();
   INFO(after->error);
   CHECK(after->error.empty());
-  CHECK(after->palette == before->palette);
-  CHECK(after->palette_decomposition == before->palette_decomposition);  // not decomposed again
+  CHECK(after->prepared == before->prepared);
+  CHECK(after->decomposed == before->decomposed);  // not decomposed again
   REQUIRE(after->mix);
   CHECK(after->mix != before->mix);
   CHECK(after->mix_params.weights == m.weights);
@@ -476,7 +465,7 @@ TEST_CASE("new mix weights re-run only the mix", "[worker][palette]") {
 
 TEST_CASE("mix weights mix_palette refuses become an error and keep the mix", "[worker][palette]") {
   Worker w;
-  w.load_palette(assets({kHappy, kMarching, kJoy}));
+  w.load(assets({kHappy, kMarching, kJoy}));
   w.wait_idle();
   const auto good = w.snapshot();
   REQUIRE(good->mix);
@@ -497,7 +486,7 @@ TEST_CASE("mix weights mix_palette refuses become an error and keep the mix", "[
   CHECK_FALSE(s->error.empty());
   CHECK(s->mix == good->mix);
   CHECK(s->mix_params.weights == good->mix_params.weights);
-  CHECK(s->palette_decomposition == good->palette_decomposition);
+  CHECK(s->decomposed == good->decomposed);
   CHECK_FALSE(w.status().pending);
   // A later success clears the error.
   m.weights = {0.0, 1.0, 0.0};
@@ -509,7 +498,7 @@ TEST_CASE("mix weights mix_palette refuses become an error and keep the mix", "[
 
 TEST_CASE("new decomposition parameters re-decompose and re-mix the palette, in shared mode", "[worker][palette]") {
   Worker w;
-  w.load_palette(assets({kHappy, kMarching, kJoy}));
+  w.load(assets({kHappy, kMarching, kJoy}));
   w.wait_idle();
   const auto before = w.snapshot();
   REQUIRE(before->mix);
@@ -526,15 +515,14 @@ TEST_CASE("new decomposition parameters re-decompose and re-mix the palette, in 
   const auto after = w.snapshot();
   INFO(after->error);
   CHECK(after->error.empty());
-  CHECK(after->palette == before->palette);
-  REQUIRE(after->palette_decomposition);
-  CHECK(after->palette_decomposition != before->palette_decomposition);
-  CHECK(after->palette_decomposition->components() == 4);
-  CHECK(after->palette_decomposition->params.sparsity == 0.3);
-  CHECK(after->palette_decomposition->params.mode == BlendMode::kShared);
-  CHECK(after->palette_decomposition->params.basic_motions == 0);
+  CHECK(after->prepared == before->prepared);
+  REQUIRE(after->decomposed);
+  CHECK(after->decomposed != before->decomposed);
+  CHECK(after->decomposed->components() == 4);
+  CHECK(after->decomposed->params.sparsity == 0.3);
+  CHECK(after->decomposed->params.mode == BlendMode::kShared);
+  CHECK(after->decomposed->params.basic_motions == 0);
   CHECK(after->decompose_params.mode == d.mode);  // the request, as made
-  CHECK_FALSE(after->decomposed);                 // no pair made on the way
   REQUIRE(after->mix);
   CHECK(after->mix != before->mix);
   CHECK(after->mix->motion.world == direct_mix(*after));
@@ -546,116 +534,110 @@ TEST_CASE("new decomposition parameters re-decompose and re-mix the palette, in 
   w.wait_idle();
   const auto s = w.snapshot();
   CHECK(s->error.rfind("expected from 1 to", 0) == 0);
-  CHECK(s->palette_decomposition == after->palette_decomposition);
+  CHECK(s->decomposed == after->decomposed);
   CHECK(s->mix == after->mix);
 }
 
-TEST_CASE("a pair load clears the palette, and a palette load clears the pair", "[worker][palette]") {
+TEST_CASE("one chain for any number of takes: two, three, two again, with the weights that fit", "[worker][palette]") {
   Worker w;
-  w.load(test::asset(kHappy), test::asset(kJoy));
+  w.load({test::asset(kHappy), test::asset(kJoy)});
   w.wait_idle();
-  REQUIRE(w.snapshot()->blend);
+  REQUIRE(w.snapshot()->mix);
 
   const std::vector<std::string> paths = assets({kClumsy, kMarching, kJoy});
-  w.load_palette(paths);
+  w.load(paths);
   w.wait_idle();
   const auto palette = w.snapshot();
   INFO(palette->error);
   REQUIRE(palette->mix);
-  CHECK(palette->palette_paths == paths);
-  CHECK_FALSE(palette->prepared);
-  CHECK_FALSE(palette->decomposed);
-  CHECK_FALSE(palette->blend);
-  CHECK(palette->path_a.empty());
-  CHECK(palette->path_b.empty());
-  // Blend parameters wait for a pair; they do not touch the palette.
+  CHECK(palette->paths == paths);
+  CHECK(palette->prepared->size() == 3);
+  CHECK(palette->mix->sources.cols() == 3);
+  // A blend's alpha is two takes' words: three takes keep their mix.
   BlendParams b;
   b.alpha = 0.75;
   w.blend(b);
   w.wait_idle();
-  CHECK(w.snapshot()->version == palette->version);
-  CHECK_FALSE(w.status().pending);
+  CHECK_FALSE(w.snapshot()->error.empty());
+  CHECK(w.snapshot()->mix == palette->mix);
 
-  w.load(test::asset(kHappy), test::asset(kJoy));
+  // Two takes again: the alpha asked for is their mix, (0.25, 0.75).
+  w.load({test::asset(kHappy), test::asset(kJoy)});
   w.wait_idle();
   const auto pair = w.snapshot();
   INFO(pair->error);
-  REQUIRE(pair->blend);
-  CHECK(pair->blend_params.alpha == 0.75);
-  CHECK(pair->blend->world == direct_blend(*pair));
-  CHECK_FALSE(pair->palette);
-  CHECK_FALSE(pair->palette_decomposition);
-  CHECK_FALSE(pair->mix);
-  CHECK(pair->palette_paths.empty());
-  // Mix parameters wait for a palette; they do not touch the pair.
+  REQUIRE(pair->mix);
+  CHECK(pair->prepared->size() == 2);
+  CHECK(pair->mix_params.weights == std::vector<double>{0.25, 0.75});
+  CHECK(pair->mix->motion.world == direct_blend(*pair));
+
+  // Weights of another count are not these takes': refused, the mix stays.
   MixParams m;
   m.weights = {0.25, 0.25, 0.5};
   w.mix(m);
   w.wait_idle();
-  CHECK(w.snapshot()->version == pair->version);
+  CHECK_FALSE(w.snapshot()->error.empty());
+  CHECK(w.snapshot()->mix == pair->mix);
 
-  // They apply to the next palette of that many takes; a palette of another count starts from
-  // equal weights.
+  // They apply to the next load of that many takes; another count starts from equal weights.
   SECTION("three takes") {
-    w.load_palette(paths);
+    w.load(paths);
     w.wait_idle();
     REQUIRE(w.snapshot()->mix);
     CHECK(w.snapshot()->mix_params.weights == m.weights);
   }
   SECTION("two takes") {
-    w.load_palette(assets({kClumsy, kMarching}));
+    w.load(assets({kClumsy, kMarching}));
     w.wait_idle();
     REQUIRE(w.snapshot()->mix);
     CHECK(w.snapshot()->mix_params.weights == std::vector<double>{0.5, 0.5});
   }
-  CHECK_FALSE(w.snapshot()->prepared);
 }
 
 TEST_CASE("a failing palette load keeps what was loaded and names the file", "[worker][palette]") {
   Worker w;
   const std::string missing = "/nonexistent/walk.bvh";
   SECTION("after a palette") {
-    w.load_palette(assets({kHappy, kMarching, kJoy}));
+    w.load(assets({kHappy, kMarching, kJoy}));
     w.wait_idle();
     const auto good = w.snapshot();
     REQUIRE(good->mix);
-    w.load_palette({test::asset(kHappy), missing, test::asset(kJoy)});
-    w.wait_idle();
-    const auto s = w.snapshot();
-    INFO(s->error);
-    CHECK(s->error.find(missing) != std::string::npos);
-    CHECK(s->palette == good->palette);
-    CHECK(s->palette_decomposition == good->palette_decomposition);
-    CHECK(s->mix == good->mix);
-    CHECK(s->palette_paths == good->palette_paths);
-    CHECK_FALSE(w.status().pending);
-    // One take is no palette.
-    w.load_palette({test::asset(kHappy)});
-    w.wait_idle();
-    CHECK_FALSE(w.snapshot()->error.empty());
-    CHECK(w.snapshot()->palette == good->palette);
-  }
-  SECTION("after a pair") {
-    w.load(test::asset(kHappy), test::asset(kJoy));
-    w.wait_idle();
-    const auto good = w.snapshot();
-    REQUIRE(good->blend);
-    w.load_palette({test::asset(kHappy), test::asset(kJoy), missing});
+    w.load({test::asset(kHappy), missing, test::asset(kJoy)});
     w.wait_idle();
     const auto s = w.snapshot();
     INFO(s->error);
     CHECK(s->error.find(missing) != std::string::npos);
     CHECK(s->prepared == good->prepared);
-    CHECK(s->blend == good->blend);
-    CHECK(s->path_a == good->path_a);
-    CHECK_FALSE(s->palette);
+    CHECK(s->decomposed == good->decomposed);
+    CHECK(s->mix == good->mix);
+    CHECK(s->paths == good->paths);
+    CHECK_FALSE(w.status().pending);
+    // Seventeen takes are too many.
+    w.load(std::vector<std::string>(17, test::asset(kHappy)));
+    w.wait_idle();
+    CHECK_FALSE(w.snapshot()->error.empty());
+    CHECK(w.snapshot()->prepared == good->prepared);
+  }
+  SECTION("after a pair") {
+    w.load({test::asset(kHappy), test::asset(kJoy)});
+    w.wait_idle();
+    const auto good = w.snapshot();
+    REQUIRE(good->mix);
+    w.load({test::asset(kHappy), test::asset(kJoy), missing});
+    w.wait_idle();
+    const auto s = w.snapshot();
+    INFO(s->error);
+    CHECK(s->error.find(missing) != std::string::npos);
+    CHECK(s->prepared == good->prepared);
+    CHECK(s->mix == good->mix);
+    CHECK(s->paths == good->paths);
     // The pair still takes parameters (nothing of the failed palette waits to run).
     BlendParams b;
     b.alpha = 0.25;
     w.blend(b);
     w.wait_idle();
     CHECK(w.snapshot()->error.empty());
-    CHECK(w.snapshot()->blend_params.alpha == 0.25);
+    CHECK(w.snapshot()->mix_params.weights[1] == 0.25);
   }
 }
 
@@ -663,19 +645,19 @@ TEST_CASE("a new palette load replaces a running one and ends with the latest", 
   Worker w;
   const std::vector<std::string> first = assets({kHappy, kMarching, kJoy});
   const std::vector<std::string> latest = assets({kClumsy, kJoy});
-  w.load_palette(first);
+  w.load(first);
   // The first load is usually seen running; when it is not, the second one replaced it pending.
   const bool seen = wait_for_stage(w, WorkerStage::kLoading, 5.0);
   INFO("first load seen running: " << seen);
-  w.load_palette(latest);
+  w.load(latest);
   w.wait_idle();
   const auto s = w.snapshot();
   INFO(s->error);
   CHECK(s->error.empty());
-  CHECK(s->palette_paths == latest);
-  REQUIRE(s->palette);
-  CHECK(s->palette->size() == 2);
-  CHECK(s->palette->takes.front().clip->source == latest.front());
+  CHECK(s->paths == latest);
+  REQUIRE(s->prepared);
+  CHECK(s->prepared->size() == 2);
+  CHECK(s->prepared->takes.front().clip->source == latest.front());
   REQUIRE(s->mix);
   CHECK(s->mix->motion.world == direct_mix(*s));
   CHECK_FALSE(w.status().pending);
@@ -683,7 +665,7 @@ TEST_CASE("a new palette load replaces a running one and ends with the latest", 
 
 TEST_CASE("a palette load cancels a long decomposition, and so does a new decomposition", "[worker][palette]") {
   Worker w;
-  w.load_palette(assets({kHappy, kMarching, kJoy}));
+  w.load(assets({kHappy, kMarching, kJoy}));
   w.wait_idle();
   DecomposeParams endless;
   endless.components = 20;
@@ -701,10 +683,10 @@ TEST_CASE("a palette load cancels a long decomposition, and so does a new decomp
   quick.max_iterations = 5;
   SECTION("a palette load") {
     const std::vector<std::string> paths = assets({kClumsy, kHappy});
-    w.load_palette(paths);
+    w.load(paths);
     w.decompose(quick);
     w.wait_idle();
-    CHECK(w.snapshot()->palette_paths == paths);
+    CHECK(w.snapshot()->paths == paths);
   }
   SECTION("a new decomposition") {
     const auto t0 = Clock::now();
@@ -716,8 +698,8 @@ TEST_CASE("a palette load cancels a long decomposition, and so does a new decomp
   const auto s = w.snapshot();
   INFO(s->error);
   CHECK(s->error.empty());
-  REQUIRE(s->palette_decomposition);
-  CHECK(s->palette_decomposition->components() == 3);
+  REQUIRE(s->decomposed);
+  CHECK(s->decomposed->components() == 3);
   CHECK(s->decompose_params.max_iterations == 5);
   REQUIRE(s->mix);
   CHECK(s->mix->motion.world == direct_mix(*s));
@@ -728,7 +710,7 @@ TEST_CASE("mix, decomposition and load requests on a palette while another threa
   Worker w;
   const std::vector<std::string> palette_a = assets({kHappy, kMarching, kJoy});
   const std::vector<std::string> palette_b = assets({kClumsy, kJoy, kHappy});
-  w.load_palette(palette_a);
+  w.load(palette_a);
 
   std::atomic<bool> stop{false};
   std::atomic<long> reads{0}, bad_reads{0};
@@ -739,14 +721,13 @@ TEST_CASE("mix, decomposition and load requests on a palette while another threa
       const WorkerStatus status = w.status();
       bool ok = s && s->version >= last_version && status.progress >= 0.0f && status.progress <= 1.0f;
       if (ok) last_version = s->version;
-      // A snapshot holds a pair or a palette, never both.
-      ok = ok && !(s->prepared && s->palette);
       if (ok && s->mix) {
-        // A published mix comes with the palette and decomposition it was made from.
-        ok = s->palette && s->palette_decomposition && s->palette_paths.size() == 3 &&
-             s->mix->sources.cols() == s->palette->size() &&
-             s->mix_params.weights.size() == static_cast<size_t>(s->palette->size()) &&
-             s->palette_decomposition->rmse.size() == static_cast<size_t>(s->palette->size());
+        // A published mix comes with the takes and decomposition it was made from (three, or a
+        // pair in between).
+        ok = s->prepared && s->decomposed && s->paths.size() == static_cast<size_t>(s->prepared->size()) &&
+             s->mix->sources.cols() == s->prepared->size() &&
+             s->mix_params.weights.size() == static_cast<size_t>(s->prepared->size()) &&
+             s->decomposed->rmse.size() == static_cast<size_t>(s->prepared->size());
         double sum = 0;
         for (Eigen::Index i = 0; i < s->mix->motion.world.size(); ++i) sum += s->mix->motion.world.data()[i];
         ok = ok && std::isfinite(sum);
@@ -762,10 +743,10 @@ TEST_CASE("mix, decomposition and load requests on a palette while another threa
   std::vector<std::string> last_paths = palette_a;
   for (int i = 0; i < 200; ++i) {
     if (i == 60) {
-      w.load(test::asset(kHappy), test::asset(kJoy));  // a pair in between
+      w.load({test::asset(kHappy), test::asset(kJoy)});  // a pair in between
     } else if (i == 100) {
       last_paths = palette_b;
-      w.load_palette(last_paths);
+      w.load(last_paths);
     } else if (i % 20 == 7) {
       last_decompose.components = 2 + static_cast<int>(random() % 9);
       last_decompose.max_iterations = 20;
@@ -789,9 +770,8 @@ TEST_CASE("mix, decomposition and load requests on a palette while another threa
   INFO(s->error);
   CHECK(s->error.empty());
   REQUIRE(s->mix);
-  CHECK_FALSE(s->prepared);
-  CHECK(s->palette_paths == last_paths);
-  CHECK(s->palette_decomposition->components() == last_decompose.components);
+  CHECK(s->paths == last_paths);
+  CHECK(s->decomposed->components() == last_decompose.components);
   CHECK(s->mix_params.weights == last_mix.weights);
   CHECK(s->mix->motion.world == direct_mix(*s));
   CHECK_FALSE(w.status().pending);
@@ -808,7 +788,7 @@ TEST_CASE("the worker calls its change callback after each job, with the result 
     idle_when_called = idle_when_called && w.status().stage == WorkerStage::kIdle;
     ++calls;
   });
-  w.load(test::asset(kHappy), test::asset(kJoy));
+  w.load({test::asset(kHappy), test::asset(kJoy)});
   w.wait_idle();
   // Each call happens after the job's end; wait_idle may return just before the last call.
   const auto t0 = Clock::now();
@@ -821,7 +801,7 @@ TEST_CASE("the worker calls its change callback after each job, with the result 
   CHECK(idle_when_called);
   // A failed request calls it too (the error is news as well).
   const int before = calls;
-  w.load(test::asset("motions/no_such_take.bvh"), "");
+  w.load({test::asset("motions/no_such_take.bvh")});
   w.wait_idle();
   const auto t2 = Clock::now();
   while (calls == before && seconds_since(t2) < 30.0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
