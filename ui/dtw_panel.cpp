@@ -68,12 +68,13 @@ void DtwPanel::draw(EditorState& state) {
   ImGui::SameLine();
   std::string joints;
   for (int k : al.feature.columns) joints += (joints.empty() ? "" : ", ") + p->takes[0].names[static_cast<size_t>(k)];
-  ImGui::TextColored(ImVec4(0.6f, 0.62f, 0.66f, 1.0f), "aligned on %s (%s); matched frames: A %d to %d, B %d to %d",
-                     align_on_name(al.feature.on), joints.c_str(), al.a_first, al.a_last, al.b_first, al.b_last);
+  ImGui::TextColored(ImVec4(0.6f, 0.62f, 0.66f, 1.0f), "on %s: A %d-%d, B %d-%d matched",
+                     align_on_name(al.feature.on), al.a_first, al.a_last, al.b_first, al.b_last);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("%s DTW. Frames outside the matched ranges (shaded) are left out of the blend.\n"
-                      "%d x %d frames at %.0f fps, cost %.3g",
-                      dtw_method_name(al.options.method), fa, fb, p->fps, al.cost);
+    ImGui::SetTooltip("Aligned on %s (%s), %s DTW. Frames outside the matched ranges (shaded) are left out of the "
+                      "blend.\n%d x %d frames at %.0f fps, cost %.3g",
+                      align_on_name(al.feature.on), joints.c_str(), dtw_method_name(al.options.method), fa, fb, p->fps,
+                      al.cost);
   ImGui::PushTextWrapPos(0.0f);  // warnings wrap inside the panel
   for (const std::string& w : al.warnings) ImGui::TextColored(ImVec4(0.95f, 0.7f, 0.3f, 1.0f), "%s", w.c_str());
   ImGui::PopTextWrapPos();
@@ -96,7 +97,8 @@ void DtwPanel::draw(EditorState& state) {
   // Before warping: A above, B below, each on its own timeline; matched frames joined, the
   // matched ranges shaded.
   ImGui::BeginGroup();
-  ImGui::TextUnformatted("before warping: matched frames joined");
+  ImGui::TextUnformatted("before warping");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("A above, B below, each on its own timeline; matched frames joined");
   const int frames = std::max(fa, fb);
   PlotArea before = begin_plot("##before", wide ? 0.45f * room.x : -1.0f, plot_h, 0.0, frames - 1, lo - 1.15 * span,
                                hi + 0.1 * span);
@@ -156,7 +158,8 @@ void DtwPanel::draw(EditorState& state) {
   ImGui::EndGroup();
   ImGui::SameLine();
   ImGui::BeginGroup();
-  ImGui::TextUnformatted("after warping, and the match quality");
+  ImGui::TextUnformatted("after warping");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("A and B on the warp's samples, and under them how well they match");
   const float quality_h = std::max(24.0f, 0.18f * side);
   PlotArea after = begin_plot("##after", -1.0f, side - quality_h - 4.0f, 0.0, samples - 1, lo - 0.08 * span,
                               hi + 0.08 * span);

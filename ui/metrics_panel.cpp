@@ -6,6 +6,7 @@
 
 #include <imgui.h>
 
+#include "engine/io/motion_file.h"
 #include "engine/kinematics/units.h"
 #include "ui/layout.h"
 
@@ -72,9 +73,12 @@ Metrics gather_metrics(const BlendSession& session) {
     const Decomposed* d = session.snapshot().decomposed.get();
     m.reference = p->takes.front().clip.get();
     m.result = p->size() > 2 ? "mix" : "blend";
+    std::vector<std::string> sources;
+    for (const PreparedTake& take : p->takes) sources.push_back(take.clip->source);
+    const std::vector<std::string> names = distinct_take_labels(sources);  // narrow column: what differs
     for (int i = 0; i < p->size(); ++i) {
       Metrics::Take t;
-      t.name = std::filesystem::path(p->takes[static_cast<size_t>(i)].clip->source).stem().string();
+      t.name = names[static_cast<size_t>(i)];
       t.fit_error = d != nullptr ? d->rmse[static_cast<size_t>(i)] : -1.0;
       t.foot_sliding = p->takes[static_cast<size_t>(i)].foot_sliding;
       m.takes.push_back(t);

@@ -26,17 +26,9 @@ const char* const kPartNames[] = {"Legs", "Arms", "Spine and head"};
 // a '_' or '-' ("cmu142_walk_happy", "cmu142_walk_marching": "happy", "marching"), so that
 // names fit the narrow columns; the whole name is in the tooltips.
 std::string name_of(const PreparedTakes& p, int i) {
-  auto stem = [&](int k) { return take_label(p.takes[static_cast<size_t>(k)].clip->source); };
-  const std::string own = stem(i);
-  size_t common = own.size();
-  for (int k = 0; k < p.size(); ++k) {
-    const std::string other = stem(k);
-    size_t n = 0;
-    while (n < common && n < other.size() && other[n] == own[n]) ++n;
-    common = n;
-  }
-  while (common > 0 && own[common - 1] != '_' && own[common - 1] != '-') --common;
-  return common < own.size() ? own.substr(common) : own;
+  std::vector<std::string> sources;
+  for (const PreparedTake& t : p.takes) sources.push_back(t.clip->source);
+  return distinct_take_labels(sources)[static_cast<size_t>(i)];
 }
 
 ImU32 color_u32(int take) {

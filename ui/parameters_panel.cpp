@@ -91,14 +91,6 @@ void ParametersPanel::draw(EditorState& state) {
     ImGui::SetTooltip("Off: each take's detail that the k components do not hold is mixed with the weights too,\n"
                       "so a take's whole weight gives exactly that take.\nOn: only what the components reconstruct "
                       "(the paper's synthesis); k and sparsity then shape the whole result.");
-  if (ImGui::RadioButton("side by side", !state.view.overlay)) state.view.overlay = false;
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("%s", palette ? "The mix and the takes stand next to each other" : "A, the blend and B stand next to each other");
-  ImGui::SameLine();
-  if (ImGui::RadioButton("overlay", state.view.overlay)) state.view.overlay = true;
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("%s", palette ? "The mix and the takes on the same spot, to compare poses"
-                                    : "A, the blend and B on the same spot, to compare poses");
 
   // Worker progress; the previous decomposition stays on screen until the new one arrives.
   const WorkerStatus status = s.status();
@@ -107,9 +99,11 @@ void ParametersPanel::draw(EditorState& state) {
     std::snprintf(overlay, sizeof overlay, "%s %.0f%%", worker_stage_name(status.stage), 100.0 * status.progress);
     ImGui::ProgressBar(status.progress, ImVec2(-1.0f, 0.0f), overlay);
   } else if (d != nullptr) {
-    ImGui::TextColored(kDimColor, "shown: %d components, sparsity %.2f, %s, %d iterations", d->params.components,
-                       d->params.sparsity, blend_mode_name(d->params.mode), d->iterations);
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("The decomposition the blend uses now");
+    ImGui::TextColored(kDimColor, "shown: k %d, sparsity %.2f, %s", d->params.components, d->params.sparsity,
+                       blend_mode_name(d->params.mode));
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("The decomposition the result uses now: %d components, sparsity %.2f, %s mode, %d iterations",
+                        d->params.components, d->params.sparsity, blend_mode_name(d->params.mode), d->iterations);
   }
   if (!s.blend_error().empty()) {
     ImGui::PushTextWrapPos(0.0f);

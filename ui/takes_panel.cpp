@@ -56,8 +56,15 @@ void TakesPanel::draw(EditorState& state) {
   }
   if (state.takes.empty()) ImGui::TextColored(kDimColor, "No takes.");
 
-  if (ImGui::Button("Frame all (F)")) command_frame_all(state);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Turn and move the camera so that every skeleton is in view");
+  // The camera and where the takes stand, on one row.
+  if (ImGui::Button("Frame all")) command_frame_all(state);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Turn and move the camera so that every skeleton is in view (F)");
+  ImGui::SameLine();
+  if (ImGui::RadioButton("side by side", !state.view.overlay)) state.view.overlay = false;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("The takes and the result stand next to each other");
+  ImGui::SameLine();
+  if (ImGui::RadioButton("overlay", state.view.overlay)) state.view.overlay = true;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("The takes and the result on the same spot, to compare poses");
   const bool view = ImGui::CollapsingHeader("View");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("What the 3D view shows");
   if (view) {

@@ -69,6 +69,24 @@ std::string take_label(const std::string& text) {
   return tp.take.empty() ? std::filesystem::path(tp.path).stem().string() : tp.take;
 }
 
+std::vector<std::string> distinct_take_labels(const std::vector<std::string>& texts) {
+  std::vector<std::string> labels;
+  for (const std::string& t : texts) labels.push_back(take_label(t));
+  if (labels.size() < 2) return labels;
+  size_t common = labels.front().size();
+  for (const std::string& l : labels) {
+    size_t n = 0;
+    while (n < common && n < l.size() && l[n] == labels.front()[n]) ++n;
+    common = n;
+  }
+  for (const std::string& l : labels)
+    if (l.size() <= common) return labels;  // a label all shared: nothing tells the takes apart better
+  while (common > 0 && labels.front()[common - 1] != '_' && labels.front()[common - 1] != '-') --common;
+  for (std::string& l : labels)
+    if (common < l.size()) l = l.substr(common);
+  return labels;
+}
+
 std::string join_take_path(const std::string& path, const std::string& take) {
   return take.empty() ? path : path + "#" + take;
 }

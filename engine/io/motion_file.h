@@ -35,6 +35,10 @@ TakePath split_take_path(const std::string& text);
 // What a take is called on screen: the animation's name for FILE#ANIMATION ("run"), else the
 // file's name without folder and extension ("walk" for "data/walk.bvh").
 std::string take_label(const std::string& text);
+// Each take's label without the start every label shares up to a '_' or '-'
+// ("cmu142_walk_happy", "cmu142_walk_marching": "happy", "marching"), so that names fit narrow
+// columns; a label that would be empty stays whole. O(total length).
+std::vector<std::string> distinct_take_labels(const std::vector<std::string>& texts);
 
 // "walk.glb" + "run" -> "walk.glb#run"; the path alone when take is empty.
 std::string join_take_path(const std::string& path, const std::string& take);

@@ -316,7 +316,7 @@ TEST_CASE("files panel: a file dropped on a palette is one more take, and a load
     CHECK(t.fit_error >= 0.0);
     CHECK(t.foot_sliding >= 0.0);
   }
-  CHECK(m.takes[3].name == "cmu142_walk_clumsy");
+  CHECK(m.takes[3].name == "clumsy");  // what tells the takes apart fits the narrow column
   CHECK(m.bone_error >= 0.0);
   CHECK(m.sliding_cleaned >= 0.0);
 }

@@ -39,3 +39,17 @@ TEST_CASE("read_motion_file: BVH through the BVH reader, a take of a BVH is an e
   CHECK(takes[0].name == "cmu142_walk_clumsy");
   CHECK(takes[0].keys == 1080);
 }
+
+TEST_CASE("take labels: what differs between the takes, for narrow columns", "[motion_file]") {
+  using V = std::vector<std::string>;
+  CHECK(distinct_take_labels({"a/cmu142_walk_happy.bvh", "b/cmu142_walk_marching.bvh", "cmu142_walk_joy.fbx"}) ==
+        V{"happy", "marching", "joy"});
+  // The shared start ends at a '_' or '-': "walk_h" and "walk_ha" keep their words whole.
+  CHECK(distinct_take_labels({"walk_happy.bvh", "walk_hasty.bvh"}) == V{"happy", "hasty"});
+  CHECK(distinct_take_labels({"walks.glb#run-fast", "walks.glb#run-slow"}) == V{"fast", "slow"});
+  // A label that is all shared start keeps every label whole; nothing shared, nothing cut; one take as it is.
+  CHECK(distinct_take_labels({"walk.bvh", "walk_old.bvh"}) == V{"walk", "walk_old"});
+  CHECK(distinct_take_labels({"normal.bvh", "tired.bvh"}) == V{"normal", "tired"});
+  CHECK(distinct_take_labels({"cmu142_walk_happy.bvh"}) == V{"cmu142_walk_happy"});
+  CHECK(distinct_take_labels({"x_a.bvh", "x_a.bvh"}) == V{"x_a", "x_a"});
+}
