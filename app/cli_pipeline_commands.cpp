@@ -16,7 +16,7 @@
 #include "engine/align/time_warp.h"
 #include "engine/io/error.h"
 #include "engine/export/export_solve.h"
-#include "engine/run/pipeline.h"
+#include "engine/run/blend_params.h"
 #include "engine/kinematics/units.h"
 
 namespace mostyle::cli {

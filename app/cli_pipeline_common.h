@@ -11,7 +11,7 @@
 #include "engine/decompose/body_parts.h"
 #include "engine/export/channel_layout.h"
 #include "engine/post/loop.h"
-#include "engine/run/pipeline.h"
+#include "engine/run/blend_params.h"
 
 namespace mostyle::cli {
 

@@ -13,7 +13,7 @@
 #include "engine/kinematics/units.h"
 #include "engine/run/decompose_takes.h"
 #include "engine/run/palette.h"
-#include "engine/run/pipeline.h"
+#include "engine/run/blend_params.h"
 
 namespace mostyle::cli {
 namespace {

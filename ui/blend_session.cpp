@@ -241,15 +241,19 @@ void BlendSession::take_up_prepared(EditorState& state) {
 }
 
 // Writes every take's positions from the engine's matrices with the current placement, all on
-// the blend's timeline: A and B are shown where the blend is in each of them (BlendResult
-// source_a, source_b), so the three stay in step whatever the timing. Before the first blend,
+// the blend's timeline: A and B are shown where the blend is in each of them (the mix's
+// sources), so the three stay in step whatever the timing. Before the first blend,
 // the warp's own samples. Slots across the travel: A left, the blend in the middle, B right.
 void BlendSession::place(EditorState& state) {
   const PreparedTakes* p = pair();
   if (p == nullptr || state.takes.size() != 3) return;
   const TimeWarp& warp = p->takes[1].alignment.warp;
-  const Eigen::VectorXd& at_a = has_blend_ ? blend_.source_a : warp.a;
-  const Eigen::VectorXd& at_b = has_blend_ ? blend_.source_b : warp.b;
+  if (has_blend_) {
+    source_a_ = blend_.sources.col(0);
+    source_b_ = blend_.sources.col(1);
+  }
+  const Eigen::VectorXd& at_a = has_blend_ ? source_a_ : warp.a;
+  const Eigen::VectorXd& at_b = has_blend_ ? source_b_ : warp.b;
   sample_rows(p->takes[0].world, at_a, shown_a_);
   sample_rows(p->takes[1].world_placed, at_b, shown_b_);
   const int joints = static_cast<int>(p->majors.size());
@@ -262,14 +266,14 @@ void BlendSession::place(EditorState& state) {
   state.takes[kTakeA].contacts = joint_contacts(nearest(p->takes[0].own_contacts, at_a), p->feet, joints);
   state.takes[kTakeB].contacts = joint_contacts(nearest(p->takes[1].own_contacts, at_b), p->feet, joints);
   const double slots[3] = {-1.0, 1.0, 0.0};  // A, B, blend
-  const Eigen::MatrixXd* sources[3] = {&shown_a_, &shown_b_, has_blend_ ? &blend_.world : &shown_a_};
+  const Eigen::MatrixXd* sources[3] = {&shown_a_, &shown_b_, has_blend_ ? &blend_.motion.world : &shown_a_};
   if (!state.view.overlay && has_blend_) {
     // Side by side: A and B in lanes beside the blend's path (ui/lanes.h).
-    const Lanes lanes = lanes_along(blend_.world, Eigen::Vector2d(side_.x(), side_.z()));
+    const Lanes lanes = lanes_along(blend_.motion.world, Eigen::Vector2d(side_.x(), side_.z()));
     for (int t = 0; t < 3; ++t) {
       Eigen::MatrixXd& out = state.takes[static_cast<size_t>(t)].positions;
       if (t == kTakeBlend) {
-        out = blend_.world;
+        out = blend_.motion.world;
         for (Eigen::Index j = 0; 3 * j < out.cols(); ++j)
           for (int a = 0; a < 3; ++a) out.col(3 * j + a).array() += shift_[a];
       } else {
@@ -317,7 +321,8 @@ void BlendSession::update_blend(EditorState& state) {
     if (changed) {
       const auto t0 = Clock::now();
       try {
-        blend_pair(*p, *d, params, scratch_, blend_);
+        set_blend_mix_params(params, *d, blend_mix_);
+        mix_palette(*p, *d, blend_mix_, scratch_, blend_);
         has_blend_ = true;
         blend_error_.clear();
       } catch (const std::exception& e) {  // InputError: a bad parameter, shown as it is
@@ -354,7 +359,7 @@ void BlendSession::refresh_blend_take(EditorState& state) {
   else
     std::snprintf(label, sizeof label, "blend  alpha %.2f", state.parameters.alpha);
   t.label = label;
-  if (has_blend_) t.contacts = joint_contacts(blend_.contacts, p->feet, static_cast<int>(p->majors.size()));
+  if (has_blend_) t.contacts = joint_contacts(blend_.motion.contacts, p->feet, static_cast<int>(p->majors.size()));
   place(state);
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // The editor's link to the engine. Owns the engine Worker; each frame poll() takes up its latest
-// snapshot (a new pair, a new decomposition, an error) and update_blend() re-runs blend_pair on
+// snapshot (a new pair, a new decomposition, an error) and update_blend() re-runs mix_palette on
 // the UI thread when alpha or a per-component alpha moved (well under 1 ms: the viewport follows
 // in the same frame). Loads and decompositions only ever go to the worker: nothing here blocks,
 // except wait_idle(), for tests and screenshots.
@@ -16,7 +16,7 @@
 
 #include <Eigen/Core>
 
-#include "engine/run/pipeline.h"
+#include "engine/run/blend_params.h"
 #include "engine/run/worker.h"
 #include "ui/editor_state.h"
 #include "ui/palette_view.h"
@@ -124,9 +124,9 @@ class BlendSession {
   const WorkerSnapshot& snapshot() const { return *snapshot_; }
   WorkerStatus status() const { return worker_.status(); }
   const std::string& error() const { return snapshot_->error; }
-  const BlendResult* blend() const { return has_blend_ ? &blend_ : nullptr; }
+  const MixResult* blend() const { return has_blend_ ? &blend_ : nullptr; }
   const std::string& blend_error() const { return blend_error_; }
-  double blend_ms() const { return blend_ms_; }  // the last UI-thread blend_pair, wall time
+  double blend_ms() const { return blend_ms_; }  // the last UI-thread blend (mix_palette), wall time
   SessionControls& controls() { return controls_; }
   const std::vector<ErrorPoint>& error_curve() const { return error_curve_; }
   const DtwCostImage& dtw_image() const { return dtw_image_; }
@@ -190,8 +190,10 @@ class BlendSession {
   DecomposeParams requested_;
   SessionControls controls_;
   BlendParams blended_params_;
-  BlendScratch scratch_;
-  BlendResult blend_;
+  MixParams blend_mix_;  // blended_params_ in a mix's terms (blend_params.h)
+  MixScratch scratch_;
+  MixResult blend_;
+  Eigen::VectorXd source_a_, source_b_;  // A's and B's frame at each of the blend's (its sources' columns)
   Eigen::MatrixXd shown_a_, shown_b_;  // A and B on the blend's timeline (before placement)
   bool has_blend_ = false;
   std::string blend_error_;

@@ -32,7 +32,7 @@ ImU32 heat(float v) {
 }
 
 // The output frame showing warp sample u (the first at or after it), or -1 without a blend.
-int output_frame_at(const BlendResult* blend, double u) {
+int output_frame_at(const MixResult* blend, double u) {
   if (blend == nullptr || blend->sample.size() == 0) return -1;
   const double* begin = blend->sample.data();
   const double* end = begin + blend->sample.size();
@@ -59,7 +59,7 @@ void DtwPanel::draw(EditorState& state) {
   const Eigen::MatrixXd& sa = al.feature.a;
   const Eigen::MatrixXd& sb = al.feature.b;
   const TimeWarp& warp = al.warp;
-  const BlendResult* blend = session_.blend();
+  const MixResult* blend = session_.blend();
   SessionControls& c = session_.controls();
   const int fa = static_cast<int>(sa.rows()), fb = static_cast<int>(sb.rows()), samples = warp.samples();
   ImGui::SetNextItemWidth(110.0f);

@@ -10,7 +10,7 @@
 #include "engine/export/export_frames.h"
 #include "engine/io/error.h"
 #include "engine/kinematics/units.h"
-#include "engine/run/pipeline.h"
+#include "engine/run/blend_params.h"
 #include "ui/blend_session.h"
 #include "ui/metrics_panel.h"
 
@@ -28,25 +28,26 @@ constexpr float kResampledProgress = 0.1f;
 
 }  // namespace
 
+namespace {
+
+// What the session shows as its result: the palette's mix, or the pair's blend (both a mix of
+// the takes, palette.h); null before the first.
+const MixResult* shown_result(const BlendSession& session) {
+  return session.palette() != nullptr ? session.palette_view().mix() : session.blend();
+}
+
+}  // namespace
+
 ExportSubject export_subject(const BlendSession& session) {
   ExportSubject subject;
-  if (const PreparedTakes* palette = session.palette()) {
-    subject.identity = palette;
-    subject.clip = palette->takes.front().clip.get();
-    subject.working_fps = palette->fps;
-    subject.takes = palette->size();
-    if (const MixResult* mix = session.palette_view().mix()) {
-      subject.frames = static_cast<int>(mix->motion.world.rows());
-      subject.loop_cycles = mix->motion.loop.cycles;
-    }
-  } else if (const PreparedTakes* pair = session.pair()) {
-    subject.identity = pair;
-    subject.clip = pair->reference().clip.get();
-    subject.working_fps = pair->fps;
-    subject.takes = 2;
-    if (const BlendResult* blend = session.blend()) {
-      subject.frames = static_cast<int>(blend->world.rows());
-      subject.loop_cycles = blend->loop.cycles;
+  if (const PreparedTakes* takes = session.snapshot().prepared.get()) {
+    subject.identity = takes;
+    subject.clip = takes->reference().clip.get();
+    subject.working_fps = takes->fps;
+    subject.takes = takes->size();
+    if (const MixResult* result = shown_result(session)) {
+      subject.frames = static_cast<int>(result->motion.world.rows());
+      subject.loop_cycles = result->motion.loop.cycles;
     }
   }
   if (subject.clip != nullptr) subject.name = fs::path(subject.clip->source).filename().string();
@@ -55,37 +56,20 @@ ExportSubject export_subject(const BlendSession& session) {
 
 ExportRequest make_export_request(const BlendSession& session, const ExportOptions& options) {
   if (options.path.empty()) throw InputError("Export: no file name given.");
-  if (const PreparedTakes* palette = session.palette()) {  // the style palette's mix
-    const MixResult* mix = session.palette_view().mix();
-    if (mix == nullptr || mix->motion.world.rows() == 0) throw InputError("Export: nothing to export yet (no mix).");
-    if (options.range == ExportRange::kLoop && mix->motion.loop.cycles <= 0)
-      throw InputError("Export: the mix has no loop; turn on Loop in the parameters panel, or export all frames.");
-    ExportRequest r;
-    r.clip = palette->takes.front().clip;
-    r.joints = export_joints(*palette);
-    r.world = mix->motion.world;
-    r.at = source_frames_in_clip(*palette, *mix);
-    r.working_fps = palette->fps;
-    r.loop_travel = mix->motion.loop.travel;
-    r.options = options;
-    std::error_code ec;
-    const fs::path absolute = fs::absolute(fs::path(options.path), ec);
-    if (!ec) r.options.path = absolute.string();
-    return r;
-  }
-  const std::shared_ptr<const PreparedTakes> pair = session.pair() != nullptr ? session.snapshot().prepared : nullptr;
-  const BlendResult* blend = session.blend();
-  if (pair == nullptr || pair->reference().clip == nullptr || blend == nullptr || blend->world.rows() == 0)
-    throw InputError("Export: nothing to export yet (no blend).");
-  if (options.range == ExportRange::kLoop && blend->loop.cycles <= 0)
-    throw InputError("Export: the blend has no loop; turn on Loop in the parameters panel, or export all frames.");
+  const std::shared_ptr<const PreparedTakes> takes = session.snapshot().prepared;
+  const MixResult* result = shown_result(session);
+  const std::string what = session.palette() != nullptr ? "mix" : "blend";
+  if (takes == nullptr || result == nullptr || result->motion.world.rows() == 0)
+    throw InputError("Export: nothing to export yet (no " + what + ").");
+  if (options.range == ExportRange::kLoop && result->motion.loop.cycles <= 0)
+    throw InputError("Export: the " + what + " has no loop; turn on Loop in the parameters panel, or export all frames.");
   ExportRequest r;
-  r.clip = pair->reference().clip;
-  r.joints = export_joints(*pair);
-  r.world = blend->world;
-  r.at = source_frames_in_clip(*pair, *blend);
-  r.working_fps = pair->fps;
-  r.loop_travel = blend->loop.travel;
+  r.clip = takes->reference().clip;
+  r.joints = export_joints(*takes);
+  r.world = result->motion.world;
+  r.at = source_frames_in_clip(*takes, *result);
+  r.working_fps = takes->fps;
+  r.loop_travel = result->motion.loop.travel;
   r.options = options;
   // Resolved now: the working folder is the one the person saw when they pressed Export.
   std::error_code ec;

@@ -56,7 +56,7 @@ ExportSubject export_subject(const BlendSession& session);
 // Everything one export needs, copied out of the session: the job never reads the session.
 struct ExportRequest {
   std::shared_ptr<const Clip> clip;  // take A as loaded (immutable, shared with the session)
-  std::vector<int> joints;           // A's joint of each major column (pipeline.h export_joints)
+  std::vector<int> joints;           // A's joint of each major column (prepare_takes.h export_joints)
   Eigen::MatrixXd world;             // F x 3M: the blend at working_fps, A's units and world
   Eigen::VectorXd at;                // F: A's clip frame each blend frame shows (source_frames_in_clip)
   double working_fps = 30.0;         // the blend's rate

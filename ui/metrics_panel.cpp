@@ -105,10 +105,10 @@ Metrics gather_metrics(const BlendSession& session) {
   m.preprocess_ms = p->times.preprocess_ms;
   m.dtw_ms = p->times.dtw_ms;
   if (d != nullptr) m.decompose_ms = d->elapsed_ms;
-  if (const BlendResult* b = session.blend()) {
-    m.bone_error = b->limb_length_max_error;
-    m.sliding_raw = b->foot_sliding_raw;
-    m.sliding_cleaned = b->foot_sliding_cleaned;
+  if (const MixResult* b = session.blend()) {
+    m.bone_error = b->motion.limb_length_max_error;
+    m.sliding_raw = b->motion.foot_sliding_raw;
+    m.sliding_cleaned = b->motion.foot_sliding_cleaned;
     m.synthesize_ms = b->synthesize_ms;
     m.postprocess_ms = b->postprocess_ms;
     m.result_ms = session.blend_ms();

@@ -28,8 +28,8 @@ double motion_length_s(Eigen::Index frames, double fps);
 int export_frame_count(double first_s, double last_s, double fps);
 
 // The motion resampled for export.
-//   world:       F x 3M positions at working_fps (pipeline.h BlendResult::world), F >= 1
-//   at:          F source frames in A's clip (pipeline.h source_frames_in_clip)
+//   world:       F x 3M positions at working_fps (a MixResult's motion.world, palette.h), F >= 1
+//   at:          F source frames in A's clip (palette.h source_frames_in_clip)
 //   working_fps: the rate of world's rows; row i is at i / working_fps seconds
 //   out_fps:     the output rate, in (0, kMaxExportFps]
 //   first_s, last_s: the range, seconds of the motion: 0 <= first_s <= last_s <= its length
@@ -44,7 +44,7 @@ int export_frame_count(double first_s, double last_s, double fps);
 ExportFrames export_frames(const Eigen::MatrixXd& world, const Eigen::VectorXd& at, double working_fps,
                            double out_fps, double first_s, double last_s);
 
-// A seamless loop (post/loop.h, BlendResult::loop with cycles > 0) resampled for export: world's
+// A seamless loop (post/loop.h, a MixResult's motion.loop with cycles > 0) resampled for export: world's
 // F rows are one period, frame F would repeat frame 0 moved by `travel` (the root's (x, z)
 // travel per loop, LoopCut::travel, added to every joint's x and z). K = round(F * out_fps /
 // working_fps) frames (at least 1) evenly over the period, frame k at row k * F / K, between

@@ -4,7 +4,7 @@
 // part): poses, timing, root path and foot contacts mixed with the weights, then the clean-up
 // (post/finish.h). Shared mode mixes the takes' component weights (any number of takes); paper
 // mode (two takes) is the paper's synthesis with alpha the second take's weight. A blend of two
-// takes at alpha is the mix with weights (1 - alpha, alpha) (pipeline.h); a transfer (a style
+// takes at alpha is the mix with weights (1 - alpha, alpha) (blend_params.h); a transfer (a style
 // put on a take of one's own) is a mix whose reference is the content take, with weights
 // (1, -s, s) on content, neutral and style (transfer_weights).
 #include <Eigen/Core>

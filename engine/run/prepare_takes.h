@@ -8,8 +8,8 @@
 //   all of them read on one common timeline (U samples, common_timeline.h): poses, root paths
 //   and steps, whole-turn flips, contacts, then normalized with one scale (normalize.h).
 // A pair is two takes: its common timeline is the alignment's own warp, unchanged. The
-// decomposition (pipeline.h for the paper's two-take modes, palette.h for shared components)
-// and the synthesis read this value; nothing here knows of them.
+// decomposition (decompose_takes.h) and the synthesis (palette.h) read this value; nothing here
+// knows of them.
 #include <Eigen/Core>
 #include <memory>
 #include <string>

@@ -17,7 +17,7 @@
 #include "engine/io/bvh_io.h"
 #include "engine/io/job_control.h"
 #include "engine/run/palette.h"
-#include "engine/run/pipeline.h"
+#include "engine/run/blend_params.h"
 
 namespace mostyle {
 

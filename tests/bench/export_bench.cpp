@@ -1,5 +1,5 @@
 // Speed of export and foot lock: the rotation solve of a real blend onto A's full skeleton
-// (an export click; target: well under a second for a minute of motion), and blend_pair with
+// (an export click; target: well under a second for a minute of motion), and a blend (the mix of two, blend_params.h) with
 // the foot lock (a slider move; target: synthesis and post-processing of a minute at 30 fps
 // well under 1 ms), the lock alone, and contact detection (once per pair).
 #include <benchmark/benchmark.h>
@@ -7,11 +7,12 @@
 #include <memory>
 #include <string>
 
+#include "tests/engine/run/blend_at.h"
 #include "engine/io/bvh_io.h"
 #include "engine/io/error.h"
 #include "engine/export/export_solve.h"
 #include "engine/post/foot_contact.h"
-#include "engine/run/pipeline.h"
+#include "engine/run/blend_params.h"
 
 namespace {
 
@@ -21,7 +22,7 @@ const std::string kShared = MOSTYLE_SHARED_MOTIONS;
 struct Pair {
   std::shared_ptr<const mostyle::PreparedTakes> prepared;
   std::shared_ptr<const mostyle::Decomposed> decomposed;
-  mostyle::BlendResult blend;
+  mostyle::MixResult blend;
 };
 
 // A prepared, decomposed and blended pair; `ok` false when the files are absent.
@@ -38,8 +39,8 @@ Pair load_pair(const std::string& a, const std::string& b, bool* ok) {
   mostyle::DecomposeParams dp;
   dp.max_iterations = 30;
   p.decomposed = mostyle::decompose_takes(*p.prepared, dp);
-  mostyle::BlendScratch scratch;
-  mostyle::blend_pair(*p.prepared, *p.decomposed, mostyle::BlendParams{}, scratch, p.blend);
+  mostyle::test::BlendRun scratch;
+  mostyle::test::blend_into(*p.prepared, *p.decomposed, mostyle::BlendParams{}, scratch, p.blend);
   *ok = true;
   return p;
 }
@@ -57,10 +58,10 @@ void BM_ExportSolveCmu(benchmark::State& state) {
   const Pair p = cmu_pair(&ok);
   if (!ok) return state.SkipWithError("no CMU motions");
   for (auto _ : state) {
-    const mostyle::ExportResult r = mostyle::solve_export_at(*p.prepared->reference().clip, mostyle::export_joints(*p.prepared), p.blend.world, mostyle::source_frames_in_clip(*p.prepared, p.blend), p.prepared->fps);
+    const mostyle::ExportResult r = mostyle::solve_export_at(*p.prepared->reference().clip, mostyle::export_joints(*p.prepared), p.blend.motion.world, mostyle::source_frames_in_clip(*p.prepared, p.blend), p.prepared->fps);
     benchmark::DoNotOptimize(r.clip.motion.data());
   }
-  state.counters["frames"] = static_cast<double>(p.blend.world.rows());
+  state.counters["frames"] = static_cast<double>(p.blend.motion.world.rows());
 }
 BENCHMARK(BM_ExportSolveCmu)->Unit(benchmark::kMillisecond);
 
@@ -70,10 +71,10 @@ void BM_ExportSolveBandai(benchmark::State& state) {
   const Pair p = load_pair(kShared + "/bandai_walk_normal.bvh", kShared + "/bandai_walk_tired.bvh", &ok);
   if (!ok) return state.SkipWithError("../shared/motions is absent");
   for (auto _ : state) {
-    const mostyle::ExportResult r = mostyle::solve_export_at(*p.prepared->reference().clip, mostyle::export_joints(*p.prepared), p.blend.world, mostyle::source_frames_in_clip(*p.prepared, p.blend), p.prepared->fps);
+    const mostyle::ExportResult r = mostyle::solve_export_at(*p.prepared->reference().clip, mostyle::export_joints(*p.prepared), p.blend.motion.world, mostyle::source_frames_in_clip(*p.prepared, p.blend), p.prepared->fps);
     benchmark::DoNotOptimize(r.clip.motion.data());
   }
-  state.counters["frames"] = static_cast<double>(p.blend.world.rows());
+  state.counters["frames"] = static_cast<double>(p.blend.motion.world.rows());
 }
 BENCHMARK(BM_ExportSolveBandai)->Unit(benchmark::kMillisecond);
 
@@ -84,16 +85,16 @@ void BM_BlendWithFootLock(benchmark::State& state) {
   if (!ok) return state.SkipWithError("no CMU motions");
   mostyle::BlendParams params;
   params.foot_lock = state.range(0) != 0;
-  mostyle::BlendScratch scratch;
-  mostyle::BlendResult out;
+  mostyle::test::BlendRun scratch;
+  mostyle::MixResult out;
   double alpha = 0.0;
   for (auto _ : state) {
     params.alpha = alpha;
-    mostyle::blend_pair(*p.prepared, *p.decomposed, params, scratch, out);
-    benchmark::DoNotOptimize(out.world.data());
+    mostyle::test::blend_into(*p.prepared, *p.decomposed, params, scratch, out);
+    benchmark::DoNotOptimize(out.motion.world.data());
     alpha = alpha > 1.0 ? 0.0 : alpha + 0.01;
   }
-  state.counters["frames"] = static_cast<double>(out.world.rows());
+  state.counters["frames"] = static_cast<double>(out.motion.world.rows());
 }
 BENCHMARK(BM_BlendWithFootLock)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
@@ -102,12 +103,12 @@ void BM_FootLockMinute(benchmark::State& state) {
   bool ok = false;
   const Pair p = cmu_pair(&ok);
   if (!ok) return state.SkipWithError("no CMU motions");
-  const Eigen::Index n = p.blend.world.rows();
-  Eigen::MatrixXd world(1800, p.blend.world.cols());
+  const Eigen::Index n = p.blend.motion.world.rows();
+  Eigen::MatrixXd world(1800, p.blend.motion.world.cols());
   Eigen::MatrixXd contacts(1800, 2);
   for (Eigen::Index f = 0; f < 1800; ++f) {
-    world.row(f) = p.blend.world.row(f % n);
-    contacts.row(f) = p.blend.contacts.row(f % n);
+    world.row(f) = p.blend.motion.world.row(f % n);
+    contacts.row(f) = p.blend.motion.contacts.row(f % n);
   }
   mostyle::FootLockScratch scratch;
   Eigen::MatrixXd work = world;

@@ -1,6 +1,6 @@
 // Speed of the pair pipeline on a minute of motion at 30 fps (1800 frames, 20 major joints):
 // prepare_takes of two takes (resample, FK, retarget, canonical frame, DTW), decompose_takes (shared mode, k = 10)
-// and blend_pair for one alpha, the slider move, which must stay well under 1 ms. With the timing
+// and a blend (the mix of two, blend_params.h) for one alpha, the slider move, which must stay well under 1 ms. With the timing
 // blended the output's length changes with alpha, and its buffers are resized then (the
 // allocations are counted here by wrapping malloc); with A's timing it allocates nothing once
 // its scratch has the right size.
@@ -16,8 +16,9 @@
 #include <memory>
 #include <string>
 
+#include "tests/engine/run/blend_at.h"
 #include "engine/io/bvh_io.h"
-#include "engine/run/pipeline.h"
+#include "engine/run/blend_params.h"
 
 // Every heap allocation of the process goes through these (glibc lets a program replace them;
 // the __libc_ functions are glibc's own), so the blend benchmark can count them.
@@ -119,23 +120,23 @@ void BM_BlendPair(benchmark::State& state) {
   params.limb_lengths = state.range(0) < 2 || state.range(0) >= 3;
   params.timing_a = state.range(0) == 3;
   params.loop = state.range(0) == 4;
-  BlendScratch scratch;
-  BlendResult out;
-  blend_pair(*pair.prepared, *pair.decomposed, params, scratch, out);  // sizes the scratch
+  test::BlendRun scratch;
+  MixResult out;
+  test::blend_into(*pair.prepared, *pair.decomposed, params, scratch, out);  // sizes the scratch
   const long before = g_allocations.load();
   double synthesize_ms = 0, postprocess_ms = 0;
   int step = 0;
   for (auto _ : state) {
     params.alpha = 0.01 * (step++ % 101);
-    blend_pair(*pair.prepared, *pair.decomposed, params, scratch, out);
-    benchmark::DoNotOptimize(out.world.data());
+    test::blend_into(*pair.prepared, *pair.decomposed, params, scratch, out);
+    benchmark::DoNotOptimize(out.motion.world.data());
     synthesize_ms += out.synthesize_ms;
     postprocess_ms += out.postprocess_ms;
   }
   const long allocations = g_allocations.load() - before;
-  if (allocations != 0 && params.timing_a) state.SkipWithError("blend_pair allocated with a sized scratch");
+  if (allocations != 0 && params.timing_a) state.SkipWithError("the blend allocated with a sized scratch");
   state.counters["allocations_per_move"] = static_cast<double>(allocations) / std::max(1, step);
-  state.counters["frames"] = static_cast<double>(out.world.rows());
+  state.counters["frames"] = static_cast<double>(out.motion.world.rows());
   state.counters["synthesize_ms"] = synthesize_ms / std::max(1, step);
   state.counters["postprocess_ms"] = postprocess_ms / std::max(1, step);
 }
@@ -146,12 +147,12 @@ void BM_BlendPairComponentAlphas(benchmark::State& state) {
   const Pair& pair = minute_pair();
   BlendParams params;
   params.component_alpha.assign(pair.decomposed->components(), 0.3);
-  BlendScratch scratch;
-  BlendResult out;
-  blend_pair(*pair.prepared, *pair.decomposed, params, scratch, out);
+  test::BlendRun scratch;
+  MixResult out;
+  test::blend_into(*pair.prepared, *pair.decomposed, params, scratch, out);
   for (auto _ : state) {
-    blend_pair(*pair.prepared, *pair.decomposed, params, scratch, out);
-    benchmark::DoNotOptimize(out.world.data());
+    test::blend_into(*pair.prepared, *pair.decomposed, params, scratch, out);
+    benchmark::DoNotOptimize(out.motion.world.data());
   }
 }
 BENCHMARK(BM_BlendPairComponentAlphas)->Unit(benchmark::kMicrosecond);

@@ -64,7 +64,7 @@ Clip export_and_read(ExportDialog& dialog, BlendSession& session, const std::str
 TEST_CASE("export dialog: at 60 fps the file has twice the blend's frames less one, at 30 the blend's own") {
   LoadedSession s;
   REQUIRE(s.session.blend() != nullptr);
-  const int blend_frames = static_cast<int>(s.session.blend()->world.rows());
+  const int blend_frames = static_cast<int>(s.session.blend()->motion.world.rows());
   REQUIRE(s.session.snapshot().prepared->fps == 30.0);
   ExportDialog dialog(s.session);
   dialog.poll();
@@ -109,9 +109,9 @@ TEST_CASE("export dialog: an in and an out point give the frames between them, b
   ExportDialog dialog(s.session);
   dialog.poll();  // the range starts as all of the blend
   REQUIRE(s.session.blend() != nullptr);
-  REQUIRE(s.session.blend()->world.rows() > 61);  // over 2 s at 30 fps
+  REQUIRE(s.session.blend()->motion.world.rows() > 61);  // over 2 s at 30 fps
   CHECK(dialog.settings().in_s == 0.0);
-  CHECK(dialog.settings().out_s == Approx((s.session.blend()->world.rows() - 1) / 30.0));
+  CHECK(dialog.settings().out_s == Approx((s.session.blend()->motion.world.rows() - 1) / 30.0));
   TempFile file("mostyle_export_dialog_range.bvh");
   dialog.settings().range = ExportRange::kInOut;
   dialog.settings().in_s = 1.0;
@@ -123,7 +123,7 @@ TEST_CASE("export dialog: an in and an out point give the frames between them, b
   // An out point past the blend is brought back inside it by the next poll.
   dialog.settings().out_s = 1e6;
   dialog.poll();
-  CHECK(dialog.settings().out_s == Approx((s.session.blend()->world.rows() - 1) / 30.0));
+  CHECK(dialog.settings().out_s == Approx((s.session.blend()->motion.world.rows() - 1) / 30.0));
 }
 
 TEST_CASE("export dialog: the loop is written whole, so it repeats at any rate") {
@@ -131,8 +131,8 @@ TEST_CASE("export dialog: the loop is written whole, so it repeats at any rate")
   s.session.controls().loop = true;
   s.session.update_blend(s.state);
   REQUIRE(s.session.blend() != nullptr);
-  REQUIRE(s.session.blend()->loop.cycles >= 1);
-  const int loop_frames = static_cast<int>(s.session.blend()->world.rows());
+  REQUIRE(s.session.blend()->motion.loop.cycles >= 1);
+  const int loop_frames = static_cast<int>(s.session.blend()->motion.world.rows());
   ExportDialog dialog(s.session);
   dialog.poll();
   TempFile file("mostyle_export_dialog_loop.bvh");
@@ -210,7 +210,7 @@ TEST_CASE("export job: the job copies the blend, and a cancel before the solve w
   options.fps = s.session.snapshot().prepared->fps;
   const ExportRequest request = make_export_request(s.session, options);
   CHECK(request.options.path == fs::absolute(file.path).string());
-  CHECK(request.world == s.session.blend()->world);
+  CHECK(request.world == s.session.blend()->motion.world);
   JobControl cancelled;
   cancelled.cancel = true;
   const ExportOutcome outcome = run_export(request, &cancelled);
@@ -224,13 +224,13 @@ TEST_CASE("export job: the job copies the blend, and a cancel before the solve w
   ExportOutcome done;
   CHECK(job.take_outcome(&done));
   CHECK(done.ok);
-  CHECK(done.frames == s.session.blend()->world.rows());
+  CHECK(done.frames == s.session.blend()->motion.world.rows());
   CHECK_FALSE(job.take_outcome(&done));
   CHECK(fs::exists(file.path));
   // BlendSession::export_bvh: the same export, here and now.
   fs::remove(file.path);
   CHECK(s.session.export_bvh(file.path));
-  CHECK(read_bvh_file(file.path).frames() == s.session.blend()->world.rows());
+  CHECK(read_bvh_file(file.path).frames() == s.session.blend()->motion.world.rows());
 }
 
 TEST_CASE("export dialog: the window draws in every mode, and the files panel opens it") {

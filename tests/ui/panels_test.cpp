@@ -38,13 +38,13 @@ TEST_CASE("the session turns a loaded pair into A, B and the blend, in step on t
   REQUIRE(s.session.blend() != nullptr);
   for (const Take& t : s.state.takes) {
     CHECK(t.ok());
-    CHECK(t.frames() == s.session.blend()->world.rows());  // all three in step on the blend's timeline
+    CHECK(t.frames() == s.session.blend()->motion.world.rows());  // all three in step on the blend's timeline
     CHECK(t.positions.cols() == p.takes[0].world.cols());
     CHECK(t.rate() == p.fps);
     CHECK(t.parents == p.parents);
   }
   REQUIRE(s.session.blend() != nullptr);
-  CHECK(s.state.takes[kTakeBlend].positions.rows() == s.session.blend()->world.rows());
+  CHECK(s.state.takes[kTakeBlend].positions.rows() == s.session.blend()->motion.world.rows());
   const DtwCostImage& img = s.session.dtw_image();
   CHECK(img.rows > 0);
   CHECK(img.rows <= DtwCostImage::kMaxCells);
@@ -217,14 +217,14 @@ TEST_CASE("timing, loop and alignment controls reach the blend and the alignment
   // alpha 0: A's timing, as long as A's matched range; with A's timing kept at alpha 1 too.
   s.state.parameters.alpha = 0.0;
   s.session.update_blend(s.state);
-  const Eigen::Index at_a = s.session.blend()->world.rows();
+  const Eigen::Index at_a = s.session.blend()->motion.world.rows();
   CHECK(at_a == al.a_last - al.a_first + 1);
   s.state.parameters.alpha = 1.0;
   s.session.update_blend(s.state);
-  CHECK(s.session.blend()->world.rows() == al.b_last - al.b_first + 1);
+  CHECK(s.session.blend()->motion.world.rows() == al.b_last - al.b_first + 1);
   c.timing_a = true;
   s.session.update_blend(s.state);
-  CHECK(s.session.blend()->world.rows() == at_a);
+  CHECK(s.session.blend()->motion.world.rows() == at_a);
   for (const Take& t : s.state.takes) CHECK(t.frames() == at_a);  // A and B follow the blend's timeline
   // A seamless loop: whole cycles, every take cut to it.
   c.timing_a = false;
@@ -232,9 +232,9 @@ TEST_CASE("timing, loop and alignment controls reach the blend and the alignment
   s.state.parameters.alpha = 0.5;
   s.session.update_blend(s.state);
   REQUIRE(s.session.blend() != nullptr);
-  CHECK(s.session.blend()->loop.cycles >= 1);
-  CHECK(s.session.blend()->loop.cycles <= kLoopMaxCycles);
-  for (const Take& t : s.state.takes) CHECK(t.frames() == s.session.blend()->loop.frames());
+  CHECK(s.session.blend()->motion.loop.cycles >= 1);
+  CHECK(s.session.blend()->motion.loop.cycles <= kLoopMaxCycles);
+  for (const Take& t : s.state.takes) CHECK(t.frames() == s.session.blend()->motion.loop.frames());
   // Aligning on the body re-prepares the pair on the worker.
   c.loop = false;
   c.align.on = AlignOn::kBody;

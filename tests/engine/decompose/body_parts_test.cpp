@@ -11,7 +11,7 @@
 #include "engine/io/bvh_io.h"
 #include "engine/io/error.h"
 #include "engine/prepare/major_skeleton.h"
-#include "engine/run/pipeline.h"
+#include "engine/run/blend_params.h"
 #include "tests/engine/synthetic_motion.h"
 #include "tests/test_data.h"
 

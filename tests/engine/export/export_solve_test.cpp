@@ -1,3 +1,4 @@
+#include "tests/engine/run/blend_at.h"
 #include "engine/export/export_solve.h"
 
 #include <catch2/catch.hpp>
@@ -12,7 +13,7 @@
 #include "engine/kinematics/convert.h"
 #include "engine/io/error.h"
 #include "engine/kinematics/kinematics.h"
-#include "engine/run/pipeline.h"
+#include "engine/run/blend_params.h"
 #include "engine/kinematics/resample.h"
 #include "engine/kinematics/units.h"
 #include "tests/engine/synthetic_motion.h"
@@ -279,7 +280,7 @@ namespace {
 
 struct Blended {
   std::shared_ptr<const PreparedTakes> prepared;
-  BlendResult result;
+  MixResult result;
 };
 
 Blended blend_files(const std::string& path_a, const std::string& path_b, double alpha) {
@@ -293,8 +294,8 @@ Blended blend_files(const std::string& path_a, const std::string& path_b, double
   const auto d = decompose_takes(*out.prepared, dp);
   BlendParams bp;
   bp.alpha = alpha;
-  BlendScratch scratch;
-  blend_pair(*out.prepared, *d, bp, scratch, out.result);
+  test::BlendRun scratch;
+  test::blend_into(*out.prepared, *d, bp, scratch, out.result);
   return out;
 }
 
@@ -304,14 +305,14 @@ Eigen::MatrixXd check_blend_export(const Blended& blend) {
   const PreparedTakes& p = *blend.prepared;
   // A's rotations where the blend is in A's motion (its own timeline, align/timing.h).
   const ExportResult r =
-      solve_export_at(*p.takes[0].clip, export_joints(p), blend.result.world, source_frames_in_clip(p, blend.result), p.fps);
+      solve_export_at(*p.takes[0].clip, export_joints(p), blend.result.motion.world, source_frames_in_clip(p, blend.result), p.fps);
   const Clip back = parse_bvh(format_bvh(r.clip), "blend.bvh");
-  REQUIRE(back.frames() == blend.result.world.rows());
+  REQUIRE(back.frames() == blend.result.motion.world.rows());
   std::vector<int> joints;
   for (int major : p.majors) joints.push_back(p.takes[0].mapping.joint[major]);
   const Eigen::MatrixXd positions = major_positions(back, joints);
   const double h = guess_units(*p.takes[0].clip).height;
-  const ExportFit fit = export_fit(back, joints, blend.result.world);
+  const ExportFit fit = export_fit(back, joints, blend.result.motion.world);
   INFO(p.takes[0].clip->source << " / " << p.takes[1].clip->source << ": fit max " << fit.max << ", mean " << fit.mean
                         << ", height " << h);
   CHECK(fit.max <= kMaxFit * h);
@@ -350,7 +351,7 @@ TEST_CASE("export of a real blend (assets, CMU): bounds, single-child chains tig
     INFO(p.takes[0].names[c]);
     double worst = 0;
     for (Eigen::Index f = 0; f < positions.rows(); ++f)
-      worst = std::max(worst, (positions.block<1, 3>(f, 3 * c) - blend.result.world.block<1, 3>(f, 3 * c)).norm());
+      worst = std::max(worst, (positions.block<1, 3>(f, 3 * c) - blend.result.motion.world.block<1, 3>(f, 3 * c)).norm());
     CHECK(worst <= 1e-7 * h);
   }
 }
@@ -373,10 +374,10 @@ TEST_CASE("export_blend_bvh writes a file Blender-style readers see as the blend
                                     test::asset("motions/cmu142_walk_clumsy.bvh"), 0.3);
   const std::string path = (std::filesystem::temp_directory_path() / "mostyle_export_solve_test.bvh").string();
   const PreparedTakes& p = *blend.prepared;
-  const ExportResult r = export_blend_bvh(*p.takes[0].clip, export_joints(p), blend.result.world,
+  const ExportResult r = export_blend_bvh(*p.takes[0].clip, export_joints(p), blend.result.motion.world,
                                           source_frames_in_clip(p, blend.result), p.fps, path);
   const Clip back = read_bvh_file(path);
-  CHECK(back.frames() == blend.result.world.rows());
+  CHECK(back.frames() == blend.result.motion.world.rows());
   CHECK(back.fps() == blend.prepared->fps);
   CHECK(r.fit.max <= kMaxFit * guess_units(*blend.prepared->takes[0].clip).height);
   std::remove(path.c_str());

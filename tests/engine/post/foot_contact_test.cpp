@@ -1,3 +1,4 @@
+#include "tests/engine/run/blend_at.h"
 #include "engine/post/foot_contact.h"
 
 #include <Eigen/Geometry>
@@ -9,7 +10,7 @@
 #include "engine/io/bvh_io.h"
 #include "engine/io/error.h"
 #include "engine/kinematics/limb_length.h"
-#include "engine/run/pipeline.h"
+#include "engine/run/blend_params.h"
 #include "tests/test_data.h"
 
 using namespace mostyle;
@@ -273,23 +274,23 @@ void check_pipeline_foot_lock(const std::string& path_a, const std::string& path
   const auto d = decompose_takes(*p, dp);
   BlendParams bp;
   bp.alpha = 0.5;
-  BlendScratch scratch;
-  BlendResult locked, free;
-  blend_pair(*p, *d, bp, scratch, locked);
+  test::BlendRun scratch;
+  MixResult locked, free;
+  test::blend_into(*p, *d, bp, scratch, locked);
   bp.foot_lock = false;
-  blend_pair(*p, *d, bp, scratch, free);
+  test::blend_into(*p, *d, bp, scratch, free);
   INFO(path_a << " / " << path_b << ": sliding A " << p->takes[0].foot_sliding << ", B " << p->takes[1].foot_sliding
-              << ", raw " << locked.foot_sliding_raw << ", cleaned " << locked.foot_sliding_cleaned);
-  CHECK(free.foot_sliding_cleaned == free.foot_sliding_raw);
-  CHECK(locked.foot_sliding_raw == Approx(free.foot_sliding_raw));
-  CHECK(locked.foot_sliding_cleaned <= std::max(p->takes[0].foot_sliding, p->takes[1].foot_sliding));
-  CHECK(locked.foot_sliding_cleaned <= 0.1 * locked.foot_sliding_raw);
+              << ", raw " << locked.motion.foot_sliding_raw << ", cleaned " << locked.motion.foot_sliding_cleaned);
+  CHECK(free.motion.foot_sliding_cleaned == free.motion.foot_sliding_raw);
+  CHECK(locked.motion.foot_sliding_raw == Approx(free.motion.foot_sliding_raw));
+  CHECK(locked.motion.foot_sliding_cleaned <= std::max(p->takes[0].foot_sliding, p->takes[1].foot_sliding));
+  CHECK(locked.motion.foot_sliding_cleaned <= 0.1 * locked.motion.foot_sliding_raw);
   // The lock keeps the limb lengths and touches only the legs below the hips.
-  CHECK(locked.limb_length_max_error <= 1e-9 * p->feet.leg_length);
+  CHECK(locked.motion.limb_length_max_error <= 1e-9 * p->feet.leg_length);
   for (size_t c = 0; c < p->majors.size(); ++c) {
     const bool leg = p->majors[c] >= static_cast<int>(MajorJoint::kLeftKnee) &&
                      p->majors[c] != static_cast<int>(MajorJoint::kRightHip);
-    if (!leg) CHECK(locked.world.middleCols(3 * c, 3) == free.world.middleCols(3 * c, 3));
+    if (!leg) CHECK(locked.motion.world.middleCols(3 * c, 3) == free.motion.world.middleCols(3 * c, 3));
   }
 }
 

@@ -13,7 +13,7 @@
 #include "engine/io/bvh_io.h"
 #include "engine/io/clip.h"
 #include "engine/kinematics/units.h"
-#include "engine/run/pipeline.h"
+#include "engine/run/blend_params.h"
 #include "tests/engine/run/blend_at.h"
 #include "tests/test_data.h"
 
@@ -120,19 +120,19 @@ TEST_CASE("alignment pipeline: the blend's sources run forward within the matche
   CHECK(p.takes[1].contacts.rows() == p.samples());
   for (double alpha : {0.0, 0.5, 1.0}) {
     INFO("alpha " << alpha);
-    const BlendResult r = blend_at(p, *x.d, alpha);
-    REQUIRE(r.source_a.size() == r.world.rows());
-    REQUIRE(r.source_b.size() == r.world.rows());
-    REQUIRE(r.sample.size() == r.world.rows());
+    const MixResult r = blend_at(p, *x.d, alpha);
+    REQUIRE(r.sources.col(0).size() == r.motion.world.rows());
+    REQUIRE(r.sources.col(1).size() == r.motion.world.rows());
+    REQUIRE(r.sample.size() == r.motion.world.rows());
     CHECK(non_decreasing(r.sample));
-    CHECK(non_decreasing(r.source_a));
-    CHECK(non_decreasing(r.source_b));
-    CHECK(r.source_a.minCoeff() >= al.a_first - 1e-9);
-    CHECK(r.source_a.maxCoeff() <= al.a_last + 1e-9);
-    CHECK(r.source_b.minCoeff() >= al.b_first - 1e-9);
-    CHECK(r.source_b.maxCoeff() <= al.b_last + 1e-9);
-    CHECK(r.contacts.rows() == r.world.rows());
-    CHECK(r.world.allFinite());
+    CHECK(non_decreasing(r.sources.col(0)));
+    CHECK(non_decreasing(r.sources.col(1)));
+    CHECK(r.sources.col(0).minCoeff() >= al.a_first - 1e-9);
+    CHECK(r.sources.col(0).maxCoeff() <= al.a_last + 1e-9);
+    CHECK(r.sources.col(1).minCoeff() >= al.b_first - 1e-9);
+    CHECK(r.sources.col(1).maxCoeff() <= al.b_last + 1e-9);
+    CHECK(r.motion.contacts.rows() == r.motion.world.rows());
+    CHECK(r.motion.world.allFinite());
   }
 }
 
@@ -141,8 +141,8 @@ TEST_CASE("alignment pipeline: no pops at alpha 0, 0.5 and 1", "[alignment]") {
   const PreparedTakes& p = *x.p;
   const double takes = std::max(joint_speeds(p.takes[0].world).maxCoeff(), joint_speeds(p.takes[1].world).maxCoeff());
   for (double alpha : {0.0, 0.5, 1.0}) {
-    const BlendResult r = blend_at(p, *x.d, alpha);
-    const Eigen::VectorXd speeds = joint_speeds(r.world);
+    const MixResult r = blend_at(p, *x.d, alpha);
+    const Eigen::VectorXd speeds = joint_speeds(r.motion.world);
     const double blend = percentile(speeds, kPopPercentile);
     INFO("alpha " << alpha << ": blend's fastest joint move " << blend << " (max " << speeds.maxCoeff()
                   << "), the takes' " << takes << ", " << 100 * blend / x.height << "% of height per frame");
@@ -155,15 +155,15 @@ TEST_CASE("alignment pipeline: alpha 0 is as long as A's matched range, alpha 1 
   const PreparedTakes& p = *x.p;
   const Alignment& al = p.takes[1].alignment;
   const double range_a = al.a_last - al.a_first + 1, range_b = al.b_last - al.b_first + 1;
-  const BlendResult r0 = blend_at(p, *x.d, 0.0), r1 = blend_at(p, *x.d, 1.0), half = blend_at(p, *x.d, 0.5);
-  INFO("A's range " << range_a << ", B's " << range_b << "; frames at alpha 0: " << r0.world.rows() << ", 0.5: "
-                    << half.world.rows() << ", 1: " << r1.world.rows());
-  CHECK(std::abs(r0.world.rows() - range_a) <= kLengthSlack);
-  CHECK(std::abs(r1.world.rows() - range_b) <= kLengthSlack);
-  CHECK(half.world.rows() >= std::min(r0.world.rows(), r1.world.rows()));
-  CHECK(half.world.rows() <= std::max(r0.world.rows(), r1.world.rows()));
+  const MixResult r0 = blend_at(p, *x.d, 0.0), r1 = blend_at(p, *x.d, 1.0), half = blend_at(p, *x.d, 0.5);
+  INFO("A's range " << range_a << ", B's " << range_b << "; frames at alpha 0: " << r0.motion.world.rows() << ", 0.5: "
+                    << half.motion.world.rows() << ", 1: " << r1.motion.world.rows());
+  CHECK(std::abs(r0.motion.world.rows() - range_a) <= kLengthSlack);
+  CHECK(std::abs(r1.motion.world.rows() - range_b) <= kLengthSlack);
+  CHECK(half.motion.world.rows() >= std::min(r0.motion.world.rows(), r1.motion.world.rows()));
+  CHECK(half.motion.world.rows() <= std::max(r0.motion.world.rows(), r1.motion.world.rows()));
   // At alpha 0 the output frames are A's own frames, one apart.
-  for (Eigen::Index k = 1; k < r0.source_a.size(); ++k) CHECK(r0.source_a[k] - r0.source_a[k - 1] == Approx(1.0));
+  for (Eigen::Index k = 1; k < r0.sources.col(0).size(); ++k) CHECK(r0.sources.col(0)[k] - r0.sources.col(0)[k - 1] == Approx(1.0));
 }
 
 TEST_CASE("alignment pipeline: timing_a keeps A's timeline at every alpha", "[alignment]") {
@@ -171,11 +171,11 @@ TEST_CASE("alignment pipeline: timing_a keeps A's timeline at every alpha", "[al
   const PreparedTakes& p = *x.p;
   BlendParams keep;
   keep.timing_a = true;
-  const BlendResult r0 = blend_at(p, *x.d, 0.0, keep), r1 = blend_at(p, *x.d, 1.0, keep);
-  INFO("frames at alpha 0: " << r0.world.rows() << ", at 1: " << r1.world.rows());
-  CHECK(r0.world.rows() == r1.world.rows());
-  CHECK(r0.source_a == r1.source_a);
-  CHECK(r0.world.rows() == blend_at(p, *x.d, 0.0).world.rows());  // alpha 0 is A's timing either way
+  const MixResult r0 = blend_at(p, *x.d, 0.0, keep), r1 = blend_at(p, *x.d, 1.0, keep);
+  INFO("frames at alpha 0: " << r0.motion.world.rows() << ", at 1: " << r1.motion.world.rows());
+  CHECK(r0.motion.world.rows() == r1.motion.world.rows());
+  CHECK(r0.sources.col(0) == r1.sources.col(0));
+  CHECK(r0.motion.world.rows() == blend_at(p, *x.d, 0.0).motion.world.rows());  // alpha 0 is A's timing either way
 }
 
 TEST_CASE("alignment pipeline: alpha 0 reproduces A at the frames it shows", "[alignment]") {
@@ -184,9 +184,9 @@ TEST_CASE("alignment pipeline: alpha 0 reproduces A at the frames it shows", "[a
   for (bool timing_a : {false, true}) {
     BlendParams params;
     params.timing_a = timing_a;
-    const BlendResult r = blend_at(p, *x.d, 0.0, params);
-    const Eigen::MatrixXd a_there = sample_rows(p.takes[0].world, r.source_a);
-    const double e = mean_joint_distance(r.world, a_there) / x.height;
+    const MixResult r = blend_at(p, *x.d, 0.0, params);
+    const Eigen::MatrixXd a_there = sample_rows(p.takes[0].world, r.sources.col(0));
+    const double e = mean_joint_distance(r.motion.world, a_there) / x.height;
     INFO("timing_a " << timing_a << ": mean " << 100 * e << "% of height " << x.height);
     CHECK(e < kAlphaZeroMean);
   }
@@ -224,22 +224,22 @@ TEST_CASE("alignment pipeline: a loop of whole cycles with a seamless seam", "[a
   const PreparedTakes& p = *x.p;
   BlendParams params;
   params.loop = true;
-  const BlendResult r = blend_at(p, *x.d, 0.5, params);
-  const LoopCut& cut = r.loop;
+  const MixResult r = blend_at(p, *x.d, 0.5, params);
+  const LoopCut& cut = r.motion.loop;
   INFO("loop " << cut.begin << ".." << cut.end << ", " << cut.cycles << " cycles, travel (" << cut.travel.x() << ", "
                << cut.travel.y() << "), turn removed " << cut.turn_removed);
   CHECK(cut.cycles >= 1);
   CHECK(cut.cycles <= kLoopMaxCycles);
-  REQUIRE(r.world.rows() == cut.frames());
-  CHECK(r.source_a.size() == cut.frames());
-  CHECK(r.contacts.rows() == cut.frames());
+  REQUIRE(r.motion.world.rows() == cut.frames());
+  CHECK(r.sources.col(0).size() == cut.frames());
+  CHECK(r.motion.contacts.rows() == cut.frames());
   // Played on repeat, the next frame after the last is the first moved by the travel per loop.
-  const Eigen::Index last = r.world.rows() - 1, joints = r.world.cols() / 3;
+  const Eigen::Index last = r.motion.world.rows() - 1, joints = r.motion.world.cols() / 3;
   const Eigen::RowVector3d travel(cut.travel.x(), 0.0, cut.travel.y());
   double seam = 0.0;
   for (Eigen::Index j = 0; j < joints; ++j)
-    seam = std::max(seam, (r.world.block<1, 3>(0, 3 * j) + travel - r.world.block<1, 3>(last, 3 * j)).norm());
-  const double inside = joint_speeds(r.world).maxCoeff();
+    seam = std::max(seam, (r.motion.world.block<1, 3>(0, 3 * j) + travel - r.motion.world.block<1, 3>(last, 3 * j)).norm());
+  const double inside = joint_speeds(r.motion.world).maxCoeff();
   INFO("seam move " << seam << ", largest move inside " << inside);
   CHECK(seam <= kSeamRatio * inside);
   // The travel is a walk's: a good part of a body height per cycle.
@@ -251,12 +251,12 @@ TEST_CASE("alignment pipeline: with the residuals alpha 0 is A and one alpha per
   const PreparedTakes& p = *x.p;
   BlendParams exact;
   exact.foot_lock = false;  // the lock pins planted feet at their mean place, A's own included
-  const BlendResult r = blend_at(p, *x.d, 0.0, exact);
-  const double with_residual = mean_joint_distance(r.world, sample_rows(p.takes[0].world, r.source_a)) / x.height;
+  const MixResult r = blend_at(p, *x.d, 0.0, exact);
+  const double with_residual = mean_joint_distance(r.motion.world, sample_rows(p.takes[0].world, r.sources.col(0))) / x.height;
   BlendParams components = exact;
   components.residual = false;
-  const BlendResult c = blend_at(p, *x.d, 0.0, components);
-  const double components_only = mean_joint_distance(c.world, sample_rows(p.takes[0].world, c.source_a)) / x.height;
+  const MixResult c = blend_at(p, *x.d, 0.0, components);
+  const double components_only = mean_joint_distance(c.motion.world, sample_rows(p.takes[0].world, c.sources.col(0))) / x.height;
   INFO("alpha 0 against A: " << 100 * with_residual << "% of height with residuals, " << 100 * components_only
                              << "% from the components alone");
   // What is left is the sampling of A between its frames along the warp and back (0.1 s of
@@ -267,9 +267,9 @@ TEST_CASE("alignment pipeline: with the residuals alpha 0 is A and one alpha per
   for (double alpha : {0.0, 0.3, 1.0}) {
     BlendParams each = exact;
     each.component_alpha.assign(static_cast<size_t>(x.d->components()), alpha);
-    const BlendResult per = blend_at(p, *x.d, alpha, each), one = blend_at(p, *x.d, alpha, exact);
-    REQUIRE(per.world.rows() == one.world.rows());
-    CHECK((per.world - one.world).cwiseAbs().maxCoeff() < 1e-9 * x.height);
+    const MixResult per = blend_at(p, *x.d, alpha, each), one = blend_at(p, *x.d, alpha, exact);
+    REQUIRE(per.motion.world.rows() == one.motion.world.rows());
+    CHECK((per.motion.world - one.motion.world).cwiseAbs().maxCoeff() < 1e-9 * x.height);
   }
 }
 
@@ -291,7 +291,7 @@ TEST_CASE("alignment pipeline: no pops on the shared motions' hardest pairs, acr
     const double takes = std::max(percentile(joint_speeds(p->takes[0].world), kPopPercentile),
                                   percentile(joint_speeds(p->takes[1].world), kPopPercentile));
     for (double alpha : {0.0, 0.5, 1.0}) {
-      const double blend = percentile(joint_speeds(blend_at(*p, *d, alpha).world), kPopPercentile);
+      const double blend = percentile(joint_speeds(blend_at(*p, *d, alpha).motion.world), kPopPercentile);
       INFO(name_a << " + " << name_b << " at alpha " << alpha << ": " << blend / takes << "x the faster take");
       CHECK(blend <= kPopRatio * takes);
     }

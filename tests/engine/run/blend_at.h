@@ -1,15 +1,29 @@
 #pragma once
-// One blend with fresh scratch, for tests of the pipeline.
-#include "engine/run/pipeline.h"
+// One blend (the mix of two takes with weights (1 - alpha, alpha), blend_params.h) with fresh
+// scratch, for tests of the pipeline.
+#include "engine/run/blend_params.h"
+#include "engine/run/palette.h"
 
 namespace mostyle::test {
 
-inline BlendResult blend_at(const PreparedTakes& p, const Decomposed& d, double alpha, BlendParams params = {}) {
+inline MixResult blend_at(const PreparedTakes& p, const Decomposed& d, double alpha, BlendParams params = {}) {
   params.alpha = alpha;
-  BlendScratch scratch;
-  BlendResult out;
-  blend_pair(p, d, params, scratch, out);
+  MixScratch scratch;
+  MixResult out;
+  mix_palette(p, d, blend_mix_params(params, d), scratch, out);
   return out;
+}
+
+// A blend into `out` reusing `run` (what the editor does on each slider move): the blend's mix
+// parameters (set_blend_mix_params), then mix_palette.
+struct BlendRun {
+  MixParams params;
+  MixScratch scratch;
+};
+inline void blend_into(const PreparedTakes& p, const Decomposed& d, const BlendParams& blend, BlendRun& run,
+                       MixResult& out) {
+  set_blend_mix_params(blend, d, run.params);
+  mix_palette(p, d, run.params, run.scratch, out);
 }
 
 }  // namespace mostyle::test

@@ -91,10 +91,10 @@ TEST_CASE("palette: two takes with weights 1 - a, a are the pair's blend at alph
   const double height = guess_units(*clips[0]).height;
   for (double a : {0.0, 0.3, 0.5, 1.0, 1.2}) {
     const MixResult m = mix(*p, *d, {1.0 - a, a});
-    const BlendResult b = blend_at(*p, *pair_d, a);
-    REQUIRE(m.motion.world.rows() == b.world.rows());
-    CHECK(max_distance(m.motion.world, b.world, height) < kExact);
-    CHECK(max_distance(m.motion.world, b.world, height) < kSameAsBlend);
+    const MixResult b = blend_at(*p, *pair_d, a);
+    REQUIRE(m.motion.world.rows() == b.motion.world.rows());
+    CHECK(max_distance(m.motion.world, b.motion.world, height) < kExact);
+    CHECK(max_distance(m.motion.world, b.motion.world, height) < kSameAsBlend);
   }
 }
 
@@ -120,10 +120,10 @@ TEST_CASE("palette: four takes, weights checked, one-hot gives the take, equal w
       const MixResult m = mix(*p, *d, one_hot(4, i));
       const auto owned = pair_of(*p, i);
       const PreparedTakes& pair = *owned;
-      const BlendResult b = blend_at(pair, *decompose_takes(pair, params()), 1.0);
+      const MixResult b = blend_at(pair, *decompose_takes(pair, params()), 1.0);
       INFO("take " << i);
-      REQUIRE(m.motion.world.rows() == b.world.rows());
-      CHECK(max_distance(m.motion.world, b.world, height) < kOneHot);
+      REQUIRE(m.motion.world.rows() == b.motion.world.rows());
+      CHECK(max_distance(m.motion.world, b.motion.world, height) < kOneHot);
       // Before the clean-up, it is the take's own pose at the frames shown.
       CHECK((m.local - own_pose_at(p->takes[static_cast<size_t>(i)], m.sources.col(i))).cwiseAbs().maxCoeff() < kExact);
     }
@@ -206,9 +206,9 @@ TEST_CASE("palette: transfer identities") {
     CHECK((m.local - own_pose_at(p->takes[2], m.sources.col(2))).cwiseAbs().maxCoeff() < 0.01 * height);
     const auto owned = pair_of(*p, 2);
     const PreparedTakes& pair = *owned;
-    const BlendResult b = blend_at(pair, *decompose_takes(pair, params()), 1.0);
-    REQUIRE(m.motion.world.rows() == b.world.rows());
-    CHECK(max_distance(m.motion.world, b.world, height) < kOneHot);
+    const MixResult b = blend_at(pair, *decompose_takes(pair, params()), 1.0);
+    REQUIRE(m.motion.world.rows() == b.motion.world.rows());
+    CHECK(max_distance(m.motion.world, b.motion.world, height) < kOneHot);
   }
   CHECK(transfer_weights({0.5, 0.25}) == std::vector<double>{1.0, -0.75, 0.5, 0.25});
   CHECK_THROWS_AS(transfer_weights({}), InputError);
@@ -243,9 +243,9 @@ TEST_CASE("palette: components are connected body parts on each convention, and 
     const MixResult m = mix(*p, *d, one_hot(p->size(), last));
     const auto owned = pair_of(*p, last);
     const PreparedTakes& pair = *owned;
-    const BlendResult b = blend_at(pair, *decompose_takes(pair, params()), 1.0);
-    REQUIRE(m.motion.world.rows() == b.world.rows());
-    CHECK(max_distance(m.motion.world, b.world, guess_units(*clips[0]).height) < kOneHot);
+    const MixResult b = blend_at(pair, *decompose_takes(pair, params()), 1.0);
+    REQUIRE(m.motion.world.rows() == b.motion.world.rows());
+    CHECK(max_distance(m.motion.world, b.motion.world, guess_units(*clips[0]).height) < kOneHot);
   }
 }
 

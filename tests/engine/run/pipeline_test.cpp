@@ -1,4 +1,4 @@
-#include "engine/run/pipeline.h"
+#include "engine/run/blend_params.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -81,10 +81,10 @@ Eigen::MatrixXd reference_positions(const Clip& a, const PreparedTakes& p) {
   return out;
 }
 
-// The reference at the frames of A a blend shows (BlendResult::source_a): a blend plays only A's
+// The reference at the frames of A a blend shows (MixResult::source_a): a blend plays only A's
 // matched range, on its own timeline (align/timing.h).
-Eigen::MatrixXd reference_at(const Clip& a, const PreparedTakes& p, const BlendResult& r) {
-  return sample_rows(reference_positions(a, p), r.source_a);
+Eigen::MatrixXd reference_at(const Clip& a, const PreparedTakes& p, const MixResult& r) {
+  return sample_rows(reference_positions(a, p), r.sources.col(0));
 }
 
 double relative_bone_error(const PreparedTakes& p, const Eigen::MatrixXd& world) {
@@ -155,22 +155,22 @@ PairCheck check_pair(const std::shared_ptr<const Clip>& a, const std::shared_ptr
   const auto d = decompose_takes(*p, reproduction_params());
   const double height = guess_units(*a).height;
   PairCheck c;
-  std::vector<BlendResult> results;
+  std::vector<MixResult> results;
   BlendParams on_a;
   on_a.timing_a = true;
   for (double alpha : kAlphas) results.push_back(blend_at(*p, *d, alpha, on_a));
-  c.alpha0 = distance(results.front().world, reference_at(*a, *p, results.front()), height);
-  const Eigen::MatrixXd pose_b = canonical_pose(*p, results.back().world);
-  for (const BlendResult& r : results) {
-    c.world_to_b.push_back(distance(r.world, results.back().world, height).mean);
-    c.pose_to_b.push_back(distance(canonical_pose(*p, r.world), pose_b, height).mean);
-    c.bones = std::max(c.bones, relative_bone_error(*p, r.world));
+  c.alpha0 = distance(results.front().motion.world, reference_at(*a, *p, results.front()), height);
+  const Eigen::MatrixXd pose_b = canonical_pose(*p, results.back().motion.world);
+  for (const MixResult& r : results) {
+    c.world_to_b.push_back(distance(r.motion.world, results.back().motion.world, height).mean);
+    c.pose_to_b.push_back(distance(canonical_pose(*p, r.motion.world), pose_b, height).mean);
+    c.bones = std::max(c.bones, relative_bone_error(*p, r.motion.world));
   }
   if (paper) {
     DecomposeParams params = reproduction_params();
     params.mode = BlendMode::kPaper;
     const auto dp = decompose_takes(*p, params);
-    c.paper_finite = blend_at(*p, *dp, 0.5).world.allFinite() && blend_at(*p, *dp, 1.0).world.allFinite();
+    c.paper_finite = blend_at(*p, *dp, 0.5).motion.world.allFinite() && blend_at(*p, *dp, 1.0).motion.world.allFinite();
   }
   return c;
 }
@@ -214,13 +214,13 @@ void require_self_blend(const std::string& path) {
   const Eigen::MatrixXd reference = reference_positions(*clip, *p);
   CHECK((p->takes[0].world - reference).cwiseAbs().maxCoeff() == 0.0);  // the pipeline's own FK
   for (double alpha : {0.0, 0.5, 1.0}) {
-    const BlendResult r = blend_at(*p, *d, alpha);
-    CHECK(r.world.rows() == reference.rows());  // a take matches itself from end to end
-    const Distance e = distance(r.world, sample_rows(reference, r.source_a), height);
+    const MixResult r = blend_at(*p, *d, alpha);
+    CHECK(r.motion.world.rows() == reference.rows());  // a take matches itself from end to end
+    const Distance e = distance(r.motion.world, sample_rows(reference, r.sources.col(0)), height);
     INFO("alpha " << alpha << ": mean " << 100 * e.mean << "%, max " << 100 * e.max << "% of height " << height);
     CHECK(e.mean < kSelfBlendMean);
     CHECK(e.max < kGrossError);
-    CHECK(relative_bone_error(*p, r.world) < kBonesExact);
+    CHECK(relative_bone_error(*p, r.motion.world) < kBonesExact);
   }
 }
 
@@ -295,8 +295,8 @@ TEST_CASE("shared mode at alpha 1 is B, from A's start", "[pipeline]") {
   const double height = guess_units(*a).height;
   BlendParams no_lock;
   no_lock.foot_lock = false;  // compare the synthesis itself
-  const BlendResult r = blend_at(*p, *d, 1.0, no_lock);
-  const Distance e = distance(r.world, sample_rows(p->takes[1].world_placed, r.source_b), height);
+  const MixResult r = blend_at(*p, *d, 1.0, no_lock);
+  const Distance e = distance(r.motion.world, sample_rows(p->takes[1].world_placed, r.sources.col(1)), height);
   INFO("alpha 1: mean " << 100 * e.mean << "%, max " << 100 * e.max << "%");
   CHECK(e.mean < kAlphaZeroMean);
   CHECK(e.max < kGrossError);
@@ -378,8 +378,8 @@ TEST_CASE("a take turned around walks the other way and blends the same", "[pipe
     const Eigen::MatrixXd reference = reference_positions(*a, *p);
     const double height = guess_units(*a).height;
     for (double alpha : kAlphas) {
-      const BlendResult r = blend_at(*p, *d, alpha);
-      const Distance e = distance(r.world, sample_rows(reference, r.source_a), height);
+      const MixResult r = blend_at(*p, *d, alpha);
+      const Distance e = distance(r.motion.world, sample_rows(reference, r.sources.col(0)), height);
       INFO("alpha " << alpha << ": mean " << 100 * e.mean << "%, max " << 100 * e.max << "%");
       CHECK(e.mean < kSelfBlendMean);
     }
@@ -397,7 +397,7 @@ TEST_CASE("a take turned around walks the other way and blends the same", "[pipe
     // The result of the turned pair is the original pair's, turned around.
     const auto p = prepare_takes({a, joy}, {}), q = prepare_takes({turned, joy}, {});
     const auto dp = decompose_takes(*p, reproduction_params()), dq = decompose_takes(*q, reproduction_params());
-    const Eigen::MatrixXd r = blend_at(*p, *dp, 0.5).world, s = blend_at(*q, *dq, 0.5).world;
+    const Eigen::MatrixXd r = blend_at(*p, *dp, 0.5).motion.world, s = blend_at(*q, *dq, 0.5).motion.world;
     Eigen::MatrixXd s_back = s;
     for (Eigen::Index j = 0; j < s.cols(); j += 3) {
       s_back.col(j) = -s.col(j);
@@ -446,8 +446,8 @@ TEST_CASE("mapping overrides reach the pipeline", "[pipeline]") {
   CHECK(p->takes[0].names.front() == "Hips");
   CHECK(p->takes[1].names[p->feature_joints.left_ankle] == "LeftFoot");
   const auto d = decompose_takes(*p, reproduction_params());
-  const BlendResult r = blend_at(*p, *d, 0.0);
-  const Distance e = distance(r.world, reference_at(*a, *p, r), guess_units(*a).height);
+  const MixResult r = blend_at(*p, *d, 0.0);
+  const Distance e = distance(r.motion.world, reference_at(*a, *p, r), guess_units(*a).height);
   CHECK(e.mean < kAlphaZeroMean);
 }
 
@@ -495,12 +495,12 @@ TEST_CASE("pipeline errors are sentences, not crashes", "[pipeline]") {
     const auto decomposed = decompose_takes(*p, DecomposeParams());
     BlendParams bp;
     bp.alpha = std::nan("");
-    BlendScratch scratch;
-    BlendResult out;
-    CHECK_THROWS_AS(blend_pair(*p, *decomposed, bp, scratch, out), InputError);
+    test::BlendRun scratch;
+    MixResult out;
+    CHECK_THROWS_AS(test::blend_into(*p, *decomposed, bp, scratch, out), InputError);
     bp = BlendParams();
     bp.component_alpha = {0.5};
-    CHECK_THROWS_WITH(blend_pair(*p, *decomposed, bp, scratch, out), "expected 10 component alphas, found 1");
+    CHECK_THROWS_WITH(test::blend_into(*p, *decomposed, bp, scratch, out), "expected 10 component alphas, found 1");
   }
 }
 
@@ -512,32 +512,32 @@ TEST_CASE("per-component alphas, limb lengths off, the root pull off", "[pipelin
   SECTION("the same alpha for every component is the plain blend") {
     BlendParams each;
     each.component_alpha.assign(d->components(), 0.3);
-    CHECK((blend_at(*p, *d, 0.3, each).world - blend_at(*p, *d, 0.3).world).cwiseAbs().maxCoeff() < kSameTake);
+    CHECK((blend_at(*p, *d, 0.3, each).motion.world - blend_at(*p, *d, 0.3).motion.world).cwiseAbs().maxCoeff() < kSameTake);
   }
   SECTION("without the limb constraint the bones are not exact, and the error says so") {
     BlendParams loose;
     loose.limb_lengths = false;
     loose.foot_lock = false;
-    const BlendResult r = blend_at(*p, *d, 0.5, loose);
-    CHECK(relative_bone_error(*p, r.world) > 1e-4);
-    CHECK(r.limb_length_max_error == Approx(max_bone_length_error(r.world, p->parents, p->lengths)));
+    const MixResult r = blend_at(*p, *d, 0.5, loose);
+    CHECK(relative_bone_error(*p, r.motion.world) > 1e-4);
+    CHECK(r.motion.limb_length_max_error == Approx(max_bone_length_error(r.motion.world, p->parents, p->lengths)));
   }
   SECTION("no root pull: alpha 0 is still A") {
     BlendParams free;
     free.root_pull_seconds = 0;
-    const BlendResult r = blend_at(*p, *d, 0.0, free), pulled = blend_at(*p, *d, 0.0);
-    CHECK((r.world - pulled.world).cwiseAbs().maxCoeff() < 1e-6);
+    const MixResult r = blend_at(*p, *d, 0.0, free), pulled = blend_at(*p, *d, 0.0);
+    CHECK((r.motion.world - pulled.motion.world).cwiseAbs().maxCoeff() < 1e-6);
   }
   SECTION("repeated blends with one scratch give the same result") {
-    BlendScratch scratch;
-    BlendResult first, again;
+    test::BlendRun scratch;
+    MixResult first, again;
     BlendParams bp;
     bp.alpha = 0.7;
-    blend_pair(*p, *d, bp, scratch, first);
+    test::blend_into(*p, *d, bp, scratch, first);
     bp.alpha = 0.2;
-    blend_pair(*p, *d, bp, scratch, again);
+    test::blend_into(*p, *d, bp, scratch, again);
     bp.alpha = 0.7;
-    blend_pair(*p, *d, bp, scratch, again);
-    CHECK(again.world == first.world);
+    test::blend_into(*p, *d, bp, scratch, again);
+    CHECK(again.motion.world == first.motion.world);
   }
 }

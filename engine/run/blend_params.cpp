@@ -1,4 +1,4 @@
-#include "engine/run/pipeline.h"
+#include "engine/run/blend_params.h"
 
 #include <cmath>
 #include <limits>
@@ -8,10 +8,8 @@
 
 namespace mostyle {
 
-namespace {
-
-// Into `mix` (its vectors reused, so a slider move allocates nothing once they are sized).
 void set_blend_mix_params(const BlendParams& params, const Decomposed& d, MixParams& mix) {
+  if (!std::isfinite(params.alpha)) throw InputError("expected a finite alpha");
   const double alpha = params.alpha;
   mix.weights.assign({1.0 - alpha, alpha});
   if (d.shared() != nullptr && !params.component_alpha.empty()) {
@@ -40,41 +38,10 @@ void set_blend_mix_params(const BlendParams& params, const Decomposed& d, MixPar
   mix.finish.loop = params.loop;
 }
 
-}  // namespace
-
 MixParams blend_mix_params(const BlendParams& params, const Decomposed& d) {
-  if (!std::isfinite(params.alpha)) throw InputError("expected a finite alpha");
   MixParams mix;
   set_blend_mix_params(params, d, mix);
   return mix;
-}
-
-void blend_pair(const PreparedTakes& p, const Decomposed& d, const BlendParams& params, BlendScratch& s,
-                BlendResult& out) {
-  if (p.size() != 2)
-    throw InputError("a blend of two takes was asked of " + std::to_string(p.size()) +
-                     " takes; mix them with weights (mix)");
-  if (!std::isfinite(params.alpha)) throw InputError("expected a finite alpha");
-  MixParams& mix = s.mix_params;
-  set_blend_mix_params(params, d, mix);
-  mix_palette(p, d, mix, s.mix_scratch, s.mix);
-  FinishedMotion& m = s.mix.motion;
-  out.world.swap(m.world);
-  out.contacts.swap(m.contacts);
-  out.loop = m.loop;
-  out.limb_length_max_error = m.limb_length_max_error;
-  out.foot_sliding_raw = m.foot_sliding_raw;
-  out.foot_sliding_cleaned = m.foot_sliding_cleaned;
-  out.local.swap(s.mix.local);
-  out.sample.swap(s.mix.sample);
-  out.source_a = s.mix.sources.col(0);
-  out.source_b = s.mix.sources.col(1);
-  out.synthesize_ms = s.mix.synthesize_ms;
-  out.postprocess_ms = s.mix.postprocess_ms;
-}
-
-Eigen::VectorXd source_frames_in_clip(const PreparedTakes& p, const BlendResult& blend) {
-  return blend.source_a * (p.reference().clip->fps() / p.fps);
 }
 
 }  // namespace mostyle
