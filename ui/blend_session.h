@@ -36,7 +36,7 @@ struct PaletteControls {
 };
 
 // What the parameter panels edit beyond EditorState::parameters (alpha, k, sparsity). Undo
-// compares them field by field (ui/document.cpp): a new field goes into its operator== too.
+// compares them field by field (ui/document_fields.h): a new field goes into that list too.
 struct SessionControls {
   BlendMode mode = BlendMode::kShared;
   bool per_component = false;            // shared mode: one alpha per component

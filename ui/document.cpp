@@ -1,7 +1,10 @@
 #include "ui/document.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <system_error>
+
+#include "ui/document_fields.h"
 
 namespace mostyle::ui {
 namespace {
@@ -14,27 +17,37 @@ std::string normal_absolute(const std::string& path) {
 
 }  // namespace
 
-bool operator==(const BlendParameters& x, const BlendParameters& y) {
-  return x.alpha == y.alpha && x.components == y.components && x.sparsity == y.sparsity;
+Stale stale_after(const Document& before, const Document& after) {
+  Stale stale = Stale::kNothing;
+  document_fields(before, after, [&](const char*, const auto& x, const auto& y, Stale what) {
+    if (!(x == y)) stale = std::max(stale, what);
+  });
+  return stale;
 }
 
-bool operator==(const PaletteControls& x, const PaletteControls& y) {
-  return x.weights == y.weights && x.per_part == y.per_part && x.part_weights == y.part_weights &&
-         x.transfer == y.transfer && x.content == y.content && x.neutral == y.neutral && x.strengths == y.strengths &&
-         x.ghosts == y.ghosts;
+// Equality from the one list of fields (ui/document_fields.h); a part compares as two documents
+// that differ only there.
+bool operator==(const Document& x, const Document& y) { return stale_after(x, y) == Stale::kNothing; }
+
+bool operator==(const BlendParameters& x, const BlendParameters& y) {
+  Document a, b;
+  a.parameters = x;
+  b.parameters = y;
+  return a == b;
 }
 
 bool operator==(const SessionControls& x, const SessionControls& y) {
-  return x.mode == y.mode && x.per_component == y.per_component && x.component_alpha == y.component_alpha &&
-         x.basic_motions == y.basic_motions && x.basic_sparsities == y.basic_sparsities &&
-         x.swap_level == y.swap_level && x.foot_lock == y.foot_lock && x.align == y.align &&
-         x.timing_a == y.timing_a && x.loop == y.loop && x.residual == y.residual &&
-         x.selected_component == y.selected_component && x.dtw_coordinate == y.dtw_coordinate &&
-         x.palette == y.palette;
+  Document a, b;
+  a.controls = x;
+  b.controls = y;
+  return a == b;
 }
 
-bool operator==(const Document& x, const Document& y) {
-  return x.parameters == y.parameters && x.controls == y.controls && x.files == y.files && x.overlay == y.overlay;
+bool operator==(const PaletteControls& x, const PaletteControls& y) {
+  Document a, b;
+  a.controls.palette = x;
+  b.controls.palette = y;
+  return a == b;
 }
 
 SessionControls document_controls(SessionControls controls) {
@@ -71,9 +84,11 @@ PaletteControls reorder_takes(const PaletteControls& c, const std::vector<int>& 
 }
 
 bool decomposition_differs(const Document& x, const Document& y) {
-  return x.parameters.components != y.parameters.components || x.parameters.sparsity != y.parameters.sparsity ||
-         x.controls.mode != y.controls.mode || x.controls.basic_motions != y.controls.basic_motions ||
-         x.controls.basic_sparsities != y.controls.basic_sparsities;
+  bool differs = false;
+  document_fields(x, y, [&](const char*, const auto& a, const auto& b, Stale what) {
+    differs = differs || (what == Stale::kDecomposition && !(a == b));
+  });
+  return differs;
 }
 
 }  // namespace mostyle::ui

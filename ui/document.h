@@ -26,8 +26,8 @@ struct Document {
   bool overlay = false;              // ViewOptions::overlay: the takes on one spot, not side by side
 };
 
-// Field by field. C++17 has no defaulted comparisons: a field added to one of these structs goes
-// into its operator== in ui/document.cpp too, or undo does not see it change.
+// Field by field, from the one list of a Document's fields (ui/document_fields.h): a field added
+// to one of these structs goes into that list, or undo does not see it change.
 bool operator==(const BlendParameters& x, const BlendParameters& y);
 bool operator==(const PaletteControls& x, const PaletteControls& y);
 bool operator==(const SessionControls& x, const SessionControls& y);
@@ -51,8 +51,9 @@ bool same_files(const std::vector<std::string>& x, const std::vector<std::string
 // another length (not yet sized for these takes) is left as it is.
 PaletteControls reorder_takes(const PaletteControls& c, const std::vector<int>& order);
 
-// Whether going from `x` to `y` needs a new decomposition: k, sparsity, the mode, the basic
-// motions or their sparsities differ.
+// Whether going from `x` to `y` needs a new decomposition: a field whose change makes the
+// decomposition stale differs (k, sparsity, the mode, the basic motions or their sparsities;
+// ui/document_fields.h).
 bool decomposition_differs(const Document& x, const Document& y);
 
 }  // namespace mostyle::ui
