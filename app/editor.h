@@ -6,8 +6,8 @@
 // The platform (app/window_platform.cpp, app/offscreen_platform.cpp) creates the GL context
 // and the ImGui context, feeds ImGui its display size and input, then calls frame() in a loop.
 //
-// To add a panel: write a ui::Panel in ui/, give it a PanelId and a rectangle in ui/layout.h
-// (clear of the centre: tests/ui/layout_test.cpp), then add_panel() it in Editor::Editor() (or
+// To add a panel: write a ui::Panel in ui/, give it a PanelId and a rectangle in ui/panels/layout.h
+// (clear of the centre: tests/ui/panels/layout_test.cpp), then add_panel() it in Editor::Editor() (or
 // from the platform). Panels see and change the EditorState; the viewport follows it every frame.
 #include <chrono>
 #include <functional>
@@ -23,12 +23,12 @@
 #include "render/gpu_timer.h"
 #include "render/render_target.h"
 #include "render/scene_renderer.h"
-#include "ui/blend_session.h"
-#include "ui/edit_history.h"
-#include "ui/editor_state.h"
-#include "ui/panel.h"
-#include "ui/recent_files.h"
-#include "ui/session_file.h"
+#include "ui/model/blend_session.h"
+#include "ui/model/edit_history.h"
+#include "ui/model/editor_state.h"
+#include "ui/panels/panel.h"
+#include "ui/model/recent_files.h"
+#include "ui/model/session_file.h"
 
 namespace mostyle::ui {
 class FilesPanel;
@@ -74,7 +74,7 @@ class Editor {
   // One frame: ImGui::NewFrame, keys, panels, the keys window, camera input, ImGui::Render,
   // viewport, ImGui draw data. Draws into framebuffer 0 at input.framebuffer_size. The platform
   // has already set ImGui's display size and input (its own NewFrame). The panels are laid out
-  // again (ui/layout.h) on the first frame, whenever the display size changes, and on Reset
+  // again (ui/panels/layout.h) on the first frame, whenever the display size changes, and on Reset
   // layout. Keys (editor_keys()) count only when ImGui does not want the keyboard.
   void frame(const FrameInput& input);
 
@@ -109,13 +109,13 @@ class Editor {
   bool animating() const;
 
   // Undo and redo (Ctrl+Z; Ctrl+Shift+Z or Ctrl+Y) of every parameter, weight, mode, option and
-  // load (ui/edit_history.h: a slider drag is one step). false: nothing to undo (redo). A load
+  // load (ui/model/edit_history.h: a slider drag is one step). false: nothing to undo (redo). A load
   // undone or redone arrives from the worker later, as any load does.
   bool undo();
   bool redo();
   const ui::EditHistory& edits() const { return edits_; }
 
-  // Sessions (.mostyle, ui/session_file.h). save_session writes the takes, every parameter, the
+  // Sessions (.mostyle, ui/model/session_file.h). save_session writes the takes, every parameter, the
   // camera and the playback to `path` (atomically; ".mostyle" added to a name without an
   // extension) and makes it the file Ctrl+S saves to. open_session reads one and applies it: its
   // takes load on the worker, and the playback and the camera are restored once they are in.

@@ -10,7 +10,7 @@
 #include "engine/io/error.h"
 #include "engine/io/numbers.h"
 #include "engine/run/palette.h"
-#include "ui/session_file.h"
+#include "ui/model/session_file.h"
 
 namespace mostyle::app {
 namespace {

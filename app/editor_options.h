@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "engine/io/memory_limit.h"
-#include "ui/editor_state.h"
+#include "ui/model/editor_state.h"
 
 namespace mostyle::app {
 
@@ -25,7 +25,7 @@ constexpr int kMaxWindowSide = 16384;
 struct EditorOptions {
   std::vector<std::string> files;   // empty: the bundled example pair (or the session's takes)
   std::string session_path;         // a session to open (the one argument, ending in .mostyle)
-  // Where the recent takes and sessions are kept across restarts (ui/recent_files.h); empty: not
+  // Where the recent takes and sessions are kept across restarts (ui/model/recent_files.h); empty: not
   // kept. Not a flag: the window program sets it, tests and screenshots leave it empty.
   std::string recent_path;
   std::string screenshot_path;      // non-empty: render a few frames, write this PNG, exit

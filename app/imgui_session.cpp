@@ -6,7 +6,7 @@
 
 #include <imgui.h>
 
-#include "ui/theme.h"
+#include "ui/panels/theme.h"
 
 namespace mostyle::app {
 namespace {

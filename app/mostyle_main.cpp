@@ -13,7 +13,7 @@
 
 #include "app/editor_options.h"
 #include "app/window_platform.h"
-#include "ui/recent_files.h"
+#include "ui/model/recent_files.h"
 
 namespace {
 

@@ -27,8 +27,8 @@
 
 #include "render/png_io.h"
 #include "tests/test_data.h"
-#include "ui/export_dialog.h"
-#include "ui/layout.h"
+#include "ui/panels/export_dialog.h"
+#include "ui/panels/layout.h"
 
 using namespace mostyle::app;
 namespace fs = std::filesystem;

@@ -13,7 +13,7 @@
 #include "engine/io/gltf_io.h"
 #include "engine/io/scene_animation.h"
 #include "engine/prepare/major_skeleton.h"
-#include "ui/session_file.h"
+#include "ui/model/session_file.h"
 
 namespace mostyle::fuzz {
 namespace {

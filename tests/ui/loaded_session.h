@@ -5,14 +5,14 @@
 #include <vector>
 
 #include "tests/test_data.h"
-#include "ui/blend_session.h"
-#include "ui/components_panel.h"
-#include "ui/dtw_panel.h"
-#include "ui/files_panel.h"
-#include "ui/metrics_panel.h"
-#include "ui/parameters_panel.h"
-#include "ui/playback_panel.h"
-#include "ui/takes_panel.h"
+#include "ui/model/blend_session.h"
+#include "ui/panels/components_panel.h"
+#include "ui/panels/dtw_panel.h"
+#include "ui/panels/files_panel.h"
+#include "ui/panels/metrics_panel.h"
+#include "ui/panels/parameters_panel.h"
+#include "ui/panels/playback_panel.h"
+#include "ui/panels/takes_panel.h"
 
 namespace mostyle::test {
 

@@ -1,0 +1,176 @@
+// Undo and redo over a loaded session (ui/model/edit_history.h), with the panels drawn as ImGui frames
+// with no window: alpha changed in a few steps and a drag, undone back and redone forward; a load
+// undone and redone through the worker; a new decomposition resizing the per-component alphas
+// makes no step; an opened session whose take is missing keeps the takes and names the file.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "tests/test_data.h"
+#include "tests/ui/imgui_frame.h"
+#include "tests/ui/loaded_session.h"
+#include "ui/model/edit_history.h"
+#include "ui/model/session_file.h"
+
+using namespace mostyle;
+using namespace mostyle::ui;
+using test::all_panels;
+using test::LoadedSession;
+
+namespace {
+
+// Alpha changes the blend's timing too, so its length: sizes first.
+bool same_poses(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  return a.rows() == b.rows() && a.cols() == b.cols() && a == b;
+}
+
+}  // namespace
+
+TEST_CASE("undo and redo: alpha in a few steps and a drag, back to the start and forward again") {
+  LoadedSession s;
+  test::HeadlessImGui imgui;
+  auto panels = all_panels(s.session);
+  EditHistory edits;
+  // One editor frame: the panels, then the step recorded (held: an item is being dragged).
+  auto frame = [&](bool held) {
+    imgui.begin_frame();
+    s.session.poll(s.state);
+    for (auto& panel : panels) panel->draw(s.state);
+    edits.record(s.state, s.session, held || ImGui::IsAnyItemActive());
+    s.session.update_blend(s.state);
+    imgui.end_frame();
+  };
+  const double start = s.state.parameters.alpha;
+  frame(false);  // the starting state
+  for (int i = 0; i < 5; ++i) frame(false);
+  CHECK(edits.history().undo_steps() == 0);  // frames with no input make no step
+  CHECK_FALSE(edits.can_undo());
+
+  // Three clicks, each a press (held for a frame) and a release that sets alpha.
+  const std::vector<double> steps = {0.2, 0.4, 0.6};
+  for (double a : steps) {
+    frame(true);
+    s.state.parameters.alpha = a;
+    frame(false);
+  }
+  // A drag through many values, let go at 0.9: one step.
+  for (double a = 0.61; a < 0.9; a += 0.05) {
+    s.state.parameters.alpha = a;
+    frame(true);
+  }
+  s.state.parameters.alpha = 0.9;
+  frame(false);
+  CHECK(edits.history().undo_steps() == 4);
+  const Eigen::MatrixXd blend_at_end = s.state.takes[kTakeBlend].positions;
+
+  // Back: each undo puts the previous alpha back, and the blend follows in the same frame.
+  for (double expected : {0.6, 0.4, 0.2, start}) {
+    REQUIRE(edits.undo(s.state, s.session));
+    frame(false);
+    CHECK(s.state.parameters.alpha == expected);
+  }
+  CHECK_FALSE(edits.undo(s.state, s.session));
+  CHECK_FALSE(same_poses(s.state.takes[kTakeBlend].positions, blend_at_end));
+  // Forward again, to the end of the drag.
+  for (double expected : {0.2, 0.4, 0.6, 0.9}) {
+    REQUIRE(edits.redo(s.state, s.session));
+    frame(false);
+    CHECK(s.state.parameters.alpha == expected);
+  }
+  CHECK_FALSE(edits.redo(s.state, s.session));
+  CHECK(same_poses(s.state.takes[kTakeBlend].positions, blend_at_end));
+
+  // Undo twice, then a new change: what could be redone is gone.
+  edits.undo(s.state, s.session);
+  edits.undo(s.state, s.session);
+  frame(true);
+  s.session.controls().foot_lock = false;
+  frame(false);
+  CHECK_FALSE(edits.can_redo());
+  REQUIRE(edits.undo(s.state, s.session));
+  CHECK(s.session.controls().foot_lock);
+  CHECK(s.state.parameters.alpha == 0.4);
+}
+
+TEST_CASE("undo and redo a load: the takes come back through the worker, and no extra step") {
+  LoadedSession s;
+  EditHistory edits;
+  const std::string happy = test::asset("motions/cmu142_walk_happy.bvh");
+  const std::string marching = test::asset("motions/cmu142_walk_marching.bvh");
+  const std::string joy = test::asset("motions/cmu142_walk_joy.bvh");
+  edits.record(s.state, s.session, false);
+  s.session.load(joy, marching);
+  CHECK(load_pending(s.session));
+  edits.record(s.state, s.session, true);  // the Load button, pressed and let go while it loads
+  edits.record(s.state, s.session, false);
+  CHECK(edits.history().undo_steps() == 0);  // not while the load is on its way
+  s.session.wait_idle(s.state);
+  CHECK_FALSE(load_pending(s.session));
+  edits.record(s.state, s.session, false);
+  CHECK(edits.history().undo_steps() == 1);
+  CHECK(edits.history().current()->files == std::vector<std::string>{joy, marching});
+
+  REQUIRE(edits.undo(s.state, s.session));
+  CHECK(s.session.requested_a() == happy);
+  edits.record(s.state, s.session, false);  // on its way: nothing recorded
+  s.session.wait_idle(s.state);
+  CHECK(s.session.error().empty());
+  CHECK(s.session.snapshot().paths[0] == happy);
+  edits.record(s.state, s.session, false);
+  CHECK(edits.history().undo_steps() == 0);
+  CHECK(edits.history().redo_steps() == 1);
+  REQUIRE(edits.redo(s.state, s.session));
+  s.session.wait_idle(s.state);
+  CHECK(s.session.snapshot().paths[0] == joy);
+  edits.record(s.state, s.session, false);
+  CHECK(edits.history().undo_steps() == 1);
+  CHECK_FALSE(edits.can_redo());
+}
+
+TEST_CASE("undo and redo k: a new decomposition resizing the per-component alphas makes no step") {
+  LoadedSession s;
+  EditHistory edits;
+  edits.record(s.state, s.session, false);
+  const int k = s.state.parameters.components;
+  REQUIRE(s.session.controls().component_alpha.size() == static_cast<size_t>(k));
+  s.state.parameters.components = k - 2;  // the k slider, let go
+  edits.record(s.state, s.session, true);
+  edits.record(s.state, s.session, false);
+  s.session.request_decomposition(s.state);
+  s.session.wait_idle(s.state);
+  CHECK(s.session.controls().component_alpha.size() == static_cast<size_t>(k - 2));
+  edits.record(s.state, s.session, false);
+  CHECK(edits.history().undo_steps() == 1);
+  REQUIRE(edits.undo(s.state, s.session));
+  CHECK(s.state.parameters.components == k);
+  CHECK(s.session.decomposition_outdated());  // asked for again
+  s.session.wait_idle(s.state);
+  CHECK(s.session.snapshot().decompose_params.components == k);
+  edits.record(s.state, s.session, false);
+  CHECK(edits.can_redo());
+}
+
+TEST_CASE("an opened session whose take is missing keeps the takes, restores the rest, names the file") {
+  LoadedSession s;
+  const std::vector<std::string> before = capture_document(s.state, s.session).files;
+  Document d = capture_document(s.state, s.session);
+  d.parameters.alpha = 0.85;
+  d.controls.timing_a = true;
+  d.overlay = true;
+  d.files = {test::asset("motions/cmu142_walk_happy.bvh"), "/nonexistent/folder/walk_gone.bvh"};
+  const std::string message = apply_session_document(d, "/sessions/day.mostyle", s.state, s.session);
+  CHECK_THAT(message, Catch::StartsWith("/sessions/day.mostyle: ") && Catch::Contains("/nonexistent/folder/walk_gone.bvh"));
+  CHECK_FALSE(load_pending(s.session));
+  CHECK(s.state.parameters.alpha == 0.85);
+  CHECK(s.session.controls().timing_a);
+  CHECK(s.state.view.overlay);
+  s.session.wait_idle(s.state);
+  CHECK(capture_document(s.state, s.session).files == before);
+  // Every take there: applied as it is, the takes loaded.
+  d.files = {test::asset("motions/cmu142_walk_joy.bvh"), test::asset("motions/cmu142_walk_marching.bvh")};
+  CHECK(apply_session_document(d, "/sessions/day.mostyle", s.state, s.session).empty());
+  s.session.wait_idle(s.state);
+  CHECK(capture_document(s.state, s.session) == d);
+}

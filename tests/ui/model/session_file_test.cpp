@@ -1,0 +1,253 @@
+// Session files (ui/model/session_file.h): a round trip keeps every field, takes are written relative
+// to the session and read back against its folder, bad files are refused with one line naming
+// the file and the line, a missing take is reported while the rest reads. And the recent files
+// (ui/model/recent_files.h), which never stop the editor from starting.
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "engine/io/error.h"
+#include "tests/test_data.h"
+#include "ui/model/recent_files.h"
+#include "ui/model/session_file.h"
+
+using namespace mostyle;
+using namespace mostyle::ui;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A session with every field away from its default.
+SessionFile full_session() {
+  SessionFile s;
+  Document& d = s.document;
+  d.parameters = {0.35, 7, 0.25};
+  SessionControls& c = d.controls;
+  c.mode = BlendMode::kPaper;
+  c.per_component = true;
+  c.component_alpha = {0.0, 0.125, 1.0, 0.3333333333333333};
+  c.basic_motions = 3;
+  c.basic_sparsities = {0.5, 0.2, 0.05};
+  c.swap_level = 2;
+  c.foot_lock = false;
+  c.align.method = DtwMethod::kPaper;
+  c.align.on = AlignOn::kHands;
+  c.align.band = 12;
+  c.align.slope.max_slope = 3;
+  c.align.slope.open_ends = false;
+  c.align.slope.end_penalty = 0.75;
+  c.align.smoothing_frames = 4.5;
+  c.timing_a = true;
+  c.loop = true;
+  c.residual = false;
+  // The ends of the sliders' ranges, as a float slider leaves them (1.3f is 1.2999999523...).
+  c.palette.weights = {static_cast<double>(1.3f), -0.5, 1.0 - static_cast<double>(1.3f) + 0.5};
+  c.palette.per_part = true;
+  c.palette.part_weights = {{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.2, 0.2, 0.6}};
+  c.palette.transfer = true;
+  c.palette.content = 2;
+  c.palette.neutral = 0;
+  c.palette.strengths = {0.0, -1.0, 2.0};
+  c.palette.ghosts = true;
+  d.files = {"/data/day1/takes/walk_happy.bvh", "/data/shared/walk_marching.bvh"};
+  d.overlay = true;
+  SessionCamera camera;
+  camera.target = {1.5f, 9.25f, -3.0f};
+  camera.yaw = 0.65f;
+  camera.pitch = 0.22f;
+  camera.distance = 81.5f;
+  camera.fov_y = 0.7f;
+  s.camera = camera;
+  s.playback.time_s = 1.2345;
+  s.playback.playing = false;
+  s.playback.speed = 0.5f;
+  s.playback.loop = false;
+  return s;
+}
+
+// The message parse_session throws, or "" when it reads.
+std::string refusal(const std::string& text) {
+  try {
+    parse_session(text, "bad.mostyle");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string temp_folder(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir.string();
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+}  // namespace
+
+TEST_CASE("session files: format then parse gives the same session") {
+  const SessionFile s = full_session();
+  const std::string text = format_session(s, "/data/day1/monday.mostyle");
+  // Takes relative to the session's folder; nothing of the folder itself in the file.
+  CHECK_THAT(text, Catch::Contains("\"takes/walk_happy.bvh\"") && Catch::Contains("\"../shared/walk_marching.bvh\""));
+  CHECK_THAT(text, !Catch::Contains("/data/day1"));
+  CHECK(text.back() == '\n');
+  const SessionFile back = parse_session(text, "/data/day1/monday.mostyle");
+  CHECK(back.document == s.document);
+  CHECK(back.document.controls.palette == s.document.controls.palette);
+  REQUIRE(back.camera.has_value());
+  CHECK(*back.camera == *s.camera);
+  CHECK(back.playback.time_s == s.playback.time_s);
+  CHECK(back.playback.playing == s.playback.playing);
+  CHECK(back.playback.speed == s.playback.speed);
+  CHECK(back.playback.loop == s.playback.loop);
+  // Defaults too, and no camera stays no camera.
+  const SessionFile plain;
+  const SessionFile plain_back = parse_session(format_session(plain, "/x/s.mostyle"), "/x/s.mostyle");
+  CHECK(plain_back.document == plain.document);
+  CHECK_FALSE(plain_back.camera.has_value());
+}
+
+TEST_CASE("session files: takes resolve against the session's folder, wherever it moved") {
+  const std::string text = R"({"version": 1, "takes": ["a.bvh", "sub/../b.bvh", "../c.bvh", "/abs/d.bvh"]})";
+  const SessionFile s = parse_session(text, "/moved/here/s.mostyle");
+  CHECK(s.document.files ==
+        std::vector<std::string>{"/moved/here/a.bvh", "/moved/here/b.bvh", "/moved/c.bvh", "/abs/d.bvh"});
+  // A session named without a folder: its takes are where it is.
+  CHECK(parse_session(text, "s.mostyle").document.files[0] == "a.bvh");
+  // Only "version" is needed; everything else keeps its default.
+  const SessionFile minimal = parse_session("{\"version\": 1}", "m.mostyle");
+  CHECK(minimal.document == Document());
+  CHECK_FALSE(minimal.camera.has_value());
+  CHECK(is_session_path("a/day.mostyle"));
+  CHECK(is_session_path("DAY.MOSTYLE"));
+  CHECK_FALSE(is_session_path("walk.bvh"));
+  CHECK_FALSE(is_session_path("mostyle"));
+}
+
+TEST_CASE("session files: a bad file is refused with one line naming the file and the line") {
+  struct Case {
+    std::string text;
+    int line;
+    const char* says;
+  };
+  const std::vector<Case> cases = {
+      {"", 1, "not valid JSON"},
+      {"not json at all", 1, "not valid JSON"},
+      {"{\n  \"version\": 1,\n  \"parameters\": {\"alpha\": }\n}", 3, "not valid JSON"},
+      {"[1, 2]", 1, "expected a mostyle session"},
+      {"{\n  \"takes\": []\n}", 1, "no \"version\""},
+      {"{\n  \"version\": \"1\"\n}", 2, "version: expected a whole number"},
+      {"{\n  \"version\": 2\n}", 2, "version 2 is not one this mostyle reads"},
+      {"{\n  \"version\": 1,\n  \"parameters\": {\n    \"alpha\": \"half\"\n  }\n}", 4,
+       "parameters.alpha: expected a number from 0 to 1, found the string 'half'"},
+      {"{\"version\": 1,\n\"parameters\": {\"alpha\": 1.5}}", 2, "parameters.alpha: expected a number from 0 to 1, found 1.5"},
+      {"{\"version\": 1,\n\"parameters\": {\n\"components\": 2.5}}", 3, "parameters.components: expected a whole number"},
+      {"{\"version\": 1,\n\"parameters\": {\n\"sparsity\": 0}}", 3, "parameters.sparsity: expected a number above 0"},
+      {"{\"version\": 1,\n\"parameters\": {\n\n\"alpah\": 0.5}}", 4, "unknown key 'alpah' in parameters"},
+      {"{\"version\": 1,\n\"extra\": true}", 2, "unknown key 'extra'"},
+      {"{\"version\": 1,\n\"takes\": \"a.bvh\"}", 2, "takes: expected an array"},
+      {"{\"version\": 1,\n\"takes\": [\n\"a.bvh\",\n7]}", 4, "takes[1]: expected a string, found 7"},
+      {"{\"version\": 1,\n\"takes\": [\"\"]}", 2, "takes[0]: an empty file name"},
+      {"{\"version\": 1,\n\"controls\": {\"align\": {\n\"on\": \"elbow\"}}}", 3, "controls.align.on: expected an alignment feature auto, left-foot"},
+      {"{\"version\": 1,\n\"controls\": {\"mode\": \"fast\"}}", 2, "controls.mode: expected \"shared\" or \"paper\""},
+      {"{\"version\": 1,\n\"controls\": {\"component_alpha\": [0.5,\n-1]}}", 3, "controls.component_alpha[1]"},
+      {"{\"version\": 1,\n\"controls\": {\"basic_motions\": 2, \"swap_level\": 2}}", 2, "controls.swap_level"},
+      {"{\"version\": 1,\n\"camera\": {\n\"target\": [1, 2]}}", 3, "camera.target: expected an array of 3 numbers"},
+      {"{\"version\": 1,\n\"camera\": {\"distance\": 0}}", 2, "camera.distance"},
+      {"{\"version\": 1,\n\"playback\": {\"playing\": \"yes\"}}", 2, "playback.playing: expected true or false"},
+      {"{\"version\": 1,\n\"playback\": {\n\"time_s\": 1e400}}", 3, "a number too large"},
+      {"{\"version\": 1,\n\"view\": []}", 2, "view: expected an object"},
+      // Beyond what the palette's sliders allow (-0.5 to 1.5; strengths -1 to 2).
+      {"{\"version\": 1,\n\"controls\": {\"palette\": {\n\"weights\": [1.6, -0.6]}}}", 3,
+       "controls.palette.weights[0]: expected a number from -0.5 to 1.5, found 1.6"},
+      {"{\"version\": 1,\n\"controls\": {\"palette\": {\"strengths\": [\n0, 2.5]}}}", 3,
+       "controls.palette.strengths[1]"},
+  };
+  for (const Case& c : cases) {
+    INFO(c.text);
+    const std::string message = refusal(c.text);
+    CHECK_THAT(message, Catch::StartsWith("bad.mostyle:" + std::to_string(c.line) + ": "));
+    CHECK_THAT(message, Catch::Contains(c.says));
+    CHECK(message.find('\n') == std::string::npos);
+  }
+}
+
+TEST_CASE("session files: a missing take is reported, and the rest of the session reads") {
+  const std::string dir = temp_folder("mostyle_session_test_missing");
+  const std::string path = dir + "/day.mostyle";
+  SessionFile s = full_session();
+  s.document.files = {test::asset("motions/cmu142_walk_happy.bvh"), dir + "/gone.bvh"};
+  write_session_file(path, s);
+  const SessionFile back = read_session_file(path);
+  CHECK(back.document == s.document);  // every parameter, the takes as they were named
+  CHECK(*back.camera == *s.camera);
+  const std::vector<std::string> missing = missing_takes(back.document);
+  CHECK(missing == std::vector<std::string>{dir + "/gone.bvh"});
+  const std::string message = missing_takes_message(path, missing);
+  CHECK_THAT(message, Catch::StartsWith(path + ": cannot find the take ") && Catch::Contains("gone.bvh"));
+  CHECK(missing_takes_message(path, {}).empty());
+  // Writes are atomic: a failed one leaves the file as it was.
+  CHECK_THROWS_AS(write_session_file(dir + "/no/such/folder/day.mostyle", s), InputError);
+  CHECK(read_session_file(path).document == s.document);
+  CHECK_THROWS_WITH(read_session_file(dir + "/none.mostyle"), Catch::Contains("none.mostyle"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("recent files: newest first, capped, and a broken file reads as empty") {
+  std::vector<std::string> list;
+  for (int i = 0; i < 12; ++i) remember(list, "/t/" + std::to_string(i) + ".bvh", kRecentTakes);
+  CHECK(list.size() == kRecentTakes);
+  CHECK(list.front() == "/t/11.bvh");
+  remember(list, "/t/8.bvh", kRecentTakes);
+  CHECK(list.front() == "/t/8.bvh");
+  CHECK(list.size() == kRecentTakes);
+  remember(list, "", kRecentTakes);
+  CHECK(list.front() == "/t/8.bvh");
+
+  RecentFiles r;
+  r.takes = {"/t/a.bvh", "/t/b.bvh"};
+  r.sessions = {"/s/day.mostyle"};
+  const RecentFiles back = parse_recent_files(format_recent_files(r));
+  CHECK(back.takes == r.takes);
+  CHECK(back.sessions == r.sessions);
+  for (const char* broken : {"", "{", "[]", "{\"takes\": 3}", "{\"takes\": [1, \"\", \"/t/a.bvh\"]}", "1e400"}) {
+    INFO(broken);
+    const RecentFiles b = parse_recent_files(broken);
+    CHECK(b.sessions.empty());
+    CHECK(b.takes.size() <= 1);
+  }
+
+  const std::string dir = temp_folder("mostyle_recent_test");
+  const std::string path = dir + "/config/mostyle/recent.json";
+  CHECK(read_recent_files(path).takes.empty());  // not there yet
+  write_recent_files(path, r);                   // makes its folder
+  CHECK(read_recent_files(path).takes == r.takes);
+  write_text(path, "{\"takes\": [\"/t/a.bvh\",");  // broken by hand
+  CHECK(read_recent_files(path).takes.empty());
+  CHECK(read_recent_files("").takes.empty());
+  fs::remove_all(dir);
+}
+
+TEST_CASE("recent files live in XDG_CONFIG_HOME, else HOME/.config") {
+  const char* xdg = std::getenv("XDG_CONFIG_HOME");
+  const char* home = std::getenv("HOME");
+  const std::string saved_xdg = xdg ? xdg : "", saved_home = home ? home : "";
+  setenv("XDG_CONFIG_HOME", "/cfg", 1);
+  CHECK(recent_files_path() == "/cfg/mostyle/recent.json");
+  unsetenv("XDG_CONFIG_HOME");
+  setenv("HOME", "/home/animator", 1);
+  CHECK(recent_files_path() == "/home/animator/.config/mostyle/recent.json");
+  unsetenv("HOME");
+  CHECK(recent_files_path().empty());
+  if (xdg) setenv("XDG_CONFIG_HOME", saved_xdg.c_str(), 1);
+  if (home) setenv("HOME", saved_home.c_str(), 1);
+}

@@ -1,0 +1,358 @@
+// The export dialog (ui/panels/export_dialog.h) and its job (ui/model/export_job.h) over a loaded pair, with
+// no window: the file's frame rate and frames, the confirmation before an overwrite, the export
+// on its own thread, and the message that a new pair clears.
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include <catch2/catch.hpp>
+#include <imgui.h>
+#include <imgui_internal.h>  // ImGui::FindWindowByName
+
+#include "engine/io/bvh_io.h"
+#include "engine/io/job_control.h"
+#include "engine/io/motion_file.h"
+#include "engine/kinematics/kinematics.h"
+#include "tests/test_data.h"
+#include "tests/ui/imgui_frame.h"
+#include "tests/ui/loaded_session.h"
+#include "ui/panels/export_dialog.h"
+#include "ui/model/export_job.h"
+
+using namespace mostyle;
+using namespace mostyle::ui;
+using test::LoadedSession;
+namespace fs = std::filesystem;
+
+namespace {
+
+using Pressed = ExportDialog::Pressed;
+
+// A file in the temporary folder, removed before and after the test.
+struct TempFile {
+  std::string path;
+  explicit TempFile(const std::string& name) : path((fs::temp_directory_path() / name).string()) { fs::remove(path); }
+  ~TempFile() { fs::remove(path); }
+};
+
+void set_path(ExportDialog& dialog, const std::string& path) {
+  ExportSettings& s = dialog.settings();
+  path.copy(s.path, sizeof s.path - 1);
+  s.path[std::min(path.size(), sizeof s.path - 1)] = '\0';
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Export with the dialog's settings, waiting for its thread; the written clip.
+Clip export_and_read(ExportDialog& dialog, BlendSession& session, const std::string& path) {
+  set_path(dialog, path);
+  REQUIRE(dialog.press_export() == Pressed::kStarted);
+  dialog.job().wait();
+  dialog.poll();
+  INFO(session.export_message());
+  REQUIRE(session.export_ok());
+  return read_bvh_file(path);
+}
+
+}  // namespace
+
+TEST_CASE("export dialog: at 60 fps the file has twice the blend's frames less one, at 30 the blend's own") {
+  LoadedSession s;
+  REQUIRE(s.session.blend() != nullptr);
+  const int blend_frames = static_cast<int>(s.session.blend()->motion.world.rows());
+  REQUIRE(s.session.snapshot().prepared->fps == 30.0);
+  ExportDialog dialog(s.session);
+  dialog.poll();
+  TempFile file("mostyle_export_dialog_rate.bvh");
+
+  dialog.settings().rate = ExportRate::k60;
+  const Clip at_60 = export_and_read(dialog, s.session, file.path);
+  CHECK(at_60.frames() == 2 * blend_frames - 1);
+  CHECK(at_60.fps() == Approx(60.0));
+  // Where it went, the rate, and how closely the file follows the blend, in metric units.
+  CHECK_THAT(s.session.export_message(), Catch::Contains("mostyle_export_dialog_rate.bvh"));
+  CHECK_THAT(s.session.export_message(), Catch::Contains("at 60 fps"));
+  CHECK_THAT(s.session.export_message(), Catch::Contains("m (worst joint and frame"));
+
+  dialog.settings().rate = ExportRate::k30;
+  fs::remove(file.path);
+  const Clip at_30 = export_and_read(dialog, s.session, file.path);
+  CHECK(at_30.frames() == blend_frames);
+
+  // A's own rate: CMU's 120 fps.
+  dialog.settings().rate = ExportRate::kSource;
+  fs::remove(file.path);
+  const Clip at_source = export_and_read(dialog, s.session, file.path);
+  CHECK(at_source.fps() == Approx(120.0));
+  CHECK(at_source.frames() == 4 * (blend_frames - 1) + 1);
+
+  // A rate the export refuses: said in a sentence, nothing written.
+  dialog.settings().rate = ExportRate::kCustom;
+  dialog.settings().custom_fps = 0.0;
+  fs::remove(file.path);
+  set_path(dialog, file.path);
+  REQUIRE(dialog.press_export() == Pressed::kStarted);
+  dialog.job().wait();
+  dialog.poll();
+  CHECK_FALSE(s.session.export_ok());
+  CHECK_THAT(s.session.export_message(), Catch::Contains("frame rate"));
+  CHECK_FALSE(fs::exists(file.path));
+}
+
+TEST_CASE("export dialog: an in and an out point give the frames between them, both included") {
+  LoadedSession s;
+  ExportDialog dialog(s.session);
+  dialog.poll();  // the range starts as all of the blend
+  REQUIRE(s.session.blend() != nullptr);
+  REQUIRE(s.session.blend()->motion.world.rows() > 61);  // over 2 s at 30 fps
+  CHECK(dialog.settings().in_s == 0.0);
+  CHECK(dialog.settings().out_s == Approx((s.session.blend()->motion.world.rows() - 1) / 30.0));
+  TempFile file("mostyle_export_dialog_range.bvh");
+  dialog.settings().range = ExportRange::kInOut;
+  dialog.settings().in_s = 1.0;
+  dialog.settings().out_s = 2.0;
+  CHECK(export_and_read(dialog, s.session, file.path).frames() == 31);
+  fs::remove(file.path);
+  dialog.settings().rate = ExportRate::k60;
+  CHECK(export_and_read(dialog, s.session, file.path).frames() == 61);
+  // An out point past the blend is brought back inside it by the next poll.
+  dialog.settings().out_s = 1e6;
+  dialog.poll();
+  CHECK(dialog.settings().out_s == Approx((s.session.blend()->motion.world.rows() - 1) / 30.0));
+}
+
+TEST_CASE("export dialog: the loop is written whole, so it repeats at any rate") {
+  LoadedSession s;
+  s.session.controls().loop = true;
+  s.session.update_blend(s.state);
+  REQUIRE(s.session.blend() != nullptr);
+  REQUIRE(s.session.blend()->motion.loop.cycles >= 1);
+  const int loop_frames = static_cast<int>(s.session.blend()->motion.world.rows());
+  ExportDialog dialog(s.session);
+  dialog.poll();
+  TempFile file("mostyle_export_dialog_loop.bvh");
+  dialog.settings().range = ExportRange::kLoop;
+  dialog.settings().rate = ExportRate::k60;
+  CHECK(export_and_read(dialog, s.session, file.path).frames() == 2 * loop_frames);
+  CHECK_THAT(s.session.export_message(), Catch::Contains("loop"));
+  // Without a loop, the loop cannot be asked for.
+  s.session.controls().loop = false;
+  s.session.update_blend(s.state);
+  fs::remove(file.path);
+  set_path(dialog, file.path);
+  CHECK(dialog.press_export() == Pressed::kFailed);
+  CHECK_THAT(s.session.export_message(), Catch::Contains("no loop"));
+  CHECK_FALSE(fs::exists(file.path));
+}
+
+TEST_CASE("export dialog: an existing file is overwritten only once confirmed") {
+  LoadedSession s;
+  ExportDialog dialog(s.session);
+  dialog.poll();
+  TempFile file("mostyle_export_dialog_overwrite.bvh");
+  { std::ofstream(file.path) << "old\n"; }
+  set_path(dialog, file.path);
+  CHECK(dialog.press_export() == Pressed::kConfirm);
+  CHECK(dialog.confirming_overwrite());
+  CHECK_FALSE(dialog.job().running());
+  CHECK(read_text(file.path) == "old\n");
+  // Keep it: nothing written, and Overwrite alone asks again.
+  dialog.press_cancel();
+  CHECK_FALSE(dialog.confirming_overwrite());
+  CHECK(dialog.press_overwrite() == Pressed::kConfirm);
+  CHECK(read_text(file.path) == "old\n");
+  // Confirmed: written.
+  CHECK(dialog.press_overwrite() == Pressed::kStarted);
+  dialog.job().wait();
+  dialog.poll();
+  CHECK(s.session.export_ok());
+  CHECK(read_text(file.path).rfind("HIERARCHY", 0) == 0);
+  // The next export over it asks again.
+  CHECK(dialog.press_export() == Pressed::kConfirm);
+}
+
+TEST_CASE("export dialog: its message, and the session's, clears when new takes load") {
+  LoadedSession s;
+  ExportDialog dialog(s.session);
+  dialog.poll();
+  TempFile file("mostyle_export_dialog_message.bvh");
+  export_and_read(dialog, s.session, file.path);
+  CHECK_FALSE(s.session.export_message().empty());
+  s.session.load(test::asset("motions/cmu142_walk_joy.bvh"), test::asset("motions/cmu142_walk_happy.bvh"));
+  s.session.wait_idle(s.state);
+  REQUIRE(s.session.error().empty());
+  CHECK(s.session.export_message().empty());
+  CHECK_FALSE(s.session.export_ok());
+  dialog.poll();
+  CHECK(s.session.export_message().empty());
+  // A failure's sentence clears too.
+  set_path(dialog, "/nonexistent/dir/out.bvh");
+  REQUIRE(dialog.press_export() == Pressed::kStarted);
+  dialog.job().wait();
+  dialog.poll();
+  CHECK_FALSE(s.session.export_message().empty());
+  CHECK_FALSE(s.session.export_ok());
+  s.session.load(test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"));
+  s.session.wait_idle(s.state);
+  CHECK(s.session.export_message().empty());
+}
+
+TEST_CASE("export job: the job copies the blend, and a cancel before the solve writes nothing") {
+  LoadedSession s;
+  TempFile file("mostyle_export_job_cancel.bvh");
+  ExportOptions options;
+  options.path = file.path;
+  options.fps = s.session.snapshot().prepared->fps;
+  const ExportRequest request = make_export_request(s.session, options);
+  CHECK(request.options.path == fs::absolute(file.path).string());
+  CHECK(request.world == s.session.blend()->motion.world);
+  JobControl cancelled;
+  cancelled.cancel = true;
+  const ExportOutcome outcome = run_export(request, &cancelled);
+  CHECK(outcome.cancelled);
+  CHECK_FALSE(outcome.ok);
+  CHECK_FALSE(fs::exists(file.path));
+  // The job runs one export at a time and hands its outcome over once.
+  ExportJob job;
+  CHECK(job.start(request));
+  job.wait();
+  ExportOutcome done;
+  CHECK(job.take_outcome(&done));
+  CHECK(done.ok);
+  CHECK(done.frames == s.session.blend()->motion.world.rows());
+  CHECK_FALSE(job.take_outcome(&done));
+  CHECK(fs::exists(file.path));
+  // BlendSession::export_bvh: the same export, here and now.
+  fs::remove(file.path);
+  CHECK(s.session.export_bvh(file.path));
+  CHECK(read_bvh_file(file.path).frames() == s.session.blend()->motion.world.rows());
+}
+
+TEST_CASE("export dialog: the window draws in every mode, and the files panel opens it") {
+  LoadedSession s;
+  test::HeadlessImGui imgui;
+  FilesPanel files(s.session, test::asset("motions"));
+  TempFile file("mostyle_export_dialog_window.bvh");
+  set_path(files.export_dialog(), file.path);
+  auto frame = [&]() {
+    imgui.begin_frame();
+    files.draw(s.state);
+    return imgui.end_frame();
+  };
+  frame();
+  CHECK(ImGui::FindWindowByName(kExportDialogTitle) == nullptr);  // closed until asked for
+  command_open_export(s.state);
+  CHECK(frame() > 0);
+  const ImGuiWindow* window = ImGui::FindWindowByName(kExportDialogTitle);
+  REQUIRE(window != nullptr);
+  CHECK(window->Active);
+  ExportDialog& dialog = files.export_dialog();
+  for (ExportRange range : {ExportRange::kAll, ExportRange::kInOut, ExportRange::kLoop}) {
+    dialog.settings().range = range;
+    dialog.settings().range_in_frames = range == ExportRange::kInOut;
+    CHECK(frame() > 0);
+  }
+  dialog.settings().range = ExportRange::kInOut;
+  dialog.settings().range_in_frames = false;
+  dialog.settings().rate = ExportRate::kCustom;
+  CHECK(frame() > 0);
+  dialog.settings().range = ExportRange::kAll;
+  dialog.settings().rate = ExportRate::k30;
+  // An export running under the window, then its outcome in both places.
+  REQUIRE(dialog.press_export() == Pressed::kStarted);
+  CHECK(frame() > 0);
+  dialog.job().wait();
+  frame();
+  CHECK(s.session.export_ok());
+  CHECK(fs::exists(file.path));
+  // Asking before an overwrite, drawn.
+  CHECK(dialog.press_export() == Pressed::kConfirm);
+  CHECK(frame() > 0);
+  CHECK(dialog.confirming_overwrite());
+  CHECK(s.state.view.show_export);
+}
+
+TEST_CASE("export dialog: a palette's mix exports whole or from an in to an out point") {
+  LoadedSession s;
+  s.session.load_files({test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"),
+                        test::asset("motions/cmu142_walk_joy.bvh")});
+  s.session.wait_idle(s.state);
+  REQUIRE(s.session.palette() != nullptr);
+  const MixResult* mix = s.session.palette_view().mix();
+  REQUIRE(mix != nullptr);
+  const int mix_frames = static_cast<int>(mix->motion.world.rows());
+  REQUIRE(mix_frames > 61);
+  ExportDialog dialog(s.session);
+  dialog.poll();
+  // The range is all of the mix, not 0 to 0.
+  CHECK(dialog.settings().in_s == 0.0);
+  CHECK(dialog.settings().out_s == Approx((mix_frames - 1) / 30.0));
+  TempFile file("mostyle_export_dialog_palette.bvh");
+  dialog.settings().rate = ExportRate::k30;
+  CHECK(export_and_read(dialog, s.session, file.path).frames() == mix_frames);
+  CHECK_THAT(s.session.export_message(), Catch::Contains("The skeleton of cmu142_walk_happy.bvh"));
+  // From 1 s to 2 s: 31 frames at 30 fps; the overwrite asks first and then replaces the file.
+  dialog.settings().range = ExportRange::kInOut;
+  dialog.settings().in_s = 1.0;
+  dialog.settings().out_s = 2.0;
+  dialog.poll();  // the points stay inside the mix: unchanged here
+  CHECK(dialog.settings().out_s == 2.0);
+  REQUIRE(dialog.press_export() == Pressed::kConfirm);
+  REQUIRE(dialog.press_overwrite() == Pressed::kStarted);
+  dialog.job().wait();
+  dialog.poll();
+  REQUIRE(s.session.export_ok());
+  CHECK(read_bvh_file(file.path).frames() == 31);
+  // The dialog draws in palette mode, with the reference's words (an auto-sized window shows
+  // from its second frame).
+  test::HeadlessImGui imgui;
+  s.state.view.show_export = true;
+  int drawn = 0;
+  for (int frame = 0; frame < 2; ++frame) {
+    imgui.begin_frame();
+    dialog.draw(s.state);
+    drawn = imgui.end_frame();
+  }
+  CHECK(drawn > 0);
+}
+
+TEST_CASE("export dialog: the format is the file's extension, glTF exports read back as the same blend") {
+  CHECK(export_format("blend.bvh") == ExportFormat::kBvh);
+  CHECK(export_format("blend.GLB") == ExportFormat::kGltf);
+  CHECK(export_format("blend.gltf") == ExportFormat::kGltf);
+  CHECK(with_export_format("out/blend.bvh", ExportFormat::kGltf) == "out/blend.glb");
+  CHECK(with_export_format("out/blend.glb", ExportFormat::kBvh) == "out/blend.bvh");
+  CHECK(with_export_format("blend.gltf", ExportFormat::kGltf) == "blend.gltf");
+  CHECK(with_export_format("blend", ExportFormat::kGltf) == "blend.glb");
+  CHECK(with_export_format("", ExportFormat::kGltf).empty());
+
+  LoadedSession s;
+  REQUIRE(s.session.blend() != nullptr);
+  ExportDialog dialog(s.session);
+  dialog.poll();
+  TempFile bvh("mostyle_export_dialog_format.bvh"), glb("mostyle_export_dialog_format.glb");
+  dialog.settings().rate = ExportRate::k30;
+  const Clip as_bvh = export_and_read(dialog, s.session, bvh.path);
+  set_path(dialog, glb.path);
+  REQUIRE(dialog.press_export() == Pressed::kStarted);
+  dialog.job().wait();
+  dialog.poll();
+  INFO(s.session.export_message());
+  REQUIRE(s.session.export_ok());
+  const Clip as_glb = read_motion_file(glb.path);
+  REQUIRE(as_glb.frames() == as_bvh.frames());
+  const Eigen::MatrixXd a = joint_positions(as_bvh), b = joint_positions(as_glb);
+  double worst = 0;
+  for (size_t i = 0; i < as_bvh.skeleton.joints.size(); ++i) {
+    if (as_bvh.skeleton.joints[i].end_site) continue;
+    const int j = as_glb.skeleton.find(as_bvh.skeleton.joints[i].name);
+    REQUIRE(j >= 0);
+    worst = std::max(worst, (a.middleCols(3 * i, 3) - b.middleCols(3 * j, 3)).rowwise().norm().maxCoeff());
+  }
+  CHECK(worst < 1e-3);  // file units (cm-like CMU units): float32 keys
+}

@@ -1,0 +1,322 @@
+// The blending editor's panels and its link to the engine (ui/model/blend_session.h), run as ImGui
+// frames with no window: the panels build over a loaded pair, alpha moves the blend in the same
+// frame, and a failed load shows its sentence while the previous pair stays.
+#include <algorithm>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+#include <imgui_internal.h>  // ImGui::FindWindowByName
+
+#include "tests/test_data.h"
+#include "tests/ui/imgui_frame.h"
+#include "tests/ui/loaded_session.h"
+#include "ui/panels/layout.h"
+#include "ui/panels/metrics_panel.h"
+
+using namespace mostyle;
+using namespace mostyle::ui;
+using test::all_panels;
+using test::LoadedSession;
+
+namespace {
+
+// Distance between the same joint of two takes at one frame.
+double joint_distance(const Take& a, const Take& b, int frame, int joint) {
+  return (a.positions.row(frame).segment<3>(3 * joint) - b.positions.row(frame).segment<3>(3 * joint)).norm();
+}
+
+}  // namespace
+
+TEST_CASE("the session turns a loaded pair into A, B and the blend, in step on the blend's timeline") {
+  LoadedSession s;
+  REQUIRE(s.session.error().empty());
+  REQUIRE(s.state.takes.size() == 3);
+  const PreparedTakes& p = *s.session.snapshot().prepared;
+  REQUIRE(s.session.blend() != nullptr);
+  for (const Take& t : s.state.takes) {
+    CHECK(t.ok());
+    CHECK(t.frames() == s.session.blend()->motion.world.rows());  // all three in step on the blend's timeline
+    CHECK(t.positions.cols() == p.takes[0].world.cols());
+    CHECK(t.rate() == p.fps);
+    CHECK(t.parents == p.parents);
+  }
+  REQUIRE(s.session.blend() != nullptr);
+  CHECK(s.state.takes[kTakeBlend].positions.rows() == s.session.blend()->motion.world.rows());
+  const DtwCostImage& img = s.session.dtw_image();
+  CHECK(img.rows > 0);
+  CHECK(img.rows <= DtwCostImage::kMaxCells);
+  CHECK(img.cost.maxCoeff() == Approx(1.0));
+}
+
+TEST_CASE("the panels build over a loaded pair, with a component picked and in both modes") {
+  LoadedSession s;
+  test::HeadlessImGui imgui;
+  auto panels = all_panels(s.session);
+  for (int frame = 0; frame < 6; ++frame) {
+    if (frame == 2) s.session.controls().selected_component = 1;
+    if (frame == 4) s.session.controls().per_component = true;
+    imgui.begin_frame();
+    s.session.poll(s.state);
+    for (auto& panel : panels) panel->draw(s.state);
+    s.session.update_blend(s.state);
+    CHECK(imgui.end_frame() > 1000);
+  }
+  // The picked component lights up joints of the blend skeleton only.
+  const auto& highlights = s.state.takes[kTakeBlend].highlights;
+  REQUIRE(highlights.size() == s.state.takes[kTakeBlend].parents.size());
+  int lit = 0;
+  for (const auto& h : highlights) lit += h.a > 0.0f ? 1 : 0;
+  CHECK(lit > 0);
+  CHECK(s.state.takes[kTakeA].highlights.empty());
+
+  // Paper mode with basic motions: a re-decomposition on the worker, panels still draw.
+  s.session.controls().mode = BlendMode::kPaper;
+  s.session.controls().basic_motions = 2;
+  s.session.request_decomposition(s.state);
+  s.session.wait_idle(s.state);
+  CHECK(s.session.error().empty());
+  CHECK(s.session.snapshot().decomposed->params.mode == BlendMode::kPaper);
+  imgui.begin_frame();
+  for (auto& panel : panels) panel->draw(s.state);
+  s.session.update_blend(s.state);
+  CHECK(imgui.end_frame() > 1000);
+  CHECK(s.session.blend_error().empty());
+}
+
+TEST_CASE("moving alpha changes the blended pose in the same frame, from A towards B") {
+  LoadedSession s;
+  s.state.view.overlay = true;  // no lateral offsets: the takes can be compared
+  const int frame = s.state.takes[kTakeA].frames() / 2;
+  s.state.parameters.alpha = 0.0;
+  s.session.update_blend(s.state);
+  const Eigen::MatrixXd at_a = s.state.takes[kTakeBlend].positions;
+  s.state.parameters.alpha = 1.0;
+  s.session.update_blend(s.state);  // no worker round trip
+  const Eigen::MatrixXd at_b = s.state.takes[kTakeBlend].positions;
+  CHECK((at_a - at_b).norm() > 1.0);
+  CHECK(s.session.blend_ms() < 1000.0);  // sanity only; speed is measured in tests/bench
+  // A wrist at alpha 0 is nearer A's than B's, and at alpha 1 the other way round.
+  const int wrist = static_cast<int>(s.state.takes[kTakeA].parents.size()) - 1;
+  Take blend_a = s.state.takes[kTakeBlend], blend_b = s.state.takes[kTakeBlend];
+  blend_a.positions = at_a;
+  blend_b.positions = at_b;
+  double to_a = 0, to_b = 0, back_a = 0, back_b = 0;
+  for (int j = 0; j <= wrist; ++j) {
+    to_a += joint_distance(blend_a, s.state.takes[kTakeA], frame, j);
+    to_b += joint_distance(blend_a, s.state.takes[kTakeB], frame, j);
+    back_a += joint_distance(blend_b, s.state.takes[kTakeA], frame, j);
+    back_b += joint_distance(blend_b, s.state.takes[kTakeB], frame, j);
+  }
+  CHECK(to_a < to_b);
+  CHECK(back_b < back_a);
+}
+
+TEST_CASE("a failing load shows its error and keeps the previous pair") {
+  LoadedSession s;
+  const auto before = s.session.snapshot().prepared;
+  const Eigen::MatrixXd blend_before = s.state.takes[kTakeBlend].positions;
+  s.session.load("/nonexistent/walk.bvh", test::asset("motions/cmu142_walk_marching.bvh"));
+  s.session.wait_idle(s.state);
+  CHECK_THAT(s.session.error(), Catch::Contains("/nonexistent/walk.bvh"));
+  CHECK(s.session.snapshot().prepared == before);
+  REQUIRE(s.state.takes.size() == 3);
+  CHECK(s.state.takes[kTakeBlend].positions == blend_before);
+  // The panels still draw (the files panel shows the sentence); the mistyped path never joins the
+  // recent files, the pair that loaded is there.
+  test::HeadlessImGui imgui;
+  auto panels = all_panels(s.session);
+  imgui.begin_frame();
+  for (auto& panel : panels) panel->draw(s.state);
+  CHECK(imgui.end_frame() > 1000);
+  CHECK(std::find(s.session.recent().begin(), s.session.recent().end(), "/nonexistent/walk.bvh") ==
+        s.session.recent().end());
+  CHECK(s.session.recent().front() == test::asset("motions/cmu142_walk_happy.bvh"));
+  // And a good pair after it clears the error.
+  s.session.load(test::asset("motions/cmu142_walk_joy.bvh"), test::asset("motions/cmu142_walk_happy.bvh"));
+  s.session.wait_idle(s.state);
+  CHECK(s.session.error().empty());
+  CHECK(s.session.snapshot().prepared != before);
+  CHECK(s.state.takes.size() == 3);
+}
+
+TEST_CASE("export writes the blend as BVH or says why not") {
+  LoadedSession s;
+  const std::string out = (std::filesystem::temp_directory_path() / "mostyle_ui_export_test.bvh").string();
+  std::filesystem::remove(out);
+  CHECK(s.session.export_bvh(out));
+  CHECK(std::filesystem::exists(out));
+  CHECK_THAT(s.session.export_message(), Catch::Contains("mostyle_ui_export_test.bvh"));
+  std::filesystem::remove(out);
+  CHECK_FALSE(s.session.export_bvh("/nonexistent/dir/out.bvh"));
+  CHECK_FALSE(s.session.export_message().empty());
+  CHECK_FALSE(s.session.export_ok());
+}
+
+TEST_CASE("files dropped on the window load as the pair (two) or as B (one)") {
+  LoadedSession s;
+  test::HeadlessImGui imgui;
+  FilesPanel files(s.session, test::asset("motions"));
+  const std::string joy = test::asset("motions/cmu142_walk_joy.bvh");
+  s.session.dropped() = {joy};
+  imgui.begin_frame();
+  files.draw(s.state);
+  imgui.end_frame();
+  CHECK(s.session.dropped().empty());
+  CHECK(s.session.requested_a() == test::asset("motions/cmu142_walk_happy.bvh"));
+  CHECK(s.session.requested_b() == joy);
+  s.session.wait_idle(s.state);
+  CHECK(s.session.error().empty());
+  CHECK(s.session.snapshot().paths[1] == joy);
+  CHECK(s.state.takes.size() == 3);
+  CHECK_THAT(s.state.takes[kTakeB].label, Catch::Contains("joy"));
+}
+
+TEST_CASE("space plays and pauses, the arrow keys step one frame") {
+  LoadedSession loaded;
+  test::HeadlessImGui imgui;
+  ImGuiIO& io = ImGui::GetIO();
+  io.KeyMap[ImGuiKey_Space] = 1;
+  io.KeyMap[ImGuiKey_RightArrow] = 2;
+  io.KeyMap[ImGuiKey_LeftArrow] = 3;
+  PlaybackPanel panel;
+  EditorState& state = loaded.state;
+  state.playback.playing = false;
+  state.playback.time_s = 0.0;
+  const Take* reference = state.reference_take();
+  REQUIRE(reference != nullptr);
+  auto press = [&](int key) {
+    io.KeysDown[key] = true;
+    imgui.begin_frame();
+    panel.draw(state);
+    imgui.end_frame();
+    io.KeysDown[key] = false;
+    imgui.begin_frame();
+    panel.draw(state);
+    imgui.end_frame();
+  };
+  press(1);
+  CHECK(state.playback.playing);
+  press(1);
+  CHECK_FALSE(state.playback.playing);
+  press(2);
+  press(2);
+  CHECK(frame_at(*reference, state.playback.time_s) == 2);
+  press(3);
+  CHECK(frame_at(*reference, state.playback.time_s) == 1);
+}
+
+TEST_CASE("timing, loop and alignment controls reach the blend and the alignment") {
+  LoadedSession s;
+  REQUIRE(s.session.blend() != nullptr);
+  const PreparedTakes& p = *s.session.snapshot().prepared;
+  const Alignment& al = p.takes[1].alignment;
+  SessionControls& c = s.session.controls();
+  // alpha 0: A's timing, as long as A's matched range; with A's timing kept at alpha 1 too.
+  s.state.parameters.alpha = 0.0;
+  s.session.update_blend(s.state);
+  const Eigen::Index at_a = s.session.blend()->motion.world.rows();
+  CHECK(at_a == al.a_last - al.a_first + 1);
+  s.state.parameters.alpha = 1.0;
+  s.session.update_blend(s.state);
+  CHECK(s.session.blend()->motion.world.rows() == al.b_last - al.b_first + 1);
+  c.timing_a = true;
+  s.session.update_blend(s.state);
+  CHECK(s.session.blend()->motion.world.rows() == at_a);
+  for (const Take& t : s.state.takes) CHECK(t.frames() == at_a);  // A and B follow the blend's timeline
+  // A seamless loop: whole cycles, every take cut to it.
+  c.timing_a = false;
+  c.loop = true;
+  s.state.parameters.alpha = 0.5;
+  s.session.update_blend(s.state);
+  REQUIRE(s.session.blend() != nullptr);
+  CHECK(s.session.blend()->motion.loop.cycles >= 1);
+  CHECK(s.session.blend()->motion.loop.cycles <= kLoopMaxCycles);
+  for (const Take& t : s.state.takes) CHECK(t.frames() == s.session.blend()->motion.loop.frames());
+  // Aligning on the body re-prepares the pair on the worker.
+  c.loop = false;
+  c.align.on = AlignOn::kBody;
+  s.session.realign();
+  s.session.wait_idle(s.state);
+  REQUIRE(s.session.snapshot().prepared != nullptr);
+  CHECK(s.session.snapshot().prepared->takes[1].alignment.feature.on == AlignOn::kBody);
+  CHECK(s.session.error().empty());
+  // The panels draw over it, warnings and quality strip included.
+  test::HeadlessImGui imgui;
+  auto panels = all_panels(s.session);
+  for (int frame = 0; frame < 3; ++frame) {
+    imgui.begin_frame();
+    for (auto& panel : panels) panel->draw(s.state);
+    CHECK(imgui.end_frame() > 0);
+  }
+}
+
+TEST_CASE("files panel: a take is named by its role, and one take is replaced or added") {
+  CHECK(take_role(0, 2) == "A");
+  CHECK(take_role(1, 2) == "B");
+  CHECK(take_role(0, 4) == "1");
+  CHECK(take_role(3, 4) == "4");
+  const std::vector<std::string> palette = {"n.bvh", "t.bvh", "o.bvh", "p.bvh"};
+  CHECK(with_take(palette, 0, "x.bvh") == std::vector<std::string>{"x.bvh", "t.bvh", "o.bvh", "p.bvh"});
+  CHECK(with_take(palette, 4, "x.bvh") == std::vector<std::string>{"n.bvh", "t.bvh", "o.bvh", "p.bvh", "x.bvh"});
+  CHECK(with_take({"a.bvh", "b.bvh"}, 2, "x.bvh") == std::vector<std::string>{"a.bvh", "b.bvh", "x.bvh"});
+  CHECK(with_take({"a.bvh", ""}, 2, "x.bvh") == std::vector<std::string>{"a.bvh", "x.bvh"});  // A with itself
+}
+
+TEST_CASE("files panel: a file dropped on a palette is one more take, and a load error moves nothing") {
+  LoadedSession s;
+  test::HeadlessImGui imgui;
+  FilesPanel files(s.session, test::asset("motions"));
+  auto draw = [&] {
+    for (int i = 0; i < 2; ++i) {
+      imgui.begin_frame();
+      files.draw(s.state);
+      imgui.end_frame();
+    }
+  };
+  auto content_height = [] {
+    const ImGuiWindow* w = ImGui::FindWindowByName(panel_title(PanelId::kFiles));
+    REQUIRE(w != nullptr);
+    return w->ContentSize.y;
+  };
+  draw();
+  const float height = content_height();
+  // A load that fails: its sentence appears in the messages' own space; the fields and what is
+  // under them stay where they were.
+  s.session.load("/nonexistent/walk.bvh", test::asset("motions/cmu142_walk_marching.bvh"));
+  s.session.wait_idle(s.state);
+  REQUIRE_FALSE(s.session.error().empty());
+  CHECK_THAT(s.session.error(), Catch::Contains("/nonexistent/walk.bvh"));
+  draw();
+  CHECK(content_height() == height);
+
+  const std::vector<std::string> palette = {test::asset("motions/cmu142_walk_happy.bvh"),
+                                            test::asset("motions/cmu142_walk_marching.bvh"),
+                                            test::asset("motions/cmu142_walk_joy.bvh")};
+  s.session.load_files(palette);
+  s.session.wait_idle(s.state);
+  REQUIRE(s.session.palette() != nullptr);
+  draw();
+  const std::string clumsy = test::asset("motions/cmu142_walk_clumsy.bvh");
+  s.session.dropped() = {clumsy};
+  draw();
+  std::vector<std::string> four = palette;
+  four.push_back(clumsy);
+  CHECK(s.session.requested_files() == four);  // added, not a pair of the dropped file
+  s.session.wait_idle(s.state);
+  REQUIRE(s.session.palette() != nullptr);
+  CHECK(s.session.palette()->size() == 4);
+  // The metrics speak of the palette: each take's fit error and foot sliding, the mix's bones.
+  const Metrics m = gather_metrics(s.session);
+  CHECK(m.result == "mix");
+  REQUIRE(m.takes.size() == 4);
+  for (const Metrics::Take& t : m.takes) {
+    CHECK(t.fit_error >= 0.0);
+    CHECK(t.foot_sliding >= 0.0);
+  }
+  CHECK(m.takes[3].name == "clumsy");  // what tells the takes apart fits the narrow column
+  CHECK(m.bone_error >= 0.0);
+  CHECK(m.sliding_cleaned >= 0.0);
+}

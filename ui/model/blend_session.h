@@ -1,0 +1,222 @@
+#pragma once
+// The editor's link to the engine. Owns the engine Worker; each frame poll() takes up its latest
+// snapshot (a new pair, a new decomposition, an error) and update_blend() re-runs mix_palette on
+// the UI thread when alpha or a per-component alpha moved (well under 1 ms: the viewport follows
+// in the same frame). Loads and decompositions only ever go to the worker: nothing here blocks,
+// except wait_idle(), for tests and screenshots.
+//
+// The three takes it keeps in EditorState::takes, all on the blend's timeline (its output frames
+// at the working rate): [0] A and [1] B where the blend is in each, [2] the blend.
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "engine/run/blend_params.h"
+#include "engine/run/worker.h"
+#include "ui/model/editor_state.h"
+#include "ui/model/palette_view.h"
+
+namespace mostyle::ui {
+
+// The style palette (issue #9): three or more takes mixed with weights, or a transfer (a style
+// change from a neutral take to a styled one put on a content take).
+struct PaletteControls {
+  std::vector<double> weights;                 // one per take, summing to 1
+  bool per_part = false;                       // weights per body part (legs, arms, spine)
+  std::vector<std::vector<double>> part_weights;  // [legs, arms, spine] x takes; empty row: the overall weights
+  bool transfer = false;                       // transfer mode instead of a mix
+  int content = 0, neutral = 1;                // transfer: takes by index; every other take is a style
+  std::vector<double> strengths;               // transfer: one per take (used for the styles)
+  bool ghosts = false;                         // show each take's warped ghost in the viewport
+};
+
+// What the parameter panels edit beyond EditorState::parameters (alpha, k, sparsity). Undo
+// compares them field by field (ui/model/document_fields.h): a new field goes into that list too.
+struct SessionControls {
+  BlendMode mode = BlendMode::kShared;
+  bool per_component = false;            // shared mode: one alpha per component
+  std::vector<double> component_alpha;   // resized to k when a decomposition arrives
+  int basic_motions = 0;                 // paper mode: m levels (0: one decomposition)
+  std::vector<double> basic_sparsities;  // per level, resized to m
+  int swap_level = 0;                    // paper mode with m > 0: the level taken from B
+  bool foot_lock = true;
+  AlignmentOptions align;                // what the takes are aligned on and how (a change re-aligns)
+  bool timing_a = false;                 // keep A's timeline instead of blending the timing
+  bool loop = false;                     // cut a seamless loop of whole gait cycles
+  bool residual = true;                  // blend the takes' residual detail too (BlendParams)
+  int selected_component = -1;           // components view; -1: none
+  int dtw_coordinate = 1;                // DTW view: 0 lateral, 1 height, 2 forward
+  PaletteControls palette;               // with three or more takes
+};
+
+// One decomposition's reconstruction error, recorded as decompositions arrive.
+struct ErrorPoint {
+  int components = 0;
+  double sparsity = 0.0;
+  BlendMode mode = BlendMode::kShared;
+  double rmse_a = 0.0, rmse_b = 0.0;  // A's units
+};
+
+// The DTW local-cost matrix, sampled once per prepared pair at cell centres: rows x cols cells
+// (at most kMaxCells each way) over A frames (rows) x B frames (cols).
+struct DtwCostImage {
+  static constexpr int kMaxCells = 64;
+  int rows = 0, cols = 0;
+  int frames_a = 0, frames_b = 0;
+  Eigen::MatrixXf cost;  // rows x cols, local cost normalised to [0, 1]
+};
+
+class BlendSession {
+ public:
+  // Takes are read with `read` (the editor passes the memory limit MOSTYLE_MAX_MEMORY_MB sets).
+  explicit BlendSession(const BvhReadOptions& read = {});
+  ~BlendSession();
+  BlendSession(const BlendSession&) = delete;
+  BlendSession& operator=(const BlendSession&) = delete;
+
+  // Asks the worker for a pair (b empty: A with itself). What was loaded stays until it succeeds;
+  // a failure shows up as error() on a later poll(). The paths join recent() once they loaded.
+  void load(const std::string& path_a, const std::string& path_b);
+  // Several files: one or two load as the pair (one: A with itself); three to sixteen as the
+  // style palette (the first the reference), mixed with controls().palette's weights.
+  void load_files(const std::vector<std::string>& paths);
+  // The files last asked for (pair or palette), loaded or not.
+  const std::vector<std::string>& requested_files() const { return requested_files_; }
+  // The takes loaded: two are the pair (A and B), three or more the palette.
+  const PreparedTakes* pair() const {
+    return snapshot_->prepared && snapshot_->prepared->size() == 2 ? snapshot_->prepared.get() : nullptr;
+  }
+  const PreparedTakes* palette() const {
+    return snapshot_->prepared && snapshot_->prepared->size() > 2 ? snapshot_->prepared.get() : nullptr;
+  }
+  // The file of loaded take i ("" when there is none).
+  const std::string& loaded_path(size_t i) const {
+    static const std::string kNone;
+    return i < snapshot_->paths.size() ? snapshot_->paths[i] : kNone;
+  }
+  const PaletteView& palette_view() const { return palette_view_; }
+  // Aligns the loaded pair again with controls().align (the worker re-prepares, then decomposes).
+  void realign();
+  // The preparation options the controls ask for.
+  PrepareOptions prepare_options() const;
+  // Asks for a decomposition with state.parameters (k, sparsity) and controls().
+  void request_decomposition(const EditorState& state);
+
+  // Before the panels, once per frame: takes up a new snapshot (new pair: rebuilds the takes).
+  void poll(EditorState& state);
+  // After the panels: re-blends when the blend's inputs changed, refreshes the blend take, the
+  // highlights and the placement (side by side / overlaid).
+  void update_blend(EditorState& state);
+  // Blocks until the worker is idle (tests, screenshots), then poll() + update_blend().
+  void wait_idle(EditorState& state);
+
+  // Called on a worker's thread whenever one of them finishes a job (engine Worker::set_on_change),
+  // so a window waiting for input wakes to show it; the window passes a thread-safe wake-up.
+  void set_wake(std::function<void()> wake);
+  // A worker has published something poll() has not taken up yet: the next frame differs.
+  bool has_news() const;
+
+  const WorkerSnapshot& snapshot() const { return *snapshot_; }
+  WorkerStatus status() const { return worker_.status(); }
+  const std::string& error() const { return snapshot_->error; }
+  const MixResult* blend() const { return has_blend_ ? &blend_ : nullptr; }
+  const std::string& blend_error() const { return blend_error_; }
+  double blend_ms() const { return blend_ms_; }  // the last UI-thread blend (mix_palette), wall time
+  SessionControls& controls() { return controls_; }
+  const std::vector<ErrorPoint>& error_curve() const { return error_curve_; }
+  const DtwCostImage& dtw_image() const { return dtw_image_; }
+  // Reconstruction error against k in the background: a second worker decomposes the pair at
+  // each k of kSweepComponents (mode and sparsity as now), one after the other, and the points
+  // join error_curve(). Restarted by a new pair or a new sparsity/mode; never touches the blend.
+  void start_error_sweep(const DecomposeParams& base);
+  bool sweeping() const { return sweep_next_ >= 0; }
+  static constexpr int kSweepComponents[] = {2, 4, 6, 8, 10, 12, 16, 20};
+
+  // The decomposition the panels' sliders ask for differs from the one shown.
+  bool decomposition_outdated() const;
+
+  // Writes the blend as BVH on A's skeleton (engine export, atomic), here and now, with the
+  // export dialog's defaults: the blend's own frames, all of them, default_channel_layout(A)
+  // (ui/model/export_job.h run_export). Returns false and sets export_message() to the error sentence
+  // on failure; on success, where it went. The dialog exports on a thread of its own instead.
+  bool export_bvh(const std::string& path);
+  // The last export's outcome (export_bvh's or the export dialog's, which posts it here so the
+  // files panel shows it too). A new pair clears it: it spoke of the previous takes.
+  void set_export_result(bool ok, const std::string& message, double ms);
+  const std::string& export_message() const { return export_message_; }
+  bool export_ok() const { return export_ok_; }
+  double export_ms() const { return export_ms_; }
+
+  // Takes that loaded, newest first (a pair's two paths join when it arrives), at most 8.
+  const std::deque<std::string>& recent() const { return recent_; }
+  // Replaces recent(), newest first (the editor reads it from recent.json at start).
+  void set_recent(const std::vector<std::string>& paths);
+  // The pair last asked for (what the files panel's fields show), loaded or not.
+  const std::string& requested_a() const { return requested_a_; }
+  const std::string& requested_b() const { return requested_b_; }
+  // Files dropped on the window, waiting for the files panel.
+  std::vector<std::string>& dropped() { return dropped_; }
+
+  // Frame times the metrics panel shows (set by the app each frame); negative: not shown.
+  float frame_ms = -1.0f, viewport_ms = -1.0f;
+
+ private:
+  void take_up_prepared(EditorState& state);
+  void place(EditorState& state);
+  void refresh_blend_take(EditorState& state);
+  void compute_dtw_image();
+
+  void poll_sweep();
+  void remember_recent(const std::vector<std::string>& paths);
+
+  const BvhReadOptions read_;
+  Worker worker_;
+  std::function<void()> wake_;            // set_wake(); given to the sweep worker too
+  std::unique_ptr<Worker> sweep_worker_;  // error against k, off the main worker
+  std::uint64_t sweep_seen_version_ = 0;  // of the sweep worker's snapshot, at the last poll_sweep
+  int sweep_next_ = -1;                   // index into kSweepComponents being computed; -1: none
+  DecomposeParams sweep_params_;
+  const PreparedTakes* sweep_pair_ = nullptr;  // the pair the sweep was started for
+  std::shared_ptr<const WorkerSnapshot> snapshot_;
+  std::uint64_t seen_version_ = ~std::uint64_t(0);
+  const PreparedTakes* seen_prepared_ = nullptr;
+  const Decomposed* seen_decomposed_ = nullptr;
+  const Decomposed* blended_decomposed_ = nullptr;
+  DecomposeParams requested_;
+  SessionControls controls_;
+  BlendParams blended_params_;
+  MixParams blend_mix_;  // blended_params_ in a mix's terms (blend_params.h)
+  MixScratch scratch_;
+  MixResult blend_;
+  Eigen::VectorXd source_a_, source_b_;  // A's and B's frame at each of the blend's (its sources' columns)
+  Eigen::MatrixXd shown_a_, shown_b_;  // A and B on the blend's timeline (before placement)
+  bool has_blend_ = false;
+  std::string blend_error_;
+  double blend_ms_ = 0.0;
+  std::vector<ErrorPoint> error_curve_;
+  DtwCostImage dtw_image_;
+  // Placement: every take shares A's floor and start; side by side adds lateral offsets.
+  Eigen::Vector3d shift_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d side_ = Eigen::Vector3d::UnitX();
+  float spacing_ = 0.0f;
+  bool placed_overlay_ = false;
+  std::string export_message_;
+  bool export_ok_ = false;
+  double export_ms_ = -1.0;
+  std::deque<std::string> recent_;
+  std::string requested_a_, requested_b_;
+  std::vector<std::string> requested_files_;
+  PaletteView palette_view_;
+  const PreparedTakes* seen_palette_ = nullptr;
+  std::vector<std::string> dropped_;
+};
+
+// Index of each take in EditorState::takes while a pair is loaded.
+constexpr int kTakeA = 0, kTakeB = 1, kTakeBlend = 2;
+
+}  // namespace mostyle::ui

@@ -1,0 +1,94 @@
+#include "ui/model/document.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <system_error>
+
+#include "ui/model/document_fields.h"
+
+namespace mostyle::ui {
+namespace {
+
+std::string normal_absolute(const std::string& path) {
+  std::error_code ec;
+  const std::filesystem::path p = std::filesystem::absolute(path, ec);
+  return (ec ? std::filesystem::path(path) : p).lexically_normal().string();
+}
+
+}  // namespace
+
+Stale stale_after(const Document& before, const Document& after) {
+  Stale stale = Stale::kNothing;
+  document_fields(before, after, [&](const char*, const auto& x, const auto& y, Stale what) {
+    if (!(x == y)) stale = std::max(stale, what);
+  });
+  return stale;
+}
+
+// Equality from the one list of fields (ui/model/document_fields.h); a part compares as two documents
+// that differ only there.
+bool operator==(const Document& x, const Document& y) { return stale_after(x, y) == Stale::kNothing; }
+
+bool operator==(const BlendParameters& x, const BlendParameters& y) {
+  Document a, b;
+  a.parameters = x;
+  b.parameters = y;
+  return a == b;
+}
+
+bool operator==(const SessionControls& x, const SessionControls& y) {
+  Document a, b;
+  a.controls = x;
+  b.controls = y;
+  return a == b;
+}
+
+bool operator==(const PaletteControls& x, const PaletteControls& y) {
+  Document a, b;
+  a.controls.palette = x;
+  b.controls.palette = y;
+  return a == b;
+}
+
+SessionControls document_controls(SessionControls controls) {
+  const SessionControls defaults;
+  controls.selected_component = defaults.selected_component;
+  controls.dtw_coordinate = defaults.dtw_coordinate;
+  return controls;
+}
+
+bool same_files(const std::vector<std::string>& x, const std::vector<std::string>& y) {
+  if (x.size() != y.size()) return false;
+  for (size_t i = 0; i < x.size(); ++i)
+    if (x[i] != y[i] && normal_absolute(x[i]) != normal_absolute(y[i])) return false;
+  return true;
+}
+
+PaletteControls reorder_takes(const PaletteControls& c, const std::vector<int>& order) {
+  const size_t n = order.size();
+  auto reordered = [&](const std::vector<double>& v) {
+    if (v.size() != n) return v;
+    std::vector<double> out(n);
+    for (size_t k = 0; k < n; ++k) out[k] = v[static_cast<size_t>(order[k])];
+    return out;
+  };
+  PaletteControls out = c;
+  out.weights = reordered(c.weights);
+  out.strengths = reordered(c.strengths);
+  for (std::vector<double>& row : out.part_weights) row = reordered(row);
+  for (size_t k = 0; k < n; ++k) {
+    if (order[k] == c.neutral) out.neutral = static_cast<int>(k);
+    if (order[k] == c.content) out.content = static_cast<int>(k);
+  }
+  return out;
+}
+
+bool decomposition_differs(const Document& x, const Document& y) {
+  bool differs = false;
+  document_fields(x, y, [&](const char*, const auto& a, const auto& b, Stale what) {
+    differs = differs || (what == Stale::kDecomposition && !(a == b));
+  });
+  return differs;
+}
+
+}  // namespace mostyle::ui

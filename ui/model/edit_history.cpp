@@ -1,0 +1,104 @@
+#include "ui/model/edit_history.h"
+
+#include <optional>
+
+#include "ui/model/session_file.h"
+
+namespace mostyle::ui {
+namespace {
+
+// The takes the worker was last asked for, as a Document lists them (A twice for A with itself);
+// empty before any load.
+std::vector<std::string> requested_files(const BlendSession& session) {
+  if (session.requested_files().size() >= 3) return session.requested_files();  // a palette
+  if (session.requested_a().empty()) return {};
+  return {session.requested_a(), session.requested_b().empty() ? session.requested_a() : session.requested_b()};
+}
+
+// The takes of a snapshot, as a Document lists them.
+std::vector<std::string> loaded_files(const WorkerSnapshot& snap) {
+  if (snap.prepared) return snap.paths;
+  return {};
+}
+
+}  // namespace
+
+Document capture_document(const EditorState& state, BlendSession& session) {
+  Document d;
+  d.parameters = state.parameters;
+  d.controls = document_controls(session.controls());
+  d.files = loaded_files(session.snapshot());
+  d.overlay = state.view.overlay;
+  return d;
+}
+
+void apply_document(const Document& document, EditorState& state, BlendSession& session) {
+  const Document before = capture_document(state, session);
+  // A load on its way counts as loaded: undoing back to the loaded takes must replace it.
+  const std::vector<std::string> takes = load_pending(session) ? requested_files(session) : before.files;
+  SessionControls& c = session.controls();
+  const int selected = c.selected_component, coordinate = c.dtw_coordinate;
+  state.parameters = document.parameters;
+  c = document.controls;
+  c.selected_component = selected;
+  c.dtw_coordinate = coordinate;
+  state.view.overlay = document.overlay;
+  // The decomposition first: a load decomposes with the parameters last asked for.
+  if (decomposition_differs(before, document)) session.request_decomposition(state);
+  if (!document.files.empty() && !same_files(takes, document.files)) {
+    session.load_files(document.files);  // a pair, or a palette of three or more
+  } else if (before.controls.align != document.controls.align) {
+    session.realign();
+  }
+}
+
+std::string apply_session_document(const Document& document, const std::string& session_path, EditorState& state,
+                                   BlendSession& session) {
+  const std::vector<std::string> missing = missing_takes(document);
+  if (missing.empty()) {
+    apply_document(document, state, session);
+    return std::string();
+  }
+  Document kept = document;
+  kept.files = capture_document(state, session).files;
+  if (load_pending(session)) kept.files = requested_files(session);
+  apply_document(kept, state, session);
+  return missing_takes_message(session_path, missing);
+}
+
+bool load_pending(const BlendSession& session) {
+  const WorkerStatus status = session.status();
+  if (status.stage == WorkerStage::kLoading) return true;
+  if (!status.pending || session.requested_a().empty()) return false;
+  return requested_files(session) != loaded_files(session.snapshot());
+}
+
+void EditHistory::record(const EditorState& state, BlendSession& session, bool item_active) {
+  touched_ = touched_ || item_active;
+  if (item_active || load_pending(session)) return;
+  const Document now = capture_document(state, session);
+  if (now.files.empty()) return;  // nothing loaded yet: no state to come back to
+  const Document* top = history_.current();
+  if (top == nullptr || touched_ || !same_files(now.files, top->files)) history_.commit(now);
+  touched_ = false;
+}
+
+bool EditHistory::undo(EditorState& state, BlendSession& session) {
+  record(state, session, false);
+  const std::optional<Document> d = history_.undo();
+  if (!d) return false;
+  apply_document(*d, state, session);
+  touched_ = false;
+  return true;
+}
+
+bool EditHistory::redo(EditorState& state, BlendSession& session) {
+  record(state, session, false);
+  const std::optional<Document> d = history_.redo();
+  if (!d) return false;
+  apply_document(*d, state, session);
+  touched_ = false;
+  return true;
+}
+
+}  // namespace mostyle::ui

@@ -1,0 +1,68 @@
+#pragma once
+// Undo and redo in the editor: the live Document (ui/model/document.h) captured from the EditorState
+// and the BlendSession, applied back (undo, redo, an opened session), and recorded as steps of a
+// History (ui/model/history.h) at the right moments. No ImGui here: the editor says whether an ImGui
+// item is held, so tests drive it without a window.
+//
+// A step is what the animator did between two moments when nothing is held: a slider dragged
+// from press to release is one step, a checkbox or a combo one each, a load one when its takes
+// arrive. What the editor changes by itself (a decomposition that arrives with another k resizes
+// the per-component alphas) makes no step of its own: it joins the next one.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "ui/model/blend_session.h"
+#include "ui/model/document.h"
+#include "ui/model/editor_state.h"
+#include "ui/model/history.h"
+
+namespace mostyle::ui {
+
+// What the animator edits now. Its files are the takes loaded (the worker's snapshot as the
+// session last polled it), not those asked for. O(size of the controls).
+Document capture_document(const EditorState& state, BlendSession& session);
+
+// Makes `document` the editor's: the parameters, the controls (the picked component and the DTW
+// view's coordinate stay), the overlay; then asks the worker for what that changes: a load when
+// the takes differ from those loaded or being loaded (a pair, or a palette of three or more:
+// BlendSession::load_files; the load aligns them with the new options), else a re-alignment when
+// the alignment options differ; and a decomposition when k, sparsity, the mode or the basic
+// motions differ. Returns at once: the takes arrive on a later poll().
+void apply_document(const Document& document, EditorState& state, BlendSession& session);
+
+// A document read from a session file at `session_path`: apply_document, except that when one
+// of its takes is not there the takes loaded stay (everything else is applied). Returns the
+// sentence naming the missing files (missing_takes_message, ui/model/session_file.h), or "".
+std::string apply_session_document(const Document& document, const std::string& session_path, EditorState& state,
+                                   BlendSession& session);
+
+// A load or re-alignment asked of the session's worker and not yet published by it.
+bool load_pending(const BlendSession& session);
+
+class EditHistory {
+ public:
+  explicit EditHistory(std::size_t steps = History::kDefaultSteps) : history_(steps) {}
+
+  // Once per frame, after the panels. item_active: an ImGui item is held this frame
+  // (ImGui::IsAnyItemActive(): a slider being dragged, a field being typed in). Commits the live
+  // Document when nothing is held, no load is pending and something is loaded, if an item was
+  // held since the last commit or the takes changed (the first one sets the starting state).
+  void record(const EditorState& state, BlendSession& session, bool item_active);
+  // Records what is there, steps back (forward) and applies that state. false: nothing to undo
+  // (redo). Returns at once; a load it asks for arrives later.
+  bool undo(EditorState& state, BlendSession& session);
+  bool redo(EditorState& state, BlendSession& session);
+  // The next record() commits even when no item was held (an opened session, a command).
+  void mark_edited() { touched_ = true; }
+
+  const History& history() const { return history_; }
+  bool can_undo() const { return history_.can_undo(); }
+  bool can_redo() const { return history_.can_redo(); }
+
+ private:
+  History history_;
+  bool touched_ = false;  // an item was held, or mark_edited(), since the last commit
+};
+
+}  // namespace mostyle::ui

@@ -1,0 +1,197 @@
+#include "ui/model/palette_view.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "engine/io/motion_file.h"
+#include "engine/io/error.h"
+#include "ui/model/blend_session.h"
+#include "ui/model/joint_contacts.h"
+#include "ui/model/lanes.h"
+
+namespace mostyle::ui {
+namespace {
+
+const glm::vec3 kMixColor(0.50f, 0.88f, 0.46f);
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// The parts the palette panel gives weights to, in PaletteControls::part_weights order.
+constexpr BodyPart kParts[] = {BodyPart::kLegs, BodyPart::kArms, BodyPart::kSpine};
+
+bool same_mix(const MixParams& a, const MixParams& b) {
+  return a.weights == b.weights && a.component_weights.rows() == b.component_weights.rows() &&
+         a.component_weights.cols() == b.component_weights.cols() && a.component_weights == b.component_weights &&
+         a.min_weight == b.min_weight && a.max_weight == b.max_weight && a.reference_timing == b.reference_timing &&
+         a.residual == b.residual && a.finish.limb_lengths == b.finish.limb_lengths &&
+         a.finish.foot_lock == b.finish.foot_lock && a.finish.loop == b.finish.loop;
+}
+
+}  // namespace
+
+glm::vec3 palette_color(int take) {
+  // A and B keep the pair's orange and blue; then violet, yellow, pink, teal, ... around the wheel.
+  static const glm::vec3 kColors[] = {{0.96f, 0.60f, 0.28f}, {0.36f, 0.64f, 0.97f}, {0.74f, 0.52f, 0.96f},
+                                      {0.95f, 0.85f, 0.30f}, {0.96f, 0.45f, 0.66f}, {0.30f, 0.85f, 0.80f},
+                                      {0.80f, 0.80f, 0.80f}, {0.62f, 0.80f, 0.35f}};
+  return kColors[static_cast<size_t>(take) % (sizeof kColors / sizeof kColors[0])];
+}
+
+MixParams mix_params_for(const SessionControls& controls, const Decomposed& decomposition, int takes) {
+  const PaletteControls& c = controls.palette;
+  MixParams m;
+  if (c.transfer) {
+    // Content is the reference (take 0); the neutral take loses what each style gains.
+    std::vector<double> strengths;
+    m.weights.assign(static_cast<size_t>(takes), 0.0);
+    m.weights[0] = 1.0;
+    const int neutral = std::clamp(c.neutral, 1, takes - 1);
+    for (int i = 1; i < takes; ++i) {
+      if (i == neutral) continue;
+      const double s = static_cast<size_t>(i) < c.strengths.size() ? c.strengths[static_cast<size_t>(i)] : 0.0;
+      m.weights[static_cast<size_t>(i)] = s;
+      m.weights[static_cast<size_t>(neutral)] -= s;
+    }
+    m.min_weight = -kMaxStrength * double(takes);
+    m.max_weight = kMaxStrength + 1.0;
+  } else {
+    m.weights = c.weights;
+    if (static_cast<int>(m.weights.size()) != takes) m.weights.assign(static_cast<size_t>(takes), 1.0 / takes);
+  }
+  if (c.per_part && !c.transfer) {
+    // Each part: its own weights when given (one per take), else the overall weights.
+    std::vector<std::pair<BodyPart, std::vector<double>>> given;
+    for (size_t part = 0; part < c.part_weights.size() && part < std::size(kParts); ++part)
+      if (static_cast<int>(c.part_weights[part].size()) == takes) given.emplace_back(kParts[part], c.part_weights[part]);
+    if (!given.empty()) m.component_weights = part_weights(given, decomposition.component_joints, m.weights);
+  }
+  m.reference_timing = controls.timing_a;
+  m.residual = controls.residual;
+  m.finish.foot_lock = controls.foot_lock;
+  m.finish.loop = controls.loop;
+  m.Validate(takes, decomposition.components());
+  return m;
+}
+
+void PaletteView::clear() {
+  has_mix_ = false;
+  mixed_decomposition_ = nullptr;
+  error_.clear();
+}
+
+void PaletteView::take_up(const PreparedTakes& p, const std::vector<std::string>& paths,
+                          const std::vector<std::string>& warnings, PaletteControls& controls, EditorState& state) {
+  clear();
+  const int n = p.size();
+  if (static_cast<int>(controls.weights.size()) != n) controls.weights.assign(static_cast<size_t>(n), 1.0 / n);
+  if (static_cast<int>(controls.strengths.size()) != n) controls.strengths.assign(static_cast<size_t>(n), 1.0);
+  controls.part_weights.resize(std::size(kParts));
+  for (auto& w : controls.part_weights)
+    if (static_cast<int>(w.size()) != n) w.clear();  // empty: the part follows the overall weights
+  controls.neutral = std::clamp(controls.neutral, 1, n - 1);
+  state.takes.clear();
+  Take mix;
+  mix.label = "mix";
+  mix.path = "(mix of the palette's takes)";
+  mix.color = kMixColor;
+  mix.clip = p.takes.front().clip;
+  mix.fps = p.fps;
+  mix.parents = p.parents;
+  mix.positions = p.takes.front().world_placed;  // until the first mix arrives
+  state.takes.push_back(std::move(mix));
+  for (int i = 0; i < n; ++i) {
+    Take t;
+    const std::string& path = static_cast<size_t>(i) < paths.size() ? paths[static_cast<size_t>(i)] : std::string();
+    t.path = path;
+    t.label = (i == 0 ? "reference  " : "") + take_label(path);
+    t.color = palette_color(i);
+    t.clip = p.takes[static_cast<size_t>(i)].clip;
+    t.fps = p.fps;
+    t.parents = p.parents;
+    if (i == 0) {
+      t.warnings = warnings;
+      // Each take's alignment onto the reference (prepare_takes names the takes).
+      for (const PreparedTake& aligned : p.takes)
+        t.warnings.insert(t.warnings.end(), aligned.alignment.warnings.begin(), aligned.alignment.warnings.end());
+    }
+    state.takes.push_back(std::move(t));
+  }
+  // Shared floor and start, side-by-side spacing and direction (ui/model/lanes.h).
+  const Placement placed = placement_of(p.takes.front().world_placed);
+  shift_ = placed.shift;
+  side_ = placed.side;
+  spacing_ = placed.spacing;
+  for (Take& t : state.takes) t.size = placed.size;
+}
+
+void PaletteView::update(const PreparedTakes& p, const Decomposed* d, const SessionControls& controls,
+                         EditorState& state) {
+  if (static_cast<int>(state.takes.size()) != p.size() + 1) return;
+  if (d != nullptr) {
+    try {
+      const MixParams params = mix_params_for(controls, *d, p.size());
+      if (d != mixed_decomposition_ || !same_mix(params, mixed_)) {
+        const auto t0 = Clock::now();
+        mix_palette(p, *d, params, scratch_, mix_);
+        mix_ms_ = ms_since(t0);
+        has_mix_ = true;
+        error_.clear();
+        mixed_decomposition_ = d;
+        mixed_ = params;
+        char label[64];
+        std::snprintf(label, sizeof label, controls.palette.transfer ? "transfer" : "mix");
+        state.takes[kPaletteMix].label = label;
+        state.takes[kPaletteMix].contacts =
+            joint_contacts(mix_.motion.contacts, p.feet, static_cast<int>(p.majors.size()));
+        place(p, controls, state);
+      }
+    } catch (const std::exception& e) {  // refused weights: said in the palette panel, the last mix stays
+      error_ = e.what();
+      mixed_decomposition_ = d;
+    }
+  }
+  if (placed_overlay_ != state.view.overlay || placed_ghosts_ != controls.palette.ghosts) place(p, controls, state);
+}
+
+// Every take at the frame the mix shows of it, on the reference's floor: the reference left of
+// the mix, the other takes (ghosts, on demand) to its right, or all on one spot when overlaid.
+void PaletteView::place(const PreparedTakes& p, const SessionControls& controls, EditorState& state) {
+  const int n = p.size();
+  const bool ghosts = controls.palette.ghosts;
+  Eigen::MatrixXd sampled;
+  // Side by side: every take in a lane beside the mix's path (ui/model/lanes.h).
+  const bool lanes_on = !state.view.overlay && has_mix_;
+  Lanes lanes;
+  if (lanes_on) lanes = lanes_along(mix_.motion.world, Eigen::Vector2d(side_.x(), side_.z()));
+  for (int i = -1; i < n; ++i) {
+    Take& t = state.takes[static_cast<size_t>(kPaletteFirst + i)];
+    const double slot = i < 0 ? 0.0 : i == 0 ? -1.0 : double(i);
+    if (i < 0) {
+      if (has_mix_) sampled = mix_.motion.world;
+      else continue;
+    } else {
+      const PreparedTake& take = p.takes[static_cast<size_t>(i)];
+      if (has_mix_) sample_rows(take.world_placed, mix_.sources.col(i), sampled);
+      else sampled = take.world_placed;
+      t.visible = i == 0 || ghosts;
+    }
+    if (lanes_on && i >= 0) {
+      place_in_lane(sampled, lanes, slot * spacing_, shift_, t.positions);
+      continue;
+    }
+    const Eigen::Vector3d offset = shift_ + (state.view.overlay ? 0.0 : slot * spacing_) * side_;
+    t.positions = sampled;
+    for (Eigen::Index j = 0; 3 * j < t.positions.cols(); ++j)
+      for (int a = 0; a < 3; ++a) t.positions.col(3 * j + a).array() += offset[a];
+  }
+  placed_overlay_ = state.view.overlay;
+  placed_ghosts_ = ghosts;
+}
+
+}  // namespace mostyle::ui

@@ -1,0 +1,64 @@
+#pragma once
+// The style palette in the editor (issue #9): the takes the viewport shows while a palette is
+// loaded, and the mix, re-run on the UI thread when a weight or option moves (well under a
+// millisecond for a minute of eight takes). The palette and its decomposition come from the
+// engine's worker (BlendSession); this file only turns them into what is shown.
+//
+// EditorState::takes while a palette is loaded: [0] the mix, then one take per palette take
+// (the reference first), each shown at the frame the mix is in it.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "engine/run/palette.h"
+#include "ui/model/editor_state.h"
+
+namespace mostyle::ui {
+
+struct SessionControls;
+struct PaletteControls;
+
+constexpr int kPaletteMix = 0;    // index of the mix in EditorState::takes
+constexpr int kPaletteFirst = 1;  // index of the reference; take i is at kPaletteFirst + i
+
+// The engine's mix parameters the controls ask for (weights kept to the palette's size, per-part
+// weights, a transfer's weights, the clean-up options). Throws InputError when the weights are
+// refused (MixParams::Validate says why).
+MixParams mix_params_for(const SessionControls& controls, const Decomposed& decomposition, int takes);
+
+// The palette's colour of take i (the reference first).
+glm::vec3 palette_color(int take);
+
+class PaletteView {
+ public:
+  // A new palette: the mix and one take per palette take, on the reference's floor and start.
+  void take_up(const PreparedTakes& palette, const std::vector<std::string>& paths,
+               const std::vector<std::string>& warnings, PaletteControls& controls, EditorState& state);
+  // After the panels: mixes again when the controls' mix differs from the one shown, then
+  // refreshes positions, visibility (ghosts) and placement.
+  void update(const PreparedTakes& palette, const Decomposed* decomposition,
+              const SessionControls& controls, EditorState& state);
+  void clear();
+
+  const MixResult* mix() const { return has_mix_ ? &mix_ : nullptr; }
+  const std::string& error() const { return error_; }
+  double mix_ms() const { return mix_ms_; }
+
+ private:
+  void place(const PreparedTakes& palette, const SessionControls& controls, EditorState& state);
+
+  const Decomposed* mixed_decomposition_ = nullptr;
+  MixParams mixed_;
+  MixScratch scratch_;
+  MixResult mix_;
+  bool has_mix_ = false;
+  bool placed_overlay_ = false, placed_ghosts_ = false;
+  std::string error_;
+  double mix_ms_ = 0.0;
+  Eigen::Vector3d shift_ = Eigen::Vector3d::Zero(), side_ = Eigen::Vector3d::UnitX();
+  float spacing_ = 0.0f;
+};
+
+}  // namespace mostyle::ui

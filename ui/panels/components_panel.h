@@ -1,0 +1,18 @@
+#pragma once
+// Pick a component: its joints light up on the blend; its weights over time for A and B; the
+// reconstruction error against k from the decompositions seen so far.
+#include "ui/model/blend_session.h"
+#include "ui/panels/panel.h"
+
+namespace mostyle::ui {
+
+class ComponentsPanel : public Panel {
+ public:
+  explicit ComponentsPanel(BlendSession& session) : session_(session) {}
+  void draw(EditorState& state) override;
+
+ private:
+  BlendSession& session_;
+};
+
+}  // namespace mostyle::ui

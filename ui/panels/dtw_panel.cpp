@@ -1,0 +1,204 @@
+#include "ui/panels/dtw_panel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include <imgui.h>
+
+#include "ui/panels/layout.h"
+#include "ui/panels/plot.h"
+
+namespace mostyle::ui {
+namespace {
+constexpr int kMatchLines = 40;  // lines joining matched frames in the "before" plot
+
+// B's signal value at fractional frame t (linear).
+double sample(const Eigen::MatrixXd& signal, double t, int column) {
+  const double last = static_cast<double>(signal.rows() - 1);
+  t = std::clamp(t, 0.0, last);
+  const int i = static_cast<int>(std::floor(t));
+  const int k = std::min(i + 1, static_cast<int>(last));
+  const double u = t - i;
+  return (1.0 - u) * signal(i, column) + u * signal(k, column);
+}
+
+// Heat colour for a normalised cost: dark blue (low) to warm yellow (high).
+ImU32 heat(float v) {
+  v = std::clamp(v, 0.0f, 1.0f);
+  const float r = std::min(1.0f, 1.6f * v), g = std::pow(v, 1.6f) * 0.95f, b = 0.35f + 0.4f * (1.0f - v) - 0.3f * v;
+  return ImGui::ColorConvertFloat4ToU32(ImVec4(0.08f + 0.9f * r, 0.06f + g, std::max(0.05f, b), 1.0f));
+}
+
+// The output frame showing warp sample u (the first at or after it), or -1 without a blend.
+int output_frame_at(const MixResult* blend, double u) {
+  if (blend == nullptr || blend->sample.size() == 0) return -1;
+  const double* begin = blend->sample.data();
+  const double* end = begin + blend->sample.size();
+  const double* it = std::lower_bound(begin, end, u);
+  return static_cast<int>(std::min<std::ptrdiff_t>(it - begin, blend->sample.size() - 1));
+}
+}  // namespace
+
+void DtwPanel::draw(EditorState& state) {
+  if (session_.palette() != nullptr) return;  // the style palette has the strip (palette_panel.h)
+  place_panel(PanelId::kDtw, state);
+  if (!ImGui::Begin(panel_title(PanelId::kDtw))) {
+    ImGui::End();
+    return;
+  }
+  const PreparedTakes* p = session_.pair();
+  if (p == nullptr || p->takes[1].alignment.feature.a.rows() < 2 || p->takes[1].alignment.feature.b.rows() < 2 ||
+      p->takes[1].alignment.path.empty()) {
+    ImGui::TextColored(ImVec4(0.6f, 0.62f, 0.66f, 1.0f), "No pair aligned yet.");
+    ImGui::End();
+    return;
+  }
+  const Alignment& al = p->takes[1].alignment;
+  const Eigen::MatrixXd& sa = al.feature.a;
+  const Eigen::MatrixXd& sb = al.feature.b;
+  const TimeWarp& warp = al.warp;
+  const MixResult* blend = session_.blend();
+  SessionControls& c = session_.controls();
+  const int fa = static_cast<int>(sa.rows()), fb = static_cast<int>(sb.rows()), samples = warp.samples();
+  ImGui::SetNextItemWidth(110.0f);
+  ImGui::Combo("##coordinate", &c.dtw_coordinate, "lateral x\0height y\0forward z\0");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Which coordinate of the aligned joint the plots show");
+  ImGui::SameLine();
+  std::string joints;
+  for (int k : al.feature.columns) joints += (joints.empty() ? "" : ", ") + p->takes[0].names[static_cast<size_t>(k)];
+  ImGui::TextColored(ImVec4(0.6f, 0.62f, 0.66f, 1.0f), "on %s: A %d-%d, B %d-%d matched",
+                     align_on_name(al.feature.on), al.a_first, al.a_last, al.b_first, al.b_last);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Aligned on %s (%s), %s DTW. Frames outside the matched ranges (shaded) are left out of the "
+                      "blend.\n%d x %d frames at %.0f fps, cost %.3g",
+                      align_on_name(al.feature.on), joints.c_str(), dtw_method_name(al.options.method), fa, fb, p->fps,
+                      al.cost);
+  ImGui::PushTextWrapPos(0.0f);  // warnings wrap inside the panel
+  for (const std::string& w : al.warnings) ImGui::TextColored(ImVec4(0.95f, 0.7f, 0.3f, 1.0f), "%s", w.c_str());
+  ImGui::PopTextWrapPos();
+  const int col = std::clamp(c.dtw_coordinate, 0, static_cast<int>(sa.cols()) - 1);
+
+  const double lo = std::min(sa.col(col).minCoeff(), sb.col(col).minCoeff());
+  double hi = std::max(sa.col(col).maxCoeff(), sb.col(col).maxCoeff());
+  if (hi <= lo) hi = lo + 1.0;
+  const double span = hi - lo;
+  const int current = state.takes.empty() ? 0 : frame_at(state.takes[kTakeBlend], state.playback.time_s);
+  const double current_u = blend != nullptr && current < blend->sample.size() ? blend->sample[current] : 0.0;
+  const float line = ImGui::GetTextLineHeightWithSpacing();
+  // In the layout's bottom strip (much wider than high) the views stand side by side; a panel
+  // the animator made tall stacks "before" above the others.
+  const ImVec2 room = ImGui::GetContentRegionAvail();
+  const bool wide = room.x > 2.5f * room.y;
+  const float plot_h = wide ? std::max(40.0f, room.y - line - 4.0f) : std::max(50.0f, (room.y - 2.0f * line) * 0.36f);
+  double hovered_u = -1.0;  // a warp sample under the mouse
+
+  // Before warping: A above, B below, each on its own timeline; matched frames joined, the
+  // matched ranges shaded.
+  ImGui::BeginGroup();
+  ImGui::TextUnformatted("before warping");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("A above, B below, each on its own timeline; matched frames joined");
+  const int frames = std::max(fa, fb);
+  PlotArea before = begin_plot("##before", wide ? 0.45f * room.x : -1.0f, plot_h, 0.0, frames - 1, lo - 1.15 * span,
+                               hi + 0.1 * span);
+  {
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    dl->PushClipRect(before.min, before.max, true);
+    dl->AddRectFilled(before.to_screen(al.a_first, hi + 0.1 * span), before.to_screen(al.a_last, lo - 0.05 * span),
+                      IM_COL32(230, 140, 60, 28));
+    dl->AddRectFilled(before.to_screen(al.b_first, hi - 1.1 * span), before.to_screen(al.b_last, lo - 1.15 * span),
+                      IM_COL32(80, 150, 240, 28));
+    const size_t n = al.path.size();
+    const size_t stride = std::max<size_t>(1, n / kMatchLines);
+    for (size_t s = 0; s < n; s += stride) {
+      const auto [i, j] = al.path[s];
+      dl->AddLine(before.to_screen(i, sa(i, col)), before.to_screen(j, sb(j, col) - 1.05 * span),
+                  IM_COL32(150, 155, 165, 90), 1.0f);
+    }
+    dl->PopClipRect();
+  }
+  plot_line(before, fa, [&](int i, double* x, double* y) { *x = i; *y = sa(i, col); }, color_a());
+  plot_line(before, fb, [&](int j, double* x, double* y) { *x = j; *y = sb(j, col) - 1.05 * span; }, color_b());
+  plot_legend(before, 0, "A", color_a());
+  plot_legend(before, 1, "B", color_b());
+  ImGui::EndGroup();
+  if (wide) ImGui::SameLine();
+  if (before.hovered) {
+    const int i = std::clamp(static_cast<int>(std::lround(before.x_at(ImGui::GetIO().MousePos.x))), 0, fa - 1);
+    const double* at = std::lower_bound(warp.a.data(), warp.a.data() + samples, double(i));
+    hovered_u = static_cast<double>(std::min<std::ptrdiff_t>(at - warp.a.data(), samples - 1));
+  }
+
+  // Below (or beside): the cost matrix (A frames down, B frames across, the path and the playhead on it)
+  // beside the signals after warping, over the warp's samples, with the match quality under them.
+  const float side = std::clamp(std::min(ImGui::GetContentRegionAvail().y - line - 4.0f,
+                                         0.5f * ImGui::GetContentRegionAvail().x),
+                                60.0f, 600.0f);
+  ImGui::BeginGroup();
+  ImGui::TextUnformatted("cost and path");
+  const DtwCostImage& img = session_.dtw_image();
+  PlotArea cost = begin_plot("##cost", side, side, 0.0, fb, fa, 0.0);  // y down: frame 0 at the top
+  if (img.rows > 0 && img.cols > 0) {
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const float cw = (cost.max.x - cost.min.x) / img.cols, ch = (cost.max.y - cost.min.y) / img.rows;
+    for (int r = 0; r < img.rows; ++r)
+      for (int k = 0; k < img.cols; ++k)
+        dl->AddRectFilled(ImVec2(cost.min.x + k * cw, cost.min.y + r * ch),
+                          ImVec2(cost.min.x + (k + 1) * cw + 0.5f, cost.min.y + (r + 1) * ch + 0.5f), heat(img.cost(r, k)));
+    plot_line(cost, samples,
+              [&](int u, double* x, double* y) {
+                *x = warp.b[u] + 0.5;
+                *y = warp.a[u] + 0.5;
+              },
+              IM_COL32(255, 255, 255, 230), 2.0f);
+    const int u = std::clamp(static_cast<int>(std::lround(current_u)), 0, samples - 1);
+    dl->AddCircleFilled(cost.to_screen(warp.b[u] + 0.5, warp.a[u] + 0.5), 4.5f, color_blend());
+  }
+  ImGui::EndGroup();
+  ImGui::SameLine();
+  ImGui::BeginGroup();
+  ImGui::TextUnformatted("after warping");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("A and B on the warp's samples, and under them how well they match");
+  const float quality_h = std::max(24.0f, 0.18f * side);
+  PlotArea after = begin_plot("##after", -1.0f, side - quality_h - 4.0f, 0.0, samples - 1, lo - 0.08 * span,
+                              hi + 0.08 * span);
+  plot_line(after, samples, [&](int u, double* x, double* y) { *x = u; *y = sample(sa, warp.a[u], col); }, color_a(), 2.0f);
+  plot_line(after, samples, [&](int u, double* x, double* y) { *x = u; *y = sample(sb, warp.b[u], col); }, color_b());
+  plot_vline(after, current_u, IM_COL32(255, 255, 255, 140));
+  plot_legend(after, 0, "A", color_a());
+  plot_legend(after, 1, "B", color_b());
+  if (after.hovered) hovered_u = std::clamp(after.x_at(ImGui::GetIO().MousePos.x), 0.0, samples - 1.0);
+  // Local cost over the path's typical cost: 1 is a typical match, above kPoorMatchRatio poor.
+  const double top = std::max(kPoorMatchRatio * 1.5, al.cost_ratio.size() ? al.cost_ratio.maxCoeff() : 1.0);
+  PlotArea quality = begin_plot("##quality", -1.0f, quality_h, 0.0, samples - 1, 0.0, top);
+  {
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    for (const auto& [first, last] : al.poor)
+      dl->AddRectFilled(quality.to_screen(first, top), quality.to_screen(last, 0.0), IM_COL32(230, 80, 60, 70));
+    dl->AddLine(quality.to_screen(0, kPoorMatchRatio), quality.to_screen(samples - 1, kPoorMatchRatio),
+                IM_COL32(230, 80, 60, 120), 1.0f);
+  }
+  plot_line(quality, samples, [&](int u, double* x, double* y) { *x = u; *y = al.cost_ratio[u]; },
+            IM_COL32(220, 220, 225, 220));
+  plot_vline(quality, current_u, IM_COL32(255, 255, 255, 140));
+  if (quality.hovered) hovered_u = std::clamp(quality.x_at(ImGui::GetIO().MousePos.x), 0.0, samples - 1.0);
+  ImGui::EndGroup();
+  if (cost.hovered) {
+    const int i = std::clamp(static_cast<int>(cost.y_at(ImGui::GetIO().MousePos.y)), 0, fa - 1);
+    const double* at = std::lower_bound(warp.a.data(), warp.a.data() + samples, double(i));
+    hovered_u = static_cast<double>(std::min<std::ptrdiff_t>(at - warp.a.data(), samples - 1));
+  }
+  if (hovered_u >= 0) {
+    const int u = std::clamp(static_cast<int>(std::lround(hovered_u)), 0, samples - 1);
+    ImGui::SetTooltip("A frame %.1f  <->  B frame %.1f\nmatch cost %.2f x the typical, B runs %.2f x A's speed\n"
+                      "click: jump there",
+                      warp.a[u], warp.b[u], al.cost_ratio[u], al.slope[u]);
+    const bool clicked = before.clicked || after.clicked || quality.clicked || cost.clicked;
+    const int frame = output_frame_at(blend, hovered_u);
+    if (clicked && frame >= 0) state.playback.time_s = (frame + 0.5) / p->fps;
+  }
+  ImGui::End();
+}
+
+}  // namespace mostyle::ui

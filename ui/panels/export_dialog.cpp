@@ -1,0 +1,362 @@
+#include "ui/panels/export_dialog.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <system_error>
+#include <utility>
+
+#include <imgui.h>
+
+#include "engine/export/export_frames.h"
+#include "engine/io/motion_file.h"
+#include "ui/panels/files_panel.h"
+
+namespace mostyle::ui {
+namespace fs = std::filesystem;
+namespace {
+
+const ImVec4 kErrorColor(1.0f, 0.45f, 0.40f, 1.0f);
+const ImVec4 kDimColor(0.60f, 0.62f, 0.66f, 1.0f);
+const ImVec4 kOkColor(0.55f, 0.85f, 0.55f, 1.0f);
+const ImVec4 kWarnColor(1.0f, 0.80f, 0.35f, 1.0f);
+constexpr float kFieldWidth = 120.0f;  // the rate and range fields, pixels
+constexpr float kWrapWidth = 440.0f;   // sentences; a fixed width, since the window fits its contents
+
+std::string absolute_path(const std::string& path) {
+  std::error_code ec;
+  const fs::path p = fs::absolute(fs::path(path), ec);
+  return ec ? path : p.string();
+}
+
+void tooltip(const char* text) {
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
+}
+
+void wrapped(const ImVec4& color, const std::string& text) {
+  ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + kWrapWidth);
+  ImGui::TextColored(color, "%s", text.c_str());
+  ImGui::PopTextWrapPos();
+}
+
+}  // namespace
+
+ExportFormat export_format(const std::string& path) {
+  return is_gltf_path(path) ? ExportFormat::kGltf : ExportFormat::kBvh;
+}
+
+std::string with_export_format(const std::string& path, ExportFormat format) {
+  if (path.empty() || export_format(path) == format) return path;
+  fs::path p(path);
+  if (p.has_extension()) p.replace_extension(format == ExportFormat::kGltf ? ".glb" : ".bvh");
+  else p += format == ExportFormat::kGltf ? ".glb" : ".bvh";
+  return p.string();
+}
+
+double export_rate_fps(ExportRate rate, double source_fps, double custom_fps) {
+  switch (rate) {
+    case ExportRate::kSource: return source_fps;
+    case ExportRate::k30: return 30.0;
+    case ExportRate::k60: return 60.0;
+    case ExportRate::k120: return 120.0;
+    case ExportRate::kCustom: return custom_fps;
+  }
+  return custom_fps;
+}
+
+ExportDialog::ExportDialog(BlendSession& session) : session_(session) {}
+
+ExportOptions ExportDialog::options() const {
+  const ExportSubject subject = export_subject(session_);
+  ExportOptions o;
+  o.path = settings_.path;
+  o.fps = export_rate_fps(settings_.rate, subject.clip != nullptr ? subject.clip->fps() : 0.0, settings_.custom_fps);
+  o.range = settings_.range;
+  o.in_s = settings_.in_s;
+  o.out_s = settings_.out_s;
+  o.layout = settings_.layout;
+  return o;
+}
+
+void ExportDialog::poll() {
+  const ExportSubject subject = export_subject(session_);
+  if (subject.identity != seen_pair_) {
+    seen_pair_ = subject.identity;
+    confirm_ = false;
+    reset_range_ = true;
+    // Once per pair or palette: O(frames x channels) of the reference.
+    if (subject.clip != nullptr) settings_.layout = default_channel_layout(*subject.clip);
+  }
+  if (subject.frames > 0) {
+    const double length = motion_length_s(subject.frames, subject.working_fps);
+    if (reset_range_) {
+      settings_.in_s = 0.0;
+      settings_.out_s = length;
+      reset_range_ = false;
+    }
+    // The result's length follows the weights when the timing is mixed: the points stay inside it.
+    settings_.out_s = std::clamp(settings_.out_s, 0.0, length);
+    settings_.in_s = std::clamp(settings_.in_s, 0.0, settings_.out_s);
+  }
+  ExportOutcome outcome;
+  if (job_.take_outcome(&outcome))
+    session_.set_export_result(outcome.ok, outcome.message, outcome.ok ? outcome.ms : session_.export_ms());
+}
+
+ExportDialog::Pressed ExportDialog::press_export() { return start(false); }
+ExportDialog::Pressed ExportDialog::press_overwrite() { return start(true); }
+
+void ExportDialog::press_cancel() {
+  if (job_.running()) job_.cancel();
+  confirm_ = false;
+}
+
+ExportDialog::Pressed ExportDialog::start(bool overwrite) {
+  if (job_.running()) return Pressed::kBusy;
+  ExportRequest request;
+  try {
+    request = make_export_request(session_, options());
+  } catch (const std::exception& e) {  // InputError: no file name, no blend, no loop
+    confirm_ = false;
+    session_.set_export_result(false, e.what(), session_.export_ms());
+    return Pressed::kFailed;
+  }
+  std::error_code ec;
+  const bool exists = fs::exists(fs::path(request.options.path), ec);
+  if (exists && !(overwrite && confirm_ && confirm_path_ == request.options.path)) {
+    confirm_ = true;
+    confirm_path_ = request.options.path;
+    return Pressed::kConfirm;
+  }
+  confirm_ = false;
+  // The last outcome is not this one's: neither the message nor one finished since the last poll.
+  ExportOutcome stale;
+  job_.take_outcome(&stale);
+  session_.set_export_result(false, std::string(), session_.export_ms());
+  job_.start(std::move(request));
+  return Pressed::kStarted;
+}
+
+void ExportDialog::draw(EditorState& state) {
+  poll();
+  if (!state.view.show_export) return;
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(0.5f * display.x, 0.5f * display.y), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  bool open = true;
+  const ImGuiWindowFlags flags =
+      ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings;
+  if (ImGui::Begin(kExportDialogTitle, &open, flags)) draw_contents(state, &open);
+  ImGui::End();
+  if (!open) {
+    state.view.show_export = false;
+    confirm_ = false;  // a closed dialog asks nothing (a running export goes on)
+  }
+}
+
+void ExportDialog::draw_contents(EditorState& state, bool* open) {
+  const ExportSubject subject = export_subject(session_);
+  const double working = subject.working_fps;
+  const double source = subject.clip != nullptr ? subject.clip->fps() : 0.0;
+  const int blend_frames = subject.frames;
+  const double length = motion_length_s(blend_frames, working);
+  const bool busy = job_.running();
+  // A path edited after the question was asked: the question was about another file.
+  if (confirm_ && absolute_path(settings_.path) != confirm_path_) confirm_ = false;
+
+  ImGui::BeginDisabled(busy);
+  // The file.
+  ImGui::SetNextItemWidth(kWrapWidth - 60.0f);
+  const bool enter = ImGui::InputText("File", settings_.path, sizeof settings_.path, ImGuiInputTextFlags_EnterReturnsTrue);
+  if (ImGui::IsItemHovered()) {
+    std::error_code ec;
+    ImGui::SetTooltip("The file to write (.bvh, or .glb / .gltf for glTF); a name alone goes in %s.\nEnter exports.",
+                      fs::current_path(ec).string().c_str());
+  }
+  // The format: the file's extension, which these buttons change.
+  const ExportFormat format = export_format(settings_.path);
+  auto format_button = [&](ExportFormat f, const char* label, const char* tip) {
+    if (ImGui::RadioButton(label, format == f) && format != f) {
+      const std::string path = with_export_format(settings_.path, f);
+      std::snprintf(settings_.path, sizeof settings_.path, "%s", path.c_str());
+    }
+    tooltip(tip);
+  };
+  format_button(ExportFormat::kBvh, "BVH", "BVH on take A's skeleton, A's rotation orders and channels");
+  ImGui::SameLine();
+  format_button(ExportFormat::kGltf, "glTF (.glb)",
+                "glTF 2.0: A's skeleton as nodes, one animation (root translation, rotations as\n"
+                "quaternions), for game engines, three.js and Blender");
+
+  // The frame rate.
+  ImGui::Spacing();
+  ImGui::TextColored(kDimColor, "Frame rate");
+  auto rate_button = [&](ExportRate rate, const char* label, const char* tip) {
+    if (ImGui::RadioButton(label, settings_.rate == rate)) settings_.rate = rate;
+    tooltip(tip);
+  };
+  char source_label[48];
+  const bool pair = subject.takes <= 2;
+  std::snprintf(source_label, sizeof source_label, "%s own (%g)", pair ? "A's" : "The reference's", source);
+  const std::string source_tip = "The rate of " + (subject.name.empty() ? std::string("the reference take") : subject.name);
+  rate_button(ExportRate::kSource, source_label, source_tip.c_str());
+  ImGui::SameLine();
+  rate_button(ExportRate::k30, "30", working == 30.0 ? "30 frames per second: the result's own frames" : "30 frames per second");
+  ImGui::SameLine();
+  rate_button(ExportRate::k60, "60", "60 frames per second (frames in between are interpolated)");
+  ImGui::SameLine();
+  rate_button(ExportRate::k120, "120", "120 frames per second (frames in between are interpolated)");
+  ImGui::SameLine();
+  rate_button(ExportRate::kCustom, "Other", "Any rate above 0 and up to 1000 frames per second");
+  if (settings_.rate == ExportRate::kCustom) {
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(kFieldWidth * 0.7f);
+    ImGui::InputDouble("fps", &settings_.custom_fps, 0.0, 0.0, "%.6g");
+    tooltip("Frames per second of the file");
+  }
+
+  // The frames.
+  ImGui::Spacing();
+  ImGui::TextColored(kDimColor, "Frames");
+  char all_label[64];
+  std::snprintf(all_label, sizeof all_label, "All (%.2f s)", length);
+  if (ImGui::RadioButton(all_label, settings_.range == ExportRange::kAll)) settings_.range = ExportRange::kAll;
+  tooltip("The whole result, first frame to last");
+  ImGui::SameLine();
+  if (ImGui::RadioButton("In to out", settings_.range == ExportRange::kInOut)) settings_.range = ExportRange::kInOut;
+  tooltip("From the in point to the out point, both included");
+  ImGui::SameLine();
+  const int cycles = subject.loop_cycles;
+  char loop_label[64];
+  if (cycles > 0)
+    std::snprintf(loop_label, sizeof loop_label, "The loop (%d cycle%s)", cycles, cycles == 1 ? "" : "s");
+  else
+    std::snprintf(loop_label, sizeof loop_label, "The loop");
+  ImGui::BeginDisabled(cycles <= 0);
+  if (ImGui::RadioButton(loop_label, settings_.range == ExportRange::kLoop)) settings_.range = ExportRange::kLoop;
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("%s", cycles > 0 ? "The result's seamless loop of whole gait cycles: the file repeats without a\n"
+                                         "hitch, at any frame rate"
+                                       : "Turn on Loop in the parameters panel to cut a seamless loop of the result");
+  if (settings_.range == ExportRange::kInOut) {
+    double in = settings_.in_s, out = settings_.out_s;
+    if (settings_.range_in_frames) {
+      int in_f = static_cast<int>(std::lround(in * working));
+      int out_f = static_cast<int>(std::lround(out * working));
+      const int last = std::max(blend_frames - 1, 0);
+      ImGui::SetNextItemWidth(kFieldWidth);
+      if (ImGui::DragInt("In##frames", &in_f, 0.25f, 0, last)) in = std::clamp(in_f, 0, last) / working;
+      tooltip("The first frame written, a frame of the result as the playback bar counts them; drag or type");
+      ImGui::SameLine();
+      ImGui::SetNextItemWidth(kFieldWidth);
+      if (ImGui::DragInt("Out##frames", &out_f, 0.25f, 0, last)) out = std::clamp(out_f, 0, last) / working;
+      tooltip("The last frame written");
+    } else {
+      const double zero = 0.0;
+      ImGui::SetNextItemWidth(kFieldWidth);
+      if (ImGui::DragScalar("In##s", ImGuiDataType_Double, &in, 0.01f, &zero, &length, "%.3f s"))
+        in = std::clamp(in, 0.0, length);
+      tooltip("Where the file starts, seconds from the result's first frame; drag or type");
+      ImGui::SameLine();
+      ImGui::SetNextItemWidth(kFieldWidth);
+      if (ImGui::DragScalar("Out##s", ImGuiDataType_Double, &out, 0.01f, &zero, &length, "%.3f s"))
+        out = std::clamp(out, 0.0, length);
+      tooltip("Where the file ends (that frame included)");
+    }
+    // One point dragged past the other takes it along.
+    if (in != settings_.in_s) out = std::max(out, in);
+    if (out != settings_.out_s) in = std::min(in, out);
+    settings_.in_s = in;
+    settings_.out_s = out;
+    const Take* reference = state.reference_take();
+    const double playhead = reference != nullptr ? frame_at(*reference, state.playback.time_s) / working : 0.0;
+    if (ImGui::SmallButton("In at playhead")) {
+      settings_.in_s = std::min(playhead, length);
+      settings_.out_s = std::max(settings_.out_s, settings_.in_s);
+    }
+    tooltip("The in point at the frame the playback shows");
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Out at playhead")) {
+      settings_.out_s = std::min(playhead, length);
+      settings_.in_s = std::min(settings_.in_s, settings_.out_s);
+    }
+    tooltip("The out point at the frame the playback shows");
+    ImGui::SameLine();
+    ImGui::Checkbox("in frames", &settings_.range_in_frames);
+    tooltip("Count the in and out points in the result's frames; off: in seconds");
+  }
+
+  // The channels (BVH; glTF has translations on the root and rotations everywhere).
+  ImGui::Spacing();
+  ImGui::BeginDisabled(format == ExportFormat::kGltf);
+  ImGui::TextColored(kDimColor, "Channels");
+  const std::string as_source = "As " + (subject.name.empty() ? std::string("the reference take's file") : subject.name);
+  const char* layout_names[2] = {"Rotations (positions on the root only)", as_source.c_str()};
+  const int current = settings_.layout == ChannelLayout::kRotations ? 0 : 1;
+  ImGui::SetNextItemWidth(kWrapWidth - 60.0f);
+  if (ImGui::BeginCombo("##layout", layout_names[current])) {
+    for (int i = 0; i < 2; ++i) {
+      if (ImGui::Selectable(layout_names[i], i == current))
+        settings_.layout = i == 0 ? ChannelLayout::kRotations : ChannelLayout::kAsSource;
+      if (i == 0)
+        tooltip("Position channels only where the body travels, so Blender, three.js and game engines\n"
+                "all place the joints alike (a joint's constant positions go into its offset)");
+      else
+        tooltip("The channels of the reference take's file, joint by joint (needed when its bones change length)");
+    }
+    ImGui::EndCombo();
+  }
+  tooltip("How the file's channels are laid out; the default is what suits the reference take");
+  ImGui::EndDisabled();
+  ImGui::EndDisabled();
+
+  // What will be written.
+  const ExportOptions o = options();
+  const bool rate_ok = std::isfinite(o.fps) && o.fps > 0.0 && o.fps <= kMaxExportFps;
+  if (!rate_ok) {
+    wrapped(kErrorColor, "The frame rate must be above 0 and at most 1000 frames per second.");
+  } else if (subject.frames > 0) {
+    int frames = 0;
+    if (o.range == ExportRange::kLoop)
+      frames = std::max(1, static_cast<int>(std::lround(blend_frames * o.fps / working)));
+    else if (o.range == ExportRange::kInOut)
+      frames = export_frame_count(o.in_s, o.out_s, o.fps);
+    else
+      frames = export_frame_count(0.0, length, o.fps);
+    char summary[96];
+    std::snprintf(summary, sizeof summary, "Writes %d frames at %g fps.", frames, o.fps);
+    ImGui::TextColored(kDimColor, "%s", summary);
+  }
+
+  // Export, the question before an overwrite, or the progress.
+  ImGui::Separator();
+  if (busy) {
+    ImGui::ProgressBar(job_.progress(), ImVec2(kWrapWidth - 100.0f, 0.0f), "exporting");
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel")) press_cancel();
+    tooltip("Stop the export; a file already being written is finished");
+  } else if (confirm_) {
+    wrapped(kWarnColor, fs::path(confirm_path_).filename().string() + " exists. Overwrite it?");
+    if (ImGui::Button("Overwrite")) press_overwrite();
+    tooltip("Replace the file with the result");
+    ImGui::SameLine();
+    if (ImGui::Button("Keep it")) press_cancel();
+    tooltip("Do not write; choose another file name");
+  } else {
+    if (ImGui::Button("Export") || enter) press_export();
+    tooltip("Write the result on the reference take's skeleton (BVH or glTF, by the file's extension), in the\n"
+            "background");
+    ImGui::SameLine();
+    if (ImGui::Button("Close")) *open = false;
+  }
+  if (!session_.export_message().empty()) {
+    const std::string text = without_folders(session_.export_message(),
+                                             {fs::path(absolute_path(settings_.path)).parent_path().string()});
+    wrapped(session_.export_ok() ? kOkColor : kErrorColor, text);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", session_.export_message().c_str());
+  }
+}
+
+}  // namespace mostyle::ui

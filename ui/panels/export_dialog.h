@@ -1,0 +1,97 @@
+#pragma once
+// The export dialog (issue "The editor for a working day"): the file and its format (BVH or glTF,
+// issue #17: the buttons set the file's extension), the frame rate (A's own,
+// 30, 60, 120 or another), the frames (all, from an in point to an out point, or the blend's
+// loop when it has one), the channel layout (engine/export/channel_layout.h, A's default), a
+// confirmation before a file is overwritten, and the export on a thread of its own (ExportJob)
+// with a progress bar, so the editor stays live and the blend may change meanwhile.
+//
+// Opened by the files panel's Export button and by Ctrl+E (state.view.show_export); the files
+// panel owns it and shares its file field. The outcome goes to BlendSession::export_message(),
+// shown here and in the files panel; a new pair clears it.
+#include <string>
+
+#include "engine/export/channel_layout.h"
+#include "ui/model/blend_session.h"
+#include "ui/model/export_job.h"
+#include "ui/panels/panel.h"
+
+namespace mostyle::ui {
+
+constexpr const char* kExportDialogTitle = "Export";  // the window's title and ImGui id
+
+enum class ExportRate { kSource, k30, k60, k120, kCustom };
+
+// The file format of an export, which the file's extension decides (issue #17): BVH, or glTF 2.0
+// as one .glb (or .gltf with its .bin, typed by hand).
+enum class ExportFormat { kBvh, kGltf };
+ExportFormat export_format(const std::string& path);  // kGltf for .glb and .gltf, else kBvh
+// `path` with the extension of `format`: ".bvh", or ".glb" (a .gltf path stays .gltf for
+// kGltf). A path without an extension gets one; "" stays "".
+std::string with_export_format(const std::string& path, ExportFormat format);
+
+// The output rate `rate` stands for: A's own (source_fps, its file's rate), 30, 60, 120 or
+// custom_fps (checked by the export, not here).
+double export_rate_fps(ExportRate rate, double source_fps, double custom_fps);
+
+// The dialog's fields, kept from one export to the next.
+struct ExportSettings {
+  char path[512] = "blend.bvh";   // the file (the files panel's export field edits it too)
+  ExportRate rate = ExportRate::k30;  // 30: the blend's own frames at the editor's working rate
+  double custom_fps = 24.0;
+  ExportRange range = ExportRange::kAll;
+  double in_s = 0.0, out_s = 0.0;  // kInOut, seconds of the blend; reset to all of it for a new pair
+  bool range_in_frames = true;     // the in and out fields count the blend's frames, else seconds
+  ChannelLayout layout = ChannelLayout::kRotations;  // default_channel_layout(A) for each new pair
+};
+
+class ExportDialog : public Panel {
+ public:
+  explicit ExportDialog(BlendSession& session);
+
+  // poll(), then the window while state.view.show_export (closing it clears that).
+  void draw(EditorState& state) override;
+
+  // What the dialog's buttons do (also for tests, with no ImGui frame).
+  enum class Pressed {
+    kStarted,  // the export runs on its thread
+    kConfirm,  // the file exists: nothing written, the dialog asks to overwrite it
+    kBusy,     // an export is still running: nothing started
+    kFailed,   // no file name, no blend, no loop: the sentence is the session's export message
+  };
+  // Export: starts the export, unless the file exists (then asks, kConfirm).
+  Pressed press_export();
+  // Overwrite, after press_export said kConfirm for the same file: starts the export over it.
+  // Without that confirmation it is press_export.
+  Pressed press_overwrite();
+  // Keep the file (drops the confirmation) or, while an export runs, cancels it.
+  void press_cancel();
+
+  // Each frame (draw does it): a new pair resets the range to all of the blend, the layout to
+  // A's default and drops a confirmation; the in and out points stay inside the blend; a
+  // finished export's outcome goes to the session's export message.
+  void poll();
+
+  ExportSettings& settings() { return settings_; }
+  // The settings for the session's current pair: the rate resolved, the range as chosen.
+  ExportOptions options() const;
+  bool confirming_overwrite() const { return confirm_; }
+  // An export runs, or its outcome waits for the next poll(): the editor keeps drawing frames.
+  bool busy() const { return job_.running() || job_.has_outcome(); }
+  ExportJob& job() { return job_; }
+  const ExportJob& job() const { return job_; }
+
+ private:
+  Pressed start(bool overwrite);
+  void draw_contents(EditorState& state, bool* open);
+
+  BlendSession& session_;
+  ExportSettings settings_;
+  ExportJob job_;
+  bool confirm_ = false;      // asking whether to overwrite confirm_path_
+  std::string confirm_path_;  // absolute
+  const void* seen_pair_ = nullptr;
+  bool reset_range_ = true;   // a new pair: in and out to all of its blend once it has one
+};
+
+}  // namespace mostyle::ui

@@ -1,0 +1,327 @@
+#include "ui/panels/files_panel.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cstring>
+#include <filesystem>
+#include <system_error>
+#include <vector>
+
+#include <imgui.h>
+
+#include <chrono>
+
+#include "engine/io/motion_file.h"
+
+#include "ui/panels/layout.h"
+#include "ui/model/palette_view.h"
+
+namespace mostyle::ui {
+namespace fs = std::filesystem;
+namespace {
+const ImVec4 kErrorColor(1.0f, 0.45f, 0.40f, 1.0f);
+const ImVec4 kDimColor(0.60f, 0.62f, 0.66f, 1.0f);
+const ImVec4 kOkColor(0.55f, 0.85f, 0.55f, 1.0f);
+
+void copy_to(char* field, size_t size, const std::string& text) {
+  std::strncpy(field, text.c_str(), size - 1);
+  field[size - 1] = '\0';
+}
+
+bool is_motion(const fs::path& p) { return is_motion_file(p.string()); }
+
+// A folder's own name with a slash ("motions/"), for the panel's text; "/" and "." as they are.
+std::string folder_name(const std::string& folder) {
+  fs::path p(folder);
+  if (!p.has_filename() && p.has_parent_path() && p.parent_path() != p) p = p.parent_path();  // "a/b/" -> "a/b"
+  const std::string name = p.filename().string();
+  return name.empty() || name == "." || name == ".." ? folder : name + "/";
+}
+
+// A sentence that may name files, without their folders; the whole sentence on hover.
+void sentence(const ImVec4& color, const std::string& text, const std::vector<std::string>& folders) {
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextColored(color, "%s", without_folders(text, folders).c_str());
+  ImGui::PopTextWrapPos();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text.c_str());
+}
+}  // namespace
+
+void PathField::set(const std::string& path) {
+  const fs::path p(path);
+  if (p.has_filename() && p.has_parent_path()) {
+    folder = p.parent_path().string();
+    copy_to(text, sizeof text, p.filename().string());
+  } else {
+    folder.clear();
+    copy_to(text, sizeof text, path);
+  }
+}
+
+std::string PathField::path() const {
+  const fs::path t(text);
+  if (t.empty()) return std::string();
+  if (t.has_parent_path() || folder.empty()) return t.string();
+  return (fs::path(folder) / t).string();
+}
+
+std::string without_folders(std::string text, std::vector<std::string> folders) {
+  // Longest first: "/data/" must not eat the start of "/data/walks/".
+  std::sort(folders.begin(), folders.end(),
+            [](const std::string& x, const std::string& y) { return x.size() > y.size(); });
+  for (std::string f : folders) {
+    if (f.empty() || f == "." || f == "/") continue;
+    if (f.back() != '/') f += '/';
+    for (size_t at = text.find(f); at != std::string::npos; at = text.find(f, at)) text.erase(at, f.size());
+  }
+  return text;
+}
+
+std::string take_role(int take, int takes) {
+  if (takes <= 2) return take == 0 ? "A" : "B";
+  return std::to_string(take + 1);
+}
+
+std::vector<std::string> with_take(std::vector<std::string> takes, size_t index, const std::string& path) {
+  if (takes.size() == 2 && takes[1].empty() && index == 2) index = 1;  // A with itself: the B it lacked
+  if (index >= takes.size()) takes.push_back(path);
+  else takes[index] = path;
+  return takes;
+}
+
+FilesPanel::FilesPanel(BlendSession& session, std::string folder)
+    : session_(session), folder_(std::move(folder)), export_dialog_(session) {}
+
+void FilesPanel::take_buttons(const std::string& path, const std::vector<std::string>& takes) {
+  BlendSession& s = session_;
+  const int n = static_cast<int>(takes.size());
+  if (n <= 2) {
+    for (int i = 0; i < 2; ++i) {
+      if (ImGui::SmallButton(take_role(i, 2).c_str())) s.load_files(with_take(takes, static_cast<size_t>(i), path));
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip(i == 0 ? "Load as A, the take whose timing and skeleton lead" : "Load as B, the style blended in");
+      ImGui::SameLine();
+    }
+  }
+  if (ImGui::SmallButton("+")) s.load_files(with_take(takes, takes.size(), path));
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(n <= 2 && !takes[1].empty() ? "Add as a third take: the pair becomes a style palette"
+                                                  : "Add as one more take of the palette");
+  ImGui::SameLine();
+  if (n > 2) {
+    if (ImGui::SmallButton("Replace...")) ImGui::OpenPopup("##replace");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Put this file in place of one take of the palette");
+    if (ImGui::BeginPopup("##replace")) {
+      for (int i = 0; i < n; ++i) {
+        const std::string label = take_role(i, n) + "  " + fs::path(takes[static_cast<size_t>(i)]).filename().string() +
+                                  (i == 0 ? "  (reference)" : "");
+        if (ImGui::Selectable(label.c_str())) s.load_files(with_take(takes, static_cast<size_t>(i), path));
+      }
+      ImGui::EndPopup();
+    }
+    ImGui::SameLine();
+  }
+}
+
+void FilesPanel::draw(EditorState& state) {
+  BlendSession& s = session_;
+  export_dialog_.draw(state);  // its own window; polled even while hidden, so an outcome arrives
+  // The fields follow the takes last asked for (not while the animator types): after a failed
+  // load they hold the bad path, to correct.
+  std::vector<std::string> requested = s.requested_files();
+  if (requested.size() < 2) requested.resize(2);  // a pair's B field, empty: A with itself
+  if (requested != synced_) {
+    synced_ = requested;
+    fields_.assign(requested.size(), PathField());
+    for (size_t i = 0; i < requested.size(); ++i) fields_[i].set(requested[i]);
+  }
+  const std::vector<std::string>& takes = synced_;
+  const int n = static_cast<int>(takes.size());
+
+  // Dropped files: two or more are the new takes (three or more the style palette, the first the
+  // reference); one is the pair's new B, or one more take of a palette.
+  if (!s.dropped().empty()) {
+    std::vector<std::string> files;
+    files.swap(s.dropped());
+    if (files.size() >= 2) s.load_files(files);
+    else s.load_files(with_take(takes, n <= 2 ? 1 : takes.size(), files[0]));
+  }
+  place_panel(PanelId::kFiles, state);
+  if (!ImGui::Begin(panel_title(PanelId::kFiles))) {
+    ImGui::End();
+    return;
+  }
+  // Folders left out of the panel's sentences (shown whole on hover).
+  std::error_code ec;
+  char* export_path = export_dialog_.settings().path;
+  const std::string export_folder = fs::absolute(fs::path(export_path), ec).parent_path().string();
+  std::vector<std::string> folders = {folder_, export_folder};
+  for (const PathField& f : fields_) folders.push_back(f.folder);
+
+  // One path field per take: the file's name; on hover, its folder and what typing does. Enter
+  // or Load loads the takes with this one as typed.
+  std::vector<std::string> typed;
+  for (const PathField& f : fields_) typed.push_back(f.path());
+  ImGui::PushItemWidth(n > 2 ? -116.0f : -92.0f);
+  int remove = -1;
+  for (int i = 0; i < n; ++i) {
+    PathField& field = fields_[static_cast<size_t>(i)];
+    ImGui::PushID(i);
+    const glm::vec3 c = n <= 2 ? (i == 0 ? glm::vec3(0.96f, 0.60f, 0.28f) : glm::vec3(0.36f, 0.64f, 0.97f)) : palette_color(i);
+    ImGui::TextColored(ImVec4(c.x, c.y, c.z, 1.0f), "%s", take_role(i, n).c_str());
+    ImGui::SameLine(ImGui::GetFontSize() * 1.6f);
+    const bool entered = ImGui::InputText("##take", field.text, sizeof field.text, ImGuiInputTextFlags_EnterReturnsTrue);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Folder: %s\nType a file name in that folder, or a path; Enter loads it.",
+                        field.folder.empty() ? "(where mostyle was started)" : field.folder.c_str());
+    ImGui::SameLine();
+    if (ImGui::Button("Load") || entered) s.load_files(with_take(takes, static_cast<size_t>(i), field.path()));
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("%s", n <= 2 ? (i == 0 ? "Load this file as A, the take whose timing and skeleton lead"
+                                              : "Load this file as B, the style blended in")
+                                     : (i == 0 ? "Load this file as the reference (its skeleton, timing and path lead)"
+                                               : "Load this file as this take of the palette"));
+    if (n > 2) {
+      ImGui::SameLine();
+      if (ImGui::SmallButton("x")) remove = i;
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Take this take out (two left: a pair)");
+    }
+    ImGui::PopID();
+  }
+  ImGui::PopItemWidth();
+  if (remove >= 0) {
+    std::vector<std::string> rest = takes;
+    rest.erase(rest.begin() + remove);
+    s.load_files(rest);
+  }
+  if (ImGui::Button(n <= 2 ? "Load pair" : "Load all")) s.load_files(typed);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Load every field as typed, as the new takes");
+  ImGui::SameLine();
+  ImGui::TextColored(kDimColor, "or drop motion files here");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(n <= 2 ? "Two or more files (BVH, FBX, glTF): the new takes. One file: the new B."
+                             : "Two or more files (BVH, FBX, glTF): the new takes. One file: one more take.");
+  ImGui::SetNextItemWidth(-92.0f);
+  const bool enter_export = ImGui::InputText("##export", export_path, sizeof export_dialog_.settings().path,
+                                            ImGuiInputTextFlags_EnterReturnsTrue);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("File to export the result to (a name: in %s); Enter opens the export dialog.",
+                      export_folder.c_str());
+  ImGui::SameLine();
+  if (ImGui::Button("Export...") || enter_export) command_open_export(state);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Choose the frame rate, the frames and the channels, then write the result on the\n"
+                      "%s's skeleton as BVH or glTF (.glb), by the file's extension (Ctrl+E)",
+                      n <= 2 ? "A take" : "reference take");
+
+  // Messages in a space of their own that is always there: a load error (with the folder it
+  // tried), the export's progress or outcome. Hover shows a message whole.
+  ImGui::BeginChild("##messages", ImVec2(0.0f, ImGui::GetTextLineHeightWithSpacing() * 2.2f), false,
+                    ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
+  if (!s.error().empty()) sentence(kErrorColor, s.error(), {});
+  if (export_dialog_.job().running())
+    ImGui::ProgressBar(export_dialog_.job().progress(), ImVec2(-FLT_MIN, 0.0f), "exporting");
+  else if (!s.export_message().empty())
+    sentence(s.export_ok() ? kOkColor : kErrorColor, s.export_message(), folders);
+  ImGui::EndChild();
+
+  const bool browse = ImGui::CollapsingHeader("Browse", ImGuiTreeNodeFlags_DefaultOpen);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("The motion files of a folder (BVH, FBX, glTF), to load as a take or add to the takes;\n"
+                      "open a file with animations to pick one");
+  if (browse) {
+    ImGui::TextColored(kDimColor, "in %s", folder_name(folder_).c_str());
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Folder: %s", folder_.c_str());
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Refresh")) listed_folder_.clear();
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Read the folder again");
+    if (listed_folder_ != folder_) {
+      listed_folder_ = folder_;
+      takes_.clear();  // a pending read finishes in its future's destructor
+      dirs_.clear();
+      files_.clear();
+      list_error_.clear();
+      std::error_code list_ec;
+      for (fs::directory_iterator it(folder_, list_ec), end; !list_ec && it != end; it.increment(list_ec)) {
+        std::error_code e2;
+        if (it->is_directory(e2)) {
+          if (it->path().filename().string().rfind('.', 0) != 0) dirs_.push_back(it->path().string());
+        } else if (is_motion(it->path())) {
+          files_.push_back(it->path().string());
+        }
+      }
+      if (list_ec) list_error_ = "Cannot read " + folder_name(folder_) + ": " + list_ec.message();
+      std::sort(dirs_.begin(), dirs_.end());
+      std::sort(files_.begin(), files_.end());
+    }
+    if (!list_error_.empty()) sentence(kErrorColor, list_error_, {});
+    ImGui::BeginChild("##browser", ImVec2(0.0f, ImGui::GetTextLineHeightWithSpacing() * 5.0f), true);
+    if (ImGui::Selectable("..")) {
+      fs::path up = fs::absolute(folder_).lexically_normal();
+      if (!up.has_filename()) up = up.parent_path();  // "a/b/" -> "a/b"
+      folder_ = up.parent_path().string();
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Up to the folder above");
+    std::string next_folder;
+    for (const std::string& d : dirs_) {
+      if (ImGui::Selectable((fs::path(d).filename().string() + "/").c_str())) next_folder = d;
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Open this folder");
+    }
+    // One row: the buttons that put a take among the takes, and a label.
+    auto take_row = [&](const std::string& path, const std::string& label) {
+      ImGui::PushID(path.c_str());
+      take_buttons(path, takes);
+      ImGui::TextUnformatted(label.c_str());
+      ImGui::PopID();
+    };
+    for (const std::string& name : files_) {
+      const fs::path f(name);
+      if (!has_takes(motion_format(name))) {
+        take_row(f.string(), f.filename().string());
+        continue;
+      }
+      // FBX and glTF: the file's row opens to its animations, read on a thread the first time.
+      ImGui::PushID(name.c_str());
+      const bool open = ImGui::TreeNode("##takes", "%s", f.filename().string().c_str());
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Open to list the file's animations");
+      if (open) {
+        FileTakes& t = takes_[name];
+        if (!t.pending.valid() && t.takes.empty() && t.error.empty()) {
+          t.pending = std::async(std::launch::async, [name] { return read_motion_takes(name); });
+        }
+        if (t.pending.valid() && t.pending.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+          try {
+            t.takes = t.pending.get();
+          } catch (const std::exception& e) {
+            t.error = e.what();
+          }
+        }
+        if (t.pending.valid()) ImGui::TextColored(kDimColor, "reading...");
+        if (!t.error.empty()) sentence(kErrorColor, t.error, {folder_});
+        for (const TakeInfo& take : t.takes) {
+          char label[320];
+          std::snprintf(label, sizeof label, "%s (%.1f s)", take.name.c_str(), take.seconds);
+          take_row(join_take_path(name, take.name), label);
+        }
+        ImGui::TreePop();
+      }
+      ImGui::PopID();
+    }
+    if (dirs_.empty() && files_.empty()) ImGui::TextColored(kDimColor, "no motion files here");
+    ImGui::EndChild();
+    if (!next_folder.empty()) folder_ = next_folder;
+  }
+  const bool recent = ImGui::CollapsingHeader("Recent");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Files loaded before, newest first");
+  if (recent) {
+    for (const std::string& r : s.recent()) {
+      ImGui::PushID(r.c_str());
+      take_buttons(r, takes);
+      ImGui::TextUnformatted(fs::path(r).filename().string().c_str());
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Folder: %s", fs::path(r).parent_path().string().c_str());
+      ImGui::PopID();
+    }
+  }
+  ImGui::End();
+}
+
+}  // namespace mostyle::ui

@@ -1,0 +1,74 @@
+#pragma once
+// The takes as one list of path fields, whatever their number (A and B for two, numbered for a
+// palette), each with Load (Enter in a field loads too) and, in a palette, a remove button; a
+// small browser of motion files (BVH, FBX, glTF; a file with several animations lists them, read
+// on a thread when its row is opened, each loadable as FILE#ANIMATION) and the recent files,
+// whose buttons replace a take or add one; dropped files; and the export of the result: the
+// export field and button open the export dialog (ui/panels/export_dialog.h), which this panel owns and
+// draws. Files show by name, their folder on hover; a load error names the folder tried.
+// Messages sit in a space of their own below the fields, so nothing moves under the mouse when
+// one comes or goes.
+#include <future>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "engine/io/scene_animation.h"
+
+#include "ui/model/blend_session.h"
+#include "ui/panels/export_dialog.h"
+#include "ui/panels/panel.h"
+
+namespace mostyle::ui {
+
+// A path field that shows a file's name and keeps its folder aside (shown on hover). Text typed
+// with a folder in it ("a/b.bvh", "/x/y.bvh") is taken as it is; a bare name is in `folder`.
+struct PathField {
+  char text[512] = "";
+  std::string folder;
+
+  void set(const std::string& path);  // name into text, the rest into folder
+  std::string path() const;           // what to load; "" when the field is empty
+};
+
+// What a take is called in the panel: "A" and "B" in a pair, "1" to "N" in a palette.
+std::string take_role(int take, int takes);
+// `takes` with take `index` replaced by `path` (index == size: `path` added). A pair whose B is
+// empty (A with itself) stays a pair when its B is set.
+std::vector<std::string> with_take(std::vector<std::string> takes, size_t index, const std::string& path);
+
+// `text` with each of `folders` (and the slash after it) taken out, longest first: error and
+// export sentences name files without their folders ("/data/walk.bvh:3: ..." -> "walk.bvh:3: ...").
+std::string without_folders(std::string text, std::vector<std::string> folders);
+
+class FilesPanel : public Panel {
+ public:
+  FilesPanel(BlendSession& session, std::string folder);
+  void draw(EditorState& state) override;
+  ExportDialog& export_dialog() { return export_dialog_; }
+
+ private:
+  // The buttons that put `path` among `takes`: A and B (replace) and + (add) for a pair, + and
+  // Replace... (which take) for a palette.
+  void take_buttons(const std::string& path, const std::vector<std::string>& takes);
+
+  BlendSession& session_;
+  std::string folder_;  // the browser's folder
+  std::vector<PathField> fields_;  // one per take (at least two: a pair's B may be empty)
+  ExportDialog export_dialog_;  // its file is the export field's (settings().path)
+  std::vector<std::string> synced_;  // the requested takes the fields were last filled from
+  // The browser's listing of folder_, read when the folder changes or on Refresh (not per frame).
+  std::string listed_folder_;
+  std::vector<std::string> dirs_, files_;
+  std::string list_error_;
+  // The animations of the FBX and glTF files whose rows were opened, by path: read on a thread
+  // (engine/io/motion_file.h read_motion_takes), polled each frame.
+  struct FileTakes {
+    std::future<std::vector<TakeInfo>> pending;
+    std::vector<TakeInfo> takes;
+    std::string error;
+  };
+  std::map<std::string, FileTakes> takes_;
+};
+
+}  // namespace mostyle::ui

@@ -1,0 +1,215 @@
+#include "ui/panels/metrics_panel.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include <imgui.h>
+
+#include "engine/io/motion_file.h"
+#include "engine/kinematics/units.h"
+#include "ui/panels/layout.h"
+
+namespace mostyle::ui {
+namespace {
+const ImVec4 kDimColor(0.60f, 0.62f, 0.66f, 1.0f);
+
+// One row: a label in plain words (its tooltip says what it measures) and its value.
+void row(const char* name, const std::string& value, const char* tooltip) {
+  ImGui::TableNextRow();
+  ImGui::TableNextColumn();
+  ImGui::TextColored(kDimColor, "%s", name);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tooltip);
+  ImGui::TableNextColumn();
+  ImGui::TextUnformatted(value.c_str());
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tooltip);
+}
+
+std::string milliseconds(double ms, const char* format = "%.1f ms") {
+  if (ms < 0.0) return "-";
+  char text[32];
+  std::snprintf(text, sizeof text, format, ms);
+  return text;
+}
+
+bool begin_table(const char* id) {
+  if (!ImGui::BeginTable(id, 2, ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_BordersInnerV)) return false;
+  ImGui::TableSetupColumn("what", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+  ImGui::TableSetupColumn("value", ImGuiTableColumnFlags_WidthStretch, 1.3f);
+  return true;
+}
+}  // namespace
+
+double centimetres_per_unit(const std::string& unit_name) {
+  // The names of engine/kinematics/units.cpp's bands.
+  if (unit_name == "metres") return 100.0;
+  if (unit_name == "feet") return 30.48;
+  if (unit_name == "CMU units (1/0.45 inch)") return 2.54 / 0.45;
+  if (unit_name == "inches") return 2.54;
+  if (unit_name == "centimetres") return 1.0;
+  if (unit_name == "millimetres") return 0.1;
+  return 0.0;
+}
+
+std::string length_in_words(double value, double cm_per_unit, double height, const char* per) {
+  char text[48];
+  if (!std::isfinite(value) || value < 0.0) return "-";
+  if (cm_per_unit > 0.0) {
+    const double cm = value * cm_per_unit;
+    if (cm >= 100.0) std::snprintf(text, sizeof text, "%.2f m%s", cm / 100.0, per);
+    else if (cm >= 1.0) std::snprintf(text, sizeof text, "%.1f cm%s", cm, per);
+    else std::snprintf(text, sizeof text, "%.1f mm%s", 10.0 * cm, per);
+  } else if (height > 0.0) {
+    std::snprintf(text, sizeof text, "%.2g%% of height%s", 100.0 * value / height, per);
+  } else {
+    return "-";
+  }
+  return text;
+}
+
+Metrics gather_metrics(const BlendSession& session) {
+  Metrics m;
+  if (const PreparedTakes* p = session.palette()) {
+    const Decomposed* d = session.snapshot().decomposed.get();
+    m.reference = p->takes.front().clip.get();
+    m.result = p->size() > 2 ? "mix" : "blend";
+    std::vector<std::string> sources;
+    for (const PreparedTake& take : p->takes) sources.push_back(take.clip->source);
+    const std::vector<std::string> names = distinct_take_labels(sources);  // narrow column: what differs
+    for (int i = 0; i < p->size(); ++i) {
+      Metrics::Take t;
+      t.name = names[static_cast<size_t>(i)];
+      t.fit_error = d != nullptr ? d->rmse[static_cast<size_t>(i)] : -1.0;
+      t.foot_sliding = p->takes[static_cast<size_t>(i)].foot_sliding;
+      m.takes.push_back(t);
+    }
+    m.preprocess_ms = p->times.preprocess_ms;  // the loading of a palette's files is not timed
+    m.dtw_ms = p->times.dtw_ms;
+    if (d != nullptr) m.decompose_ms = d->elapsed_ms;
+    if (const MixResult* mix = session.palette_view().mix()) {
+      m.bone_error = mix->motion.limb_length_max_error;
+      m.sliding_raw = mix->motion.foot_sliding_raw;
+      m.sliding_cleaned = mix->motion.foot_sliding_cleaned;
+      m.synthesize_ms = mix->synthesize_ms;
+      m.postprocess_ms = mix->postprocess_ms;
+      m.result_ms = session.palette_view().mix_ms();
+    }
+    return m;
+  }
+  const PreparedTakes* p = session.pair();
+  if (p == nullptr) return m;
+  const Decomposed* d = session.snapshot().decomposed.get();
+  m.reference = p->takes[0].clip.get();
+  m.takes = {{"A", d != nullptr ? d->rmse[0] : -1.0, p->takes[0].foot_sliding}, {"B", d != nullptr ? d->rmse[1] : -1.0, p->takes[1].foot_sliding}};
+  m.load_ms = p->times.load_ms;
+  m.preprocess_ms = p->times.preprocess_ms;
+  m.dtw_ms = p->times.dtw_ms;
+  if (d != nullptr) m.decompose_ms = d->elapsed_ms;
+  if (const MixResult* b = session.blend()) {
+    m.bone_error = b->motion.limb_length_max_error;
+    m.sliding_raw = b->motion.foot_sliding_raw;
+    m.sliding_cleaned = b->motion.foot_sliding_cleaned;
+    m.synthesize_ms = b->synthesize_ms;
+    m.postprocess_ms = b->postprocess_ms;
+    m.result_ms = session.blend_ms();
+  }
+  return m;
+}
+
+void MetricsPanel::draw(EditorState& state) {
+  place_panel(PanelId::kMetrics, state);
+  if (!ImGui::Begin(panel_title(PanelId::kMetrics))) {
+    ImGui::End();
+    return;
+  }
+  const Metrics m = gather_metrics(session_);
+  if (m.reference != unit_clip_) {  // a new reference: guess its unit once (one pose of forward kinematics)
+    unit_clip_ = m.reference;
+    cm_per_unit_ = height_ = 0.0;
+    unit_name_.clear();
+    if (m.reference != nullptr) {
+      const UnitsGuess guess = guess_units(*m.reference);
+      unit_name_ = guess.name;
+      height_ = guess.height;
+      cm_per_unit_ = centimetres_per_unit(guess.name);
+    }
+  }
+  auto length = [&](double value, const char* per = "") { return length_in_words(value, cm_per_unit_, height_, per); };
+  const bool pair = m.takes.size() <= 2;
+  const char* reference = pair ? "take A" : "the reference take";
+  if (m.reference != nullptr) {
+    ImGui::PushTextWrapPos(0.0f);
+    if (cm_per_unit_ > 0.0)
+      ImGui::TextColored(kDimColor, "Lengths in metric units; the file is in %s.", unit_name_.c_str());
+    else
+      ImGui::TextColored(kDimColor, "Unknown length unit: lengths as a share of %s's height.", pair ? "A" : "the reference");
+    ImGui::PopTextWrapPos();
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("BVH files do not say their unit: it is guessed from %s's height\n"
+                        "(%.3g file units tall, taken to be a person of 1.5 to 1.9 m).", reference, height_);
+  }
+
+  // Per take: its fit error and foot sliding, one row each (names clipped to the column, whole
+  // on hover).
+  if (ImGui::BeginTable("##takes", 3, ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_BordersInnerV)) {
+    ImGui::TableSetupColumn("take", ImGuiTableColumnFlags_WidthStretch, 1.2f);
+    ImGui::TableSetupColumn("fit error", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+    ImGui::TableSetupColumn("foot sliding", ImGuiTableColumnFlags_WidthStretch, 1.1f);
+    ImGui::TableHeadersRow();
+    for (const Metrics::Take& t : m.takes) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextColored(kDimColor, "%s", t.name.c_str());
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", t.name.c_str());
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(length(t.fit_error).c_str());
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Fit error: how far this take is from what the components rebuild of it (root mean\n"
+                          "square). Lower: the components hold more of it.");
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(length(t.foot_sliding, "/s").c_str());
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("How fast this take's planted feet slide over the floor, on average (on the reference's\n"
+                          "skeleton).");
+    }
+    ImGui::EndTable();
+  }
+  if (begin_table("##quality")) {
+    const std::string bones = "The most any bone of the " + m.result + " differs from its length in " + reference + ".";
+    row("Bone length, worst", length(m.bone_error), bones.c_str());
+    const std::string label = "Foot sliding, " + m.result;
+    const std::string tip = "How fast the " + m.result + "'s planted feet slide: before -> after the foot lock\n"
+                            "(the same when foot lock is off).";
+    row(label.c_str(), m.sliding_raw < 0.0 ? "-" : length(m.sliding_raw, "/s") + " -> " + length(m.sliding_cleaned, "/s"),
+        tip.c_str());
+    ImGui::EndTable();
+  }
+  // Timings differ run to run: a screenshot run (frame_ms < 0) shows none of them.
+  if (session_.frame_ms < 0.0f) {
+    ImGui::TextColored(kDimColor, "(timings hidden in screenshots)");
+    ImGui::End();
+    return;
+  }
+  if (begin_table("##times")) {
+    row("Loading", milliseconds(m.load_ms), "Reading the takes' files");
+    row("Preparing", milliseconds(m.preprocess_ms),
+        "Matching the skeletons, putting every take on the reference's bones, facing and normalising");
+    row("Time alignment", milliseconds(m.dtw_ms), "Matching the takes' steps in time (DTW)");
+    row("Decomposition", milliseconds(m.decompose_ms, "%.0f ms"),
+        "Splitting the takes into components (on the worker, not in the way of the editor)");
+    const std::string synthesis = "Making the " + m.result + " from the components";
+    row("Synthesis", milliseconds(m.synthesize_ms, "%.3f ms"), synthesis.c_str());
+    const std::string cleanup = "Bone lengths and foot lock on the " + m.result;
+    row("Clean-up", milliseconds(m.postprocess_ms, "%.3f ms"), cleanup.c_str());
+    const std::string all = pair ? "Blend, all" : "Mix, all";
+    const std::string all_tip = "The whole " + m.result + " after a slider move, on the editor's thread";
+    row(all.c_str(), milliseconds(m.result_ms, "%.3f ms"), all_tip.c_str());
+    row("Export", milliseconds(session_.export_ms()), "The last export");
+    row("Frame, CPU", milliseconds(session_.frame_ms, "%.2f ms"), "Building one editor frame");
+    row("Viewport, GPU", milliseconds(session_.viewport_ms, "%.2f ms"), "Drawing the 3D view");
+    ImGui::EndTable();
+  }
+  ImGui::End();
+}
+
+}  // namespace mostyle::ui

@@ -1,0 +1,54 @@
+#pragma once
+// Reconstruction error, bone-length error, foot sliding, stage times and the frame time, in
+// plain words with units: lengths in centimetres when the file's unit can be guessed from the
+// skeleton's height (engine/kinematics/units.h), else as a percentage of that height.
+#include <string>
+#include <vector>
+
+#include "ui/model/blend_session.h"
+#include "ui/panels/panel.h"
+
+namespace mostyle::ui {
+
+// Centimetres per file unit for a unit name of guess_units() ("metres", "inches", "CMU units
+// (1/0.45 inch)", ...); 0 for a name it does not know ("unknown").
+double centimetres_per_unit(const std::string& unit_name);
+
+// A length (or speed, with per = "/s") of `value` file units in words: "1.5 cm", "4.2 mm",
+// "1.23 m", or, when cm_per_unit is 0, "2.1% of height" of a skeleton `height` units tall
+// ("-" when neither is known).
+std::string length_in_words(double value, double cm_per_unit, double height, const char* per = "");
+
+// What the metrics panel shows, gathered from the session for a pair or a palette alike; a
+// negative number is not known yet ("-").
+struct Metrics {
+  struct Take {
+    std::string name;           // "A", "B", or the file's name in a palette
+    double fit_error = -1.0;    // what the components do not rebuild (RMSE), reference units
+    double foot_sliding = -1.0; // reference units per second
+  };
+  const Clip* reference = nullptr;  // the take whose units every length is in
+  std::string result = "blend";     // "blend" for two takes, "mix" for more
+  std::vector<Take> takes;
+  double bone_error = -1.0, sliding_raw = -1.0, sliding_cleaned = -1.0;  // the result's
+  double load_ms = -1.0, preprocess_ms = -1.0, dtw_ms = -1.0, decompose_ms = -1.0;
+  double synthesize_ms = -1.0, postprocess_ms = -1.0, result_ms = -1.0;
+};
+// O(takes): no copy of any motion.
+Metrics gather_metrics(const BlendSession& session);
+
+class MetricsPanel : public Panel {
+ public:
+  explicit MetricsPanel(BlendSession& session) : session_(session) {}
+  void draw(EditorState& state) override;
+
+ private:
+  BlendSession& session_;
+  // The reference's unit, guessed once per loaded reference take.
+  const Clip* unit_clip_ = nullptr;
+  double cm_per_unit_ = 0.0;
+  double height_ = 0.0;  // A's standing height, file units
+  std::string unit_name_;
+};
+
+}  // namespace mostyle::ui

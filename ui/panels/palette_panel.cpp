@@ -1,0 +1,301 @@
+#include "ui/panels/palette_panel.h"
+
+#include "ui/model/document.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include <imgui.h>
+
+#include "engine/io/motion_file.h"
+#include "ui/panels/layout.h"
+
+namespace mostyle::ui {
+namespace {
+
+const ImVec4 kErrorColor(1.0f, 0.45f, 0.40f, 1.0f);
+const ImVec4 kDimColor(0.60f, 0.62f, 0.66f, 1.0f);
+constexpr float kPi = 3.14159265358979f;
+constexpr const char* kTitle = "Style palette";
+const char* const kPartNames[] = {"Legs", "Arms", "Spine and head"};
+
+// Take i's label (ui: the animation's name, or the file's name without its extension) without the
+// start every take's label shares up to
+// a '_' or '-' ("cmu142_walk_happy", "cmu142_walk_marching": "happy", "marching"), so that
+// names fit the narrow columns; the whole name is in the tooltips.
+std::string name_of(const PreparedTakes& p, int i) {
+  std::vector<std::string> sources;
+  for (const PreparedTake& t : p.takes) sources.push_back(t.clip->source);
+  return distinct_take_labels(sources)[static_cast<size_t>(i)];
+}
+
+ImU32 color_u32(int take) {
+  const glm::vec3 c = palette_color(take);
+  return ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1.0f));
+}
+
+void swatch(int take) {
+  const glm::vec3 c = palette_color(take);
+  ImGui::ColorButton("##swatch", ImVec4(c.r, c.g, c.b, 1.0f), ImGuiColorEditFlags_NoTooltip, ImVec2(12, 12));
+  ImGui::SameLine();
+}
+
+}  // namespace
+
+std::vector<double> set_weight_keeping_sum(std::vector<double> w, int i, double value, double lo, double hi) {
+  const int n = static_cast<int>(w.size());
+  if (i < 0 || i >= n) return w;
+  value = std::clamp(value, lo, hi);
+  if (n == 1) {
+    w[0] = 1.0;
+    return w;
+  }
+  double others = 0.0;
+  for (int j = 0; j < n; ++j)
+    if (j != i) others += w[static_cast<size_t>(j)];
+  const double rest = 1.0 - value;
+  for (int j = 0; j < n; ++j) {
+    if (j == i) continue;
+    double& x = w[static_cast<size_t>(j)];
+    x = std::abs(others) > 1e-9 ? x * rest / others : rest / (n - 1);
+  }
+  w[static_cast<size_t>(i)] = value;
+  // Scaling may push another take out of range: clamp it and give the difference to take i.
+  double sum = 0.0;
+  for (int j = 0; j < n; ++j)
+    if (j != i) {
+      double& x = w[static_cast<size_t>(j)];
+      x = std::clamp(x, lo, hi);
+      sum += x;
+    }
+  w[static_cast<size_t>(i)] = 1.0 - sum;
+  return w;
+}
+
+glm::vec2 pad_vertex(int take, int n) {
+  const float angle = 2.0f * kPi * static_cast<float>(take) / static_cast<float>(std::max(n, 1));
+  return glm::vec2(std::sin(angle), -std::cos(angle));
+}
+
+std::vector<double> pad_weights(glm::vec2 point, int n) {
+  std::vector<double> w(static_cast<size_t>(n), 0.0);
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const glm::vec2 d = point - pad_vertex(i, n);
+    const double d2 = double(d.x) * d.x + double(d.y) * d.y;
+    if (d2 < 1e-6) {  // on a vertex: that take alone
+      std::fill(w.begin(), w.end(), 0.0);
+      w[static_cast<size_t>(i)] = 1.0;
+      return w;
+    }
+    w[static_cast<size_t>(i)] = 1.0 / d2;
+    sum += w[static_cast<size_t>(i)];
+  }
+  for (double& x : w) x /= sum;
+  return w;
+}
+
+glm::vec2 pad_point(const std::vector<double>& weights) {
+  const int n = static_cast<int>(weights.size());
+  glm::vec2 p(0.0f);
+  for (int i = 0; i < n; ++i) p += static_cast<float>(weights[static_cast<size_t>(i)]) * pad_vertex(i, n);
+  return p;
+}
+
+void PalettePanel::draw(EditorState& state) {
+  const PreparedTakes* p = session_.palette();
+  if (p == nullptr) return;  // the DTW view has the strip while a pair is loaded
+  place_panel(PanelId::kDtw, state);
+  if (!ImGui::Begin(kTitle)) {
+    ImGui::End();
+    return;
+  }
+  PaletteControls& c = session_.controls().palette;
+  const int n = p->size();
+  if (ImGui::RadioButton("Mix", !c.transfer)) c.transfer = false;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Mix the takes' styles with one weight each (they sum to 1)");
+  ImGui::SameLine();
+  if (ImGui::RadioButton("Transfer", c.transfer)) c.transfer = true;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Put the change from a neutral take to styled takes onto the reference (the content take)");
+  ImGui::SameLine();
+  ImGui::Checkbox("Ghosts", &c.ghosts);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Show every take beside the result, at the moment the result is in it");
+  ImGui::SameLine();
+  if (!c.transfer) {
+    if (ImGui::SmallButton("Equal weights")) c.weights.assign(static_cast<size_t>(n), 1.0 / n);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Every take the same weight");
+    ImGui::SameLine();
+  }
+  const PaletteView& view = session_.palette_view();
+  if (const MixResult* m = view.mix())
+    ImGui::TextColored(kDimColor, "%d takes, %.1f s", n, m->motion.world.rows() / p->fps);
+  if (!view.error().empty()) {
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextColored(kErrorColor, "%s", view.error().c_str());
+    ImGui::PopTextWrapPos();
+  }
+  if (c.transfer) draw_transfer(c, *p);
+  else draw_mix(c, *p);
+  ImGui::End();
+}
+
+void PalettePanel::draw_mix(PaletteControls& c, const PreparedTakes& p) {
+  const int n = p.size();
+  if (static_cast<int>(c.weights.size()) != n) c.weights.assign(static_cast<size_t>(n), 1.0 / n);
+  const float pad = std::clamp(ImGui::GetContentRegionAvail().y - 4.0f, 80.0f, 220.0f);
+  if (ImGui::BeginTable("##mix", n >= 3 ? 3 : 2, ImGuiTableFlags_SizingStretchProp)) {
+    ImGui::TableSetupColumn("weights", ImGuiTableColumnFlags_WidthStretch, 2.0f);
+    if (n >= 3) ImGui::TableSetupColumn("pad", ImGuiTableColumnFlags_WidthFixed, pad);
+    ImGui::TableSetupColumn("parts", ImGuiTableColumnFlags_WidthStretch, 1.5f);
+    ImGui::TableNextColumn();
+    ImGui::BeginChild("##weights", ImVec2(0, pad));
+    // Compact rows, so that eight takes fit the strip of a 1280x720 window without scrolling.
+    ImGui::PushStyleVar(ImGuiStyleVar_ItemSpacing, ImVec2(ImGui::GetStyle().ItemSpacing.x, 2.0f));
+    ImGui::PushStyleVar(ImGuiStyleVar_FramePadding, ImVec2(ImGui::GetStyle().FramePadding.x, 1.0f));
+    for (int i = 0; i < n; ++i) {
+      ImGui::PushID(i);
+      swatch(i);
+      float w = static_cast<float>(c.weights[static_cast<size_t>(i)]);
+      ImGui::SetNextItemWidth(std::clamp(ImGui::GetContentRegionAvail().x * 0.35f, 56.0f, 80.0f));
+      if (ImGui::SliderFloat("##w", &w, static_cast<float>(kMinMixWeight), static_cast<float>(kMaxMixWeight), "%.2f"))
+        c.weights = set_weight_keeping_sum(c.weights, i, w);
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("How much of this take's style; the others follow so that the weights sum to 1 (from -0.5 "
+                          "to 1.5: beyond 0 and 1 exaggerates)");
+      ImGui::SameLine();
+      ImGui::TextUnformatted((name_of(p, i) + (i == 0 ? " (ref.)" : "")).c_str());
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("%s%s", p.takes[static_cast<size_t>(i)].clip->source.c_str(),
+                          i == 0 ? "\nThe reference: its skeleton, path and length lead" : "");
+      ImGui::PopID();
+    }
+    ImGui::PopStyleVar(2);
+    ImGui::EndChild();
+    if (n >= 3) {
+      ImGui::TableNextColumn();
+      draw_pad(c, n);
+    }
+    ImGui::TableNextColumn();
+    draw_parts(c, p);
+    ImGui::EndTable();
+  }
+}
+
+void PalettePanel::draw_pad(PaletteControls& c, int n) {
+  const float size = ImGui::GetContentRegionAvail().x;
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  ImGui::InvisibleButton("##pad", ImVec2(size, size));
+  if (ImGui::IsItemHovered() && !ImGui::IsItemActive())
+    ImGui::SetTooltip("Drag among the takes: the closer to a take, the more of its style");
+  const float radius = 0.5f * size - 14.0f;
+  const ImVec2 centre(origin.x + 0.5f * size, origin.y + 0.5f * size);
+  auto screen = [&](glm::vec2 v) { return ImVec2(centre.x + radius * v.x, centre.y + radius * v.y); };
+  if (ImGui::IsItemActive()) {
+    const ImVec2 mouse = ImGui::GetIO().MousePos;
+    glm::vec2 v((mouse.x - centre.x) / radius, (mouse.y - centre.y) / radius);
+    if (glm::length(v) > 1.0f) v = glm::normalize(v);
+    c.weights = pad_weights(v, n);
+  }
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  draw->AddCircleFilled(centre, radius + 6.0f, IM_COL32(40, 42, 48, 255), 48);
+  for (int i = 0; i < n; ++i) {
+    draw->AddLine(screen(pad_vertex(i, n)), screen(pad_vertex((i + 1) % n, n)), IM_COL32(90, 92, 100, 255));
+  }
+  for (int i = 0; i < n; ++i) {
+    const ImVec2 v = screen(pad_vertex(i, n));
+    draw->AddCircleFilled(v, 6.0f, color_u32(i));
+    char label[12];
+    std::snprintf(label, sizeof label, "%d", i + 1);
+    draw->AddText(ImVec2(v.x + 7.0f, v.y - 7.0f), IM_COL32(220, 220, 220, 255), label);
+  }
+  const ImVec2 marker = screen(pad_point(c.weights));
+  draw->AddCircleFilled(marker, 5.0f, IM_COL32(130, 225, 118, 255));
+  draw->AddCircle(marker, 8.0f, IM_COL32(255, 255, 255, 200), 20, 1.5f);
+}
+
+void PalettePanel::draw_parts(PaletteControls& c, const PreparedTakes& p) {
+  const int n = p.size();
+  ImGui::Checkbox("Per body part", &c.per_part);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Take a body part's style from one take (legs from one, arms from another); the rest follows "
+                      "the weights");
+  if (!c.per_part) return;
+  c.part_weights.resize(std::size(kPartNames));
+  for (size_t part = 0; part < std::size(kPartNames); ++part) {
+    std::vector<double>& row = c.part_weights[part];
+    int from = -1;  // -1: the weights
+    for (int i = 0; i < n && static_cast<int>(row.size()) == n; ++i)
+      if (row[static_cast<size_t>(i)] == 1.0) from = i;
+    const std::string shown = from < 0 ? "the weights" : name_of(p, from);
+    ImGui::SetNextItemWidth(std::max(80.0f, ImGui::GetContentRegionAvail().x * 0.6f));
+    ImGui::PushID(static_cast<int>(part));
+    if (ImGui::BeginCombo(kPartNames[part], shown.c_str())) {
+      if (ImGui::Selectable("the weights", from < 0)) row.clear();
+      for (int i = 0; i < n; ++i)
+        if (ImGui::Selectable(name_of(p, i).c_str(), from == i)) {
+          row.assign(static_cast<size_t>(n), 0.0);
+          row[static_cast<size_t>(i)] = 1.0;
+        }
+      ImGui::EndCombo();
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Which take this body part's style comes from");
+    ImGui::PopID();
+  }
+}
+
+void PalettePanel::draw_transfer(PaletteControls& c, const PreparedTakes& p) {
+  const int n = p.size();
+  if (static_cast<int>(c.strengths.size()) != n) c.strengths.assign(static_cast<size_t>(n), 1.0);
+  c.neutral = std::clamp(c.neutral, 1, n - 1);
+  swatch(0);
+  ImGui::Text("Content: %s", name_of(p, 0).c_str());
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("The take that keeps its skeleton, path and length and takes on the style (the first file; "
+                      "open your own take first to make it the content)");
+  ImGui::SameLine();
+  if (ImGui::SmallButton("Make another take the content...")) ImGui::OpenPopup("##content");
+  if (ImGui::BeginPopup("##content")) {
+    for (int i = 1; i < n; ++i)
+      if (ImGui::Selectable(name_of(p, i).c_str())) {
+        // The content is the reference: the palette is prepared again with it first.
+        // Every take keeps its weight and strength in its new place (ui/model/document.h).
+        std::vector<std::string> files = session_.snapshot().paths;
+        if (static_cast<size_t>(i) < files.size()) {
+          std::vector<int> order(files.size());
+          for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
+          std::rotate(order.begin(), order.begin() + i, order.begin() + i + 1);
+          std::rotate(files.begin(), files.begin() + i, files.begin() + i + 1);
+          c = reorder_takes(c, order);
+          session_.load_files(files);
+        }
+      }
+    ImGui::EndPopup();
+  }
+  ImGui::SetNextItemWidth(200.0f);
+  if (ImGui::BeginCombo("Neutral", name_of(p, c.neutral).c_str())) {
+    for (int i = 1; i < n; ++i)
+      if (ImGui::Selectable(name_of(p, i).c_str(), i == c.neutral)) c.neutral = i;
+    ImGui::EndCombo();
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("The take of the action without the style");
+  for (int i = 1; i < n; ++i) {
+    if (i == c.neutral) continue;
+    ImGui::PushID(i);
+    swatch(i);
+    float s = static_cast<float>(c.strengths[static_cast<size_t>(i)]);
+    ImGui::SetNextItemWidth(200.0f);
+    if (ImGui::SliderFloat("##strength", &s, static_cast<float>(kMinStrength), static_cast<float>(kMaxStrength), "%.2f"))
+      c.strengths[static_cast<size_t>(i)] = s;
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("How much of this style: 0 leaves the content as it is, 1 adds the whole change from the "
+                        "neutral take to this one");
+    ImGui::SameLine();
+    ImGui::Text("style: %s", name_of(p, i).c_str());
+    ImGui::PopID();
+  }
+}
+
+}  // namespace mostyle::ui

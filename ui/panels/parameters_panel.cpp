@@ -1,0 +1,197 @@
+#include "ui/panels/parameters_panel.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include <imgui.h>
+
+#include "ui/panels/layout.h"
+
+namespace mostyle::ui {
+namespace {
+const ImVec4 kErrorColor(1.0f, 0.45f, 0.40f, 1.0f);
+const ImVec4 kDimColor(0.60f, 0.62f, 0.66f, 1.0f);
+}  // namespace
+
+void ParametersPanel::draw(EditorState& state) {
+  place_panel(PanelId::kParameters, state);
+  if (!ImGui::Begin(panel_title(PanelId::kParameters))) {
+    ImGui::End();
+    return;
+  }
+  BlendSession& s = session_;
+  SessionControls& c = s.controls();
+  BlendParameters& p = state.parameters;
+  const Decomposed* d = s.snapshot().decomposed.get();
+  ImGui::PushItemWidth(-120.0f);  // room for the labels on the right
+
+  // With the style palette loaded, its panel holds the weights; alpha, the mode and the body
+  // parts' alphas are the pair's.
+  const bool palette = s.palette() != nullptr;
+  if (!palette) {
+    float alpha = static_cast<float>(p.alpha);
+    if (ImGui::SliderFloat("alpha", &alpha, 0.0f, 1.0f, "%.2f")) p.alpha = alpha;  // blended this frame
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: style A, 1: style B. Applied immediately.");
+  }
+
+  bool redecompose = false;
+  ImGui::SliderInt("components (k)", &p.components, 1, 40);
+  redecompose |= ImGui::IsItemDeactivatedAfterEdit();
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("How many components the takes are split into. More: closer to the takes, less general.\n"
+                      "Recomputed when you let go of the slider.");
+  float sparsity = static_cast<float>(p.sparsity);
+  if (ImGui::SliderFloat("sparsity", &sparsity, 0.01f, 1.0f, "%.2f")) p.sparsity = sparsity;
+  redecompose |= ImGui::IsItemDeactivatedAfterEdit();
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Share of the joints' channels each component may move (0.1: a tenth).\n"
+                      "Small: each component is a small body part. Recomputed when you let go.");
+  int mode = c.mode == BlendMode::kShared ? 0 : 1;
+  if (!palette && ImGui::Combo("mode", &mode, "shared\0paper\0")) {
+    c.mode = mode == 0 ? BlendMode::kShared : BlendMode::kPaper;
+    redecompose = true;
+  }
+  if (!palette && ImGui::IsItemHovered())
+    ImGui::SetTooltip("shared: one component set for A and B (alpha 1 is B)\npaper: separate decompositions, "
+                      "cores blended (paper 3.6)");
+  int align_on = static_cast<int>(c.align.on);
+  if (ImGui::Combo("align on", &align_on, "auto\0left foot\0feet\0hands\0body\0")) {
+    c.align.on = static_cast<AlignOn>(align_on);
+    s.realign();
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("What the takes are matched in time on.\nauto: the left foot for walks and runs, "
+                      "the joints that move most for other actions.");
+  int method = c.align.method == DtwMethod::kSlope ? 0 : 1;
+  if (ImGui::Combo("time warp", &method, "smooth\0paper\0")) {
+    c.align.method = method == 0 ? DtwMethod::kSlope : DtwMethod::kPaper;
+    s.realign();
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("smooth: neither take runs more than twice as fast as the other, extra material at the ends "
+                      "is left out, and poses are sampled between frames (no jumps).\npaper: the paper's plain "
+                      "left-foot DTW, end to end, as published.");
+  ImGui::Checkbox("foot lock", &c.foot_lock);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Pin planted feet in place so the result does not skate");
+  ImGui::SameLine();
+  ImGui::Checkbox(palette ? "reference timing" : "A's timing", &c.timing_a);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("%s", palette ? "Off: the mix's timing is mixed with the weights, as style is.\n"
+                                      "On: keep the reference take's timeline, to stay in sync with other material."
+                                    : "Off: the blend's timing moves from A's (alpha 0) to B's (alpha 1), as style does.\n"
+                                      "On: keep A's timeline, to stay in sync with other material.");
+  ImGui::Checkbox("seamless loop", &c.loop);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Cut 1 to 4 whole gait cycles that play seamlessly on repeat (root travel kept).\n"
+                      "Playback and export then use the loop.");
+  ImGui::SameLine();
+  bool components_only = !c.residual;
+  if (ImGui::Checkbox("components only", &components_only)) c.residual = !components_only;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Off: each take's detail that the k components do not hold is mixed with the weights too,\n"
+                      "so a take's whole weight gives exactly that take.\nOn: only what the components reconstruct "
+                      "(the paper's synthesis); k and sparsity then shape the whole result.");
+
+  // Worker progress; the previous decomposition stays on screen until the new one arrives.
+  const WorkerStatus status = s.status();
+  if (status.stage == WorkerStage::kLoading || status.stage == WorkerStage::kDecomposing) {
+    char overlay[64];
+    std::snprintf(overlay, sizeof overlay, "%s %.0f%%", worker_stage_name(status.stage), 100.0 * status.progress);
+    ImGui::ProgressBar(status.progress, ImVec2(-1.0f, 0.0f), overlay);
+  } else if (d != nullptr) {
+    ImGui::TextColored(kDimColor, "shown: k %d, sparsity %.2f, %s", d->params.components, d->params.sparsity,
+                       blend_mode_name(d->params.mode));
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("The decomposition the result uses now: %d components, sparsity %.2f, %s mode, %d iterations",
+                        d->params.components, d->params.sparsity, blend_mode_name(d->params.mode), d->iterations);
+  }
+  if (!s.blend_error().empty()) {
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextColored(kErrorColor, "%s", s.blend_error().c_str());
+    ImGui::PopTextWrapPos();
+  }
+
+  if (c.mode == BlendMode::kShared && !palette) {
+    const bool parts = ImGui::CollapsingHeader("Body parts");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("A different alpha for the legs, the arms, the spine, or each component");
+    if (parts) {
+      ImGui::Checkbox("alpha per body part", &c.per_component);
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Take each body part's style from A or B on its own: legs from one, arms from the other.");
+      if (d != nullptr && d->params.mode == BlendMode::kShared) {
+        c.component_alpha.resize(static_cast<size_t>(d->components()), p.alpha);
+        if (ImGui::SmallButton("all = alpha")) std::fill(c.component_alpha.begin(), c.component_alpha.end(), p.alpha);
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Set every body part and component back to the main alpha");
+        // One slider per part (legs, arms, spine): it sets every component of that part.
+        for (BodyPart part : {BodyPart::kLegs, BodyPart::kArms, BodyPart::kSpine}) {
+          int first = -1;
+          for (int i = 0; i < d->components(); ++i)
+            if (part_covers(part, d->component_joints[static_cast<size_t>(i)].region)) {
+              first = i;
+              break;
+            }
+          if (first < 0) continue;
+          float a = static_cast<float>(c.component_alpha[static_cast<size_t>(first)]);
+          if (ImGui::SliderFloat(body_part_name(part), &a, 0.0f, 1.0f, "%.2f")) {
+            for (int i = 0; i < d->components(); ++i)
+              if (part_covers(part, d->component_joints[static_cast<size_t>(i)].region))
+                c.component_alpha[static_cast<size_t>(i)] = a;
+            c.per_component = true;
+          }
+          if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("This body part's style: 0 from A, 1 from B (sets all its components)");
+        }
+        ImGui::TextColored(kDimColor, "each component:");
+        for (int i = 0; i < d->components(); ++i) {
+          ImGui::PushID(i);
+          float a = static_cast<float>(c.component_alpha[static_cast<size_t>(i)]);
+          char label[64];
+          std::snprintf(label, sizeof label, "%s%s", d->component_joints[static_cast<size_t>(i)].name.c_str(),
+                        i == c.selected_component ? " *" : "");
+          if (ImGui::SliderFloat(label, &a, 0.0f, 1.0f, "%.2f")) {
+            c.component_alpha[static_cast<size_t>(i)] = a;
+            c.per_component = true;
+          }
+          if (ImGui::IsItemHovered()) ImGui::SetTooltip("This component's style: 0 from A, 1 from B (its joints light up)");
+          if (ImGui::IsItemHovered() || ImGui::IsItemActive()) c.selected_component = i;
+          ImGui::PopID();
+        }
+      }
+    }
+  } else if (!palette) {
+    const bool basic = ImGui::CollapsingHeader("Basic motions", ImGuiTreeNodeFlags_DefaultOpen);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Paper mode: the takes in levels of motion, one level from B");
+    if (basic) {
+      ImGui::SliderInt("motion levels", &c.basic_motions, 0, 5);
+      redecompose |= ImGui::IsItemDeactivatedAfterEdit();
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Split each take into this many levels of basic motions (paper 3.5): level 1 holds the\n"
+                          "most, each next level what the ones before left. 0: one decomposition.\n"
+                          "Recomputed when you let go.");
+      c.basic_sparsities.resize(static_cast<size_t>(c.basic_motions), p.sparsity);
+      for (int i = 0; i < c.basic_motions; ++i) {
+        ImGui::PushID(i);
+        float f = static_cast<float>(c.basic_sparsities[static_cast<size_t>(i)]);
+        char label[32];
+        std::snprintf(label, sizeof label, "level %d sparsity", i + 1);
+        if (ImGui::SliderFloat(label, &f, 0.01f, 1.0f, "%.2f")) c.basic_sparsities[static_cast<size_t>(i)] = f;
+        redecompose |= ImGui::IsItemDeactivatedAfterEdit();
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Share of the channels each component of this level may move");
+        ImGui::PopID();
+      }
+      if (c.basic_motions > 0) {
+        // Shown from 1 like the levels above; stored from 0.
+        int level = c.swap_level + 1;
+        if (ImGui::SliderInt("level from B", &level, 1, c.basic_motions)) c.swap_level = level - 1;
+        if (ImGui::IsItemHovered())
+          ImGui::SetTooltip("The level whose style moves towards B with alpha (1: B's); the other levels stay A's");
+      }
+    }
+  }
+  if (redecompose) s.request_decomposition(state);
+
+  ImGui::PopItemWidth();
+  ImGui::End();
+}
+
+}  // namespace mostyle::ui

@@ -1,0 +1,88 @@
+#include "ui/panels/takes_panel.h"
+
+#include <filesystem>
+#include <string>
+
+#include <imgui.h>
+
+#include "ui/panels/layout.h"
+
+namespace mostyle::ui {
+namespace {
+const ImVec4 kErrorColor(1.0f, 0.45f, 0.40f, 1.0f);
+const ImVec4 kWarningColor(0.95f, 0.78f, 0.35f, 1.0f);
+const ImVec4 kDimColor(0.60f, 0.62f, 0.66f, 1.0f);
+}  // namespace
+
+void TakesPanel::draw(EditorState& state) {
+  // A fixed place and size from the layout: many warnings scroll inside, never push other panels.
+  place_panel(PanelId::kTakes, state);
+  if (!ImGui::Begin(panel_title(PanelId::kTakes))) {
+    ImGui::End();
+    return;
+  }
+  for (Take& take : state.takes) {
+    ImGui::PushID(&take);
+    if (take.ok()) {
+      ImGui::ColorEdit3("##color", &take.color.x, ImGuiColorEditFlags_NoInputs | ImGuiColorEditFlags_NoLabel);
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Colour of this take's skeleton and label; click to change it");
+      ImGui::SameLine();
+      ImGui::Checkbox(take.label.c_str(), &take.visible);
+      if (ImGui::IsItemHovered()) {
+        ImGui::SetTooltip("Show or hide this take\nFolder: %s\n%d frames at %.0f fps, %zu joints",
+                          std::filesystem::path(take.path).parent_path().string().c_str(), take.frames(), take.rate(),
+                          take.parents.size());
+      }
+      if (!take.warnings.empty()) {
+        // Collapsed to one line; opened, the sentences wrap inside this panel.
+        ImGui::PushStyleColor(ImGuiCol_Text, kWarningColor);
+        const bool open = ImGui::TreeNode("##warnings", "%zu load warning%s", take.warnings.size(),
+                                          take.warnings.size() == 1 ? "" : "s");
+        ImGui::PopStyleColor();
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("What the file reader repaired or left out; click to read");
+        if (open) {
+          ImGui::PushTextWrapPos(0.0f);
+          for (const std::string& w : take.warnings) ImGui::TextColored(kWarningColor, "%s", w.c_str());
+          ImGui::PopTextWrapPos();
+          ImGui::TreePop();
+        }
+      }
+    } else {
+      ImGui::PushTextWrapPos(0.0f);
+      ImGui::TextColored(kErrorColor, "%s", take.error.c_str());
+      ImGui::PopTextWrapPos();
+    }
+    ImGui::PopID();
+  }
+  if (state.takes.empty()) ImGui::TextColored(kDimColor, "No takes.");
+
+  // The camera and where the takes stand, on one row.
+  if (ImGui::Button("Frame all")) command_frame_all(state);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Turn and move the camera so that every skeleton is in view (F)");
+  ImGui::SameLine();
+  if (ImGui::RadioButton("side by side", !state.view.overlay)) state.view.overlay = false;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("The takes and the result stand next to each other");
+  ImGui::SameLine();
+  if (ImGui::RadioButton("overlay", state.view.overlay)) state.view.overlay = true;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("The takes and the result on the same spot, to compare poses");
+  const bool view = ImGui::CollapsingHeader("View");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("What the 3D view shows");
+  if (view) {
+    ImGui::Checkbox("follow", &state.view.follow);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("The camera follows the skeletons as they walk");
+    ImGui::SameLine();
+    ImGui::Checkbox("labels", &state.view.labels);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Each take's name above its skeleton");
+    ImGui::SameLine();
+    ImGui::Checkbox("grid", &state.view.grid);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Lines on the floor");
+    ImGui::Checkbox("shadows", &state.view.shadows);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Shadows of the skeletons on the floor");
+    ImGui::SameLine();
+    ImGui::Checkbox("contacts", &state.view.contacts);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Rings under the feet while they are planted on the floor");
+  }
+  ImGui::End();
+}
+
+}  // namespace mostyle::ui
