@@ -1,4 +1,5 @@
 #include "ui/panels/components_panel.h"
+#include "ui/panels/theme.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +13,6 @@
 
 namespace mostyle::ui {
 namespace {
-const ImVec4 kDimColor(0.60f, 0.62f, 0.66f, 1.0f);
 }  // namespace
 
 void ComponentsPanel::draw(EditorState& state) {

@@ -1,4 +1,5 @@
 #include "ui/panels/dtw_panel.h"
+#include "ui/panels/theme.h"
 
 #include <algorithm>
 #include <cmath>
@@ -76,7 +77,7 @@ void DtwPanel::draw(EditorState& state) {
                       align_on_name(al.feature.on), joints.c_str(), dtw_method_name(al.options.method), fa, fb, p->fps,
                       al.cost);
   ImGui::PushTextWrapPos(0.0f);  // warnings wrap inside the panel
-  for (const std::string& w : al.warnings) ImGui::TextColored(ImVec4(0.95f, 0.7f, 0.3f, 1.0f), "%s", w.c_str());
+  for (const std::string& w : al.warnings) ImGui::TextColored(kWarningColor, "%s", w.c_str());
   ImGui::PopTextWrapPos();
   const int col = std::clamp(c.dtw_coordinate, 0, static_cast<int>(sa.cols()) - 1);
 

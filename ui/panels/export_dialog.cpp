@@ -1,4 +1,5 @@
 #include "ui/panels/export_dialog.h"
+#include "ui/panels/theme.h"
 
 #include <algorithm>
 #include <cfloat>
@@ -18,10 +19,6 @@ namespace mostyle::ui {
 namespace fs = std::filesystem;
 namespace {
 
-const ImVec4 kErrorColor(1.0f, 0.45f, 0.40f, 1.0f);
-const ImVec4 kDimColor(0.60f, 0.62f, 0.66f, 1.0f);
-const ImVec4 kOkColor(0.55f, 0.85f, 0.55f, 1.0f);
-const ImVec4 kWarnColor(1.0f, 0.80f, 0.35f, 1.0f);
 constexpr float kFieldWidth = 120.0f;  // the rate and range fields, pixels
 constexpr float kWrapWidth = 440.0f;   // sentences; a fixed width, since the window fits its contents
 
@@ -338,7 +335,7 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
     if (ImGui::Button("Cancel")) press_cancel();
     tooltip("Stop the export; a file already being written is finished");
   } else if (confirm_) {
-    wrapped(kWarnColor, fs::path(confirm_path_).filename().string() + " exists. Overwrite it?");
+    wrapped(kWarningColor, fs::path(confirm_path_).filename().string() + " exists. Overwrite it?");
     if (ImGui::Button("Overwrite")) press_overwrite();
     tooltip("Replace the file with the result");
     ImGui::SameLine();

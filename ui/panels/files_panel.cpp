@@ -1,4 +1,5 @@
 #include "ui/panels/files_panel.h"
+#include "ui/panels/theme.h"
 
 #include <algorithm>
 #include <cfloat>
@@ -19,9 +20,6 @@
 namespace mostyle::ui {
 namespace fs = std::filesystem;
 namespace {
-const ImVec4 kErrorColor(1.0f, 0.45f, 0.40f, 1.0f);
-const ImVec4 kDimColor(0.60f, 0.62f, 0.66f, 1.0f);
-const ImVec4 kOkColor(0.55f, 0.85f, 0.55f, 1.0f);
 
 void copy_to(char* field, size_t size, const std::string& text) {
   std::strncpy(field, text.c_str(), size - 1);

@@ -1,4 +1,5 @@
 #include "ui/panels/metrics_panel.h"
+#include "ui/panels/theme.h"
 
 #include <cmath>
 #include <cstdio>
@@ -12,7 +13,6 @@
 
 namespace mostyle::ui {
 namespace {
-const ImVec4 kDimColor(0.60f, 0.62f, 0.66f, 1.0f);
 
 // One row: a label in plain words (its tooltip says what it measures) and its value.
 void row(const char* name, const std::string& value, const char* tooltip) {

@@ -1,4 +1,5 @@
 #include "ui/panels/palette_panel.h"
+#include "ui/panels/theme.h"
 
 #include "ui/model/document.h"
 
@@ -15,8 +16,6 @@
 namespace mostyle::ui {
 namespace {
 
-const ImVec4 kErrorColor(1.0f, 0.45f, 0.40f, 1.0f);
-const ImVec4 kDimColor(0.60f, 0.62f, 0.66f, 1.0f);
 constexpr float kPi = 3.14159265358979f;
 constexpr const char* kTitle = "Style palette";
 const char* const kPartNames[] = {"Legs", "Arms", "Spine and head"};

@@ -1,4 +1,5 @@
 #include "ui/panels/parameters_panel.h"
+#include "ui/panels/theme.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -9,8 +10,6 @@
 
 namespace mostyle::ui {
 namespace {
-const ImVec4 kErrorColor(1.0f, 0.45f, 0.40f, 1.0f);
-const ImVec4 kDimColor(0.60f, 0.62f, 0.66f, 1.0f);
 }  // namespace
 
 void ParametersPanel::draw(EditorState& state) {

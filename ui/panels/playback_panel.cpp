@@ -1,4 +1,5 @@
 #include "ui/panels/playback_panel.h"
+#include "ui/panels/theme.h"
 
 #include <algorithm>
 
@@ -8,7 +9,6 @@
 
 namespace mostyle::ui {
 namespace {
-const ImVec4 kDimColor(0.60f, 0.62f, 0.66f, 1.0f);
 }  // namespace
 
 void PlaybackPanel::draw(EditorState& state) {

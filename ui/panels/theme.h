@@ -1,7 +1,16 @@
 #pragma once
-// The editor's look: a dark neutral ImGui style that sits on the viewport's background, and
-// the UI font. Call once after ImGui::CreateContext(), before the first frame.
+// The editor's look: a dark neutral ImGui style that sits on the viewport's background, the
+// colours the panels' sentences take, and the UI font. Call apply_theme once after
+// ImGui::CreateContext(), before the first frame.
+#include <imgui.h>
+
 namespace mostyle::ui {
+
+// Text: an error, a hint or a value of less weight, a success, a warning.
+inline const ImVec4 kErrorColor(1.0f, 0.45f, 0.40f, 1.0f);
+inline const ImVec4 kDimColor(0.60f, 0.62f, 0.66f, 1.0f);
+inline const ImVec4 kOkColor(0.55f, 0.85f, 0.55f, 1.0f);
+inline const ImVec4 kWarningColor(0.95f, 0.78f, 0.35f, 1.0f);
 
 void apply_theme();
 
