@@ -333,36 +333,4 @@ StackedDecomposition decompose_stacked(const std::vector<const Eigen::MatrixXd*>
   return result;
 }
 
-SharedDecomposition decompose_shared(const Eigen::MatrixXd& x_a, const Eigen::MatrixXd& x_b,
-                                     const DecompositionOptions& options, JobControl* control) {
-  if (x_a.cols() != x_b.cols()) {
-    throw InputError("shared decomposition: take A has " + std::to_string(x_a.cols()) +
-                     " channels and take B has " + std::to_string(x_b.cols()) +
-                     "; both need the same joints.");
-  }
-  StackedDecomposition s;
-  try {
-    s = decompose_stacked({&x_a, &x_b}, options, control);
-  } catch (const InputError& e) {
-    // Name the takes A and B, as the pair's callers do.
-    std::string what = e.what();
-    if (what.rfind("take 1: ", 0) == 0) what = "take A: " + what.substr(8);
-    else if (what.rfind("take 2: ", 0) == 0) what = "take B: " + what.substr(8);
-    throw InputError(what);
-  }
-  SharedDecomposition result;
-  result.weights_a = std::move(s.weights[0]);
-  result.weights_b = std::move(s.weights[1]);
-  result.components = std::move(s.components);
-  result.iterations = s.iterations;
-  result.converged = s.converged;
-  result.objective = s.objective;
-  result.rmse_a = s.rmse[0];
-  result.rmse_b = s.rmse[1];
-  result.nonzero_fraction = s.nonzero_fraction;
-  result.objective_history = std::move(s.objective_history);
-  result.elapsed_ms = s.elapsed_ms;
-  return result;
-}
-
 }  // namespace mostyle

@@ -58,29 +58,8 @@ struct Decomposition {
 Decomposition decompose(const Eigen::MatrixXd& x, const DecompositionOptions& options = {},
                         JobControl* control = nullptr);
 
-// Shared-mode decomposition (DESIGN 10): one component set C for two takes, found by
-// decomposing the stacked [x_a; x_b] (frame counts may differ, channel counts must match).
-struct SharedDecomposition {
-  Eigen::MatrixXd weights_a;   // W_A: frames_a x k
-  Eigen::MatrixXd weights_b;   // W_B: frames_b x k
-  Eigen::MatrixXd components;  // C: k x 3N, shared
-  int iterations = 0;
-  bool converged = false;
-  double objective = 0.0;      // ||[x_a; x_b] - [W_A; W_B] C||_F^2
-  double rmse_a = 0.0;         // sqrt(||x_a - W_A C||^2 / (frames_a * 3N)), x's units
-  double rmse_b = 0.0;         // the same for b
-  double nonzero_fraction = 0.0;
-  double elapsed_ms = 0.0;
-  std::vector<double> objective_history;
-};
-
-// Throws InputError when the channel counts differ or options.Validate fails on either take.
-// Same cost as decompose() on frames_a + frames_b frames.
-SharedDecomposition decompose_shared(const Eigen::MatrixXd& x_a, const Eigen::MatrixXd& x_b,
-                                     const DecompositionOptions& options = {},
-                                     JobControl* control = nullptr);
-
-// The same for any number of takes (the style palette): one C for the stacked [x_0; ...; x_n-1].
+// Shared components (DESIGN 10) for any number of takes: one C for the stacked
+// [x_0; ...; x_n-1] (frame counts may differ, channel counts must match), W_i per take.
 struct StackedDecomposition {
   std::vector<Eigen::MatrixXd> weights;  // W_i: frames_i x k, one per take
   Eigen::MatrixXd components;            // C: k x 3N, shared
@@ -94,7 +73,7 @@ struct StackedDecomposition {
 };
 
 // Throws InputError (naming the take, 1-based) when fewer than one take is given, the channel
-// counts differ, or options.Validate fails on a take. With two takes, decompose_shared's result.
+// counts differ, or options.Validate fails on a take.
 // Same cost as decompose() on the sum of the frames.
 StackedDecomposition decompose_stacked(const std::vector<const Eigen::MatrixXd*>& takes,
                                        const DecompositionOptions& options = {}, JobControl* control = nullptr);

@@ -1,6 +1,7 @@
 #pragma once
 // Motion synthesis (paper 3.6) from decompositions X = W C: the paper's core-component blend,
-// the paper's basic-motion core swap, and the shared-component weight blend (DESIGN 10).
+// the paper's basic-motion core swap. (Shared components blend their weights in mix_palette,
+// engine/run/palette.h.)
 // Each mode has a prepare_* step run once per decomposition (pair) and a synthesize_* step run
 // per slider move; the latter writes into a caller-owned output so it need not allocate.
 #include <Eigen/Core>
@@ -63,30 +64,5 @@ BasicMotionSynthesis prepare_basic_motion_synthesis(const BasicMotions& a, const
 void synthesize_basic_motions(const BasicMotionSynthesis& p, int swap, double alpha,
                               Eigen::MatrixXd& out);
 Eigen::MatrixXd synthesize_basic_motions(const BasicMotionSynthesis& p, int swap, double alpha);
-
-// ---- Shared mode (DESIGN 10): W = (1 - alpha) W_A + alpha W_B, X_syn = W C. ----
-struct SharedSynthesis {
-  Eigen::MatrixXd motion_a;      // W_A C: frames x 3N
-  Eigen::MatrixXd motion_b;      // W_B C: frames x 3N
-  Eigen::MatrixXd weight_delta;  // W_B - W_A: frames x k (for per-component alphas)
-  Eigen::MatrixXd components;    // C: k x 3N, shared by both takes
-};
-
-// weights_a, weights_b: frames x k each (the same frames: the caller warps B to A's timeline).
-// Throws InputError on mismatched shapes. Cost: two frames x k by k x 3N products.
-SharedSynthesis prepare_shared_synthesis(const Eigen::MatrixXd& weights_a,
-                                         const Eigen::MatrixXd& weights_b,
-                                         const Eigen::MatrixXd& components);
-// One alpha for every component: alpha = 0 gives W_A C, alpha = 1 gives W_B C (exactly).
-// out: resized to frames x 3N. Cost: one pass over frames x 3N, no allocation.
-void synthesize_shared(const SharedSynthesis& p, double alpha, Eigen::MatrixXd& out);
-Eigen::MatrixXd synthesize_shared(const SharedSynthesis& p, double alpha);
-// One alpha per component (alphas: k): column c of W is (1 - alphas[c]) W_A[:,c] +
-// alphas[c] W_B[:,c]. Since components are localized this blends body parts separately.
-// Throws InputError when alphas has the wrong size or a non-finite value.
-// Cost: one frames x k by k x 3N product; allocates only a k x 3N mixing matrix.
-void synthesize_shared(const SharedSynthesis& p, const Eigen::VectorXd& alphas,
-                       Eigen::MatrixXd& out);
-Eigen::MatrixXd synthesize_shared(const SharedSynthesis& p, const Eigen::VectorXd& alphas);
 
 }  // namespace mostyle

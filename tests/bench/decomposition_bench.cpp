@@ -53,43 +53,11 @@ void BM_DecomposeShared(benchmark::State& state) {
   const Eigen::MatrixXd a = synthetic_motion(kFrames, kJoints, 6, 0.02, 3);
   const Eigen::MatrixXd b = synthetic_motion(kFrames, kJoints, 6, 0.02, 4);
   for (auto _ : state) {
-    const mostyle::SharedDecomposition d = mostyle::decompose_shared(a, b);
+    const mostyle::StackedDecomposition d = mostyle::decompose_stacked({&a, &b});
     benchmark::DoNotOptimize(d.components.data());
   }
 }
 BENCHMARK(BM_DecomposeShared)->Unit(benchmark::kMillisecond);
-
-mostyle::SharedSynthesis shared_input() {
-  mostyle::DecompositionOptions options;
-  options.max_iterations = 10;
-  const mostyle::SharedDecomposition d =
-      mostyle::decompose_shared(synthetic_motion(kFrames, kJoints, 6, 0.02, 5),
-                                synthetic_motion(kFrames, kJoints, 6, 0.02, 6), options);
-  return mostyle::prepare_shared_synthesis(d.weights_a, d.weights_b, d.components);
-}
-
-void BM_SynthesizeShared(benchmark::State& state) {
-  const mostyle::SharedSynthesis prepared = shared_input();
-  Eigen::MatrixXd out(kFrames, 3 * kJoints);
-  double alpha = 0.0;
-  for (auto _ : state) {
-    mostyle::synthesize_shared(prepared, alpha, out);
-    benchmark::DoNotOptimize(out.data());
-    alpha = alpha > 1.0 ? 0.0 : alpha + 0.01;
-  }
-}
-BENCHMARK(BM_SynthesizeShared)->Unit(benchmark::kMicrosecond);
-
-void BM_SynthesizeSharedPerComponent(benchmark::State& state) {
-  const mostyle::SharedSynthesis prepared = shared_input();
-  Eigen::MatrixXd out(kFrames, 3 * kJoints);
-  Eigen::VectorXd alphas = Eigen::VectorXd::LinSpaced(10, 0.0, 1.0);
-  for (auto _ : state) {
-    mostyle::synthesize_shared(prepared, alphas, out);
-    benchmark::DoNotOptimize(out.data());
-  }
-}
-BENCHMARK(BM_SynthesizeSharedPerComponent)->Unit(benchmark::kMicrosecond);
 
 void BM_SynthesizePaper(benchmark::State& state) {
   mostyle::DecompositionOptions options;

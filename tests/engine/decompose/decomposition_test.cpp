@@ -300,16 +300,16 @@ TEST_CASE("decomposition reports progress and honours cancel", "[decomposition]"
   CHECK_NOTHROW(decompose(x, init_only, &control));
 }
 
-TEST_CASE("shared decomposition gives one component set and weights per take",
+TEST_CASE("shared decomposition of two takes gives one component set and weights per take",
           "[decomposition]") {
   const Eigen::MatrixXd a = synthetic_motion(200, 20, 5, 0.01, 21);
   const Eigen::MatrixXd b = synthetic_motion(150, 20, 5, 0.01, 22);
   DecompositionOptions options;
-  const SharedDecomposition s = decompose_shared(a, b, options);
-  REQUIRE(s.weights_a.rows() == 200);
-  REQUIRE(s.weights_b.rows() == 150);
-  REQUIRE(s.weights_a.cols() == 10);
-  REQUIRE(s.weights_b.cols() == 10);
+  const StackedDecomposition s = decompose_stacked({&a, &b}, options);
+  REQUIRE(s.weights[0].rows() == 200);
+  REQUIRE(s.weights[1].rows() == 150);
+  REQUIRE(s.weights[0].cols() == 10);
+  REQUIRE(s.weights[1].cols() == 10);
   REQUIRE(s.components.rows() == 10);
   REQUIRE(s.components.cols() == 60);
 
@@ -318,20 +318,21 @@ TEST_CASE("shared decomposition gives one component set and weights per take",
   stacked << a, b;
   const Decomposition d = decompose(stacked, options);
   CHECK(s.components == d.components);
-  CHECK(s.weights_a == d.weights.topRows(200));
-  CHECK(s.weights_b == d.weights.bottomRows(150));
+  CHECK(s.weights[0] == d.weights.topRows(200));
+  CHECK(s.weights[1] == d.weights.bottomRows(150));
   CHECK(s.iterations == d.iterations);
   CHECK(s.objective == d.objective);
   CHECK(s.nonzero_fraction == 0.1);
-  CHECK(s.rmse_a == Approx(std::sqrt((a - s.weights_a * s.components).squaredNorm() / a.size())));
-  CHECK(s.rmse_b == Approx(std::sqrt((b - s.weights_b * s.components).squaredNorm() / b.size())));
-  const double total = s.rmse_a * s.rmse_a * a.size() + s.rmse_b * s.rmse_b * b.size();
+  CHECK(s.rmse[0] == Approx(std::sqrt((a - s.weights[0] * s.components).squaredNorm() / a.size())));
+  CHECK(s.rmse[1] == Approx(std::sqrt((b - s.weights[1] * s.components).squaredNorm() / b.size())));
+  const double total = s.rmse[0] * s.rmse[0] * a.size() + s.rmse[1] * s.rmse[1] * b.size();
   CHECK(total == Approx(s.objective).epsilon(kRelativeExact * 1e3));
 
-  CHECK_THROWS_AS(decompose_shared(a, b.leftCols(57), options), InputError);
+  const Eigen::MatrixXd narrow = b.leftCols(57);
+  CHECK_THROWS_AS(decompose_stacked({&a, &narrow}, options), InputError);
   Eigen::MatrixXd bad = b;
   bad(0, 0) = std::nan("");
-  CHECK_THROWS_WITH(decompose_shared(a, bad, options), Catch::Contains("take B"));
+  CHECK_THROWS_WITH(decompose_stacked({&a, &bad}, options), Catch::Contains("take 2"));
 }
 
 TEST_CASE("a stacked decomposition of several takes against brute force", "[decomposition]") {
@@ -359,10 +360,6 @@ TEST_CASE("a stacked decomposition of several takes against brute force", "[deco
     CHECK(s.rmse[i] == Approx(std::sqrt(e / double(takes[i]->size()))));
   }
   CHECK(s.objective == Approx(objective).epsilon(1e-9));
-  // Two takes: the shared decomposition exactly.
-  const SharedDecomposition two = decompose_shared(a, b, o);
-  const StackedDecomposition stacked_two = decompose_stacked({&a, &b}, o);
-  CHECK((two.weights_b - stacked_two.weights[1]).cwiseAbs().maxCoeff() == 0.0);
   const Eigen::MatrixXd wrong(10, 9);
   CHECK_THROWS_AS(decompose_stacked({&a, &wrong}, o), InputError);
   CHECK_THROWS_AS(decompose_stacked({}, o), InputError);

@@ -118,53 +118,6 @@ TEST_CASE("paper mode follows W_A((1-a)K_A + a K_B)V_A^T", "[synthesis]") {
   CHECK(relative_error(at_one, p.a.weights * p.a.components) > 1e-3);
 }
 
-TEST_CASE("shared mode blends the weights of one component set", "[synthesis]") {
-  DecompositionOptions options;
-  options.max_iterations = 30;
-  const SharedDecomposition s = decompose_shared(synthetic_motion(150, 20, 5, 0.01, 43),
-                                                 synthetic_motion(150, 20, 5, 0.01, 44), options);
-  const SharedSynthesis prepared =
-      prepare_shared_synthesis(s.weights_a, s.weights_b, s.components);
-  const Eigen::MatrixXd xa = s.weights_a * s.components;
-  const Eigen::MatrixXd xb = s.weights_b * s.components;
-  CHECK(relative_error(synthesize_shared(prepared, 0.0), xa) < kRelativeExact);
-  CHECK(relative_error(synthesize_shared(prepared, 1.0), xb) < kRelativeExact);
-  CHECK(relative_error(synthesize_shared(prepared, 0.3),
-                       (0.7 * s.weights_a + 0.3 * s.weights_b) * s.components) < kRelativeExact);
-
-  SECTION("per-component alpha, against a hand computation") {
-    Eigen::VectorXd alphas(10);
-    alphas << 0.0, 1.0, 0.5, 0.25, 0.75, 0.1, 0.9, 0.0, 1.0, 0.6;
-    Eigen::MatrixXd expected = Eigen::MatrixXd::Zero(150, 60);
-    for (int f = 0; f < 150; ++f)
-      for (int ch = 0; ch < 60; ++ch)
-        for (int c = 0; c < 10; ++c)
-          expected(f, ch) += ((1.0 - alphas[c]) * s.weights_a(f, c) + alphas[c] * s.weights_b(f, c)) *
-                             s.components(c, ch);
-    CHECK(relative_error(synthesize_shared(prepared, alphas), expected) < kRelativeExact);
-    // The same alpha everywhere is the scalar blend.
-    CHECK(relative_error(synthesize_shared(prepared, Eigen::VectorXd::Constant(10, 0.3)),
-                         synthesize_shared(prepared, 0.3)) < kRelativeExact);
-    CHECK_THROWS_AS(synthesize_shared(prepared, Eigen::VectorXd::Zero(9)), InputError);
-    alphas[3] = std::nan("");
-    CHECK_THROWS_AS(synthesize_shared(prepared, alphas), InputError);
-  }
-  SECTION("into a preallocated output, without reallocating it") {
-    Eigen::MatrixXd out(150, 60);
-    const double* storage = out.data();
-    synthesize_shared(prepared, 0.4, out);
-    CHECK(out.data() == storage);
-    CHECK(relative_error(out, synthesize_shared(prepared, 0.4)) == 0.0);
-  }
-  SECTION("bad input") {
-    CHECK_THROWS_AS(prepare_shared_synthesis(s.weights_a, s.weights_b.topRows(100), s.components),
-                    InputError);
-    CHECK_THROWS_AS(prepare_shared_synthesis(s.weights_a, s.weights_b, s.components.topRows(9)),
-                    InputError);
-    CHECK_THROWS_AS(synthesize_shared(prepared, std::nan("")), InputError);
-  }
-}
-
 TEST_CASE("basic-motion core swap follows the paper", "[synthesis]") {
   BasicMotionOptions options;
   options.components = 5;
