@@ -1,6 +1,7 @@
 #include "ui/model/document.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <system_error>
 
@@ -17,10 +18,19 @@ std::string normal_absolute(const std::string& path) {
 
 }  // namespace
 
+bool in_range(double v, const Range& r) {
+  if (!std::isfinite(v)) return false;
+  if (v >= r.lo && v <= r.hi && !(r.open_low && v == r.lo)) return true;
+  // A float slider's value: judged as the float it was (see the header).
+  if (std::fabs(v) > 1e30) return false;
+  const float f = static_cast<float>(v), lo = static_cast<float>(r.lo), hi = static_cast<float>(r.hi);
+  return f >= lo && f <= hi && !(r.open_low && f <= lo);
+}
+
 Stale stale_after(const Document& before, const Document& after) {
   Stale stale = Stale::kNothing;
-  document_fields(before, after, [&](const char*, const auto& x, const auto& y, Stale what) {
-    if (!(x == y)) stale = std::max(stale, what);
+  document_fields(before, after, [&](const Field& field, const auto& x, const auto& y) {
+    if (!(x == y)) stale = std::max(stale, field.stale);
   });
   return stale;
 }
@@ -85,8 +95,8 @@ PaletteControls reorder_takes(const PaletteControls& c, const std::vector<int>& 
 
 bool decomposition_differs(const Document& x, const Document& y) {
   bool differs = false;
-  document_fields(x, y, [&](const char*, const auto& a, const auto& b, Stale what) {
-    differs = differs || (what == Stale::kDecomposition && !(a == b));
+  document_fields(x, y, [&](const Field& field, const auto& a, const auto& b) {
+    differs = differs || (field.stale == Stale::kDecomposition && !(a == b));
   });
   return differs;
 }

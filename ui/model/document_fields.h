@@ -1,8 +1,13 @@
 #pragma once
-// Every field of a Document (ui/model/document.h), once: its name as a session file spells it and what
-// a change to it makes stale. Equality (undo sees a change), what undo and redo must redo
-// (stale_after) and the decomposition check are all made from this one list: a field added to
-// Document, SessionControls, PaletteControls or BlendParameters goes here, and nowhere else.
+// Every field of a Document (ui/model/document.h), once: its key as a session file spells it, the
+// range of values the editor's controls allow, whether a session file keeps it, and what a
+// change to it makes stale. Equality (undo sees a change), what undo and redo must redo
+// (stale_after), the decomposition check, the session file (ui/model/session_file.cpp: its keys,
+// the ranges it reads with, the keys it refuses) and the panels' sliders are all made from this
+// one list: a field added to Document, SessionControls, PaletteControls or BlendParameters goes
+// here, and nowhere else.
+#include "engine/run/palette.h"
+#include "engine/run/prepare_takes.h"
 #include "ui/model/document.h"
 
 namespace mostyle::ui {
@@ -12,39 +17,75 @@ namespace mostyle::ui {
 // again), the alignment (the worker prepares the takes again), the takes (loaded again).
 enum class Stale { kNothing = 0, kView, kMix, kDecomposition, kAlignment, kTakes };
 
-// Calls f(name, x's field, y's field, stale) for each field of two documents, in one order.
-template <typename F>
-void document_fields(const Document& x, const Document& y, F&& f) {
-  const BlendParameters &px = x.parameters, &py = y.parameters;
-  f("parameters.alpha", px.alpha, py.alpha, Stale::kMix);
-  f("parameters.components", px.components, py.components, Stale::kDecomposition);
-  f("parameters.sparsity", px.sparsity, py.sparsity, Stale::kDecomposition);
-  const SessionControls &cx = x.controls, &cy = y.controls;
-  f("controls.mode", cx.mode, cy.mode, Stale::kDecomposition);
-  f("controls.per_component", cx.per_component, cy.per_component, Stale::kMix);
-  f("controls.component_alpha", cx.component_alpha, cy.component_alpha, Stale::kMix);
-  f("controls.basic_motions", cx.basic_motions, cy.basic_motions, Stale::kDecomposition);
-  f("controls.basic_sparsities", cx.basic_sparsities, cy.basic_sparsities, Stale::kDecomposition);
-  f("controls.swap_level", cx.swap_level, cy.swap_level, Stale::kMix);
-  f("controls.foot_lock", cx.foot_lock, cy.foot_lock, Stale::kMix);
-  f("controls.align", cx.align, cy.align, Stale::kAlignment);
-  f("controls.timing_a", cx.timing_a, cy.timing_a, Stale::kMix);
-  f("controls.loop", cx.loop, cy.loop, Stale::kMix);
-  f("controls.residual", cx.residual, cy.residual, Stale::kMix);
-  f("controls.selected_component", cx.selected_component, cy.selected_component, Stale::kView);
-  f("controls.dtw_coordinate", cx.dtw_coordinate, cy.dtw_coordinate, Stale::kView);
-  const PaletteControls &wx = cx.palette, &wy = cy.palette;
-  f("controls.palette.weights", wx.weights, wy.weights, Stale::kMix);
-  f("controls.palette.per_part", wx.per_part, wy.per_part, Stale::kMix);
-  f("controls.palette.part_weights", wx.part_weights, wy.part_weights, Stale::kMix);
-  f("controls.palette.transfer", wx.transfer, wy.transfer, Stale::kMix);
-  f("controls.palette.content", wx.content, wy.content, Stale::kMix);
-  f("controls.palette.neutral", wx.neutral, wy.neutral, Stale::kMix);
-  f("controls.palette.strengths", wx.strengths, wy.strengths, Stale::kMix);
-  f("controls.palette.ghosts", wx.ghosts, wy.ghosts, Stale::kView);
-  f("files", x.files, y.files, Stale::kTakes);
-  f("view.overlay", x.overlay, y.overlay, Stale::kView);
+// The values a control allows, ends included unless open_low; for a list, each of its numbers;
+// for the takes, how many. A slider and a session file read with the same range, so every
+// session the editor writes reopens and a file cannot hold what no control could set.
+struct Range {
+  double lo = 0.0, hi = 0.0;
+  bool open_low = false;  // lo itself is not allowed
+};
+inline constexpr Range kAlphaRange{0.0, 1.0};
+inline constexpr Range kComponentsRange{1, 40};
+inline constexpr Range kSparsityRange{0.01, 1.0};        // also each basic-motion level's
+inline constexpr Range kBasicMotionsRange{0, 5};
+inline constexpr Range kMixWeightRange{kMinMixWeight, kMaxMixWeight};
+inline constexpr Range kStrengthRange{kMinStrength, kMaxStrength};
+inline constexpr Range kTakesRange{0, kMaxPaletteTakes};  // how many takes; a take's index is below hi
+inline constexpr Range kTakeIndexRange{0, kMaxPaletteTakes - 1};
+inline constexpr Range kNoRange{};                        // not a number (a choice, a flag, options)
+
+// The levels swap_level may take with `basic_motions` levels: 0 to basic_motions - 1 (0 alone
+// without levels). The one range that depends on another field.
+inline Range swap_level_range(int basic_motions) { return Range{0, basic_motions > 1 ? basic_motions - 1.0 : 0.0}; }
+
+struct Field {
+  const char* key;   // "controls.palette.weights": the session file's object path, dot separated
+  Stale stale;       // what a change to it makes stale
+  Range range;       // numbers only
+  bool saved = true; // false: where one looks, not what one made (not in session files)
+};
+
+// Calls f(field, x's value, y's value) for each field of two documents, in one order (the order
+// of a session file's keys). Doc: Document or const Document (a reader passes one document twice
+// and fills it).
+template <typename Doc, typename F>
+void document_fields(Doc& x, Doc& y, F&& f) {
+  f(Field{"takes", Stale::kTakes, kTakesRange}, x.files, y.files);
+  auto &px = x.parameters, &py = y.parameters;
+  f(Field{"parameters.alpha", Stale::kMix, kAlphaRange}, px.alpha, py.alpha);
+  f(Field{"parameters.components", Stale::kDecomposition, kComponentsRange}, px.components, py.components);
+  f(Field{"parameters.sparsity", Stale::kDecomposition, kSparsityRange}, px.sparsity, py.sparsity);
+  auto &cx = x.controls, &cy = y.controls;
+  f(Field{"controls.mode", Stale::kDecomposition, kNoRange}, cx.mode, cy.mode);
+  f(Field{"controls.per_component", Stale::kMix, kNoRange}, cx.per_component, cy.per_component);
+  f(Field{"controls.component_alpha", Stale::kMix, kAlphaRange}, cx.component_alpha, cy.component_alpha);
+  f(Field{"controls.basic_motions", Stale::kDecomposition, kBasicMotionsRange}, cx.basic_motions, cy.basic_motions);
+  f(Field{"controls.basic_sparsities", Stale::kDecomposition, kSparsityRange}, cx.basic_sparsities,
+    cy.basic_sparsities);
+  // Its range follows x's basic_motions as it is now: a reader has read that field already.
+  f(Field{"controls.swap_level", Stale::kMix, swap_level_range(cx.basic_motions)}, cx.swap_level, cy.swap_level);
+  f(Field{"controls.foot_lock", Stale::kMix, kNoRange}, cx.foot_lock, cy.foot_lock);
+  f(Field{"controls.timing_a", Stale::kMix, kNoRange}, cx.timing_a, cy.timing_a);
+  f(Field{"controls.loop", Stale::kMix, kNoRange}, cx.loop, cy.loop);
+  f(Field{"controls.residual", Stale::kMix, kNoRange}, cx.residual, cy.residual);
+  f(Field{"controls.align", Stale::kAlignment, kNoRange}, cx.align, cy.align);
+  f(Field{"controls.selected_component", Stale::kView, kNoRange, false}, cx.selected_component, cy.selected_component);
+  f(Field{"controls.dtw_coordinate", Stale::kView, kNoRange, false}, cx.dtw_coordinate, cy.dtw_coordinate);
+  auto &wx = cx.palette, &wy = cy.palette;
+  f(Field{"controls.palette.weights", Stale::kMix, kMixWeightRange}, wx.weights, wy.weights);
+  f(Field{"controls.palette.per_part", Stale::kMix, kNoRange}, wx.per_part, wy.per_part);
+  f(Field{"controls.palette.part_weights", Stale::kMix, kMixWeightRange}, wx.part_weights, wy.part_weights);
+  f(Field{"controls.palette.transfer", Stale::kMix, kNoRange}, wx.transfer, wy.transfer);
+  f(Field{"controls.palette.content", Stale::kMix, kTakeIndexRange}, wx.content, wy.content);
+  f(Field{"controls.palette.neutral", Stale::kMix, kTakeIndexRange}, wx.neutral, wy.neutral);
+  f(Field{"controls.palette.strengths", Stale::kMix, kStrengthRange}, wx.strengths, wy.strengths);
+  f(Field{"controls.palette.ghosts", Stale::kView, kNoRange}, wx.ghosts, wy.ghosts);
+  f(Field{"view.overlay", Stale::kView, kNoRange}, x.overlay, y.overlay);
 }
+
+// Whether v is in r. Numbers a float slider set are judged as that float (0.01f is
+// 0.0099999998 as a double, and is the slider's own end).
+bool in_range(double v, const Range& r);
 
 // The most a change from `before` to `after` makes stale (kNothing: the same document).
 Stale stale_after(const Document& before, const Document& after);

@@ -15,7 +15,7 @@
 #include "engine/align/alignment.h"
 #include "engine/io/atomic_file.h"
 #include "engine/io/error.h"
-#include "engine/run/palette.h"
+#include "ui/model/document_fields.h"
 
 namespace mostyle::ui {
 namespace fs = std::filesystem;
@@ -24,12 +24,8 @@ namespace {
 using Json = nlohmann::json;
 using OrderedJson = nlohmann::ordered_json;
 
-// Ranges a value must be in. The palette's weights and strengths are read with the ranges their
-// sliders allow (engine/run/palette.h), so every session the editor writes reopens; elsewhere
-// wide where the panels are narrow: a session written by hand may go further than the sliders.
-constexpr int kMaxComponents = 1000;
-constexpr int kMaxBasicMotions = 16;
-constexpr std::size_t kMaxTakes = 64;
+// Ranges a value outside the document must be in (the document's own come with its fields,
+// ui/model/document_fields.h: the ranges the controls allow).
 constexpr int kMaxBand = 1000000;        // DTW band, frames
 constexpr double kMaxFrames = 1e6;       // warp smoothing, frames
 constexpr double kMaxPenalty = 1e300;    // DTW end penalty, feature units (negative: automatic)
@@ -247,6 +243,12 @@ class Reader {
     return v;
   }
 
+  double number(const Json& j, const Where& where, const Range& range) const {
+    const std::string text = number_range(range.lo, range.hi, range.open_low);
+    if (!j.is_number() || !in_range(j.get<double>(), range)) expected(where, text, j);
+    return j.get<double>();
+  }
+
   // Checked as the float it becomes, so that what is written reads back (0.01 is 0.0099999998f).
   float number_float(const Json& j, const Where& where, double lo, double hi, bool open_low = false) const {
     const std::string range = number_range(lo, hi, open_low);
@@ -281,11 +283,11 @@ class Reader {
     return j.get<std::string>();
   }
 
-  std::vector<double> numbers(const Json& j, const Where& where, double lo, double hi, bool open_low = false) const {
+  std::vector<double> numbers(const Json& j, const Where& where, const Range& range) const {
     if (!j.is_array()) expected(where, "an array of numbers", j);
     std::vector<double> out;
     out.reserve(j.size());
-    for (std::size_t i = 0; i < j.size(); ++i) out.push_back(number(j[i], where.item(i), lo, hi, open_low));
+    for (std::size_t i = 0; i < j.size(); ++i) out.push_back(number(j[i], where.item(i), range));
     return out;
   }
 
@@ -340,36 +342,6 @@ OrderedJson align_json(const AlignmentOptions& a) {
   return j;
 }
 
-OrderedJson palette_json(const PaletteControls& p) {
-  OrderedJson j = OrderedJson::object();
-  j["weights"] = p.weights;
-  j["per_part"] = p.per_part;
-  j["part_weights"] = p.part_weights;
-  j["transfer"] = p.transfer;
-  j["content"] = p.content;
-  j["neutral"] = p.neutral;
-  j["strengths"] = p.strengths;
-  j["ghosts"] = p.ghosts;
-  return j;
-}
-
-OrderedJson controls_json(const SessionControls& c) {
-  OrderedJson j = OrderedJson::object();
-  j["mode"] = blend_mode_name(c.mode);
-  j["per_component"] = c.per_component;
-  j["component_alpha"] = c.component_alpha;
-  j["basic_motions"] = c.basic_motions;
-  j["basic_sparsities"] = c.basic_sparsities;
-  j["swap_level"] = c.swap_level;
-  j["foot_lock"] = c.foot_lock;
-  j["timing_a"] = c.timing_a;
-  j["loop"] = c.loop;
-  j["residual"] = c.residual;
-  j["align"] = align_json(c.align);
-  j["palette"] = palette_json(c.palette);
-  return j;
-}
-
 AlignmentOptions read_align(const Reader& r, const Json& j, const Where& w) {
   r.object(j, w);
   r.only_keys(j, w, {"method", "on", "band", "max_slope", "open_ends", "end_penalty", "smoothing_frames"});
@@ -405,68 +377,136 @@ AlignmentOptions read_align(const Reader& r, const Json& j, const Where& w) {
   return a;
 }
 
-PaletteControls read_palette(const Reader& r, const Json& j, const Where& w) {
-  r.object(j, w);
-  r.only_keys(j, w, {"weights", "per_part", "part_weights", "transfer", "content", "neutral", "strengths", "ghosts"});
-  PaletteControls p;
-  const int last_take = static_cast<int>(kMaxTakes) - 1;
-  r.member(j, w, "weights", [&](const Json& v, const Where& at) { p.weights = r.numbers(v, at, kMinMixWeight, kMaxMixWeight); });
-  r.member(j, w, "per_part", [&](const Json& v, const Where& at) { p.per_part = r.boolean(v, at); });
-  r.member(j, w, "part_weights", [&](const Json& v, const Where& at) {
-    if (!v.is_array()) r.expected(at, "an array of arrays of numbers", v);
-    for (std::size_t i = 0; i < v.size(); ++i) p.part_weights.push_back(r.numbers(v[i], at.item(i), kMinMixWeight, kMaxMixWeight));
-  });
-  r.member(j, w, "transfer", [&](const Json& v, const Where& at) { p.transfer = r.boolean(v, at); });
-  r.member(j, w, "content", [&](const Json& v, const Where& at) { p.content = r.whole(v, at, 0, last_take); });
-  r.member(j, w, "neutral", [&](const Json& v, const Where& at) { p.neutral = r.whole(v, at, 0, last_take); });
-  r.member(j, w, "strengths",
-           [&](const Json& v, const Where& at) { p.strengths = r.numbers(v, at, kMinStrength, kMaxStrength); });
-  r.member(j, w, "ghosts", [&](const Json& v, const Where& at) { p.ghosts = r.boolean(v, at); });
-  return p;
+// ---- The document: its fields from the one list (ui/model/document_fields.h) ----
+
+// A field's place in the file: "controls.palette.weights" is /controls/palette/weights.
+Where field_where(const Field& field) {
+  Where w;
+  w.name = field.key;
+  w.pointer = "/" + w.name;
+  std::replace(w.pointer.begin(), w.pointer.end(), '.', '/');
+  return w;
 }
 
-SessionControls read_controls(const Reader& r, const Json& j, const Where& w) {
-  r.object(j, w);
-  r.only_keys(j, w, {"mode", "per_component", "component_alpha", "basic_motions", "basic_sparsities", "swap_level",
-                     "foot_lock", "timing_a", "loop", "residual", "align", "palette"});
-  SessionControls c;
-  r.member(j, w, "mode", [&](const Json& v, const Where& at) {
-    const std::string mode = r.string(v, at);
-    if (mode == blend_mode_name(BlendMode::kShared))
-      c.mode = BlendMode::kShared;
-    else if (mode == blend_mode_name(BlendMode::kPaper))
-      c.mode = BlendMode::kPaper;
-    else
-      r.expected(at, "\"shared\" or \"paper\"", v);
-  });
-  r.member(j, w, "per_component", [&](const Json& v, const Where& at) { c.per_component = r.boolean(v, at); });
-  r.member(j, w, "component_alpha",
-           [&](const Json& v, const Where& at) { c.component_alpha = r.numbers(v, at, 0.0, 1.0); });
-  r.member(j, w, "basic_motions",
-           [&](const Json& v, const Where& at) { c.basic_motions = r.whole(v, at, 0, kMaxBasicMotions); });
-  r.member(j, w, "basic_sparsities",
-           [&](const Json& v, const Where& at) { c.basic_sparsities = r.numbers(v, at, 0.0, 1.0, /*open_low=*/true); });
-  r.member(j, w, "swap_level", [&](const Json& v, const Where& at) {
-    c.swap_level = r.whole(v, at, 0, std::max(c.basic_motions - 1, 0));  // a level of basic_motions
-  });
-  r.member(j, w, "foot_lock", [&](const Json& v, const Where& at) { c.foot_lock = r.boolean(v, at); });
-  r.member(j, w, "timing_a", [&](const Json& v, const Where& at) { c.timing_a = r.boolean(v, at); });
-  r.member(j, w, "loop", [&](const Json& v, const Where& at) { c.loop = r.boolean(v, at); });
-  r.member(j, w, "residual", [&](const Json& v, const Where& at) { c.residual = r.boolean(v, at); });
-  r.member(j, w, "align", [&](const Json& v, const Where& at) { c.align = read_align(r, v, at); });
-  r.member(j, w, "palette", [&](const Json& v, const Where& at) { c.palette = read_palette(r, v, at); });
-  return c;
+std::vector<std::string> key_parts(const std::string& key) {
+  std::vector<std::string> parts;
+  std::size_t from = 0;
+  for (std::size_t dot; (dot = key.find('.', from)) != std::string::npos; from = dot + 1)
+    parts.push_back(key.substr(from, dot - from));
+  parts.push_back(key.substr(from));
+  return parts;
 }
 
-BlendParameters read_parameters(const Reader& r, const Json& j, const Where& w) {
-  r.object(j, w);
-  r.only_keys(j, w, {"alpha", "components", "sparsity"});
-  BlendParameters p;
-  r.member(j, w, "alpha", [&](const Json& v, const Where& at) { p.alpha = r.number(v, at, 0.0, 1.0); });
-  r.member(j, w, "components", [&](const Json& v, const Where& at) { p.components = r.whole(v, at, 1, kMaxComponents); });
-  r.member(j, w, "sparsity",
-           [&](const Json& v, const Where& at) { p.sparsity = r.number(v, at, 0.0, 1.0, /*open_low=*/true); });
-  return p;
+// A field's value as JSON: numbers, flags and lists as they are; the rest by name.
+template <typename T>
+OrderedJson field_json(const T& v, const fs::path&) {
+  return v;
+}
+OrderedJson field_json(BlendMode mode, const fs::path&) { return blend_mode_name(mode); }
+OrderedJson field_json(const AlignmentOptions& a, const fs::path&) { return align_json(a); }
+OrderedJson field_json(const std::vector<std::string>& takes, const fs::path& folder) {
+  OrderedJson j = OrderedJson::array();
+  for (const std::string& f : takes) j.push_back(take_for_file(f, folder));
+  return j;
+}
+
+// A field's value read from JSON, with the field's range.
+void read_field(const Reader& r, const Json& j, const Where& w, const Field& f, double& v, const fs::path&) {
+  v = r.number(j, w, f.range);
+}
+void read_field(const Reader& r, const Json& j, const Where& w, const Field& f, int& v, const fs::path&) {
+  v = r.whole(j, w, static_cast<long long>(f.range.lo), static_cast<long long>(f.range.hi));
+}
+void read_field(const Reader& r, const Json& j, const Where& w, const Field&, bool& v, const fs::path&) {
+  v = r.boolean(j, w);
+}
+void read_field(const Reader& r, const Json& j, const Where& w, const Field& f, std::vector<double>& v, const fs::path&) {
+  v = r.numbers(j, w, f.range);
+}
+void read_field(const Reader& r, const Json& j, const Where& w, const Field& f, std::vector<std::vector<double>>& v,
+                const fs::path&) {
+  if (!j.is_array()) r.expected(w, "an array of arrays of numbers", j);
+  v.clear();
+  for (std::size_t i = 0; i < j.size(); ++i) v.push_back(r.numbers(j[i], w.item(i), f.range));
+}
+void read_field(const Reader& r, const Json& j, const Where& w, const Field&, BlendMode& v, const fs::path&) {
+  const std::string mode = r.string(j, w);
+  if (mode == blend_mode_name(BlendMode::kShared))
+    v = BlendMode::kShared;
+  else if (mode == blend_mode_name(BlendMode::kPaper))
+    v = BlendMode::kPaper;
+  else
+    r.expected(w, "\"shared\" or \"paper\"", j);
+}
+void read_field(const Reader& r, const Json& j, const Where& w, const Field&, AlignmentOptions& v, const fs::path&) {
+  v = read_align(r, j, w);
+}
+void read_field(const Reader& r, const Json& j, const Where& w, const Field& f, std::vector<std::string>& takes,
+                const fs::path& folder) {
+  if (!j.is_array()) r.expected(w, "an array of file names", j);
+  if (static_cast<double>(j.size()) > f.range.hi)
+    r.fail(w, w.name + ": more than " + number_text(f.range.hi) + " takes");
+  takes.clear();
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    const std::string name = r.string(j[i], w.item(i));
+    if (name.empty()) r.fail(w.item(i), w.item(i).name + ": an empty file name");
+    takes.push_back(take_from_file(name, folder));
+  }
+}
+
+// Refuses a key of the object `j` at `prefix` ("" for the file, "controls." for its controls)
+// that no saved field's key continues with, nor `extra`; checks that each object the keys pass
+// through is one, at every level.
+void check_keys(const Reader& r, const Json& j, const Where& where, const std::string& prefix,
+                const std::vector<std::string>& extra) {
+  std::vector<std::string> known = extra, branches;
+  Document d;
+  document_fields(d, d, [&](const Field& field, const auto&, const auto&) {
+    const std::string key = field.key;
+    if (!field.saved || key.compare(0, prefix.size(), prefix) != 0) return;
+    const std::string rest = key.substr(prefix.size());
+    const std::string part = rest.substr(0, rest.find('.'));
+    if (std::find(known.begin(), known.end(), part) == known.end()) known.push_back(part);
+    if (part != rest && std::find(branches.begin(), branches.end(), part) == branches.end()) branches.push_back(part);
+  });
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    if (std::find(known.begin(), known.end(), it.key()) != known.end()) continue;
+    std::string names;
+    for (const std::string& k : known) names += (names.empty() ? "" : ", ") + k;
+    r.fail(where.key(it.key()), "unknown key " + quoted(it.key()) + (where.name.empty() ? "" : " in " + where.name) +
+                                    " (known: " + names + ")");
+  }
+  for (const std::string& branch : branches) {
+    const auto it = j.find(branch);
+    if (it == j.end()) continue;
+    r.object(*it, where.key(branch));
+    check_keys(r, *it, where.key(branch), prefix + branch + ".", {});
+  }
+}
+
+void write_document(OrderedJson& root, const Document& d, const fs::path& folder) {
+  document_fields(d, d, [&](const Field& field, const auto& value, const auto&) {
+    if (!field.saved) return;
+    OrderedJson* at = &root;
+    for (const std::string& part : key_parts(field.key)) at = &(*at)[part];
+    *at = field_json(value, folder);
+  });
+}
+
+// The document's fields from the file (keys checked already); a field left out keeps its default.
+Document read_document(const Reader& r, const Json& root, const fs::path& folder) {
+  Document d;
+  document_fields(d, d, [&](const Field& field, auto& value, auto&) {
+    if (!field.saved) return;
+    const Json* at = &root;
+    for (const std::string& part : key_parts(field.key)) {
+      const auto it = at->find(part);
+      if (it == at->end()) return;
+      at = &*it;
+    }
+    read_field(r, *at, field_where(field), field, value, folder);
+  });
+  return d;
 }
 
 SessionCamera read_camera(const Reader& r, const Json& j, const Where& w) {
@@ -516,18 +556,7 @@ std::string format_session(const SessionFile& session, const std::string& sessio
   const Document& d = session.document;
   OrderedJson j = OrderedJson::object();
   j["version"] = kSessionVersion;
-  OrderedJson takes = OrderedJson::array();
-  for (const std::string& f : d.files) takes.push_back(take_for_file(f, folder));
-  j["takes"] = takes;
-  OrderedJson parameters = OrderedJson::object();
-  parameters["alpha"] = d.parameters.alpha;
-  parameters["components"] = d.parameters.components;
-  parameters["sparsity"] = d.parameters.sparsity;
-  j["parameters"] = parameters;
-  j["controls"] = controls_json(d.controls);
-  OrderedJson view = OrderedJson::object();
-  view["overlay"] = d.overlay;
-  j["view"] = view;
+  write_document(j, d, folder);
   if (session.camera) {
     const SessionCamera& c = *session.camera;
     OrderedJson camera = OrderedJson::object();
@@ -573,27 +602,10 @@ SessionFile parse_session(std::string_view text, const std::string& session_path
   if (*version != kSessionVersion)
     r.fail(top.key("version"), "version " + a_json_type(*version) + " is not one this mostyle reads (it reads version " +
                                    std::to_string(kSessionVersion) + ")");
-  r.only_keys(j, top, {"version", "takes", "parameters", "controls", "view", "camera", "playback"});
+  check_keys(r, j, top, "", {"version", "camera", "playback"});
 
   SessionFile session;
-  Document& d = session.document;
-  const fs::path folder = session_folder(session_path);
-  r.member(j, top, "takes", [&](const Json& v, const Where& at) {
-    if (!v.is_array()) r.expected(at, "an array of file names", v);
-    if (v.size() > kMaxTakes) r.fail(at, at.name + ": more than " + std::to_string(kMaxTakes) + " takes");
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      const std::string name = r.string(v[i], at.item(i));
-      if (name.empty()) r.fail(at.item(i), at.item(i).name + ": an empty file name");
-      d.files.push_back(take_from_file(name, folder));
-    }
-  });
-  r.member(j, top, "parameters", [&](const Json& v, const Where& at) { d.parameters = read_parameters(r, v, at); });
-  r.member(j, top, "controls", [&](const Json& v, const Where& at) { d.controls = read_controls(r, v, at); });
-  r.member(j, top, "view", [&](const Json& v, const Where& at) {
-    r.object(v, at);
-    r.only_keys(v, at, {"overlay"});
-    r.member(v, at, "overlay", [&](const Json& o, const Where& o_at) { d.overlay = r.boolean(o, o_at); });
-  });
+  session.document = read_document(r, j, session_folder(session_path));
   r.member(j, top, "camera", [&](const Json& v, const Where& at) { session.camera = read_camera(r, v, at); });
   r.member(j, top, "playback", [&](const Json& v, const Where& at) { session.playback = read_playback(r, v, at); });
   return session;

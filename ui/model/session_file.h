@@ -13,7 +13,9 @@
 //     "playback": {"time_s": 1.5, "playing": false, "speed": 1, "loop": true}
 //   }
 // Only "version" is required; a key left out keeps its default, an unknown key is refused (a
-// typo is never silently ignored), and so is a value out of its range.
+// typo is never silently ignored), and so is a value out of its range. The document's keys, the
+// ranges they are read with (those the editor's controls allow) and the keys known are those of
+// the one list of its fields (ui/model/document_fields.h).
 #include <array>
 #include <cstddef>
 #include <optional>

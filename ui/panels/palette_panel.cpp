@@ -1,7 +1,4 @@
 #include "ui/panels/palette_panel.h"
-#include "ui/panels/theme.h"
-
-#include "ui/model/document.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +8,10 @@
 #include <imgui.h>
 
 #include "engine/io/motion_file.h"
+#include "ui/model/document.h"
 #include "ui/panels/layout.h"
+#include "ui/panels/range_slider.h"
+#include "ui/panels/theme.h"
 
 namespace mostyle::ui {
 namespace {
@@ -157,9 +157,9 @@ void PalettePanel::draw_mix(PaletteControls& c, const PreparedTakes& p) {
     for (int i = 0; i < n; ++i) {
       ImGui::PushID(i);
       swatch(i);
-      float w = static_cast<float>(c.weights[static_cast<size_t>(i)]);
+      double w = c.weights[static_cast<size_t>(i)];
       ImGui::SetNextItemWidth(std::clamp(ImGui::GetContentRegionAvail().x * 0.35f, 56.0f, 80.0f));
-      if (ImGui::SliderFloat("##w", &w, static_cast<float>(kMinMixWeight), static_cast<float>(kMaxMixWeight), "%.2f"))
+      if (range_slider("##w", w, kMixWeightRange))
         c.weights = set_weight_keeping_sum(c.weights, i, w);
       if (ImGui::IsItemHovered())
         ImGui::SetTooltip("How much of this take's style; the others follow so that the weights sum to 1 (from -0.5 "
@@ -284,10 +284,8 @@ void PalettePanel::draw_transfer(PaletteControls& c, const PreparedTakes& p) {
     if (i == c.neutral) continue;
     ImGui::PushID(i);
     swatch(i);
-    float s = static_cast<float>(c.strengths[static_cast<size_t>(i)]);
     ImGui::SetNextItemWidth(200.0f);
-    if (ImGui::SliderFloat("##strength", &s, static_cast<float>(kMinStrength), static_cast<float>(kMaxStrength), "%.2f"))
-      c.strengths[static_cast<size_t>(i)] = s;
+    range_slider("##strength", c.strengths[static_cast<size_t>(i)], kStrengthRange);
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("How much of this style: 0 leaves the content as it is, 1 adds the whole change from the "
                         "neutral take to this one");

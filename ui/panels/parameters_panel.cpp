@@ -1,5 +1,4 @@
 #include "ui/panels/parameters_panel.h"
-#include "ui/panels/theme.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -7,10 +6,10 @@
 #include <imgui.h>
 
 #include "ui/panels/layout.h"
+#include "ui/panels/range_slider.h"
+#include "ui/panels/theme.h"
 
 namespace mostyle::ui {
-namespace {
-}  // namespace
 
 void ParametersPanel::draw(EditorState& state) {
   place_panel(PanelId::kParameters, state);
@@ -28,19 +27,17 @@ void ParametersPanel::draw(EditorState& state) {
   // parts' alphas are the pair's.
   const bool palette = s.palette() != nullptr;
   if (!palette) {
-    float alpha = static_cast<float>(p.alpha);
-    if (ImGui::SliderFloat("alpha", &alpha, 0.0f, 1.0f, "%.2f")) p.alpha = alpha;  // blended this frame
+    range_slider("alpha", p.alpha, kAlphaRange);  // blended this frame
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: style A, 1: style B. Applied immediately.");
   }
 
   bool redecompose = false;
-  ImGui::SliderInt("components (k)", &p.components, 1, 40);
+  range_slider("components (k)", p.components, kComponentsRange);
   redecompose |= ImGui::IsItemDeactivatedAfterEdit();
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("How many components the takes are split into. More: closer to the takes, less general.\n"
                       "Recomputed when you let go of the slider.");
-  float sparsity = static_cast<float>(p.sparsity);
-  if (ImGui::SliderFloat("sparsity", &sparsity, 0.01f, 1.0f, "%.2f")) p.sparsity = sparsity;
+  range_slider("sparsity", p.sparsity, kSparsityRange);
   redecompose |= ImGui::IsItemDeactivatedAfterEdit();
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Share of the joints' channels each component may move (0.1: a tenth).\n"
@@ -130,8 +127,8 @@ void ParametersPanel::draw(EditorState& state) {
               break;
             }
           if (first < 0) continue;
-          float a = static_cast<float>(c.component_alpha[static_cast<size_t>(first)]);
-          if (ImGui::SliderFloat(body_part_name(part), &a, 0.0f, 1.0f, "%.2f")) {
+          double a = c.component_alpha[static_cast<size_t>(first)];
+          if (range_slider(body_part_name(part), a, kAlphaRange)) {
             for (int i = 0; i < d->components(); ++i)
               if (part_covers(part, d->component_joints[static_cast<size_t>(i)].region))
                 c.component_alpha[static_cast<size_t>(i)] = a;
@@ -143,11 +140,11 @@ void ParametersPanel::draw(EditorState& state) {
         ImGui::TextColored(kDimColor, "each component:");
         for (int i = 0; i < d->components(); ++i) {
           ImGui::PushID(i);
-          float a = static_cast<float>(c.component_alpha[static_cast<size_t>(i)]);
+          double a = c.component_alpha[static_cast<size_t>(i)];
           char label[64];
           std::snprintf(label, sizeof label, "%s%s", d->component_joints[static_cast<size_t>(i)].name.c_str(),
                         i == c.selected_component ? " *" : "");
-          if (ImGui::SliderFloat(label, &a, 0.0f, 1.0f, "%.2f")) {
+          if (range_slider(label, a, kAlphaRange)) {
             c.component_alpha[static_cast<size_t>(i)] = a;
             c.per_component = true;
           }
@@ -161,7 +158,7 @@ void ParametersPanel::draw(EditorState& state) {
     const bool basic = ImGui::CollapsingHeader("Basic motions", ImGuiTreeNodeFlags_DefaultOpen);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Paper mode: the takes in levels of motion, one level from B");
     if (basic) {
-      ImGui::SliderInt("motion levels", &c.basic_motions, 0, 5);
+      range_slider("motion levels", c.basic_motions, kBasicMotionsRange);
       redecompose |= ImGui::IsItemDeactivatedAfterEdit();
       if (ImGui::IsItemHovered())
         ImGui::SetTooltip("Split each take into this many levels of basic motions (paper 3.5): level 1 holds the\n"
@@ -170,18 +167,16 @@ void ParametersPanel::draw(EditorState& state) {
       c.basic_sparsities.resize(static_cast<size_t>(c.basic_motions), p.sparsity);
       for (int i = 0; i < c.basic_motions; ++i) {
         ImGui::PushID(i);
-        float f = static_cast<float>(c.basic_sparsities[static_cast<size_t>(i)]);
         char label[32];
         std::snprintf(label, sizeof label, "level %d sparsity", i + 1);
-        if (ImGui::SliderFloat(label, &f, 0.01f, 1.0f, "%.2f")) c.basic_sparsities[static_cast<size_t>(i)] = f;
+        range_slider(label, c.basic_sparsities[static_cast<size_t>(i)], kSparsityRange);
         redecompose |= ImGui::IsItemDeactivatedAfterEdit();
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("Share of the channels each component of this level may move");
         ImGui::PopID();
       }
       if (c.basic_motions > 0) {
         // Shown from 1 like the levels above; stored from 0.
-        int level = c.swap_level + 1;
-        if (ImGui::SliderInt("level from B", &level, 1, c.basic_motions)) c.swap_level = level - 1;
+        range_slider("level from B", c.swap_level, swap_level_range(c.basic_motions), "%d", 1);
         if (ImGui::IsItemHovered())
           ImGui::SetTooltip("The level whose style moves towards B with alpha (1: B's); the other levels stay A's");
       }

@@ -86,7 +86,7 @@ TEST_CASE("document fields: each one, changed alone, differs and makes stale wha
   // Every field the list describes is one of these changes (a field added to the list without a
   // change here, or the other way round, is caught); align on and time warp are one field.
   int fields = 0;
-  document_fields(base, base, [&](const char*, const auto&, const auto&, Stale) { ++fields; });
+  document_fields(base, base, [&](const Field&, const auto&, const auto&) { ++fields; });
   CHECK(fields == static_cast<int>(std::size(changes)) - 1);
   // Several changes: the most they make stale.
   Document several = base;

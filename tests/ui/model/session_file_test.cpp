@@ -12,6 +12,7 @@
 
 #include "engine/io/error.h"
 #include "tests/test_data.h"
+#include "ui/model/document_fields.h"
 #include "ui/model/recent_files.h"
 #include "ui/model/session_file.h"
 
@@ -116,6 +117,68 @@ TEST_CASE("session files: format then parse gives the same session") {
   CHECK_FALSE(plain_back.camera.has_value());
 }
 
+namespace {
+
+// Sets a numeric field to v (a list: two numbers v); false for a field that is not numbers.
+bool set_number(double& x, double v) { return x = v, true; }
+bool set_number(int& x, double v) { return x = static_cast<int>(v), true; }
+bool set_number(std::vector<double>& x, double v) { return x = {v, v}, true; }
+bool set_number(std::vector<std::vector<double>>& x, double v) { return x = {{v, v}, {v, v}}, true; }
+template <typename T>
+bool set_number(T&, double) {
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("session files: every field of the list reads back at both ends of its range, and not past them") {
+  // A document where every range is at its widest: five basic-motion levels (swap_level 0 to 4).
+  Document base;
+  base.controls.basic_motions = static_cast<int>(kBasicMotionsRange.hi);
+  int count = 0;
+  document_fields(base, base, [&](const Field&, const auto&, const auto&) { ++count; });
+  int numeric = 0;
+  for (int target = 0; target < count; ++target) {
+    for (const int end : {0, 1}) {
+      for (const bool outside : {false, true}) {
+        Document d = base;
+        std::string key;
+        bool is_number = false, saved = true;
+        int i = 0;
+        document_fields(d, d, [&](const Field& field, auto& x, auto&) {
+          if (i++ != target || field.range.hi <= field.range.lo) return;
+          const double step = outside ? (end == 0 ? -1.0 : 1.0) : 0.0;
+          is_number = set_number(x, (end == 0 ? field.range.lo : field.range.hi) + step);
+          key = field.key;
+          saved = field.saved;
+        });
+        if (!is_number || !saved || key == "takes") continue;
+        INFO(key << (end == 0 ? " at its low end" : " at its high end") << (outside ? ", one past it" : ""));
+        const std::string text = format_session(SessionFile{d, std::nullopt, {}}, "/x/s.mostyle");
+        if (outside) {
+          const std::string message = refusal(text);
+          CHECK_THAT(message, Catch::StartsWith("bad.mostyle:") && Catch::Contains(key) &&
+                                  Catch::Contains("expected a"));
+        } else {
+          CHECK(parse_session(text, "/x/s.mostyle").document == d);
+          numeric += end == 0;
+        }
+      }
+    }
+  }
+  CHECK(numeric == 12);  // alpha, k, sparsity, component alphas, levels, level sparsities, swap level; 5 of the palette
+  // The sliders' own float ends read back (0.01f is 0.0099999998 as a double).
+  Document slid;
+  slid.parameters.sparsity = static_cast<double>(0.01f);
+  slid.controls.palette.weights = {static_cast<double>(1.5f), static_cast<double>(-0.5f)};
+  CHECK(parse_session(format_session(SessionFile{slid, std::nullopt, {}}, "s.mostyle"), "s.mostyle").document == slid);
+  // More takes than a palette holds.
+  Document many;
+  many.files.assign(static_cast<size_t>(kTakesRange.hi) + 1, "a.bvh");
+  CHECK_THAT(refusal(format_session(SessionFile{many, std::nullopt, {}}, "s.mostyle")),
+             Catch::Contains("takes: more than 16 takes"));
+}
+
 TEST_CASE("session files: takes resolve against the session's folder, wherever it moved") {
   const std::string text = R"({"version": 1, "takes": ["a.bvh", "sub/../b.bvh", "../c.bvh", "/abs/d.bvh"]})";
   const SessionFile s = parse_session(text, "/moved/here/s.mostyle");
@@ -151,7 +214,7 @@ TEST_CASE("session files: a bad file is refused with one line naming the file an
        "parameters.alpha: expected a number from 0 to 1, found the string 'half'"},
       {"{\"version\": 1,\n\"parameters\": {\"alpha\": 1.5}}", 2, "parameters.alpha: expected a number from 0 to 1, found 1.5"},
       {"{\"version\": 1,\n\"parameters\": {\n\"components\": 2.5}}", 3, "parameters.components: expected a whole number"},
-      {"{\"version\": 1,\n\"parameters\": {\n\"sparsity\": 0}}", 3, "parameters.sparsity: expected a number above 0"},
+      {"{\"version\": 1,\n\"parameters\": {\n\"sparsity\": 0}}", 3, "parameters.sparsity: expected a number from 0.01 to 1, found 0"},
       {"{\"version\": 1,\n\"parameters\": {\n\n\"alpah\": 0.5}}", 4, "unknown key 'alpah' in parameters"},
       {"{\"version\": 1,\n\"extra\": true}", 2, "unknown key 'extra'"},
       {"{\"version\": 1,\n\"takes\": \"a.bvh\"}", 2, "takes: expected an array"},
@@ -166,6 +229,13 @@ TEST_CASE("session files: a bad file is refused with one line naming the file an
       {"{\"version\": 1,\n\"playback\": {\"playing\": \"yes\"}}", 2, "playback.playing: expected true or false"},
       {"{\"version\": 1,\n\"playback\": {\n\"time_s\": 1e400}}", 3, "a number too large"},
       {"{\"version\": 1,\n\"view\": []}", 2, "view: expected an object"},
+      {"{\"version\": 1,\n\"controls\": {\"palette\": 3}}", 2, "controls.palette: expected an object"},
+      {"{\"version\": 1,\n\"controls\": {\"palette\": {\n\"wieghts\": []}}}", 3,
+       "unknown key 'wieghts' in controls.palette (known: weights, per_part"},
+      {"{\"version\": 1,\n\"controls\": {\n\"selected_component\": 2}}", 3,
+       "unknown key 'selected_component' in controls"},  // where one looks: not kept
+      {"{\"version\": 1,\n\"parameters\": {\n\"components\": 41}}", 3,
+       "parameters.components: expected a whole number from 1 to 40, found 41"},
       // Beyond what the palette's sliders allow (-0.5 to 1.5; strengths -1 to 2).
       {"{\"version\": 1,\n\"controls\": {\"palette\": {\n\"weights\": [1.6, -0.6]}}}", 3,
        "controls.palette.weights[0]: expected a number from -0.5 to 1.5, found 1.6"},
