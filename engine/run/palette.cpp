@@ -174,17 +174,20 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
     // Each component's weight column mixed per take, each joint's mean and residual with its
     // components' mean weights (body_parts.h joint_values).
     s.joint_weights = joint_values(d.support, params.component_weights);
-    Eigen::MatrixXd w = Eigen::MatrixXd::Zero(length, d.components());
+    s.component_w.setZero(length, d.components());
     for (int i = 0; i < n; ++i)
-      w += shared->stacked.weights[i].middleRows(first, length) * params.component_weights.col(i).asDiagonal();
-    s.samples.noalias() = w * shared->stacked.components * p.scale;
-    for (int i = 0; i < n; ++i)
-      for (Eigen::Index j = 0; j < s.joint_weights.rows(); ++j) {
-        const double wj = s.joint_weights(j, i);
-        s.samples.middleCols(3 * j, 3).rowwise() += wj * p.takes[i].mean.segment(3 * j, 3);
-        if (params.residual)
-          s.samples.middleCols(3 * j, 3) += wj * shared->residual[i].block(first, 3 * j, length, 3);
-      }
+      s.component_w += shared->stacked.weights[i].middleRows(first, length) * params.component_weights.col(i).asDiagonal();
+    s.samples.noalias() = s.component_w * shared->stacked.components * p.scale;
+    // Each take's joint weights spread over the joint's three channels: the means in one row,
+    // the residuals a whole-matrix pass per take.
+    s.mixed_mean.setZero(s.samples.cols());
+    for (int i = 0; i < n; ++i) {
+      s.channel_w.resize(s.samples.cols());
+      for (Eigen::Index j = 0; j < s.joint_weights.rows(); ++j) s.channel_w.segment(3 * j, 3).setConstant(s.joint_weights(j, i));
+      s.mixed_mean += s.channel_w.cwiseProduct(p.takes[i].mean);
+      if (params.residual) s.samples += shared->residual[i].middleRows(first, length) * s.channel_w.asDiagonal();
+    }
+    s.samples.rowwise() += s.mixed_mean;
     s.sampler.apply(s.samples, out.local);
   }
   out.synthesize_ms = ms_since(t0);

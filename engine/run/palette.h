@@ -48,8 +48,9 @@ struct MixParams {
 };
 
 struct MixScratch {
-  Eigen::MatrixXd x, samples, steps, ground_u, target, contacts_u, joint_weights, stretch, local_t;
+  Eigen::MatrixXd x, samples, steps, ground_u, target, contacts_u, joint_weights, stretch, local_t, component_w;
   Eigen::VectorXd heading_u, u, u_stretch, flips;
+  Eigen::RowVectorXd channel_w, mixed_mean;
   std::vector<double> overall, timing;
   RowSampler sampler;
   FinishScratch finish;
