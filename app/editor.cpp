@@ -99,7 +99,7 @@ void copy_to(char* field, size_t size, const std::string& text) {
 
 Editor::Editor(const EditorOptions& options)
     : session_(std::make_unique<ui::BlendSession>(BvhReadOptions{options.max_memory_bytes})) {
-  state_.parameters = options.initial.parameters;
+  state_.document.parameters = options.initial.parameters;
   state_.playback.playing = !options.initial.paused;
   initial_frame_ = options.initial.frame;
   scripted_save_path_ = options.save_session_path;
@@ -112,16 +112,14 @@ Editor::Editor(const EditorOptions& options)
   // frame) and the editor starts as it would without it.
   std::string first_take;
   if (!options.session_path.empty() && open_session(options.session_path)) {
-    session_->request_decomposition(state_);  // the session's k and sparsity, for its takes
     first_take = session_->requested_a().empty() ? session_path_ : session_->requested_a();
   } else {
     const std::vector<std::string> files = options.files.empty() ? default_motion_files() : options.files;
     // --weights: a pair's are (1 - alpha, alpha), a palette's its sliders' (parse_editor_options
     // checked their count).
     const std::vector<double>& weights = options.initial.weights;
-    if (weights.size() == 2) state_.parameters.alpha = weights[1];
-    else if (!weights.empty()) session_->controls().palette.weights = weights;
-    session_->request_decomposition(state_);
+    if (weights.size() == 2) state_.document.parameters.alpha = weights[1];
+    else if (!weights.empty()) state_.document.controls.palette.weights = weights;
     session_->load_files(files);  // three or more: the style palette
     first_take = files.empty() ? std::string() : files[0];
   }
@@ -144,7 +142,7 @@ void Editor::update_engine() {
   // Before poll(): a load the worker has published by now is in the snapshot poll() takes up.
   const bool loading = ui::load_pending(*session_);
   session_->poll(state_);
-  session_->update_blend(state_);
+  session_->sync(state_, /*item_held=*/true);  // the new snapshot shown; worker requests after the panels
   // The takes, a pair or a palette alike.
   const void* pair = session_->snapshot().prepared.get();
   if (pair != nullptr && pair != framed_pair_) {  // new takes: frame them, start at --frame once
@@ -334,7 +332,7 @@ void Editor::frame(const FrameInput& input) {
   draw_session_message();
   // After the panels: what they changed is an undo step once nothing is held (a drag is one).
   edits_.record(state_, *session_, ImGui::IsAnyItemActive());
-  session_->update_blend(state_);
+  session_->sync(state_, ImGui::IsAnyItemActive());
   build_scene();
 
   // The view's centre in the middle of the part of the window no panel covers (between the side

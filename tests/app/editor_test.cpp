@@ -211,13 +211,12 @@ TEST_CASE("the editor keeps rendering offscreen for hundreds of frames while dec
     io.DisplaySize = ImVec2(static_cast<float>(size.x), static_cast<float>(size.y));
     io.DeltaTime = 1.0f / 60.0f;
     if (frame % 60 == 30 && !state.takes.empty()) {  // a new k or sparsity: re-decomposition
-      state.parameters.components = 6 + 2 * ((frame / 60) % 4);
-      state.parameters.sparsity = frame % 120 == 30 ? 0.2 : 0.3;
-      editor.session().request_decomposition(state);
+      state.document.parameters.components = 6 + 2 * ((frame / 60) % 4);
+      state.document.parameters.sparsity = frame % 120 == 30 ? 0.2 : 0.3;
       ++decompositions_requested;
     }
-    state.parameters.alpha = 0.5 + 0.5 * std::sin(frame * 0.1);  // blended in this very frame
-    if (frame % 90 == 45) state.view.overlay = !state.view.overlay;
+    state.document.parameters.alpha = 0.5 + 0.5 * std::sin(frame * 0.1);  // blended in this very frame
+    if (frame % 90 == 45) state.document.overlay = !state.document.overlay;
     editor.frame(FrameInput{size, 1.0f / 60.0f});
     // The frame went on while the decomposition it asked for was not there yet.
     if (editor.session().decomposition_outdated()) ++frames_while_busy;
@@ -236,8 +235,8 @@ TEST_CASE("the editor keeps rendering offscreen for hundreds of frames while dec
   CHECK(blend_changes > 100);    // and the blend followed alpha
   CHECK(editor.session().error().empty());
   const auto& shown = editor.session().snapshot().decompose_params;
-  CHECK(shown.components == state.parameters.components);  // the last request won
-  CHECK(shown.sparsity == state.parameters.sparsity);
+  CHECK(shown.components == state.document.parameters.components);  // the last request won
+  CHECK(shown.sparsity == state.document.parameters.sparsity);
 }
 
 TEST_CASE("keys: F1 and ? show the keys list, Esc hides it, F frames all, Ctrl+0 resets the layout") {
@@ -480,8 +479,8 @@ TEST_CASE("sessions and undo: Ctrl+Z / Ctrl+Y undo and redo a load, a saved sess
     CHECK(editor.session().snapshot().paths[0] == joy);
 
     // Saved: the takes, every parameter, the camera and the playback. ".mostyle" is added.
-    editor.state().parameters.alpha = 0.8;
-    editor.state().view.overlay = true;
+    editor.state().document.parameters.alpha = 0.8;
+    editor.state().document.overlay = true;
     frame(editor);
     CHECK_FALSE(editor.save_session((dir / "day.bvh").string()));  // never over a take
     REQUIRE(editor.save_session((dir / "day").string()));
@@ -512,9 +511,9 @@ TEST_CASE("sessions and undo: Ctrl+Z / Ctrl+Y undo and redo a load, a saved sess
   Editor reopened(again);
   CHECK(reopened.session_path() == day);
   CHECK_FALSE(reopened.session_message_is_error());
-  CHECK(reopened.state().parameters.alpha == 0.8);
-  CHECK(reopened.state().parameters.components == 4);
-  CHECK(reopened.state().view.overlay);
+  CHECK(reopened.state().document.parameters.alpha == 0.8);
+  CHECK(reopened.state().document.parameters.components == 4);
+  CHECK(reopened.state().document.overlay);
   CHECK(reopened.recent_files().sessions.front() == day);
   reopened.wait_for_engine();
   reopened.init_graphics();
@@ -535,7 +534,7 @@ TEST_CASE("sessions and undo: Ctrl+Z / Ctrl+Y undo and redo a load, a saved sess
   CHECK_FALSE(reopened.open_session(bad));
   CHECK_THAT(reopened.session_message(), Catch::StartsWith(bad + ":3: "));
   CHECK(reopened.session_message().find('\n') == std::string::npos);
-  CHECK(reopened.state().parameters.alpha == 0.8);
+  CHECK(reopened.state().document.parameters.alpha == 0.8);
   CHECK(reopened.session_path() == day);
 
   // A session whose take moved away: it opens, names the file, restores the rest and keeps the
@@ -547,12 +546,12 @@ TEST_CASE("sessions and undo: Ctrl+Z / Ctrl+Y undo and redo a load, a saved sess
   CHECK(reopened.open_session((dir / "moved.mostyle").string()));
   CHECK(reopened.session_message_is_error());
   CHECK_THAT(reopened.session_message(), Catch::Contains("gone.bvh"));
-  CHECK(reopened.state().parameters.alpha == 0.1);
+  CHECK(reopened.state().document.parameters.alpha == 0.1);
   reopened.wait_for_engine();
   frame(reopened);
   CHECK(reopened.session().snapshot().paths[0] == joy);
   press(reopened, kKeyZ, true, false);
-  CHECK(reopened.state().parameters.alpha == 0.8);
+  CHECK(reopened.state().document.parameters.alpha == 0.8);
   reopened.shutdown_graphics();
   fs::remove_all(dir);
 }
@@ -574,8 +573,8 @@ TEST_CASE("at rest, a finished decomposition wakes the editor and shows at once 
   REQUIRE_FALSE(editor.animating());
   // A new k (as the slider gives it): the worker decomposes while no input comes.
   const int before = wakes;
-  editor.state().parameters.components = 6;
-  editor.session().request_decomposition(editor.state());
+  editor.state().document.parameters.components = 6;
+  editor.session().sync(editor.state());
   CHECK(editor.animating());  // the worker has work
   const auto t0 = std::chrono::steady_clock::now();
   while (editor.session().status().stage != mostyle::WorkerStage::kIdle || editor.session().status().pending) {

@@ -147,10 +147,9 @@ void BM_EditorFrame(benchmark::State& state) {
   int busy = 0, frames = 0;
   for (auto _ : state) {
     if (decomposing && editor.session().status().stage == WorkerStage::kIdle) {
-      editor.state().parameters.components = editor.state().parameters.components == 30 ? 32 : 30;  // ~0.3 s each
-      editor.session().request_decomposition(editor.state());
+      editor.state().document.parameters.components = editor.state().document.parameters.components == 30 ? 32 : 30;  // ~0.3 s each
     }
-    editor.state().parameters.alpha = 0.5 + 0.4 * std::sin(0.05 * frames);  // re-blended each frame
+    editor.state().document.parameters.alpha = 0.5 + 0.4 * std::sin(0.05 * frames);  // re-blended each frame
     io.DisplaySize = ImVec2(static_cast<float>(kSize.x), static_cast<float>(kSize.y));
     io.DeltaTime = 1.0f / 60.0f;
     editor.frame(app::FrameInput{kSize, 1.0f / 60.0f});

@@ -20,9 +20,8 @@ struct LoadedSession {
   ui::EditorState state;
   ui::BlendSession session;
   LoadedSession() {
-    state.parameters.components = 6;  // small and quick
-    state.parameters.sparsity = 0.2;
-    session.request_decomposition(state);
+    state.document.parameters.components = 6;  // small and quick
+    state.document.parameters.sparsity = 0.2;
     session.load(asset("motions/cmu142_walk_happy.bvh"), asset("motions/cmu142_walk_marching.bvh"));
     session.wait_idle(state);
   }

@@ -32,6 +32,26 @@ double ms_since(Clock::time_point t0) {
 
 std::string stem(const std::string& path) { return take_label(path); }
 
+// The decomposition the document asks for (a level's sparsity not set yet: the main one).
+DecomposeParams decompose_params_for(const Document& document) {
+  const SessionControls& c = document.controls;
+  DecomposeParams p;
+  p.mode = c.mode;
+  p.components = document.parameters.components;
+  p.sparsity = document.parameters.sparsity;
+  if (p.mode == BlendMode::kPaper && c.basic_motions > 0) {
+    p.basic_motions = c.basic_motions;
+    p.basic_sparsities = c.basic_sparsities;
+    p.basic_sparsities.resize(static_cast<size_t>(p.basic_motions), p.sparsity);
+  }
+  return p;
+}
+
+bool same_decomposition(const DecomposeParams& x, const DecomposeParams& y) {
+  return x.mode == y.mode && x.components == y.components && x.sparsity == y.sparsity &&
+         x.basic_motions == y.basic_motions && x.basic_sparsities == y.basic_sparsities;
+}
+
 }  // namespace
 
 BlendSession::BlendSession(const BvhReadOptions& read) : read_(read), worker_(read), snapshot_(worker_.snapshot()) {}
@@ -45,7 +65,7 @@ void BlendSession::load_files(const std::vector<std::string>& paths) {
   requested_files_ = paths;
   requested_a_ = paths[0];
   requested_b_ = paths[1];
-  worker_.load(paths, prepare_options());
+  load_waiting_ = true;
 }
 
 void BlendSession::load(const std::string& path_a, const std::string& path_b) {
@@ -53,32 +73,35 @@ void BlendSession::load(const std::string& path_a, const std::string& path_b) {
   requested_b_ = path_b;
   requested_files_ = {path_a};
   if (!path_b.empty()) requested_files_.push_back(path_b);
-  worker_.load({path_a, path_b.empty() ? path_a : path_b}, prepare_options());
+  load_waiting_ = true;
 }
 
-PrepareOptions BlendSession::prepare_options() const {
+PrepareOptions BlendSession::prepare_options(const Document& document) const {
   PrepareOptions o;
-  o.align = controls_.align;
+  o.align = document.controls.align;
   return o;
 }
 
-void BlendSession::realign() {
-  if (!snapshot_->prepared) return;
-  worker_.load(snapshot_->paths, prepare_options());
+void BlendSession::request_decomposition(const Document& document) {
+  requested_ = decompose_params_for(document);
+  worker_.decompose(requested_);
 }
 
-void BlendSession::request_decomposition(const EditorState& state) {
-  DecomposeParams p;
-  p.mode = controls_.mode;
-  p.components = state.parameters.components;
-  p.sparsity = state.parameters.sparsity;
-  if (p.mode == BlendMode::kPaper && controls_.basic_motions > 0) {
-    p.basic_motions = controls_.basic_motions;
-    controls_.basic_sparsities.resize(static_cast<size_t>(p.basic_motions), p.sparsity);
-    p.basic_sparsities = controls_.basic_sparsities;
+void BlendSession::sync(EditorState& state, bool item_held) {
+  const Document& d = state.document;
+  // The decomposition first: a load decomposes with the parameters last asked for.
+  if (!item_held && !same_decomposition(decompose_params_for(d), requested_)) request_decomposition(d);
+  if (load_waiting_) {
+    load_waiting_ = false;
+    aligned_ = d.controls.align;
+    std::vector<std::string> paths = requested_files_;
+    if (paths.size() == 1) paths.push_back(paths[0]);  // A with itself
+    worker_.load(paths, prepare_options(d));
+  } else if (!item_held && !(aligned_ == d.controls.align)) {
+    aligned_ = d.controls.align;
+    if (snapshot_->prepared) worker_.load(snapshot_->paths, prepare_options(d));
   }
-  requested_ = p;
-  worker_.decompose(p);
+  update_blend(state);
 }
 
 // Remembered once loaded: a mistyped path never joins the recent files. paths: first the newest.
@@ -112,7 +135,9 @@ void BlendSession::start_error_sweep(const DecomposeParams& base) {
   sweep_seen_version_ = 0;
   if (wake_) sweep_worker_->set_on_change(wake_);
   sweep_worker_->decompose(sweep_params_);
-  sweep_worker_->load(snapshot_->paths, prepare_options());
+  PrepareOptions options;
+  options.align = aligned_;
+  sweep_worker_->load(snapshot_->paths, options);
 }
 
 void BlendSession::set_wake(std::function<void()> wake) {
@@ -159,6 +184,8 @@ void BlendSession::poll(EditorState& state) {
   if (snap->version == seen_version_) return;
   seen_version_ = snap->version;
   snapshot_ = std::move(snap);
+  // The document's takes are those loaded (a load that failed leaves them as they were).
+  state.document.files = snapshot_->prepared ? snapshot_->paths : std::vector<std::string>();
   if (pair() != seen_prepared_) {
     seen_prepared_ = pair();
     take_up_prepared(state);
@@ -168,14 +195,16 @@ void BlendSession::poll(EditorState& state) {
     palette_view_.clear();
     if (seen_palette_ != nullptr) {
       remember_recent(snapshot_->paths);
-      palette_view_.take_up(*seen_palette_, snapshot_->paths, snapshot_->warnings, controls_.palette, state);
+      palette_view_.take_up(*seen_palette_, snapshot_->paths, snapshot_->warnings, state.document.controls.palette,
+                            state);
     }
   }
   const Decomposed* d = pair() != nullptr ? snapshot_->decomposed.get() : nullptr;
   if (d != nullptr && d != seen_decomposed_) {
     seen_decomposed_ = d;
-    controls_.component_alpha.resize(static_cast<size_t>(d->components()), state.parameters.alpha);
-    if (controls_.selected_component >= d->components()) controls_.selected_component = -1;
+    SessionControls& c = state.document.controls;  // sized to the decomposition's k
+    c.component_alpha.resize(static_cast<size_t>(d->components()), state.document.parameters.alpha);
+    if (c.selected_component >= d->components()) c.selected_component = -1;
     ErrorPoint point{d->params.components, d->params.sparsity, d->params.mode, d->rmse[0], d->rmse[1]};
     auto same = [&](const ErrorPoint& e) {
       return e.components == point.components && e.sparsity == point.sparsity && e.mode == point.mode;
@@ -235,7 +264,7 @@ void BlendSession::take_up_prepared(EditorState& state) {
   side_ = placed.side;
   spacing_ = placed.spacing;
   for (Take& t : state.takes) t.size = placed.size;
-  placed_overlay_ = state.view.overlay;
+  placed_overlay_ = state.document.overlay;
   place(state);
   compute_dtw_image();
 }
@@ -267,7 +296,7 @@ void BlendSession::place(EditorState& state) {
   state.takes[kTakeB].contacts = joint_contacts(nearest(p->takes[1].own_contacts, at_b), p->feet, joints);
   const double slots[3] = {-1.0, 1.0, 0.0};  // A, B, blend
   const Eigen::MatrixXd* sources[3] = {&shown_a_, &shown_b_, has_blend_ ? &blend_.motion.world : &shown_a_};
-  if (!state.view.overlay && has_blend_) {
+  if (!state.document.overlay && has_blend_) {
     // Side by side: A and B in lanes beside the blend's path (ui/model/lanes.h).
     const Lanes lanes = lanes_along(blend_.motion.world, Eigen::Vector2d(side_.x(), side_.z()));
     for (int t = 0; t < 3; ++t) {
@@ -280,39 +309,40 @@ void BlendSession::place(EditorState& state) {
         place_in_lane(*sources[t], lanes, slots[t] * spacing_, shift_, out);
       }
     }
-    placed_overlay_ = state.view.overlay;
+    placed_overlay_ = state.document.overlay;
     return;
   }
   for (int t = 0; t < 3; ++t) {
-    const Eigen::Vector3d offset = shift_ + (state.view.overlay ? 0.0 : slots[t] * spacing_) * side_;
+    const Eigen::Vector3d offset = shift_ + (state.document.overlay ? 0.0 : slots[t] * spacing_) * side_;
     Eigen::MatrixXd& out = state.takes[static_cast<size_t>(t)].positions;
     out = *sources[t];
     for (Eigen::Index j = 0; 3 * j < out.cols(); ++j)
       for (int a = 0; a < 3; ++a) out.col(3 * j + a).array() += offset[a];
   }
-  placed_overlay_ = state.view.overlay;
+  placed_overlay_ = state.document.overlay;
 }
 
 void BlendSession::update_blend(EditorState& state) {
   if (const PreparedTakes* p = palette()) {
-    palette_view_.update(*p, snapshot_->decomposed.get(), controls_, state);
+    palette_view_.update(*p, snapshot_->decomposed.get(), state.document.controls, state);
     return;
   }
   const PreparedTakes* p = pair();
   const Decomposed* d = snapshot_->decomposed.get();
   if (p == nullptr || state.takes.size() != 3) return;
+  SessionControls& controls = state.document.controls;
   if (d != nullptr) {
     BlendParams params;
-    params.alpha = state.parameters.alpha;
-    if (d->params.mode == BlendMode::kShared && controls_.per_component) {
-      controls_.component_alpha.resize(static_cast<size_t>(d->components()), params.alpha);
-      params.component_alpha = controls_.component_alpha;
+    params.alpha = state.document.parameters.alpha;
+    if (d->params.mode == BlendMode::kShared && controls.per_component) {
+      controls.component_alpha.resize(static_cast<size_t>(d->components()), params.alpha);
+      params.component_alpha = controls.component_alpha;
     }
-    params.swap_level = d->params.basic_motions > 0 ? std::clamp(controls_.swap_level, 0, d->params.basic_motions - 1) : 0;
-    params.foot_lock = controls_.foot_lock;
-    params.timing_a = controls_.timing_a;
-    params.loop = controls_.loop;
-    params.residual = controls_.residual;
+    params.swap_level = d->params.basic_motions > 0 ? std::clamp(controls.swap_level, 0, d->params.basic_motions - 1) : 0;
+    params.foot_lock = controls.foot_lock;
+    params.timing_a = controls.timing_a;
+    params.loop = controls.loop;
+    params.residual = controls.residual;
     const bool changed = d != blended_decomposed_ || params.alpha != blended_params_.alpha ||
                          params.timing_a != blended_params_.timing_a || params.loop != blended_params_.loop ||
                          params.residual != blended_params_.residual ||
@@ -334,12 +364,12 @@ void BlendSession::update_blend(EditorState& state) {
       refresh_blend_take(state);
     }
   }
-  if (placed_overlay_ != state.view.overlay) place(state);
+  if (placed_overlay_ != state.document.overlay) place(state);
 
   // The selected component's joints light up on the blend.
   Take& blend = state.takes[kTakeBlend];
   blend.highlights.clear();
-  const int c = controls_.selected_component;
+  const int c = controls.selected_component;
   if (d != nullptr && c >= 0 && c < d->support.rows()) {
     blend.highlights.assign(blend.parents.size(), glm::vec4(0.0f));
     for (size_t j = 0; j < blend.parents.size() && 3 * j + 2 < static_cast<size_t>(d->support.cols()); ++j) {
@@ -354,16 +384,17 @@ void BlendSession::refresh_blend_take(EditorState& state) {
   const PreparedTakes* p = pair();
   Take& t = state.takes[kTakeBlend];
   char label[64];
-  if (controls_.per_component && snapshot_->decomposed && snapshot_->decomposed->params.mode == BlendMode::kShared)
+  if (state.document.controls.per_component && snapshot_->decomposed && snapshot_->decomposed->params.mode == BlendMode::kShared)
     std::snprintf(label, sizeof label, "blend (per component)");
   else
-    std::snprintf(label, sizeof label, "blend  alpha %.2f", state.parameters.alpha);
+    std::snprintf(label, sizeof label, "blend  alpha %.2f", state.document.parameters.alpha);
   t.label = label;
   if (has_blend_) t.contacts = joint_contacts(blend_.motion.contacts, p->feet, static_cast<int>(p->majors.size()));
   place(state);
 }
 
 void BlendSession::wait_idle(EditorState& state) {
+  sync(state);
   worker_.wait_idle();
   poll(state);  // a new decomposition starts the error sweep
   while (sweep_next_ >= 0 && sweep_worker_) {  // each step's next request is made by poll_sweep
@@ -371,7 +402,7 @@ void BlendSession::wait_idle(EditorState& state) {
     poll_sweep();
   }
   poll(state);
-  update_blend(state);
+  sync(state);
 }
 
 // Local cost c(i, j) = |a_i - b_j| (DESIGN.md 6) at the centre of each cell: O(cells), not

@@ -1,9 +1,11 @@
 #pragma once
 // The editor's link to the engine. Owns the engine Worker; each frame poll() takes up its latest
-// snapshot (a new pair, a new decomposition, an error) and update_blend() re-runs mix_palette on
-// the UI thread when alpha or a per-component alpha moved (well under 1 ms: the viewport follows
-// in the same frame). Loads and decompositions only ever go to the worker: nothing here blocks,
-// except wait_idle(), for tests and screenshots.
+// snapshot (a new pair, a new decomposition, an error) and sync() brings the engine to the
+// document (EditorState::document): what a change to it makes stale (ui/model/document_fields.h)
+// is done again, and nothing more: the takes aligned again, the decomposition asked for again
+// (both on the worker), or mix_palette run again on the UI thread when a weight moved (well under
+// 1 ms: the viewport follows in the same frame). The panels only edit the document; loads are
+// commands (load_files). Nothing here blocks, except wait_idle(), for tests and screenshots.
 //
 // The three takes it keeps in EditorState::takes, all on the blend's timeline (its output frames
 // at the working rate): [0] A and [1] B where the blend is in each, [2] the blend.
@@ -22,37 +24,6 @@
 #include "ui/model/palette_view.h"
 
 namespace mostyle::ui {
-
-// The style palette (issue #9): three or more takes mixed with weights, or a transfer (a style
-// change from a neutral take to a styled one put on a content take).
-struct PaletteControls {
-  std::vector<double> weights;                 // one per take, summing to 1
-  bool per_part = false;                       // weights per body part (legs, arms, spine)
-  std::vector<std::vector<double>> part_weights;  // [legs, arms, spine] x takes; empty row: the overall weights
-  bool transfer = false;                       // transfer mode instead of a mix
-  int content = 0, neutral = 1;                // transfer: takes by index; every other take is a style
-  std::vector<double> strengths;               // transfer: one per take (used for the styles)
-  bool ghosts = false;                         // show each take's warped ghost in the viewport
-};
-
-// What the parameter panels edit beyond EditorState::parameters (alpha, k, sparsity). Undo
-// compares them field by field (ui/model/document_fields.h): a new field goes into that list too.
-struct SessionControls {
-  BlendMode mode = BlendMode::kShared;
-  bool per_component = false;            // shared mode: one alpha per component
-  std::vector<double> component_alpha;   // resized to k when a decomposition arrives
-  int basic_motions = 0;                 // paper mode: m levels (0: one decomposition)
-  std::vector<double> basic_sparsities;  // per level, resized to m
-  int swap_level = 0;                    // paper mode with m > 0: the level taken from B
-  bool foot_lock = true;
-  AlignmentOptions align;                // what the takes are aligned on and how (a change re-aligns)
-  bool timing_a = false;                 // keep A's timeline instead of blending the timing
-  bool loop = false;                     // cut a seamless loop of whole gait cycles
-  bool residual = true;                  // blend the takes' residual detail too (BlendParams)
-  int selected_component = -1;           // components view; -1: none
-  int dtw_coordinate = 1;                // DTW view: 0 lateral, 1 height, 2 forward
-  PaletteControls palette;               // with three or more takes
-};
 
 // One decomposition's reconstruction error, recorded as decompositions arrive.
 struct ErrorPoint {
@@ -79,12 +50,15 @@ class BlendSession {
   BlendSession(const BlendSession&) = delete;
   BlendSession& operator=(const BlendSession&) = delete;
 
-  // Asks the worker for a pair (b empty: A with itself). What was loaded stays until it succeeds;
-  // a failure shows up as error() on a later poll(). The paths join recent() once they loaded.
+  // Asks for a pair (b empty: A with itself). What was loaded stays until it succeeds; a failure
+  // shows up as error() on a later poll(). The paths join recent() once they loaded.
   void load(const std::string& path_a, const std::string& path_b);
   // Several files: one or two load as the pair (one: A with itself); three to sixteen as the
-  // style palette (the first the reference), mixed with controls().palette's weights.
+  // style palette (the first the reference), mixed with the document's palette weights. The
+  // worker is asked at the next sync(), with the document's alignment options then.
   void load_files(const std::vector<std::string>& paths);
+  // A load asked for that the worker has not been given yet (the next sync() gives it).
+  bool load_waiting() const { return load_waiting_; }
   // The files last asked for (pair or palette), loaded or not.
   const std::vector<std::string>& requested_files() const { return requested_files_; }
   // The takes loaded: two are the pair (A and B), three or more the palette.
@@ -100,19 +74,17 @@ class BlendSession {
     return i < snapshot_->paths.size() ? snapshot_->paths[i] : kNone;
   }
   const PaletteView& palette_view() const { return palette_view_; }
-  // Aligns the loaded pair again with controls().align (the worker re-prepares, then decomposes).
-  void realign();
-  // The preparation options the controls ask for.
-  PrepareOptions prepare_options() const;
-  // Asks for a decomposition with state.parameters (k, sparsity) and controls().
-  void request_decomposition(const EditorState& state);
-
-  // Before the panels, once per frame: takes up a new snapshot (new pair: rebuilds the takes).
+  // Before the panels, once per frame: takes up a new snapshot (new takes: rebuilds the takes
+  // shown and sets the document's files to them).
   void poll(EditorState& state);
-  // After the panels: re-blends when the blend's inputs changed, refreshes the blend take, the
-  // highlights and the placement (side by side / overlaid).
-  void update_blend(EditorState& state);
-  // Blocks until the worker is idle (tests, screenshots), then poll() + update_blend().
+  // After the panels (and before them, after poll, with item_held): brings the engine to the
+  // document. A load waiting goes to the worker; an alignment option that changed aligns the
+  // takes again; k, sparsity, the mode or the basic motions that changed ask for a decomposition,
+  // but not while item_held (an ImGui item is held: k's slider decomposes once, when let go);
+  // then the mix is run again when its inputs changed, and the blend take, the highlights and
+  // the placement (side by side / overlaid) follow.
+  void sync(EditorState& state, bool item_held = false);
+  // sync(), then blocks until the worker is idle (tests, screenshots), then poll() + sync().
   void wait_idle(EditorState& state);
 
   // Called on a worker's thread whenever one of them finishes a job (engine Worker::set_on_change),
@@ -127,7 +99,6 @@ class BlendSession {
   const MixResult* blend() const { return has_blend_ ? &blend_ : nullptr; }
   const std::string& blend_error() const { return blend_error_; }
   double blend_ms() const { return blend_ms_; }  // the last UI-thread blend (mix_palette), wall time
-  SessionControls& controls() { return controls_; }
   const std::vector<ErrorPoint>& error_curve() const { return error_curve_; }
   const DtwCostImage& dtw_image() const { return dtw_image_; }
   // Reconstruction error against k in the background: a second worker decomposes the pair at
@@ -166,6 +137,9 @@ class BlendSession {
   float frame_ms = -1.0f, viewport_ms = -1.0f;
 
  private:
+  PrepareOptions prepare_options(const Document& document) const;
+  void request_decomposition(const Document& document);
+  void update_blend(EditorState& state);
   void take_up_prepared(EditorState& state);
   void place(EditorState& state);
   void refresh_blend_take(EditorState& state);
@@ -187,8 +161,9 @@ class BlendSession {
   const PreparedTakes* seen_prepared_ = nullptr;
   const Decomposed* seen_decomposed_ = nullptr;
   const Decomposed* blended_decomposed_ = nullptr;
-  DecomposeParams requested_;
-  SessionControls controls_;
+  DecomposeParams requested_;   // the decomposition last asked of the worker
+  AlignmentOptions aligned_;     // the alignment options the takes were last asked to load with
+  bool load_waiting_ = false;    // load_files() since the last sync()
   BlendParams blended_params_;
   MixParams blend_mix_;  // blended_params_ in a mix's terms (blend_params.h)
   MixScratch scratch_;

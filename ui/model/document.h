@@ -1,29 +1,70 @@
 #pragma once
 // What the animator edits in the editor, as one plain value: the blend parameters, the session's
 // controls (mode, weights, options, alignment, palette), the loaded takes and the view options
-// one expects to undo. Undo and redo (ui/model/history.h) keep a list of them; a session file
-// (ui/model/session_file.h) holds one. Plain data: no ImGui, no GL, no engine work.
+// one expects to undo. The editor keeps one (EditorState::document, ui/model/editor_state.h): the
+// panels change it, the engine link (BlendSession::sync) brings the engine to it. Undo and redo
+// (ui/model/history.h) keep copies of it; a session file (ui/model/session_file.h) holds one.
+// Plain data: no ImGui, no GL, no engine work. Its fields, their ranges and what a change to
+// each makes stale are listed once, in ui/model/document_fields.h.
 //
-// Left out, because they are where one looks rather than what one made: the playback (position,
-// speed, loop), the camera, the picked component (SessionControls::selected_component, which
-// hovering changes) and the coordinate the DTW view plots (SessionControls::dtw_coordinate). A
-// Document keeps those two at their defaults; the session files keep the camera and the playback
-// beside the Document.
+// Left out of undo and session files, because they are where one looks rather than what one
+// made: the picked component (SessionControls::selected_component, which hovering changes) and
+// the coordinate the DTW view plots (SessionControls::dtw_coordinate): the live document has them,
+// its copies keep them at their defaults (document_controls). Not in a Document at all: the
+// playback and the camera (the session files keep them beside it).
 #include <string>
 #include <vector>
 
-#include "ui/model/blend_session.h"
-#include "ui/model/editor_state.h"
+#include "engine/align/alignment.h"
+#include "engine/run/decompose_params.h"
 
 namespace mostyle::ui {
+
+// The blend the animator asks for (DESIGN.md "The editor"; defaults from the paper's figures).
+struct BlendParameters {
+  double alpha = 0.5;     // 0: take A, 1: take B
+  int components = 10;    // k
+  double sparsity = 0.1;  // f in (0, 1]: fraction of non-zeros kept per component
+};
+
+// The style palette (issue #9): three or more takes mixed with weights, or a transfer (a style
+// change from a neutral take to a styled one put on a content take).
+struct PaletteControls {
+  std::vector<double> weights;                 // one per take, summing to 1
+  bool per_part = false;                       // weights per body part (legs, arms, spine)
+  std::vector<std::vector<double>> part_weights;  // [legs, arms, spine] x takes; empty row: the overall weights
+  bool transfer = false;                       // transfer mode instead of a mix
+  int content = 0, neutral = 1;                // transfer: takes by index; every other take is a style
+  std::vector<double> strengths;               // transfer: one per take (used for the styles)
+  bool ghosts = false;                         // show each take's warped ghost in the viewport
+};
+
+// What the parameter panels edit beyond the blend parameters (alpha, k, sparsity).
+struct SessionControls {
+  BlendMode mode = BlendMode::kShared;
+  bool per_component = false;            // shared mode: one alpha per component
+  std::vector<double> component_alpha;   // resized to k when a decomposition arrives
+  int basic_motions = 0;                 // paper mode: m levels (0: one decomposition)
+  std::vector<double> basic_sparsities;  // per level, resized to m
+  int swap_level = 0;                    // paper mode with m > 0: the level taken from B
+  bool foot_lock = true;
+  AlignmentOptions align;                // what the takes are aligned on and how (a change re-aligns)
+  bool timing_a = false;                 // keep A's timeline instead of blending the timing
+  bool loop = false;                     // cut a seamless loop of whole gait cycles
+  bool residual = true;                  // blend the takes' residual detail too (BlendParams)
+  int selected_component = -1;           // components view; -1: none
+  int dtw_coordinate = 1;                // DTW view: 0 lateral, 1 height, 2 forward
+  PaletteControls palette;               // with three or more takes
+};
 
 struct Document {
   BlendParameters parameters;        // alpha, k, sparsity
   SessionControls controls;          // selected_component and dtw_coordinate at their defaults
   // The loaded takes as paths: a pair is A then B (A twice for A with itself); a palette is every
-  // take, the reference first. Empty: nothing loaded.
+  // take, the reference first. Empty: nothing loaded. The engine link sets them as takes arrive;
+  // a load is a command (BlendSession::load_files), not an edit of this field.
   std::vector<std::string> files;
-  bool overlay = false;              // ViewOptions::overlay: the takes on one spot, not side by side
+  bool overlay = false;              // the takes drawn on one spot instead of side by side
 };
 
 // Field by field, from the one list of a Document's fields (ui/model/document_fields.h): a field added

@@ -23,12 +23,9 @@ std::vector<std::string> loaded_files(const WorkerSnapshot& snap) {
 
 }  // namespace
 
-Document capture_document(const EditorState& state, BlendSession& session) {
-  Document d;
-  d.parameters = state.parameters;
-  d.controls = document_controls(session.controls());
-  d.files = loaded_files(session.snapshot());
-  d.overlay = state.view.overlay;
+Document capture_document(const EditorState& state, const BlendSession&) {
+  Document d = state.document;
+  d.controls = document_controls(d.controls);
   return d;
 }
 
@@ -36,20 +33,15 @@ void apply_document(const Document& document, EditorState& state, BlendSession& 
   const Document before = capture_document(state, session);
   // A load on its way counts as loaded: undoing back to the loaded takes must replace it.
   const std::vector<std::string> takes = load_pending(session) ? requested_files(session) : before.files;
-  SessionControls& c = session.controls();
+  SessionControls& c = state.document.controls;
   const int selected = c.selected_component, coordinate = c.dtw_coordinate;
-  state.parameters = document.parameters;
-  c = document.controls;
+  const std::vector<std::string> files = state.document.files;
+  state.document = document;  // the engine link (BlendSession::sync) does what that makes stale
+  state.document.files = files;  // loaded takes stay what they are until the new ones arrive
   c.selected_component = selected;
   c.dtw_coordinate = coordinate;
-  state.view.overlay = document.overlay;
-  // The decomposition first: a load decomposes with the parameters last asked for.
-  if (decomposition_differs(before, document)) session.request_decomposition(state);
-  if (!document.files.empty() && !same_files(takes, document.files)) {
+  if (!document.files.empty() && !same_files(takes, document.files))
     session.load_files(document.files);  // a pair, or a palette of three or more
-  } else if (before.controls.align != document.controls.align) {
-    session.realign();
-  }
 }
 
 std::string apply_session_document(const Document& document, const std::string& session_path, EditorState& state,
@@ -68,7 +60,7 @@ std::string apply_session_document(const Document& document, const std::string& 
 
 bool load_pending(const BlendSession& session) {
   const WorkerStatus status = session.status();
-  if (status.stage == WorkerStage::kLoading) return true;
+  if (status.stage == WorkerStage::kLoading || session.load_waiting()) return true;
   if (!status.pending || session.requested_a().empty()) return false;
   return requested_files(session) != loaded_files(session.snapshot());
 }

@@ -21,14 +21,13 @@ namespace mostyle::ui {
 
 // What the animator edits now. Its files are the takes loaded (the worker's snapshot as the
 // session last polled it), not those asked for. O(size of the controls).
-Document capture_document(const EditorState& state, BlendSession& session);
+Document capture_document(const EditorState& state, const BlendSession& session);
 
 // Makes `document` the editor's: the parameters, the controls (the picked component and the DTW
-// view's coordinate stay), the overlay; then asks the worker for what that changes: a load when
-// the takes differ from those loaded or being loaded (a pair, or a palette of three or more:
-// BlendSession::load_files; the load aligns them with the new options), else a re-alignment when
-// the alignment options differ; and a decomposition when k, sparsity, the mode or the basic
-// motions differ. Returns at once: the takes arrive on a later poll().
+// view's coordinate stay), the overlay; and a load when the takes differ from those loaded or
+// being loaded (a pair, or a palette of three or more: BlendSession::load_files). The engine link
+// (BlendSession::sync) does the rest that changes: a re-alignment, a decomposition, a mix.
+// Returns at once: the takes arrive on a later poll().
 void apply_document(const Document& document, EditorState& state, BlendSession& session);
 
 // A document read from a session file at `session_path`: apply_document, except that when one

@@ -11,15 +11,9 @@
 #include <glm/glm.hpp>
 
 #include "engine/io/clip.h"
+#include "ui/model/document.h"
 
 namespace mostyle::ui {
-
-// The blend the animator asks for (DESIGN.md "The editor"; defaults from the paper's figures).
-struct BlendParameters {
-  double alpha = 0.5;     // 0: take A, 1: take B
-  int components = 10;    // k
-  double sparsity = 0.1;  // f in (0, 1]: fraction of non-zeros kept per component
-};
 
 // One loaded (or failed) BVH take.
 struct Take {
@@ -59,7 +53,6 @@ struct ViewOptions {
   bool grid = true;
   bool shadows = true;
   bool contacts = true;
-  bool overlay = false;   // the takes drawn on top of each other instead of side by side
   int samples = 0;        // viewport MSAA samples; 0: automatic (4 on a GPU, 1 on llvmpipe)
   bool request_reframe = false;  // set by a panel: frame the skeletons on the next frame
   bool show_keys = false;        // the window listing every key (F1 or ?)
@@ -71,7 +64,9 @@ struct ViewOptions {
 };
 
 struct EditorState {
-  BlendParameters parameters;
+  // Every parameter the animator sets, once (ui/model/document.h): the panels change it, the
+  // engine link (BlendSession::sync) brings the engine to it, undo keeps copies of it.
+  Document document;
   Playback playback;
   ViewOptions view;
   std::vector<Take> takes;

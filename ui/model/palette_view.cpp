@@ -156,7 +156,7 @@ void PaletteView::update(const PreparedTakes& p, const Decomposed* d, const Sess
       mixed_decomposition_ = d;
     }
   }
-  if (placed_overlay_ != state.view.overlay || placed_ghosts_ != controls.palette.ghosts) place(p, controls, state);
+  if (placed_overlay_ != state.document.overlay || placed_ghosts_ != controls.palette.ghosts) place(p, controls, state);
 }
 
 // Every take at the frame the mix shows of it, on the reference's floor: the reference left of
@@ -166,7 +166,7 @@ void PaletteView::place(const PreparedTakes& p, const SessionControls& controls,
   const bool ghosts = controls.palette.ghosts;
   Eigen::MatrixXd sampled;
   // Side by side: every take in a lane beside the mix's path (ui/model/lanes.h).
-  const bool lanes_on = !state.view.overlay && has_mix_;
+  const bool lanes_on = !state.document.overlay && has_mix_;
   Lanes lanes;
   if (lanes_on) lanes = lanes_along(mix_.motion.world, Eigen::Vector2d(side_.x(), side_.z()));
   for (int i = -1; i < n; ++i) {
@@ -185,12 +185,12 @@ void PaletteView::place(const PreparedTakes& p, const SessionControls& controls,
       place_in_lane(sampled, lanes, slot * spacing_, shift_, t.positions);
       continue;
     }
-    const Eigen::Vector3d offset = shift_ + (state.view.overlay ? 0.0 : slot * spacing_) * side_;
+    const Eigen::Vector3d offset = shift_ + (state.document.overlay ? 0.0 : slot * spacing_) * side_;
     t.positions = sampled;
     for (Eigen::Index j = 0; 3 * j < t.positions.cols(); ++j)
       for (int a = 0; a < 3; ++a) t.positions.col(3 * j + a).array() += offset[a];
   }
-  placed_overlay_ = state.view.overlay;
+  placed_overlay_ = state.document.overlay;
   placed_ghosts_ = ghosts;
 }
 

@@ -111,7 +111,7 @@ void PalettePanel::draw(EditorState& state) {
     ImGui::End();
     return;
   }
-  PaletteControls& c = session_.controls().palette;
+  PaletteControls& c = state.document.controls.palette;
   const int n = p->size();
   if (ImGui::RadioButton("Mix", !c.transfer)) c.transfer = false;
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Mix the takes' styles with one weight each (they sum to 1)");

@@ -1,8 +1,10 @@
 #pragma once
 // The interface every editor panel implements. The app calls draw() once per frame, between
 // ImGui::NewFrame() and ImGui::Render(), in the order panels were added. A panel draws its own
-// ImGui window(s), reads and changes the EditorState, and must not block: long work goes to
-// the engine's worker and is polled here on later frames.
+// ImGui window(s), reads the EditorState and the engine's results, and edits the document
+// (EditorState::document), the playback or the view. It asks the engine for nothing: after the
+// panels, the engine link (BlendSession::sync) does what the document's change makes stale.
+// Loading takes is the one command a panel gives (BlendSession::load_files). Nothing blocks.
 #include "ui/model/editor_state.h"
 
 namespace mostyle::ui {

@@ -18,8 +18,8 @@ void ParametersPanel::draw(EditorState& state) {
     return;
   }
   BlendSession& s = session_;
-  SessionControls& c = s.controls();
-  BlendParameters& p = state.parameters;
+  SessionControls& c = state.document.controls;
+  BlendParameters& p = state.document.parameters;
   const Decomposed* d = s.snapshot().decomposed.get();
   ImGui::PushItemWidth(-120.0f);  // room for the labels on the right
 
@@ -31,29 +31,23 @@ void ParametersPanel::draw(EditorState& state) {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: style A, 1: style B. Applied immediately.");
   }
 
-  bool redecompose = false;
   range_slider("components (k)", p.components, kComponentsRange);
-  redecompose |= ImGui::IsItemDeactivatedAfterEdit();
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("How many components the takes are split into. More: closer to the takes, less general.\n"
                       "Recomputed when you let go of the slider.");
   range_slider("sparsity", p.sparsity, kSparsityRange);
-  redecompose |= ImGui::IsItemDeactivatedAfterEdit();
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Share of the joints' channels each component may move (0.1: a tenth).\n"
                       "Small: each component is a small body part. Recomputed when you let go.");
   int mode = c.mode == BlendMode::kShared ? 0 : 1;
-  if (!palette && ImGui::Combo("mode", &mode, "shared\0paper\0")) {
-    c.mode = mode == 0 ? BlendMode::kShared : BlendMode::kPaper;
-    redecompose = true;
-  }
+  if (!palette && ImGui::Combo("mode", &mode, "shared\0paper\0"))
+    c.mode = mode == 0 ? BlendMode::kShared : BlendMode::kPaper;  // the engine link decomposes again
   if (!palette && ImGui::IsItemHovered())
     ImGui::SetTooltip("shared: one component set for A and B (alpha 1 is B)\npaper: separate decompositions, "
                       "cores blended (paper 3.6)");
   int align_on = static_cast<int>(c.align.on);
   if (ImGui::Combo("align on", &align_on, "auto\0left foot\0feet\0hands\0body\0")) {
-    c.align.on = static_cast<AlignOn>(align_on);
-    s.realign();
+    c.align.on = static_cast<AlignOn>(align_on);  // the engine link re-aligns
   }
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("What the takes are matched in time on.\nauto: the left foot for walks and runs, "
@@ -61,7 +55,6 @@ void ParametersPanel::draw(EditorState& state) {
   int method = c.align.method == DtwMethod::kSlope ? 0 : 1;
   if (ImGui::Combo("time warp", &method, "smooth\0paper\0")) {
     c.align.method = method == 0 ? DtwMethod::kSlope : DtwMethod::kPaper;
-    s.realign();
   }
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("smooth: neither take runs more than twice as fast as the other, extra material at the ends "
@@ -159,8 +152,7 @@ void ParametersPanel::draw(EditorState& state) {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Paper mode: the takes in levels of motion, one level from B");
     if (basic) {
       range_slider("motion levels", c.basic_motions, kBasicMotionsRange);
-      redecompose |= ImGui::IsItemDeactivatedAfterEdit();
-      if (ImGui::IsItemHovered())
+          if (ImGui::IsItemHovered())
         ImGui::SetTooltip("Split each take into this many levels of basic motions (paper 3.5): level 1 holds the\n"
                           "most, each next level what the ones before left. 0: one decomposition.\n"
                           "Recomputed when you let go.");
@@ -170,8 +162,7 @@ void ParametersPanel::draw(EditorState& state) {
         char label[32];
         std::snprintf(label, sizeof label, "level %d sparsity", i + 1);
         range_slider(label, c.basic_sparsities[static_cast<size_t>(i)], kSparsityRange);
-        redecompose |= ImGui::IsItemDeactivatedAfterEdit();
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Share of the channels each component of this level may move");
+              if (ImGui::IsItemHovered()) ImGui::SetTooltip("Share of the channels each component of this level may move");
         ImGui::PopID();
       }
       if (c.basic_motions > 0) {
@@ -182,7 +173,6 @@ void ParametersPanel::draw(EditorState& state) {
       }
     }
   }
-  if (redecompose) s.request_decomposition(state);
 
   ImGui::PopItemWidth();
   ImGui::End();

@@ -58,10 +58,10 @@ void TakesPanel::draw(EditorState& state) {
   if (ImGui::Button("Frame all")) command_frame_all(state);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Turn and move the camera so that every skeleton is in view (F)");
   ImGui::SameLine();
-  if (ImGui::RadioButton("side by side", !state.view.overlay)) state.view.overlay = false;
+  if (ImGui::RadioButton("side by side", !state.document.overlay)) state.document.overlay = false;
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("The takes and the result stand next to each other");
   ImGui::SameLine();
-  if (ImGui::RadioButton("overlay", state.view.overlay)) state.view.overlay = true;
+  if (ImGui::RadioButton("overlay", state.document.overlay)) state.document.overlay = true;
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("The takes and the result on the same spot, to compare poses");
   const bool view = ImGui::CollapsingHeader("View");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("What the 3D view shows");

@@ -39,10 +39,10 @@ TEST_CASE("undo and redo: alpha in a few steps and a drag, back to the start and
     s.session.poll(s.state);
     for (auto& panel : panels) panel->draw(s.state);
     edits.record(s.state, s.session, held || ImGui::IsAnyItemActive());
-    s.session.update_blend(s.state);
+    s.session.sync(s.state, held || ImGui::IsAnyItemActive());
     imgui.end_frame();
   };
-  const double start = s.state.parameters.alpha;
+  const double start = s.state.document.parameters.alpha;
   frame(false);  // the starting state
   for (int i = 0; i < 5; ++i) frame(false);
   CHECK(edits.history().undo_steps() == 0);  // frames with no input make no step
@@ -52,15 +52,15 @@ TEST_CASE("undo and redo: alpha in a few steps and a drag, back to the start and
   const std::vector<double> steps = {0.2, 0.4, 0.6};
   for (double a : steps) {
     frame(true);
-    s.state.parameters.alpha = a;
+    s.state.document.parameters.alpha = a;
     frame(false);
   }
   // A drag through many values, let go at 0.9: one step.
   for (double a = 0.61; a < 0.9; a += 0.05) {
-    s.state.parameters.alpha = a;
+    s.state.document.parameters.alpha = a;
     frame(true);
   }
-  s.state.parameters.alpha = 0.9;
+  s.state.document.parameters.alpha = 0.9;
   frame(false);
   CHECK(edits.history().undo_steps() == 4);
   const Eigen::MatrixXd blend_at_end = s.state.takes[kTakeBlend].positions;
@@ -69,7 +69,7 @@ TEST_CASE("undo and redo: alpha in a few steps and a drag, back to the start and
   for (double expected : {0.6, 0.4, 0.2, start}) {
     REQUIRE(edits.undo(s.state, s.session));
     frame(false);
-    CHECK(s.state.parameters.alpha == expected);
+    CHECK(s.state.document.parameters.alpha == expected);
   }
   CHECK_FALSE(edits.undo(s.state, s.session));
   CHECK_FALSE(same_poses(s.state.takes[kTakeBlend].positions, blend_at_end));
@@ -77,7 +77,7 @@ TEST_CASE("undo and redo: alpha in a few steps and a drag, back to the start and
   for (double expected : {0.2, 0.4, 0.6, 0.9}) {
     REQUIRE(edits.redo(s.state, s.session));
     frame(false);
-    CHECK(s.state.parameters.alpha == expected);
+    CHECK(s.state.document.parameters.alpha == expected);
   }
   CHECK_FALSE(edits.redo(s.state, s.session));
   CHECK(same_poses(s.state.takes[kTakeBlend].positions, blend_at_end));
@@ -86,12 +86,12 @@ TEST_CASE("undo and redo: alpha in a few steps and a drag, back to the start and
   edits.undo(s.state, s.session);
   edits.undo(s.state, s.session);
   frame(true);
-  s.session.controls().foot_lock = false;
+  s.state.document.controls.foot_lock = false;
   frame(false);
   CHECK_FALSE(edits.can_redo());
   REQUIRE(edits.undo(s.state, s.session));
-  CHECK(s.session.controls().foot_lock);
-  CHECK(s.state.parameters.alpha == 0.4);
+  CHECK(s.state.document.controls.foot_lock);
+  CHECK(s.state.document.parameters.alpha == 0.4);
 }
 
 TEST_CASE("undo and redo a load: the takes come back through the worker, and no extra step") {
@@ -133,19 +133,19 @@ TEST_CASE("undo and redo k: a new decomposition resizing the per-component alpha
   LoadedSession s;
   EditHistory edits;
   edits.record(s.state, s.session, false);
-  const int k = s.state.parameters.components;
-  REQUIRE(s.session.controls().component_alpha.size() == static_cast<size_t>(k));
-  s.state.parameters.components = k - 2;  // the k slider, let go
+  const int k = s.state.document.parameters.components;
+  REQUIRE(s.state.document.controls.component_alpha.size() == static_cast<size_t>(k));
+  s.state.document.parameters.components = k - 2;  // the k slider, let go
   edits.record(s.state, s.session, true);
   edits.record(s.state, s.session, false);
-  s.session.request_decomposition(s.state);
   s.session.wait_idle(s.state);
-  CHECK(s.session.controls().component_alpha.size() == static_cast<size_t>(k - 2));
+  CHECK(s.state.document.controls.component_alpha.size() == static_cast<size_t>(k - 2));
   edits.record(s.state, s.session, false);
   CHECK(edits.history().undo_steps() == 1);
   REQUIRE(edits.undo(s.state, s.session));
-  CHECK(s.state.parameters.components == k);
-  CHECK(s.session.decomposition_outdated());  // asked for again
+  CHECK(s.state.document.parameters.components == k);
+  s.session.sync(s.state);  // the engine link, after the panels: k changed, so it asks again
+  CHECK(s.session.decomposition_outdated());
   s.session.wait_idle(s.state);
   CHECK(s.session.snapshot().decompose_params.components == k);
   edits.record(s.state, s.session, false);
@@ -163,9 +163,9 @@ TEST_CASE("an opened session whose take is missing keeps the takes, restores the
   const std::string message = apply_session_document(d, "/sessions/day.mostyle", s.state, s.session);
   CHECK_THAT(message, Catch::StartsWith("/sessions/day.mostyle: ") && Catch::Contains("/nonexistent/folder/walk_gone.bvh"));
   CHECK_FALSE(load_pending(s.session));
-  CHECK(s.state.parameters.alpha == 0.85);
-  CHECK(s.session.controls().timing_a);
-  CHECK(s.state.view.overlay);
+  CHECK(s.state.document.parameters.alpha == 0.85);
+  CHECK(s.state.document.controls.timing_a);
+  CHECK(s.state.document.overlay);
   s.session.wait_idle(s.state);
   CHECK(capture_document(s.state, s.session).files == before);
   // Every take there: applied as it is, the takes loaded.

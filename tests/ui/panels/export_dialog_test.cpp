@@ -128,8 +128,8 @@ TEST_CASE("export dialog: an in and an out point give the frames between them, b
 
 TEST_CASE("export dialog: the loop is written whole, so it repeats at any rate") {
   LoadedSession s;
-  s.session.controls().loop = true;
-  s.session.update_blend(s.state);
+  s.state.document.controls.loop = true;
+  s.session.sync(s.state);
   REQUIRE(s.session.blend() != nullptr);
   REQUIRE(s.session.blend()->motion.loop.cycles >= 1);
   const int loop_frames = static_cast<int>(s.session.blend()->motion.world.rows());
@@ -141,8 +141,8 @@ TEST_CASE("export dialog: the loop is written whole, so it repeats at any rate")
   CHECK(export_and_read(dialog, s.session, file.path).frames() == 2 * loop_frames);
   CHECK_THAT(s.session.export_message(), Catch::Contains("loop"));
   // Without a loop, the loop cannot be asked for.
-  s.session.controls().loop = false;
-  s.session.update_blend(s.state);
+  s.state.document.controls.loop = false;
+  s.session.sync(s.state);
   fs::remove(file.path);
   set_path(dialog, file.path);
   CHECK(dialog.press_export() == Pressed::kFailed);

@@ -39,7 +39,7 @@ void panels_frame(test::HeadlessImGui& imgui, test::LoadedSession& s, std::vecto
   s.session.poll(s.state);
   for (auto& panel : panels) panel->draw(s.state);
   s.state.view.reset_layout = false;
-  s.session.update_blend(s.state);
+  s.session.sync(s.state);
   imgui.end_frame();
 }
 

@@ -56,12 +56,12 @@ TEST_CASE("the panels build over a loaded pair, with a component picked and in b
   test::HeadlessImGui imgui;
   auto panels = all_panels(s.session);
   for (int frame = 0; frame < 6; ++frame) {
-    if (frame == 2) s.session.controls().selected_component = 1;
-    if (frame == 4) s.session.controls().per_component = true;
+    if (frame == 2) s.state.document.controls.selected_component = 1;
+    if (frame == 4) s.state.document.controls.per_component = true;
     imgui.begin_frame();
     s.session.poll(s.state);
     for (auto& panel : panels) panel->draw(s.state);
-    s.session.update_blend(s.state);
+    s.session.sync(s.state);
     CHECK(imgui.end_frame() > 1000);
   }
   // The picked component lights up joints of the blend skeleton only.
@@ -73,28 +73,27 @@ TEST_CASE("the panels build over a loaded pair, with a component picked and in b
   CHECK(s.state.takes[kTakeA].highlights.empty());
 
   // Paper mode with basic motions: a re-decomposition on the worker, panels still draw.
-  s.session.controls().mode = BlendMode::kPaper;
-  s.session.controls().basic_motions = 2;
-  s.session.request_decomposition(s.state);
+  s.state.document.controls.mode = BlendMode::kPaper;
+  s.state.document.controls.basic_motions = 2;
   s.session.wait_idle(s.state);
   CHECK(s.session.error().empty());
   CHECK(s.session.snapshot().decomposed->params.mode == BlendMode::kPaper);
   imgui.begin_frame();
   for (auto& panel : panels) panel->draw(s.state);
-  s.session.update_blend(s.state);
+  s.session.sync(s.state);
   CHECK(imgui.end_frame() > 1000);
   CHECK(s.session.blend_error().empty());
 }
 
 TEST_CASE("moving alpha changes the blended pose in the same frame, from A towards B") {
   LoadedSession s;
-  s.state.view.overlay = true;  // no lateral offsets: the takes can be compared
+  s.state.document.overlay = true;  // no lateral offsets: the takes can be compared
   const int frame = s.state.takes[kTakeA].frames() / 2;
-  s.state.parameters.alpha = 0.0;
-  s.session.update_blend(s.state);
+  s.state.document.parameters.alpha = 0.0;
+  s.session.sync(s.state);
   const Eigen::MatrixXd at_a = s.state.takes[kTakeBlend].positions;
-  s.state.parameters.alpha = 1.0;
-  s.session.update_blend(s.state);  // no worker round trip
+  s.state.document.parameters.alpha = 1.0;
+  s.session.sync(s.state);  // no worker round trip
   const Eigen::MatrixXd at_b = s.state.takes[kTakeBlend].positions;
   CHECK((at_a - at_b).norm() > 1.0);
   CHECK(s.session.blend_ms() < 1000.0);  // sanity only; speed is measured in tests/bench
@@ -213,24 +212,24 @@ TEST_CASE("timing, loop and alignment controls reach the blend and the alignment
   REQUIRE(s.session.blend() != nullptr);
   const PreparedTakes& p = *s.session.snapshot().prepared;
   const Alignment& al = p.takes[1].alignment;
-  SessionControls& c = s.session.controls();
+  SessionControls& c = s.state.document.controls;
   // alpha 0: A's timing, as long as A's matched range; with A's timing kept at alpha 1 too.
-  s.state.parameters.alpha = 0.0;
-  s.session.update_blend(s.state);
+  s.state.document.parameters.alpha = 0.0;
+  s.session.sync(s.state);
   const Eigen::Index at_a = s.session.blend()->motion.world.rows();
   CHECK(at_a == al.a_last - al.a_first + 1);
-  s.state.parameters.alpha = 1.0;
-  s.session.update_blend(s.state);
+  s.state.document.parameters.alpha = 1.0;
+  s.session.sync(s.state);
   CHECK(s.session.blend()->motion.world.rows() == al.b_last - al.b_first + 1);
   c.timing_a = true;
-  s.session.update_blend(s.state);
+  s.session.sync(s.state);
   CHECK(s.session.blend()->motion.world.rows() == at_a);
   for (const Take& t : s.state.takes) CHECK(t.frames() == at_a);  // A and B follow the blend's timeline
   // A seamless loop: whole cycles, every take cut to it.
   c.timing_a = false;
   c.loop = true;
-  s.state.parameters.alpha = 0.5;
-  s.session.update_blend(s.state);
+  s.state.document.parameters.alpha = 0.5;
+  s.session.sync(s.state);
   REQUIRE(s.session.blend() != nullptr);
   CHECK(s.session.blend()->motion.loop.cycles >= 1);
   CHECK(s.session.blend()->motion.loop.cycles <= kLoopMaxCycles);
@@ -238,7 +237,6 @@ TEST_CASE("timing, loop and alignment controls reach the blend and the alignment
   // Aligning on the body re-prepares the pair on the worker.
   c.loop = false;
   c.align.on = AlignOn::kBody;
-  s.session.realign();
   s.session.wait_idle(s.state);
   REQUIRE(s.session.snapshot().prepared != nullptr);
   CHECK(s.session.snapshot().prepared->takes[1].alignment.feature.on == AlignOn::kBody);

@@ -1,0 +1,78 @@
+// The engine link (ui/model/blend_session.h): sync() brings the engine to the document, doing what
+// the one list of fields (ui/model/document_fields.h) says each change makes stale, and nothing
+// more: a weight re-mixes on this thread, k re-decomposes (not while its slider is held), an
+// alignment option re-aligns, a view option asks the worker for nothing.
+#include <catch2/catch.hpp>
+
+#include "tests/ui/loaded_session.h"
+#include "ui/model/document_fields.h"
+
+using namespace mostyle;
+using namespace mostyle::ui;
+using test::LoadedSession;
+
+namespace {
+
+// What the worker was asked since the last idle: nothing, a decomposition, or a load.
+bool worker_asked(const BlendSession& s) {
+  const WorkerStatus status = s.status();
+  return status.stage != WorkerStage::kIdle || status.pending;
+}
+
+}  // namespace
+
+TEST_CASE("engine link: each change does what its field makes stale, and nothing more") {
+  LoadedSession s;
+  REQUIRE(s.session.blend() != nullptr);
+  const void* prepared = s.session.snapshot().prepared.get();
+  const void* decomposed = s.session.snapshot().decomposed.get();
+
+  SECTION("a mix field: mixed again on this thread, the worker left alone") {
+    const Eigen::MatrixXd before = s.session.blend()->motion.world;
+    s.state.document.parameters.alpha = 0.9;
+    s.session.sync(s.state);
+    CHECK_FALSE(worker_asked(s.session));
+    CHECK((s.session.blend()->motion.world - before).norm() > 1e-6);
+  }
+  SECTION("a view field: nothing asked of the worker, the blend unchanged") {
+    const Eigen::MatrixXd before = s.session.blend()->motion.world;
+    s.state.document.overlay = !s.state.document.overlay;
+    s.state.document.controls.palette.ghosts = true;
+    s.session.sync(s.state);
+    CHECK_FALSE(worker_asked(s.session));
+    CHECK(s.session.blend()->motion.world == before);
+  }
+  SECTION("a decomposition field: asked for once let go, not while held") {
+    s.state.document.parameters.components = 4;
+    s.session.sync(s.state, /*item_held=*/true);
+    CHECK_FALSE(worker_asked(s.session));
+    CHECK_FALSE(s.session.decomposition_outdated());
+    s.session.sync(s.state);
+    CHECK(s.session.decomposition_outdated());
+    s.session.wait_idle(s.state);
+    CHECK(s.session.snapshot().decomposed.get() != decomposed);
+    CHECK(s.session.snapshot().decomposed->params.components == 4);
+    CHECK(s.session.snapshot().prepared.get() == prepared);  // not aligned again
+  }
+  SECTION("an alignment field: the takes prepared again, then decomposed") {
+    s.state.document.controls.align.on = AlignOn::kBody;
+    s.session.sync(s.state);
+    CHECK(worker_asked(s.session));
+    s.session.wait_idle(s.state);
+    REQUIRE(s.session.snapshot().prepared != nullptr);
+    CHECK(s.session.snapshot().prepared.get() != prepared);
+    CHECK(s.session.snapshot().prepared->takes[1].alignment.feature.on == AlignOn::kBody);
+    // A second sync asks for nothing more.
+    s.session.sync(s.state);
+    CHECK_FALSE(worker_asked(s.session));
+  }
+  SECTION("a load is a command: the document's files follow once the takes arrive") {
+    const std::vector<std::string> files = s.state.document.files;
+    REQUIRE(files.size() == 2);
+    s.session.load_files({files[1], files[0]});
+    CHECK(s.session.load_waiting());
+    CHECK(s.state.document.files == files);  // not there yet
+    s.session.wait_idle(s.state);
+    CHECK(s.state.document.files == std::vector<std::string>{files[1], files[0]});
+  }
+}
