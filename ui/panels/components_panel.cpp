@@ -105,7 +105,7 @@ void ComponentsPanel::draw(EditorState& state) {
   std::vector<const ErrorPoint*> points;
   for (const ErrorPoint& e : session_.error_curve())
     if (e.mode == d->params.mode && e.sparsity == d->params.sparsity) points.push_back(&e);
-  ImGui::Text("Fit error against components (sparsity %.2f)", d->params.sparsity);
+  ImGui::Text("Fit error by k (sparsity %.2f)", d->params.sparsity);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("How far what the components rebuild is from each take (root mean square, file units),\n"
                       "for each number of components tried so far: the curve flattens where more stop helping.");

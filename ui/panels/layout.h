@@ -1,6 +1,6 @@
 #pragma once
 // Where the editor's panels go, as a pure function of the display size (compute_layout): a left
-// column (takes, parameters, files), a right column (components, metrics), and along the bottom
+// column (takes, parameters), a right column (components, metrics, files), and along the bottom
 // the DTW view between the columns over the playback bar, which spans the window. The side
 // columns take about a quarter of the width each (340 to 420 px), and the central 30% x 30% of
 // the window stays clear for the skeletons at every size from 1280x720 to 2560x1440
@@ -60,7 +60,7 @@ inline PanelRect clear_centre(float width, float height) {
 // playback bar's (its font and padding). Inside the display and clear of clear_centre() for any
 // display of at least 640x360; the panels do not overlap one another. Pure, O(1).
 // takes: the rows the Takes panel lists (a pair's A, B and blend: 3; a palette's mix and takes),
-// so that it is as tall as they need (within 18% to 40% of the left column).
+// so that it is as tall as they need (within 18% to 50% of the left column).
 inline std::array<PanelRect, kPanelCount> compute_layout(float width, float height,
                                                          float bar_height = kPlaybackBarHeight, int takes = 3) {
   const float m = kLayoutMargin, g = kLayoutGap;
@@ -75,21 +75,31 @@ inline std::array<PanelRect, kPanelCount> compute_layout(float width, float heig
   const float top = m;
   const float column = std::max(3.0f, at(PanelId::kPlayback).y - g - top);  // the side columns' height
 
-  // Left: takes (small; warnings scroll inside it), parameters, files.
-  const float left_h = column - 2.0f * g;
-  // Title, padding, one row per take, Frame all and the View header (rows of the 16 px font).
-  const float takes_want = 48.0f + 30.0f * static_cast<float>(std::max(takes, 1) + 2);
-  const float takes_h = std::clamp(takes_want, 0.18f * left_h, 0.40f * left_h);
-  const float parameters_h = 0.59f * (left_h - takes_h);
+  // Left: takes (small; warnings scroll inside it) over the parameters, which have the rest.
+  const float left_h = column - g;
+  // Title, padding, one row per take, a row of load warnings, Frame all and the View header
+  // (rows of the 16 px font).
+  const float takes_want = 48.0f + 30.0f * static_cast<float>(std::max(takes, 1) + 3);
+  const float takes_h = std::clamp(takes_want, 0.18f * left_h, 0.50f * left_h);
   at(PanelId::kTakes) = PanelRect{m, top, side, takes_h};
-  at(PanelId::kParameters) = PanelRect{m, top + takes_h + g, side, parameters_h};
-  at(PanelId::kFiles) = PanelRect{m, top + takes_h + parameters_h + 2.0f * g, side, left_h - takes_h - parameters_h};
+  at(PanelId::kParameters) = PanelRect{m, top + takes_h + g, side, left_h - takes_h};
 
-  // Right: components over metrics.
+  // Right: components over metrics over files. Metrics and files as tall as their rows need
+  // (the takes' files, a table row per take); components (a plot that scales) the rest, from 30%
+  // to 45% of the column: when that leaves too little, metrics come first (up to 55% of what is
+  // left) and the files (whose browser scrolls) have the rest; when it leaves more, the files
+  // (their browser) have it.
   const float right_x = width - m - side;
-  const float components_h = 0.48f * (column - g);
+  const float inputs = static_cast<float>(std::max(takes - 1, 1));  // the takes loaded (not the blend)
+  const float metrics_want = 44.0f + 24.0f * (inputs + 5.0f);
+  const float files_want = 48.0f + 30.0f * (inputs + 4.0f);
+  const float right_h = column - 2.0f * g;
+  const float components_h = std::clamp(right_h - metrics_want - files_want, 0.30f * right_h, 0.45f * right_h);
+  const float metrics_h = std::min(metrics_want, 0.55f * (right_h - components_h));
   at(PanelId::kComponents) = PanelRect{right_x, top, side, components_h};
-  at(PanelId::kMetrics) = PanelRect{right_x, top + components_h + g, side, column - g - components_h};
+  at(PanelId::kMetrics) = PanelRect{right_x, top + components_h + g, side, metrics_h};
+  at(PanelId::kFiles) = PanelRect{right_x, top + components_h + metrics_h + 2.0f * g, side,
+                                  right_h - components_h - metrics_h};
 
   // Bottom, between the columns: the DTW view, from just under the clear centre to the bar.
   const float dtw_x = m + side + g;

@@ -152,9 +152,11 @@ void MetricsPanel::draw(EditorState& state) {
   // Per take: its fit error and foot sliding, one row each (names clipped to the column, whole
   // on hover).
   if (ImGui::BeginTable("##takes", 3, ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_BordersInnerV)) {
-    ImGui::TableSetupColumn("take", ImGuiTableColumnFlags_WidthStretch, 1.2f);
-    ImGui::TableSetupColumn("fit error", ImGuiTableColumnFlags_WidthStretch, 1.0f);
-    ImGui::TableSetupColumn("foot sliding", ImGuiTableColumnFlags_WidthStretch, 1.1f);
+    // The numbers' columns as wide as "10.6 cm/s"; the names have the rest.
+    const float number = ImGui::CalcTextSize("10.6 cm/s").x + ImGui::GetStyle().CellPadding.x * 2.0f;
+    ImGui::TableSetupColumn("take", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+    ImGui::TableSetupColumn("fit", ImGuiTableColumnFlags_WidthFixed, number);
+    ImGui::TableSetupColumn("sliding", ImGuiTableColumnFlags_WidthFixed, number);
     ImGui::TableHeadersRow();
     for (const Metrics::Take& t : m.takes) {
       ImGui::TableNextRow();

@@ -146,9 +146,9 @@ void PalettePanel::draw_mix(PaletteControls& c, const PreparedTakes& p) {
   if (static_cast<int>(c.weights.size()) != n) c.weights.assign(static_cast<size_t>(n), 1.0 / n);
   const float pad = std::clamp(ImGui::GetContentRegionAvail().y - 4.0f, 80.0f, 220.0f);
   if (ImGui::BeginTable("##mix", n >= 3 ? 3 : 2, ImGuiTableFlags_SizingStretchProp)) {
-    ImGui::TableSetupColumn("weights", ImGuiTableColumnFlags_WidthStretch, 2.0f);
+    ImGui::TableSetupColumn("weights", ImGuiTableColumnFlags_WidthStretch, 2.4f);
     if (n >= 3) ImGui::TableSetupColumn("pad", ImGuiTableColumnFlags_WidthFixed, pad);
-    ImGui::TableSetupColumn("parts", ImGuiTableColumnFlags_WidthStretch, 1.5f);
+    ImGui::TableSetupColumn("parts", ImGuiTableColumnFlags_WidthStretch, 1.2f);
     ImGui::TableNextColumn();
     ImGui::BeginChild("##weights", ImVec2(0, pad));
     // Compact rows, so that eight takes fit the strip of a 1280x720 window without scrolling.

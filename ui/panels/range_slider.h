@@ -17,13 +17,12 @@ inline bool range_slider(const char* label, double& v, const Range& r, const cha
   return true;
 }
 
-// Shown from `shown_from` (1: the levels as the panel counts them), stored from r.lo.
-inline bool range_slider(const char* label, int& v, const Range& r, const char* format = "%d", int shown_from = 0) {
+// Shown `offset` above what is stored (1: levels stored from 0 and shown from 1).
+inline bool range_slider(const char* label, int& v, const Range& r, const char* format = "%d", int offset = 0) {
   const int lo = static_cast<int>(r.lo), hi = static_cast<int>(r.hi);
-  int shown = v - lo + shown_from;
-  if (!ImGui::SliderInt(label, &shown, shown_from, hi - lo + shown_from, format, ImGuiSliderFlags_AlwaysClamp))
-    return false;
-  v = shown - shown_from + lo;
+  int shown = v + offset;
+  if (!ImGui::SliderInt(label, &shown, lo + offset, hi + offset, format, ImGuiSliderFlags_AlwaysClamp)) return false;
+  v = shown - offset;
   return true;
 }
 
