@@ -59,15 +59,15 @@ struct PairOptions {
     cmd->add_option("--mapping-b", mapping_b, "Major-joint mapping file for B");
   }
 
-  std::shared_ptr<const PreparedTakes> prepare(double* load_ms) const {
+  std::shared_ptr<const PreparedTakes> prepare(StageTimes* times) const {
     PrepareOptions o = align.options();
     const auto t0 = Clock::now();
     auto clip_a = std::make_shared<const Clip>(load_clip(a));
     auto clip_b = std::make_shared<const Clip>(load_clip(b));
-    *load_ms = ms_since(t0);
+    times->load_ms = ms_since(t0);
     o.mapping_a = load_mapping(mapping_a);
     o.mapping_b = load_mapping(mapping_b);
-    auto p = prepare_takes({clip_a, clip_b}, o);
+    auto p = prepare_takes({clip_a, clip_b}, o, nullptr, times);
     for (const std::string& w : p->takes[1].alignment.warnings) std::cerr << "mostyle: warning: " << w << "\n";
     return p;
   }
@@ -122,8 +122,8 @@ void add_align_command(CLI::App& app, std::function<int()>* run) {
                 "signals before and after warping");
   cmd->callback([=] {
     *run = [=] {
-      double load_ms = 0;
-      const auto p = pair->prepare(&load_ms);
+      StageTimes times;
+      const auto p = pair->prepare(&times);
       const Alignment& al = p->takes[1].alignment;
       if (*json) {
         Json j;
@@ -143,7 +143,7 @@ void add_align_command(CLI::App& app, std::function<int()>* run) {
         j["signal_b"] = rows_json(al.feature.b);
         j["signal_a_warped"] = rows_json(sample_rows(al.feature.a, al.warp.a));
         j["signal_b_warped"] = rows_json(sample_rows(al.feature.b, al.warp.b));
-        j["timings_ms"] = {{"load", load_ms}, {"preprocess", p->times.preprocess_ms}, {"dtw", p->times.dtw_ms}};
+        j["timings_ms"] = {{"load", times.load_ms}, {"preprocess", times.preprocess_ms}, {"dtw", times.dtw_ms}};
         std::cout << j.dump() << "\n";
       } else {
         std::string joints;
@@ -155,7 +155,7 @@ void add_align_command(CLI::App& app, std::function<int()>* run) {
                   << "matched: A " << al.a_first << "-" << al.a_last << ", B " << al.b_first << "-" << al.b_last
                   << "\n"
                   << "dtw cost: " << number(al.cost) << " (A's units), path of " << al.path.size() << " steps, "
-                  << number(p->times.dtw_ms) << " ms\n";
+                  << number(times.dtw_ms) << " ms\n";
       }
       return 0;
     };

@@ -102,13 +102,10 @@ Prepared prepare(const std::vector<std::string>& files, const SynthesisFlags& fl
   p.times.load_ms = ms_since(t0);
   o.mapping_a = load_mapping(mapping_a);
   o.mapping_b = load_mapping(mapping_b);
-  p.prepared = prepare_takes(clips, o);
-  p.times.preprocess_ms = p.prepared->times.preprocess_ms;
-  p.times.dtw_ms = p.prepared->times.dtw_ms;
+  p.prepared = prepare_takes(clips, o, nullptr, &p.times);
   for (const PreparedTake& t : p.prepared->takes)
     for (const std::string& w : t.alignment.warnings) std::cerr << "mostyle: warning: " << w << "\n";
-  p.decomposition = decompose_takes(*p.prepared, dp);
-  p.times.decompose_ms = p.decomposition->elapsed_ms;
+  p.decomposition = decompose_takes(*p.prepared, dp, nullptr, &p.times);
   return p;
 }
 
@@ -121,9 +118,7 @@ int run_synthesis(const Prepared& p, const std::vector<std::string>& files, cons
   StageTimes times = p.times;
   MixScratch scratch;
   MixResult result;
-  mix_palette(palette, d, mp, scratch, result);
-  times.synthesize_ms = result.synthesize_ms;
-  times.postprocess_ms = result.postprocess_ms;
+  mix_palette(palette, d, mp, scratch, result, &times);
   const Eigen::MatrixXd& world = result.motion.world;
   ExportFit fit;
   const Clip& reference = *palette.takes.front().clip;
@@ -155,7 +150,7 @@ int run_synthesis(const Prepared& p, const std::vector<std::string>& files, cons
     t["file"] = files[static_cast<size_t>(i)];
     t["weight"] = mp.weights[static_cast<size_t>(i)];
     t["reconstruction_rmse"] = d.rmse[static_cast<size_t>(i)];
-    t["foot_sliding"] = palette.takes[static_cast<size_t>(i)].foot_sliding;
+    t["foot_sliding"] = take_foot_sliding(palette, i);
     if (i > 0) t["alignment"] = alignment_json(palette, i);
     t["source_frames"] = vector_json(result.sources.col(i));
     takes.push_back(t);
@@ -283,8 +278,8 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
         report["alignment"] = alignment;
         report["reconstruction_rmse"] = {{"a", d.rmse[0]}, {"b", d.rmse[1]}};
         report["component_nonzero_fraction"] = {{"a", d.nonzero[0]}, {"b", d.nonzero[1]}};
-        report["foot_sliding"] = {{"a", p.prepared->takes[0].foot_sliding},
-                                  {"b", p.prepared->takes[1].foot_sliding},
+        report["foot_sliding"] = {{"a", take_foot_sliding(*p.prepared, 0)},
+                                  {"b", take_foot_sliding(*p.prepared, 1)},
                                   {"raw_blend", result.motion.foot_sliding_raw},
                                   {"cleaned_blend", result.motion.foot_sliding_cleaned}};
       });

@@ -103,7 +103,7 @@ const Eigen::MatrixXd& decompose_paper_mode(const PreparedTakes& p, const Decomp
 }  // namespace
 
 std::shared_ptr<const Decomposed> decompose_takes(const PreparedTakes& prepared, const DecomposeParams& params,
-                                                  JobControl* control) {
+                                                  JobControl* control, StageTimes* times) {
   params.Validate(static_cast<int>(prepared.reference().x.cols()));
   if (params.mode != BlendMode::kShared && prepared.size() != 2)
     throw InputError("several takes mix shared components; paper mode and basic motions blend two takes (use blend)");
@@ -115,7 +115,7 @@ std::shared_ptr<const Decomposed> decompose_takes(const PreparedTakes& prepared,
                                           : decompose_paper_mode(prepared, params, control, *d);
   d->support = (components.array() != 0.0).cast<double>();
   d->component_joints = describe_components(components, prepared.majors);
-  d->elapsed_ms = ms_since(t0);
+  if (times != nullptr) times->decompose_ms = ms_since(t0);
   report_progress(control, 1.0f);
   return d;
 }

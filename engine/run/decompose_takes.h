@@ -53,7 +53,6 @@ struct Decomposed {
   // Summary, per take: reconstruction error (file units) and the fraction of non-zeros in its C.
   std::vector<double> rmse, nonzero;
   int iterations = 0;
-  double elapsed_ms = 0;
   Eigen::MatrixXd support;         // k x 3M, 1 where a component is non-zero (A's in paper mode)
   std::vector<ComponentJoints> component_joints;  // per component: joints, centre, region, name
   int components() const { return params.components; }
@@ -64,8 +63,8 @@ struct Decomposed {
 // Throws InputError on bad parameters, or paper mode asked of more than two takes; Cancelled.
 // Cost: shared mode, decompose() on N x U frames (at most kMaxDecompositionFrames of them) and
 // N U x k by k x 3M products; paper mode, two decompositions of U frames (m each with basic
-// motions).
+// motions). times: when given, its decompose_ms is set.
 std::shared_ptr<const Decomposed> decompose_takes(const PreparedTakes& prepared, const DecomposeParams& params,
-                                                  JobControl* control = nullptr);
+                                                  JobControl* control = nullptr, StageTimes* times = nullptr);
 
 }  // namespace mostyle

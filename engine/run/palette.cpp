@@ -78,7 +78,7 @@ void MixParams::Validate(int takes, int components) const {
 }
 
 void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& params, MixScratch& s,
-                 MixResult& out) {
+                 MixResult& out, StageTimes* times) {
   const int n = p.size();
   params.Validate(n, d.components());
   const SharedComponents* shared = d.shared();
@@ -190,7 +190,7 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
     s.samples.rowwise() += s.mixed_mean;
     s.sampler.apply(s.samples, out.local);
   }
-  out.synthesize_ms = ms_since(t0);
+  if (times != nullptr) times->synthesize_ms = ms_since(t0);
 
   const auto t1 = Clock::now();
   // The root over the stretch: steps, whole-turn flips and the paths pulled towards.
@@ -220,7 +220,7 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
   s.sampler.set(s.u_stretch, length);
   write_sources(p, s.sampler, first, out.sources);
   out.sample = s.u_stretch.array() + double(first);
-  out.postprocess_ms = ms_since(t1);
+  if (times != nullptr) times->postprocess_ms = ms_since(t1);
 }
 
 Eigen::MatrixXd part_weights(const std::vector<std::pair<BodyPart, std::vector<double>>>& given,

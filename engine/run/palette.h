@@ -62,15 +62,15 @@ struct MixResult {
   Eigen::VectorXd sample;    // K: the common timeline's sample each output frame is at
   int first_sample = 0, last_sample = 0;  // the stretch played: where every take with a weight is matched
   Eigen::MatrixXd sources;   // K x N: each take's frame (fractional, working rate) at each output frame
-  double synthesize_ms = 0, postprocess_ms = 0;
 };
 
 // One mix (see the top of this file). Throws InputError from params.Validate or a loop without
 // two foot strikes. One weight set: the poses at the output frames only, O(K x N x 3M), and the
 // root on the samples, O(U x N); per-component weights add O(U x k x (3M + N)).
 // Allocation-free once scratch and out are sized (per-component weights and a loop allocate).
+// times: when given, its synthesize_ms (the poses) and postprocess_ms (root, clean-up) are set.
 void mix_palette(const PreparedTakes& palette, const Decomposed& decomposition, const MixParams& params,
-                 MixScratch& scratch, MixResult& out);
+                 MixScratch& scratch, MixResult& out, StageTimes* times = nullptr);
 
 // Per-component weights (k x N) from weights given per body part: each component takes the
 // row of the part that decides its region (body_parts.h deciding_part), else `rest`. Throws

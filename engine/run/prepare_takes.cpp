@@ -68,7 +68,10 @@ void PrepareOptions::Validate() const {
 }
 
 std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared_ptr<const Clip>>& clips,
-                                                   const PrepareOptions& options, JobControl* control) {
+                                                   const PrepareOptions& options, JobControl* control,
+                                                   StageTimes* times) {
+  StageTimes own;
+  StageTimes& spent = times != nullptr ? *times : own;
   const int n = static_cast<int>(clips.size());
   if (n < 2 || n > kMaxPaletteTakes)
     throw InputError("a palette takes from 2 to " + std::to_string(kMaxPaletteTakes) + " takes, found " +
@@ -120,9 +123,8 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
     t.canonical = to_canonical(t.world, 0, leg[0], leg[3]);
     t.own_local_t = t.canonical.local.transpose();
     t.own_contacts = detect_foot_contacts(t.world, p->feet);
-    t.foot_sliding = foot_sliding(t.world, t.own_contacts, p->feet);
   }
-  p->times.preprocess_ms = ms_since(t0);
+  spent.preprocess_ms = ms_since(t0);
   report_progress(control, 0.3f);
 
   // Each other take aligned onto the reference.
@@ -137,7 +139,7 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
                                               aligned_name(i, n, *t.clip));
     warps.push_back(&t.alignment.warp);
   }
-  p->times.dtw_ms = ms_since(t1);
+  spent.dtw_ms = ms_since(t1);
   report_progress(control, 0.8f);
 
   // Every take on the common timeline, placed where the reference stands when its match starts.
@@ -174,7 +176,7 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
   p->scale = count > 0 ? std::sqrt(sum / count) : 1.0;
   if (!(p->scale > 0) || !std::isfinite(p->scale)) p->scale = 1.0;
   for (PreparedTake& t : p->takes) t.x = (t.local.rowwise() - t.mean) / p->scale;
-  p->times.preprocess_ms += ms_since(t2);
+  spent.preprocess_ms += ms_since(t2);
   check_cancel(control);
   report_progress(control, 1.0f);
   return p;
@@ -184,6 +186,11 @@ std::vector<int> export_joints(const PreparedTakes& prepared) {
   std::vector<int> joints;
   for (int major : prepared.majors) joints.push_back(prepared.reference().mapping.joint[major]);
   return joints;
+}
+
+double take_foot_sliding(const PreparedTakes& prepared, int take) {
+  const PreparedTake& t = prepared.takes.at(static_cast<size_t>(take));
+  return foot_sliding(t.world, t.own_contacts, prepared.feet);
 }
 
 }  // namespace mostyle

@@ -22,6 +22,7 @@
 #include "engine/post/foot_contact.h"
 #include "engine/prepare/canonical_frame.h"
 #include "engine/prepare/major_skeleton.h"
+#include "engine/run/stage_times.h"
 
 namespace mostyle {
 
@@ -39,11 +40,6 @@ struct PrepareOptions {
   void Validate() const;  // throws InputError on a bad fps or alignment option
 };
 
-struct StageTimes {
-  double load_ms = 0, preprocess_ms = 0, dtw_ms = 0, decompose_ms = 0, synthesize_ms = 0,
-         postprocess_ms = 0, export_ms = 0;
-};
-
 // One take. Its own frames (F, at the working rate) are in the reference's bones; on the
 // common timeline (U samples) in the reference's world.
 struct PreparedTake {
@@ -56,7 +52,6 @@ struct PreparedTake {
   CanonicalMotion canonical;         // F frames
   Eigen::MatrixXd own_local_t;       // 3M x F: canonical.local transposed (a frame a contiguous column, for the mix)
   Eigen::MatrixXd own_contacts;      // F x 2: foot contacts, left and right, 1 planted
-  double foot_sliding = 0;           // units per second
   Alignment alignment;               // onto the reference (the reference's own: empty)
   // The common timeline.
   Eigen::VectorXd frames;            // U: the take's frame at each sample (fractional)
@@ -79,7 +74,6 @@ struct PreparedTakes {
   double fps = 30.0;                 // working rate
   double scale = 1.0;                // normalization scale, shared by every take
   Eigen::VectorXd reference_heading; // U: the reference's heading at each sample (a mix starts facing it)
-  StageTimes times;                  // preprocess and dtw, summed over the takes
   int samples() const { return timeline.samples(); }
   int size() const { return static_cast<int>(takes.size()); }
   const PreparedTake& reference() const { return takes.front(); }
@@ -88,9 +82,15 @@ struct PreparedTakes {
 // clips: 2 to 16 takes, the first the reference. Throws InputError (naming the take when there
 // are more than two) on a count out of range, takes without the major joints the reference has,
 // no frames, degenerate hips, bad options; Cancelled. Cost: FK O(frames x joints) per take, one
-// DTW O(F0 x Fi) per other take, then O(U x N x M).
+// DTW O(F0 x Fi) per other take, then O(U x N x M). times: when given, its preprocess_ms and
+// dtw_ms are set (summed over the takes).
 std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared_ptr<const Clip>>& clips,
-                                                   const PrepareOptions& options, JobControl* control = nullptr);
+                                                   const PrepareOptions& options, JobControl* control = nullptr,
+                                                   StageTimes* times = nullptr);
+
+// How fast take i's planted feet slide on its own frames (foot_contact.h foot_sliding), file units
+// per second: a measure of the take, computed when asked. O(F).
+double take_foot_sliding(const PreparedTakes& prepared, int take);
 
 // The reference's joint index of each major column (for export).
 std::vector<int> export_joints(const PreparedTakes& prepared);

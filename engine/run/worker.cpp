@@ -194,10 +194,12 @@ void Worker::run_load(std::unique_lock<std::mutex>& lock) {
   std::vector<std::string> warnings;
   const auto clips = read_clips(paths, &warnings, read_options_, &control_);
   const double load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  auto prepared = prepare_takes(clips, options, &control_);
-  std::const_pointer_cast<PreparedTakes>(prepared)->times.load_ms = load_ms;
+  StageTimes times;
+  times.load_ms = load_ms;
+  auto prepared = prepare_takes(clips, options, &control_, &times);
   lock.lock();
   publish([&](WorkerSnapshot& s) {
+    s.times = times;
     s.paths = paths;
     s.prepared = prepared;
     s.decomposed = nullptr;
@@ -222,10 +224,12 @@ void Worker::run_decompose(std::unique_lock<std::mutex>& lock) {
   const DecomposeParams params = decompose_params_;
   const auto prepared = snapshot_->prepared;
   lock.unlock();
-  auto decomposed = decompose_takes(*prepared, decompose_params_for(prepared->size(), params), &control_);
+  StageTimes times;
+  auto decomposed = decompose_takes(*prepared, decompose_params_for(prepared->size(), params), &control_, &times);
   lock.lock();
   if (snapshot_->prepared == prepared) {
     publish([&](WorkerSnapshot& s) {
+      s.times.decompose_ms = times.decompose_ms;
       s.decomposed = decomposed;
       s.decompose_params = params;
       s.error.clear();
@@ -245,10 +249,13 @@ void Worker::run_mix(std::unique_lock<std::mutex>& lock) {
   if (blend) params = blend_mix_params(*blend, *decomposed);
   MixScratch scratch;
   auto result = std::make_shared<MixResult>();
-  mix_palette(*prepared, *decomposed, params, scratch, *result);
+  StageTimes times;
+  mix_palette(*prepared, *decomposed, params, scratch, *result, &times);
   lock.lock();
   if (snapshot_->decomposed == decomposed) {
     publish([&](WorkerSnapshot& s) {
+      s.times.synthesize_ms = times.synthesize_ms;
+      s.times.postprocess_ms = times.postprocess_ms;
       s.mix = result;
       s.mix_params = params;
       s.error.clear();

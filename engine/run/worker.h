@@ -30,6 +30,9 @@ struct WorkerSnapshot {
   DecomposeParams decompose_params;
   std::shared_ptr<const MixResult> mix;           // of `decomposed` with mix_params
   MixParams mix_params;                           // the parameters `mix` was made with
+  // Beside the stage values: how long reading and preparing `prepared` (load, preprocess, dtw),
+  // making `decomposed` (decompose) and `mix` (synthesize, postprocess) took.
+  StageTimes times;
   std::string error;                  // the last failed request's sentence; empty after a success
   std::vector<std::string> warnings;  // from loading `prepared`
   std::uint64_t version = 0;          // grows with every published change

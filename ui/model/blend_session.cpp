@@ -352,7 +352,7 @@ void BlendSession::update_blend(EditorState& state) {
       const auto t0 = Clock::now();
       try {
         set_blend_mix_params(params, *d, blend_mix_);
-        mix_palette(*p, *d, blend_mix_, scratch_, blend_);
+        mix_palette(*p, *d, blend_mix_, scratch_, blend_, &blend_times_);
         has_blend_ = true;
         blend_error_.clear();
       } catch (const std::exception& e) {  // InputError: a bad parameter, shown as it is

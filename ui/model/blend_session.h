@@ -99,6 +99,7 @@ class BlendSession {
   const MixResult* blend() const { return has_blend_ ? &blend_ : nullptr; }
   const std::string& blend_error() const { return blend_error_; }
   double blend_ms() const { return blend_ms_; }  // the last UI-thread blend (mix_palette), wall time
+  const StageTimes& blend_times() const { return blend_times_; }  // its stages (synthesize, postprocess)
   const std::vector<ErrorPoint>& error_curve() const { return error_curve_; }
   const DtwCostImage& dtw_image() const { return dtw_image_; }
   // Reconstruction error against k in the background: a second worker decomposes the pair at
@@ -173,6 +174,7 @@ class BlendSession {
   bool has_blend_ = false;
   std::string blend_error_;
   double blend_ms_ = 0.0;
+  StageTimes blend_times_;
   std::vector<ErrorPoint> error_curve_;
   DtwCostImage dtw_image_;
   // Placement: every take shares A's floor and start; side by side adds lateral offsets.

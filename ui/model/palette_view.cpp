@@ -138,7 +138,7 @@ void PaletteView::update(const PreparedTakes& p, const Decomposed* d, const Sess
       const MixParams params = mix_params_for(controls, *d, p.size());
       if (d != mixed_decomposition_ || !same_mix(params, mixed_)) {
         const auto t0 = Clock::now();
-        mix_palette(p, *d, params, scratch_, mix_);
+        mix_palette(p, *d, params, scratch_, mix_, &mix_times_);
         mix_ms_ = ms_since(t0);
         has_mix_ = true;
         error_.clear();

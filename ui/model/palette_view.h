@@ -45,6 +45,7 @@ class PaletteView {
   const MixResult* mix() const { return has_mix_ ? &mix_ : nullptr; }
   const std::string& error() const { return error_; }
   double mix_ms() const { return mix_ms_; }
+  const StageTimes& mix_times() const { return mix_times_; }  // its stages (synthesize, postprocess)
 
  private:
   void place(const PreparedTakes& palette, const SessionControls& controls, EditorState& state);
@@ -57,6 +58,7 @@ class PaletteView {
   bool placed_overlay_ = false, placed_ghosts_ = false;
   std::string error_;
   double mix_ms_ = 0.0;
+  StageTimes mix_times_;
   Eigen::Vector3d shift_ = Eigen::Vector3d::Zero(), side_ = Eigen::Vector3d::UnitX();
   float spacing_ = 0.0f;
 };

@@ -69,49 +69,36 @@ std::string length_in_words(double value, double cm_per_unit, double height, con
 
 Metrics gather_metrics(const BlendSession& session) {
   Metrics m;
-  if (const PreparedTakes* p = session.palette()) {
-    const Decomposed* d = session.snapshot().decomposed.get();
-    m.reference = p->takes.front().clip.get();
-    m.result = p->size() > 2 ? "mix" : "blend";
+  const WorkerSnapshot& snapshot = session.snapshot();
+  const PreparedTakes* p = snapshot.prepared.get();
+  if (p == nullptr) return m;
+  const bool pair = p->size() == 2;
+  const Decomposed* d = snapshot.decomposed.get();
+  m.reference = p->takes.front().clip.get();
+  m.result = pair ? "blend" : "mix";
+  std::vector<std::string> names = {"A", "B"};
+  if (!pair) {
     std::vector<std::string> sources;
     for (const PreparedTake& take : p->takes) sources.push_back(take.clip->source);
-    const std::vector<std::string> names = distinct_take_labels(sources);  // narrow column: what differs
-    for (int i = 0; i < p->size(); ++i) {
-      Metrics::Take t;
-      t.name = names[static_cast<size_t>(i)];
-      t.fit_error = d != nullptr ? d->rmse[static_cast<size_t>(i)] : -1.0;
-      t.foot_sliding = p->takes[static_cast<size_t>(i)].foot_sliding;
-      m.takes.push_back(t);
-    }
-    m.preprocess_ms = p->times.preprocess_ms;  // the loading of a palette's files is not timed
-    m.dtw_ms = p->times.dtw_ms;
-    if (d != nullptr) m.decompose_ms = d->elapsed_ms;
-    if (const MixResult* mix = session.palette_view().mix()) {
-      m.bone_error = mix->motion.limb_length_max_error;
-      m.sliding_raw = mix->motion.foot_sliding_raw;
-      m.sliding_cleaned = mix->motion.foot_sliding_cleaned;
-      m.synthesize_ms = mix->synthesize_ms;
-      m.postprocess_ms = mix->postprocess_ms;
-      m.result_ms = session.palette_view().mix_ms();
-    }
-    return m;
+    names = distinct_take_labels(sources);  // narrow column: what differs
   }
-  const PreparedTakes* p = session.pair();
-  if (p == nullptr) return m;
-  const Decomposed* d = session.snapshot().decomposed.get();
-  m.reference = p->takes[0].clip.get();
-  m.takes = {{"A", d != nullptr ? d->rmse[0] : -1.0, p->takes[0].foot_sliding}, {"B", d != nullptr ? d->rmse[1] : -1.0, p->takes[1].foot_sliding}};
-  m.load_ms = p->times.load_ms;
-  m.preprocess_ms = p->times.preprocess_ms;
-  m.dtw_ms = p->times.dtw_ms;
-  if (d != nullptr) m.decompose_ms = d->elapsed_ms;
-  if (const MixResult* b = session.blend()) {
-    m.bone_error = b->motion.limb_length_max_error;
-    m.sliding_raw = b->motion.foot_sliding_raw;
-    m.sliding_cleaned = b->motion.foot_sliding_cleaned;
-    m.synthesize_ms = b->synthesize_ms;
-    m.postprocess_ms = b->postprocess_ms;
-    m.result_ms = session.blend_ms();
+  for (int i = 0; i < p->size(); ++i)
+    m.takes.push_back({names[static_cast<size_t>(i)], d != nullptr ? d->rmse[static_cast<size_t>(i)] : -1.0,
+                       take_foot_sliding(*p, i)});
+  m.load_ms = snapshot.times.load_ms;
+  m.preprocess_ms = snapshot.times.preprocess_ms;
+  m.dtw_ms = snapshot.times.dtw_ms;
+  if (d != nullptr) m.decompose_ms = snapshot.times.decompose_ms;
+  // The result shown: the pair's blend or the palette's mix, made on this thread.
+  const MixResult* mix = pair ? session.blend() : session.palette_view().mix();
+  if (mix != nullptr) {
+    const StageTimes& times = pair ? session.blend_times() : session.palette_view().mix_times();
+    m.bone_error = mix->motion.limb_length_max_error;
+    m.sliding_raw = mix->motion.foot_sliding_raw;
+    m.sliding_cleaned = mix->motion.foot_sliding_cleaned;
+    m.synthesize_ms = times.synthesize_ms;
+    m.postprocess_ms = times.postprocess_ms;
+    m.result_ms = pair ? session.blend_ms() : session.palette_view().mix_ms();
   }
   return m;
 }

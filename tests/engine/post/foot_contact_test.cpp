@@ -267,7 +267,7 @@ void check_pipeline_foot_lock(const std::string& path_a, const std::string& path
   // A walk: each foot planted for a good part of the take.
   CHECK(p->takes[0].own_contacts.col(0).mean() > 0.2);
   CHECK(p->takes[0].own_contacts.col(1).mean() > 0.2);
-  CHECK(p->takes[0].foot_sliding > 0);
+  CHECK(take_foot_sliding(*p, 0) > 0);
   DecomposeParams dp;
   dp.components = 8;
   dp.max_iterations = 30;
@@ -279,11 +279,11 @@ void check_pipeline_foot_lock(const std::string& path_a, const std::string& path
   test::blend_into(*p, *d, bp, scratch, locked);
   bp.foot_lock = false;
   test::blend_into(*p, *d, bp, scratch, free);
-  INFO(path_a << " / " << path_b << ": sliding A " << p->takes[0].foot_sliding << ", B " << p->takes[1].foot_sliding
+  INFO(path_a << " / " << path_b << ": sliding A " << take_foot_sliding(*p, 0) << ", B " << take_foot_sliding(*p, 1)
               << ", raw " << locked.motion.foot_sliding_raw << ", cleaned " << locked.motion.foot_sliding_cleaned);
   CHECK(free.motion.foot_sliding_cleaned == free.motion.foot_sliding_raw);
   CHECK(locked.motion.foot_sliding_raw == Approx(free.motion.foot_sliding_raw));
-  CHECK(locked.motion.foot_sliding_cleaned <= std::max(p->takes[0].foot_sliding, p->takes[1].foot_sliding));
+  CHECK(locked.motion.foot_sliding_cleaned <= std::max(take_foot_sliding(*p, 0), take_foot_sliding(*p, 1)));
   CHECK(locked.motion.foot_sliding_cleaned <= 0.1 * locked.motion.foot_sliding_raw);
   // The lock keeps the limb lengths and touches only the legs below the hips.
   CHECK(locked.motion.limb_length_max_error <= 1e-9 * p->feet.leg_length);

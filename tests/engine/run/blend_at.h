@@ -21,9 +21,9 @@ struct BlendRun {
   MixScratch scratch;
 };
 inline void blend_into(const PreparedTakes& p, const Decomposed& d, const BlendParams& blend, BlendRun& run,
-                       MixResult& out) {
+                       MixResult& out, StageTimes* times = nullptr) {
   set_blend_mix_params(blend, d, run.params);
-  mix_palette(p, d, run.params, run.scratch, out);
+  mix_palette(p, d, run.params, run.scratch, out, times);
 }
 
 }  // namespace mostyle::test
