@@ -63,9 +63,6 @@ Eigen::Vector2d travel_direction(const ui::Take& take) {
 
 namespace {
 
-// A session's message that is not an error (saved, opened) fades after this long.
-constexpr std::chrono::seconds kSessionMessageSeconds(4);
-
 std::string absolute_path(const std::string& path) {
   std::error_code ec;
   const std::filesystem::path p = std::filesystem::absolute(path, ec);
@@ -88,11 +85,6 @@ void set_camera(render::OrbitCamera& c, const ui::SessionCamera& s) {
   c.pitch = s.pitch;
   c.distance = s.distance;
   c.fov_y = s.fov_y;
-}
-
-void copy_to(char* field, size_t size, const std::string& text) {
-  std::strncpy(field, text.c_str(), size - 1);
-  field[size - 1] = '\0';
 }
 
 }  // namespace
@@ -328,8 +320,7 @@ void Editor::frame(const FrameInput& input) {
   for (auto& panel : panels_) panel->draw(state_);
   state_.view.reset_layout = false;  // laid out; a Reset layout from the keys window: next frame
   draw_keys_window();
-  draw_session_dialog();
-  draw_session_message();
+  draw_session_windows();
   // After the panels: what they changed is an undo step once nothing is held (a drag is one).
   edits_.record(state_, *session_, ImGui::IsAnyItemActive());
   session_->sync(state_, ImGui::IsAnyItemActive());
@@ -411,7 +402,7 @@ void Editor::save_session_when_ready() {
   const bool loaded = session_->snapshot().prepared != nullptr;
   if (status.stage != WorkerStage::kIdle || status.pending || ui::load_pending(*session_)) return;
   if (!loaded && session_->error().empty()) return;
-  if (!save_session(scripted_save_path_)) scripted_save_error_ = session_message_;
+  if (!save_session(scripted_save_path_)) scripted_save_error_ = session_message_.text();
   scripted_save_path_.clear();
 }
 
@@ -422,13 +413,13 @@ bool Editor::redo() { return edits_.redo(state_, *session_); }
 bool Editor::save_session(const std::string& path) {
   namespace fs = std::filesystem;
   if (path.empty() || !fs::path(path).has_filename()) {
-    set_session_message("Save: no file name given for the session.", true);
+    session_message_.set("Save: no file name given for the session.", true);
     return false;
   }
   std::string target = path;
   if (fs::path(target).extension().empty()) target += ui::kSessionExtension;
   if (!ui::is_session_path(target)) {  // never over a take or an export by a slip of the keyboard
-    set_session_message("Save: a session's file name ends in .mostyle, not '" + path + "'.", true);
+    session_message_.set("Save: a session's file name ends in .mostyle, not '" + path + "'.", true);
     return false;
   }
   target = absolute_path(target);
@@ -440,19 +431,19 @@ bool Editor::save_session(const std::string& path) {
   try {
     ui::write_session_file(target, file);
   } catch (const InputError& e) {
-    set_session_message(e.what(), true);
+    session_message_.set(e.what(), true);
     return false;
   }
   session_path_ = target;
   ui::remember(recent_.sessions, target, ui::kRecentSessions);
   save_recent_files();
-  set_session_message("Saved the session to " + target, false);
+  session_message_.set("Saved the session to " + target, false);
   return true;
 }
 
 bool Editor::open_session(const std::string& path) {
   if (path.empty()) {
-    set_session_message("Open: no file name given for the session.", true);
+    session_message_.set("Open: no file name given for the session.", true);
     return false;
   }
   const std::string where = absolute_path(path);  // its takes resolve to absolute paths
@@ -460,7 +451,7 @@ bool Editor::open_session(const std::string& path) {
   try {
     file = ui::read_session_file(where);
   } catch (const InputError& e) {  // unreadable or malformed: nothing changes
-    set_session_message(e.what(), true);
+    session_message_.set(e.what(), true);
     return false;
   }
   const std::string missing = ui::apply_session_document(file.document, where, state_, *session_);
@@ -469,7 +460,7 @@ bool Editor::open_session(const std::string& path) {
   session_path_ = where;
   ui::remember(recent_.sessions, where, ui::kRecentSessions);
   save_recent_files();
-  set_session_message(missing.empty() ? "Opened the session " + where : missing, !missing.empty());
+  session_message_.set(missing.empty() ? "Opened the session " + where : missing, !missing.empty());
   return true;
 }
 
@@ -483,118 +474,28 @@ void Editor::command_save(bool ask) {
     const std::string& a = session_->loaded_path(0);
     path = a.empty() ? std::string("untitled.mostyle") : (std::filesystem::path(a).parent_path() / "untitled.mostyle").string();
   }
-  copy_to(dialog_path_, sizeof dialog_path_, path);
-  dialog_ = SessionDialog::kSave;
-  dialog_opening_ = true;
-  dialog_error_.clear();
+  dialog_.open(ui::SessionDialog::Kind::kSave, path);
 }
 
 void Editor::command_open() {
   const std::string path = !session_path_.empty()     ? session_path_
                            : !recent_.sessions.empty() ? recent_.sessions.front()
                                                        : std::string();
-  copy_to(dialog_path_, sizeof dialog_path_, path);
-  dialog_ = SessionDialog::kOpen;
-  dialog_opening_ = true;
-  dialog_error_.clear();
+  dialog_.open(ui::SessionDialog::Kind::kOpen, path);
 }
 
-void Editor::set_session_message(const std::string& message, bool error) {
-  session_message_ = message;
-  session_error_ = error;
-  if (error)
-    session_message_until_.reset();  // stays until read and closed
-  else
-    session_message_until_ = std::chrono::steady_clock::now() + kSessionMessageSeconds;
-}
-
-void Editor::draw_session_dialog() {
-  if (dialog_ == SessionDialog::kNone) return;
-  const bool save = dialog_ == SessionDialog::kSave;
-  const char* title = save ? "Save session" : "Open session";
-  bool focus = false;
-  if (dialog_opening_) {
-    ImGui::OpenPopup(title);
-    dialog_opening_ = false;
-    focus = true;
-  }
-  const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(0.5f * display.x, 0.3f * display.y), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
-  if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings)) {
-    dialog_ = SessionDialog::kNone;  // closed
-    return;
-  }
-  ImGui::TextUnformatted(save ? "Save the takes, every parameter, the camera and the playback to:"
-                              : "Open the session (.mostyle) in:");
-  if (focus) ImGui::SetKeyboardFocusHere();
-  ImGui::SetNextItemWidth(std::min(640.0f, 0.8f * display.x));
-  bool confirm = ImGui::InputText("##session_path", dialog_path_, sizeof dialog_path_,
-                                  ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_AutoSelectAll);
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("A path, absolute or from the folder mostyle was started in; Enter %s", save ? "saves" : "opens");
-  std::error_code ec;
-  if (save && std::filesystem::exists(dialog_path_, ec))
-    ImGui::TextColored(ImVec4(0.95f, 0.80f, 0.40f, 1.0f), "A file of that name is there: saving replaces it.");
-  if (!save && !recent_.sessions.empty()) {
-    ImGui::TextDisabled("Recent sessions (a click fills the field, a double click opens):");
-    for (const std::string& r : recent_.sessions) {
-      ImGui::PushID(r.c_str());
-      if (ImGui::Selectable(std::filesystem::path(r).filename().string().c_str(), r == dialog_path_,
-                            ImGuiSelectableFlags_AllowDoubleClick | ImGuiSelectableFlags_DontClosePopups)) {
-        copy_to(dialog_path_, sizeof dialog_path_, r);
-        confirm |= ImGui::IsMouseDoubleClicked(0);
-      }
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", r.c_str());
-      ImGui::PopID();
-    }
-  }
-  if (!dialog_error_.empty()) {
-    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + std::min(640.0f, 0.8f * display.x));
-    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.40f, 1.0f), "%s", dialog_error_.c_str());
-    ImGui::PopTextWrapPos();
-  }
-  confirm |= ImGui::Button(save ? "Save" : "Open", ImVec2(96.0f, 0.0f));
-  ImGui::SameLine();
-  const bool cancel =
-      ImGui::Button("Cancel", ImVec2(96.0f, 0.0f)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false);
-  if (confirm) {
-    const bool done = save ? save_session(dialog_path_) : open_session(dialog_path_);
+void Editor::draw_session_windows() {
+  const ui::SessionDialog::Request asked = dialog_.draw(recent_.sessions);
+  if (asked.kind != ui::SessionDialog::Kind::kNone) {
+    const bool done = asked.kind == ui::SessionDialog::Kind::kSave ? save_session(asked.path) : open_session(asked.path);
     if (done) {
-      ImGui::CloseCurrentPopup();
-      dialog_ = SessionDialog::kNone;
-    } else {  // said here, where the path can be corrected
-      dialog_error_ = session_message_;
+      dialog_.done();
+    } else {  // said in the dialog, where the path can be corrected
+      dialog_.failed(session_message_.text());
       session_message_.clear();
     }
-  } else if (cancel) {
-    ImGui::CloseCurrentPopup();
-    dialog_ = SessionDialog::kNone;
   }
-  ImGui::EndPopup();
-}
-
-void Editor::draw_session_message() {
-  if (session_message_.empty() || dialog_ != SessionDialog::kNone) return;
-  if (session_message_until_ && std::chrono::steady_clock::now() > *session_message_until_) {
-    session_message_.clear();
-    return;
-  }
-  if (deterministic_ && !session_error_) return;  // screenshots: the same picture every run
-  // Above the timeline, in the middle: read without covering the panels.
-  const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(0.5f * display.x, display.y - ui::playback_bar_height() - ui::kLayoutMargin),
-                          ImGuiCond_Always, ImVec2(0.5f, 1.0f));
-  bool open = true;
-  const ImGuiWindowFlags flags = ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse |
-                                 ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing;
-  if (ImGui::Begin("Session", &open, flags)) {
-    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 0.5f * display.x);
-    ImGui::TextColored(session_error_ ? ImVec4(1.0f, 0.45f, 0.40f, 1.0f) : ImVec4(0.55f, 0.85f, 0.55f, 1.0f), "%s",
-                       session_message_.c_str());
-    ImGui::PopTextWrapPos();
-  }
-  ImGui::End();
-  if (!open) session_message_.clear();
+  if (!dialog_.is_open()) session_message_.draw(/*hide_successes=*/deterministic_);
 }
 
 void Editor::restore_camera(float aspect) {

@@ -26,9 +26,10 @@
 #include "ui/model/blend_session.h"
 #include "ui/model/edit_history.h"
 #include "ui/model/editor_state.h"
-#include "ui/panels/panel.h"
 #include "ui/model/recent_files.h"
 #include "ui/model/session_file.h"
+#include "ui/panels/panel.h"
+#include "ui/panels/session_dialog.h"
 
 namespace mostyle::ui {
 class FilesPanel;
@@ -129,8 +130,8 @@ class Editor {
   // idle and two frames are drawn. pending until then; the error sentence when it failed.
   bool scripted_save_pending() const { return !scripted_save_path_.empty(); }
   const std::string& scripted_save_error() const { return scripted_save_error_; }
-  const std::string& session_message() const { return session_message_; }
-  bool session_message_is_error() const { return session_error_; }
+  const std::string& session_message() const { return session_message_.text(); }
+  bool session_message_is_error() const { return session_message_.is_error(); }
   // The takes and sessions opened before (options.recent_path: kept across restarts there).
   const ui::RecentFiles& recent_files() const { return recent_; }
 
@@ -144,9 +145,7 @@ class Editor {
   // Sessions: Ctrl+S / Ctrl+Shift+S / Ctrl+O, the path dialog they open, the message window.
   void command_save(bool ask);
   void command_open();
-  void draw_session_dialog();
-  void draw_session_message();
-  void set_session_message(const std::string& message, bool error);
+  void draw_session_windows();  // the dialog (carrying out what it asks) or the message
   void restore_camera(float aspect);  // an opened session's camera, once its takes are in
   void save_session_when_ready();     // --save-session
   void keep_recent_files();           // recent.json follows the session's recent takes
@@ -185,14 +184,8 @@ class Editor {
   std::string session_path_;
   std::string scripted_save_path_, scripted_save_error_;  // --save-session
   int frames_drawn_ = 0;
-  std::string session_message_;
-  bool session_error_ = false;
-  std::optional<std::chrono::steady_clock::time_point> session_message_until_;  // fades; none: until closed
-  enum class SessionDialog { kNone, kSave, kOpen };
-  SessionDialog dialog_ = SessionDialog::kNone;
-  bool dialog_opening_ = false;  // OpenPopup on the next draw_session_dialog()
-  char dialog_path_[1024] = "";
-  std::string dialog_error_;
+  ui::SessionMessage session_message_;
+  ui::SessionDialog dialog_;
   // Recent takes and sessions; recent_path_ empty: not kept across restarts (tests, screenshots).
   std::string recent_path_;
   ui::RecentFiles recent_;
