@@ -3,9 +3,12 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <optional>
+
 #include <nlohmann/json.hpp>
 
 #include "app/cli_common.h"
+#include "app/cli_pipeline_common.h"
 #include "engine/io/bvh_io.h"
 #include "engine/kinematics/convert.h"
 #include "engine/io/error.h"
@@ -59,7 +62,16 @@ void add_info_command(CLI::App& app, std::function<int()>* run) {
   cmd->add_option("--fps", *fps, "Rate to sample FBX and glTF keys at; default the file's")->check(positive_finite_rate());
   cmd->callback([=] {
     *run = [=] {
-      const Clip clip = load_clip(*path, *take, *fps);
+      const auto clip_ptr = std::make_shared<const Clip>(load_clip(*path, *take, *fps));
+      const Clip& clip = *clip_ptr;
+      // Its cycles, in its own frames; a take without the major joints has none to tell.
+      std::optional<TakeCycles> cycles;
+      std::string no_cycles;
+      try {
+        cycles = take_cycles(clip_ptr);
+      } catch (const InputError& e) {
+        no_cycles = e.what();
+      }
       // A BVH is one take, the clip just read (not read again: a BVH may be 100 MB).
       const TakePath file = split_take_path(*path);
       std::vector<TakeInfo> takes;
@@ -84,6 +96,11 @@ void add_info_command(CLI::App& app, std::function<int()>* run) {
         j["height"] = units.height;
         auto& tk = j["takes"] = nlohmann::ordered_json::array();
         for (const TakeInfo& t : takes) tk.push_back({{"name", t.name}, {"seconds", t.seconds}, {"keys", t.keys}});
+        if (cycles) {
+          j["cycles"] = cycles_json(*cycles, clip.fps());
+        } else {
+          j["cycles"] = {{"kind", "unknown"}, {"reason", no_cycles}};
+        }
         auto& joints = j["joints"] = nlohmann::ordered_json::array();
         for (const Joint& jt : s.joints) {
           if (jt.end_site) continue;
@@ -111,7 +128,9 @@ void add_info_command(CLI::App& app, std::function<int()>* run) {
           std::cout << "    " << t.name << "  (" << number(t.seconds) << " s, " << t.keys << " keys)\n";
         std::cout << "  duration: " << number(duration) << " s\n"
                   << "  units (guess): " << units.name << " (height " << number(units.height)
-                  << ")\n";
+                  << ")\n"
+                  << "  cycles: " << (cycles ? cycles_summary(*cycles, clip.fps(), clip.frames()) : "unknown: " + no_cycles)
+                  << "\n";
         // Depths in one pass (parents come first): walking up per joint is quadratic in depth.
         std::vector<int> depths(s.joints.size(), 0);
         for (size_t i = 0; i < s.joints.size(); ++i)

@@ -131,6 +131,7 @@ void add_align_command(CLI::App& app, std::function<int()>* run) {
         j["b"] = pair->b;
         j["fps"] = p->fps;
         j["alignment"] = alignment_json(*p, 1);
+        j["cycles"] = {{"a", cycles_json(p->takes[0].cycles, p->fps)}, {"b", cycles_json(p->takes[1].cycles, p->fps)}};
         Json path = Json::array();
         for (const auto& [i, k] : al.path) path.push_back({i, k});
         j["path"] = path;
@@ -155,7 +156,9 @@ void add_align_command(CLI::App& app, std::function<int()>* run) {
                   << "matched: A " << al.a_first << "-" << al.a_last << ", B " << al.b_first << "-" << al.b_last
                   << "\n"
                   << "dtw cost: " << number(al.cost) << " (A's units), path of " << al.path.size() << " steps, "
-                  << number(times.dtw_ms) << " ms\n";
+                  << number(times.dtw_ms) << " ms\n"
+                  << "cycles: A " << cycles_summary(p->takes[0].cycles, p->fps, al.frames_a) << "\n"
+                  << "        B " << cycles_summary(p->takes[1].cycles, p->fps, al.frames_b) << "\n";
       }
       return 0;
     };

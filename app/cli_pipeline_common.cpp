@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "app/cli_common.h"
 #include "engine/io/atomic_file.h"
 #include "engine/io/error.h"
 #include "engine/io/numbers.h"
@@ -146,6 +147,30 @@ Json range_json(int first, int last, double fps) {
 }
 
 // Take `take`'s alignment onto the reference: what it aligned on, the matched ranges, its quality.
+Json cycles_json(const TakeCycles& cycles, double fps) {
+  Json j;
+  j["kind"] = cycle_kind_name(cycles.kind);
+  if (cycles.kind == CycleKind::kGait) j["foot"] = cycles.foot == 0 ? "left" : "right";
+  j["period_s"] = cycles.period / fps;
+  Json list = Json::array();
+  for (const Cycle& c : cycles.cycles) list.push_back({{"start", c.begin}, {"end", c.end}, {"seconds", c.frames() / fps}});
+  j["cycles"] = list;
+  return j;
+}
+
+std::string cycles_summary(const TakeCycles& cycles, double fps, int frames) {
+  if (cycles.kind == CycleKind::kNone) return "none (the take does not repeat)";
+  std::string s = std::string(cycle_kind_name(cycles.kind)) + ", " + std::to_string(cycles.cycles.size()) +
+                  (cycles.cycles.size() == 1 ? " cycle" : " cycles");
+  if (cycles.kind == CycleKind::kGait) s += cycles.foot == 0 ? " (left foot)" : " (right foot)";
+  char median[32];
+  std::snprintf(median, sizeof median, "%.2f", cycles.period / fps);
+  s += ", median " + std::string(median) + " s, " +
+       std::to_string(static_cast<int>(std::lround(100.0 * cycles.frames_in_cycles() / std::max(frames, 1)))) +
+       "% of the take";
+  return s;
+}
+
 Json alignment_json(const PreparedTakes& p, int take) {
   const Alignment& al = p.takes[static_cast<size_t>(take)].alignment;
   Json j;

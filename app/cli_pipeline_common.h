@@ -57,6 +57,11 @@ Json range_json(int first, int last, double fps);
 // Take `take`'s alignment onto the reference (take 0): what it aligned on, the matched ranges,
 // its quality.
 Json alignment_json(const PreparedTakes& p, int take);
+// A take's cycles (engine/align/cycles.h) at `fps`: {"kind", "foot" (gait), "period_s",
+// "cycles": [{"start", "end", "seconds"}]} with start and end in frames at fps.
+Json cycles_json(const TakeCycles& cycles, double fps);
+// One line: "gait, 14 cycles (left foot), median 0.95 s, 87% of the take" or "none".
+std::string cycles_summary(const TakeCycles& cycles, double fps, int frames);
 Json component_joints_json(const std::vector<ComponentJoints>& parts, const std::vector<std::string>& names);
 Json component_regions_json(const std::vector<ComponentJoints>& parts);
 Json vector_json(const Eigen::VectorXd& v);

@@ -4,24 +4,15 @@
 #include <limits>
 #include <vector>
 
+#include "engine/align/cycles.h"
 #include "engine/io/error.h"
 #include "engine/prepare/canonical_frame.h"
 
 namespace mostyle {
-namespace {
-
-std::vector<int> strikes(const Eigen::MatrixXd& contacts, int foot) {
-  std::vector<int> out;
-  for (Eigen::Index t = 1; t < contacts.rows(); ++t)
-    if (contacts(t, foot) > 0.5 && contacts(t - 1, foot) <= 0.5) out.push_back(static_cast<int>(t));
-  return out;
-}
-
-}  // namespace
 
 LoopCut find_loop(const Eigen::MatrixXd& contacts, const Eigen::MatrixXd& local, const Eigen::VectorXd& heading) {
-  std::vector<int> onsets = strikes(contacts, 0);
-  if (onsets.size() < 2) onsets = strikes(contacts, 1);
+  std::vector<int> onsets = foot_strikes(contacts, 0);
+  if (onsets.size() < 2) onsets = foot_strikes(contacts, 1);
   if (onsets.size() < 2)
     throw InputError("cannot cut a loop: the blend has fewer than two foot strikes of either foot (no whole gait cycle)");
   LoopCut best;

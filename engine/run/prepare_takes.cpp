@@ -123,6 +123,7 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
     t.canonical = to_canonical(t.world, 0, leg[0], leg[3]);
     t.own_local_t = t.canonical.local.transpose();
     t.own_contacts = detect_foot_contacts(t.world, p->feet);
+    t.cycles = detect_cycles(t.own_contacts, t.canonical.local, fps, p->feet.leg_length);
   }
   spent.preprocess_ms = ms_since(t0);
   report_progress(control, 0.3f);
@@ -186,6 +187,12 @@ std::vector<int> export_joints(const PreparedTakes& prepared) {
   std::vector<int> joints;
   for (int major : prepared.majors) joints.push_back(prepared.reference().mapping.joint[major]);
   return joints;
+}
+
+TakeCycles take_cycles(const std::shared_ptr<const Clip>& clip) {
+  PrepareOptions own_rate;
+  own_rate.fps = 0.0;
+  return prepare_takes({clip, clip}, own_rate)->reference().cycles;
 }
 
 double take_foot_sliding(const PreparedTakes& prepared, int take) {

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "engine/align/alignment.h"
+#include "engine/align/cycles.h"
 #include "engine/align/common_timeline.h"
 #include "engine/io/clip.h"
 #include "engine/io/job_control.h"
@@ -52,6 +53,7 @@ struct PreparedTake {
   CanonicalMotion canonical;         // F frames
   Eigen::MatrixXd own_local_t;       // 3M x F: canonical.local transposed (a frame a contiguous column, for the mix)
   Eigen::MatrixXd own_contacts;      // F x 2: foot contacts, left and right, 1 planted
+  TakeCycles cycles;                 // where it repeats: gait cycles, periods or none (cycles.h)
   Alignment alignment;               // onto the reference (the reference's own: empty)
   // The common timeline.
   Eigen::VectorXd frames;            // U: the take's frame at each sample (fractional)
@@ -87,6 +89,11 @@ struct PreparedTakes {
 std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared_ptr<const Clip>>& clips,
                                                    const PrepareOptions& options, JobControl* control = nullptr,
                                                    StageTimes* times = nullptr);
+
+// The cycles of one take on its own, in its file's frames (prepared at its own rate, as the
+// reference of a pair of it with itself). Throws InputError as prepare_takes does (a take
+// without the major joints). Cost: prepare_takes of two takes of F frames.
+TakeCycles take_cycles(const std::shared_ptr<const Clip>& clip);
 
 // How fast take i's planted feet slide on its own frames (foot_contact.h foot_sliding), file units
 // per second: a measure of the take, computed when asked. O(F).

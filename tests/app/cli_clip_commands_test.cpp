@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -56,6 +57,39 @@ TEST_CASE("cli info: text and JSON", "[cli][bvh]") {
   r = box.cli("info --json \"" + latin1 + "\"");
   CHECK(r.status == 0);
   CHECK(r.out.find("\"name\": \"H\xef\xbf\xbd" "fte\"") != std::string::npos);
+  // No major joints: no cycles to tell, said, and info still works.
+  CHECK(r.out.find("\"kind\": \"unknown\"") != std::string::npos);
+}
+
+TEST_CASE("cli info and align list each take's cycles", "[cli][bvh]") {
+  Sandbox box;
+  const std::string walk = test::asset("motions/cmu142_walk_clumsy.bvh");
+  Run r = box.cli("info --json \"" + walk + "\"");
+  REQUIRE(r.status == 0);
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  const nlohmann::json& c = j["cycles"];
+  CHECK(c["kind"] == "gait");
+  REQUIRE(c["cycles"].size() >= 5);
+  int previous_end = 0;
+  for (const auto& cycle : c["cycles"]) {  // in the file's own frames (120 fps), in order
+    const int start = cycle["start"], end = cycle["end"];
+    CHECK(start >= previous_end);
+    CHECK(end > start);
+    CHECK(end <= j["frames"].get<int>());
+    CHECK(cycle["seconds"].get<double>() == Approx((end - start) / 120.0));
+    previous_end = end;
+  }
+  CHECK(c["period_s"].get<double>() > 0.6);
+  CHECK(c["period_s"].get<double>() < 1.6);
+  r = box.cli("info \"" + walk + "\"");
+  CHECK(r.out.find("  cycles: gait, ") != std::string::npos);
+  // align: both takes' cycles at the working rate.
+  r = box.cli("align --json \"" + walk + "\" \"" + test::asset("motions/cmu142_walk_happy.bvh") + "\"");
+  REQUIRE(r.status == 0);
+  const nlohmann::json a = nlohmann::json::parse(r.out);
+  CHECK(a["cycles"]["a"]["kind"] == "gait");
+  CHECK(a["cycles"]["b"]["kind"] == "gait");
+  CHECK(a["cycles"]["a"]["cycles"].size() >= 5);
 }
 
 TEST_CASE("cli: bad input exits 1 with one line naming file and line", "[cli][bvh]") {

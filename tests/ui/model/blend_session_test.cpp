@@ -32,7 +32,8 @@ TEST_CASE("engine link: each change does what its field makes stale, and nothing
     s.state.document.parameters.alpha = 0.9;
     s.session.sync(s.state);
     CHECK_FALSE(worker_asked(s.session));
-    CHECK((s.session.blend()->motion.world - before).norm() > 1e-6);
+    const Eigen::MatrixXd& after = s.session.blend()->motion.world;  // the timing too: maybe another length
+    CHECK((after.rows() != before.rows() || (after - before).norm() > 1e-6));
   }
   SECTION("a view field: nothing asked of the worker, the blend unchanged") {
     const Eigen::MatrixXd before = s.session.blend()->motion.world;
