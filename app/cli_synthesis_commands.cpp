@@ -358,6 +358,7 @@ void add_transfer_command(CLI::App& app, std::function<int()>* run) {
     SynthesisFlags flags;
   };
   auto args = std::make_shared<Args>();
+  args->flags.align.fps = 0.0;  // the content keeps its own frame rate unless --fps says otherwise
   cmd->add_option("CONTENT", args->content,
                   "BVH take that keeps its skeleton, path, length and timing base and takes on the style")
       ->required();

@@ -190,6 +190,19 @@ std::vector<int> foot_strikes(const Eigen::MatrixXd& contacts, int foot) {
   return out;
 }
 
+std::vector<int> cycle_starts_at(const TakeCycles& cycles, const Eigen::VectorXd& frames) {
+  std::vector<int> out;
+  for (Eigen::Index k = 0; k < frames.size(); ++k)
+    for (const Cycle& c : cycles.cycles) {
+      const bool reached = k == 0 ? frames[0] == c.begin : frames[k - 1] < c.begin && frames[k] >= c.begin;
+      if (reached) {
+        out.push_back(static_cast<int>(k));
+        break;
+      }
+    }
+  return out;
+}
+
 TakeCycles detect_cycles(const Eigen::MatrixXd& contacts, const Eigen::MatrixXd& local, double fps, double leg_length,
                          const CycleOptions& options) {
   options.Validate();

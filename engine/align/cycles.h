@@ -46,6 +46,11 @@ struct TakeCycles {
 // that starts planted has not struck). contacts: F x 2, 1 planted. O(F).
 std::vector<int> foot_strikes(const Eigen::MatrixXd& contacts, int foot);
 
+// Where a take shown at `frames` (its frame, fractional, at each shown frame: a mix's sources)
+// starts one of its cycles: the shown frames k where frames[k] reaches a cycle's begin from below
+// (frame 0 when it is one exactly). In order; a cycle shown twice is marked twice. O(K x cycles).
+std::vector<int> cycle_starts_at(const TakeCycles& cycles, const Eigen::VectorXd& frames);
+
 // The cycles of one take. contacts: F x 2 (left, right foot; foot_contact.h), local: F x 3M joint
 // positions in the canonical frame (canonical_frame.h: the travel and heading taken out), fps
 // their rate, leg_length the size that amplitudes are judged by (same units as local). Gait when

@@ -111,6 +111,11 @@ TEST_CASE("cli mix of four takes with per-part weights, and transfer, write BVH 
   REQUIRE(transfer.status == 0);
   const auto t = nlohmann::json::parse(test::slurp(box.path("t.json")));
   CHECK(t["weights"] == std::vector<double>{1.0, 0.0, 0.0});
+  CHECK(t["fps"] == 120.0);  // the content's own rate (CMU: 120 fps)...
+  const auto at30 = box.cli("transfer " + kClumsy + " --neutral " + kHappy + " --style " + kMarching +
+                            " --fps 30 --report " + quoted(box.path("t30.json")));
+  REQUIRE(at30.status == 0);
+  CHECK(nlohmann::json::parse(test::slurp(box.path("t30.json")))["fps"] == 30.0);  // ... unless --fps says
   const auto bad = box.cli("transfer " + kClumsy + " --neutral " + kHappy + " --style " + kMarching +
                            " --strength 3 --out " + quoted(box.path("bad.bvh")));
   CHECK(bad.status == 1);

@@ -32,6 +32,9 @@ struct Take {
   // Optional, frames x joints: 1 where the joint is planted (the engine's foot contacts);
   // empty: the viewport estimates contacts from the height above the floor.
   Eigen::MatrixXd contacts;
+  // The frames of `positions` where one of the take's cycles starts (engine/align/cycles.h), for
+  // the timeline's marks; empty: none, or not known.
+  std::vector<int> cycle_starts;
   // Optional, one per joint: rgb highlight (sRGB), a = strength (a component's joints).
   std::vector<glm::vec4> highlights;
 

@@ -180,6 +180,10 @@ void PaletteView::place(const PreparedTakes& p, const SessionControls& controls,
       if (has_mix_) sample_rows(take.world_placed, mix_.sources.col(i), sampled);
       else sampled = take.world_placed;
       t.visible = i == 0 || ghosts;
+      if (has_mix_) {
+        t.cycle_starts = cycle_starts_at(take.cycles, mix_.sources.col(i));
+        if (i == 0) state.takes[kPaletteMix].cycle_starts = t.cycle_starts;  // the mix walks the reference's cycles
+      }
     }
     if (lanes_on && i >= 0) {
       place_in_lane(sampled, lanes, slot * spacing_, shift_, t.positions);

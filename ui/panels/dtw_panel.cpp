@@ -99,7 +99,9 @@ void DtwPanel::draw(EditorState& state) {
   // matched ranges shaded.
   ImGui::BeginGroup();
   ImGui::TextUnformatted("before warping");
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("A above, B below, each on its own timeline; matched frames joined");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("A above, B below, each on its own timeline; matched frames joined; ticks where each take's "
+                      "cycles begin");
   const int frames = std::max(fa, fb);
   PlotArea before = begin_plot("##before", wide ? 0.45f * room.x : -1.0f, plot_h, 0.0, frames - 1, lo - 1.15 * span,
                                hi + 0.1 * span);
@@ -117,6 +119,13 @@ void DtwPanel::draw(EditorState& state) {
       dl->AddLine(before.to_screen(i, sa(i, col)), before.to_screen(j, sb(j, col) - 1.05 * span),
                   IM_COL32(150, 155, 165, 90), 1.0f);
     }
+    // Where each take's cycles begin (engine/align/cycles.h): ticks at the top of A's band and
+    // the bottom of B's.
+    for (const Cycle& c : p->takes[0].cycles.cycles)
+      dl->AddLine(before.to_screen(c.begin, hi + 0.1 * span), before.to_screen(c.begin, hi - 0.1 * span), color_a(), 2.0f);
+    for (const Cycle& c : p->takes[1].cycles.cycles)
+      dl->AddLine(before.to_screen(c.begin, lo - 1.15 * span), before.to_screen(c.begin, lo - 0.95 * span), color_b(),
+                  2.0f);
     dl->PopClipRect();
   }
   plot_line(before, fa, [&](int i, double* x, double* y) { *x = i; *y = sa(i, col); }, color_a());

@@ -70,7 +70,19 @@ void PlaybackPanel::draw(EditorState& state) {
   ImGui::SameLine();
   ImGui::SetNextItemWidth(-1.0f);
   if (ImGui::SliderInt("##frame", &frame, 0, last, "frame %d")) p.time_s = (frame + 0.5) / fps;
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Drag to go to a frame; left and right arrow keys step one frame");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Drag to go to a frame; left and right arrow keys step one frame.\nTicks: where the "
+                      "reference's cycles (gait cycles, periods) begin");
+  // A tick where each of the reference's cycles begins, along the slider's track.
+  if (last > 0) {
+    const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+    const float inset = 2.0f + 0.5f * ImGui::GetStyle().GrabMinSize;  // ImGui's grab padding and half grab
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    for (int f : reference->cycle_starts) {
+      const float x = lo.x + inset + (hi.x - lo.x - 2.0f * inset) * static_cast<float>(f) / static_cast<float>(last);
+      dl->AddLine(ImVec2(x, hi.y - 6.0f), ImVec2(x, hi.y - 1.0f), ImGui::GetColorU32(ImGuiCol_TextDisabled), 1.5f);
+    }
+  }
   ImGui::End();
 }
 

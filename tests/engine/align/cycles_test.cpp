@@ -70,6 +70,18 @@ TEST_CASE("cycles: foot strikes are landings, worked by hand") {
   CHECK(foot_strikes(c, 1) == std::vector<int>{2, 5, 7});
 }
 
+TEST_CASE("cycles: where a take shown at other frames starts its cycles") {
+  TakeCycles t;
+  t.cycles = {{10, 40}, {40, 70}};
+  Eigen::VectorXd shown(8);
+  shown << 0, 9.5, 10.0, 25, 39.9, 41, 20, 45;  // slowed, sped up, then back (a cycle shown again)
+  CHECK(cycle_starts_at(t, shown) == std::vector<int>{2, 5, 7});
+  Eigen::VectorXd from_begin(2);
+  from_begin << 10, 11;
+  CHECK(cycle_starts_at(t, from_begin) == std::vector<int>{0});
+  CHECK(cycle_starts_at(TakeCycles(), shown).empty());
+}
+
 TEST_CASE("cycles: gait cycles from left strike to left strike, each its own length, a stop left out") {
   const double fps = 30.0;
   const std::vector<int> lengths = {30, 32, 29, 31, 30, 33, 30, 28, 31, 30};
