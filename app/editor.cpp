@@ -424,7 +424,7 @@ bool Editor::save_session(const std::string& path) {
   }
   target = absolute_path(target);
   ui::SessionFile file;
-  file.document = ui::capture_document(state_, *session_);
+  file.document = ui::capture_document(state_);
   for (std::string& f : file.document.files) f = absolute_path(f);  // written relative to the session
   file.camera = session_camera(camera_);
   file.playback = state_.playback;

@@ -192,14 +192,19 @@ std::vector<int> foot_strikes(const Eigen::MatrixXd& contacts, int foot) {
 
 std::vector<int> cycle_starts_at(const TakeCycles& cycles, const Eigen::VectorXd& frames) {
   std::vector<int> out;
-  for (Eigen::Index k = 0; k < frames.size(); ++k)
-    for (const Cycle& c : cycles.cycles) {
-      const bool reached = k == 0 ? frames[0] == c.begin : frames[k - 1] < c.begin && frames[k] >= c.begin;
-      if (reached) {
-        out.push_back(static_cast<int>(k));
-        break;
-      }
+  const std::vector<Cycle>& c = cycles.cycles;  // in order: their begins ascend
+  for (Eigen::Index k = 0; k < frames.size(); ++k) {
+    if (k == 0) {
+      const auto at = std::lower_bound(c.begin(), c.end(), frames[0],
+                                       [](const Cycle& cycle, double f) { return cycle.begin < f; });
+      if (at != c.end() && at->begin == frames[0]) out.push_back(0);
+      continue;
     }
+    // The first begin above frames[k - 1]: reached when frames[k] is at or past it.
+    const auto at = std::upper_bound(c.begin(), c.end(), frames[k - 1],
+                                     [](double f, const Cycle& cycle) { return f < cycle.begin; });
+    if (at != c.end() && frames[k] >= at->begin) out.push_back(static_cast<int>(k));
+  }
   return out;
 }
 

@@ -48,7 +48,8 @@ std::vector<int> foot_strikes(const Eigen::MatrixXd& contacts, int foot);
 
 // Where a take shown at `frames` (its frame, fractional, at each shown frame: a mix's sources)
 // starts one of its cycles: the shown frames k where frames[k] reaches a cycle's begin from below
-// (frame 0 when it is one exactly). In order; a cycle shown twice is marked twice. O(K x cycles).
+// (frame 0 when it is one exactly). In order; a cycle shown twice is marked twice.
+// O(K log cycles): it runs on the alpha slider's path.
 std::vector<int> cycle_starts_at(const TakeCycles& cycles, const Eigen::VectorXd& frames);
 
 // The cycles of one take. contacts: F x 2 (left, right foot; foot_contact.h), local: F x 3M joint

@@ -11,6 +11,7 @@
 #include "engine/io/error.h"
 #include "engine/export/channel_layout.h"
 #include "engine/export/export_solve.h"
+#include "ui/model/document_fields.h"
 #include "ui/model/export_job.h"
 #include "ui/model/joint_contacts.h"
 #include "ui/model/lanes.h"
@@ -47,6 +48,8 @@ DecomposeParams decompose_params_for(const Document& document) {
   return p;
 }
 
+// Whether two requests ask for the same decomposition (what the sliders set; not the solver's
+// iterations or tolerance).
 bool same_decomposition(const DecomposeParams& x, const DecomposeParams& y) {
   return x.mode == y.mode && x.components == y.components && x.sparsity == y.sparsity &&
          x.basic_motions == y.basic_motions && x.basic_sparsities == y.basic_sparsities;
@@ -89,17 +92,22 @@ void BlendSession::request_decomposition(const Document& document) {
 
 void BlendSession::sync(EditorState& state, bool item_held) {
   const Document& d = state.document;
-  // The decomposition first: a load decomposes with the parameters last asked for.
-  if (!item_held && !same_decomposition(decompose_params_for(d), requested_)) request_decomposition(d);
-  if (load_waiting_) {
+  // What the document's change since the worker was last asked makes stale (document_fields.h),
+  // once nothing is held. The decomposition first: a load decomposes with the parameters last
+  // asked for.
+  const bool realign = !item_held && differs_at(asked_, d, Stale::kAlignment);
+  if (!item_held) {
+    if (differs_at(asked_, d, Stale::kDecomposition)) request_decomposition(d);
+    asked_ = d;
+  }
+  if (load_waiting_) {  // a command: given now, with the document's alignment
     load_waiting_ = false;
-    aligned_ = d.controls.align;
+    asked_.controls.align = d.controls.align;
     std::vector<std::string> paths = requested_files_;
     if (paths.size() == 1) paths.push_back(paths[0]);  // A with itself
     worker_.load(paths, prepare_options(d));
-  } else if (!item_held && !(aligned_ == d.controls.align)) {
-    aligned_ = d.controls.align;
-    if (snapshot_->prepared) worker_.load(snapshot_->paths, prepare_options(d));
+  } else if (realign && snapshot_->prepared) {
+    worker_.load(snapshot_->paths, prepare_options(d));
   }
   update_blend(state);
 }
@@ -120,10 +128,7 @@ void BlendSession::set_recent(const std::vector<std::string>& paths) {
 }
 
 bool BlendSession::decomposition_outdated() const {
-  const DecomposeParams& shown = snapshot_->decompose_params;
-  return !snapshot_->decomposed || shown.mode != requested_.mode || shown.components != requested_.components ||
-         shown.sparsity != requested_.sparsity || shown.basic_motions != requested_.basic_motions ||
-         shown.basic_sparsities != requested_.basic_sparsities;
+  return !snapshot_->decomposed || !same_decomposition(snapshot_->decompose_params, requested_);
 }
 
 void BlendSession::start_error_sweep(const DecomposeParams& base) {
@@ -135,9 +140,7 @@ void BlendSession::start_error_sweep(const DecomposeParams& base) {
   sweep_seen_version_ = 0;
   if (wake_) sweep_worker_->set_on_change(wake_);
   sweep_worker_->decompose(sweep_params_);
-  PrepareOptions options;
-  options.align = aligned_;
-  sweep_worker_->load(snapshot_->paths, options);
+  sweep_worker_->load(snapshot_->paths, prepare_options(asked_));
 }
 
 void BlendSession::set_wake(std::function<void()> wake) {

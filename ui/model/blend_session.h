@@ -163,7 +163,7 @@ class BlendSession {
   const Decomposed* seen_decomposed_ = nullptr;
   const Decomposed* blended_decomposed_ = nullptr;
   DecomposeParams requested_;   // the decomposition last asked of the worker
-  AlignmentOptions aligned_;     // the alignment options the takes were last asked to load with
+  Document asked_;               // the document as the worker was last asked for it (sync)
   bool load_waiting_ = false;    // load_files() since the last sync()
   BlendParams blended_params_;
   MixParams blend_mix_;  // blended_params_ in a mix's terms (blend_params.h)

@@ -27,6 +27,14 @@ bool in_range(double v, const Range& r) {
   return f >= lo && f <= hi && !(r.open_low && f <= lo);
 }
 
+bool differs_at(const Document& x, const Document& y, Stale what) {
+  bool differs = false;
+  document_fields(x, y, [&](const Field& field, const auto& a, const auto& b) {
+    differs = differs || (field.stale == what && !(a == b));
+  });
+  return differs;
+}
+
 Stale stale_after(const Document& before, const Document& after) {
   Stale stale = Stale::kNothing;
   document_fields(before, after, [&](const Field& field, const auto& x, const auto& y) {
@@ -91,14 +99,6 @@ PaletteControls reorder_takes(const PaletteControls& c, const std::vector<int>& 
     if (order[k] == c.content) out.content = static_cast<int>(k);
   }
   return out;
-}
-
-bool decomposition_differs(const Document& x, const Document& y) {
-  bool differs = false;
-  document_fields(x, y, [&](const Field& field, const auto& a, const auto& b) {
-    differs = differs || (field.stale == Stale::kDecomposition && !(a == b));
-  });
-  return differs;
 }
 
 }  // namespace mostyle::ui

@@ -92,9 +92,4 @@ bool same_files(const std::vector<std::string>& x, const std::vector<std::string
 // another length (not yet sized for these takes) is left as it is.
 PaletteControls reorder_takes(const PaletteControls& c, const std::vector<int>& order);
 
-// Whether going from `x` to `y` needs a new decomposition: a field whose change makes the
-// decomposition stale differs (k, sparsity, the mode, the basic motions or their sparsities;
-// ui/model/document_fields.h).
-bool decomposition_differs(const Document& x, const Document& y);
-
 }  // namespace mostyle::ui

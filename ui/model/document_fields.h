@@ -2,7 +2,7 @@
 // Every field of a Document (ui/model/document.h), once: its key as a session file spells it, the
 // range of values the editor's controls allow, whether a session file keeps it, and what a
 // change to it makes stale. Equality (undo sees a change), what undo and redo must redo
-// (stale_after), the decomposition check, the session file (ui/model/session_file.cpp: its keys,
+// (stale_after), the session file (ui/model/session_file.cpp: its keys,
 // the ranges it reads with, the keys it refuses) and the panels' sliders are all made from this
 // one list: a field added to Document, SessionControls, PaletteControls or BlendParameters goes
 // here, and nowhere else.
@@ -89,5 +89,9 @@ bool in_range(double v, const Range& r);
 
 // The most a change from `before` to `after` makes stale (kNothing: the same document).
 Stale stale_after(const Document& before, const Document& after);
+
+// Whether a field whose change makes exactly `what` stale differs between x and y (kDecomposition:
+// k, sparsity, the mode, the basic motions or their sparsities; kAlignment: the alignment).
+bool differs_at(const Document& x, const Document& y, Stale what);
 
 }  // namespace mostyle::ui

@@ -23,14 +23,14 @@ std::vector<std::string> loaded_files(const WorkerSnapshot& snap) {
 
 }  // namespace
 
-Document capture_document(const EditorState& state, const BlendSession&) {
+Document capture_document(const EditorState& state) {
   Document d = state.document;
   d.controls = document_controls(d.controls);
   return d;
 }
 
 void apply_document(const Document& document, EditorState& state, BlendSession& session) {
-  const Document before = capture_document(state, session);
+  const Document before = capture_document(state);
   // A load on its way counts as loaded: undoing back to the loaded takes must replace it.
   const std::vector<std::string> takes = load_pending(session) ? requested_files(session) : before.files;
   SessionControls& c = state.document.controls;
@@ -52,7 +52,7 @@ std::string apply_session_document(const Document& document, const std::string& 
     return std::string();
   }
   Document kept = document;
-  kept.files = capture_document(state, session).files;
+  kept.files = capture_document(state).files;
   if (load_pending(session)) kept.files = requested_files(session);
   apply_document(kept, state, session);
   return missing_takes_message(session_path, missing);
@@ -68,7 +68,7 @@ bool load_pending(const BlendSession& session) {
 void EditHistory::record(const EditorState& state, BlendSession& session, bool item_active) {
   touched_ = touched_ || item_active;
   if (item_active || load_pending(session)) return;
-  const Document now = capture_document(state, session);
+  const Document now = capture_document(state);
   if (now.files.empty()) return;  // nothing loaded yet: no state to come back to
   const Document* top = history_.current();
   if (top == nullptr || touched_ || !same_files(now.files, top->files)) history_.commit(now);

@@ -21,7 +21,7 @@ namespace mostyle::ui {
 
 // What the animator edits now. Its files are the takes loaded (the worker's snapshot as the
 // session last polled it), not those asked for. O(size of the controls).
-Document capture_document(const EditorState& state, const BlendSession& session);
+Document capture_document(const EditorState& state);
 
 // Makes `document` the editor's: the parameters, the controls (the picked component and the DTW
 // view's coordinate stay), the overlay; and a load when the takes differ from those loaded or

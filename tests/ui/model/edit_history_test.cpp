@@ -154,8 +154,8 @@ TEST_CASE("undo and redo k: a new decomposition resizing the per-component alpha
 
 TEST_CASE("an opened session whose take is missing keeps the takes, restores the rest, names the file") {
   LoadedSession s;
-  const std::vector<std::string> before = capture_document(s.state, s.session).files;
-  Document d = capture_document(s.state, s.session);
+  const std::vector<std::string> before = capture_document(s.state).files;
+  Document d = capture_document(s.state);
   d.parameters.alpha = 0.85;
   d.controls.timing_a = true;
   d.overlay = true;
@@ -167,10 +167,10 @@ TEST_CASE("an opened session whose take is missing keeps the takes, restores the
   CHECK(s.state.document.controls.timing_a);
   CHECK(s.state.document.overlay);
   s.session.wait_idle(s.state);
-  CHECK(capture_document(s.state, s.session).files == before);
+  CHECK(capture_document(s.state).files == before);
   // Every take there: applied as it is, the takes loaded.
   d.files = {test::asset("motions/cmu142_walk_joy.bvh"), test::asset("motions/cmu142_walk_marching.bvh")};
   CHECK(apply_session_document(d, "/sessions/day.mostyle", s.state, s.session).empty());
   s.session.wait_idle(s.state);
-  CHECK(capture_document(s.state, s.session) == d);
+  CHECK(capture_document(s.state) == d);
 }

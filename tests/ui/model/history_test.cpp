@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include "ui/model/document.h"
+#include "ui/model/document_fields.h"
 #include "ui/model/history.h"
 
 using namespace mostyle;
@@ -111,9 +112,9 @@ TEST_CASE("document: every edited field counts, the view's own state does not") 
   viewed.selected_component = 3;
   viewed.dtw_coordinate = 0;
   CHECK(document_controls(viewed) == base.controls);
-  CHECK(decomposition_differs(base, changed[0]));
-  CHECK(decomposition_differs(base, changed[2]));
-  CHECK_FALSE(decomposition_differs(base, changed[4]));
+  CHECK(stale_after(base, changed[0]) == Stale::kDecomposition);
+  CHECK(stale_after(base, changed[2]) == Stale::kDecomposition);
+  CHECK(stale_after(base, changed[4]) == Stale::kMix);
   CHECK(same_files({"/takes/x/../a.bvh"}, {"/takes/a.bvh"}));
   CHECK_FALSE(same_files({"/takes/a.bvh"}, {"/takes/b.bvh"}));
   CHECK_FALSE(same_files({"/takes/a.bvh"}, {"/takes/a.bvh", "/takes/a.bvh"}));
