@@ -16,6 +16,12 @@ namespace mostyle::cli {
 
 void AlignFlags::add_to(CLI::App* cmd) {
   cmd->add_option("--fps", fps, "Working and output frame rate (0 keeps the reference's)")->capture_default_str();
+  cmd->add_option("--time-base", time_base,
+                  "cycles: each cycle of the reference matched with a cycle of each other take (a short take's "
+                  "reused in order), so the whole reference is kept, the others' posture where it does not repeat; "
+                  "whole: one open-ended alignment of the whole takes (what takes that do not repeat get)")
+      ->check(CLI::IsMember({"cycles", "whole"}))
+      ->capture_default_str();
   cmd->add_option("--dtw", dtw,
                   "slope: slope-limited, open-ended DTW with a smooth warp; paper: the paper's plain "
                   "end-to-end left-foot DTW")
@@ -37,6 +43,7 @@ PrepareOptions AlignFlags::options() const {
   PrepareOptions o;
   o.fps = fps;
   o.align.method = parse_dtw_method(dtw);
+  o.align.time_base = parse_time_base(time_base);
   o.align.on = parse_align_on(align_on);
   o.align.band = band;
   o.align.slope.max_slope = max_slope;
@@ -175,6 +182,7 @@ Json alignment_json(const PreparedTakes& p, int take) {
   const Alignment& al = p.takes[static_cast<size_t>(take)].alignment;
   Json j;
   j["method"] = dtw_method_name(al.options.method);
+  j["time_base"] = al.by_cycles() ? "cycles" : "whole";  // what it was aligned by (cycles fall back to whole)
   j["feature"] = align_on_name(al.feature.on);
   j["locomotion"] = al.feature.locomotion;
   Json joints = Json::array();

@@ -17,10 +17,11 @@ namespace mostyle::cli {
 
 using Json = nlohmann::ordered_json;
 
-// --fps, --dtw, --align-on, --max-slope, --closed-ends, --band.
+// --fps, --time-base, --dtw, --align-on, --max-slope, --closed-ends, --band.
 struct AlignFlags {
   double fps = 30.0;
   int band = -1;
+  std::string time_base = "cycles";
   std::string dtw = "slope";
   std::string align_on = "auto";
   int max_slope = 2;

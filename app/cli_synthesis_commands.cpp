@@ -152,7 +152,12 @@ int run_synthesis(const Prepared& p, const std::vector<std::string>& files, cons
     t["reconstruction_rmse"] = d.rmse[static_cast<size_t>(i)];
     t["foot_sliding"] = take_foot_sliding(palette, i);
     if (i > 0) t["alignment"] = alignment_json(palette, i);
-    t["source_frames"] = vector_json(result.sources.col(i));
+    // Its own file's frames at the working rate (null where a take registered by cycles gives
+    // its posture only), and which of its cycles each output frame shows (-1: none).
+    t["source_frames"] = vector_json(frames_in_take(palette.takes[static_cast<size_t>(i)], result.sources.col(i)));
+    const Eigen::VectorXi shown = cycles_shown(palette.takes[static_cast<size_t>(i)], result.sources.col(i));
+    t["source_cycles"] = std::vector<int>(shown.data(), shown.data() + shown.size());
+    t["time_base"] = palette.takes[static_cast<size_t>(i)].registration.empty() ? "whole" : "cycles";
     takes.push_back(t);
   }
   r["takes"] = takes;

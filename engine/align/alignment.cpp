@@ -60,6 +60,12 @@ std::vector<std::string> alignment_warnings(const Alignment& al, double fps, con
   auto in_file = [&](double frame, const AlignedTake& take) {
     return static_cast<int>(std::lround(take.file_fps > 0 ? frame * take.file_fps / fps : frame));
   };
+  // B's frames as the take's own (by cycles, B's frames are the registered take's).
+  auto b_own = [&](double frame) {
+    if (!al.by_cycles()) return frame;
+    const Eigen::Index at = std::clamp<Eigen::Index>(std::lround(frame), 0, al.b_source.size() - 1);
+    return std::isnan(al.b_source[at]) ? frame : al.b_source[at];
+  };
   const TimeWarp& w = al.warp;
   std::vector<std::string> out;
   for (const auto& [k, end] : al.poor) {
@@ -68,7 +74,7 @@ std::vector<std::string> alignment_warnings(const Alignment& al, double fps, con
                   "%s's frames %d-%d (%s to %s) match %s's frames %d-%d poorly: the %s differ %.1f times as much as "
                   "along the rest of the alignment",
                   a.name.c_str(), in_file(w.a[k], a), in_file(w.a[end], a), seconds(w.a[k], fps).c_str(),
-                  seconds(w.a[end], fps).c_str(), b.name.c_str(), in_file(w.b[k], b), in_file(w.b[end], b),
+                  seconds(w.a[end], fps).c_str(), b.name.c_str(), in_file(b_own(w.b[k]), b), in_file(b_own(w.b[end]), b),
                   align_on_name(al.feature.on), al.cost_ratio.segment(k, end - k + 1).mean());
     out.push_back(s);
   }
@@ -84,6 +90,14 @@ std::vector<std::string> alignment_warnings(const Alignment& al, double fps, con
   left_out(a, al.a_first, al.a_last, al.frames_a, b);
   left_out(b, al.b_first, al.b_last, al.frames_b, a);
   return out;
+}
+
+const char* time_base_name(TimeBase base) { return base == TimeBase::kCycles ? "cycles" : "whole"; }
+
+TimeBase parse_time_base(const std::string& name) {
+  if (name == "cycles") return TimeBase::kCycles;
+  if (name == "whole") return TimeBase::kWhole;
+  throw InputError("expected a time base cycles or whole, found '" + name + "'");
 }
 
 const char* dtw_method_name(DtwMethod method) { return method == DtwMethod::kSlope ? "slope" : "paper"; }
@@ -128,6 +142,59 @@ Alignment align_takes(const CanonicalMotion& a, const CanonicalMotion& b, const 
   al.b_first = al.path.front().second;
   al.b_last = al.path.back().second;
   assess(al, frames_a, frames_b, fps);
+  return al;
+}
+
+Alignment align_by_cycles(const CanonicalMotion& a, const RegisteredMotion& b, const FeatureJoints& joints,
+                          double leg_length, double fps, const AlignmentOptions& options, JobControl* control) {
+  options.Validate();
+  const std::vector<CycleRegistration::Anchor>& anchors = b.registration.anchors;
+  if (anchors.size() < 2) throw InputError("cycle registration: a registered take needs its spans' anchors");
+  Alignment al;
+  al.options = options;
+  al.feature = alignment_feature(a, b.motion, joints, options.on, leg_length, fps);
+  const Eigen::MatrixXd& fa = al.feature.a;
+  const Eigen::MatrixXd& fb = al.feature.b;
+  auto add = [&](int i, int j) {
+    if (!al.path.empty() && al.path.back() == std::make_pair(i, j)) return;
+    al.path.emplace_back(i, j);
+  };
+  SlopeDtwOptions closed = options.slope;
+  closed.open_ends = false;
+  for (size_t s = 0; s + 1 < anchors.size(); ++s) {
+    check_cancel(control);
+    const int r0 = anchors[s].reference, v0 = anchors[s].registered;
+    const int n = anchors[s + 1].reference - r0, m = anchors[s + 1].registered - v0;
+    if (!anchors[s].cycle) {  // between cycles, 1:1
+      for (int j = 0; j <= n; ++j) {
+        add(r0 + j, v0 + j);
+        al.cost += (fa.row(r0 + j) - fb.row(v0 + j)).norm();
+      }
+      continue;
+    }
+    // A cycle and its match: the slope-limited DTW with closed ends, or a line when the lengths
+    // are too far apart for its slope.
+    try {
+      const SlopeDtwPath path = align_slope_dtw(fa.middleRows(r0, n + 1), fb.middleRows(v0, m + 1), closed, control);
+      for (const auto& [i, j] : path.steps) add(r0 + i, v0 + j);
+      al.cost += path.cost;
+    } catch (const InputError&) {
+      const int steps = std::max(n, m);
+      for (int k = 0; k <= steps; ++k) add(r0 + static_cast<int>(std::lround(double(k) * n / steps)),
+                                          v0 + static_cast<int>(std::lround(double(k) * m / steps)));
+    }
+  }
+  // Smoothed over a part of a cycle: a warp that bends sharply within a cycle plays one take's
+  // frames up to max_slope times as fast for a moment, which a mix with negative weights (a
+  // transfer) makes visible as a burst of speed.
+  const double smoothing = std::max(options.smoothing_frames, kCycleWarpSmoothing * b.registration.cycles.period);
+  al.warp = smooth_warp(al.path, smoothing);
+  al.a_first = 0;
+  al.a_last = anchors.back().reference;
+  al.b_first = 0;
+  al.b_last = anchors.back().registered;
+  al.b_source = b.registration.source;
+  assess(al, static_cast<int>(a.local.rows()), static_cast<int>(b.motion.local.rows()), fps);
   return al;
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/align/cycles.h"
+#include "engine/prepare/canonical_frame.h"
 
 namespace mostyle {
 
@@ -24,5 +25,51 @@ std::vector<int> pair_cycles(const TakeCycles& reference, const TakeCycles& take
 // `frames`. O(frames).
 Eigen::VectorXd frames_by_cycles(const TakeCycles& reference, const TakeCycles& take, const std::vector<int>& pairs,
                                  int frames);
+
+// The take registered onto the reference by cycles: a motion of V frames laid on the
+// reference's spans, in order. A span of the reference inside its cycle k holds the take's cycle
+// pairs[k], its own frames (V frames as many as that cycle has, so its timing is the take's); a
+// span outside the reference's cycles holds, frame for frame, the reference's own motion moved
+// by the take's posture (the take's mean pose over its cycles minus the reference's), faded
+// over up to fade frames into the take's own frames running on from the cycle before and into
+// the cycle after. Where a reused cycle does not follow on from the one before in the take (its
+// last cycle, then its first again), the pose difference at the seam is spread over the cycle
+// (full at its start, none at its end). The root steps follow the same rule (the take's in its
+// cycles, the reference's in between) and are integrated from the reference's first frame.
+struct CycleRegistration {
+  TakeCycles take_cycles;             // the take's own cycles it was registered with, in its frames
+  std::vector<int> pairs;             // per reference cycle, the take's cycle (pair_cycles)
+  TakeCycles cycles;                  // the registered cycles, in the registered frames, one per reference cycle
+  // Where the spans meet: the reference's frame and the registered frame at each span's start,
+  // then both ends' last frames (cycle false). From an anchor to the next the frames run 1:1 (a
+  // span outside cycles) or cover a reference cycle and its take cycle (cycle true).
+  struct Anchor {
+    int reference = 0, registered = 0;
+    bool cycle = false;
+  };
+  std::vector<Anchor> anchors;
+  Eigen::VectorXd source;             // V: the take's own frame each registered frame shows; NaN: its posture only
+  Eigen::VectorXi source_cycle;       // V: which of the take's cycles that frame is from; -1 outside them
+  bool empty() const { return pairs.empty(); }
+};
+
+struct RegisteredMotion {
+  CanonicalMotion motion;        // V frames: local (V x 3M), ground (V x 2), heading (V)
+  Eigen::MatrixXd contacts;      // V x 2
+  CycleRegistration registration;
+};
+
+// Whether two takes can be registered by cycles: both have cycles of one kind, and gait cycles
+// begin at the same foot's strikes (detect the take's again with CycleOptions::foot otherwise).
+bool cycles_register(const TakeCycles& reference, const TakeCycles& take);
+
+// The take registered onto the reference (see RegisteredMotion). reference/take: canonical
+// motions (Fr and Ft frames, one skeleton), their contacts (F x 2) and cycles (cycles_register
+// true); fade: frames the posture fades over (at most half of a span between cycles each side).
+// Throws InputError when the cycles cannot be registered or do not fit their takes' frames.
+// O((Fr + V) x 3M).
+RegisteredMotion register_by_cycles(const CanonicalMotion& reference, const Eigen::MatrixXd& reference_contacts,
+                                    const TakeCycles& reference_cycles, const CanonicalMotion& take,
+                                    const Eigen::MatrixXd& take_contacts, const TakeCycles& take_cycles, int fade);
 
 }  // namespace mostyle

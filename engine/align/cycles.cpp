@@ -175,6 +175,7 @@ void CycleOptions::Validate() const {
     throw InputError("cycle detection: the periodicity asked for must be above 0, up to 1");
   if (!(min_amplitude >= 0.0) || !std::isfinite(min_amplitude))
     throw InputError("cycle detection: the smallest amplitude must be a number from 0 up");
+  if (foot < -1 || foot > 1) throw InputError("cycle detection: the foot must be left (0), right (1) or either (-1)");
 }
 
 int TakeCycles::frames_in_cycles() const {
@@ -219,6 +220,7 @@ TakeCycles detect_cycles(const Eigen::MatrixXd& contacts, const Eigen::MatrixXd&
     throw InputError("cycle detection: the frame rate and the leg length must be above 0");
   TakeCycles out;
   for (int foot : {0, 1}) {
+    if (options.foot >= 0 && foot != options.foot) continue;
     std::vector<Cycle> cycles = gait_cycles(contacts, foot, fps, options);
     if (cycles.size() > out.cycles.size()) {
       out.cycles = std::move(cycles);

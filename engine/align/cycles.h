@@ -31,6 +31,7 @@ struct CycleOptions {
   double max_change = 0.45;
   double min_periodicity = 0.5;  // correlation of the moving joints with themselves one period on
   double min_amplitude = 0.04;   // leg lengths: joints that move less count as still
+  int foot = -1;  // gait cycles begin at this foot's strikes (0 left, 1 right); -1: the foot giving more
   void Validate() const;         // throws InputError on a bad value
 };
 
@@ -55,7 +56,8 @@ std::vector<int> cycle_starts_at(const TakeCycles& cycles, const Eigen::VectorXd
 // The cycles of one take. contacts: F x 2 (left, right foot; foot_contact.h), local: F x 3M joint
 // positions in the canonical frame (canonical_frame.h: the travel and heading taken out), fps
 // their rate, leg_length the size that amplitudes are judged by (same units as local). Gait when
-// either foot gives at least one cycle (the foot with more cycles; the left on a tie), else
+// either foot gives at least one cycle (the foot with more cycles, the left on a tie; only
+// options.foot when it names one), else
 // periodic when the joints that move repeat, else none. Throws InputError on mismatched sizes,
 // fps or leg_length not above 0, or bad options. O(F x M) for gait; O(F x P) more for another
 // action (P: the longest period tried, in frames).

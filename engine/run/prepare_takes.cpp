@@ -20,6 +20,9 @@ double ms_since(Clock::time_point t0) {
 }
 
 constexpr double kMaxFps = 1000.0;
+// The posture of a take registered by cycles fades in and out over this many of the
+// reference's cycles, where the reference is not in a cycle.
+constexpr double kPostureFadeCycles = 0.5;
 
 std::string take_name(int i, const Clip& clip) {
   return "take " + std::to_string(i + 1) + " (" + clip.source + ")";
@@ -56,6 +59,19 @@ std::vector<int> shared_majors(const std::vector<std::shared_ptr<const Clip>>& c
                                 [&](int m) { return std::find(only.begin(), only.end(), m) == only.end(); }),
                  common.end());
   return common;
+}
+
+// A take's cycles as registration needs them: gait cycles beginning at the foot the reference's
+// begin at (detected again at that foot when the take's own begin at the other); none when the
+// alignment is not by cycles (the paper's DTW aligns whole takes).
+TakeCycles cycles_to_register(const PreparedTakes& p, const PreparedTake& t, const AlignmentOptions& align) {
+  if (align.method != DtwMethod::kSlope || align.time_base != TimeBase::kCycles) return {};
+  const TakeCycles& reference = p.takes.front().cycles;
+  if (reference.kind != CycleKind::kGait || t.cycles.kind != CycleKind::kGait || t.cycles.foot == reference.foot)
+    return t.cycles;
+  CycleOptions at_foot;
+  at_foot.foot = reference.foot;
+  return detect_cycles(t.own_contacts, t.canonical.local, p.fps, p.feet.leg_length, at_foot);
 }
 
 }  // namespace
@@ -134,8 +150,26 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
   std::vector<const TimeWarp*> warps;
   for (int i = 1; i < n; ++i) {
     PreparedTake& t = p->takes[static_cast<size_t>(i)];
-    t.alignment = align_takes(reference.canonical, t.canonical, p->feature_joints, p->feet.leg_length, fps,
-                              options.align, control);
+    const TakeCycles own = cycles_to_register(*p, t, options.align);
+    if (cycles_register(reference.cycles, own)) {
+      // Its own timeline becomes the registered take: its cycles on the reference's.
+      const int fade = std::max(2, static_cast<int>(std::lround(kPostureFadeCycles * reference.cycles.period)));
+      RegisteredMotion registered = register_by_cycles(reference.canonical, reference.own_contacts, reference.cycles,
+                                                       t.canonical, t.own_contacts, own, fade);
+      t.alignment = align_by_cycles(reference.canonical, registered, p->feature_joints, p->feet.leg_length, fps,
+                                    options.align, control);
+      // Poses faded or eased across a seam are blends: their bones are put back to the
+      // reference's lengths, and the canonical poses read again from them.
+      to_world(registered.motion.local, registered.motion.ground, registered.motion.heading, &t.world);
+      apply_limb_lengths(t.world, p->parents, p->lengths);
+      t.canonical = to_canonical(t.world, 0, leg[0], leg[3]);
+      t.own_contacts = std::move(registered.contacts);
+      t.registration = std::move(registered.registration);
+      t.own_local_t = t.canonical.local.transpose();
+    } else {
+      t.alignment = align_takes(reference.canonical, t.canonical, p->feature_joints, p->feet.leg_length, fps,
+                                options.align, control);
+    }
     t.alignment.warnings = alignment_warnings(t.alignment, fps, aligned_name(0, n, *reference.clip),
                                               aligned_name(i, n, *t.clip));
     warps.push_back(&t.alignment.warp);
@@ -193,6 +227,38 @@ TakeCycles take_cycles(const std::shared_ptr<const Clip>& clip) {
   PrepareOptions own_rate;
   own_rate.fps = 0.0;
   return prepare_takes({clip, clip}, own_rate)->reference().cycles;
+}
+
+Eigen::VectorXd frames_in_take(const PreparedTake& take, const Eigen::VectorXd& frames) {
+  if (take.registration.empty()) return frames;
+  const Eigen::VectorXd& source = take.registration.source;
+  const Eigen::Index last = source.size() - 1;
+  Eigen::VectorXd out(frames.size());
+  for (Eigen::Index k = 0; k < frames.size(); ++k) {
+    const double at = std::clamp(frames[k], 0.0, double(last));
+    const Eigen::Index r = std::min<Eigen::Index>(static_cast<Eigen::Index>(at), std::max<Eigen::Index>(last - 1, 0));
+    const double f = at - double(r);
+    const double s0 = source[r], s1 = source[std::min(r + 1, last)];
+    // Between two frames of one run of the take's own frames, in between; else the nearer.
+    out[k] = std::abs(s1 - s0) <= 1.0 + 1e-9 ? s0 + f * (s1 - s0) : (f < 0.5 ? s0 : s1);
+  }
+  return out;
+}
+
+Eigen::VectorXi cycles_shown(const PreparedTake& take, const Eigen::VectorXd& frames) {
+  Eigen::VectorXi out(frames.size());
+  const Eigen::Index last = take.registration.source_cycle.size() - 1;
+  const std::vector<Cycle>& own = take.cycles.cycles;
+  for (Eigen::Index k = 0; k < frames.size(); ++k) {
+    if (!take.registration.empty()) {
+      out[k] = take.registration.source_cycle[std::clamp<Eigen::Index>(std::lround(frames[k]), 0, last)];
+      continue;
+    }
+    const auto at = std::upper_bound(own.begin(), own.end(), frames[k],
+                                     [](double f, const Cycle& c) { return f < c.begin; });
+    out[k] = at != own.begin() && frames[k] < std::prev(at)->end ? static_cast<int>(std::prev(at) - own.begin()) : -1;
+  }
+  return out;
 }
 
 double take_foot_sliding(const PreparedTakes& prepared, int take) {

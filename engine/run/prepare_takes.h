@@ -3,8 +3,10 @@
 // reference, whose skeleton, bones, world and timeline the others are brought onto:
 //   each take, once: its major joints at the working rate (FK), retargeted onto the reference's
 //   bones (the reference as it is), in the canonical frame (canonical_frame.h), its foot contacts;
-//   each other take: aligned onto the reference (left-foot DTW or the smooth warp, alignment.h)
-//   and placed where the reference stands when their match starts;
+//   each other take: registered onto the reference by cycles when both repeat (its cycles laid
+//   on the reference's, its posture in between: cycle_registration.h; its own timeline is then
+//   the registered one, which covers the whole reference), else aligned whole (left-foot DTW or
+//   the smooth warp, alignment.h); placed where the reference stands when their match starts;
 //   all of them read on one common timeline (U samples, common_timeline.h): poses, root paths
 //   and steps, whole-turn flips, contacts, then normalized with one scale (normalize.h).
 // A pair is two takes: its common timeline is the alignment's own warp, unchanged. The
@@ -42,7 +44,9 @@ struct PrepareOptions {
 };
 
 // One take. Its own frames (F, at the working rate) are in the reference's bones; on the
-// common timeline (U samples) in the reference's world.
+// common timeline (U samples) in the reference's world. A take registered by cycles has as its
+// own frames the registered take (F = V frames, `registration` says which of its file's frames
+// each shows).
 struct PreparedTake {
   std::shared_ptr<const Clip> clip;  // as loaded
   MajorMapping mapping;
@@ -53,7 +57,8 @@ struct PreparedTake {
   CanonicalMotion canonical;         // F frames
   Eigen::MatrixXd own_local_t;       // 3M x F: canonical.local transposed (a frame a contiguous column, for the mix)
   Eigen::MatrixXd own_contacts;      // F x 2: foot contacts, left and right, 1 planted
-  TakeCycles cycles;                 // where it repeats: gait cycles, periods or none (cycles.h)
+  TakeCycles cycles;                 // where it repeats, as detected on its file's frames (cycles.h)
+  CycleRegistration registration;    // by cycles onto the reference: its cycles, sources, spans; empty otherwise
   Alignment alignment;               // onto the reference (the reference's own: empty)
   // The common timeline.
   Eigen::VectorXd frames;            // U: the take's frame at each sample (fractional)
@@ -64,6 +69,8 @@ struct PreparedTake {
   Eigen::MatrixXd contacts;          // U x 2 foot contacts carried onto the timeline
   Eigen::RowVectorXd mean;           // normalization: the take's mean pose
   Eigen::MatrixXd x;                 // U x 3M normalized: (local - mean) / scale
+  // Its cycles on its own timeline as prepared: the registered ones when registered by cycles.
+  const TakeCycles& timeline_cycles() const { return registration.empty() ? cycles : registration.cycles; }
 };
 
 struct PreparedTakes {
@@ -101,5 +108,15 @@ double take_foot_sliding(const PreparedTakes& prepared, int take);
 
 // The reference's joint index of each major column (for export).
 std::vector<int> export_joints(const PreparedTakes& prepared);
+
+// Take i's frames on its own timeline (fractional, K values: a mix's sources) as its file's frames
+// at the working rate: unchanged for a take aligned whole; through its registration for one
+// registered by cycles, NaN where it gives its posture only. O(K).
+Eigen::VectorXd frames_in_take(const PreparedTake& take, const Eigen::VectorXd& frames);
+
+// Which of take i's own cycles each of `frames` (its timeline's) shows, -1 outside them: an index
+// in registration.take_cycles for a take registered by cycles, in `cycles` for one aligned whole.
+// O(K log cycles).
+Eigen::VectorXi cycles_shown(const PreparedTake& take, const Eigen::VectorXd& frames);
 
 }  // namespace mostyle

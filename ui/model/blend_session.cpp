@@ -297,8 +297,8 @@ void BlendSession::place(EditorState& state) {
   };
   state.takes[kTakeA].contacts = joint_contacts(nearest(p->takes[0].own_contacts, at_a), p->feet, joints);
   state.takes[kTakeB].contacts = joint_contacts(nearest(p->takes[1].own_contacts, at_b), p->feet, joints);
-  state.takes[kTakeA].cycle_starts = cycle_starts_at(p->takes[0].cycles, at_a);
-  state.takes[kTakeB].cycle_starts = cycle_starts_at(p->takes[1].cycles, at_b);
+  state.takes[kTakeA].cycle_starts = cycle_starts_at(p->takes[0].timeline_cycles(), at_a);
+  state.takes[kTakeB].cycle_starts = cycle_starts_at(p->takes[1].timeline_cycles(), at_b);
   state.takes[kTakeBlend].cycle_starts = state.takes[kTakeA].cycle_starts;  // the blend walks A's cycles
   const double slots[3] = {-1.0, 1.0, 0.0};  // A, B, blend
   const Eigen::MatrixXd* sources[3] = {&shown_a_, &shown_b_, has_blend_ ? &blend_.motion.world : &shown_a_};

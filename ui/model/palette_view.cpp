@@ -181,7 +181,7 @@ void PaletteView::place(const PreparedTakes& p, const SessionControls& controls,
       else sampled = take.world_placed;
       t.visible = i == 0 || ghosts;
       if (has_mix_) {
-        t.cycle_starts = cycle_starts_at(take.cycles, mix_.sources.col(i));
+        t.cycle_starts = cycle_starts_at(take.timeline_cycles(), mix_.sources.col(i));
         if (i == 0) state.takes[kPaletteMix].cycle_starts = t.cycle_starts;  // the mix walks the reference's cycles
       }
     }

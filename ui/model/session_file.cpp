@@ -333,6 +333,7 @@ double float_for_json(float f) {
 OrderedJson align_json(const AlignmentOptions& a) {
   OrderedJson j = OrderedJson::object();
   j["method"] = dtw_method_name(a.method);
+  j["time_base"] = time_base_name(a.time_base);
   j["on"] = align_on_name(a.on);
   j["band"] = a.band;
   j["max_slope"] = a.slope.max_slope;
@@ -344,13 +345,21 @@ OrderedJson align_json(const AlignmentOptions& a) {
 
 AlignmentOptions read_align(const Reader& r, const Json& j, const Where& w) {
   r.object(j, w);
-  r.only_keys(j, w, {"method", "on", "band", "max_slope", "open_ends", "end_penalty", "smoothing_frames"});
+  r.only_keys(j, w, {"method", "time_base", "on", "band", "max_slope", "open_ends", "end_penalty", "smoothing_frames"});
   AlignmentOptions a;
   r.member(j, w, "method", [&](const Json& v, const Where& at) {
     const std::string name = r.string(v, at);
     try {
       a.method = parse_dtw_method(name);
     } catch (const InputError& e) {  // the engine's sentence names the choices
+      r.fail(at, at.name + ": " + e.what());
+    }
+  });
+  r.member(j, w, "time_base", [&](const Json& v, const Where& at) {
+    const std::string name = r.string(v, at);
+    try {
+      a.time_base = parse_time_base(name);
+    } catch (const InputError& e) {
       r.fail(at, at.name + ": " + e.what());
     }
   });

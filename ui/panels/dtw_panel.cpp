@@ -123,7 +123,7 @@ void DtwPanel::draw(EditorState& state) {
     // the bottom of B's.
     for (const Cycle& c : p->takes[0].cycles.cycles)
       dl->AddLine(before.to_screen(c.begin, hi + 0.1 * span), before.to_screen(c.begin, hi - 0.1 * span), color_a(), 2.0f);
-    for (const Cycle& c : p->takes[1].cycles.cycles)
+    for (const Cycle& c : p->takes[1].timeline_cycles().cycles)
       dl->AddLine(before.to_screen(c.begin, lo - 1.15 * span), before.to_screen(c.begin, lo - 0.95 * span), color_b(),
                   2.0f);
     dl->PopClipRect();

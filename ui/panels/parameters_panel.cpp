@@ -52,14 +52,17 @@ void ParametersPanel::draw(EditorState& state) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("What the takes are matched in time on.\nauto: the left foot for walks and runs, "
                       "the joints that move most for other actions.");
-  int method = c.align.method == DtwMethod::kSlope ? 0 : 1;
-  if (ImGui::Combo("time warp", &method, "smooth\0paper\0")) {
-    c.align.method = method == 0 ? DtwMethod::kSlope : DtwMethod::kPaper;
+  // One control for the time base and the warp: the paper's DTW always aligns whole takes.
+  int method = c.align.method == DtwMethod::kPaper ? 2 : c.align.time_base == TimeBase::kCycles ? 0 : 1;
+  if (ImGui::Combo("time warp", &method, "by cycles\0whole takes\0paper\0")) {
+    c.align.method = method == 2 ? DtwMethod::kPaper : DtwMethod::kSlope;
+    if (method < 2) c.align.time_base = method == 0 ? TimeBase::kCycles : TimeBase::kWhole;
   }
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("smooth: neither take runs more than twice as fast as the other, extra material at the ends "
-                      "is left out, and poses are sampled between frames (no jumps).\npaper: the paper's plain "
-                      "left-foot DTW, end to end, as published.");
+    ImGui::SetTooltip("by cycles: each step cycle of the reference is matched with one of each other take (a short "
+                      "take's reused in order), so all of the reference plays; where it stands or turns, the others "
+                      "give their posture.\nwhole takes: one smooth match of the whole takes; extra material at the "
+                      "ends is left out.\npaper: the paper's plain left-foot DTW, end to end, as published.");
   ImGui::Checkbox("foot lock", &c.foot_lock);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Pin planted feet in place so the result does not skate");
   ImGui::SameLine();

@@ -64,3 +64,173 @@ TEST_CASE("cycle registration: a 6.5 s walk covers every cycle of a 22 s one") {
   for (size_t k = 0; k < pairs.size(); ++k) CHECK(pairs[k] == static_cast<int>(k % other.cycles.size()));
   CHECK(pairs.size() >= 2 * other.cycles.size());
 }
+
+namespace {
+
+// A made-up motion of one joint: x a ramp (its frame number, so a frame can be read back from its
+// pose), y `level`, z 0; walking along +z at one unit a frame, facing +z.
+CanonicalMotion ramp_motion(int frames, double level) {
+  CanonicalMotion m;
+  m.local.resize(frames, 3);
+  m.ground.resize(frames, 2);
+  m.heading = Eigen::VectorXd::Zero(frames);
+  for (int f = 0; f < frames; ++f) {
+    m.local.row(f) << f, level, 0.0;
+    m.ground.row(f) << 0.0, f;
+  }
+  return m;
+}
+
+Eigen::MatrixXd contacts_marked(int frames, double value) { return Eigen::MatrixXd::Constant(frames, 2, value); }
+
+}  // namespace
+
+TEST_CASE("cycle registration: the registered take, worked by hand") {
+  // The reference: 100 frames, cycles at 10-35, 35-60 and 70-95 (a pause at 60-70). The take: 40
+  // frames, cycles 5-20 and 20-35.
+  const CanonicalMotion ref = ramp_motion(100, 1.0), take = ramp_motion(40, 3.0);
+  TakeCycles rc, tc;
+  rc.kind = tc.kind = CycleKind::kGait;
+  rc.foot = tc.foot = 0;
+  rc.cycles = {{10, 35}, {35, 60}, {70, 95}};
+  tc.cycles = {{5, 20}, {20, 35}};
+  tc.period = 15;
+  const RegisteredMotion r = register_by_cycles(ref, contacts_marked(100, 0.0), rc, take, contacts_marked(40, 1.0), tc, 2);
+  const CycleRegistration& g = r.registration;
+  CHECK(g.pairs == std::vector<int>{0, 1, 0});
+  // Spans: 10 frames before, 15 + 15 (the take's cycles), 10 of the pause, 15, 5 after.
+  REQUIRE(r.motion.local.rows() == 10 + 15 + 15 + 10 + 15 + 5);
+  REQUIRE(g.cycles.cycles.size() == 3);
+  CHECK(g.cycles.cycles[0].begin == 10);
+  CHECK(g.cycles.cycles[1].begin == 25);
+  CHECK(g.cycles.cycles[2].begin == 50);
+  CHECK(g.cycles.cycles[2].end == 65);
+  // Inside cycles: the take's own frames (x reads the frame back) and contacts; the take's cycle
+  // 1 follows its cycle 0 directly (20), so no seam is eased.
+  for (int v = 10; v < 40; ++v) {
+    const double own = v < 25 ? 5 + (v - 10) : 20 + (v - 25);
+    CHECK(r.motion.local(v, 0) == Approx(own));
+    CHECK(r.motion.local(v, 1) == Approx(3.0));
+    CHECK(g.source[v] == own);
+    CHECK(g.source_cycle[v] == (v < 25 ? 0 : 1));
+    CHECK(r.contacts(v, 0) == 1.0);
+  }
+  CHECK(g.source[50] == 5.0);  // the take's first cycle again
+  CHECK(g.source_cycle[64] == 0);
+  // In the middle of the pause (fade of 2 frames): the reference moved by the posture offset,
+  // the take's mean over its cycles minus the reference's.
+  const double ref_mean_x = (22.0 * 25 + 47.0 * 25 + 82.0 * 25) / 75.0;  // cycles' own means: 22, 47, 82
+  const double take_mean_x = (12.0 * 15 + 27.0 * 15) / 30.0;             // 12, 27
+  const int middle = 40 + 5;                                             // reference frame 65
+  CHECK(r.motion.local(middle, 0) == Approx(65 + take_mean_x - ref_mean_x));
+  CHECK(r.motion.local(middle, 1) == Approx(1.0 + 2.0));
+  CHECK(std::isnan(g.source[middle]));
+  CHECK(g.source_cycle[middle] == -1);
+  CHECK(r.contacts(middle, 0) == 0.0);  // the reference's
+  // Right after a cycle: the take running on from it (its frame 35), fully weighted.
+  CHECK(r.motion.local(40, 0) == Approx(35.0));
+  CHECK(g.source[40] == 35.0);
+  // Anchors: each span's start, then the ends.
+  REQUIRE(g.anchors.size() == 7);
+  CHECK(g.anchors[1].reference == 10);
+  CHECK(g.anchors[1].registered == 10);
+  CHECK(g.anchors[1].cycle);
+  CHECK(g.anchors[3].reference == 60);
+  CHECK(g.anchors[3].registered == 40);
+  CHECK_FALSE(g.anchors[3].cycle);
+  CHECK(g.anchors.back().reference == 99);
+  CHECK(g.anchors.back().registered == 69);
+  // The root: the take's steps (one unit a frame along +z) throughout, from the reference's start.
+  CHECK(r.motion.ground(0, 1) == Approx(0.0));
+  CHECK(r.motion.ground(69, 1) == Approx(69.0));
+}
+
+TEST_CASE("cycle registration: a reused cycle that does not follow on eases its seam over the cycle") {
+  const CanonicalMotion ref = ramp_motion(100, 1.0), take = ramp_motion(40, 3.0);
+  TakeCycles rc, tc;
+  rc.kind = tc.kind = CycleKind::kGait;
+  rc.foot = tc.foot = 1;
+  rc.cycles = {{10, 30}, {30, 50}, {50, 70}};  // one after another
+  tc.cycles = {{5, 20}, {20, 35}};
+  const RegisteredMotion r = register_by_cycles(ref, contacts_marked(100, 0.0), rc, take, contacts_marked(40, 1.0), tc, 2);
+  // The third cycle is the take's first again, after its second: at the seam the pose goes on
+  // from where the second ended (the take's frame 35), and the difference (35 - 5) shrinks
+  // linearly to nothing by the cycle's end.
+  const int v = r.registration.cycles.cycles[2].begin;  // 10 + 15 + 15
+  REQUIRE(v == 40);
+  CHECK(r.motion.local(v, 0) == Approx(35.0));
+  CHECK(r.motion.local(v + 5, 0) == Approx(10.0 + 30.0 * (1.0 - 5.0 / 15.0)));
+  CHECK(r.motion.local(v + 14, 0) == Approx(19.0 + 30.0 / 15.0));
+  CHECK(r.registration.source[v] == 5.0);
+}
+
+TEST_CASE("cycle registration: takes that cannot be registered are refused, and say why") {
+  const CanonicalMotion ref = ramp_motion(100, 1.0), take = ramp_motion(40, 3.0);
+  TakeCycles rc, tc;
+  rc.kind = tc.kind = CycleKind::kGait;
+  rc.foot = 0;
+  tc.foot = 1;
+  rc.cycles = {{10, 35}};
+  tc.cycles = {{5, 20}};
+  CHECK_FALSE(cycles_register(rc, tc));  // different feet
+  CHECK_THROWS_AS(register_by_cycles(ref, contacts_marked(100, 0), rc, take, contacts_marked(40, 0), tc, 2), InputError);
+  tc.foot = 0;
+  CHECK(cycles_register(rc, tc));
+  tc.kind = CycleKind::kPeriodic;
+  CHECK_FALSE(cycles_register(rc, tc));  // different kinds
+  CHECK_FALSE(cycles_register(TakeCycles(), rc));
+  tc.kind = CycleKind::kGait;
+  tc.cycles = {{5, 45}};  // past the take's 40 frames
+  CHECK_THROWS_WITH(register_by_cycles(ref, contacts_marked(100, 0), rc, take, contacts_marked(40, 0), tc, 2),
+                    Catch::Contains("does not fit its 40 frames"));
+}
+
+TEST_CASE("cycle registration: a 6.5 s walk registered onto a 22 s one covers it whole, at every weight") {
+  const auto content = std::make_shared<const Clip>(read_motion_file(test::shared_motion("cmu142_walk_joy.bvh")));
+  const auto neutral = std::make_shared<const Clip>(read_motion_file(test::shared_motion("bandai_walk_normal.bvh")));
+  const auto p = prepare_takes(std::vector<std::shared_ptr<const Clip>>{content, neutral}, PrepareOptions());
+  const PreparedTake& ref = p->takes[0];
+  const PreparedTake& other = p->takes[1];
+  REQUIRE_FALSE(other.registration.empty());
+  const Alignment& al = other.alignment;
+  CHECK(al.by_cycles());
+  const int frames = static_cast<int>(ref.canonical.local.rows());
+  // The warp runs over all of both, monotone.
+  CHECK(al.warp.a[0] == Approx(0.0));
+  CHECK(al.warp.a[al.warp.samples() - 1] == Approx(frames - 1));
+  CHECK(al.warp.b[0] == Approx(0.0));
+  CHECK(al.warp.b[al.warp.samples() - 1] == Approx(other.canonical.local.rows() - 1));
+  for (int k = 1; k < al.warp.samples(); ++k) {
+    CHECK(al.warp.a[k] >= al.warp.a[k - 1]);
+    CHECK(al.warp.b[k] >= al.warp.b[k - 1]);
+  }
+  CHECK(al.a_first == 0);
+  CHECK(al.a_last == frames - 1);
+  // One registered cycle per reference cycle, each the length of the take's cycle it shows.
+  REQUIRE(other.registration.cycles.cycles.size() == ref.cycles.cycles.size());
+  for (size_t k = 0; k < ref.cycles.cycles.size(); ++k) {
+    const Cycle& own = other.registration.take_cycles.cycles[static_cast<size_t>(other.registration.pairs[k])];
+    CHECK(other.registration.cycles.cycles[k].frames() == own.frames());
+  }
+  // The common timeline covers the whole reference.
+  CHECK(p->timeline.frames[0][0] == Approx(0.0));
+  CHECK(p->timeline.frames[0][p->samples() - 1] == Approx(frames - 1));
+  CHECK(p->timeline.first[1] == 0);
+  CHECK(p->timeline.last[1] == p->samples() - 1);
+  // The take's own frames back from its timeline's: inside cycles within the take.
+  const Eigen::VectorXd own = frames_in_take(other, other.frames);
+  int inside = 0;
+  for (Eigen::Index k = 0; k < own.size(); ++k)
+    if (!std::isnan(own[k])) {
+      ++inside;
+      CHECK(own[k] >= 0.0);
+      CHECK(own[k] <= double(other.registration.take_cycles.cycles.back().end) + p->fps);
+    }
+  CHECK(inside > 0.6 * own.size());
+  // Aligned whole instead, the take covers only part of the reference (what issue 16 measured).
+  PrepareOptions whole;
+  whole.align.time_base = TimeBase::kWhole;
+  const auto w = prepare_takes(std::vector<std::shared_ptr<const Clip>>{content, neutral}, whole);
+  CHECK(w->takes[1].registration.empty());
+  CHECK(w->takes[1].alignment.a_last - w->takes[1].alignment.a_first < frames / 2);
+}

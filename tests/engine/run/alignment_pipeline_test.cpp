@@ -197,8 +197,10 @@ TEST_CASE("alignment pipeline: standing before and after a take is left out of t
   const int pad = static_cast<int>(std::lround(kPadSeconds * happy.fps()));  // 240 frames at 120 fps
   const auto walk = std::make_shared<const Clip>(happy);
   const auto standing = std::make_shared<const Clip>(padded(happy, pad));
+  PrepareOptions whole;  // the open-ended alignment of whole takes (by cycles, all of A is covered)
+  whole.align.time_base = TimeBase::kWhole;
   SECTION("the padded take as A") {
-    const auto p = prepare_takes({standing, walk}, {});
+    const auto p = prepare_takes({standing, walk}, whole);
     const int first = static_cast<int>(std::lround(kPadSeconds * p->fps));  // 60 at 30 fps
     const int last = first + static_cast<int>(p->takes[1].world.rows()) - 1;        // the walk's last frame
     const Alignment& al = p->takes[1].alignment;
@@ -208,7 +210,7 @@ TEST_CASE("alignment pipeline: standing before and after a take is left out of t
     CHECK(std::abs(al.a_last - last) <= kPadSlack);
   }
   SECTION("the padded take as B") {
-    const auto p = prepare_takes({walk, standing}, {});
+    const auto p = prepare_takes({walk, standing}, whole);
     const int first = static_cast<int>(std::lround(kPadSeconds * p->fps));
     const int last = first + static_cast<int>(p->takes[0].world.rows()) - 1;
     const Alignment& al = p->takes[1].alignment;

@@ -316,7 +316,9 @@ TEST_CASE("B is retargeted to A's bones across units and frame rates", "[pipelin
   const Clip joy = read_bvh_file(test::asset("motions/cmu142_walk_joy.bvh"));
   const auto b = std::make_shared<const Clip>(resample_clip(in_other_units(joy, 5.6444), 100.0));
   REQUIRE(b->fps() == 100.0);
-  const auto p = prepare_takes({a, b}, {});
+  PrepareOptions whole;  // B's own frames, not registered by cycles
+  whole.align.time_base = TimeBase::kWhole;
+  const auto p = prepare_takes({a, b}, whole);
   CHECK(p->fps == 30.0);
   CHECK(p->takes[0].world.rows() == resample_clip(*a, 30).frames());
   // B on its own timeline at 30 fps, in A's units and bone lengths.
