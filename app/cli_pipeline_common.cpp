@@ -83,6 +83,46 @@ std::vector<double> parse_numbers(const std::string& list, const std::string& fl
   return values;
 }
 
+std::vector<std::pair<double, std::vector<double>>> parse_keys(const std::string& text, const std::string& flag,
+                                                               size_t count) {
+  if (text.empty()) return {};
+  // Split into keys: at ';', and with one number a key also at a ',' that a "T:" follows.
+  std::vector<std::string> keys;
+  std::string current;
+  for (size_t i = 0; i <= text.size(); ++i) {
+    const bool end = i == text.size() || text[i] == ';' ||
+                     (count == 1 && text[i] == ',' && current.find(':') != std::string::npos);
+    if (!end) {
+      current += text[i];
+      continue;
+    }
+    keys.push_back(current);
+    current.clear();
+  }
+  std::vector<std::pair<double, std::vector<double>>> out;
+  for (const std::string& key : keys) {
+    const size_t colon = key.find(':');
+    if (colon == std::string::npos)
+      throw InputError("expected keys as SECONDS:" + std::string(count == 1 ? "value" : "v1,v2,...") + " in " + flag +
+                       " (keys apart by ';'), found '" + key + "'");
+    double seconds = 0.0;
+    if (!parse_number(key.substr(0, colon), &seconds))
+      throw InputError("expected a time in seconds before ':' in " + flag + ", found '" + key.substr(0, colon) + "'");
+    std::vector<double> values = parse_numbers(key.substr(colon + 1), flag);
+    if (values.size() != count)
+      throw InputError("expected " + std::to_string(count) + (count == 1 ? " value" : " values") + " after " +
+                       key.substr(0, colon) + ": in " + flag + ", found " + std::to_string(values.size()));
+    out.emplace_back(seconds, std::move(values));
+  }
+  return out;
+}
+
+Json keys_json(const WeightKeys& keys) {
+  Json out = Json::array();
+  for (const WeightKey& k : keys) out.push_back({{"seconds", k.seconds}, {"weights", k.weights}});
+  return out;
+}
+
 namespace {
 
 std::string fixed(double v, int decimals) {

@@ -45,6 +45,15 @@ MappingOverrides load_mapping(const std::string& path);
 // `flag` names the option in the error. Throws InputError on an entry that is neither.
 std::vector<double> parse_numbers(const std::string& list, const std::string& flag);
 
+// Weights keyed in time as typed: "T:v1,v2,...;T:..." (T in seconds of the output), each key with
+// `count` numbers; with count 1 the keys may also be separated by commas ("0:0,10:1"). `flag`
+// names the option in errors. Throws InputError on a key that is not T:numbers or has another
+// count; the times' order is checked by MixParams::Validate.
+std::vector<std::pair<double, std::vector<double>>> parse_keys(const std::string& text, const std::string& flag,
+                                                               size_t count);
+// The keys as a report lists them: [{"seconds": T, "weights": [...]}, ...].
+Json keys_json(const WeightKeys& keys);
+
 // A few lines for a person (what was made, how long, how well, where it went) from a blend's,
 // mix's or transfer's report, for stdout when no --report is asked for.
 std::string report_summary(const Json& report, const std::string& out, const std::string& positions_out);

@@ -200,6 +200,7 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
     int swap = 0;
     std::vector<double> component_alpha;
     std::vector<std::string> part_alpha;
+    std::string alpha_at;
     SynthesisFlags flags;
   };
   auto args = std::make_shared<Args>();
@@ -220,6 +221,9 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
                   "take --alpha");
   cmd->add_option("--component-alpha", args->component_alpha, "Shared mode: one alpha per component, comma separated")
       ->delimiter(',');
+  cmd->add_option("--alpha-at", args->alpha_at,
+                  "Alpha keyed in time, T:a,T:a,... (T in seconds of the output; eased between keys, held before "
+                  "the first and after the last); replaces --alpha (shared mode)");
   args->flags.add_to(cmd, {"blend", "a", "blend: the output's timing moves from A's (alpha 0) to B's (alpha 1); a: keep A's timeline",
                            "File of the blend on A's skeleton: BVH (A's rotation orders), or glTF 2.0 when it ends in .glb or .gltf"});
   cmd->callback([=] {
@@ -253,12 +257,15 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
       }
       bp.swap_level = args->swap;
       MixParams mp = blend_mix_params(bp, d);
+      for (const auto& [seconds, a] : parse_keys(args->alpha_at, "--alpha-at", 1))
+        mp.keys.push_back({seconds, {1.0 - a[0], a[0]}});
       args->flags.set(mp);
       Json r;
       r["command"] = "blend";
       r["a"] = args->a;
       r["b"] = args->b;
       r["alpha"] = args->alpha;
+      if (!mp.keys.empty()) r["keys"] = keys_json(mp.keys);
       r["mode"] = args->mode;
       if (args->basic > 0) {
         r["basic_motions"] = args->basic;
@@ -298,6 +305,7 @@ void add_mix_command(CLI::App& app, std::function<int()>* run) {
     std::vector<std::string> files;
     std::string weights;
     std::vector<std::string> part_weights;
+    std::string weights_at;
     SynthesisFlags flags;
   };
   auto args = std::make_shared<Args>();
@@ -310,6 +318,9 @@ void add_mix_command(CLI::App& app, std::function<int()>* run) {
   cmd->add_option("--part-weights", args->part_weights,
                   "PART:w1,w2,...: one body part's weights, one per take (legs, arms, spine, left-leg, right-leg, "
                   "left-arm, right-arm; repeat for several, a side wins over both sides); the rest take --weights");
+  cmd->add_option("--weights-at", args->weights_at,
+                  "Weights keyed in time, T:w1,w2,...;T:... (T in seconds of the output, one weight per take, "
+                  "summing to 1; eased between keys, held before the first and after the last); replaces --weights");
   args->flags.add_to(cmd, {"mix", "reference", "mix: the output's timing is mixed with the weights; reference: keep the first take's timeline",
                           "File of the result on the first take's skeleton: BVH, or glTF 2.0 when it ends in .glb or .gltf"});
   cmd->callback([=] {
@@ -322,6 +333,10 @@ void add_mix_command(CLI::App& app, std::function<int()>* run) {
       const std::vector<double> typed =
           args->weights.empty() ? std::vector<double>(n, 1.0 / double(n)) : parse_numbers(args->weights, "--weights");
       mp.weights = normalized_weights(typed);
+      for (const auto& [seconds, w] : parse_keys(args->weights_at, "--weights-at", n))
+        mp.keys.push_back({seconds, normalized_weights(w)});
+      if (!mp.keys.empty() && !args->part_weights.empty())
+        throw InputError("give --weights-at or --part-weights, not both: keys in time mix the whole body");
       auto given = parse_part_entries(args->part_weights, "--part-weights", n);
       for (auto& entry : given) entry.second = normalized_weights(entry.second);
       // Refuse bad weights before the files are read.
@@ -342,6 +357,7 @@ void add_mix_command(CLI::App& app, std::function<int()>* run) {
       r["command"] = "mix";
       r["weights"] = mp.weights;
       r["weights_typed"] = typed;
+      if (!mp.keys.empty()) r["keys"] = keys_json(mp.keys);
       if (!given.empty()) {
         Json parts = Json::object();
         for (const auto& [part, w] : given) parts[body_part_name(part)] = w;
@@ -360,6 +376,7 @@ void add_transfer_command(CLI::App& app, std::function<int()>* run) {
     std::vector<std::string> styles;
     std::vector<std::string> strengths;
     std::vector<std::string> part_strengths;
+    std::string strength_at;
     SynthesisFlags flags;
   };
   auto args = std::make_shared<Args>();
@@ -376,6 +393,9 @@ void add_transfer_command(CLI::App& app, std::function<int()>* run) {
   cmd->add_option("--part-strength", args->part_strengths,
                   "PART:s1,...: one body part's strengths, one per style (legs, arms, spine, left-leg, right-leg, "
                   "left-arm, right-arm); the rest take --strength");
+  cmd->add_option("--strength-at", args->strength_at,
+                  "Strength keyed in time, T:s,T:s,... (T in seconds of the output; with several styles "
+                  "T:s1,s2;T:...; eased between keys, held before the first and after the last); replaces --strength");
   args->flags.add_to(cmd, {"mix", "content", "mix: the output's timing is mixed with the weights; content: keep CONTENT's timeline",
                           "File of the result on CONTENT's skeleton: BVH, or glTF 2.0 when it ends in .glb or .gltf"});
   cmd->callback([=] {
@@ -395,6 +415,10 @@ void add_transfer_command(CLI::App& app, std::function<int()>* run) {
       // Content 1, neutral minus the strengths' sum, each style its strength.
       mp.min_weight = -kMaxStrength * double(styles);
       mp.max_weight = kMaxStrength + 1.0;
+      for (const auto& [seconds, s] : parse_keys(args->strength_at, "--strength-at", styles))
+        mp.keys.push_back({seconds, transfer_weights(s)});
+      if (!mp.keys.empty() && !args->part_strengths.empty())
+        throw InputError("give --strength-at or --part-strength, not both: keys in time style the whole body");
       const auto given = parse_part_entries(args->part_strengths, "--part-strength", styles);
       std::vector<std::pair<BodyPart, std::vector<double>>> given_weights;
       for (const auto& [part, s] : given) given_weights.emplace_back(part, transfer_weights(s));
@@ -411,6 +435,7 @@ void add_transfer_command(CLI::App& app, std::function<int()>* run) {
       r["styles"] = args->styles;
       r["strengths"] = strengths;
       r["weights"] = mp.weights;
+      if (!mp.keys.empty()) r["keys"] = keys_json(mp.keys);
       if (!given.empty()) {
         Json parts = Json::object();
         for (const auto& [part, s] : given) parts[body_part_name(part)] = s;

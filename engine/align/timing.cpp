@@ -67,6 +67,32 @@ void blended_timeline(const TimeWarp& warp, double w, Eigen::VectorXd& u) {
   timeline_from_steps(samples, [&](int k) { return blend_step(warp, w, k); }, u);
 }
 
+namespace {
+
+void check_stretch(const CommonTimeline& timeline, int first, int last) {
+  if (first < 0 || last < first || last >= timeline.samples())
+    throw InputError("cannot time a mix over samples " + std::to_string(first) + " to " + std::to_string(last) +
+                     " of a timeline of " + std::to_string(timeline.samples()));
+}
+
+// The clock's advance from sample k - 1 to k (absolute samples) with one weight per take. Never
+// slower than the slowest take with a weight: a negative weight (a transfer's -s on the neutral
+// take) could stall the clock, and the output would then run through the takes' frames faster
+// than any of them moves. Weights within [0, 1] never reach the bound.
+template <typename Weight>
+double mixed_step(const CommonTimeline& timeline, const Weight& weight, int k) {
+  double step = 0.0, slowest = INFINITY;
+  for (int i = 0; i < timeline.takes(); ++i) {
+    const double advance = timeline.frames[static_cast<size_t>(i)][k] - timeline.frames[static_cast<size_t>(i)][k - 1];
+    const double w = weight(i);
+    step += w * advance;
+    if (w != 0.0) slowest = std::min(slowest, advance);
+  }
+  return std::max(step, slowest);
+}
+
+}  // namespace
+
 void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& weights, int first, int last,
                     Eigen::VectorXd& u) {
   if (static_cast<int>(weights.size()) != timeline.takes())
@@ -74,24 +100,37 @@ void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& w
                      std::to_string(weights.size()));
   for (double w : weights)
     if (!std::isfinite(w)) throw InputError("expected finite timing weights");
-  if (first < 0 || last < first || last >= timeline.samples())
-    throw InputError("cannot time a mix over samples " + std::to_string(first) + " to " + std::to_string(last) +
-                     " of a timeline of " + std::to_string(timeline.samples()));
-  // Never slower than the slowest take with a weight: a negative weight (a transfer's -s on the
-  // neutral take) could stall the clock, and the output would then run through the takes' frames
-  // faster than any of them moves. Weights within [0, 1] never reach the bound.
+  check_stretch(timeline, first, last);
   timeline_from_steps(
       last - first + 1,
-      [&](int k) {
-        double step = 0.0, slowest = INFINITY;
-        for (size_t i = 0; i < weights.size(); ++i) {
-          const double advance = timeline.frames[i][first + k] - timeline.frames[i][first + k - 1];
-          step += weights[i] * advance;
-          if (weights[i] != 0.0) slowest = std::min(slowest, advance);
-        }
-        return std::max(step, slowest);
-      },
+      [&](int k) { return mixed_step(timeline, [&](int i) { return weights[static_cast<size_t>(i)]; }, first + k); },
       u);
+  u.array() += first;
+}
+
+void mixed_timeline(const CommonTimeline& timeline, const WeightKeys& keys, double fps, int first, int last,
+                    Eigen::VectorXd& u, Eigen::MatrixXd* sample_weights) {
+  validate_keys(keys, timeline.takes());
+  if (keys.empty()) throw InputError("cannot time a mix by keys without a key");
+  if (!(fps > 0.0) || !std::isfinite(fps)) throw InputError("expected a frame rate above 0 to time keys in seconds");
+  check_stretch(timeline, first, last);
+  const int samples = last - first + 1;
+  Eigen::VectorXd steps = Eigen::VectorXd::Zero(samples);
+  std::vector<double> w;
+  double clock = 0.0;
+  if (sample_weights != nullptr) sample_weights->resize(samples, timeline.takes());
+  for (int k = 0; k < samples; ++k) {
+    weights_at(keys, clock / fps, w);
+    for (double x : w)
+      if (!std::isfinite(x)) throw InputError("expected finite timing weights");
+    if (sample_weights != nullptr)
+      for (int i = 0; i < timeline.takes(); ++i) (*sample_weights)(k, i) = w[static_cast<size_t>(i)];
+    if (k + 1 < samples) {
+      steps[k + 1] = mixed_step(timeline, [&](int i) { return w[static_cast<size_t>(i)]; }, first + k + 1);
+      clock += std::max(0.0, steps[k + 1]);
+    }
+  }
+  timeline_from_steps(samples, [&](int k) { return steps[k]; }, u);
   u.array() += first;
 }
 

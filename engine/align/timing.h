@@ -10,6 +10,7 @@
 
 #include "engine/align/common_timeline.h"
 #include "engine/align/time_warp.h"
+#include "engine/align/weight_keys.h"
 
 namespace mostyle {
 
@@ -30,6 +31,15 @@ void blended_timeline(const TimeWarp& warp, double w, Eigen::VectorXd& u);
 // weight, or an empty or out-of-range stretch. O((last - first) x N + frames).
 void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& weights, int first, int last,
                     Eigen::VectorXd& u);
+
+// The same with the weights keyed in time (weight_keys.h, validated for the timeline's takes):
+// the clock's advance from sample k - 1 to k takes the keys' weights at the output time the clock
+// has reached at k - 1 (seconds = clock / fps), so the timing changes as the weights do and the
+// keys' times are seconds of the output. sample_weights: when given, set to the weights at each
+// sample's output time ((last - first + 1) x N), for the root and contacts. Throws as the above.
+// O((last - first) x N + frames); allocates.
+void mixed_timeline(const CommonTimeline& timeline, const WeightKeys& keys, double fps, int first, int last,
+                    Eigen::VectorXd& u, Eigen::MatrixXd* sample_weights = nullptr);
 
 // The clock itself at every sample (U values, T(0) = 0), for tests and displays.
 Eigen::VectorXd blended_clock(const TimeWarp& warp, double w);

@@ -161,19 +161,30 @@ Eigen::RowVectorXd row_at(const Eigen::MatrixXd& x, double at) {
 }
 }  // namespace
 
-void add_spread_turns(const Eigen::VectorXd& flips, double weight, double fps, Eigen::MatrixXd& steps) {
+namespace {
+
+// One flip of `flip` radians at sample r, weighted, spread as add_spread_turns says.
+void spread_turn(double flip, Eigen::Index r, double weight, double fps, Eigen::MatrixXd& steps) {
   // What a flip shows is the weight's fraction of a whole turn (weight 1.5 turns by half a turn).
   const double fraction = weight - std::floor(weight);
   const double spread = 4.0 * fraction * (1.0 - fraction);
   const int h = static_cast<int>(std::lround(0.5 * fps * spread));
   const Eigen::Index samples = steps.rows();
-  for (Eigen::Index r = 0; r < samples && r < flips.size(); ++r) {
-    const double flip = flips[r];
-    if (flip == 0.0) continue;
-    const Eigen::Index width = std::min<Eigen::Index>(2 * h + 1, samples);
-    const Eigen::Index first = std::clamp<Eigen::Index>(r - h, 0, samples - width);
-    for (Eigen::Index t = first; t < first + width; ++t) steps(t, 2) += weight * flip / double(width);
-  }
+  const Eigen::Index width = std::min<Eigen::Index>(2 * h + 1, samples);
+  const Eigen::Index first = std::clamp<Eigen::Index>(r - h, 0, samples - width);
+  for (Eigen::Index t = first; t < first + width; ++t) steps(t, 2) += weight * flip / double(width);
+}
+
+}  // namespace
+
+void add_spread_turns(const Eigen::VectorXd& flips, double weight, double fps, Eigen::MatrixXd& steps) {
+  for (Eigen::Index r = 0; r < steps.rows() && r < flips.size(); ++r)
+    if (flips[r] != 0.0) spread_turn(flips[r], r, weight, fps, steps);
+}
+
+void add_spread_turns(const Eigen::VectorXd& flips, const Eigen::VectorXd& weights, double fps, Eigen::MatrixXd& steps) {
+  for (Eigen::Index r = 0; r < steps.rows() && r < flips.size() && r < weights.size(); ++r)
+    if (flips[r] != 0.0) spread_turn(flips[r], r, weights[r], fps, steps);
 }
 
 PlacedRoot place_at(const CanonicalMotion& a, double a_frame, const CanonicalMotion& b, double b_frame) {

@@ -61,6 +61,9 @@ Eigen::MatrixXd match_turns(const Eigen::MatrixXd& steps_b, const Eigen::MatrixX
 // one frame would turn the body by 2 pi weight at once (for weights outside [0, 1], h follows
 // the weight's fraction: 1.5 turns by half a turn). O(U + flips x h), no allocation.
 void add_spread_turns(const Eigen::VectorXd& flips, double weight, double fps, Eigen::MatrixXd& steps);
+// The same with the weight given per sample (U values: weights keyed in time), each flip spread
+// as its sample's weight says.
+void add_spread_turns(const Eigen::VectorXd& flips, const Eigen::VectorXd& weights, double fps, Eigen::MatrixXd& steps);
 
 // The root trajectory of a blend of A and B (B warped onto A's timeline, both F frames): the
 // blended steps (F x 3, (1 - alpha) steps_a + alpha steps_b after match_turns) integrated from A's

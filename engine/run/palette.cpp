@@ -66,6 +66,13 @@ void MixParams::Validate(int takes, int components) const {
       throw InputError("expected " + what + " that sum to 1, found a sum of " + std::to_string(sum));
   };
   check_row(weights.data(), "weights");
+  if (!keys.empty()) {
+    validate_keys(keys, takes);
+    for (size_t k = 0; k < keys.size(); ++k) check_row(keys[k].weights.data(), "key " + std::to_string(k + 1) + "'s weights");
+    if (component_weights.size() > 0)
+      throw InputError("weights keyed in time mix one weight per take for the whole body; give per-part weights "
+                       "without keys, or keys without per-part weights");
+  }
   if (component_weights.size() > 0) {
     if (component_weights.rows() != components || component_weights.cols() != takes)
       throw InputError("expected per-component weights of " + std::to_string(components) + " components x " +
@@ -86,6 +93,9 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
   if (paper != nullptr && (n != 2 || params.component_weights.size() > 0))
     throw InputError("paper mode blends two takes with one weight; mix several takes, or weights per body part, in "
                      "shared mode");
+  if (paper != nullptr && !params.keys.empty())
+    throw InputError("paper mode blends with one alpha for the whole take; key the weights in time in shared mode");
+  const bool keyed = !params.keys.empty();
   const auto t0 = Clock::now();
   // Per-component weights that are all the overall weights are the plain mix.
   bool per_component = false;
@@ -103,6 +113,7 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
   int first = 0, last = p.samples() - 1;
   for (int i = 0; i < n; ++i) {
     bool weighted = params.weights[i] != 0.0 || s.timing[i] != 0.0;
+    for (const WeightKey& key : params.keys) weighted |= key.weights[static_cast<size_t>(i)] != 0.0;
     for (Eigen::Index c = 0; per_component && c < params.component_weights.rows(); ++c)
       weighted |= params.component_weights(c, i) != 0.0;
     if (!weighted) continue;
@@ -116,9 +127,23 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
   out.first_sample = first;
   out.last_sample = last;
   const Eigen::Index length = last - first + 1;
-  mixed_timeline(p.timeline, s.timing, first, last, s.u);
+  if (keyed && !params.reference_timing) {
+    mixed_timeline(p.timeline, params.keys, p.fps, first, last, s.u, &s.sample_w);
+  } else {
+    mixed_timeline(p.timeline, s.timing, first, last, s.u);
+    if (keyed) {  // the reference's clock: each sample's weights at the reference's time there
+      s.sample_w.resize(length, n);
+      std::vector<double> w;
+      const Eigen::VectorXd& clock = p.timeline.frames[0];
+      for (Eigen::Index k = 0; k < length; ++k) {
+        weights_at(params.keys, (clock[first + k] - clock[first]) / p.fps, w);
+        for (int i = 0; i < n; ++i) s.sample_w(k, i) = w[static_cast<size_t>(i)];
+      }
+    }
+  }
   s.u_stretch = s.u.array() - double(first);
   s.sampler.set(s.u_stretch, length);
+  if (keyed) weights_over_frames(params.keys, s.u.size(), p.fps, s.frame_w);
   if (paper != nullptr) {
     // The paper's synthesis (3.6) on the samples with alpha the second take's weight: A's
     // weights on a blend of the takes' cores, or B's basic-motion core at one level (3.5; the
@@ -147,7 +172,7 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
       for (Eigen::Index k = 0; k < out.sources.rows(); ++k) {
         auto column = s.local_t.col(k);
         for (int i = 0; i < n; ++i) {
-          const double w = params.weights[i];
+          const double w = keyed ? s.frame_w(k, i) : params.weights[i];
           if (w == 0.0) continue;
           const Eigen::MatrixXd& x = p.takes[i].own_local_t;
           const Eigen::Index last = x.cols() - 1;
@@ -162,7 +187,11 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
     } else {
       for (int i = 0; i < n; ++i) {
         s.stretch = shared->reconstructed[i].middleRows(first, length);
-        if (i == 0) {
+        if (keyed) {  // each output frame with its own weights
+          s.sampler.apply(s.stretch, s.samples);
+          if (i == 0) out.local = s.frame_w.col(0).asDiagonal() * s.samples;
+          else out.local += s.frame_w.col(i).asDiagonal() * s.samples;
+        } else if (i == 0) {
           s.sampler.apply(s.stretch, out.local);
           out.local *= params.weights[0];
         } else {
@@ -199,13 +228,21 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
   s.target.setZero(length, 2);
   s.contacts_u.setZero(length, 2);
   for (int i = 0; i < n; ++i) {
+    if (keyed) {  // each sample with its own weights
+      const auto w = s.sample_w.col(i).asDiagonal();
+      s.steps += w * p.takes[i].steps.middleRows(first, length);
+      s.target += w * p.takes[i].ground.middleRows(first, length);
+      s.contacts_u += w * p.takes[i].contacts.middleRows(first, length);
+      continue;
+    }
     s.steps += root_w[i] * p.takes[i].steps.middleRows(first, length);
     s.target += root_w[i] * p.takes[i].ground.middleRows(first, length);
     s.contacts_u += root_w[i] * p.takes[i].contacts.middleRows(first, length);
   }
   for (int i = 1; i < n; ++i) {
     s.flips = p.takes[i].turn_flips.segment(first, length);
-    add_spread_turns(s.flips, root_w[i], p.fps, s.steps);
+    if (keyed) add_spread_turns(s.flips, s.sample_w.col(i), p.fps, s.steps);
+    else add_spread_turns(s.flips, root_w[i], p.fps, s.steps);
   }
   integrate_root_towards(s.steps, s.target, p.reference_heading[first], p.fps, params.root_pull_seconds, &s.ground_u,
                          &s.heading_u);

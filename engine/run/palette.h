@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "engine/align/common_timeline.h"
+#include "engine/align/weight_keys.h"
 #include "engine/decompose/body_parts.h"
 #include "engine/decompose/decomposition.h"
 #include "engine/post/finish.h"
@@ -33,6 +34,9 @@ std::vector<double> normalized_weights(const std::vector<double>& typed);
 
 struct MixParams {
   std::vector<double> weights;       // one per take, summing to 1
+  // Weights keyed in time (weight_keys.h; each key's weights as `weights`); non-empty: they replace
+  // `weights` over the output (shared mode, one weight per take: not with component_weights).
+  WeightKeys keys;
   // Per component, one weight per take (k x N, each row summing to 1), from per-part weights
   // (part_weights); empty: `weights` for every component.
   Eigen::MatrixXd component_weights;
@@ -49,6 +53,7 @@ struct MixParams {
 
 struct MixScratch {
   Eigen::MatrixXd x, samples, steps, ground_u, target, contacts_u, joint_weights, stretch, local_t, component_w;
+  Eigen::MatrixXd frame_w, sample_w;  // keyed weights: per output frame (K x N), per sample (L x N)
   Eigen::VectorXd heading_u, u, u_stretch, flips;
   Eigen::RowVectorXd channel_w, mixed_mean;
   std::vector<double> overall, timing;
@@ -64,10 +69,12 @@ struct MixResult {
   Eigen::MatrixXd sources;   // K x N: each take's frame (fractional, working rate) at each output frame
 };
 
-// One mix (see the top of this file). Throws InputError from params.Validate or a loop without
-// two foot strikes. One weight set: the poses at the output frames only, O(K x N x 3M), and the
+// One mix (see the top of this file). Throws InputError from params.Validate, a loop without
+// two foot strikes, or keys in paper mode. One weight set: the poses at the output frames only, O(K x N x 3M), and the
 // root on the samples, O(U x N); per-component weights add O(U x k x (3M + N)).
-// Allocation-free once scratch and out are sized (per-component weights and a loop allocate).
+// Allocation-free once scratch and out are sized (per-component weights, keys and a loop allocate).
+// With keys, each output frame's pose takes the keys' weights at its time, and the root, contacts
+// and timing each sample's (timing.h mixed_timeline with keys): O(K x N x 3M + U x N) as above.
 // times: when given, its synthesize_ms (the poses) and postprocess_ms (root, clean-up) are set.
 void mix_palette(const PreparedTakes& palette, const Decomposed& decomposition, const MixParams& params,
                  MixScratch& scratch, MixResult& out, StageTimes* times = nullptr);

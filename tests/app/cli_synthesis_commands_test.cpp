@@ -165,3 +165,56 @@ TEST_CASE("cli blend without --report prints a short summary, not the JSON", "[c
   CHECK(blend.out.find('{') == std::string::npos);
   CHECK(blend.out.size() < 1000);
 }
+
+TEST_CASE("cli: whole takes by cycles, and style keyed in time", "[cli][palette]") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  Sandbox box;
+  const std::string normal = quoted(test::shared_motion("bandai_walk_normal.bvh"));  // 6.5 s at 30 fps
+  const std::string tired = quoted(test::shared_motion("bandai_walk_tired.bvh"));
+  // A 9 s content at 120 fps styled by a shorter pair keeps all its frames at its own rate, and
+  // at strength 0 is itself.
+  const auto whole = box.cli("transfer " + kClumsy + " --neutral " + normal + " --style " + tired +
+                             " --strength 0 --report " + quoted(box.path("w.json")));
+  INFO(whole.err);
+  REQUIRE(whole.status == 0);
+  const auto w = nlohmann::json::parse(test::slurp(box.path("w.json")));
+  CHECK(w["fps"] == 120.0);
+  const auto info = box.cli("info " + kClumsy + " --json");
+  const auto clip = nlohmann::json::parse(info.out);
+  CHECK(w["frames"] == clip["frames"]);
+  CHECK(w["takes"][1]["time_base"] == "cycles");
+  CHECK(w["takes"][1]["alignment"]["time_base"] == "cycles");
+  // Which of the neutral's own cycles each output frame shows: several, reused.
+  const std::vector<int> cycles = w["takes"][1]["source_cycles"];
+  CHECK(*std::max_element(cycles.begin(), cycles.end()) >= 2);
+  // Keyed: from none of the style to all of it over four seconds.
+  const auto keyed = box.cli("transfer " + kClumsy + " --neutral " + normal + " --style " + tired +
+                             " --strength-at 0:0,4:1 --report " + quoted(box.path("k.json")));
+  INFO(keyed.err);
+  REQUIRE(keyed.status == 0);
+  const auto k = nlohmann::json::parse(test::slurp(box.path("k.json")));
+  REQUIRE(k["keys"].size() == 2);
+  CHECK(k["keys"][1]["weights"] == std::vector<double>{1.0, -1.0, 1.0});
+  const auto blend = box.cli("blend " + normal + " " + tired + " --alpha-at 0:0,3:1 --report " +
+                             quoted(box.path("b.json")));
+  REQUIRE(blend.status == 0);
+  CHECK(nlohmann::json::parse(test::slurp(box.path("b.json")))["keys"][1]["weights"] == std::vector<double>{0.0, 1.0});
+  const auto mix = box.cli("mix " + kHappy + " " + kMarching + " " + kJoy + " --weights-at \"0:1,0,0;2:0,1/2,1/2\" --report " +
+                           quoted(box.path("m.json")));
+  INFO(mix.err);
+  REQUIRE(mix.status == 0);
+  // Bad keys: one line, exit 1, nothing written.
+  const std::string out = " --out " + quoted(box.path("bad.bvh"));
+  for (const std::string& bad : {"blend " + kHappy + " " + kJoy + " --alpha-at 5:0,1:1",
+                                 "blend " + kHappy + " " + kJoy + " --alpha-at 0:0,5",
+                                 "mix " + kHappy + " " + kJoy + " " + kClumsy + " --weights-at 0:1,0",
+                                 "mix " + kHappy + " " + kJoy + " --weights-at 0:1,0 --part-weights legs:0,1",
+                                 "transfer " + kClumsy + " --neutral " + normal + " --style " + tired +
+                                     " --strength-at 0:0,4:7"}) {
+    const auto r = box.cli(bad + out);
+    INFO(bad << ": " << r.err);
+    CHECK(r.status == 1);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK(!std::filesystem::exists(box.path("bad.bvh")));
+  }
+}

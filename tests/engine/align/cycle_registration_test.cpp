@@ -186,6 +186,7 @@ TEST_CASE("cycle registration: takes that cannot be registered are refused, and 
 }
 
 TEST_CASE("cycle registration: a 6.5 s walk registered onto a 22 s one covers it whole, at every weight") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
   const auto content = std::make_shared<const Clip>(read_motion_file(test::shared_motion("cmu142_walk_joy.bvh")));
   const auto neutral = std::make_shared<const Clip>(read_motion_file(test::shared_motion("bandai_walk_normal.bvh")));
   const auto p = prepare_takes(std::vector<std::shared_ptr<const Clip>>{content, neutral}, PrepareOptions());

@@ -255,3 +255,60 @@ TEST_CASE("palette: a count out of range is refused") {
   std::vector<std::shared_ptr<const Clip>> many(17, clips[0]);
   CHECK_THROWS_AS(prepare_takes(many, {}), InputError);
 }
+
+TEST_CASE("palette: weights keyed in time") {
+  const auto clips = bundled();
+  const double height = guess_units(*clips[0]).height;
+  const auto p = prepare_takes({clips[0], clips[1], clips[2]}, {});
+  const auto d = decompose_takes(*p, params());
+  const std::vector<double> w{0.2, 0.5, 0.3};
+  SECTION("keys that all hold one set of weights are those weights") {
+    MixParams keyed;
+    keyed.keys = {{0.0, w}, {3.0, w}};
+    const MixResult a = mix(*p, *d, w), b = mix(*p, *d, w, keyed);
+    REQUIRE(a.motion.world.rows() == b.motion.world.rows());
+    CHECK(max_distance(a.motion.world, b.motion.world, height) < kExact);
+  }
+  SECTION("from one take to another: each end as the take's own mix, no joint faster than the two") {
+    MixParams keyed;
+    keyed.keys = {{1.0, one_hot(3, 0)}, {5.0, one_hot(3, 1)}};
+    keyed.finish.foot_lock = false;  // the poses as mixed
+    const MixResult m = mix(*p, *d, w, keyed);
+    MixParams plain;
+    plain.finish.foot_lock = false;
+    const MixResult first = mix(*p, *d, one_hot(3, 0), plain);
+    // Before the first key: the reference's own mix, frame for frame.
+    const Eigen::Index before = static_cast<Eigen::Index>(0.9 * p->fps);
+    CHECK(max_distance(m.motion.world.topRows(before), first.motion.world.topRows(before), height) < 1e-6);
+    // After the last key, the poses are take 1's at the frames shown.
+    const Eigen::Index after = static_cast<Eigen::Index>(5.2 * p->fps);
+    REQUIRE(m.local.rows() > after + 10);
+    const Eigen::MatrixXd take1 = own_pose_at(p->takes[1], m.sources.col(1));
+    CHECK((m.local.bottomRows(m.local.rows() - after) - take1.bottomRows(m.local.rows() - after))
+              .cwiseAbs()
+              .maxCoeff() < 1e-6 * height);
+    // Frame by frame: no joint moves faster than in either take's own mix.
+    auto fastest = [&](const Eigen::MatrixXd& x) {
+      double v = 0;
+      for (Eigen::Index j = 0; j < x.cols() / 3; ++j)
+        v = std::max(v, (x.middleCols(3 * j, 3).bottomRows(x.rows() - 1) - x.middleCols(3 * j, 3).topRows(x.rows() - 1))
+                            .rowwise()
+                            .norm()
+                            .maxCoeff());
+      return v;
+    };
+    const MixResult second = mix(*p, *d, one_hot(3, 1), plain);
+    CHECK(fastest(m.motion.world) < 1.25 * std::max(fastest(first.motion.world), fastest(second.motion.world)));
+  }
+  SECTION("keys are refused with per-part weights and with bad times") {
+    MixParams keyed;
+    keyed.keys = {{0.0, w}};
+    keyed.component_weights = Eigen::MatrixXd::Constant(d->components(), 3, 1.0 / 3);
+    CHECK_THROWS_WITH(mix(*p, *d, w, keyed), Catch::Contains("per-part weights without keys"));
+    keyed.component_weights.resize(0, 0);
+    keyed.keys = {{2.0, w}, {1.0, w}};
+    CHECK_THROWS_AS(mix(*p, *d, w, keyed), InputError);
+    keyed.keys = {{0.0, {2.0, -0.5, -0.5}}};
+    CHECK_THROWS_WITH(mix(*p, *d, w, keyed), Catch::Contains("key 1's weights"));
+  }
+}
