@@ -23,7 +23,8 @@ void nearest_rows(const Eigen::MatrixXd& x, const Eigen::VectorXd& u, Eigen::Mat
 
 void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, const Eigen::VectorXd& heading_u,
                    const Eigen::MatrixXd& contacts_u, const FinishRig& rig, const FinishOptions& options,
-                   Eigen::MatrixXd& local, Eigen::VectorXd& u, FinishScratch& s, FinishedMotion& out) {
+                   Eigen::MatrixXd& local, Eigen::VectorXd& u, FinishScratch& s, FinishedMotion& out,
+                   const Eigen::MatrixXd* body_drift) {
   sampler.apply(ground_u, s.ground);
   s.heading.resize(u.size());
   // Headings along the shorter arc between samples: where the mixed turns carry a whole turn
@@ -35,11 +36,24 @@ void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, c
     s.heading[k] = h0 + sampler.frac[k] * std::remainder(h1 - h0, 2.0 * kPi);
   }
   nearest_rows(contacts_u, u, out.contacts);
+  tidy_contacts(out.contacts, *rig.feet);
+  if (body_drift != nullptr) {  // into the world, by the heading at each output frame
+    s.drift.resize(u.size(), 4);
+    for (Eigen::Index k = 0; k < u.size(); ++k) {
+      const double c = std::cos(s.heading[k]), sn = std::sin(s.heading[k]);
+      for (int side = 0; side < 2; ++side) {
+        const double bx = (*body_drift)(k, 2 * side), bz = (*body_drift)(k, 2 * side + 1);
+        s.drift(k, 2 * side) = c * bx + sn * bz;
+        s.drift(k, 2 * side + 1) = -sn * bx + c * bz;
+      }
+    }
+  }
   out.loop = LoopCut();
   if (options.loop) {
     out.loop = find_loop(out.contacts, local, s.heading);
     close_loop(out.loop, local, s.ground, s.heading, out.contacts);
     u = u.segment(out.loop.begin, out.loop.frames()).eval();
+    if (body_drift != nullptr) s.drift = s.drift.middleRows(out.loop.begin, out.loop.frames()).eval();
   }
   to_world(local, s.ground, s.heading, &out.world);
   if (options.limb_lengths) {
@@ -49,7 +63,7 @@ void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, c
   }
   // Foot lock (beyond the paper): planted ankles pinned by two-bone IK, which keeps bone lengths.
   out.foot_sliding_raw = foot_sliding(out.world, out.contacts, *rig.feet);
-  if (options.foot_lock) apply_foot_lock(out.world, out.contacts, *rig.feet, s.foot);
+  if (options.foot_lock) apply_foot_lock(out.world, out.contacts, *rig.feet, s.foot, body_drift != nullptr ? &s.drift : nullptr);
   out.foot_sliding_cleaned = options.foot_lock ? foot_sliding(out.world, out.contacts, *rig.feet) : out.foot_sliding_raw;
   out.limb_length_max_error = max_bone_length_error(out.world, *rig.parents, *rig.lengths);
 }

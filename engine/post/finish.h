@@ -35,7 +35,7 @@ struct FinishedMotion {
 };
 
 struct FinishScratch {
-  Eigen::MatrixXd ground;
+  Eigen::MatrixXd ground, drift;
   Eigen::VectorXd heading;
   FootLockScratch foot;
 };
@@ -43,9 +43,13 @@ struct FinishScratch {
 // local: K x 3M canonical poses at the output frames, u: their K sample positions (sampler set
 // on them); ground_u (U x 2), heading_u (U) and contacts_u (U x 2) on the samples. With a loop,
 // local and u are cut to the loop's frames. Throws InputError when a loop is asked of a motion
-// without two foot strikes. O(K x M); allocation-free once sized, except the loop.
+// without two foot strikes. body_drift: when given (K x 4: left x, z, right x, z), how far each
+// ankle is expected to move from output frame k to k + 1 in the body's frame there (the mixed
+// takes' own ankle moves, planted_drift), for the foot lock (apply_foot_lock's drift). O(K x M);
+// allocation-free once sized, except the loop.
 void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, const Eigen::VectorXd& heading_u,
                    const Eigen::MatrixXd& contacts_u, const FinishRig& rig, const FinishOptions& options,
-                   Eigen::MatrixXd& local, Eigen::VectorXd& u, FinishScratch& scratch, FinishedMotion& out);
+                   Eigen::MatrixXd& local, Eigen::VectorXd& u, FinishScratch& scratch, FinishedMotion& out,
+                   const Eigen::MatrixXd* body_drift = nullptr);
 
 }  // namespace mostyle

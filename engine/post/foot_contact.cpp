@@ -21,6 +21,8 @@ constexpr double kStraightLeg = 1e-4;
 constexpr double kExtensionMargin = 1e-9;
 // How far (leg lengths) the knee's pole leans towards where the foot points (apply_foot_lock).
 constexpr double kKneeForwardBias = 0.02;
+// The lock keeps the ankle within this fraction of the leg's full length from the hip.
+constexpr double kReachMargin = 0.995;
 
 Eigen::Vector3d joint_at(const Eigen::MatrixXd& m, Eigen::Index row, int column) {
   return Eigen::Vector3d(m(row, 3 * column), m(row, 3 * column + 1), m(row, 3 * column + 2));
@@ -114,8 +116,6 @@ Eigen::MatrixXd detect_foot_contacts(const Eigen::MatrixXd& world, const FootRig
   const FootContactOptions& o = rig.options;
   const double max_height = o.height_fraction * rig.leg_length;
   const double max_speed = o.speed_fraction * rig.leg_length;
-  const int max_gap = seconds_to_frames(o.max_gap_seconds, rig.fps);
-  const int min_run = std::max(1, static_cast<int>(std::ceil(o.min_contact_seconds * rig.fps - kTimeEpsilon)));
   std::vector<double> heights(static_cast<size_t>(frames));
   std::vector<char> planted(static_cast<size_t>(frames));
   for (int side = 0; side < 2; ++side) {
@@ -136,30 +136,41 @@ Eigen::MatrixXd detect_foot_contacts(const Eigen::MatrixXd& world, const FootRig
                   : 0.0;
       planted[t] = heights[t] - floor <= max_height && speed <= max_speed;
     }
-    // Fill short breaks between two contacts, then drop contacts too short to be steps.
-    for (Eigen::Index t = 0; t < frames;) {
-      if (planted[t]) {
-        ++t;
-        continue;
-      }
-      Eigen::Index e = t;
-      while (e < frames && !planted[e]) ++e;
-      if (t > 0 && e < frames && e - t <= max_gap) std::fill(planted.begin() + t, planted.begin() + e, 1);
-      t = e;
-    }
-    for (Eigen::Index t = 0; t < frames;) {
-      if (!planted[t]) {
-        ++t;
-        continue;
-      }
-      Eigen::Index e = t;
-      while (e < frames && planted[e]) ++e;
-      if (e - t < min_run) std::fill(planted.begin() + t, planted.begin() + e, 0);
-      t = e;
-    }
     for (Eigen::Index t = 0; t < frames; ++t) contacts(t, side) = planted[t] ? 1.0 : 0.0;
   }
+  tidy_contacts(contacts, rig);
   return contacts;
+}
+
+void tidy_contacts(Eigen::MatrixXd& contacts, const FootRig& rig) {
+  const FootContactOptions& o = rig.options;
+  const int max_gap = seconds_to_frames(o.max_gap_seconds, rig.fps);
+  const int min_run = std::max(1, static_cast<int>(std::ceil(o.min_contact_seconds * rig.fps - kTimeEpsilon)));
+  const Eigen::Index frames = contacts.rows();
+  for (Eigen::Index side = 0; side < contacts.cols(); ++side) {
+    auto planted = contacts.col(side);
+    // Fill short breaks between two contacts, then drop contacts too short to be steps.
+    for (Eigen::Index t = 0; t < frames;) {
+      if (planted[t] > 0.5) {
+        ++t;
+        continue;
+      }
+      Eigen::Index e = t;
+      while (e < frames && !(planted[e] > 0.5)) ++e;
+      if (t > 0 && e < frames && e - t <= max_gap) planted.segment(t, e - t).setOnes();
+      t = e;
+    }
+    for (Eigen::Index t = 0; t < frames;) {
+      if (!(planted[t] > 0.5)) {
+        ++t;
+        continue;
+      }
+      Eigen::Index e = t;
+      while (e < frames && planted[e] > 0.5) ++e;
+      if (e - t < min_run) planted.segment(t, e - t).setZero();
+      t = e;
+    }
+  }
 }
 
 Eigen::MatrixXd carry_contacts(const Eigen::MatrixXd& contacts_b, const Eigen::VectorXd& warp) {
@@ -239,7 +250,9 @@ void two_bone_ik_pole(const Eigen::Vector3d& hip, const Eigen::Vector3d& knee, c
 }
 
 void apply_foot_lock(Eigen::MatrixXd& world, const Eigen::MatrixXd& contacts, const FootRig& rig,
-                     FootLockScratch& scratch) {
+                     FootLockScratch& scratch, const Eigen::MatrixXd* drift) {
+  if (drift != nullptr && (drift->rows() != world.rows() || drift->cols() != 4))
+    throw InputError("foot lock: expected the planted feet's drift as " + std::to_string(world.rows()) + " x 4");
   check_columns(world, rig, "foot lock");
   check_contacts(world, contacts, "foot lock");
   const Eigen::Index frames = world.rows();
@@ -264,19 +277,29 @@ void apply_foot_lock(Eigen::MatrixXd& world, const Eigen::MatrixXd& contacts, co
         continue;
       }
       const Eigen::Index start = t;
-      double x = 0, z = 0;
+      // The drift expected so far in the run (none without `drift`): the target moves with it.
+      double x = 0, z = 0, ex = 0, ez = 0;
       for (; t < frames && contacts(t, side) > 0.5; ++t) {
-        x += world(t, 3 * leg.ankle);
-        z += world(t, 3 * leg.ankle + 2);
+        x += world(t, 3 * leg.ankle) - ex;
+        z += world(t, 3 * leg.ankle + 2) - ez;
+        if (drift != nullptr) {
+          ex += (*drift)(t, 2 * side);
+          ez += (*drift)(t, 2 * side + 1);
+        }
       }
       const Eigen::Index end = t - 1;
       const double n = static_cast<double>(end - start + 1);
       x /= n;
       z /= n;
+      ex = ez = 0;
       for (Eigen::Index u = start; u <= end; ++u) {
         scratch.weight[u] = 1.0;
-        scratch.target(u, 0) = x - world(u, 3 * leg.ankle);
-        scratch.target(u, 1) = z - world(u, 3 * leg.ankle + 2);
+        scratch.target(u, 0) = x + ex - world(u, 3 * leg.ankle);
+        scratch.target(u, 1) = z + ez - world(u, 3 * leg.ankle + 2);
+        if (drift != nullptr) {
+          ex += (*drift)(u, 2 * side);
+          ez += (*drift)(u, 2 * side + 1);
+        }
       }
       if (previous_end >= 0) {  // the swing from the previous run
         const Eigen::Index span = start - previous_end;
@@ -319,9 +342,22 @@ void apply_foot_lock(Eigen::MatrixXd& world, const Eigen::MatrixXd& contacts, co
       const Eigen::Vector3d hip = joint_at(world, t, leg.hip);
       const Eigen::Vector3d knee = joint_at(world, t, leg.knee);
       const Eigen::Vector3d ankle = joint_at(world, t, leg.ankle);
-      Eigen::Vector3d target = ankle;
-      target.x() += scratch.target(t, 0);
-      target.z() += scratch.target(t, 1);
+      // The offset, shortened where it would take the ankle out of the leg's reach: the IK would
+      // then lift the ankle along the straightened leg and let the knee snap back when the lock
+      // lets go. What is left of the slide stays (the leg cannot reach further).
+      const Eigen::Vector2d offset(scratch.target(t, 0), scratch.target(t, 1));
+      // (A leg already straighter than that may stay as straight.)
+      const double reach = std::max(kReachMargin * ((knee - hip).norm() + (ankle - knee).norm()), (ankle - hip).norm());
+      double fraction = 1.0;
+      Eigen::Vector3d target = ankle + Eigen::Vector3d(offset.x(), 0.0, offset.y());
+      if ((target - hip).norm() > reach) {
+        // |ankle - hip + f (ox, 0, oz)| = reach: the positive root f, within [0, 1].
+        const Eigen::Vector3d d = ankle - hip, o(offset.x(), 0.0, offset.y());
+        const double a = o.squaredNorm(), b = 2.0 * d.dot(o), c = d.squaredNorm() - reach * reach;
+        const double disc = b * b - 4.0 * a * c;
+        fraction = a > 0 && disc >= 0 ? std::clamp((-b + std::sqrt(disc)) / (2.0 * a), 0.0, 1.0) : 0.0;
+        target = ankle + fraction * o;
+      }
       Eigen::Vector3d new_knee, new_ankle;
       // The knee's bend direction (the IK's pole) is taken from the leg's own pose, the knee's
       // offset from its hip-ankle line, with a slight bias towards where the foot points. Taken
@@ -334,10 +370,13 @@ void apply_foot_lock(Eigen::MatrixXd& world, const Eigen::MatrixXd& contacts, co
         const double len2 = leg_line.squaredNorm();
         pole = knee - hip;
         if (len2 > 0) pole -= leg_line * (leg_line.dot(knee - hip) / len2);
-        if (leg.toe >= 0) {
+        // The bias fades out as the knee bends more (gone at three times its size), so a bent
+        // knee keeps its own plane: a lock that does not move the ankle leaves the leg as it was.
+        const double bias = std::clamp(1.0 - pole.norm() / (3.0 * kKneeForwardBias * rig.leg_length), 0.0, 1.0);
+        if (leg.toe >= 0 && bias > 0.0) {
           Eigen::Vector3d forward = joint_at(world, t, leg.toe) - ankle;
           forward.y() = 0.0;
-          if (forward.norm() > 0) pole += kKneeForwardBias * rig.leg_length * forward.normalized();
+          if (forward.norm() > 0) pole += bias * kKneeForwardBias * rig.leg_length * forward.normalized();
         }
       }
       const bool straight = !(pole.norm() > kStraightLeg * rig.leg_length);

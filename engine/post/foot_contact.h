@@ -47,6 +47,12 @@ FootRig make_foot_rig(const std::vector<int>& majors, const std::vector<double>&
 // O(F log F) (the percentile).
 Eigen::MatrixXd detect_foot_contacts(const Eigen::MatrixXd& world, const FootRig& rig);
 
+// Contacts (F x 2, 1 planted) tidied in place as detection tidies them: breaks of at most
+// max_gap_seconds between two contacts filled, then contacts shorter than min_contact_seconds
+// dropped (at rig.fps). A mix's contacts (weighted, then thresholded) can flicker where the takes
+// plant at different moments; the foot lock would pin each flicker's runs apart. O(F), in place.
+void tidy_contacts(Eigen::MatrixXd& contacts, const FootRig& rig);
+
 // B's contacts (Fb x 2) carried onto A's timeline: row i is B's row at warp(i) rounded (warp:
 // dtw.h warp_map, F values in B's frames). Throws InputError on an empty B. O(F).
 Eigen::MatrixXd carry_contacts(const Eigen::MatrixXd& contacts_b, const Eigen::VectorXd& warp);
@@ -77,8 +83,13 @@ struct FootLockScratch {
 // hip-ankle line, leaning slightly towards the toe; a target out of reach is approached along the
 // hip-target line. The toe moves with the ankle (the foot is translated). Frames beyond the fades
 // are left exactly as they were. O(F), no allocation once scratch has size F.
+// drift: when given (F x 4: left x, z, right x, z, world units), how far each planted ankle is
+// expected to move from frame t to t + 1 (what the takes mixed do themselves: a foot that pivots
+// or slides in every take); the lock then pins only what moves otherwise. Within a run the target
+// is the run's mean of (ankle - expected drift so far) plus the drift so far, so a motion whose
+// planted feet move exactly as expected (a take on its own) is left as it is.
 void apply_foot_lock(Eigen::MatrixXd& world, const Eigen::MatrixXd& contacts, const FootRig& rig,
-                     FootLockScratch& scratch);
+                     FootLockScratch& scratch, const Eigen::MatrixXd* drift = nullptr);
 
 // One two-bone IK solve, exposed for tests: hip, knee, ankle are the chain's joints, `target`
 // where the ankle should go. Returns the new knee and ankle (hip unchanged); thigh |knee - hip|

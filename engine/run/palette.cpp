@@ -37,6 +37,44 @@ void write_sources(const PreparedTakes& p, const RowSampler& at, int first, Eige
   }
 }
 
+// Row `at` (fractional, clamped) of column c of x (a matrix or a vector), linearly between rows.
+template <typename X>
+double at_row(const X& x, double at, Eigen::Index c) {
+  const Eigen::Index last = x.rows() - 1;
+  const double f = std::clamp(at, 0.0, double(last));
+  const Eigen::Index r = std::min<Eigen::Index>(static_cast<Eigen::Index>(f), std::max<Eigen::Index>(last - 1, 0));
+  const double t = last == 0 ? 0.0 : f - double(r);
+  return (1.0 - t) * x(r, c) + t * x(std::min(r + 1, last), c);
+}
+
+// How far each ankle moves from output frame k to k + 1 in the body's frame, as the takes mixed
+// move it themselves at the frames shown (each take's own world ankle, turned into its own
+// heading's frame), weighted (K x 4: left x, z, right x, z; the last row 0). A foot that pivots
+// or slides in the takes is expected to in the mix; the foot lock pins only what moves beyond.
+void planted_drift(const PreparedTakes& p, const Eigen::MatrixXd& sources, const std::vector<double>& weights,
+                   const Eigen::MatrixXd* frame_w, Eigen::MatrixXd& out) {
+  const Eigen::Index frames = sources.rows();
+  out.setZero(frames, 4);
+  for (int i = 0; i < p.size(); ++i) {
+    const PreparedTake& t = p.takes[static_cast<size_t>(i)];
+    for (int side = 0; side < 2; ++side) {
+      const LegColumns& leg = p.feet.legs[static_cast<size_t>(side)];
+      if (!leg.usable()) continue;
+      for (Eigen::Index k = 0; k + 1 < frames; ++k) {
+        const double w = frame_w != nullptr ? (*frame_w)(k, i) : weights[static_cast<size_t>(i)];
+        if (w == 0.0) continue;
+        const double a = sources(k, i), b = sources(k + 1, i);
+        const double dx = at_row(t.world, b, 3 * leg.ankle) - at_row(t.world, a, 3 * leg.ankle);
+        const double dz = at_row(t.world, b, 3 * leg.ankle + 2) - at_row(t.world, a, 3 * leg.ankle + 2);
+        const double h = at_row(t.canonical.heading, a, 0);
+        const double c = std::cos(h), s = std::sin(h);
+        out(k, 2 * side) += w * (c * dx - s * dz);
+        out(k, 2 * side + 1) += w * (s * dx + c * dz);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<double> normalized_weights(const std::vector<double>& typed) {
@@ -72,6 +110,9 @@ void MixParams::Validate(int takes, int components) const {
     if (component_weights.size() > 0)
       throw InputError("weights keyed in time mix one weight per take for the whole body; give per-part weights "
                        "without keys, or keys without per-part weights");
+    if (finish.loop)
+      throw InputError("a loop repeats one stretch with one set of weights; keys change the weights over time: "
+                       "give keys or a loop, not both");
   }
   if (component_weights.size() > 0) {
     if (component_weights.rows() != components || component_weights.cols() != takes)
@@ -227,6 +268,7 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
   s.steps.setZero(length, 3);
   s.target.setZero(length, 2);
   s.contacts_u.setZero(length, 2);
+  // The paths pulled towards (integrate_root_towards), as the steps are weighted.
   for (int i = 0; i < n; ++i) {
     if (keyed) {  // each sample with its own weights
       const auto w = s.sample_w.col(i).asDiagonal();
@@ -244,16 +286,32 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
     if (keyed) add_spread_turns(s.flips, s.sample_w.col(i), p.fps, s.steps);
     else add_spread_turns(s.flips, root_w[i], p.fps, s.steps);
   }
-  integrate_root_towards(s.steps, s.target, p.reference_heading[first], p.fps, params.root_pull_seconds, &s.ground_u,
-                         &s.heading_u);
+  // The pull keeps a mix among its takes' paths (a warp matches steps, not turns, so integrated
+  // steps alone drift away from every take). With a negative weight (a transfer's on its neutral
+  // take, an exaggeration) there is no path among them to keep to: the weighted paths are a path
+  // no take walks (content + style - neutral, each registered path with its own drift), and the
+  // planted feet would slide to follow it. Such a mix integrates its steps alone.
+  bool convex = true;
+  for (int i = 0; i < n; ++i) {
+    convex &= root_w[i] >= 0.0;
+    for (const WeightKey& key : params.keys) convex &= key.weights[static_cast<size_t>(i)] >= 0.0;
+  }
+  integrate_root_towards(s.steps, s.target, p.reference_heading[first], p.fps, convex ? params.root_pull_seconds : 0.0,
+                         &s.ground_u, &s.heading_u);
   s.contacts_u = (s.contacts_u.array() > 0.5).cast<double>();
   FinishRig rig;
   rig.parents = &p.parents;
   rig.lengths = &p.lengths;
   rig.feet = &p.feet;
   rig.short_bone_fraction = kShortBoneFraction;
+  const Eigen::MatrixXd* drift = nullptr;
+  if (params.finish.foot_lock) {
+    write_sources(p, s.sampler, first, out.sources);
+    planted_drift(p, out.sources, s.overall, keyed ? &s.frame_w : nullptr, s.drift);
+    drift = &s.drift;
+  }
   finish_motion(s.sampler, s.ground_u, s.heading_u, s.contacts_u, rig, params.finish, out.local, s.u_stretch, s.finish,
-                out.motion);
+                out.motion, drift);
   s.sampler.set(s.u_stretch, length);
   write_sources(p, s.sampler, first, out.sources);
   out.sample = s.u_stretch.array() + double(first);
