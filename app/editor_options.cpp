@@ -188,6 +188,8 @@ const std::vector<KeyHelp>& editor_keys() {
   static const std::vector<KeyHelp> kKeys = {
       {"Space", "play or pause (from the start again on the last frame)"},
       {"Left / Right arrow", "step one frame back / forward (pauses)"},
+      {"K", "key the style at the playhead: alpha, or the palette's weights (the timeline's Set key)"},
+      {"Delete", "remove the key under the mouse on the timeline, else the one at the playhead"},
       {"F", "frame all: turn and move the camera to show every skeleton"},
       {"F1 or ?", "show or hide this list of keys"},
       {"Esc", "close this list"},
@@ -202,6 +204,7 @@ const std::vector<KeyHelp>& editor_keys() {
       {"Left drag", "in the 3D view: turn the camera around the skeletons"},
       {"Right or middle drag", "in the 3D view: move the camera sideways and up or down"},
       {"Mouse wheel", "in the 3D view: move the camera closer or further"},
+      {"Drag a key's diamond", "on the timeline: move the key in time; click: go to it; right-click: remove it"},
       {"Drop .bvh files", "on the window: three or more open the style palette, two the pair, one B"},
   };
   return kKeys;

@@ -14,7 +14,9 @@
 #include "ui/model/document_fields.h"
 #include "ui/model/export_job.h"
 #include "ui/model/joint_contacts.h"
+#include "ui/model/keyed_weights.h"
 #include "ui/model/lanes.h"
+#include "ui/model/weight_keys_edit.h"
 
 namespace mostyle::ui {
 namespace {
@@ -349,7 +351,9 @@ void BlendSession::update_blend(EditorState& state) {
     params.timing_a = controls.timing_a;
     params.loop = controls.loop;
     params.residual = controls.residual;
-    const bool changed = d != blended_decomposed_ || params.alpha != blended_params_.alpha ||
+    set_mix_keys(controls, 2, keys_);  // style over time, when keyed (the mix's weights over the output)
+    const bool changed = d != blended_decomposed_ || !same_keys(keys_, blended_keys_) ||
+                         params.alpha != blended_params_.alpha ||
                          params.timing_a != blended_params_.timing_a || params.loop != blended_params_.loop ||
                          params.residual != blended_params_.residual ||
                          params.component_alpha != blended_params_.component_alpha ||
@@ -358,6 +362,7 @@ void BlendSession::update_blend(EditorState& state) {
       const auto t0 = Clock::now();
       try {
         set_blend_mix_params(params, *d, blend_mix_);
+        blend_mix_.keys = keys_;  // blend_params.h speaks of one alpha: the keys are the mix's
         mix_palette(*p, *d, blend_mix_, scratch_, blend_, &blend_times_);
         has_blend_ = true;
         blend_error_.clear();
@@ -367,6 +372,7 @@ void BlendSession::update_blend(EditorState& state) {
       blend_ms_ = ms_since(t0);
       blended_decomposed_ = d;
       blended_params_ = params;
+      blended_keys_ = keys_;
       refresh_blend_take(state);
     }
   }
@@ -392,6 +398,8 @@ void BlendSession::refresh_blend_take(EditorState& state) {
   char label[64];
   if (state.document.controls.per_component && snapshot_->decomposed && snapshot_->decomposed->params.mode == BlendMode::kShared)
     std::snprintf(label, sizeof label, "blend (per component)");
+  else if (!blended_keys_.empty())
+    std::snprintf(label, sizeof label, "blend  alpha keyed");
   else
     std::snprintf(label, sizeof label, "blend  alpha %.2f", state.document.parameters.alpha);
   t.label = label;

@@ -166,7 +166,9 @@ class BlendSession {
   Document asked_;               // the document as the worker was last asked for it (sync)
   bool load_waiting_ = false;    // load_files() since the last sync()
   BlendParams blended_params_;
-  MixParams blend_mix_;  // blended_params_ in a mix's terms (blend_params.h)
+  MixParams blend_mix_;  // blended_params_ in a mix's terms (blend_params.h), with the keys
+  WeightKeys keys_;          // the document's keys as the mix takes them (set_mix_keys), this frame
+  WeightKeys blended_keys_;  // those of the last blend asked for (with blended_params_)
   MixScratch scratch_;
   MixResult blend_;
   Eigen::VectorXd source_a_, source_b_;  // A's and B's frame at each of the blend's (its sources' columns)

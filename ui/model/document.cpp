@@ -30,7 +30,7 @@ bool in_range(double v, const Range& r) {
 bool differs_at(const Document& x, const Document& y, Stale what) {
   bool differs = false;
   document_fields(x, y, [&](const Field& field, const auto& a, const auto& b) {
-    differs = differs || (field.stale == what && !(a == b));
+    differs = differs || (field.stale == what && !same_value(a, b));
   });
   return differs;
 }
@@ -38,7 +38,7 @@ bool differs_at(const Document& x, const Document& y, Stale what) {
 Stale stale_after(const Document& before, const Document& after) {
   Stale stale = Stale::kNothing;
   document_fields(before, after, [&](const Field& field, const auto& x, const auto& y) {
-    if (!(x == y)) stale = std::max(stale, field.stale);
+    if (!same_value(x, y)) stale = std::max(stale, field.stale);
   });
   return stale;
 }

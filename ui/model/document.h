@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "engine/align/alignment.h"
+#include "engine/align/weight_keys.h"
 #include "engine/run/decompose_params.h"
 
 namespace mostyle::ui {
@@ -52,6 +53,10 @@ struct SessionControls {
   bool timing_a = false;                 // keep A's timeline instead of blending the timing
   bool loop = false;                     // cut a seamless loop of whole gait cycles
   bool residual = true;                  // blend the takes' residual detail too (BlendParams)
+  // Style over time (issue 16): the mix's weights keyed at seconds of the result, each key one
+  // mix weight per take (a pair's (1 - alpha, alpha)); they replace alpha or the palette's weights
+  // while they fit the takes (ui/model/keyed_weights.h). Empty: the constant weights.
+  WeightKeys keys;
   int selected_component = -1;           // components view; -1: none
   int dtw_coordinate = 1;                // DTW view: 0 lateral, 1 height, 2 forward
   PaletteControls palette;               // with three or more takes

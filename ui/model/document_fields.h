@@ -9,6 +9,7 @@
 #include "engine/run/palette.h"
 #include "engine/run/prepare_takes.h"
 #include "ui/model/document.h"
+#include "ui/model/weight_keys_edit.h"
 
 namespace mostyle::ui {
 
@@ -32,6 +33,10 @@ inline constexpr Range kMixWeightRange{kMinMixWeight, kMaxMixWeight};
 inline constexpr Range kStrengthRange{kMinStrength, kMaxStrength};
 inline constexpr Range kTakesRange{0, kMaxPaletteTakes};  // how many takes; a take's index is below hi
 inline constexpr Range kTakeIndexRange{0, kMaxPaletteTakes - 1};
+// Each weight of a key (SessionControls::keys): the widest range any mode mixes with, a transfer's
+// (its neutral take loses what every style gains: palette_view.cpp mix_params_for). The engine
+// judges the weights for the mode they are mixed in (MixParams::Validate).
+inline constexpr Range kKeyWeightRange{-kMaxStrength * kMaxPaletteTakes, kMaxStrength + 1.0};
 inline constexpr Range kNoRange{};                        // not a number (a choice, a flag, options)
 
 // The levels swap_level may take with `basic_motions` levels: 0 to basic_motions - 1 (0 alone
@@ -68,6 +73,7 @@ void document_fields(Doc& x, Doc& y, F&& f) {
   f(Field{"controls.timing_a", Stale::kMix, kNoRange}, cx.timing_a, cy.timing_a);
   f(Field{"controls.loop", Stale::kMix, kNoRange}, cx.loop, cy.loop);
   f(Field{"controls.residual", Stale::kMix, kNoRange}, cx.residual, cy.residual);
+  f(Field{"controls.keys", Stale::kMix, kKeyWeightRange}, cx.keys, cy.keys);
   f(Field{"controls.align", Stale::kAlignment, kNoRange}, cx.align, cy.align);
   f(Field{"controls.selected_component", Stale::kView, kNoRange, false}, cx.selected_component, cy.selected_component);
   f(Field{"controls.dtw_coordinate", Stale::kView, kNoRange, false}, cx.dtw_coordinate, cy.dtw_coordinate);
@@ -82,6 +88,14 @@ void document_fields(Doc& x, Doc& y, F&& f) {
   f(Field{"controls.palette.ghosts", Stale::kView, kNoRange}, wx.ghosts, wy.ghosts);
   f(Field{"view.overlay", Stale::kView, kNoRange}, x.overlay, y.overlay);
 }
+
+// Whether two values of a field are the same: their ==; key by key for the keys (the engine's
+// WeightKey has none). What equality, stale_after and differs_at compare with.
+template <typename T>
+bool same_value(const T& x, const T& y) {
+  return x == y;
+}
+inline bool same_value(const WeightKeys& x, const WeightKeys& y) { return same_keys(x, y); }
 
 // Whether v is in r. Numbers a float slider set are judged as that float (0.01f is
 // 0.0099999998 as a double, and is the slider's own end).

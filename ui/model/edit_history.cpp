@@ -66,7 +66,8 @@ bool load_pending(const BlendSession& session) {
 }
 
 void EditHistory::record(const EditorState& state, BlendSession& session, bool item_active) {
-  touched_ = touched_ || item_active;
+  touched_ = touched_ || item_active || state.command_edits != seen_command_edits_;
+  seen_command_edits_ = state.command_edits;
   if (item_active || load_pending(session)) return;
   const Document now = capture_document(state);
   if (now.files.empty()) return;  // nothing loaded yet: no state to come back to

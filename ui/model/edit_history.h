@@ -46,7 +46,8 @@ class EditHistory {
   // Once per frame, after the panels. item_active: an ImGui item is held this frame
   // (ImGui::IsAnyItemActive(): a slider being dragged, a field being typed in). Commits the live
   // Document when nothing is held, no load is pending and something is loaded, if an item was
-  // held since the last commit or the takes changed (the first one sets the starting state).
+  // held or a command edited it (EditorState::command_edits) since the last commit or the takes
+  // changed (the first one sets the starting state).
   void record(const EditorState& state, BlendSession& session, bool item_active);
   // Records what is there, steps back (forward) and applies that state. false: nothing to undo
   // (redo). Returns at once; a load it asks for arrives later.
@@ -61,7 +62,8 @@ class EditHistory {
 
  private:
   History history_;
-  bool touched_ = false;  // an item was held, or mark_edited(), since the last commit
+  bool touched_ = false;  // an item was held, a command edited, or mark_edited(), since the last commit
+  int seen_command_edits_ = 0;  // EditorState::command_edits at the last record()
 };
 
 }  // namespace mostyle::ui

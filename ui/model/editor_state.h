@@ -70,6 +70,10 @@ struct EditorState {
   // Every parameter the animator sets, once (ui/model/document.h): the panels change it, the
   // engine link (BlendSession::sync) brings the engine to it, undo keeps copies of it.
   Document document;
+  // Edits of the document given as commands (a key pressed, a click on the timeline) rather than
+  // by holding an item: each adds one (command_edited), so that the next EditHistory::record makes
+  // them an undo step (an item's edit becomes one when it is let go).
+  int command_edits = 0;
   Playback playback;
   ViewOptions view;
   std::vector<Take> takes;
@@ -89,6 +93,8 @@ inline void command_frame_all(EditorState& state) { state.view.request_reframe =
 inline void command_reset_layout(EditorState& state) { state.view.reset_layout = true; }
 inline void command_toggle_keys(EditorState& state) { state.view.show_keys = !state.view.show_keys; }
 inline void command_open_export(EditorState& state) { state.view.show_export = true; }
+// After a document edit given by a key or a click (see EditorState::command_edits).
+inline void command_edited(EditorState& state) { ++state.command_edits; }
 
 // Time of the last frame of `take`, seconds from the first; 0 without frames.
 inline double take_length_s(const Take& take) { return take.frames() > 1 ? (take.frames() - 1) / take.rate() : 0.0; }

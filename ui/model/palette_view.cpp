@@ -10,7 +10,9 @@
 #include "engine/io/error.h"
 #include "ui/model/blend_session.h"
 #include "ui/model/joint_contacts.h"
+#include "ui/model/keyed_weights.h"
 #include "ui/model/lanes.h"
+#include "ui/model/weight_keys_edit.h"
 
 namespace mostyle::ui {
 namespace {
@@ -26,7 +28,7 @@ double ms_since(Clock::time_point t0) {
 constexpr BodyPart kParts[] = {BodyPart::kLegs, BodyPart::kArms, BodyPart::kSpine};
 
 bool same_mix(const MixParams& a, const MixParams& b) {
-  return a.weights == b.weights && a.component_weights.rows() == b.component_weights.rows() &&
+  return a.weights == b.weights && same_keys(a.keys, b.keys) && a.component_weights.rows() == b.component_weights.rows() &&
          a.component_weights.cols() == b.component_weights.cols() && a.component_weights == b.component_weights &&
          a.min_weight == b.min_weight && a.max_weight == b.max_weight && a.reference_timing == b.reference_timing &&
          a.residual == b.residual && a.finish.limb_lengths == b.finish.limb_lengths &&
@@ -46,23 +48,12 @@ glm::vec3 palette_color(int take) {
 MixParams mix_params_for(const SessionControls& controls, const Decomposed& decomposition, int takes) {
   const PaletteControls& c = controls.palette;
   MixParams m;
+  // A transfer: content is the reference (take 0); the neutral take loses what each style gains.
+  m.weights = palette_weights(c, takes);
+  set_mix_keys(controls, takes, m.keys);  // style over time, when keyed
   if (c.transfer) {
-    // Content is the reference (take 0); the neutral take loses what each style gains.
-    std::vector<double> strengths;
-    m.weights.assign(static_cast<size_t>(takes), 0.0);
-    m.weights[0] = 1.0;
-    const int neutral = std::clamp(c.neutral, 1, takes - 1);
-    for (int i = 1; i < takes; ++i) {
-      if (i == neutral) continue;
-      const double s = static_cast<size_t>(i) < c.strengths.size() ? c.strengths[static_cast<size_t>(i)] : 0.0;
-      m.weights[static_cast<size_t>(i)] = s;
-      m.weights[static_cast<size_t>(neutral)] -= s;
-    }
     m.min_weight = -kMaxStrength * double(takes);
     m.max_weight = kMaxStrength + 1.0;
-  } else {
-    m.weights = c.weights;
-    if (static_cast<int>(m.weights.size()) != takes) m.weights.assign(static_cast<size_t>(takes), 1.0 / takes);
   }
   if (c.per_part && !c.transfer) {
     // Each part: its own weights when given (one per take), else the overall weights.

@@ -23,9 +23,10 @@ struct PaletteControls;
 constexpr int kPaletteMix = 0;    // index of the mix in EditorState::takes
 constexpr int kPaletteFirst = 1;  // index of the reference; take i is at kPaletteFirst + i
 
-// The engine's mix parameters the controls ask for (weights kept to the palette's size, per-part
-// weights, a transfer's weights, the clean-up options). Throws InputError when the weights are
-// refused (MixParams::Validate says why).
+// The engine's mix parameters the controls ask for (weights kept to the palette's size, the keys
+// when they fit the takes (ui/model/keyed_weights.h), per-part weights, a transfer's weights, the
+// clean-up options). Throws InputError when the weights or keys are refused (MixParams::Validate
+// says why).
 MixParams mix_params_for(const SessionControls& controls, const Decomposed& decomposition, int takes);
 
 // The palette's colour of take i (the reference first).

@@ -32,7 +32,7 @@ constexpr double kMaxPenalty = 1e300;    // DTW end penalty, feature units (nega
 constexpr double kMaxCoordinate = 1e9;   // camera target and distance, world units
 constexpr double kMaxAngle = 1e6;        // camera yaw and pitch, radians (orbiting adds up)
 constexpr double kMaxFov = 3.1;          // radians
-constexpr double kMaxTime = 1e9;         // playhead, seconds
+constexpr double kMaxTime = 1e9;         // playhead and keys, seconds
 constexpr double kMinSpeed = 0.01, kMaxSpeed = 100.0;
 constexpr std::size_t kMaxQuoted = 40;   // bytes of a key or value repeated in a message
 constexpr double kMaxFloat = 1e30;       // above it a double is not cast to float (undefined)
@@ -413,6 +413,16 @@ OrderedJson field_json(const T& v, const fs::path&) {
 }
 OrderedJson field_json(BlendMode mode, const fs::path&) { return blend_mode_name(mode); }
 OrderedJson field_json(const AlignmentOptions& a, const fs::path&) { return align_json(a); }
+OrderedJson field_json(const WeightKeys& keys, const fs::path&) {
+  OrderedJson j = OrderedJson::array();
+  for (const WeightKey& key : keys) {
+    OrderedJson k = OrderedJson::object();
+    k["seconds"] = key.seconds;
+    k["weights"] = key.weights;
+    j.push_back(k);
+  }
+  return j;
+}
 OrderedJson field_json(const std::vector<std::string>& takes, const fs::path& folder) {
   OrderedJson j = OrderedJson::array();
   for (const std::string& f : takes) j.push_back(take_for_file(f, folder));
@@ -437,6 +447,43 @@ void read_field(const Reader& r, const Json& j, const Where& w, const Field& f, 
   if (!j.is_array()) r.expected(w, "an array of arrays of numbers", j);
   v.clear();
   for (std::size_t i = 0; i < j.size(); ++i) v.push_back(r.numbers(j[i], w.item(i), f.range));
+}
+// Keys: [{"seconds": s, "weights": [...]}, ...], each weight in the field's range, then the
+// engine's own check (in order of time, as many weights in each) with the line of the first key
+// it refuses.
+void read_field(const Reader& r, const Json& j, const Where& w, const Field& f, WeightKeys& keys, const fs::path&) {
+  if (!j.is_array()) r.expected(w, "an array of keys {\"seconds\": s, \"weights\": [...]}", j);
+  keys.clear();
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    const Where at = w.item(i);
+    r.object(j[i], at);
+    r.only_keys(j[i], at, {"seconds", "weights"});
+    for (const char* needed : {"seconds", "weights"})
+      if (!j[i].contains(needed)) r.fail(at, at.name + ": a key needs \"seconds\" and \"weights\"");
+    WeightKey key;
+    key.seconds = r.number(j[i].at("seconds"), at.key("seconds"), 0.0, kMaxTime);
+    key.weights = r.numbers(j[i].at("weights"), at.key("weights"), f.range);
+    keys.push_back(std::move(key));
+  }
+  if (keys.empty()) return;
+  const int takes = static_cast<int>(keys.front().weights.size());
+  try {
+    validate_keys(keys, takes);
+  } catch (const InputError& e) {
+    // The line of the key refused: the last of the shortest first keys refused (O(keys^2), on
+    // this path only). All of them are, so the search ends at the last key at most.
+    auto refused = [&](std::size_t count) {
+      try {
+        validate_keys(WeightKeys(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(count)), takes);
+      } catch (const InputError&) {
+        return true;
+      }
+      return false;
+    };
+    std::size_t bad = 0;
+    while (!refused(bad + 1)) ++bad;
+    r.fail(w.item(bad), w.name + ": " + e.what());
+  }
 }
 void read_field(const Reader& r, const Json& j, const Where& w, const Field&, BlendMode& v, const fs::path&) {
   const std::string mode = r.string(j, w);

@@ -7,6 +7,7 @@
 //     "takes": ["walks/happy.bvh", "walks/marching.bvh"],      (relative to the session's folder)
 //     "parameters": {"alpha": 0.5, "components": 10, "sparsity": 0.1},
 //     "controls": {"mode": "shared", "per_component": false, "component_alpha": [...], ...,
+//                  "keys": [{"seconds": 0, "weights": [1, 0]}, {"seconds": 10, "weights": [0, 1]}],
 //                  "align": {"method": "slope", "on": "auto", ...}, "palette": {...}},
 //     "view": {"overlay": false},
 //     "camera": {"target": [0, 9, 0], "yaw": 0.65, "pitch": 0.22, "distance": 80, "fov_y": 0.61},

@@ -9,6 +9,9 @@
 
 #include "engine/io/motion_file.h"
 #include "ui/model/document.h"
+#include "ui/model/keyed_weights.h"
+#include "ui/model/weight_keys_edit.h"
+#include "ui/panels/keyed_tint.h"
 #include "ui/panels/layout.h"
 #include "ui/panels/range_slider.h"
 #include "ui/panels/theme.h"
@@ -124,7 +127,8 @@ void PalettePanel::draw(EditorState& state) {
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Show every take beside the result, at the moment the result is in it");
   ImGui::SameLine();
   if (!c.transfer) {
-    if (ImGui::SmallButton("Equal weights")) c.weights.assign(static_cast<size_t>(n), 1.0 / n);
+    if (ImGui::SmallButton("Equal weights"))
+      set_weights_at_playhead(state, n, std::vector<double>(static_cast<size_t>(n), 1.0 / n));
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Every take the same weight");
     ImGui::SameLine();
   }
@@ -136,14 +140,19 @@ void PalettePanel::draw(EditorState& state) {
     ImGui::TextColored(kErrorColor, "%s", view.error().c_str());
     ImGui::PopTextWrapPos();
   }
-  if (c.transfer) draw_transfer(c, *p);
-  else draw_mix(c, *p);
+  if (c.transfer) draw_transfer(state, *p);
+  else draw_mix(state, *p);
   ImGui::End();
 }
 
-void PalettePanel::draw_mix(PaletteControls& c, const PreparedTakes& p) {
+void PalettePanel::draw_mix(EditorState& state, const PreparedTakes& p) {
+  PaletteControls& c = state.document.controls.palette;
   const int n = p.size();
   if (static_cast<int>(c.weights.size()) != n) c.weights.assign(static_cast<size_t>(n), 1.0 / n);
+  // Keyed over time: the weights at the playhead; an edit keys them there (auto-key).
+  const Keyed keyed = keyed_at_playhead(state, n);
+  std::vector<double> weights = weights_at_playhead(state, n);
+  bool moved = false;
   const float pad = std::clamp(ImGui::GetContentRegionAvail().y - 4.0f, 80.0f, 220.0f);
   if (ImGui::BeginTable("##mix", n >= 3 ? 3 : 2, ImGuiTableFlags_SizingStretchProp)) {
     ImGui::TableSetupColumn("weights", ImGuiTableColumnFlags_WidthStretch, 2.4f);
@@ -157,13 +166,19 @@ void PalettePanel::draw_mix(PaletteControls& c, const PreparedTakes& p) {
     for (int i = 0; i < n; ++i) {
       ImGui::PushID(i);
       swatch(i);
-      double w = c.weights[static_cast<size_t>(i)];
+      double w = weights[static_cast<size_t>(i)];
       ImGui::SetNextItemWidth(std::clamp(ImGui::GetContentRegionAvail().x * 0.35f, 56.0f, 80.0f));
-      if (range_slider("##w", w, kMixWeightRange))
-        c.weights = set_weight_keeping_sum(c.weights, i, w);
+      {
+        const KeyedTint tint(keyed);
+        if (range_slider("##w", w, kMixWeightRange)) {
+          weights = set_weight_keeping_sum(weights, i, w);
+          moved = true;
+        }
+      }
       if (ImGui::IsItemHovered())
         ImGui::SetTooltip("How much of this take's style; the others follow so that the weights sum to 1 (from -0.5 "
-                          "to 1.5: beyond 0 and 1 exaggerates)");
+                          "to 1.5: beyond 0 and 1 exaggerates)%s",
+                          keyed_hint(keyed));
       ImGui::SameLine();
       ImGui::TextUnformatted((name_of(p, i) + (i == 0 ? " (ref.)" : "")).c_str());
       if (ImGui::IsItemHovered())
@@ -175,15 +190,16 @@ void PalettePanel::draw_mix(PaletteControls& c, const PreparedTakes& p) {
     ImGui::EndChild();
     if (n >= 3) {
       ImGui::TableNextColumn();
-      draw_pad(c, n);
+      moved = draw_pad(weights, n) || moved;
     }
     ImGui::TableNextColumn();
     draw_parts(c, p);
     ImGui::EndTable();
   }
+  if (moved) set_weights_at_playhead(state, n, weights);
 }
 
-void PalettePanel::draw_pad(PaletteControls& c, int n) {
+bool PalettePanel::draw_pad(std::vector<double>& weights, int n) {
   const float size = ImGui::GetContentRegionAvail().x;
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   ImGui::InvisibleButton("##pad", ImVec2(size, size));
@@ -192,11 +208,12 @@ void PalettePanel::draw_pad(PaletteControls& c, int n) {
   const float radius = 0.5f * size - 14.0f;
   const ImVec2 centre(origin.x + 0.5f * size, origin.y + 0.5f * size);
   auto screen = [&](glm::vec2 v) { return ImVec2(centre.x + radius * v.x, centre.y + radius * v.y); };
-  if (ImGui::IsItemActive()) {
+  const bool moved = ImGui::IsItemActive();
+  if (moved) {
     const ImVec2 mouse = ImGui::GetIO().MousePos;
     glm::vec2 v((mouse.x - centre.x) / radius, (mouse.y - centre.y) / radius);
     if (glm::length(v) > 1.0f) v = glm::normalize(v);
-    c.weights = pad_weights(v, n);
+    weights = pad_weights(v, n);
   }
   ImDrawList* draw = ImGui::GetWindowDrawList();
   draw->AddCircleFilled(centre, radius + 6.0f, IM_COL32(40, 42, 48, 255), 48);
@@ -210,9 +227,10 @@ void PalettePanel::draw_pad(PaletteControls& c, int n) {
     std::snprintf(label, sizeof label, "%d", i + 1);
     draw->AddText(ImVec2(v.x + 7.0f, v.y - 7.0f), IM_COL32(220, 220, 220, 255), label);
   }
-  const ImVec2 marker = screen(pad_point(c.weights));
+  const ImVec2 marker = screen(pad_point(weights));
   draw->AddCircleFilled(marker, 5.0f, IM_COL32(130, 225, 118, 255));
   draw->AddCircle(marker, 8.0f, IM_COL32(255, 255, 255, 200), 20, 1.5f);
+  return moved;
 }
 
 void PalettePanel::draw_parts(PaletteControls& c, const PreparedTakes& p) {
@@ -245,7 +263,8 @@ void PalettePanel::draw_parts(PaletteControls& c, const PreparedTakes& p) {
   }
 }
 
-void PalettePanel::draw_transfer(PaletteControls& c, const PreparedTakes& p) {
+void PalettePanel::draw_transfer(EditorState& state, const PreparedTakes& p) {
+  PaletteControls& c = state.document.controls.palette;
   const int n = p.size();
   if (static_cast<int>(c.strengths.size()) != n) c.strengths.assign(static_cast<size_t>(n), 1.0);
   c.neutral = std::clamp(c.neutral, 1, n - 1);
@@ -268,6 +287,7 @@ void PalettePanel::draw_transfer(PaletteControls& c, const PreparedTakes& p) {
           std::rotate(order.begin(), order.begin() + i, order.begin() + i + 1);
           std::rotate(files.begin(), files.begin() + i, files.begin() + i + 1);
           c = reorder_takes(c, order);
+          state.document.controls.keys = reorder_keys(state.document.controls.keys, order);
           session_.load_files(files);
         }
       }
@@ -280,19 +300,28 @@ void PalettePanel::draw_transfer(PaletteControls& c, const PreparedTakes& p) {
     ImGui::EndCombo();
   }
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("The take of the action without the style");
+  // Keyed over time: a style's strength is its weight at the playhead; an edit keys it there.
+  const Keyed keyed = keyed_at_playhead(state, n);
+  std::vector<double> weights = weights_at_playhead(state, n);
+  bool moved = false;
   for (int i = 1; i < n; ++i) {
     if (i == c.neutral) continue;
     ImGui::PushID(i);
     swatch(i);
     ImGui::SetNextItemWidth(200.0f);
-    range_slider("##strength", c.strengths[static_cast<size_t>(i)], kStrengthRange);
+    {
+      const KeyedTint tint(keyed);
+      moved = range_slider("##strength", weights[static_cast<size_t>(i)], kStrengthRange) || moved;
+    }
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("How much of this style: 0 leaves the content as it is, 1 adds the whole change from the "
-                        "neutral take to this one");
+                        "neutral take to this one%s",
+                        keyed_hint(keyed));
     ImGui::SameLine();
     ImGui::Text("style: %s", name_of(p, i).c_str());
     ImGui::PopID();
   }
+  if (moved) set_weights_at_playhead(state, n, transfer_mix_weights(weights, c.neutral, n));
 }
 
 }  // namespace mostyle::ui

@@ -29,10 +29,13 @@ class PalettePanel : public Panel {
   void draw(EditorState& state) override;
 
  private:
-  void draw_mix(PaletteControls& c, const PreparedTakes& p);
-  void draw_pad(PaletteControls& c, int n);
+  // The weights (or a transfer's strengths) shown at the playhead, edited there when keyed
+  // (ui/model/keyed_weights.h).
+  void draw_mix(EditorState& state, const PreparedTakes& p);
+  // The pad over `weights` (one per take); true when dragged (weights set from it).
+  bool draw_pad(std::vector<double>& weights, int n);
   void draw_parts(PaletteControls& c, const PreparedTakes& p);
-  void draw_transfer(PaletteControls& c, const PreparedTakes& p);
+  void draw_transfer(EditorState& state, const PreparedTakes& p);
   BlendSession& session_;
 };
 

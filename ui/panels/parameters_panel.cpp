@@ -5,6 +5,8 @@
 
 #include <imgui.h>
 
+#include "ui/model/keyed_weights.h"
+#include "ui/panels/keyed_tint.h"
 #include "ui/panels/layout.h"
 #include "ui/panels/range_slider.h"
 #include "ui/panels/theme.h"
@@ -27,8 +29,16 @@ void ParametersPanel::draw(EditorState& state) {
   // parts' alphas are the pair's.
   const bool palette = s.palette() != nullptr;
   if (!palette) {
-    range_slider("alpha", p.alpha, kAlphaRange);  // blended this frame
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: style A, 1: style B. Applied immediately.");
+    // Keyed over time: the value at the playhead, and moving it keys it there (auto-key).
+    const Keyed keyed = keyed_at_playhead(state, 2);
+    double alpha = weights_at_playhead(state, 2)[1];
+    bool moved = false;
+    {
+      const KeyedTint tint(keyed);
+      moved = range_slider("alpha", alpha, kAlphaRange);
+    }
+    if (moved) set_weights_at_playhead(state, 2, {1.0 - alpha, alpha});  // blended this frame
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: style A, 1: style B. Applied immediately.%s", keyed_hint(keyed));
   }
 
   range_slider("components (k)", p.components, kComponentsRange);

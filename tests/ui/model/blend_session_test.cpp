@@ -1,7 +1,8 @@
 // The engine link (ui/model/blend_session.h): sync() brings the engine to the document, doing what
 // the one list of fields (ui/model/document_fields.h) says each change makes stale, and nothing
 // more: a weight re-mixes on this thread, k re-decomposes (not while its slider is held), an
-// alignment option re-aligns, a view option asks the worker for nothing.
+// alignment option re-aligns, a view option asks the worker for nothing; keys are mixed on this
+// thread like a weight, and a sentence of the engine's says where it refuses them.
 #include <catch2/catch.hpp>
 
 #include "tests/ui/loaded_session.h"
@@ -76,4 +77,41 @@ TEST_CASE("engine link: each change does what its field makes stale, and nothing
     s.session.wait_idle(s.state);
     CHECK(s.state.document.files == std::vector<std::string>{files[1], files[0]});
   }
+}
+
+TEST_CASE("engine link: a pair's keys reach the mix, and where the engine refuses them its sentence is shown") {
+  LoadedSession s;
+  REQUIRE(s.session.blend() != nullptr);
+  Document& d = s.state.document;
+  // Alpha 1 without keys, then alpha 0 with one key of alpha 1: the keys are what is mixed.
+  d.parameters.alpha = 1.0;
+  s.session.sync(s.state);
+  const Eigen::MatrixXd at_b = s.session.blend()->motion.world;
+  d.parameters.alpha = 0.0;
+  s.session.sync(s.state);
+  REQUIRE_FALSE(s.session.blend()->motion.world.isApprox(at_b));
+  d.controls.keys = {WeightKey{1.0, {0.0, 1.0}}};
+  s.session.sync(s.state);
+  CHECK_FALSE(worker_asked(s.session));  // a mix field: mixed again on this thread
+  CHECK(s.session.blend_error().empty());
+  const Eigen::MatrixXd& keyed = s.session.blend()->motion.world;
+  REQUIRE(keyed.rows() == at_b.rows());
+  CHECK(keyed.isApprox(at_b, 1e-6));
+  CHECK_THAT(s.state.takes[kTakeBlend].label, Catch::Contains("keyed"));
+  // Keys of three takes do not fit a pair: not mixed (alpha 0 again).
+  d.controls.keys = {WeightKey{1.0, {0.0, 0.5, 0.5}}};
+  s.session.sync(s.state);
+  CHECK(s.session.blend_error().empty());
+  CHECK_FALSE(s.session.blend()->motion.world.isApprox(at_b));
+  // Keys with an alpha per body part: the engine refuses, says why, and the last blend stays.
+  d.controls.keys = {WeightKey{1.0, {0.0, 1.0}}};
+  d.controls.per_component = true;
+  const Eigen::MatrixXd before = s.session.blend()->motion.world;
+  s.session.sync(s.state);
+  CHECK_THAT(s.session.blend_error(), Catch::Contains("keyed in time"));
+  CHECK(s.session.blend()->motion.world == before);
+  // Without the keys, the per-part alphas blend again.
+  d.controls.keys.clear();
+  s.session.sync(s.state);
+  CHECK(s.session.blend_error().empty());
 }

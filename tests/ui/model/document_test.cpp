@@ -60,6 +60,7 @@ TEST_CASE("document fields: each one, changed alone, differs and makes stale wha
       {"A's timing", [](Document& d) { d.controls.timing_a = true; }, Stale::kMix},
       {"loop", [](Document& d) { d.controls.loop = true; }, Stale::kMix},
       {"components only", [](Document& d) { d.controls.residual = false; }, Stale::kMix},
+      {"keys", [](Document& d) { d.controls.keys = {WeightKey{1.0, {0.5, 0.5}}}; }, Stale::kMix},
       {"picked component", [](Document& d) { d.controls.selected_component = 3; }, Stale::kView},
       {"DTW coordinate", [](Document& d) { d.controls.dtw_coordinate = 0; }, Stale::kView},
       {"weights", [](Document& d) { d.controls.palette.weights = {0.2, 0.8}; }, Stale::kMix},
@@ -87,6 +88,18 @@ TEST_CASE("document fields: each one, changed alone, differs and makes stale wha
   int fields = 0;
   document_fields(base, base, [&](const Field&, const auto&, const auto&) { ++fields; });
   CHECK(fields == static_cast<int>(std::size(changes)) - 1);
+  // Keys compare key by key: a key moved in time or one weight changed is a change of the mix.
+  Document keyed = base;
+  keyed.controls.keys = {WeightKey{1.0, {0.5, 0.5}}, WeightKey{4.0, {0.0, 1.0}}};
+  const Document same = keyed;
+  CHECK(same == keyed);
+  Document moved = keyed;
+  moved.controls.keys[1].seconds = 4.5;
+  CHECK(stale_after(keyed, moved) == Stale::kMix);
+  Document reweighted = keyed;
+  reweighted.controls.keys[0].weights[1] = 0.6;
+  CHECK(stale_after(keyed, reweighted) == Stale::kMix);
+  CHECK(differs_at(keyed, reweighted, Stale::kMix));
   // Several changes: the most they make stale.
   Document several = base;
   several.parameters.alpha = 0.2;

@@ -1,7 +1,8 @@
 // Undo and redo over a loaded session (ui/model/edit_history.h), with the panels drawn as ImGui frames
 // with no window: alpha changed in a few steps and a drag, undone back and redone forward; a load
 // undone and redone through the worker; a new decomposition resizing the per-component alphas
-// makes no step; an opened session whose take is missing keeps the takes and names the file.
+// makes no step; an opened session whose take is missing keeps the takes and names the file; a key
+// set and its mark dragged, undone and redone.
 #include <memory>
 #include <string>
 #include <vector>
@@ -12,7 +13,9 @@
 #include "tests/ui/imgui_frame.h"
 #include "tests/ui/loaded_session.h"
 #include "ui/model/edit_history.h"
+#include "ui/model/keyed_weights.h"
 #include "ui/model/session_file.h"
+#include "ui/model/weight_keys_edit.h"
 
 using namespace mostyle;
 using namespace mostyle::ui;
@@ -173,4 +176,48 @@ TEST_CASE("an opened session whose take is missing keeps the takes, restores the
   CHECK(apply_session_document(d, "/sessions/day.mostyle", s.state, s.session).empty());
   s.session.wait_idle(s.state);
   CHECK(capture_document(s.state) == d);
+}
+
+TEST_CASE("undo and redo keys: Set key is a step of its own, a mark's drag one more, and the blend follows") {
+  LoadedSession s;
+  EditHistory edits;
+  EditorState& state = s.state;
+  state.playback.playing = false;
+  state.playback.time_s = 0.0;
+  edits.record(state, s.session, false);  // the starting state
+  const Eigen::MatrixXd unkeyed = state.takes[kTakeBlend].positions;
+  // Set key (K: a key pressed, no item held) with alpha 1 in the key: one step, the blend keyed.
+  state.document.parameters.alpha = 1.0;
+  key_at_playhead(state, 2);
+  state.document.parameters.alpha = 0.5;  // the constant alpha no longer counts
+  edits.record(state, s.session, false);
+  s.session.sync(state);
+  CHECK(edits.history().undo_steps() == 1);
+  REQUIRE(state.document.controls.keys.size() == 1);
+  const Eigen::MatrixXd keyed = state.takes[kTakeBlend].positions;
+  // The key's mark dragged over a few frames (held), let go: one step.
+  const double fps = state.reference_take()->rate();
+  const double length_s = take_length_s(*state.reference_take());
+  for (double to : {0.5, 1.0, 1.5}) {
+    move_key(state.document.controls.keys, 0, to, 1.0 / fps, length_s);
+    edits.record(state, s.session, true);
+  }
+  edits.record(state, s.session, false);
+  CHECK(edits.history().undo_steps() == 2);
+
+  REQUIRE(edits.undo(state, s.session));
+  REQUIRE(state.document.controls.keys.size() == 1);
+  CHECK(state.document.controls.keys[0].seconds == 0.0);
+  REQUIRE(edits.undo(state, s.session));
+  CHECK(state.document.controls.keys.empty());
+  s.session.sync(state);
+  CHECK((state.takes[kTakeBlend].positions.rows() != keyed.rows() ||
+         !state.takes[kTakeBlend].positions.isApprox(keyed)));
+  REQUIRE(edits.redo(state, s.session));
+  REQUIRE(state.document.controls.keys.size() == 1);
+  CHECK(state.document.controls.keys[0].seconds == 0.0);
+  s.session.sync(state);
+  CHECK(state.takes[kTakeBlend].positions.rows() == keyed.rows());
+  CHECK(state.takes[kTakeBlend].positions.isApprox(keyed));
+  CHECK_FALSE((unkeyed.rows() == keyed.rows() && unkeyed.isApprox(keyed)));
 }

@@ -15,6 +15,7 @@
 #include "ui/model/document_fields.h"
 #include "ui/model/recent_files.h"
 #include "ui/model/session_file.h"
+#include "ui/model/weight_keys_edit.h"
 
 using namespace mostyle;
 using namespace mostyle::ui;
@@ -45,6 +46,8 @@ SessionFile full_session() {
   c.timing_a = true;
   c.loop = true;
   c.residual = false;
+  // Style over time: a walk that becomes tired over ten seconds, then exaggerated.
+  c.keys = {WeightKey{0.0, {1.0, 0.0}}, WeightKey{10.0, {0.0, 1.0}}, WeightKey{12.345678901234, {-2.0 / 3.0, 5.0 / 3.0}}};
   // The ends of the sliders' ranges, as a float slider leaves them (1.3f is 1.2999999523...).
   c.palette.weights = {static_cast<double>(1.3f), -0.5, 1.0 - static_cast<double>(1.3f) + 0.5};
   c.palette.per_part = true;
@@ -104,6 +107,8 @@ TEST_CASE("session files: format then parse gives the same session") {
   const SessionFile back = parse_session(text, "/data/day1/monday.mostyle");
   CHECK(back.document == s.document);
   CHECK(back.document.controls.palette == s.document.controls.palette);
+  CHECK(same_keys(back.document.controls.keys, s.document.controls.keys));  // to the last bit
+  CHECK_THAT(text, Catch::Contains("\"keys\": [") && Catch::Contains("\"seconds\": 10.0"));
   REQUIRE(back.camera.has_value());
   CHECK(*back.camera == *s.camera);
   CHECK(back.playback.time_s == s.playback.time_s);
@@ -241,6 +246,22 @@ TEST_CASE("session files: a bad file is refused with one line naming the file an
        "controls.palette.weights[0]: expected a number from -0.5 to 1.5, found 1.6"},
       {"{\"version\": 1,\n\"controls\": {\"palette\": {\"strengths\": [\n0, 2.5]}}}", 3,
        "controls.palette.strengths[1]"},
+      // Keys: each a time and a weight per take, in order of time, as many weights in each.
+      {"{\"version\": 1,\n\"controls\": {\"keys\": 3}}", 2, "controls.keys: expected an array of keys"},
+      {"{\"version\": 1,\n\"controls\": {\"keys\": [\n{\"seconds\": 1}]}}", 3,
+       "controls.keys[0]: a key needs \"seconds\" and \"weights\""},
+      {"{\"version\": 1,\n\"controls\": {\"keys\": [\n{\"seconds\": 1, \"weights\": [0, 1], \"ease\": 1}]}}", 3,
+       "unknown key 'ease' in controls.keys[0]"},
+      {"{\"version\": 1,\n\"controls\": {\"keys\": [{\"weights\": [0, 1],\n\"seconds\": -1}]}}", 3,
+       "controls.keys[0].seconds: expected a number from 0"},
+      {"{\"version\": 1,\n\"controls\": {\"keys\": [{\"seconds\": 0, \"weights\": [\n-40, 1]}]}}", 3,
+       "controls.keys[0].weights[0]: expected a number from -32 to 3, found -40"},
+      {"{\"version\": 1,\n\"controls\": {\"keys\": [\n{\"seconds\": 2, \"weights\": [0.5, 0.5]},\n"
+       "{\"seconds\": 1, \"weights\": [0.5, 0.5]}]}}",
+       4, "controls.keys: expected keys in order of time: key 2 (at 1 s) does not come after key 1 (at 2 s)"},
+      {"{\"version\": 1,\n\"controls\": {\"keys\": [\n{\"seconds\": 0, \"weights\": [1, 0]},\n"
+       "{\"seconds\": 5, \"weights\": [0.5, 0.5]},\n{\"seconds\": 9, \"weights\": [0.2, 0.3, 0.5]}]}}",
+       5, "expected 2 weights, one per take, in key 3 (at 9 s), found 3"},
   };
   for (const Case& c : cases) {
     INFO(c.text);

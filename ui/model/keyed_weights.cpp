@@ -1,0 +1,127 @@
+#include "ui/model/keyed_weights.h"
+
+#include <algorithm>
+#include <cstddef>
+#include <utility>
+
+#include "ui/model/weight_keys_edit.h"
+
+namespace mostyle::ui {
+namespace {
+
+// Whether the takes are mixed as a transfer: a palette (three or more) in transfer mode.
+bool is_transfer(const SessionControls& c, int takes) { return takes >= 3 && c.palette.transfer; }
+
+// w (one per take, two or more) made a transfer's weights in place: the content 1, the neutral
+// minus the styles' sum (transfer_mix_weights).
+void make_transfer(std::vector<double>& w, int neutral) {
+  const size_t n = static_cast<size_t>(std::clamp(neutral, 1, static_cast<int>(w.size()) - 1));
+  w[0] = 1.0;
+  w[n] = 0.0;
+  double styles = 0.0;
+  for (size_t i = 1; i < w.size(); ++i) styles += w[i];
+  w[n] = -styles;
+}
+
+// The constant controls set from mix weights, as the controls set them without keys: the inverse
+// of constant_weights (a transfer's content and neutral weights are its own: only the styles').
+void set_constant_weights(Document& d, int takes, const std::vector<double>& weights) {
+  if (takes == 2) {
+    d.parameters.alpha = weights[1];
+    return;
+  }
+  PaletteControls& c = d.controls.palette;
+  if (!c.transfer) {
+    c.weights = weights;
+    return;
+  }
+  const int neutral = std::clamp(c.neutral, 1, takes - 1);
+  c.strengths.resize(static_cast<size_t>(takes), 1.0);  // as the palette's take-up sizes them
+  for (int i = 1; i < takes; ++i)
+    if (i != neutral) c.strengths[static_cast<size_t>(i)] = weights[static_cast<size_t>(i)];
+}
+
+}  // namespace
+
+std::vector<double> transfer_mix_weights(const std::vector<double>& values, int neutral, int takes) {
+  std::vector<double> w(values.begin(), values.begin() + std::min<std::ptrdiff_t>(values.size(), takes));
+  w.resize(static_cast<size_t>(takes), 0.0);
+  make_transfer(w, neutral);
+  return w;
+}
+
+std::vector<double> palette_weights(const PaletteControls& c, int takes) {
+  if (c.transfer) return transfer_mix_weights(c.strengths, c.neutral, takes);
+  if (static_cast<int>(c.weights.size()) == takes) return c.weights;
+  return std::vector<double>(static_cast<size_t>(takes), 1.0 / takes);
+}
+
+std::vector<double> constant_weights(const Document& d, int takes) {
+  if (takes == 2) return {1.0 - d.parameters.alpha, d.parameters.alpha};
+  return palette_weights(d.controls.palette, takes);
+}
+
+void set_mix_keys(const SessionControls& c, int takes, WeightKeys& out) {
+  if (!keys_fit(c.keys, takes)) {
+    out.clear();
+    return;
+  }
+  out = c.keys;  // copy-assigned element by element: the vectors out has are reused
+  if (is_transfer(c, takes))
+    for (WeightKey& key : out) make_transfer(key.weights, c.palette.neutral);
+}
+
+KeyTime key_time(const EditorState& state) {
+  const Take* reference = state.reference_take();
+  if (reference == nullptr) return KeyTime{state.playback.time_s, 0.0};
+  const double fps = reference->rate();
+  return KeyTime{frame_at(*reference, state.playback.time_s) / fps, 0.5 / fps};
+}
+
+Keyed keyed_at_playhead(const EditorState& state, int takes) {
+  const WeightKeys& keys = state.document.controls.keys;
+  if (!keys_fit(keys, takes)) return Keyed::kNo;
+  const KeyTime at = key_time(state);
+  return key_near(keys, at.seconds, at.tolerance_s) >= 0 ? Keyed::kOnKey : Keyed::kKeyed;
+}
+
+std::vector<double> weights_at_playhead(const EditorState& state, int takes) {
+  const SessionControls& c = state.document.controls;
+  if (!keys_fit(c.keys, takes)) return constant_weights(state.document, takes);
+  std::vector<double> w;
+  weights_at(c.keys, key_time(state).seconds, w);
+  // The ease is linear in each weight, so easing the styles' and making the transfer's after is
+  // the same as easing the transfer's keys (set_mix_keys).
+  if (is_transfer(c, takes)) make_transfer(w, c.palette.neutral);
+  return w;
+}
+
+void set_weights_at_playhead(EditorState& state, int takes, const std::vector<double>& weights) {
+  WeightKeys& keys = state.document.controls.keys;
+  if (!keys_fit(keys, takes)) {
+    set_constant_weights(state.document, takes, weights);
+    return;
+  }
+  const KeyTime at = key_time(state);
+  set_key(keys, at.seconds, at.tolerance_s, weights);
+  state.playback.playing = false;  // the playhead stays on the key a drag edits
+}
+
+void key_at_playhead(EditorState& state, int takes) {
+  std::vector<double> w = weights_at_playhead(state, takes);
+  WeightKeys& keys = state.document.controls.keys;
+  if (!keys_fit(keys, takes)) keys.clear();
+  const KeyTime at = key_time(state);
+  set_key(keys, at.seconds, at.tolerance_s, std::move(w));
+  command_edited(state);
+}
+
+void remove_key(EditorState& state, int takes, int i) {
+  WeightKeys& keys = state.document.controls.keys;
+  if (i < 0 || i >= static_cast<int>(keys.size())) return;
+  if (keys.size() == 1 && keys_fit(keys, takes)) set_constant_weights(state.document, takes, keys.front().weights);
+  keys.erase(keys.begin() + i);
+  command_edited(state);
+}
+
+}  // namespace mostyle::ui
