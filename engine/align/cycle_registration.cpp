@@ -154,7 +154,10 @@ RegisteredMotion register_by_cycles(const CanonicalMotion& reference, const Eige
     // Between cycles: the reference moved by the take's posture, faded into the take's own
     // frames running on from the cycle before and into the cycle after.
     const int gap = s.r1 - s.r0;
-    const int reach = std::max(1, std::min(fade, gap / 2 + 1));
+    // Over `fade` frames from each cycle, however short the span: a span shorter than two fades
+    // (a start before the first strike, a missed strike) is the take's own frames throughout,
+    // crossed from the cycle before to the one after; the posture alone only further in.
+    const int reach = std::max(1, fade);
     const Cycle* before = nullptr;
     const Cycle* after = nullptr;
     if (si > 0) before = &take_cycles.cycles[static_cast<size_t>(reg.pairs[static_cast<size_t>(spans[si - 1].cycle)])];

@@ -65,7 +65,7 @@ bool cycles_register(const TakeCycles& reference, const TakeCycles& take);
 
 // The take registered onto the reference (see RegisteredMotion). reference/take: canonical
 // motions (Fr and Ft frames, one skeleton), their contacts (F x 2) and cycles (cycles_register
-// true); fade: frames the posture fades over (at most half of a span between cycles each side).
+// true); fade: frames over which the take's own frames fade into its posture, from each cycle.
 // Throws InputError when the cycles cannot be registered or do not fit their takes' frames.
 // O((Fr + V) x 3M).
 RegisteredMotion register_by_cycles(const CanonicalMotion& reference, const Eigen::MatrixXd& reference_contacts,

@@ -20,7 +20,7 @@ double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-constexpr double kShortBoneFraction = 0.5;  // as the pair's blend (pipeline.cpp)
+constexpr double kShortBoneFraction = 0.75;  // as the pair's blend (pipeline.cpp)
 constexpr double kWeightSumTolerance = 1e-6;
 
 // Each take's frame (K x N) at the sampler's output frames; the sampler's rows count from
@@ -37,37 +37,46 @@ void write_sources(const PreparedTakes& p, const RowSampler& at, int first, Eige
   }
 }
 
-// Row `at` (fractional, clamped) of column c of x (a matrix or a vector), linearly between rows.
-template <typename X>
-double at_row(const X& x, double at, Eigen::Index c) {
-  const Eigen::Index last = x.rows() - 1;
-  const double f = std::clamp(at, 0.0, double(last));
-  const Eigen::Index r = std::min<Eigen::Index>(static_cast<Eigen::Index>(f), std::max<Eigen::Index>(last - 1, 0));
-  const double t = last == 0 ? 0.0 : f - double(r);
-  return (1.0 - t) * x(r, c) + t * x(std::min(r + 1, last), c);
-}
+// A fractional row, clamped to [0, rows - 1]: the row before it and how far towards the next.
+struct RowAt {
+  Eigen::Index r = 0, next = 0;
+  double f = 0.0;
+  RowAt(double at, Eigen::Index rows) {
+    const Eigen::Index last = rows - 1;
+    const double c = std::clamp(at, 0.0, double(last));
+    r = std::min<Eigen::Index>(static_cast<Eigen::Index>(c), std::max<Eigen::Index>(last - 1, 0));
+    next = std::min(r + 1, last);
+    f = last == 0 ? 0.0 : c - double(r);
+  }
+  template <typename X>
+  double of(const X& x, Eigen::Index column) const {
+    return (1.0 - f) * x(r, column) + f * x(next, column);
+  }
+};
 
 // How far each ankle moves from output frame k to k + 1 in the body's frame, as the takes mixed
 // move it themselves at the frames shown (each take's own world ankle, turned into its own
 // heading's frame), weighted (K x 4: left x, z, right x, z; the last row 0). A foot that pivots
 // or slides in the takes is expected to in the mix; the foot lock pins only what moves beyond.
+// O(K x N), no allocation once `out` is sized.
 void planted_drift(const PreparedTakes& p, const Eigen::MatrixXd& sources, const std::vector<double>& weights,
                    const Eigen::MatrixXd* frame_w, Eigen::MatrixXd& out) {
   const Eigen::Index frames = sources.rows();
   out.setZero(frames, 4);
+  const LegColumns* legs[2] = {&p.feet.legs[0], &p.feet.legs[1]};
   for (int i = 0; i < p.size(); ++i) {
     const PreparedTake& t = p.takes[static_cast<size_t>(i)];
-    for (int side = 0; side < 2; ++side) {
-      const LegColumns& leg = p.feet.legs[static_cast<size_t>(side)];
-      if (!leg.usable()) continue;
-      for (Eigen::Index k = 0; k + 1 < frames; ++k) {
-        const double w = frame_w != nullptr ? (*frame_w)(k, i) : weights[static_cast<size_t>(i)];
-        if (w == 0.0) continue;
-        const double a = sources(k, i), b = sources(k + 1, i);
-        const double dx = at_row(t.world, b, 3 * leg.ankle) - at_row(t.world, a, 3 * leg.ankle);
-        const double dz = at_row(t.world, b, 3 * leg.ankle + 2) - at_row(t.world, a, 3 * leg.ankle + 2);
-        const double h = at_row(t.canonical.heading, a, 0);
-        const double c = std::cos(h), s = std::sin(h);
+    const Eigen::Index rows = t.world.rows();
+    for (Eigen::Index k = 0; k + 1 < frames; ++k) {
+      const double w = frame_w != nullptr ? (*frame_w)(k, i) : weights[static_cast<size_t>(i)];
+      if (w == 0.0) continue;
+      const RowAt a(sources(k, i), rows), b(sources(k + 1, i), rows);
+      const double h = a.of(t.canonical.heading, 0);
+      const double c = std::cos(h), s = std::sin(h);
+      for (int side = 0; side < 2; ++side) {
+        if (!legs[side]->usable()) continue;
+        const Eigen::Index x = 3 * legs[side]->ankle, z = x + 2;
+        const double dx = b.of(t.world, x) - a.of(t.world, x), dz = b.of(t.world, z) - a.of(t.world, z);
         out(k, 2 * side) += w * (c * dx - s * dz);
         out(k, 2 * side + 1) += w * (s * dx + c * dz);
       }

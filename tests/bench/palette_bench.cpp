@@ -80,7 +80,9 @@ BENCHMARK(BM_DecomposeEightTakes)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 // A new weight set every iteration (as a drag on the blend pad gives), the whole slider path:
 // poses, timing, root, limb lengths and foot lock.
-void mix_bench(benchmark::State& state, bool reference_timing) {
+// keyed: the weights keyed in time instead (issue 16): from the reference's alone at 5 s to the
+// weights of the move at 40 s, a new set of keys every iteration.
+void mix_bench(benchmark::State& state, bool reference_timing, bool keyed = false) {
   const PreparedTakes& p = palette();
   const Decomposed& d = decomposition();
   MixParams params;
@@ -96,6 +98,11 @@ void mix_bench(benchmark::State& state, bool reference_timing) {
     double sum = 0;
     for (double w : params.weights) sum += w;
     params.weights[0] += 1.0 - sum;
+    if (keyed) {
+      std::vector<double> first(p.size(), 0.0);
+      first[0] = 1.0;
+      params.keys = {{5.0, first}, {40.0, params.weights}};
+    }
     mix_palette(p, d, params, scratch, out, &times);
     benchmark::DoNotOptimize(out.motion.world.data());
   }
@@ -105,7 +112,9 @@ void mix_bench(benchmark::State& state, bool reference_timing) {
 }
 void BM_MixEightTakes(benchmark::State& state) { mix_bench(state, false); }
 void BM_MixEightTakesReferenceTiming(benchmark::State& state) { mix_bench(state, true); }
+void BM_MixEightTakesKeyed(benchmark::State& state) { mix_bench(state, false, true); }
 BENCHMARK(BM_MixEightTakes)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MixEightTakesKeyed)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_MixEightTakesReferenceTiming)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <benchmark/benchmark.h>
 
 #include <atomic>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
@@ -97,6 +98,45 @@ void BM_PreparePair(benchmark::State& state) {
   state.counters["dtw_ms"] = times.dtw_ms;
 }
 BENCHMARK(BM_PreparePair)->Unit(benchmark::kMillisecond);
+
+// Cycle detection of both takes and the registration by cycles (issue 16) of a pair of one-minute
+// walks at their own cadence (the 27 s and 25 s takes played twice and more over, not slowed):
+// what prepare_takes adds to the whole-take path, measured apart from FK and retargeting.
+std::shared_ptr<const Clip> repeated_minute_take(const std::string& name) {
+  const std::string shared = std::string(MOSTYLE_SHARED_MOTIONS) + "/" + name;
+  const std::string path = std::filesystem::exists(shared) ? shared : std::string(MOSTYLE_ASSETS_DIR) + "/motions/" + name;
+  Clip clip = read_bvh_file(path);
+  const int frames = static_cast<int>(std::ceil(60.0 * clip.fps()));
+  Eigen::MatrixXd motion(frames, clip.motion.cols());
+  for (int f = 0; f < frames; ++f) motion.row(f) = clip.motion.row(f % clip.frames());
+  clip.motion = motion;
+  return std::make_shared<const Clip>(std::move(clip));
+}
+
+void BM_CyclesAndRegistrationPair(benchmark::State& state) {
+  PrepareOptions whole;  // the takes as they are, their own canonical frames kept
+  whole.align.time_base = TimeBase::kWhole;
+  static const auto p = prepare_takes(
+      {repeated_minute_take("cmu142_walk_marching.bvh"), repeated_minute_take("cmu142_walk_happy.bvh")}, whole);
+  const PreparedTake& a = p->takes[0];
+  const PreparedTake& b = p->takes[1];
+  AlignmentOptions options;
+  size_t cycles = 0;
+  for (auto _ : state) {
+    const TakeCycles ca = detect_cycles(a.own_contacts, a.canonical.local, p->fps, p->feet.leg_length);
+    CycleOptions at_foot;
+    at_foot.foot = ca.foot;
+    const TakeCycles cb = detect_cycles(b.own_contacts, b.canonical.local, p->fps, p->feet.leg_length, at_foot);
+    const int fade = std::max(2, static_cast<int>(std::lround(0.5 * ca.period)));
+    const RegisteredMotion r = register_by_cycles(a.canonical, a.own_contacts, ca, b.canonical, b.own_contacts, cb, fade);
+    const Alignment al = align_by_cycles(a.canonical, r, p->feature_joints, p->feet.leg_length, p->fps, options);
+    benchmark::DoNotOptimize(al.warp.a.data());
+    cycles = ca.cycles.size();
+  }
+  state.counters["frames"] = static_cast<double>(a.canonical.local.rows());
+  state.counters["cycles"] = static_cast<double>(cycles);
+}
+BENCHMARK(BM_CyclesAndRegistrationPair)->Unit(benchmark::kMillisecond);
 
 void BM_DecomposePair(benchmark::State& state) {
   const PreparedTakes& p = *minute_pair().prepared;

@@ -312,3 +312,37 @@ TEST_CASE("palette: weights keyed in time") {
     CHECK_THROWS_WITH(mix(*p, *d, w, keyed), Catch::Contains("key 1's weights"));
   }
 }
+
+TEST_CASE("palette: a pair of 2.5 s walks loops on one cycle, with a seam no larger than its moves") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  // 75 frames (2.5 s at 30 fps) from a second into each take: about two steps of each foot.
+  auto cut = [](const std::string& name) {
+    Clip clip = read_bvh_file(test::shared_motion(name));
+    Clip out = clip;
+    out.motion = clip.motion.middleRows(30, 75);
+    out.source = clip.source + " (2.5 s)";
+    return std::make_shared<const Clip>(out);
+  };
+  const auto p = prepare_takes({cut("bandai_walk_normal.bvh"), cut("bandai_walk_tired.bvh")}, {});
+  const auto d = decompose_takes(*p, params());
+  for (double a : {0.0, 0.5, 1.0}) {
+    MixParams looped;
+    looped.finish.loop = true;
+    const MixResult m = mix(*p, *d, {1.0 - a, a}, looped);
+    const LoopCut& loop = m.motion.loop;
+    INFO("alpha " << a << ": " << loop.cycles << " cycles, " << loop.frames() << " frames");
+    CHECK(loop.cycles >= 1);
+    const Eigen::MatrixXd& w = m.motion.world;
+    REQUIRE(w.rows() == loop.frames());
+    // The seam: the last frame into the first of the next repetition (the first moved by the
+    // loop's travel), against the fastest move between two frames inside the loop.
+    double inside = 0, seam = 0;
+    for (Eigen::Index j = 0; j < w.cols() / 3; ++j) {
+      const auto joint = w.middleCols(3 * j, 3);
+      inside = std::max(inside, (joint.bottomRows(w.rows() - 1) - joint.topRows(w.rows() - 1)).rowwise().norm().maxCoeff());
+      const Eigen::Vector3d next = joint.row(0).transpose() + Eigen::Vector3d(loop.travel.x(), 0.0, loop.travel.y());
+      seam = std::max(seam, (next - joint.row(w.rows() - 1).transpose()).norm());
+    }
+    CHECK(seam <= 1.5 * inside);
+  }
+}
