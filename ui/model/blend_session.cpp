@@ -11,6 +11,7 @@
 #include "engine/io/error.h"
 #include "engine/export/channel_layout.h"
 #include "engine/export/export_solve.h"
+#include "ui/model/cycle_provenance.h"
 #include "ui/model/document_fields.h"
 #include "ui/model/export_job.h"
 #include "ui/model/joint_contacts.h"
@@ -233,6 +234,7 @@ void BlendSession::take_up_prepared(EditorState& state) {
   const PreparedTakes* p = pair();
   if (p == nullptr && palette() != nullptr) return;  // the palette's view has the takes
   state.takes.clear();
+  state.cycle_provenance.clear();  // of the previous takes' result
   error_curve_.clear();  // of the previous pair
   has_blend_ = false;
   export_message_.clear();  // it spoke of the previous takes
@@ -365,6 +367,8 @@ void BlendSession::update_blend(EditorState& state) {
         blend_mix_.keys = keys_;  // blend_params.h speaks of one alpha: the keys are the mix's
         mix_palette(*p, *d, blend_mix_, scratch_, blend_, &blend_times_);
         has_blend_ = true;
+        // Where each of its cycles came from, for the timeline's tooltip: once per blend.
+        state.cycle_provenance = cycle_provenance(*p, blend_.sources, {"A", "B"});
         blend_error_.clear();
       } catch (const std::exception& e) {  // InputError: a bad parameter, shown as it is
         blend_error_ = e.what();

@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "engine/io/clip.h"
+#include "ui/model/cycle_provenance.h"
 #include "ui/model/document.h"
 
 namespace mostyle::ui {
@@ -77,6 +78,9 @@ struct EditorState {
   Playback playback;
   ViewOptions view;
   std::vector<Take> takes;
+  // Where each cycle of the result shown came from (ui/model/cycle_provenance.h): spans of the
+  // reference take's frames (the timeline's), made when a result arrives; empty: no result.
+  std::vector<CycleProvenance> cycle_provenance;
 
   // The take that sets the timeline (frame numbers, fps, length): the first that loaded.
   const Take* reference_take() const {

@@ -9,6 +9,7 @@
 #include "engine/io/motion_file.h"
 #include "engine/io/error.h"
 #include "ui/model/blend_session.h"
+#include "ui/model/cycle_provenance.h"
 #include "ui/model/joint_contacts.h"
 #include "ui/model/keyed_weights.h"
 #include "ui/model/lanes.h"
@@ -87,6 +88,8 @@ void PaletteView::take_up(const PreparedTakes& p, const std::vector<std::string>
     if (static_cast<int>(w.size()) != n) w.clear();  // empty: the part follows the overall weights
   controls.neutral = std::clamp(controls.neutral, 1, n - 1);
   state.takes.clear();
+  state.cycle_provenance.clear();  // of the previous takes' result
+  names_.clear();
   Take mix;
   mix.label = "mix";
   mix.path = "(mix of the palette's takes)";
@@ -101,6 +104,7 @@ void PaletteView::take_up(const PreparedTakes& p, const std::vector<std::string>
     const std::string& path = static_cast<size_t>(i) < paths.size() ? paths[static_cast<size_t>(i)] : std::string();
     t.path = path;
     t.label = (i == 0 ? "reference  " : "") + take_label(path);
+    names_.push_back(take_label(path));
     t.color = palette_color(i);
     t.clip = p.takes[static_cast<size_t>(i)].clip;
     t.fps = p.fps;
@@ -133,6 +137,8 @@ void PaletteView::update(const PreparedTakes& p, const Decomposed* d, const Sess
         mix_ms_ = ms_since(t0);
         has_mix_ = true;
         error_.clear();
+        // Where each of its cycles came from, for the timeline's tooltip: once per mix.
+        state.cycle_provenance = cycle_provenance(p, mix_.sources, names_);
         mixed_decomposition_ = d;
         mixed_ = params;
         char label[64];

@@ -58,6 +58,7 @@ class PaletteView {
   bool has_mix_ = false;
   bool placed_overlay_ = false, placed_ghosts_ = false;
   std::string error_;
+  std::vector<std::string> names_;  // each take's name (its file's), for cycle_provenance
   double mix_ms_ = 0.0;
   StageTimes mix_times_;
   Eigen::Vector3d shift_ = Eigen::Vector3d::Zero(), side_ = Eigen::Vector3d::UnitX();

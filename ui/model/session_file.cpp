@@ -347,30 +347,20 @@ AlignmentOptions read_align(const Reader& r, const Json& j, const Where& w) {
   r.object(j, w);
   r.only_keys(j, w, {"method", "time_base", "on", "band", "max_slope", "open_ends", "end_penalty", "smoothing_frames"});
   AlignmentOptions a;
-  r.member(j, w, "method", [&](const Json& v, const Where& at) {
-    const std::string name = r.string(v, at);
-    try {
-      a.method = parse_dtw_method(name);
-    } catch (const InputError& e) {  // the engine's sentence names the choices
-      r.fail(at, at.name + ": " + e.what());
-    }
-  });
-  r.member(j, w, "time_base", [&](const Json& v, const Where& at) {
-    const std::string name = r.string(v, at);
-    try {
-      a.time_base = parse_time_base(name);
-    } catch (const InputError& e) {
-      r.fail(at, at.name + ": " + e.what());
-    }
-  });
-  r.member(j, w, "on", [&](const Json& v, const Where& at) {
-    const std::string name = r.string(v, at);
-    try {
-      a.on = parse_align_on(name);
-    } catch (const InputError& e) {
-      r.fail(at, at.name + ": " + e.what());
-    }
-  });
+  // A named choice, read by the engine's parser (its sentence names the choices).
+  auto choice = [&](const char* key, auto parse, auto& field) {
+    r.member(j, w, key, [&](const Json& v, const Where& at) {
+      const std::string name = r.string(v, at);
+      try {
+        field = parse(name);
+      } catch (const InputError& e) {
+        r.fail(at, at.name + ": " + e.what());
+      }
+    });
+  };
+  choice("method", parse_dtw_method, a.method);
+  choice("time_base", parse_time_base, a.time_base);
+  choice("on", parse_align_on, a.on);
   r.member(j, w, "band", [&](const Json& v, const Where& at) { a.band = r.whole(v, at, -1, kMaxBand); });
   r.member(j, w, "max_slope", [&](const Json& v, const Where& at) { a.slope.max_slope = r.whole(v, at, 2, 4); });
   r.member(j, w, "open_ends", [&](const Json& v, const Where& at) { a.slope.open_ends = r.boolean(v, at); });

@@ -57,6 +57,7 @@ std::string weights_words(const std::vector<double>& w) {
 
 void PlaybackPanel::draw(EditorState& state) {
   const ImGuiIO& io = ImGui::GetIO();
+  hovered_span_ = -1;
   // Pinned to the bottom edge, full width: it follows the window when it is resized.
   const PanelRect r = panel_rect(PanelId::kPlayback);
   ImGui::SetNextWindowPos(ImVec2(r.x, r.y), ImGuiCond_Always);
@@ -180,10 +181,34 @@ void PlaybackPanel::draw(EditorState& state) {
 
   ImGui::SetNextItemWidth(slider_w);
   if (ImGui::SliderInt("##frame", &frame, 0, last, "frame %d")) p.time_s = (frame + 0.5) / fps;
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Drag to go to a frame; left and right arrow keys step one frame.\nTicks: where the "
-                      "reference's cycles (gait cycles, periods) begin. Diamonds: keys of the style (Set key, K)");
+  // Hovered: the output cycle under the mouse and where each take's part of it came from, then
+  // how to use the slider. Not over a key's mark: IsItemHovered does not ask whether an item
+  // submitted before took the mouse, and a later tooltip replaces an earlier one.
+  int span = -1;
+  if (ImGui::IsItemHovered() && hovered < 0) {
+    static const char* kSliderHelp =
+        "Drag to go to a frame; left and right arrow keys step one frame.\nTicks: where the "
+        "reference's cycles (gait cycles, periods) begin. Diamonds: keys of the style (Set key, K)";
+    span = provenance_at(state.cycle_provenance, track.frame(io.MousePos.x));
+    if (span >= 0) {
+      ImGui::BeginTooltip();
+      ImGui::TextUnformatted(provenance_text(state.cycle_provenance[static_cast<size_t>(span)], fps).c_str());
+      ImGui::Separator();
+      ImGui::TextDisabled("%s", kSliderHelp);
+      ImGui::EndTooltip();
+    } else {
+      ImGui::SetTooltip("%s", kSliderHelp);
+    }
+  }
+  hovered_span_ = span;
   ImDrawList* dl = ImGui::GetWindowDrawList();
+  // The span the tooltip speaks of, underlined along the slider's bottom edge.
+  if (span >= 0 && last > 0) {
+    const CycleProvenance& under = state.cycle_provenance[static_cast<size_t>(span)];
+    const float bottom = slider_at.y + slider_h - 1.0f;
+    dl->AddLine(ImVec2(track.x(under.begin), bottom), ImVec2(track.x(under.end), bottom),
+                ImGui::GetColorU32(ImGuiCol_SliderGrabActive), 2.0f);
+  }
   // A tick where each of the reference's cycles begins, along the slider's bottom edge.
   if (last > 0) {
     const float bottom = slider_at.y + slider_h;

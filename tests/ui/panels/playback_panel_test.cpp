@@ -1,7 +1,8 @@
 // The timeline (ui/panels/playback_panel.h) over a loaded pair, as ImGui frames with no window,
 // the mouse and the keys set by hand: K keys the style at the playhead, a key's mark is found on
 // the slider, dragged in time (one undo step), clicked to go to it, right-clicked or Deleted away;
-// the alpha slider shows the keyed value; the row of controls still fits 1280 pixels.
+// the alpha slider shows the keyed value; the row of controls still fits 1280 pixels; hovering the
+// slider tells where the output cycle under the mouse came from (a key's mark keeps its own tooltip).
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -164,4 +165,49 @@ TEST_CASE("timeline: with keys, the row of controls and marks is one row of a 12
   CHECK(window->Size.x == Approx(1280.0f - 2.0f * kLayoutMargin));
   CHECK(window->ContentSize.y <= ImGui::GetFrameHeight() + 1.0f);  // the marks sit on the slider's row
   CHECK(window->ContentSize.x <= window->Size.x);
+}
+
+TEST_CASE("timeline: hovering the slider tells which cycle of each take the output cycle came from") {
+  Timeline t;
+  ImGuiIO& io = ImGui::GetIO();
+  const std::vector<CycleProvenance>& spans = t.s.state.cycle_provenance;
+  REQUIRE(spans.size() >= 2);
+  // The tooltip is ImGui's window "##Tooltip_00", drawn this frame or not. (ImGui's log cannot read
+  // its text: every window's End finishes a log; the words are provenance_text's, tested with the model.)
+  auto tooltip_shown = [] {
+    const ImGuiWindow* w = ImGui::FindWindowByName("##Tooltip_00");
+    return w != nullptr && w->Active;
+  };
+  // The mouse along the slider's lower half (below the keys' marks), left to right: each output
+  // cycle's span in turn under it, in order, with a tooltip, without moving the playhead.
+  const PanelRect r = panel_rect(PanelId::kPlayback);
+  const float y = r.y + ImGui::GetStyle().WindowPadding.y + 0.75f * ImGui::GetFrameHeight();
+  std::vector<int> met;
+  for (float x = r.x; x < r.right(); x += 2.0f) {
+    io.MousePos = ImVec2(x, y);
+    t.frame();
+    const int span = t.panel.hovered_span();
+    if (span < 0) continue;
+    CHECK(tooltip_shown());
+    if (met.empty() || met.back() != span) met.push_back(span);
+  }
+  CHECK(t.playhead() == 0);  // hovering moves nothing
+  REQUIRE(met.size() == spans.size());  // every span, once, in order
+  for (size_t i = 0; i < met.size(); ++i) CHECK(met[i] == static_cast<int>(i));
+  // Away from the slider: no span, no tooltip.
+  io.MousePos = ImVec2(r.x + 1.0f, r.y - 40.0f);
+  t.frame();
+  CHECK(t.panel.hovered_span() == -1);
+  CHECK_FALSE(tooltip_shown());
+
+  // Over a key's mark the key's tooltip wins: no span.
+  key_at_playhead(t.s.state, 2);
+  io.MousePos = t.find_mark(0);
+  t.frame();
+  CHECK(t.panel.hovered_span() == -1);
+  CHECK(tooltip_shown());
+  // Just below the mark, on the slider: the span of the key's frame.
+  io.MousePos.y = y;
+  t.frame();
+  CHECK(t.panel.hovered_span() == provenance_at(spans, 0));
 }
