@@ -21,6 +21,8 @@ constexpr double kStraightLeg = 1e-4;
 constexpr double kExtensionMargin = 1e-9;
 // How far (leg lengths) the knee's pole leans towards where the foot points (apply_foot_lock).
 constexpr double kKneeForwardBias = 0.02;
+// The toe bias is whole once the lock moves the ankle this many leg lengths, less below.
+constexpr double kKneeBiasMove = 0.05;
 // The lock keeps the ankle within this fraction of the leg's full length from the hip.
 constexpr double kReachMargin = 0.995;
 
@@ -370,9 +372,12 @@ void apply_foot_lock(Eigen::MatrixXd& world, const Eigen::MatrixXd& contacts, co
         const double len2 = leg_line.squaredNorm();
         pole = knee - hip;
         if (len2 > 0) pole -= leg_line * (leg_line.dot(knee - hip) / len2);
-        // The bias fades out as the knee bends more (gone at three times its size), so a bent
-        // knee keeps its own plane: a lock that does not move the ankle leaves the leg as it was.
-        const double bias = std::clamp(1.0 - pole.norm() / (3.0 * kKneeForwardBias * rig.leg_length), 0.0, 1.0);
+        // The bias fades out as the knee bends more (gone at three times its size) and as the
+        // ankle moves less (gone where it stays), so a lock that does not move the ankle leaves
+        // the leg as it was, and a bent knee keeps its own plane.
+        const double moved = std::hypot(scratch.target(t, 0), scratch.target(t, 1));
+        const double bias = std::clamp(1.0 - pole.norm() / (3.0 * kKneeForwardBias * rig.leg_length), 0.0, 1.0) *
+                            std::clamp(moved / (kKneeBiasMove * rig.leg_length), 0.0, 1.0);
         if (leg.toe >= 0 && bias > 0.0) {
           Eigen::Vector3d forward = joint_at(world, t, leg.toe) - ankle;
           forward.y() = 0.0;

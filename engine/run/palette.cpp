@@ -55,31 +55,22 @@ struct RowAt {
 };
 
 // How far each ankle moves from output frame k to k + 1 in the body's frame, as the takes mixed
-// move it themselves at the frames shown (each take's own world ankle, turned into its own
-// heading's frame), weighted (K x 4: left x, z, right x, z; the last row 0). A foot that pivots
-// or slides in the takes is expected to in the mix; the foot lock pins only what moves beyond.
-// O(K x N), no allocation once `out` is sized.
+// move it themselves at the frames shown (each take's own ankle travel, prepare_takes.h), weighted
+// (K x 4: left x, z, right x, z; the last row 0). A foot that pivots or slides in the takes is
+// expected to in the mix; the foot lock pins only what moves beyond. O(K x N), no allocation
+// once `out` is sized.
 void planted_drift(const PreparedTakes& p, const Eigen::MatrixXd& sources, const std::vector<double>& weights,
                    const Eigen::MatrixXd* frame_w, Eigen::MatrixXd& out) {
   const Eigen::Index frames = sources.rows();
   out.setZero(frames, 4);
-  const LegColumns* legs[2] = {&p.feet.legs[0], &p.feet.legs[1]};
   for (int i = 0; i < p.size(); ++i) {
-    const PreparedTake& t = p.takes[static_cast<size_t>(i)];
-    const Eigen::Index rows = t.world.rows();
+    const Eigen::MatrixXd& travel = p.takes[static_cast<size_t>(i)].ankle_travel;
+    const Eigen::Index rows = travel.rows();
     for (Eigen::Index k = 0; k + 1 < frames; ++k) {
       const double w = frame_w != nullptr ? (*frame_w)(k, i) : weights[static_cast<size_t>(i)];
       if (w == 0.0) continue;
       const RowAt a(sources(k, i), rows), b(sources(k + 1, i), rows);
-      const double h = a.of(t.canonical.heading, 0);
-      const double c = std::cos(h), s = std::sin(h);
-      for (int side = 0; side < 2; ++side) {
-        if (!legs[side]->usable()) continue;
-        const Eigen::Index x = 3 * legs[side]->ankle, z = x + 2;
-        const double dx = b.of(t.world, x) - a.of(t.world, x), dz = b.of(t.world, z) - a.of(t.world, z);
-        out(k, 2 * side) += w * (c * dx - s * dz);
-        out(k, 2 * side + 1) += w * (s * dx + c * dz);
-      }
+      for (Eigen::Index c = 0; c < 4; ++c) out(k, c) += w * (b.of(travel, c) - a.of(travel, c));
     }
   }
 }

@@ -74,6 +74,28 @@ TakeCycles cycles_to_register(const PreparedTakes& p, const PreparedTake& t, con
   return detect_cycles(t.own_contacts, t.canonical.local, p.fps, p.feet.leg_length, at_foot);
 }
 
+// F x 4: PreparedTake::ankle_travel of world (F x 3M) with heading (F); 0 for a leg not usable.
+Eigen::MatrixXd ankle_travel(const Eigen::MatrixXd& world, const Eigen::VectorXd& heading, const FootRig& feet) {
+  const Eigen::Index frames = world.rows();
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(frames, 4);
+  for (Eigen::Index f = 0; f + 1 < frames; ++f) {
+    const double c = std::cos(heading[f]), s = std::sin(heading[f]);
+    for (int side = 0; side < 2; ++side) {
+      const LegColumns& leg = feet.legs[static_cast<size_t>(side)];
+      double bx = 0.0, bz = 0.0;
+      if (leg.usable()) {
+        const double dx = world(f + 1, 3 * leg.ankle) - world(f, 3 * leg.ankle);
+        const double dz = world(f + 1, 3 * leg.ankle + 2) - world(f, 3 * leg.ankle + 2);
+        bx = c * dx - s * dz;
+        bz = s * dx + c * dz;
+      }
+      out(f + 1, 2 * side) = out(f, 2 * side) + bx;
+      out(f + 1, 2 * side + 1) = out(f, 2 * side + 1) + bz;
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 void PrepareOptions::Validate() const {
@@ -176,6 +198,9 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
   }
   spent.dtw_ms = ms_since(t1);
   report_progress(control, 0.8f);
+
+  // Each take's ankles' travel in its body's frame, on its own frames.
+  for (PreparedTake& t : p->takes) t.ankle_travel = ankle_travel(t.world, t.canonical.heading, p->feet);
 
   // Every take on the common timeline, placed where the reference stands when its match starts.
   const auto t2 = Clock::now();

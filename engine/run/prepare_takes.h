@@ -57,6 +57,11 @@ struct PreparedTake {
   CanonicalMotion canonical;         // F frames
   Eigen::MatrixXd own_local_t;       // 3M x F: canonical.local transposed (a frame a contiguous column, for the mix)
   Eigen::MatrixXd own_contacts;      // F x 2: foot contacts, left and right, 1 planted
+  // F x 4: each ankle's travel (left x, z, right x, z) from the first frame, summed step by step
+  // in the body's frame at each step (the step from f to f + 1 turned by -heading[f]): the move
+  // from frame a to b in the body's frame is row b minus row a (what the foot lock expects a
+  // planted foot to do, palette.cpp planted_drift).
+  Eigen::MatrixXd ankle_travel;
   TakeCycles cycles;                 // where it repeats, as detected on its file's frames (cycles.h)
   CycleRegistration registration;    // by cycles onto the reference: its cycles, sources, spans; empty otherwise
   Alignment alignment;               // onto the reference (the reference's own: empty)
