@@ -350,15 +350,14 @@ void apply_foot_lock(Eigen::MatrixXd& world, const Eigen::MatrixXd& contacts, co
       const Eigen::Vector2d offset(scratch.target(t, 0), scratch.target(t, 1));
       // (A leg already straighter than that may stay as straight.)
       const double reach = std::max(kReachMargin * ((knee - hip).norm() + (ankle - knee).norm()), (ankle - hip).norm());
-      double fraction = 1.0;
       Eigen::Vector3d target = ankle + Eigen::Vector3d(offset.x(), 0.0, offset.y());
       if ((target - hip).norm() > reach) {
         // |ankle - hip + f (ox, 0, oz)| = reach: the positive root f, within [0, 1].
         const Eigen::Vector3d d = ankle - hip, o(offset.x(), 0.0, offset.y());
         const double a = o.squaredNorm(), b = 2.0 * d.dot(o), c = d.squaredNorm() - reach * reach;
         const double disc = b * b - 4.0 * a * c;
-        fraction = a > 0 && disc >= 0 ? std::clamp((-b + std::sqrt(disc)) / (2.0 * a), 0.0, 1.0) : 0.0;
-        target = ankle + fraction * o;
+        const double f = a > 0 && disc >= 0 ? std::clamp((-b + std::sqrt(disc)) / (2.0 * a), 0.0, 1.0) : 0.0;
+        target = ankle + f * o;
       }
       Eigen::Vector3d new_knee, new_ankle;
       // The knee's bend direction (the IK's pole) is taken from the leg's own pose, the knee's

@@ -80,9 +80,10 @@ struct FootLockScratch {
 // foot's fastest moments); before the first run and after the last it fades over blend_frames().
 // Each such frame moves the ankle with analytic two-bone IK: the hip stays, thigh and shin keep
 // their lengths, the knee bends in the plane of hip, target and the knee's own offset from its
-// hip-ankle line, leaning slightly towards the toe; a target out of reach is approached along the
-// hip-target line. The toe moves with the ankle (the foot is translated). Frames beyond the fades
-// are left exactly as they were. O(F), no allocation once scratch has size F.
+// hip-ankle line, leaning slightly towards the toe (less as the knee bends or the ankle moves
+// less); a target beyond the leg's reach is shortened to it (a straight leg stays as straight).
+// The toe moves with the ankle (the foot is translated). Frames beyond the fades are left
+// exactly as they were. O(F), no allocation once scratch has size F.
 // drift: when given (F x 4: left x, z, right x, z, world units), how far each planted ankle is
 // expected to move from frame t to t + 1 (what the takes mixed do themselves: a foot that pivots
 // or slides in every take); the lock then pins only what moves otherwise. Within a run the target
