@@ -6,6 +6,7 @@
 #include <string>
 
 #include "engine/io/error.h"
+#include "engine/kinematics/ease.h"
 
 namespace mostyle {
 
@@ -40,11 +41,6 @@ Eigen::VectorXd frames_by_cycles(const TakeCycles& reference, const TakeCycles& 
 }
 
 namespace {
-
-double smoothstep(double x) {
-  x = std::clamp(x, 0.0, 1.0);
-  return x * x * (3.0 - 2.0 * x);
-}
 
 // The mean pose (a row) over a take's cycle frames.
 Eigen::RowVectorXd cycle_mean(const Eigen::MatrixXd& local, const TakeCycles& cycles) {

@@ -6,14 +6,10 @@
 #include <string>
 
 #include "engine/io/error.h"
+#include "engine/kinematics/ease.h"
 
 namespace mostyle {
 namespace {
-
-double smoothstep(double x) {
-  x = std::clamp(x, 0.0, 1.0);
-  return x * x * (3.0 - 2.0 * x);
-}
 
 std::string key_name(size_t k, double seconds) {
   char s[64];

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "engine/io/error.h"
+#include "engine/kinematics/ease.h"
 #include "engine/prepare/major_skeleton.h"
 #include "engine/prepare/major_take.h"
 
@@ -57,7 +58,6 @@ void check_contacts(const Eigen::MatrixXd& world, const Eigen::MatrixXd& contact
                      std::to_string(contacts.cols()));
 }
 
-double smoothstep(double x) { return x * x * (3.0 - 2.0 * x); }
 
 // Any unit vector perpendicular to n (unit).
 Eigen::Vector3d any_perpendicular(const Eigen::Vector3d& n) {

@@ -187,6 +187,9 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
   }
   s.u_stretch = s.u.array() - double(first);
   s.sampler.set(s.u_stretch, length);
+  // Each take's frame at each output frame: the residual's poses and the foot lock's drift read
+  // it; written again only when a loop cuts the output.
+  write_sources(p, s.sampler, first, out.sources);
   if (keyed) weights_over_frames(params.keys, s.u.size(), p.fps, s.frame_w);
   if (paper != nullptr) {
     // The paper's synthesis (3.6) on the samples with alpha the second take's weight: A's
@@ -209,7 +212,6 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
     // residual that is each take's own pose, read straight at the frame the output frame shows
     // (one-hot weights give the take's own frames), one output frame at a time over the takes'
     // transposed poses (a frame is a contiguous column).
-    write_sources(p, s.sampler, first, out.sources);
     if (params.residual) {
       const Eigen::Index channels = p.takes.front().own_local_t.rows();
       s.local_t.setZero(channels, out.sources.rows());
@@ -219,12 +221,9 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
           const double w = keyed ? s.frame_w(k, i) : params.weights[i];
           if (w == 0.0) continue;
           const Eigen::MatrixXd& x = p.takes[i].own_local_t;
-          const Eigen::Index last = x.cols() - 1;
-          const double at = std::clamp(out.sources(k, i), 0.0, double(last));
-          const Eigen::Index r = std::min<Eigen::Index>(static_cast<Eigen::Index>(at), std::max<Eigen::Index>(last - 1, 0));
-          const double f = last == 0 ? 0.0 : at - double(r);
-          column.noalias() += (w * (1.0 - f)) * x.col(r);
-          if (f != 0.0) column.noalias() += (w * f) * x.col(r + 1);
+          const RowAt at(out.sources(k, i), x.cols());
+          column.noalias() += (w * (1.0 - at.f)) * x.col(at.r);
+          if (at.f != 0.0) column.noalias() += (w * at.f) * x.col(at.next);
         }
       }
       out.local = s.local_t.transpose();
@@ -309,14 +308,15 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
   rig.short_bone_fraction = kShortBoneFraction;
   const Eigen::MatrixXd* drift = nullptr;
   if (params.finish.foot_lock) {
-    write_sources(p, s.sampler, first, out.sources);
     planted_drift(p, out.sources, s.overall, keyed ? &s.frame_w : nullptr, s.drift);
     drift = &s.drift;
   }
   finish_motion(s.sampler, s.ground_u, s.heading_u, s.contacts_u, rig, params.finish, out.local, s.u_stretch, s.finish,
                 out.motion, drift);
-  s.sampler.set(s.u_stretch, length);
-  write_sources(p, s.sampler, first, out.sources);
+  if (params.finish.loop) {  // the loop's frames only
+    s.sampler.set(s.u_stretch, length);
+    write_sources(p, s.sampler, first, out.sources);
+  }
   out.sample = s.u_stretch.array() + double(first);
   if (times != nullptr) times->postprocess_ms = ms_since(t1);
 }

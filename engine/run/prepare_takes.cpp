@@ -251,6 +251,7 @@ std::vector<int> export_joints(const PreparedTakes& prepared) {
 TakeCycles take_cycles(const std::shared_ptr<const Clip>& clip) {
   PrepareOptions own_rate;
   own_rate.fps = 0.0;
+  own_rate.align.time_base = TimeBase::kWhole;  // only the reference's cycles are read: register nothing
   return prepare_takes({clip, clip}, own_rate)->reference().cycles;
 }
 
