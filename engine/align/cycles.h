@@ -11,6 +11,7 @@
 // stumble: a gap between strikes much longer or shorter than the take's typical cycle) is left
 // out, so cycles need not follow one another.
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
 namespace mostyle {
@@ -40,6 +41,18 @@ struct TakeCycles {
   std::vector<Cycle> cycles;  // in order, not overlapping; empty for kNone
   int foot = -1;              // gait: the foot whose strikes begin the cycles (0 left, 1 right)
   double period = 0;          // periodic: the period found, frames; gait: the median cycle, frames
+  // A loop clip (its last pose joins its first, the root's travel apart): L, the frames of one
+  // repeat (F - 1 when the last frame repeats the first, F when the first would follow the last);
+  // 0 for a take that is not a loop. Frame f + L shows frame f's pose, the root moved on by the
+  // loop's travel, so a loop's cycle may be read across its end.
+  int loop_frames = 0;
+  // Gait: where `foot` strikes within each cycle, as a fraction of it: 0 for cycles begun at its
+  // strikes; a loop's one cycle [0, L) begins where the clip begins, its strike inside it.
+  double strike_phase = 0.0;
+  // Why the take has no cycles, or no gait cycles ("no foot strike of the right foot"); empty
+  // for gait cycles.
+  std::string reason;
+  bool loops() const { return loop_frames > 0; }
   int frames_in_cycles() const;
 };
 
