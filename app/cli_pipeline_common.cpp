@@ -223,6 +223,7 @@ Json alignment_json(const PreparedTakes& p, int take) {
   Json j;
   j["method"] = dtw_method_name(al.options.method);
   j["time_base"] = al.by_cycles() ? "cycles" : "whole";  // what it was aligned by (cycles fall back to whole)
+  if (!al.whole_because.empty()) j["whole_because"] = al.whole_because;
   j["feature"] = align_on_name(al.feature.on);
   j["locomotion"] = al.feature.locomotion;
   Json joints = Json::array();

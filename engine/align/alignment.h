@@ -73,6 +73,9 @@ struct Alignment {
   std::vector<std::pair<int, int>> poor;
   int frames_a = 0, frames_b = 0;     // the takes' lengths at the working rate
   std::vector<std::string> warnings;  // plain sentences: poor stretches, much left out ("A", "B")
+  // Registration by cycles asked for but the takes aligned whole: why ("B has no cycles: no foot
+  // strike of the right foot"); empty otherwise.
+  std::string whole_because;
   // By cycles: B is the take registered onto A (cycle_registration.h), and this is the take's own
   // frame at each of B's frames (NaN where it gives its posture only); empty when aligned whole.
   Eigen::VectorXd b_source;

@@ -134,4 +134,22 @@ void mixed_timeline(const CommonTimeline& timeline, const WeightKeys& keys, doub
   u.array() += first;
 }
 
+void land_on_last(Eigen::VectorXd& u, double last) {
+  const Eigen::Index k = u.size();
+  if (k < 2) return;
+  const double step = u[k - 1] - u[k - 2];
+  if (!(step > 0.0)) return;
+  // The index (fractional) at which the clock reaches `last`, its last step carried on.
+  const double reach = double(k - 1) + std::max(0.0, last - u[k - 1]) / step;
+  const Eigen::Index frames = std::max<Eigen::Index>(2, std::lround(reach) + 1);
+  const Eigen::VectorXd clock = u;
+  u.resize(frames);
+  for (Eigen::Index j = 0; j < frames; ++j) {
+    const double x = double(j) * reach / double(frames - 1);
+    const Eigen::Index r = std::min<Eigen::Index>(static_cast<Eigen::Index>(x), k - 2);
+    u[j] = clock[r] + (x - double(r)) * (clock[r + 1] - clock[r]);
+  }
+  u[frames - 1] = last;
+}
+
 }  // namespace mostyle

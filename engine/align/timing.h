@@ -41,6 +41,14 @@ void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& w
 void mixed_timeline(const CommonTimeline& timeline, const WeightKeys& keys, double fps, int first, int last,
                     Eigen::VectorXd& u, Eigen::MatrixXd* sample_weights = nullptr);
 
+// Output frames (u: K sample positions, increasing, from mixed_timeline) retimed so that the last
+// lands exactly on sample `last`: a whole loop (its last sample repeats its first pose) then ends
+// on a frame, to be cut off as the loop closes. The clock's end, where it would reach `last`
+// (a fraction of a frame past u's last, at its last step), is rounded to a whole number of frames
+// and the clock stretched or squeezed evenly to it (by at most half a frame in all). u keeps at
+// least two frames. O(K); allocates.
+void land_on_last(Eigen::VectorXd& u, double last);
+
 // The clock itself at every sample (U values, T(0) = 0), for tests and displays.
 Eigen::VectorXd blended_clock(const TimeWarp& warp, double w);
 

@@ -49,8 +49,14 @@ void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, c
     }
   }
   out.loop = LoopCut();
-  if (options.loop) {
+  if (options.closed && u.size() >= 3) {
+    out.loop.begin = 0;
+    out.loop.end = static_cast<int>(u.size()) - 1;
+    out.loop.cycles = 1;
+  } else if (options.loop) {
     out.loop = find_loop(out.contacts, local, s.heading);
+  }
+  if (out.loop.frames() > 0) {
     close_loop(out.loop, local, s.ground, s.heading, out.contacts);
     u = u.segment(out.loop.begin, out.loop.frames()).eval();
     if (body_drift != nullptr) s.drift = s.drift.middleRows(out.loop.begin, out.loop.frames()).eval();

@@ -15,6 +15,11 @@ struct FinishOptions {
   bool limb_lengths = true;  // paper 3.7
   bool foot_lock = true;     // pin planted feet after the limb lengths (foot_contact.h)
   bool loop = false;         // cut a seamless loop of whole gait cycles (loop.h)
+  // The motion is one whole loop whose last frame shows its first pose again (a loop clip's cycle
+  // as the reference, its clock landed on the loop's end: timing.h land_on_last): that frame is
+  // cut off and the seam closed, so the last frame leads into the first as any frame into the
+  // next. Replaces `loop`.
+  bool closed = false;
 };
 
 // What the motion is measured and rigged with.
@@ -42,7 +47,7 @@ struct FinishScratch {
 
 // local: K x 3M canonical poses at the output frames, u: their K sample positions (sampler set
 // on them); ground_u (U x 2), heading_u (U) and contacts_u (U x 2) on the samples. With a loop,
-// local and u are cut to the loop's frames. Throws InputError when a loop is asked of a motion
+// local and u are cut to the loop's frames (closed: all but the last). Throws InputError when a loop is asked of a motion
 // without two foot strikes. body_drift: when given (K x 4: left x, z, right x, z), how far each
 // ankle is expected to move from output frame k to k + 1 in the body's frame there (the mixed
 // takes' own ankle moves, planted_drift), for the foot lock (apply_foot_lock's drift). O(K x M);

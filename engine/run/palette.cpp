@@ -78,6 +78,15 @@ void planted_drift(const PreparedTakes& p, const Eigen::MatrixXd& sources, const
   }
 }
 
+// Whether samples first..last show a loop reference's whole loop: its one cycle from its first
+// frame to its last (the loop's end: prepare_takes gives a loop reference that frame).
+bool shows_whole_loop(const PreparedTakes& p, int first, int last) {
+  const PreparedTake& r = p.reference();
+  const Eigen::Index frames = r.own_local_t.cols();
+  if (!r.cycles.loops() || r.cycles.loop_frames != frames - 1) return false;
+  return r.frames[first] <= 0.0 && r.frames[last] >= double(frames - 1);
+}
+
 }  // namespace
 
 std::vector<double> normalized_weights(const std::vector<double>& typed) {
@@ -184,6 +193,14 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
         for (int i = 0; i < n; ++i) s.sample_w(k, i) = w[static_cast<size_t>(i)];
       }
     }
+  }
+  // A loop clip as the reference, shown whole: the output is one loop. Its clock lands on the
+  // loop's end (the reference's last frame, its first pose again), which the finish cuts off.
+  FinishOptions finish = params.finish;
+  finish.closed = shows_whole_loop(p, first, last);
+  if (finish.closed) {
+    land_on_last(s.u, last);
+    finish.loop = false;
   }
   s.u_stretch = s.u.array() - double(first);
   s.sampler.set(s.u_stretch, length);
@@ -307,13 +324,13 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
   rig.feet = &p.feet;
   rig.short_bone_fraction = kShortBoneFraction;
   const Eigen::MatrixXd* drift = nullptr;
-  if (params.finish.foot_lock) {
+  if (finish.foot_lock) {
     planted_drift(p, out.sources, s.overall, keyed ? &s.frame_w : nullptr, s.drift);
     drift = &s.drift;
   }
-  finish_motion(s.sampler, s.ground_u, s.heading_u, s.contacts_u, rig, params.finish, out.local, s.u_stretch, s.finish,
+  finish_motion(s.sampler, s.ground_u, s.heading_u, s.contacts_u, rig, finish, out.local, s.u_stretch, s.finish,
                 out.motion, drift);
-  if (params.finish.loop) {  // the loop's frames only
+  if (finish.loop || finish.closed) {  // the loop's frames only
     s.sampler.set(s.u_stretch, length);
     write_sources(p, s.sampler, first, out.sources);
   }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 
+#include "engine/align/cycle_phase.h"
 #include "engine/io/error.h"
 #include "engine/kinematics/limb_length.h"
 #include "engine/prepare/major_take.h"
@@ -73,6 +74,49 @@ TakeCycles cycles_to_register(const PreparedTakes& p, const PreparedTake& t, con
   at_foot.foot = reference.foot;
   return detect_cycles(t.own_contacts, t.canonical.local, p.fps, p.feet.leg_length, at_foot);
 }
+
+// Why two takes asked to be registered by cycles were aligned whole (empty when cycles were not
+// asked for): which take has no cycles, or none of the kind the other's are, and why.
+std::string why_whole(const TakeCycles& reference, const TakeCycles& take, const AlignmentOptions& align,
+                      const std::string& reference_name, const std::string& take_name) {
+  if (align.method != DtwMethod::kSlope || align.time_base != TimeBase::kCycles) return "";
+  auto none = [](const std::string& name, const TakeCycles& c) {
+    return name + " has no cycles" + (c.reason.empty() ? std::string() : ": " + c.reason);
+  };
+  if (reference.cycles.empty()) return none(reference_name, reference);
+  if (take.cycles.empty()) return none(take_name, take);
+  if (reference.kind != take.kind)
+    return reference_name + "'s cycles are " + cycle_kind_name(reference.kind) + ", " + take_name + "'s " +
+           cycle_kind_name(take.kind) + (take.reason.empty() ? std::string() : " (" + take.reason + ")");
+  return "";
+}
+
+// A loop reference whose first frame would follow its last gets that frame appended (its first
+// pose, one step on from its last), so its one cycle ends inside its frames as a cycle must, and
+// the mix reaches the end of the loop. The take's world, canonical motion, contacts and cycles are
+// made again with it.
+void append_closing_frame(PreparedTake& t, const PreparedTakes& p, const int leg[6]) {
+  const Eigen::Index frames = t.world.rows();
+  if (frames < 3) return;
+  Eigen::MatrixXd steps = Eigen::MatrixXd::Zero(2, 3);
+  steps.row(0) = root_steps(t.canonical).row(frames - 2);
+  Eigen::MatrixXd ground;
+  Eigen::VectorXd heading;
+  integrate_root(steps, t.canonical.ground.row(frames - 1).transpose(), t.canonical.heading[frames - 1], &ground,
+                 &heading);
+  Eigen::MatrixXd closing;
+  to_world(t.canonical.local.topRows(1), ground.bottomRows(1), heading.tail(1), &closing);
+  t.world.conservativeResize(frames + 1, Eigen::NoChange);
+  t.world.row(frames) = closing.row(0);
+  t.canonical = to_canonical(t.world, 0, leg[0], leg[3]);
+  t.own_local_t = t.canonical.local.transpose();
+  t.own_contacts = detect_foot_contacts(t.world, p.feet);
+  t.cycles = detect_cycles(t.own_contacts, t.canonical.local, p.fps, p.feet.leg_length);
+}
+
+// How many times a loop take is repeated to be registered: enough for one cycle window moved to
+// any phase, with the fades' frames running on before and after it.
+int loop_repeats(int loop_frames, int fade) { return 4 + 2 * ((fade + loop_frames - 1) / loop_frames); }
 
 // F x 4: PreparedTake::ankle_travel of world (F x 3M) with heading (F); 0 for a leg not usable.
 Eigen::MatrixXd ankle_travel(const Eigen::MatrixXd& world, const Eigen::VectorXd& heading, const FootRig& feet) {
@@ -162,6 +206,7 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
     t.own_local_t = t.canonical.local.transpose();
     t.own_contacts = detect_foot_contacts(t.world, p->feet);
     t.cycles = detect_cycles(t.own_contacts, t.canonical.local, fps, p->feet.leg_length);
+    if (i == 0 && t.cycles.loops() && t.cycles.loop_frames == t.world.rows()) append_closing_frame(t, *p, leg);
   }
   spent.preprocess_ms = ms_since(t0);
   report_progress(control, 0.3f);
@@ -172,12 +217,32 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
   std::vector<const TimeWarp*> warps;
   for (int i = 1; i < n; ++i) {
     PreparedTake& t = p->takes[static_cast<size_t>(i)];
-    const TakeCycles own = cycles_to_register(*p, t, options.align);
+    TakeCycles own = cycles_to_register(*p, t, options.align);
+    const int fade = std::max(2, static_cast<int>(std::lround(kPostureFadeCycles * reference.cycles.period)));
+    // A loop take is read across its end (unrolled); a take's cycles begin at the phase of the
+    // gait the reference's begin at (a loop reference's where the clip begins).
+    const CanonicalMotion* take_motion = &t.canonical;
+    const Eigen::MatrixXd* take_contacts = &t.own_contacts;
+    UnrolledLoop unrolled;
+    if (cycles_register(reference.cycles, own) && own.loops()) {
+      const int repeats = loop_repeats(own.loop_frames, fade);
+      unrolled = unroll_loop(t.canonical, t.own_contacts, own.loop_frames, repeats);
+      const int middle = own.loop_frames * (repeats / 2);
+      own.cycles = {{middle, middle + own.loop_frames}};
+      take_motion = &unrolled.motion;
+      take_contacts = &unrolled.contacts;
+    }
+    if (cycles_register(reference.cycles, own) && own.kind == CycleKind::kGait &&
+        (own.strike_phase != 0.0 || reference.cycles.strike_phase != 0.0))
+      own = cycles_at_phase(own, reference.cycles.strike_phase, static_cast<int>(take_motion->local.rows()));
     if (cycles_register(reference.cycles, own)) {
       // Its own timeline becomes the registered take: its cycles on the reference's.
-      const int fade = std::max(2, static_cast<int>(std::lround(kPostureFadeCycles * reference.cycles.period)));
       RegisteredMotion registered = register_by_cycles(reference.canonical, reference.own_contacts, reference.cycles,
-                                                       t.canonical, t.own_contacts, own, fade);
+                                                       *take_motion, *take_contacts, own, fade);
+      // An unrolled loop's frames are its file's frames modulo the loop.
+      if (unrolled.loop_frames > 0)
+        for (double& f : registered.registration.source)
+          if (!std::isnan(f)) f = std::fmod(f, double(unrolled.loop_frames));
       t.alignment = align_by_cycles(reference.canonical, registered, p->feature_joints, p->feet.leg_length, fps,
                                     options.align, control);
       // Poses faded or eased across a seam are blends: their bones are put back to the
@@ -191,9 +256,13 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
     } else {
       t.alignment = align_takes(reference.canonical, t.canonical, p->feature_joints, p->feet.leg_length, fps,
                                 options.align, control);
+      t.alignment.whole_because = why_whole(reference.cycles, own, options.align, aligned_name(0, n, *reference.clip).name,
+                                            aligned_name(i, n, *t.clip).name);
     }
     t.alignment.warnings = alignment_warnings(t.alignment, fps, aligned_name(0, n, *reference.clip),
                                               aligned_name(i, n, *t.clip));
+    if (!t.alignment.whole_because.empty())
+      t.alignment.warnings.push_back("aligned whole, not by cycles: " + t.alignment.whole_because);
     warps.push_back(&t.alignment.warp);
   }
   spent.dtw_ms = ms_since(t1);

@@ -181,3 +181,25 @@ TEST_CASE("timing: three takes' clock advances by the weighted frames", "[timing
   CHECK(u[4] == Approx(6.0));
   CHECK_THROWS_AS(mixed_timeline(t, {0.5, NAN, 0.5}, 0, 8, u), InputError);
 }
+
+TEST_CASE("timing: a whole loop's clock lands on its last sample, stretched evenly", "[timing]") {
+  // Frames every 0.9 samples from 0 reach 9 of 10 samples (0..9) at 10 frames (8.1) and would
+  // reach sample 9 at 10 frames: 11 frames, the last on 9.
+  Eigen::VectorXd u(10);
+  for (int k = 0; k < 10; ++k) u[k] = 0.9 * k;
+  land_on_last(u, 9.0);
+  REQUIRE(u.size() == 11);
+  for (int k = 0; k < 11; ++k) CHECK(u[k] == Approx(0.9 * k));
+  // Frames every 0.8 reach 8.8 at 12 frames; sample 9 at 11.25: rounded to 11 steps of 9/11.
+  u.resize(12);
+  for (int k = 0; k < 12; ++k) u[k] = 0.8 * k;
+  land_on_last(u, 9.0);
+  REQUIRE(u.size() == 12);
+  for (int k = 0; k < 12; ++k) CHECK(u[k] == Approx(9.0 * k / 11.0));
+  // Already on it: unchanged.
+  u.resize(4);
+  u << 0.0, 1.0, 2.0, 3.0;
+  land_on_last(u, 3.0);
+  REQUIRE(u.size() == 4);
+  CHECK(u[3] == 3.0);
+}
