@@ -184,7 +184,9 @@ void add_convert_command(CLI::App& app, std::function<int()>* run) {
   auto fps = std::make_shared<double>(0.0);
   auto take = std::make_shared<std::string>();
   cmd->add_option("IN", *in, "BVH, FBX, GLB or glTF file to read (FILE#ANIMATION picks one animation)")->required();
-  cmd->add_option("OUT", *out, "File to write: .glb or .gltf (with its .bin) as glTF 2.0, else BVH")->required();
+  cmd->add_option("OUT", *out, "File to write: .bvh as BVH, .glb or .gltf (with its .bin) as glTF 2.0")
+      ->required()
+      ->check(written_motion_format());
   cmd->add_option("--take", *take, "The animation to read (FBX, glTF); default the first");
   cmd->add_option("--order", *order, "Rotation order: XYZ, XZY, YXZ, YZX, ZXY or ZYX")
       ->check(CLI::IsMember({"XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX"}, CLI::ignore_case));

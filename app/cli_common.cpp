@@ -1,7 +1,10 @@
 #include "app/cli_common.h"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 
 #include "engine/io/atomic_file.h"
@@ -75,6 +78,18 @@ Clip load_clip(const std::string& path, const std::string& take, double fps) {
   for (const std::string& w : warnings) std::cerr << "mostyle: warning: " << w << "\n";
   for (const std::string& n : notes) std::cerr << "mostyle: note: " << n << "\n";
   return clip;
+}
+
+const CLI::Validator& written_motion_format() {
+  static const CLI::Validator check(
+      [](std::string& path) -> std::string {
+        std::string ext = std::filesystem::path(path).extension().string();
+        std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+        if (ext == ".bvh" || ext == ".glb" || ext == ".gltf") return "";
+        return "cannot write '" + path + "': the formats written are BVH (.bvh) and glTF 2.0 (.glb, .gltf)";
+      },
+      "BVH or glTF", "motion file to write");
+  return check;
 }
 
 }  // namespace mostyle::cli

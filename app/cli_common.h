@@ -1,5 +1,6 @@
 #pragma once
 // Small pieces every mostyle-cli subcommand shares: numbers, position CSVs, loading.
+#include <CLI/CLI.hpp>
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -29,6 +30,11 @@ size_t memory_limit_from_environment();
 BvhReadOptions bvh_read_options_from_environment();
 // The same limit for any motion file (engine/io/motion_file.h).
 MotionReadOptions motion_read_options_from_environment();
+
+// A check for an option naming a motion file to write: it must end in one of the formats
+// written (.bvh, .glb, .gltf, case-insensitive), never another format's name over BVH text; a
+// parse error (exit status 2) names them otherwise.
+const CLI::Validator& written_motion_format();
 
 // Reads a take (engine/io/motion_file.h: BVH, FBX, glTF; `path` may be FILE#ANIMATION), with
 // the memory limit above, `take` (--take; "" for FILE#ANIMATION's or the first) and `fps` (the

@@ -59,7 +59,7 @@ struct SynthesisFlags {
                   "Shared mode: mix only what the k components reconstruct (the paper's synthesis), leaving out "
                   "each take's residual detail");
     cmd->add_flag("--loop", loop, "Cut a seamless loop of 1 to 4 whole gait cycles (root travel per cycle kept)");
-    cmd->add_option("--out", out, words.out_help);
+    cmd->add_option("--out", out, words.out_help)->check(written_motion_format());
     channels.add_to(cmd);
     cmd->add_option("--positions-out", positions_out,
                     "CSV frame,joint,x,y,z of the result's final major-joint positions (after the foot lock)");

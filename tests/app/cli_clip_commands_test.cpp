@@ -174,6 +174,22 @@ TEST_CASE("cli: bad usage exits 2", "[cli][bvh]") {
   CHECK(box.cli("info --help").status == 0);
 }
 
+TEST_CASE("cli: an output named in a format that is not written is refused, naming the formats", "[cli][bvh]") {
+  Sandbox box;
+  const std::string file = test::asset("motions/cmu142_walk_clumsy.bvh");
+  const std::string other = test::asset("motions/cmu142_walk_happy.bvh");
+  for (const std::string out : {"x.mp4", "x.fbx", "x", "x.bvh.txt"}) {
+    const Run convert = box.cli("convert \"" + file + "\" \"" + box.path(out) + "\"");
+    CHECK(convert.status == 2);
+    CHECK(convert.err.find("BVH (.bvh) and glTF 2.0 (.glb, .gltf)") != std::string::npos);
+    CHECK(box.cli("blend \"" + file + "\" \"" + other + "\" --alpha 0.5 --out \"" + box.path(out) + "\"").status == 2);
+    CHECK_FALSE(fs::exists(box.path(out)));
+  }
+  // Any case of a written format's extension is taken.
+  CHECK(box.cli("convert \"" + file + "\" \"" + box.path("upper.BVH") + "\"").status == 0);
+  CHECK(fs::exists(box.path("upper.BVH")));
+}
+
 TEST_CASE("cli fk writes frame,joint,x,y,z for every joint in file order", "[cli][bvh]") {
   Sandbox box;
   const std::string file = test::asset("motions/cmu142_walk_happy.bvh");
