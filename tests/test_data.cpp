@@ -1,6 +1,7 @@
 #include "tests/test_data.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 
 namespace mostyle::test {
@@ -17,15 +18,22 @@ std::vector<std::string> bvh_files_in(const fs::path& dir) {
   std::sort(out.begin(), out.end());
   return out;
 }
+// ../shared/motions, or the folder MOSTYLE_SHARED_MOTIONS_DIR names when set (CI sets it to a
+// folder that does not exist, to run the tests as a clone with nothing beside it does).
+std::string shared_folder() {
+  const char* dir = std::getenv("MOSTYLE_SHARED_MOTIONS_DIR");
+  return dir != nullptr ? std::string(dir) : std::string(MOSTYLE_SHARED_MOTIONS);
+}
+
 }  // namespace
 
 std::string shared_motion(const std::string& name) {
-  fs::path p = fs::path(MOSTYLE_SHARED_MOTIONS) / name;
+  fs::path p = fs::path(shared_folder()) / name;
   std::error_code ec;
   return fs::exists(p, ec) ? p.string() : std::string();
 }
 
-std::vector<std::string> shared_motions() { return bvh_files_in(MOSTYLE_SHARED_MOTIONS); }
+std::vector<std::string> shared_motions() { return bvh_files_in(shared_folder()); }
 
 std::string asset(const std::string& name) { return (fs::path(MOSTYLE_ASSETS_DIR) / name).string(); }
 

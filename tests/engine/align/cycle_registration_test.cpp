@@ -48,6 +48,7 @@ TEST_CASE("cycle registration: a short take's cycles reused in order, phases mat
 }
 
 TEST_CASE("cycle registration: a 6.5 s walk covers every cycle of a 22 s one") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
   const auto content = std::make_shared<const Clip>(read_motion_file(test::shared_motion("cmu142_walk_joy.bvh")));
   const auto neutral = std::make_shared<const Clip>(read_motion_file(test::shared_motion("bandai_walk_normal.bvh")));
   const auto p = prepare_takes(std::vector<std::shared_ptr<const Clip>>{content, neutral}, PrepareOptions());
