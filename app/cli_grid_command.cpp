@@ -101,6 +101,16 @@ std::string job_line(std::vector<std::string> job, const std::string& out_dir, c
   return json_line(job);
 }
 
+// A transfer job's command: CONTENT [--neutral N] --style S [--strength s]; no neutral: the
+// content is its own.
+std::vector<std::string> transfer_job(const std::string& content, const std::string& neutral, const std::string& style,
+                                      const std::string& strength = "") {
+  std::vector<std::string> job{"transfer", content};
+  if (!neutral.empty()) job.insert(job.end(), {"--neutral", neutral});
+  job.insert(job.end(), {"--style", style});
+  if (!strength.empty()) job.insert(job.end(), {"--strength", strength});
+  return job;
+}
 
 }  // namespace
 
@@ -125,7 +135,8 @@ void add_grid_command(CLI::App& app, std::function<int()>* run) {
   cmd->add_flag("--transfer", args->transfer, "Style transfers instead of blends (--contents, --neutral, --styles, "
                                               "--strengths)");
   cmd->add_option("--contents", args->contents, "Transfers: takes (BVH, FBX, glTF, FILE#ANIMATION) that take on the styles, 1 or more");
-  cmd->add_option("--neutral", args->neutral, "Transfers: take of the action without the styles");
+  cmd->add_option("--neutral", args->neutral,
+                  "Transfers: take of the action without the styles; without it each content is its own neutral");
   cmd->add_option("--styles", args->styles, "Transfers: takes of the action in each style, comma separated")
       ->delimiter(',');
   cmd->add_option("--strengths", args->strengths, "Transfers: strengths, comma separated, each from -1 to 2")
@@ -139,7 +150,7 @@ void add_grid_command(CLI::App& app, std::function<int()>* run) {
                   "After --: blend (or with --transfer, transfer) options for every job, e.g. -- --components 4 --loop");
   cmd->footer("Each line is [\"blend\", A, B, \"--alpha\", a, \"--out\", ..., \"--report\", ..., JOB_OPTIONS], or "
               "[\"transfer\", CONTENT, \"--neutral\", N, \"--style\", S, \"--strength\", s, \"--out\", ..., "
-              "\"--report\", ..., JOB_OPTIONS].");
+              "\"--report\", ..., JOB_OPTIONS] (without --neutral, no \"--neutral\", N).");
   cmd->callback([=] {
     // Bad values are usage errors (exit 2), found before any file is written.
     const bool blend_given = !args->takes.empty() || !args->alphas.empty();
@@ -158,14 +169,12 @@ void add_grid_command(CLI::App& app, std::function<int()>* run) {
     } else {
       if (blend_given) throw CLI::ValidationError("--transfer", "--takes and --alphas are a blend grid's");
       if (args->contents.empty()) throw CLI::ValidationError("--contents", "expected 1 or more takes, found none");
-      if (args->neutral.empty()) throw CLI::ValidationError("--neutral", "expected a take, found none");
       if (args->styles.empty()) throw CLI::ValidationError("--styles", "expected 1 or more takes, found none");
       if (args->strengths.empty()) throw CLI::ValidationError("--strengths", "expected strengths, found none");
       check_stems(args->contents, "--contents");
       check_stems(args->styles, "--styles");
       check_values(args->strengths, "--strengths", kMinStrength, kMaxStrength);
-      check_job_options(args->options,
-                        {"transfer", args->contents[0], "--neutral", args->neutral, "--style", args->styles[0]},
+      check_job_options(args->options, transfer_job(args->contents[0], args->neutral, args->styles[0]),
                         {"--neutral", "--style", "--strength", "--out", "--report", "--positions-out"},
                         &add_transfer_command);
     }
@@ -186,9 +195,7 @@ void add_grid_command(CLI::App& app, std::function<int()>* run) {
         for (const std::string& content : args->contents)
           for (const std::string& style : args->styles)
             for (double s : args->strengths)
-              text += job_line({"transfer", content, "--neutral", args->neutral, "--style", style, "--strength",
-                                number(s)},
-                               args->out_dir, take_stem(content) + "__" + take_stem(style) + "__s" + number(s), args->options);
+              text += job_line(transfer_job(content, args->neutral, style, number(s)), args->out_dir, take_stem(content) + "__" + take_stem(style) + "__s" + number(s), args->options);
       }
       if (args->jobs_out.empty())
         std::cout << text;

@@ -148,7 +148,10 @@ std::string report_summary(const Json& r, const std::string& out, const std::str
            ", weights";
     for (const Json& t : r["takes"]) text += " " + fixed(t["weight"].get<double>(), 3);
   } else {
-    text = "transfer onto " + file_name(r["content"]) + " from " + file_name(r["neutral"]) + " to";
+    // A transfer without a neutral take measures the change from the content itself.
+    text = "transfer onto " + file_name(r["content"]) +
+           (r.value("neutral", Json()).is_string() ? " from " + file_name(r["neutral"]) + " to"
+                                                   : " (its own neutral) to");
     for (const Json& s : r["styles"]) text += " " + file_name(s);
     text += ", strength";
     for (const Json& s : r["strengths"]) text += " " + fixed(s.get<double>(), 2);

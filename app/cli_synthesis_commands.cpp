@@ -370,7 +370,9 @@ void add_mix_command(CLI::App& app, std::function<int()>* run) {
 
 void add_transfer_command(CLI::App& app, std::function<int()>* run) {
   auto* cmd = app.add_subcommand(
-      "transfer", "Put the style change from a neutral take to a styled one onto a take of your own");
+      "transfer",
+      "Put the style change from a neutral take (or, without one, from the content itself) to a styled one onto a "
+      "take of your own");
   struct Args {
     std::string content, neutral;
     std::vector<std::string> styles;
@@ -384,12 +386,15 @@ void add_transfer_command(CLI::App& app, std::function<int()>* run) {
   cmd->add_option("CONTENT", args->content,
                   "BVH take that keeps its skeleton, path, length and timing base and takes on the style")
       ->required();
-  cmd->add_option("--neutral", args->neutral, "BVH take of the action without the style")->required();
+  cmd->add_option("--neutral", args->neutral,
+                  "BVH take of the action without the style; without it CONTENT is its own neutral (CONTENT + s "
+                  "(STYLE - CONTENT))");
   cmd->add_option("--style", args->styles, "BVH take of the action in the style (repeat for several styles)")
       ->required();
   cmd->add_option("--strength", args->strengths,
                   "How much of each style, one per --style (comma separated or repeated, decimals or fractions), "
-                  "from -1 to 2; 0 leaves CONTENT as it is, 1 adds the whole change (default 1)");
+                  "from -1 to 2; 0 leaves CONTENT as it is, 1 adds the whole change (without --neutral, 1 is the "
+                  "style on CONTENT's timeline; default 1)");
   cmd->add_option("--part-strength", args->part_strengths,
                   "PART:s1,...: one body part's strengths, one per style (legs, arms, spine, left-leg, right-leg, "
                   "left-arm, right-arm); the rest take --strength");
@@ -408,30 +413,36 @@ void add_transfer_command(CLI::App& app, std::function<int()>* run) {
       if (strengths.size() != styles)
         throw InputError("expected " + std::to_string(styles) + " strengths, one per --style, found " +
                          std::to_string(strengths.size()));
-      if (styles + 2 > static_cast<size_t>(kMaxPaletteTakes))
-        throw InputError("transfer takes at most " + std::to_string(kMaxPaletteTakes - 2) + " styles");
+      // The takes: the content, the neutral when given, the styles. Without a neutral the content
+      // is its own: the same mix, on one take fewer, with the content's weight 1 - sum s.
+      const TransferNeutral neutral = args->neutral.empty() ? TransferNeutral::kContent : TransferNeutral::kTake;
+      std::vector<std::string> files{args->content};
+      if (neutral == TransferNeutral::kTake) files.push_back(args->neutral);
+      files.insert(files.end(), args->styles.begin(), args->styles.end());
+      if (files.size() > static_cast<size_t>(kMaxPaletteTakes))
+        throw InputError("transfer takes at most " + std::to_string(kMaxPaletteTakes - (files.size() - styles)) +
+                         " styles");
       MixParams mp;
-      mp.weights = transfer_weights(strengths);
-      // Content 1, neutral minus the strengths' sum, each style its strength.
-      mp.min_weight = -kMaxStrength * double(styles);
-      mp.max_weight = kMaxStrength + 1.0;
+      mp.weights = transfer_weights(strengths, neutral);
+      // Content 1, neutral minus the strengths' sum (or the content 1 minus it), each style its strength.
+      mp.min_weight = transfer_min_weight(static_cast<int>(styles));
+      mp.max_weight = transfer_max_weight(static_cast<int>(styles));
       for (const auto& [seconds, s] : parse_keys(args->strength_at, "--strength-at", styles))
-        mp.keys.push_back({seconds, transfer_weights(s)});
+        mp.keys.push_back({seconds, transfer_weights(s, neutral)});
       if (!mp.keys.empty() && !args->part_strengths.empty())
         throw InputError("give --strength-at or --part-strength, not both: keys in time style the whole body");
       const auto given = parse_part_entries(args->part_strengths, "--part-strength", styles);
       std::vector<std::pair<BodyPart, std::vector<double>>> given_weights;
-      for (const auto& [part, s] : given) given_weights.emplace_back(part, transfer_weights(s));
+      for (const auto& [part, s] : given) given_weights.emplace_back(part, transfer_weights(s, neutral));
       args->flags.set(mp);
-      std::vector<std::string> files{args->content, args->neutral};
-      files.insert(files.end(), args->styles.begin(), args->styles.end());
       const Prepared p = prepare(files, args->flags, args->flags.decompose_params());
       if (!given_weights.empty())
         mp.component_weights = part_weights(given_weights, p.decomposition->component_joints, mp.weights);
       Json r;
       r["command"] = "transfer";
       r["content"] = args->content;
-      r["neutral"] = args->neutral;
+      // null: the content is its own neutral (the change is from the content to each style).
+      r["neutral"] = neutral == TransferNeutral::kTake ? Json(args->neutral) : Json(nullptr);
       r["styles"] = args->styles;
       r["strengths"] = strengths;
       r["weights"] = mp.weights;

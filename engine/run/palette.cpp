@@ -357,13 +357,16 @@ Eigen::MatrixXd part_weights(const std::vector<std::pair<BodyPart, std::vector<d
   return out;
 }
 
-std::vector<double> transfer_weights(const std::vector<double>& strengths) {
+std::vector<double> transfer_weights(const std::vector<double>& strengths, TransferNeutral neutral) {
   if (strengths.empty()) throw InputError("a transfer needs at least one style (--style)");
-  std::vector<double> w{1.0, 0.0};
+  // The content 1, the neutral (the content itself, or the take after it) minus each strength.
+  std::vector<double> w{1.0};
+  if (neutral == TransferNeutral::kTake) w.push_back(0.0);
+  const size_t from = neutral == TransferNeutral::kTake ? 1 : 0;
   for (double s : strengths) {
     if (!std::isfinite(s) || s < kMinStrength || s > kMaxStrength)
       throw InputError("expected a strength from -1 to 2, found " + std::to_string(s));
-    w[1] -= s;
+    w[from] -= s;
     w.push_back(s);
   }
   return w;

@@ -6,7 +6,8 @@
 // mode (two takes) is the paper's synthesis with alpha the second take's weight. A blend of two
 // takes at alpha is the mix with weights (1 - alpha, alpha) (blend_params.h); a transfer (a style
 // put on a take of one's own) is a mix whose reference is the content take, with weights
-// (1, -s, s) on content, neutral and style (transfer_weights).
+// (1, -s, s) on content, neutral and style, or (1 - s, s) on content and style when the content
+// is its own neutral (transfer_weights).
 #include <Eigen/Core>
 #include <memory>
 #include <string>
@@ -86,12 +87,28 @@ void mix_palette(const PreparedTakes& palette, const Decomposed& decomposition, 
 Eigen::MatrixXd part_weights(const std::vector<std::pair<BodyPart, std::vector<double>>>& given,
                              const std::vector<ComponentJoints>& components, const std::vector<double>& rest);
 
-// A transfer's weights on takes [content, neutral, style_1, ..., style_n]: content 1, neutral
-// -sum s_i, style i s_i. Throws InputError on no style or a strength outside [kMinStrength,
-// kMaxStrength].
+// What a transfer's style change is measured from: a neutral take (the action without the
+// style), or the content itself (no neutral take: the content is its own neutral, as style
+// transfer from one styled clip has it).
+enum class TransferNeutral { kTake, kContent };
+
+// A transfer's weights. With a neutral take, on takes [content, neutral, style_1, ..., style_n]:
+// content 1, neutral -sum s_i, style i s_i (content + sum s_i (style_i - neutral)). With the
+// content its own neutral, on takes [content, style_1, ..., style_n]: content 1 - sum s_i, style
+// i s_i (content + sum s_i (style_i - content)). Throws InputError on no style or a strength
+// outside [kMinStrength, kMaxStrength].
 constexpr double kMinStrength = -1.0;
 constexpr double kMaxStrength = 2.0;
-std::vector<double> transfer_weights(const std::vector<double>& strengths);
+std::vector<double> transfer_weights(const std::vector<double>& strengths,
+                                     TransferNeutral neutral = TransferNeutral::kTake);
+// The range a transfer's weights of `styles` styles take (MixParams::min_weight, max_weight):
+// the neutral's (or the content's, when it is its own neutral) down to -kMaxStrength per style,
+// up to the larger of a style's kMaxStrength (the content's 1 beside it) and 1 - kMinStrength per
+// style (the content's own when every strength is negative).
+constexpr double transfer_min_weight(int styles) { return -kMaxStrength * styles; }
+constexpr double transfer_max_weight(int styles) {
+  return kMaxStrength + 1.0 > 1.0 - kMinStrength * styles ? kMaxStrength + 1.0 : 1.0 - kMinStrength * styles;
+}
 
 // The reference's joint index of each major column (for export), and the output frames in the
 // reference's own clip frames (its rotations at fractional frames).

@@ -152,6 +152,16 @@ TEST_CASE("cli grid --transfer: one transfer per content, style and strength, ru
   CHECK(files_in(out) == std::vector<std::string>{"cmu142_walk_clumsy__cmu142_walk_marching__s1.bvh",
                                                   "cmu142_walk_clumsy__cmu142_walk_marching__s1.json"});
   CHECK(Json::parse(slurp(out + "/cmu142_walk_clumsy__cmu142_walk_marching__s1.json"))["command"] == "transfer");
+
+  // No neutral: each content is its own; the lines have no --neutral and the outputs the same names.
+  const Run own = box.cli("grid --transfer --contents " + quoted(takes[0]) + " --styles " + quoted(takes[3]) +
+                          " --strengths 1 --out-dir " + quoted(out) + " -- --components 4 --iterations 20");
+  CHECK(own.status == 0);
+  const std::vector<Json> own_lines = json_lines(own.out);
+  REQUIRE(own_lines.size() == 1);
+  const std::string named = out + "/cmu142_walk_clumsy__cmu142_walk_marching__s1";
+  CHECK(own_lines[0] == Json({"transfer", takes[0], "--style", takes[3], "--strength", "1", "--out", named + ".bvh",
+                              "--report", named + ".json", "--components", "4", "--iterations", "20"}));
 }
 
 TEST_CASE("cli grid --transfer: bad usage exits 2 and writes nothing", "[batch][cli]") {
@@ -164,7 +174,6 @@ TEST_CASE("cli grid --transfer: bad usage exits 2 and writes nothing", "[batch][
   for (const std::string& args : {
            "grid" + c + n + st + " --strengths 1" + rest,                            // no --transfer
            "grid --transfer" + n + st + " --strengths 1" + rest,                     // no content
-           "grid --transfer" + c + st + " --strengths 1" + rest,                     // no neutral
            "grid --transfer" + c + n + " --strengths 1" + rest,                      // no style
            "grid --transfer" + c + n + st + rest,                                    // no strength
            "grid --transfer" + c + n + st + " --strengths 2.5" + rest,               // out of range

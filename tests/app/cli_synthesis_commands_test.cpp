@@ -122,6 +122,64 @@ TEST_CASE("cli mix of four takes with per-part weights, and transfer, write BVH 
   CHECK(!std::filesystem::exists(box.path("bad.bvh")));
 }
 
+TEST_CASE("cli transfer without --neutral: the content is its own neutral", "[cli][palette]") {
+  Sandbox box;
+  auto run = [&](const std::string& args, const std::string& name) {
+    const auto r = box.cli(args + " --no-foot-lock --positions-out " + quoted(box.path(name + ".csv")) + " --report " +
+                           quoted(box.path(name + ".json")));
+    INFO(args << ": " << r.err);
+    REQUIRE(r.status == 0);
+    return nlohmann::json::parse(test::slurp(box.path(name + ".json")));
+  };
+  // Strength 0: the content, frame for frame, as the transfer with a neutral take gives it (its
+  // frames read on another common timeline: within a thousandth of the height).
+  const auto zero = run("transfer " + kClumsy + " --style " + kMarching + " --strength 0", "zero");
+  CHECK(zero["neutral"].is_null());
+  CHECK(zero["weights"] == std::vector<double>{1.0, 0.0});
+  REQUIRE(zero["takes"].size() == 2);
+  CHECK(zero["takes"][1]["file"] == test::asset("motions/cmu142_walk_marching.bvh"));
+  const auto with_neutral = run("transfer " + kClumsy + " --neutral " + kHappy + " --style " + kMarching +
+                                " --strength 0", "with_neutral");
+  const double height = zero["skeleton_height"];
+  CHECK(zero["frames"] == with_neutral["frames"]);
+  CHECK(max_difference(positions(test::slurp(box.path("zero.csv"))),
+                       positions(test::slurp(box.path("with_neutral.csv")))) < 1e-3 * height);
+  // Strength 1: the mix of content and style with weights 0 and 1 (the style on the content's
+  // timeline), the content the reference; strength 0.4: the mix (0.6, 0.4).
+  for (const std::string s : {"1", "0.4"}) {
+    const double strength = std::stod(s);
+    const auto t = run("transfer " + kClumsy + " --style " + kMarching + " --strength " + s + " --fps 60", "t" + s);
+    const auto m = run("mix " + kClumsy + " " + kMarching + " --weights " + std::to_string(1.0 - strength) + "," + s +
+                           " --fps 60",
+                       "m" + s);
+    CHECK(t["weights"][0].get<double>() == Approx(1.0 - strength));
+    CHECK(t["frames"] == m["frames"]);
+    CHECK(max_difference(positions(test::slurp(box.path("t" + s + ".csv"))),
+                         positions(test::slurp(box.path("m" + s + ".csv")))) < 1e-6 * height);
+  }
+  // Keys: from none of the style to all of it; two styles each with its own strength.
+  const auto keyed = run("transfer " + kClumsy + " --style " + kMarching + " --strength-at 0:0,2:1", "keyed");
+  REQUIRE(keyed["keys"].size() == 2);
+  CHECK(keyed["keys"][0]["weights"] == std::vector<double>{1.0, 0.0});
+  CHECK(keyed["keys"][1]["weights"] == std::vector<double>{0.0, 1.0});
+  // Before the first key the output is the content: its first frame as at strength 0.
+  const std::vector<double> first_keyed = positions(test::slurp(box.path("keyed.csv")));
+  const std::vector<double> first_zero = positions(test::slurp(box.path("zero.csv")));
+  const size_t row = 3 * keyed["joints"].size();
+  CHECK(max_difference(std::vector<double>(first_keyed.begin(), first_keyed.begin() + row),
+                       std::vector<double>(first_zero.begin(), first_zero.begin() + row)) < 1e-6 * height);
+  const auto two = run("transfer " + kClumsy + " --style " + kMarching + " --style " + kJoy +
+                           " --strength-at \"0:0,0;1:1,0.5\"",
+                       "two");
+  CHECK(two["keys"][1]["weights"] == std::vector<double>{-0.5, 1.0, 0.5});
+  // Without --report: the summary says the content is its own neutral.
+  const auto summary = box.cli("transfer " + kClumsy + " --style " + kMarching + " --positions-out " +
+                               quoted(box.path("s.csv")));
+  REQUIRE(summary.status == 0);
+  CHECK(summary.out.find("transfer onto cmu142_walk_clumsy.bvh (its own neutral) to cmu142_walk_marching.bvh") !=
+        std::string::npos);
+}
+
 TEST_CASE("cli mix: typed weights within 0.001 of a sum of 1 and fractions are taken and normalized",
           "[cli][palette]") {
   Sandbox box;

@@ -29,13 +29,16 @@ struct BlendParameters {
 };
 
 // The style palette (issue #9): three or more takes mixed with weights, or a transfer (a style
-// change from a neutral take to a styled one put on a content take).
+// change from a neutral take, or from the content itself, to a styled one put on a content take).
 struct PaletteControls {
   std::vector<double> weights;                 // one per take, summing to 1
   bool per_part = false;                       // weights per body part (legs, arms, spine)
   std::vector<std::vector<double>> part_weights;  // [legs, arms, spine] x takes; empty row: the overall weights
   bool transfer = false;                       // transfer mode instead of a mix
   int content = 0, neutral = 1;                // transfer: takes by index; every other take is a style
+  // Transfer: no neutral take, the content is its own neutral (content + s (style - content)):
+  // every take but the content is a style, and `neutral` is kept for when one is chosen again.
+  bool content_neutral = false;
   std::vector<double> strengths;               // transfer: one per take (used for the styles)
   bool ghosts = false;                         // show each take's warped ghost in the viewport
 };

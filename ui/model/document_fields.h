@@ -34,9 +34,10 @@ inline constexpr Range kStrengthRange{kMinStrength, kMaxStrength};
 inline constexpr Range kTakesRange{0, kMaxPaletteTakes};  // how many takes; a take's index is below hi
 inline constexpr Range kTakeIndexRange{0, kMaxPaletteTakes - 1};
 // Each weight of a key (SessionControls::keys): the widest range any mode mixes with, a transfer's
-// (its neutral take loses what every style gains: palette_view.cpp mix_params_for). The engine
-// judges the weights for the mode they are mixed in (MixParams::Validate).
-inline constexpr Range kKeyWeightRange{-kMaxStrength * kMaxPaletteTakes, kMaxStrength + 1.0};
+// (its neutral take, or the content when it is its own neutral, loses what every style gains:
+// palette_view.cpp mix_params_for). The engine judges the weights for the mode they are mixed in
+// (MixParams::Validate).
+inline constexpr Range kKeyWeightRange{transfer_min_weight(kMaxPaletteTakes), transfer_max_weight(kMaxPaletteTakes)};
 inline constexpr Range kNoRange{};                        // not a number (a choice, a flag, options)
 
 // The levels swap_level may take with `basic_motions` levels: 0 to basic_motions - 1 (0 alone
@@ -84,6 +85,7 @@ void document_fields(Doc& x, Doc& y, F&& f) {
   f(Field{"controls.palette.transfer", Stale::kMix, kNoRange}, wx.transfer, wy.transfer);
   f(Field{"controls.palette.content", Stale::kMix, kTakeIndexRange}, wx.content, wy.content);
   f(Field{"controls.palette.neutral", Stale::kMix, kTakeIndexRange}, wx.neutral, wy.neutral);
+  f(Field{"controls.palette.content_neutral", Stale::kMix, kNoRange}, wx.content_neutral, wy.content_neutral);
   f(Field{"controls.palette.strengths", Stale::kMix, kStrengthRange}, wx.strengths, wy.strengths);
   f(Field{"controls.palette.ghosts", Stale::kView, kNoRange}, wx.ghosts, wy.ghosts);
   f(Field{"view.overlay", Stale::kView, kNoRange}, x.overlay, y.overlay);

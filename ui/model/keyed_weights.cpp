@@ -13,14 +13,14 @@ namespace {
 bool is_transfer(const SessionControls& c, int takes) { return takes >= 3 && c.palette.transfer; }
 
 // w (one per take, two or more) made a transfer's weights in place: the content 1, the neutral
-// minus the styles' sum (transfer_mix_weights).
+// (take `neutral`, 0 the content itself) minus the styles' sum (transfer_mix_weights).
 void make_transfer(std::vector<double>& w, int neutral) {
-  const size_t n = static_cast<size_t>(std::clamp(neutral, 1, static_cast<int>(w.size()) - 1));
-  w[0] = 1.0;
-  w[n] = 0.0;
+  const size_t n = static_cast<size_t>(std::clamp(neutral, 0, static_cast<int>(w.size()) - 1));
   double styles = 0.0;
-  for (size_t i = 1; i < w.size(); ++i) styles += w[i];
-  w[n] = -styles;
+  for (size_t i = 1; i < w.size(); ++i)
+    if (i != n) styles += w[i];
+  w[0] = 1.0;
+  w[n] = (n == 0 ? 1.0 : 0.0) - styles;
 }
 
 // The constant controls set from mix weights, as the controls set them without keys: the inverse
@@ -35,13 +35,17 @@ void set_constant_weights(Document& d, int takes, const std::vector<double>& wei
     c.weights = weights;
     return;
   }
-  const int neutral = std::clamp(c.neutral, 1, takes - 1);
+  const int neutral = transfer_neutral(c, takes);
   c.strengths.resize(static_cast<size_t>(takes), 1.0);  // as the palette's take-up sizes them
   for (int i = 1; i < takes; ++i)
     if (i != neutral) c.strengths[static_cast<size_t>(i)] = weights[static_cast<size_t>(i)];
 }
 
 }  // namespace
+
+int transfer_neutral(const PaletteControls& c, int takes) {
+  return c.content_neutral ? 0 : std::clamp(c.neutral, 1, std::max(takes - 1, 1));
+}
 
 std::vector<double> transfer_mix_weights(const std::vector<double>& values, int neutral, int takes) {
   std::vector<double> w(values.begin(), values.begin() + std::min<std::ptrdiff_t>(values.size(), takes));
@@ -51,7 +55,7 @@ std::vector<double> transfer_mix_weights(const std::vector<double>& values, int 
 }
 
 std::vector<double> palette_weights(const PaletteControls& c, int takes) {
-  if (c.transfer) return transfer_mix_weights(c.strengths, c.neutral, takes);
+  if (c.transfer) return transfer_mix_weights(c.strengths, transfer_neutral(c, takes), takes);
   if (static_cast<int>(c.weights.size()) == takes) return c.weights;
   return std::vector<double>(static_cast<size_t>(takes), 1.0 / takes);
 }
@@ -68,7 +72,7 @@ void set_mix_keys(const SessionControls& c, int takes, WeightKeys& out) {
   }
   out = c.keys;  // copy-assigned element by element: the vectors out has are reused
   if (is_transfer(c, takes))
-    for (WeightKey& key : out) make_transfer(key.weights, c.palette.neutral);
+    for (WeightKey& key : out) make_transfer(key.weights, transfer_neutral(c.palette, takes));
 }
 
 KeyTime key_time(const EditorState& state) {
@@ -92,7 +96,7 @@ std::vector<double> weights_at_playhead(const EditorState& state, int takes) {
   weights_at(c.keys, key_time(state).seconds, w);
   // The ease is linear in each weight, so easing the styles' and making the transfer's after is
   // the same as easing the transfer's keys (set_mix_keys).
-  if (is_transfer(c, takes)) make_transfer(w, c.palette.neutral);
+  if (is_transfer(c, takes)) make_transfer(w, transfer_neutral(c.palette, takes));
   return w;
 }
 

@@ -7,10 +7,11 @@
 //
 // One representation: a key holds the mix weights the engine takes (MixParams::weights, one per
 // take): a pair's (1 - alpha, alpha), a palette's weights, a transfer's transfer weights (the
-// content 1, each style its strength, the neutral minus their sum). In a transfer the content's
-// and neutral's weights are always made again from the styles' (transfer_mix_weights), so a key
-// follows a neutral or content chosen after it as the strengths do, and what the strength sliders
-// show at the playhead is what plays.
+// content 1, each style its strength, the neutral minus their sum; with the content its own
+// neutral, the content 1 minus their sum). In a transfer the content's and neutral's weights are
+// always made again from the styles' (transfer_mix_weights), so a key follows a neutral or content
+// chosen after it as the strengths do, and what the strength sliders show at the playhead is what
+// plays.
 //
 // Times: seconds of the result from its first frame. The playhead (Playback::time_s) runs on the
 // reference take, and every take the editor shows is on the result's timeline (a pair's A and B
@@ -24,9 +25,14 @@
 
 namespace mostyle::ui {
 
+// A transfer's neutral take among `takes` (takes >= 2): 0 when the content (take 0) is its own
+// neutral (PaletteControls::content_neutral), else its neutral clamped to 1 .. takes - 1.
+int transfer_neutral(const PaletteControls& c, int takes);
+
 // A transfer's mix weights from per-take values (PaletteControls::strengths, or a key's weights):
 // the content (take 0: the palette is prepared with it first) 1, each style its value, the
-// neutral (clamped to 1 .. takes - 1) minus the styles' sum; a value missing counts 0. takes >= 2.
+// neutral (transfer_neutral: clamped to 0 .. takes - 1; 0, the content itself) minus the styles'
+// sum; every take but the content and the neutral is a style; a value missing counts 0. takes >= 2.
 std::vector<double> transfer_mix_weights(const std::vector<double>& values, int neutral, int takes);
 
 // The palette's mix weights with nothing keyed, one per take: its weights (equal ones while they

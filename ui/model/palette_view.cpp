@@ -49,12 +49,13 @@ glm::vec3 palette_color(int take) {
 MixParams mix_params_for(const SessionControls& controls, const Decomposed& decomposition, int takes) {
   const PaletteControls& c = controls.palette;
   MixParams m;
-  // A transfer: content is the reference (take 0); the neutral take loses what each style gains.
+  // A transfer: content is the reference (take 0); the neutral take (or the content, when it is
+  // its own neutral) loses what each style gains.
   m.weights = palette_weights(c, takes);
   set_mix_keys(controls, takes, m.keys);  // style over time, when keyed
   if (c.transfer) {
-    m.min_weight = -kMaxStrength * double(takes);
-    m.max_weight = kMaxStrength + 1.0;
+    m.min_weight = transfer_min_weight(takes);
+    m.max_weight = transfer_max_weight(takes);
   }
   if (c.per_part && !c.transfer) {
     // Each part: its own weights when given (one per take), else the overall weights.

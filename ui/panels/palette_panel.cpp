@@ -22,6 +22,8 @@ namespace {
 constexpr float kPi = 3.14159265358979f;
 constexpr const char* kTitle = "Style palette";
 const char* const kPartNames[] = {"Legs", "Arms", "Spine and head"};
+// The transfer's neutral choice that is no take: the change is measured from the content.
+constexpr const char* kContentNeutral = "none: the content is its own neutral";
 
 // Take i's label (ui: the animation's name, or the file's name without its extension) without the
 // start every take's label shares up to
@@ -121,7 +123,8 @@ void PalettePanel::draw(EditorState& state) {
   ImGui::SameLine();
   if (ImGui::RadioButton("Transfer", c.transfer)) c.transfer = true;
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Put the change from a neutral take to styled takes onto the reference (the content take)");
+    ImGui::SetTooltip("Put the change from a neutral take (or from the content itself) to styled takes onto the "
+                      "reference (the content take)");
   ImGui::SameLine();
   ImGui::Checkbox("Ghosts", &c.ghosts);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Show every take beside the result, at the moment the result is in it");
@@ -293,19 +296,27 @@ void PalettePanel::draw_transfer(EditorState& state, const PreparedTakes& p) {
       }
     ImGui::EndPopup();
   }
+  // The neutral: a take, or none (the content is its own neutral: every other take is a style).
+  const int neutral = transfer_neutral(c, n);
   ImGui::SetNextItemWidth(200.0f);
-  if (ImGui::BeginCombo("Neutral", name_of(p, c.neutral).c_str())) {
+  if (ImGui::BeginCombo("Neutral", neutral == 0 ? kContentNeutral : name_of(p, neutral).c_str())) {
+    if (ImGui::Selectable(kContentNeutral, neutral == 0)) c.content_neutral = true;
     for (int i = 1; i < n; ++i)
-      if (ImGui::Selectable(name_of(p, i).c_str(), i == c.neutral)) c.neutral = i;
+      if (ImGui::Selectable(name_of(p, i).c_str(), i == neutral)) {
+        c.neutral = i;
+        c.content_neutral = false;
+      }
     ImGui::EndCombo();
   }
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("The take of the action without the style");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("The take of the action without the style, or none: the change is from the content itself to "
+                      "each style (one styled take is enough)");
   // Keyed over time: a style's strength is its weight at the playhead; an edit keys it there.
   const Keyed keyed = keyed_at_playhead(state, n);
   std::vector<double> weights = weights_at_playhead(state, n);
   bool moved = false;
   for (int i = 1; i < n; ++i) {
-    if (i == c.neutral) continue;
+    if (i == neutral) continue;
     ImGui::PushID(i);
     swatch(i);
     ImGui::SetNextItemWidth(200.0f);
@@ -315,13 +326,13 @@ void PalettePanel::draw_transfer(EditorState& state, const PreparedTakes& p) {
     }
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("How much of this style: 0 leaves the content as it is, 1 adds the whole change from the "
-                        "neutral take to this one%s",
-                        keyed_hint(keyed));
+                        "%s to this one%s",
+                        neutral == 0 ? "content" : "neutral take", keyed_hint(keyed));
     ImGui::SameLine();
     ImGui::Text("style: %s", name_of(p, i).c_str());
     ImGui::PopID();
   }
-  if (moved) set_weights_at_playhead(state, n, transfer_mix_weights(weights, c.neutral, n));
+  if (moved) set_weights_at_playhead(state, n, transfer_mix_weights(weights, neutral, n));
 }
 
 }  // namespace mostyle::ui

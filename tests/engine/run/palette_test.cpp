@@ -210,7 +210,29 @@ TEST_CASE("palette: transfer identities") {
     REQUIRE(m.motion.world.rows() == b.motion.world.rows());
     CHECK(max_distance(m.motion.world, b.motion.world, height) < kOneHot);
   }
+  SECTION("the content its own neutral: strength 0 is the content, 1 the style on its timeline") {
+    const auto p = prepare_takes({clips[3], clips[1]}, {});
+    const auto d = decompose_takes(*p, params());
+    MixParams mp;
+    mp.min_weight = transfer_min_weight(1);
+    mp.max_weight = transfer_max_weight(1);
+    mp.finish.foot_lock = false;
+    const MixResult zero = mix(*p, *d, transfer_weights({0.0}, TransferNeutral::kContent), mp);
+    CHECK((zero.local - own_pose_at(p->takes[0], zero.sources.col(0))).cwiseAbs().maxCoeff() < kExact);
+    const MixResult one = mix(*p, *d, transfer_weights({1.0}, TransferNeutral::kContent), mp);
+    CHECK((one.local - own_pose_at(p->takes[1], one.sources.col(1))).cwiseAbs().maxCoeff() < kExact);
+  }
   CHECK(transfer_weights({0.5, 0.25}) == std::vector<double>{1.0, -0.75, 0.5, 0.25});
+  CHECK(transfer_weights({0.5, 0.25}, TransferNeutral::kContent) == std::vector<double>{0.25, 0.5, 0.25});
+  // Every strength at either end keeps every weight within the transfer's range, either way.
+  for (double s : {kMinStrength, kMaxStrength})
+    for (TransferNeutral neutral : {TransferNeutral::kTake, TransferNeutral::kContent}) {
+      MixParams mp;
+      mp.weights = transfer_weights(std::vector<double>(4, s), neutral);
+      mp.min_weight = transfer_min_weight(4);
+      mp.max_weight = transfer_max_weight(4);
+      CHECK_NOTHROW(mp.Validate(static_cast<int>(mp.weights.size()), 0));
+    }
   CHECK_THROWS_AS(transfer_weights({}), InputError);
   CHECK_THROWS_AS(transfer_weights({2.5}), InputError);
 }

@@ -69,6 +69,7 @@ TEST_CASE("document fields: each one, changed alone, differs and makes stale wha
       {"transfer", [](Document& d) { d.controls.palette.transfer = true; }, Stale::kMix},
       {"content", [](Document& d) { d.controls.palette.content = 2; }, Stale::kMix},
       {"neutral", [](Document& d) { d.controls.palette.neutral = 2; }, Stale::kMix},
+      {"content its own neutral", [](Document& d) { d.controls.palette.content_neutral = true; }, Stale::kMix},
       {"strengths", [](Document& d) { d.controls.palette.strengths = {1.0, 0.5}; }, Stale::kMix},
       {"ghosts", [](Document& d) { d.controls.palette.ghosts = true; }, Stale::kView},
       {"files", [](Document& d) { d.files = {"a.bvh", "b.bvh"}; }, Stale::kTakes},

@@ -60,6 +60,19 @@ TEST_CASE("keyed weights: without keys, the controls show and take the weights a
   CHECK(c.strengths == std::vector<double>{9.0, 9.0, 0.5});
   CHECK(transfer_mix_weights({0.0, 0.0, 0.5, 1.5}, 2, 4) == std::vector<double>{1.0, 0.0, -1.5, 1.5});
   CHECK(transfer_mix_weights({}, 1, 3) == std::vector<double>{1.0, 0.0, 0.0});  // a value missing counts 0
+  // No neutral take: the content is its own neutral, every other take a style; the content 1
+  // minus the styles' sum, and the strengths edited are every take's but the content's.
+  c.content_neutral = true;
+  c.strengths = {9.0, 0.25, 0.5};
+  CHECK(transfer_neutral(c, 3) == 0);
+  CHECK(weights_at_playhead(palette, 3) == std::vector<double>{0.25, 0.25, 0.5});
+  set_weights_at_playhead(palette, 3, {0.0, 0.4, 0.6});
+  CHECK(c.strengths == std::vector<double>{9.0, 0.4, 0.6});
+  CHECK(c.neutral == 1);  // kept for when a neutral take is chosen again
+  c.content_neutral = false;
+  CHECK(transfer_neutral(c, 3) == 1);
+  CHECK(weights_at_playhead(palette, 3) == std::vector<double>{1.0, -0.6, 0.6});
+  CHECK(transfer_mix_weights({0.0, 0.5, 1.5}, 0, 3) == std::vector<double>{-1.0, 0.5, 1.5});
 }
 
 TEST_CASE("keyed weights: a normal walk that becomes tired over ten seconds") {
@@ -151,6 +164,14 @@ TEST_CASE("keyed weights: the engine's keys, a transfer's made from its styles' 
   CHECK(out[0].weights[2] == Approx(-0.4));
   CHECK(out[0].weights[3] == 0.1);
   CHECK(out[1].weights == c.keys[1].weights);
+  // The content its own neutral: each key's content weight 1 minus every other take's.
+  c.palette.content_neutral = true;
+  set_mix_keys(c, 4, out);
+  CHECK(out[0].weights[0] == Approx(0.4));
+  CHECK(out[0].weights[1] == 0.3);
+  CHECK(out[1].weights[0] == Approx(1.0 - (-1.5 + 1.0 + 0.5)));
+  c.palette.content_neutral = false;
+  set_mix_keys(c, 4, out);
   // The weights shown at the playhead are those the engine eases to there (the ease is linear in
   // each weight): halfway between the keys, the mean of the two.
   EditorState state = loaded(4);

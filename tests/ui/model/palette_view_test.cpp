@@ -49,6 +49,14 @@ TEST_CASE("palette view: the mix parameters carry the keys that fit the takes") 
   REQUIRE(transfer.keys.size() == 2);
   CHECK(transfer.keys[0].weights == std::vector<double>{1.0, 0.0, 0.0});
   CHECK(transfer.keys[1].weights == std::vector<double>{1.0, -1.0, 1.0});
+  // No neutral take: the content is its own, both other takes are styles (content + s (style -
+  // content)), the content 1 minus their sum.
+  c.palette.content_neutral = true;
+  const MixParams own = mix_params_for(c, d, 3);
+  CHECK(own.weights == std::vector<double>{-0.5, 1.0, 0.5});
+  CHECK(own.keys[0].weights == std::vector<double>{1.0, 0.0, 0.0});
+  CHECK(own.keys[1].weights == std::vector<double>{0.0, 0.0, 1.0});
+  c.palette.content_neutral = false;
   // A pair's keys: none for three takes.
   c.keys = {WeightKey{0.0, {1.0, 0.0}}};
   CHECK(mix_params_for(c, d, 3).keys.empty());

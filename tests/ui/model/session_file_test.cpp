@@ -55,6 +55,7 @@ SessionFile full_session() {
   c.palette.transfer = true;
   c.palette.content = 2;
   c.palette.neutral = 0;
+  c.palette.content_neutral = true;
   c.palette.strengths = {0.0, -1.0, 2.0};
   c.palette.ghosts = true;
   d.files = {"/data/day1/takes/walk_happy.bvh", "/data/shared/walk_marching.bvh"};
@@ -194,6 +195,13 @@ TEST_CASE("session files: takes resolve against the session's folder, wherever i
   // Only "version" is needed; everything else keeps its default.
   const SessionFile minimal = parse_session("{\"version\": 1}", "m.mostyle");
   CHECK(minimal.document == Document());
+  // A transfer written before the content could be its own neutral reads with its neutral take.
+  const SessionFile old = parse_session(
+      R"({"version": 1, "controls": {"palette": {"transfer": true, "neutral": 2, "strengths": [0, 1, 0.5]}}})",
+      "old.mostyle");
+  CHECK(old.document.controls.palette.transfer);
+  CHECK(old.document.controls.palette.neutral == 2);
+  CHECK_FALSE(old.document.controls.palette.content_neutral);
   CHECK_FALSE(minimal.camera.has_value());
   CHECK(is_session_path("a/day.mostyle"));
   CHECK(is_session_path("DAY.MOSTYLE"));
@@ -255,7 +263,7 @@ TEST_CASE("session files: a bad file is refused with one line naming the file an
       {"{\"version\": 1,\n\"controls\": {\"keys\": [{\"weights\": [0, 1],\n\"seconds\": -1}]}}", 3,
        "controls.keys[0].seconds: expected a number from 0"},
       {"{\"version\": 1,\n\"controls\": {\"keys\": [{\"seconds\": 0, \"weights\": [\n-40, 1]}]}}", 3,
-       "controls.keys[0].weights[0]: expected a number from -32 to 3, found -40"},
+       "controls.keys[0].weights[0]: expected a number from -32 to 17, found -40"},
       {"{\"version\": 1,\n\"controls\": {\"keys\": [\n{\"seconds\": 2, \"weights\": [0.5, 0.5]},\n"
        "{\"seconds\": 1, \"weights\": [0.5, 0.5]}]}}",
        4, "controls.keys: expected keys in order of time: key 2 (at 1 s) does not come after key 1 (at 2 s)"},
