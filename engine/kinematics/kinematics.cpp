@@ -32,13 +32,15 @@ Eigen::Vector3d joint_local_translation(const Joint& joint, const double* frame_
 
 namespace {
 
-// Fills global rotations and positions of one frame; joints are stored parents first.
+// Fills global rotations and positions of one frame; joints are stored parents first. needed:
+// when given, only the joints it marks (their parents marked too) are posed.
 void frame_pose(const Skeleton& s, const double* values, std::vector<Eigen::Matrix3d>* rotations,
-                std::vector<Eigen::Vector3d>* positions) {
+                std::vector<Eigen::Vector3d>* positions, const std::vector<char>* needed = nullptr) {
   const size_t n = s.joints.size();
   rotations->resize(n);
   positions->resize(n);
   for (size_t i = 0; i < n; ++i) {
+    if (needed != nullptr && !(*needed)[i]) continue;
     const Joint& j = s.joints[i];
     assert(j.parent < static_cast<int>(i) && "joints must come after their parent");
     const Eigen::Matrix3d local_r = joint_local_rotation(j, values);
@@ -64,6 +66,23 @@ Eigen::MatrixXd joint_positions(const Clip& clip) {
   for (int f = 0; f < clip.frames(); ++f) {
     frame_pose(s, clip.motion.row(f).data(), &rotations, &positions);
     for (int i = 0; i < n; ++i) out.block<1, 3>(f, 3 * i) = positions[i].transpose();
+  }
+  return out;
+}
+
+Eigen::MatrixXd joint_positions(const Clip& clip, const std::vector<int>& joints) {
+  const Skeleton& s = clip.skeleton;
+  std::vector<char> needed(s.joints.size(), 0);
+  for (int j : joints)
+    for (int p = j; p >= 0 && !needed[static_cast<size_t>(p)]; p = s.joints[static_cast<size_t>(p)].parent)
+      needed[static_cast<size_t>(p)] = 1;
+  Eigen::MatrixXd out(clip.frames(), 3 * static_cast<Eigen::Index>(joints.size()));
+  std::vector<Eigen::Matrix3d> rotations;
+  std::vector<Eigen::Vector3d> positions;
+  for (int f = 0; f < clip.frames(); ++f) {
+    frame_pose(s, clip.motion.row(f).data(), &rotations, &positions, &needed);
+    for (size_t i = 0; i < joints.size(); ++i)
+      out.block<1, 3>(f, 3 * static_cast<Eigen::Index>(i)) = positions[static_cast<size_t>(joints[i])].transpose();
   }
   return out;
 }
