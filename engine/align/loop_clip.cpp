@@ -53,9 +53,11 @@ int returns_to_first(const Eigen::MatrixXd& local) {
 
 int loop_clip_frames(const Eigen::MatrixXd& local, int max_frames, int max_returns) {
   const Eigen::Index frames = local.rows();
-  if (frames < 4 || local.cols() < 3) return 0;
-  std::vector<double> steps(static_cast<size_t>(frames - 1));
-  for (Eigen::Index t = 0; t + 1 < frames; ++t) steps[static_cast<size_t>(t)] = pose_distance(local.row(t + 1), local.row(t));
+  if (frames < 4 || local.cols() < 3 || frames - 1 > max_frames) return 0;  // too short, or too long for a loop
+  const double joints = double(local.cols() / 3);
+  const Eigen::VectorXd step_sizes =
+      ((local.bottomRows(frames - 1) - local.topRows(frames - 1)).rowwise().squaredNorm() / joints).cwiseSqrt();
+  const std::vector<double> steps(step_sizes.data(), step_sizes.data() + step_sizes.size());
   std::vector<double> sorted = steps;
   const auto mid = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
   std::nth_element(sorted.begin(), mid, sorted.end());

@@ -27,8 +27,10 @@ constexpr double kKneeBiasMove = 0.05;
 // The lock keeps the ankle within this fraction of the leg's full length from the hip.
 constexpr double kReachMargin = 0.995;
 constexpr double kPi = 3.14159265358979323846;
-// The floor under a foot is its low percentile within this many seconds either side of a frame.
+// The floor under a foot is its low percentile within this many seconds either side of a frame,
+// taken every kFloorHopSeconds.
 constexpr double kFloorWindowSeconds = 0.75;
+constexpr double kFloorHopSeconds = 0.1;
 // Hips whose ground point moves on slower than this (leg lengths per second, over
 // kTravelWindowSeconds) stay in place: the take's planted feet slide backwards under the body.
 constexpr double kInPlaceTravel = 0.2;
@@ -141,18 +143,29 @@ bool stays_in_place(const BodyPath& path, const FootRig& rig) {
 
 // The floor under one foot at each frame: a low percentile of its ankle's height within
 // kFloorWindowSeconds (a window of that size or the whole take when shorter, moved inside the
-// take at its ends), so a ground that rises or falls over a take is followed. heights: F.
+// take at its ends), so a ground that rises or falls over a take is followed; taken every
+// kFloorHopSeconds and linear in between. heights: F. O(F x window / hop).
 std::vector<double> floor_levels(const std::vector<double>& heights, double fps) {
   const Eigen::Index frames = static_cast<Eigen::Index>(heights.size());
   const Eigen::Index half = std::max<Eigen::Index>(1, static_cast<Eigen::Index>(std::lround(kFloorWindowSeconds * fps)));
+  const Eigen::Index hop = std::max<Eigen::Index>(1, static_cast<Eigen::Index>(std::lround(kFloorHopSeconds * fps)));
   const Eigen::Index width = std::min(frames, 2 * half + 1);
   const size_t k = static_cast<size_t>(kFloorPercentile * static_cast<double>(width - 1));
-  std::vector<double> out(heights.size()), window(static_cast<size_t>(width));
-  for (Eigen::Index t = 0; t < frames; ++t) {
+  std::vector<double> window(static_cast<size_t>(width));
+  auto floor_at = [&](Eigen::Index t) {
     const Eigen::Index from = std::clamp<Eigen::Index>(t - half, 0, frames - width);
     std::copy(heights.begin() + from, heights.begin() + from + width, window.begin());
     std::nth_element(window.begin(), window.begin() + static_cast<std::ptrdiff_t>(k), window.end());
-    out[static_cast<size_t>(t)] = window[k];
+    return window[k];
+  };
+  std::vector<double> out(heights.size());
+  double previous = floor_at(0);
+  for (Eigen::Index t = 0; t < frames; t += hop) {
+    const Eigen::Index next = std::min(frames - 1, t + hop);
+    const double at_next = next > t ? floor_at(next) : previous;
+    for (Eigen::Index u = t; u <= next; ++u)
+      out[static_cast<size_t>(u)] = previous + (at_next - previous) * double(u - t) / double(std::max<Eigen::Index>(1, next - t));
+    previous = at_next;
   }
   return out;
 }
@@ -167,12 +180,15 @@ Eigen::MatrixXd contacts_of(const Eigen::MatrixXd& world, const FootRig& rig) {
   const double max_speed = o.speed_fraction * rig.leg_length;
   const BodyPath path = body_path(world, rig);
   const bool in_place = stays_in_place(path, rig);
-  // The body's frame for the ankles' velocities: its heading averaged over kTravelWindowSeconds,
-  // so that hips twisting to and fro within a stride (a run's) do not swing the belt around.
-  const Eigen::VectorXd heading = moving_average(path.heading, kTravelWindowSeconds * rig.fps / 2.0);
+  // The body's frame for an in-place take's ankle velocities: its heading averaged over
+  // kTravelWindowSeconds, so that hips twisting to and fro within a stride (a run's) do not swing
+  // the belt around.
+  const Eigen::VectorXd heading =
+      in_place ? moving_average(path.heading, kTravelWindowSeconds * rig.fps / 2.0) : Eigen::VectorXd();
   std::vector<double> heights(static_cast<size_t>(frames));
   std::vector<char> low(static_cast<size_t>(frames));
-  Eigen::MatrixXd velocity(frames, 3);  // the ankle's, x and z in the body's frame (along the hip axis, across it)
+  // The ankle's velocity; in place, x and z in the body's frame (along the hip axis, across it).
+  Eigen::MatrixXd velocity(frames, 3);
   for (int side = 0; side < 2; ++side) {
     const LegColumns& leg = rig.legs[side];
     if (!leg.usable()) continue;
@@ -188,6 +204,10 @@ Eigen::MatrixXd contacts_of(const Eigen::MatrixXd& world, const FootRig& rig) {
       const Eigen::Vector3d v = t1 > t0 ? Eigen::Vector3d((joint_at(world, t1, leg.ankle) - joint_at(world, t0, leg.ankle)) *
                                                           rig.fps / double(t1 - t0))
                                         : Eigen::Vector3d::Zero();
+      if (!in_place) {  // a take that travels: the velocity as it is (only its size is read)
+        velocity.row(t) = v.transpose();
+        continue;
+      }
       const double c = std::cos(heading[t]), s = std::sin(heading[t]);
       velocity.row(t) << c * v.x() + s * v.z(), v.y(), -s * v.x() + c * v.z();
     }
