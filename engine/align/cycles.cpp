@@ -212,6 +212,20 @@ bool feet_alternate(const GaitInput& in) {
   return steps >= 2;
 }
 
+// Whether the feet land together: they strike, and each strike of either foot has one of the
+// other's within step_share of the shortest cycle (a jump, or jumps, on both feet).
+bool feet_land_together(const GaitInput& in) {
+  const double near = in.o.step_share * in.o.min_gait_s * in.fps;
+  for (int foot : {0, 1}) {
+    const std::vector<int>& own = in.strikes[static_cast<size_t>(foot)];
+    const std::vector<int>& other = in.strikes[static_cast<size_t>(1 - foot)];
+    if (own.empty()) return false;
+    for (int f : own)
+      if (std::none_of(other.begin(), other.end(), [&](int t) { return std::abs(t - f) <= near; })) return false;
+  }
+  return true;
+}
+
 // Periods of the channels that move most (autocorrelation), cut at the minima of the one that
 // moves most.
 TakeCycles periodic_cycles(const Eigen::MatrixXd& local, double fps, double leg_length, const CycleOptions& o) {
@@ -445,7 +459,9 @@ TakeCycles detect_cycles(const Eigen::MatrixXd& contacts, const Eigen::MatrixXd&
     out.period = median(lengths);
     return out;
   }
-  const std::string why = gait_reason(best.stage, best_foot, options);
+  // Feet that land together say so, however far the cycles got (one jump strikes each foot once).
+  const GaitStage got = best.stage < GaitStage::kTogether && feet_land_together(in) ? GaitStage::kTogether : best.stage;
+  const std::string why = gait_reason(got, best_foot, options);
   if (feet_alternate(in)) {  // a gait that fails its checks is no other repeated action either
     out.reason = why;
     return out;
