@@ -19,7 +19,7 @@ struct LegColumns {
 struct FootContactOptions {
   double height_fraction = 0.06;      // ankle at most this many leg lengths above its floor level
   double speed_fraction = 0.45;       // ankle slower than this many leg lengths per second
-  double min_contact_seconds = 0.05;  // shorter contacts are dropped (noise)
+  double min_contact_seconds = 0.05;  // shorter contacts are dropped (noise); a run stands 0.1-0.25 s
   double max_gap_seconds = 0.07;      // shorter breaks inside a contact are filled
   double blend_seconds = 0.15;        // the lock fades in before the first contact, out after the last
   void Validate() const;              // throws InputError on a negative or non-finite value
@@ -41,8 +41,9 @@ FootRig make_foot_rig(const std::vector<int>& majors, const std::vector<double>&
                       const FootContactOptions& options = {});
 
 // Contacts of one take: F x 2 (left, right foot), 1 where the ankle is within height_fraction
-// of its floor level (the 5th percentile of its height within 0.75 s of the frame, so a floor
-// that rises or falls over the take is followed) and slower than speed_fraction, after gaps are
+// of its floor level (the 5th percentile of its height within 0.75 s of the frame, taken every
+// 0.1 s, so a floor that rises or falls over the take is followed) and slower than
+// speed_fraction (a landing cut short by the take's last frame: three times that), after gaps are
 // filled and short contacts dropped; 0 elsewhere. world: F x 3M. A take whose hips stay in place
 // (their ground point travels slower than 0.2 leg lengths per second: a game's walk or run loop)
 // slides its planted foot backwards under the body: its ankles' speeds are measured, in the
