@@ -202,6 +202,9 @@ Json cycles_json(const TakeCycles& cycles, double fps) {
   j["kind"] = cycle_kind_name(cycles.kind);
   if (cycles.kind == CycleKind::kGait) j["foot"] = cycles.foot == 0 ? "left" : "right";
   j["period_s"] = cycles.period / fps;
+  if (cycles.kind == CycleKind::kGait) j["strike_phase"] = cycles.strike_phase;
+  if (cycles.loops()) j["loop_frames"] = cycles.loop_frames;
+  if (!cycles.reason.empty()) j["reason"] = cycles.reason;
   Json list = Json::array();
   for (const Cycle& c : cycles.cycles) list.push_back({{"start", c.begin}, {"end", c.end}, {"seconds", c.frames() / fps}});
   j["cycles"] = list;
@@ -209,7 +212,10 @@ Json cycles_json(const TakeCycles& cycles, double fps) {
 }
 
 std::string cycles_summary(const TakeCycles& cycles, double fps, int frames) {
-  if (cycles.kind == CycleKind::kNone) return "none (the take does not repeat)";
+  const std::string loop =
+      cycles.loops() ? ", a loop of " + std::to_string(cycles.loop_frames) + " frames" : std::string();
+  if (cycles.kind == CycleKind::kNone)
+    return "none (" + (cycles.reason.empty() ? std::string("the take does not repeat") : cycles.reason) + ")" + loop;
   std::string s = std::string(cycle_kind_name(cycles.kind)) + ", " + std::to_string(cycles.cycles.size()) +
                   (cycles.cycles.size() == 1 ? " cycle" : " cycles");
   if (cycles.kind == CycleKind::kGait) s += cycles.foot == 0 ? " (left foot)" : " (right foot)";
@@ -217,7 +223,13 @@ std::string cycles_summary(const TakeCycles& cycles, double fps, int frames) {
   std::snprintf(median, sizeof median, "%.2f", cycles.period / fps);
   s += ", median " + std::string(median) + " s, " +
        std::to_string(static_cast<int>(std::lround(100.0 * cycles.frames_in_cycles() / std::max(frames, 1)))) +
-       "% of the take";
+       "% of the take" + loop;
+  if (cycles.kind == CycleKind::kGait && cycles.loops() && cycles.strike_phase > 0.0) {
+    char phase[48];
+    std::snprintf(phase, sizeof phase, ", its strike at %.0f%% of the cycle", 100.0 * cycles.strike_phase);
+    s += phase;
+  }
+  if (!cycles.reason.empty()) s += " (no gait: " + cycles.reason + ")";
   return s;
 }
 

@@ -67,10 +67,12 @@ Json range_json(int first, int last, double fps);
 // Take `take`'s alignment onto the reference (take 0): what it aligned on, the matched ranges,
 // its quality.
 Json alignment_json(const PreparedTakes& p, int take);
-// A take's cycles (engine/align/cycles.h) at `fps`: {"kind", "foot" (gait), "period_s",
-// "cycles": [{"start", "end", "seconds"}]} with start and end in frames at fps.
+// A take's cycles (engine/align/cycles.h) at `fps`: {"kind", "foot" and "strike_phase" (gait),
+// "period_s", "loop_frames" (a loop clip), "reason" (why no cycles or no gait cycles, when
+// there is one), "cycles": [{"start", "end", "seconds"}]} with start and end in frames at fps.
 Json cycles_json(const TakeCycles& cycles, double fps);
-// One line: "gait, 14 cycles (left foot), median 0.95 s, 87% of the take" or "none".
+// One line: "gait, 14 cycles (left foot), median 0.95 s, 87% of the take", with the loop, its
+// strike and why there is no gait when the take has them; "none (REASON)".
 std::string cycles_summary(const TakeCycles& cycles, double fps, int frames);
 Json component_joints_json(const std::vector<ComponentJoints>& parts, const std::vector<std::string>& names);
 Json component_regions_json(const std::vector<ComponentJoints>& parts);

@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <numeric>
 #include <string>
 
+#include "engine/align/loop_clip.h"
 #include "engine/io/error.h"
 
 namespace mostyle {
@@ -22,35 +25,205 @@ double median(std::vector<double> v) {
   return v[mid];
 }
 
-// Cycles from one foot's strikes to its next, with a strike of the other foot in between, of a
-// plausible length and not far from the take's median cycle.
-std::vector<Cycle> gait_cycles(const Eigen::MatrixXd& contacts, int foot, double fps, const CycleOptions& o) {
-  // A foot lands once per cycle: landing again sooner than the shortest cycle is not a step (the
-  // contact flickered, or the foot shuffles in place), and that strike is passed over.
-  auto debounced = [&](std::vector<int> strikes) {
-    std::vector<int> kept;
-    for (int f : strikes)
-      if (kept.empty() || f - kept.back() >= o.min_gait_s * fps) kept.push_back(f);
-    return kept;
+// How far a foot's cycles got through the checks, in order; the furthest tells why there are none.
+enum class GaitStage { kNoStrike, kOneStrike, kLength, kNoStep, kTogether, kUneven, kPosture, kStride, kCycles };
+
+const char* foot_name(int foot) { return foot == 0 ? "left" : "right"; }
+
+// Why a foot gives no gait cycles, having got as far as `stage`.
+std::string gait_reason(GaitStage stage, int foot, const CycleOptions& o) {
+  const std::string own = foot_name(foot), other = foot_name(1 - foot);
+  char range[64];
+  switch (stage) {
+    case GaitStage::kNoStrike:
+      return "no foot strike of the " + own + " foot";
+    case GaitStage::kOneStrike:
+      return "the " + own + " foot strikes only once";
+    case GaitStage::kLength:
+      std::snprintf(range, sizeof range, "%.1f to %.1f s", o.min_gait_s, o.max_gait_s);
+      return "the " + own + " foot's strikes are not a gait cycle (" + range + ") apart";
+    case GaitStage::kNoStep:
+      return "the " + other + " foot does not step between the " + own + " foot's strikes";
+    case GaitStage::kTogether:
+      return "the feet land together (a jump)";
+    case GaitStage::kUneven:
+      return "the feet do not take turns: the " + other + " foot lands twice between the " + own + " foot's strikes";
+    case GaitStage::kPosture:
+      return "the hips are low (not walking or running)";
+    case GaitStage::kStride:
+      return "the feet do not step: they move little against the body";
+    case GaitStage::kCycles:
+      break;
+  }
+  return "";
+}
+
+// Frames where a foot lands in a loop of L frames: contacts(f, foot) planted and not at the frame
+// before, frame L - 1 coming before frame 0.
+std::vector<int> loop_strikes(const Eigen::MatrixXd& contacts, int foot, int loop) {
+  std::vector<int> out;
+  for (int f = 0; f < loop; ++f)
+    if (contacts(f, foot) > 0.5 && contacts((f + loop - 1) % loop, foot) <= 0.5) out.push_back(f);
+  return out;
+}
+
+// A foot lands once per cycle: landing again sooner than the shortest cycle is not a step (the
+// contact flickered, or the foot shuffles in place), and that strike is passed over; in a loop
+// also across its end.
+std::vector<int> debounced(const std::vector<int>& strikes, double shortest, int loop) {
+  std::vector<int> kept;
+  for (int f : strikes)
+    if (kept.empty() || f - kept.back() >= shortest) kept.push_back(f);
+  if (loop > 0 && kept.size() > 1 && kept.front() + loop - kept.back() < shortest) kept.pop_back();
+  return kept;
+}
+
+// What the gait checks read of one take.
+struct GaitInput {
+  const Eigen::MatrixXd& local;
+  double fps, leg_length;
+  const CycleOptions& o;
+  const GaitJoints& joints;
+  int loop;                                 // L of a loop clip, else 0
+  std::array<std::vector<int>, 2> strikes;  // each foot's, debounced
+  // A frame of the take: in a loop, modulo L (a cycle may be read across its end).
+  Eigen::Index row(int f) const {
+    return loop > 0 ? ((f % loop) + loop) % loop : std::clamp<Eigen::Index>(f, 0, local.rows() - 1);
+  }
+};
+
+// Whether the body walks through frames [begin, end) (read across a loop's end): the hips stay
+// near standing height (above the ankles' lowest point there), and each foot moves a real
+// distance against the body (the extent of its horizontal path in the canonical frame), not a
+// shuffle or a shift of weight on the spot.
+GaitStage body_checks(const GaitInput& in, int begin, int end) {
+  const GaitJoints& j = in.joints;
+  if (j.hips < 0 || j.ankles[0] < 0 || j.ankles[1] < 0) return GaitStage::kCycles;  // no body to check
+  const double inf = std::numeric_limits<double>::infinity();
+  double hips = inf;
+  std::array<Eigen::Vector2d, 2> lo{Eigen::Vector2d::Constant(inf), Eigen::Vector2d::Constant(inf)};
+  std::array<Eigen::Vector2d, 2> hi{Eigen::Vector2d::Constant(-inf), Eigen::Vector2d::Constant(-inf)};
+  double floor = inf;
+  for (int f = begin; f < end; ++f) {
+    const Eigen::Index r = in.row(f);
+    hips = std::min(hips, in.local(r, 3 * j.hips + 1));
+    for (size_t side = 0; side < 2; ++side) {
+      const Eigen::Index a = 3 * j.ankles[side];
+      floor = std::min(floor, in.local(r, a + 1));
+      const Eigen::Vector2d p(in.local(r, a), in.local(r, a + 2));
+      lo[side] = lo[side].cwiseMin(p);
+      hi[side] = hi[side].cwiseMax(p);
+    }
+  }
+  if (hips - floor < in.o.min_hips_height * in.leg_length) return GaitStage::kPosture;
+  for (size_t side = 0; side < 2; ++side)
+    if ((hi[side] - lo[side]).norm() < in.o.min_stride * in.leg_length) return GaitStage::kStride;
+  return GaitStage::kCycles;
+}
+
+// The other foot's step inside a cycle of `length` frames begun at the strike `at`: kCycles when
+// it strikes once, well inside; kTogether when only near the cycle's ends; kUneven when more than
+// once (a kick, a stumble: the feet do not take turns); kNoStep when not at all. In a loop, the
+// other foot's strikes are read across its end.
+GaitStage step_inside(const GaitInput& in, const std::vector<int>& other, int at, int length) {
+  const double margin = in.o.step_share * length;
+  int inside = 0, within = 0;
+  bool near_ends = false;
+  for (int t : other) {
+    double d = t - at;
+    if (in.loop > 0) d = std::fmod(std::fmod(d, in.loop) + in.loop, in.loop);
+    if (d > 0 && d < length) ++within;
+    if (d >= margin && d <= length - margin) ++inside;
+    else if (d > -margin && d < length + margin) near_ends = true;
+  }
+  if (within > 1) return GaitStage::kUneven;
+  if (inside == 1) return GaitStage::kCycles;
+  return near_ends ? GaitStage::kTogether : GaitStage::kNoStep;
+}
+
+// One foot's gait cycles (and the furthest check they reached): from each of its strikes to its
+// next, with a strike of the other foot well inside, of a plausible length, the body walking, and
+// not far from the take's median cycle; a loop whose foot strikes once is the one cycle [0, L).
+struct FootGait {
+  std::vector<Cycle> cycles;
+  GaitStage stage = GaitStage::kNoStrike;
+  double strike_phase = 0.0;
+};
+
+FootGait foot_gait(const GaitInput& in, int foot) {
+  FootGait out;
+  const std::vector<int>& own = in.strikes[static_cast<size_t>(foot)];
+  const std::vector<int>& other = in.strikes[static_cast<size_t>(1 - foot)];
+  const double shortest = in.o.min_gait_s * in.fps, longest = in.o.max_gait_s * in.fps;
+  auto reach = [&](GaitStage s) { out.stage = std::max(out.stage, s); };
+  // A cycle of `length` frames begun at the strike `at`, over frames [begin, end): the stage it reaches.
+  auto check = [&](int at, int length, int begin, int end) {
+    reach(GaitStage::kLength);
+    if (length < shortest || length > longest) return GaitStage::kLength;
+    reach(GaitStage::kNoStep);
+    const GaitStage alternation = step_inside(in, other, at, length);
+    if (alternation != GaitStage::kCycles) {
+      reach(alternation);
+      return alternation;
+    }
+    reach(GaitStage::kPosture);
+    const GaitStage body = body_checks(in, begin, end);
+    reach(body);
+    return body;
   };
-  const std::vector<int> own = debounced(foot_strikes(contacts, foot));
-  const std::vector<int> other = debounced(foot_strikes(contacts, 1 - foot));
-  const double shortest = o.min_gait_s * fps, longest = o.max_gait_s * fps;
+  if (own.empty()) return out;
+  if (in.loop > 0 && own.size() == 1) {
+    if (check(own[0], in.loop, 0, in.loop) != GaitStage::kCycles) return out;
+    out.cycles.push_back({0, in.loop});
+    out.strike_phase = double(own[0]) / in.loop;
+    out.stage = GaitStage::kCycles;
+    return out;
+  }
+  reach(GaitStage::kOneStrike);
   std::vector<Cycle> candidates;
   for (size_t k = 0; k + 1 < own.size(); ++k) {
     const int s = own[k], e = own[k + 1];
-    if (e - s < shortest || e - s > longest) continue;
-    const auto step = std::upper_bound(other.begin(), other.end(), s);
-    if (step == other.end() || *step >= e) continue;  // the other foot did not step in between
-    candidates.push_back({s, e});
+    if (check(s, e - s, s, e + 1) == GaitStage::kCycles) candidates.push_back({s, e});
   }
   std::vector<double> lengths;
   for (const Cycle& c : candidates) lengths.push_back(c.frames());
   const double typical = median(lengths);
-  std::vector<Cycle> out;
   for (const Cycle& c : candidates)
-    if (std::abs(c.frames() - typical) <= o.max_change * typical) out.push_back(c);
+    if (std::abs(c.frames() - typical) <= in.o.max_change * typical) out.cycles.push_back(c);
+  if (!out.cycles.empty()) out.stage = GaitStage::kCycles;
   return out;
+}
+
+// Whether the feet step in turn: one foot's strike followed by the other's a step later (more
+// than step_share of the shortest cycle, less than the longest less that), twice.
+bool feet_alternate(const GaitInput& in) {
+  std::vector<std::pair<int, int>> merged;  // (frame, foot)
+  for (int foot : {0, 1})
+    for (int f : in.strikes[static_cast<size_t>(foot)]) merged.push_back({f, foot});
+  std::sort(merged.begin(), merged.end());
+  const double shortest = in.o.min_gait_s * in.fps, longest = in.o.max_gait_s * in.fps;
+  int steps = 0;
+  for (size_t k = 0; k + 1 < merged.size(); ++k) {
+    const int gap = merged[k + 1].first - merged[k].first;
+    if (merged[k + 1].second != merged[k].second && gap > in.o.step_share * shortest &&
+        gap < (1.0 - in.o.step_share) * longest)
+      ++steps;
+  }
+  return steps >= 2;
+}
+
+// Whether the feet land together: they strike, and each strike of either foot has one of the
+// other's within step_share of the shortest cycle (a jump, or jumps, on both feet).
+bool feet_land_together(const GaitInput& in) {
+  const double near = in.o.step_share * in.o.min_gait_s * in.fps;
+  for (int foot : {0, 1}) {
+    const std::vector<int>& own = in.strikes[static_cast<size_t>(foot)];
+    const std::vector<int>& other = in.strikes[static_cast<size_t>(1 - foot)];
+    if (own.empty()) return false;
+    for (int f : own)
+      if (std::none_of(other.begin(), other.end(), [&](int t) { return std::abs(t - f) <= near; })) return false;
+  }
+  return true;
 }
 
 // Periods of the channels that move most (autocorrelation), cut at the minima of the one that
@@ -149,6 +322,28 @@ TakeCycles periodic_cycles(const Eigen::MatrixXd& local, double fps, double leg_
   return out;
 }
 
+// A loop clip that is no gait: its one cycle [0, L) when some joint moves (min_amplitude) and the
+// loop is as long as a period may be (up to kMaxLoopCycles of the longest), else none.
+TakeCycles loop_period(const Eigen::MatrixXd& local, int loop, double fps, double leg_length, const CycleOptions& o) {
+  TakeCycles out;
+  const double seconds = loop / fps;
+  if (seconds < o.min_period_s || seconds > kMaxLoopCycles * o.max_period_s) return out;
+  const auto frames = local.topRows(loop);
+  const Eigen::RowVectorXd spread =
+      ((frames.rowwise() - frames.colwise().mean()).colwise().squaredNorm() / double(loop)).cwiseSqrt();
+  if (!(spread.maxCoeff() > 0.0) || spread.maxCoeff() < o.min_amplitude * leg_length) return out;  // still
+  out.kind = CycleKind::kPeriodic;
+  out.cycles.push_back({0, loop});
+  out.period = loop;
+  return out;
+}
+
+int frames_in(const std::vector<Cycle>& cycles) {
+  int n = 0;
+  for (const Cycle& c : cycles) n += c.frames();
+  return n;
+}
+
 }  // namespace
 
 const char* cycle_kind_name(CycleKind kind) {
@@ -176,6 +371,11 @@ void CycleOptions::Validate() const {
   if (!(min_amplitude >= 0.0) || !std::isfinite(min_amplitude))
     throw InputError("cycle detection: the smallest amplitude must be a number from 0 up");
   if (foot < -1 || foot > 1) throw InputError("cycle detection: the foot must be left (0), right (1) or either (-1)");
+  if (!(step_share >= 0.0 && step_share < 0.5))
+    throw InputError("cycle detection: the share of a cycle kept clear of the other foot's step must be from 0, below 1/2");
+  for (double v : {min_hips_height, min_stride})
+    if (!(v >= 0.0) || !std::isfinite(v))
+      throw InputError("cycle detection: the hips' least height and the least stride must be numbers from 0 up");
 }
 
 int TakeCycles::frames_in_cycles() const {
@@ -209,8 +409,13 @@ std::vector<int> cycle_starts_at(const TakeCycles& cycles, const Eigen::VectorXd
   return out;
 }
 
+int cycle_loop_frames(const Eigen::MatrixXd& local, double fps, const CycleOptions& options) {
+  const int longest = static_cast<int>(std::floor(kMaxLoopCycles * options.max_gait_s * fps));
+  return loop_clip_frames(local, longest, kMaxLoopCycles - 1);
+}
+
 TakeCycles detect_cycles(const Eigen::MatrixXd& contacts, const Eigen::MatrixXd& local, double fps, double leg_length,
-                         const CycleOptions& options) {
+                         const CycleOptions& options, const GaitJoints& joints) {
   options.Validate();
   if (contacts.cols() != 2 || contacts.rows() != local.rows())
     throw InputError("cycle detection: expected two feet's contacts for each of the take's " +
@@ -218,23 +423,54 @@ TakeCycles detect_cycles(const Eigen::MatrixXd& contacts, const Eigen::MatrixXd&
                      std::to_string(contacts.cols()));
   if (!(fps > 0.0) || !(leg_length > 0.0))
     throw InputError("cycle detection: the frame rate and the leg length must be above 0");
+  for (int j : {joints.hips, joints.ankles[0], joints.ankles[1]})
+    if (j < -1 || 3 * static_cast<Eigen::Index>(j) + 2 >= local.cols())
+      throw InputError("cycle detection: joint " + std::to_string(j) + " is not among the take's " +
+                       std::to_string(local.cols() / 3) + " joints");
+  const int loop = cycle_loop_frames(local, fps, options);
+  GaitInput in{local, fps, leg_length, options, joints, loop, {}};
+  for (int foot : {0, 1}) {
+    const std::vector<int> strikes = loop > 0 ? loop_strikes(contacts, foot, loop) : foot_strikes(contacts, foot);
+    in.strikes[static_cast<size_t>(foot)] = debounced(strikes, options.min_gait_s * fps, loop);
+  }
+
   TakeCycles out;
+  out.loop_frames = loop;
+  FootGait best;
+  int best_foot = options.foot >= 0 ? options.foot : 0;
   for (int foot : {0, 1}) {
     if (options.foot >= 0 && foot != options.foot) continue;
-    std::vector<Cycle> cycles = gait_cycles(contacts, foot, fps, options);
-    if (cycles.size() > out.cycles.size()) {
-      out.cycles = std::move(cycles);
-      out.foot = foot;
+    FootGait g = foot_gait(in, foot);
+    const bool more = g.cycles.size() > best.cycles.size() ||
+                      (g.cycles.size() == best.cycles.size() && !g.cycles.empty() &&
+                       frames_in(g.cycles) > frames_in(best.cycles));
+    if (more || (best.cycles.empty() && g.cycles.empty() && g.stage > best.stage)) {
+      best = std::move(g);
+      best_foot = foot;
     }
   }
-  if (!out.cycles.empty()) {
+  if (!best.cycles.empty()) {
     out.kind = CycleKind::kGait;
+    out.cycles = std::move(best.cycles);
+    out.foot = best_foot;
+    out.strike_phase = best.strike_phase;
     std::vector<double> lengths;
     for (const Cycle& c : out.cycles) lengths.push_back(c.frames());
     out.period = median(lengths);
     return out;
   }
-  return periodic_cycles(local, fps, leg_length, options);
+  // Feet that land together say so, however far the cycles got (one jump strikes each foot once).
+  const GaitStage got = best.stage < GaitStage::kTogether && feet_land_together(in) ? GaitStage::kTogether : best.stage;
+  const std::string why = gait_reason(got, best_foot, options);
+  if (feet_alternate(in)) {  // a gait that fails its checks is no other repeated action either
+    out.reason = why;
+    return out;
+  }
+  TakeCycles periodic = loop > 0 ? loop_period(local, loop, fps, leg_length, options)
+                                 : periodic_cycles(local, fps, leg_length, options);
+  periodic.loop_frames = loop;
+  periodic.reason = periodic.kind == CycleKind::kNone ? why + "; nothing else repeats" : why;
+  return periodic;
 }
 
 }  // namespace mostyle

@@ -10,7 +10,16 @@
 // variation); a span that is not a cycle (standing, a start or a stop, a turn on the spot, a
 // stumble: a gap between strikes much longer or shorter than the take's typical cycle) is left
 // out, so cycles need not follow one another.
+//
+// A loop clip (a game's walk or run: one cycle whose last pose joins its first, loop_clip.h) is
+// one closed cycle [0, L): gait when its feet step in turn, with where its foot strikes inside it.
+// Gait cycles are only those of a locomotion: the other foot strikes well inside each (not both
+// feet landing together, as in a jump), the hips stay near standing height (not getting up or
+// crawling) and each foot moves a real distance against the body (not shifting weight on the
+// spot). A take whose feet step in turn but fail these has no cycles; only a take whose feet do
+// not step in turn is looked at for another repeated action.
 #include <Eigen/Core>
+#include <array>
 #include <string>
 #include <vector>
 
@@ -33,8 +42,25 @@ struct CycleOptions {
   double min_periodicity = 0.5;  // correlation of the moving joints with themselves one period on
   double min_amplitude = 0.04;   // leg lengths: joints that move less count as still
   int foot = -1;  // gait cycles begin at this foot's strikes (0 left, 1 right); -1: the foot giving more
+  // The other foot strikes once in a gait cycle, within [step_share, 1 - step_share] of it (a step
+  // of each); nearer its ends the feet land together.
+  double step_share = 0.2;
+  double min_hips_height = 0.7;  // leg lengths: the hips above the ankles' lowest, all through a gait cycle
+  double min_stride = 0.2;       // leg lengths: each ankle's horizontal reach against the body within a gait cycle
   void Validate() const;         // throws InputError on a bad value
 };
+
+// The joints the gait checks read, as joint indices of the canonical poses (columns 3j to 3j + 2);
+// -1 where not known, and the checks that need it (the hips' height, the feet's strides) are
+// then skipped.
+struct GaitJoints {
+  int hips = -1;
+  std::array<int, 2> ankles{{-1, -1}};  // left, right
+};
+
+// A loop is at most this many gait cycles (options.max_gait_s each) long; its pose comes back to
+// its first at most this many times less one in between.
+constexpr int kMaxLoopCycles = 2;
 
 struct TakeCycles {
   CycleKind kind = CycleKind::kNone;
@@ -66,15 +92,26 @@ std::vector<int> foot_strikes(const Eigen::MatrixXd& contacts, int foot);
 // O(K log cycles): it runs on the alpha slider's path.
 std::vector<int> cycle_starts_at(const TakeCycles& cycles, const Eigen::VectorXd& frames);
 
-// The cycles of one take. contacts: F x 2 (left, right foot; foot_contact.h), local: F x 3M joint
-// positions in the canonical frame (canonical_frame.h: the travel and heading taken out), fps
-// their rate, leg_length the size that amplitudes are judged by (same units as local). Gait when
-// either foot gives at least one cycle (the foot with more cycles, the left on a tie; only
-// options.foot when it names one), else
-// periodic when the joints that move repeat, else none. Throws InputError on mismatched sizes,
-// fps or leg_length not above 0, or bad options. O(F x M) for gait; O(F x P) more for another
-// action (P: the longest period tried, in frames).
+// The loop a take is, as detect_cycles reads it (TakeCycles::loop_frames): loop_clip.h
+// loop_clip_frames for a take of at most kMaxLoopCycles gait cycles; 0 for any other. Contacts
+// detected across the loop's end (foot_contact.h detect_foot_contacts) use it. local: F x 3M
+// canonical poses. O(F x M).
+int cycle_loop_frames(const Eigen::MatrixXd& local, double fps, const CycleOptions& options = {});
+
+// The cycles of one take. contacts: F x 2 (left, right foot; foot_contact.h; for a loop clip
+// detected across its end), local: F x 3M joint positions in the canonical frame
+// (canonical_frame.h: the travel and heading taken out), fps their rate, leg_length the size that
+// amplitudes are judged by (same units as local), joints: where the hips and ankles are in local.
+// A loop clip (cycle_loop_frames) is one cycle [0, L), its strikes read across its end (the cycle
+// may end at F when frame 0 would follow the last); a loop that holds two gait cycles has the
+// strike-cut ones inside it instead. Gait when either foot gives at least one cycle that passes
+// the checks above (the foot with more cycles, then more frames in them, the left on a tie; only
+// options.foot when it names one), with strike_phase where that foot strikes in a loop's cycle;
+// else, when the feet do not step in turn, periodic when the joints that move repeat (a loop:
+// its one cycle), else none; reason says what the gait cycles lacked. Throws InputError on
+// mismatched sizes, joints outside local, fps or leg_length not above 0, or bad options. O(F x M)
+// for gait; O(F x P) more for another action (P: the longest period tried, in frames).
 TakeCycles detect_cycles(const Eigen::MatrixXd& contacts, const Eigen::MatrixXd& local, double fps, double leg_length,
-                         const CycleOptions& options = {});
+                         const CycleOptions& options = {}, const GaitJoints& joints = {});
 
 }  // namespace mostyle

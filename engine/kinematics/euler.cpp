@@ -79,8 +79,8 @@ bool parse_euler_order(std::string_view text, EulerOrder* order) {
 }
 
 Eigen::Matrix3d axis_rotation(int axis, double degrees) {
-  const double r = degrees / kDegrees;
-  const double c = std::cos(r), s = std::sin(r);
+  double s, c;
+  sin_cos_degrees(degrees, &s, &c);
   Eigen::Matrix3d m;
   switch (axis) {
     case 0: m << 1, 0, 0, 0, c, -s, 0, s, c; break;

@@ -1,18 +1,46 @@
 #include "engine/kinematics/kinematics.h"
 
+#include <array>
 #include <cassert>
+#include <utility>
 
 #include "engine/kinematics/euler.h"
 
 namespace mostyle {
 
+namespace {
+
+// r * axis_rotation(axis, degrees), in place: only the two columns the rotation mixes change,
+// each entry summed in the order the full product sums it (the same values).
+void rotate_columns(Eigen::Matrix3d& r, int axis, double degrees) {
+  double s, c;
+  sin_cos_degrees(degrees, &s, &c);
+  // axis_rotation's entries in the two columns it mixes (a, b): (m_aa, m_ba) and (m_ab, m_bb).
+  const int a = axis == 0 ? 1 : 0, b = axis == 2 ? 1 : 2;
+  const double m_ba = axis == 1 ? -s : s, m_ab = -m_ba;
+  for (int i = 0; i < 3; ++i) {
+    const double ra = r(i, a), rb = r(i, b);
+    r(i, a) = ra * c + rb * m_ba;
+    r(i, b) = ra * m_ab + rb * c;
+  }
+}
+
+}  // namespace
+
 Eigen::Matrix3d joint_local_rotation(const Joint& joint, const double* frame_values) {
-  Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
+  Eigen::Matrix3d r;
+  bool first = true;
   for (size_t c = 0; c < joint.channels.size(); ++c) {
     const Channel ch = joint.channels[c];
-    if (is_rotation(ch)) r = r * axis_rotation(channel_axis(ch), frame_values[joint.first_channel + c]);
+    if (!is_rotation(ch)) continue;
+    if (first) {
+      r = axis_rotation(channel_axis(ch), frame_values[joint.first_channel + c]);
+      first = false;
+    } else {
+      rotate_columns(r, channel_axis(ch), frame_values[joint.first_channel + c]);
+    }
   }
-  return r;
+  return first ? Eigen::Matrix3d::Identity() : r;
 }
 
 Eigen::Vector3d joint_local_translation(const Joint& joint, const double* frame_values) {
@@ -64,6 +92,72 @@ Eigen::MatrixXd joint_positions(const Clip& clip) {
   for (int f = 0; f < clip.frames(); ++f) {
     frame_pose(s, clip.motion.row(f).data(), &rotations, &positions);
     for (int i = 0; i < n; ++i) out.block<1, 3>(f, 3 * i) = positions[i].transpose();
+  }
+  return out;
+}
+
+Eigen::MatrixXd joint_positions(const Clip& clip, const std::vector<int>& joints) {
+  const Skeleton& s = clip.skeleton;
+  // The joints to pose (those asked for and their ancestors), parents first, each read once:
+  // its parent's slot, its rotation channels' axes and columns, where its translation comes from.
+  struct Posed {
+    int parent = -1;                      // slot of its parent, -1 for a root
+    std::vector<std::pair<int, int>> turns;  // (axis, column) in channel order
+    bool has_position = false;
+    std::array<int, 3> position{{-1, -1, -1}};  // column of each axis's position channel
+    Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+  };
+  std::vector<int> slot(s.joints.size(), -1);
+  for (int j : joints)
+    for (int p = j; p >= 0 && slot[static_cast<size_t>(p)] < 0; p = s.joints[static_cast<size_t>(p)].parent)
+      slot[static_cast<size_t>(p)] = 0;  // marked; numbered below in skeleton order
+  std::vector<Posed> posed;
+  for (size_t i = 0; i < s.joints.size(); ++i) {
+    if (slot[i] < 0) continue;
+    const Joint& joint = s.joints[i];
+    Posed p;
+    p.parent = joint.parent >= 0 ? slot[static_cast<size_t>(joint.parent)] : -1;
+    p.offset = joint.offset;
+    for (size_t c = 0; c < joint.channels.size(); ++c) {
+      const Channel ch = joint.channels[c];
+      const int column = joint.first_channel + static_cast<int>(c);
+      if (is_rotation(ch)) p.turns.push_back({channel_axis(ch), column});
+      if (is_position(ch)) {
+        p.has_position = true;
+        p.position[static_cast<size_t>(channel_axis(ch))] = column;
+      }
+    }
+    slot[i] = static_cast<int>(posed.size());
+    posed.push_back(std::move(p));
+  }
+  // Per frame, each posed joint as frame_pose poses it (joint_local_rotation's and
+  // joint_local_translation's arithmetic, the same values).
+  Eigen::MatrixXd out(clip.frames(), 3 * static_cast<Eigen::Index>(joints.size()));
+  std::vector<Eigen::Matrix3d> rotations(posed.size());
+  std::vector<Eigen::Vector3d> positions(posed.size());
+  for (int f = 0; f < clip.frames(); ++f) {
+    const double* values = clip.motion.row(f).data();
+    for (size_t k = 0; k < posed.size(); ++k) {
+      const Posed& p = posed[k];
+      Eigen::Matrix3d local = Eigen::Matrix3d::Identity();
+      for (size_t c = 0; c < p.turns.size(); ++c) {
+        if (c == 0) local = axis_rotation(p.turns[c].first, values[p.turns[c].second]);
+        else rotate_columns(local, p.turns[c].first, values[p.turns[c].second]);
+      }
+      Eigen::Vector3d t = p.offset;
+      if (p.has_position)
+        for (int a = 0; a < 3; ++a) t[a] = p.position[static_cast<size_t>(a)] >= 0 ? values[p.position[static_cast<size_t>(a)]] : 0.0;
+      if (p.parent < 0) {
+        rotations[k] = local;
+        positions[k] = t;
+      } else {
+        rotations[k] = rotations[static_cast<size_t>(p.parent)] * local;
+        positions[k] = positions[static_cast<size_t>(p.parent)] + rotations[static_cast<size_t>(p.parent)] * t;
+      }
+    }
+    for (size_t i = 0; i < joints.size(); ++i)
+      out.block<1, 3>(f, 3 * static_cast<Eigen::Index>(i)) =
+          positions[static_cast<size_t>(slot[static_cast<size_t>(joints[i])])].transpose();
   }
   return out;
 }

@@ -22,6 +22,11 @@ Eigen::Vector3d joint_local_translation(const Joint& joint, const double* frame_
 // children), so any depth works. O(frames * joints).
 Eigen::MatrixXd joint_positions(const Clip& clip);
 
+// Global positions of `joints` only (indices into the skeleton), in that order: frames x
+// 3*joints.size(). Only the joints on their chains to the root are posed, each as
+// joint_positions poses it (the same values). O(frames * joints on those chains).
+Eigen::MatrixXd joint_positions(const Clip& clip, const std::vector<int>& joints);
+
 // Global positions and rotations of all joints at one frame.
 struct Pose {
   std::vector<Eigen::Vector3d> positions;  // per joint, file units

@@ -19,7 +19,7 @@ struct LegColumns {
 struct FootContactOptions {
   double height_fraction = 0.06;      // ankle at most this many leg lengths above its floor level
   double speed_fraction = 0.45;       // ankle slower than this many leg lengths per second
-  double min_contact_seconds = 0.1;   // shorter contacts are dropped (noise)
+  double min_contact_seconds = 0.05;  // shorter contacts are dropped (noise); a run stands 0.1-0.25 s
   double max_gap_seconds = 0.07;      // shorter breaks inside a contact are filled
   double blend_seconds = 0.15;        // the lock fades in before the first contact, out after the last
   void Validate() const;              // throws InputError on a negative or non-finite value
@@ -41,15 +41,25 @@ FootRig make_foot_rig(const std::vector<int>& majors, const std::vector<double>&
                       const FootContactOptions& options = {});
 
 // Contacts of one take: F x 2 (left, right foot), 1 where the ankle is within height_fraction
-// of its floor level (the 5th percentile of its height over the take) and slower than
-// speed_fraction, after gaps are filled and short contacts dropped; 0 elsewhere. world: F x 3M.
-// A leg that is not usable is never in contact. Throws InputError on a column mismatch.
-// O(F log F) (the percentile).
-Eigen::MatrixXd detect_foot_contacts(const Eigen::MatrixXd& world, const FootRig& rig);
+// of its floor level (the 5th percentile of its height within 0.75 s of the frame, taken every
+// 0.1 s, so a floor that rises or falls over the take is followed) and slower than
+// speed_fraction (a landing cut short by the take's last frame: three times that), after gaps are
+// filled and short contacts dropped; 0 elsewhere. world: F x 3M. A take whose hips stay in place
+// (their ground point travels slower than 0.2 leg lengths per second: a game's walk or run loop)
+// slides its planted foot backwards under the body: its ankles' speeds are measured, in the
+// body's frame, against that "belt" (the median velocity of the ankle while it is low) and
+// allowed half the belt's speed when that is more; a take that travels is measured as it is.
+// loop_frames: L > 0 for a loop clip (cycles.h TakeCycles::loop_frames): the take is read as
+// played on repeat (frame f + L is frame f moved on by the loop's travel and turn), so a contact
+// across its end is one contact and frame f's speed at either end is measured across the seam.
+// A leg that is not usable is never in contact. Throws InputError on a column mismatch or a loop
+// longer than the take. O(F x w) (w: the floor's window in frames); three times F for a loop.
+Eigen::MatrixXd detect_foot_contacts(const Eigen::MatrixXd& world, const FootRig& rig, int loop_frames = 0);
 
 // Contacts (F x 2, 1 planted) tidied in place as detection tidies them: breaks of at most
 // max_gap_seconds between two contacts filled, then contacts shorter than min_contact_seconds
-// dropped (at rig.fps). A mix's contacts (weighted, then thresholded) can flicker where the takes
+// (at rig.fps, to the nearest frame) dropped, but for one that the take's first or last frame
+// cuts (it may have lasted longer: a landing in the last frames is a foot strike). A mix's contacts (weighted, then thresholded) can flicker where the takes
 // plant at different moments; the foot lock would pin each flicker's runs apart. O(F), in place.
 void tidy_contacts(Eigen::MatrixXd& contacts, const FootRig& rig);
 

@@ -123,6 +123,22 @@ const std::vector<Role>& roles() {
   return kRoles;
 }
 
+// A limb whose joints are named by their number along it ("leg_joint_L_1" .. "leg_joint_L_5",
+// "Skeleton_arm_joint_R__2_"): the limb word with a side, the rest digits and words that name no
+// part (a rig's "skeleton", "joint"). 12 for a leg (its first canonical joint, the hip), 4 for an
+// arm (the shoulder), -1 for any other name.
+int numbered_limb(const NameParts& parts) {
+  if (parts.side == Side::kNone) return -1;
+  std::string base;
+  for (char c : parts.part)
+    if (!std::isdigit(static_cast<unsigned char>(c))) base += c;
+  for (const std::string filler : {"skeleton", "joint"})
+    for (size_t at = base.find(filler); at != std::string::npos; at = base.find(filler)) base.erase(at, filler.size());
+  if (base == "leg") return static_cast<int>(MajorJoint::kLeftHip);
+  if (base == "arm") return static_cast<int>(MajorJoint::kLeftShoulder);
+  return -1;
+}
+
 }  // namespace
 
 const char* major_joint_name(int major) {
@@ -224,6 +240,36 @@ MajorMapping map_major_joints(const Skeleton& skeleton, const MappingOverrides* 
     for (int i = 0; i < n && !m.has(0); ++i) {
       for (Channel c : skeleton.joints[i].channels)
         if (is_position(c)) m.joint[0] = i;
+    }
+  }
+  // Limbs the name rules did not find whose joints are numbered along them: in their chain's
+  // order from the body, a leg's joints are its hip, knee, ankle and toe, an arm's its shoulder,
+  // elbow, wrist and hand (joints at their predecessor's very place passed over).
+  for (int side = 0; side < 2; ++side) {
+    for (int first : {static_cast<int>(MajorJoint::kLeftHip), static_cast<int>(MajorJoint::kLeftShoulder)}) {
+      const int major = first + 4 * side;
+      if (m.has(major) || m.has(major + 1) || m.has(major + 2)) continue;
+      std::vector<int> chain;
+      for (int i = 0; i < n; ++i)
+        if (!skeleton.joints[i].end_site && numbered_limb(parts[i]) == first &&
+            parts[i].side == (side == 0 ? Side::kLeft : Side::kRight))
+          chain.push_back(i);
+      auto depth = [&](int j) {
+        int d = 0;
+        for (int p = skeleton.joints[j].parent; p >= 0; p = skeleton.joints[p].parent) ++d;
+        return d;
+      };
+      std::stable_sort(chain.begin(), chain.end(), [&](int a, int b) { return depth(a) < depth(b); });
+      std::vector<int> joints;
+      for (int j : chain) {
+        if (!joints.empty() && !is_descendant(j, joints.back())) break;  // not one chain
+        if (!joints.empty() && (rest[j] - rest[joints.back()]).norm() <= kZeroBone * size) continue;
+        if (joints.empty() && m.has(0) && first == static_cast<int>(MajorJoint::kLeftHip) && !is_descendant(j, m.joint[0]))
+          break;  // a leg hangs from the hips
+        joints.push_back(j);
+      }
+      if (joints.size() < 3) continue;
+      for (size_t k = 0; k < std::min<size_t>(joints.size(), 4); ++k) m.joint[major + static_cast<int>(k)] = joints[k];
     }
   }
   if (overrides) {

@@ -47,7 +47,9 @@ MappingOverrides parse_mapping_overrides(const std::string& text, const std::str
 // Mixamo, 3ds Max Biped, Kinect, and similar), then applies the overrides. The hips is the pelvis
 // joint that carries the trajectory, which is not always the ROOT. A joint at the very same place
 // as its canonical parent in the rest pose (a zero-length bone), or not below it, is passed over
-// for the next candidate. Throws InputError "FILE:LINE: ..." when an override names a joint the
+// for the next candidate. A leg or arm that no rule finds but whose joints are numbered along it
+// ("leg_joint_L_1" .. "leg_joint_L_5") is read in its chain's order: hip, knee, ankle, toe
+// (shoulder, elbow, wrist, hand). Throws InputError "FILE:LINE: ..." when an override names a joint the
 // skeleton does not have (listing the ones it has) or one that already plays another role.
 // O(joints x spellings).
 MajorMapping map_major_joints(const Skeleton& skeleton, const MappingOverrides* overrides = nullptr);

@@ -20,14 +20,12 @@ MajorTake extract_major_take(const Clip& clip, const MajorMapping& mapping,
   const Clip resampled = same_rate ? Clip() : resample_clip(clip, fps);
   const Clip& source = same_rate ? clip : resampled;
   take.fps = same_rate ? clip.fps() : fps;
-  const Eigen::MatrixXd all = joint_positions(source);
-  take.world.resize(all.rows(), 3 * static_cast<Eigen::Index>(majors.size()));
-  for (size_t i = 0; i < majors.size(); ++i) {
-    const int joint = mapping.joint[majors[i]];
+  for (int major : majors) {
+    const int joint = mapping.joint[major];
     take.clip_joints.push_back(joint);
     take.names.push_back(clip.skeleton.joints[joint].name);
-    take.world.middleCols(3 * i, 3) = all.middleCols(3 * joint, 3);
   }
+  take.world = joint_positions(source, take.clip_joints);  // FK of the major joints' chains only
   return take;
 }
 

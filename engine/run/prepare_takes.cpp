@@ -62,6 +62,23 @@ std::vector<int> shared_majors(const std::vector<std::shared_ptr<const Clip>>& c
   return common;
 }
 
+// The joints of a take's canonical poses that the gait checks read: the hips (column 0, as
+// to_canonical is given it) and the ankles.
+GaitJoints gait_joints(const FootRig& feet) {
+  GaitJoints joints;
+  joints.hips = 0;
+  for (int side = 0; side < 2; ++side) joints.ankles[static_cast<size_t>(side)] = feet.legs[static_cast<size_t>(side)].ankle;
+  return joints;
+}
+
+// A take's foot contacts and cycles on its own frames (world F x 3M, canonical its canonical
+// frame, at feet.fps): a loop clip's contacts are read across its end.
+void contacts_and_cycles(const Eigen::MatrixXd& world, const CanonicalMotion& canonical, const FootRig& feet,
+                         Eigen::MatrixXd* contacts, TakeCycles* cycles) {
+  *contacts = detect_foot_contacts(world, feet, cycle_loop_frames(canonical.local, feet.fps));
+  *cycles = detect_cycles(*contacts, canonical.local, feet.fps, feet.leg_length, {}, gait_joints(feet));
+}
+
 // A take's cycles as registration needs them: gait cycles beginning at the foot the reference's
 // begin at (detected again at that foot when the take's own begin at the other); none when the
 // alignment is not by cycles (the paper's DTW aligns whole takes).
@@ -72,7 +89,15 @@ TakeCycles cycles_to_register(const PreparedTakes& p, const PreparedTake& t, con
     return t.cycles;
   CycleOptions at_foot;
   at_foot.foot = reference.foot;
-  return detect_cycles(t.own_contacts, t.canonical.local, p.fps, p.feet.leg_length, at_foot);
+  return detect_cycles(t.own_contacts, t.canonical.local, p.fps, p.feet.leg_length, at_foot, gait_joints(p.feet));
+}
+
+// Whether every cycle ends before the take's last frame, as register_by_cycles reads them (a
+// loop's cycle [0, F), whose end is the first frame again, is aligned whole instead).
+bool ends_inside(const TakeCycles& cycles, Eigen::Index frames) {
+  for (const Cycle& c : cycles.cycles)
+    if (c.end >= frames) return false;
+  return true;
 }
 
 // Why two takes asked to be registered by cycles were aligned whole (empty when cycles were not
@@ -110,8 +135,7 @@ void append_closing_frame(PreparedTake& t, const PreparedTakes& p, const int leg
   t.world.row(frames) = closing.row(0);
   t.canonical = to_canonical(t.world, 0, leg[0], leg[3]);
   t.own_local_t = t.canonical.local.transpose();
-  t.own_contacts = detect_foot_contacts(t.world, p.feet);
-  t.cycles = detect_cycles(t.own_contacts, t.canonical.local, p.fps, p.feet.leg_length);
+  contacts_and_cycles(t.world, t.canonical, p.feet, &t.own_contacts, &t.cycles);
 }
 
 // How many times a loop take is repeated to be registered: enough for one cycle window moved to
@@ -204,8 +228,7 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
     }
     t.canonical = to_canonical(t.world, 0, leg[0], leg[3]);
     t.own_local_t = t.canonical.local.transpose();
-    t.own_contacts = detect_foot_contacts(t.world, p->feet);
-    t.cycles = detect_cycles(t.own_contacts, t.canonical.local, fps, p->feet.leg_length);
+    contacts_and_cycles(t.world, t.canonical, p->feet, &t.own_contacts, &t.cycles);
     if (i == 0 && t.cycles.loops() && t.cycles.loop_frames == t.world.rows()) append_closing_frame(t, *p, leg);
   }
   spent.preprocess_ms = ms_since(t0);
@@ -235,7 +258,8 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
     if (cycles_register(reference.cycles, own) && own.kind == CycleKind::kGait &&
         (own.strike_phase != 0.0 || reference.cycles.strike_phase != 0.0))
       own = cycles_at_phase(own, reference.cycles.strike_phase, static_cast<int>(take_motion->local.rows()));
-    if (cycles_register(reference.cycles, own)) {
+    if (cycles_register(reference.cycles, own) && ends_inside(reference.cycles, reference.canonical.local.rows()) &&
+        ends_inside(own, take_motion->local.rows())) {
       // Its own timeline becomes the registered take: its cycles on the reference's.
       RegisteredMotion registered = register_by_cycles(reference.canonical, reference.own_contacts, reference.cycles,
                                                        *take_motion, *take_contacts, own, fade);
@@ -318,10 +342,17 @@ std::vector<int> export_joints(const PreparedTakes& prepared) {
 }
 
 TakeCycles take_cycles(const std::shared_ptr<const Clip>& clip) {
-  PrepareOptions own_rate;
-  own_rate.fps = 0.0;
-  own_rate.align.time_base = TimeBase::kWhole;  // only the reference's cycles are read: register nothing
-  return prepare_takes({clip, clip}, own_rate)->reference().cycles;
+  // What prepare_takes does for the reference of a pair of the take with itself, at its own
+  // rate, and nothing more: its major joints, bones, feet, canonical frame, contacts, cycles.
+  const MajorMapping mapping = map_major_joints(clip->skeleton);
+  const std::vector<int> majors = shared_major_joints(mapping, clip->source, mapping, clip->source);
+  const MajorTake major = extract_major_take(*clip, mapping, majors, 0.0);
+  const FootRig feet = make_foot_rig(majors, bone_lengths(major.world, subset_parents(majors)), major.fps);
+  const CanonicalMotion canonical = to_canonical(major.world, 0, feet.legs[0].hip, feet.legs[1].hip);
+  Eigen::MatrixXd contacts;
+  TakeCycles cycles;
+  contacts_and_cycles(major.world, canonical, feet, &contacts, &cycles);
+  return cycles;
 }
 
 Eigen::VectorXd frames_in_take(const PreparedTake& take, const Eigen::VectorXd& frames) {

@@ -102,9 +102,11 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
                                                    const PrepareOptions& options, JobControl* control = nullptr,
                                                    StageTimes* times = nullptr);
 
-// The cycles of one take on its own, in its file's frames (prepared at its own rate, as the
-// reference of a pair of it with itself). Throws InputError as prepare_takes does (a take
-// without the major joints). Cost: prepare_takes of two takes of F frames.
+// The cycles of one take on its own, in its file's frames, as prepare_takes finds them for a
+// reference at its own rate: FK of its major joints, its feet, canonical frame, contacts and
+// cycles, nothing more. Throws InputError as prepare_takes does (a take without the major
+// joints). Cost: O(F x joints on the major joints' chains) plus detect_foot_contacts and
+// detect_cycles.
 TakeCycles take_cycles(const std::shared_ptr<const Clip>& clip);
 
 // How fast take i's planted feet slide on its own frames (foot_contact.h foot_sliding), file units

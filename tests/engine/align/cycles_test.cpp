@@ -1,7 +1,9 @@
 // Cycles of a take (engine/align/cycles.h): strikes worked by hand; gait cycles of made-up
 // stepping with pauses, uneven steps and flickering contacts; periods of a made-up wave with a
-// still start, with a harmonic; none for a take that does not repeat; and the real walks of both
-// conventions and frame rates.
+// still start, with a harmonic; none for a take that does not repeat; made-up bodies: loop clips
+// with and without a repeated last frame, runs with flight phases, walks in place, a jump, a
+// stand; the real walks of both conventions and frame rates, and the takes from the wild.
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -10,9 +12,12 @@
 #include <catch2/catch.hpp>
 
 #include "engine/align/cycles.h"
+#include "engine/align/loop_clip.h"
 #include "engine/io/error.h"
 #include "engine/io/motion_file.h"
+#include "engine/prepare/canonical_frame.h"
 #include "engine/run/prepare_takes.h"
+#include "tests/engine/synthetic_gait.h"
 #include "tests/test_data.h"
 
 using namespace mostyle;
@@ -53,6 +58,29 @@ Eigen::MatrixXd stepping(const std::vector<int>& frames, int pause_before = -1, 
 }
 
 Eigen::MatrixXd still_pose(Eigen::Index frames, int channels = 9) { return Eigen::MatrixXd::Zero(frames, channels); }
+
+// A made-up take's contacts and cycles as take_cycles finds a file's: its canonical frame, its
+// loop, its contacts across the loop's end, its cycles with the body checked.
+struct Detected {
+  Eigen::MatrixXd contacts;
+  TakeCycles cycles;
+  int frames = 0;
+  double covered() const { return double(cycles.frames_in_cycles()) / std::max(frames - 1, 1); }
+};
+
+Detected detect(const test::GaitSpec& g, int frames, const CycleOptions& o = {}) {
+  const Eigen::MatrixXd world = test::gait_take(g, frames);
+  const FootRig rig = test::gait_rig(g.fps);
+  const CanonicalMotion canonical = to_canonical(world, 0, 1, 5);
+  Detected d;
+  d.frames = frames;
+  d.contacts = detect_foot_contacts(world, rig, cycle_loop_frames(canonical.local, g.fps, o));
+  d.cycles = detect_cycles(d.contacts, canonical.local, g.fps, rig.leg_length, o, test::gait_joints());
+  return d;
+}
+
+// The frames of one cycle of g (rounded).
+int cycle_frames(const test::GaitSpec& g) { return static_cast<int>(std::lround(g.cycle_s * g.fps)); }
 
 }  // namespace
 
@@ -192,5 +220,203 @@ TEST_CASE("cycles: every real walk is gait cycles of about a second, over most o
       CHECK(t.frames_in_cycles() / frames > 0.6);
       for (size_t k = 1; k < t.cycles.size(); ++k) CHECK(t.cycles[k].begin >= t.cycles[k - 1].end);
     }
+  }
+}
+
+TEST_CASE("cycles: a loop clip whose last frame repeats its first is one gait cycle, its strikes read across its end") {
+  test::GaitSpec g;  // a walk in place, 1 s at 30 fps, cut 30% into its cycle
+  g.in_place = true;
+  g.start = 0.3;
+  const int n = cycle_frames(g);
+  const Detected d = detect(g, n + 1);  // the last frame is the first again
+  const TakeCycles& t = d.cycles;
+  REQUIRE(t.kind == CycleKind::kGait);
+  CHECK(t.loop_frames == n);
+  REQUIRE(t.cycles.size() == 1);
+  CHECK(t.cycles[0].begin == 0);
+  CHECK(t.cycles[0].end == n);
+  CHECK(t.period == n);
+  CHECK(t.reason.empty());
+  // The left foot lands 70% into the clip, the right 20% (detected a frame or two after the
+  // ankle touches down, as the planted speed settles).
+  CHECK(t.foot == 0);
+  CHECK(t.strike_phase == Approx(0.7).margin(0.07));
+  CycleOptions right;
+  right.foot = 1;
+  const Detected r = detect(g, n + 1, right);
+  REQUIRE(r.cycles.kind == CycleKind::kGait);
+  CHECK(r.cycles.foot == 1);
+  CHECK(r.cycles.strike_phase == Approx(0.2).margin(0.07));
+  // The left foot stands across the clip's end and start (planted 62% of the cycle from 70%).
+  CHECK(d.contacts(0, 0) == 1.0);
+  CHECK(d.contacts(n - 1, 0) == 1.0);
+  CHECK(d.contacts.row(n) == d.contacts.row(0));  // the repeated frame is frame 0 again
+}
+
+TEST_CASE("cycles: a loop clip whose first frame follows its last, its root moving on, is one cycle to its end") {
+  for (const double fps : {24.0, 60.0}) {
+    test::GaitSpec g;  // a walk that travels (root motion), cut where the right foot lands
+    g.fps = fps;
+    g.start = 0.5;
+    const int n = cycle_frames(g);
+    INFO(fps << " fps");
+    const Detected d = detect(g, n);  // frame n would be frame 0 again
+    const TakeCycles& t = d.cycles;
+    REQUIRE(t.kind == CycleKind::kGait);
+    CHECK(t.loop_frames == n);
+    REQUIRE(t.cycles.size() == 1);
+    CHECK(t.cycles[0].begin == 0);
+    CHECK(t.cycles[0].end == n);  // the whole clip: its end is frame 0 again
+    CHECK(d.covered() > 1.0);
+    CycleOptions left;
+    left.foot = 0;
+    CHECK(detect(g, n, left).cycles.strike_phase == Approx(0.5).margin(0.08));
+  }
+}
+
+TEST_CASE("cycles: a take of several cycles that ends at its first pose is no loop; its cycles are cut at strikes") {
+  test::GaitSpec g;
+  const int n = cycle_frames(g);
+  const Detected six = detect(g, 6 * n + 1);  // six seconds: longer than any loop
+  CHECK(six.cycles.loop_frames == 0);
+  CHECK(six.cycles.kind == CycleKind::kGait);
+  CHECK(six.cycles.cycles.size() >= 5);
+  g.cycle_s = 0.8;  // four cycles in 3.2 s: short enough, but the pose comes back three times
+  const Detected four = detect(g, 4 * cycle_frames(g) + 1);
+  CHECK(four.cycles.loop_frames == 0);
+  CHECK(four.cycles.cycles.size() >= 3);
+  for (const Cycle& c : four.cycles.cycles) CHECK(c.frames() == Approx(cycle_frames(g)).margin(1));
+  // Two cycles may be a loop; its cycles are still those between strikes, inside it.
+  const Detected two = detect(g, 2 * cycle_frames(g) + 1);
+  CHECK(two.cycles.loop_frames == 2 * cycle_frames(g));
+  REQUIRE(two.cycles.kind == CycleKind::kGait);
+  REQUIRE(two.cycles.cycles.size() == 1);
+  CHECK(two.cycles.cycles[0].frames() == Approx(cycle_frames(g)).margin(1));
+  CHECK(two.cycles.strike_phase == 0.0);
+}
+
+TEST_CASE("cycles: runs with flight phases are gait cycles, cut or looped, travelling or in place") {
+  test::GaitSpec g;  // 0.7 s cycles, each foot down 0.12 s: both feet in the air twice a cycle
+  g.cycle_s = 0.7;
+  g.stance = 0.17;
+  g.stride = 0.5;
+  g.lift = 0.3;
+  g.fps = 120.0;
+  g.start = 0.9;
+  const Detected cut = detect(g, 120);  // a second of it, as a short styled clip is
+  REQUIRE(cut.cycles.kind == CycleKind::kGait);
+  CHECK(cut.cycles.loop_frames == 0);
+  REQUIRE(cut.cycles.cycles.size() == 1);
+  CHECK(cut.cycles.cycles[0].frames() == Approx(0.7 * 120).margin(2));
+  CHECK(cut.covered() > 0.6);
+  g.in_place = true;
+  g.fps = 30.0;
+  const Detected loop = detect(g, 21);  // a game's loop: 21 frames, the first following the last
+  REQUIRE(loop.cycles.kind == CycleKind::kGait);
+  CHECK(loop.cycles.loop_frames == 21);
+  REQUIRE(loop.cycles.cycles.size() == 1);
+  CHECK(loop.cycles.cycles[0].end == 21);
+}
+
+TEST_CASE("cycles: a walk in place (the planted foot sliding back under still hips) is gait cycles") {
+  test::GaitSpec g;
+  g.in_place = true;
+  g.start = 0.45;
+  const int n = cycle_frames(g);
+  const Detected d = detect(g, static_cast<int>(5.5 * n));  // not a loop: it ends mid-cycle
+  REQUIRE(d.cycles.kind == CycleKind::kGait);
+  CHECK(d.cycles.loop_frames == 0);
+  CHECK(d.cycles.cycles.size() >= 4);
+  for (const Cycle& c : d.cycles.cycles) CHECK(c.frames() == Approx(n).margin(1));
+}
+
+TEST_CASE("cycles: a jump on both feet, a stand and a shuffle on the spot have no gait cycles, and say why") {
+  test::GaitSpec jump;  // three jumps in place, landing on both feet, crouching at each landing
+  jump.in_place = true;
+  jump.together = true;
+  jump.stance = 0.5;
+  jump.stride = 0.05;
+  jump.lift = 0.25;
+  jump.crouch = 0.3;
+  const Detected j = detect(jump, 3 * cycle_frames(jump) + 12);
+  CHECK(j.cycles.kind != CycleKind::kGait);
+  CHECK(j.cycles.reason == "the feet land together (a jump)");
+  const Detected one = detect(jump, cycle_frames(jump) + 12);  // one jump: each foot strikes once
+  CHECK(one.cycles.kind != CycleKind::kGait);
+  CHECK(one.cycles.reason.rfind("the feet land together (a jump)", 0) == 0);
+  test::GaitSpec stand;
+  stand.in_place = true;
+  stand.stride = 0.0;
+  stand.lift = 0.0;
+  const Detected s = detect(stand, 90);
+  CHECK(s.cycles.kind == CycleKind::kNone);
+  CHECK(s.cycles.reason.rfind("no foot strike of the left foot", 0) == 0);
+  test::GaitSpec shuffle = stand;  // the feet step in turn, but on the spot
+  shuffle.lift = 0.1;
+  shuffle.stride = 0.04;
+  const Detected sh = detect(shuffle, 4 * cycle_frames(shuffle) + 7);
+  CHECK(sh.cycles.kind == CycleKind::kNone);  // stepping in turn: no other repeated action either
+  CHECK(sh.cycles.reason == "the feet do not step: they move little against the body");
+  test::GaitSpec low;  // a walk with the hips at under half the leg's height
+  Eigen::MatrixXd world = test::gait_take(low, 4 * cycle_frames(low));
+  // (The hips lowered by 0.4 m: the legs no longer reach the ground, but the checks read only heights.)
+  for (Eigen::Index f = 0; f < world.rows(); ++f) world(f, 1) -= 0.4;
+  const FootRig rig = test::gait_rig(low.fps);
+  const CanonicalMotion c = to_canonical(world, 0, 1, 5);
+  const TakeCycles t = detect_cycles(detect_foot_contacts(world, rig), c.local, low.fps, rig.leg_length, {},
+                                     test::gait_joints());
+  CHECK(t.kind == CycleKind::kNone);
+  CHECK(t.reason == "the hips are low (not walking or running)");
+}
+
+TEST_CASE("cycles: a loop's length, measured on the pose alone") {
+  test::GaitSpec g;
+  g.in_place = true;
+  const int n = cycle_frames(g);
+  const CanonicalMotion repeat = to_canonical(test::gait_take(g, n + 1), 0, 1, 5);
+  CHECK(loop_clip_frames(repeat.local, 1000, 1) == n);
+  const CanonicalMotion follow = to_canonical(test::gait_take(g, n), 0, 1, 5);
+  CHECK(loop_clip_frames(follow.local, 1000, 1) == n);
+  CHECK(loop_clip_frames(follow.local, n - 1, 1) == 0);  // longer than allowed
+  const CanonicalMotion cut = to_canonical(test::gait_take(g, n - 7), 0, 1, 5);
+  CHECK(loop_clip_frames(cut.local, 1000, 1) == 0);  // ends mid-cycle
+  CHECK(loop_clip_frames(Eigen::MatrixXd::Zero(40, 27), 1000, 1) == 0);  // still
+  CHECK(loop_clip_frames(Eigen::MatrixXd::Ones(3, 27), 1000, 1) == 0);   // too short
+  CHECK_THROWS_AS(detect_cycles(Eigen::MatrixXd::Zero(10, 2), Eigen::MatrixXd::Zero(10, 27), 30.0, 1.0, {},
+                                GaitJoints{9, {{3, 7}}}),
+                  InputError);
+}
+
+TEST_CASE("cycles: takes from the wild: loops, short clips, runs, in place, any units and rates") {
+  if (test::shared_motion("wild/README.md").empty()) {
+    WARN("skipped: ../shared/motions/wild is absent");
+    return;
+  }
+  // Each is a walk or a run of about one cycle or more.
+  const char* gaits[] = {"gltf_cesiumman_walk.glb", "gltf_godot_mixamo_walk_run.glb#walking",
+                         "gltf_godot_mixamo_walk_run.glb#running", "gltf_godot_robot_walk_run.glb#walk",
+                         "gltf_godot_robot_walk_run.glb#run", "gltf_mannequiny_run.glb#run_root.001",
+                         "fbx_mixamo_walking.fbx", "xia_sexy_01.bvh", "xia_angry_13.bvh", "xia_old_13.bvh",
+                         "xia_depressed_13.bvh", "aalto_t_walk_regular.bvh", "aalto_k_walk_fast.bvh",
+                         "aalto_k_walk_slow.bvh"};
+  for (const char* name : gaits) {
+    INFO(name);
+    const auto clip = std::make_shared<const Clip>(read_motion_file(test::shared_motion("wild/") + name));
+    const TakeCycles t = take_cycles(clip);
+    INFO(cycle_kind_name(t.kind) << ", " << t.cycles.size() << " cycles, " << t.reason);
+    CHECK(t.kind == CycleKind::kGait);
+    CHECK(double(t.frames_in_cycles()) / (clip->frames() - 1) >= 0.6);
+  }
+  // A get-up, a jump, a kick and standing are none.
+  const char* others[] = {"gltf_godot_mixamo_walk_run.glb#get_up", "xia_neutral_16.bvh",
+                          "gltf_godot_mixamo_walk_run.glb#kick", "gltf_godot_mixamo_walk_run.glb#idle",
+                          "gltf_godot_robot_walk_run.glb#idle"};
+  for (const char* name : others) {
+    INFO(name);
+    const TakeCycles t =
+        take_cycles(std::make_shared<const Clip>(read_motion_file(test::shared_motion("wild/") + name)));
+    CHECK(t.kind != CycleKind::kGait);
+    CHECK_FALSE(t.reason.empty());
+    if (std::string(name) == "xia_neutral_16.bvh") CHECK(t.reason.rfind("the feet land together (a jump)", 0) == 0);
   }
 }

@@ -142,6 +142,19 @@ TEST_CASE("joint_positions, pose_at and rest_positions agree", "[kinematics]") {
   }
 }
 
+TEST_CASE("FK of some joints poses them exactly as FK of all", "[kinematics]") {
+  const Clip clip = read_bvh_file(test::asset_motions().front());
+  const Eigen::MatrixXd all = joint_positions(clip);
+  const int last = static_cast<int>(clip.skeleton.joints.size()) - 1;
+  const std::vector<int> joints = {last, 0, last / 2, last / 2};  // any order, repeats allowed
+  const Eigen::MatrixXd some = joint_positions(clip, joints);
+  REQUIRE(some.rows() == clip.frames());
+  REQUIRE(some.cols() == 3 * static_cast<Eigen::Index>(joints.size()));
+  for (size_t i = 0; i < joints.size(); ++i)
+    CHECK(some.middleCols(3 * static_cast<Eigen::Index>(i), 3) == all.middleCols(3 * joints[i], 3));
+  CHECK(joint_positions(clip, {}).cols() == 0);
+}
+
 TEST_CASE("FK keeps bone lengths: real CMU files (assets)", "[kinematics]") {
   for (const std::string& path : test::asset_motions()) {
     INFO(path);
