@@ -7,6 +7,7 @@
 
 #include "engine/io/error.h"
 #include "engine/kinematics/ease.h"
+#include "engine/post/planted_feet.h"
 #include "engine/prepare/major_skeleton.h"
 #include "engine/prepare/major_take.h"
 
@@ -107,6 +108,7 @@ FootRig make_foot_rig(const std::vector<int>& majors, const std::vector<double>&
     ++legs;
   }
   rig.leg_length = legs > 0 ? sum / legs : 0.0;
+  rig.body_height = standing_height(majors, lengths);
   return rig;
 }
 

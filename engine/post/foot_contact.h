@@ -29,13 +29,14 @@ struct FootContactOptions {
 struct FootRig {
   std::array<LegColumns, 2> legs;  // 0: left, 1: right
   double leg_length = 0.0;         // thigh + shin, averaged over the legs, file units
+  double body_height = 0.0;        // the reference's standing height (planted_feet.h standing_height), file units
   double fps = 30.0;               // frame rate of the positions
   FootContactOptions options;
   int blend_frames() const;        // options.blend_seconds at fps, at least 1
 };
 
-// The legs' columns from the major joints present (canonical order, major_skeleton.h) and the
-// leg length from per-joint bone lengths (bone_lengths(), parallel to majors). Throws InputError
+// The legs' columns from the major joints present (canonical order, major_skeleton.h), the leg
+// length and the body's height from per-joint bone lengths (bone_lengths(), parallel to majors). Throws InputError
 // on bad options or a zero fps.
 FootRig make_foot_rig(const std::vector<int>& majors, const std::vector<double>& lengths, double fps,
                       const FootContactOptions& options = {});

@@ -282,6 +282,7 @@ TEST_CASE("foot contact options and shapes are checked", "[foot_contact]") {
   CHECK(rig.legs[0].toe == -1);
   CHECK(rig.legs[1].knee == 5);
   CHECK(rig.leg_length == Approx(80.0));
+  CHECK(rig.body_height == Approx(80.0));  // the legs only: this skeleton has no trunk
 
   const FootRig test = test_rig();
   const Eigen::MatrixXd too_narrow = Eigen::MatrixXd::Zero(10, 12);
