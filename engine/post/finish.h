@@ -35,12 +35,15 @@ struct FinishedMotion {
   Eigen::MatrixXd contacts;         // K x 2
   LoopCut loop;                     // with FinishOptions::loop: where it was cut
   double limb_length_max_error = 0; // after the constraint (before it when off)
-  double foot_sliding_raw = 0;      // before the foot lock, units per second
-  double foot_sliding_cleaned = 0;  // after it
+  // How fast its planted feet move (planted_feet.h), file units per second: before the foot
+  // lock and after it.
+  double foot_sliding_raw = 0;
+  double foot_sliding_cleaned = 0;
 };
 
 struct FinishScratch {
-  Eigen::MatrixXd ground, drift;
+  Eigen::MatrixXd ground, drift, planted;
+  std::vector<double> heights;
   Eigen::VectorXd heading;
   FootLockScratch foot;
 };
@@ -50,7 +53,8 @@ struct FinishScratch {
 // local and u are cut to the loop's frames (closed: all but the last). Throws InputError when a loop is asked of a motion
 // without two foot strikes. body_drift: when given (K x 4: left x, z, right x, z), how far each
 // ankle is expected to move from output frame k to k + 1 in the body's frame there (the mixed
-// takes' own ankle moves, planted_drift), for the foot lock (apply_foot_lock's drift). O(K x M);
+// takes' own ankle moves, planted_drift), for the foot lock (apply_foot_lock's drift).
+// foot_sliding_raw and _cleaned: planted_feet.h's measure before and after the lock. O(K x M);
 // allocation-free once sized, except the loop.
 void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, const Eigen::VectorXd& heading_u,
                    const Eigen::MatrixXd& contacts_u, const FinishRig& rig, const FinishOptions& options,

@@ -200,25 +200,6 @@ void blend_contacts(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double a
     for (int s = 0; s < 2; ++s) out(t, s) = (1.0 - alpha) * a(t, s) + alpha * b(t, s) > 0.5 ? 1.0 : 0.0;
 }
 
-double foot_sliding(const Eigen::MatrixXd& world, const Eigen::MatrixXd& contacts, const FootRig& rig) {
-  check_columns(world, rig, "foot sliding");
-  check_contacts(world, contacts, "foot sliding");
-  double sum = 0.0;
-  long steps = 0;
-  for (int side = 0; side < 2; ++side) {
-    const int ankle = rig.legs[side].ankle;
-    if (ankle < 0) continue;
-    for (Eigen::Index t = 0; t + 1 < world.rows(); ++t) {
-      if (contacts(t, side) <= 0.5 || contacts(t + 1, side) <= 0.5) continue;
-      const double dx = world(t + 1, 3 * ankle) - world(t, 3 * ankle);
-      const double dz = world(t + 1, 3 * ankle + 2) - world(t, 3 * ankle + 2);
-      sum += std::sqrt(dx * dx + dz * dz) * rig.fps;
-      ++steps;
-    }
-  }
-  return steps > 0 ? sum / static_cast<double>(steps) : 0.0;
-}
-
 void two_bone_ik(const Eigen::Vector3d& hip, const Eigen::Vector3d& knee, const Eigen::Vector3d& ankle,
                  const Eigen::Vector3d& target, const Eigen::Vector3d& bend_fallback,
                  Eigen::Vector3d* new_knee, Eigen::Vector3d* new_ankle) {

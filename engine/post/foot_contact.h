@@ -62,11 +62,6 @@ Eigen::MatrixXd carry_contacts(const Eigen::MatrixXd& contacts_b, const Eigen::V
 // must agree). a, b: F x 2. out: resized to F x 2, no allocation when it has that size.
 void blend_contacts(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double alpha, Eigen::MatrixXd& out);
 
-// Foot sliding: the ankles' mean horizontal (x, z) speed over the frame steps t -> t + 1 where
-// that foot is in contact at both t and t + 1, both feet pooled; file units per second. 0 when
-// no foot is ever planted for two frames. world: F x 3M, contacts: F x 2. O(F), no allocation.
-double foot_sliding(const Eigen::MatrixXd& world, const Eigen::MatrixXd& contacts, const FootRig& rig);
-
 // Buffers apply_foot_lock reuses, so the lock does not allocate once they have the right size.
 struct FootLockScratch {
   Eigen::VectorXd weight;  // F: 1 where the ankle is moved, 0 where it is left as it is

@@ -87,6 +87,19 @@ bool shows_whole_loop(const PreparedTakes& p, int first, int last) {
   return r.frames[first] <= 0.0 && r.frames[last] >= double(frames - 1);
 }
 
+// MixResult::foot_sliding_inputs: weights, one per take, or with keys each take's mean over the
+// output frames (frame_w, K x N). O(K x N).
+double inputs_planted_speed(const PreparedTakes& p, const std::vector<double>& weights, const Eigen::MatrixXd* frame_w) {
+  double sum = 0.0;
+  for (int i = 0; i < p.size(); ++i) {
+    const double w = frame_w != nullptr && frame_w->rows() > 0 ? frame_w->col(i).mean() : weights[static_cast<size_t>(i)];
+    if (w < 0.0 || (frame_w != nullptr && frame_w->rows() > 0 && frame_w->col(i).minCoeff() < 0.0))
+      return p.takes.front().planted.speed;
+    sum += w * p.takes[static_cast<size_t>(i)].planted.speed;
+  }
+  return sum;
+}
+
 }  // namespace
 
 std::vector<double> normalized_weights(const std::vector<double>& typed) {
@@ -335,6 +348,7 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
     write_sources(p, s.sampler, first, out.sources);
   }
   out.sample = s.u_stretch.array() + double(first);
+  out.foot_sliding_inputs = inputs_planted_speed(p, s.overall, keyed ? &s.frame_w : nullptr);
   if (times != nullptr) times->postprocess_ms = ms_since(t1);
 }
 

@@ -69,6 +69,12 @@ struct MixResult {
   Eigen::VectorXd sample;    // K: the common timeline's sample each output frame is at
   int first_sample = 0, last_sample = 0;  // the stretch played: where every take with a weight is matched
   Eigen::MatrixXd sources;   // K x N: each take's frame (fractional, working rate) at each output frame
+  // How fast the takes' own planted feet move (PreparedTake::planted), weighted as mixed (with
+  // keys, each take's mean weight over the output; per part, its mean over the components): what
+  // motion.foot_sliding_raw and _cleaned are measured against. With a negative weight (a
+  // transfer's neutral take, an exaggeration) no blend of the takes is walked: the reference
+  // take's own (a transfer's content). File units per second.
+  double foot_sliding_inputs = 0.0;
 };
 
 // One mix (see the top of this file). Throws InputError from params.Validate, a loop without

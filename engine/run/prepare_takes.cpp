@@ -205,6 +205,7 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
     t.canonical = to_canonical(t.world, 0, leg[0], leg[3]);
     t.own_local_t = t.canonical.local.transpose();
     t.own_contacts = detect_foot_contacts(t.world, p->feet);
+    t.planted = planted_speed(t.world, p->feet);
     t.cycles = detect_cycles(t.own_contacts, t.canonical.local, fps, p->feet.leg_length);
     if (i == 0 && t.cycles.loops() && t.cycles.loop_frames == t.world.rows()) append_closing_frame(t, *p, leg);
   }
@@ -357,8 +358,7 @@ Eigen::VectorXi cycles_shown(const PreparedTake& take, const Eigen::VectorXd& fr
 }
 
 double take_foot_sliding(const PreparedTakes& prepared, int take) {
-  const PreparedTake& t = prepared.takes.at(static_cast<size_t>(take));
-  return foot_sliding(t.world, t.own_contacts, prepared.feet);
+  return prepared.takes.at(static_cast<size_t>(take)).planted.speed;
 }
 
 }  // namespace mostyle

@@ -23,6 +23,7 @@
 #include "engine/io/clip.h"
 #include "engine/io/job_control.h"
 #include "engine/post/foot_contact.h"
+#include "engine/post/planted_feet.h"
 #include "engine/prepare/canonical_frame.h"
 #include "engine/prepare/major_skeleton.h"
 #include "engine/run/stage_times.h"
@@ -57,6 +58,9 @@ struct PreparedTake {
   CanonicalMotion canonical;         // F frames
   Eigen::MatrixXd own_local_t;       // 3M x F: canonical.local transposed (a frame a contiguous column, for the mix)
   Eigen::MatrixXd own_contacts;      // F x 2: foot contacts, left and right, 1 planted
+  // How fast its planted feet move (planted_feet.h) on its own frames as loaded, retargeted
+  // (before any registration), in the reference's units: what outputs are measured against.
+  PlantedSpeed planted;
   // F x 4: each ankle's travel (left x, z, right x, z) from the first frame, summed step by step
   // in the body's frame at each step (the step from f to f + 1 turned by -heading[f]): the move
   // from frame a to b in the body's frame is row b minus row a (what the foot lock expects a
@@ -107,8 +111,8 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
 // without the major joints). Cost: prepare_takes of two takes of F frames.
 TakeCycles take_cycles(const std::shared_ptr<const Clip>& clip);
 
-// How fast take i's planted feet slide on its own frames (foot_contact.h foot_sliding), file units
-// per second: a measure of the take, computed when asked. O(F).
+// How fast take i's planted feet move on its own frames (planted_feet.h; PreparedTake::planted),
+// the reference's units per second. O(1): measured once, when prepared.
 double take_foot_sliding(const PreparedTakes& prepared, int take);
 
 // The reference's joint index of each major column (for export).
