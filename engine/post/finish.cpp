@@ -39,13 +39,13 @@ void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, c
   nearest_rows(contacts_u, u, out.contacts);
   tidy_contacts(out.contacts, *rig.feet);
   if (body_drift != nullptr) {  // into the world, by the heading at each output frame
-    s.drift.resize(u.size(), 4);
+    s.drift.resize(u.size(), 2 * kFootJoints);
     for (Eigen::Index k = 0; k < u.size(); ++k) {
       const double c = std::cos(s.heading[k]), sn = std::sin(s.heading[k]);
-      for (int side = 0; side < 2; ++side) {
-        const double bx = (*body_drift)(k, 2 * side), bz = (*body_drift)(k, 2 * side + 1);
-        s.drift(k, 2 * side) = c * bx + sn * bz;
-        s.drift(k, 2 * side + 1) = -sn * bx + c * bz;
+      for (int j = 0; j < kFootJoints; ++j) {
+        const double bx = (*body_drift)(k, 2 * j), bz = (*body_drift)(k, 2 * j + 1);
+        s.drift(k, 2 * j) = c * bx + sn * bz;
+        s.drift(k, 2 * j + 1) = -sn * bx + c * bz;
       }
     }
   }
@@ -73,7 +73,7 @@ void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, c
   out.foot_sliding_raw = planted_speed(out.world, s.planted, *rig.feet).speed;
   out.foot_sliding_cleaned = out.foot_sliding_raw;
   if (options.foot_lock) {
-    apply_foot_lock(out.world, out.contacts, *rig.feet, s.foot, body_drift != nullptr ? &s.drift : nullptr);
+    apply_foot_lock(out.world, *rig.feet, s.foot, body_drift != nullptr ? &s.drift : nullptr, rig.fastest_joint);
     planted_frames(out.world, *rig.feet, s.planted, s.heights);
     out.foot_sliding_cleaned = planted_speed(out.world, s.planted, *rig.feet).speed;
   }

@@ -55,7 +55,7 @@ struct MixParams {
 struct MixScratch {
   Eigen::MatrixXd x, samples, steps, ground_u, target, contacts_u, joint_weights, stretch, local_t, component_w;
   Eigen::MatrixXd frame_w, sample_w;  // keyed weights: per output frame (K x N), per sample (L x N)
-  Eigen::MatrixXd drift;              // K x 4: the planted ankles' expected moves (the foot lock's)
+  Eigen::MatrixXd drift;              // K x 2 kFootJoints: the planted feet's expected moves (the foot lock's)
   Eigen::VectorXd heading_u, u, u_stretch, flips;
   Eigen::RowVectorXd channel_w, mixed_mean;
   std::vector<double> overall, timing;

@@ -319,7 +319,8 @@ TEST_CASE("files panel: a file dropped on a palette is one more take, and a load
   CHECK(m.takes[3].name == "clumsy");  // what tells the takes apart fits the narrow column
   CHECK(m.bone_error >= 0.0);
   CHECK(m.sliding_cleaned >= 0.0);
-  // The mix's planted feet are measured against the takes' own, weighted.
+  // The mix's planted feet, measured as the takes' are, against the takes' own weighted.
+  CHECK(m.sliding_cleaned <= m.sliding_raw);
   double least = m.takes[0].foot_sliding, most = least;
   for (const Metrics::Take& t : m.takes) {
     least = std::min(least, t.foot_sliding);
