@@ -73,7 +73,7 @@ void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, c
   out.foot_sliding_raw = planted_speed(out.world, s.planted, *rig.feet).speed;
   out.foot_sliding_cleaned = out.foot_sliding_raw;
   if (options.foot_lock) {
-    apply_foot_lock(out.world, *rig.feet, s.foot, body_drift != nullptr ? &s.drift : nullptr, rig.fastest_joint);
+    apply_foot_lock(out.world, *rig.feet, s.foot, body_drift != nullptr ? &s.drift : nullptr, rig.lock_limits);
     planted_frames(out.world, *rig.feet, s.planted, s.heights);
     out.foot_sliding_cleaned = planted_speed(out.world, s.planted, *rig.feet).speed;
   }

@@ -28,7 +28,7 @@ struct FinishRig {
   const std::vector<double>* lengths = nullptr;  // the reference's bone lengths per column
   const FootRig* feet = nullptr;
   double short_bone_fraction = 0.5;             // limb_length.h LimbLengthOptions::short_fraction
-  double fastest_joint = 0.0;  // units per second the foot lock's swings stay under (apply_foot_lock max_speed); 0: none
+  FootLockLimits lock_limits;  // what the foot lock keeps the motion under (the takes' fastest joint and planted feet)
 };
 
 struct FinishedMotion {

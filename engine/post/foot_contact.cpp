@@ -276,14 +276,14 @@ void find_runs(const LockedLeg& leg, int max_gap, FootLockScratch& s) {
 }
 
 // Within each run, the offset (s.target) that takes out, step by step, what the foot's planted
-// joints move beyond what they may (drift; none: nothing), so they move by that much and never
+// joints move beyond what they may (share of drift; none: nothing), so they move by that much and never
 // faster than they did; centred on the run (the least total correction). A step's move is its
 // planted joints' averaged, each weighted by how near it is to its floor (a heel lifting off
 // leaves the toe to hold the foot; a toe coming down, the heel); a step with neither joint
 // planted at both ends (a filled break) keeps the offset. O(F).
 void run_offsets(const Eigen::MatrixXd& world, const LockedLeg& leg, const std::array<int, kFootJoints>& columns,
                  const std::array<double, kFootJoints>& floors, double band, const Eigen::MatrixXd* drift,
-                 FootLockScratch& s) {
+                 double share, FootLockScratch& s) {
   for (const auto& [start, end] : s.runs) {
     s.target.row(start).setZero();
     for (Eigen::Index u = start; u < end; ++u) {
@@ -295,7 +295,7 @@ void run_offsets(const Eigen::MatrixXd& world, const LockedLeg& leg, const std::
         const double height = std::max(world(u, 3 * c + 1), world(u + 1, 3 * c + 1)) - floors[static_cast<size_t>(j)];
         const double w = std::clamp(1.0 - height / band, kMinAnchorWeight, 1.0);
         moved += w * Eigen::Vector2d(world(u + 1, 3 * c) - world(u, 3 * c), world(u + 1, 3 * c + 2) - world(u, 3 * c + 2));
-        if (drift != nullptr) allowed += w * Eigen::Vector2d((*drift)(u, 2 * j), (*drift)(u, 2 * j + 1));
+        if (drift != nullptr) allowed += share * w * Eigen::Vector2d((*drift)(u, 2 * j), (*drift)(u, 2 * j + 1));
         weights += w;
       }
       if (weights > 0.0) {
@@ -523,20 +523,12 @@ void keep_if_slower(Eigen::MatrixXd& world, const LockedLeg& leg, const std::arr
     }
 }
 
-}  // namespace
-
-void apply_foot_lock(Eigen::MatrixXd& world, const FootRig& rig, FootLockScratch& scratch, const Eigen::MatrixXd* drift,
-                     double max_speed) {
-  if (drift != nullptr && (drift->rows() != world.rows() || drift->cols() != 2 * kFootJoints))
-    throw InputError("foot lock: expected the planted feet's drift as " + std::to_string(world.rows()) + " x " +
-                     std::to_string(2 * kFootJoints));
-  check_columns(world, rig, "foot lock");
+// Both legs locked once, allowing `share` of the drift (apply_foot_lock); s.planted and floors
+// are the motion's planted frames (planted_frames). O(F).
+void lock_legs(Eigen::MatrixXd& world, const FootRig& rig, const std::array<double, kFootJoints>& floors,
+               const Eigen::MatrixXd* drift, double share, double max_speed, FootLockScratch& scratch) {
   const Eigen::Index frames = world.rows();
   const int ramp = rig.blend_frames();
-  scratch.target.resize(frames, 2);
-  scratch.before.resize(frames, 9);
-  std::array<double, kFootJoints> floors;
-  planted_frames(world, rig, scratch.planted, scratch.heights, &floors);
   const std::array<int, kFootJoints> columns = foot_joint_columns(rig);
   for (int side = 0; side < 2; ++side) {
     const LockedLeg leg{rig.legs[static_cast<size_t>(side)], {2 * side, 2 * side + 1}};
@@ -547,12 +539,45 @@ void apply_foot_lock(Eigen::MatrixXd& world, const FootRig& rig, FootLockScratch
     }
     find_runs(leg, seconds_to_frames(rig.options.max_gap_seconds, rig.fps), scratch);
     scratch.target.setZero();
-    run_offsets(world, leg, columns, floors, kPlantedHeightFraction * rig.body_height, drift, scratch);
+    run_offsets(world, leg, columns, floors, kPlantedHeightFraction * rig.body_height, drift, share, scratch);
     if (max_speed > 0.0) fit_to_swings(world, leg, ramp, max_speed / rig.fps, scratch);
     ease_between_runs(frames, ramp, scratch);
     move_leg(world, leg.columns, rig, scratch);
     keep_if_slower(world, leg, columns, scratch);
   }
+}
+
+}  // namespace
+
+void apply_foot_lock(Eigen::MatrixXd& world, const FootRig& rig, FootLockScratch& scratch, const Eigen::MatrixXd* drift,
+                     const FootLockLimits& limits) {
+  if (drift != nullptr && (drift->rows() != world.rows() || drift->cols() != 2 * kFootJoints))
+    throw InputError("foot lock: expected the planted feet's drift as " + std::to_string(world.rows()) + " x " +
+                     std::to_string(2 * kFootJoints));
+  check_columns(world, rig, "foot lock");
+  const Eigen::Index frames = world.rows();
+  scratch.target.resize(frames, 2);
+  scratch.before.resize(frames, 9);
+  std::array<double, kFootJoints> floors;
+  planted_frames(world, rig, scratch.planted, scratch.heights, &floors);
+  if (drift == nullptr || !(limits.planted_speed > 0.0)) {
+    lock_legs(world, rig, floors, drift, 1.0, limits.fastest_joint, scratch);
+    return;
+  }
+  // Allowing all the drift, the planted feet may still move faster than planted_speed (the
+  // output's planted steps fall where the takes' move most); then less of it is allowed: none,
+  // and if that is under the limit, the share that brings the measure to it (the measure moves
+  // about linearly with the share). The heights stay, so one planted mask serves every try.
+  scratch.original = world;
+  lock_legs(world, rig, floors, drift, 1.0, limits.fastest_joint, scratch);
+  const double all = planted_speed(world, scratch.planted, rig).speed;
+  if (all <= limits.planted_speed) return;
+  world = scratch.original;
+  lock_legs(world, rig, floors, drift, 0.0, limits.fastest_joint, scratch);
+  const double none = planted_speed(world, scratch.planted, rig).speed;
+  if (none >= limits.planted_speed) return;
+  world = scratch.original;
+  lock_legs(world, rig, floors, drift, (limits.planted_speed - none) / (all - none), limits.fastest_joint, scratch);
 }
 
 }  // namespace mostyle

@@ -73,6 +73,18 @@ struct FootLockScratch {
   Eigen::MatrixXd before;  // F x 9: a leg's knee, ankle and toe as they were
   std::vector<double> heights;
   std::vector<std::pair<Eigen::Index, Eigen::Index>> runs;  // a leg's runs, first and last frame
+  Eigen::MatrixXd original;  // F x 3M: the motion as it was, where the lock tries again
+};
+
+// What the lock keeps an output under, from the takes it mixes (0: no limit), units per second.
+struct FootLockLimits {
+  // No step of a swing or fade is made faster than this by the change of offset it carries (each
+  // foot joint's own speed plus that change): the runs on either side are pinned in part instead
+  // (the mixed takes' fastest joint, fastest_joint.h: no pops).
+  double fastest_joint = 0.0;
+  // With a drift: where allowing all of it leaves the planted feet (planted_feet.h's measure)
+  // faster than this, less of it is allowed, down to none (the takes' own planted feet, weighted).
+  double planted_speed = 0.0;
 };
 
 // Locks planted feet in place, in world (F x 3M) itself. A foot is pinned over runs of frames
@@ -101,11 +113,9 @@ struct FootLockScratch {
 // still. A motion whose planted feet move exactly as allowed (a take on its own) is left as it
 // is. Throws InputError on a shape mismatch or a rig without a body height. O(F), no allocation
 // once scratch has size F.
-// max_speed: when positive (units per second), no step of a swing or fade is made faster than it
-// by the change of offset it carries (each foot joint's own speed plus that change): the runs on
-// either side are pinned in part instead (the mixed takes' fastest joint: no pops).
+// limits: see FootLockLimits; with planted_speed the lock may run three times.
 void apply_foot_lock(Eigen::MatrixXd& world, const FootRig& rig, FootLockScratch& scratch,
-                     const Eigen::MatrixXd* drift = nullptr, double max_speed = 0.0);
+                     const Eigen::MatrixXd* drift = nullptr, const FootLockLimits& limits = {});
 
 // One two-bone IK solve, exposed for tests: hip, knee, ankle are the chain's joints, `target`
 // where the ankle should go. Returns the new knee and ankle (hip unchanged); thigh |knee - hip|

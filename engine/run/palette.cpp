@@ -340,7 +340,9 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
   rig.lengths = &p.lengths;
   rig.feet = &p.feet;
   rig.short_bone_fraction = kShortBoneFraction;
-  rig.fastest_joint = fastest;
+  rig.lock_limits.fastest_joint = fastest;
+  out.foot_sliding_inputs = inputs_planted_speed(p, s.overall, keyed ? &s.frame_w : nullptr);
+  rig.lock_limits.planted_speed = out.foot_sliding_inputs;
   const Eigen::MatrixXd* drift = nullptr;
   if (finish.foot_lock) {
     planted_drift(p, out.sources, s.overall, keyed ? &s.frame_w : nullptr, s.drift);
@@ -353,7 +355,6 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
     write_sources(p, s.sampler, first, out.sources);
   }
   out.sample = s.u_stretch.array() + double(first);
-  out.foot_sliding_inputs = inputs_planted_speed(p, s.overall, keyed ? &s.frame_w : nullptr);
   if (times != nullptr) times->postprocess_ms = ms_since(t1);
 }
 

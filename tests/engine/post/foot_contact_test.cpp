@@ -246,6 +246,18 @@ TEST_CASE("the foot lock keeps the planted feet's expected drift and pins only w
   w = skating;
   apply_foot_lock(w, rig, scratch, &twice);
   CHECK((w - skating).cwiseAbs().maxCoeff() < 1e-9);
+  // All of it allowed, but the planted feet kept to a third of their speed: a third allowed.
+  FootLockLimits third;
+  third.planted_speed = planted_speed(skating, rig).speed / 3.0;
+  w = skating;
+  apply_foot_lock(w, rig, scratch, &drift, third);
+  CHECK(planted_speed(w, rig).speed == Approx(third.planted_speed).epsilon(1e-6));
+  CHECK(stance_speed(w, planted, rig) == Approx(20.0 / 3.0).epsilon(1e-6));
+  // A limit it is under already changes nothing.
+  third.planted_speed = 2.0 * planted_speed(skating, rig).speed;
+  w = skating;
+  apply_foot_lock(w, rig, scratch, &drift, third);
+  CHECK((w - skating).cwiseAbs().maxCoeff() < 1e-9);
   // No drift allowed: pinned, as without one.
   const Eigen::MatrixXd none = Eigen::MatrixXd::Zero(150, 2 * kFootJoints);
   w = skating;
@@ -272,7 +284,9 @@ TEST_CASE("the foot lock keeps each swing under a speed, pinning the runs beside
   const double limit = 0.5 * (fastest + fastest_free);
   INFO("fastest ankle: walk " << fastest << ", locked " << fastest_free << " cm/s");
   Eigen::MatrixXd w = skating;
-  apply_foot_lock(w, rig, scratch, nullptr, limit);
+  FootLockLimits limits;
+  limits.fastest_joint = limit;
+  apply_foot_lock(w, rig, scratch, nullptr, limits);
   for (int f = 0; f + 1 < 150; ++f) {
     INFO("frame " << f);
     CHECK(ankle_speed(w, f) <= limit * (1 + 1e-9));

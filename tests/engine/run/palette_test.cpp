@@ -202,14 +202,25 @@ TEST_CASE("palette: transfer identities") {
     MixParams mp;
     mp.min_weight = -kMaxStrength;
     mp.max_weight = kMaxStrength + 1;
+    // The foot lock holds a transfer's planted feet to its content's and a blend's to its takes'
+    // (here the style's): the identity is the motion's, compared without it.
+    mp.finish.foot_lock = false;
     const MixResult m = mix(*p, *d, transfer_weights({1.0}), mp);
     // Content and neutral are one file, aligned onto itself (not exactly frame for frame).
     CHECK((m.local - own_pose_at(p->takes[2], m.sources.col(2))).cwiseAbs().maxCoeff() < 0.01 * height);
     const auto owned = pair_of(*p, 2);
     const PreparedTakes& pair = *owned;
-    const MixResult b = blend_at(pair, *decompose_takes(pair, params()), 1.0);
+    BlendParams unlocked;
+    unlocked.foot_lock = false;
+    const MixResult b = blend_at(pair, *decompose_takes(pair, params()), 1.0, unlocked);
     REQUIRE(m.motion.world.rows() == b.motion.world.rows());
     CHECK(max_distance(m.motion.world, b.motion.world, height) < kOneHot);
+    // Locked, the transfer's planted feet are held to the content's own.
+    mp.finish.foot_lock = true;
+    const MixResult locked = mix(*p, *d, transfer_weights({1.0}), mp);
+    CHECK(locked.foot_sliding_inputs == p->takes[0].planted.speed);
+    CHECK(locked.motion.foot_sliding_cleaned <= locked.motion.foot_sliding_raw);
+    CHECK(locked.motion.foot_sliding_cleaned <= 1.1 * locked.foot_sliding_inputs);
   }
   SECTION("the content its own neutral: strength 0 is the content, 1 the style on its timeline") {
     const auto p = prepare_takes({clips[3], clips[1]}, {});
