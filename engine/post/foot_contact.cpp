@@ -34,6 +34,10 @@ constexpr double kKneeHold = 0.1;
 // Where the leg's reach held the lock's offset back, it catches up at most this many leg lengths
 // a second faster than its target moves.
 constexpr double kOffsetCatchUp = 0.5;
+// Where the lock allows part of the takes' planted moves, it tries this many shares beyond all
+// and none, and stops once the planted feet move this close to (under) their limit.
+constexpr int kShareRounds = 5;
+constexpr double kShareClose = 0.97;
 // A planted joint at the top of the planted band still has this weight in the foot's step.
 constexpr double kMinAnchorWeight = 0.1;
 
@@ -566,18 +570,42 @@ void apply_foot_lock(Eigen::MatrixXd& world, const FootRig& rig, FootLockScratch
   }
   // Allowing all the drift, the planted feet may still move faster than planted_speed (the
   // output's planted steps fall where the takes' move most); then less of it is allowed: none,
-  // and if that is under the limit, the share that brings the measure to it (the measure moves
-  // about linearly with the share). The heights stay, so one planted mask serves every try.
+  // and if that is under the limit, the largest share found (regula falsi, Illinois' variant: the
+  // measure need not be straight in the share, a few tries) that keeps the measure under it: the
+  // least pinning that holds the limit. The heights stay, so one planted mask serves every try.
+  const double limit = limits.planted_speed;
   scratch.original = world;
   lock_legs(world, rig, floors, drift, 1.0, limits.fastest_joint, scratch);
-  const double all = planted_speed(world, scratch.planted, rig).speed;
-  if (all <= limits.planted_speed) return;
+  double high = 1.0, at_high = planted_speed(world, scratch.planted, rig).speed;
+  if (at_high <= limit) return;
   world = scratch.original;
   lock_legs(world, rig, floors, drift, 0.0, limits.fastest_joint, scratch);
-  const double none = planted_speed(world, scratch.planted, rig).speed;
-  if (none >= limits.planted_speed) return;
-  world = scratch.original;
-  lock_legs(world, rig, floors, drift, (limits.planted_speed - none) / (all - none), limits.fastest_joint, scratch);
+  double low = 0.0, at_low = planted_speed(world, scratch.planted, rig).speed;
+  if (at_low >= limit) return;
+  scratch.best = world;  // the motion at `low`, under the limit
+  // Distances from the limit, the one kept twice in a row halved (Illinois).
+  double below = limit - at_low, above = at_high - limit;
+  int kept = 0;  // > 0: low kept that many rounds in a row, < 0: high
+  for (int round = 0; round < kShareRounds && at_low < kShareClose * limit; ++round) {
+    const double share = low + below / (below + above) * (high - low);
+    world = scratch.original;
+    lock_legs(world, rig, floors, drift, share, limits.fastest_joint, scratch);
+    const double at = planted_speed(world, scratch.planted, rig).speed;
+    if (at <= limit) {
+      low = share;
+      at_low = at;
+      below = limit - at;
+      scratch.best = world;
+      kept = kept < 0 ? kept - 1 : -1;
+      if (kept <= -2) above *= 0.5;
+    } else {
+      high = share;
+      above = at - limit;
+      kept = kept > 0 ? kept + 1 : 1;
+      if (kept >= 2) below *= 0.5;
+    }
+  }
+  world = scratch.best;
 }
 
 }  // namespace mostyle

@@ -73,7 +73,7 @@ struct FootLockScratch {
   Eigen::MatrixXd before;  // F x 9: a leg's knee, ankle and toe as they were
   std::vector<double> heights;
   std::vector<std::pair<Eigen::Index, Eigen::Index>> runs;  // a leg's runs, first and last frame
-  Eigen::MatrixXd original;  // F x 3M: the motion as it was, where the lock tries again
+  Eigen::MatrixXd original, best;  // F x 3M: the motion as it was, and the best try, where the lock tries again
 };
 
 // What the lock keeps an output under, from the takes it mixes (0: no limit), units per second.
@@ -113,7 +113,7 @@ struct FootLockLimits {
 // still. A motion whose planted feet move exactly as allowed (a take on its own) is left as it
 // is. Throws InputError on a shape mismatch or a rig without a body height. O(F), no allocation
 // once scratch has size F.
-// limits: see FootLockLimits; with planted_speed the lock may run three times.
+// limits: see FootLockLimits; with planted_speed the lock may run up to seven times.
 void apply_foot_lock(Eigen::MatrixXd& world, const FootRig& rig, FootLockScratch& scratch,
                      const Eigen::MatrixXd* drift = nullptr, const FootLockLimits& limits = {});
 

@@ -21,14 +21,14 @@ std::array<int, kFootJoints> foot_joint_columns(const FootRig& rig) {
 }
 
 void planted_frames(const Eigen::MatrixXd& world, const FootRig& rig, Eigen::MatrixXd& planted,
-                    std::vector<double>& heights, std::array<double, kFootJoints>* floors) {
+                    std::vector<double>& heights, std::array<double, kFootJoints>* floors, double band_scale) {
   if (!(rig.body_height > 0.0) || !std::isfinite(rig.body_height))
     throw InputError("planted feet: expected a positive body height, found " + std::to_string(rig.body_height));
   const Eigen::Index frames = world.rows();
   planted.setZero(frames, kFootJoints);
   if (floors != nullptr) floors->fill(0.0);
   if (frames == 0) return;
-  const double band = kPlantedHeightFraction * rig.body_height;
+  const double band = band_scale * kPlantedHeightFraction * rig.body_height;
   const std::array<int, kFootJoints> columns = foot_joint_columns(rig);
   heights.resize(static_cast<size_t>(frames));
   for (int j = 0; j < kFootJoints; ++j) {

@@ -33,11 +33,13 @@ struct PlantedSpeed {
 
 // F x kFootJoints: 1 where that foot joint is planted on that frame, else 0 (a column the rig lacks
 // is all 0). world: F x 3M, Y up. heights: scratch, resized to F. floors: when given, each
-// joint's floor height (0 for a joint the rig lacks). Throws InputError when a column is beyond
-// world's or rig.body_height is not positive. O(F) (the percentile by selection), no allocation
-// once planted and heights are sized.
+// joint's floor height (0 for a joint the rig lacks). band_scale: the band that many times as
+// high (1: the measure's). Throws InputError when a column is beyond world's or rig.body_height
+// is not positive. O(F) (the percentile by selection), no allocation once planted and heights
+// are sized.
 void planted_frames(const Eigen::MatrixXd& world, const FootRig& rig, Eigen::MatrixXd& planted,
-                    std::vector<double>& heights, std::array<double, kFootJoints>* floors = nullptr);
+                    std::vector<double>& heights, std::array<double, kFootJoints>* floors = nullptr,
+                    double band_scale = 1.0);
 
 // The measure from planted (F x kFootJoints, planted_frames) at rig.fps. Throws InputError on a
 // shape mismatch. O(F), no allocation.

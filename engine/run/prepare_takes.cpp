@@ -24,6 +24,11 @@ constexpr double kMaxFps = 1000.0;
 // The posture of a take registered by cycles fades in and out over this many of the
 // reference's cycles, where the reference is not in a cycle.
 constexpr double kPostureFadeCycles = 0.5;
+// A take's planted travel (foot_travel) counts its foot joints' steps within this many of the
+// measure's bands of their floor: an output planted where a take's foot is just above the band
+// (their floors differ a little, as their frames do) may move as that foot does. The lock keeps
+// the output's measure to the takes' own as a whole (FootLockLimits::planted_speed).
+constexpr double kTravelBandScale = 2.0;
 
 std::string take_name(int i, const Clip& clip) {
   return "take " + std::to_string(i + 1) + " (" + clip.source + ")";
@@ -124,7 +129,7 @@ Eigen::MatrixXd foot_travel(const Eigen::MatrixXd& world, const Eigen::VectorXd&
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(frames, 2 * kFootJoints);
   Eigen::MatrixXd planted;
   std::vector<double> heights;
-  planted_frames(world, feet, planted, heights);
+  planted_frames(world, feet, planted, heights, nullptr, kTravelBandScale);
   const std::array<int, kFootJoints> columns = foot_joint_columns(feet);
   for (Eigen::Index f = 0; f + 1 < frames; ++f) {
     const double c = std::cos(heading[f]), s = std::sin(heading[f]);

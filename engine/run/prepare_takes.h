@@ -65,9 +65,10 @@ struct PreparedTake {
   // Its fastest joint's speed (fastest_joint.h) on the same frames, units per second: what an
   // output's joints are held under (the foot lock's swings, no pops).
   double fastest_joint = 0.0;
-  // F x 2 kFootJoints: each foot joint's travel while planted (planted_feet.h; x, z per joint in
-  // kFootJoints order) from the first frame, summed over the steps f -> f + 1 where it is planted
-  // at both ends, each in the body's frame at f (turned by -heading[f]): the planted move from
+  // F x 2 kFootJoints: each foot joint's travel while planted (planted_feet.h, in a band twice the
+  // measure's; x, z per joint in kFootJoints order) from the first frame, summed over the steps
+  // f -> f + 1 where it is planted at both ends, each in the body's frame at f (turned by
+  // -heading[f]): the planted move from
   // frame a to b in the body's frame is row b minus row a (what the foot lock lets a planted foot
   // of an output do, palette.cpp planted_drift).
   Eigen::MatrixXd foot_travel;
