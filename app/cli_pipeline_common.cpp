@@ -160,12 +160,18 @@ std::string report_summary(const Json& r, const std::string& out, const std::str
           " fps (" + fixed(r["duration_s"].get<double>(), 2) + " s)";
   if (r.contains("loop")) text += ", a loop of " + std::to_string(r["loop"].value("cycles", 0)) + " cycles";
   text += "\n  limb lengths within " + of_height(r["limb_length_max_error"].get<double>());
+  // Planted feet in the measure's own body height (the same for the inputs and the output).
   const Json& sliding = r["foot_sliding"];
-  const char* raw = sliding.contains("raw") ? "raw" : "raw_blend";
-  const char* cleaned = sliding.contains("cleaned") ? "cleaned" : "cleaned_blend";
-  text += "; foot sliding " + of_height(sliding[raw].get<double>()) + "/s, " +
-          (r.value("foot_lock", false) ? "locked to " + of_height(sliding[cleaned].get<double>()) + "/s"
-                                       : std::string("not locked"));
+  const double body = sliding.value("body_height", height);
+  auto of_body = [&](const char* key) {
+    const double v = sliding[key].get<double>();
+    return body > 0 ? fixed(100.0 * v / body, 2) + "% of height/s" : fixed(v, 3) + "/s";
+  };
+  text += "\n  planted feet move " + of_body("raw") + ", " +
+          (r.value("foot_lock", false) ? "locked to " + of_body("cleaned") : std::string("not locked")) +
+          "; the takes' own " + of_body("inputs");
+  if (sliding.contains("ratio") && sliding["ratio"].is_number())
+    text += " (" + fixed(sliding["ratio"].get<double>(), 2) + "x)";
   if (!out.empty()) {
     text += "\n  wrote " + out;
     if (r.contains("export_fit"))
@@ -298,6 +304,22 @@ Json loop_json(const LoopCut& loop, double fps) {
           {"travel", {loop.travel.x(), loop.travel.y()}},
           {"travel_distance", loop.travel.norm()},
           {"turn_removed_degrees", loop.turn_removed * 57.29577951308232}};
+}
+
+Json foot_sliding_json(const MixResult& mix, double body_height) {
+  const double raw = mix.motion.foot_sliding_raw, cleaned = mix.motion.foot_sliding_cleaned;
+  const double inputs = mix.foot_sliding_inputs;
+  auto of_height = [&](double v) { return body_height > 0.0 ? v / body_height : 0.0; };
+  Json j = {{"measure", "mean horizontal speed of ankles and toes within 3% of body height of their floor"},
+            {"body_height", body_height},
+            {"raw", raw},
+            {"cleaned", cleaned},
+            {"inputs", inputs},
+            {"raw_of_height", of_height(raw)},
+            {"cleaned_of_height", of_height(cleaned)},
+            {"inputs_of_height", of_height(inputs)}};
+  j["ratio"] = inputs > 0.0 ? Json(cleaned / inputs) : Json(nullptr);
+  return j;
 }
 
 }  // namespace mostyle::cli

@@ -12,6 +12,7 @@
 #include "engine/export/channel_layout.h"
 #include "engine/post/loop.h"
 #include "engine/run/blend_params.h"
+#include "engine/run/palette.h"
 
 namespace mostyle::cli {
 
@@ -78,5 +79,10 @@ Json component_joints_json(const std::vector<ComponentJoints>& parts, const std:
 Json component_regions_json(const std::vector<ComponentJoints>& parts);
 Json vector_json(const Eigen::VectorXd& v);
 Json loop_json(const LoopCut& loop, double fps);
+// How fast the output's planted feet move (engine/post/planted_feet.h): "raw" before the foot
+// lock, "cleaned" after it, "inputs" the takes' own weighted as mixed, file units per second;
+// the same as fractions of "body_height" per second ("raw_of_height", ...); "ratio" cleaned over
+// inputs (null when the inputs' feet never move).
+Json foot_sliding_json(const MixResult& mix, double body_height);
 
 }  // namespace mostyle::cli

@@ -175,7 +175,7 @@ int run_synthesis(const Prepared& p, const std::vector<std::string>& files, cons
     r["channels"] = channel_layout_name(layout);
   }
   r["foot_lock"] = mp.finish.foot_lock;
-  r["foot_sliding"] = {{"raw", result.motion.foot_sliding_raw}, {"cleaned", result.motion.foot_sliding_cleaned}};
+  r["foot_sliding"] = foot_sliding_json(result, palette.feet.body_height);
   r["skeleton_height"] = guess_units(*palette.takes.front().clip).height;
   r["timings_ms"] = {{"load", times.load_ms},         {"preprocess", times.preprocess_ms},
                      {"dtw", times.dtw_ms},           {"decompose", times.decompose_ms},
@@ -290,10 +290,8 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
         report["alignment"] = alignment;
         report["reconstruction_rmse"] = {{"a", d.rmse[0]}, {"b", d.rmse[1]}};
         report["component_nonzero_fraction"] = {{"a", d.nonzero[0]}, {"b", d.nonzero[1]}};
-        report["foot_sliding"] = {{"a", take_foot_sliding(*p.prepared, 0)},
-                                  {"b", take_foot_sliding(*p.prepared, 1)},
-                                  {"raw_blend", result.motion.foot_sliding_raw},
-                                  {"cleaned_blend", result.motion.foot_sliding_cleaned}};
+        report["foot_sliding"]["a"] = take_foot_sliding(*p.prepared, 0);
+        report["foot_sliding"]["b"] = take_foot_sliding(*p.prepared, 1);
       });
     };
   });

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "engine/kinematics/limb_length.h"
+#include "engine/post/planted_feet.h"
 #include "engine/prepare/canonical_frame.h"
 
 namespace mostyle {
@@ -38,13 +39,13 @@ void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, c
   nearest_rows(contacts_u, u, out.contacts);
   tidy_contacts(out.contacts, *rig.feet);
   if (body_drift != nullptr) {  // into the world, by the heading at each output frame
-    s.drift.resize(u.size(), 4);
+    s.drift.resize(u.size(), 2 * kFootJoints);
     for (Eigen::Index k = 0; k < u.size(); ++k) {
       const double c = std::cos(s.heading[k]), sn = std::sin(s.heading[k]);
-      for (int side = 0; side < 2; ++side) {
-        const double bx = (*body_drift)(k, 2 * side), bz = (*body_drift)(k, 2 * side + 1);
-        s.drift(k, 2 * side) = c * bx + sn * bz;
-        s.drift(k, 2 * side + 1) = -sn * bx + c * bz;
+      for (int j = 0; j < kFootJoints; ++j) {
+        const double bx = (*body_drift)(k, 2 * j), bz = (*body_drift)(k, 2 * j + 1);
+        s.drift(k, 2 * j) = c * bx + sn * bz;
+        s.drift(k, 2 * j + 1) = -sn * bx + c * bz;
       }
     }
   }
@@ -68,9 +69,14 @@ void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, c
     apply_limb_lengths(out.world, *rig.parents, *rig.lengths, limbs);
   }
   // Foot lock (beyond the paper): planted ankles pinned by two-bone IK, which keeps bone lengths.
-  out.foot_sliding_raw = foot_sliding(out.world, out.contacts, *rig.feet);
-  if (options.foot_lock) apply_foot_lock(out.world, out.contacts, *rig.feet, s.foot, body_drift != nullptr ? &s.drift : nullptr);
-  out.foot_sliding_cleaned = options.foot_lock ? foot_sliding(out.world, out.contacts, *rig.feet) : out.foot_sliding_raw;
+  planted_frames(out.world, *rig.feet, s.planted, s.heights);
+  out.foot_sliding_raw = planted_speed(out.world, s.planted, *rig.feet).speed;
+  out.foot_sliding_cleaned = out.foot_sliding_raw;
+  if (options.foot_lock) {
+    apply_foot_lock(out.world, *rig.feet, s.foot, body_drift != nullptr ? &s.drift : nullptr, rig.lock_limits);
+    planted_frames(out.world, *rig.feet, s.planted, s.heights);
+    out.foot_sliding_cleaned = planted_speed(out.world, s.planted, *rig.feet).speed;
+  }
   out.limb_length_max_error = max_bone_length_error(out.world, *rig.parents, *rig.lengths);
 }
 

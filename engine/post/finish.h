@@ -28,6 +28,7 @@ struct FinishRig {
   const std::vector<double>* lengths = nullptr;  // the reference's bone lengths per column
   const FootRig* feet = nullptr;
   double short_bone_fraction = 0.5;             // limb_length.h LimbLengthOptions::short_fraction
+  FootLockLimits lock_limits;  // what the foot lock keeps the motion under (the takes' fastest joint and planted feet)
 };
 
 struct FinishedMotion {
@@ -35,23 +36,28 @@ struct FinishedMotion {
   Eigen::MatrixXd contacts;         // K x 2
   LoopCut loop;                     // with FinishOptions::loop: where it was cut
   double limb_length_max_error = 0; // after the constraint (before it when off)
-  double foot_sliding_raw = 0;      // before the foot lock, units per second
-  double foot_sliding_cleaned = 0;  // after it
+  // How fast its planted feet move (planted_feet.h), file units per second: before the foot
+  // lock and after it (never more: the lock moves planted feet no faster than they were).
+  double foot_sliding_raw = 0;
+  double foot_sliding_cleaned = 0;
 };
 
 struct FinishScratch {
-  Eigen::MatrixXd ground, drift;
+  Eigen::MatrixXd ground, drift, planted;
+  std::vector<double> heights;
   Eigen::VectorXd heading;
   FootLockScratch foot;
 };
 
 // local: K x 3M canonical poses at the output frames, u: their K sample positions (sampler set
 // on them); ground_u (U x 2), heading_u (U) and contacts_u (U x 2) on the samples. With a loop,
-// local and u are cut to the loop's frames (closed: all but the last). Throws InputError when a loop is asked of a motion
-// without two foot strikes. body_drift: when given (K x 4: left x, z, right x, z), how far each
-// ankle is expected to move from output frame k to k + 1 in the body's frame there (the mixed
-// takes' own ankle moves, planted_drift), for the foot lock (apply_foot_lock's drift). O(K x M);
-// allocation-free once sized, except the loop.
+// local and u are cut to the loop's frames (closed: all but the last). Throws InputError when a
+// loop is asked of a motion without two foot strikes. body_drift: when given (K x 2 kFootJoints:
+// x, z per foot joint, planted_feet.h), how far each planted foot joint may move from output
+// frame k to k + 1 in the body's frame there (the mixed takes' own planted moves, palette.cpp
+// planted_drift), for the foot lock (apply_foot_lock's drift). foot_sliding_raw and _cleaned:
+// planted_feet.h's measure before and after the lock. O(K x M); allocation-free once sized,
+// except the loop.
 void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, const Eigen::VectorXd& heading_u,
                    const Eigen::MatrixXd& contacts_u, const FinishRig& rig, const FinishOptions& options,
                    Eigen::MatrixXd& local, Eigen::VectorXd& u, FinishScratch& scratch, FinishedMotion& out,

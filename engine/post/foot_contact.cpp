@@ -3,10 +3,12 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "engine/io/error.h"
 #include "engine/kinematics/ease.h"
+#include "engine/post/planted_feet.h"
 #include "engine/prepare/major_skeleton.h"
 #include "engine/prepare/major_take.h"
 
@@ -39,6 +41,18 @@ constexpr double kTravelWindowSeconds = 1.0;
 constexpr double kLandingSpeed = 3.0;
 // An in-place take's planted foot moves with the belt within this share of the belt's speed.
 constexpr double kBeltTolerance = 0.5;
+// A knee bent less than this many leg lengths off its hip-ankle line keeps the bend direction
+// it had on the frame before, in part (all of it when straight), where the lock moves the ankle.
+constexpr double kKneeHold = 0.1;
+// Where the leg's reach held the lock's offset back, it catches up at most this many leg lengths
+// a second faster than its target moves.
+constexpr double kOffsetCatchUp = 0.5;
+// Where the lock allows part of the takes' planted moves, it tries this many shares beyond all
+// and none, and stops once the planted feet move this close to (under) their limit.
+constexpr int kShareRounds = 5;
+constexpr double kShareClose = 0.97;
+// A planted joint at the top of the planted band still has this weight in the foot's step.
+constexpr double kMinAnchorWeight = 0.1;
 
 Eigen::Vector3d joint_at(const Eigen::MatrixXd& m, Eigen::Index row, int column) {
   return Eigen::Vector3d(m(row, 3 * column), m(row, 3 * column + 1), m(row, 3 * column + 2));
@@ -70,14 +84,6 @@ void check_columns(const Eigen::MatrixXd& world, const FootRig& rig, const char*
     }
   }
 }
-
-void check_contacts(const Eigen::MatrixXd& world, const Eigen::MatrixXd& contacts, const char* where) {
-  if (contacts.rows() != world.rows() || contacts.cols() != 2)
-    throw InputError(std::string(where) + ": expected " + std::to_string(world.rows()) +
-                     " x 2 contacts, found " + std::to_string(contacts.rows()) + " x " +
-                     std::to_string(contacts.cols()));
-}
-
 
 // Any unit vector perpendicular to n (unit).
 Eigen::Vector3d any_perpendicular(const Eigen::Vector3d& n) {
@@ -324,6 +330,7 @@ FootRig make_foot_rig(const std::vector<int>& majors, const std::vector<double>&
     ++legs;
   }
   rig.leg_length = legs > 0 ? sum / legs : 0.0;
+  rig.body_height = standing_height(majors, lengths);
   return rig;
 }
 
@@ -401,25 +408,6 @@ void blend_contacts(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double a
     for (int s = 0; s < 2; ++s) out(t, s) = (1.0 - alpha) * a(t, s) + alpha * b(t, s) > 0.5 ? 1.0 : 0.0;
 }
 
-double foot_sliding(const Eigen::MatrixXd& world, const Eigen::MatrixXd& contacts, const FootRig& rig) {
-  check_columns(world, rig, "foot sliding");
-  check_contacts(world, contacts, "foot sliding");
-  double sum = 0.0;
-  long steps = 0;
-  for (int side = 0; side < 2; ++side) {
-    const int ankle = rig.legs[side].ankle;
-    if (ankle < 0) continue;
-    for (Eigen::Index t = 0; t + 1 < world.rows(); ++t) {
-      if (contacts(t, side) <= 0.5 || contacts(t + 1, side) <= 0.5) continue;
-      const double dx = world(t + 1, 3 * ankle) - world(t, 3 * ankle);
-      const double dz = world(t + 1, 3 * ankle + 2) - world(t, 3 * ankle + 2);
-      sum += std::sqrt(dx * dx + dz * dz) * rig.fps;
-      ++steps;
-    }
-  }
-  return steps > 0 ? sum / static_cast<double>(steps) : 0.0;
-}
-
 void two_bone_ik(const Eigen::Vector3d& hip, const Eigen::Vector3d& knee, const Eigen::Vector3d& ankle,
                  const Eigen::Vector3d& target, const Eigen::Vector3d& bend_fallback,
                  Eigen::Vector3d* new_knee, Eigen::Vector3d* new_ankle) {
@@ -454,146 +442,373 @@ void two_bone_ik_pole(const Eigen::Vector3d& hip, const Eigen::Vector3d& knee, c
   *new_ankle = hip + n * reach;
 }
 
-void apply_foot_lock(Eigen::MatrixXd& world, const Eigen::MatrixXd& contacts, const FootRig& rig,
-                     FootLockScratch& scratch, const Eigen::MatrixXd* drift) {
-  if (drift != nullptr && (drift->rows() != world.rows() || drift->cols() != 4))
-    throw InputError("foot lock: expected the planted feet's drift as " + std::to_string(world.rows()) + " x 4");
-  check_columns(world, rig, "foot lock");
-  check_contacts(world, contacts, "foot lock");
-  const Eigen::Index frames = world.rows();
-  const int ramp = rig.blend_frames();
-  scratch.weight.resize(frames);
-  scratch.target.resize(frames, 2);
-  for (int side = 0; side < 2; ++side) {
-    const LegColumns& leg = rig.legs[side];
-    if (!leg.usable()) continue;
-    scratch.weight.setZero();  // 1 where the ankle gets an offset, 0 where it is left alone
-    scratch.target.setZero();  // the horizontal offset (x, z) that takes the ankle to its target
-    // Each contact run pins the ankle at its mean horizontal position (the least total
-    // correction) for the whole run: no sliding while planted. The offsets that takes then
-    // differ from one run to the next; between them, the change is spread over the whole swing
-    // (smoothstep), which adds little to the swinging foot's speed, where a fade of a few frames
-    // at landing or lift-off would add it all at the foot's fastest moments. Before the first
-    // run and after the last the offset fades in and out over blend_frames().
-    Eigen::Index previous_end = -1;  // last frame of the previous run
-    for (Eigen::Index t = 0; t < frames;) {
-      if (contacts(t, side) <= 0.5) {
-        ++t;
-        continue;
-      }
-      const Eigen::Index start = t;
-      // The drift expected so far in the run (none without `drift`): the target moves with it.
-      double x = 0, z = 0, ex = 0, ez = 0;
-      for (; t < frames && contacts(t, side) > 0.5; ++t) {
-        x += world(t, 3 * leg.ankle) - ex;
-        z += world(t, 3 * leg.ankle + 2) - ez;
-        if (drift != nullptr) {
-          ex += (*drift)(t, 2 * side);
-          ez += (*drift)(t, 2 * side + 1);
-        }
-      }
-      const Eigen::Index end = t - 1;
-      const double n = static_cast<double>(end - start + 1);
-      x /= n;
-      z /= n;
-      ex = ez = 0;
-      for (Eigen::Index u = start; u <= end; ++u) {
-        scratch.weight[u] = 1.0;
-        scratch.target(u, 0) = x + ex - world(u, 3 * leg.ankle);
-        scratch.target(u, 1) = z + ez - world(u, 3 * leg.ankle + 2);
-        if (drift != nullptr) {
-          ex += (*drift)(u, 2 * side);
-          ez += (*drift)(u, 2 * side + 1);
-        }
-      }
-      if (previous_end >= 0) {  // the swing from the previous run
-        const Eigen::Index span = start - previous_end;
-        for (Eigen::Index u = previous_end + 1; u < start; ++u) {
-          const double f = smoothstep(static_cast<double>(u - previous_end) / span);
-          scratch.weight[u] = 1.0;
-          scratch.target.row(u) = (1.0 - f) * scratch.target.row(previous_end) + f * scratch.target.row(start);
-        }
-      } else {  // fade in before the first run
-        for (Eigen::Index u = std::max<Eigen::Index>(0, start - ramp); u < start; ++u) {
-          const double f = smoothstep(1.0 - static_cast<double>(start - u) / (ramp + 1));
-          scratch.weight[u] = 1.0;
-          scratch.target.row(u) = f * scratch.target.row(start);
-        }
-      }
-      previous_end = end;
+namespace {
+
+// One leg as the lock's steps see it: its columns, and its ankle's and toe's foot joints
+// (planted_feet.h order; a toe column of -1 where the rig has none).
+struct LockedLeg {
+  LegColumns columns;
+  int joints[2];
+};
+
+// The runs of frames the leg's foot is pinned over (scratch.pinned, scratch.runs): every frame one
+// of its joints is planted (planted_feet.h, the measure the output is judged by), breaks of up to
+// max_gap filled. Short runs are kept: a planted step left out would slide. O(F).
+void find_runs(const LockedLeg& leg, int max_gap, FootLockScratch& s) {
+  const Eigen::Index frames = s.planted.rows();
+  s.pinned.resize(frames);
+  for (Eigen::Index t = 0; t < frames; ++t)
+    s.pinned[t] = s.planted(t, leg.joints[0]) > 0.5 || s.planted(t, leg.joints[1]) > 0.5;
+  for (Eigen::Index t = 0; t < frames;) {
+    if (s.pinned[t]) {
+      ++t;
+      continue;
     }
-    if (previous_end >= 0)  // fade out after the last run
-      for (Eigen::Index u = previous_end + 1; u <= std::min(frames - 1, previous_end + ramp); ++u) {
-        const double f = smoothstep(1.0 - static_cast<double>(u - previous_end) / (ramp + 1));
-        scratch.weight[u] = 1.0;
-        scratch.target.row(u) = f * scratch.target.row(previous_end);
+    Eigen::Index e = t;
+    while (e < frames && !s.pinned[e]) ++e;
+    if (t > 0 && e < frames && e - t <= max_gap) s.pinned.segment(t, e - t).setOnes();
+    t = e;
+  }
+  s.runs.clear();
+  for (Eigen::Index t = 0; t < frames;) {
+    if (!s.pinned[t]) {
+      ++t;
+      continue;
+    }
+    Eigen::Index end = t;
+    while (end + 1 < frames && s.pinned[end + 1]) ++end;
+    s.runs.emplace_back(t, end);
+    t = end + 1;
+  }
+}
+
+// Within each run, the offset (s.target) that takes out, step by step, what the foot's planted
+// joints move beyond what they may (share of drift; none: nothing), so they move by that much and never
+// faster than they did; centred on the run (the least total correction). A step's move is its
+// planted joints' averaged, each weighted by how near it is to its floor (a heel lifting off
+// leaves the toe to hold the foot; a toe coming down, the heel); a step with neither joint
+// planted at both ends (a filled break) keeps the offset. O(F).
+void run_offsets(const Eigen::MatrixXd& world, const LockedLeg& leg, const std::array<int, kFootJoints>& columns,
+                 const std::array<double, kFootJoints>& floors, double band, const Eigen::MatrixXd* drift,
+                 double share, FootLockScratch& s) {
+  for (const auto& [start, end] : s.runs) {
+    s.target.row(start).setZero();
+    for (Eigen::Index u = start; u < end; ++u) {
+      double weights = 0.0;
+      Eigen::Vector2d moved = Eigen::Vector2d::Zero(), allowed = Eigen::Vector2d::Zero();
+      for (int j : leg.joints) {
+        const int c = columns[static_cast<size_t>(j)];
+        if (c < 0 || s.planted(u, j) <= 0.5 || s.planted(u + 1, j) <= 0.5) continue;
+        const double height = std::max(world(u, 3 * c + 1), world(u + 1, 3 * c + 1)) - floors[static_cast<size_t>(j)];
+        const double w = std::clamp(1.0 - height / band, kMinAnchorWeight, 1.0);
+        moved += w * Eigen::Vector2d(world(u + 1, 3 * c) - world(u, 3 * c), world(u + 1, 3 * c + 2) - world(u, 3 * c + 2));
+        if (drift != nullptr) allowed += share * w * Eigen::Vector2d((*drift)(u, 2 * j), (*drift)(u, 2 * j + 1));
+        weights += w;
       }
-    // The knee's bend direction where the leg is straight: the last frame's, within a second,
-    // where it was not (none: two_bone_ik picks one).
-    const Eigen::Index search = static_cast<Eigen::Index>(std::ceil(rig.fps));
-    auto last_bend = [&](Eigen::Index t) -> Eigen::Vector3d {
-      for (Eigen::Index u = t; u >= std::max<Eigen::Index>(0, t - search); --u) {
-        const Eigen::Vector3d hip = joint_at(world, u, leg.hip);
-        const Eigen::Vector3d along = joint_at(world, u, leg.ankle) - hip;
-        const Eigen::Vector3d knee = joint_at(world, u, leg.knee) - hip;
-        if (!(along.norm() > 0)) continue;
-        const Eigen::Vector3d b = knee - along * along.dot(knee) / along.squaredNorm();
-        if (b.norm() > kStraightLeg * along.norm()) return b;
+      if (weights > 0.0) {
+        moved /= weights;
+        allowed /= weights;
+        if (allowed.norm() > moved.norm()) allowed *= moved.norm() / allowed.norm();  // never faster
+      } else {
+        allowed = moved;
       }
-      return Eigen::Vector3d::Zero();
+      s.target.row(u + 1) = s.target.row(u) + (allowed - moved).transpose();
+    }
+    auto rows = s.target.middleRows(start, end - start + 1);
+    rows.rowwise() -= rows.colwise().mean().eval();
+  }
+}
+
+// Each run's offsets scaled down where the change of offset before or after it (spread over a
+// swing, or a fade) would move the foot faster than `fastest` units a frame: on every step of the
+// swing the foot's own speed plus the offset's change at most that (each run may take half of a
+// swing's room, a fade's whole). A run next to a swing of a few frames (a foot that barely leaves
+// the band) or a swing already near the takes' fastest is pinned in part rather than make the
+// swinging foot pop. O(F).
+void fit_to_swings(const Eigen::MatrixXd& world, const LockedLeg& leg, int ramp, double fastest, FootLockScratch& s) {
+  const Eigen::Index frames = world.rows();
+  auto room = [&](Eigen::Index first, Eigen::Index last, auto ease) {  // steps first -> last
+    double out = std::numeric_limits<double>::infinity();
+    for (Eigen::Index u = std::max<Eigen::Index>(first, 0); u < std::min(last, frames - 1); ++u) {
+      const double change = std::abs(ease(u + 1) - ease(u));
+      if (!(change > 0.0)) continue;
+      double own = 0.0;
+      for (int c : {leg.columns.ankle, leg.columns.toe})
+        if (c >= 0) own = std::max(own, (joint_at(world, u + 1, c) - joint_at(world, u, c)).norm());
+      out = std::min(out, std::max(0.0, fastest - own) / change);
+    }
+    return out;
+  };
+  for (size_t r = 0; r < s.runs.size(); ++r) {
+    const auto [start, end] = s.runs[r];
+    double before, after;
+    if (r == 0) {
+      before = room(start - ramp - 1, start, [&](Eigen::Index u) {
+        return u >= start ? 1.0 : u < start - ramp ? 0.0 : smoothstep(1.0 - double(start - u) / (ramp + 1));
+      });
+    } else {
+      const Eigen::Index from = s.runs[r - 1].second, span = start - from;
+      before = 0.5 * room(from, start, [&](Eigen::Index u) { return smoothstep(double(u - from) / span); });
+    }
+    if (r + 1 == s.runs.size()) {
+      after = room(end, end + ramp + 1, [&](Eigen::Index u) {
+        return u <= end ? 1.0 : u > end + ramp ? 0.0 : smoothstep(1.0 - double(u - end) / (ramp + 1));
+      });
+    } else {
+      const Eigen::Index to = s.runs[r + 1].first, span = to - end;
+      after = 0.5 * room(end, to, [&](Eigen::Index u) { return smoothstep(double(u - end) / span); });
+    }
+    auto rows = s.target.middleRows(start, end - start + 1);
+    const double at_start = rows.row(0).norm(), at_end = rows.row(end - start).norm();
+    double scale = 1.0;
+    if (at_start > before) scale = std::min(scale, before / at_start);
+    if (at_end > after) scale = std::min(scale, after / at_end);
+    rows *= scale;
+  }
+}
+
+// The offsets between runs (s.target, s.weight 1 wherever the ankle moves, s.ease): the change
+// from one run to the next spread over the whole swing (smoothstep: no jump in speed at landing
+// or lift-off, and little added to the swing, where a fade of a few frames at landing or lift-off
+// would add it all at the foot's fastest moments); before the first run and after the last a fade
+// over ramp frames. O(F).
+void ease_between_runs(Eigen::Index frames, int ramp, FootLockScratch& s) {
+  s.weight.setZero(frames);
+  s.ease.setConstant(frames, -1.0);
+  for (size_t r = 0; r < s.runs.size(); ++r) {
+    const auto [start, end] = s.runs[r];
+    s.weight.segment(start, end - start + 1).setOnes();
+    if (r > 0) {  // the swing from the previous run
+      const Eigen::Index previous_end = s.runs[r - 1].second, span = start - previous_end;
+      for (Eigen::Index u = previous_end + 1; u < start; ++u) {
+        const double f = smoothstep(static_cast<double>(u - previous_end) / span);
+        s.weight[u] = 1.0;
+        s.ease[u] = f;
+        s.target.row(u) = (1.0 - f) * s.target.row(previous_end) + f * s.target.row(start);
+      }
+    } else {  // fade in before the first run
+      for (Eigen::Index u = std::max<Eigen::Index>(0, start - ramp); u < start; ++u) {
+        const double f = smoothstep(1.0 - static_cast<double>(start - u) / (ramp + 1));
+        s.weight[u] = 1.0;
+        s.target.row(u) = f * s.target.row(start);
+      }
+    }
+    if (r + 1 == s.runs.size())  // fade out after the last run
+      for (Eigen::Index u = end + 1; u <= std::min(frames - 1, end + ramp); ++u) {
+        const double f = smoothstep(1.0 - static_cast<double>(u - end) / (ramp + 1));
+        s.weight[u] = 1.0;
+        s.ease[u] = 1.0 - f;
+        s.target.row(u) = f * s.target.row(end);
+      }
+  }
+}
+
+// The knee's bend direction for the IK (its pole) at frame t: taken from the leg's own pose, the
+// knee's offset from its hip-ankle line. Taken from the hip-target line instead, it would swing
+// round whenever the lock pulls the ankle across the knee's plane, and a knee the motion leaves
+// nearly straight would fold backwards. A slight bias towards where the foot points keeps the pole
+// from passing through zero as the leg straightens; where the knee is nearly straight its bend
+// can still turn round from one frame to the next (the knee crossing its hip-ankle line), so the
+// bend it had on the frame before (as locked) holds it, the more the straighter the knee. Both
+// fade as the ankle moves less (`moved`): a lock that does not move the ankle leaves the leg as
+// it was. O(1).
+Eigen::Vector3d knee_pole(const Eigen::MatrixXd& world, const LegColumns& leg, Eigen::Index t, double moved,
+                          double leg_length) {
+  const Eigen::Vector3d hip = joint_at(world, t, leg.hip), ankle = joint_at(world, t, leg.ankle);
+  const Eigen::Vector3d leg_line = ankle - hip;
+  Eigen::Vector3d pole = joint_at(world, t, leg.knee) - hip;
+  if (leg_line.squaredNorm() > 0) pole -= leg_line * (leg_line.dot(pole) / leg_line.squaredNorm());
+  const double bend = pole.norm();
+  const double moving = std::clamp(moved / (kKneeBiasMove * leg_length), 0.0, 1.0);
+  // The toe bias fades out as the knee bends more (gone at three times its size).
+  const double bias = std::clamp(1.0 - bend / (3.0 * kKneeForwardBias * leg_length), 0.0, 1.0) * moving;
+  if (leg.toe >= 0 && bias > 0.0) {
+    Eigen::Vector3d forward = joint_at(world, t, leg.toe) - ankle;
+    forward.y() = 0.0;
+    if (forward.norm() > 0) pole += bias * kKneeForwardBias * leg_length * forward.normalized();
+  }
+  const double hold = (1.0 - std::clamp(bend / (kKneeHold * leg_length), 0.0, 1.0)) * moving;
+  if (t > 0 && hold > 0.0) {
+    const Eigen::Vector3d h0 = joint_at(world, t - 1, leg.hip);
+    const Eigen::Vector3d line0 = joint_at(world, t - 1, leg.ankle) - h0;
+    Eigen::Vector3d before = joint_at(world, t - 1, leg.knee) - h0;
+    if (line0.squaredNorm() > 0) before -= line0 * (line0.dot(before) / line0.squaredNorm());
+    if (before.norm() > kStraightLeg * leg_length) pole += hold * kKneeHold * leg_length * before.normalized();
+  }
+  return pole;
+}
+
+// Moves the leg's ankle by its offset on every frame with weight (two-bone IK, the toe translated
+// with it). An offset that would take the ankle out of the leg's reach is shortened to it: the IK
+// would lift the ankle along the straightened leg and let the knee snap back when the lock lets
+// go. What the reach held back is caught up no faster than the target moves plus kOffsetCatchUp
+// (all at once, a leg bending from straight in a few frames would free a whole stance's pinning
+// in a jump), and what follows a run eases from where the foot was, not from where the leg could
+// not reach. O(F).
+void move_leg(Eigen::MatrixXd& world, const LegColumns& leg, const FootRig& rig, FootLockScratch& s) {
+  const Eigen::Index frames = world.rows();
+  // The knee's bend direction where the leg is straight: the last frame's, within a second,
+  // where it was not (none: two_bone_ik picks one).
+  const Eigen::Index search = static_cast<Eigen::Index>(std::ceil(rig.fps));
+  auto last_bend = [&](Eigen::Index t) -> Eigen::Vector3d {
+    for (Eigen::Index u = t; u >= std::max<Eigen::Index>(0, t - search); --u) {
+      const Eigen::Vector3d hip = joint_at(world, u, leg.hip);
+      const Eigen::Vector3d along = joint_at(world, u, leg.ankle) - hip;
+      const Eigen::Vector3d knee = joint_at(world, u, leg.knee) - hip;
+      if (!(along.norm() > 0)) continue;
+      const Eigen::Vector3d b = knee - along * along.dot(knee) / along.squaredNorm();
+      if (b.norm() > kStraightLeg * along.norm()) return b;
+    }
+    return Eigen::Vector3d::Zero();
+  };
+  // The offset applied on the frame before (0 where the lock left the leg alone), the target
+  // then, and how much the offset fell short of the target on the last frame of the last run.
+  Eigen::Vector2d applied = Eigen::Vector2d::Zero(), wanted_before = Eigen::Vector2d::Zero();
+  Eigen::Vector2d short_of = Eigen::Vector2d::Zero();
+  const double catch_up = kOffsetCatchUp * rig.leg_length / rig.fps;
+  for (Eigen::Index t = 0; t < frames; ++t) {
+    if (s.weight[t] <= 0.0) {
+      applied.setZero();
+      continue;
+    }
+    const Eigen::Vector3d hip = joint_at(world, t, leg.hip);
+    const Eigen::Vector3d knee = joint_at(world, t, leg.knee);
+    const Eigen::Vector3d ankle = joint_at(world, t, leg.ankle);
+    // (A leg already straighter than the margin may stay as straight.)
+    const double reach = std::max(kReachMargin * ((knee - hip).norm() + (ankle - knee).norm()), (ankle - hip).norm());
+    auto within_reach = [&](const Eigen::Vector2d& offset) -> Eigen::Vector2d {
+      const Eigen::Vector3d d = ankle - hip, o(offset.x(), 0.0, offset.y());
+      if ((d + o).norm() <= reach) return offset;
+      // |ankle - hip + f (ox, 0, oz)| = reach: the positive root f, within [0, 1].
+      const double a = o.squaredNorm(), b = 2.0 * d.dot(o), c = d.squaredNorm() - reach * reach;
+      const double disc = b * b - 4.0 * a * c;
+      const double f = a > 0 && disc >= 0 ? std::clamp((-b + std::sqrt(disc)) / (2.0 * a), 0.0, 1.0) : 0.0;
+      return f * offset;
     };
-    for (Eigen::Index t = 0; t < frames; ++t) {
-      if (scratch.weight[t] <= 0.0) continue;
-      const Eigen::Vector3d hip = joint_at(world, t, leg.hip);
-      const Eigen::Vector3d knee = joint_at(world, t, leg.knee);
-      const Eigen::Vector3d ankle = joint_at(world, t, leg.ankle);
-      // The offset, shortened where it would take the ankle out of the leg's reach: the IK would
-      // then lift the ankle along the straightened leg and let the knee snap back when the lock
-      // lets go. What is left of the slide stays (the leg cannot reach further).
-      const Eigen::Vector2d offset(scratch.target(t, 0), scratch.target(t, 1));
-      // (A leg already straighter than that may stay as straight.)
-      const double reach = std::max(kReachMargin * ((knee - hip).norm() + (ankle - knee).norm()), (ankle - hip).norm());
-      Eigen::Vector3d target = ankle + Eigen::Vector3d(offset.x(), 0.0, offset.y());
-      if ((target - hip).norm() > reach) {
-        // |ankle - hip + f (ox, 0, oz)| = reach: the positive root f, within [0, 1].
-        const Eigen::Vector3d d = ankle - hip, o(offset.x(), 0.0, offset.y());
-        const double a = o.squaredNorm(), b = 2.0 * d.dot(o), c = d.squaredNorm() - reach * reach;
-        const double disc = b * b - 4.0 * a * c;
-        const double f = a > 0 && disc >= 0 ? std::clamp((-b + std::sqrt(disc)) / (2.0 * a), 0.0, 1.0) : 0.0;
-        target = ankle + f * o;
-      }
-      Eigen::Vector3d new_knee, new_ankle;
-      // The knee's bend direction (the IK's pole) is taken from the leg's own pose, the knee's
-      // offset from its hip-ankle line, with a slight bias towards where the foot points. Taken
-      // from the hip-target line instead, it would swing round whenever the lock pulls the ankle
-      // across the knee's plane, and a knee that the blend leaves nearly straight would fold
-      // backwards; the bias keeps the pole from passing through zero as the leg straightens.
-      Eigen::Vector3d pole;
-      {
-        const Eigen::Vector3d leg_line = ankle - hip;
-        const double len2 = leg_line.squaredNorm();
-        pole = knee - hip;
-        if (len2 > 0) pole -= leg_line * (leg_line.dot(knee - hip) / len2);
-        // The bias fades out as the knee bends more (gone at three times its size) and as the
-        // ankle moves less (gone where it stays), so a lock that does not move the ankle leaves
-        // the leg as it was, and a bent knee keeps its own plane.
-        const double moved = std::hypot(scratch.target(t, 0), scratch.target(t, 1));
-        const double bias = std::clamp(1.0 - pole.norm() / (3.0 * kKneeForwardBias * rig.leg_length), 0.0, 1.0) *
-                            std::clamp(moved / (kKneeBiasMove * rig.leg_length), 0.0, 1.0);
-        if (leg.toe >= 0 && bias > 0.0) {
-          Eigen::Vector3d forward = joint_at(world, t, leg.toe) - ankle;
-          forward.y() = 0.0;
-          if (forward.norm() > 0) pole += bias * kKneeForwardBias * rig.leg_length * forward.normalized();
-        }
-      }
-      const bool straight = !(pole.norm() > kStraightLeg * rig.leg_length);
-      two_bone_ik_pole(hip, knee, ankle, target, straight ? last_bend(t) : pole,
-                       straight ? last_bend(t) : Eigen::Vector3d::Zero(), &new_knee, &new_ankle);
-      set_joint(world, t, leg.knee, new_knee);
-      set_joint(world, t, leg.ankle, new_ankle);
-      if (leg.toe >= 0) set_joint(world, t, leg.toe, joint_at(world, t, leg.toe) + (new_ankle - ankle));
+    if (t > 0 && s.pinned[t - 1] && !s.pinned[t]) short_of = applied - s.target.row(t - 1).transpose();
+    Eigen::Vector2d wanted = s.target.row(t).transpose();
+    if (s.ease[t] >= 0.0) wanted += (1.0 - s.ease[t]) * short_of;
+    Eigen::Vector2d offset = within_reach(wanted);
+    if (t > 0 && s.weight[t - 1] > 0.0) {
+      const double limit = (wanted - wanted_before).norm() + catch_up;
+      const Eigen::Vector2d change = offset - applied;
+      if (change.norm() > limit) offset = within_reach(applied + change * (limit / change.norm()));
+    }
+    applied = offset;
+    wanted_before = wanted;
+    const Eigen::Vector3d target = ankle + Eigen::Vector3d(offset.x(), 0.0, offset.y());
+    const Eigen::Vector3d pole = knee_pole(world, leg, t, offset.norm(), rig.leg_length);
+    const bool straight = !(pole.norm() > kStraightLeg * rig.leg_length);
+    Eigen::Vector3d new_knee, new_ankle;
+    two_bone_ik_pole(hip, knee, ankle, target, straight ? last_bend(t) : pole,
+                     straight ? last_bend(t) : Eigen::Vector3d::Zero(), &new_knee, &new_ankle);
+    set_joint(world, t, leg.knee, new_knee);
+    set_joint(world, t, leg.ankle, new_ankle);
+    if (leg.toe >= 0) set_joint(world, t, leg.toe, joint_at(world, t, leg.toe) + (new_ankle - ankle));
+  }
+}
+
+// The lock keeps heights, so the same steps stay planted; it must not move the leg's planted
+// joints more in all than they moved (where the leg could not reach its targets, say): then the
+// leg is put back as it was (s.before: its knee, ankle and toe). O(F).
+void keep_if_slower(Eigen::MatrixXd& world, const LockedLeg& leg, const std::array<int, kFootJoints>& columns,
+                    const FootLockScratch& s) {
+  double before = 0.0, after = 0.0;
+  for (int k = 0; k < 2; ++k) {
+    const int j = leg.joints[k], c = columns[static_cast<size_t>(j)], b = 1 + k;  // b: its columns in s.before
+    if (c < 0) continue;
+    for (Eigen::Index t = 0; t + 1 < world.rows(); ++t) {
+      if (s.planted(t, j) <= 0.5 || s.planted(t + 1, j) <= 0.5) continue;
+      before += std::hypot(s.before(t + 1, 3 * b) - s.before(t, 3 * b), s.before(t + 1, 3 * b + 2) - s.before(t, 3 * b + 2));
+      after += std::hypot(world(t + 1, 3 * c) - world(t, 3 * c), world(t + 1, 3 * c + 2) - world(t, 3 * c + 2));
     }
   }
+  if (after > before)
+    for (int b = 0; b < 3; ++b) {
+      const int c = b == 0 ? leg.columns.knee : b == 1 ? leg.columns.ankle : leg.columns.toe;
+      if (c >= 0) world.middleCols(3 * c, 3) = s.before.middleCols(3 * b, 3);
+    }
+}
+
+// Both legs locked once, allowing `share` of the drift (apply_foot_lock); s.planted and floors
+// are the motion's planted frames (planted_frames). O(F).
+void lock_legs(Eigen::MatrixXd& world, const FootRig& rig, const std::array<double, kFootJoints>& floors,
+               const Eigen::MatrixXd* drift, double share, double max_speed, FootLockScratch& scratch) {
+  const Eigen::Index frames = world.rows();
+  const int ramp = rig.blend_frames();
+  const std::array<int, kFootJoints> columns = foot_joint_columns(rig);
+  for (int side = 0; side < 2; ++side) {
+    const LockedLeg leg{rig.legs[static_cast<size_t>(side)], {2 * side, 2 * side + 1}};
+    if (!leg.columns.usable()) continue;
+    for (int b = 0; b < 3; ++b) {
+      const int c = b == 0 ? leg.columns.knee : b == 1 ? leg.columns.ankle : leg.columns.toe;
+      if (c >= 0) scratch.before.middleCols(3 * b, 3) = world.middleCols(3 * c, 3);
+    }
+    find_runs(leg, seconds_to_frames(rig.options.max_gap_seconds, rig.fps), scratch);
+    scratch.target.setZero();
+    run_offsets(world, leg, columns, floors, kPlantedHeightFraction * rig.body_height, drift, share, scratch);
+    if (max_speed > 0.0) fit_to_swings(world, leg, ramp, max_speed / rig.fps, scratch);
+    ease_between_runs(frames, ramp, scratch);
+    move_leg(world, leg.columns, rig, scratch);
+    keep_if_slower(world, leg, columns, scratch);
+  }
+}
+
+}  // namespace
+
+void apply_foot_lock(Eigen::MatrixXd& world, const FootRig& rig, FootLockScratch& scratch, const Eigen::MatrixXd* drift,
+                     const FootLockLimits& limits) {
+  if (drift != nullptr && (drift->rows() != world.rows() || drift->cols() != 2 * kFootJoints))
+    throw InputError("foot lock: expected the planted feet's drift as " + std::to_string(world.rows()) + " x " +
+                     std::to_string(2 * kFootJoints));
+  check_columns(world, rig, "foot lock");
+  const Eigen::Index frames = world.rows();
+  scratch.target.resize(frames, 2);
+  scratch.before.resize(frames, 9);
+  std::array<double, kFootJoints> floors;
+  planted_frames(world, rig, scratch.planted, scratch.heights, &floors);
+  if (drift == nullptr || !(limits.planted_speed > 0.0)) {
+    lock_legs(world, rig, floors, drift, 1.0, limits.fastest_joint, scratch);
+    return;
+  }
+  // Allowing all the drift, the planted feet may still move faster than planted_speed (the
+  // output's planted steps fall where the takes' move most); then less of it is allowed: none,
+  // and if that is under the limit, the largest share found (regula falsi, Illinois' variant: the
+  // measure need not be straight in the share, a few tries) that keeps the measure under it: the
+  // least pinning that holds the limit. The heights stay, so one planted mask serves every try.
+  const double limit = limits.planted_speed;
+  scratch.original = world;
+  lock_legs(world, rig, floors, drift, 1.0, limits.fastest_joint, scratch);
+  double high = 1.0, at_high = planted_speed(world, scratch.planted, rig).speed;
+  if (at_high <= limit) return;
+  world = scratch.original;
+  lock_legs(world, rig, floors, drift, 0.0, limits.fastest_joint, scratch);
+  double low = 0.0, at_low = planted_speed(world, scratch.planted, rig).speed;
+  if (at_low >= limit) return;
+  scratch.best = world;  // the motion at `low`, under the limit
+  // Distances from the limit, the one kept twice in a row halved (Illinois).
+  double below = limit - at_low, above = at_high - limit;
+  int kept = 0;  // > 0: low kept that many rounds in a row, < 0: high
+  for (int round = 0; round < kShareRounds && at_low < kShareClose * limit; ++round) {
+    const double share = low + below / (below + above) * (high - low);
+    world = scratch.original;
+    lock_legs(world, rig, floors, drift, share, limits.fastest_joint, scratch);
+    const double at = planted_speed(world, scratch.planted, rig).speed;
+    if (at <= limit) {
+      low = share;
+      at_low = at;
+      below = limit - at;
+      scratch.best = world;
+      kept = kept < 0 ? kept - 1 : -1;
+      if (kept <= -2) above *= 0.5;
+    } else {
+      high = share;
+      above = at - limit;
+      kept = kept > 0 ? kept + 1 : 1;
+      if (kept >= 2) below *= 0.5;
+    }
+  }
+  world = scratch.best;
 }
 
 }  // namespace mostyle

@@ -5,6 +5,7 @@
 // (frames x 3M, file units, Y up), the same matrices the pipeline blends.
 #include <Eigen/Core>
 #include <array>
+#include <utility>
 #include <vector>
 
 namespace mostyle {
@@ -29,13 +30,14 @@ struct FootContactOptions {
 struct FootRig {
   std::array<LegColumns, 2> legs;  // 0: left, 1: right
   double leg_length = 0.0;         // thigh + shin, averaged over the legs, file units
+  double body_height = 0.0;        // the reference's standing height (planted_feet.h standing_height), file units
   double fps = 30.0;               // frame rate of the positions
   FootContactOptions options;
   int blend_frames() const;        // options.blend_seconds at fps, at least 1
 };
 
-// The legs' columns from the major joints present (canonical order, major_skeleton.h) and the
-// leg length from per-joint bone lengths (bone_lengths(), parallel to majors). Throws InputError
+// The legs' columns from the major joints present (canonical order, major_skeleton.h), the leg
+// length and the body's height from per-joint bone lengths (bone_lengths(), parallel to majors). Throws InputError
 // on bad options or a zero fps.
 FootRig make_foot_rig(const std::vector<int>& majors, const std::vector<double>& lengths, double fps,
                       const FootContactOptions& options = {});
@@ -71,36 +73,59 @@ Eigen::MatrixXd carry_contacts(const Eigen::MatrixXd& contacts_b, const Eigen::V
 // must agree). a, b: F x 2. out: resized to F x 2, no allocation when it has that size.
 void blend_contacts(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double alpha, Eigen::MatrixXd& out);
 
-// Foot sliding: the ankles' mean horizontal (x, z) speed over the frame steps t -> t + 1 where
-// that foot is in contact at both t and t + 1, both feet pooled; file units per second. 0 when
-// no foot is ever planted for two frames. world: F x 3M, contacts: F x 2. O(F), no allocation.
-double foot_sliding(const Eigen::MatrixXd& world, const Eigen::MatrixXd& contacts, const FootRig& rig);
-
 // Buffers apply_foot_lock reuses, so the lock does not allocate once they have the right size.
 struct FootLockScratch {
   Eigen::VectorXd weight;  // F: 1 where the ankle is moved, 0 where it is left as it is
   Eigen::MatrixXd target;  // F x 2: the horizontal offset (x, z) that moves it
+  Eigen::MatrixXd planted; // F x 4: planted_feet.h's planted frames
+  Eigen::VectorXi pinned;  // F: 1 on the frames a foot is pinned over
+  Eigen::VectorXd ease;    // F: after a run, how far its offset has eased to the next (-1 elsewhere)
+  Eigen::MatrixXd before;  // F x 9: a leg's knee, ankle and toe as they were
+  std::vector<double> heights;
+  std::vector<std::pair<Eigen::Index, Eigen::Index>> runs;  // a leg's runs, first and last frame
+  Eigen::MatrixXd original, best;  // F x 3M: the motion as it was, and the best try, where the lock tries again
 };
 
-// Locks planted feet in place, in world (F x 3M) itself. Per foot and contact run (contacts F x 2,
-// runs of 1s): the ankle's target is the run's mean horizontal position, held through the whole
-// run (no sliding), the vertical kept. The offset this takes changes from one run to the next;
-// between runs the change is spread over the whole swing (smoothstep), so it adds little to the
-// swinging foot's speed (a fade of a few frames at landing or lift-off would add it all at the
-// foot's fastest moments); before the first run and after the last it fades over blend_frames().
-// Each such frame moves the ankle with analytic two-bone IK: the hip stays, thigh and shin keep
-// their lengths, the knee bends in the plane of hip, target and the knee's own offset from its
+// What the lock keeps an output under, from the takes it mixes (0: no limit), units per second.
+struct FootLockLimits {
+  // No step of a swing or fade is made faster than this by the change of offset it carries (each
+  // foot joint's own speed plus that change): the runs on either side are pinned in part instead
+  // (the mixed takes' fastest joint, fastest_joint.h: no pops).
+  double fastest_joint = 0.0;
+  // With a drift: where allowing all of it leaves the planted feet (planted_feet.h's measure)
+  // faster than this, less of it is allowed, down to none (the takes' own planted feet, weighted).
+  double planted_speed = 0.0;
+};
+
+// Locks planted feet in place, in world (F x 3M) itself. A foot is pinned over runs of frames
+// where one of its joints is planted by planted_feet.h's measure (within a band of its floor: a
+// heel coming down, a toe pushing off, what detect_foot_contacts calls a contact), breaks of up
+// to max_gap_seconds filled. Within a run each frame step takes out what the foot's
+// planted joints move beyond what they may (`drift`; without it, nothing), their steps averaged
+// weighted by how near each is to its floor (a lifting heel leaves the toe to hold the foot), so
+// the foot moves as it may and never faster than it did; the run's offsets have a mean of zero
+// (the least total correction). The offset changes from one run to the next; between runs the
+// change is spread over the whole swing (smoothstep: no jump in speed at landing or lift-off, and
+// little added to the swing, where a fade of a few frames at landing or lift-off would add it
+// all at the foot's fastest moments); before the first run and after the last it fades over
+// blend_frames(). Each such frame moves the ankle horizontally (its height kept, so the same
+// steps stay planted) with analytic two-bone IK: the hip stays, thigh and shin keep their
+// lengths, the knee bends in the plane of hip, target and the knee's own offset from its
 // hip-ankle line, leaning slightly towards the toe (less as the knee bends or the ankle moves
-// less); a target beyond the leg's reach is shortened to it (a straight leg stays as straight).
-// The toe moves with the ankle (the foot is translated). Frames beyond the fades are left
-// exactly as they were. O(F), no allocation once scratch has size F.
-// drift: when given (F x 4: left x, z, right x, z, world units), how far each planted ankle is
-// expected to move from frame t to t + 1 (what the takes mixed do themselves: a foot that pivots
-// or slides in every take); the lock then pins only what moves otherwise. Within a run the target
-// is the run's mean of (ankle - expected drift so far) plus the drift so far, so a motion whose
-// planted feet move exactly as expected (a take on its own) is left as it is.
-void apply_foot_lock(Eigen::MatrixXd& world, const Eigen::MatrixXd& contacts, const FootRig& rig,
-                     FootLockScratch& scratch, const Eigen::MatrixXd* drift = nullptr);
+// less) and, where the knee is nearly straight, towards its bend on the frame before; a target
+// beyond the leg's reach is shortened to it (a straight leg stays as straight), and what the
+// reach held back is caught up gradually. The toe moves with the ankle (the foot is
+// translated). Frames beyond the fades are left exactly as they were. A leg whose planted joints
+// would move more in all than before the lock is left as it was: the measure never rises.
+// drift: when given (F x 2 kFootJoints, x and z per foot joint in planted_feet.h's order, world
+// units), how far each planted foot joint may move from frame t to t + 1 (what the mixed takes'
+// own planted feet do: a foot that pivots or rolls in the takes); none: planted feet are held
+// still. A motion whose planted feet move exactly as allowed (a take on its own) is left as it
+// is. Throws InputError on a shape mismatch or a rig without a body height. O(F), no allocation
+// once scratch has size F.
+// limits: see FootLockLimits; with planted_speed the lock may run up to seven times.
+void apply_foot_lock(Eigen::MatrixXd& world, const FootRig& rig, FootLockScratch& scratch,
+                     const Eigen::MatrixXd* drift = nullptr, const FootLockLimits& limits = {});
 
 // One two-bone IK solve, exposed for tests: hip, knee, ankle are the chain's joints, `target`
 // where the ankle should go. Returns the new knee and ankle (hip unchanged); thigh |knee - hip|

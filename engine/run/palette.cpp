@@ -57,23 +57,24 @@ struct RowAt {
   }
 };
 
-// How far each ankle moves from output frame k to k + 1 in the body's frame, as the takes mixed
-// move it themselves at the frames shown (each take's own ankle travel, prepare_takes.h), weighted
-// (K x 4: left x, z, right x, z; the last row 0). A foot that pivots or slides in the takes is
-// expected to in the mix; the foot lock pins only what moves beyond. O(K x N), no allocation
-// once `out` is sized.
+// How far each planted foot joint moves from output frame k to k + 1 in the body's frame, as the
+// takes mixed move theirs while planted at the frames shown (PreparedTake::foot_travel), weighted
+// as the poses are (a transfer's content + style - neutral too; the lock allows no more than the
+// output's own foot moves) (K x 2 kFootJoints, x and z per joint; the last row 0): what the foot
+// lock lets the output's planted feet do. A take whose foot is in the air there adds nothing.
+// O(K x N), no allocation once `out` is sized.
 void planted_drift(const PreparedTakes& p, const Eigen::MatrixXd& sources, const std::vector<double>& weights,
                    const Eigen::MatrixXd* frame_w, Eigen::MatrixXd& out) {
   const Eigen::Index frames = sources.rows();
-  out.setZero(frames, 4);
+  out.setZero(frames, 2 * kFootJoints);
   for (int i = 0; i < p.size(); ++i) {
-    const Eigen::MatrixXd& travel = p.takes[static_cast<size_t>(i)].ankle_travel;
+    const Eigen::MatrixXd& travel = p.takes[static_cast<size_t>(i)].foot_travel;
     const Eigen::Index rows = travel.rows();
     for (Eigen::Index k = 0; k + 1 < frames; ++k) {
       const double w = frame_w != nullptr ? (*frame_w)(k, i) : weights[static_cast<size_t>(i)];
       if (w == 0.0) continue;
       const RowAt a(sources(k, i), rows), b(sources(k + 1, i), rows);
-      for (Eigen::Index c = 0; c < 4; ++c) out(k, c) += w * (b.of(travel, c) - a.of(travel, c));
+      for (Eigen::Index c = 0; c < 2 * kFootJoints; ++c) out(k, c) += w * (b.of(travel, c) - a.of(travel, c));
     }
   }
 }
@@ -85,6 +86,19 @@ bool shows_whole_loop(const PreparedTakes& p, int first, int last) {
   const Eigen::Index frames = r.own_local_t.cols();
   if (!r.cycles.loops() || r.cycles.loop_frames != frames - 1) return false;
   return r.frames[first] <= 0.0 && r.frames[last] >= double(frames - 1);
+}
+
+// MixResult::foot_sliding_inputs: weights, one per take, or with keys each take's mean over the
+// output frames (frame_w, K x N). O(K x N).
+double inputs_planted_speed(const PreparedTakes& p, const std::vector<double>& weights, const Eigen::MatrixXd* frame_w) {
+  double sum = 0.0;
+  for (int i = 0; i < p.size(); ++i) {
+    const double w = frame_w != nullptr && frame_w->rows() > 0 ? frame_w->col(i).mean() : weights[static_cast<size_t>(i)];
+    if (w < 0.0 || (frame_w != nullptr && frame_w->rows() > 0 && frame_w->col(i).minCoeff() < 0.0))
+      return p.takes.front().planted.speed;
+    sum += w * p.takes[static_cast<size_t>(i)].planted.speed;
+  }
+  return sum;
 }
 
 }  // namespace
@@ -162,14 +176,17 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
   s.timing.assign(n, 0.0);
   if (params.reference_timing) s.timing[0] = 1.0;
   else s.timing = s.overall;
-  // The stretch every take with a weight matches (a take at weight 0 does not shorten it).
+  // The stretch every take with a weight matches (a take at weight 0 does not shorten it), and
+  // the fastest joint of those takes (the foot lock keeps the swings under it).
   int first = 0, last = p.samples() - 1;
+  double fastest = 0.0;
   for (int i = 0; i < n; ++i) {
     bool weighted = params.weights[i] != 0.0 || s.timing[i] != 0.0;
     for (const WeightKey& key : params.keys) weighted |= key.weights[static_cast<size_t>(i)] != 0.0;
     for (Eigen::Index c = 0; per_component && c < params.component_weights.rows(); ++c)
       weighted |= params.component_weights(c, i) != 0.0;
     if (!weighted) continue;
+    fastest = std::max(fastest, p.takes[static_cast<size_t>(i)].fastest_joint);
     first = std::max(first, p.timeline.first[i]);
     last = std::min(last, p.timeline.last[i]);
   }
@@ -323,6 +340,9 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
   rig.lengths = &p.lengths;
   rig.feet = &p.feet;
   rig.short_bone_fraction = kShortBoneFraction;
+  rig.lock_limits.fastest_joint = fastest;
+  out.foot_sliding_inputs = inputs_planted_speed(p, s.overall, keyed ? &s.frame_w : nullptr);
+  rig.lock_limits.planted_speed = out.foot_sliding_inputs;
   const Eigen::MatrixXd* drift = nullptr;
   if (finish.foot_lock) {
     planted_drift(p, out.sources, s.overall, keyed ? &s.frame_w : nullptr, s.drift);

@@ -55,7 +55,7 @@ struct MixParams {
 struct MixScratch {
   Eigen::MatrixXd x, samples, steps, ground_u, target, contacts_u, joint_weights, stretch, local_t, component_w;
   Eigen::MatrixXd frame_w, sample_w;  // keyed weights: per output frame (K x N), per sample (L x N)
-  Eigen::MatrixXd drift;              // K x 4: the planted ankles' expected moves (the foot lock's)
+  Eigen::MatrixXd drift;              // K x 2 kFootJoints: the planted feet's expected moves (the foot lock's)
   Eigen::VectorXd heading_u, u, u_stretch, flips;
   Eigen::RowVectorXd channel_w, mixed_mean;
   std::vector<double> overall, timing;
@@ -69,6 +69,12 @@ struct MixResult {
   Eigen::VectorXd sample;    // K: the common timeline's sample each output frame is at
   int first_sample = 0, last_sample = 0;  // the stretch played: where every take with a weight is matched
   Eigen::MatrixXd sources;   // K x N: each take's frame (fractional, working rate) at each output frame
+  // How fast the takes' own planted feet move (PreparedTake::planted), weighted as mixed (with
+  // keys, each take's mean weight over the output; per part, its mean over the components): what
+  // motion.foot_sliding_raw and _cleaned are measured against. With a negative weight (a
+  // transfer's neutral take, an exaggeration) no blend of the takes is walked: the reference
+  // take's own (a transfer's content). File units per second.
+  double foot_sliding_inputs = 0.0;
 };
 
 // One mix (see the top of this file). Throws InputError from params.Validate, a loop without

@@ -24,6 +24,11 @@ constexpr double kMaxFps = 1000.0;
 // The posture of a take registered by cycles fades in and out over this many of the
 // reference's cycles, where the reference is not in a cycle.
 constexpr double kPostureFadeCycles = 0.5;
+// A take's planted travel (foot_travel) counts its foot joints' steps within this many of the
+// measure's bands of their floor: an output planted where a take's foot is just above the band
+// (their floors differ a little, as their frames do) may move as that foot does. The lock keeps
+// the output's measure to the takes' own as a whole (FootLockLimits::planted_speed).
+constexpr double kTravelBandScale = 2.0;
 
 std::string take_name(int i, const Clip& clip) {
   return "take " + std::to_string(i + 1) + " (" + clip.source + ")";
@@ -142,23 +147,27 @@ void append_closing_frame(PreparedTake& t, const PreparedTakes& p, const int leg
 // any phase, with the fades' frames running on before and after it.
 int loop_repeats(int loop_frames, int fade) { return 4 + 2 * ((fade + loop_frames - 1) / loop_frames); }
 
-// F x 4: PreparedTake::ankle_travel of world (F x 3M) with heading (F); 0 for a leg not usable.
-Eigen::MatrixXd ankle_travel(const Eigen::MatrixXd& world, const Eigen::VectorXd& heading, const FootRig& feet) {
+// F x 2 kFootJoints: PreparedTake::foot_travel of world (F x 3M) with heading (F).
+Eigen::MatrixXd foot_travel(const Eigen::MatrixXd& world, const Eigen::VectorXd& heading, const FootRig& feet) {
   const Eigen::Index frames = world.rows();
-  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(frames, 4);
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(frames, 2 * kFootJoints);
+  Eigen::MatrixXd planted;
+  std::vector<double> heights;
+  planted_frames(world, feet, planted, heights, nullptr, kTravelBandScale);
+  const std::array<int, kFootJoints> columns = foot_joint_columns(feet);
   for (Eigen::Index f = 0; f + 1 < frames; ++f) {
     const double c = std::cos(heading[f]), s = std::sin(heading[f]);
-    for (int side = 0; side < 2; ++side) {
-      const LegColumns& leg = feet.legs[static_cast<size_t>(side)];
+    for (int j = 0; j < kFootJoints; ++j) {
+      const int col = columns[static_cast<size_t>(j)];
       double bx = 0.0, bz = 0.0;
-      if (leg.usable()) {
-        const double dx = world(f + 1, 3 * leg.ankle) - world(f, 3 * leg.ankle);
-        const double dz = world(f + 1, 3 * leg.ankle + 2) - world(f, 3 * leg.ankle + 2);
+      if (col >= 0 && planted(f, j) > 0.5 && planted(f + 1, j) > 0.5) {
+        const double dx = world(f + 1, 3 * col) - world(f, 3 * col);
+        const double dz = world(f + 1, 3 * col + 2) - world(f, 3 * col + 2);
         bx = c * dx - s * dz;
         bz = s * dx + c * dz;
       }
-      out(f + 1, 2 * side) = out(f, 2 * side) + bx;
-      out(f + 1, 2 * side + 1) = out(f, 2 * side + 1) + bz;
+      out(f + 1, 2 * j) = out(f, 2 * j) + bx;
+      out(f + 1, 2 * j + 1) = out(f, 2 * j + 1) + bz;
     }
   }
   return out;
@@ -229,6 +238,8 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
     t.canonical = to_canonical(t.world, 0, leg[0], leg[3]);
     t.own_local_t = t.canonical.local.transpose();
     contacts_and_cycles(t.world, t.canonical, p->feet, &t.own_contacts, &t.cycles);
+    t.planted = planted_speed(t.world, p->feet);
+    t.fastest_joint = fastest_joint_speed(t.world, fps);
     if (i == 0 && t.cycles.loops() && t.cycles.loop_frames == t.world.rows()) append_closing_frame(t, *p, leg);
   }
   spent.preprocess_ms = ms_since(t0);
@@ -292,8 +303,8 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
   spent.dtw_ms = ms_since(t1);
   report_progress(control, 0.8f);
 
-  // Each take's ankles' travel in its body's frame, on its own frames.
-  for (PreparedTake& t : p->takes) t.ankle_travel = ankle_travel(t.world, t.canonical.heading, p->feet);
+  // Each take's planted foot joints' travel in its body's frame, on its own frames.
+  for (PreparedTake& t : p->takes) t.foot_travel = foot_travel(t.world, t.canonical.heading, p->feet);
 
   // Every take on the common timeline, placed where the reference stands when its match starts.
   const auto t2 = Clock::now();
@@ -388,8 +399,7 @@ Eigen::VectorXi cycles_shown(const PreparedTake& take, const Eigen::VectorXd& fr
 }
 
 double take_foot_sliding(const PreparedTakes& prepared, int take) {
-  const PreparedTake& t = prepared.takes.at(static_cast<size_t>(take));
-  return foot_sliding(t.world, t.own_contacts, prepared.feet);
+  return prepared.takes.at(static_cast<size_t>(take)).planted.speed;
 }
 
 }  // namespace mostyle

@@ -23,6 +23,8 @@
 #include "engine/io/clip.h"
 #include "engine/io/job_control.h"
 #include "engine/post/foot_contact.h"
+#include "engine/post/fastest_joint.h"
+#include "engine/post/planted_feet.h"
 #include "engine/prepare/canonical_frame.h"
 #include "engine/prepare/major_skeleton.h"
 #include "engine/run/stage_times.h"
@@ -57,11 +59,19 @@ struct PreparedTake {
   CanonicalMotion canonical;         // F frames
   Eigen::MatrixXd own_local_t;       // 3M x F: canonical.local transposed (a frame a contiguous column, for the mix)
   Eigen::MatrixXd own_contacts;      // F x 2: foot contacts, left and right, 1 planted
-  // F x 4: each ankle's travel (left x, z, right x, z) from the first frame, summed step by step
-  // in the body's frame at each step (the step from f to f + 1 turned by -heading[f]): the move
-  // from frame a to b in the body's frame is row b minus row a (what the foot lock expects a
-  // planted foot to do, palette.cpp planted_drift).
-  Eigen::MatrixXd ankle_travel;
+  // How fast its planted feet move (planted_feet.h) on its own frames as loaded, retargeted
+  // (before any registration), in the reference's units: what outputs are measured against.
+  PlantedSpeed planted;
+  // Its fastest joint's speed (fastest_joint.h) on the same frames, units per second: what an
+  // output's joints are held under (the foot lock's swings, no pops).
+  double fastest_joint = 0.0;
+  // F x 2 kFootJoints: each foot joint's travel while planted (planted_feet.h, in a band twice the
+  // measure's; x, z per joint in kFootJoints order) from the first frame, summed over the steps
+  // f -> f + 1 where it is planted at both ends, each in the body's frame at f (turned by
+  // -heading[f]): the planted move from
+  // frame a to b in the body's frame is row b minus row a (what the foot lock lets a planted foot
+  // of an output do, palette.cpp planted_drift).
+  Eigen::MatrixXd foot_travel;
   TakeCycles cycles;                 // where it repeats, as detected on its file's frames (cycles.h)
   CycleRegistration registration;    // by cycles onto the reference: its cycles, sources, spans; empty otherwise
   Alignment alignment;               // onto the reference (the reference's own: empty)
@@ -109,8 +119,8 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
 // detect_cycles.
 TakeCycles take_cycles(const std::shared_ptr<const Clip>& clip);
 
-// How fast take i's planted feet slide on its own frames (foot_contact.h foot_sliding), file units
-// per second: a measure of the take, computed when asked. O(F).
+// How fast take i's planted feet move on its own frames (planted_feet.h; PreparedTake::planted),
+// the reference's units per second. O(1): measured once, when prepared.
 double take_foot_sliding(const PreparedTakes& prepared, int take);
 
 // The reference's joint index of each major column (for export).

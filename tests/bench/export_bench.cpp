@@ -105,16 +105,12 @@ void BM_FootLockMinute(benchmark::State& state) {
   if (!ok) return state.SkipWithError("no CMU motions");
   const Eigen::Index n = p.blend.motion.world.rows();
   Eigen::MatrixXd world(1800, p.blend.motion.world.cols());
-  Eigen::MatrixXd contacts(1800, 2);
-  for (Eigen::Index f = 0; f < 1800; ++f) {
-    world.row(f) = p.blend.motion.world.row(f % n);
-    contacts.row(f) = p.blend.motion.contacts.row(f % n);
-  }
+  for (Eigen::Index f = 0; f < 1800; ++f) world.row(f) = p.blend.motion.world.row(f % n);
   mostyle::FootLockScratch scratch;
   Eigen::MatrixXd work = world;
   for (auto _ : state) {
     work = world;
-    mostyle::apply_foot_lock(work, contacts, p.prepared->feet, scratch);
+    mostyle::apply_foot_lock(work, p.prepared->feet, scratch);
     benchmark::DoNotOptimize(work.data());
   }
 }

@@ -96,6 +96,7 @@ Metrics gather_metrics(const BlendSession& session) {
     m.bone_error = mix->motion.limb_length_max_error;
     m.sliding_raw = mix->motion.foot_sliding_raw;
     m.sliding_cleaned = mix->motion.foot_sliding_cleaned;
+    m.sliding_inputs = mix->foot_sliding_inputs;
     m.synthesize_ms = times.synthesize_ms;
     m.postprocess_ms = times.postprocess_ms;
     m.result_ms = pair ? session.blend_ms() : session.palette_view().mix_ms();
@@ -158,8 +159,8 @@ void MetricsPanel::draw(EditorState& state) {
       ImGui::TableNextColumn();
       ImGui::TextUnformatted(length(t.foot_sliding, "/s").c_str());
       if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("How fast this take's planted feet slide over the floor, on average (on the reference's\n"
-                          "skeleton).");
+        ImGui::SetTooltip("How fast this take's planted feet move over the floor, on average: its ankles and toes\n"
+                          "while within 3%% of the body's height of their floor (on the reference's skeleton).");
     }
     ImGui::EndTable();
   }
@@ -167,10 +168,23 @@ void MetricsPanel::draw(EditorState& state) {
     const std::string bones = "The most any bone of the " + m.result + " differs from its length in " + reference + ".";
     row("Bone length, worst", length(m.bone_error), bones.c_str());
     const std::string label = "Foot sliding, " + m.result;
-    const std::string tip = "How fast the " + m.result + "'s planted feet slide: before -> after the foot lock\n"
-                            "(the same when foot lock is off).";
+    const std::string tip = "How fast the " + m.result + "'s planted feet move, measured as each take's are: before ->\n"
+                            "after the foot lock (the same when foot lock is off).";
     row(label.c_str(), m.sliding_raw < 0.0 ? "-" : length(m.sliding_raw, "/s") + " -> " + length(m.sliding_cleaned, "/s"),
         tip.c_str());
+    std::string inputs = "-";
+    if (m.sliding_inputs >= 0.0) {
+      inputs = length(m.sliding_inputs, "/s");
+      if (m.sliding_inputs > 0.0 && m.sliding_cleaned >= 0.0) {
+        char ratio[32];
+        std::snprintf(ratio, sizeof ratio, " (%.2fx)", m.sliding_cleaned / m.sliding_inputs);
+        inputs += ratio;
+      }
+    }
+    const std::string inputs_tip = "How fast the takes' own planted feet move, weighted as the " + m.result +
+                                   " weights them (a\ntransfer: its content's), and the " + m.result +
+                                   "'s after the lock as a multiple of it.";
+    row("Foot sliding, takes", inputs, inputs_tip.c_str());
     ImGui::EndTable();
   }
   // Timings differ run to run: a screenshot run (frame_ms < 0) shows none of them.

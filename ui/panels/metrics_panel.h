@@ -25,12 +25,13 @@ struct Metrics {
   struct Take {
     std::string name;           // "A", "B", or the file's name in a palette
     double fit_error = -1.0;    // what the components do not rebuild (RMSE), reference units
-    double foot_sliding = -1.0; // reference units per second
+    double foot_sliding = -1.0; // how fast its planted feet move (engine/post/planted_feet.h), reference units per second
   };
   const Clip* reference = nullptr;  // the take whose units every length is in
   std::string result = "blend";     // "blend" for two takes, "mix" for more
   std::vector<Take> takes;
   double bone_error = -1.0, sliding_raw = -1.0, sliding_cleaned = -1.0;  // the result's
+  double sliding_inputs = -1.0;  // the takes' own planted feet, weighted as mixed (MixResult::foot_sliding_inputs)
   double load_ms = -1.0, preprocess_ms = -1.0, dtw_ms = -1.0, decompose_ms = -1.0;
   double synthesize_ms = -1.0, postprocess_ms = -1.0, result_ms = -1.0;
 };

@@ -1,7 +1,10 @@
 #include "tests/engine/run/blend_at.h"
 #include "engine/post/foot_contact.h"
+#include "engine/post/planted_feet.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <memory>
@@ -22,6 +25,7 @@ constexpr double kExact = 1e-9;   // file units (cm here): IK and locks hold to 
 constexpr double kFps = 30.0;
 constexpr double kThigh = 40.0, kShin = 40.0;
 constexpr double kHipHeight = 75.0, kAnkleHeight = 8.0;
+constexpr double kBodyHeight = 170.0;  // planted within 3% of it (5.1 cm) of a joint's floor
 constexpr double kSpeed = 100.0;     // hips, cm/s along +X
 constexpr int kCycle = 30;           // frames per step of one foot
 constexpr int kStance = 18;          // of which planted
@@ -32,8 +36,25 @@ FootRig test_rig() {
   rig.legs[0] = {0, 1, 2, 3};
   rig.legs[1] = {4, 5, 6, 7};
   rig.leg_length = kThigh + kShin;
+  rig.body_height = kBodyHeight;
   rig.fps = kFps;
   return rig;
+}
+
+// The ankles' mean horizontal speed over the steps where `stance` (F x 2) has the foot down at
+// both ends, cm/s: how fast the walk's own stance phases slide.
+double stance_speed(const Eigen::MatrixXd& w, const Eigen::MatrixXd& stance, const FootRig& rig) {
+  double sum = 0.0;
+  int steps = 0;
+  for (int side = 0; side < 2; ++side) {
+    const int a = rig.legs[side].ankle;
+    for (Eigen::Index t = 0; t + 1 < w.rows(); ++t) {
+      if (stance(t, side) <= 0.5 || stance(t + 1, side) <= 0.5) continue;
+      sum += std::hypot(w(t + 1, 3 * a) - w(t, 3 * a), w(t + 1, 3 * a + 2) - w(t, 3 * a + 2)) * rig.fps;
+      ++steps;
+    }
+  }
+  return steps > 0 ? sum / steps : 0.0;
 }
 
 Eigen::Vector3d at(const Eigen::MatrixXd& m, Eigen::Index f, int c) { return m.block<1, 3>(f, 3 * c).transpose(); }
@@ -142,20 +163,11 @@ TEST_CASE("contacts of a synthetic walk are its planted phases", "[foot_contact]
         CHECK(c(f, side) == planted(f, side));
     }
   }
-  CHECK(foot_sliding(w, c, rig) < kExact);
-}
-
-TEST_CASE("foot sliding is the planted ankle's horizontal speed", "[foot_contact]") {
-  const FootRig rig = test_rig();
-  Eigen::MatrixXd planted;
-  const Eigen::MatrixXd w = walk(150, 20.0, &planted);
-  CHECK(foot_sliding(w, planted, rig) == Approx(20.0));
-  // Still detected as contacts (20 cm/s is under the speed threshold) and measured the same.
-  const Eigen::MatrixXd c = detect_foot_contacts(w, rig);
-  CHECK(c.sum() > 0.8 * planted.sum());
-  CHECK(foot_sliding(w, c, rig) == Approx(20.0).epsilon(0.05));
-  // No contacts: nothing slides.
-  CHECK(foot_sliding(w, Eigen::MatrixXd::Zero(150, 2), rig) == 0.0);
+  CHECK(stance_speed(w, c, rig) < kExact);
+  // A foot skating at 20 cm/s (under the speed threshold) is still in contact.
+  Eigen::MatrixXd skating_stance;
+  const Eigen::MatrixXd skating = walk(150, 20.0, &skating_stance);
+  CHECK(detect_foot_contacts(skating, rig).sum() > 0.8 * skating_stance.sum());
 }
 
 TEST_CASE("the foot lock removes sliding on a skating foot and leaves swing alone", "[foot_contact]") {
@@ -164,9 +176,21 @@ TEST_CASE("the foot lock removes sliding on a skating foot and leaves swing alon
   const Eigen::MatrixXd skating = walk(150, 20.0, &planted);
   Eigen::MatrixXd w = skating;
   FootLockScratch scratch;
-  apply_foot_lock(w, planted, rig, scratch);
-  CHECK(foot_sliding(skating, planted, rig) == Approx(20.0));
-  CHECK(foot_sliding(w, planted, rig) < kExact);
+  apply_foot_lock(w, rig, scratch);
+  CHECK(stance_speed(skating, planted, rig) == Approx(20.0));
+  CHECK(stance_speed(w, planted, rig) < kExact);
+  // Every step the measure calls planted is pinned too (the swing's ends within 5.1 cm of the
+  // floor): the measure drops to rounding.
+  CHECK(planted_speed(skating, rig).speed > 20.0);
+  CHECK(planted_speed(w, rig).speed < kExact);
+  // The lock pins over the contacts and the measure's planted frames.
+  Eigen::MatrixXd heights_planted;
+  std::vector<double> heights;
+  planted_frames(skating, rig, heights_planted, heights);
+  Eigen::MatrixXd pinned = planted;
+  for (int f = 0; f < 150; ++f)
+    for (int side = 0; side < 2; ++side)
+      if (heights_planted(f, 2 * side) > 0.5 || heights_planted(f, 2 * side + 1) > 0.5) pinned(f, side) = 1.0;
   const int fade = rig.blend_frames();
   for (int side = 0; side < 2; ++side) {
     const LegColumns& leg = rig.legs[side];
@@ -181,8 +205,8 @@ TEST_CASE("the foot lock removes sliding on a skating foot and leaves swing alon
       // Between contacts the swing carries the change of offset from one pin to the next; only
       // frames before the first contact's fade or after the last one's stay bit for bit.
       bool contact_up_to = false, contact_from = false;
-      for (int g = 0; g <= std::min(149, f + fade); ++g) contact_up_to |= planted(g, side) > 0.5;
-      for (int g = std::max(0, f - fade); g < 150; ++g) contact_from |= planted(g, side) > 0.5;
+      for (int g = 0; g <= std::min(149, f + fade); ++g) contact_up_to |= pinned(g, side) > 0.5;
+      for (int g = std::max(0, f - fade); g < 150; ++g) contact_from |= pinned(g, side) > 0.5;
       if (!contact_up_to || !contact_from)
         for (int c : {leg.knee, leg.ankle, leg.toe}) CHECK(at(w, f, c) == at(skating, f, c));
     }
@@ -200,29 +224,78 @@ TEST_CASE("the foot lock keeps the planted feet's expected drift and pins only w
   const FootRig rig = test_rig();
   Eigen::MatrixXd planted;
   const Eigen::MatrixXd skating = walk(150, 20.0, &planted);
-  // Expected: every planted ankle moves as it does (the takes slide so themselves): untouched.
-  Eigen::MatrixXd drift = Eigen::MatrixXd::Zero(150, 4);
+  // Allowed: every planted foot joint moves as it does (the takes slide so themselves): untouched.
+  Eigen::MatrixXd drift = Eigen::MatrixXd::Zero(150, 2 * kFootJoints);
+  const std::array<int, kFootJoints> columns = foot_joint_columns(rig);
   for (int f = 0; f + 1 < 150; ++f)
-    for (int side = 0; side < 2; ++side) {
-      drift(f, 2 * side) = skating(f + 1, 3 * rig.legs[side].ankle) - skating(f, 3 * rig.legs[side].ankle);
-      drift(f, 2 * side + 1) = skating(f + 1, 3 * rig.legs[side].ankle + 2) - skating(f, 3 * rig.legs[side].ankle + 2);
+    for (int j = 0; j < kFootJoints; ++j) {
+      drift(f, 2 * j) = skating(f + 1, 3 * columns[j]) - skating(f, 3 * columns[j]);
+      drift(f, 2 * j + 1) = skating(f + 1, 3 * columns[j] + 2) - skating(f, 3 * columns[j] + 2);
     }
   Eigen::MatrixXd w = skating;
   FootLockScratch scratch;
-  apply_foot_lock(w, planted, rig, scratch, &drift);
+  apply_foot_lock(w, rig, scratch, &drift);
   CHECK((w - skating).cwiseAbs().maxCoeff() < 1e-9);
   // Expected half of it: the other half is pinned (the lock slides the feet at 10 cm/s).
   const Eigen::MatrixXd half = 0.5 * drift;
   w = skating;
-  apply_foot_lock(w, planted, rig, scratch, &half);
-  CHECK(foot_sliding(w, planted, rig) == Approx(10.0).epsilon(0.02));
-  // No drift expected: pinned, as without one.
-  const Eigen::MatrixXd none = Eigen::MatrixXd::Zero(150, 4);
+  apply_foot_lock(w, rig, scratch, &half);
+  CHECK(stance_speed(w, planted, rig) == Approx(10.0).epsilon(0.02));
+  CHECK(planted_speed(w, rig).speed == Approx(0.5 * planted_speed(skating, rig).speed).epsilon(0.02));
+  // Allowed more than the foot moves: no faster than it did (untouched).
+  const Eigen::MatrixXd twice = 2.0 * drift;
   w = skating;
-  apply_foot_lock(w, planted, rig, scratch, &none);
-  CHECK(foot_sliding(w, planted, rig) < kExact);
-  const Eigen::MatrixXd wrong = Eigen::MatrixXd::Zero(149, 4);
-  CHECK_THROWS_AS(apply_foot_lock(w, planted, rig, scratch, &wrong), InputError);
+  apply_foot_lock(w, rig, scratch, &twice);
+  CHECK((w - skating).cwiseAbs().maxCoeff() < 1e-9);
+  // All of it allowed, but the planted feet kept to a third of their speed: a third allowed.
+  FootLockLimits third;
+  third.planted_speed = planted_speed(skating, rig).speed / 3.0;
+  w = skating;
+  apply_foot_lock(w, rig, scratch, &drift, third);
+  CHECK(planted_speed(w, rig).speed == Approx(third.planted_speed).epsilon(1e-6));
+  CHECK(stance_speed(w, planted, rig) == Approx(20.0 / 3.0).epsilon(1e-6));
+  // A limit it is under already changes nothing.
+  third.planted_speed = 2.0 * planted_speed(skating, rig).speed;
+  w = skating;
+  apply_foot_lock(w, rig, scratch, &drift, third);
+  CHECK((w - skating).cwiseAbs().maxCoeff() < 1e-9);
+  // No drift allowed: pinned, as without one.
+  const Eigen::MatrixXd none = Eigen::MatrixXd::Zero(150, 2 * kFootJoints);
+  w = skating;
+  apply_foot_lock(w, rig, scratch, &none);
+  CHECK(stance_speed(w, planted, rig) < kExact);
+  const Eigen::MatrixXd wrong = Eigen::MatrixXd::Zero(150, 4);
+  CHECK_THROWS_AS(apply_foot_lock(w, rig, scratch, &wrong), InputError);
+}
+
+TEST_CASE("the foot lock keeps each swing under a speed, pinning the runs beside it in part", "[foot_contact]") {
+  const FootRig rig = test_rig();
+  Eigen::MatrixXd planted;
+  const Eigen::MatrixXd skating = walk(150, 20.0, &planted);
+  auto ankle_speed = [&](const Eigen::MatrixXd& w, int f) { return (at(w, f + 1, 2) - at(w, f, 2)).norm() * kFps; };
+  double fastest = 0.0;
+  for (int f = 0; f + 1 < 150; ++f) fastest = std::max(fastest, ankle_speed(skating, f));
+  FootLockScratch scratch;
+  Eigen::MatrixXd free = skating;
+  apply_foot_lock(free, rig, scratch);  // no limit: pinned, and the swings carry it
+  double fastest_free = 0.0;
+  for (int f = 0; f + 1 < 150; ++f) fastest_free = std::max(fastest_free, ankle_speed(free, f));
+  REQUIRE(fastest_free > 1.05 * fastest);
+  // A limit halfway between the walk's own fastest and the unlimited lock's: no step beyond it.
+  const double limit = 0.5 * (fastest + fastest_free);
+  INFO("fastest ankle: walk " << fastest << ", locked " << fastest_free << " cm/s");
+  Eigen::MatrixXd w = skating;
+  FootLockLimits limits;
+  limits.fastest_joint = limit;
+  apply_foot_lock(w, rig, scratch, nullptr, limits);
+  for (int f = 0; f + 1 < 150; ++f) {
+    INFO("frame " << f);
+    CHECK(ankle_speed(w, f) <= limit * (1 + 1e-9));
+  }
+  // The runs are pinned in part: slower than the walk skates, not held still.
+  CHECK(stance_speed(w, planted, rig) < 0.9 * stance_speed(skating, planted, rig));
+  CHECK(stance_speed(w, planted, rig) > stance_speed(free, planted, rig) + 1.0);
+  CHECK(planted_speed(w, rig).speed <= planted_speed(skating, rig).speed);
 }
 
 TEST_CASE("contacts are tidied as detection tidies them: short breaks filled, short contacts dropped",
@@ -402,15 +475,18 @@ TEST_CASE("foot contact options and shapes are checked", "[foot_contact]") {
   CHECK(rig.legs[0].toe == -1);
   CHECK(rig.legs[1].knee == 5);
   CHECK(rig.leg_length == Approx(80.0));
+  CHECK(rig.body_height == Approx(80.0));  // the legs only: this skeleton has no trunk
 
   const FootRig test = test_rig();
   const Eigen::MatrixXd too_narrow = Eigen::MatrixXd::Zero(10, 12);
   CHECK_THROWS_AS(detect_foot_contacts(too_narrow, test), InputError);
   const Eigen::MatrixXd w = Eigen::MatrixXd::Zero(10, 24);
-  CHECK_THROWS_AS(foot_sliding(w, Eigen::MatrixXd::Zero(9, 2), test), InputError);
   Eigen::MatrixXd m = w;
   FootLockScratch scratch;
-  CHECK_THROWS_AS(apply_foot_lock(m, Eigen::MatrixXd::Zero(10, 3), test, scratch), InputError);
+  CHECK_THROWS_AS(apply_foot_lock(m, test, scratch, &too_narrow), InputError);  // a drift of 10 x 12
+  FootRig no_height = test;
+  no_height.body_height = 0.0;
+  CHECK_THROWS_AS(apply_foot_lock(m, no_height, scratch), InputError);
   CHECK_THROWS_AS(carry_contacts(Eigen::MatrixXd::Zero(0, 2), Eigen::VectorXd::Zero(3)), InputError);
   Eigen::MatrixXd out;
   CHECK_THROWS_AS(blend_contacts(Eigen::MatrixXd::Zero(4, 2), Eigen::MatrixXd::Zero(5, 2), 0.5, out), InputError);
@@ -420,6 +496,22 @@ TEST_CASE("foot contact options and shapes are checked", "[foot_contact]") {
 }
 
 namespace {
+
+constexpr double kMaxPlantedRatio = 1.1;  // an output's planted feet over its takes', weighted
+constexpr double kMaxPopRatio = 1.25;     // an output's fastest joint over its takes'
+
+// The 99.9th percentile over frame steps of the fastest joint's speed, units per second.
+double fastest_joint(const Eigen::MatrixXd& world, double fps) {
+  std::vector<double> v;
+  for (Eigen::Index t = 0; t + 1 < world.rows(); ++t) {
+    double m = 0.0;
+    for (Eigen::Index c = 0; c + 2 < world.cols(); c += 3) m = std::max(m, (world.block<1, 3>(t + 1, c) - world.block<1, 3>(t, c)).norm());
+    v.push_back(m * fps);
+  }
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<size_t>(0.999 * static_cast<double>(v.size())))];
+}
 
 void check_pipeline_foot_lock(const std::string& path_a, const std::string& path_b) {
   auto a = std::make_shared<const Clip>(read_bvh_file(path_a));
@@ -434,6 +526,7 @@ void check_pipeline_foot_lock(const std::string& path_a, const std::string& path
   CHECK(p->takes[0].own_contacts.col(0).mean() > 0.2);
   CHECK(p->takes[0].own_contacts.col(1).mean() > 0.2);
   CHECK(take_foot_sliding(*p, 0) > 0);
+  CHECK(take_foot_sliding(*p, 0) == p->takes[0].planted.speed);
   DecomposeParams dp;
   dp.components = 8;
   dp.max_iterations = 30;
@@ -446,13 +539,23 @@ void check_pipeline_foot_lock(const std::string& path_a, const std::string& path
   bp.foot_lock = false;
   test::blend_into(*p, *d, bp, scratch, free);
   INFO(path_a << " / " << path_b << ": sliding A " << take_foot_sliding(*p, 0) << ", B " << take_foot_sliding(*p, 1)
-              << ", raw " << locked.motion.foot_sliding_raw << ", cleaned " << locked.motion.foot_sliding_cleaned);
+              << ", raw " << locked.motion.foot_sliding_raw << ", cleaned " << locked.motion.foot_sliding_cleaned
+              << ", inputs " << locked.foot_sliding_inputs);
   CHECK(free.motion.foot_sliding_cleaned == free.motion.foot_sliding_raw);
   CHECK(locked.motion.foot_sliding_raw == Approx(free.motion.foot_sliding_raw));
-  // The lock pins what the blend slides beyond what its takes' planted feet move themselves (an
-  // ankle rolls forward through a stance): the blend slides no more than its takes, weighted.
-  CHECK(locked.motion.foot_sliding_cleaned <= std::max(take_foot_sliding(*p, 0), take_foot_sliding(*p, 1)));
-  CHECK(locked.motion.foot_sliding_cleaned <= 0.5 * (take_foot_sliding(*p, 0) + take_foot_sliding(*p, 1)));
+  // The measure is the one every take is measured with, on the output as it is.
+  CHECK(locked.motion.foot_sliding_cleaned == Approx(planted_speed(locked.motion.world, p->feet).speed));
+  CHECK(locked.foot_sliding_inputs == Approx(0.5 * (take_foot_sliding(*p, 0) + take_foot_sliding(*p, 1))));
+  // The lock never speeds planted feet up, and it holds them to what the takes' own planted feet
+  // do (an ankle rolls forward through a stance, a toe pushes off), within a tenth.
+  CHECK(locked.motion.foot_sliding_cleaned <= locked.motion.foot_sliding_raw);
+  CHECK(locked.motion.foot_sliding_cleaned <= kMaxPlantedRatio * locked.foot_sliding_inputs);
+  // No pops: the fastest joint (99.9th percentile of each frame's fastest) no faster than the
+  // takes' own fastest, within a quarter.
+  const double fastest_take = std::max(fastest_joint(p->takes[0].world, p->fps), fastest_joint(p->takes[1].world, p->fps));
+  INFO("fastest joint: blend " << fastest_joint(locked.motion.world, p->fps) << ", unlocked "
+                               << fastest_joint(free.motion.world, p->fps) << ", takes " << fastest_take);
+  CHECK(fastest_joint(locked.motion.world, p->fps) <= kMaxPopRatio * fastest_take);
   // The lock keeps the limb lengths and touches only the legs below the hips.
   CHECK(locked.motion.limb_length_max_error <= 1e-9 * p->feet.leg_length);
   for (size_t c = 0; c < p->majors.size(); ++c) {

@@ -1,5 +1,6 @@
 #include "engine/run/palette.h"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <memory>
@@ -201,14 +202,25 @@ TEST_CASE("palette: transfer identities") {
     MixParams mp;
     mp.min_weight = -kMaxStrength;
     mp.max_weight = kMaxStrength + 1;
+    // The foot lock holds a transfer's planted feet to its content's and a blend's to its takes'
+    // (here the style's): the identity is the motion's, compared without it.
+    mp.finish.foot_lock = false;
     const MixResult m = mix(*p, *d, transfer_weights({1.0}), mp);
     // Content and neutral are one file, aligned onto itself (not exactly frame for frame).
     CHECK((m.local - own_pose_at(p->takes[2], m.sources.col(2))).cwiseAbs().maxCoeff() < 0.01 * height);
     const auto owned = pair_of(*p, 2);
     const PreparedTakes& pair = *owned;
-    const MixResult b = blend_at(pair, *decompose_takes(pair, params()), 1.0);
+    BlendParams unlocked;
+    unlocked.foot_lock = false;
+    const MixResult b = blend_at(pair, *decompose_takes(pair, params()), 1.0, unlocked);
     REQUIRE(m.motion.world.rows() == b.motion.world.rows());
     CHECK(max_distance(m.motion.world, b.motion.world, height) < kOneHot);
+    // Locked, the transfer's planted feet are held to the content's own.
+    mp.finish.foot_lock = true;
+    const MixResult locked = mix(*p, *d, transfer_weights({1.0}), mp);
+    CHECK(locked.foot_sliding_inputs == p->takes[0].planted.speed);
+    CHECK(locked.motion.foot_sliding_cleaned <= locked.motion.foot_sliding_raw);
+    CHECK(locked.motion.foot_sliding_cleaned <= 1.1 * locked.foot_sliding_inputs);
   }
   SECTION("the content its own neutral: strength 0 is the content, 1 the style on its timeline") {
     const auto p = prepare_takes({clips[3], clips[1]}, {});
@@ -366,5 +378,71 @@ TEST_CASE("palette: a pair of 2.5 s walks loops on one cycle, with a seam no lar
       seam = std::max(seam, (next - joint.row(w.rows() - 1).transpose()).norm());
     }
     CHECK(seam <= 1.5 * inside);
+  }
+}
+
+namespace {
+
+// A mix's planted feet (planted_feet.h) against its takes' own, weighted: the lock never speeds
+// them up and holds them within a tenth of the takes'; no joint moves faster than the takes'
+// fastest (99.9th percentile of each frame step's fastest joint) within a quarter.
+void check_planted_feet(const PreparedTakes& p, const MixResult& m, const std::string& what) {
+  auto fastest = [&](const Eigen::MatrixXd& w) {
+    std::vector<double> v;
+    for (Eigen::Index t = 0; t + 1 < w.rows(); ++t) {
+      double step = 0.0;
+      for (Eigen::Index c = 0; c + 2 < w.cols(); c += 3)
+        step = std::max(step, (w.block<1, 3>(t + 1, c) - w.block<1, 3>(t, c)).norm());
+      v.push_back(step * p.fps);
+    }
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[std::min(v.size() - 1, static_cast<size_t>(0.999 * static_cast<double>(v.size())))];
+  };
+  double takes = 0.0;
+  for (const PreparedTake& t : p.takes) takes = std::max(takes, fastest(t.world));
+  INFO(what << ": planted feet raw " << m.motion.foot_sliding_raw << ", locked " << m.motion.foot_sliding_cleaned
+            << ", takes' " << m.foot_sliding_inputs << "; fastest joint " << fastest(m.motion.world) << ", takes' "
+            << takes);
+  CHECK(m.motion.foot_sliding_cleaned <= m.motion.foot_sliding_raw);
+  CHECK(m.motion.foot_sliding_cleaned <= 1.1 * m.foot_sliding_inputs);
+  CHECK(fastest(m.motion.world) <= 1.25 * takes);
+}
+
+}  // namespace
+
+TEST_CASE("palette: planted feet of a mix and a transfer move as their takes' do") {
+  const auto clips = bundled();
+  {
+    const auto p = prepare_takes(clips, {});
+    const auto d = decompose_takes(*p, params());
+    const MixResult m = mix(*p, *d, {0.25, 0.25, 0.25, 0.25});
+    CHECK(m.foot_sliding_inputs ==
+          Approx(0.25 * (p->takes[0].planted.speed + p->takes[1].planted.speed + p->takes[2].planted.speed +
+                         p->takes[3].planted.speed)));
+    check_planted_feet(*p, m, "a mix of the four bundled takes");
+  }
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  auto shared = [](const char* name) { return load(test::shared_motion(name)); };
+  {
+    const auto p = prepare_takes({shared("bandai_walk_normal.bvh"), shared("bandai_walk_tired.bvh"),
+                                  shared("bandai_walk_sad.bvh"), shared("bandai_walk_happy.bvh")},
+                                 {});
+    const auto d = decompose_takes(*p, params());
+    check_planted_feet(*p, mix(*p, *d, {0.25, 0.25, 0.25, 0.25}), "a mix of four Bandai takes");
+  }
+  {
+    // A transfer: measured against its content (a negative weight mixes no takes' feet).
+    PrepareOptions own_rate;
+    own_rate.fps = 0.0;
+    const auto p = prepare_takes({shared("bandai_walk_proud.bvh"), shared("bandai_walk_normal.bvh"),
+                                  shared("bandai_walk_old.bvh")},
+                                 own_rate);
+    const auto d = decompose_takes(*p, params());
+    MixParams mp;
+    mp.min_weight = -kMaxStrength;
+    mp.max_weight = kMaxStrength + 1;
+    const MixResult m = mix(*p, *d, transfer_weights({1.0}), mp);
+    CHECK(m.foot_sliding_inputs == p->takes[0].planted.speed);
+    check_planted_feet(*p, m, "a transfer of a Bandai walk from normal to old");
   }
 }

@@ -23,6 +23,8 @@ using test::LoadedSession;
 
 namespace {
 
+constexpr double kExactSliding = 1e-9;  // file units per second: a weighted sum, rounding only
+
 // Distance between the same joint of two takes at one frame.
 double joint_distance(const Take& a, const Take& b, int frame, int joint) {
   return (a.positions.row(frame).segment<3>(3 * joint) - b.positions.row(frame).segment<3>(3 * joint)).norm();
@@ -317,4 +319,13 @@ TEST_CASE("files panel: a file dropped on a palette is one more take, and a load
   CHECK(m.takes[3].name == "clumsy");  // what tells the takes apart fits the narrow column
   CHECK(m.bone_error >= 0.0);
   CHECK(m.sliding_cleaned >= 0.0);
+  // The mix's planted feet, measured as the takes' are, against the takes' own weighted.
+  CHECK(m.sliding_cleaned <= m.sliding_raw);
+  double least = m.takes[0].foot_sliding, most = least;
+  for (const Metrics::Take& t : m.takes) {
+    least = std::min(least, t.foot_sliding);
+    most = std::max(most, t.foot_sliding);
+  }
+  CHECK(m.sliding_inputs >= least - kExactSliding);  // weights from 0 to 1: among the takes'
+  CHECK(m.sliding_inputs <= most + kExactSliding);
 }
