@@ -379,6 +379,9 @@ std::string format_fbx(const Clip& clip, const std::string& take_name, const Fbx
     if (j.name.find('\0') != std::string::npos)
       throw InputError(clip.source + ": joint name '" + j.name.c_str() + "...' holds a NUL byte, which FBX names cannot");
   if (!clip.motion.allFinite()) throw InputError(clip.source + ": a value is not a finite number");
+  // KeyTime is a 64-bit count of ticks: about 6.3 years at most.
+  if (static_cast<double>(clip.frames() - 1) / fps * static_cast<double>(kFbxTicksPerSecond) > 9e18)
+    throw InputError(clip.source + ": lasts longer than FBX's key times reach");
   const int64_t stop = std::llround(static_cast<double>(clip.frames() - 1) * static_cast<double>(kFbxTicksPerSecond) / fps);
   Scene scene = skeleton_scene(clip, take_name, stop, fps, options);
   std::vector<FbxRecord> records;

@@ -40,8 +40,8 @@ int fbx_time_mode(double fps);
 
 // The clip as the bytes of a binary FBX file; its animation stack and armature are named
 // `take_name`. Throws InputError naming clip.source on a skeleton without joints, a rate that
-// is not positive, a joint name with bytes FBX names cannot hold (a NUL), or a file past
-// 4 GB at version 7400. O(frames x joints).
+// is not positive, a take longer than FBX's 64-bit key times reach, a value that is not finite,
+// a joint name with bytes FBX names cannot hold (a NUL), or a file past 4 GB at version 7400. O(frames x joints).
 std::string format_fbx(const Clip& clip, const std::string& take_name, const FbxWriteOptions& options = {});
 
 // Writes `path` atomically, the take named after the file's stem. Throws InputError as

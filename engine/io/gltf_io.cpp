@@ -482,7 +482,9 @@ json animation(const Clip& clip, const std::string& name, BufferLayout* buffer) 
   const int joints = static_cast<int>(s.joints.size());
   const int frames = clip.frames();
   std::vector<float> times(frames);
-  for (int f = 0; f < frames; ++f) times[f] = static_cast<float>(f * clip.frame_time);
+  // On the snapped rate (a BVH's 0.008333 s is 1/120 s), so keys land on whole frames at it.
+  const double fps = clip.fps();
+  for (int f = 0; f < frames; ++f) times[f] = static_cast<float>(f / fps);
   const int times_view = buffer->add_view(times);
   const int times_accessor =
       buffer->add_accessor({{"bufferView", times_view}, {"componentType", 5126}, {"count", frames},

@@ -45,7 +45,7 @@ struct GltfWriteOptions {
 // without a transform, and the one root of the scene. Skin 0 lists the J joints, its skeleton
 // is node J, its inverse bind matrices the inverses of the joints' rest world transforms (so
 // Blender imports one armature whose bones carry one action). One animation named
-// `animation_name` whose samplers are LINEAR, key times i * frame_time (float32, min and max
+// `animation_name` whose samplers are LINEAR, key times i / clip.fps() (float32, min and max
 // given): the root's translation, every other joint's translation when its position channels
 // change, and every joint's rotation but End Sites' as a unit quaternion, the sign chosen so
 // consecutive keys have a non-negative dot product (no flips in slerp). options.bone_mesh adds

@@ -5,7 +5,8 @@ usage: mostyle-cli fk SOURCE --out fk.csv
        blender -b --factory-startup --python tests/tools/blender_check.py -- FILE.glb|FILE.gltf|FILE.fbx fk.csv FPS
 
 FILE is imported with Blender's own importer and default settings (bpy.ops.import_scene.gltf or
-.fbx) into an empty scene. Checked: exactly one armature, exactly one action, and that action is
+.fbx) into an empty scene (for glTF, which states no rate, the scene's rate set to FPS first, as
+the importer keys at the scene's rate). Checked: exactly one armature, exactly one action, and that action is
 the armature's, keying its bones. Then, at every frame f of fk.csv (time f / FPS from the
 action's first key), the world position of each bone's head is compared with fk.csv's position of
 the joint of that name, after fitting one similarity (rotation, uniform scale, translation:
@@ -42,12 +43,16 @@ def read_fk(path):
     return frames
 
 
-def import_file(path):
+def import_file(path, fps):
     bpy.ops.wm.read_factory_settings(use_empty=True)
     lower = path.lower()
     if lower.endswith(".fbx"):
-        bpy.ops.import_scene.fbx(filepath=path)
+        bpy.ops.import_scene.fbx(filepath=path)  # sets the scene's rate to the file's
     elif lower.endswith(".glb") or lower.endswith(".gltf"):
+        # glTF states no rate: its importer keys at the scene's, which an animator sets first.
+        scene = bpy.context.scene
+        scene.render.fps = max(1, round(fps))
+        scene.render.fps_base = scene.render.fps / fps
         bpy.ops.import_scene.gltf(filepath=path)
     else:
         raise ValueError("not a .fbx, .glb or .gltf file: " + path)
@@ -71,7 +76,7 @@ def main():
     path, fk_path, fps = arguments()
     fk = read_fk(fk_path)
     try:
-        import_file(path)
+        import_file(path, fps)
     except Exception as e:  # the importer's own error, as one line
         print("blender_check: %s: Blender could not import it: %s" % (path, str(e).splitlines()[0] if str(e) else e))
         sys.exit(2)
