@@ -10,6 +10,7 @@
 
 #include "engine/io/atomic_file.h"
 #include "engine/io/error.h"
+#include "engine/io/numbers.h"
 #include "engine/io/fbx_binary.h"
 #include "engine/kinematics/euler.h"
 #include "engine/kinematics/kinematics.h"
@@ -121,7 +122,7 @@ CurveSet rotation_curves(const Clip& clip, int j, EulerOrder* order) {
       angles = f > 0 ? matrix_to_euler_near(*order, r, previous) : matrix_to_euler(*order, r);
     }
     previous = angles;
-    for (int d = 0; d < 3; ++d) set.xyz[axes[d]].push_back(static_cast<float>(angles[d]));
+    for (int d = 0; d < 3; ++d) set.xyz[axes[d]].push_back(to_float32(angles[d]));
   }
   return set;
 }
@@ -144,7 +145,7 @@ CurveSet translation_curves(const Clip& clip, int j) {
   set.joint = j;
   for (int f = 0; f < clip.frames(); ++f) {
     const Eigen::Vector3d t = joint_local_translation(clip.skeleton.joints[j], clip.motion.row(f).data());
-    for (int d = 0; d < 3; ++d) set.xyz[d].push_back(static_cast<float>(t[d]));
+    for (int d = 0; d < 3; ++d) set.xyz[d].push_back(to_float32(t[d]));
   }
   return set;
 }

@@ -12,6 +12,7 @@
 
 #include "engine/io/atomic_file.h"
 #include "engine/io/error.h"
+#include "engine/io/numbers.h"
 #include "engine/kinematics/kinematics.h"
 
 // The same settings as tiny_gltf_impl.cpp, which holds the implementation.
@@ -418,7 +419,7 @@ std::vector<float> inverse_bind_matrices(const Skeleton& s, const Eigen::MatrixX
     Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
     m.block<3, 1>(0, 3) = -world[j];
     for (int c = 0; c < 4; ++c)
-      for (int r = 0; r < 4; ++r) out.push_back(static_cast<float>(m(r, c)));
+      for (int r = 0; r < 4; ++r) out.push_back(to_float32(m(r, c)));
   }
   return out;
 }
@@ -427,7 +428,7 @@ std::vector<float> inverse_bind_matrices(const Skeleton& s, const Eigen::MatrixX
 void append_translations(const Clip& clip, int joint, std::vector<float>* values) {
   for (int f = 0; f < clip.frames(); ++f) {
     const Eigen::Vector3d t = joint_local_translation(clip.skeleton.joints[joint], clip.motion.row(f).data());
-    values->insert(values->end(), {static_cast<float>(t.x()), static_cast<float>(t.y()), static_cast<float>(t.z())});
+    values->insert(values->end(), {to_float32(t.x()), to_float32(t.y()), to_float32(t.z())});
   }
 }
 
@@ -484,7 +485,7 @@ json animation(const Clip& clip, const std::string& name, BufferLayout* buffer) 
   std::vector<float> times(frames);
   // On the snapped rate (a BVH's 0.008333 s is 1/120 s), so keys land on whole frames at it.
   const double fps = clip.fps();
-  for (int f = 0; f < frames; ++f) times[f] = static_cast<float>(f / fps);
+  for (int f = 0; f < frames; ++f) times[f] = to_float32(f / fps);
   const int times_view = buffer->add_view(times);
   const int times_accessor =
       buffer->add_accessor({{"bufferView", times_view}, {"componentType", 5126}, {"count", frames},
@@ -559,7 +560,7 @@ BoneMesh bone_mesh(const Skeleton& s, const Eigen::MatrixX3d& rest) {
       corners.push_back(centre + r * offset);
     for (const Eigen::Vector3d& c : corners) {
       mesh.positions.insert(mesh.positions.end(),
-                            {static_cast<float>(c.x()), static_cast<float>(c.y()), static_cast<float>(c.z())});
+                            {to_float32(c.x()), to_float32(c.y()), to_float32(c.z())});
       mesh.joints.push_back(p);
     }
     for (uint32_t k = 0; k < 4; ++k) {
