@@ -177,14 +177,14 @@ void add_fk_command(CLI::App& app, std::function<int()>* run) {
 }
 
 void add_convert_command(CLI::App& app, std::function<int()>* run) {
-  auto* cmd = app.add_subcommand("convert", "Rewrite a take as BVH or glTF, in another Euler order or frame rate");
+  auto* cmd = app.add_subcommand("convert", "Rewrite a take as BVH, FBX or glTF, in another Euler order or frame rate");
   auto in = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
   auto order = std::make_shared<std::string>();
   auto fps = std::make_shared<double>(0.0);
   auto take = std::make_shared<std::string>();
   cmd->add_option("IN", *in, "BVH, FBX, GLB or glTF file to read (FILE#ANIMATION picks one animation)")->required();
-  cmd->add_option("OUT", *out, "File to write: .bvh as BVH, .glb or .gltf (with its .bin) as glTF 2.0")
+  cmd->add_option("OUT", *out, "File to write: .bvh as BVH, .fbx as binary FBX 7.4, .glb or .gltf (with its .bin) as glTF 2.0")
       ->required()
       ->check(written_motion_format());
   cmd->add_option("--take", *take, "The animation to read (FBX, glTF); default the first");

@@ -83,12 +83,10 @@ Clip load_clip(const std::string& path, const std::string& take, double fps) {
 const CLI::Validator& written_motion_format() {
   static const CLI::Validator check(
       [](std::string& path) -> std::string {
-        std::string ext = std::filesystem::path(path).extension().string();
-        std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-        if (ext == ".bvh" || ext == ".glb" || ext == ".gltf") return "";
-        return "cannot write '" + path + "': the formats written are BVH (.bvh) and glTF 2.0 (.glb, .gltf)";
+        if (is_written_motion_path(path)) return "";
+        return "cannot write '" + path + "': the formats written are " + kWrittenMotionFormats;
       },
-      "BVH or glTF", "motion file to write");
+      "BVH, FBX or glTF", "motion file to write");
   return check;
 }
 

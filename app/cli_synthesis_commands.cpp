@@ -225,7 +225,7 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
                   "Alpha keyed in time, T:a,T:a,... (T in seconds of the output; eased between keys, held before "
                   "the first and after the last); replaces --alpha (shared mode)");
   args->flags.add_to(cmd, {"blend", "a", "blend: the output's timing moves from A's (alpha 0) to B's (alpha 1); a: keep A's timeline",
-                           "File of the blend on A's skeleton: BVH (A's rotation orders), or glTF 2.0 when it ends in .glb or .gltf"});
+                           "File of the blend on A's skeleton: BVH (A's rotation orders), FBX when it ends in .fbx, glTF 2.0 in .glb or .gltf"});
   cmd->callback([=] {
     *run = [=] {
       DecomposeParams dp = args->flags.decompose_params();
@@ -320,7 +320,7 @@ void add_mix_command(CLI::App& app, std::function<int()>* run) {
                   "Weights keyed in time, T:w1,w2,...;T:... (T in seconds of the output, one weight per take, "
                   "summing to 1; eased between keys, held before the first and after the last); replaces --weights");
   args->flags.add_to(cmd, {"mix", "reference", "mix: the output's timing is mixed with the weights; reference: keep the first take's timeline",
-                          "File of the result on the first take's skeleton: BVH, or glTF 2.0 when it ends in .glb or .gltf"});
+                          "File of the result on the first take's skeleton: BVH, FBX when it ends in .fbx, glTF 2.0 in .glb or .gltf"});
   cmd->callback([=] {
     *run = [=] {
       const size_t n = args->files.size();
@@ -400,7 +400,7 @@ void add_transfer_command(CLI::App& app, std::function<int()>* run) {
                   "Strength keyed in time, T:s,T:s,... (T in seconds of the output; with several styles "
                   "T:s1,s2;T:...; eased between keys, held before the first and after the last); replaces --strength");
   args->flags.add_to(cmd, {"mix", "content", "mix: the output's timing is mixed with the weights; content: keep CONTENT's timeline",
-                          "File of the result on CONTENT's skeleton: BVH, or glTF 2.0 when it ends in .glb or .gltf"});
+                          "File of the result on CONTENT's skeleton: BVH, FBX when it ends in .fbx, glTF 2.0 in .glb or .gltf"});
   cmd->callback([=] {
     *run = [=] {
       const size_t styles = args->styles.size();

@@ -4,12 +4,13 @@
 #   app/install-deps.sh --cluster  and a one-node Slurm for tests/cluster/slurm_test.sh
 set -euo pipefail
 # clang and libclang-rt-14-dev (libFuzzer, only a Recommends of clang): tests/fuzz/run.sh.
-# libassimp-dev (FBX) and libtinygltf-dev (glTF): engine/io. nodejs and npm: the Khronos glTF
-# validator (npm package gltf-validator) that tests/tools/validate_gltf.js runs.
+# libassimp-dev (reading FBX), zlib1g-dev (writing FBX) and libtinygltf-dev (glTF): engine/io.
+# nodejs and npm: the Khronos glTF validator (npm package gltf-validator) that
+# tests/tools/validate_gltf.js runs.
 packages=(build-essential cmake pkg-config libeigen3-dev libglfw3-dev libglm-dev libimgui-dev
           libstb-dev libosmesa6-dev libgl-dev catch2 libbenchmark-dev nlohmann-json3-dev
-          libcli11-dev xvfb xauth clang libclang-rt-14-dev ccache libassimp-dev libtinygltf-dev
-          nodejs)
+          libcli11-dev xvfb xauth clang libclang-rt-14-dev ccache libassimp-dev zlib1g-dev
+          libtinygltf-dev nodejs)
 # slurm-wlm (slurmctld, slurmd, sbatch) and munge (its authentication): CI's real Slurm.
 if [ "${1:-}" = "--cluster" ]; then packages+=(slurm-wlm munge); fi
 missing=()

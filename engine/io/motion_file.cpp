@@ -8,6 +8,7 @@
 #include "engine/io/bvh_io.h"
 #include "engine/io/error.h"
 #include "engine/io/fbx_io.h"
+#include "engine/io/fbx_write.h"
 #include "engine/io/gltf_io.h"
 
 namespace mostyle {
@@ -148,8 +149,14 @@ std::vector<TakeInfo> read_motion_takes(const std::string& path, const MotionRea
 }
 
 void write_motion_file(const Clip& clip, const std::string& path) {
-  if (is_gltf_path(path)) write_gltf_file(clip, path);
-  else write_bvh_file(clip, path);
+  switch (motion_format(path)) {
+    case MotionFormat::kGltf: write_gltf_file(clip, path); return;
+    case MotionFormat::kFbx: write_fbx_file(clip, path); return;
+    case MotionFormat::kBvh: break;
+  }
+  write_bvh_file(clip, path);
 }
+
+bool is_written_motion_path(const std::string& path) { return is_motion_file(path); }
 
 }  // namespace mostyle

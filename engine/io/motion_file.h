@@ -67,8 +67,15 @@ std::vector<TakeInfo> read_motion_takes(const std::string& path, const MotionRea
 AnimatedScene read_animated_scene(const std::string& path, size_t max_bytes = kDefaultMaxBytes);
 
 // Writes a clip by the extension of `path`: .glb/.gltf as glTF 2.0 (gltf_io.h
-// write_gltf_file), anything else as BVH (bvh_io.h write_bvh_file). Atomic; throws InputError.
+// write_gltf_file), .fbx as binary FBX 7.4 (fbx_write.h write_fbx_file), anything else as BVH
+// (bvh_io.h write_bvh_file). Atomic; throws InputError.
 void write_motion_file(const Clip& clip, const std::string& path);
+
+// True when `path` ends in an extension a motion is written in (.bvh, .fbx, .glb, .gltf,
+// case-insensitive): the outputs the CLI and the editor accept.
+bool is_written_motion_path(const std::string& path);
+// The formats written, for messages: "BVH (.bvh), FBX (.fbx) and glTF 2.0 (.glb, .gltf)".
+inline constexpr const char* kWrittenMotionFormats = "BVH (.bvh), FBX (.fbx) and glTF 2.0 (.glb, .gltf)";
 
 // True when `path` ends in .glb or .gltf (case-insensitive): an output written as glTF.
 bool is_gltf_path(const std::string& path);

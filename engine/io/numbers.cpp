@@ -3,6 +3,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 
 namespace mostyle {
 namespace {
@@ -25,6 +26,13 @@ bool parse_number(const std::string& text, double* value) {
     return false;
   *value = numerator / denominator;
   return std::isfinite(*value);
+}
+
+float to_float32(double value) {
+  constexpr double kMax = std::numeric_limits<float>::max();
+  if (value > kMax) return std::numeric_limits<float>::infinity();
+  if (value < -kMax) return -std::numeric_limits<float>::infinity();
+  return static_cast<float>(value);  // NaN stays NaN
 }
 
 }  // namespace mostyle

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "engine/io/bvh_io.h"
+#include "engine/io/motion_file.h"
 #include "engine/kinematics/kinematics.h"
 #include "tests/app/cli_sandbox.h"
 #include "tests/engine/io/gltf_validator.h"
@@ -174,20 +175,32 @@ TEST_CASE("cli: bad usage exits 2", "[cli][bvh]") {
   CHECK(box.cli("info --help").status == 0);
 }
 
-TEST_CASE("cli: an output named in a format that is not written is refused, naming the formats", "[cli][bvh]") {
+TEST_CASE("cli: an output named in a format that is not written is refused, naming the formats; .fbx is written", "[cli][bvh]") {
   Sandbox box;
   const std::string file = test::asset("motions/cmu142_walk_clumsy.bvh");
   const std::string other = test::asset("motions/cmu142_walk_happy.bvh");
-  for (const std::string out : {"x.mp4", "x.fbx", "x", "x.bvh.txt"}) {
+  for (const std::string out : {"x.mp4", "x.obj", "x", "x.bvh.txt", "x.fbx.txt"}) {
     const Run convert = box.cli("convert \"" + file + "\" \"" + box.path(out) + "\"");
     CHECK(convert.status == 2);
-    CHECK(convert.err.find("BVH (.bvh) and glTF 2.0 (.glb, .gltf)") != std::string::npos);
+    CHECK(convert.err.find("BVH (.bvh), FBX (.fbx) and glTF 2.0 (.glb, .gltf)") != std::string::npos);
     CHECK(box.cli("blend \"" + file + "\" \"" + other + "\" --alpha 0.5 --out \"" + box.path(out) + "\"").status == 2);
     CHECK_FALSE(fs::exists(box.path(out)));
   }
-  // Any case of a written format's extension is taken.
+  // Any case of a written format's extension is taken, and each is written in its format.
   CHECK(box.cli("convert \"" + file + "\" \"" + box.path("upper.BVH") + "\"").status == 0);
   CHECK(fs::exists(box.path("upper.BVH")));
+  for (const std::string out : {"walk.fbx", "walk.FBX", "walk.glb"}) {
+    INFO(out);
+    CHECK(box.cli("convert \"" + file + "\" \"" + box.path(out) + "\"").status == 0);
+    CHECK(read_motion_file(box.path(out)).skeleton.joint_count_without_end_sites() ==
+          read_bvh_file(file).skeleton.joint_count_without_end_sites());
+  }
+  std::ifstream fbx(box.path("walk.fbx"), std::ios::binary);
+  std::string magic(21, '\0');
+  fbx.read(magic.data(), 21);
+  CHECK(magic == std::string("Kaydara FBX Binary  \0", 21));
+  CHECK(box.cli("blend \"" + file + "\" \"" + other + "\" --alpha 0.5 --out \"" + box.path("blend.fbx") + "\"").status == 0);
+  CHECK(read_motion_file(box.path("blend.fbx")).frames() > 0);
 }
 
 TEST_CASE("cli fk writes frame,joint,x,y,z for every joint in file order", "[cli][bvh]") {

@@ -10,8 +10,10 @@
 #include "engine/io/csv_io.h"
 #include "engine/io/error.h"
 #include "engine/io/fbx_io.h"
+#include "engine/io/fbx_write.h"
 #include "engine/io/gltf_io.h"
 #include "engine/io/scene_animation.h"
+#include "engine/kinematics/kinematics.h"
 #include "engine/prepare/major_skeleton.h"
 #include "ui/model/session_file.h"
 
@@ -74,7 +76,7 @@ bool sample_takes(const AnimatedScene& scene, const std::string& source) {
     check(clip.motion.allFinite(), "every sampled value is finite");
     for (size_t i = 0; i < s.joints.size(); ++i) check(s.joints[i].parent < static_cast<int>(i), "parents first");
     const AnimatedScene again = parse_gltf(format_glb(clip, "again"), "again.glb");
-    check(again.nodes.size() == s.joints.size(), "round trip: the joints as nodes");
+    check(again.nodes.size() == s.joints.size() + 1, "round trip: the joints as nodes, and the armature");
     check(again.takes.size() == 1, "round trip: one animation");
   }
   return any;
@@ -215,8 +217,93 @@ bool read_session(std::string_view bytes) {
   return true;
 }
 
+namespace {
+
+// The first take of a scene as a clip, within 512 KB of frames (see sample_takes).
+Clip first_take(const AnimatedScene& scene) {
+  SceneClipOptions o;
+  o.max_bytes = size_t{512} << 10;
+  return scene_take_to_clip(scene, 0, o);
+}
+
+// Whether a clip's numbers are moderate enough that float32 keys keep its joint positions to
+// 1e-4 of its extent: rates, offsets, channel values within bounds, names unique.
+bool moderate(const Clip& clip) {
+  const double fps = clip.fps();
+  if (!(fps >= 1e-2 && fps <= 1e5) || clip.motion.cwiseAbs().maxCoeff() > 1e4) return false;
+  std::vector<std::string> names;
+  for (const Joint& j : clip.skeleton.joints) {
+    if (j.offset.cwiseAbs().maxCoeff() > 1e4) return false;
+    names.push_back(j.name);
+  }
+  std::sort(names.begin(), names.end());
+  return std::adjacent_find(names.begin(), names.end()) == names.end();
+}
+
+// A written file read back: the same joints (End Sites aside, which no key moves) and frames,
+// and for a moderate clip the same joint positions.
+void check_read_back(const Clip& clip, const Clip& back, const std::string& what) {
+  check(back.skeleton.joint_count_without_end_sites() == clip.skeleton.joint_count_without_end_sites(),
+        what + ": the joints");
+  check(back.frames() == clip.frames(), what + ": the frames");
+  if (!moderate(clip)) return;
+  const Eigen::MatrixXd a = joint_positions(clip), b = joint_positions(back);
+  const double extent = std::max(1.0, a.cwiseAbs().maxCoeff());
+  for (size_t i = 0; i < clip.skeleton.joints.size(); ++i) {
+    if (clip.skeleton.joints[i].end_site) continue;
+    const int j = back.skeleton.find(clip.skeleton.joints[i].name);
+    check(j >= 0, what + ": joint " + clip.skeleton.joints[i].name);
+    const double d = (a.middleCols(3 * i, 3) - b.middleCols(3 * j, 3)).rowwise().norm().maxCoeff();
+    check(d <= 1e-4 * extent, what + ": the positions of " + clip.skeleton.joints[i].name);
+  }
+}
+
+}  // namespace
+
+bool write_read_back(std::string_view bytes) {
+  const bool fbx = bytes.substr(0, 18) == "Kaydara FBX Binary" ||
+                   bytes.substr(0, 4096).find("FBXHeaderExtension") != std::string_view::npos;
+  const bool gltf = !fbx && (bytes.substr(0, 4) == "glTF" || bytes.substr(0, 1) == "{");
+  const std::string source = fbx ? "fuzz.fbx" : gltf ? "fuzz.glb" : "fuzz.bvh";
+  Clip clip;
+  try {
+    if (fbx) clip = first_take(parse_fbx(bytes, source));
+    else if (gltf) clip = first_take(parse_gltf(bytes, source, "", size_t{64} << 20));
+    else clip = parse_bvh(bytes, source, nullptr);
+    // As the glTF and FBX takes, so a run tries many inputs rather than a few long ones.
+    if (static_cast<size_t>(clip.motion.size()) * sizeof(double) > (size_t{512} << 10)) return false;
+  } catch (const InputError& e) {
+    check_refusal(e, source);
+    return false;
+  }
+  // Written FBX: refused only as the writer says (no joints, no frames, a NUL in a name, a
+  // rate FBX times cannot hold), else read back by assimp.
+  std::string written;
+  try {
+    written = format_fbx(clip, "again");
+  } catch (const InputError& e) {
+    check_refusal(e, source);
+  }
+  if (!written.empty()) {
+    try {
+      check_read_back(clip, first_take(parse_fbx(written, "again.fbx")), "FBX round trip");
+    } catch (const InputError& e) {
+      // Values float32 keys cannot hold become infinite: refused on reading, as they should be.
+      check(!moderate(clip), std::string("a moderate clip's FBX reads back: ") + e.what());
+    }
+  }
+  if (clip.skeleton.joints.empty() || clip.frames() == 0) return true;
+  try {
+    check_read_back(clip, first_take(parse_gltf(format_glb(clip, "again"), "again.glb")), "glTF round trip");
+  } catch (const InputError& e) {
+    check(!moderate(clip), std::string("a moderate clip's GLB reads back: ") + e.what());
+  }
+  return true;
+}
+
 const std::vector<std::string>& target_names() {
-  static const std::vector<std::string> names = {"bvh", "mapping", "csv", "job_line", "session", "gltf", "fbx"};
+  static const std::vector<std::string> names = {"bvh", "mapping", "csv", "job_line", "session", "gltf", "fbx",
+                                                 "write"};
   return names;
 }
 
@@ -228,6 +315,7 @@ bool read_as(const std::string& target, std::string_view bytes) {
   if (target == "session") return read_session(bytes);
   if (target == "gltf") return read_gltf(bytes);
   if (target == "fbx") return read_fbx(bytes);
+  if (target == "write") return write_read_back(bytes);
   throw std::logic_error("no fuzz target named " + target);
 }
 

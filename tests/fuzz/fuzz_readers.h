@@ -24,8 +24,15 @@ bool read_gltf(std::string_view bytes);
 // parse_fbx (engine/io/fbx_io.h) as "fuzz.fbx", then every take sampled as for glTF.
 bool read_fbx(std::string_view bytes);
 
+// Any take (FBX when the bytes start as binary FBX or hold FBXHeaderExtension near the start,
+// glTF when they start with "glTF" or '{', else BVH) read into a clip, written as FBX
+// (engine/io/fbx_write.h) and as GLB, and each read back by our readers: with the same joints
+// and frames, and, for moderate values, the same joint positions. Returns whether the take
+// loaded.
+bool write_read_back(std::string_view bytes);
+
 // The targets by the name of their folder in tests/fuzz/regressions/: "bvh", "mapping", "csv",
-// "job_line", "session", "gltf", "fbx".
+// "job_line", "session", "gltf", "fbx", "write".
 const std::vector<std::string>& target_names();
 bool read_as(const std::string& target, std::string_view bytes);
 

@@ -41,14 +41,21 @@ void wrapped(const ImVec4& color, const std::string& text) {
 }  // namespace
 
 ExportFormat export_format(const std::string& path) {
-  return is_gltf_path(path) ? ExportFormat::kGltf : ExportFormat::kBvh;
+  if (!is_motion_file(path)) return ExportFormat::kBvh;
+  switch (motion_format(path)) {
+    case MotionFormat::kGltf: return ExportFormat::kGltf;
+    case MotionFormat::kFbx: return ExportFormat::kFbx;
+    case MotionFormat::kBvh: break;
+  }
+  return ExportFormat::kBvh;
 }
 
 std::string with_export_format(const std::string& path, ExportFormat format) {
   if (path.empty() || export_format(path) == format) return path;
+  const char* extension = format == ExportFormat::kGltf ? ".glb" : format == ExportFormat::kFbx ? ".fbx" : ".bvh";
   fs::path p(path);
-  if (p.has_extension()) p.replace_extension(format == ExportFormat::kGltf ? ".glb" : ".bvh");
-  else p += format == ExportFormat::kGltf ? ".glb" : ".bvh";
+  if (p.has_extension()) p.replace_extension(extension);
+  else p += extension;
   return p.string();
 }
 
@@ -168,7 +175,7 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
   const bool enter = ImGui::InputText("File", settings_.path, sizeof settings_.path, ImGuiInputTextFlags_EnterReturnsTrue);
   if (ImGui::IsItemHovered()) {
     std::error_code ec;
-    ImGui::SetTooltip("The file to write (.bvh, or .glb / .gltf for glTF); a name alone goes in %s.\nEnter exports.",
+    ImGui::SetTooltip("The file to write (.bvh, .glb / .gltf for glTF, .fbx); a name alone goes in %s.\nEnter exports.",
                       fs::current_path(ec).string().c_str());
   }
   // The format: the file's extension, which these buttons change.
@@ -183,8 +190,13 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
   format_button(ExportFormat::kBvh, "BVH", "BVH on take A's skeleton, A's rotation orders and channels");
   ImGui::SameLine();
   format_button(ExportFormat::kGltf, "glTF (.glb)",
-                "glTF 2.0: A's skeleton as nodes, one animation (root translation, rotations as\n"
-                "quaternions), for game engines, three.js and Blender");
+                "glTF 2.0: A's skeleton as an armature (nodes and a skin), one animation (root\n"
+                "translation, rotations as quaternions), for game engines, three.js and Blender");
+  ImGui::SameLine();
+  format_button(ExportFormat::kFbx, "FBX",
+                "Binary FBX 7.4: A's skeleton as an armature of limb nodes, one take (root translation,\n"
+                "rotations as Euler curves in each joint's order, at the file's frame rate), for\n"
+                "Blender, Maya, MotionBuilder, Unity and Unreal");
 
   // The frame rate.
   ImGui::Spacing();
@@ -285,9 +297,9 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
     tooltip("Count the in and out points in the result's frames; off: in seconds");
   }
 
-  // The channels (BVH; glTF has translations on the root and rotations everywhere).
+  // The channels (BVH; glTF and FBX key translations where joints travel, rotations everywhere).
   ImGui::Spacing();
-  ImGui::BeginDisabled(format == ExportFormat::kGltf);
+  ImGui::BeginDisabled(format != ExportFormat::kBvh);
   ImGui::TextColored(kDimColor, "Channels");
   const std::string as_source = "As " + (subject.name.empty() ? std::string("the reference take's file") : subject.name);
   const char* layout_names[2] = {"Rotations (positions on the root only)", as_source.c_str()};
@@ -343,8 +355,8 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
     tooltip("Do not write; choose another file name");
   } else {
     if (ImGui::Button("Export") || enter) press_export();
-    tooltip("Write the result on the reference take's skeleton (BVH or glTF, by the file's extension), in the\n"
-            "background");
+    tooltip("Write the result on the reference take's skeleton (BVH, glTF or FBX, by the file's extension), in\n"
+            "the background");
     ImGui::SameLine();
     if (ImGui::Button("Close")) *open = false;
   }

@@ -1,6 +1,6 @@
 #pragma once
-// The export dialog (issue "The editor for a working day"): the file and its format (BVH or glTF,
-// issue #17: the buttons set the file's extension), the frame rate (A's own,
+// The export dialog (issue "The editor for a working day"): the file and its format (BVH, glTF
+// or FBX: the buttons set the file's extension), the frame rate (A's own,
 // 30, 60, 120 or another), the frames (all, from an in point to an out point, or the blend's
 // loop when it has one), the channel layout (engine/export/channel_layout.h, A's default), a
 // confirmation before a file is overwritten, and the export on a thread of its own (ExportJob)
@@ -22,12 +22,13 @@ constexpr const char* kExportDialogTitle = "Export";  // the window's title and 
 
 enum class ExportRate { kSource, k30, k60, k120, kCustom };
 
-// The file format of an export, which the file's extension decides (issue #17): BVH, or glTF 2.0
-// as one .glb (or .gltf with its .bin, typed by hand).
-enum class ExportFormat { kBvh, kGltf };
-ExportFormat export_format(const std::string& path);  // kGltf for .glb and .gltf, else kBvh
-// `path` with the extension of `format`: ".bvh", or ".glb" (a .gltf path stays .gltf for
-// kGltf). A path without an extension gets one; "" stays "".
+// The file format of an export, which the file's extension decides (issue #17): BVH, glTF 2.0
+// as one .glb (or .gltf with its .bin, typed by hand), or binary FBX (.fbx).
+enum class ExportFormat { kBvh, kGltf, kFbx };
+// kGltf for .glb and .gltf, kFbx for .fbx, else kBvh (any case).
+ExportFormat export_format(const std::string& path);
+// `path` with the extension of `format`: ".bvh", ".glb" (a .gltf path stays .gltf for kGltf)
+// or ".fbx". A path without an extension gets one; "" stays "".
 std::string with_export_format(const std::string& path, ExportFormat format);
 
 // The output rate `rate` stands for: A's own (source_fps, its file's rate), 30, 60, 120 or

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "engine/io/bvh_io.h"
 #include "engine/io/error.h"
@@ -84,6 +85,58 @@ TEST_CASE("glTF: BVH -> GLB -> read back is the same motion, and the validator f
   const Clip back2 = read_motion_file(gltf);
   CHECK(position_error(bvh, back2) < kRoundTrip);
   MOSTYLE_CHECK_GLTF_VALID(gltf);
+}
+
+TEST_CASE("glTF: the skeleton is written as one armature node and a skin of every joint", "[gltf]") {
+  TempDir tmp;
+  const Clip bvh = read_bvh_file(test::asset("motions/cmu142_walk_clumsy.bvh"));
+  const int joints = static_cast<int>(bvh.skeleton.joints.size());
+  std::string bin;
+  const nlohmann::json doc = nlohmann::json::parse(format_gltf(bvh, "walk", "walk.bin", &bin));
+  REQUIRE(doc["nodes"].size() == static_cast<size_t>(joints + 1));
+  const nlohmann::json& armature = doc["nodes"][joints];
+  CHECK(armature["name"] == "walk");
+  CHECK_FALSE(armature.contains("translation"));
+  CHECK(armature["children"] == nlohmann::json::array({0}));
+  CHECK(doc["scenes"][0]["nodes"] == nlohmann::json::array({joints}));
+  REQUIRE(doc["skins"].size() == 1);
+  const nlohmann::json& skin = doc["skins"][0];
+  CHECK(skin["skeleton"] == joints);
+  CHECK(skin["joints"].size() == static_cast<size_t>(joints));
+  // The inverse bind matrices undo each joint's rest position (translations only).
+  const nlohmann::json& ibm = doc["accessors"][skin["inverseBindMatrices"].get<int>()];
+  CHECK(ibm["type"] == "MAT4");
+  CHECK(ibm["count"] == joints);
+  const nlohmann::json& view = doc["bufferViews"][ibm["bufferView"].get<int>()];
+  for (int j = 0; j < joints; ++j) {
+    float m[16];
+    std::memcpy(m, bin.data() + view["byteOffset"].get<size_t>() + 64 * j, 64);
+    // Frame 0's position channels place the root; the other joints' offsets are the BVH's.
+    Eigen::Vector3d world = Eigen::Vector3d::Zero();
+    const MotionMatrix frame0 = bvh.motion.topRows(1);
+    for (int k = j; k >= 0; k = bvh.skeleton.joints[k].parent)
+      world += joint_local_translation(bvh.skeleton.joints[k], frame0.data());
+    CHECK(m[0] == 1.0f);
+    CHECK(m[15] == 1.0f);
+    CHECK(m[12] == Approx(-world.x()).margin(1e-4));
+    CHECK(m[13] == Approx(-world.y()).margin(1e-4));
+    CHECK(m[14] == Approx(-world.z()).margin(1e-4));
+  }
+  CHECK_FALSE(doc.contains("meshes"));
+
+  // With the stick figure: a mesh skinned to the bones on a second root, still valid.
+  GltfWriteOptions o;
+  o.bone_mesh = true;
+  const std::string glb = tmp.path("sticks.glb");
+  write_gltf_file(bvh, glb, o);
+  const nlohmann::json with = nlohmann::json::parse(format_gltf(bvh, "walk", "walk.bin", &bin, o));
+  REQUIRE(with["meshes"].size() == 1);
+  CHECK(with["nodes"][joints + 1]["skin"] == 0);
+  CHECK(with["nodes"][joints + 1]["mesh"] == 0);
+  CHECK(with["scenes"][0]["nodes"] == nlohmann::json::array({joints, joints + 1}));
+  MOSTYLE_CHECK_GLTF_VALID(glb);
+  const Clip back = read_motion_file(glb);
+  CHECK(position_error(bvh, back) < kRoundTrip);
 }
 
 TEST_CASE("glTF: a .gltf written by hand with STEP and CUBICSPLINE samplers", "[gltf]") {

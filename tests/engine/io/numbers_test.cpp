@@ -1,5 +1,7 @@
 // Numbers as a person types them (engine/io/numbers.h): decimals and fractions, nothing else.
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <limits>
 
 #include "engine/io/error.h"
 #include "engine/io/numbers.h"
@@ -40,4 +42,11 @@ TEST_CASE("normalized_weights: a sum within 0.001 of 1 is divided out, anything 
   CHECK(normalized_weights(off) == off);
   mp.weights = normalized_weights(off);
   CHECK_THROWS_AS(mp.Validate(2, 0), InputError);
+}
+
+TEST_CASE("to_float32: the nearest float, infinity beyond float's range", "[numbers]") {
+  CHECK(mostyle::to_float32(0.1) == 0.1f);
+  CHECK(mostyle::to_float32(1e300) == std::numeric_limits<float>::infinity());
+  CHECK(mostyle::to_float32(-1e300) == -std::numeric_limits<float>::infinity());
+  CHECK(std::isnan(mostyle::to_float32(std::nan(""))));
 }

@@ -321,8 +321,15 @@ TEST_CASE("export dialog: a palette's mix exports whole or from an in to an out 
   CHECK(drawn > 0);
 }
 
-TEST_CASE("export dialog: the format is the file's extension, glTF exports read back as the same blend") {
+TEST_CASE("export dialog: the format is the file's extension, glTF and FBX exports read back as the same blend") {
   CHECK(export_format("blend.bvh") == ExportFormat::kBvh);
+  CHECK(export_format("blend.fbx") == ExportFormat::kFbx);
+  CHECK(export_format("blend.FBX") == ExportFormat::kFbx);
+  CHECK(export_format("blend.txt") == ExportFormat::kBvh);
+  CHECK(with_export_format("out/blend.bvh", ExportFormat::kFbx) == "out/blend.fbx");
+  CHECK(with_export_format("out/blend.glb", ExportFormat::kFbx) == "out/blend.fbx");
+  CHECK(with_export_format("out/blend.fbx", ExportFormat::kGltf) == "out/blend.glb");
+  CHECK(with_export_format("blend", ExportFormat::kFbx) == "blend.fbx");
   CHECK(export_format("blend.GLB") == ExportFormat::kGltf);
   CHECK(export_format("blend.gltf") == ExportFormat::kGltf);
   CHECK(with_export_format("out/blend.bvh", ExportFormat::kGltf) == "out/blend.glb");
@@ -335,24 +342,29 @@ TEST_CASE("export dialog: the format is the file's extension, glTF exports read 
   REQUIRE(s.session.blend() != nullptr);
   ExportDialog dialog(s.session);
   dialog.poll();
-  TempFile bvh("mostyle_export_dialog_format.bvh"), glb("mostyle_export_dialog_format.glb");
+  TempFile bvh("mostyle_export_dialog_format.bvh"), glb("mostyle_export_dialog_format.glb"),
+      fbx("mostyle_export_dialog_format.fbx");
   dialog.settings().rate = ExportRate::k30;
   const Clip as_bvh = export_and_read(dialog, s.session, bvh.path);
-  set_path(dialog, glb.path);
-  REQUIRE(dialog.press_export() == Pressed::kStarted);
-  dialog.job().wait();
-  dialog.poll();
-  INFO(s.session.export_message());
-  REQUIRE(s.session.export_ok());
-  const Clip as_glb = read_motion_file(glb.path);
-  REQUIRE(as_glb.frames() == as_bvh.frames());
-  const Eigen::MatrixXd a = joint_positions(as_bvh), b = joint_positions(as_glb);
-  double worst = 0;
-  for (size_t i = 0; i < as_bvh.skeleton.joints.size(); ++i) {
-    if (as_bvh.skeleton.joints[i].end_site) continue;
-    const int j = as_glb.skeleton.find(as_bvh.skeleton.joints[i].name);
-    REQUIRE(j >= 0);
-    worst = std::max(worst, (a.middleCols(3 * i, 3) - b.middleCols(3 * j, 3)).rowwise().norm().maxCoeff());
+  for (const std::string& path : {glb.path, fbx.path}) {
+    INFO(path);
+    set_path(dialog, path);
+    REQUIRE(dialog.press_export() == Pressed::kStarted);
+    dialog.job().wait();
+    dialog.poll();
+    INFO(s.session.export_message());
+    REQUIRE(s.session.export_ok());
+    const Clip written = read_motion_file(path);
+    REQUIRE(written.frames() == as_bvh.frames());
+    CHECK(written.fps() == as_bvh.fps());
+    const Eigen::MatrixXd a = joint_positions(as_bvh), b = joint_positions(written);
+    double worst = 0;
+    for (size_t i = 0; i < as_bvh.skeleton.joints.size(); ++i) {
+      if (as_bvh.skeleton.joints[i].end_site) continue;
+      const int j = written.skeleton.find(as_bvh.skeleton.joints[i].name);
+      REQUIRE(j >= 0);
+      worst = std::max(worst, (a.middleCols(3 * i, 3) - b.middleCols(3 * j, 3)).rowwise().norm().maxCoeff());
+    }
+    CHECK(worst < 1e-3);  // file units (cm-like CMU units): float32 keys
   }
-  CHECK(worst < 1e-3);  // file units (cm-like CMU units): float32 keys
 }
