@@ -364,8 +364,8 @@ MajorMapping map_major(const Skeleton& skeleton, const MotionMatrix* motion, con
     // The names' left lies on the body's right (named from the viewer's side, or a mirrored
     // rig): the body's sides win, for the named joints too.
     swap_sides(m);
-    swapped = std::string("the names' left and right are swapped: their left lies on the body's right, as ") +
-              facing_cue_name(structure.facing) + " tell";
+    swapped = std::string("the names' left and right are swapped: their left lies on the body's right, as told by ") +
+              facing_cue_name(structure.facing);
   }
   // What the structure showed is told where it gave a joint, or where a needed joint is still
   // missing (why it could not give it).
