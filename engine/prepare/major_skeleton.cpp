@@ -18,6 +18,8 @@ constexpr const char* kNames[kMajorJointCount] = {
     "right_wrist",    "right_hand",  "left_hip",    "left_knee",   "left_ankle",
     "left_toe",       "right_hip",   "right_knee",  "right_ankle", "right_toe"};
 constexpr double kZeroBone = 1e-6;  // relative to skeleton size
+// The hips stand at least this share of the rest pose's height above its lowest joint.
+constexpr double kMinHipsHeight = 0.25;
 // The joints a blend cannot do without: the hips, both hips, knees and ankles.
 constexpr int kNeeded[] = {0, 12, 13, 14, 16, 17, 18};
 
@@ -194,8 +196,15 @@ MajorMapping map_by_names(const Skeleton& skeleton) {
   for (int i = 0; i < n; ++i)
     if (!skeleton.joints[i].end_site) parts[i] = split_name(skeleton.joints[i].name);
   const std::vector<Eigen::Vector3d> rest = rest_positions(skeleton);
-  double size = 0;
-  for (const auto& p : rest) size = std::max(size, (p - rest[0]).norm());
+  double size = 0, floor = 0, top = 0;
+  for (const auto& p : rest) {
+    size = std::max(size, (p - rest[0]).norm());
+    floor = std::min(floor, p.y() - rest[0].y());
+    top = std::max(top, p.y() - rest[0].y());
+  }
+  // A pelvis stands well above the feet: a joint named "root" on the floor (a rig's ground
+  // node, an IK rig's root) is no hips.
+  const auto too_low_for_hips = [&](int i) { return rest[i].y() - rest[0].y() - floor < kMinHipsHeight * (top - floor); };
   auto is_descendant = [&](int joint, int ancestor) {
     for (int p = skeleton.joints[joint].parent; p >= 0; p = skeleton.joints[p].parent)
       if (p == ancestor) return true;
@@ -213,6 +222,7 @@ MajorMapping map_by_names(const Skeleton& skeleton) {
         for (int i = 0; i < n && found < 0; ++i) {
           if (skeleton.joints[i].end_site || parts[i].part != spelling) continue;
           if (parts[i].side != wanted) continue;
+          if (major == 0 && too_low_for_hips(i)) continue;
           if (parent_joint >= 0 && !is_descendant(i, parent_joint)) continue;
           if (std::find(m.joint.begin(), m.joint.end(), i) != m.joint.end()) continue;
           if (parent_joint >= 0 && (rest[i] - rest[parent_joint]).norm() <= kZeroBone * size) continue;

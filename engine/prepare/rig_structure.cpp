@@ -104,8 +104,9 @@ void find_markers(Tree& t, const MotionMatrix& motion) {
   if (motion.rows() < 2) return;
   for (int j = 0; j < t.size(); ++j) {
     const Joint& joint = t.s.joints[j];
-    if (!t.real(j) || std::any_of(t.children[j].begin(), t.children[j].end(), [&](int c) { return t.real(c); }))
-      continue;
+    // A BVH's leaf joint ends in an End Site, which is its marker: only a joint with no child at
+    // all (FBX's and glTF's "_End" nodes) can be one.
+    if (!t.real(j) || !t.children[j].empty()) continue;
     bool still = true;
     for (size_t c = 0; c < joint.channels.size() && still; ++c) {
       const auto column = motion.col(joint.first_channel + static_cast<int>(c));

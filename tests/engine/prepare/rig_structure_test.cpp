@@ -30,6 +30,23 @@ Skeleton unnamed(Skeleton s) {
   return s;
 }
 
+// The same skeleton without its End Sites, as FBX and glTF files have it: a leaf joint there
+// ends nowhere.
+Skeleton without_end_sites(const Skeleton& s) {
+  Skeleton out;
+  std::vector<int> index(s.joints.size(), -1);
+  for (size_t i = 0; i < s.joints.size(); ++i) {
+    if (s.joints[i].end_site) continue;
+    Joint j = s.joints[i];
+    j.parent = j.parent < 0 ? -1 : index[static_cast<size_t>(j.parent)];
+    j.first_channel = out.channel_count;
+    out.channel_count += static_cast<int>(j.channels.size());
+    index[i] = static_cast<int>(out.joints.size());
+    out.joints.push_back(j);
+  }
+  return out;
+}
+
 // Every offset (and so the rest pose) taken through m.
 Skeleton transformed(Skeleton s, const Eigen::Matrix3d& m) {
   for (Joint& j : s.joints) j.offset = m * j.offset;
@@ -104,9 +121,10 @@ TEST_CASE("structure: unnamed rigs of the common conventions map as their names 
 }
 
 TEST_CASE("structure: end markers are no head, and a hand goes on along the forearm", "[rig_structure]") {
-  // Mixamo keeps HeadTop_End and Toe_End leaves that never move: with a motion that moves
-  // nothing but the root, every leaf is such a marker, and the head is Head.
-  const Skeleton s = test::mixamo_skeleton();
+  // Mixamo's FBX and glTF files keep HeadTop_End and Toe_End leaves (no End Site) that never
+  // move: with a motion that moves nothing but the root, every leaf is such a marker, and the
+  // head is Head.
+  const Skeleton s = without_end_sites(test::mixamo_skeleton());
   const Clip still = test::still_clip(s, 10, 1.0);
   const RigStructure r = find_rig_structure(unnamed(s), &still.motion);
   const MajorMapping by_name = map_major_joints(s);
@@ -115,9 +133,14 @@ TEST_CASE("structure: end markers are no head, and a hand goes on along the fore
     INFO(major_joint_name(major));
     CHECK(r.joint[major] == by_name.joint[major]);
   }
-  // Without the motion nothing is known to be a marker: the head is the chain's last joint.
+  // Without the motion nothing is known to be a marker: the head is the chain's last joint; in a
+  // BVH the End Site is the marker, and a leaf joint is a joint even when it does not move.
   CHECK(find_rig_structure(unnamed(s)).joint[static_cast<int>(MajorJoint::kHead)] ==
         joint(s, "mixamorig:HeadTop_End"));
+  const Skeleton bvh = test::mixamo_skeleton();
+  const Clip still_bvh = test::still_clip(bvh, 10, 1.0);
+  CHECK(find_rig_structure(unnamed(bvh), &still_bvh.motion).joint[static_cast<int>(MajorJoint::kHead)] ==
+        joint(bvh, "mixamorig:HeadTop_End"));
   // A thumb off to the side and a middle finger straight on: the hand is the middle finger's.
   test::SkeletonBuilder b;
   b.joint("j0", "", 0, 95, 0);
@@ -261,6 +284,11 @@ TEST_CASE("structure: an IK rig's ankle hangs from the root, at the shin's end",
     CHECK(r.joint[kRightAnkle] == joint(k, "bik"));
     CHECK(r.facing == FacingCue::kRestToes);  // the IK feet's toes point +Z
     CHECK_THAT(r.summary, Contains("an ankle from the joint at the shin's end"));
+    // The name rules take no "root" on the floor for the hips: the structure's are the hips.
+    const MajorMapping m = map_major_joints(k);
+    CHECK(m.joint[kHips] == joint(k, "j0"));
+    CHECK(m.source[kHips] == MajorSource::kStructure);
+    CHECK(m.joint[kLeftAnkle] == joint(k, "aik"));
   }
 }
 
