@@ -102,7 +102,8 @@ void add_info_command(CLI::App& app, std::function<int()>* run) {
       if (has_takes(format)) {
         const AnimatedScene scene = read_animated_scene(file.path, motion_read_options_from_environment().max_bytes);
         takes = scene_take_infos(scene);
-        scene_skeleton_found = scene_skeleton(scene);
+        const std::string take_name = take->empty() ? file.take : *take;
+        scene_skeleton_found = scene_skeleton(scene, take_name.empty() ? 0 : find_take(scene, take_name));
       } else {
         takes.push_back({std::filesystem::path(file.path).stem().string(),
                          clip.frames() > 1 ? (clip.frames() - 1) * clip.frame_time : 0.0, clip.frames(),

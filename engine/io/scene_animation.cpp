@@ -100,17 +100,23 @@ Eigen::Matrix3d rotation_part(const Eigen::Matrix3d& m) {
 }  // namespace
 
 std::vector<TakeInfo> scene_take_infos(const AnimatedScene& scene) {
-  // How many of the skeleton's joints each take keys; unknown when the file has no one skeleton
-  // (reading a take then says why).
-  std::vector<int> joint_of;
-  try {
-    const SceneSkeleton skeleton = scene_skeleton(scene);
-    joint_of.assign(scene.nodes.size(), -1);
-    for (size_t j = 0; j < skeleton.nodes.size(); ++j) joint_of[skeleton.nodes[j]] = static_cast<int>(j);
-  } catch (const InputError&) {
-  }
+  // How many of the skeleton's joints each take keys; unknown when the take has no one skeleton
+  // (reading it then says why).
+  const auto joints_of = [&](int take) {
+    std::vector<int> joint_of;
+    try {
+      const SceneSkeleton skeleton = scene_skeleton(scene, take);
+      joint_of.assign(scene.nodes.size(), -1);
+      for (size_t j = 0; j < skeleton.nodes.size(); ++j) joint_of[skeleton.nodes[j]] = static_cast<int>(j);
+    } catch (const InputError&) {
+    }
+    return joint_of;
+  };
+  const std::vector<int> file_joints = joints_of(-1);
   std::vector<TakeInfo> out;
-  for (const SceneTake& take : scene.takes) {
+  for (size_t k = 0; k < scene.takes.size(); ++k) {
+    const SceneTake& take = scene.takes[k];
+    const std::vector<int> joint_of = file_joints.empty() ? joints_of(static_cast<int>(k)) : file_joints;
     TakeInfo info;
     info.name = take.name;
     double first = std::numeric_limits<double>::infinity(), last = -first;
@@ -237,7 +243,7 @@ bool scale_moves(const KeyTrack& track, const SceneNode& node) {
 
 }  // namespace
 
-SceneSkeleton scene_skeleton(const AnimatedScene& scene) {
+SceneSkeleton scene_skeleton(const AnimatedScene& scene, int take) {
   const int n = static_cast<int>(scene.nodes.size());
   std::vector<int> depth(n, 0);
   for (int i = 0; i < n; ++i) {
@@ -263,27 +269,47 @@ SceneSkeleton scene_skeleton(const AnimatedScene& scene) {
       }
     }
   }
-  // The root: the members' lowest common ancestor.
-  int root = -1;
-  bool several = false;
-  for (int i = 0; i < n && !several; ++i) {
-    if (!member[i]) continue;
-    if (root < 0) {
-      root = i;
-      continue;
+  // The root: the members' lowest common ancestor; -1 when they have none but the scene root
+  // that holds everything (assimp's), which is no skeleton's root unless it is a member.
+  const auto common_root = [&](const std::vector<char>& in) {
+    int root = -1;
+    for (int i = 0; i < n; ++i) {
+      if (!in[i]) continue;
+      if (root < 0) {
+        root = i;
+        continue;
+      }
+      int a = root, b = i;
+      while (a != b && a >= 0 && b >= 0) {
+        if (depth[a] >= depth[b]) a = scene.nodes[a].parent;
+        else b = scene.nodes[b].parent;
+      }
+      if (a != b) return -1;
+      root = a;
     }
-    int a = root, b = i;
-    while (a != b && a >= 0 && b >= 0) {
-      if (depth[a] >= depth[b]) a = scene.nodes[a].parent;
-      else b = scene.nodes[b].parent;
+    return root == scene.scene_root && root >= 0 && !in[root] ? -1 : root;
+  };
+  if (std::none_of(member.begin(), member.end(), [](char m) { return m != 0; }))
+    throw InputError(scene.source + ": no animation keys a node: no skeleton moves in it");
+  int root = common_root(member);
+  if (root < 0 && take >= 0 && take < static_cast<int>(scene.takes.size())) {
+    // Several skeletons (characters) in one file: the one whose members the take keys.
+    const auto top_of = [&](int i) {
+      while (scene.nodes[i].parent >= 0 && scene.nodes[i].parent != scene.scene_root) i = scene.nodes[i].parent;
+      return i;
+    };
+    std::vector<int> tops;
+    for (const KeyTrack& track : scene.takes[take].tracks)
+      if (track.node >= 0 && track.node < n && std::find(tops.begin(), tops.end(), top_of(track.node)) == tops.end())
+        tops.push_back(top_of(track.node));
+    if (tops.size() == 1) {
+      for (int i = 0; i < n; ++i)
+        if (member[i] && top_of(i) != tops.front()) member[i] = 0;
+      root = common_root(member);
     }
-    root = a == b ? a : -1;
-    several = root < 0;
   }
   const std::string members = skeleton.from_skins ? "the skins' joints" : "the animations' nodes";
-  if (root < 0 && !several) throw InputError(scene.source + ": no animation keys a node: no skeleton moves in it");
-  // The scene root that holds everything (assimp's) is no skeleton's root unless it is a member.
-  if (several || (root == scene.scene_root && !member[root])) {
+  if (root < 0) {
     std::vector<int> tops;
     for (int i = 0; i < n; ++i) {
       if (!member[i]) continue;
@@ -292,7 +318,8 @@ SceneSkeleton scene_skeleton(const AnimatedScene& scene) {
       if (up < 0) tops.push_back(i);
     }
     throw InputError(scene.source + ": " + members + " form several skeletons (rooted at " + node_list(scene, tops) +
-                     "): keep one per file");
+                     ")" + (take >= 0 ? " and animation '" + scene.takes[take].name + "' moves more than one" : "") +
+                     ": keep one per file");
   }
   // The members and the nodes between them and the root, depth first.
   std::vector<char> in_skeleton(n, 0);
@@ -324,7 +351,7 @@ Clip scene_take_to_clip(const AnimatedScene& scene, int take, const SceneClipOpt
   for (const KeyTrack& t : st.tracks) check_track(scene, take, t);
   if (st.tracks.empty()) throw InputError(take_label(scene, take) + " keys no node: no skeleton moves in it");
 
-  const SceneSkeleton skeleton = scene_skeleton(scene);
+  const SceneSkeleton skeleton = scene_skeleton(scene, take);
   const std::vector<int>& order = skeleton.nodes;  // joint index -> node
   const int root = skeleton.root();
   const int joints = static_cast<int>(order.size());

@@ -68,11 +68,13 @@ struct SceneSkeleton {
 
 // The skeleton of a file: the joints of its skins and the nodes between them, rooted at their
 // lowest common ancestor; in a file without skins, the nodes any take keys (the union over all
-// takes) and the nodes between them, likewise. Nodes above the root only place it. Throws
-// InputError naming the source when those nodes have no common ancestor but the scene root
-// (several skeletons), when a track names a node the file does not have, or when the nodes do
-// not come parents first. O(nodes + tracks).
-SceneSkeleton scene_skeleton(const AnimatedScene& scene);
+// takes) and the nodes between them, likewise. Nodes above the root only place it. Where those
+// nodes have no common ancestor but the scene root (several characters in one file), the one
+// skeleton among them whose nodes take `take` keys (every take of that character gets the same).
+// Throws InputError naming the source when there are several skeletons and `take` is -1 or keys
+// more than one, when a track names a node the file does not have, or when the nodes do not
+// come parents first. O(nodes + tracks).
+SceneSkeleton scene_skeleton(const AnimatedScene& scene, int take = -1);
 
 // One take as `info` lists it.
 struct TakeInfo {
@@ -81,7 +83,7 @@ struct TakeInfo {
   int keys = 0;          // the most keys on one track
   int moves = 0;         // joints of the file's skeleton the take keys (a BVH's: every joint); -1 when not known
 };
-// Every take of the scene; `moves` is -1 for all when the file's skeleton cannot be found.
+// Every take of the scene; `moves` is -1 for a take whose skeleton cannot be found.
 std::vector<TakeInfo> scene_take_infos(const AnimatedScene& scene);
 
 // The take named `name`: its index, or -1.
@@ -103,7 +105,7 @@ struct SceneClipOptions {
 };
 
 // Samples take `take` at options.fps from its first key to its last into a Clip on the file's
-// skeleton (scene_skeleton), the same joints and channels for every take of the file; nodes above
+// skeleton (scene_skeleton), the same joints and channels for every take of it; nodes above
 // the root only place it (their transforms, scale included, are folded into the root's
 // channels), and a joint the take does not key keeps its rest transform. Every joint gets
 // rotation channels Z X Y (degrees, unwrapped frame to frame); the root gets position channels

@@ -118,7 +118,8 @@ TEST_CASE("scene_take_to_clip: bad takes are one sentence naming file and animat
   take.tracks.push_back(track(1, TrackTarget::kTranslation, KeyInterpolation::kLinear, {0}, {0, 0, 0}));
   scene.takes.push_back(take);
   CHECK_THROWS_WITH(scene_take_to_clip(scene, 0),
-                    Contains("two.glb: the animations' nodes form several skeletons (rooted at 'A', 'B')"));
+                    Contains("two.glb: the animations' nodes form several skeletons (rooted at 'A', 'B') and "
+                             "animation 'both' moves more than one"));
   scene.takes[0].tracks.pop_back();
   scene.takes[0].tracks[0].times = {0, 1};
   scene.takes[0].tracks[0].values.resize(2, 3);
@@ -226,4 +227,29 @@ TEST_CASE("scene_take_to_clip: every take of a file on one skeleton, a joint a t
                       Contains("rig.glb: animation 'mesh' keys none of the skeleton's joints (rooted at 'Hips')"));
     CHECK(scene_take_infos(scene)[2].moves == 0);
   }
+}
+
+TEST_CASE("scene_take_to_clip: two characters in one file, each take on its own one's skeleton",
+          "[scene_animation]") {
+  AnimatedScene scene;
+  scene.source = "pair.glb";
+  scene.nodes = {node("A", -1), node("A1", 0, {0, 1, 0}), node("A2", 0, {1, 0, 0}), node("B", -1),
+                 node("B1", 3, {0, 1, 0})};
+  SceneTake a1, a2, b;
+  a1.name = "a1";
+  a1.tracks.push_back(track(1, TrackTarget::kTranslation, KeyInterpolation::kLinear, {0}, {0, 1, 0}));
+  a2.name = "a2";
+  a2.tracks.push_back(track(2, TrackTarget::kTranslation, KeyInterpolation::kLinear, {0}, {1, 0, 0}));
+  b.name = "b";
+  b.tracks.push_back(track(4, TrackTarget::kTranslation, KeyInterpolation::kLinear, {0}, {0, 1, 0}));
+  scene.takes = {a1, a2, b};
+  CHECK_THROWS_WITH(scene_skeleton(scene), Contains("pair.glb: the animations' nodes form several skeletons"));
+  // A's takes share A's skeleton (A, A1, A2), each keying a part of it; b reads B's.
+  CHECK(scene_skeleton(scene, 0).nodes == std::vector<int>{0, 1, 2});
+  CHECK(scene_skeleton(scene, 1).nodes == std::vector<int>{0, 1, 2});
+  CHECK(scene_skeleton(scene, 2).nodes == std::vector<int>{4});
+  CHECK(scene_take_to_clip(scene, 1).skeleton.joints.size() == 3);
+  const std::vector<TakeInfo> infos = scene_take_infos(scene);
+  CHECK(infos[0].moves == 1);
+  CHECK(infos[2].moves == 1);
 }
