@@ -453,113 +453,112 @@ const char* facing_cue_name(FacingCue cue) {
   return "?";
 }
 
-RigStructure find_rig_structure(const Skeleton& skeleton, const MotionMatrix* motion, const MajorMapping* named) {
-  RigStructure out;
-  Tree t(skeleton);
-  if (t.size() == 0 || !(t.height > 0)) {
-    out.summary = "the rest pose is flat: no joint stands above another";
-    return out;
-  }
-  if (motion != nullptr && motion->cols() == skeleton.channel_count) find_markers(t, *motion);
-  else motion = nullptr;
+namespace {
 
-  // The hips and the legs.
-  int hips = -1, root_a = -1, root_b = -1;
-  if (!find_legs(t, &hips, &root_a, &root_b)) {
-    out.summary = "no legs: no joint has two chains of a like length going down to the lowest joints";
-    return out;
-  }
-  out.joint[static_cast<int>(MajorJoint::kHips)] = hips;
-  Limb leg_a = cut_limb(t, root_a, false), leg_b = cut_limb(t, root_b, false);
+// What the structure finds, step by step.
+struct Body {
+  int hips = -1, root_a = -1, root_b = -1;  // the hips and its legs' first joints
+  Limb leg_a, leg_b, arm_a, arm_b;          // arm_a on leg a's side
+  int spine_base = -1;                      // the joint the spine leaves (the hips, or above them)
+  std::vector<int> spine;                   // up from spine_base to the highest joint
+  Eigen::Vector3d lateral = Eigen::Vector3d::Zero();  // towards leg a, level, unit when sides_apart
+  bool sides_apart = false;
+  int chest_at = -1;                        // index in spine of the joint the arms leave
+  int head = -1, lower_spine = -1;
+  bool legs_cut() const { return leg_a.upper >= 0 && leg_b.upper >= 0 && leg_a.middle >= 0 && leg_b.middle >= 0; }
+};
 
-  // The spine, the arms that leave it sideways, the chest between them, the head above.
-  int spine_base = hips;
-  const std::vector<int> spine = find_spine(t, hips, root_a, root_b, &spine_base);
-  Eigen::Vector3d lateral = Eigen::Vector3d::Zero();
-  if (leg_a.upper >= 0 && leg_b.upper >= 0) lateral = horizontal(t.p[leg_a.upper] - t.p[leg_b.upper]);
-  if (lateral.norm() < kMinApart * t.height) lateral = horizontal(t.p[t.lowest[root_a]] - t.p[t.lowest[root_b]]);
-  const bool sides_apart = lateral.norm() >= kMinApart * t.height;
-  if (sides_apart) lateral.normalize();
-  int chest_at = -1, arm_a = -1, arm_b = -1;  // arm_a on leg a's side
-  double best_arms = kMinLimbReach * t.height;
-  for (size_t i = 0; i + 1 < spine.size() && sides_apart; ++i) {
-    const int s = spine[i];
+// The level direction from leg b to leg a (their hips, else their lowest joints).
+void find_sides(const Tree& t, Body& b) {
+  if (b.leg_a.upper >= 0 && b.leg_b.upper >= 0) b.lateral = horizontal(t.p[b.leg_a.upper] - t.p[b.leg_b.upper]);
+  if (b.lateral.norm() < kMinApart * t.height)
+    b.lateral = horizontal(t.p[t.lowest[b.root_a]] - t.p[t.lowest[b.root_b]]);
+  b.sides_apart = b.lateral.norm() >= kMinApart * t.height;
+  if (b.sides_apart) b.lateral.normalize();
+}
+
+// The arms: of the pairs of chains that leave one spine joint to either side, the pair that
+// reaches farthest (at least kMinLimbReach); that joint is the chest.
+void find_arms(const Tree& t, Body& b) {
+  double best = kMinLimbReach * t.height;
+  int arm_a = -1, arm_b = -1;
+  for (size_t i = 0; i + 1 < b.spine.size() && b.sides_apart; ++i) {
+    const int s = b.spine[i];
     for (int d1 : t.children[s]) {
-      if (d1 == spine[i + 1] || !t.real(d1)) continue;
-      const double side1 = chain_side(t, t.chain(d1), s, lateral);
-      if (side1 < kMinSideways * t.height) continue;  // d1 on leg a's side
+      if (d1 == b.spine[i + 1] || !t.real(d1)) continue;
+      if (chain_side(t, t.chain(d1), s, b.lateral) < kMinSideways * t.height) continue;  // d1 on leg a's side
       for (int d2 : t.children[s]) {
-        if (d2 == spine[i + 1] || d2 == d1 || !t.real(d2)) continue;
-        if (chain_side(t, t.chain(d2), s, lateral) > -kMinSideways * t.height) continue;
+        if (d2 == b.spine[i + 1] || d2 == d1 || !t.real(d2)) continue;
+        if (chain_side(t, t.chain(d2), s, b.lateral) > -kMinSideways * t.height) continue;
         const double reach = std::min(t.bone(s, d1) + t.reach[d1], t.bone(s, d2) + t.reach[d2]);
-        if (reach >= best_arms) {
-          best_arms = reach;
-          chest_at = static_cast<int>(i);
+        if (reach >= best) {
+          best = reach;
+          b.chest_at = static_cast<int>(i);
           arm_a = d1;
           arm_b = d2;
         }
       }
     }
   }
-  const int head_from = chest_at >= 0 ? chest_at + 1 : 1;
-  int head = -1;
-  for (size_t i = static_cast<size_t>(head_from); i < spine.size(); ++i)
-    if (t.real(spine[i]) && !t.marker[spine[i]]) head = spine[i];
-  if (chest_at >= 0) out.joint[static_cast<int>(MajorJoint::kChest)] = spine[chest_at];
-  out.joint[static_cast<int>(MajorJoint::kHead)] = head;
-  {
-    // The lower spine: the joint nearest a third of the way (by length) from the hips to the
-    // chest (or the head).
-    const int top_index = chest_at >= 0 ? chest_at : static_cast<int>(std::find(spine.begin(), spine.end(), head) - spine.begin());
-    double along = 0.0;
-    std::vector<double> at;
-    for (int i = 0; i <= top_index && i < static_cast<int>(spine.size()); ++i) {
-      along += t.bone(i == 0 ? spine_base : spine[i - 1], spine[i]);
-      at.push_back(along);
-    }
-    int best = -1;
-    for (int i = 0; i < top_index && i < static_cast<int>(spine.size()); ++i) {
-      if (at[i] <= 1e-6 * t.height || spine[i] == head) continue;
-      if (best < 0 || std::abs(at[i] - along / 3) < std::abs(at[best] - along / 3)) best = i;
-    }
-    if (best >= 0) out.joint[static_cast<int>(MajorJoint::kSpine)] = spine[best];
-  }
-  Limb limb_arm_a, limb_arm_b;
-  if (arm_a >= 0) {
-    limb_arm_a = cut_limb(t, arm_a, true);
-    limb_arm_b = cut_limb(t, arm_b, true);
-    // A hand that is an end marker is no hand.
-    for (Limb* arm : {&limb_arm_a, &limb_arm_b})
-      if (arm->tip >= 0 && t.marker[arm->tip]) arm->tip = -1;
-  }
+  if (arm_a < 0) return;
+  b.arm_a = cut_limb(t, arm_a, true);
+  b.arm_b = cut_limb(t, arm_b, true);
+  // A hand that is an end marker is no hand.
+  for (Limb* arm : {&b.arm_a, &b.arm_b})
+    if (arm->tip >= 0 && t.marker[arm->tip]) arm->tip = -1;
+}
 
-  // IK ankles: joints not already part of the body.
-  {
-    std::vector<char> taken(static_cast<size_t>(t.size()), 0);
-    for (int up = hips; up >= 0; up = t.parent(up)) taken[up] = 1;
-    for (const std::vector<int>* c : std::initializer_list<const std::vector<int>*>{
-             &leg_a.chain, &leg_b.chain, &spine, &limb_arm_a.chain, &limb_arm_b.chain})
-      for (int j : *c) taken[j] = 1;
-    find_ik_ankle(t, leg_a, taken);
-    if (leg_a.end >= 0) taken[leg_a.end] = 1;
-    find_ik_ankle(t, leg_b, taken);
+// The head: the last joint above the chest that is not an end marker. The lower spine: the joint
+// nearest a third of the way (by length) from the hips to the chest (or the head).
+void find_head_and_spine(const Tree& t, Body& b) {
+  for (size_t i = static_cast<size_t>(b.chest_at >= 0 ? b.chest_at + 1 : 1); i < b.spine.size(); ++i)
+    if (t.real(b.spine[i]) && !t.marker[b.spine[i]]) b.head = b.spine[i];
+  const int top = b.chest_at >= 0 ? b.chest_at
+                                  : static_cast<int>(std::find(b.spine.begin(), b.spine.end(), b.head) - b.spine.begin());
+  const int count = std::min(top, static_cast<int>(b.spine.size()) - 1);
+  double along = 0.0;
+  std::vector<double> at;
+  for (int i = 0; i <= count; ++i) {
+    along += t.bone(i == 0 ? b.spine_base : b.spine[i - 1], b.spine[i]);
+    at.push_back(along);
   }
+  int best = -1;
+  for (int i = 0; i < top && i <= count; ++i) {
+    if (at[i] <= 1e-6 * t.height || b.spine[i] == b.head) continue;
+    if (best < 0 || std::abs(at[i] - along / 3) < std::abs(at[best] - along / 3)) best = i;
+  }
+  if (best >= 0) b.lower_spine = b.spine[best];
+}
 
-  // Which leg is the left one (+1 leg a, -1 leg b, 0 not told): the body's facing where it
-  // tells, else the names, else +Z.
-  const bool legs_cut = leg_a.upper >= 0 && leg_b.upper >= 0 && leg_a.middle >= 0 && leg_b.middle >= 0;
+// IK ankles: for a leg whose shin has no foot under it, a joint not already part of the body.
+void find_ik_ankles(const Tree& t, Body& b) {
+  std::vector<char> taken(static_cast<size_t>(t.size()), 0);
+  for (int up = b.hips; up >= 0; up = t.parent(up)) taken[up] = 1;
+  for (const std::vector<int>* c : std::initializer_list<const std::vector<int>*>{
+           &b.leg_a.chain, &b.leg_b.chain, &b.spine, &b.arm_a.chain, &b.arm_b.chain})
+    for (int j : *c) taken[j] = 1;
+  find_ik_ankle(t, b.leg_a, taken);
+  if (b.leg_a.end >= 0) taken[b.leg_a.end] = 1;
+  find_ik_ankle(t, b.leg_b, taken);
+}
+
+// Which leg is the left one (+1 leg a, -1 leg b): the body's facing where it tells, else the
+// names, else +Z; 0 when the legs cannot be told apart. Sets out's facing and names_sides.
+int tell_left(const Skeleton& skeleton, const Tree& t, const MotionMatrix* motion, const MajorMapping* named,
+              const Body& b, RigStructure& out) {
+  if (!b.sides_apart) return 0;
   int a_left = 0;
   bool contradicted = false;
-  if (legs_cut && sides_apart) a_left = facing_from_body(skeleton, t, motion, leg_a, leg_b, hips, &out.facing, &contradicted);
+  if (b.legs_cut()) a_left = facing_from_body(skeleton, t, motion, b.leg_a, b.leg_b, b.hips, &out.facing, &contradicted);
   int named_a_left = 0;
-  if (named != nullptr && sides_apart) {
+  if (named != nullptr) {
     int votes = 0;
     for (int major = static_cast<int>(MajorJoint::kLeftShoulder); major < kMajorJointCount; ++major) {
       const int j = named->joint[major];
       if (j < 0) continue;
       const bool left = (major >= 4 && major <= 7) || (major >= 12 && major <= 15);
-      const bool on_a = t.in_subtree(j, root_a) || (arm_a >= 0 && t.in_subtree(j, arm_a));
-      const bool on_b = t.in_subtree(j, root_b) || (arm_b >= 0 && t.in_subtree(j, arm_b));
+      const bool on_a = t.in_subtree(j, b.root_a) || (b.arm_a.root >= 0 && t.in_subtree(j, b.arm_a.root));
+      const bool on_b = t.in_subtree(j, b.root_b) || (b.arm_b.root >= 0 && t.in_subtree(j, b.arm_b.root));
       if (on_a != on_b) votes += (on_a == left) ? 1 : -1;
     }
     named_a_left = votes > 0 ? 1 : votes < 0 ? -1 : 0;
@@ -569,48 +568,77 @@ RigStructure find_rig_structure(const Skeleton& skeleton, const MotionMatrix* mo
     a_left = named_a_left;
     out.facing = FacingCue::kNames;
   }
-  if (a_left == 0 && legs_cut && sides_apart) {
-    // Nothing tells: +Z is the facing (glTF's convention, and most BVH captures').
-    a_left = forward_if_a_left(t.p, leg_a, leg_b).z() >= 0 ? 1 : -1;
-  }
-  if (sides_apart && a_left != 0) {
-    const Limb& left_leg = a_left > 0 ? leg_a : leg_b;
-    const Limb& right_leg = a_left > 0 ? leg_b : leg_a;
-    const Limb& left_arm = a_left > 0 ? limb_arm_a : limb_arm_b;
-    const Limb& right_arm = a_left > 0 ? limb_arm_b : limb_arm_a;
-    const auto put = [&](const Limb& limb, MajorJoint upper) {
-      const int u = static_cast<int>(upper);
-      out.joint[u] = limb.upper;
-      out.joint[u + 1] = limb.middle;
-      out.joint[u + 2] = limb.end;
-      out.joint[u + 3] = limb.tip;
-    };
-    put(left_leg, MajorJoint::kLeftHip);
-    put(right_leg, MajorJoint::kRightHip);
-    put(left_arm, MajorJoint::kLeftShoulder);
-    put(right_arm, MajorJoint::kRightShoulder);
-  }
+  // Nothing tells: +Z is the facing (glTF's convention, and most BVH captures').
+  if (a_left == 0 && b.legs_cut()) a_left = forward_if_a_left(t.p, b.leg_a, b.leg_b).z() >= 0 ? 1 : -1;
+  return a_left;
+}
 
-  // The sentence.
-  std::string found = "hips " + quoted(skeleton, hips);
+// RigStructure::summary: what was found, from what left was told, what is missing.
+std::string summarize(const Skeleton& skeleton, const Body& b, bool sides_told, FacingCue facing) {
+  std::string found = "hips " + quoted(skeleton, b.hips);
   std::vector<std::string> missing;
-  if (legs_cut) {
+  if (b.legs_cut()) {
     found += " with two legs";
-    if (leg_a.ik || leg_b.ik) found += " (an ankle from the joint at the shin's end)";
+    if (b.leg_a.ik || b.leg_b.ik) found += " (an ankle from the joint at the shin's end)";
   } else {
     missing.push_back("legs cut into thigh and shin (no two long bones)");
   }
-  if (!sides_apart) missing.push_back("left and right (the legs stand at one place in the rest pose)");
-  if (head >= 0) found += ", spine to the head " + quoted(skeleton, head);
-  else missing.push_back(spine.empty() ? "spine (no chain goes up from the hips)" : "head");
-  if (chest_at >= 0) found += ", arms from " + quoted(skeleton, spine[chest_at]);
-  else if (!spine.empty()) missing.push_back("arms (no two chains leave the spine sideways)");
-  if (sides_apart && a_left != 0) found += std::string("; left told by ") + facing_cue_name(out.facing);
-  out.summary = found;
-  if (!missing.empty()) {
-    out.summary += "; not found: ";
-    for (size_t i = 0; i < missing.size(); ++i) out.summary += (i ? ", " : "") + missing[i];
+  if (!b.sides_apart) missing.push_back("left and right (the legs stand at one place in the rest pose)");
+  if (b.head >= 0) found += ", spine to the head " + quoted(skeleton, b.head);
+  else missing.push_back(b.spine.empty() ? "spine (no chain goes up from the hips)" : "head");
+  if (b.chest_at >= 0) found += ", arms from " + quoted(skeleton, b.spine[b.chest_at]);
+  else if (!b.spine.empty()) missing.push_back("arms (no two chains leave the spine sideways)");
+  if (sides_told) found += std::string("; left told by ") + facing_cue_name(facing);
+  if (missing.empty()) return found;
+  found += "; not found: ";
+  for (size_t i = 0; i < missing.size(); ++i) found += (i ? ", " : "") + missing[i];
+  return found;
+}
+
+}  // namespace
+
+RigStructure find_rig_structure(const Skeleton& skeleton, const MotionMatrix* motion, const MajorMapping* named) {
+  RigStructure out;
+  Tree t(skeleton);
+  if (t.size() == 0 || !(t.height > 0)) {
+    out.summary = "the rest pose is flat: no joint stands above another";
+    return out;
   }
+  if (motion != nullptr && motion->cols() == skeleton.channel_count) find_markers(t, *motion);
+  else motion = nullptr;
+  Body b;
+  if (!find_legs(t, &b.hips, &b.root_a, &b.root_b)) {
+    out.summary = "no legs: no joint has two chains of a like length going down to the lowest joints";
+    return out;
+  }
+  b.leg_a = cut_limb(t, b.root_a, false);
+  b.leg_b = cut_limb(t, b.root_b, false);
+  b.spine_base = b.hips;
+  b.spine = find_spine(t, b.hips, b.root_a, b.root_b, &b.spine_base);
+  find_sides(t, b);
+  find_arms(t, b);
+  find_head_and_spine(t, b);
+  find_ik_ankles(t, b);
+  const int a_left = tell_left(skeleton, t, motion, named, b, out);
+
+  out.joint[static_cast<int>(MajorJoint::kHips)] = b.hips;
+  out.joint[static_cast<int>(MajorJoint::kSpine)] = b.lower_spine;
+  if (b.chest_at >= 0) out.joint[static_cast<int>(MajorJoint::kChest)] = b.spine[b.chest_at];
+  out.joint[static_cast<int>(MajorJoint::kHead)] = b.head;
+  const auto put = [&](const Limb& limb, MajorJoint upper) {
+    const int u = static_cast<int>(upper);
+    out.joint[u] = limb.upper;
+    out.joint[u + 1] = limb.middle;
+    out.joint[u + 2] = limb.end;
+    out.joint[u + 3] = limb.tip;
+  };
+  if (a_left != 0) {
+    put(a_left > 0 ? b.leg_a : b.leg_b, MajorJoint::kLeftHip);
+    put(a_left > 0 ? b.leg_b : b.leg_a, MajorJoint::kRightHip);
+    put(a_left > 0 ? b.arm_a : b.arm_b, MajorJoint::kLeftShoulder);
+    put(a_left > 0 ? b.arm_b : b.arm_a, MajorJoint::kRightShoulder);
+  }
+  out.summary = summarize(skeleton, b, a_left != 0, out.facing);
   return out;
 }
 
