@@ -203,7 +203,8 @@ MajorMapping map_by_names(const Skeleton& skeleton) {
     top = std::max(top, p.y() - rest[0].y());
   }
   // A pelvis stands well above the feet: a joint named "root" on the floor (a rig's ground
-  // node, an IK rig's root) is no hips.
+  // node, an IK rig's root) is no hips. Only that spelling is doubted: a rest pose may also be
+  // no standing body (bones along their local axes with every rotation zero).
   const auto too_low_for_hips = [&](int i) { return rest[i].y() - rest[0].y() - floor < kMinHipsHeight * (top - floor); };
   auto is_descendant = [&](int joint, int ancestor) {
     for (int p = skeleton.joints[joint].parent; p >= 0; p = skeleton.joints[p].parent)
@@ -222,7 +223,7 @@ MajorMapping map_by_names(const Skeleton& skeleton) {
         for (int i = 0; i < n && found < 0; ++i) {
           if (skeleton.joints[i].end_site || parts[i].part != spelling) continue;
           if (parts[i].side != wanted) continue;
-          if (major == 0 && too_low_for_hips(i)) continue;
+          if (major == 0 && spelling == "root" && too_low_for_hips(i)) continue;
           if (parent_joint >= 0 && !is_descendant(i, parent_joint)) continue;
           if (std::find(m.joint.begin(), m.joint.end(), i) != m.joint.end()) continue;
           if (parent_joint >= 0 && (rest[i] - rest[parent_joint]).norm() <= kZeroBone * size) continue;

@@ -68,8 +68,8 @@ MappingOverrides parse_mapping_overrides(const std::string& text, const std::str
 // hips is the pelvis joint that carries the trajectory, which is not always the ROOT (failing
 // names and structure, the first joint with position channels). A joint at the very same place
 // as its canonical parent in the rest pose (a zero-length bone), or not below it, and a hips
-// less than a quarter of the rest pose's height above its lowest joint (a "root" on the floor),
-// are passed over for the next candidate by the name rules. Throws InputError "FILE:LINE: ..." when an override
+// called "root" less than a quarter of the rest pose's height above its lowest joint (a root
+// on the floor), are passed over for the next candidate by the name rules. Throws InputError "FILE:LINE: ..." when an override
 // names a joint the skeleton does not have (listing the ones it has) or one that already plays
 // another role. O(joints x spellings), and O(joints^2) where the structure is read.
 MajorMapping map_major_joints(const Skeleton& skeleton, const MappingOverrides* overrides = nullptr);

@@ -11,7 +11,7 @@ namespace mostyle {
 namespace {
 
 // Lengths and heights are fractions of the rest pose's height (its vertical extent).
-constexpr double kFloorBand = 0.1;       // the legs' lowest points lie within this of each other
+constexpr double kLegsLevel = 0.25;      // the legs' lowest points lie within this of each other (a foot in the air)
 constexpr double kMinHipsHeight = 0.25;  // the hips stand at least this high above the lowest joint
 constexpr double kMinLegDrop = 0.2;      // each leg goes at least this far down from the hips
 constexpr double kMinFeetApart = 0.04;   // the legs' lowest points lie at least this far apart
@@ -44,7 +44,8 @@ struct Tree {
   std::vector<char> marker;                // a leaf the motion never moves: an end marker
   double floor = 0.0, height = 0.0;
 
-  explicit Tree(const Skeleton& skeleton) : s(skeleton), p(rest_positions(skeleton)) {
+  // positions: per joint, the pose to read (the rest pose, or a frame's).
+  Tree(const Skeleton& skeleton, std::vector<Eigen::Vector3d> positions) : s(skeleton), p(std::move(positions)) {
     const int n = size();
     children.resize(n);
     for (int j = 0; j < n; ++j)
@@ -250,7 +251,7 @@ bool find_legs(const Tree& t, int* hips, int* root_a, int* root_b) {
       for (size_t k = i + 1; k < children.size(); ++k) {
         const int d = children[k];
         if (!t.real(d) || t.low[d] > drop_to) continue;
-        if (std::abs(t.low[c] - t.low[d]) > kFloorBand * t.height) continue;
+        if (std::abs(t.low[c] - t.low[d]) > kLegsLevel * t.height) continue;
         if (horizontal(t.p[t.lowest[c]] - t.p[t.lowest[d]]).norm() < kMinFeetApart * t.height) continue;
         const double reach_c = t.bone(x, c) + t.reach[c], reach_d = t.bone(x, d) + t.reach[d];
         if (std::max(reach_c, reach_d) > kMaxLegRatio * std::min(reach_c, reach_d)) continue;
@@ -380,15 +381,17 @@ void add_knee(Cue& cue, const std::vector<Eigen::Vector3d>& p, const Limb& leg, 
 std::string quoted(const Skeleton& s, int j) { return "'" + s.joints[j].name + "'"; }
 
 // Which leg is the left one by the body's facing: +1 leg a, -1 leg b, 0 when nothing tells. The
-// first cue that tells wins, in this order: the toes and the knees' bend in the rest pose; over
+// first cue that tells wins, in this order: the toes and the knees' bend in the rest pose (when
+// t holds the rest pose); over
 // the motion, the knees' bend (knees bend forward), the planted foot's slide under the body (it
 // moves backward), the root's travel, the toes (least sure: a pointed foot's toe trails the
 // ankle). *contradicted: another of those cues (the motion's toes aside) tells the other way.
 int facing_from_body(const Skeleton& skeleton, const Tree& t, const MotionMatrix* motion, const Limb& leg_a,
-                     const Limb& leg_b, int hips, FacingCue* cue, bool* contradicted) {
+                     const Limb& leg_b, int hips, bool rest_pose, FacingCue* cue, bool* contradicted) {
   const double min_size = kMinCue * t.height;
   std::vector<std::pair<FacingCue, int>> told;
-  {
+  // A frame's pose is no rest pose: a walk's trailing foot points back. Its cues are the motion's.
+  if (rest_pose) {
     const Eigen::Vector3d forward = forward_if_a_left(t.p, leg_a, leg_b);
     Cue toes, knees;
     for (const Limb* leg : {&leg_a, &leg_b}) {
@@ -544,12 +547,13 @@ void find_ik_ankles(const Tree& t, Body& b) {
 
 // Which leg is the left one (+1 leg a, -1 leg b): the body's facing where it tells, else the
 // names, else +Z; 0 when the legs cannot be told apart. Sets out's facing and names_sides.
-int tell_left(const Skeleton& skeleton, const Tree& t, const MotionMatrix* motion, const MajorMapping* named,
-              const Body& b, RigStructure& out) {
+int tell_left(const Skeleton& skeleton, const Tree& t, bool rest_pose, const MotionMatrix* motion,
+              const MajorMapping* named, const Body& b, RigStructure& out) {
   if (!b.sides_apart) return 0;
   int a_left = 0;
   bool contradicted = false;
-  if (b.legs_cut()) a_left = facing_from_body(skeleton, t, motion, b.leg_a, b.leg_b, b.hips, &out.facing, &contradicted);
+  if (b.legs_cut())
+    a_left = facing_from_body(skeleton, t, motion, b.leg_a, b.leg_b, b.hips, rest_pose, &out.facing, &contradicted);
   int named_a_left = 0;
   if (named != nullptr) {
     int votes = 0;
@@ -599,18 +603,31 @@ std::string summarize(const Skeleton& skeleton, const Body& b, bool sides_told, 
 
 RigStructure find_rig_structure(const Skeleton& skeleton, const MotionMatrix* motion, const MajorMapping* named) {
   RigStructure out;
-  Tree t(skeleton);
-  if (t.size() == 0 || !(t.height > 0)) {
-    out.summary = "the rest pose is flat: no joint stands above another";
-    return out;
+  if (motion != nullptr && (motion->cols() != skeleton.channel_count || motion->rows() == 0)) motion = nullptr;
+  // A rest pose that shows no standing body (a BVH written with every rotation zero from bones
+  // that run along their own axes) is read in the first frame's pose instead.
+  std::vector<Eigen::Vector3d> pose = rest_positions(skeleton);
+  bool first_frame = false;
+  const auto has_legs = [&](const std::vector<Eigen::Vector3d>& p) {
+    const Tree probe(skeleton, p);
+    int hips = -1, a = -1, b = -1;
+    return probe.height > 0 && find_legs(probe, &hips, &a, &b);
+  };
+  if (!has_legs(pose) && motion != nullptr) {
+    std::vector<Eigen::Vector3d> first = sample_positions(skeleton, MotionMatrix(motion->topRows(1))).front();
+    if (has_legs(first)) {
+      pose = std::move(first);
+      first_frame = true;
+    }
   }
-  if (motion != nullptr && motion->cols() == skeleton.channel_count) find_markers(t, *motion);
-  else motion = nullptr;
+  Tree t(skeleton, std::move(pose));
   Body b;
-  if (!find_legs(t, &b.hips, &b.root_a, &b.root_b)) {
-    out.summary = "no legs: no joint has two chains of a like length going down to the lowest joints";
+  if (!(t.height > 0) || !find_legs(t, &b.hips, &b.root_a, &b.root_b)) {
+    out.summary = !(t.height > 0) ? "the rest pose is flat: no joint stands above another"
+                                  : "no legs: no joint has two chains of a like length going down to the lowest joints";
     return out;
   }
+  if (motion != nullptr) find_markers(t, *motion);
   b.leg_a = cut_limb(t, b.root_a, false);
   b.leg_b = cut_limb(t, b.root_b, false);
   b.spine_base = b.hips;
@@ -619,7 +636,7 @@ RigStructure find_rig_structure(const Skeleton& skeleton, const MotionMatrix* mo
   find_arms(t, b);
   find_head_and_spine(t, b);
   find_ik_ankles(t, b);
-  const int a_left = tell_left(skeleton, t, motion, named, b, out);
+  const int a_left = tell_left(skeleton, t, !first_frame, motion, named, b, out);
 
   out.joint[static_cast<int>(MajorJoint::kHips)] = b.hips;
   out.joint[static_cast<int>(MajorJoint::kSpine)] = b.lower_spine;
@@ -639,6 +656,7 @@ RigStructure find_rig_structure(const Skeleton& skeleton, const MotionMatrix* mo
     put(a_left > 0 ? b.arm_b : b.arm_a, MajorJoint::kRightShoulder);
   }
   out.summary = summarize(skeleton, b, a_left != 0, out.facing);
+  if (first_frame) out.summary = "read in the first frame's pose (the rest pose shows no legs): " + out.summary;
   return out;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // The major joints of a rig found from its shape rather than its names: the hierarchy, the rest
-// pose (Y up, as everywhere in the engine) and, where the rest pose cannot tell which way the
-// body faces, the motion. map_major_joints (major_skeleton.h) fills from here what the name
+// pose (Y up, as everywhere in the engine; the first frame's pose where the rest pose shows no
+// legs) and, where the pose cannot tell which way the body faces, the motion. map_major_joints (major_skeleton.h) fills from here what the name
 // rules leave out.
 //   legs: the two chains that go down from one joint (the hips) to the lowest joints, each cut
 //     at its two longest consecutive bones (thigh and shin): hip, knee, ankle, then the toe;

@@ -578,4 +578,13 @@ TEST_CASE("the wild files: one skeleton per file, the major joints found, left o
       CHECK(bend > 0);
     }
   }
+  // The same Cesium Man without its rest rotations (a BVH written from it: every rotation zero
+  // is no standing body there, its bones run along their own axes): read in its first frame.
+  Clip cesium = read_motion_file(test::shared_motion("wild/gltf_cesiumman_walk.glb"));
+  const MajorMapping from_rest = map_major_joints(cesium);
+  for (Joint& j : cesium.skeleton.joints) j.rest_rotation.setIdentity();
+  const MajorMapping from_first_frame = map_major_joints(cesium);
+  CHECK(from_first_frame.joint == from_rest.joint);
+  CHECK_THAT(from_first_frame.how, Catch::Contains("read in the first frame's pose") &&
+                                       Catch::Contains("left told by the knees' bend over the motion"));
 }
