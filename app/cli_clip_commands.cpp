@@ -17,6 +17,7 @@
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/resample.h"
 #include "engine/kinematics/units.h"
+#include "engine/prepare/major_skeleton.h"
 
 namespace mostyle::cli {
 namespace {
@@ -50,20 +51,40 @@ CLI::Validator positive_finite_rate() {
 
 }  // namespace
 
+namespace {
+
+// Where a file's one skeleton comes from, in words and as a JSON key.
+struct SkeletonOrigin {
+  const char* key;
+  const char* words;
+};
+SkeletonOrigin skeleton_origin(MotionFormat format, const SceneSkeleton* scene) {
+  if (format == MotionFormat::kBvh || scene == nullptr) return {"hierarchy", "the file's hierarchy"};
+  if (scene->from_skins) return {"skins", "the joints of the file's skins"};
+  return {"animated nodes", "the nodes the animations key"};
+}
+
+}  // namespace
+
 void add_info_command(CLI::App& app, std::function<int()>* run) {
-  auto* cmd = app.add_subcommand("info", "Print a take's joints, channels, frames and units, and a file's animations");
+  auto* cmd = app.add_subcommand(
+      "info", "Print a file's skeleton, its animations, and one take's channels, frames, units and major joints");
   auto path = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
   auto take = std::make_shared<std::string>();
   auto fps = std::make_shared<double>(0.0);
+  auto mapping = std::make_shared<std::string>();
   cmd->add_option("FILE", *path, "BVH, FBX, GLB or glTF file (FILE#ANIMATION picks one animation)")->required();
   cmd->add_flag("--json", *json, "Print JSON");
   cmd->add_option("--take", *take, "The animation to describe (FBX, glTF); default the first");
   cmd->add_option("--fps", *fps, "Rate to sample FBX and glTF keys at; default the file's")->check(positive_finite_rate());
+  cmd->add_option("--mapping", *mapping, "Major-joint mapping file (see assets/mappings)");
   cmd->callback([=] {
     *run = [=] {
       const auto clip_ptr = std::make_shared<const Clip>(load_clip(*path, *take, *fps));
       const Clip& clip = *clip_ptr;
+      const MappingOverrides overrides = load_mapping(*mapping);
+      const MajorMapping majors = map_major_joints(clip, overrides.entries.empty() ? nullptr : &overrides);
       // Its cycles, in its own frames; a take without the major joints has none to tell.
       std::optional<TakeCycles> cycles;
       std::string no_cycles;
@@ -72,16 +93,26 @@ void add_info_command(CLI::App& app, std::function<int()>* run) {
       } catch (const InputError& e) {
         no_cycles = e.what();
       }
-      // A BVH is one take, the clip just read (not read again: a BVH may be 100 MB).
+      // A BVH is one take, the clip just read (not read again: a BVH may be 100 MB). An FBX or
+      // glTF file's animations all play on its one skeleton.
       const TakePath file = split_take_path(*path);
+      const MotionFormat format = motion_format(file.path);
       std::vector<TakeInfo> takes;
-      if (has_takes(motion_format(file.path))) {
-        takes = read_motion_takes(file.path, motion_read_options_from_environment());
+      std::optional<SceneSkeleton> scene_skeleton_found;
+      if (has_takes(format)) {
+        const AnimatedScene scene = read_animated_scene(file.path, motion_read_options_from_environment().max_bytes);
+        takes = scene_take_infos(scene);
+        const std::string take_name = take->empty() ? file.take : *take;
+        scene_skeleton_found = scene_skeleton(scene, take_name.empty() ? 0 : find_take(scene, take_name));
       } else {
         takes.push_back({std::filesystem::path(file.path).stem().string(),
-                         clip.frames() > 1 ? (clip.frames() - 1) * clip.frame_time : 0.0, clip.frames()});
+                         clip.frames() > 1 ? (clip.frames() - 1) * clip.frame_time : 0.0, clip.frames(),
+                         clip.skeleton.joint_count_without_end_sites()});
       }
+      const SkeletonOrigin origin =
+          skeleton_origin(format, scene_skeleton_found ? &*scene_skeleton_found : nullptr);
       const Skeleton& s = clip.skeleton;
+      const int end_sites = static_cast<int>(s.joints.size()) - s.joint_count_without_end_sites();
       const UnitsGuess units = guess_units(clip);
       const double duration = clip.frames() > 1 ? (clip.frames() - 1) / clip.fps() : 0.0;
       if (*json) {
@@ -94,13 +125,19 @@ void add_info_command(CLI::App& app, std::function<int()>* run) {
         j["channels"] = s.channel_count;
         j["units_guess"] = units.name;
         j["height"] = units.height;
+        j["skeleton"] = {{"joints", s.joint_count_without_end_sites()},
+                         {"end_sites", end_sites},
+                         {"root", s.joints.empty() ? "" : s.joints[0].name},
+                         {"from", origin.key}};
         auto& tk = j["takes"] = nlohmann::ordered_json::array();
-        for (const TakeInfo& t : takes) tk.push_back({{"name", t.name}, {"seconds", t.seconds}, {"keys", t.keys}});
+        for (const TakeInfo& t : takes)
+          tk.push_back({{"name", t.name}, {"seconds", t.seconds}, {"keys", t.keys}, {"moves", t.moves}});
         if (cycles) {
           j["cycles"] = cycles_json(*cycles, clip.fps());
         } else {
           j["cycles"] = {{"kind", "unknown"}, {"reason", no_cycles}};
         }
+        j["major_joints"] = major_joints_json(majors, s);
         auto& joints = j["joints"] = nlohmann::ordered_json::array();
         for (const Joint& jt : s.joints) {
           if (jt.end_site) continue;
@@ -117,20 +154,29 @@ void add_info_command(CLI::App& app, std::function<int()>* run) {
         std::cout << j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
       } else {
         std::cout << *path << "\n"
-                  << "  joints: " << s.joint_count_without_end_sites() << " (+"
-                  << s.joints.size() - s.joint_count_without_end_sites() << " End Sites)\n"
-                  << "  channels per frame: " << s.channel_count << "\n"
+                  << "  joints: " << s.joint_count_without_end_sites() << " (+" << end_sites << " End Sites), "
+                  << origin.words << (s.joints.empty() ? "" : ", root '" + s.joints[0].name + "'") << "\n"
+                  << "  takes: " << takes.size() << (takes.size() > 1 ? ", every one on this skeleton" : "") << "\n";
+        for (const TakeInfo& t : takes) {
+          std::cout << "    " << t.name << "  (" << number(t.seconds) << " s, " << t.keys << " keys";
+          if (t.moves >= 0) std::cout << ", moves " << t.moves << " joints";
+          std::cout << ")\n";
+        }
+        std::cout << "  channels per frame: " << s.channel_count << "\n"
                   << "  frames: " << clip.frames() << "\n"
-                  << "  frame time: " << number(clip.frame_time) << " s (" << number(clip.fps())
-                  << " fps)\n"
-                  << "  takes: " << takes.size() << "\n";
-        for (const TakeInfo& t : takes)
-          std::cout << "    " << t.name << "  (" << number(t.seconds) << " s, " << t.keys << " keys)\n";
-        std::cout << "  duration: " << number(duration) << " s\n"
-                  << "  units (guess): " << units.name << " (height " << number(units.height)
-                  << ")\n"
-                  << "  cycles: " << (cycles ? cycles_summary(*cycles, clip.fps(), clip.frames()) : "unknown: " + no_cycles)
-                  << "\n";
+                  << "  frame time: " << number(clip.frame_time) << " s (" << number(clip.fps()) << " fps)\n"
+                  << "  duration: " << number(duration) << " s\n"
+                  << "  units (guess): " << units.name << " (height " << number(units.height) << ")\n"
+                  << "  cycles: "
+                  << (cycles ? cycles_summary(*cycles, clip.fps(), clip.frames()) : "unknown: " + no_cycles) << "\n"
+                  << "  major joints: " << majors.how << "\n";
+        for (int m = 0; m < kMajorJointCount; ++m) {
+          if (!majors.has(m) && majors.source[m] == MajorSource::kNone) continue;
+          std::cout << "    " << major_joint_name(m) << ": "
+                    << (majors.has(m) ? s.joints[majors.joint[m]].name : std::string("-")) << " ("
+                    << major_source_name(majors.source[m]) << ")\n";
+        }
+        std::cout << "  hierarchy:\n";
         // Depths in one pass (parents come first): walking up per joint is quadratic in depth.
         std::vector<int> depths(s.joints.size(), 0);
         for (size_t i = 0; i < s.joints.size(); ++i)
@@ -138,7 +184,7 @@ void add_info_command(CLI::App& app, std::function<int()>* run) {
         for (size_t i = 0; i < s.joints.size(); ++i) {
           const Joint& jt = s.joints[i];
           if (jt.end_site) continue;
-          std::cout << "  " << std::string(std::min(depths[i], 16) * 2, ' ') << jt.name << "  ["
+          std::cout << "    " << std::string(std::min(depths[i], 16) * 2, ' ') << jt.name << "  ["
                     << channel_list(jt) << "]";
           if (!rotation_order(jt).empty()) std::cout << " order " << rotation_order(jt);
           std::cout << "\n";

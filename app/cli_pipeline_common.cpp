@@ -178,6 +178,19 @@ std::string report_summary(const Json& r, const std::string& out, const std::str
       text += " (follows the result within " + of_height(r["export_fit"]["mean"].get<double>()) + " mean, " +
               of_height(r["export_fit"]["max"].get<double>()) + " at worst)";
   }
+  // How a take's major joints were found, where not all by their names (the report has every take's).
+  if (r.contains("takes")) {
+    for (const Json& t : r["takes"]) {
+      if (!t.contains("major_joints") || !t.contains("file")) continue;
+      const std::string how = t["major_joints"].value("how", std::string());
+      bool by_names = how.find("structure:") == std::string::npos;
+      for (const Json& j : t["major_joints"]["joints"]) {
+        const std::string by = j.value("found_by", std::string());
+        by_names = by_names && (by == "name" || by == "none");
+      }
+      if (!by_names) text += "\n  major joints of " + file_name(t["file"]) + ": " + how;
+    }
+  }
   if (!positions_out.empty()) text += "\n  wrote " + positions_out;
   if (out.empty() && positions_out.empty()) text += "\n  nothing written: give --out, --positions-out or --report";
   return text + "\n";
@@ -290,6 +303,17 @@ Json component_regions_json(const std::vector<ComponentJoints>& parts) {
   Json out = Json::array();
   for (const ComponentJoints& c : parts) out.push_back({{"name", c.name}, {"region", body_region_name(c.region)}});
   return out;
+}
+
+Json major_joints_json(const MajorMapping& mapping, const Skeleton& skeleton) {
+  Json joints = Json::array();
+  for (int i = 0; i < kMajorJointCount; ++i) {
+    const int j = mapping.joint[static_cast<size_t>(i)];
+    joints.push_back({{"role", major_joint_name(i)},
+                      {"joint", j >= 0 ? Json(skeleton.joints[static_cast<size_t>(j)].name) : Json()},
+                      {"found_by", major_source_name(mapping.source[static_cast<size_t>(i)])}});
+  }
+  return {{"how", mapping.how}, {"joints", joints}};
 }
 
 Json vector_json(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }

@@ -10,6 +10,7 @@
 
 #include "engine/decompose/body_parts.h"
 #include "engine/export/channel_layout.h"
+#include "engine/prepare/major_skeleton.h"
 #include "engine/post/loop.h"
 #include "engine/run/blend_params.h"
 #include "engine/run/palette.h"
@@ -78,6 +79,9 @@ std::string cycles_summary(const TakeCycles& cycles, double fps, int frames);
 Json component_joints_json(const std::vector<ComponentJoints>& parts, const std::vector<std::string>& names);
 Json component_regions_json(const std::vector<ComponentJoints>& parts);
 Json vector_json(const Eigen::VectorXd& v);
+// How a take's major joints were found: {"how": sentence, "joints": [{"role", "joint" (the
+// skeleton's name, null where none), "found_by" ("name", "structure", "mapping file", "none")}]}.
+Json major_joints_json(const MajorMapping& mapping, const Skeleton& skeleton);
 Json loop_json(const LoopCut& loop, double fps);
 // How fast the output's planted feet move (engine/post/planted_feet.h): "raw" before the foot
 // lock, "cleaned" after it, "inputs" the takes' own weighted as mixed, file units per second;

@@ -149,6 +149,8 @@ int run_synthesis(const Prepared& p, const std::vector<std::string>& files, cons
     Json t;
     t["file"] = files[static_cast<size_t>(i)];
     t["weight"] = mp.weights[static_cast<size_t>(i)];
+    t["major_joints"] = major_joints_json(palette.takes[static_cast<size_t>(i)].mapping,
+                                          palette.takes[static_cast<size_t>(i)].clip->skeleton);
     t["reconstruction_rmse"] = d.rmse[static_cast<size_t>(i)];
     t["foot_sliding"] = take_foot_sliding(palette, i);
     if (i > 0) t["alignment"] = alignment_json(palette, i);

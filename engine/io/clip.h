@@ -24,6 +24,10 @@ struct Joint {
   int first_channel = 0;     // index of this joint's first value in a frame row
   bool end_site = false;     // an "End Site" leaf: no channels, not a real joint
   int line = 0;              // 1-based line of its ROOT/JOINT/End Site keyword, for messages
+  // Its rotation in its parent's frame in the file's rest pose: identity for BVH (whose rest
+  // pose is every rotation zero); FBX and glTF: the node's own rotation, the root's including
+  // the nodes above it. Motion channels replace it; rest_positions (kinematics.h) reads it.
+  Eigen::Matrix3d rest_rotation = Eigen::Matrix3d::Identity();
 };
 
 // Joints are stored parents before children (file order), so one forward pass does FK.

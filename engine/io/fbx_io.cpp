@@ -74,6 +74,19 @@ AnimatedScene scene_from_assimp(const aiScene& ai, const std::string& source) {
       if (node->mChildren[c] != nullptr) stack.push_back({node->mChildren[c], index});
   }
   scene.scene_root = 0;
+  // The nodes the meshes' deformers move (the skeleton every take is read on; scene_animation.h).
+  std::vector<char> skin_joint(scene.nodes.size(), 0);
+  for (unsigned m = 0; m < ai.mNumMeshes; ++m) {
+    const aiMesh* mesh = ai.mMeshes[m];
+    if (mesh == nullptr || mesh->mBones == nullptr) continue;
+    for (unsigned b = 0; b < mesh->mNumBones; ++b) {
+      if (mesh->mBones[b] == nullptr) continue;
+      const auto it = by_name.find(mesh->mBones[b]->mName.C_Str());
+      if (it != by_name.end()) skin_joint[static_cast<size_t>(it->second)] = 1;
+    }
+  }
+  for (size_t i = 0; i < skin_joint.size(); ++i)
+    if (skin_joint[i]) scene.skin_joints.push_back(static_cast<int>(i));
 
   for (unsigned a = 0; a < ai.mNumAnimations; ++a) {
     const aiAnimation* anim = ai.mAnimations[a];

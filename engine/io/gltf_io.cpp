@@ -228,6 +228,14 @@ AnimatedScene scene_from_model(const tinygltf::Model& model, const std::string& 
     }
     scene.nodes.push_back(std::move(node));
   }
+  // The skins' joints (the skeleton every animation is read on; scene_animation.h). A joint
+  // index outside the file is the file's fault, but the skin is not needed to read the motion.
+  std::vector<char> skin_joint(n, 0);
+  for (const tinygltf::Skin& skin : model.skins)
+    for (int j : skin.joints)
+      if (j >= 0 && j < n) skin_joint[new_index[j]] = 1;
+  for (int i = 0; i < n; ++i)
+    if (skin_joint[i]) scene.skin_joints.push_back(i);
 
   for (size_t ai = 0; ai < model.animations.size(); ++ai) {
     const tinygltf::Animation& ga = model.animations[ai];

@@ -1,8 +1,9 @@
 #pragma once
 // Reading and writing glTF 2.0 skeletal animation (issue #17): `.glb`, and `.gltf` with its
 // `.bin` or data URIs. Reading parses with tinygltf (Debian's libtinygltf-dev, a faithful reader
-// of the format) and keeps only nodes and animations: meshes, skins, cameras, materials and
-// images are never decoded, so a file whose mesh data is faulty still gives its animation.
+// of the format) and keeps only nodes, the skins' joint lists and animations: meshes, bind
+// matrices, cameras, materials and images are never decoded, so a file whose mesh data is
+// faulty still gives its animation.
 // Writing is our own (nlohmann json): the skeleton as nodes under one armature node and as a
 // skin, one animation, laid out so the Khronos validator reports no error and no warning.
 #include <cstddef>

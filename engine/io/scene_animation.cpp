@@ -10,9 +10,10 @@
 namespace mostyle {
 namespace {
 
-// Relative change of a joint's offset (to the skeleton's size) that still counts as one value:
-// float32 key values composed down a chain differ by about 1e-6.
-constexpr double kOffsetTolerance = 1e-5;
+// How far (relative to the skeleton's size, or to 1 for a scale) keys may lie off the rest pose
+// before a joint's offset counts as moving: exporters key the rest translation again with
+// float32 noise and rounding of some 1e-5 (FK then misses the file's positions by at most this).
+constexpr double kRestTolerance = 1e-4;
 // A fraction of a frame that float32 key times may miss a frame by.
 constexpr double kFrameTolerance = 1e-3;
 // The most frames a take may be sampled into, whatever the memory limit (a typing slip in --fps
@@ -99,18 +100,36 @@ Eigen::Matrix3d rotation_part(const Eigen::Matrix3d& m) {
 }  // namespace
 
 std::vector<TakeInfo> scene_take_infos(const AnimatedScene& scene) {
+  // How many of the skeleton's joints each take keys; unknown when the take has no one skeleton
+  // (reading it then says why).
+  const auto joints_of = [&](int take) {
+    std::vector<int> joint_of;
+    try {
+      const SceneSkeleton skeleton = scene_skeleton(scene, take);
+      joint_of.assign(scene.nodes.size(), -1);
+      for (size_t j = 0; j < skeleton.nodes.size(); ++j) joint_of[skeleton.nodes[j]] = static_cast<int>(j);
+    } catch (const InputError&) {
+    }
+    return joint_of;
+  };
+  const std::vector<int> file_joints = joints_of(-1);
   std::vector<TakeInfo> out;
-  for (const SceneTake& take : scene.takes) {
+  for (size_t k = 0; k < scene.takes.size(); ++k) {
+    const SceneTake& take = scene.takes[k];
+    const std::vector<int> joint_of = file_joints.empty() ? joints_of(static_cast<int>(k)) : file_joints;
     TakeInfo info;
     info.name = take.name;
     double first = std::numeric_limits<double>::infinity(), last = -first;
+    std::vector<char> keyed(joint_of.size(), 0);
     for (const KeyTrack& t : take.tracks) {
       if (t.times.empty()) continue;
       first = std::min(first, t.times.front());
       last = std::max(last, t.times.back());
       info.keys = std::max(info.keys, static_cast<int>(t.times.size()));
+      if (t.node >= 0 && t.node < static_cast<int>(joint_of.size()) && joint_of[t.node] >= 0) keyed[t.node] = 1;
     }
     info.seconds = last >= first && std::isfinite(last - first) ? last - first : 0.0;
+    info.moves = joint_of.empty() ? -1 : static_cast<int>(std::count(keyed.begin(), keyed.end(), 1));
     out.push_back(info);
   }
   return out;
@@ -186,6 +205,144 @@ double default_take_rate(const AnimatedScene& scene, int take) {
   return usable(rate) ? rate : 30.0;
 }
 
+namespace {
+
+// "'A', 'B', 'C'": up to three node names.
+std::string node_list(const AnimatedScene& scene, const std::vector<int>& nodes) {
+  std::string list;
+  for (size_t i = 0; i < nodes.size() && i < 3; ++i) list += (i ? ", '" : "'") + scene.nodes[nodes[i]].name + "'";
+  return list;
+}
+
+// Whether a joint's offset leaves its rest offset in some take: translation keys off the rest
+// translation (tangents of a spline that are not zero), in world units.
+bool translation_moves(const KeyTrack& track, const SceneNode& node, double parent_scale, double tolerance) {
+  if (track.values.cols() != 3) return false;
+  const bool cubic = track.interpolation == KeyInterpolation::kCubicSpline;
+  for (Eigen::Index r = 0; r < track.values.rows(); ++r) {
+    const Eigen::Vector3d v = track.values.row(r).transpose();
+    const bool tangent = cubic && r % 3 != 1;
+    const double off = tangent ? v.norm() : (v - node.translation).norm();
+    if (off * parent_scale > tolerance) return true;
+  }
+  return false;
+}
+
+// Whether scale keys leave the rest scale (relative), which moves the offsets of the joints below.
+bool scale_moves(const KeyTrack& track, const SceneNode& node) {
+  if (track.values.cols() != 3) return false;
+  const bool cubic = track.interpolation == KeyInterpolation::kCubicSpline;
+  for (Eigen::Index r = 0; r < track.values.rows(); ++r) {
+    const Eigen::Vector3d v = track.values.row(r).transpose();
+    const bool tangent = cubic && r % 3 != 1;
+    const Eigen::Vector3d off = tangent ? v : Eigen::Vector3d(v - node.scale);
+    if (off.cwiseAbs().maxCoeff() > kRestTolerance * std::max(1.0, node.scale.cwiseAbs().maxCoeff())) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+SceneSkeleton scene_skeleton(const AnimatedScene& scene, int take) {
+  const int n = static_cast<int>(scene.nodes.size());
+  std::vector<int> depth(n, 0);
+  for (int i = 0; i < n; ++i) {
+    if (scene.nodes[i].parent >= i)
+      throw InputError(scene.source + ": node '" + scene.nodes[i].name + "' comes before its parent");
+    depth[i] = scene.nodes[i].parent < 0 ? 0 : depth[scene.nodes[i].parent] + 1;
+  }
+  // Members: the skins' joints; else every node any take keys.
+  std::vector<char> member(n, 0);
+  SceneSkeleton skeleton;
+  for (int node : scene.skin_joints) {
+    if (node < 0 || node >= n) continue;
+    member[node] = 1;
+    skeleton.from_skins = true;
+  }
+  if (!skeleton.from_skins) {
+    for (size_t t = 0; t < scene.takes.size(); ++t) {
+      for (const KeyTrack& track : scene.takes[t].tracks) {
+        if (track.node < 0 || track.node >= n)
+          throw InputError(take_label(scene, static_cast<int>(t)) + ": a track targets node " +
+                           std::to_string(track.node) + ", which the file does not have");
+        member[track.node] = 1;
+      }
+    }
+  }
+  // The root: the members' lowest common ancestor; -1 when they have none but the scene root
+  // that holds everything (assimp's), which is no skeleton's root unless it is a member.
+  const auto common_root = [&](const std::vector<char>& in) {
+    int root = -1;
+    for (int i = 0; i < n; ++i) {
+      if (!in[i]) continue;
+      if (root < 0) {
+        root = i;
+        continue;
+      }
+      int a = root, b = i;
+      while (a != b && a >= 0 && b >= 0) {
+        if (depth[a] >= depth[b]) a = scene.nodes[a].parent;
+        else b = scene.nodes[b].parent;
+      }
+      if (a != b) return -1;
+      root = a;
+    }
+    return root == scene.scene_root && root >= 0 && !in[root] ? -1 : root;
+  };
+  if (std::none_of(member.begin(), member.end(), [](char m) { return m != 0; }))
+    throw InputError(scene.source + ": no animation keys a node: no skeleton moves in it");
+  int root = common_root(member);
+  if (root < 0 && take >= 0 && take < static_cast<int>(scene.takes.size())) {
+    // Several skeletons (characters) in one file: the one whose members the take keys.
+    const auto top_of = [&](int i) {
+      while (scene.nodes[i].parent >= 0 && scene.nodes[i].parent != scene.scene_root) i = scene.nodes[i].parent;
+      return i;
+    };
+    std::vector<int> tops;
+    for (const KeyTrack& track : scene.takes[take].tracks)
+      if (track.node >= 0 && track.node < n && std::find(tops.begin(), tops.end(), top_of(track.node)) == tops.end())
+        tops.push_back(top_of(track.node));
+    if (tops.size() == 1) {
+      for (int i = 0; i < n; ++i)
+        if (member[i] && top_of(i) != tops.front()) member[i] = 0;
+      root = common_root(member);
+    }
+  }
+  const std::string members = skeleton.from_skins ? "the skins' joints" : "the animations' nodes";
+  if (root < 0) {
+    std::vector<int> tops;
+    for (int i = 0; i < n; ++i) {
+      if (!member[i]) continue;
+      int up = scene.nodes[i].parent;
+      while (up >= 0 && !member[up]) up = scene.nodes[up].parent;
+      if (up < 0) tops.push_back(i);
+    }
+    throw InputError(scene.source + ": " + members + " form several skeletons (rooted at " + node_list(scene, tops) +
+                     ")" + (take >= 0 ? " and animation '" + scene.takes[take].name + "' moves more than one" : "") +
+                     ": keep one per file");
+  }
+  // The members and the nodes between them and the root, depth first.
+  std::vector<char> in_skeleton(n, 0);
+  for (int i = 0; i < n; ++i) {
+    if (!member[i]) continue;
+    for (int up = i; up >= 0 && !in_skeleton[up]; up = scene.nodes[up].parent) {
+      in_skeleton[up] = 1;
+      if (up == root) break;
+    }
+  }
+  std::vector<std::vector<int>> children(n);
+  for (int i = 0; i < n; ++i)
+    if (in_skeleton[i] && i != root) children[scene.nodes[i].parent].push_back(i);
+  std::vector<int> stack{root};
+  while (!stack.empty()) {
+    const int node = stack.back();
+    stack.pop_back();
+    skeleton.nodes.push_back(node);
+    for (auto it = children[node].rbegin(); it != children[node].rend(); ++it) stack.push_back(*it);
+  }
+  return skeleton;
+}
+
 Clip scene_take_to_clip(const AnimatedScene& scene, int take, const SceneClipOptions& options) {
   if (take < 0 || take >= static_cast<int>(scene.takes.size()))
     throw InputError(scene.source + ": has no animation " + std::to_string(take + 1));
@@ -194,73 +351,19 @@ Clip scene_take_to_clip(const AnimatedScene& scene, int take, const SceneClipOpt
   for (const KeyTrack& t : st.tracks) check_track(scene, take, t);
   if (st.tracks.empty()) throw InputError(take_label(scene, take) + " keys no node: no skeleton moves in it");
 
-  // The skeleton: keyed nodes, rooted at their lowest common ancestor, and the nodes between.
-  std::vector<char> keyed(n, 0);
-  for (const KeyTrack& t : st.tracks) keyed[t.node] = 1;
-  std::vector<int> depth(n, 0);
-  for (int i = 0; i < n; ++i) {
-    if (scene.nodes[i].parent >= i)
-      throw InputError(scene.source + ": node '" + scene.nodes[i].name + "' comes before its parent");
-    depth[i] = scene.nodes[i].parent < 0 ? 0 : depth[scene.nodes[i].parent] + 1;
-  }
-  int root = -1;
-  for (int i = 0; i < n; ++i) {
-    if (!keyed[i]) continue;
-    if (root < 0) {
-      root = i;
-      continue;
-    }
-    int a = root, b = i;
-    while (a != b && a >= 0 && b >= 0) {
-      if (depth[a] >= depth[b]) a = scene.nodes[a].parent;
-      else b = scene.nodes[b].parent;
-    }
-    root = a == b ? a : -1;
-    if (root < 0) break;
-  }
-  // The scene root that holds everything (assimp's) is no skeleton's root unless it moves itself.
-  if (root < 0 || (root == scene.scene_root && !keyed[root])) {
-    std::vector<std::string> tops;
-    for (int i = 0; i < n && tops.size() < 3; ++i) {
-      if (!keyed[i]) continue;
-      int up = scene.nodes[i].parent;
-      while (up >= 0 && !keyed[up]) up = scene.nodes[up].parent;
-      if (up < 0) tops.push_back("'" + scene.nodes[i].name + "'");
-    }
-    std::string list;
-    for (size_t i = 0; i < tops.size(); ++i) list += (i ? ", " : "") + tops[i];
-    throw InputError(take_label(scene, take) + " moves several skeletons (rooted at " + list +
-                     "): keep one per file");
-  }
-  std::vector<char> in_skeleton(n, 0);
-  for (int i = 0; i < n; ++i) {
-    if (!keyed[i]) continue;
-    for (int up = i; up >= 0 && !in_skeleton[up]; up = scene.nodes[up].parent) {
-      in_skeleton[up] = 1;
-      if (up == root) break;
-    }
-  }
-  // Nodes whose transforms matter: the skeleton and everything above its root.
-  std::vector<char> needed = in_skeleton;
-  for (int up = scene.nodes[root].parent; up >= 0; up = scene.nodes[up].parent) needed[up] = 1;
-
-  // Joints in depth-first order (parents first, siblings in file order).
-  std::vector<std::vector<int>> children(n);
-  for (int i = 0; i < n; ++i)
-    if (in_skeleton[i] && i != root) children[scene.nodes[i].parent].push_back(i);
-  std::vector<int> order;  // joint index -> node
-  std::vector<int> joint_of(n, -1);
-  {
-    std::vector<int> stack{root};
-    while (!stack.empty()) {
-      const int node = stack.back();
-      stack.pop_back();
-      joint_of[node] = static_cast<int>(order.size());
-      order.push_back(node);
-      for (auto it = children[node].rbegin(); it != children[node].rend(); ++it) stack.push_back(*it);
-    }
-  }
+  const SceneSkeleton skeleton = scene_skeleton(scene, take);
+  const std::vector<int>& order = skeleton.nodes;  // joint index -> node
+  const int root = skeleton.root();
   const int joints = static_cast<int>(order.size());
+  std::vector<int> joint_of(n, -1);
+  for (int j = 0; j < joints; ++j) joint_of[order[j]] = j;
+  // Nodes whose transforms matter: the skeleton and everything above its root.
+  std::vector<char> needed(n, 0);
+  for (int node : order) needed[node] = 1;
+  for (int up = scene.nodes[root].parent; up >= 0; up = scene.nodes[up].parent) needed[up] = 1;
+  if (std::none_of(st.tracks.begin(), st.tracks.end(), [&](const KeyTrack& t) { return needed[t.node] != 0; }))
+    throw InputError(take_label(scene, take) + " keys none of the skeleton's joints (rooted at '" +
+                     scene.nodes[root].name + "') nor a node above them");
 
   // Sampling times.
   double first = std::numeric_limits<double>::infinity(), last = -first;
@@ -278,8 +381,8 @@ Clip scene_take_to_clip(const AnimatedScene& scene, int take, const SceneClipOpt
   // a whole frame (15.6666665 s at 30 fps is frame 469.99999): it still counts as that frame.
   const Eigen::Index frames = static_cast<Eigen::Index>(std::floor(span + kFrameTolerance)) + 1;
 
-  // Channels: root 6, others 3 (+3 where the offset changes, decided after sampling): the
-  // motion takes at most frames x joints x 6 doubles.
+  // Channels: root 6, others 3 (+3 where the offset moves): the motion takes at most
+  // frames x joints x 6 doubles.
   const double need = static_cast<double>(frames) * joints * 6 * sizeof(double);
   if (need > static_cast<double>(options.max_bytes))
     throw InputError(take_label(scene, take) + ": " + std::to_string(frames) + " frames of " +
@@ -291,24 +394,25 @@ Clip scene_take_to_clip(const AnimatedScene& scene, int take, const SceneClipOpt
   std::vector<const KeyTrack*> track_of(3 * static_cast<size_t>(n), nullptr);
   for (const KeyTrack& t : st.tracks) track_of[3 * t.node + static_cast<int>(t.target)] = &t;
 
-  // World rotations (orthonormal) and positions of the joints at one frame. Computed twice per
-  // frame (once to find the joints whose offsets change, once to write the channels) rather than
-  // kept for all frames: that store took more memory than the clip and its page faults most of
-  // the time on a 20 MB file.
+  // World rotations (orthonormal) and positions of the joints at one time, or at rest (no
+  // track read). Computed twice per frame (once to find the joints whose offsets change, once
+  // to write the channels) rather than kept for all frames: that store took more memory than
+  // the clip and its page faults most of the time on a 20 MB file.
   std::vector<Eigen::Affine3d> global(n, Eigen::Affine3d::Identity());
   std::vector<Eigen::Matrix3d> rot(joints);
   std::vector<Eigen::Vector3d> pos(joints);
   const double snap = kFrameTolerance / fps;
-  const auto world_pose = [&](Eigen::Index f) {
-    const double t = first + static_cast<double>(f) / fps;
+  const auto world_pose = [&](double t, bool rest) {
     for (int i = 0; i < n; ++i) {
       if (!needed[i]) continue;
       const SceneNode& node = scene.nodes[i];
       Eigen::Vector3d tr = node.translation, sc = node.scale;
       Eigen::Quaterniond q = node.rotation;
-      if (const KeyTrack* k = track_of[3 * i]) tr = sample_track(*k, t, snap).head<3>();
-      if (const KeyTrack* k = track_of[3 * i + 1]) q = as_quaternion(sample_track(*k, t, snap));
-      if (const KeyTrack* k = track_of[3 * i + 2]) sc = sample_track(*k, t, snap).head<3>();
+      if (!rest) {
+        if (const KeyTrack* k = track_of[3 * i]) tr = sample_track(*k, t, snap).head<3>();
+        if (const KeyTrack* k = track_of[3 * i + 1]) q = as_quaternion(sample_track(*k, t, snap));
+        if (const KeyTrack* k = track_of[3 * i + 2]) sc = sample_track(*k, t, snap).head<3>();
+      }
       Eigen::Affine3d local = Eigen::Affine3d::Identity();
       local.translate(tr);
       local.rotate(q.normalized());
@@ -327,21 +431,46 @@ Clip scene_take_to_clip(const AnimatedScene& scene, int take, const SceneClipOpt
     return Eigen::Vector3d(rot[parent_joint[j]].transpose() * (pos[j] - pos[parent_joint[j]]));
   };
 
-  // Offsets in the parent's frame at frame 0, and which joints need position channels.
+  // The rest pose: offsets and rotations in the parent's frame, the same for every take.
+  world_pose(0.0, true);
   std::vector<Eigen::Vector3d> offset(joints, Eigen::Vector3d::Zero());
-  world_pose(0);
+  std::vector<Eigen::Matrix3d> rest_rotation(joints);
   double size = 0;
-  for (int j = 1; j < joints; ++j) {
+  for (int j = 0; j < joints; ++j) {
+    rest_rotation[j] = j == 0 ? rot[0] : Eigen::Matrix3d(rot[parent_joint[j]].transpose() * rot[j]);
+    if (j == 0) continue;
     offset[j] = local_offset(j);
     size = std::max(size, offset[j].norm());
   }
   if (!(size > 0)) size = 1;
+  // Joints whose offsets leave the rest in any take keep position channels: every take of the
+  // file then has the same channels.
   std::vector<char> moving(joints, 0);
   moving[0] = 1;
-  for (Eigen::Index f = 1; f < frames; ++f) {
-    world_pose(f);
-    for (int j = 1; j < joints; ++j)
-      if (!moving[j] && (local_offset(j) - offset[j]).norm() > kOffsetTolerance * size) moving[j] = 1;
+  const auto world_scale = [&](int node) {
+    const Eigen::Matrix3d& m = global[node].linear();
+    return (m.col(0).norm() + m.col(1).norm() + m.col(2).norm()) / 3.0;
+  };
+  for (const SceneTake& other : scene.takes) {
+    for (const KeyTrack& t : other.tracks) {
+      if (t.node < 0 || t.node >= n || !needed[t.node]) continue;
+      const int j = joint_of[t.node];
+      if (t.target == TrackTarget::kTranslation && j > 0) {
+        if (!moving[j] && translation_moves(t, scene.nodes[t.node], world_scale(order[parent_joint[j]]),
+                                            kRestTolerance * size))
+          moving[j] = 1;
+      } else if (t.target == TrackTarget::kScale && scale_moves(t, scene.nodes[t.node])) {
+        // Every joint below the scaled node (all of them for a node above the root).
+        for (int k = 1; k < joints; ++k) {
+          if (j < 0) {
+            moving[k] = 1;
+            continue;
+          }
+          for (int up = parent_joint[k]; up >= 0; up = parent_joint[up])
+            if (up == j) moving[k] = 1;
+        }
+      }
+    }
   }
 
   Clip clip;
@@ -352,7 +481,8 @@ Clip scene_take_to_clip(const AnimatedScene& scene, int take, const SceneClipOpt
     Joint joint;
     joint.name = scene.nodes[order[j]].name;
     joint.parent = parent_joint[j];
-    joint.offset = j == 0 ? Eigen::Vector3d::Zero() : offset[j];
+    joint.offset = offset[j];
+    joint.rest_rotation = rest_rotation[j];
     joint.first_channel = sk.channel_count;
     if (moving[j]) joint.channels = {Channel::kXposition, Channel::kYposition, Channel::kZposition};
     joint.channels.insert(joint.channels.end(), {Channel::kZrotation, Channel::kXrotation, Channel::kYrotation});
@@ -362,7 +492,7 @@ Clip scene_take_to_clip(const AnimatedScene& scene, int take, const SceneClipOpt
   clip.motion.resize(frames, sk.channel_count);
   std::vector<Eigen::Vector3d> previous(joints, Eigen::Vector3d::Zero());
   for (Eigen::Index f = 0; f < frames; ++f) {
-    world_pose(f);
+    world_pose(first + static_cast<double>(f) / fps, false);
     for (int j = 0; j < joints; ++j) {
       const Joint& joint = sk.joints[j];
       int c = joint.first_channel;

@@ -1,8 +1,10 @@
 #pragma once
-// Keyed node animation as FBX and glTF files hold it (issue #17): a tree of nodes with rest
-// transforms, and takes whose tracks key a node's translation, rotation or scale at times. The
-// readers (gltf_io.h, fbx_io.h) fill this value; scene_take_to_clip samples one take at a frame
-// rate into the engine's Clip, so every later stage sees what a BVH file gives.
+// Keyed node animation as FBX and glTF files hold it: a tree of nodes with rest transforms, the
+// nodes the file's skins deform with, and takes whose tracks key a node's translation, rotation
+// or scale at times. The readers (gltf_io.h, fbx_io.h) fill this value; scene_skeleton finds the
+// file's one skeleton and scene_take_to_clip samples one take on it at a frame rate into the
+// engine's Clip, so every later stage sees what a BVH file gives, and every take of a file has
+// the same joints.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstddef>
@@ -52,14 +54,36 @@ struct AnimatedScene {
   // A node that stands for the whole scene (assimp's root node), never a skeleton's root
   // unless a take keys it; -1 when the file has none (glTF: the scene's nodes are roots).
   int scene_root = -1;
+  // The nodes the file's skins name as their joints (glTF skins, FBX deformers), each once, in
+  // node order; empty when the file has no skin.
+  std::vector<int> skin_joints;
 };
+
+// The file's one skeleton, which every take is read on.
+struct SceneSkeleton {
+  std::vector<int> nodes;   // joint index -> node: depth-first from the root, parents first, siblings in file order
+  bool from_skins = false;  // the skins' joints; else the nodes the takes key
+  int root() const { return nodes.front(); }
+};
+
+// The skeleton of a file: the joints of its skins and the nodes between them, rooted at their
+// lowest common ancestor; in a file without skins, the nodes any take keys (the union over all
+// takes) and the nodes between them, likewise. Nodes above the root only place it. Where those
+// nodes have no common ancestor but the scene root (several characters in one file), the one
+// skeleton among them whose nodes take `take` keys (every take of that character gets the same).
+// Throws InputError naming the source when there are several skeletons and `take` is -1 or keys
+// more than one, when a track names a node the file does not have, or when the nodes do not
+// come parents first. O(nodes + tracks).
+SceneSkeleton scene_skeleton(const AnimatedScene& scene, int take = -1);
 
 // One take as `info` lists it.
 struct TakeInfo {
   std::string name;
   double seconds = 0.0;  // last key time - first key time
   int keys = 0;          // the most keys on one track
+  int moves = 0;         // joints of the file's skeleton the take keys (a BVH's: every joint); -1 when not known
 };
+// Every take of the scene; `moves` is -1 for a take whose skeleton cannot be found.
 std::vector<TakeInfo> scene_take_infos(const AnimatedScene& scene);
 
 // The take named `name`: its index, or -1.
@@ -80,18 +104,20 @@ struct SceneClipOptions {
   size_t max_bytes = kDefaultMaxBytes;  // the sampled frames (frames x channels x 8) may take at most this
 };
 
-// Samples take `take` at options.fps from its first key to its last into a Clip.
-// The skeleton is the nodes the take keys and the nodes between them, rooted at their lowest
-// common ancestor; nodes above it only place it (their transforms, scale included, are folded
-// into the root's channels). Every joint gets rotation channels Z X Y (degrees, unwrapped frame
-// to frame); the root gets position channels in world units; a joint whose offset from its
-// parent changes over the take (beyond 1e-5 of the skeleton's size) keeps position channels too.
-// Offsets are each joint's position in its parent's frame at the first frame, world units, so
-// positions by FK equal the file's world positions of those nodes (under uniform scale).
-// Throws InputError naming the source and the take when the take keys no node, when its nodes
-// have no common ancestor in the file but the scene root (several skeletons), on a bad track
-// (times not increasing, non-finite values, wrong sizes) or when the frames would take more
-// than options.max_bytes (checked before allocating them). O(frames x nodes).
+// Samples take `take` at options.fps from its first key to its last into a Clip on the file's
+// skeleton (scene_skeleton), the same joints and channels for every take of it; nodes above
+// the root only place it (their transforms, scale included, are folded into the root's
+// channels), and a joint the take does not key keeps its rest transform. Every joint gets
+// rotation channels Z X Y (degrees, unwrapped frame to frame); the root gets position channels
+// in world units; a joint whose offset from its parent moves off its rest offset in any take
+// (translation keys beyond 1e-4 of the skeleton's size, or scale keys above it beyond 1e-4)
+// keeps position channels too. Offsets are each joint's rest translation in its parent's frame, world units,
+// and Joint::rest_rotation the rest rotation, so positions by FK equal the file's world
+// positions of those nodes (under uniform scale) and rest_positions its rest pose.
+// Throws InputError naming the source and the take when the take keys no node of the skeleton
+// or above it, as scene_skeleton does, on a bad track (times not increasing, non-finite values,
+// wrong sizes) or when the frames would take more than options.max_bytes (checked before
+// allocating them). O(frames x nodes + keys of all takes).
 Clip scene_take_to_clip(const AnimatedScene& scene, int take, const SceneClipOptions& options = {});
 
 // The rate a take is sampled at when the caller gives none: scene.frame_rate; else, when the

@@ -170,11 +170,18 @@ Pose pose_at(const Clip& clip, int frame) {
 }
 
 std::vector<Eigen::Vector3d> rest_positions(const Skeleton& skeleton) {
-  // No rotation, and the OFFSET where position channels would be (zero would collapse joints).
+  // The rest rotations, and the OFFSET where position channels would be (zero would collapse joints).
   std::vector<Eigen::Vector3d> out(skeleton.joints.size());
+  std::vector<Eigen::Matrix3d> rotation(skeleton.joints.size());
   for (size_t i = 0; i < skeleton.joints.size(); ++i) {
     const Joint& j = skeleton.joints[i];
-    out[i] = j.parent < 0 ? j.offset : out[j.parent] + j.offset;
+    if (j.parent < 0) {
+      out[i] = j.offset;
+      rotation[i] = j.rest_rotation;
+    } else {
+      out[i] = out[j.parent] + rotation[j.parent] * j.offset;
+      rotation[i] = rotation[j.parent] * j.rest_rotation;
+    }
   }
   return out;
 }

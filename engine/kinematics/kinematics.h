@@ -34,7 +34,9 @@ struct Pose {
 };
 Pose pose_at(const Clip& clip, int frame);  // frame in [0, clip.frames())
 
-// Rest pose (all channels zero except position channels taken as the OFFSET): positions per joint.
+// Rest pose: each joint at its OFFSET turned by its parents' Joint::rest_rotation (identity for
+// BVH: all rotation channels zero), position channels taken as the OFFSET: positions per joint,
+// file units. O(joints).
 std::vector<Eigen::Vector3d> rest_positions(const Skeleton& skeleton);
 
 }  // namespace mostyle

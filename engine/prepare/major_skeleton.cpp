@@ -5,6 +5,7 @@
 
 #include "engine/io/error.h"
 #include "engine/kinematics/kinematics.h"
+#include "engine/prepare/rig_structure.h"
 
 namespace mostyle {
 namespace {
@@ -17,6 +18,10 @@ constexpr const char* kNames[kMajorJointCount] = {
     "right_wrist",    "right_hand",  "left_hip",    "left_knee",   "left_ankle",
     "left_toe",       "right_hip",   "right_knee",  "right_ankle", "right_toe"};
 constexpr double kZeroBone = 1e-6;  // relative to skeleton size
+// The hips stand at least this share of the rest pose's height above its lowest joint.
+constexpr double kMinHipsHeight = 0.25;
+// The joints a blend cannot do without: the hips, both hips, knees and ankles.
+constexpr int kNeeded[] = {0, 12, 13, 14, 16, 17, 18};
 
 enum class Side { kNone, kLeft, kRight };
 
@@ -123,22 +128,6 @@ const std::vector<Role>& roles() {
   return kRoles;
 }
 
-// A limb whose joints are named by their number along it ("leg_joint_L_1" .. "leg_joint_L_5",
-// "Skeleton_arm_joint_R__2_"): the limb word with a side, the rest digits and words that name no
-// part (a rig's "skeleton", "joint"). 12 for a leg (its first canonical joint, the hip), 4 for an
-// arm (the shoulder), -1 for any other name.
-int numbered_limb(const NameParts& parts) {
-  if (parts.side == Side::kNone) return -1;
-  std::string base;
-  for (char c : parts.part)
-    if (!std::isdigit(static_cast<unsigned char>(c))) base += c;
-  for (const std::string filler : {"skeleton", "joint"})
-    for (size_t at = base.find(filler); at != std::string::npos; at = base.find(filler)) base.erase(at, filler.size());
-  if (base == "leg") return static_cast<int>(MajorJoint::kLeftHip);
-  if (base == "arm") return static_cast<int>(MajorJoint::kLeftShoulder);
-  return -1;
-}
-
 }  // namespace
 
 const char* major_joint_name(int major) {
@@ -197,15 +186,26 @@ MappingOverrides parse_mapping_overrides(const std::string& text, const std::str
   return out;
 }
 
-MajorMapping map_major_joints(const Skeleton& skeleton, const MappingOverrides* overrides) {
+namespace {
+
+// The canonical joints by the name rules alone.
+MajorMapping map_by_names(const Skeleton& skeleton) {
   MajorMapping m;
   const int n = static_cast<int>(skeleton.joints.size());
   std::vector<NameParts> parts(n);
   for (int i = 0; i < n; ++i)
     if (!skeleton.joints[i].end_site) parts[i] = split_name(skeleton.joints[i].name);
   const std::vector<Eigen::Vector3d> rest = rest_positions(skeleton);
-  double size = 0;
-  for (const auto& p : rest) size = std::max(size, (p - rest[0]).norm());
+  double size = 0, floor = 0, top = 0;
+  for (const auto& p : rest) {
+    size = std::max(size, (p - rest[0]).norm());
+    floor = std::min(floor, p.y() - rest[0].y());
+    top = std::max(top, p.y() - rest[0].y());
+  }
+  // A pelvis stands well above the feet: a joint named "root" on the floor (a rig's ground
+  // node, an IK rig's root) is no hips. Only that spelling is doubted: a rest pose may also be
+  // no standing body (bones along their local axes with every rotation zero).
+  const auto too_low_for_hips = [&](int i) { return rest[i].y() - rest[0].y() - floor < kMinHipsHeight * (top - floor); };
   auto is_descendant = [&](int joint, int ancestor) {
     for (int p = skeleton.joints[joint].parent; p >= 0; p = skeleton.joints[p].parent)
       if (p == ancestor) return true;
@@ -223,6 +223,7 @@ MajorMapping map_major_joints(const Skeleton& skeleton, const MappingOverrides* 
         for (int i = 0; i < n && found < 0; ++i) {
           if (skeleton.joints[i].end_site || parts[i].part != spelling) continue;
           if (parts[i].side != wanted) continue;
+          if (major == 0 && spelling == "root" && too_low_for_hips(i)) continue;
           if (parent_joint >= 0 && !is_descendant(i, parent_joint)) continue;
           if (std::find(m.joint.begin(), m.joint.end(), i) != m.joint.end()) continue;
           if (parent_joint >= 0 && (rest[i] - rest[parent_joint]).norm() <= kZeroBone * size) continue;
@@ -230,83 +231,196 @@ MajorMapping map_major_joints(const Skeleton& skeleton, const MappingOverrides* 
         }
         if (found >= 0) {
           m.joint[major] = found;
+          m.source[major] = MajorSource::kName;
           break;
         }
       }
     }
   }
-  if (!m.has(0)) {
-    // No pelvis by name: the first joint with position channels carries the trajectory.
-    for (int i = 0; i < n && !m.has(0); ++i) {
-      for (Channel c : skeleton.joints[i].channels)
-        if (is_position(c)) m.joint[0] = i;
-    }
-  }
-  // Limbs the name rules did not find whose joints are numbered along them: in their chain's
-  // order from the body, a leg's joints are its hip, knee, ankle and toe, an arm's its shoulder,
-  // elbow, wrist and hand (joints at their predecessor's very place passed over).
-  for (int side = 0; side < 2; ++side) {
-    for (int first : {static_cast<int>(MajorJoint::kLeftHip), static_cast<int>(MajorJoint::kLeftShoulder)}) {
-      const int major = first + 4 * side;
-      if (m.has(major) || m.has(major + 1) || m.has(major + 2)) continue;
-      std::vector<int> chain;
-      for (int i = 0; i < n; ++i)
-        if (!skeleton.joints[i].end_site && numbered_limb(parts[i]) == first &&
-            parts[i].side == (side == 0 ? Side::kLeft : Side::kRight))
-          chain.push_back(i);
-      auto depth = [&](int j) {
-        int d = 0;
-        for (int p = skeleton.joints[j].parent; p >= 0; p = skeleton.joints[p].parent) ++d;
-        return d;
-      };
-      std::stable_sort(chain.begin(), chain.end(), [&](int a, int b) { return depth(a) < depth(b); });
-      std::vector<int> joints;
-      for (int j : chain) {
-        if (!joints.empty() && !is_descendant(j, joints.back())) break;  // not one chain
-        if (!joints.empty() && (rest[j] - rest[joints.back()]).norm() <= kZeroBone * size) continue;
-        if (joints.empty() && m.has(0) && first == static_cast<int>(MajorJoint::kLeftHip) && !is_descendant(j, m.joint[0]))
-          break;  // a leg hangs from the hips
-        joints.push_back(j);
-      }
-      if (joints.size() < 3) continue;
-      for (size_t k = 0; k < std::min<size_t>(joints.size(), 4); ++k) m.joint[major + static_cast<int>(k)] = joints[k];
-    }
-  }
-  if (overrides) {
-    // Overrides first clear every role they name, so that "a = X" and "b = Y" can swap two joints
-    // the name rules had put the other way round.
-    for (const auto& entry : overrides->entries) m.joint[entry.first] = -1;
-    for (size_t e = 0; e < overrides->entries.size(); ++e) {
-      const auto& [major, name] = overrides->entries[e];
-      const int line = e < overrides->lines.size() ? overrides->lines[e] : 0;
-      const std::string where =
-          overrides->source + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": ";
-      if (name == "-") continue;
-      const int j = skeleton.find(name);
-      if (j < 0) {
-        std::string names;
-        for (const Joint& joint : skeleton.joints) {
-          if (joint.end_site) continue;
-          names += (names.empty() ? "" : ", ") + joint.name;
-        }
-        throw InputError(where + "expected a joint of the skeleton for " + kNames[major] + ", found '" +
-                         name + "' (the skeleton has " + names + ")");
-      }
-      for (int other = 0; other < kMajorJointCount; ++other) {
-        if (other != major && m.joint[other] == j)
-          throw InputError(where + "joint '" + name + "' is already " + kNames[other] +
-                           "; a joint plays one role (name " + kNames[other] +
-                           " too, or write '" + kNames[other] + " = -')");
-      }
-      m.joint[major] = j;
-    }
-  }
   return m;
+}
+
+// The body parts whose joints the structure may fill, each with the joints that make it whole
+// by name: a part the names read whole is left as they read it.
+struct BodyPart {
+  std::vector<int> joints;  // canonical, parents first
+  std::vector<int> core;    // all of these by name: whole
+  std::vector<int> any_of;  // and one of these (when not empty)
+};
+const std::vector<BodyPart>& body_parts() {
+  static const std::vector<BodyPart> kParts = {
+      {{0, 1, 2, 3}, {0, 3}, {1, 2}},
+      {{4, 5, 6, 7}, {4, 5, 6}, {}},
+      {{8, 9, 10, 11}, {8, 9, 10}, {}},
+      {{12, 13, 14, 15}, {12, 13, 14}, {}},
+      {{16, 17, 18, 19}, {16, 17, 18}, {}},
+  };
+  return kParts;
+}
+
+bool whole(const MajorMapping& m, const BodyPart& part) {
+  for (int major : part.core)
+    if (!m.has(major)) return false;
+  if (part.any_of.empty()) return true;
+  return std::any_of(part.any_of.begin(), part.any_of.end(), [&](int major) { return m.has(major); });
+}
+
+// Canonical joint a is canonical joint b or above it.
+bool canonical_above(int a, int b) {
+  for (int up = b; up >= 0; up = kParents[up])
+    if (up == a) return true;
+  return false;
+}
+
+// Fills the missing joints of every part the names leave incomplete from the structure, where
+// the structure's joint agrees with the part's named joints (the same joint for the same role,
+// or below a named joint above it and above a named joint below it). Returns how many it filled.
+int fill_from_structure(const Skeleton& skeleton, const RigStructure& structure, MajorMapping& m) {
+  auto is_ancestor = [&](int a, int j) {
+    for (int up = skeleton.joints[j].parent; up >= 0; up = skeleton.joints[up].parent)
+      if (up == a) return true;
+    return false;
+  };
+  int filled = 0;
+  for (const BodyPart& part : body_parts()) {
+    if (whole(m, part)) continue;
+    for (int major : part.joints) {
+      const int j = structure.joint[major];
+      if (m.has(major) || j < 0) continue;
+      if (std::find(m.joint.begin(), m.joint.end(), j) != m.joint.end()) continue;
+      bool agrees = true;
+      for (int other : part.joints) {
+        if (other == major || m.source[other] != MajorSource::kName) continue;
+        const int named = m.joint[other];
+        if (named == structure.joint[other]) continue;
+        if (canonical_above(other, major)) agrees = agrees && is_ancestor(named, j);
+        else if (canonical_above(major, other)) agrees = agrees && is_ancestor(j, named);
+      }
+      if (!agrees) continue;
+      m.joint[major] = j;
+      m.source[major] = MajorSource::kStructure;
+      ++filled;
+    }
+  }
+  return filled;
+}
+
+void apply_overrides(const Skeleton& skeleton, const MappingOverrides& overrides, MajorMapping& m) {
+  // Overrides first clear every role they name, so that "a = X" and "b = Y" can swap two joints
+  // the name rules had put the other way round.
+  for (const auto& entry : overrides.entries) {
+    m.joint[entry.first] = -1;
+    m.source[entry.first] = MajorSource::kMappingFile;
+  }
+  for (size_t e = 0; e < overrides.entries.size(); ++e) {
+    const auto& [major, name] = overrides.entries[e];
+    const int line = e < overrides.lines.size() ? overrides.lines[e] : 0;
+    const std::string where = overrides.source + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": ";
+    if (name == "-") continue;
+    const int j = skeleton.find(name);
+    if (j < 0) {
+      std::string names;
+      for (const Joint& joint : skeleton.joints) {
+        if (joint.end_site) continue;
+        names += (names.empty() ? "" : ", ") + joint.name;
+      }
+      throw InputError(where + "expected a joint of the skeleton for " + kNames[major] + ", found '" + name +
+                       "' (the skeleton has " + names + ")");
+    }
+    for (int other = 0; other < kMajorJointCount; ++other) {
+      if (other != major && m.joint[other] == j)
+        throw InputError(where + "joint '" + name + "' is already " + kNames[other] + "; a joint plays one role (name " +
+                         kNames[other] + " too, or write '" + kNames[other] + " = -')");
+    }
+    m.joint[major] = j;
+  }
+}
+
+// MajorMapping::how: "14 by name, 6 by structure (structure: ...); missing: left_hand, right_hand".
+std::string describe(const MajorMapping& m, const std::string& structure) {
+  int count[4] = {0, 0, 0, 0};
+  std::string missing;
+  for (int i = 0; i < kMajorJointCount; ++i) {
+    if (m.has(i)) ++count[static_cast<int>(m.source[i])];
+    else missing += std::string(missing.empty() ? "" : ", ") + kNames[i];
+  }
+  std::string out;
+  const auto part = [&](MajorSource source, const char* words) {
+    const int c = count[static_cast<int>(source)];
+    if (c == 0) return;
+    out += (out.empty() ? "" : ", ") + std::to_string(c) + words;
+  };
+  part(MajorSource::kName, " by name");
+  part(MajorSource::kStructure, " by structure");
+  part(MajorSource::kMappingFile, " from the mapping file");
+  if (out.empty()) out = "no major joint found";
+  if (!structure.empty()) out += " (structure: " + structure + ")";
+  if (!missing.empty()) out += "; missing: " + missing;
+  return out;
+}
+
+// Left and right of every sided role swapped (the names' sides mirrored).
+void swap_sides(MajorMapping& m) {
+  for (int left : {4, 5, 6, 7, 12, 13, 14, 15}) {
+    std::swap(m.joint[left], m.joint[left + 4]);
+    std::swap(m.source[left], m.source[left + 4]);
+  }
+}
+
+MajorMapping map_major(const Skeleton& skeleton, const MotionMatrix* motion, const MappingOverrides* overrides) {
+  MajorMapping m = map_by_names(skeleton);
+  std::string structure_summary, swapped;
+  const RigStructure structure = find_rig_structure(skeleton, motion, &m);
+  if (structure.names_sides < 0) {
+    // The names' left lies on the body's right (named from the viewer's side, or a mirrored
+    // rig): the body's sides win, for the named joints too.
+    swap_sides(m);
+    swapped = std::string("the names' left and right are swapped: their left lies on the body's right, as told by ") +
+              facing_cue_name(structure.facing);
+  }
+  // What the structure showed is told where it gave a joint, or where a needed joint is still
+  // missing (why it could not give it).
+  const int filled = fill_from_structure(skeleton, structure, m);
+  const bool lacks_needed = std::any_of(std::begin(kNeeded), std::end(kNeeded), [&](int major) { return !m.has(major); });
+  if (filled > 0 || lacks_needed) structure_summary = structure.summary;
+  if (!swapped.empty()) structure_summary = swapped + (structure_summary.empty() ? "" : "; " + structure_summary);
+  if (!m.has(0)) {
+    // No pelvis by name or structure: the first joint with position channels carries the trajectory.
+    for (int i = 0; i < static_cast<int>(skeleton.joints.size()) && !m.has(0); ++i) {
+      for (Channel c : skeleton.joints[i].channels) {
+        if (!is_position(c)) continue;
+        m.joint[0] = i;
+        m.source[0] = MajorSource::kStructure;
+      }
+    }
+  }
+  if (overrides) apply_overrides(skeleton, *overrides, m);
+  m.how = describe(m, structure_summary);
+  return m;
+}
+
+}  // namespace
+
+const char* major_source_name(MajorSource source) {
+  switch (source) {
+    case MajorSource::kNone: return "none";
+    case MajorSource::kName: return "name";
+    case MajorSource::kStructure: return "structure";
+    case MajorSource::kMappingFile: return "mapping file";
+  }
+  return "?";
+}
+
+MajorMapping map_major_joints(const Skeleton& skeleton, const MappingOverrides* overrides) {
+  return map_major(skeleton, nullptr, overrides);
+}
+
+MajorMapping map_major_joints(const Clip& clip, const MappingOverrides* overrides) {
+  return map_major(clip.skeleton, &clip.motion, overrides);
 }
 
 std::vector<int> shared_major_joints(const MajorMapping& a, const std::string& source_a,
                                      const MajorMapping& b, const std::string& source_b) {
-  static const int kRequired[] = {0, 12, 13, 14, 16, 17, 18};
   std::vector<int> shared;
   std::string required_missing, other_missing;
   const bool same = source_a == source_b;
@@ -317,7 +431,7 @@ std::vector<int> shared_major_joints(const MajorMapping& a, const std::string& s
     }
     const std::string who = same || (!a.has(i) && !b.has(i)) ? (same ? source_a : "both")
                                                                : (!a.has(i) ? source_a : source_b);
-    const bool required = std::find(std::begin(kRequired), std::end(kRequired), i) != std::end(kRequired);
+    const bool required = std::find(std::begin(kNeeded), std::end(kNeeded), i) != std::end(kNeeded);
     std::string& list = required ? required_missing : other_missing;
     list += std::string(list.empty() ? "" : ", ") + kNames[i] + " (" + who + ")";
   }
@@ -328,6 +442,12 @@ std::vector<int> shared_major_joints(const MajorMapping& a, const std::string& s
                           " joints in all, found " + std::to_string(shared.size()) + "; missing: ";
     message += required_missing.empty() ? other_missing
                                         : required_missing + (other_missing.empty() ? "" : "; also missing: " + other_missing);
+    // How the joints of each file that lacks a needed one were found (what its structure showed).
+    const auto lacks = [](const MajorMapping& m) {
+      return std::any_of(std::begin(kNeeded), std::end(kNeeded), [&](int major) { return !m.has(major); });
+    };
+    if (lacks(a) && !a.how.empty()) message += "; " + source_a + ": " + a.how;
+    if (!same && lacks(b) && !b.how.empty()) message += "; " + source_b + ": " + b.how;
     message += "; name them in a mapping file (--mapping-a / --mapping-b, see assets/mappings/README.md)";
     throw InputError(message);
   }

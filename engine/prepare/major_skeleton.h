@@ -24,10 +24,27 @@ const char* major_joint_name(int major);  // "hips", "left_elbow", ...
 int major_joint_from_name(const std::string& name);  // -1 when not a canonical name
 int major_joint_parent(int major);         // canonical parent, -1 for hips
 
-// Which joint of a skeleton plays each canonical role (-1 where the skeleton has none).
+// How a canonical joint was found.
+enum class MajorSource {
+  kNone,         // not found
+  kName,         // the name rules
+  kStructure,    // the skeleton's structure and rest pose (rig_structure.h)
+  kMappingFile,  // a mapping file's line
+};
+const char* major_source_name(MajorSource source);  // "name", "structure", "mapping file", "none"
+
+// Which joint of a skeleton plays each canonical role (-1 where the skeleton has none), and how
+// each was found.
 struct MajorMapping {
   std::array<int, kMajorJointCount> joint;
-  MajorMapping() { joint.fill(-1); }
+  std::array<MajorSource, kMajorJointCount> source;
+  // One sentence: how many joints each way found, what the structure found where it was read
+  // (and how it told left from right), and which joints are missing.
+  std::string how;
+  MajorMapping() {
+    joint.fill(-1);
+    source.fill(MajorSource::kNone);
+  }
   bool has(int major) const { return joint[major] >= 0; }
 };
 
@@ -44,19 +61,28 @@ struct MappingOverrides {
 MappingOverrides parse_mapping_overrides(const std::string& text, const std::string& source);
 
 // Finds the canonical joints by name rules (retargeted CMU, CMU in 3ds Max/Poser naming, Bandai,
-// Mixamo, 3ds Max Biped, Kinect, and similar), then applies the overrides. The hips is the pelvis
-// joint that carries the trajectory, which is not always the ROOT. A joint at the very same place
-// as its canonical parent in the rest pose (a zero-length bone), or not below it, is passed over
-// for the next candidate. A leg or arm that no rule finds but whose joints are numbered along it
-// ("leg_joint_L_1" .. "leg_joint_L_5") is read in its chain's order: hip, knee, ankle, toe
-// (shoulder, elbow, wrist, hand). Throws InputError "FILE:LINE: ..." when an override names a joint the
-// skeleton does not have (listing the ones it has) or one that already plays another role.
-// O(joints x spellings).
+// Mixamo, 3ds Max Biped, Kinect, UE, and similar); where the names leave a body part incomplete
+// (the torso without hips, head, and spine or chest; a leg without hip, knee and ankle; an arm
+// without shoulder, elbow and wrist), its missing joints from the skeleton's structure and rest
+// pose (rig_structure.h), so parts the names read whole never change; then the overrides. The
+// hips is the pelvis joint that carries the trajectory, which is not always the ROOT (failing
+// names and structure, the first joint with position channels). A joint at the very same place
+// as its canonical parent in the rest pose (a zero-length bone), or not below it, and a hips
+// called "root" less than a quarter of the rest pose's height above its lowest joint (a root
+// on the floor), are passed over for the next candidate by the name rules. Throws InputError "FILE:LINE: ..." when an override
+// names a joint the skeleton does not have (listing the ones it has) or one that already plays
+// another role. O(joints x spellings), and O(joints^2) where the structure is read.
 MajorMapping map_major_joints(const Skeleton& skeleton, const MappingOverrides* overrides = nullptr);
 
+// The same for a clip: where the structure is read and its rest pose does not tell which way
+// the body faces, the motion tells it (the toes, the knees' bend, the root's travel), and leaf
+// joints the motion never moves are end markers. O(joints^2 + frames x joints) at most.
+MajorMapping map_major_joints(const Clip& clip, const MappingOverrides* overrides = nullptr);
+
 // The canonical joints two mappings share, in canonical order. Throws InputError naming the
-// files and the missing joints (and which file lacks each) when the hips, a hip, knee or ankle,
-// or more than kMajorJointCount - kMinimumSharedJoints joints are missing.
+// files and the missing joints (and which file lacks each), and how each file's joints were
+// found (MajorMapping::how), when the hips, a hip, knee or ankle, or more than
+// kMajorJointCount - kMinimumSharedJoints joints are missing.
 constexpr int kMinimumSharedJoints = 8;
 std::vector<int> shared_major_joints(const MajorMapping& a, const std::string& source_a,
                                      const MajorMapping& b, const std::string& source_b);

@@ -198,7 +198,7 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
   for (int i = 0; i < n; ++i) {
     const MappingOverrides& given = i == 0 ? options.mapping_a : options.mapping_b;
     const bool overridden = i <= 1 && !given.entries.empty();
-    mappings.push_back(map_major_joints(clips[i]->skeleton, overridden ? &given : nullptr));
+    mappings.push_back(map_major_joints(*clips[i], overridden ? &given : nullptr));
   }
   p->majors = shared_majors(clips, mappings, options.only_majors);
   p->parents = subset_parents(p->majors);

@@ -62,6 +62,68 @@ TEST_CASE("cli info: text and JSON", "[cli][bvh]") {
   CHECK(r.out.find("\"kind\": \"unknown\"") != std::string::npos);
 }
 
+TEST_CASE("cli info: the skeleton once, the takes on it, how each major joint was found", "[cli][bvh]") {
+  Sandbox box;
+  const std::string file = test::asset("motions/cmu142_walk_clumsy.bvh");
+  Run r = box.cli("info \"" + file + "\"");
+  REQUIRE(r.status == 0);
+  CHECK(r.out.find("  joints: 31 (+7 End Sites), the file's hierarchy, root 'Hips'\n") != std::string::npos);
+  CHECK(r.out.find("    cmu142_walk_clumsy  (8.99") != std::string::npos);
+  CHECK(r.out.find("keys, moves 31 joints)") != std::string::npos);
+  CHECK(r.out.find("  major joints: 20 by name\n") != std::string::npos);
+  CHECK(r.out.find("    left_knee: LeftLeg (name)\n") != std::string::npos);
+  // A mapping file's line says so.
+  const std::string mapping = box.write("chest.txt", "chest = Neck1\nleft_hand = -\n");
+  r = box.cli("info --json --mapping \"" + mapping + "\" \"" + file + "\"");
+  REQUIRE(r.status == 0);
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  CHECK(j["skeleton"]["joints"] == 31);
+  CHECK(j["skeleton"]["end_sites"] == 7);
+  CHECK(j["skeleton"]["root"] == "Hips");
+  CHECK(j["skeleton"]["from"] == "hierarchy");
+  CHECK(j["takes"][0]["moves"] == 31);
+  const nlohmann::json& majors = j["major_joints"];
+  CHECK(majors["how"] == "18 by name, 1 from the mapping file; missing: left_hand");
+  REQUIRE(majors["joints"].size() == 20);
+  CHECK(majors["joints"][2] == nlohmann::json({{"role", "chest"}, {"joint", "Neck1"}, {"found_by", "mapping file"}}));
+  CHECK(majors["joints"][7]["joint"].is_null());
+  CHECK(majors["joints"][7]["found_by"] == "mapping file");
+  CHECK(majors["joints"][0]["found_by"] == "name");
+  // A bad mapping file: one line naming it, exit 1.
+  const std::string bad = box.write("bad.txt", "chest = Nope\n");
+  r = box.cli("info --mapping \"" + bad + "\" \"" + file + "\"");
+  CHECK(r.status == 1);
+  CHECK(lines_in(r.err) == 1);
+  CHECK(r.err.find("bad.txt:1: expected a joint of the skeleton for chest") != std::string::npos);
+}
+
+TEST_CASE("cli info: a glTF file's one skeleton, its animations and joints found by structure",
+          "[cli][gltf][shared]") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  Sandbox box;
+  const std::string robot = test::shared_motion("wild/gltf_godot_robot_walk_run.glb");
+  Run r = box.cli("info \"" + robot + "#walk\"");
+  REQUIRE(r.status == 0);
+  CHECK(r.out.find("  joints: 27 (+0 End Sites), the joints of the file's skins, root 'MASTER'\n") != std::string::npos);
+  CHECK(r.out.find("  takes: 8, every one on this skeleton\n") != std::string::npos);
+  CHECK(r.out.find("    walk  (") != std::string::npos);
+  // Its l- joints lie on its right: the body's sides win.
+  CHECK(r.out.find("    left_hip: r-thigh (name)\n") != std::string::npos);
+  CHECK(r.out.find("the names' left and right are swapped") != std::string::npos);
+  const std::string cesium = test::shared_motion("wild/gltf_cesiumman_walk.glb");
+  r = box.cli("info --json \"" + cesium + "\"");
+  REQUIRE(r.status == 0);
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  CHECK(j["skeleton"]["joints"] == 19);
+  CHECK(j["skeleton"]["from"] == "skins");
+  CHECK(j["takes"][0]["moves"] == 19);
+  for (const auto& major : j["major_joints"]["joints"])
+    CHECK(major["found_by"] == (major["joint"].is_null() ? "none" : "structure"));
+  CHECK(j["major_joints"]["joints"][12]["joint"] == "leg_joint_L_1");
+  CHECK(j["major_joints"]["how"].get<std::string>().find("left told by the toes in the rest pose") !=
+        std::string::npos);
+}
+
 TEST_CASE("cli info and align list each take's cycles", "[cli][bvh]") {
   Sandbox box;
   const std::string walk = test::asset("motions/cmu142_walk_clumsy.bvh");

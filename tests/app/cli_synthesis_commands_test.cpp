@@ -276,3 +276,33 @@ TEST_CASE("cli: whole takes by cycles, and style keyed in time", "[cli][palette]
     CHECK(!std::filesystem::exists(box.path("bad.bvh")));
   }
 }
+
+TEST_CASE("cli blend: every wild walk and run blends with a Bandai walk, whatever its rig", "[cli][shared]") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  Sandbox box;
+  const std::string bandai = quoted(test::shared_motion("bandai_walk_normal.bvh"));
+  for (const std::string take :
+       {"gltf_cesiumman_walk.glb", "gltf_godot_robot_walk_run.glb#walk", "gltf_godot_robot_walk_run.glb#run",
+        "gltf_mannequiny_run.glb#run_root.001", "gltf_godot_mixamo_walk_run.glb#walking",
+        "gltf_godot_mixamo_walk_run.glb#running", "fbx_mixamo_walking.fbx", "xia_sexy_01.bvh",
+        "xia_neutral_16.bvh", "aalto_t_walk_regular.bvh"}) {
+    INFO(take);
+    const size_t hash = take.find('#');
+    const std::string path = test::shared_motion("wild/" + take.substr(0, hash)) +
+                             (hash == std::string::npos ? "" : take.substr(hash));
+    const auto r = box.cli("blend " + quoted(path) + " " + bandai +
+                           " --alpha 0.5 --out " + quoted(box.path("x.bvh")) + " --report " +
+                           quoted(box.path("x.json")));
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    const auto report = nlohmann::json::parse(test::slurp(box.path("x.json")));
+    CHECK(report["takes"][0]["major_joints"]["joints"].size() == 20);
+    CHECK(report["takes"][1]["major_joints"]["how"] == "18 by name; missing: left_hand, right_hand");
+  }
+  // The summary says how a take's joints were found where it was not all by name.
+  const auto r = box.cli("blend " + quoted(test::shared_motion("wild/gltf_cesiumman_walk.glb")) + " " + bandai +
+                         " --alpha 0.5");
+  REQUIRE(r.status == 0);
+  CHECK(r.out.find("  major joints of gltf_cesiumman_walk.glb: 18 by structure (structure: hips") != std::string::npos);
+  CHECK(r.out.find("major joints of bandai_walk_normal.bvh") == std::string::npos);
+}

@@ -1,6 +1,7 @@
 #include "engine/io/gltf_io.h"
 
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <cstring>
 #include <unistd.h>
 
@@ -187,6 +188,75 @@ TEST_CASE("glTF: a .gltf written by hand with STEP and CUBICSPLINE samplers", "[
   CHECK(p(2, 4) == Approx(std::cos(M_PI / 4)).margin(1e-6));
   CHECK(p(4, 3) == Approx(-1.0).margin(1e-6));
   CHECK(p(4, 4) == Approx(10.0).margin(1e-6));
+}
+
+TEST_CASE("glTF: every animation of a file reads on its one skeleton, the skin's joints", "[gltf]") {
+  TempDir tmp;
+  // Buffer: times 0, 1 (8 bytes); two rotation keys, none and a quarter turn about Z (32); two
+  // translation keys (24).
+  const float s = static_cast<float>(std::sin(M_PI / 4)), c = static_cast<float>(std::cos(M_PI / 4));
+  std::string bin = floats({0.f, 1.f});
+  bin += floats({0, 0, 0, 1, 0, 0, s, c});
+  bin += floats({0, 1, 0, 0, 2, 0});
+  tmp.write("rig.bin", bin);
+  // Hips with Left and Right; Right's child RightEnd is keyed by no animation. "walk" keys the
+  // hips and Left, "wave" only Right.
+  const std::string nodes_and_animations = R"(
+    "asset": {"version": "2.0"},
+    "scenes": [{"nodes": [0]}],
+    "nodes": [{"name": "Armature", "children": [1, 5]},
+              {"name": "Hips", "translation": [0, 1, 0], "children": [2, 3]},
+              {"name": "Left", "translation": [1, 0, 0]},
+              {"name": "Right", "translation": [-1, 0, 0], "children": [4]},
+              {"name": "RightEnd", "translation": [0, -1, 0]},
+              {"name": "Body"}],
+    "buffers": [{"uri": "rig.bin", "byteLength": 64}],
+    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 8},
+                    {"buffer": 0, "byteOffset": 8, "byteLength": 32},
+                    {"buffer": 0, "byteOffset": 40, "byteLength": 24}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [1]},
+                  {"bufferView": 1, "componentType": 5126, "count": 2, "type": "VEC4"},
+                  {"bufferView": 2, "componentType": 5126, "count": 2, "type": "VEC3"}],
+    "animations": [{"name": "walk", "samplers": [{"input": 0, "output": 2}, {"input": 0, "output": 1}],
+                    "channels": [{"sampler": 0, "target": {"node": 1, "path": "translation"}},
+                                 {"sampler": 1, "target": {"node": 2, "path": "rotation"}}]},
+                   {"name": "wave", "samplers": [{"input": 0, "output": 1}],
+                    "channels": [{"sampler": 0, "target": {"node": 3, "path": "rotation"}}]}])";
+  const auto names = [](const Clip& clip) {
+    std::vector<std::string> out;
+    for (const Joint& j : clip.skeleton.joints) out.push_back(j.name);
+    return out;
+  };
+  MotionReadOptions o;
+  o.fps = 10;
+  SECTION("with a skin: its joints, RightEnd among them") {
+    const std::string file = tmp.write("skin.gltf", "{" + nodes_and_animations + R"(,
+      "skins": [{"joints": [1, 2, 3, 4]}]})");
+    const Clip walk = read_motion_file(file + "#walk", nullptr, o), wave = read_motion_file(file + "#wave", nullptr, o);
+    const std::vector<std::string> expected = {"Hips", "Left", "Right", "RightEnd"};
+    CHECK(names(walk) == expected);
+    CHECK(names(wave) == expected);
+    CHECK(walk.skeleton.channel_count == wave.skeleton.channel_count);
+    // In walk, Right and RightEnd keep their rest pose under the moving hips.
+    const Eigen::MatrixXd p = joint_positions(walk);
+    CHECK(p.row(10).segment<3>(0).isApprox(Eigen::RowVector3d(0, 2, 0)));
+    CHECK(p.row(10).segment<3>(6).isApprox(Eigen::RowVector3d(-1, 2, 0)));
+    CHECK(p.row(10).segment<3>(9).isApprox(Eigen::RowVector3d(-1, 1, 0)));
+    // In wave, Right turns a quarter about Z: RightEnd swings from below it to its side.
+    const Eigen::MatrixXd q = joint_positions(wave);
+    CHECK(q.row(10).segment<3>(9).isApprox(Eigen::RowVector3d(0, 1, 0)));
+    CHECK(q.row(10).segment<3>(3).isApprox(Eigen::RowVector3d(1, 1, 0)));  // Left at rest
+    const std::vector<TakeInfo> takes = read_motion_takes(file);
+    REQUIRE(takes.size() == 2);
+    CHECK(takes[0].moves == 2);
+    CHECK(takes[1].moves == 1);
+  }
+  SECTION("without: the nodes any animation keys") {
+    const std::string file = tmp.write("bare.gltf", "{" + nodes_and_animations + "}");
+    const std::vector<std::string> expected = {"Hips", "Left", "Right"};
+    CHECK(names(read_motion_file(file + "#walk", nullptr, o)) == expected);
+    CHECK(names(read_motion_file(file + "#wave", nullptr, o)) == expected);
+  }
 }
 
 TEST_CASE("glTF: bad files are one sentence naming the file", "[gltf][errors]") {

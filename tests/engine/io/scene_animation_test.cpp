@@ -117,7 +117,9 @@ TEST_CASE("scene_take_to_clip: bad takes are one sentence naming file and animat
   take.tracks.push_back(track(0, TrackTarget::kTranslation, KeyInterpolation::kLinear, {0}, {0, 0, 0}));
   take.tracks.push_back(track(1, TrackTarget::kTranslation, KeyInterpolation::kLinear, {0}, {0, 0, 0}));
   scene.takes.push_back(take);
-  CHECK_THROWS_WITH(scene_take_to_clip(scene, 0), Contains("two.glb: animation 'both' moves several skeletons"));
+  CHECK_THROWS_WITH(scene_take_to_clip(scene, 0),
+                    Contains("two.glb: the animations' nodes form several skeletons (rooted at 'A', 'B') and "
+                             "animation 'both' moves more than one"));
   scene.takes[0].tracks.pop_back();
   scene.takes[0].tracks[0].times = {0, 1};
   scene.takes[0].tracks[0].values.resize(2, 3);
@@ -146,4 +148,108 @@ TEST_CASE("default_take_rate: the file's, else the keys' spacing, else 30", "[sc
   scene.takes[0].tracks[0].times = {0};
   scene.takes[0].tracks[0].values.conservativeResize(1, 3);
   CHECK(default_take_rate(scene, 0) == 30.0);
+}
+
+TEST_CASE("scene_take_to_clip: every take of a file on one skeleton, a joint a take does not key at rest",
+          "[scene_animation]") {
+  AnimatedScene scene;
+  scene.source = "rig.glb";
+  SceneNode armature = node("Armature", -1);
+  armature.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()));
+  scene.nodes = {armature,                        // 0
+                 node("Hips", 0, {0, 1, 0}),      // 1
+                 node("Left", 1, {1, 0, 0}),      // 2
+                 node("Right", 1, {-1, 0, 0}),    // 3
+                 node("RightEnd", 3, {0, -1, 0}), // 4: keyed by no take
+                 node("Mesh", 0)};                // 5
+  const double s = std::sin(M_PI / 4), c = std::cos(M_PI / 4);
+  SceneTake a;
+  a.name = "a";
+  a.tracks.push_back(track(1, TrackTarget::kTranslation, KeyInterpolation::kLinear, {0, 1}, {0, 1, 0, 0, 2, 0}));
+  a.tracks.push_back(track(2, TrackTarget::kRotation, KeyInterpolation::kLinear, {0, 1}, {0, 0, 0, 1, 0, 0, s, c}));
+  SceneTake b;
+  b.name = "b";
+  b.tracks.push_back(track(3, TrackTarget::kRotation, KeyInterpolation::kLinear, {0, 2}, {0, 0, 0, 1, 0, 0, s, c}));
+  // Right moved off its rest place in b: position channels in both takes.
+  b.tracks.push_back(track(3, TrackTarget::kTranslation, KeyInterpolation::kLinear, {0, 2}, {-1, 0, 0, -2, 0, 0}));
+  SceneTake mesh_only;
+  mesh_only.name = "mesh";
+  mesh_only.tracks.push_back(track(5, TrackTarget::kScale, KeyInterpolation::kLinear, {0, 1}, {1, 1, 1, 2, 2, 2}));
+  scene.takes = {a, b, mesh_only};
+  SceneClipOptions o;
+  o.fps = 10;
+
+  SECTION("no skin: the nodes any take keys, and those between them") {
+    const SceneSkeleton sk = scene_skeleton(scene);
+    CHECK_FALSE(sk.from_skins);
+    // Mesh is keyed too, by a take of its own: the skeleton roots at the Armature then.
+    CHECK(scene.nodes[sk.root()].name == "Armature");
+    scene.takes.pop_back();
+    const SceneSkeleton without_mesh = scene_skeleton(scene);
+    REQUIRE(without_mesh.nodes == std::vector<int>{1, 2, 3});
+    const Clip ca = scene_take_to_clip(scene, 0, o), cb = scene_take_to_clip(scene, 1, o);
+    REQUIRE(ca.skeleton.joints.size() == 3);
+    for (size_t j = 0; j < 3; ++j) {
+      CHECK(ca.skeleton.joints[j].name == cb.skeleton.joints[j].name);
+      CHECK(ca.skeleton.joints[j].channels == cb.skeleton.joints[j].channels);
+      CHECK((ca.skeleton.joints[j].offset - cb.skeleton.joints[j].offset).norm() < kTight);
+    }
+    CHECK(ca.skeleton.joints[2].channels.size() == 6);  // Right: moved in b
+    CHECK(ca.skeleton.joints[1].channels.size() == 3);  // Left: turns only
+    // In a, Right is where the rest pose puts it: the Armature turns -X into +Z.
+    const Eigen::MatrixXd p = joint_positions(ca);
+    for (int f : {0, 10}) {
+      const Eigen::Vector3d hips(0, 1 + f / 10.0, 0);
+      CHECK((p.block<1, 3>(f, 6).transpose() - (hips + Eigen::Vector3d(0, 0, 1))).norm() < 1e-9);
+    }
+    const std::vector<TakeInfo> infos = scene_take_infos(scene);
+    CHECK(infos[0].moves == 2);
+    CHECK(infos[1].moves == 1);
+  }
+  SECTION("a skin: its joints, a leaf no take keys among them") {
+    scene.skin_joints = {1, 2, 3, 4};
+    const SceneSkeleton sk = scene_skeleton(scene);
+    CHECK(sk.from_skins);
+    CHECK(sk.nodes == std::vector<int>{1, 2, 3, 4});
+    const Clip ca = scene_take_to_clip(scene, 0, o), cb = scene_take_to_clip(scene, 1, o);
+    REQUIRE(ca.skeleton.joints.size() == 4);
+    REQUIRE(cb.skeleton.joints.size() == 4);
+    CHECK(ca.skeleton.channel_count == cb.skeleton.channel_count);
+    // The rest pose (rest_positions) is the file's: the Armature's quarter turn included.
+    const std::vector<Eigen::Vector3d> rest = rest_positions(ca.skeleton);
+    CHECK((rest[2] - rest[0] - Eigen::Vector3d(0, 0, 1)).norm() < 1e-12);
+    CHECK((rest[3] - rest[0] - Eigen::Vector3d(0, -1, 1)).norm() < 1e-12);
+    // b keys none of Left: it stays at rest, turned with the hips only.
+    const Eigen::MatrixXd p = joint_positions(cb);
+    CHECK((p.block<1, 3>(0, 3) - p.block<1, 3>(0, 0) - Eigen::RowVector3d(0, 0, -1)).norm() < 1e-9);
+    // The take that keys only the mesh moves nothing of the skeleton.
+    CHECK_THROWS_WITH(scene_take_to_clip(scene, 2, o),
+                      Contains("rig.glb: animation 'mesh' keys none of the skeleton's joints (rooted at 'Hips')"));
+    CHECK(scene_take_infos(scene)[2].moves == 0);
+  }
+}
+
+TEST_CASE("scene_take_to_clip: two characters in one file, each take on its own one's skeleton",
+          "[scene_animation]") {
+  AnimatedScene scene;
+  scene.source = "pair.glb";
+  scene.nodes = {node("A", -1), node("A1", 0, {0, 1, 0}), node("A2", 0, {1, 0, 0}), node("B", -1),
+                 node("B1", 3, {0, 1, 0})};
+  SceneTake a1, a2, b;
+  a1.name = "a1";
+  a1.tracks.push_back(track(1, TrackTarget::kTranslation, KeyInterpolation::kLinear, {0}, {0, 1, 0}));
+  a2.name = "a2";
+  a2.tracks.push_back(track(2, TrackTarget::kTranslation, KeyInterpolation::kLinear, {0}, {1, 0, 0}));
+  b.name = "b";
+  b.tracks.push_back(track(4, TrackTarget::kTranslation, KeyInterpolation::kLinear, {0}, {0, 1, 0}));
+  scene.takes = {a1, a2, b};
+  CHECK_THROWS_WITH(scene_skeleton(scene), Contains("pair.glb: the animations' nodes form several skeletons"));
+  // A's takes share A's skeleton (A, A1, A2), each keying a part of it; b reads B's.
+  CHECK(scene_skeleton(scene, 0).nodes == std::vector<int>{0, 1, 2});
+  CHECK(scene_skeleton(scene, 1).nodes == std::vector<int>{0, 1, 2});
+  CHECK(scene_skeleton(scene, 2).nodes == std::vector<int>{4});
+  CHECK(scene_take_to_clip(scene, 1).skeleton.joints.size() == 3);
+  const std::vector<TakeInfo> infos = scene_take_infos(scene);
+  CHECK(infos[0].moves == 1);
+  CHECK(infos[2].moves == 1);
 }

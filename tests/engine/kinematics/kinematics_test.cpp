@@ -1,7 +1,9 @@
 #include "engine/kinematics/kinematics.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <string>
 
 #include "engine/io/bvh_io.h"
@@ -153,6 +155,27 @@ TEST_CASE("FK of some joints poses them exactly as FK of all", "[kinematics]") {
   for (size_t i = 0; i < joints.size(); ++i)
     CHECK(some.middleCols(3 * static_cast<Eigen::Index>(i), 3) == all.middleCols(3 * joints[i], 3));
   CHECK(joint_positions(clip, {}).cols() == 0);
+}
+
+TEST_CASE("rest_positions turns each OFFSET by its parents' rest rotations", "[kinematics]") {
+  // An FBX or glTF rest pose: the root turned a quarter about Z, the arm a quarter about Y.
+  Skeleton s;
+  Joint root, arm, hand;
+  root.name = "root";
+  root.offset = Eigen::Vector3d(5, 0, 0);
+  root.rest_rotation = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  arm.name = "arm";
+  arm.parent = 0;
+  arm.offset = Eigen::Vector3d(2, 0, 0);
+  arm.rest_rotation = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  hand.name = "hand";
+  hand.parent = 1;
+  hand.offset = Eigen::Vector3d(1, 0, 0);
+  s.joints = {root, arm, hand};
+  const std::vector<Eigen::Vector3d> rest = rest_positions(s);
+  // arm: the root's turn takes +X to +Y; hand: Rz(90) Ry(90) takes +X to Rz(90) (0, 0, -1) = (0, 0, -1).
+  CHECK((rest[1] - Eigen::Vector3d(5, 2, 0)).norm() < 1e-12);
+  CHECK((rest[2] - Eigen::Vector3d(5, 2, -1)).norm() < 1e-12);
 }
 
 TEST_CASE("FK keeps bone lengths: real CMU files (assets)", "[kinematics]") {

@@ -7,6 +7,8 @@
 #include "engine/io/atomic_file.h"
 #include "engine/io/bvh_io.h"
 #include "engine/io/error.h"
+#include "engine/io/motion_file.h"
+#include "engine/kinematics/kinematics.h"
 #include "tests/engine/skeleton_builder.h"
 #include "tests/test_data.h"
 
@@ -471,4 +473,151 @@ TEST_CASE("mapping files in assets/mappings work on their conventions", "[major_
       CHECK(mapped_names(read_bvh_file(path).skeleton, &o) == kBandai);
     }
   }
+}
+
+TEST_CASE("names and structure: names keep a body part they read whole, the structure fills the rest",
+          "[major_skeleton]") {
+  SECTION("Aalto's torso: hips, chest and head by name, its spine 'Ab' left out as before") {
+    test::SkeletonBuilder b;
+    b.joint("Hips", "", 0, 95, 0)
+        .joint("Ab", "Hips", 0, 8, 0)
+        .joint("Chest", "Ab", 0, 25, 0)
+        .joint("Neck", "Chest", 0, 25, 0)
+        .joint("Head", "Neck", 0, 11, 0)
+        .end("Head", 0, 17, 0);
+    for (const char* side : {"Left", "Right"}) {
+      const std::string s = side;
+      const double sign = s == "Left" ? 1 : -1;
+      b.joint(s + "Collar", "Chest", 0, 25, 0)
+          .joint(s + "Shoulder", s + "Collar", sign * 20, 0, 0)
+          .joint(s + "Elbow", s + "Shoulder", sign * 27, 0, 0)
+          .joint(s + "Wrist", s + "Elbow", sign * 23, 0, 0)
+          .end(s + "Wrist", 0, -15, 0);
+      b.joint(s + "Hip", "Hips", sign * 12, 0, 0)
+          .joint(s + "Knee", s + "Hip", 0, -41, 0)
+          .joint(s + "Ankle", s + "Knee", 0, -44, 0)
+          .end(s + "Ankle", 0, -5, 17);
+    }
+    const MajorMapping m = map_major_joints(b.skeleton());
+    const std::vector<std::string> names = mapped_names(b.skeleton(), m);
+    CHECK(names == std::vector<std::string>{"Hips", "-", "Chest", "Head", "LeftShoulder", "LeftElbow", "LeftWrist", "-",
+                                            "RightShoulder", "RightElbow", "RightWrist", "-", "LeftHip", "LeftKnee",
+                                            "LeftAnkle", "-", "RightHip", "RightKnee", "RightAnkle", "-"});
+    for (int i = 0; i < kMajorJointCount; ++i)
+      CHECK(m.source[i] == (m.has(i) ? MajorSource::kName : MajorSource::kNone));
+    CHECK(m.how == "15 by name; missing: spine, left_hand, right_hand, left_toe, right_toe");
+  }
+  SECTION("a leg the names do not read: from the structure, the rest by name") {
+    Skeleton s = test::cmu_retargeted_skeleton();
+    for (const char* name : {"RHipJoint", "RightUpLeg", "RightLeg", "RightFoot", "RightToeBase"})
+      s.joints[s.find(name)].name = std::string("x_") + std::to_string(s.find(name));
+    const MajorMapping m = map_major_joints(s);
+    const MajorMapping named = map_major_joints(test::cmu_retargeted_skeleton());
+    for (int i = 0; i < kMajorJointCount; ++i) {
+      INFO(major_joint_name(i));
+      CHECK(m.joint[i] == named.joint[i]);
+      CHECK(m.source[i] == (i >= static_cast<int>(MajorJoint::kRightHip) ? MajorSource::kStructure : MajorSource::kName));
+    }
+    CHECK(m.how.rfind("16 by name, 4 by structure (structure: hips 'Hips' with two legs", 0) == 0);
+  }
+  SECTION("a mapping file's lines are told as such") {
+    const MappingOverrides o = parse_mapping_overrides("chest = Neck1\nleft_hand = -\n", "o.txt");
+    const MajorMapping m = map_major_joints(test::cmu_retargeted_skeleton(), &o);
+    CHECK(m.source[static_cast<int>(MajorJoint::kChest)] == MajorSource::kMappingFile);
+    CHECK(m.source[static_cast<int>(MajorJoint::kLeftHand)] == MajorSource::kMappingFile);
+    CHECK_FALSE(m.has(static_cast<int>(MajorJoint::kLeftHand)));
+    CHECK(m.how == "18 by name, 1 from the mapping file; missing: left_hand");
+    CHECK(std::string(major_source_name(MajorSource::kMappingFile)) == "mapping file");
+  }
+  SECTION("a rig that cannot be read says what was found and what is missing") {
+    test::SkeletonBuilder b;
+    b.joint("a", "", 0, 100, 0).joint("b", "a", 0, -30, 0).joint("c", "b", 0, -30, 0);
+    const MajorMapping m = map_major_joints(b.skeleton());
+    try {
+      shared_major_joints(m, "snake.glb", map_major_joints(test::cmu_retargeted_skeleton()), "walk.bvh");
+      FAIL("expected an InputError");
+    } catch (const InputError& e) {
+      const std::string text = e.what();
+      INFO(text);
+      CHECK(text.find("snake.glb: 1 by structure (structure: no legs: no joint has two chains") != std::string::npos);
+      CHECK(text.find("walk.bvh: 20 by name") == std::string::npos);  // nothing needed missing there
+    }
+  }
+}
+
+TEST_CASE("the wild files: one skeleton per file, the major joints found, left on the body's left",
+          "[major_skeleton][shared]") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  struct Wild {
+    const char* file;
+    std::vector<std::string> gaits;  // the walk and run takes ("" for the file's only one)
+    MajorSource source;              // how its legs are found
+  };
+  const std::vector<Wild> wild = {
+      {"gltf_cesiumman_walk.glb", {""}, MajorSource::kStructure},
+      {"gltf_godot_robot_walk_run.glb", {"walk", "run"}, MajorSource::kName},
+      {"gltf_mannequiny_run.glb", {"run_root.001"}, MajorSource::kName},
+      {"gltf_godot_mixamo_walk_run.glb", {"walking", "running"}, MajorSource::kName},
+      {"fbx_mixamo_walking.fbx", {""}, MajorSource::kName},
+      {"xia_sexy_01.bvh", {""}, MajorSource::kName},
+      {"xia_angry_13.bvh", {""}, MajorSource::kName},
+      {"xia_old_13.bvh", {""}, MajorSource::kName},
+      {"xia_depressed_13.bvh", {""}, MajorSource::kName},
+      {"xia_neutral_16.bvh", {""}, MajorSource::kName},  // a jump: the knees bend forward too
+      {"aalto_t_walk_regular.bvh", {""}, MajorSource::kName},
+      {"aalto_k_walk_fast.bvh", {""}, MajorSource::kName},
+      {"aalto_k_walk_slow.bvh", {""}, MajorSource::kName},
+  };
+  for (const Wild& w : wild) {
+    const std::string path = test::shared_motion("wild/" + std::string(w.file));
+    INFO(path);
+    // Every take on one skeleton.
+    std::vector<std::string> joints;
+    for (const TakeInfo& take : read_motion_takes(path)) {
+      const Clip clip = read_motion_file(path, nullptr, [&] {
+        MotionReadOptions o;
+        o.take = motion_format(path) == MotionFormat::kBvh ? "" : take.name;
+        return o;
+      }());
+      std::vector<std::string> names;
+      for (const Joint& j : clip.skeleton.joints) names.push_back(j.name);
+      if (joints.empty()) joints = names;
+      CHECK(names == joints);
+    }
+    for (const std::string& gait : w.gaits) {
+      INFO(gait);
+      const Clip clip = read_motion_file(gait.empty() ? path : path + "#" + gait);
+      const MajorMapping m = map_major_joints(clip);
+      INFO(m.how);
+      for (int major : {0, 12, 13, 14, 16, 17, 18}) CHECK(m.has(major));
+      CHECK(m.source[static_cast<int>(MajorJoint::kLeftKnee)] == w.source);
+      // Left is left: over the take, the knees bend forward of the line from hip to ankle, where
+      // forward is the way the body faces if the left hip is on its left (left = up x forward).
+      const Eigen::MatrixXd p = joint_positions(clip);
+      const auto at = [&](Eigen::Index f, int major) {
+        return Eigen::Vector3d(p.block<1, 3>(f, 3 * m.joint[major]).transpose());
+      };
+      double bend = 0.0;
+      for (Eigen::Index f = 0; f < p.rows(); ++f) {
+        Eigen::Vector3d lateral = at(f, 12) - at(f, 16);
+        lateral.y() = 0;
+        const Eigen::Vector3d forward = lateral.normalized().cross(Eigen::Vector3d::UnitY());
+        for (int hip : {12, 16}) {
+          const Eigen::Vector3d h = at(f, hip), k = at(f, hip + 1), a = at(f, hip + 2);
+          const double s = (k - h).dot(a - h) / (a - h).squaredNorm();
+          bend += (k - (h + s * (a - h))).dot(forward);
+        }
+      }
+      CHECK(bend > 0);
+    }
+  }
+  // The same Cesium Man without its rest rotations (a BVH written from it: every rotation zero
+  // is no standing body there, its bones run along their own axes): read in its first frame.
+  Clip cesium = read_motion_file(test::shared_motion("wild/gltf_cesiumman_walk.glb"));
+  const MajorMapping from_rest = map_major_joints(cesium);
+  for (Joint& j : cesium.skeleton.joints) j.rest_rotation.setIdentity();
+  const MajorMapping from_first_frame = map_major_joints(cesium);
+  CHECK(from_first_frame.joint == from_rest.joint);
+  CHECK_THAT(from_first_frame.how, Catch::Contains("read in the first frame's pose") &&
+                                       Catch::Contains("left told by the knees' bend over the motion"));
 }
