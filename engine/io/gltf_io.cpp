@@ -417,6 +417,17 @@ json skeleton_nodes(const Skeleton& s, const Eigen::MatrixX3d& rest, const std::
 
 // Inverse bind matrices of the rest pose, column-major: the inverse of a joint's rest world
 // transform, a translation by minus its rest position (the armature node has no transform).
+// Each joint's place in the skin's joint list: End Sites are no bones (no skin joint, -1), so a
+// reader takes them back as End Sites.
+std::vector<int> skin_indices(const Skeleton& s) {
+  std::vector<int> out(s.joints.size(), -1);
+  int next = 0;
+  for (size_t j = 0; j < s.joints.size(); ++j)
+    if (!s.joints[j].end_site) out[j] = next++;
+  return out;
+}
+
+// The skin's joints' inverse bind matrices, in skin_indices' order.
 std::vector<float> inverse_bind_matrices(const Skeleton& s, const Eigen::MatrixX3d& rest) {
   std::vector<Eigen::Vector3d> world(s.joints.size());
   std::vector<float> out;
@@ -426,6 +437,7 @@ std::vector<float> inverse_bind_matrices(const Skeleton& s, const Eigen::MatrixX
     world[j] = s.joints[j].parent < 0 ? local : world[s.joints[j].parent] + local;
     Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
     m.block<3, 1>(0, 3) = -world[j];
+    if (s.joints[j].end_site) continue;
     for (int c = 0; c < 4; ++c)
       for (int r = 0; r < 4; ++r) out.push_back(to_float32(m(r, c)));
   }
@@ -547,6 +559,7 @@ BoneMesh bone_mesh(const Skeleton& s, const Eigen::MatrixX3d& rest) {
     extent = std::max(extent, (world[j] - world[0]).norm());
   }
   BoneMesh mesh;
+  const std::vector<int> skin = skin_indices(s);
   for (size_t j = 0; j < s.joints.size(); ++j) {
     const int p = s.joints[j].parent;
     if (p < 0) continue;
@@ -569,7 +582,7 @@ BoneMesh bone_mesh(const Skeleton& s, const Eigen::MatrixX3d& rest) {
     for (const Eigen::Vector3d& c : corners) {
       mesh.positions.insert(mesh.positions.end(),
                             {to_float32(c.x()), to_float32(c.y()), to_float32(c.z())});
-      mesh.joints.push_back(p);
+      mesh.joints.push_back(skin[static_cast<size_t>(p)]);
     }
     for (uint32_t k = 0; k < 4; ++k) {
       const uint32_t a = first + 2 + k, b = first + 2 + (k + 1) % 4;
@@ -645,10 +658,11 @@ std::string format_gltf(const Clip& clip, const std::string& animation_name, con
   json scene_nodes = json::array({joints});
   BufferLayout buffer{bin};
   if (joints > 0) {
-    const int ibm = buffer.add_accessor({{"bufferView", buffer.add_view(inverse_bind_matrices(s, rest))},
-                                         {"componentType", 5126}, {"count", joints}, {"type", "MAT4"}});
     json joint_list = json::array();
-    for (int j = 0; j < joints; ++j) joint_list.push_back(j);
+    for (int j = 0; j < joints; ++j)
+      if (!s.joints[j].end_site) joint_list.push_back(j);
+    const int ibm = buffer.add_accessor({{"bufferView", buffer.add_view(inverse_bind_matrices(s, rest))},
+                                         {"componentType", 5126}, {"count", joint_list.size()}, {"type", "MAT4"}});
     doc["skins"] = json::array(
         {{{"name", animation_name}, {"inverseBindMatrices", ibm}, {"skeleton", joints}, {"joints", joint_list}}});
     if (options.bone_mesh && add_bone_mesh(s, rest, &buffer, &doc)) {

@@ -73,7 +73,18 @@ void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, c
   out.foot_sliding_raw = planted_speed(out.world, s.planted, *rig.feet).speed;
   out.foot_sliding_cleaned = out.foot_sliding_raw;
   if (options.foot_lock) {
+    const bool looped = out.loop.frames() > 1;
+    if (looped) s.before_lock = out.world;
     apply_foot_lock(out.world, *rig.feet, s.foot, body_drift != nullptr ? &s.drift : nullptr, rig.lock_limits);
+    // The lock reads the loop as a take with two ends: what it moves at the last frame and at the
+    // first differ, a jump at the seam. That difference is spread over the loop, so the last frame
+    // is moved as the first is and leads into it as any frame into the next.
+    if (looped) {
+      const Eigen::Index k = out.world.rows();
+      const Eigen::RowVectorXd gap = (out.world.row(0) - s.before_lock.row(0)) -
+                                     (out.world.row(k - 1) - s.before_lock.row(k - 1));
+      for (Eigen::Index f = 1; f < k; ++f) out.world.row(f) += (double(f) / double(k - 1)) * gap;
+    }
     planted_frames(out.world, *rig.feet, s.planted, s.heights);
     out.foot_sliding_cleaned = planted_speed(out.world, s.planted, *rig.feet).speed;
   }

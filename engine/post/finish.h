@@ -43,6 +43,7 @@ struct FinishedMotion {
 };
 
 struct FinishScratch {
+  Eigen::MatrixXd before_lock;  // a loop's world before the foot lock
   Eigen::MatrixXd ground, drift, planted;
   std::vector<double> heights;
   Eigen::VectorXd heading;

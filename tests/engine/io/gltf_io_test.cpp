@@ -88,7 +88,7 @@ TEST_CASE("glTF: BVH -> GLB -> read back is the same motion, and the validator f
   MOSTYLE_CHECK_GLTF_VALID(gltf);
 }
 
-TEST_CASE("glTF: the skeleton is written as one armature node and a skin of every joint", "[gltf]") {
+TEST_CASE("glTF: the skeleton is written as one armature node and a skin of every joint but the End Sites", "[gltf]") {
   TempDir tmp;
   const Clip bvh = read_bvh_file(test::asset("motions/cmu142_walk_clumsy.bvh"));
   const int joints = static_cast<int>(bvh.skeleton.joints.size());
@@ -103,15 +103,20 @@ TEST_CASE("glTF: the skeleton is written as one armature node and a skin of ever
   REQUIRE(doc["skins"].size() == 1);
   const nlohmann::json& skin = doc["skins"][0];
   CHECK(skin["skeleton"] == joints);
-  CHECK(skin["joints"].size() == static_cast<size_t>(joints));
+  // End Sites are nodes but no bones: a reader takes them back as End Sites.
+  std::vector<int> bones;
+  for (int j = 0; j < joints; ++j)
+    if (!bvh.skeleton.joints[j].end_site) bones.push_back(j);
+  CHECK(skin["joints"] == nlohmann::json(bones));
   // The inverse bind matrices undo each joint's rest position (translations only).
   const nlohmann::json& ibm = doc["accessors"][skin["inverseBindMatrices"].get<int>()];
   CHECK(ibm["type"] == "MAT4");
-  CHECK(ibm["count"] == joints);
+  CHECK(ibm["count"] == bones.size());
   const nlohmann::json& view = doc["bufferViews"][ibm["bufferView"].get<int>()];
-  for (int j = 0; j < joints; ++j) {
+  for (size_t b = 0; b < bones.size(); ++b) {
+    const int j = bones[b];
     float m[16];
-    std::memcpy(m, bin.data() + view["byteOffset"].get<size_t>() + 64 * j, 64);
+    std::memcpy(m, bin.data() + view["byteOffset"].get<size_t>() + 64 * b, 64);
     // Frame 0's position channels place the root; the other joints' offsets are the BVH's.
     Eigen::Vector3d world = Eigen::Vector3d::Zero();
     const MotionMatrix frame0 = bvh.motion.topRows(1);

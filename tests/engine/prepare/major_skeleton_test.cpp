@@ -223,39 +223,6 @@ TEST_CASE("name rules: a skeleton without pelvis names takes the joint with posi
   CHECK(m.joint[static_cast<int>(MajorJoint::kLeftKnee)] == 2);
 }
 
-TEST_CASE("name rules: limbs whose joints are numbered along them (COLLADA exports)", "[major_skeleton]") {
-  // As the Khronos sample character names its joints: torso, neck, arm and leg chains numbered,
-  // the side a lone L or R, an arm's first joint unnumbered.
-  test::SkeletonBuilder b;
-  b.joint("Skeleton_torso_joint_1", "", 0, 70, 0)
-      .joint("Skeleton_torso_joint_2", "Skeleton_torso_joint_1", 0, 10, 0)
-      .joint("torso_joint_3", "Skeleton_torso_joint_2", 0, 20, 0)
-      .joint("Skeleton_neck_joint_1", "torso_joint_3", 0, 15, 0)
-      .joint("Skeleton_arm_joint_L__4_", "torso_joint_3", 15, 10, 0)
-      .joint("Skeleton_arm_joint_L__3_", "Skeleton_arm_joint_L__4_", 25, 0, 0)
-      .joint("Skeleton_arm_joint_L__2_", "Skeleton_arm_joint_L__3_", 25, 0, 0)
-      .joint("Skeleton_arm_joint_R", "torso_joint_3", -15, 10, 0)
-      .joint("Skeleton_arm_joint_R__2_", "Skeleton_arm_joint_R", -25, 0, 0)
-      .joint("Skeleton_arm_joint_R__3_", "Skeleton_arm_joint_R__2_", -25, 0, 0)
-      .joint("leg_joint_L_1", "Skeleton_torso_joint_1", 9, -5, 0)
-      .joint("leg_joint_L_2", "leg_joint_L_1", 0, -30, 0)
-      .joint("leg_joint_L_3", "leg_joint_L_2", 0, -30, 0)
-      .joint("leg_joint_L_5", "leg_joint_L_3", 0, -5, 10)
-      .joint("leg_joint_R_1", "Skeleton_torso_joint_1", -9, -5, 0)
-      .joint("leg_joint_R_2", "leg_joint_R_1", 0, -30, 0)
-      .joint("leg_joint_R_3", "leg_joint_R_2", 0, -30, 0)
-      .joint("leg_joint_R_5", "leg_joint_R_3", 0, -5, 10);
-  const std::vector<std::string> expected = {
-      "Skeleton_torso_joint_1",   "-",                        "-",                        "-",
-      "Skeleton_arm_joint_L__4_", "Skeleton_arm_joint_L__3_", "Skeleton_arm_joint_L__2_", "-",
-      "Skeleton_arm_joint_R",     "Skeleton_arm_joint_R__2_", "Skeleton_arm_joint_R__3_", "-",
-      "leg_joint_L_1",            "leg_joint_L_2",            "leg_joint_L_3",            "leg_joint_L_5",
-      "leg_joint_R_1",            "leg_joint_R_2",            "leg_joint_R_3",            "leg_joint_R_5"};
-  CHECK(mapped_names(b.skeleton()) == expected);
-  // Named limbs are left as the name rules find them: "LeftLeg" is a knee, not a numbered leg.
-  CHECK(mapped_names(test::cmu_retargeted_skeleton()) == kCmuRetargeted);
-}
-
 TEST_CASE("name rules on the bundled CMU takes and the shared CMU and Bandai takes", "[major_skeleton]") {
   for (const std::string& path : test::asset_motions()) {
     INFO(path);
