@@ -540,7 +540,8 @@ void fit_to_swings(const Eigen::MatrixXd& world, const LockedLeg& leg, int ramp,
     return out;
   };
   for (size_t r = 0; r < s.runs.size(); ++r) {
-    const auto [start, end] = s.runs[r];
+    // Plain variables, not a structured binding: C++17 lambdas cannot capture those.
+    const Eigen::Index start = s.runs[r].first, end = s.runs[r].second;
     double before, after;
     if (r == 0) {
       before = room(start - ramp - 1, start, [&](Eigen::Index u) {
