@@ -645,9 +645,27 @@ bool add_bone_mesh(const Skeleton& s, const Eigen::MatrixX3d& rest, BufferLayout
 
 }  // namespace
 
+// Whether text is UTF-8 (glTF's names are JSON strings, which hold UTF-8 only).
+static bool is_utf8(const std::string& text) {
+  size_t i = 0;
+  while (i < text.size()) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    const int more = c < 0x80 ? 0 : (c >> 5) == 0x6 ? 1 : (c >> 4) == 0xE ? 2 : (c >> 3) == 0x1E ? 3 : -1;
+    if (more < 0 || i + static_cast<size_t>(more) >= text.size() + (more == 0 ? 1 : 0)) return false;
+    for (int k = 1; k <= more; ++k)
+      if ((static_cast<unsigned char>(text[i + static_cast<size_t>(k)]) >> 6) != 0x2) return false;
+    i += static_cast<size_t>(more) + 1;
+  }
+  return true;
+}
+
 std::string format_gltf(const Clip& clip, const std::string& animation_name, const std::string& bin_uri,
                         std::string* bin, const GltfWriteOptions& options) {
   const Skeleton& s = clip.skeleton;
+  for (const Joint& joint : s.joints)
+    if (!is_utf8(joint.name))
+      throw InputError(clip.source + ": joint name '" + joint.name +
+                       "' is not UTF-8 text, which glTF's names must be; rename it to write glTF");
   const int joints = static_cast<int>(s.joints.size());
   bin->clear();
   json doc;
