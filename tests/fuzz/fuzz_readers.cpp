@@ -270,8 +270,10 @@ bool write_read_back(std::string_view bytes) {
     if (fbx) clip = first_take(parse_fbx(bytes, source));
     else if (gltf) clip = first_take(parse_gltf(bytes, source, "", size_t{64} << 20));
     else clip = parse_bvh(bytes, source, nullptr);
-    // As the glTF and FBX takes, so a run tries many inputs rather than a few long ones.
-    if (static_cast<size_t>(clip.motion.size()) * sizeof(double) > (size_t{512} << 10)) return false;
+    // A quarter of the readers' sampling limit: what is written has a translation and a rotation
+    // per joint, so its read-back may need several times the take's channels and must stay
+    // within that limit; a run then tries many inputs rather than a few long ones.
+    if (static_cast<size_t>(clip.motion.size()) * sizeof(double) > (size_t{128} << 10)) return false;
   } catch (const InputError& e) {
     check_refusal(e, source);
     return false;
