@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "engine/align/cycle_phase.h"
@@ -76,12 +77,53 @@ GaitJoints gait_joints(const FootRig& feet) {
   return joints;
 }
 
+// The columns of a take's canonical poses its feet's signals are read from: the hips (column 0)
+// and each usable leg's joints, in column order.
+std::vector<int> feet_signal_columns(const FootRig& feet) {
+  std::vector<int> columns{0};
+  for (const LegColumns& leg : feet.legs)
+    for (int c : {leg.hip, leg.knee, leg.ankle, leg.toe})
+      if (c > 0) columns.push_back(c);
+  std::sort(columns.begin(), columns.end());
+  columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
+  return columns;
+}
+
+// Those columns of local (F x 3M), and where the gait checks' joints are among them.
+Eigen::MatrixXd feet_signals(const Eigen::MatrixXd& local, const FootRig& feet, GaitJoints* joints) {
+  const std::vector<int> columns = feet_signal_columns(feet);
+  Eigen::MatrixXd out(local.rows(), 3 * static_cast<Eigen::Index>(columns.size()));
+  for (size_t k = 0; k < columns.size(); ++k) out.middleCols(3 * static_cast<Eigen::Index>(k), 3) = local.middleCols(3 * columns[k], 3);
+  auto at = [&](int c) {
+    const auto it = std::find(columns.begin(), columns.end(), c);
+    return c >= 0 && it != columns.end() ? static_cast<int>(it - columns.begin()) : -1;
+  };
+  const GaitJoints all = gait_joints(feet);
+  joints->hips = at(all.hips);
+  for (size_t side = 0; side < 2; ++side) joints->ankles[side] = at(all.ankles[side]);
+  return out;
+}
+
+// A take's cycles from its feet's signals: the loop and the gait cycles are read on the hips
+// and legs alone (what take_cycles computes, with no FK of the rest); only where the feet give no
+// gait is the whole pose read, for periodic cycles (whole_local: the take's F x 3M canonical
+// poses, asked for then only). contacts: the take's, detected with the loop read on the legs.
+TakeCycles cycles_from_feet(const Eigen::MatrixXd& contacts, const Eigen::MatrixXd& legs_local,
+                            const GaitJoints& legs_joints, const FootRig& feet, const CycleOptions& options,
+                            const std::function<const Eigen::MatrixXd&()>& whole_local) {
+  TakeCycles cycles = detect_cycles(contacts, legs_local, feet.fps, feet.leg_length, options, legs_joints);
+  if (cycles.kind == CycleKind::kGait) return cycles;
+  return detect_cycles(contacts, whole_local(), feet.fps, feet.leg_length, options, gait_joints(feet));
+}
+
 // A take's foot contacts and cycles on its own frames (world F x 3M, canonical its canonical
 // frame, at feet.fps): a loop clip's contacts are read across its end.
 void contacts_and_cycles(const Eigen::MatrixXd& world, const CanonicalMotion& canonical, const FootRig& feet,
                          Eigen::MatrixXd* contacts, TakeCycles* cycles) {
-  *contacts = detect_foot_contacts(world, feet, cycle_loop_frames(canonical.local, feet.fps));
-  *cycles = detect_cycles(*contacts, canonical.local, feet.fps, feet.leg_length, {}, gait_joints(feet));
+  GaitJoints joints;
+  const Eigen::MatrixXd legs = feet_signals(canonical.local, feet, &joints);
+  *contacts = detect_foot_contacts(world, feet, cycle_loop_frames(legs, feet.fps));
+  *cycles = cycles_from_feet(*contacts, legs, joints, feet, {}, [&]() -> const Eigen::MatrixXd& { return canonical.local; });
 }
 
 // A take's cycles as registration needs them: gait cycles beginning at the foot the reference's
@@ -94,7 +136,10 @@ TakeCycles cycles_to_register(const PreparedTakes& p, const PreparedTake& t, con
     return t.cycles;
   CycleOptions at_foot;
   at_foot.foot = reference.foot;
-  return detect_cycles(t.own_contacts, t.canonical.local, p.fps, p.feet.leg_length, at_foot, gait_joints(p.feet));
+  GaitJoints joints;
+  const Eigen::MatrixXd legs = feet_signals(t.canonical.local, p.feet, &joints);
+  return cycles_from_feet(t.own_contacts, legs, joints, p.feet, at_foot,
+                          [&]() -> const Eigen::MatrixXd& { return t.canonical.local; });
 }
 
 // Whether every cycle ends before the take's last frame, as register_by_cycles reads them (a
@@ -354,16 +399,32 @@ std::vector<int> export_joints(const PreparedTakes& prepared) {
 
 TakeCycles take_cycles(const std::shared_ptr<const Clip>& clip) {
   // What prepare_takes does for the reference of a pair of the take with itself, at its own
-  // rate, and nothing more: its major joints, bones, feet, canonical frame, contacts, cycles.
+  // rate, and nothing more: FK of the hips and legs, their bones, the feet, the canonical frame,
+  // contacts and cycles (contacts_and_cycles reads the same columns of the whole pose); the rest
+  // of the body only for a take whose feet give no gait.
   const MajorMapping mapping = map_major_joints(clip->skeleton);
   const std::vector<int> majors = shared_major_joints(mapping, clip->source, mapping, clip->source);
-  const MajorTake major = extract_major_take(*clip, mapping, majors, 0.0);
-  const FootRig feet = make_foot_rig(majors, bone_lengths(major.world, subset_parents(majors)), major.fps);
-  const CanonicalMotion canonical = to_canonical(major.world, 0, feet.legs[0].hip, feet.legs[1].hip);
-  Eigen::MatrixXd contacts;
-  TakeCycles cycles;
-  contacts_and_cycles(major.world, canonical, feet, &contacts, &cycles);
-  return cycles;
+  auto cycles_of = [&](const std::vector<int>& joints) {
+    const MajorTake major = extract_major_take(*clip, mapping, joints, 0.0);
+    const FootRig feet = make_foot_rig(joints, bone_lengths(major.world, subset_parents(joints)), major.fps);
+    const CanonicalMotion canonical = to_canonical(major.world, 0, feet.legs[0].hip, feet.legs[1].hip);
+    Eigen::MatrixXd contacts;
+    TakeCycles cycles;
+    contacts_and_cycles(major.world, canonical, feet, &contacts, &cycles);
+    return cycles;
+  };
+  std::vector<int> legs;
+  for (int m : majors) {
+    const auto j = static_cast<MajorJoint>(m);
+    if (j == MajorJoint::kHips || (j >= MajorJoint::kLeftHip && j <= MajorJoint::kLeftToe) ||
+        (j >= MajorJoint::kRightHip && j <= MajorJoint::kRightToe))
+      legs.push_back(m);
+  }
+  if (legs.size() < majors.size()) {
+    TakeCycles cycles = cycles_of(legs);
+    if (cycles.kind == CycleKind::kGait) return cycles;
+  }
+  return cycles_of(majors);
 }
 
 Eigen::VectorXd frames_in_take(const PreparedTake& take, const Eigen::VectorXd& frames) {

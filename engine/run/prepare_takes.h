@@ -113,9 +113,10 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
                                                    StageTimes* times = nullptr);
 
 // The cycles of one take on its own, in its file's frames, as prepare_takes finds them for a
-// reference at its own rate: FK of its major joints, its feet, canonical frame, contacts and
-// cycles, nothing more. Throws InputError as prepare_takes does (a take without the major
-// joints). Cost: O(F x joints on the major joints' chains) plus detect_foot_contacts and
+// reference at its own rate, from its feet's signals: FK of the hips and legs only, their bones,
+// the feet, canonical frame, contacts and cycles (the rest of the body only for a take whose feet
+// give no gait, for periodic cycles). Throws InputError as prepare_takes does (a take without the
+// major joints). Cost: O(F x joints on the legs' chains) plus detect_foot_contacts and
 // detect_cycles.
 TakeCycles take_cycles(const std::shared_ptr<const Clip>& clip);
 

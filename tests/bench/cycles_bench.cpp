@@ -1,5 +1,5 @@
 // `mostyle-cli info` reads a take and finds its cycles: reading a long BVH against reading it and
-// finding its cycles (take_cycles: FK of the major joints, contacts, canonical frame, cycles),
+// finding its cycles (take_cycles: FK of the hips and legs, contacts, canonical frame, cycles),
 // take_cycles alone, and, for scale, what it replaced: preparing the take as a pair with itself
 // (retargeting, both takes' cycles, an alignment) to read the reference's cycles. The take is CMU's 22 s joyful walk at 120 fps from ../shared/motions, or
 // when that is absent a bundled CMU take repeated to a minute.

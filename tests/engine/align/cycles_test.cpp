@@ -420,3 +420,30 @@ TEST_CASE("cycles: takes from the wild: loops, short clips, runs, in place, any 
     if (std::string(name) == "xia_neutral_16.bvh") CHECK(t.reason.rfind("the feet land together (a jump)", 0) == 0);
   }
 }
+
+TEST_CASE("cycles: take_cycles reads the legs alone and finds what preparing the take as a reference finds") {
+  // take_cycles runs FK on the hips and legs only (the whole body only where the feet give no
+  // gait); preparing the take with itself at its own rate reads the same columns of the whole
+  // pose, so the two agree cycle for cycle, for gait takes and for others.
+  const char* names[] = {"wild/gltf_cesiumman_walk.glb", "wild/gltf_godot_mixamo_walk_run.glb#running",
+                         "wild/xia_old_13.bvh", "wild/aalto_k_walk_slow.bvh", "wild/xia_neutral_16.bvh",
+                         "wild/gltf_godot_mixamo_walk_run.glb#idle", "bandai_walk_old.bvh"};
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  for (const char* name : names) {
+    INFO(name);
+    const auto clip = std::make_shared<const Clip>(read_motion_file(test::shared_motion("") + name));
+    PrepareOptions options;
+    options.fps = 0.0;
+    const auto prepared = prepare_takes({clip, clip}, options);
+    const TakeCycles own = take_cycles(clip);
+    const TakeCycles& ref = prepared->reference().cycles;
+    CHECK(own.kind == ref.kind);
+    CHECK(own.foot == ref.foot);
+    CHECK(own.loop_frames == ref.loop_frames);
+    REQUIRE(own.cycles.size() == ref.cycles.size());
+    for (size_t k = 0; k < own.cycles.size(); ++k) {
+      CHECK(own.cycles[k].begin == ref.cycles[k].begin);
+      CHECK(own.cycles[k].end == ref.cycles[k].end);
+    }
+  }
+}
