@@ -427,6 +427,7 @@ void add_transfer_command(CLI::App& app, std::function<int()>* run) {
       // Content 1, neutral minus the strengths' sum (or the content 1 minus it), each style its strength.
       mp.min_weight = transfer_min_weight(static_cast<int>(styles));
       mp.max_weight = transfer_max_weight(static_cast<int>(styles));
+      mp.feet_of_reference = true;
       for (const auto& [seconds, s] : parse_keys(args->strength_at, "--strength-at", styles))
         mp.keys.push_back({seconds, transfer_weights(s, neutral)});
       if (!mp.keys.empty() && !args->part_strengths.empty())

@@ -613,14 +613,28 @@ void ease_between_runs(Eigen::Index frames, int ramp, FootLockScratch& s) {
 // bend it had on the frame before (as locked) holds it, the more the straighter the knee. Both
 // fade as the ankle moves less (`moved`): a lock that does not move the ankle leaves the leg as
 // it was. O(1).
-Eigen::Vector3d knee_pole(const Eigen::MatrixXd& world, const LegColumns& leg, Eigen::Index t, double moved,
-                          double leg_length) {
+Eigen::Vector3d knee_pole(const Eigen::MatrixXd& world, const LegColumns& leg,
+                          const std::array<LegColumns, 2>& rig_legs, Eigen::Index t, double moved, double leg_length) {
   const Eigen::Vector3d hip = joint_at(world, t, leg.hip), ankle = joint_at(world, t, leg.ankle);
   const Eigen::Vector3d leg_line = ankle - hip;
   Eigen::Vector3d pole = joint_at(world, t, leg.knee) - hip;
   if (leg_line.squaredNorm() > 0) pole -= leg_line * (leg_line.dot(pole) / leg_line.squaredNorm());
-  const double bend = pole.norm();
   const double moving = std::clamp(moved / (kKneeBiasMove * leg_length), 0.0, 1.0);
+  // A knee bends forwards, the way the body faces (its hips' left-right line turned a quarter
+  // about the vertical): a mix of poses can bend it a little backwards (a hyperextended knee), and
+  // the IK would fold the leg backwards along that as it moves the ankle. Its backward part is
+  // dropped as the ankle is moved (a lock that does not move the ankle leaves the leg as it
+  // was): such a knee is straight, and the bias below bends it forwards.
+  if (rig_legs[0].hip >= 0 && rig_legs[1].hip >= 0) {
+    const Eigen::Vector3d across = joint_at(world, t, rig_legs[0].hip) - joint_at(world, t, rig_legs[1].hip);
+    Eigen::Vector3d facing(-across.z(), 0.0, across.x());  // across x up, horizontal
+    if (facing.norm() > 0) {
+      facing.normalize();
+      const double back = pole.dot(facing);
+      if (back < 0.0) pole -= moving * back * facing;
+    }
+  }
+  const double bend = pole.norm();
   // The toe bias fades out as the knee bends more (gone at three times its size).
   const double bias = std::clamp(1.0 - bend / (3.0 * kKneeForwardBias * leg_length), 0.0, 1.0) * moving;
   if (leg.toe >= 0 && bias > 0.0) {
@@ -698,11 +712,17 @@ void move_leg(Eigen::MatrixXd& world, const LegColumns& leg, const FootRig& rig,
     applied = offset;
     wanted_before = wanted;
     const Eigen::Vector3d target = ankle + Eigen::Vector3d(offset.x(), 0.0, offset.y());
-    const Eigen::Vector3d pole = knee_pole(world, leg, t, offset.norm(), rig.leg_length);
+    // The knee's bend turned with the leg (the least turn taking the hip-ankle line onto the
+    // hip-target line): a bend measured across the old line, taken across the new one, can
+    // point backwards when the leg is nearly straight and the target moves along it.
+    const Eigen::Quaterniond turn = (ankle - hip).norm() > 0 && (target - hip).norm() > 0
+                                        ? Eigen::Quaterniond::FromTwoVectors(ankle - hip, target - hip)
+                                        : Eigen::Quaterniond::Identity();
+    const Eigen::Vector3d pole = turn * knee_pole(world, leg, rig.legs, t, offset.norm(), rig.leg_length);
     const bool straight = !(pole.norm() > kStraightLeg * rig.leg_length);
+    const Eigen::Vector3d before = straight ? Eigen::Vector3d(turn * last_bend(t)) : Eigen::Vector3d::Zero();
     Eigen::Vector3d new_knee, new_ankle;
-    two_bone_ik_pole(hip, knee, ankle, target, straight ? last_bend(t) : pole,
-                     straight ? last_bend(t) : Eigen::Vector3d::Zero(), &new_knee, &new_ankle);
+    two_bone_ik_pole(hip, knee, ankle, target, straight ? before : pole, before, &new_knee, &new_ankle);
     set_joint(world, t, leg.knee, new_knee);
     set_joint(world, t, leg.ankle, new_ankle);
     if (leg.toe >= 0) set_joint(world, t, leg.toe, joint_at(world, t, leg.toe) + (new_ankle - ankle));

@@ -89,8 +89,10 @@ bool shows_whole_loop(const PreparedTakes& p, int first, int last) {
 }
 
 // MixResult::foot_sliding_inputs: weights, one per take, or with keys each take's mean over the
-// output frames (frame_w, K x N). O(K x N).
-double inputs_planted_speed(const PreparedTakes& p, const std::vector<double>& weights, const Eigen::MatrixXd* frame_w) {
+// output frames (frame_w, K x N); the reference's own when of_reference (a transfer). O(K x N).
+double inputs_planted_speed(const PreparedTakes& p, const std::vector<double>& weights, const Eigen::MatrixXd* frame_w,
+                            bool of_reference) {
+  if (of_reference) return p.takes.front().planted.speed;
   double sum = 0.0;
   for (int i = 0; i < p.size(); ++i) {
     const double w = frame_w != nullptr && frame_w->rows() > 0 ? frame_w->col(i).mean() : weights[static_cast<size_t>(i)];
@@ -341,11 +343,17 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
   rig.feet = &p.feet;
   rig.short_bone_fraction = kShortBoneFraction;
   rig.lock_limits.fastest_joint = fastest;
-  out.foot_sliding_inputs = inputs_planted_speed(p, s.overall, keyed ? &s.frame_w : nullptr);
+  out.foot_sliding_inputs = inputs_planted_speed(p, s.overall, keyed ? &s.frame_w : nullptr, params.feet_of_reference);
   rig.lock_limits.planted_speed = out.foot_sliding_inputs;
   const Eigen::MatrixXd* drift = nullptr;
   if (finish.foot_lock) {
-    planted_drift(p, out.sources, s.overall, keyed ? &s.frame_w : nullptr, s.drift);
+    if (params.feet_of_reference) {  // the reference's own planted moves alone
+      s.drift_w.assign(static_cast<size_t>(n), 0.0);
+      s.drift_w.front() = 1.0;
+      planted_drift(p, out.sources, s.drift_w, nullptr, s.drift);
+    } else {
+      planted_drift(p, out.sources, s.overall, keyed ? &s.frame_w : nullptr, s.drift);
+    }
     drift = &s.drift;
   }
   finish_motion(s.sampler, s.ground_u, s.heading_u, s.contacts_u, rig, finish, out.local, s.u_stretch, s.finish,

@@ -46,6 +46,9 @@ struct MixParams {
   bool reference_timing = false;     // keep the reference's timeline instead of mixing timing
   bool residual = true;              // mix each take's residual too (BlendParams::residual)
   double root_pull_seconds = kRootPullSeconds;
+  // A transfer: the output's planted feet are held to the reference take's own (the content's
+  // planted speed and drift), whatever the weights; else to the takes' mixed by weight.
+  bool feet_of_reference = false;
   FinishOptions finish;              // limb lengths, foot lock, loop
   // Throws InputError, in one sentence, on a weight count that is not `takes`, a non-finite
   // weight, a weight outside [min_weight, max_weight] or weights that do not sum to 1.
@@ -58,7 +61,7 @@ struct MixScratch {
   Eigen::MatrixXd drift;              // K x 2 kFootJoints: the planted feet's expected moves (the foot lock's)
   Eigen::VectorXd heading_u, u, u_stretch, flips;
   Eigen::RowVectorXd channel_w, mixed_mean;
-  std::vector<double> overall, timing;
+  std::vector<double> overall, timing, drift_w;
   RowSampler sampler;
   FinishScratch finish;
 };

@@ -56,6 +56,7 @@ MixParams mix_params_for(const SessionControls& controls, const Decomposed& deco
   if (c.transfer) {
     m.min_weight = transfer_min_weight(takes);
     m.max_weight = transfer_max_weight(takes);
+    m.feet_of_reference = true;
   }
   if (c.per_part && !c.transfer) {
     // Each part: its own weights when given (one per take), else the overall weights.
