@@ -18,14 +18,6 @@ namespace mostyle {
 // either has no cycles. The take's cycles are used in order from its first, then again.
 std::vector<int> pair_cycles(const TakeCycles& reference, const TakeCycles& take);
 
-// The take's frame (fractional) at each of the reference's `frames` frames: inside reference
-// cycle k, the same phase of take cycle pairs[k] (linear in time within the cycle); NaN outside
-// the reference's cycles. pairs: from pair_cycles. Throws InputError when pairs does not have
-// one entry per reference cycle, names a cycle the take does not have, or a cycle runs past
-// `frames`. O(frames).
-Eigen::VectorXd frames_by_cycles(const TakeCycles& reference, const TakeCycles& take, const std::vector<int>& pairs,
-                                 int frames);
-
 // The take registered onto the reference by cycles: a motion of V frames laid on the
 // reference's spans, in order. A span of the reference inside its cycle k holds the take's cycle
 // pairs[k], its own frames (V frames as many as that cycle has, so its timing is the take's); a

@@ -129,25 +129,6 @@ void RowSampler::apply(const Eigen::MatrixXd& x, Eigen::MatrixXd& out) const {
   }
 }
 
-void RowSampler::apply_add(const Eigen::MatrixXd& x, const Eigen::MatrixXd& y, double weight,
-                           Eigen::MatrixXd& out) const {
-  const Eigen::Index n = row.size();
-  out.resize(n, x.cols());
-  const bool single = x.rows() == 1;
-  for (Eigen::Index c = 0; c < x.cols(); ++c) {
-    const double* in = x.col(c).data();
-    const double* add = y.col(c).data();
-    double* o = out.col(c).data();
-    for (Eigen::Index k = 0; k < n; ++k) {
-      const Eigen::Index i = row[k];
-      const double f = single ? 0.0 : frac[k];
-      const double a = in[i] + f * (in[i + (single ? 0 : 1)] - in[i]);
-      const double b = add[i] + f * (add[i + (single ? 0 : 1)] - add[i]);
-      o[k] = a + weight * b;
-    }
-  }
-}
-
 void RowSampler::accumulate(const Eigen::MatrixXd& x, double weight, Eigen::MatrixXd& out) const {
   const Eigen::Index n = row.size();
   const bool single = x.rows() == 1;

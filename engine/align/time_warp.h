@@ -44,9 +44,8 @@ struct RowSampler {
   Eigen::VectorXi row;    // K: the row before each sample time
   Eigen::VectorXd frac;   // K: how far towards the next row, 0..1
   void set(const Eigen::VectorXd& t, Eigen::Index rows);  // rows >= 1; no allocation once sized
-  // out = x at the times, plus `weight` times y at them when y is given (same shape as x).
+  // out = x at the times (resized to K x x.cols()).
   void apply(const Eigen::MatrixXd& x, Eigen::MatrixXd& out) const;
-  void apply_add(const Eigen::MatrixXd& x, const Eigen::MatrixXd& y, double weight, Eigen::MatrixXd& out) const;
   // out += weight times x at the times (out already K x x.cols()).
   void accumulate(const Eigen::MatrixXd& x, double weight, Eigen::MatrixXd& out) const;
 };

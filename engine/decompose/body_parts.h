@@ -9,7 +9,6 @@
 namespace mostyle {
 
 enum class BodyRegion { kSpineAndHead, kLeftArm, kRightArm, kLeftLeg, kRightLeg };
-constexpr int kBodyRegionCount = 5;
 const char* body_region_name(BodyRegion region);  // "spine and head", "left arm", ...
 BodyRegion body_region_of(int major);             // of a canonical joint (major_skeleton.h)
 

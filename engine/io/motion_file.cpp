@@ -53,8 +53,6 @@ bool is_motion_file(const std::string& path) {
 
 bool has_takes(MotionFormat format) { return format != MotionFormat::kBvh; }
 
-bool is_gltf_path(const std::string& path) { return motion_format(path) == MotionFormat::kGltf; }
-
 TakePath split_take_path(const std::string& text) {
   const size_t hash = text.find('#', text.find_last_of('/') == std::string::npos ? 0 : text.find_last_of('/'));
   if (hash == std::string::npos) return {text, ""};

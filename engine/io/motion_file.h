@@ -77,7 +77,4 @@ bool is_written_motion_path(const std::string& path);
 // The formats written, for messages: "BVH (.bvh), FBX (.fbx) and glTF 2.0 (.glb, .gltf)".
 inline constexpr const char* kWrittenMotionFormats = "BVH (.bvh), FBX (.fbx) and glTF 2.0 (.glb, .gltf)";
 
-// True when `path` ends in .glb or .gltf (case-insensitive): an output written as glTF.
-bool is_gltf_path(const std::string& path);
-
 }  // namespace mostyle

@@ -136,14 +136,6 @@ void apply_limb_lengths(Eigen::MatrixXd& positions, const std::vector<int>& pare
   }
 }
 
-Eigen::MatrixXd with_limb_lengths(const Eigen::MatrixXd& positions, const std::vector<int>& parents,
-                                  const std::vector<double>& lengths,
-                                  const LimbLengthOptions& options) {
-  Eigen::MatrixXd out = positions;
-  apply_limb_lengths(out, parents, lengths, options);
-  return out;
-}
-
 std::vector<double> bone_lengths(const Eigen::MatrixXd& positions, const std::vector<int>& parents) {
   check_skeleton(positions, parents, "bone lengths");
   if (positions.rows() == 0) throw InputError("bone lengths: the positions have no frames.");

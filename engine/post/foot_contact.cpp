@@ -398,16 +398,6 @@ Eigen::MatrixXd carry_contacts(const Eigen::MatrixXd& contacts_b, const Eigen::V
   return out;
 }
 
-void blend_contacts(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double alpha, Eigen::MatrixXd& out) {
-  if (a.rows() != b.rows() || a.cols() != 2 || b.cols() != 2)
-    throw InputError("foot contacts: expected two F x 2 contact matrices, found " + std::to_string(a.rows()) +
-                     " x " + std::to_string(a.cols()) + " and " + std::to_string(b.rows()) + " x " +
-                     std::to_string(b.cols()));
-  out.resize(a.rows(), 2);
-  for (Eigen::Index t = 0; t < a.rows(); ++t)
-    for (int s = 0; s < 2; ++s) out(t, s) = (1.0 - alpha) * a(t, s) + alpha * b(t, s) > 0.5 ? 1.0 : 0.0;
-}
-
 void two_bone_ik(const Eigen::Vector3d& hip, const Eigen::Vector3d& knee, const Eigen::Vector3d& ankle,
                  const Eigen::Vector3d& target, const Eigen::Vector3d& bend_fallback,
                  Eigen::Vector3d* new_knee, Eigen::Vector3d* new_ankle) {

@@ -69,10 +69,6 @@ void tidy_contacts(Eigen::MatrixXd& contacts, const FootRig& rig);
 // dtw.h warp_map, F values in B's frames). Throws InputError on an empty B. O(F).
 Eigen::MatrixXd carry_contacts(const Eigen::MatrixXd& contacts_b, const Eigen::VectorXd& warp);
 
-// The blend's contacts: 1 where (1 - alpha) a + alpha b > 1/2, else 0 (at alpha = 1/2 both takes
-// must agree). a, b: F x 2. out: resized to F x 2, no allocation when it has that size.
-void blend_contacts(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double alpha, Eigen::MatrixXd& out);
-
 // Buffers apply_foot_lock reuses, so the lock does not allocate once they have the right size.
 struct FootLockScratch {
   Eigen::VectorXd weight;  // F: 1 where the ankle is moved, 0 where it is left as it is

@@ -116,9 +116,8 @@ constexpr double transfer_max_weight(int styles) {
   return kMaxStrength + 1.0 > 1.0 - kMinStrength * styles ? kMaxStrength + 1.0 : 1.0 - kMinStrength * styles;
 }
 
-// The reference's joint index of each major column (for export), and the output frames in the
-// reference's own clip frames (its rotations at fractional frames).
-std::vector<int> export_joints(const PreparedTakes& palette);
+// The output frames in the reference's own clip frames (its rotations at fractional frames), for
+// export (with prepare_takes.h export_joints).
 Eigen::VectorXd source_frames_in_clip(const PreparedTakes& palette, const MixResult& mix);
 
 }  // namespace mostyle

@@ -375,7 +375,8 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
   // Whole turns that keep each take's facing within about half a turn of the reference's, kept
   // apart: the synthesis spreads each over a moment so a mix in between turns smoothly where it flips.
   for (PreparedTake& t : p->takes) t.turn_flips = match_turns(t.steps, reference.steps).col(2) - t.steps.col(2);
-  // Normalization (normalize.h): each take's own mean pose, one scale for all.
+  // Normalization: each take's own mean pose, one scale for all (per-channel scales would divide
+  // by zero on constant channels, the hips' x and z in the canonical frame).
   double sum = 0.0, count = 0.0;
   for (PreparedTake& t : p->takes) {
     t.mean = t.local.colwise().mean();

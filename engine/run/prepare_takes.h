@@ -8,7 +8,8 @@
 //   the registered one, which covers the whole reference), else aligned whole (left-foot DTW or
 //   the smooth warp, alignment.h); placed where the reference stands when their match starts;
 //   all of them read on one common timeline (U samples, common_timeline.h): poses, root paths
-//   and steps, whole-turn flips, contacts, then normalized with one scale (normalize.h).
+//   and steps, whole-turn flips, contacts, then normalized: each take less its own
+//   mean pose, all divided by one scale (the spread of every take's centred values).
 // A pair is two takes: its common timeline is the alignment's own warp, unchanged. The
 // decomposition (decompose_takes.h) and the synthesis (palette.h) read this value; nothing here
 // knows of them.

@@ -18,6 +18,13 @@ Eigen::Vector3d joint(const Eigen::MatrixXd& m, int frame, int j) {
   return m.block<1, 3>(frame, 3 * j).transpose();
 }
 
+// apply_limb_lengths on a copy.
+Eigen::MatrixXd with_limb_lengths(Eigen::MatrixXd positions, const std::vector<int>& parents,
+                                  const std::vector<double>& lengths, const LimbLengthOptions& options = {}) {
+  apply_limb_lengths(positions, parents, lengths, options);
+  return positions;
+}
+
 // A 20-joint tree shaped like the major skeleton: hips, spine, chest, head, two arms, two legs.
 const std::vector<int> kParents = {-1, 0, 1, 2,  2, 4, 5, 6,  2, 8, 9, 10,
                                    0,  12, 13, 14, 0, 16, 17, 18};
