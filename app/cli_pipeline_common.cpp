@@ -287,7 +287,7 @@ Json alignment_json(const PreparedTakes& p, int take) {
   return j;
 }
 
-// One list of joint names per component (issue #9's `component_joints`).
+// One list of joint names per component (the report's `component_joints`).
 Json component_joints_json(const std::vector<ComponentJoints>& parts, const std::vector<std::string>& names) {
   Json out = Json::array();
   for (const ComponentJoints& c : parts) {

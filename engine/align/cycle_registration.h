@@ -1,6 +1,6 @@
 #pragma once
-// Registration by cycles (issue 16), its first part: which cycle of another take each cycle of the
-// reference is matched with, and where in that take each reference frame inside a cycle falls.
+// Registration by cycles: which cycle of another take each cycle of the reference is matched
+// with, and the take laid on the reference's cycles accordingly.
 // A take with fewer cycles than the reference has its cycles reused in order (its first, its
 // second, ..., its last, its first again), so that its own cycle-to-cycle variation is kept and
 // the reference is covered whole, however short the take. Frames of the reference outside its

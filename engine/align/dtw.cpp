@@ -10,8 +10,7 @@
 
 #include "engine/io/error.h"
 
-// DTW as the paper's section 3.2 uses it, with the recurrence, path and band of DESIGN.md
-// ("decided" 6). The cost runs row by row in O(m) memory. The path keeps 2-bit back-pointers for
+// DTW as the paper's section 3.2 uses it, with the recurrence, path and band of dtw.h. The cost runs row by row in O(m) memory. The path keeps 2-bit back-pointers for
 // the cells in the band while they fit a byte budget; beyond it, Hirschberg's divide and conquer
 // (costs forward to a middle row, backward from the end, best crossing, recurse) keeps memory
 // linear for takes of any length at about twice the time.

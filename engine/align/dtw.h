@@ -1,6 +1,7 @@
 #pragma once
-// Dynamic time warping of two feature series (DESIGN.md section "decided" 6, paper section 3.2):
-// the optimal monotone alignment of their frames, used to put take B on take A's timeline.
+// Dynamic time warping of two feature series as the paper's section 3.2 uses it (Euclidean local
+// cost, steps (1,0), (0,1), (1,1), end to end): the optimal monotone alignment of their frames.
+// `--dtw paper` aligns with it to reproduce the paper; the default is slope_dtw.h.
 #include <Eigen/Core>
 #include <cstddef>
 #include <utility>

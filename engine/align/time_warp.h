@@ -1,5 +1,5 @@
 #pragma once
-// The time warp between two takes as a smooth, monotone, fractional curve (issue #8): samples
+// The time warp between two takes as a smooth, monotone, fractional curve: samples
 // along a common timeline, each giving a (fractional) frame of A and of B that match. Poses are
 // sampled between frames along it, never skipped, so a warped take never jumps.
 #include <Eigen/Core>
@@ -27,7 +27,7 @@ struct TimeWarp {
 constexpr double kWarpSmoothingFrames = 3.0;  // at 30 fps: 0.1 s, under a footstep's duration
 TimeWarp smooth_warp(const std::vector<std::pair<int, int>>& steps, double smoothing_frames = kWarpSmoothingFrames);
 
-// The paper's warp (DESIGN.md 6, `--dtw paper`): A's own frames 0..n-1 and, for each, the mean B
+// The paper's warp (`--dtw paper`): A's own frames 0..n-1 and, for each, the mean B
 // frame the plain DTW path matches to it (dtw.h warp_map). B may skip frames from one sample to
 // the next. Throws as warp_map does.
 TimeWarp paper_warp(const DtwPath& path, int frames_a);

@@ -1,9 +1,9 @@
 #pragma once
-// Timing blended with alpha (issue #8, after Kovar and Gleicher's registration curves, 2003):
-// along a time warp the output advances at (1 - w) times A's rate plus w times B's, so w = 0
-// plays at A's timing and length and w = 1 at B's. Where one take advances faster along the
-// warp than the other, the output's velocity is then a weighted mean of the two takes' own
-// velocities, never faster than the faster of them.
+// Timing mixed with the weights (timing is part of style; after Kovar and Gleicher's registration
+// curves, 2003): along the takes' common timeline the output advances at the weighted sum of the
+// takes' rates, so a take alone plays at its own timing and length. Where one take advances
+// faster than another, the output's velocity is then a weighted mean of the takes' own
+// velocities, never faster than the fastest of them.
 #include <Eigen/Core>
 
 #include <vector>

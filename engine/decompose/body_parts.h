@@ -1,5 +1,5 @@
 #pragma once
-// Body parts (issue #9): which region of the body each local component moves, named in plain
+// Body parts: which region of the body each local component moves, named in plain
 // words, and the parts an animator gives weights to ("legs from one take, arms from another").
 #include <Eigen/Core>
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// The one place motion files are opened (issue #17): BVH, FBX, glTF (.glb, .gltf), chosen by
+// The one place motion files are opened: BVH, FBX, glTF (.glb, .gltf), chosen by
 // the file's extension, and FILE#ANIMATION naming one take of a file that holds several. Every
 // consumer (the CLI's commands, batch lines, the worker behind the editor) reads through here.
 #include <cstddef>

@@ -1,5 +1,5 @@
 #pragma once
-// Limb-length constraint (paper 3.7, DESIGN 11): synthesized positions get the reference
+// Limb-length constraint (paper 3.7): synthesized positions get the reference
 // skeleton's bone lengths back, bone directions kept, from the root outward.
 #include <Eigen/Core>
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// Foot contacts (beyond the paper, issue #4): when each foot is planted in a take, carried through
+// Foot contacts (beyond the paper): when each foot is planted in a take, carried through
 // the DTW onto A's timeline and blended, and a foot lock that pins planted feet in place with
 // two-bone IK (hip-knee-ankle) so the blend does not skate. Works on major-joint positions
 // (frames x 3M, file units, Y up), the same matrices the pipeline blends.

@@ -1,5 +1,5 @@
 #pragma once
-// The canonical frame (DESIGN.md 4): joint positions relative to the hips' ground projection in
+// The canonical frame: joint positions relative to the hips' ground projection in
 // the body's own heading frame, with the root trajectory kept apart so it can be blended and
 // placed back in any world frame. Y is up (other up axes are rotated to Y before).
 #include <Eigen/Core>

@@ -1,5 +1,5 @@
 #pragma once
-// The synthesis, the last stage of the one chain (issue 15): the takes prepared by
+// The synthesis, the last stage of the one chain: the takes prepared by
 // prepare_takes and decomposed by decompose_takes, mixed with one weight per take (or per body
 // part): poses, timing, root path and foot contacts mixed with the weights, then the clean-up
 // (post/finish.h). Shared mode mixes the takes' component weights (any number of takes); paper

@@ -1,5 +1,5 @@
 #pragma once
-// The first stage of the one chain (issue 15), for 2 to 16 takes of one action; take 0 is the
+// The first stage of the one chain (any number of takes, one code path), for 2 to 16 takes of one action; take 0 is the
 // reference, whose skeleton, bones, world and timeline the others are brought onto:
 //   each take, once: its major joints at the working rate (FK), retargeted onto the reference's
 //   bones (the reference as it is), in the canonical frame (canonical_frame.h), its foot contacts;

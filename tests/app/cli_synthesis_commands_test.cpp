@@ -1,4 +1,4 @@
-// mostyle-cli mix and transfer, run as a user runs them (issue #9): mix of two is blend, weights
+// mostyle-cli mix and transfer, run as a user runs them: mix of two is blend, weights
 // are checked before anything is read, transfer at strength 0 is the content take, bad input
 // exits 1 with one line and leaves no file.
 #include <catch2/catch.hpp>

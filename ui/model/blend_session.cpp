@@ -423,7 +423,7 @@ void BlendSession::wait_idle(EditorState& state) {
   sync(state);
 }
 
-// Local cost c(i, j) = |a_i - b_j| (DESIGN.md 6) at the centre of each cell: O(cells), not
+// Local cost c(i, j) = |a_i - b_j| (the DTW's, engine/align/dtw.h) at the centre of each cell: O(cells), not
 // O(F x Fb), so a long take does not stall the frame that takes it up.
 void BlendSession::compute_dtw_image() {
   dtw_image_ = DtwCostImage();

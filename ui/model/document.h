@@ -21,14 +21,14 @@
 
 namespace mostyle::ui {
 
-// The blend the animator asks for (DESIGN.md "The editor"; defaults from the paper's figures).
+// The blend the animator asks for (defaults from the paper's figures).
 struct BlendParameters {
   double alpha = 0.5;     // 0: take A, 1: take B
   int components = 10;    // k
   double sparsity = 0.1;  // f in (0, 1]: fraction of non-zeros kept per component
 };
 
-// The style palette (issue #9): three or more takes mixed with weights, or a transfer (a style
+// The style palette: three or more takes mixed with weights, or a transfer (a style
 // change from a neutral take, or from the content itself, to a styled one put on a content take).
 struct PaletteControls {
   std::vector<double> weights;                 // one per take, summing to 1
@@ -56,7 +56,7 @@ struct SessionControls {
   bool timing_a = false;                 // keep A's timeline instead of blending the timing
   bool loop = false;                     // cut a seamless loop of whole gait cycles
   bool residual = true;                  // blend the takes' residual detail too (BlendParams)
-  // Style over time (issue 16): the mix's weights keyed at seconds of the result, each key one
+  // Style over time: the mix's weights keyed at seconds of the result, each key one
   // mix weight per take (a pair's (1 - alpha, alpha)); they replace alpha or the palette's weights
   // while they fit the takes (ui/model/keyed_weights.h). Empty: the constant weights.
   WeightKeys keys;

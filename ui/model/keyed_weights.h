@@ -1,5 +1,5 @@
 #pragma once
-// Style over time in the editor (issue 16): the weights the result has at a moment, from the
+// Style over time in the editor: the weights the result has at a moment, from the
 // document's constant controls (alpha, the palette's weights, a transfer's strengths) or from its
 // keys (SessionControls::keys), and the edits the weight controls, the timeline's Key button and
 // its marks make at the playhead. Plain data: no ImGui; tests drive it with an EditorState made

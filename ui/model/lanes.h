@@ -1,5 +1,5 @@
 #pragma once
-// Side by side as parallel lanes (issue #10): every take walks beside the result, at a fixed
+// Side by side as parallel lanes: every take walks beside the result, at a fixed
 // distance across the result's path, however far the takes' own paths part on a long take. The
 // result's hips path gives each frame a lane point and a direction across; a take keeps its own
 // pose and facing and has its hips put on its lane. Overlaid, takes keep their own paths.

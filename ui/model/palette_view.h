@@ -1,5 +1,5 @@
 #pragma once
-// The style palette in the editor (issue #9): the takes the viewport shows while a palette is
+// The style palette in the editor: the takes the viewport shows while a palette is
 // loaded, and the mix, re-run on the UI thread when a weight or option moves (well under a
 // millisecond for a minute of eight takes). The palette and its decomposition come from the
 // engine's worker (BlendSession); this file only turns them into what is shown.

@@ -203,7 +203,7 @@ TEST_CASE("cycle registration: a 6.5 s walk registered onto a 22 s one covers it
       CHECK(own[k] <= double(other.registration.take_cycles.cycles.back().end) + p->fps);
     }
   CHECK(inside > 0.6 * own.size());
-  // Aligned whole instead, the take covers only part of the reference (what issue 16 measured).
+  // Aligned whole instead, the take covers only part of the reference.
   PrepareOptions whole;
   whole.align.time_base = TimeBase::kWhole;
   const auto w = prepare_takes(std::vector<std::shared_ptr<const Clip>>{content, neutral}, whole);

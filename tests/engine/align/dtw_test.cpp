@@ -21,7 +21,7 @@ constexpr double kCostTolerance = 1e-9;  // relative
 constexpr double kWarpTolerance = 1e-12;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// The band of DESIGN.md written independently of dtw.cpp's row ranges: |j - i(m-1)/(n-1)| <=
+// The band of dtw.h written independently of dtw.cpp's row ranges: |j - i(m-1)/(n-1)| <=
 // band, cross-multiplied; the degenerate diagonal of a one-frame a covers its whole row.
 bool in_band(int i, int j, int n, int m, int band) {
   if (band < 0 || n == 1) return true;

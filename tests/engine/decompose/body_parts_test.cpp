@@ -1,4 +1,4 @@
-// Local components and body parts (issue #9): supports that are one connected piece of the
+// Local components and body parts: supports that are one connected piece of the
 // skeleton, their regions and plain names, and weights given per body part.
 #include "engine/decompose/body_parts.h"
 
