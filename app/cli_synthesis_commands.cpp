@@ -9,6 +9,7 @@
 #include "app/cli_common.h"
 #include "app/cli_pipeline_common.h"
 #include "engine/export/export_solve.h"
+#include "engine/io/clock.h"
 #include "engine/io/error.h"
 #include "engine/kinematics/units.h"
 #include "engine/run/decompose_takes.h"
@@ -19,10 +20,6 @@ namespace mostyle::cli {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
 // How a command names its takes and its timing choices in --help.
 struct Words {
   std::string mixed_timing;      // --timing's value that mixes the takes' timing ("blend", "mix")

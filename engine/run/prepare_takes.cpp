@@ -8,6 +8,7 @@
 #include <string>
 
 #include "engine/align/cycle_phase.h"
+#include "engine/io/clock.h"
 #include "engine/io/error.h"
 #include "engine/kinematics/limb_length.h"
 #include "engine/prepare/major_take.h"
@@ -17,10 +18,6 @@ namespace mostyle {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
 constexpr double kMaxFps = 1000.0;
 // The posture of a take registered by cycles fades in and out over this many of the
 // reference's cycles, where the reference is not in a cycle.

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iterator>
 
+#include "engine/io/clock.h"
 #include "engine/io/motion_file.h"
 #include "engine/io/error.h"
 #include "engine/export/channel_layout.h"
@@ -30,10 +31,6 @@ const glm::vec4 kHighlight(1.0f, 0.92f, 0.25f, 1.0f);
 constexpr size_t kRecentFiles = 8;
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
 std::string stem(const std::string& path) { return take_label(path); }
 
 // The decomposition the document asks for (a level's sparsity not set yet: the main one).

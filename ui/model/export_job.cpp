@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "engine/export/export_frames.h"
+#include "engine/io/clock.h"
 #include "engine/io/error.h"
 #include "engine/kinematics/units.h"
 #include "engine/run/blend_params.h"
@@ -19,10 +20,6 @@ namespace fs = std::filesystem;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
 // Progress once the frames are resampled: the solve and the write are the rest.
 constexpr float kResampledProgress = 0.1f;
 

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "engine/io/clock.h"
 #include "engine/io/motion_file.h"
 #include "engine/io/error.h"
 #include "ui/model/blend_session.h"
@@ -21,10 +22,6 @@ namespace {
 const glm::vec3 kMixColor(0.50f, 0.88f, 0.46f);
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
 // The parts the palette panel gives weights to, in PaletteControls::part_weights order.
 constexpr BodyPart kParts[] = {BodyPart::kLegs, BodyPart::kArms, BodyPart::kSpine};
 
