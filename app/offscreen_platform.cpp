@@ -11,7 +11,7 @@
 #include <imgui.h>
 
 #include "app/editor.h"
-#include "app/imgui_session.h"
+#include "app/imgui_context.h"
 #include "app/screenshot.h"
 
 namespace mostyle::app {
@@ -39,7 +39,7 @@ int run_offscreen(const EditorOptions& options) {
 
   int status = 0;
   {
-    ImGuiSession session(/*persist_layout=*/false);
+    ImGuiContextScope imgui(/*persist_layout=*/false);
     ImGuiIO& io = ImGui::GetIO();
     io.BackendPlatformName = "mostyle_offscreen";
     Editor editor(options);

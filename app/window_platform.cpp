@@ -17,7 +17,7 @@
 
 #include "app/editor.h"
 #include "app/input_queue.h"
-#include "app/imgui_session.h"
+#include "app/imgui_context.h"
 #include "app/screenshot.h"
 
 namespace mostyle::app {
@@ -139,7 +139,7 @@ int run_window(const EditorOptions& options) {
 
   int status = 0;
   {
-    ImGuiSession session(/*persist_layout=*/!screenshot);
+    ImGuiContextScope imgui(/*persist_layout=*/!screenshot);
     Editor editor(options);
     editor.set_deterministic(screenshot);
     if (screenshot) editor.wait_for_engine();  // the same aligned, decomposed pair every run

@@ -2,7 +2,7 @@
 // programs end to end (offscreen screenshot; no display without --offscreen).
 #include "app/editor.h"
 #include "app/editor_options.h"
-#include "app/imgui_session.h"
+#include "app/imgui_context.h"
 
 #include <atomic>
 #include <cfloat>
@@ -197,7 +197,7 @@ TEST_CASE("the editor keeps rendering offscreen for hundreds of frames while dec
   const glm::ivec2 size(800, 450);
   mostyle::test::OsMesaContext gl(size);
   REQUIRE(gl.ok());
-  ImGuiSession imgui(/*persist_layout=*/false);
+  ImGuiContextScope imgui(/*persist_layout=*/false);
   EditorOptions options;
   options.initial.parameters.components = 4;
   Editor editor(options);
@@ -411,7 +411,7 @@ TEST_CASE("sessions and undo: Ctrl+Z / Ctrl+Y undo and redo a load, a saved sess
   const glm::ivec2 size(960, 540);
   mostyle::test::OsMesaContext gl(size);
   REQUIRE(gl.ok());
-  ImGuiSession imgui(/*persist_layout=*/false);
+  ImGuiContextScope imgui(/*persist_layout=*/false);
   const fs::path dir = fs::temp_directory_path() / "mostyle_editor_test_sessions";
   fs::remove_all(dir);
   fs::create_directories(dir);

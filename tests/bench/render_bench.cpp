@@ -8,7 +8,7 @@
 #include <imgui.h>
 
 #include "app/editor.h"
-#include "app/imgui_session.h"
+#include "app/imgui_context.h"
 #include "engine/io/bvh_io.h"
 #include "engine/kinematics/kinematics.h"
 #include "render/gl.h"
@@ -134,7 +134,7 @@ void BM_EditorFrame(benchmark::State& state) {
     state.SkipWithError(gl.error().c_str());
     return;
   }
-  app::ImGuiSession session(false);
+  app::ImGuiContextScope imgui(false);
   app::EditorOptions options;
   for (const char* name : kTakes) options.files.push_back(asset(name));
   app::Editor editor(options);

@@ -35,7 +35,7 @@ std::string stem(const std::string& path) { return take_label(path); }
 
 // The decomposition the document asks for (a level's sparsity not set yet: the main one).
 DecomposeParams decompose_params_for(const Document& document) {
-  const SessionControls& c = document.controls;
+  const DocumentControls& c = document.controls;
   DecomposeParams p;
   p.mode = c.mode;
   p.components = document.parameters.components;
@@ -205,7 +205,7 @@ void BlendSession::poll(EditorState& state) {
   const Decomposed* d = pair() != nullptr ? snapshot_->decomposed.get() : nullptr;
   if (d != nullptr && d != seen_decomposed_) {
     seen_decomposed_ = d;
-    SessionControls& c = state.document.controls;  // sized to the decomposition's k
+    DocumentControls& c = state.document.controls;  // sized to the decomposition's k
     c.component_alpha.resize(static_cast<size_t>(d->components()), state.document.parameters.alpha);
     if (c.selected_component >= d->components()) c.selected_component = -1;
     ErrorPoint point{d->params.components, d->params.sparsity, d->params.mode, d->rmse[0], d->rmse[1]};
@@ -337,7 +337,7 @@ void BlendSession::update_blend(EditorState& state) {
   const PreparedTakes* p = pair();
   const Decomposed* d = snapshot_->decomposed.get();
   if (p == nullptr || state.takes.size() != 3) return;
-  SessionControls& controls = state.document.controls;
+  DocumentControls& controls = state.document.controls;
   if (d != nullptr) {
     BlendParams params;
     params.alpha = state.document.parameters.alpha;
