@@ -11,7 +11,7 @@
 #include "app/cli_pipeline_common.h"
 #include "engine/io/bvh_io.h"
 #include "engine/kinematics/convert.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/motion_file.h"
 #include "engine/kinematics/euler.h"
 #include "engine/kinematics/kinematics.h"

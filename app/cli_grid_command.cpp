@@ -12,7 +12,7 @@
 #include "app/cli_common.h"
 #include "app/cli_synthesis_commands.h"
 #include "app/cli_pipeline_commands.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/motion_file.h"
 #include "engine/run/palette.h"
 

@@ -9,7 +9,7 @@
 
 #include "app/cli_common.h"
 #include "engine/io/atomic_file.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/numbers.h"
 
 namespace mostyle::cli {

@@ -9,7 +9,7 @@
 #include <Eigen/Core>
 #include <glm/glm.hpp>
 
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 #include "render/bounds.h"
 
 namespace mostyle::render {

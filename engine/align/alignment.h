@@ -12,7 +12,7 @@
 #include "engine/align/dtw.h"
 #include "engine/align/slope_dtw.h"
 #include "engine/align/time_warp.h"
-#include "engine/io/job_control.h"
+#include "engine/base/job_control.h"
 
 namespace mostyle {
 

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <string>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 // DTW as the paper's section 3.2 uses it, with the recurrence, path and band of dtw.h. The cost runs row by row in O(m) memory. The path keeps 2-bit back-pointers for
 // the cells in the band while they fit a byte budget; beyond it, Hirschberg's divide and conquer

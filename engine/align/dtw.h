@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "engine/io/job_control.h"
+#include "engine/base/job_control.h"
 
 namespace mostyle {
 

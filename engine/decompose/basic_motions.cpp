@@ -3,8 +3,8 @@
 #include <chrono>
 #include <string>
 
-#include "engine/io/clock.h"
-#include "engine/io/error.h"
+#include "engine/base/clock.h"
+#include "engine/base/error.h"
 
 namespace mostyle {
 

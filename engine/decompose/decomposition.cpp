@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "engine/io/clock.h"
-#include "engine/io/error.h"
+#include "engine/base/clock.h"
+#include "engine/base/error.h"
 #include "engine/decompose/sparse_coding.h"
 
 namespace mostyle {

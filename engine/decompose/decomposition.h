@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "engine/io/job_control.h"
+#include "engine/base/job_control.h"
 
 namespace mostyle {
 

@@ -7,7 +7,7 @@
 #include <sstream>
 #include <vector>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/kinematics.h"
 
 namespace mostyle {

@@ -16,7 +16,7 @@
 // place it in every reader; its rest position is then its parent's.
 #include <string>
 
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 
 namespace mostyle {
 

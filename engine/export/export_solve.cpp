@@ -9,7 +9,7 @@
 #include "engine/io/motion_file.h"
 #include "engine/io/bvh_io.h"
 #include "engine/kinematics/convert.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/euler.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/resample.h"

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "engine/export/channel_layout.h"
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 
 namespace mostyle {
 

@@ -10,7 +10,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/huge_pages.h"
 #include "engine/io/memory_limit.h"
 

@@ -5,7 +5,7 @@
 #include <cstring>
 #include <limits>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 namespace mostyle {
 namespace {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "engine/io/atomic_file.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/numbers.h"
 #include "engine/io/fbx_binary.h"
 #include "engine/kinematics/euler.h"

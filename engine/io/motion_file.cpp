@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "engine/io/bvh_io.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/fbx_io.h"
 #include "engine/io/fbx_write.h"
 #include "engine/io/gltf_io.h"

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 #include "engine/io/memory_limit.h"
 #include "engine/io/scene_animation.h"
 

@@ -2,7 +2,7 @@
 // What length unit a clip is probably in, from the size of its skeleton.
 #include <string>
 
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 
 namespace mostyle {
 

@@ -6,7 +6,7 @@
 #include <limits>
 #include <string>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/ease.h"
 #include "engine/post/planted_feet.h"
 #include "engine/prepare/major_skeleton.h"

@@ -7,8 +7,8 @@
 
 #include <Eigen/QR>
 
-#include "engine/io/clock.h"
-#include "engine/io/error.h"
+#include "engine/base/clock.h"
+#include "engine/base/error.h"
 
 namespace mostyle {
 namespace {

@@ -17,7 +17,7 @@
 #include "engine/decompose/basic_motions.h"
 #include "engine/decompose/body_parts.h"
 #include "engine/decompose/decomposition.h"
-#include "engine/io/job_control.h"
+#include "engine/base/job_control.h"
 #include "engine/run/decompose_params.h"
 #include "engine/run/prepare_takes.h"
 #include "engine/synthesize/synthesis.h"

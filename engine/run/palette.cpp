@@ -8,8 +8,8 @@
 #include <Eigen/QR>
 
 #include "engine/align/timing.h"
-#include "engine/io/clock.h"
-#include "engine/io/error.h"
+#include "engine/base/clock.h"
+#include "engine/base/error.h"
 #include "engine/prepare/canonical_frame.h"
 #include "engine/prepare/major_skeleton.h"
 

@@ -8,8 +8,8 @@
 #include <string>
 
 #include "engine/align/cycle_phase.h"
-#include "engine/io/clock.h"
-#include "engine/io/error.h"
+#include "engine/base/clock.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/limb_length.h"
 #include "engine/prepare/major_take.h"
 #include "engine/prepare/retarget.h"

@@ -3,9 +3,9 @@
 #include <chrono>
 #include <functional>
 
-#include "engine/io/clock.h"
+#include "engine/base/clock.h"
 #include "engine/io/motion_file.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 namespace mostyle {
 namespace {

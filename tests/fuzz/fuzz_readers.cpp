@@ -8,7 +8,7 @@
 #include "app/job_line.h"
 #include "engine/io/bvh_io.h"
 #include "engine/io/csv_io.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/fbx_io.h"
 #include "engine/io/fbx_write.h"
 #include "engine/io/gltf_io.h"

@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <iterator>
 
-#include "engine/io/clock.h"
+#include "engine/base/clock.h"
 #include "engine/io/motion_file.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/export/channel_layout.h"
 #include "engine/export/export_solve.h"
 #include "ui/model/cycle_provenance.h"

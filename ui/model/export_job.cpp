@@ -8,8 +8,8 @@
 #include <utility>
 
 #include "engine/export/export_frames.h"
-#include "engine/io/clock.h"
-#include "engine/io/error.h"
+#include "engine/base/clock.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/units.h"
 #include "engine/run/blend_params.h"
 #include "ui/model/blend_session.h"

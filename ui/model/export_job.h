@@ -14,8 +14,8 @@
 
 #include "engine/export/channel_layout.h"
 #include "engine/export/export_solve.h"
-#include "engine/io/clip.h"
-#include "engine/io/job_control.h"
+#include "engine/base/clip.h"
+#include "engine/base/job_control.h"
 
 namespace mostyle::ui {
 

@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "engine/io/clock.h"
+#include "engine/base/clock.h"
 #include "engine/io/motion_file.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "ui/model/blend_session.h"
 #include "ui/model/cycle_provenance.h"
 #include "ui/model/joint_contacts.h"

@@ -7,7 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include "engine/align/cycle_registration.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/motion_file.h"
 #include "engine/run/prepare_takes.h"
 #include "tests/test_data.h"

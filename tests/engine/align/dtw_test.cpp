@@ -9,8 +9,8 @@
 #include <random>
 #include <string>
 
-#include "engine/io/error.h"
-#include "engine/io/job_control.h"
+#include "engine/base/error.h"
+#include "engine/base/job_control.h"
 
 using namespace mostyle;
 

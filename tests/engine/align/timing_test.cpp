@@ -8,7 +8,7 @@
 
 #include "engine/align/common_timeline.h"
 #include "engine/align/slope_dtw.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 using namespace mostyle;
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/units.h"
 

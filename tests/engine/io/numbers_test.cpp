@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/numbers.h"
 #include "engine/run/palette.h"
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <vector>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "tests/engine/synthetic_motion.h"
 
 using namespace mostyle;

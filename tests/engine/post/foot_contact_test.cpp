@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "engine/io/bvh_io.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/limb_length.h"
 #include "engine/run/blend_params.h"
 #include "tests/engine/synthetic_gait.h"

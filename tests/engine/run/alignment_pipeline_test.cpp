@@ -11,7 +11,7 @@
 
 #include "engine/align/time_warp.h"
 #include "engine/io/bvh_io.h"
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 #include "engine/kinematics/units.h"
 #include "engine/run/blend_params.h"
 #include "tests/engine/run/blend_at.h"

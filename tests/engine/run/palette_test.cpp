@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "engine/io/bvh_io.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/units.h"
 #include "engine/prepare/major_skeleton.h"
 #include "engine/prepare/major_take.h"

@@ -11,7 +11,7 @@
 #include "engine/io/atomic_file.h"
 #include "engine/io/bvh_io.h"
 #include "engine/kinematics/convert.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/euler.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/limb_length.h"

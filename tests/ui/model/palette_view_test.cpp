@@ -7,7 +7,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "tests/test_data.h"
 #include "tests/ui/loaded_session.h"
 #include "ui/model/weight_keys_edit.h"

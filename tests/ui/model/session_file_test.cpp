@@ -10,7 +10,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "tests/test_data.h"
 #include "ui/model/document_fields.h"
 #include "ui/model/recent_files.h"
