@@ -186,6 +186,14 @@ int run_synthesis(const Prepared& p, const std::vector<std::string>& files, cons
   return 0;
 }
 
+// A blend's alpha is B's weight and 1 - alpha is A's: refused outside the range mix allows a
+// weight (kMinMixWeight to kMaxMixWeight, symmetric about 1/2, so A's weight is in it too).
+void check_alpha(double alpha, const std::string& flag) {
+  if (!(alpha >= kMinMixWeight && alpha <= kMaxMixWeight))
+    throw InputError("expected " + flag + " from " + number(kMinMixWeight) + " to " + number(kMaxMixWeight) +
+                     " (B's weight; A's is 1 - alpha), found " + number(alpha));
+}
+
 }  // namespace
 
 void add_blend_command(CLI::App& app, std::function<int()>* run) {
@@ -207,7 +215,7 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
   cmd->add_option("B", args->b, "Take B (retargeted onto A and aligned onto it in time)")->required();
   cmd->add_option("--mapping-a", args->mapping_a, "Major-joint mapping file for A (see assets/mappings)");
   cmd->add_option("--mapping-b", args->mapping_b, "Major-joint mapping file for B");
-  cmd->add_option("--alpha", args->alpha, "0 gives A, 1 gives B")->capture_default_str();
+  cmd->add_option("--alpha", args->alpha, "0 gives A, 1 gives B; from -0.5 to 1.5")->capture_default_str();
   cmd->add_option("--mode", args->mode, "shared (one component set, alpha 1 is B) or paper (core components)")
       ->check(CLI::IsMember({"shared", "paper"}))
       ->capture_default_str();
@@ -235,29 +243,33 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
         if (!args->component_alpha.empty()) throw InputError("give --part-alpha or --component-alpha, not both");
         if (dp.mode != BlendMode::kShared) throw InputError("--part-alpha needs shared mode (--mode shared)");
       }
+      // Every alpha is checked before the files are read.
+      check_alpha(args->alpha, "--alpha");
+      for (double a : args->component_alpha) check_alpha(a, "--component-alpha");
+      std::vector<std::pair<BodyPart, double>> given;
+      std::vector<std::string> entries;  // "legs:0.2,arms:0.8" or repeated
+      for (const std::string& e : args->part_alpha)
+        for (size_t begin = 0; begin <= e.size();) {
+          const size_t comma = std::min(e.find(',', begin), e.size());
+          entries.push_back(e.substr(begin, comma - begin));
+          begin = comma + 1;
+        }
+      for (const auto& [part, values] : parse_part_entries(entries, "--part-alpha", 1)) {
+        check_alpha(values[0], std::string("--part-alpha ") + body_part_name(part));
+        given.emplace_back(part, values[0]);
+      }
+      const auto keys = parse_keys(args->alpha_at, "--alpha-at", 1);
+      for (const auto& key : keys) check_alpha(key.second[0], "--alpha-at");
       const std::vector<std::string> files{args->a, args->b};
       const Prepared p = prepare(files, args->flags, dp, args->mapping_a, args->mapping_b);
       const Decomposed& d = *p.decomposition;
       BlendParams bp;
       bp.alpha = args->alpha;
       bp.component_alpha = args->component_alpha;
-      if (!args->part_alpha.empty()) {
-        std::vector<std::pair<BodyPart, double>> given;
-        std::vector<std::string> entries;  // "legs:0.2,arms:0.8" or repeated
-        for (const std::string& e : args->part_alpha)
-          for (size_t begin = 0; begin <= e.size();) {
-            const size_t comma = std::min(e.find(',', begin), e.size());
-            entries.push_back(e.substr(begin, comma - begin));
-            begin = comma + 1;
-          }
-        for (const auto& [part, values] : parse_part_entries(entries, "--part-alpha", 1))
-          given.emplace_back(part, values[0]);
-        bp.component_alpha = weights_for_parts(given, d.component_joints, args->alpha);
-      }
+      if (!given.empty()) bp.component_alpha = weights_for_parts(given, d.component_joints, args->alpha);
       bp.swap_level = args->swap;
       MixParams mp = blend_mix_params(bp, d);
-      for (const auto& [seconds, a] : parse_keys(args->alpha_at, "--alpha-at", 1))
-        mp.keys.push_back({seconds, {1.0 - a[0], a[0]}});
+      for (const auto& key : keys) mp.keys.push_back({key.first, {1.0 - key.second[0], key.second[0]}});
       args->flags.set(mp);
       Json r;
       r["command"] = "blend";

@@ -91,6 +91,28 @@ TEST_CASE("cli mix: bad weights exit 1 with one line and write nothing", "[cli][
   CHECK(box.count_files() == 0);
 }
 
+TEST_CASE("cli blend: an alpha mix would refuse as a weight exits 1 with one line and writes nothing",
+          "[cli][palette]") {
+  // alpha is B's weight and 1 - alpha A's: mix takes each from -0.5 to 1.5, so blend does too.
+  Sandbox box;
+  const std::string out = " --out " + quoted(box.path("out.bvh"));
+  for (const std::string& alpha : {std::string(" --alpha 5"), std::string(" --alpha -0.6"), std::string(" --alpha 1.51"),
+                                   std::string(" --part-alpha legs:2"), std::string(" --alpha-at 0:0,1:3"),
+                                   std::string(" --component-alpha 0,0,0,0,0,0,0,0,0,9")}) {
+    const auto r = box.cli("blend " + kHappy + " " + kMarching + alpha + out);
+    INFO(alpha << ": " << r.err);
+    CHECK(r.status == 1);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK(r.err.find("from -0.5 to 1.5") != std::string::npos);
+    CHECK(box.count_files() == 0);
+  }
+  // The ends of the range are blends.
+  const auto edge = box.cli("blend " + kHappy + " " + kMarching + " --alpha 1.5 --positions-out " +
+                            quoted(box.path("edge.csv")));
+  INFO(edge.err);
+  CHECK(edge.status == 0);
+}
+
 TEST_CASE("cli mix of four takes with per-part weights, and transfer, write BVH files", "[cli][palette]") {
   Sandbox box;
   const auto mix = box.cli("mix " + kHappy + " " + kMarching + " " + kJoy + " " + kClumsy +
