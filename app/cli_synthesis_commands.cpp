@@ -26,6 +26,7 @@ struct Words {
   std::string reference_timing;  // the value that keeps the reference's timeline ("a", "reference", "content")
   std::string timing_help;
   std::string out_help;
+  std::string default_timing;    // --timing's default; empty: mixed_timing
 };
 
 // The options blend, mix and transfer share: alignment, decomposition, clean-up, outputs.
@@ -40,7 +41,8 @@ struct SynthesisFlags {
   ChannelsFlag channels;
 
   void add_to(CLI::App* cmd, const Words& words) {
-    timing = mixed_timing = words.mixed_timing;
+    mixed_timing = words.mixed_timing;
+    timing = words.default_timing.empty() ? words.mixed_timing : words.default_timing;
     align.add_to(cmd);
     cmd->add_option("--components,-k", components, "Number of components k")->capture_default_str();
     cmd->add_option("--sparsity,-f", sparsity, "Fraction of non-zeros kept in C, in (0, 1]")->capture_default_str();
@@ -410,8 +412,13 @@ void add_transfer_command(CLI::App& app, std::function<int()>* run) {
   cmd->add_option("--strength-at", args->strength_at,
                   "Strength keyed in time, T:s,T:s,... (T in seconds of the output; with several styles "
                   "T:s1,s2;T:...; eased between keys, held before the first and after the last); replaces --strength");
-  args->flags.add_to(cmd, {"mix", "content", "mix: the output's timing is mixed with the weights; content: keep CONTENT's timeline",
-                          "File of the result on CONTENT's skeleton: BVH, FBX when it ends in .fbx, glTF 2.0 in .glb or .gltf"});
+  // The content keeps its timing and length by default: a transfer styles one's own take, which
+  // has to stay in sync with whatever it was made for; the style's timing is there on request.
+  args->flags.add_to(cmd, {"mix", "content",
+                           "content: keep CONTENT's timeline and length; mix: the output's timing is mixed with the "
+                           "weights too (the style's timing change, so the length changes)",
+                           "File of the result on CONTENT's skeleton: BVH, FBX when it ends in .fbx, glTF 2.0 in .glb or .gltf",
+                           "content"});
   cmd->callback([=] {
     *run = [=] {
       const size_t styles = args->styles.size();

@@ -166,13 +166,13 @@ TEST_CASE("cli transfer without --neutral: the content is its own neutral", "[cl
   CHECK(zero["frames"] == with_neutral["frames"]);
   CHECK(max_difference(positions(test::slurp(box.path("zero.csv"))),
                        positions(test::slurp(box.path("with_neutral.csv")))) < 1e-3 * height);
-  // Strength 1: the mix of content and style with weights 0 and 1 (the style on the content's
-  // timeline), the content the reference; strength 0.4: the mix (0.6, 0.4).
+  // Strength 1: the mix of content and style with weights 0 and 1 on the content's timeline (the
+  // style on the content's timing), the content the reference; strength 0.4: the mix (0.6, 0.4).
   for (const std::string s : {"1", "0.4"}) {
     const double strength = std::stod(s);
     const auto t = run("transfer " + kClumsy + " --style " + kMarching + " --strength " + s + " --fps 60", "t" + s);
     const auto m = run("mix " + kClumsy + " " + kMarching + " --weights " + std::to_string(1.0 - strength) + "," + s +
-                           " --fps 60",
+                           " --fps 60 --timing reference",
                        "m" + s);
     CHECK(t["weights"][0].get<double>() == Approx(1.0 - strength));
     CHECK(t["frames"] == m["frames"]);
@@ -200,6 +200,25 @@ TEST_CASE("cli transfer without --neutral: the content is its own neutral", "[cl
   REQUIRE(summary.status == 0);
   CHECK(summary.out.find("transfer onto cmu142_walk_clumsy.bvh (its own neutral) to cmu142_walk_marching.bvh") !=
         std::string::npos);
+}
+
+TEST_CASE("cli transfer keeps the content's length and timing unless --timing mix", "[cli][palette]") {
+  Sandbox box;
+  const auto info = box.cli("info " + kClumsy + " --json");
+  REQUIRE(info.status == 0);
+  const long content_frames = nlohmann::json::parse(info.out)["frames"];
+  auto frames = [&](const std::string& timing, const std::string& name) {
+    const auto r = box.cli("transfer " + kClumsy + " --neutral " + kHappy + " --style " + kMarching + timing +
+                           " --report " + quoted(box.path(name + ".json")));
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    const auto report = nlohmann::json::parse(test::slurp(box.path(name + ".json")));
+    CHECK(report["timing"] == (timing.empty() ? "content" : timing.substr(timing.rfind(' ') + 1)));
+    return report["frames"].get<long>();
+  };
+  CHECK(frames("", "default") == content_frames);  // at the content's own rate
+  CHECK(frames(" --timing content", "content") == content_frames);
+  CHECK(frames(" --timing mix", "mix") != content_frames);  // the style's timing change: another length
 }
 
 TEST_CASE("cli mix: typed weights within 0.001 of a sum of 1 and fractions are taken and normalized",
