@@ -8,6 +8,7 @@
 
 #include "app/cli_common.h"
 #include "app/cli_pipeline_common.h"
+#include "engine/export/export_frames.h"
 #include "engine/export/export_solve.h"
 #include "engine/base/clock.h"
 #include "engine/base/error.h"
@@ -137,7 +138,8 @@ int run_synthesis(const Prepared& p, const std::vector<std::string>& files, cons
   }
   r["frames"] = world.rows();
   r["fps"] = palette.fps;
-  r["duration_s"] = world.rows() / palette.fps;
+  // A loop lasts all its frames (the next repeat follows its last); a clip, first frame to last.
+  r["duration_s"] = flags.loop ? world.rows() / palette.fps : motion_length_s(world.rows(), palette.fps);
   r["components"] = flags.components;
   r["sparsity"] = flags.sparsity;
   r["joints"] = names;

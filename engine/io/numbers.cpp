@@ -52,4 +52,11 @@ std::string length_in_words(double value, double cm_per_unit, double height, con
   return text;
 }
 
+std::string duration_in_words(double seconds) {
+  if (!std::isfinite(seconds)) return "-";
+  char text[48];
+  std::snprintf(text, sizeof text, "%.2f s", seconds);
+  return text;
+}
+
 }  // namespace mostyle

@@ -18,4 +18,8 @@ float to_float32(double value);
 // kinematics/units.h centimetres_per_unit.
 std::string length_in_words(double value, double cm_per_unit, double height, const char* per = "");
 
+// A duration for a person, to a hundredth of a second: "6.47 s" ("-" when not finite). Every
+// length of a motion the programs print (summaries, info, the editor's export) says it so.
+std::string duration_in_words(double seconds);
+
 }  // namespace mostyle

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -263,6 +264,23 @@ TEST_CASE("cli blend without --report prints a short summary, not the JSON", "[c
   CHECK(blend.out.find("wrote " + box.path("b.bvh")) != std::string::npos);
   CHECK(blend.out.find('{') == std::string::npos);
   CHECK(blend.out.size() < 1000);
+}
+
+TEST_CASE("cli: one length for one motion, in hundredths of a second", "[cli][palette]") {
+  Sandbox box;
+  // info and a transfer at strength 0 (the content itself, on its own timeline) say one length.
+  const auto info = box.cli("info " + kClumsy);
+  REQUIRE(info.status == 0);
+  const auto json = box.cli("info " + kClumsy + " --json");
+  const auto clip = nlohmann::json::parse(json.out);
+  char words[32];
+  std::snprintf(words, sizeof words, "%.2f s", clip["duration_s"].get<double>());  // first frame to last
+  CHECK(info.out.find(std::string("duration: ") + words + "\n") != std::string::npos);
+  const auto transfer = box.cli("transfer " + kClumsy + " --style " + kMarching + " --strength 0 --positions-out " +
+                                quoted(box.path("t.csv")));
+  INFO(transfer.err);
+  REQUIRE(transfer.status == 0);
+  CHECK(transfer.out.find(std::string("(") + words + ")") != std::string::npos);
 }
 
 TEST_CASE("cli: whole takes by cycles, and style keyed in time", "[cli][palette]") {

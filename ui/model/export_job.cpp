@@ -116,8 +116,8 @@ ExportOutcome run_export(const ExportRequest& request, JobControl* control) {
     const double seconds = o.range == ExportRange::kLoop ? out.frames / fps : motion_length_s(out.frames, fps);
     const std::string reference = fs::path(request.clip->source).filename().string();
     char text[160];
-    std::snprintf(text, sizeof text, "Exported %d frames at %g fps (%.2f s%s, ", out.frames, fps, seconds,
-                  o.range == ExportRange::kLoop ? ", a seamless loop" : "");
+    std::snprintf(text, sizeof text, "Exported %d frames at %g fps (%s%s, ", out.frames, fps,
+                  duration_in_words(seconds).c_str(), o.range == ExportRange::kLoop ? ", a seamless loop" : "");
     out.message = text + (o.layout == ChannelLayout::kRotations ? "rotation channels" : "the channels of " + reference) +
                   ") to " + o.path + ". The skeleton of " + reference + " in the file follows the result within " +
                   worst + " (worst joint and frame; " + mean + " on average).";

@@ -1,5 +1,5 @@
 // Numbers as a person types them (engine/io/numbers.h): decimals and fractions, nothing else;
-// and lengths as a person reads them.
+// and lengths and durations as a person reads them.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
@@ -59,4 +59,12 @@ TEST_CASE("length_in_words: metric units from the file's unit, else a share of t
   CHECK(length_in_words(0.5, 0.0, 25.0) == "2% of height");
   CHECK(length_in_words(0.5, 0.0, 0.0) == "-");
   CHECK(length_in_words(-1.0, 1.0, 170.0) == "-");
+}
+
+TEST_CASE("duration_in_words: hundredths of a second, one way everywhere") {
+  CHECK(duration_in_words(6.466660200000001) == "6.47 s");
+  CHECK(duration_in_words(1.1) == "1.10 s");
+  CHECK(duration_in_words(0.0) == "0.00 s");
+  CHECK(duration_in_words(120.0) == "120.00 s");
+  CHECK(duration_in_words(NAN) == "-");
 }
