@@ -266,6 +266,24 @@ TEST_CASE("cli blend without --report prints a short summary, not the JSON", "[c
   CHECK(blend.out.size() < 1000);
 }
 
+TEST_CASE("cli summaries with keys in time say the keys, not the constant weight they replace", "[cli][palette]") {
+  Sandbox box;
+  auto summary = [&](const std::string& args) {
+    const auto r = box.cli(args + " --positions-out " + quoted(box.path("out.csv")));
+    INFO(args << ": " << r.err);
+    REQUIRE(r.status == 0);
+    return r.out;
+  };
+  const std::string transfer = summary("transfer " + kClumsy + " --style " + kMarching + " --strength-at 0:0,2:1");
+  CHECK(transfer.find("strength keyed 0.00 at 0.00 s, 1.00 at 2.00 s") != std::string::npos);
+  CHECK(transfer.find("strength 1.00") == std::string::npos);
+  const std::string blend = summary("blend " + kHappy + " " + kMarching + " --alpha-at 0:0,3:1");
+  CHECK(blend.find("alpha keyed 0.00 at 0.00 s, 1.00 at 3.00 s") != std::string::npos);
+  CHECK(blend.find("at alpha 0.50") == std::string::npos);
+  const std::string mix = summary("mix " + kHappy + " " + kMarching + " " + kJoy + " --weights-at \"0:1,0,0;2:0,1/2,1/2\"");
+  CHECK(mix.find("weights keyed 1.000 0.000 0.000 at 0.00 s, 0.000 0.500 0.500 at 2.00 s") != std::string::npos);
+}
+
 TEST_CASE("cli: one length for one motion, in hundredths of a second", "[cli][palette]") {
   Sandbox box;
   // info and a transfer at strength 0 (the content itself, on its own timeline) say one length.
