@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -153,6 +154,8 @@ int run_window(const EditorOptions& options) {
     editor.set_wake([] { glfwPostEmptyEvent(); });
     glfwSetDropCallback(window, on_drop);
     try {
+      // A screenshot of takes that did not load would show nothing: their one sentence, exit 1.
+      if (screenshot && !editor.session().error().empty()) throw std::runtime_error(editor.session().error());
       editor.init_graphics();
       double last = glfwGetTime();
       int settle = 0;  // frames still drawn after the last event (ImGui needs a few to settle)
