@@ -6,7 +6,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 namespace mostyle::cli {
 

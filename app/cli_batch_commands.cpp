@@ -18,7 +18,7 @@
 #include "app/job_runner.h"
 #include "app/stop_signal.h"
 #include "engine/io/atomic_file.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 namespace mostyle::cli {
 namespace {

@@ -9,9 +9,11 @@
 
 #include "app/cli_common.h"
 #include "app/cli_pipeline_common.h"
+#include "engine/export/export_frames.h"
 #include "engine/io/bvh_io.h"
+#include "engine/io/numbers.h"
 #include "engine/kinematics/convert.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/motion_file.h"
 #include "engine/kinematics/euler.h"
 #include "engine/kinematics/kinematics.h"
@@ -105,16 +107,15 @@ void add_info_command(CLI::App& app, std::function<int()>* run) {
         const std::string take_name = take->empty() ? file.take : *take;
         scene_skeleton_found = scene_skeleton(scene, take_name.empty() ? 0 : find_take(scene, take_name));
       } else {
-        takes.push_back({std::filesystem::path(file.path).stem().string(),
-                         clip.frames() > 1 ? (clip.frames() - 1) * clip.frame_time : 0.0, clip.frames(),
-                         clip.skeleton.joint_count_without_end_sites()});
+        takes.push_back({std::filesystem::path(file.path).stem().string(), motion_length_s(clip.frames(), clip.fps()),
+                         clip.frames(), clip.skeleton.joint_count_without_end_sites()});
       }
       const SkeletonOrigin origin =
           skeleton_origin(format, scene_skeleton_found ? &*scene_skeleton_found : nullptr);
       const Skeleton& s = clip.skeleton;
       const int end_sites = static_cast<int>(s.joints.size()) - s.joint_count_without_end_sites();
       const UnitsGuess units = guess_units(clip);
-      const double duration = clip.frames() > 1 ? (clip.frames() - 1) / clip.fps() : 0.0;
+      const double duration = motion_length_s(clip.frames(), clip.fps());  // first frame to last
       if (*json) {
         nlohmann::ordered_json j;
         j["file"] = *path;
@@ -158,14 +159,14 @@ void add_info_command(CLI::App& app, std::function<int()>* run) {
                   << origin.words << (s.joints.empty() ? "" : ", root '" + s.joints[0].name + "'") << "\n"
                   << "  takes: " << takes.size() << (takes.size() > 1 ? ", every one on this skeleton" : "") << "\n";
         for (const TakeInfo& t : takes) {
-          std::cout << "    " << t.name << "  (" << number(t.seconds) << " s, " << t.keys << " keys";
+          std::cout << "    " << t.name << "  (" << duration_in_words(t.seconds) << ", " << t.keys << " keys";
           if (t.moves >= 0) std::cout << ", moves " << t.moves << " joints";
           std::cout << ")\n";
         }
         std::cout << "  channels per frame: " << s.channel_count << "\n"
                   << "  frames: " << clip.frames() << "\n"
                   << "  frame time: " << number(clip.frame_time) << " s (" << number(clip.fps()) << " fps)\n"
-                  << "  duration: " << number(duration) << " s\n"
+                  << "  duration: " << duration_in_words(duration) << "\n"
                   << "  units (guess): " << units.name << " (height " << number(units.height) << ")\n"
                   << "  cycles: "
                   << (cycles ? cycles_summary(*cycles, clip.fps(), clip.frames()) : "unknown: " + no_cycles) << "\n"

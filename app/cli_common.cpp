@@ -9,7 +9,7 @@
 
 #include "engine/io/atomic_file.h"
 #include "engine/io/bvh_io.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/memory_limit.h"
 #include "engine/io/motion_file.h"
 

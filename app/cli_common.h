@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "engine/io/bvh_io.h"
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 #include "engine/io/motion_file.h"
 
 namespace mostyle::cli {

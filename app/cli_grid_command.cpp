@@ -12,7 +12,7 @@
 #include "app/cli_common.h"
 #include "app/cli_synthesis_commands.h"
 #include "app/cli_pipeline_commands.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/motion_file.h"
 #include "engine/run/palette.h"
 
@@ -163,7 +163,7 @@ void add_grid_command(CLI::App& app, std::function<int()>* run) {
         throw CLI::ValidationError("--takes", "expected 2 or more takes, found " + std::to_string(args->takes.size()));
       if (args->alphas.empty()) throw CLI::ValidationError("--alphas", "expected alpha values, found none");
       check_stems(args->takes, "--takes");
-      check_values(args->alphas, "--alphas", -HUGE_VAL, HUGE_VAL);
+      check_values(args->alphas, "--alphas", kMinMixWeight, kMaxMixWeight);  // as blend checks --alpha
       check_job_options(args->options, {"blend", args->takes[0], args->takes[1]},
                         {"--alpha", "--out", "--report", "--positions-out"}, &add_blend_command);
     } else {

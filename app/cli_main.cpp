@@ -9,7 +9,7 @@
 #include "app/cli_grid_command.h"
 #include "app/cli_synthesis_commands.h"
 #include "app/cli_pipeline_commands.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"mostyle-cli: BVH takes, DTW alignment, sparse-coding style decomposition and blending"};

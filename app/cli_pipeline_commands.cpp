@@ -11,10 +11,11 @@
 #include "app/cli_common.h"
 #include "app/cli_pipeline_common.h"
 #include "engine/io/atomic_file.h"
+#include "engine/base/clock.h"
 #include "engine/io/csv_io.h"
 #include "engine/align/dtw.h"
 #include "engine/align/time_warp.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/export/export_solve.h"
 #include "engine/run/blend_params.h"
 #include "engine/kinematics/units.h"
@@ -23,10 +24,6 @@ namespace mostyle::cli {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 Json path_json(const DtwPath& path) {
   Json steps = Json::array();

@@ -6,10 +6,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 
 #include "app/cli_common.h"
 #include "engine/io/atomic_file.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/numbers.h"
 
 namespace mostyle::cli {
@@ -131,6 +132,18 @@ std::string fixed(double v, int decimals) {
   return text;
 }
 
+// The keys in time of a report ("keys": seconds and one weight per take), each key's values
+// taken from its weights by `values` (an alpha, the weights, a transfer's strengths):
+// "0.00 at 0.00 s, 1.00 at 3.00 s".
+std::string keys_in_words(const Json& keys, const std::function<std::string(const std::vector<double>&)>& values) {
+  std::string text;
+  for (const Json& k : keys) {
+    if (!text.empty()) text += ", ";
+    text += values(k["weights"].get<std::vector<double>>()) + " at " + duration_in_words(k["seconds"].get<double>());
+  }
+  return text;
+}
+
 std::string file_name(const std::string& path) { return std::filesystem::path(path).filename().string(); }
 
 }  // namespace
@@ -140,24 +153,47 @@ std::string report_summary(const Json& r, const std::string& out, const std::str
   auto of_height = [&](double v) { return height > 0 ? fixed(100.0 * v / height, 2) + "% of height" : fixed(v, 3); };
   const std::string command = r.value("command", std::string("blend"));
   std::string text;
+  // With keys in time the weights given as constants are not used: the keys are said instead.
+  const bool keyed = r.contains("keys") && !r["keys"].empty();
+  auto joined = [](const std::vector<double>& v, size_t from, int decimals) {
+    std::string out;
+    for (size_t i = from; i < v.size(); ++i) out += (i > from ? " " : "") + fixed(v[i], decimals);
+    return out;
+  };
   if (command == "blend") {
-    text = "blend of " + file_name(r["a"]) + " and " + file_name(r["b"]) + " at alpha " +
-           fixed(r["alpha"].get<double>(), 2);
+    text = "blend of " + file_name(r["a"]) + " and " + file_name(r["b"]);
+    if (keyed)
+      text += ", alpha keyed " + keys_in_words(r["keys"], [&](const std::vector<double>& w) { return fixed(w[1], 2); });
+    else
+      text += " at alpha " + fixed(r["alpha"].get<double>(), 2);
   } else if (command == "mix") {
-    text = "mix of " + std::to_string(r["takes"].size()) + " takes onto " + file_name(r["takes"][0]["file"]) +
-           ", weights";
-    for (const Json& t : r["takes"]) text += " " + fixed(t["weight"].get<double>(), 3);
+    text = "mix of " + std::to_string(r["takes"].size()) + " takes onto " + file_name(r["takes"][0]["file"]);
+    if (keyed) {
+      text += ", weights keyed " +
+              keys_in_words(r["keys"], [&](const std::vector<double>& w) { return joined(w, 0, 3); });
+    } else {
+      text += ", weights";
+      for (const Json& t : r["takes"]) text += " " + fixed(t["weight"].get<double>(), 3);
+    }
   } else {
     // A transfer without a neutral take measures the change from the content itself.
     text = "transfer onto " + file_name(r["content"]) +
            (r.value("neutral", Json()).is_string() ? " from " + file_name(r["neutral"]) + " to"
                                                    : " (its own neutral) to");
     for (const Json& s : r["styles"]) text += " " + file_name(s);
-    text += ", strength";
-    for (const Json& s : r["strengths"]) text += " " + fixed(s.get<double>(), 2);
+    if (keyed) {
+      // The styles' weights are the last of each key's: their strengths.
+      const size_t styles = r["styles"].size();
+      text += ", strength keyed " + keys_in_words(r["keys"], [&](const std::vector<double>& w) {
+                return joined(w, w.size() - styles, 2);
+              });
+    } else {
+      text += ", strength";
+      for (const Json& s : r["strengths"]) text += " " + fixed(s.get<double>(), 2);
+    }
   }
   text += "\n  " + std::to_string(r["frames"].get<long>()) + " frames at " + fixed(r["fps"].get<double>(), 0) +
-          " fps (" + fixed(r["duration_s"].get<double>(), 2) + " s)";
+          " fps (" + duration_in_words(r["duration_s"].get<double>()) + ")";
   if (r.contains("loop")) text += ", a loop of " + std::to_string(r["loop"].value("cycles", 0)) + " cycles";
   text += "\n  limb lengths within " + of_height(r["limb_length_max_error"].get<double>());
   // Planted feet in the measure's own body height (the same for the inputs and the output).
@@ -287,7 +323,7 @@ Json alignment_json(const PreparedTakes& p, int take) {
   return j;
 }
 
-// One list of joint names per component (issue #9's `component_joints`).
+// One list of joint names per component (the report's `component_joints`).
 Json component_joints_json(const std::vector<ComponentJoints>& parts, const std::vector<std::string>& names) {
   Json out = Json::array();
   for (const ComponentJoints& c : parts) {

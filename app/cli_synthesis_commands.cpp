@@ -8,8 +8,10 @@
 
 #include "app/cli_common.h"
 #include "app/cli_pipeline_common.h"
+#include "engine/export/export_frames.h"
 #include "engine/export/export_solve.h"
-#include "engine/io/error.h"
+#include "engine/base/clock.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/units.h"
 #include "engine/run/decompose_takes.h"
 #include "engine/run/palette.h"
@@ -19,16 +21,13 @@ namespace mostyle::cli {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
 // How a command names its takes and its timing choices in --help.
 struct Words {
   std::string mixed_timing;      // --timing's value that mixes the takes' timing ("blend", "mix")
   std::string reference_timing;  // the value that keeps the reference's timeline ("a", "reference", "content")
   std::string timing_help;
   std::string out_help;
+  std::string default_timing;    // --timing's default; empty: mixed_timing
 };
 
 // The options blend, mix and transfer share: alignment, decomposition, clean-up, outputs.
@@ -43,7 +42,8 @@ struct SynthesisFlags {
   ChannelsFlag channels;
 
   void add_to(CLI::App* cmd, const Words& words) {
-    timing = mixed_timing = words.mixed_timing;
+    mixed_timing = words.mixed_timing;
+    timing = words.default_timing.empty() ? words.mixed_timing : words.default_timing;
     align.add_to(cmd);
     cmd->add_option("--components,-k", components, "Number of components k")->capture_default_str();
     cmd->add_option("--sparsity,-f", sparsity, "Fraction of non-zeros kept in C, in (0, 1]")->capture_default_str();
@@ -138,7 +138,8 @@ int run_synthesis(const Prepared& p, const std::vector<std::string>& files, cons
   }
   r["frames"] = world.rows();
   r["fps"] = palette.fps;
-  r["duration_s"] = world.rows() / palette.fps;
+  // A loop lasts all its frames (the next repeat follows its last); a clip, first frame to last.
+  r["duration_s"] = flags.loop ? world.rows() / palette.fps : motion_length_s(world.rows(), palette.fps);
   r["components"] = flags.components;
   r["sparsity"] = flags.sparsity;
   r["joints"] = names;
@@ -189,6 +190,14 @@ int run_synthesis(const Prepared& p, const std::vector<std::string>& files, cons
   return 0;
 }
 
+// A blend's alpha is B's weight and 1 - alpha is A's: refused outside the range mix allows a
+// weight (kMinMixWeight to kMaxMixWeight, symmetric about 1/2, so A's weight is in it too).
+void check_alpha(double alpha, const std::string& flag) {
+  if (!(alpha >= kMinMixWeight && alpha <= kMaxMixWeight))
+    throw InputError("expected " + flag + " from " + number(kMinMixWeight) + " to " + number(kMaxMixWeight) +
+                     " (B's weight; A's is 1 - alpha), found " + number(alpha));
+}
+
 }  // namespace
 
 void add_blend_command(CLI::App& app, std::function<int()>* run) {
@@ -210,7 +219,7 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
   cmd->add_option("B", args->b, "Take B (retargeted onto A and aligned onto it in time)")->required();
   cmd->add_option("--mapping-a", args->mapping_a, "Major-joint mapping file for A (see assets/mappings)");
   cmd->add_option("--mapping-b", args->mapping_b, "Major-joint mapping file for B");
-  cmd->add_option("--alpha", args->alpha, "0 gives A, 1 gives B")->capture_default_str();
+  cmd->add_option("--alpha", args->alpha, "0 gives A, 1 gives B; from -0.5 to 1.5")->capture_default_str();
   cmd->add_option("--mode", args->mode, "shared (one component set, alpha 1 is B) or paper (core components)")
       ->check(CLI::IsMember({"shared", "paper"}))
       ->capture_default_str();
@@ -238,29 +247,33 @@ void add_blend_command(CLI::App& app, std::function<int()>* run) {
         if (!args->component_alpha.empty()) throw InputError("give --part-alpha or --component-alpha, not both");
         if (dp.mode != BlendMode::kShared) throw InputError("--part-alpha needs shared mode (--mode shared)");
       }
+      // Every alpha is checked before the files are read.
+      check_alpha(args->alpha, "--alpha");
+      for (double a : args->component_alpha) check_alpha(a, "--component-alpha");
+      std::vector<std::pair<BodyPart, double>> given;
+      std::vector<std::string> entries;  // "legs:0.2,arms:0.8" or repeated
+      for (const std::string& e : args->part_alpha)
+        for (size_t begin = 0; begin <= e.size();) {
+          const size_t comma = std::min(e.find(',', begin), e.size());
+          entries.push_back(e.substr(begin, comma - begin));
+          begin = comma + 1;
+        }
+      for (const auto& [part, values] : parse_part_entries(entries, "--part-alpha", 1)) {
+        check_alpha(values[0], std::string("--part-alpha ") + body_part_name(part));
+        given.emplace_back(part, values[0]);
+      }
+      const auto keys = parse_keys(args->alpha_at, "--alpha-at", 1);
+      for (const auto& key : keys) check_alpha(key.second[0], "--alpha-at");
       const std::vector<std::string> files{args->a, args->b};
       const Prepared p = prepare(files, args->flags, dp, args->mapping_a, args->mapping_b);
       const Decomposed& d = *p.decomposition;
       BlendParams bp;
       bp.alpha = args->alpha;
       bp.component_alpha = args->component_alpha;
-      if (!args->part_alpha.empty()) {
-        std::vector<std::pair<BodyPart, double>> given;
-        std::vector<std::string> entries;  // "legs:0.2,arms:0.8" or repeated
-        for (const std::string& e : args->part_alpha)
-          for (size_t begin = 0; begin <= e.size();) {
-            const size_t comma = std::min(e.find(',', begin), e.size());
-            entries.push_back(e.substr(begin, comma - begin));
-            begin = comma + 1;
-          }
-        for (const auto& [part, values] : parse_part_entries(entries, "--part-alpha", 1))
-          given.emplace_back(part, values[0]);
-        bp.component_alpha = weights_for_parts(given, d.component_joints, args->alpha);
-      }
+      if (!given.empty()) bp.component_alpha = weights_for_parts(given, d.component_joints, args->alpha);
       bp.swap_level = args->swap;
       MixParams mp = blend_mix_params(bp, d);
-      for (const auto& [seconds, a] : parse_keys(args->alpha_at, "--alpha-at", 1))
-        mp.keys.push_back({seconds, {1.0 - a[0], a[0]}});
+      for (const auto& key : keys) mp.keys.push_back({key.first, {1.0 - key.second[0], key.second[0]}});
       args->flags.set(mp);
       Json r;
       r["command"] = "blend";
@@ -401,8 +414,13 @@ void add_transfer_command(CLI::App& app, std::function<int()>* run) {
   cmd->add_option("--strength-at", args->strength_at,
                   "Strength keyed in time, T:s,T:s,... (T in seconds of the output; with several styles "
                   "T:s1,s2;T:...; eased between keys, held before the first and after the last); replaces --strength");
-  args->flags.add_to(cmd, {"mix", "content", "mix: the output's timing is mixed with the weights; content: keep CONTENT's timeline",
-                          "File of the result on CONTENT's skeleton: BVH, FBX when it ends in .fbx, glTF 2.0 in .glb or .gltf"});
+  // The content keeps its timing and length by default: a transfer styles one's own take, which
+  // has to stay in sync with whatever it was made for; the style's timing is there on request.
+  args->flags.add_to(cmd, {"mix", "content",
+                           "content: keep CONTENT's timeline and length; mix: the output's timing is mixed with the "
+                           "weights too (the style's timing change, so the length changes)",
+                           "File of the result on CONTENT's skeleton: BVH, FBX when it ends in .fbx, glTF 2.0 in .glb or .gltf",
+                           "content"});
   cmd->callback([=] {
     *run = [=] {
       const size_t styles = args->styles.size();

@@ -1,5 +1,5 @@
 #pragma once
-// mostyle-cli subcommands that synthesize (issue 15: one command path): blend (two takes and an
+// mostyle-cli subcommands that synthesize, all through one command path: blend (two takes and an
 // alpha), mix (2 to 16 takes with weights, the style palette) and transfer (a style change put
 // on a take of one's own). Each prepares its takes (prepare_takes), decomposes them
 // (decompose_takes) and mixes them (mix_palette) the same way; only their words differ.

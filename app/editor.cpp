@@ -15,7 +15,7 @@
 #include <imgui_impl_opengl3.h>
 
 #include "engine/io/bvh_io.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "render/gl.h"
 #include "render/skeleton_pose.h"
 #include "ui/panels/playback_panel.h"

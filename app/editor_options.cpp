@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <system_error>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/numbers.h"
 #include "engine/run/palette.h"
 #include "ui/model/session_file.h"

@@ -2,7 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 namespace mostyle::cli {
 namespace {

@@ -20,7 +20,7 @@
 #include <system_error>
 #include <thread>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 extern char** environ;
 

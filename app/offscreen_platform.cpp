@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <exception>
+#include <stdexcept>
 #include <vector>
 
 #include "render/gl.h"
@@ -11,7 +12,7 @@
 #include <imgui.h>
 
 #include "app/editor.h"
-#include "app/imgui_session.h"
+#include "app/imgui_context.h"
 #include "app/screenshot.h"
 
 namespace mostyle::app {
@@ -39,13 +40,15 @@ int run_offscreen(const EditorOptions& options) {
 
   int status = 0;
   {
-    ImGuiSession session(/*persist_layout=*/false);
+    ImGuiContextScope imgui(/*persist_layout=*/false);
     ImGuiIO& io = ImGui::GetIO();
     io.BackendPlatformName = "mostyle_offscreen";
     Editor editor(options);
     editor.set_deterministic(true);
     editor.wait_for_engine();  // the same aligned, decomposed pair every run
     try {
+      // Takes that did not load leave nothing to show: their one sentence, exit 1, no picture.
+      if (!editor.session().error().empty()) throw std::runtime_error(editor.session().error());
       editor.init_graphics();
       for (int frame = 0; frame < kScreenshotFrames; ++frame) {
         // What a platform back-end would do: display size, time step, no pointer.

@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "render/gl.h"
 #include "render/image.h"
 #include "render/png_io.h"

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -17,7 +18,7 @@
 
 #include "app/editor.h"
 #include "app/input_queue.h"
-#include "app/imgui_session.h"
+#include "app/imgui_context.h"
 #include "app/screenshot.h"
 
 namespace mostyle::app {
@@ -139,7 +140,7 @@ int run_window(const EditorOptions& options) {
 
   int status = 0;
   {
-    ImGuiSession session(/*persist_layout=*/!screenshot);
+    ImGuiContextScope imgui(/*persist_layout=*/!screenshot);
     Editor editor(options);
     editor.set_deterministic(screenshot);
     if (screenshot) editor.wait_for_engine();  // the same aligned, decomposed pair every run
@@ -153,6 +154,8 @@ int run_window(const EditorOptions& options) {
     editor.set_wake([] { glfwPostEmptyEvent(); });
     glfwSetDropCallback(window, on_drop);
     try {
+      // A screenshot of takes that did not load would show nothing: their one sentence, exit 1.
+      if (screenshot && !editor.session().error().empty()) throw std::runtime_error(editor.session().error());
       editor.init_graphics();
       double last = glfwGetTime();
       int settle = 0;  // frames still drawn after the last event (ImGui needs a few to settle)

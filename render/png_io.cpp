@@ -9,7 +9,7 @@
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 namespace mostyle::render {
 

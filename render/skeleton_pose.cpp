@@ -79,21 +79,6 @@ Bounds clip_bounds(const Eigen::MatrixXd& positions) {
   return b;
 }
 
-float clip_size(const Eigen::MatrixXd& positions) {
-  const Eigen::Index joints = positions.cols() / 3;
-  double size = 0.0;
-  for (Eigen::Index f = 0; f < positions.rows(); ++f) {
-    double lo = 0.0, hi = 0.0;
-    for (Eigen::Index j = 0; j < joints; ++j) {
-      double y = positions(f, 3 * j + 1);
-      if (j == 0 || y < lo) lo = y;
-      if (j == 0 || y > hi) hi = y;
-    }
-    size = std::max(size, hi - lo);
-  }
-  return static_cast<float>(size);
-}
-
 void mark_ground_contacts(SkeletonPose* pose, float ground_height, float tolerance) {
   pose->contacts.assign(pose->positions.size(), 0);
   for (size_t i = 0; i < pose->positions.size(); ++i) {

@@ -9,7 +9,7 @@
 #include <Eigen/Core>
 #include <glm/glm.hpp>
 
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 #include "render/bounds.h"
 
 namespace mostyle::render {
@@ -29,7 +29,8 @@ struct SkeletonPose {
   // (e.g. a static reference ROOT on the floor under a game rig's hips).
   std::vector<std::uint8_t> hidden;
   // Characteristic size (standing height) in world units, for bone thickness and shadow size.
-  // Keep it constant over a clip (see clip_size()) so bones do not swell when a pose crouches;
+  // Keep it constant over a clip (engine/kinematics/units.h motion_height) so bones do not swell
+  // when a pose crouches;
   // 0: take this pose's own height.
   float size = 0.0f;
 };
@@ -59,9 +60,6 @@ std::vector<glm::vec3> positions_at(const Eigen::MatrixXd& positions, int frame)
 
 // Box around every joint of every frame (frames x 3*joints). Empty for an empty matrix.
 Bounds clip_bounds(const Eigen::MatrixXd& positions);
-// Standing-height estimate for SkeletonPose::size: the largest vertical extent of a single
-// frame, over all frames. O(frames * joints).
-float clip_size(const Eigen::MatrixXd& positions);
 
 // Marks joints that are within `tolerance` (world units) of the ground height: a display aid
 // for the contact markers, not an analysis. Resizes pose->contacts to the joint count.

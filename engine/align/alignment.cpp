@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 namespace mostyle {
 namespace {

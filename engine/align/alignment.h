@@ -1,5 +1,5 @@
 #pragma once
-// One take's alignment onto the reference (issue #8): the feature aligned on, the DTW path, the
+// One take's alignment onto the reference: the feature aligned on, the DTW path, the
 // smooth time warp, the matched ranges and how well each part matched. An immutable stage value
 // between preparation and decomposition.
 #include <Eigen/Core>
@@ -12,11 +12,11 @@
 #include "engine/align/dtw.h"
 #include "engine/align/slope_dtw.h"
 #include "engine/align/time_warp.h"
-#include "engine/io/job_control.h"
+#include "engine/base/job_control.h"
 
 namespace mostyle {
 
-// What a take's time is matched on. By cycles (issue 16), when both takes repeat (cycles.h): each
+// What a take's time is matched on. By cycles (cycle_registration.h), when both takes repeat (cycles.h): each
 // cycle of the reference is matched with a cycle of the take (a short take's reused in order,
 // cycle_registration.h) and warped within it, so the whole reference is covered; outside its
 // cycles the take gives its posture. Whole: one open-ended path between the two whole takes

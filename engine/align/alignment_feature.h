@@ -1,5 +1,5 @@
 #pragma once
-// What two takes are aligned on (issue #8). The paper aligns on the left foot, which suits
+// What two takes are aligned on. The paper aligns on the left foot, which suits
 // locomotion; for other actions (waving, raising hands) the foot carries no timing, so the
 // joints that actually move are used, weighted by how much they move.
 #include <Eigen/Core>

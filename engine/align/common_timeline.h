@@ -1,5 +1,5 @@
 #pragma once
-// One timeline for several takes (issue #9, the style palette): each take is aligned onto the
+// One timeline for several takes (the style palette): each take is aligned onto the
 // reference (take 0) by its own time warp (time_warp.h); the common timeline's samples give,
 // for every take, the (fractional) frame that matches the reference there.
 #include <Eigen/Core>

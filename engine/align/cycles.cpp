@@ -8,7 +8,7 @@
 #include <string>
 
 #include "engine/align/loop_clip.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 namespace mostyle {
 namespace {

@@ -1,5 +1,5 @@
 #pragma once
-// The cycles of one take (issue 16): where a repeated action repeats. Walks, runs and marches are
+// The cycles of one take: where a repeated action repeats. Walks, runs and marches are
 // cut into gait cycles at foot strikes; other repeated actions (waving) into periods of the
 // joints that move most; a take that does not repeat (raising both hands once, standing) has
 // none. A style lives in one cycle's shape and timing, so cycles are what lets a few seconds of a

@@ -8,10 +8,9 @@
 #include <sstream>
 #include <string>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
-// DTW as the paper's section 3.2 uses it, with the recurrence, path and band of DESIGN.md
-// ("decided" 6). The cost runs row by row in O(m) memory. The path keeps 2-bit back-pointers for
+// DTW as the paper's section 3.2 uses it, with the recurrence, path and band of dtw.h. The cost runs row by row in O(m) memory. The path keeps 2-bit back-pointers for
 // the cells in the band while they fit a byte budget; beyond it, Hirschberg's divide and conquer
 // (costs forward to a middle row, backward from the end, best crossing, recurse) keeps memory
 // linear for takes of any length at about twice the time.
@@ -427,21 +426,6 @@ DtwPath align_dtw(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, const DtwO
   return path;
 }
 
-double dtw_cost(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, const DtwOptions& o,
-                JobControl* control) {
-  const Band band = checked_band(a, b, o);
-  const int n = static_cast<int>(a.rows()), m = static_cast<int>(b.rows());
-  Progress progress;
-  progress.control = control;
-  progress.total = static_cast<double>(band_cells(band));
-  const std::vector<double> last =
-      run_rows(View{a, b, band, false}, 0, n - 1, 0, m - 1, nullptr, progress);
-  const double cost = last[m];
-  if (!std::isfinite(cost)) throw_overflow(a, b);
-  report_progress(control, 1.0f);
-  return cost;
-}
-
 Eigen::VectorXd warp_map(const DtwPath& path, int n) {
   if (n < 1) {
     std::ostringstream s;
@@ -470,36 +454,6 @@ Eigen::VectorXd warp_map(const DtwPath& path, int n) {
     sum[i] /= count[i];
   }
   return sum;
-}
-
-Eigen::MatrixXd warp_onto(const Eigen::MatrixXd& b, const DtwPath& path, int n) {
-  if (b.rows() == 0 || b.cols() == 0) {
-    std::ostringstream s;
-    s << "Cannot warp an empty series (" << b.rows() << " frames x " << b.cols()
-      << " features).";
-    throw InputError(s.str());
-  }
-  const Eigen::VectorXd where = warp_map(path, n);
-  const Eigen::Index m = b.rows();
-  for (const auto& step : path.steps) {
-    if (step.second >= m) {
-      std::ostringstream s;
-      s << "DTW path step (" << step.first << ", " << step.second << ") matches frame "
-        << step.second << " of a series with only " << m << " frames.";
-      throw InputError(s.str());
-    }
-  }
-  Eigen::MatrixXd out(n, b.cols());
-  for (int i = 0; i < n; ++i) {
-    const double x = where[i];
-    const Eigen::Index j = std::min<Eigen::Index>(static_cast<Eigen::Index>(x), m - 1);
-    const double t = x - static_cast<double>(j);
-    if (j + 1 < m && t > 0.0)
-      out.row(i) = (1.0 - t) * b.row(j) + t * b.row(j + 1);
-    else
-      out.row(i) = b.row(j);
-  }
-  return out;
 }
 
 }  // namespace mostyle

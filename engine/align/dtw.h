@@ -1,12 +1,13 @@
 #pragma once
-// Dynamic time warping of two feature series (DESIGN.md section "decided" 6, paper section 3.2):
-// the optimal monotone alignment of their frames, used to put take B on take A's timeline.
+// Dynamic time warping of two feature series as the paper's section 3.2 uses it (Euclidean local
+// cost, steps (1,0), (0,1), (1,1), end to end): the optimal monotone alignment of their frames.
+// `--dtw paper` aligns with it to reproduce the paper; the default is slope_dtw.h.
 #include <Eigen/Core>
 #include <cstddef>
 #include <utility>
 #include <vector>
 
-#include "engine/io/job_control.h"
+#include "engine/base/job_control.h"
 
 namespace mostyle {
 
@@ -35,21 +36,11 @@ struct DtwPath {
 DtwPath align_dtw(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, const DtwOptions& o = {},
                   JobControl* control = nullptr);
 
-// The cost D(n-1,m-1) of align_dtw without the path; the same inputs, errors and time, memory
-// O(m). Bit-identical to align_dtw(a, b, o).cost when the back-pointers fit the budget.
-double dtw_cost(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, const DtwOptions& o = {},
-                JobControl* control = nullptr);
-
 // For each frame i in 0..n-1 of a, the mean of the frames j of b the path matches to it, so b
 // can be resampled onto a's timeline: n values, in b's frames (fractional). Throws InputError
 // when n < 1 or the path leaves some i in 0..n-1 unmatched or has an (i, j) outside i in 0..n-1,
 // j >= 0. O(n + path length).
 Eigen::VectorXd warp_map(const DtwPath& path, int n);
-
-// b (m x d) warped onto a's n frames: row i is b linearly interpolated at warp_map(path, n)(i).
-// Returns n x d, b's units. Throws InputError as warp_map does, on an empty b, or when the path
-// matches a frame j >= m. O(n*d + path length).
-Eigen::MatrixXd warp_onto(const Eigen::MatrixXd& b, const DtwPath& path, int n);
 
 namespace detail {
 // Shared with slope_dtw.cpp. Throws InputError naming `name` when x is empty, too long to index

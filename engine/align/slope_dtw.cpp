@@ -8,7 +8,7 @@
 #include <string>
 
 #include "engine/align/dtw.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 // The recurrence is the symmetric slope-constrained one of Sakoe and Chiba (1978), with steps
 // (1, 1), (1, k) and (k, 1) for k up to max_slope, each weighted by the frames it covers so a

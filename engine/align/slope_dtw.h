@@ -1,5 +1,5 @@
 #pragma once
-// Slope-limited, open-ended DTW (DESIGN.md "decided" 6, issue #8): the alignment the blend uses
+// Slope-limited, open-ended DTW: the alignment the blend uses
 // by default. The paper's plain DTW (dtw.h) lets one frame of a take match any number of frames
 // of the other, so a warped take jumps over them; it also has to run from the first frames to
 // the last, so extra material at either end (standing before the walk, a longer take) is
@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "engine/io/job_control.h"
+#include "engine/base/job_control.h"
 
 namespace mostyle {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 namespace mostyle {
 
@@ -125,25 +125,6 @@ void RowSampler::apply(const Eigen::MatrixXd& x, Eigen::MatrixXd& out) const {
     for (Eigen::Index k = 0; k < n; ++k) {
       const double* p = in + row[k];
       o[k] = single ? p[0] : p[0] + frac[k] * (p[1] - p[0]);
-    }
-  }
-}
-
-void RowSampler::apply_add(const Eigen::MatrixXd& x, const Eigen::MatrixXd& y, double weight,
-                           Eigen::MatrixXd& out) const {
-  const Eigen::Index n = row.size();
-  out.resize(n, x.cols());
-  const bool single = x.rows() == 1;
-  for (Eigen::Index c = 0; c < x.cols(); ++c) {
-    const double* in = x.col(c).data();
-    const double* add = y.col(c).data();
-    double* o = out.col(c).data();
-    for (Eigen::Index k = 0; k < n; ++k) {
-      const Eigen::Index i = row[k];
-      const double f = single ? 0.0 : frac[k];
-      const double a = in[i] + f * (in[i + (single ? 0 : 1)] - in[i]);
-      const double b = add[i] + f * (add[i + (single ? 0 : 1)] - add[i]);
-      o[k] = a + weight * b;
     }
   }
 }

@@ -1,5 +1,5 @@
 #pragma once
-// The time warp between two takes as a smooth, monotone, fractional curve (issue #8): samples
+// The time warp between two takes as a smooth, monotone, fractional curve: samples
 // along a common timeline, each giving a (fractional) frame of A and of B that match. Poses are
 // sampled between frames along it, never skipped, so a warped take never jumps.
 #include <Eigen/Core>
@@ -27,7 +27,7 @@ struct TimeWarp {
 constexpr double kWarpSmoothingFrames = 3.0;  // at 30 fps: 0.1 s, under a footstep's duration
 TimeWarp smooth_warp(const std::vector<std::pair<int, int>>& steps, double smoothing_frames = kWarpSmoothingFrames);
 
-// The paper's warp (DESIGN.md 6, `--dtw paper`): A's own frames 0..n-1 and, for each, the mean B
+// The paper's warp (`--dtw paper`): A's own frames 0..n-1 and, for each, the mean B
 // frame the plain DTW path matches to it (dtw.h warp_map). B may skip frames from one sample to
 // the next. Throws as warp_map does.
 TimeWarp paper_warp(const DtwPath& path, int frames_a);
@@ -44,9 +44,8 @@ struct RowSampler {
   Eigen::VectorXi row;    // K: the row before each sample time
   Eigen::VectorXd frac;   // K: how far towards the next row, 0..1
   void set(const Eigen::VectorXd& t, Eigen::Index rows);  // rows >= 1; no allocation once sized
-  // out = x at the times, plus `weight` times y at them when y is given (same shape as x).
+  // out = x at the times (resized to K x x.cols()).
   void apply(const Eigen::MatrixXd& x, Eigen::MatrixXd& out) const;
-  void apply_add(const Eigen::MatrixXd& x, const Eigen::MatrixXd& y, double weight, Eigen::MatrixXd& out) const;
   // out += weight times x at the times (out already K x x.cols()).
   void accumulate(const Eigen::MatrixXd& x, double weight, Eigen::MatrixXd& out) const;
 };

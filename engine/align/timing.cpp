@@ -4,30 +4,9 @@
 #include <cmath>
 #include <string>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 namespace mostyle {
-
-namespace {
-// The blended clock's advance from sample k - 1 to k: never slower than the slower take with a
-// weight (only extrapolation, w outside [0, 1], reaches that bound), as mixed_timeline's.
-double blend_step(const TimeWarp& warp, double w, int k) {
-  const double da = warp.a[k] - warp.a[k - 1], db = warp.b[k] - warp.b[k - 1];
-  const double slowest = w == 0.0 ? da : w == 1.0 ? db : std::min(da, db);
-  return std::max((1.0 - w) * da + w * db, slowest);
-}
-}  // namespace
-
-Eigen::VectorXd blended_clock(const TimeWarp& warp, double w) {
-  if (!std::isfinite(w)) throw InputError("expected a finite timing weight");
-  if (warp.samples() == 0) throw InputError("cannot time a blend along an empty warp");
-  Eigen::VectorXd clock(warp.samples());
-  clock[0] = 0.0;
-  for (int k = 1; k < warp.samples(); ++k) {
-    clock[k] = clock[k - 1] + std::max(0.0, blend_step(warp, w, k));
-  }
-  return clock;
-}
 
 namespace {
 
@@ -59,13 +38,6 @@ void timeline_from_steps(int samples, const Step& step, Eigen::VectorXd& u) {
 }
 
 }  // namespace
-
-void blended_timeline(const TimeWarp& warp, double w, Eigen::VectorXd& u) {
-  if (!std::isfinite(w)) throw InputError("expected a finite timing weight");
-  const int samples = warp.samples();
-  if (samples == 0) throw InputError("cannot time a blend along an empty warp");
-  timeline_from_steps(samples, [&](int k) { return blend_step(warp, w, k); }, u);
-}
 
 namespace {
 

@@ -1,34 +1,27 @@
 #pragma once
-// Timing blended with alpha (issue #8, after Kovar and Gleicher's registration curves, 2003):
-// along a time warp the output advances at (1 - w) times A's rate plus w times B's, so w = 0
-// plays at A's timing and length and w = 1 at B's. Where one take advances faster along the
-// warp than the other, the output's velocity is then a weighted mean of the two takes' own
-// velocities, never faster than the faster of them.
+// Timing mixed with the weights (timing is part of style; after Kovar and Gleicher's registration
+// curves, 2003): along the takes' common timeline the output advances at the weighted sum of the
+// takes' rates, so a take alone plays at its own timing and length. Where one take advances
+// faster than another, the output's velocity is then a weighted mean of the takes' own
+// velocities, never faster than the fastest of them.
 #include <Eigen/Core>
 
 #include <vector>
 
 #include "engine/align/common_timeline.h"
-#include "engine/align/time_warp.h"
 #include "engine/align/weight_keys.h"
 
 namespace mostyle {
 
-// Output frame k sits where the blended clock T(u) = (1 - w)(a(u) - a(0)) + w (b(u) - b(0))
-// reaches k; T is linear between samples. Writes each output frame's fractional sample position
-// into u (floor(T(U - 1)) + 1 frames; no allocation when it has that size). w may lie outside
-// [0, 1] (exaggeration) as long as T keeps increasing; where it would not, the clock holds.
-// Throws InputError on a non-finite w or an empty warp. O(U + frames).
-void blended_timeline(const TimeWarp& warp, double w, Eigen::VectorXd& u);
-
-// The same for several takes (the style palette) over samples first..last of their common
-// timeline: the clock advances by sum_i w_i times take i's frames from one sample to the next
-// (weights: one per take, summing to 1; negative ones exaggerate), but never less than the
-// slowest weighted take advances, so that negative weights cannot stall the clock; u holds sample
-// positions
-// (first..last). Two takes with weights (1 - w, w) on a one-warp timeline are blended_timeline's
-// frames exactly. Throws InputError on a weight count that is not the takes', a non-finite
-// weight, or an empty or out-of-range stretch. O((last - first) x N + frames).
+// Output frame k sits where the mixed clock T reaches k, over samples first..last of the takes'
+// common timeline: T(first) = 0 and T advances by sum_i w_i times take i's frames from one sample
+// to the next (weights: one per take, summing to 1; negative ones exaggerate), but never less than
+// the slowest weighted take advances, so that negative weights cannot stall the clock; T is linear
+// between samples. Writes each output frame's fractional sample position (first..last) into u
+// (floor(T(last)) + 1 frames; no allocation when it has that size). Two takes with weights
+// (1 - w, w) on a one-warp timeline play at A's timing and length for w = 0 and at B's for w = 1.
+// Throws InputError on a weight count that is not the takes', a non-finite weight, or an empty
+// or out-of-range stretch. O((last - first) x N + frames).
 void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& weights, int first, int last,
                     Eigen::VectorXd& u);
 
@@ -48,8 +41,5 @@ void mixed_timeline(const CommonTimeline& timeline, const WeightKeys& keys, doub
 // and the clock stretched or squeezed evenly to it (by at most half a frame in all). u keeps at
 // least two frames. O(K); allocates.
 void land_on_last(Eigen::VectorXd& u, double last);
-
-// The clock itself at every sample (U values, T(0) = 0), for tests and displays.
-Eigen::VectorXd blended_clock(const TimeWarp& warp, double w);
 
 }  // namespace mostyle

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <string>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/ease.h"
 
 namespace mostyle {

@@ -1,5 +1,5 @@
 #pragma once
-// Style over time (issue 16): a mix's weights keyed at moments of the output ("a normal walk that
+// Style over time: a mix's weights keyed at moments of the output ("a normal walk that
 // becomes tired over ten seconds"). Between two keys the weights ease from one set to the next
 // (smoothstep: no kink at a key, so no joint changes speed at once); before the first key they
 // are the first key's, after the last the last's. A key may fall anywhere, inside a cycle too:

@@ -3,7 +3,8 @@
 #include <chrono>
 #include <string>
 
-#include "engine/io/error.h"
+#include "engine/base/clock.h"
+#include "engine/base/error.h"
 
 namespace mostyle {
 
@@ -49,8 +50,7 @@ BasicMotions decompose_basic_motions(const Eigen::MatrixXd& x, const BasicMotion
     const Decomposition& level = result.levels.back();
     result.residual.noalias() -= level.weights * level.components;
   }
-  result.elapsed_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  result.elapsed_ms = ms_since(start);
   return result;
 }
 

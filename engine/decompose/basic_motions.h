@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "engine/decompose/decomposition.h"
-#include "engine/io/job_control.h"
+#include "engine/base/job_control.h"
 
 namespace mostyle {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <map>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/prepare/major_skeleton.h"
 
 namespace mostyle {

@@ -1,5 +1,5 @@
 #pragma once
-// Body parts (issue #9): which region of the body each local component moves, named in plain
+// Body parts: which region of the body each local component moves, named in plain
 // words, and the parts an animator gives weights to ("legs from one take, arms from another").
 #include <Eigen/Core>
 #include <string>
@@ -9,7 +9,6 @@
 namespace mostyle {
 
 enum class BodyRegion { kSpineAndHead, kLeftArm, kRightArm, kLeftLeg, kRightLeg };
-constexpr int kBodyRegionCount = 5;
 const char* body_region_name(BodyRegion region);  // "spine and head", "left arm", ...
 BodyRegion body_region_of(int major);             // of a canonical joint (major_skeleton.h)
 

@@ -8,7 +8,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "engine/io/error.h"
+#include "engine/base/clock.h"
+#include "engine/base/error.h"
 #include "engine/decompose/sparse_coding.h"
 
 namespace mostyle {
@@ -16,10 +17,6 @@ namespace mostyle {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double milliseconds_since(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 double nonzero_fraction(const Eigen::MatrixXd& c) {
   if (c.size() == 0) return 0.0;
@@ -221,7 +218,7 @@ Decomposition run_decomposition(const Eigen::MatrixXd& x, const DecompositionOpt
   result.objective = objective;
   result.rmse = std::sqrt(objective / static_cast<double>(x.size()));
   result.nonzero_fraction = nonzero_fraction(c);
-  result.elapsed_ms = milliseconds_since(start);
+  result.elapsed_ms = ms_since(start);
   return result;
 }
 
@@ -329,7 +326,7 @@ StackedDecomposition decompose_stacked(const std::vector<const Eigen::MatrixXd*>
   result.objective = d.objective;
   result.nonzero_fraction = d.nonzero_fraction;
   result.objective_history = std::move(d.objective_history);
-  result.elapsed_ms = milliseconds_since(start);
+  result.elapsed_ms = ms_since(start);
   return result;
 }
 

@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "engine/io/job_control.h"
+#include "engine/base/job_control.h"
 
 namespace mostyle {
 
@@ -58,8 +58,8 @@ struct Decomposition {
 Decomposition decompose(const Eigen::MatrixXd& x, const DecompositionOptions& options = {},
                         JobControl* control = nullptr);
 
-// Shared components (DESIGN 10) for any number of takes: one C for the stacked
-// [x_0; ...; x_n-1] (frame counts may differ, channel counts must match), W_i per take.
+// Shared components (ours, the default; the paper decomposes each take apart, whose components
+// do not correspond) for any number of takes: one C for the stacked [x_0; ...; x_n-1] (frame counts may differ, channel counts must match), W_i per take.
 struct StackedDecomposition {
   std::vector<Eigen::MatrixXd> weights;  // W_i: frames_i x k, one per take
   Eigen::MatrixXd components;            // C: k x 3N, shared

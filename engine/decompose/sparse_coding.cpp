@@ -5,9 +5,6 @@
 #include <cassert>
 #include <cmath>
 #include <functional>
-#include <string>
-
-#include "engine/io/error.h"
 
 namespace mostyle {
 
@@ -44,24 +41,6 @@ void keep_largest_in_group(Group&& v, int n, std::vector<double>& magnitudes) {
 }
 
 }  // namespace
-
-void SparseCodingOptions::Validate(int code_rows, int code_cols) const {
-  const int group_size = group == SparseGroup::kColumn ? code_rows : code_cols;
-  const char* group_name = group == SparseGroup::kColumn ? "column" : "row";
-  if (nonzeros < 1 || nonzeros > group_size) {
-    throw InputError("sparse coding: the number of non-zeros kept per " + std::string(group_name) +
-                     " must be between 1 and " + std::to_string(group_size) + ", got " +
-                     std::to_string(nonzeros) + ".");
-  }
-  if (max_iterations < 1) {
-    throw InputError("sparse coding: max_iterations must be at least 1, got " +
-                     std::to_string(max_iterations) + ".");
-  }
-  if (!std::isfinite(tolerance) || tolerance < 0.0) {
-    throw InputError("sparse coding: tolerance must be a finite number >= 0, got " +
-                     std::to_string(tolerance) + ".");
-  }
-}
 
 void keep_largest(Eigen::MatrixXd& x, int nonzeros, SparseGroup group,
                   std::vector<double>& scratch) {
@@ -201,35 +180,6 @@ int sparse_code_normal(const Eigen::MatrixXd& gram, const Eigen::MatrixXd& corre
     }
   }
   return iteration;
-}
-
-SparseCode sparse_code(const Eigen::MatrixXd& y, const Eigen::MatrixXd& d,
-                       const Eigen::MatrixXd& warm_start, const SparseCodingOptions& options) {
-  if (y.rows() != d.rows()) {
-    throw InputError("sparse coding: the signals have " + std::to_string(y.rows()) +
-                     " rows but the dictionary has " + std::to_string(d.rows()) + ".");
-  }
-  if (warm_start.rows() != d.cols() || warm_start.cols() != y.cols()) {
-    throw InputError("sparse coding: the warm start must be " + std::to_string(d.cols()) + " x " +
-                     std::to_string(y.cols()) + " (atoms x signals), got " +
-                     std::to_string(warm_start.rows()) + " x " +
-                     std::to_string(warm_start.cols()) + ".");
-  }
-  if (d.cols() == 0 || y.cols() == 0) {
-    throw InputError("sparse coding: the dictionary and the signals must not be empty.");
-  }
-  if (!y.allFinite() || !d.allFinite() || !warm_start.allFinite()) {
-    throw InputError("sparse coding: the input holds a NaN or infinite value.");
-  }
-  options.Validate(static_cast<int>(d.cols()), static_cast<int>(y.cols()));
-
-  const Eigen::MatrixXd gram = d.transpose() * d;
-  const Eigen::MatrixXd correlation = d.transpose() * y;
-  SparseCode result;
-  result.codes = warm_start;
-  result.iterations = sparse_code_normal(gram, correlation, result.codes, options);
-  result.objective = 0.5 * (y - d * result.codes).squaredNorm();
-  return result;
 }
 
 }  // namespace mostyle

@@ -23,35 +23,21 @@ struct SparseCodingOptions {
   // x, y, z triples of those joints), each row keeps whole joints that form one connected piece
   // of that graph (keep_connected) instead of its largest entries. Not owned.
   const std::vector<std::vector<int>>* joint_neighbours = nullptr;
-
-  // Throws InputError when a value is out of range for codes of size code_rows x code_cols.
-  void Validate(int code_rows, int code_cols) const;
 };
 
-struct SparseCode {
-  Eigen::MatrixXd codes;   // X: atoms x signals, at most `nonzeros` non-zeros per group
-  int iterations = 0;      // passes over X taken
-  double objective = 0.0;  // 1/2 ||Y - D X||_F^2 at the returned codes, Y's units squared
-};
-
-// Sparse codes of signals y (dims x signals) in dictionary d (dims x atoms), warm-started from
-// warm_start (atoms x signals; zeros for a cold start). Each group is a block that takes a
+// Sparse codes X of signals Y (dims x signals) in dictionary D (dims x atoms), given by the
+// normal equations the decomposition already holds: gram = D^T D (atoms x atoms), correlation =
+// D^T Y (atoms x signals). Updates codes (atoms x signals; the warm start, zeros for a cold one)
+// in place and returns the number of passes over X taken. Each group is a block that takes a
 // gradient step of length 1/(its Lipschitz constant), then keeps its largest entries:
 // - kColumn: all columns together with step 1/||D^T D||_2 (not the paper's printed
 //   2/||D^T D||_2, which is the stability limit; see the .cpp);
 // - kRow: one row after another (block-coordinate), row i with step 1/(D^T D)_ii, which makes
 //   each row update the exact best sparse row given the others.
-// Either way the objective never increases once X is sparse. One iteration = one pass over X.
-// Throws InputError on mismatched shapes, non-finite input or bad options.
-// Cost per iteration: O(atoms^2 * signals) after one O(dims * atoms * (atoms + signals)).
-SparseCode sparse_code(const Eigen::MatrixXd& y, const Eigen::MatrixXd& d,
-                       const Eigen::MatrixXd& warm_start, const SparseCodingOptions& options);
-
-// The same iteration on the normal equations, for callers that already hold them (the
-// decomposition): gram = D^T D (atoms x atoms), correlation = D^T Y (atoms x signals).
-// Updates codes (atoms x signals) in place and returns the number of passes taken. Shapes and
-// options are the caller's responsibility (asserted, not checked). Allocates O(atoms x signals)
-// scratch once per call.
+// Either way the objective 1/2 ||Y - D X||_F^2 never increases once X is sparse. Shapes are
+// asserted, not checked; the options must be in range (1 <= nonzeros <= group size,
+// max_iterations >= 1, tolerance >= 0: DecompositionOptions::Validate sees to it). Cost per
+// iteration: O(atoms^2 * signals); allocates O(atoms x signals) scratch once per call.
 int sparse_code_normal(const Eigen::MatrixXd& gram, const Eigen::MatrixXd& correlation,
                        Eigen::MatrixXd& codes, const SparseCodingOptions& options);
 

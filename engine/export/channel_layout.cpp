@@ -7,7 +7,7 @@
 #include <sstream>
 #include <vector>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/kinematics.h"
 
 namespace mostyle {
@@ -147,7 +147,7 @@ Clip with_rotation_channels(const Clip& clip, double tolerance) {
       // then read the same only with a zero one.
       joint.offset = Eigen::Vector3d::Zero();
     } else if (!keeps_positions && has_position_channel(from) && clip.frames() > 0) {
-      // Blender's reading (DESIGN.md 1): the channels replace the whole OFFSET, a missing axis
+      // Blender's reading (kinematics.h joint_local_translation): the channels replace the whole OFFSET, a missing axis
       // reading 0. They keep one value, so frame 0's is every frame's.
       joint.offset = joint_local_translation(from, clip.motion.row(0).data());
     }

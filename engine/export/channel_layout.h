@@ -1,7 +1,7 @@
 #pragma once
 // Channel layout of an exported BVH file, so that every reader places the joints alike.
 //
-// Readers disagree on position channels below the root. Blender (and our FK, DESIGN.md 1,
+// Readers disagree on position channels below the root. Blender (and our FK,
 // kinematics.h joint_local_translation) let a joint's position channels REPLACE its OFFSET, an
 // axis without a channel reading 0; three.js's BVHLoader and other game-side readers ADD them to
 // the OFFSET. On a file with position channels on every joint (Bandai) the latter read every bone
@@ -16,7 +16,7 @@
 // place it in every reader; its rest position is then its parent's.
 #include <string>
 
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 
 namespace mostyle {
 

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "engine/align/time_warp.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 namespace mostyle {
 namespace {

@@ -1,7 +1,7 @@
 #pragma once
 // The frames an export writes: a synthesized motion resampled to the output frame rate over a
 // range of its time, each with the frame of take A it shows, ready for export_solve.h
-// export_blend_bvh (issue "The editor for a working day": the export's frame rate and range).
+// export_blend_bvh, at the frame rate and over the range the person asks for.
 #include <Eigen/Core>
 
 namespace mostyle {

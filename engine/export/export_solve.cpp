@@ -9,7 +9,7 @@
 #include "engine/io/motion_file.h"
 #include "engine/io/bvh_io.h"
 #include "engine/kinematics/convert.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/euler.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/resample.h"
@@ -358,7 +358,7 @@ ExportResult solve_on(Clip sampled, const Clip& clip, const std::vector<int>& jo
       global_rotation[j] = parent_rotation * local_rotation[j];
       if (j == carrier) {
         // Place the carrier so that the top column lands on its target (position channels
-        // replace the OFFSET, DESIGN.md 1); a missing position channel stays 0, as readers take it.
+        // replace the OFFSET, as Blender reads them); a missing position channel stays 0, as readers take it.
         const Eigen::Vector3d below =
             carrier_chain.empty() ? Eigen::Vector3d::Zero() : Eigen::Vector3d(global_rotation[j] * vector_of(carrier_chain));
         const Eigen::Vector3d wanted = parent_rotation.transpose() * (target(top) - below - parent_position);
@@ -373,7 +373,7 @@ ExportResult solve_on(Clip sampled, const Clip& clip, const std::vector<int>& jo
       const Eigen::Vector3d near = f > 0 ? previous[j] : angles;
       bool solved = false;
       if (p.children.size() >= 2) {
-        // DESIGN.md 12, several children (hips, chest): the best-fit rotation of the directions
+        // Several children (hips, chest): the best-fit rotation of the directions
         // to them (Kabsch), refined so the children themselves land (pivots take up the rest).
         from.clear();
         to.clear();

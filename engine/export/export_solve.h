@@ -1,5 +1,5 @@
 #pragma once
-// Export (DESIGN.md 12, issue #4): the blend's major-joint positions turned back into rotations
+// Export: the blend's major-joint positions turned back into rotations
 // of take A's full skeleton, in A's channel layout and rotation orders, so animators' tools read
 // the blend as a BVH file.
 #include <Eigen/Core>
@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "engine/export/channel_layout.h"
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 
 namespace mostyle {
 

@@ -10,7 +10,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/huge_pages.h"
 #include "engine/io/memory_limit.h"
 
@@ -57,7 +57,7 @@ std::string read_file(const std::string& path, size_t max_bytes) {
   };
   // One buffer of the file's size, filled by one read. Growing a string chunk by chunk copied
   // the text about twice over and faulted in three times its pages: more than half the time
-  // `mostyle-cli info` spent on a 10 MB file (issue 11).
+  // `mostyle-cli info` spent on a 10 MB file.
   struct stat st {};
   size_t size = 0;
   if (::fstat(::fileno(f.get()), &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0)

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "engine/io/atomic_file.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/huge_pages.h"
 
 namespace mostyle {

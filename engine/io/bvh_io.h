@@ -1,7 +1,7 @@
 #pragma once
 // Reading and writing BVH files. Reads every convention seen in real data: any depth (no
 // recursion), 0..6 channels per joint in any order, position channels on any joint (they
-// replace the OFFSET, DESIGN.md 1), End Sites, LF/CRLF/CR line endings, tabs, scientific
+// replace the OFFSET, as Blender reads them), End Sites, LF/CRLF/CR line endings, tabs, scientific
 // notation, names with spaces. Numbers are parsed locale-independently: plain decimals by an
 // exact fast path, the rest with std::from_chars; both give the correctly rounded double.
 #include <cstddef>
@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 #include "engine/io/memory_limit.h"
 
 namespace mostyle {

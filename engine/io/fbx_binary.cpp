@@ -5,7 +5,7 @@
 #include <cstring>
 #include <limits>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 namespace mostyle {
 namespace {
@@ -99,13 +99,11 @@ void put_record(std::string* out, const FbxRecord& r, bool wide, const std::stri
 
 }  // namespace
 
-FbxProperty fbx_int16(int16_t value) { return scalar('Y', &value, 2); }
 FbxProperty fbx_bool(bool value) {
   const uint8_t b = value ? 1 : 0;
   return scalar('C', &b, 1);
 }
 FbxProperty fbx_int32(int32_t value) { return scalar('I', &value, 4); }
-FbxProperty fbx_float(float value) { return scalar('F', &value, 4); }
 FbxProperty fbx_double(double value) { return scalar('D', &value, 8); }
 FbxProperty fbx_int64(int64_t value) { return scalar('L', &value, 8); }
 
@@ -125,7 +123,6 @@ FbxProperty fbx_raw(const std::string& value) {
 }
 
 FbxProperty fbx_floats(const std::vector<float>& values, bool compress) { return array('f', values, compress); }
-FbxProperty fbx_doubles(const std::vector<double>& values, bool compress) { return array('d', values, compress); }
 FbxProperty fbx_int64s(const std::vector<int64_t>& values, bool compress) { return array('l', values, compress); }
 FbxProperty fbx_int32s(const std::vector<int32_t>& values, bool compress) { return array('i', values, compress); }
 

@@ -18,10 +18,8 @@ struct FbxProperty {
   std::string bytes;  // the type code and the value, as the file holds them
 };
 
-FbxProperty fbx_int16(int16_t value);
 FbxProperty fbx_bool(bool value);
 FbxProperty fbx_int32(int32_t value);
-FbxProperty fbx_float(float value);
 FbxProperty fbx_double(double value);
 FbxProperty fbx_int64(int64_t value);
 FbxProperty fbx_string(const std::string& value);  // 'S'; a class-qualified name holds "\x00\x01"
@@ -30,7 +28,6 @@ FbxProperty fbx_raw(const std::string& value);     // 'R'
 // `compress` is set, else stored as they are (encoding 0).
 inline constexpr size_t kFbxCompressAbove = 128;
 FbxProperty fbx_floats(const std::vector<float>& values, bool compress = true);
-FbxProperty fbx_doubles(const std::vector<double>& values, bool compress = true);
 FbxProperty fbx_int64s(const std::vector<int64_t>& values, bool compress = true);
 FbxProperty fbx_int32s(const std::vector<int32_t>& values, bool compress = true);
 

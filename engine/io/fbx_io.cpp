@@ -9,7 +9,7 @@
 #include <unordered_map>
 
 #include "engine/io/atomic_file.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/fbx_structure.h"
 
 namespace mostyle {

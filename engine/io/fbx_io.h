@@ -1,5 +1,5 @@
 #pragma once
-// Reading FBX skeletal animation (issue #17), binary and ASCII, with assimp (Debian's
+// Reading FBX skeletal animation, binary and ASCII, with assimp (Debian's
 // libassimp-dev 5.2). assimp folds each node's pre- and post-rotation, pivots and offsets into
 // one transform (AI_CONFIG_IMPORT_FBX_PRESERVE_PIVOTS off, so no "$AssimpFbx$" helper nodes)
 // and its keys; the unit scale stays in the nodes' transforms, which scene_take_to_clip folds

@@ -4,7 +4,7 @@
 #include <cstring>
 #include <unordered_map>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 namespace mostyle {
 namespace {

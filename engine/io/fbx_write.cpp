@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "engine/io/atomic_file.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/numbers.h"
 #include "engine/io/fbx_binary.h"
 #include "engine/kinematics/euler.h"
@@ -59,13 +59,8 @@ FbxRecord vector_property(const std::string& name, const std::string& type, cons
 
 // Centimetres per file unit, from the unit the skeleton's size suggests; 1 when unknown.
 double unit_scale_factor(const Clip& clip) {
-  const std::string unit = guess_units(clip).name;
-  if (unit == "metres") return 100.0;
-  if (unit == "feet") return 30.48;
-  if (unit == "CMU units (1/0.45 inch)") return 2.54 / 0.45;
-  if (unit == "inches") return 2.54;
-  if (unit == "millimetres") return 0.1;
-  return 1.0;
+  const double cm = centimetres_per_unit(guess_units(clip).name);
+  return cm > 0.0 ? cm : 1.0;
 }
 
 // FBX's Euler order enum (0 XYZ, 1 XZY, 2 YZX, 3 YXZ, 4 ZXY, 5 ZYX: the order the rotations

@@ -25,7 +25,7 @@
 //   (OO child -> parent; OP curve node -> model property, curve -> curve node channel) and Takes.
 #include <string>
 
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 
 namespace mostyle {
 

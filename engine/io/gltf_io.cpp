@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/io/atomic_file.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/numbers.h"
 #include "engine/kinematics/kinematics.h"
 

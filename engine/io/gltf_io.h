@@ -1,5 +1,5 @@
 #pragma once
-// Reading and writing glTF 2.0 skeletal animation (issue #17): `.glb`, and `.gltf` with its
+// Reading and writing glTF 2.0 skeletal animation: `.glb`, and `.gltf` with its
 // `.bin` or data URIs. Reading parses with tinygltf (Debian's libtinygltf-dev, a faithful reader
 // of the format) and keeps only nodes, the skins' joint lists and animations: meshes, bind
 // matrices, cameras, materials and images are never decoded, so a file whose mesh data is
@@ -10,7 +10,7 @@
 #include <string>
 #include <string_view>
 
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 #include "engine/io/memory_limit.h"
 #include "engine/io/scene_animation.h"
 

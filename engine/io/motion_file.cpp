@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "engine/io/bvh_io.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/fbx_io.h"
 #include "engine/io/fbx_write.h"
 #include "engine/io/gltf_io.h"
@@ -52,8 +52,6 @@ bool is_motion_file(const std::string& path) {
 }
 
 bool has_takes(MotionFormat format) { return format != MotionFormat::kBvh; }
-
-bool is_gltf_path(const std::string& path) { return motion_format(path) == MotionFormat::kGltf; }
 
 TakePath split_take_path(const std::string& text) {
   const size_t hash = text.find('#', text.find_last_of('/') == std::string::npos ? 0 : text.find_last_of('/'));

@@ -1,12 +1,12 @@
 #pragma once
-// The one place motion files are opened (issue #17): BVH, FBX, glTF (.glb, .gltf), chosen by
+// The one place motion files are opened: BVH, FBX, glTF (.glb, .gltf), chosen by
 // the file's extension, and FILE#ANIMATION naming one take of a file that holds several. Every
 // consumer (the CLI's commands, batch lines, the worker behind the editor) reads through here.
 #include <cstddef>
 #include <string>
 #include <vector>
 
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 #include "engine/io/memory_limit.h"
 #include "engine/io/scene_animation.h"
 
@@ -76,8 +76,5 @@ void write_motion_file(const Clip& clip, const std::string& path);
 bool is_written_motion_path(const std::string& path);
 // The formats written, for messages: "BVH (.bvh), FBX (.fbx) and glTF 2.0 (.glb, .gltf)".
 inline constexpr const char* kWrittenMotionFormats = "BVH (.bvh), FBX (.fbx) and glTF 2.0 (.glb, .gltf)";
-
-// True when `path` ends in .glb or .gltf (case-insensitive): an output written as glTF.
-bool is_gltf_path(const std::string& path);
 
 }  // namespace mostyle

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/euler.h"
 
 namespace mostyle {

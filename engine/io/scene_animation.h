@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 #include "engine/io/memory_limit.h"
 
 namespace mostyle {

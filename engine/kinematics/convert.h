@@ -1,6 +1,6 @@
 #pragma once
 // Re-expressing a clip's rotations in another Euler order.
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 #include "engine/kinematics/euler.h"
 
 namespace mostyle {

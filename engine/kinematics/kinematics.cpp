@@ -44,7 +44,7 @@ Eigen::Matrix3d joint_local_rotation(const Joint& joint, const double* frame_val
 }
 
 Eigen::Vector3d joint_local_translation(const Joint& joint, const double* frame_values) {
-  // DESIGN.md 1, as Blender's importer does it (io_anim_bvh: a bone with location channels is
+  // As Blender's importer does it (io_anim_bvh: a bone with location channels is
   // placed at (lx, ly, lz) relative to its parent, unset ones 0.0, whatever its OFFSET says).
   bool has_position = false;
   Eigen::Vector3d t = Eigen::Vector3d::Zero();

@@ -4,7 +4,7 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 
 namespace mostyle {
 
@@ -12,7 +12,7 @@ namespace mostyle {
 // (channels "Zrotation Xrotation Yrotation" give Rz * Rx * Ry). values: the frame's row.
 Eigen::Matrix3d joint_local_rotation(const Joint& joint, const double* frame_values);
 
-// Local translation, Blender's reading (DESIGN.md 1): the OFFSET for a joint without position
+// Local translation, Blender's reading: the OFFSET for a joint without position
 // channels; for a joint with any, its position channels replace the whole OFFSET, a missing
 // one reading as 0 (Blender and three.js both read it so; three.js then adds the OFFSET).
 Eigen::Vector3d joint_local_translation(const Joint& joint, const double* frame_values);

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 namespace mostyle {
 
@@ -134,14 +134,6 @@ void apply_limb_lengths(Eigen::MatrixXd& positions, const std::vector<int>& pare
       }
     }
   }
-}
-
-Eigen::MatrixXd with_limb_lengths(const Eigen::MatrixXd& positions, const std::vector<int>& parents,
-                                  const std::vector<double>& lengths,
-                                  const LimbLengthOptions& options) {
-  Eigen::MatrixXd out = positions;
-  apply_limb_lengths(out, parents, lengths, options);
-  return out;
 }
 
 std::vector<double> bone_lengths(const Eigen::MatrixXd& positions, const std::vector<int>& parents) {

@@ -1,5 +1,5 @@
 #pragma once
-// Limb-length constraint (paper 3.7, DESIGN 11): synthesized positions get the reference
+// Limb-length constraint (paper 3.7): synthesized positions get the reference
 // skeleton's bone lengths back, bone directions kept, from the root outward.
 #include <Eigen/Core>
 #include <vector>
@@ -33,10 +33,6 @@ struct LimbLengthOptions {
 // is negative or not finite, or an option is out of range. O(frames * J); no allocation.
 void apply_limb_lengths(Eigen::MatrixXd& positions, const std::vector<int>& parents,
                         const std::vector<double>& lengths, const LimbLengthOptions& options = {});
-// The same on a copy.
-Eigen::MatrixXd with_limb_lengths(const Eigen::MatrixXd& positions, const std::vector<int>& parents,
-                                  const std::vector<double>& lengths,
-                                  const LimbLengthOptions& options = {});
 
 // Mean bone length over frames, per joint (J values, 0 for roots). positions: frames x 3J, one
 // row (a single pose) or more. Throws InputError on bad shapes or parents, or no frames.

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "engine/kinematics/convert.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/euler.h"
 #include "engine/kinematics/kinematics.h"
 

@@ -2,7 +2,7 @@
 // Changing a clip's frame rate.
 #include <Eigen/Core>
 
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 
 namespace mostyle {
 

@@ -1,5 +1,7 @@
 #include "engine/kinematics/units.h"
 
+#include <algorithm>
+
 #include "engine/kinematics/kinematics.h"
 
 namespace mostyle {
@@ -36,6 +38,32 @@ UnitsGuess guess_units(const Clip& clip) {
     if (g.height >= b.lo && g.height < b.hi) g.name = b.name;
   }
   return g;
+}
+
+double centimetres_per_unit(const std::string& unit_name) {
+  // The names of guess_units' bands.
+  if (unit_name == "metres") return 100.0;
+  if (unit_name == "feet") return 30.48;
+  if (unit_name == "CMU units (1/0.45 inch)") return 2.54 / 0.45;
+  if (unit_name == "inches") return 2.54;
+  if (unit_name == "centimetres") return 1.0;
+  if (unit_name == "millimetres") return 0.1;
+  return 0.0;
+}
+
+double motion_height(const Eigen::MatrixXd& positions) {
+  const Eigen::Index joints = positions.cols() / 3;
+  double size = 0.0;
+  for (Eigen::Index f = 0; f < positions.rows(); ++f) {
+    double lo = 0.0, hi = 0.0;
+    for (Eigen::Index j = 0; j < joints; ++j) {
+      const double y = positions(f, 3 * j + 1);
+      if (j == 0 || y < lo) lo = y;
+      if (j == 0 || y > hi) hi = y;
+    }
+    size = std::max(size, hi - lo);
+  }
+  return size;
 }
 
 }  // namespace mostyle

@@ -1,8 +1,9 @@
 #pragma once
-// What length unit a clip is probably in, from the size of its skeleton.
+// What length unit a clip is probably in, from the size of its skeleton, and how tall a motion is.
+#include <Eigen/Core>
 #include <string>
 
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 
 namespace mostyle {
 
@@ -15,5 +16,14 @@ struct UnitsGuess {
 // Guesses from the first frame (the rest pose when there are no frames), assuming a human of
 // about 1.5 to 1.9 m and Y up.
 UnitsGuess guess_units(const Clip& clip);
+
+// Centimetres per file unit for a unit name guess_units gives ("metres", "inches", "CMU units
+// (1/0.45 inch)", ...); 0 for a name it does not know ("unknown").
+double centimetres_per_unit(const std::string& unit_name);
+
+// How tall a motion stands: the largest vertical (Y) extent of a single frame, over all frames.
+// positions: frames x 3J, file units; 0 without frames. One value for the whole clip, so a
+// crouch does not shrink it. O(frames x J).
+double motion_height(const Eigen::MatrixXd& positions);
 
 }  // namespace mostyle

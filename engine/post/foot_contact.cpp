@@ -6,7 +6,7 @@
 #include <limits>
 #include <string>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/ease.h"
 #include "engine/post/planted_feet.h"
 #include "engine/prepare/major_skeleton.h"
@@ -396,16 +396,6 @@ Eigen::MatrixXd carry_contacts(const Eigen::MatrixXd& contacts_b, const Eigen::V
     out.row(i) = contacts_b.row(static_cast<Eigen::Index>(std::clamp(j, 0.0, static_cast<double>(last))));
   }
   return out;
-}
-
-void blend_contacts(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double alpha, Eigen::MatrixXd& out) {
-  if (a.rows() != b.rows() || a.cols() != 2 || b.cols() != 2)
-    throw InputError("foot contacts: expected two F x 2 contact matrices, found " + std::to_string(a.rows()) +
-                     " x " + std::to_string(a.cols()) + " and " + std::to_string(b.rows()) + " x " +
-                     std::to_string(b.cols()));
-  out.resize(a.rows(), 2);
-  for (Eigen::Index t = 0; t < a.rows(); ++t)
-    for (int s = 0; s < 2; ++s) out(t, s) = (1.0 - alpha) * a(t, s) + alpha * b(t, s) > 0.5 ? 1.0 : 0.0;
 }
 
 void two_bone_ik(const Eigen::Vector3d& hip, const Eigen::Vector3d& knee, const Eigen::Vector3d& ankle,

@@ -1,5 +1,5 @@
 #pragma once
-// Foot contacts (beyond the paper, issue #4): when each foot is planted in a take, carried through
+// Foot contacts (beyond the paper): when each foot is planted in a take, carried through
 // the DTW onto A's timeline and blended, and a foot lock that pins planted feet in place with
 // two-bone IK (hip-knee-ankle) so the blend does not skate. Works on major-joint positions
 // (frames x 3M, file units, Y up), the same matrices the pipeline blends.
@@ -68,10 +68,6 @@ void tidy_contacts(Eigen::MatrixXd& contacts, const FootRig& rig);
 // B's contacts (Fb x 2) carried onto A's timeline: row i is B's row at warp(i) rounded (warp:
 // dtw.h warp_map, F values in B's frames). Throws InputError on an empty B. O(F).
 Eigen::MatrixXd carry_contacts(const Eigen::MatrixXd& contacts_b, const Eigen::VectorXd& warp);
-
-// The blend's contacts: 1 where (1 - alpha) a + alpha b > 1/2, else 0 (at alpha = 1/2 both takes
-// must agree). a, b: F x 2. out: resized to F x 2, no allocation when it has that size.
-void blend_contacts(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double alpha, Eigen::MatrixXd& out);
 
 // Buffers apply_foot_lock reuses, so the lock does not allocate once they have the right size.
 struct FootLockScratch {

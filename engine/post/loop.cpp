@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "engine/align/cycles.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/prepare/canonical_frame.h"
 
 namespace mostyle {

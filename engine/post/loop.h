@@ -1,5 +1,5 @@
 #pragma once
-// Loopable cycles (issue #8, DESIGN.md 15): a whole number of gait cycles cut from a blend at
+// Loopable cycles: a whole number of gait cycles cut from a blend at
 // left-foot strikes, with the seam closed so the clip plays seamlessly on repeat while the root
 // keeps its travel per cycle (root motion).
 #include <Eigen/Core>

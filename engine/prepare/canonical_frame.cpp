@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 namespace mostyle {
 namespace {
@@ -96,57 +96,26 @@ void integrate_root(const Eigen::MatrixXd& steps, const Eigen::Vector2d& start_g
   }
 }
 
-namespace {
-
-// integrate_root's steps from target(0), each pulled towards target_at(t + 1) (x, z).
-template <typename Target>
-void integrate_towards(const Eigen::MatrixXd& steps, const Target& target_at, double start_heading, double fps,
-                       double pull_seconds, Eigen::MatrixXd* ground, Eigen::VectorXd* heading) {
+void integrate_root_towards(const Eigen::MatrixXd& steps, const Eigen::MatrixXd& target, double start_heading,
+                            double fps, double pull_seconds, Eigen::MatrixXd* ground, Eigen::VectorXd* heading) {
+  assert(steps.cols() == 3 && target.rows() == steps.rows() && target.cols() == 2);
   const Eigen::Index frames = steps.rows();
   ground->resize(frames, 2);
   heading->resize(frames);
   if (frames == 0) return;
   const double pull = pull_seconds > 0 && fps > 0 ? 1.0 - std::exp(-1.0 / (fps * pull_seconds)) : 0.0;
-  const Eigen::Vector2d start = target_at(0);
-  (*ground)(0, 0) = start.x();
-  (*ground)(0, 1) = start.y();
+  (*ground)(0, 0) = target(0, 0);
+  (*ground)(0, 1) = target(0, 1);
   (*heading)[0] = start_heading;
   for (Eigen::Index t = 0; t + 1 < frames; ++t) {
     const double c = std::cos((*heading)[t]), s = std::sin((*heading)[t]);
     // integrate_root's step, then a first-order pull towards the target path.
     const double x = (*ground)(t, 0) + c * steps(t, 0) + s * steps(t, 1);
     const double z = (*ground)(t, 1) - s * steps(t, 0) + c * steps(t, 1);
-    const Eigen::Vector2d target = target_at(t + 1);
-    (*ground)(t + 1, 0) = x + pull * (target.x() - x);
-    (*ground)(t + 1, 1) = z + pull * (target.y() - z);
+    (*ground)(t + 1, 0) = x + pull * (target(t + 1, 0) - x);
+    (*ground)(t + 1, 1) = z + pull * (target(t + 1, 1) - z);
     (*heading)[t + 1] = (*heading)[t] + steps(t, 2);
   }
-}
-
-}  // namespace
-
-void integrate_blended_root(const Eigen::MatrixXd& steps, const Eigen::MatrixXd& ground_a,
-                            const Eigen::MatrixXd& ground_b, double alpha, double start_heading,
-                            double fps, double pull_seconds, Eigen::MatrixXd* ground,
-                            Eigen::VectorXd* heading) {
-  assert(steps.cols() == 3 && ground_a.rows() == steps.rows() && ground_b.rows() == steps.rows() &&
-         ground_a.cols() == 2 && ground_b.cols() == 2);
-  // Starts on A's path: the blend starts where A does.
-  integrate_towards(
-      steps,
-      [&](Eigen::Index t) -> Eigen::Vector2d {
-        if (t == 0) return ground_a.row(0).transpose();
-        return ((1 - alpha) * ground_a.row(t) + alpha * ground_b.row(t)).transpose();
-      },
-      start_heading, fps, pull_seconds, ground, heading);
-}
-
-void integrate_root_towards(const Eigen::MatrixXd& steps, const Eigen::MatrixXd& target, double start_heading,
-                            double fps, double pull_seconds, Eigen::MatrixXd* ground, Eigen::VectorXd* heading) {
-  assert(steps.cols() == 3 && target.rows() == steps.rows() && target.cols() == 2);
-  integrate_towards(
-      steps, [&](Eigen::Index t) -> Eigen::Vector2d { return target.row(t).transpose(); }, start_heading, fps,
-      pull_seconds, ground, heading);
 }
 
 namespace {

@@ -1,5 +1,5 @@
 #pragma once
-// The canonical frame (DESIGN.md 4): joint positions relative to the hips' ground projection in
+// The canonical frame: joint positions relative to the hips' ground projection in
 // the body's own heading frame, with the root trajectory kept apart so it can be blended and
 // placed back in any world frame. Y is up (other up axes are rotated to Y before).
 #include <Eigen/Core>
@@ -65,27 +65,18 @@ void add_spread_turns(const Eigen::VectorXd& flips, double weight, double fps, E
 // as its sample's weight says.
 void add_spread_turns(const Eigen::VectorXd& flips, const Eigen::VectorXd& weights, double fps, Eigen::MatrixXd& steps);
 
-// The root trajectory of a blend of A and B (B warped onto A's timeline, both F frames): the
-// blended steps (F x 3, (1 - alpha) steps_a + alpha steps_b after match_turns) integrated from A's
-// start as integrate_root does, each step then pulled towards the blend of the two takes' own
-// paths, (1 - alpha) ground_a + alpha ground_b (F x 2 each, ground_b integrated from A's start),
-// by the fraction 1 - exp(-1 / (fps * pull_seconds)) of the gap. Integrated steps alone drift
-// apart from both takes wherever their turns are not aligned in time (the DTW aligns steps, not
-// turns), so that a blend would not lie between A and B; the pull keeps it there while moving
-// as the blended steps say up to a correction (a slide of the feet) as fast as the two paths
-// part, spread over pull_seconds: slight for takes on similar paths, a few tenths of the body
-// height per second for a straight walk blended with one that turns back. alpha = 0 and 1 give A's and B's own
-// paths (the pull has nothing to correct). pull_seconds <= 0: no pull (integrate_root).
+// The root trajectory of a mix (steps: F x 3, the takes' steps weighted after match_turns),
+// integrated as integrate_root does from target's first row, each step then pulled towards the
+// path `target` (F x 2: the takes' own paths, weighted the same way) by the fraction
+// 1 - exp(-1 / (fps * pull_seconds)) of the gap. Integrated steps alone drift apart from every
+// take wherever their turns are not aligned in time (the alignment matches steps, not turns),
+// so that a mix would not lie between the takes; the pull keeps it there while moving as the
+// weighted steps say, up to a correction (a slide of the feet) as fast as the takes' paths part,
+// spread over pull_seconds: slight for takes on similar paths, a few tenths of the body height
+// per second for a straight walk mixed with one that turns back. A take alone (weight 1) gives
+// its own path (the pull has nothing to correct). pull_seconds <= 0: no pull (integrate_root).
 // Writes ground (F x 2) and heading (F); allocation-free when they have that size. O(F).
 constexpr double kRootPullSeconds = 2.0;
-void integrate_blended_root(const Eigen::MatrixXd& steps, const Eigen::MatrixXd& ground_a,
-                            const Eigen::MatrixXd& ground_b, double alpha, double start_heading,
-                            double fps, double pull_seconds, Eigen::MatrixXd* ground,
-                            Eigen::VectorXd* heading);
-
-// The same with the path to pull towards given whole (F x 2, e.g. the weighted sum of several
-// takes' paths, the style palette's mix), integrated from target's first row. integrate_blended_root
-// is this with target (1 - alpha) ground_a + alpha ground_b. Allocation-free once sized. O(F).
 void integrate_root_towards(const Eigen::MatrixXd& steps, const Eigen::MatrixXd& target, double start_heading,
                             double fps, double pull_seconds, Eigen::MatrixXd* ground, Eigen::VectorXd* heading);
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cctype>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/prepare/rig_structure.h"
 

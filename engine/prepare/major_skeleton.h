@@ -1,11 +1,13 @@
 #pragma once
-// The canonical major skeleton (DESIGN.md 2): at most 20 joints every take is reduced to, and
-// the name rules that find them in the skeleton conventions seen in practice.
+// The canonical major skeleton: at most 20 joints every take is reduced to (hips, spine, chest,
+// head, and per side shoulder, elbow, wrist, hand, hip, knee, ankle, toe; "shoulder" is the
+// upper arm, not the clavicle; "hips" the pelvis joint that carries the trajectory, not always
+// the ROOT), and the name rules that find them in the skeleton conventions seen in practice.
 #include <array>
 #include <string>
 #include <vector>
 
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 
 namespace mostyle {
 

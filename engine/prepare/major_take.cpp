@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/resample.h"
 

@@ -4,7 +4,7 @@
 #include <Eigen/SVD>
 #include <cmath>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/limb_length.h"
 
 namespace mostyle {

@@ -1,5 +1,5 @@
 #pragma once
-// Retargeting (DESIGN.md 3): B's major-joint positions on A's bone lengths.
+// Retargeting: B's major-joint positions on A's bone lengths (A is the reference).
 #include <Eigen/Core>
 #include <vector>
 

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 #include "engine/prepare/major_skeleton.h"
 
 namespace mostyle {

@@ -7,16 +7,13 @@
 
 #include <Eigen/QR>
 
-#include "engine/io/error.h"
+#include "engine/base/clock.h"
+#include "engine/base/error.h"
 
 namespace mostyle {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
 // Shared mode: the takes stacked, one C, each take's W_i; returns C.
 const Eigen::MatrixXd& decompose_shared_mode(const PreparedTakes& p, const DecomposeParams& params, JobControl* control,
                                              Decomposed& d) {

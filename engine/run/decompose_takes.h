@@ -1,5 +1,5 @@
 #pragma once
-// The second stage of the one chain (issue 15): the takes prepared by prepare_takes
+// The second stage of the one chain (any number of takes, one code path): the takes prepared by prepare_takes
 // (prepare_takes.h), decomposed into sparse components, X_i = W_i C. One value, in one of two
 // forms:
 //   shared (any number of takes; the editor's and the CLI's default): one set of components C
@@ -17,7 +17,7 @@
 #include "engine/decompose/basic_motions.h"
 #include "engine/decompose/body_parts.h"
 #include "engine/decompose/decomposition.h"
-#include "engine/io/job_control.h"
+#include "engine/base/job_control.h"
 #include "engine/run/decompose_params.h"
 #include "engine/run/prepare_takes.h"
 #include "engine/synthesize/synthesis.h"

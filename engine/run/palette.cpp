@@ -8,7 +8,8 @@
 #include <Eigen/QR>
 
 #include "engine/align/timing.h"
-#include "engine/io/error.h"
+#include "engine/base/clock.h"
+#include "engine/base/error.h"
 #include "engine/prepare/canonical_frame.h"
 #include "engine/prepare/major_skeleton.h"
 
@@ -16,10 +17,6 @@ namespace mostyle {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
 // A bone a mix leaves shorter than this fraction of its length (the takes' limbs pointing apart)
 // turns towards its own direction gradually (limb_length.h LimbLengthOptions::short_fraction): at
 // a half, a wrist of a 7 s and a 22 s walk at alpha 0.5 turned 90 degrees in four frames.

@@ -1,5 +1,5 @@
 #pragma once
-// The synthesis, the last stage of the one chain (issue 15): the takes prepared by
+// The synthesis, the last stage of the one chain: the takes prepared by
 // prepare_takes and decomposed by decompose_takes, mixed with one weight per take (or per body
 // part): poses, timing, root path and foot contacts mixed with the weights, then the clean-up
 // (post/finish.h). Shared mode mixes the takes' component weights (any number of takes); paper
@@ -119,9 +119,8 @@ constexpr double transfer_max_weight(int styles) {
   return kMaxStrength + 1.0 > 1.0 - kMinStrength * styles ? kMaxStrength + 1.0 : 1.0 - kMinStrength * styles;
 }
 
-// The reference's joint index of each major column (for export), and the output frames in the
-// reference's own clip frames (its rotations at fractional frames).
-std::vector<int> export_joints(const PreparedTakes& palette);
+// The output frames in the reference's own clip frames (its rotations at fractional frames), for
+// export (with prepare_takes.h export_joints).
 Eigen::VectorXd source_frames_in_clip(const PreparedTakes& palette, const MixResult& mix);
 
 }  // namespace mostyle

@@ -8,7 +8,8 @@
 #include <string>
 
 #include "engine/align/cycle_phase.h"
-#include "engine/io/error.h"
+#include "engine/base/clock.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/limb_length.h"
 #include "engine/prepare/major_take.h"
 #include "engine/prepare/retarget.h"
@@ -17,10 +18,6 @@ namespace mostyle {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
 constexpr double kMaxFps = 1000.0;
 // The posture of a take registered by cycles fades in and out over this many of the
 // reference's cycles, where the reference is not in a cycle.
@@ -375,7 +372,8 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
   // Whole turns that keep each take's facing within about half a turn of the reference's, kept
   // apart: the synthesis spreads each over a moment so a mix in between turns smoothly where it flips.
   for (PreparedTake& t : p->takes) t.turn_flips = match_turns(t.steps, reference.steps).col(2) - t.steps.col(2);
-  // Normalization (normalize.h): each take's own mean pose, one scale for all.
+  // Normalization: each take's own mean pose, one scale for all (per-channel scales would divide
+  // by zero on constant channels, the hips' x and z in the canonical frame).
   double sum = 0.0, count = 0.0;
   for (PreparedTake& t : p->takes) {
     t.mean = t.local.colwise().mean();

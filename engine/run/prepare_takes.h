@@ -1,5 +1,5 @@
 #pragma once
-// The first stage of the one chain (issue 15), for 2 to 16 takes of one action; take 0 is the
+// The first stage of the one chain (any number of takes, one code path), for 2 to 16 takes of one action; take 0 is the
 // reference, whose skeleton, bones, world and timeline the others are brought onto:
 //   each take, once: its major joints at the working rate (FK), retargeted onto the reference's
 //   bones (the reference as it is), in the canonical frame (canonical_frame.h), its foot contacts;
@@ -8,7 +8,8 @@
 //   the registered one, which covers the whole reference), else aligned whole (left-foot DTW or
 //   the smooth warp, alignment.h); placed where the reference stands when their match starts;
 //   all of them read on one common timeline (U samples, common_timeline.h): poses, root paths
-//   and steps, whole-turn flips, contacts, then normalized with one scale (normalize.h).
+//   and steps, whole-turn flips, contacts, then normalized: each take less its own
+//   mean pose, all divided by one scale (the spread of every take's centred values).
 // A pair is two takes: its common timeline is the alignment's own warp, unchanged. The
 // decomposition (decompose_takes.h) and the synthesis (palette.h) read this value; nothing here
 // knows of them.
@@ -20,8 +21,8 @@
 #include "engine/align/alignment.h"
 #include "engine/align/cycles.h"
 #include "engine/align/common_timeline.h"
-#include "engine/io/clip.h"
-#include "engine/io/job_control.h"
+#include "engine/base/clip.h"
+#include "engine/base/job_control.h"
 #include "engine/post/foot_contact.h"
 #include "engine/post/fastest_joint.h"
 #include "engine/post/planted_feet.h"

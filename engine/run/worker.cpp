@@ -3,8 +3,9 @@
 #include <chrono>
 #include <functional>
 
+#include "engine/base/clock.h"
 #include "engine/io/motion_file.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 namespace mostyle {
 namespace {
@@ -193,7 +194,7 @@ void Worker::run_load(std::unique_lock<std::mutex>& lock) {
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<std::string> warnings;
   const auto clips = read_clips(paths, &warnings, read_options_, &control_);
-  const double load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  const double load_ms = ms_since(t0);
   StageTimes times;
   times.load_ms = load_ms;
   auto prepared = prepare_takes(clips, options, &control_, &times);

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "engine/io/bvh_io.h"
-#include "engine/io/job_control.h"
+#include "engine/base/job_control.h"
 #include "engine/run/palette.h"
 #include "engine/run/blend_params.h"
 

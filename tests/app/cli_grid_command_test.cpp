@@ -103,6 +103,7 @@ TEST_CASE("cli grid: bad usage exits 2 and writes nothing", "[batch][cli]") {
                " --alphas 0.5" + rest,                                          // same name twice
            "grid" + two + " --alphas 0,nan" + rest,                             // not finite
            "grid" + two + " --alphas 0.5,0.50" + rest,                          // same alpha twice
+           "grid" + two + " --alphas 0,5" + rest,                               // beyond blend's -0.5 to 1.5
            "grid" + two + " --alphas 0.5" + rest + " -- --out x.bvh",           // set by grid
            "grid" + two + " --alphas 0.5" + rest + " -- --report=x.json",       // set by grid
            "grid" + two + " --alphas 0.5" + rest + " -- --bogus",               // not a blend option

@@ -1,9 +1,10 @@
-// mostyle-cli mix and transfer, run as a user runs them (issue #9): mix of two is blend, weights
+// mostyle-cli mix and transfer, run as a user runs them: mix of two is blend, weights
 // are checked before anything is read, transfer at strength 0 is the content take, bad input
 // exits 1 with one line and leaves no file.
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -91,6 +92,28 @@ TEST_CASE("cli mix: bad weights exit 1 with one line and write nothing", "[cli][
   CHECK(box.count_files() == 0);
 }
 
+TEST_CASE("cli blend: an alpha mix would refuse as a weight exits 1 with one line and writes nothing",
+          "[cli][palette]") {
+  // alpha is B's weight and 1 - alpha A's: mix takes each from -0.5 to 1.5, so blend does too.
+  Sandbox box;
+  const std::string out = " --out " + quoted(box.path("out.bvh"));
+  for (const std::string& alpha : {std::string(" --alpha 5"), std::string(" --alpha -0.6"), std::string(" --alpha 1.51"),
+                                   std::string(" --part-alpha legs:2"), std::string(" --alpha-at 0:0,1:3"),
+                                   std::string(" --component-alpha 0,0,0,0,0,0,0,0,0,9")}) {
+    const auto r = box.cli("blend " + kHappy + " " + kMarching + alpha + out);
+    INFO(alpha << ": " << r.err);
+    CHECK(r.status == 1);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK(r.err.find("from -0.5 to 1.5") != std::string::npos);
+    CHECK(box.count_files() == 0);
+  }
+  // The ends of the range are blends.
+  const auto edge = box.cli("blend " + kHappy + " " + kMarching + " --alpha 1.5 --positions-out " +
+                            quoted(box.path("edge.csv")));
+  INFO(edge.err);
+  CHECK(edge.status == 0);
+}
+
 TEST_CASE("cli mix of four takes with per-part weights, and transfer, write BVH files", "[cli][palette]") {
   Sandbox box;
   const auto mix = box.cli("mix " + kHappy + " " + kMarching + " " + kJoy + " " + kClumsy +
@@ -144,13 +167,13 @@ TEST_CASE("cli transfer without --neutral: the content is its own neutral", "[cl
   CHECK(zero["frames"] == with_neutral["frames"]);
   CHECK(max_difference(positions(test::slurp(box.path("zero.csv"))),
                        positions(test::slurp(box.path("with_neutral.csv")))) < 1e-3 * height);
-  // Strength 1: the mix of content and style with weights 0 and 1 (the style on the content's
-  // timeline), the content the reference; strength 0.4: the mix (0.6, 0.4).
+  // Strength 1: the mix of content and style with weights 0 and 1 on the content's timeline (the
+  // style on the content's timing), the content the reference; strength 0.4: the mix (0.6, 0.4).
   for (const std::string s : {"1", "0.4"}) {
     const double strength = std::stod(s);
     const auto t = run("transfer " + kClumsy + " --style " + kMarching + " --strength " + s + " --fps 60", "t" + s);
     const auto m = run("mix " + kClumsy + " " + kMarching + " --weights " + std::to_string(1.0 - strength) + "," + s +
-                           " --fps 60",
+                           " --fps 60 --timing reference",
                        "m" + s);
     CHECK(t["weights"][0].get<double>() == Approx(1.0 - strength));
     CHECK(t["frames"] == m["frames"]);
@@ -178,6 +201,25 @@ TEST_CASE("cli transfer without --neutral: the content is its own neutral", "[cl
   REQUIRE(summary.status == 0);
   CHECK(summary.out.find("transfer onto cmu142_walk_clumsy.bvh (its own neutral) to cmu142_walk_marching.bvh") !=
         std::string::npos);
+}
+
+TEST_CASE("cli transfer keeps the content's length and timing unless --timing mix", "[cli][palette]") {
+  Sandbox box;
+  const auto info = box.cli("info " + kClumsy + " --json");
+  REQUIRE(info.status == 0);
+  const long content_frames = nlohmann::json::parse(info.out)["frames"];
+  auto frames = [&](const std::string& timing, const std::string& name) {
+    const auto r = box.cli("transfer " + kClumsy + " --neutral " + kHappy + " --style " + kMarching + timing +
+                           " --report " + quoted(box.path(name + ".json")));
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    const auto report = nlohmann::json::parse(test::slurp(box.path(name + ".json")));
+    CHECK(report["timing"] == (timing.empty() ? "content" : timing.substr(timing.rfind(' ') + 1)));
+    return report["frames"].get<long>();
+  };
+  CHECK(frames("", "default") == content_frames);  // at the content's own rate
+  CHECK(frames(" --timing content", "content") == content_frames);
+  CHECK(frames(" --timing mix", "mix") != content_frames);  // the style's timing change: another length
 }
 
 TEST_CASE("cli mix: typed weights within 0.001 of a sum of 1 and fractions are taken and normalized",
@@ -222,6 +264,41 @@ TEST_CASE("cli blend without --report prints a short summary, not the JSON", "[c
   CHECK(blend.out.find("wrote " + box.path("b.bvh")) != std::string::npos);
   CHECK(blend.out.find('{') == std::string::npos);
   CHECK(blend.out.size() < 1000);
+}
+
+TEST_CASE("cli summaries with keys in time say the keys, not the constant weight they replace", "[cli][palette]") {
+  Sandbox box;
+  auto summary = [&](const std::string& args) {
+    const auto r = box.cli(args + " --positions-out " + quoted(box.path("out.csv")));
+    INFO(args << ": " << r.err);
+    REQUIRE(r.status == 0);
+    return r.out;
+  };
+  const std::string transfer = summary("transfer " + kClumsy + " --style " + kMarching + " --strength-at 0:0,2:1");
+  CHECK(transfer.find("strength keyed 0.00 at 0.00 s, 1.00 at 2.00 s") != std::string::npos);
+  CHECK(transfer.find("strength 1.00") == std::string::npos);
+  const std::string blend = summary("blend " + kHappy + " " + kMarching + " --alpha-at 0:0,3:1");
+  CHECK(blend.find("alpha keyed 0.00 at 0.00 s, 1.00 at 3.00 s") != std::string::npos);
+  CHECK(blend.find("at alpha 0.50") == std::string::npos);
+  const std::string mix = summary("mix " + kHappy + " " + kMarching + " " + kJoy + " --weights-at \"0:1,0,0;2:0,1/2,1/2\"");
+  CHECK(mix.find("weights keyed 1.000 0.000 0.000 at 0.00 s, 0.000 0.500 0.500 at 2.00 s") != std::string::npos);
+}
+
+TEST_CASE("cli: one length for one motion, in hundredths of a second", "[cli][palette]") {
+  Sandbox box;
+  // info and a transfer at strength 0 (the content itself, on its own timeline) say one length.
+  const auto info = box.cli("info " + kClumsy);
+  REQUIRE(info.status == 0);
+  const auto json = box.cli("info " + kClumsy + " --json");
+  const auto clip = nlohmann::json::parse(json.out);
+  char words[32];
+  std::snprintf(words, sizeof words, "%.2f s", clip["duration_s"].get<double>());  // first frame to last
+  CHECK(info.out.find(std::string("duration: ") + words + "\n") != std::string::npos);
+  const auto transfer = box.cli("transfer " + kClumsy + " --style " + kMarching + " --strength 0 --positions-out " +
+                                quoted(box.path("t.csv")));
+  INFO(transfer.err);
+  REQUIRE(transfer.status == 0);
+  CHECK(transfer.out.find(std::string("(") + words + ")") != std::string::npos);
 }
 
 TEST_CASE("cli: whole takes by cycles, and style keyed in time", "[cli][palette]") {

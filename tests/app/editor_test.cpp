@@ -2,8 +2,9 @@
 // programs end to end (offscreen screenshot; no display without --offscreen).
 #include "app/editor.h"
 #include "app/editor_options.h"
-#include "app/imgui_session.h"
+#include "app/imgui_context.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cfloat>
 #include <chrono>
@@ -55,6 +56,26 @@ int run(const std::string& command, std::string* stderr_text = nullptr) {
   fs::remove(err);
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
+
+// A fresh folder in the temporary one, named after `name` and this process, removed with it.
+struct ScratchDir {
+  fs::path dir;
+  explicit ScratchDir(const std::string& name)
+      : dir(fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()))) {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+  }
+  ~ScratchDir() { fs::remove_all(dir); }
+  std::string path(const std::string& file) const { return (dir / file).string(); }
+  // Writes `text` to `file` in the folder; its path.
+  std::string write(const std::string& file, const char* text) const {
+    if (std::FILE* f = std::fopen(path(file).c_str(), "w")) {
+      std::fputs(text, f);
+      std::fclose(f);
+    }
+    return path(file);
+  }
+};
 }  // namespace
 
 TEST_CASE("editor options: files and flags, both spellings") {
@@ -197,7 +218,7 @@ TEST_CASE("the editor keeps rendering offscreen for hundreds of frames while dec
   const glm::ivec2 size(800, 450);
   mostyle::test::OsMesaContext gl(size);
   REQUIRE(gl.ok());
-  ImGuiSession imgui(/*persist_layout=*/false);
+  ImGuiContextScope imgui(/*persist_layout=*/false);
   EditorOptions options;
   options.initial.parameters.components = 4;
   Editor editor(options);
@@ -359,6 +380,19 @@ TEST_CASE("mostyle-offscreen writes a 1280x720 screenshot of the editor") {
   fs::remove(out);
 }
 
+TEST_CASE("mostyle-offscreen with a take that cannot be read: its one sentence, exit 1, no screenshot") {
+  const ScratchDir scratch("mostyle_editor_test_bad_take");
+  const std::string bad = scratch.write("bad.bvh", "HIERARCHY\nnot a joint\n");
+  const std::string png = scratch.path("out.png");
+  std::string err;
+  CHECK(run(std::string("env ASAN_OPTIONS=detect_leaks=0 timeout 120 ") + MOSTYLE_OFFSCREEN_EXE + " " + bad +
+                " --screenshot " + png,
+            &err) == 1);
+  CHECK_THAT(err, Catch::StartsWith("mostyle: " + bad + ":2: "));
+  CHECK(std::count(err.begin(), err.end(), '\n') == 1);
+  CHECK_FALSE(fs::exists(png));
+}
+
 TEST_CASE("mostyle without a display says so in one line and exits 1, --offscreen still works") {
   std::string err;
   CHECK(run(std::string("env -u DISPLAY -u WAYLAND_DISPLAY ") + MOSTYLE_EXE, &err) == 1);
@@ -411,7 +445,7 @@ TEST_CASE("sessions and undo: Ctrl+Z / Ctrl+Y undo and redo a load, a saved sess
   const glm::ivec2 size(960, 540);
   mostyle::test::OsMesaContext gl(size);
   REQUIRE(gl.ok());
-  ImGuiSession imgui(/*persist_layout=*/false);
+  ImGuiContextScope imgui(/*persist_layout=*/false);
   const fs::path dir = fs::temp_directory_path() / "mostyle_editor_test_sessions";
   fs::remove_all(dir);
   fs::create_directories(dir);
@@ -621,24 +655,17 @@ TEST_CASE("editor options: --weights and --save-session") {
 }
 
 TEST_CASE("a session given on the command line that cannot be opened: one line, exit 1, nothing else opens") {
-  const fs::path dir = fs::temp_directory_path() / ("mostyle_editor_test_bad_session_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  const std::string bad = (dir / "bad.mostyle").string();
-  if (std::FILE* f = std::fopen(bad.c_str(), "w")) {
-    std::fputs("{\n  \"version\": 1,\n  \"parameters\": {\"alpha\": 2}\n}\n", f);
-    std::fclose(f);
-  }
-  const std::string png = (dir / "out.png").string();
+  const ScratchDir scratch("mostyle_editor_test_bad_session");
+  const std::string bad = scratch.write("bad.mostyle", "{\n  \"version\": 1,\n  \"parameters\": {\"alpha\": 2}\n}\n");
+  const std::string png = scratch.path("out.png");
   std::string err;
   CHECK(run(std::string("env ASAN_OPTIONS=detect_leaks=0 ") + MOSTYLE_OFFSCREEN_EXE + " " + bad + " --screenshot " + png,
             &err) == 1);
   CHECK(err == "mostyle: " + bad + ":3: parameters.alpha: expected a number from 0 to 1, found 2\n");
   CHECK_FALSE(fs::exists(png));
-  CHECK(run(std::string("env -u DISPLAY -u WAYLAND_DISPLAY ") + MOSTYLE_EXE + " " + (dir / "none.mostyle").string(),
+  CHECK(run(std::string("env -u DISPLAY -u WAYLAND_DISPLAY ") + MOSTYLE_EXE + " " + scratch.path("none.mostyle"),
             &err) == 1);
-  CHECK_THAT(err, Catch::StartsWith("mostyle: " + (dir / "none.mostyle").string() + ": cannot read"));
-  fs::remove_all(dir);
+  CHECK_THAT(err, Catch::StartsWith("mostyle: " + scratch.path("none.mostyle") + ": cannot read"));
 }
 
 TEST_CASE("a state set up by flags, saved with --save-session, reopens to the same picture") {

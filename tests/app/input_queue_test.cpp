@@ -1,5 +1,5 @@
 // Keys handed to ImGui at the pace of frames (app/input_queue.h): no press lost at rest, and
-// what is typed after a shortcut lands in the field the shortcut opens (issue 15, defect 7).
+// what is typed after a shortcut lands in the field the shortcut opens.
 #include "app/input_queue.h"
 
 #include <cfloat>

@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 #include <string>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 using mostyle::cli::parse_job_line;
 

@@ -17,7 +17,7 @@
 #include <thread>
 #include <vector>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 namespace fs = std::filesystem;
 using namespace mostyle;

@@ -5,7 +5,7 @@
 #include <imgui.h>
 
 #include "app/editor.h"
-#include "app/imgui_session.h"
+#include "app/imgui_context.h"
 #include "tests/render/osmesa_context.h"
 
 namespace mostyle::test {
@@ -20,7 +20,7 @@ inline app::EditorOptions paused_small_pair() {
 struct OffscreenEditor {
   glm::ivec2 size;
   OsMesaContext gl;
-  app::ImGuiSession imgui{/*persist_layout=*/false};
+  app::ImGuiContextScope imgui{/*persist_layout=*/false};
   app::Editor editor;
 
   explicit OffscreenEditor(glm::ivec2 size_ = {960, 540}, const app::EditorOptions& options = paused_small_pair())

@@ -1,6 +1,6 @@
 // BVH parse speed in MB/s (SetBytesProcessed): the CMU files read once into memory and parsed
 // repeatedly, the Bandai files likewise, and a synthetic 100 MB file; reading a pair of 22 MB
-// takes from files (issue 11: under 150 ms); plus the writer and FK.
+// takes from files (the aim: under 150 ms); plus the writer and FK.
 // For scale: three.js's loader reads about 14 MB/s, Blender's importer about 2.4 MB/s.
 #include <benchmark/benchmark.h>
 

@@ -61,13 +61,6 @@ void BM_AlignDtwDivideAndConquer(benchmark::State& state) {
   set_cells(state, double(n) * m);
 }
 
-void BM_DtwCost(benchmark::State& state) {
-  const int n = static_cast<int>(state.range(0)), m = static_cast<int>(state.range(1));
-  const Eigen::MatrixXd a = foot_signal(n, 1.0, 1), b = foot_signal(m, 1.1, 2);
-  for (auto _ : state) benchmark::DoNotOptimize(mostyle::dtw_cost(a, b));
-  set_cells(state, double(n) * m);
-}
-
 // The default alignment (slope-limited, open ends, automatic end penalty: two passes).
 // Arg 2: the back-pointer budget in MB (0: checkpoints every few rows, the bounded-memory path).
 void BM_AlignSlopeDtw(benchmark::State& state) {
@@ -98,7 +91,6 @@ BENCHMARK(BM_SmoothWarp)->Arg(1800)->Unit(benchmark::kMicrosecond);
 
 BENCHMARK(BM_AlignDtw)->Args({2000, 2000, -1})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_AlignDtw)->Args({2000, 2000, 100})->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_DtwCost)->Args({2000, 2000})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_AlignDtwDivideAndConquer)->Args({2000, 2000})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_AlignDtw)
     ->Name("BM_AlignDtwLong")

@@ -9,7 +9,7 @@
 
 #include "tests/engine/run/blend_at.h"
 #include "engine/io/bvh_io.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/export/export_solve.h"
 #include "engine/post/foot_contact.h"
 #include "engine/run/blend_params.h"

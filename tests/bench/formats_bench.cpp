@@ -1,4 +1,4 @@
-// Reading FBX and glTF (issue #17) beside BVH, on the same motion: a CMU take (cmu142_walk_joy
+// Reading FBX and glTF beside BVH, on the same motion: a CMU take (cmu142_walk_joy
 // from ../shared/motions, else the trimmed one in assets/) repeated into one long take and
 // written by the benchmark as a 20 MB GLB (our writer), a 20 MB ASCII FBX (the tests' writer,
 // tests/engine/io/fbx_ascii.h: mostyle writes no binary FBX) and the BVH of the same frames.

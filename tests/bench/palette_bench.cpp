@@ -1,4 +1,4 @@
-// Speed of the style palette (issue #9) on eight one-minute takes at 30 fps (20 major joints):
+// Speed of the style palette on eight one-minute takes at 30 fps (20 major joints):
 // the shared decomposition of all eight (goal: under 200 ms) and one mix for new weights, what
 // a weight slider or the blend pad does (goal: under 1 ms), with the timing mixed and with the
 // reference's timing.
@@ -80,7 +80,7 @@ BENCHMARK(BM_DecomposeEightTakes)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 // A new weight set every iteration (as a drag on the blend pad gives), the whole slider path:
 // poses, timing, root, limb lengths and foot lock.
-// keyed: the weights keyed in time instead (issue 16): from the reference's alone at 5 s to the
+// keyed: the weights keyed in time instead: from the reference's alone at 5 s to the
 // weights of the move at 40 s, a new set of keys every iteration.
 void mix_bench(benchmark::State& state, bool reference_timing, bool keyed = false) {
   const PreparedTakes& p = palette();

@@ -99,7 +99,7 @@ void BM_PreparePair(benchmark::State& state) {
 }
 BENCHMARK(BM_PreparePair)->Unit(benchmark::kMillisecond);
 
-// Cycle detection of both takes and the registration by cycles (issue 16) of a pair of one-minute
+// Cycle detection of both takes and the registration by cycles of a pair of one-minute
 // walks at their own cadence (the 27 s and 25 s takes played twice and more over, not slowed):
 // what prepare_takes adds to the whole-take path, measured apart from FK and retargeting.
 std::shared_ptr<const Clip> repeated_minute_take(const std::string& name) {

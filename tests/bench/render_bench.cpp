@@ -8,9 +8,10 @@
 #include <imgui.h>
 
 #include "app/editor.h"
-#include "app/imgui_session.h"
+#include "app/imgui_context.h"
 #include "engine/io/bvh_io.h"
 #include "engine/kinematics/kinematics.h"
+#include "engine/kinematics/units.h"
 #include "render/gl.h"
 #include "render/render_target.h"
 #include "render/scene_renderer.h"
@@ -58,7 +59,7 @@ std::vector<LoadedTake> load_takes() {
     LoadedTake t;
     t.positions = joint_positions(clip);
     t.parents = render::parent_indices(clip.skeleton);
-    t.size = render::clip_size(t.positions);
+    t.size = static_cast<float>(mostyle::motion_height(t.positions));
     takes.push_back(std::move(t));
   }
   return takes;
@@ -134,7 +135,7 @@ void BM_EditorFrame(benchmark::State& state) {
     state.SkipWithError(gl.error().c_str());
     return;
   }
-  app::ImGuiSession session(false);
+  app::ImGuiContextScope imgui(false);
   app::EditorOptions options;
   for (const char* name : kTakes) options.files.push_back(asset(name));
   app::Editor editor(options);

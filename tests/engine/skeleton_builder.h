@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 
 namespace mostyle::test {
 

@@ -8,7 +8,7 @@
 #include "app/job_line.h"
 #include "engine/io/bvh_io.h"
 #include "engine/io/csv_io.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/fbx_io.h"
 #include "engine/io/fbx_write.h"
 #include "engine/io/gltf_io.h"
@@ -188,7 +188,7 @@ bool read_session(std::string_view bytes) {
     return false;
   }
   const ui::Document& d = session.document;
-  const ui::SessionControls& c = d.controls;
+  const ui::DocumentControls& c = d.controls;
   check(d.parameters.alpha >= 0.0 && d.parameters.alpha <= 1.0, "alpha in [0, 1]");
   check(d.parameters.components >= 1, "at least one component");
   check(d.parameters.sparsity > 0.0 && d.parameters.sparsity <= 1.0, "sparsity in (0, 1]");

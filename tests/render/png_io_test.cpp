@@ -5,7 +5,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "render/gl.h"
 #include "render/scene_renderer.h"
 #include "tests/render/osmesa_context.h"

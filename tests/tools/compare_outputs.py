@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Outputs before and after a change that must not change them (issue 15: one pipeline).
+"""Outputs before and after a change that must not change them.
 
   compare_outputs.py snapshot CLI DIR [--quick]   runs every case with mostyle-cli, keeps each
                                                   one's positions CSV in DIR

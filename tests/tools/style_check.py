@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""How a transfer treats its content, frame by frame and as a whole (issue 16). For each content
+"""How a transfer treats its content, frame by frame and as a whole. For each content
 take, runs `transfer CONTENT --neutral N --style S` and prints:
   - shown: the fraction of the content's frames the output shows (its report's source_frames), its
     frame rate against the content's;

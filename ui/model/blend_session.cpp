@@ -7,8 +7,9 @@
 #include <filesystem>
 #include <iterator>
 
+#include "engine/base/clock.h"
 #include "engine/io/motion_file.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/export/channel_layout.h"
 #include "engine/export/export_solve.h"
 #include "ui/model/cycle_provenance.h"
@@ -30,15 +31,11 @@ const glm::vec4 kHighlight(1.0f, 0.92f, 0.25f, 1.0f);
 constexpr size_t kRecentFiles = 8;
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
 std::string stem(const std::string& path) { return take_label(path); }
 
 // The decomposition the document asks for (a level's sparsity not set yet: the main one).
 DecomposeParams decompose_params_for(const Document& document) {
-  const SessionControls& c = document.controls;
+  const DocumentControls& c = document.controls;
   DecomposeParams p;
   p.mode = c.mode;
   p.components = document.parameters.components;
@@ -208,7 +205,7 @@ void BlendSession::poll(EditorState& state) {
   const Decomposed* d = pair() != nullptr ? snapshot_->decomposed.get() : nullptr;
   if (d != nullptr && d != seen_decomposed_) {
     seen_decomposed_ = d;
-    SessionControls& c = state.document.controls;  // sized to the decomposition's k
+    DocumentControls& c = state.document.controls;  // sized to the decomposition's k
     c.component_alpha.resize(static_cast<size_t>(d->components()), state.document.parameters.alpha);
     if (c.selected_component >= d->components()) c.selected_component = -1;
     ErrorPoint point{d->params.components, d->params.sparsity, d->params.mode, d->rmse[0], d->rmse[1]};
@@ -340,7 +337,7 @@ void BlendSession::update_blend(EditorState& state) {
   const PreparedTakes* p = pair();
   const Decomposed* d = snapshot_->decomposed.get();
   if (p == nullptr || state.takes.size() != 3) return;
-  SessionControls& controls = state.document.controls;
+  DocumentControls& controls = state.document.controls;
   if (d != nullptr) {
     BlendParams params;
     params.alpha = state.document.parameters.alpha;
@@ -423,7 +420,7 @@ void BlendSession::wait_idle(EditorState& state) {
   sync(state);
 }
 
-// Local cost c(i, j) = |a_i - b_j| (DESIGN.md 6) at the centre of each cell: O(cells), not
+// Local cost c(i, j) = |a_i - b_j| (the DTW's, engine/align/dtw.h) at the centre of each cell: O(cells), not
 // O(F x Fb), so a long take does not stall the frame that takes it up.
 void BlendSession::compute_dtw_image() {
   dtw_image_ = DtwCostImage();

@@ -1,5 +1,5 @@
 #pragma once
-// Where each cycle of the result shown came from (issue 16, registration by cycles): for each
+// Where each cycle of the result shown came from (registration by cycles): for each
 // output cycle, which cycle of each take it shows, in that take's own file. The timeline's
 // tooltip reads it (ui/panels/playback_panel.cpp); it is made once per result (a new blend or mix),
 // not per frame, by the pair's and the palette's paths alike (ui/model/blend_session.cpp,

@@ -54,7 +54,7 @@ bool operator==(const BlendParameters& x, const BlendParameters& y) {
   return a == b;
 }
 
-bool operator==(const SessionControls& x, const SessionControls& y) {
+bool operator==(const DocumentControls& x, const DocumentControls& y) {
   Document a, b;
   a.controls = x;
   b.controls = y;
@@ -68,8 +68,8 @@ bool operator==(const PaletteControls& x, const PaletteControls& y) {
   return a == b;
 }
 
-SessionControls document_controls(SessionControls controls) {
-  const SessionControls defaults;
+DocumentControls document_controls(DocumentControls controls) {
+  const DocumentControls defaults;
   controls.selected_component = defaults.selected_component;
   controls.dtw_coordinate = defaults.dtw_coordinate;
   return controls;

@@ -8,8 +8,8 @@
 // each makes stale are listed once, in ui/model/document_fields.h.
 //
 // Left out of undo and session files, because they are where one looks rather than what one
-// made: the picked component (SessionControls::selected_component, which hovering changes) and
-// the coordinate the DTW view plots (SessionControls::dtw_coordinate): the live document has them,
+// made: the picked component (DocumentControls::selected_component, which hovering changes) and
+// the coordinate the DTW view plots (DocumentControls::dtw_coordinate): the live document has them,
 // its copies keep them at their defaults (document_controls). Not in a Document at all: the
 // playback and the camera (the session files keep them beside it).
 #include <string>
@@ -21,14 +21,14 @@
 
 namespace mostyle::ui {
 
-// The blend the animator asks for (DESIGN.md "The editor"; defaults from the paper's figures).
+// The blend the animator asks for (defaults from the paper's figures).
 struct BlendParameters {
   double alpha = 0.5;     // 0: take A, 1: take B
   int components = 10;    // k
   double sparsity = 0.1;  // f in (0, 1]: fraction of non-zeros kept per component
 };
 
-// The style palette (issue #9): three or more takes mixed with weights, or a transfer (a style
+// The style palette: three or more takes mixed with weights, or a transfer (a style
 // change from a neutral take, or from the content itself, to a styled one put on a content take).
 struct PaletteControls {
   std::vector<double> weights;                 // one per take, summing to 1
@@ -44,7 +44,7 @@ struct PaletteControls {
 };
 
 // What the parameter panels edit beyond the blend parameters (alpha, k, sparsity).
-struct SessionControls {
+struct DocumentControls {
   BlendMode mode = BlendMode::kShared;
   bool per_component = false;            // shared mode: one alpha per component
   std::vector<double> component_alpha;   // resized to k when a decomposition arrives
@@ -56,7 +56,7 @@ struct SessionControls {
   bool timing_a = false;                 // keep A's timeline instead of blending the timing
   bool loop = false;                     // cut a seamless loop of whole gait cycles
   bool residual = true;                  // blend the takes' residual detail too (BlendParams)
-  // Style over time (issue 16): the mix's weights keyed at seconds of the result, each key one
+  // Style over time: the mix's weights keyed at seconds of the result, each key one
   // mix weight per take (a pair's (1 - alpha, alpha)); they replace alpha or the palette's weights
   // while they fit the takes (ui/model/keyed_weights.h). Empty: the constant weights.
   WeightKeys keys;
@@ -67,7 +67,7 @@ struct SessionControls {
 
 struct Document {
   BlendParameters parameters;        // alpha, k, sparsity
-  SessionControls controls;          // selected_component and dtw_coordinate at their defaults
+  DocumentControls controls;         // selected_component and dtw_coordinate at their defaults
   // The loaded takes as paths: a pair is A then B (A twice for A with itself); a palette is every
   // take, the reference first. Empty: nothing loaded. The engine link sets them as takes arrive;
   // a load is a command (BlendSession::load_files), not an edit of this field.
@@ -79,15 +79,15 @@ struct Document {
 // to one of these structs goes into that list, or undo does not see it change.
 bool operator==(const BlendParameters& x, const BlendParameters& y);
 bool operator==(const PaletteControls& x, const PaletteControls& y);
-bool operator==(const SessionControls& x, const SessionControls& y);
+bool operator==(const DocumentControls& x, const DocumentControls& y);
 bool operator==(const Document& x, const Document& y);
 inline bool operator!=(const BlendParameters& x, const BlendParameters& y) { return !(x == y); }
 inline bool operator!=(const PaletteControls& x, const PaletteControls& y) { return !(x == y); }
-inline bool operator!=(const SessionControls& x, const SessionControls& y) { return !(x == y); }
+inline bool operator!=(const DocumentControls& x, const DocumentControls& y) { return !(x == y); }
 inline bool operator!=(const Document& x, const Document& y) { return !(x == y); }
 
 // `controls` with what a Document leaves out (selected_component, dtw_coordinate) at defaults.
-SessionControls document_controls(SessionControls controls);
+DocumentControls document_controls(DocumentControls controls);
 
 // Whether two lists of takes name the same files in the same order, whatever the spelling
 // ("a/../b.bvh" and "b.bvh", relative to the working folder or absolute). No file is opened.

@@ -4,7 +4,7 @@
 // change to it makes stale. Equality (undo sees a change), what undo and redo must redo
 // (stale_after), the session file (ui/model/session_file.cpp: its keys,
 // the ranges it reads with, the keys it refuses) and the panels' sliders are all made from this
-// one list: a field added to Document, SessionControls, PaletteControls or BlendParameters goes
+// one list: a field added to Document, DocumentControls, PaletteControls or BlendParameters goes
 // here, and nowhere else.
 #include "engine/run/palette.h"
 #include "engine/run/prepare_takes.h"
@@ -33,7 +33,7 @@ inline constexpr Range kMixWeightRange{kMinMixWeight, kMaxMixWeight};
 inline constexpr Range kStrengthRange{kMinStrength, kMaxStrength};
 inline constexpr Range kTakesRange{0, kMaxPaletteTakes};  // how many takes; a take's index is below hi
 inline constexpr Range kTakeIndexRange{0, kMaxPaletteTakes - 1};
-// Each weight of a key (SessionControls::keys): the widest range any mode mixes with, a transfer's
+// Each weight of a key (DocumentControls::keys): the widest range any mode mixes with, a transfer's
 // (its neutral take, or the content when it is its own neutral, loses what every style gains:
 // palette_view.cpp mix_params_for). The engine judges the weights for the mode they are mixed in
 // (MixParams::Validate).

@@ -33,7 +33,7 @@ void apply_document(const Document& document, EditorState& state, BlendSession& 
   const Document before = capture_document(state);
   // A load on its way counts as loaded: undoing back to the loaded takes must replace it.
   const std::vector<std::string> takes = load_pending(session) ? requested_files(session) : before.files;
-  SessionControls& c = state.document.controls;
+  DocumentControls& c = state.document.controls;
   const int selected = c.selected_component, coordinate = c.dtw_coordinate;
   const std::vector<std::string> files = state.document.files;
   state.document = document;  // the engine link (BlendSession::sync) does what that makes stale

@@ -10,7 +10,7 @@
 #include <Eigen/Core>
 #include <glm/glm.hpp>
 
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 #include "ui/model/cycle_provenance.h"
 #include "ui/model/document.h"
 

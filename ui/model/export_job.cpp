@@ -8,21 +8,18 @@
 #include <utility>
 
 #include "engine/export/export_frames.h"
-#include "engine/io/error.h"
+#include "engine/base/clock.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/units.h"
 #include "engine/run/blend_params.h"
 #include "ui/model/blend_session.h"
-#include "ui/panels/metrics_panel.h"
+#include "engine/io/numbers.h"
 
 namespace mostyle::ui {
 namespace fs = std::filesystem;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
 // Progress once the frames are resampled: the solve and the write are the rest.
 constexpr float kResampledProgress = 0.1f;
 
@@ -119,8 +116,8 @@ ExportOutcome run_export(const ExportRequest& request, JobControl* control) {
     const double seconds = o.range == ExportRange::kLoop ? out.frames / fps : motion_length_s(out.frames, fps);
     const std::string reference = fs::path(request.clip->source).filename().string();
     char text[160];
-    std::snprintf(text, sizeof text, "Exported %d frames at %g fps (%.2f s%s, ", out.frames, fps, seconds,
-                  o.range == ExportRange::kLoop ? ", a seamless loop" : "");
+    std::snprintf(text, sizeof text, "Exported %d frames at %g fps (%s%s, ", out.frames, fps,
+                  duration_in_words(seconds).c_str(), o.range == ExportRange::kLoop ? ", a seamless loop" : "");
     out.message = text + (o.layout == ChannelLayout::kRotations ? "rotation channels" : "the channels of " + reference) +
                   ") to " + o.path + ". The skeleton of " + reference + " in the file follows the result within " +
                   worst + " (worst joint and frame; " + mean + " on average).";

@@ -1,5 +1,5 @@
 #pragma once
-// The export of the blend as BVH, off the UI thread (issue "The editor for a working day"): a
+// The export of the blend, off the UI thread: a
 // request copied from the session (so the blend may change while the file is written), the
 // export itself (engine/export/export_frames.h, then export_solve.h export_blend_bvh) and a
 // small job that runs it on a thread of its own with progress and cancel (engine JobControl).
@@ -14,8 +14,8 @@
 
 #include "engine/export/channel_layout.h"
 #include "engine/export/export_solve.h"
-#include "engine/io/clip.h"
-#include "engine/io/job_control.h"
+#include "engine/base/clip.h"
+#include "engine/base/job_control.h"
 
 namespace mostyle::ui {
 

@@ -10,7 +10,7 @@ namespace mostyle::ui {
 namespace {
 
 // Whether the takes are mixed as a transfer: a palette (three or more) in transfer mode.
-bool is_transfer(const SessionControls& c, int takes) { return takes >= 3 && c.palette.transfer; }
+bool is_transfer(const DocumentControls& c, int takes) { return takes >= 3 && c.palette.transfer; }
 
 // w (one per take, two or more) made a transfer's weights in place: the content 1, the neutral
 // (take `neutral`, 0 the content itself) minus the styles' sum (transfer_mix_weights).
@@ -65,7 +65,7 @@ std::vector<double> constant_weights(const Document& d, int takes) {
   return palette_weights(d.controls.palette, takes);
 }
 
-void set_mix_keys(const SessionControls& c, int takes, WeightKeys& out) {
+void set_mix_keys(const DocumentControls& c, int takes, WeightKeys& out) {
   if (!keys_fit(c.keys, takes)) {
     out.clear();
     return;
@@ -90,7 +90,7 @@ Keyed keyed_at_playhead(const EditorState& state, int takes) {
 }
 
 std::vector<double> weights_at_playhead(const EditorState& state, int takes) {
-  const SessionControls& c = state.document.controls;
+  const DocumentControls& c = state.document.controls;
   if (!keys_fit(c.keys, takes)) return constant_weights(state.document, takes);
   std::vector<double> w;
   weights_at(c.keys, key_time(state).seconds, w);

@@ -1,7 +1,7 @@
 #pragma once
-// Style over time in the editor (issue 16): the weights the result has at a moment, from the
+// Style over time in the editor: the weights the result has at a moment, from the
 // document's constant controls (alpha, the palette's weights, a transfer's strengths) or from its
-// keys (SessionControls::keys), and the edits the weight controls, the timeline's Key button and
+// keys (DocumentControls::keys), and the edits the weight controls, the timeline's Key button and
 // its marks make at the playhead. Plain data: no ImGui; tests drive it with an EditorState made
 // by hand.
 //
@@ -47,7 +47,7 @@ std::vector<double> constant_weights(const Document& d, int takes);
 // (keys_fit); in a transfer (three or more takes) each key's content and neutral weights made from
 // its styles' (transfer_mix_weights). No allocation once `out` has the keys' sizes (a slider's
 // every frame). O(keys x takes).
-void set_mix_keys(const SessionControls& c, int takes, WeightKeys& out);
+void set_mix_keys(const DocumentControls& c, int takes, WeightKeys& out);
 
 // The playhead as keys see it: the time of the frame shown (seconds of the result) and half a
 // frame, within which a key is the one at the playhead. Without a take: the playhead's own time

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "render/skeleton_pose.h"
+#include "engine/kinematics/units.h"
 
 namespace mostyle::ui {
 
@@ -20,7 +20,7 @@ Placement placement_of(const Eigen::MatrixXd& w, float spacing_factor) {
   start /= double(joints);
   end /= double(joints);
   p.shift = Eigen::Vector3d(-start.x(), -lowest, -start.z());
-  p.size = render::clip_size(w);
+  p.size = static_cast<float>(motion_height(w));
   p.spacing = spacing_factor * (p.size > 0.0f ? p.size : 1.0f);
   const Eigen::Vector2d travel(end.x() - start.x(), end.z() - start.z());
   if (travel.norm() > 1e-9) p.side = Eigen::Vector3d(travel.y(), 0.0, -travel.x()).normalized();

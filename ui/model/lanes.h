@@ -1,5 +1,5 @@
 #pragma once
-// Side by side as parallel lanes (issue #10): every take walks beside the result, at a fixed
+// Side by side as parallel lanes: every take walks beside the result, at a fixed
 // distance across the result's path, however far the takes' own paths part on a long take. The
 // result's hips path gives each frame a lane point and a direction across; a take keeps its own
 // pose and facing and has its hips put on its lane. Overlaid, takes keep their own paths.
@@ -8,9 +8,9 @@
 namespace mostyle::ui {
 
 // Where the takes stand, from the reference's world positions (F x 3J, J joints): its lowest
-// joint on y = 0 and its first body centre at the origin (shift), its size (render::clip_size)
-// and side-by-side spacing (spacing_factor times the size), and the direction across its overall
-// travel (side; +X when it stands still). O(F x J).
+// joint on y = 0 and its first body centre at the origin (shift), its size (motion_height,
+// engine/kinematics/units.h) and side-by-side spacing (spacing_factor times the size), and the
+// direction across its overall travel (side; +X when it stands still). O(F x J).
 struct Placement {
   Eigen::Vector3d shift = Eigen::Vector3d::Zero();
   Eigen::Vector3d side = Eigen::Vector3d::UnitX();

@@ -6,8 +6,9 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "engine/base/clock.h"
 #include "engine/io/motion_file.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "ui/model/blend_session.h"
 #include "ui/model/cycle_provenance.h"
 #include "ui/model/joint_contacts.h"
@@ -21,10 +22,6 @@ namespace {
 const glm::vec3 kMixColor(0.50f, 0.88f, 0.46f);
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
 // The parts the palette panel gives weights to, in PaletteControls::part_weights order.
 constexpr BodyPart kParts[] = {BodyPart::kLegs, BodyPart::kArms, BodyPart::kSpine};
 
@@ -46,7 +43,7 @@ glm::vec3 palette_color(int take) {
   return kColors[static_cast<size_t>(take) % (sizeof kColors / sizeof kColors[0])];
 }
 
-MixParams mix_params_for(const SessionControls& controls, const Decomposed& decomposition, int takes) {
+MixParams mix_params_for(const DocumentControls& controls, const Decomposed& decomposition, int takes) {
   const PaletteControls& c = controls.palette;
   MixParams m;
   // A transfer: content is the reference (take 0); the neutral take (or the content, when it is
@@ -127,7 +124,7 @@ void PaletteView::take_up(const PreparedTakes& p, const std::vector<std::string>
   for (Take& t : state.takes) t.size = placed.size;
 }
 
-void PaletteView::update(const PreparedTakes& p, const Decomposed* d, const SessionControls& controls,
+void PaletteView::update(const PreparedTakes& p, const Decomposed* d, const DocumentControls& controls,
                          EditorState& state) {
   if (static_cast<int>(state.takes.size()) != p.size() + 1) return;
   if (d != nullptr) {
@@ -160,7 +157,7 @@ void PaletteView::update(const PreparedTakes& p, const Decomposed* d, const Sess
 
 // Every take at the frame the mix shows of it, on the reference's floor: the reference left of
 // the mix, the other takes (ghosts, on demand) to its right, or all on one spot when overlaid.
-void PaletteView::place(const PreparedTakes& p, const SessionControls& controls, EditorState& state) {
+void PaletteView::place(const PreparedTakes& p, const DocumentControls& controls, EditorState& state) {
   const int n = p.size();
   const bool ghosts = controls.palette.ghosts;
   Eigen::MatrixXd sampled;

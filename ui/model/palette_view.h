@@ -1,5 +1,5 @@
 #pragma once
-// The style palette in the editor (issue #9): the takes the viewport shows while a palette is
+// The style palette in the editor: the takes the viewport shows while a palette is
 // loaded, and the mix, re-run on the UI thread when a weight or option moves (well under a
 // millisecond for a minute of eight takes). The palette and its decomposition come from the
 // engine's worker (BlendSession); this file only turns them into what is shown.
@@ -17,7 +17,7 @@
 
 namespace mostyle::ui {
 
-struct SessionControls;
+struct DocumentControls;
 struct PaletteControls;
 
 constexpr int kPaletteMix = 0;    // index of the mix in EditorState::takes
@@ -27,7 +27,7 @@ constexpr int kPaletteFirst = 1;  // index of the reference; take i is at kPalet
 // when they fit the takes (ui/model/keyed_weights.h), per-part weights, a transfer's weights, the
 // clean-up options). Throws InputError when the weights or keys are refused (MixParams::Validate
 // says why).
-MixParams mix_params_for(const SessionControls& controls, const Decomposed& decomposition, int takes);
+MixParams mix_params_for(const DocumentControls& controls, const Decomposed& decomposition, int takes);
 
 // The palette's colour of take i (the reference first).
 glm::vec3 palette_color(int take);
@@ -40,7 +40,7 @@ class PaletteView {
   // After the panels: mixes again when the controls' mix differs from the one shown, then
   // refreshes positions, visibility (ghosts) and placement.
   void update(const PreparedTakes& palette, const Decomposed* decomposition,
-              const SessionControls& controls, EditorState& state);
+              const DocumentControls& controls, EditorState& state);
   void clear();
 
   const MixResult* mix() const { return has_mix_ ? &mix_ : nullptr; }
@@ -49,7 +49,7 @@ class PaletteView {
   const StageTimes& mix_times() const { return mix_times_; }  // its stages (synthesize, postprocess)
 
  private:
-  void place(const PreparedTakes& palette, const SessionControls& controls, EditorState& state);
+  void place(const PreparedTakes& palette, const DocumentControls& controls, EditorState& state);
 
   const Decomposed* mixed_decomposition_ = nullptr;
   MixParams mixed_;

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/io/atomic_file.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 namespace mostyle::ui {
 namespace {

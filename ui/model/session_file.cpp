@@ -14,7 +14,7 @@
 
 #include "engine/align/alignment.h"
 #include "engine/io/atomic_file.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "ui/model/document_fields.h"
 
 namespace mostyle::ui {

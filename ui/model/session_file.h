@@ -1,5 +1,5 @@
 #pragma once
-// The editor's session file (.mostyle, issue #10): the takes, every parameter (a Document,
+// The editor's session file (.mostyle): the takes, every parameter (a Document,
 // ui/model/document.h), the camera and the playback, as JSON, so that a day's work opens again as it
 // was left. Version 1 reads:
 //   {

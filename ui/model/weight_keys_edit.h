@@ -1,5 +1,5 @@
 #pragma once
-// Style over time in the editor (issue 16): a list of weight keys (engine/align/weight_keys.h) as
+// Style over time in the editor: a list of weight keys (engine/align/weight_keys.h) as
 // the timeline edits it: a key set at a moment (the key already there replaced), moved in time
 // between its neighbours, the list compared and put in another order of takes. Pure functions on
 // plain data: no ImGui, no engine work. Times are seconds of the result from its first frame (the

@@ -23,7 +23,7 @@ void ComponentsPanel::draw(EditorState& state) {
   }
   const PreparedTakes* p = session_.pair();
   const Decomposed* d = session_.snapshot().decomposed.get();
-  SessionControls& c = state.document.controls;
+  DocumentControls& c = state.document.controls;
   if (const Decomposed* pd = session_.palette() != nullptr ? session_.snapshot().decomposed.get() : nullptr) {
     // The style palette: its shared components by body part, with their joints.
     const PreparedTakes* palette = session_.palette();

@@ -61,7 +61,7 @@ void DtwPanel::draw(EditorState& state) {
   const Eigen::MatrixXd& sb = al.feature.b;
   const TimeWarp& warp = al.warp;
   const MixResult* blend = session_.blend();
-  SessionControls& c = state.document.controls;
+  DocumentControls& c = state.document.controls;
   const int fa = static_cast<int>(sa.rows()), fb = static_cast<int>(sb.rows()), samples = warp.samples();
   ImGui::SetNextItemWidth(110.0f);
   ImGui::Combo("##coordinate", &c.dtw_coordinate, "lateral x\0height y\0forward z\0");

@@ -13,6 +13,7 @@
 
 #include "engine/export/export_frames.h"
 #include "engine/io/motion_file.h"
+#include "engine/io/numbers.h"
 #include "ui/panels/files_panel.h"
 
 namespace mostyle::ui {
@@ -229,7 +230,7 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
   ImGui::Spacing();
   ImGui::TextColored(kDimColor, "Frames");
   char all_label[64];
-  std::snprintf(all_label, sizeof all_label, "All (%.2f s)", length);
+  std::snprintf(all_label, sizeof all_label, "All (%s)", duration_in_words(length).c_str());
   if (ImGui::RadioButton(all_label, settings_.range == ExportRange::kAll)) settings_.range = ExportRange::kAll;
   tooltip("The whole result, first frame to last");
   ImGui::SameLine();

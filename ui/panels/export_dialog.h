@@ -1,5 +1,5 @@
 #pragma once
-// The export dialog (issue "The editor for a working day"): the file and its format (BVH, glTF
+// The export dialog: the file and its format (BVH, glTF
 // or FBX: the buttons set the file's extension), the frame rate (A's own,
 // 30, 60, 120 or another), the frames (all, from an in point to an out point, or the blend's
 // loop when it has one), the channel layout (engine/export/channel_layout.h, A's default), a
@@ -22,7 +22,7 @@ constexpr const char* kExportDialogTitle = "Export";  // the window's title and 
 
 enum class ExportRate { kSource, k30, k60, k120, kCustom };
 
-// The file format of an export, which the file's extension decides (issue #17): BVH, glTF 2.0
+// The file format of an export, which the file's extension decides: BVH, glTF 2.0
 // as one .glb (or .gltf with its .bin, typed by hand), or binary FBX (.fbx).
 enum class ExportFormat { kBvh, kGltf, kFbx };
 // kGltf for .glb and .gltf, kFbx for .fbx, else kBvh (any case).

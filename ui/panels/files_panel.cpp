@@ -13,6 +13,7 @@
 #include <chrono>
 
 #include "engine/io/motion_file.h"
+#include "engine/io/numbers.h"
 
 #include "ui/panels/layout.h"
 #include "ui/model/palette_view.h"
@@ -297,7 +298,7 @@ void FilesPanel::draw(EditorState& state) {
         if (!t.error.empty()) sentence(kErrorColor, t.error, {folder_});
         for (const TakeInfo& take : t.takes) {
           char label[320];
-          std::snprintf(label, sizeof label, "%s (%.1f s)", take.name.c_str(), take.seconds);
+          std::snprintf(label, sizeof label, "%s (%s)", take.name.c_str(), duration_in_words(take.seconds).c_str());
           take_row(join_take_path(name, take.name), label);
         }
         ImGui::TreePop();

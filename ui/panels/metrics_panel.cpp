@@ -8,6 +8,7 @@
 #include <imgui.h>
 
 #include "engine/io/motion_file.h"
+#include "engine/io/numbers.h"
 #include "engine/kinematics/units.h"
 #include "ui/panels/layout.h"
 
@@ -39,33 +40,6 @@ bool begin_table(const char* id) {
   return true;
 }
 }  // namespace
-
-double centimetres_per_unit(const std::string& unit_name) {
-  // The names of engine/kinematics/units.cpp's bands.
-  if (unit_name == "metres") return 100.0;
-  if (unit_name == "feet") return 30.48;
-  if (unit_name == "CMU units (1/0.45 inch)") return 2.54 / 0.45;
-  if (unit_name == "inches") return 2.54;
-  if (unit_name == "centimetres") return 1.0;
-  if (unit_name == "millimetres") return 0.1;
-  return 0.0;
-}
-
-std::string length_in_words(double value, double cm_per_unit, double height, const char* per) {
-  char text[48];
-  if (!std::isfinite(value) || value < 0.0) return "-";
-  if (cm_per_unit > 0.0) {
-    const double cm = value * cm_per_unit;
-    if (cm >= 100.0) std::snprintf(text, sizeof text, "%.2f m%s", cm / 100.0, per);
-    else if (cm >= 1.0) std::snprintf(text, sizeof text, "%.1f cm%s", cm, per);
-    else std::snprintf(text, sizeof text, "%.1f mm%s", 10.0 * cm, per);
-  } else if (height > 0.0) {
-    std::snprintf(text, sizeof text, "%.2g%% of height%s", 100.0 * value / height, per);
-  } else {
-    return "-";
-  }
-  return text;
-}
 
 Metrics gather_metrics(const BlendSession& session) {
   Metrics m;

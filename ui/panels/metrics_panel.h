@@ -10,15 +10,6 @@
 
 namespace mostyle::ui {
 
-// Centimetres per file unit for a unit name of guess_units() ("metres", "inches", "CMU units
-// (1/0.45 inch)", ...); 0 for a name it does not know ("unknown").
-double centimetres_per_unit(const std::string& unit_name);
-
-// A length (or speed, with per = "/s") of `value` file units in words: "1.5 cm", "4.2 mm",
-// "1.23 m", or, when cm_per_unit is 0, "2.1% of height" of a skeleton `height` units tall
-// ("-" when neither is known).
-std::string length_in_words(double value, double cm_per_unit, double height, const char* per = "");
-
 // What the metrics panel shows, gathered from the session for a pair or a palette alike; a
 // negative number is not known yet ("-").
 struct Metrics {

@@ -7,7 +7,9 @@
 
 #include <imgui.h>
 
+#include "engine/export/export_frames.h"
 #include "engine/io/motion_file.h"
+#include "engine/io/numbers.h"
 #include "ui/model/document.h"
 #include "ui/model/keyed_weights.h"
 #include "ui/model/weight_keys_edit.h"
@@ -136,8 +138,10 @@ void PalettePanel::draw(EditorState& state) {
     ImGui::SameLine();
   }
   const PaletteView& view = session_.palette_view();
-  if (const MixResult* m = view.mix())
-    ImGui::TextColored(kDimColor, "%d takes, %.1f s", n, m->motion.world.rows() / p->fps);
+  if (const MixResult* m = view.mix()) {
+    const std::string length = duration_in_words(motion_length_s(m->motion.world.rows(), p->fps));
+    ImGui::TextColored(kDimColor, "%d takes, %s", n, length.c_str());
+  }
   if (!view.error().empty()) {
     ImGui::PushTextWrapPos(0.0f);
     ImGui::TextColored(kErrorColor, "%s", view.error().c_str());

@@ -1,5 +1,5 @@
 #pragma once
-// The style palette panel (issue #9), shown in the bottom strip instead of the DTW view while a
+// The style palette panel, shown in the bottom strip instead of the DTW view while a
 // palette of three or more takes is loaded: the takes with their colours, a weight each (kept
 // summing to 1), a blend pad to drag among them, weights per body part, a transfer mode
 // (content, neutral and style takes, a strength per style) and the warped ghosts.

@@ -20,7 +20,7 @@ void ParametersPanel::draw(EditorState& state) {
     return;
   }
   BlendSession& s = session_;
-  SessionControls& c = state.document.controls;
+  DocumentControls& c = state.document.controls;
   BlendParameters& p = state.document.parameters;
   const Decomposed* d = s.snapshot().decomposed.get();
   ImGui::PushItemWidth(-120.0f);  // room for the labels on the right

@@ -74,6 +74,5 @@ void plot_legend(const PlotArea& area, int row, const char* text, ImU32 color) {
 ImU32 color_a() { return IM_COL32(245, 153, 71, 255); }
 ImU32 color_b() { return IM_COL32(92, 163, 247, 255); }
 ImU32 color_blend() { return IM_COL32(128, 224, 117, 255); }
-ImU32 color_dim() { return IM_COL32(150, 155, 165, 255); }
 
 }  // namespace mostyle::ui

@@ -34,6 +34,5 @@ void plot_legend(const PlotArea& area, int row, const char* text, ImU32 color);
 ImU32 color_a();
 ImU32 color_b();
 ImU32 color_blend();
-ImU32 color_dim();
 
 }  // namespace mostyle::ui

@@ -7,7 +7,7 @@
 #include <tuple>
 #include <vector>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 using namespace mostyle;
 

@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 using namespace mostyle;
 

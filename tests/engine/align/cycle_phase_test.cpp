@@ -5,7 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include "engine/align/cycle_phase.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 using namespace mostyle;
 

@@ -13,7 +13,7 @@
 
 #include "engine/align/cycles.h"
 #include "engine/align/loop_clip.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/motion_file.h"
 #include "engine/prepare/canonical_frame.h"
 #include "engine/run/prepare_takes.h"

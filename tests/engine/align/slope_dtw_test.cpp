@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "engine/io/error.h"
-#include "engine/io/job_control.h"
+#include "engine/base/error.h"
+#include "engine/base/job_control.h"
 #include "tests/engine/synthetic_motion.h"
 
 using namespace mostyle;

@@ -6,7 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include "engine/align/timing.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 using namespace mostyle;
 

@@ -3,8 +3,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "engine/io/error.h"
-#include "engine/io/job_control.h"
+#include "engine/base/error.h"
+#include "engine/base/job_control.h"
 #include "tests/engine/synthetic_motion.h"
 
 using namespace mostyle;

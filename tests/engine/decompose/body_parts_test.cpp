@@ -1,4 +1,4 @@
-// Local components and body parts (issue #9): supports that are one connected piece of the
+// Local components and body parts: supports that are one connected piece of the
 // skeleton, their regions and plain names, and weights given per body part.
 #include "engine/decompose/body_parts.h"
 
@@ -9,7 +9,7 @@
 #include "engine/decompose/decomposition.h"
 #include "engine/decompose/sparse_coding.h"
 #include "engine/io/bvh_io.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/prepare/major_skeleton.h"
 #include "engine/run/blend_params.h"
 #include "tests/engine/synthetic_motion.h"

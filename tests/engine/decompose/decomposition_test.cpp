@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "engine/io/error.h"
-#include "engine/io/job_control.h"
+#include "engine/base/error.h"
+#include "engine/base/job_control.h"
 #include "tests/engine/synthetic_motion.h"
 
 using namespace mostyle;

@@ -9,7 +9,7 @@
 
 #include "engine/export/export_solve.h"
 #include "engine/io/bvh_io.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/units.h"
 #include "tests/engine/synthetic_motion.h"

@@ -11,7 +11,7 @@
 
 #include "engine/io/bvh_io.h"
 #include "engine/kinematics/convert.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/run/blend_params.h"
 #include "engine/kinematics/resample.h"
@@ -26,7 +26,7 @@ namespace {
 
 // Reachable targets come back to rounding; relative to the skeleton's height.
 constexpr double kExactFit = 1e-9;
-// The acceptance bounds: exported major joints vs the blend, relative to the height.
+// Acceptance bounds: exported major joints vs the blend, relative to the height.
 constexpr double kMaxFit = 0.01;
 constexpr double kMeanFit = 0.002;
 constexpr double kMaxEulerStep = 180.0;  // degrees between frames after unwrapping
@@ -299,7 +299,7 @@ Blended blend_files(const std::string& path_a, const std::string& path_b, double
   return out;
 }
 
-// Exports a blend, writes and reads it back, and checks the acceptance bounds. Returns
+// Exports a blend, writes and reads it back, and checks the acceptance bounds. Returns
 // the read-back clip's major positions.
 Eigen::MatrixXd check_blend_export(const Blended& blend) {
   const PreparedTakes& p = *blend.prepared;

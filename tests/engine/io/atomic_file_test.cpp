@@ -6,7 +6,7 @@
 #include <string>
 #include <unistd.h>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 using namespace mostyle;
 namespace fs = std::filesystem;

@@ -7,7 +7,7 @@
 
 #include "engine/io/atomic_file.h"
 #include "engine/io/bvh_io.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/kinematics.h"
 #include "tests/engine/small_bvh.h"
 #include "tests/test_data.h"

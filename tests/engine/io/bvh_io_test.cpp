@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 #include "engine/io/atomic_file.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/kinematics.h"
 #include "tests/engine/small_bvh.h"
 #include "tests/test_data.h"

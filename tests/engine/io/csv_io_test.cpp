@@ -5,7 +5,7 @@
 #include <fstream>
 #include <string>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 using namespace mostyle;
 

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <string>
 
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 #include "engine/kinematics/euler.h"
 #include "engine/kinematics/kinematics.h"
 

@@ -8,7 +8,7 @@
 #include <fstream>
 
 #include "engine/io/bvh_io.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/motion_file.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/resample.h"
@@ -225,7 +225,7 @@ TEST_CASE("FBX: Blender's files read as the BVHs they came from", "[fbx][shared]
       // file's Hips X curve keeps 1966 of 2666 keys and holds 51.59 at frame 217 where the BVH
       // has 51.42 (0.7% of the height). No reader can give back what the file does not hold;
       // the same reader is exact on files that keep every key (the ASCII case above, 1e-7).
-      // The issue's bounds are reported (CHECK_NOFAIL); the file's own loss bounds the test.
+      // The general bounds (motion_compare.h) are reported (CHECK_NOFAIL); the file's own loss bounds the test.
       CHECK_NOFAIL(d.mean <= kMeanBound);
       CHECK_NOFAIL(d.max <= kMaxBound);
       CHECK(d.mean <= kBlenderFbxMeanBound);

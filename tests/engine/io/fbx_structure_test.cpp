@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "engine/io/bvh_io.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/fbx_io.h"
 #include "tests/engine/io/fbx_ascii.h"
 #include "tests/test_data.h"

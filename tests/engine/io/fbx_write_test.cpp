@@ -7,7 +7,7 @@
 #include <filesystem>
 
 #include "engine/io/bvh_io.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/fbx_binary.h"
 #include "engine/io/fbx_io.h"
 #include "engine/io/fbx_structure.h"

@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/io/bvh_io.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/motion_file.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/resample.h"

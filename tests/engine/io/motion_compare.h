@@ -1,5 +1,5 @@
 #pragma once
-// Comparing two clips' motion up to one similarity transform (issue #17's accuracy measure):
+// Comparing two clips' motion up to one similarity transform (the readers' accuracy measure):
 // joint positions of the joints both have (by name), every frame, fitted with one rotation,
 // uniform scale and translation (Umeyama 1991, Eigen::umeyama), errors as fractions of the
 // first clip's height (kinematics/units.h guess_units).
@@ -8,13 +8,13 @@
 #include <string>
 #include <vector>
 
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/units.h"
 
 namespace mostyle::test {
 
-// Issue #17's bounds on a read file's motion against its source, as fractions of the height.
+// Bounds on a read file's motion against its source, as fractions of the height.
 constexpr double kMeanBound = 1e-3;
 constexpr double kMaxBound = 5e-3;
 

@@ -2,7 +2,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "tests/test_data.h"
 
 using namespace mostyle;

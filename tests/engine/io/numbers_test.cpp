@@ -1,9 +1,10 @@
-// Numbers as a person types them (engine/io/numbers.h): decimals and fractions, nothing else.
+// Numbers as a person types them (engine/io/numbers.h): decimals and fractions, nothing else;
+// and lengths and durations as a person reads them.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/numbers.h"
 #include "engine/run/palette.h"
 
@@ -49,4 +50,21 @@ TEST_CASE("to_float32: the nearest float, infinity beyond float's range", "[numb
   CHECK(mostyle::to_float32(1e300) == std::numeric_limits<float>::infinity());
   CHECK(mostyle::to_float32(-1e300) == -std::numeric_limits<float>::infinity());
   CHECK(std::isnan(mostyle::to_float32(std::nan(""))));
+}
+
+TEST_CASE("length_in_words: metric units from the file's unit, else a share of the height") {
+  CHECK(length_in_words(1.5, 1.0, 170.0) == "1.5 cm");
+  CHECK(length_in_words(0.25, 1.0, 170.0, "/s") == "2.5 mm/s");
+  CHECK(length_in_words(1.5, 100.0, 1.7) == "1.50 m");
+  CHECK(length_in_words(0.5, 0.0, 25.0) == "2% of height");
+  CHECK(length_in_words(0.5, 0.0, 0.0) == "-");
+  CHECK(length_in_words(-1.0, 1.0, 170.0) == "-");
+}
+
+TEST_CASE("duration_in_words: hundredths of a second, one way everywhere") {
+  CHECK(duration_in_words(6.466660200000001) == "6.47 s");
+  CHECK(duration_in_words(1.1) == "1.10 s");
+  CHECK(duration_in_words(0.0) == "0.00 s");
+  CHECK(duration_in_words(120.0) == "120.00 s");
+  CHECK(duration_in_words(NAN) == "-");
 }

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <vector>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "tests/engine/synthetic_motion.h"
 
 using namespace mostyle;
@@ -16,6 +16,13 @@ constexpr double kRelativeExact = 1e-12;  // lengths and directions hold to roun
 
 Eigen::Vector3d joint(const Eigen::MatrixXd& m, int frame, int j) {
   return m.block<1, 3>(frame, 3 * j).transpose();
+}
+
+// apply_limb_lengths on a copy.
+Eigen::MatrixXd with_limb_lengths(Eigen::MatrixXd positions, const std::vector<int>& parents,
+                                  const std::vector<double>& lengths, const LimbLengthOptions& options = {}) {
+  apply_limb_lengths(positions, parents, lengths, options);
+  return positions;
 }
 
 // A 20-joint tree shaped like the major skeleton: hips, spine, chest, head, two arms, two legs.

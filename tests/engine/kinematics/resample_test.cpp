@@ -6,7 +6,7 @@
 #include <string>
 
 #include "engine/io/bvh_io.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/kinematics.h"
 #include "tests/test_data.h"
 

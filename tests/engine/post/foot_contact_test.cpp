@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "engine/io/bvh_io.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/limb_length.h"
 #include "engine/run/blend_params.h"
 #include "tests/engine/synthetic_gait.h"
@@ -433,7 +433,7 @@ TEST_CASE("contacts follow a floor that rises over the take, and a landing in it
   CHECK(end(n - 4, 0) == 0.0);
 }
 
-TEST_CASE("contacts are carried through a warp and blended with alpha", "[foot_contact]") {
+TEST_CASE("contacts are carried through a warp", "[foot_contact]") {
   Eigen::MatrixXd b(5, 2);
   b << 1, 0, 1, 0, 0, 1, 0, 1, 1, 1;
   Eigen::VectorXd warp(4);
@@ -442,20 +442,6 @@ TEST_CASE("contacts are carried through a warp and blended with alpha", "[foot_c
   Eigen::MatrixXd expected(4, 2);
   expected << 1, 0, 0, 1, 0, 1, 1, 1;
   CHECK(carried == expected);
-
-  Eigen::MatrixXd a(4, 2);
-  a << 1, 1, 0, 1, 1, 0, 0, 0;
-  Eigen::MatrixXd out;
-  blend_contacts(a, carried, 0.0, out);
-  CHECK(out == a);
-  blend_contacts(a, carried, 1.0, out);
-  CHECK(out == carried);
-  blend_contacts(a, carried, 0.5, out);  // both must agree
-  Eigen::MatrixXd both(4, 2);
-  both << 1, 0, 0, 1, 0, 0, 0, 0;
-  CHECK(out == both);
-  blend_contacts(a, carried, 0.3, out);
-  CHECK(out == a);
 }
 
 TEST_CASE("foot contact options and shapes are checked", "[foot_contact]") {
@@ -488,8 +474,6 @@ TEST_CASE("foot contact options and shapes are checked", "[foot_contact]") {
   no_height.body_height = 0.0;
   CHECK_THROWS_AS(apply_foot_lock(m, no_height, scratch), InputError);
   CHECK_THROWS_AS(carry_contacts(Eigen::MatrixXd::Zero(0, 2), Eigen::VectorXd::Zero(3)), InputError);
-  Eigen::MatrixXd out;
-  CHECK_THROWS_AS(blend_contacts(Eigen::MatrixXd::Zero(4, 2), Eigen::MatrixXd::Zero(5, 2), 0.5, out), InputError);
   // No frames: no contacts, no sliding, nothing to lock.
   const Eigen::MatrixXd empty(0, 24);
   CHECK(detect_foot_contacts(empty, test).rows() == 0);

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 using namespace mostyle;
 

@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 #include <vector>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/prepare/major_skeleton.h"
 
 using namespace mostyle;

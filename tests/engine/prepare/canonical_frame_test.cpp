@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 
 using namespace mostyle;
 
@@ -256,7 +256,7 @@ TEST_CASE("match_turns: no change when turns agree, one switch with hysteresis",
   CHECK_THROWS_AS(match_turns(Eigen::MatrixXd::Zero(10, 2), Eigen::MatrixXd::Zero(10, 2)), InputError);
 }
 
-TEST_CASE("integrate_blended_root: A and B exactly at 0 and 1, between them in between", "[canonical_frame]") {
+TEST_CASE("integrate_root_towards: A and B exactly at 0 and 1, between them in between", "[canonical_frame]") {
   // A walks straight on; B walks the same way but turns back after 40 frames.
   const CanonicalMotion a = to_canonical(walk(100, 0, 0, 0.0, 1.5, [](int) { return 0.0; }), 0, 1, 2);
   const CanonicalMotion b = to_canonical(walk_with_u_turn(0, 0, 0.0), 0, 1, 2);
@@ -268,18 +268,19 @@ TEST_CASE("integrate_blended_root: A and B exactly at 0 and 1, between them in b
   Eigen::VectorXd h, free_h;
   for (double alpha : {0.0, 1.0}) {
     const Eigen::MatrixXd steps = (1 - alpha) * steps_a + alpha * steps_b;
-    integrate_blended_root(steps, a.ground, ground_b, alpha, a.heading[0], 30, kRootPullSeconds, &g, &h);
+    const Eigen::MatrixXd target = (1 - alpha) * a.ground + alpha * ground_b;
+    integrate_root_towards(steps, target, a.heading[0], 30, kRootPullSeconds, &g, &h);
     CHECK((g - (alpha == 0 ? a.ground : ground_b)).cwiseAbs().maxCoeff() < 1e-9);
     CHECK((h - (alpha == 0 ? a.heading : heading_b)).cwiseAbs().maxCoeff() < 1e-9);
   }
   const Eigen::MatrixXd half = 0.5 * (steps_a + steps_b);
-  integrate_blended_root(half, a.ground, ground_b, 0.5, a.heading[0], 30, 0.0, &free_g, &free_h);
+  const Eigen::MatrixXd middle = 0.5 * (a.ground + ground_b);  // starts where A does, as B was integrated from there
+  integrate_root_towards(half, middle, a.heading[0], 30, 0.0, &free_g, &free_h);
   integrate_root(half, a.ground.row(0).transpose(), a.heading[0], &g, &h);
   CHECK(free_g == g);  // no pull: integrate_root
-  integrate_blended_root(half, a.ground, ground_b, 0.5, a.heading[0], 30, kRootPullSeconds, &g, &h);
+  integrate_root_towards(half, middle, a.heading[0], 30, kRootPullSeconds, &g, &h);
   CHECK(h == free_h);  // the pull moves the path, not the facing
   // The pulled path stays nearer the middle of A's and B's than the free one.
-  const Eigen::MatrixXd middle = 0.5 * (a.ground + ground_b);
   const double pulled = (g - middle).rowwise().norm().maxCoeff();
   const double free = (free_g - middle).rowwise().norm().maxCoeff();
   INFO("pulled " << pulled << ", free " << free);

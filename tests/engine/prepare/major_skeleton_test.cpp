@@ -6,7 +6,7 @@
 
 #include "engine/io/atomic_file.h"
 #include "engine/io/bvh_io.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/io/motion_file.h"
 #include "engine/kinematics/kinematics.h"
 #include "tests/engine/skeleton_builder.h"

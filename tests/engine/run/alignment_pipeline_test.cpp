@@ -1,4 +1,4 @@
-// Time alignment through the whole pipeline on the bundled takes (issue #8): no pops, timing
+// Time alignment through the whole pipeline on the bundled takes: no pops, timing
 // blended with alpha, alpha 0 is A on A's matched range, standing at the ends left out, loops.
 // The takes are in assets/, so these always run.
 #include <catch2/catch.hpp>
@@ -11,7 +11,7 @@
 
 #include "engine/align/time_warp.h"
 #include "engine/io/bvh_io.h"
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 #include "engine/kinematics/units.h"
 #include "engine/run/blend_params.h"
 #include "tests/engine/run/blend_at.h"
@@ -22,7 +22,7 @@ using mostyle::test::blend_at;
 
 namespace {
 
-// The issue's acceptance bounds.
+// Acceptance bounds.
 constexpr double kPopRatio = 1.25;         // blend's fastest joint (99.9th percentile) vs the takes' fastest
 constexpr double kPopPercentile = 0.999;
 constexpr double kAlphaZeroMean = 0.03;    // alpha 0 against A at the same source frames, of height
@@ -277,7 +277,7 @@ TEST_CASE("alignment pipeline: with the residuals alpha 0 is A and one alpha per
 
 TEST_CASE("alignment pipeline: no pops on the shared motions' hardest pairs, across conventions", "[alignment]") {
   MOSTYLE_REQUIRE_SHARED_MOTIONS();
-  // The pairs that popped before the fixes of issue #8 (turn flips, foot-lock fades, short
+  // The pairs that once popped (turn flips, foot-lock fades, short
   // bones, reconstruction error), both conventions, 30 and 120 fps.
   const std::pair<const char*, const char*> pairs[] = {
       {"bandai_walk_happy.bvh", "cmu142_walk_joy.bvh"},   {"cmu142_walk_joy.bvh", "cmu142_walk_clumsy.bvh"},

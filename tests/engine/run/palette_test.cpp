@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "engine/io/bvh_io.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/units.h"
 #include "engine/prepare/major_skeleton.h"
 #include "engine/prepare/major_take.h"
@@ -21,9 +21,9 @@ using mostyle::test::blend_at;
 namespace {
 
 constexpr double kExact = 1e-9;        // file units: the same arithmetic, rounding only
-constexpr double kSameAsBlend = 0.005;  // the issue: mix of two = blend, 0.5% of height
-constexpr double kOneHot = 0.02;        // the issue: one-hot = blend T1 Ti --alpha 1, 2% of height
-constexpr double kStrengthZero = 0.03;  // the issue: transfer at strength 0 = content, 3% of height
+constexpr double kSameAsBlend = 0.005;  // mix of two = blend, 0.5% of height
+constexpr double kOneHot = 0.02;        // one-hot = blend T1 Ti --alpha 1, 2% of height
+constexpr double kStrengthZero = 0.03;  // transfer at strength 0 = content, 3% of height
 
 std::shared_ptr<const Clip> load(const std::string& path) { return std::make_shared<const Clip>(read_bvh_file(path)); }
 

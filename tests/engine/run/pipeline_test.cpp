@@ -11,7 +11,7 @@
 #include "engine/io/atomic_file.h"
 #include "engine/io/bvh_io.h"
 #include "engine/kinematics/convert.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "engine/kinematics/euler.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/limb_length.h"
@@ -27,7 +27,7 @@ using mostyle::test::blend_at;
 
 namespace {
 
-// The issue's acceptance bounds, as fractions of the skeleton's height (guess_units).
+// Acceptance bounds, as fractions of the skeleton's height (guess_units).
 constexpr double kSelfBlendMean = 0.02;   // a take blended with itself, mean joint distance
 constexpr double kAlphaZeroMean = 0.03;   // alpha = 0 against A
 constexpr double kGrossError = 0.25;      // no joint of any frame this far off (flips, jumps)
@@ -35,7 +35,7 @@ constexpr double kBonesExact = 1e-9;      // bone length error relative to the l
 constexpr double kSameTake = 1e-9;        // results that must agree to rounding, file units
 const double kAlphas[] = {0.0, 0.25, 0.5, 0.75, 1.0};
 
-// The issue's reproduction settings: k = 20 components, sparsity 1.
+// The paper's reproduction settings: k = 20 components, sparsity 1.
 DecomposeParams reproduction_params() {
   DecomposeParams d;
   d.components = 20;
@@ -187,7 +187,7 @@ std::string describe(const std::vector<double>& v) {
   return s;
 }
 
-// All checks of the issue on one pair: alpha 0 is A; the distance to the alpha = 1 result falls
+// All checks on one pair: alpha 0 is A; the distance to the alpha = 1 result falls
 // as alpha rises, in the world frame and in the pose's own canonical frame; exact bones; paper
 // mode finite.
 void require_pair(const std::string& path_a, const std::string& path_b) {

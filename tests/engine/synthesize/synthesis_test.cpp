@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "engine/decompose/decomposition.h"
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "tests/engine/synthetic_motion.h"
 
 using namespace mostyle;

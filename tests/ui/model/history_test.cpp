@@ -108,7 +108,7 @@ TEST_CASE("document: every edited field counts, the view's own state does not") 
     INFO(i);
     CHECK(changed[i] != base);
   }
-  SessionControls viewed = base.controls;
+  DocumentControls viewed = base.controls;
   viewed.selected_component = 3;
   viewed.dtw_coordinate = 0;
   CHECK(document_controls(viewed) == base.controls);

@@ -133,7 +133,7 @@ TEST_CASE("keyed weights: removing keys, the last one leaves the controls at its
 }
 
 TEST_CASE("keyed weights: the engine's keys, a transfer's made from its styles' weights") {
-  SessionControls c;
+  DocumentControls c;
   WeightKeys out = {WeightKey{1.0, {0.5, 0.5}}};
   set_mix_keys(c, 2, out);
   CHECK(out.empty());  // no keys: none

@@ -7,7 +7,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "tests/test_data.h"
 #include "tests/ui/loaded_session.h"
 #include "ui/model/weight_keys_edit.h"
@@ -32,7 +32,7 @@ TEST_CASE("palette view: the mix parameters carry the keys that fit the takes") 
   load_palette(s);
   REQUIRE(s.session.palette() != nullptr);
   const Decomposed& d = *s.session.snapshot().decomposed;
-  SessionControls c = s.state.document.controls;
+  DocumentControls c = s.state.document.controls;
   c.palette.weights = {0.2, 0.3, 0.5};
   CHECK(mix_params_for(c, d, 3).keys.empty());
   // Happy becomes joyful over two seconds.
@@ -66,7 +66,7 @@ TEST_CASE("palette view: keys with weights per body part are the engine's senten
   LoadedSession s;
   load_palette(s);
   REQUIRE(s.session.palette_view().mix() != nullptr);
-  SessionControls& c = s.state.document.controls;
+  DocumentControls& c = s.state.document.controls;
   c.keys = {WeightKey{0.0, {1.0, 0.0, 0.0}}, WeightKey{2.0, {0.0, 0.0, 1.0}}};
   s.session.sync(s.state);
   CHECK(s.session.palette_view().error().empty());

@@ -10,7 +10,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "engine/io/error.h"
+#include "engine/base/error.h"
 #include "tests/test_data.h"
 #include "ui/model/document_fields.h"
 #include "ui/model/recent_files.h"
@@ -28,7 +28,7 @@ SessionFile full_session() {
   SessionFile s;
   Document& d = s.document;
   d.parameters = {0.35, 7, 0.25};
-  SessionControls& c = d.controls;
+  DocumentControls& c = d.controls;
   c.mode = BlendMode::kPaper;
   c.per_component = true;
   c.component_alpha = {0.0, 0.125, 1.0, 0.3333333333333333};

@@ -12,7 +12,7 @@
 #include <imgui_internal.h>  // ImGui::FindWindowByName
 
 #include "engine/io/bvh_io.h"
-#include "engine/io/job_control.h"
+#include "engine/base/job_control.h"
 #include "engine/io/motion_file.h"
 #include "engine/kinematics/kinematics.h"
 #include "tests/test_data.h"

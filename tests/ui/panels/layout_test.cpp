@@ -164,19 +164,6 @@ TEST_CASE("with loop off, playback stops on the last frame and Play starts it ag
   CHECK(p.time_s == 0.7);
 }
 
-TEST_CASE("metrics lengths are in metric units from the file's unit, else a share of the height") {
-  CHECK(centimetres_per_unit("centimetres") == 1.0);
-  CHECK(centimetres_per_unit("inches") == Approx(2.54));
-  CHECK(centimetres_per_unit("CMU units (1/0.45 inch)") == Approx(5.6444).epsilon(1e-4));
-  CHECK(centimetres_per_unit("unknown") == 0.0);
-  CHECK(length_in_words(1.5, 1.0, 170.0) == "1.5 cm");
-  CHECK(length_in_words(0.25, 1.0, 170.0, "/s") == "2.5 mm/s");
-  CHECK(length_in_words(1.5, 100.0, 1.7) == "1.50 m");
-  CHECK(length_in_words(0.5, 0.0, 25.0) == "2% of height");
-  CHECK(length_in_words(0.5, 0.0, 0.0) == "-");
-  CHECK(length_in_words(-1.0, 1.0, 170.0) == "-");
-}
-
 TEST_CASE("the files panel names files without their folders") {
   PathField f;
   f.set("/data/mocap/walk.bvh");

@@ -214,7 +214,7 @@ TEST_CASE("timing, loop and alignment controls reach the blend and the alignment
   REQUIRE(s.session.blend() != nullptr);
   const PreparedTakes& p = *s.session.snapshot().prepared;
   const Alignment& al = p.takes[1].alignment;
-  SessionControls& c = s.state.document.controls;
+  DocumentControls& c = s.state.document.controls;
   // alpha 0: A's timing, as long as A's matched range; with A's timing kept at alpha 1 too.
   s.state.document.parameters.alpha = 0.0;
   s.session.sync(s.state);

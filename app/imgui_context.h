@@ -5,15 +5,15 @@
 
 namespace mostyle::app {
 
-class ImGuiSession {
+class ImGuiContextScope {
  public:
   // persist_layout: save window positions in ~/.config/mostyle/imgui.ini ($XDG_CONFIG_HOME
   // when set). Screenshot and offscreen runs pass false: they neither read nor write it, so
   // their picture does not depend on the last session.
-  explicit ImGuiSession(bool persist_layout);
-  ~ImGuiSession();
-  ImGuiSession(const ImGuiSession&) = delete;
-  ImGuiSession& operator=(const ImGuiSession&) = delete;
+  explicit ImGuiContextScope(bool persist_layout);
+  ~ImGuiContextScope();
+  ImGuiContextScope(const ImGuiContextScope&) = delete;
+  ImGuiContextScope& operator=(const ImGuiContextScope&) = delete;
 
  private:
   std::string ini_path_;  // ImGui keeps the pointer: it must outlive the context

@@ -1,4 +1,4 @@
-#include "app/imgui_session.h"
+#include "app/imgui_context.h"
 
 #include <cstdlib>
 #include <filesystem>
@@ -28,7 +28,7 @@ std::string layout_file() {
 
 }  // namespace
 
-ImGuiSession::ImGuiSession(bool persist_layout) {
+ImGuiContextScope::ImGuiContextScope(bool persist_layout) {
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGuiIO& io = ImGui::GetIO();
@@ -38,6 +38,6 @@ ImGuiSession::ImGuiSession(bool persist_layout) {
   ui::load_fonts(16.0f);
 }
 
-ImGuiSession::~ImGuiSession() { ImGui::DestroyContext(); }
+ImGuiContextScope::~ImGuiContextScope() { ImGui::DestroyContext(); }
 
 }  // namespace mostyle::app

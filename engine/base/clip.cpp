@@ -1,4 +1,4 @@
-#include "engine/io/clip.h"
+#include "engine/base/clip.h"
 
 #include <cmath>
 
