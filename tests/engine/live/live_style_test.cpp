@@ -171,7 +171,58 @@ void compare_with_offline(const std::shared_ptr<const Clip>& content, const std:
   CHECK(ratio <= kSpeedRatio);
 }
 
+// The clip in other units and with Z up: every length times `scale`, and a new root above it
+// turned a quarter turn about X (Y up becomes Z up).
+Clip z_up(const Clip& clip, double scale) {
+  Clip out = clip;
+  Joint root;
+  root.name = "ZUp";
+  root.channels = {Channel::kXrotation, Channel::kYrotation, Channel::kZrotation};
+  out.skeleton.joints.insert(out.skeleton.joints.begin(), root);
+  for (size_t j = 1; j < out.skeleton.joints.size(); ++j) {
+    Joint& joint = out.skeleton.joints[j];
+    joint.parent += 1;
+    joint.first_channel += 3;
+    joint.offset *= scale;
+  }
+  out.skeleton.channel_count += 3;
+  out.motion = MotionMatrix::Zero(clip.frames(), out.skeleton.channel_count);
+  out.motion.col(0).setConstant(90.0);
+  out.motion.rightCols(clip.skeleton.channel_count) = clip.motion;
+  for (size_t j = 1; j < out.skeleton.joints.size(); ++j) {
+    const Joint& joint = out.skeleton.joints[j];
+    for (size_t c = 0; c < joint.channels.size(); ++c)
+      if (is_position(joint.channels[c])) out.motion.col(joint.first_channel + static_cast<Eigen::Index>(c)) *= scale;
+  }
+  return out;
+}
+
 }  // namespace
+
+TEST_CASE("live: a stream in other units and with Z up is styled alike", "[live]") {
+  const auto neutral = load(test::asset("motions/cmu142_walk_happy.bvh"));
+  const auto style = load(test::asset("motions/cmu142_walk_marching.bvh"));
+  const Clip take = first_frames(*load(test::asset("motions/cmu142_walk_joy.bvh")), 600);
+  const double scale = 10.0;
+  const Clip turned = z_up(take, scale);
+  LiveStyle y_up(take.skeleton, take.fps(), {{neutral, style}, {1.0}});
+  LiveStyle z(turned.skeleton, turned.fps(), {{neutral, style}, {1.0}});
+  const Clip a = stream(y_up, take), b = stream(z, turned);
+  CHECK(z.body_height() == Approx(scale * y_up.body_height()).epsilon(1e-9));
+  // The same joints, Z up and scaled: (x, y, z) -> scale (x, -z, y).
+  const Eigen::MatrixXd pa = joint_positions(a), pb = joint_positions(b);
+  double worst = 0.0, moved = 0.0;
+  const Eigen::MatrixXd pt = joint_positions(take);
+  for (Eigen::Index f = 0; f < pa.rows(); ++f)
+    for (Eigen::Index j = 0; j < pa.cols() / 3; ++j) {
+      const Eigen::Vector3d p = pa.block<1, 3>(f, 3 * j).transpose();
+      const Eigen::Vector3d q = pb.block<1, 3>(f, 3 * (j + 1)).transpose();
+      worst = std::max(worst, (scale * Eigen::Vector3d(p.x(), -p.z(), p.y()) - q).norm());
+      moved = std::max(moved, (p - pt.block<1, 3>(f, 3 * j).transpose()).norm());
+    }
+  CHECK(moved > 0.01 * y_up.body_height());
+  CHECK(worst <= 1e-6 * z.body_height());
+}
 
 TEST_CASE("live: strength 0 passes the stream through, and easing to a strength and back returns to it", "[live]") {
   const auto neutral = load(test::asset("motions/cmu142_walk_happy.bvh"));
