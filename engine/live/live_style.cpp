@@ -25,10 +25,13 @@ namespace mostyle {
 namespace {
 
 constexpr double kMaxFps = 1000.0;
-// No joint's change moves more than this share of the stream's fastest joint step so far from
+// No joint's change moves more than this share of the stream's fastest joint step lately from
 // one frame to the next: a styled joint then moves at most 1 + this times as fast as the
 // stream's fastest.
 constexpr double kChangeSpeedShare = 0.2;
+// The stream's fastest joint step is remembered with this half-life, so that one glitch (a jump
+// of the capture) loosens the speed limit for a while, not for good.
+constexpr double kFastestHalfLifeSeconds = 10.0;
 // Where a foot lands away from where its swing was taking it (a strike sooner or later than the
 // phase said), the difference closes over this time after the landing.
 constexpr double kLandingSettleSeconds = 0.15;
@@ -128,7 +131,9 @@ struct LiveStyle::State {
   std::vector<double> from, to, eased;  // strengths: the ease's start and end, and where it is
   double ease = 1.0;                    // its progress, 0 to 1
   std::array<LegLock, 2> legs;
-  double fastest = 0.0;                 // the stream's fastest joint step so far, file units per frame
+  double fastest = 0.0;                 // the stream's fastest joint step lately, file units per frame
+  double fastest_decay = 1.0;           // per frame: kFastestHalfLifeSeconds at fps
+  std::vector<double> last_out;         // the frame before's output (held over a frame that is not numbers)
   long frames = 0;
   bool copied = false;                  // the frame before was copied through
   ExportFrameSolver solver;
@@ -214,8 +219,9 @@ void LiveStyle::State::track_gait() {
   for (size_t side = 0; side < 2; ++side)
     if (feet.foot(static_cast<int>(side)).struck_now) strikes[side] = feet.foot(static_cast<int>(side)).strike;
   phase.update(strikes, {Eigen::Vector2d(local[3 * la], local[3 * la + 2]), Eigen::Vector2d(local[3 * ra], local[3 * ra + 2])});
-  // The fastest joint step so far (not the first frame's: nothing before it).
+  // The fastest joint step lately (not the first frame's: nothing before it).
   if (frames > 0) {
+    fastest *= fastest_decay;
     for (Eigen::Index j = 0; j < static_cast<Eigen::Index>(joints.size()); ++j)
       fastest = std::max(fastest, (in.segment<3>(3 * j) - previous_in.segment<3>(3 * j)).norm());
   }
@@ -357,7 +363,7 @@ void LiveStyle::State::lock_feet() {
   }
 }
 
-// Each joint's change moves at most kChangeSpeedShare of the stream's fastest joint step so far
+// Each joint's change moves at most kChangeSpeedShare of the stream's fastest joint step lately
 // from the frame before's (the first frame has none before it).
 void LiveStyle::State::limit_speed() {
   const double limit = kChangeSpeedShare * fastest;
@@ -425,6 +431,8 @@ LiveStyle::LiveStyle(const Skeleton& skeleton, double fps, const LiveStyleSpec& 
                              &s.previous_delta, &s.solve_targets})
     v->setZero(3 * m);
   s.from = s.to = s.eased = spec.strengths;
+  s.fastest_decay = std::pow(0.5, 1.0 / (kFastestHalfLifeSeconds * fps));
+  s.last_out.assign(static_cast<size_t>(skeleton.channel_count), 0.0);
   for (size_t side = 0; side < 2; ++side) {
     LegLock& leg = s.legs[side];
     leg.joints[0].column = rig.legs[side].ankle;
@@ -445,6 +453,14 @@ void LiveStyle::set_strengths(const std::vector<double>& strengths) {
 
 void LiveStyle::style_frame(const double* in, double* out) {
   State& s = *state_;
+  // A frame that is not all numbers changes nothing: the frame before is shown again (the
+  // stream itself where there is none).
+  for (int i = 0; i < s.skeleton.channel_count; ++i)
+    if (!std::isfinite(in[i])) {
+      std::copy(s.last_out.begin(), s.last_out.end(), out);
+      if (s.frames == 0) std::copy(in, in + s.skeleton.channel_count, out);
+      return;
+    }
   s.pose(in);
   s.to_canonical();
   s.track_gait();
@@ -463,6 +479,7 @@ void LiveStyle::style_frame(const double* in, double* out) {
   }
   s.copied = own;
   s.previous_delta = s.delta;
+  std::copy(out, out + s.skeleton.channel_count, s.last_out.begin());
   ++s.frames;
 }
 

@@ -17,7 +17,7 @@
 //      heading, the stream's bone lengths kept; a planted foot's ankle and toe held where the
 //      change put them when it landed (the change over the neutral's stance), easing to the
 //      next stance's over the swing, the knee bent to reach (two-bone IK); no joint's change
-//      moving faster between two frames than a fifth of the stream's fastest joint step so far,
+//      moving faster between two frames than a fifth of the stream's fastest joint step lately,
 //      so no joint moves faster than 1.2 times the stream's fastest;
 //   4. the stream skeleton's rotations solved from those positions (export_solve.h
 //      ExportFrameSolver: the stream's own rotations where no target says otherwise, its twist
@@ -58,8 +58,10 @@ class LiveStyle {
 
   // Styles the next frame of the stream: `in` and `out` hold skeleton.channel_count values
   // (degrees, file units, the skeleton's channel order); they may not overlap. Uses only this
-  // and earlier frames. Well under a millisecond; allocation-free; memory bounded however long
-  // it runs.
+  // and earlier frames. A frame with a value that is not a finite number is not styled: `out`
+  // repeats the frame before's output (`in` itself on the first frame) and the styler's state
+  // stays as it was. About 30 microseconds for a 59-joint rig; allocation-free; memory bounded
+  // however long it runs.
   void style_frame(const double* in, double* out);
 
   // What the last frame styled showed (the editor's metrics, tests).

@@ -14,7 +14,9 @@
 #include "engine/kinematics/kinematics.h"
 #include "engine/live/live_feet.h"
 #include "engine/live/live_phase.h"
+#include "engine/kinematics/limb_length.h"
 #include "engine/post/foot_contact.h"
+#include "engine/post/planted_feet.h"
 #include "engine/prepare/major_skeleton.h"
 #include "engine/run/decompose_takes.h"
 #include "engine/run/palette.h"
@@ -161,14 +163,35 @@ void compare_with_offline(const std::shared_ptr<const Clip>& content, const std:
   const Summary live_vs_offline = summary(after(d.canonical), live.body_height());
   const Summary offline_change = summary(after(change.canonical), live.body_height());
   const double ratio = fastest_step(styled, 1) / fastest_step(*content);
+  // How fast the planted feet move (planted_feet.h), the styled stream's against the stream's own.
+  const std::vector<int> feet_columns = [&] {
+    std::vector<int> majors;
+    for (int j : joints)
+      for (int k = 0; k < kMajorJointCount; ++k)
+        if (m.joint[static_cast<size_t>(k)] == j) majors.push_back(k);
+    return majors;
+  }();
+  Eigen::MatrixXd world_in(content->frames(), 3 * joints.size()), world_out(content->frames(), 3 * joints.size());
+  {
+    const Eigen::MatrixXd a = joint_positions(*content), b = joint_positions(styled);
+    for (size_t c = 0; c < joints.size(); ++c) {
+      world_in.middleCols(3 * c, 3) = a.middleCols(3 * joints[c], 3);
+      world_out.middleCols(3 * c, 3) = b.middleCols(3 * joints[c], 3);
+    }
+  }
+  std::vector<double> lengths = bone_lengths(world_in, subset_parents(feet_columns));
+  FootRig rig = make_foot_rig(feet_columns, lengths, content->fps());
+  rig.body_height = live.body_height();
+  const double sliding_in = planted_speed(world_in, rig).of_height(), sliding_out = planted_speed(world_out, rig).of_height();
   WARN(what << ": live vs offline transfer, major joints in their canonical frames, per frame after "
             << kSettleSeconds << " s: " << percent(live_vs_offline) << " of the body's height (the transfer's change "
             << "from the stream: " << percent(offline_change) << "; in the world, live vs offline: "
             << percent(summary(after(d.world), live.body_height())) << ", the paths differ by design); fastest joint "
-            << ratio << "x the stream's");
+            << ratio << "x the stream's; planted feet " << sliding_out << " body heights/s against the stream's " << sliding_in);
   CHECK(live_vs_offline.mean <= kOfflineMean);
   CHECK(live_vs_offline.mean <= kOfflineShare * offline_change.mean);
   CHECK(ratio <= kSpeedRatio);
+  CHECK(sliding_out <= sliding_in);
 }
 
 // The clip in other units and with Z up: every length times `scale`, and a new root above it
@@ -251,6 +274,26 @@ TEST_CASE("live: strength 0 passes the stream through, and easing to a strength 
   CHECK(moved > 0.01 * eased.body_height());  // the style did change it
   CHECK(last <= kPassThrough * eased.body_height());
   CHECK(eased.strengths()[0] == 0.0);
+}
+
+TEST_CASE("live: a frame that is not numbers repeats the frame before and changes nothing", "[live]") {
+  const auto neutral = load(test::asset("motions/cmu142_walk_happy.bvh"));
+  const auto style = load(test::asset("motions/cmu142_walk_marching.bvh"));
+  const Clip take = first_frames(*load(test::asset("motions/cmu142_walk_joy.bvh")), 400);
+  LiveStyle clean(take.skeleton, take.fps(), {{neutral, style}, {1.0}});
+  LiveStyle broken(take.skeleton, take.fps(), {{neutral, style}, {1.0}});
+  const Clip expected = stream(clean, take);
+  MotionMatrix out(1, take.skeleton.channel_count), bad = take.motion.row(200);
+  bad(0, 5) = std::nan("");
+  for (int f = 0; f < take.frames(); ++f) {
+    if (f == 200) {
+      broken.style_frame(bad.data(), out.data());
+      CHECK(out == expected.motion.row(199));
+      CHECK(broken.frames() == 200);
+    }
+    broken.style_frame(take.motion.row(f).data(), out.data());
+    CHECK(out == expected.motion.row(f));
+  }
 }
 
 TEST_CASE("live: bad strengths and takes are refused in one sentence", "[live]") {
