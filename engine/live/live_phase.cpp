@@ -75,19 +75,32 @@ void LivePhase::strike_cycle_foot(long at) {
       ++cycles_;
     }
   }
+  // A first step after standing (no strike of this foot within the gait's longest cycle) that
+  // reaches as a walk's does starts walking; a cycle that fails the checks ends it.
+  const bool first_step = last_cycle_strike_ < 0 || double(at - last_cycle_strike_) > o_.cycles.max_gait_s * o_.fps;
+  in_cycle_ = passes || (first_step && (stride || in_cycle_));
   last_cycle_strike_ = at;
-  in_cycle_ = passes;
+  cycle_clock_ = at;
   if (stride) set_prediction(at, 0.0, 1.0 / (period_ > 0.0 ? period_ : o_.guess_period_s * o_.fps));
 }
 
 void LivePhase::strike_other_foot(long at) {
   const int other = 1 - o_.cycle_foot;
   last_other_strike_ = at;
-  if (last_cycle_strike_ < 0 || stride_[static_cast<size_t>(other)] < o_.cycles.min_stride * o_.leg_length) return;
+  if (stride_[static_cast<size_t>(other)] < o_.cycles.min_stride * o_.leg_length) return;
+  const double reference = period_ > 0.0 ? period_ : o_.guess_period_s * o_.fps;
+  if (last_cycle_strike_ < 0 || double(at - last_cycle_strike_) > o_.cycles.max_gait_s * o_.fps) {
+    // A first step after standing, of the other foot: walking from here, at the other foot's
+    // phase, the cycle foot expected a cycle's share later.
+    if (in_cycle_) return;
+    in_cycle_ = true;
+    cycle_clock_ = static_cast<long>(std::lround(double(at) - other_share_ * reference));
+    set_prediction(at, o_.other_strike_phase, (1.0 - o_.other_strike_phase) / ((1.0 - other_share_) * reference));
+    return;
+  }
   // The cycle this step says, from the stream's own share of a cycle before the other foot lands.
   const double step = double(at - last_cycle_strike_);
   const double now = step / other_share_;
-  const double reference = period_ > 0.0 ? period_ : o_.guess_period_s * o_.fps;
   const bool in_step = now >= o_.cycles.min_gait_s * o_.fps && now <= o_.cycles.max_gait_s * o_.fps &&
                        (period_ <= 0.0 || std::abs(now / reference - 1.0) <= o_.cycles.max_change);
   if (!in_step) return;  // a stray contact, or not a step of a walk: the prediction stands
@@ -118,7 +131,7 @@ void LivePhase::update(const std::array<long, 2>& strikes, const std::array<Eige
     else strike_other_foot(strikes[s]);
   }
   const double expected = period_ > 0.0 ? period_ : o_.guess_period_s * o_.fps;
-  if (in_cycle_ && double(t - last_cycle_strike_) > (1.0 + o_.cycles.max_change) * expected) in_cycle_ = false;
+  if (in_cycle_ && double(t - cycle_clock_) > (1.0 + o_.cycles.max_change) * expected) in_cycle_ = false;
   fade_ = std::clamp(fade_ + (in_cycle_ ? 1.0 : -1.0) / std::max(1.0, o_.fade_cycles * expected), 0.0, 1.0);
   weight_ = smoothstep(fade_);
   // The phase shown: the prediction itself while it is not seen (weight 0), else one frame on at

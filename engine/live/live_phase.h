@@ -13,10 +13,11 @@
 // The stream is in a cycle (its gait repeating as a walk does, as cycles.h tells offline) from a
 // strike of the cycle foot that ends a cycle passing the offline checks (its length within the
 // gait's range and within max_change of the stream's recent cycles, the other foot striking
-// inside it in step, each foot reaching min_stride against the body), or from a strike of the
-// other foot in step after a strike of the cycle foot (the first step of a walk); it is out of one
-// (standing, starting, turning on the spot) after a cycle that fails them, or when the cycle
-// foot has not struck for 1 + max_change of the expected cycle. The cycle weight eases between
+// inside it in step, each foot reaching min_stride against the body), from a strike of the
+// other foot in step after a strike of the cycle foot, or from the first step after standing (a
+// strike of a foot that reached min_stride, none of that foot within the gait's longest cycle);
+// it is out of one (standing, turning on the spot) after a cycle that fails the checks, or when
+// the cycle foot has not struck for 1 + max_change of the expected cycle. The cycle weight eases between
 // 0 (out) and 1 (in) over fade_cycles of a cycle, as offline registration fades a take's own
 // frames into its posture (cycle_registration.h).
 #include <Eigen/Core>
@@ -66,6 +67,7 @@ class LivePhase {
   LivePhaseOptions o_;
   long frame_ = -1;
   long last_cycle_strike_ = -1, last_other_strike_ = -1;
+  long cycle_clock_ = 0;                        // the frame the cycle foot's next strike is awaited from
   double period_ = 0.0;                         // frames
   std::array<double, 5> recent_{};              // the last cycle lengths in the gait's range, frames
   int recent_count_ = 0;
