@@ -177,6 +177,25 @@ M rolled(const M& m, Eigen::Index roll) {
   return out;
 }
 
+// Per foot, what a planted foot is held at: the change (phases x 3M) averaged over the phases it
+// is planted in (stance: per foot, the share of cycles planted at each phase); the posture change
+// for a foot never planted.
+std::array<Eigen::RowVectorXd, 2> planted_change(const PhaseTable& change, const std::array<Eigen::VectorXd, 2>& stance,
+                                                 const Eigen::RowVectorXd& posture) {
+  std::array<Eigen::RowVectorXd, 2> out;
+  for (size_t side = 0; side < 2; ++side) {
+    Eigen::RowVectorXd sum = Eigen::RowVectorXd::Zero(change.cols());
+    int n = 0;
+    for (Eigen::Index k = 0; k < change.rows(); ++k)
+      if (stance[side][k] >= kStanceShare) {
+        sum += change.row(k);
+        ++n;
+      }
+    out[side] = n > 0 ? Eigen::RowVectorXd(sum / n) : posture;
+  }
+  return out;
+}
+
 }  // namespace
 
 void StyleChangeOptions::Validate() const {
@@ -230,19 +249,7 @@ StyleChange style_change(const PreparedTakes& p, const Eigen::RowVectorXd& strea
         mean_poses(style.local, matched_frames(neutral_frames, neutral_take.frames, t.frames));
     out.cycle.push_back(rolled(periodic_table(style_phases - neutral_phases), roll));
     out.posture.push_back(cycle_mean(style.local, registered) - neutral_mean);
-    // What a planted foot is held at: the change over its stance.
-    std::array<Eigen::RowVectorXd, 2> planted;
-    for (size_t side = 0; side < 2; ++side) {
-      Eigen::RowVectorXd sum = Eigen::RowVectorXd::Zero(out.cycle.back().cols());
-      int n = 0;
-      for (int k = 0; k < phases; ++k)
-        if (out.stance[side][k] >= kStanceShare) {
-          sum += out.cycle.back().row(k);
-          ++n;
-        }
-      planted[side] = n > 0 ? Eigen::RowVectorXd(sum / n) : out.posture.back();
-    }
-    out.planted.push_back(planted);
+    out.planted.push_back(planted_change(out.cycle.back(), out.stance, out.posture.back()));
   }
   return out;
 }

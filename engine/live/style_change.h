@@ -4,11 +4,13 @@
 // with the neutral as the reference (run/prepare_takes.h: each style registered onto the
 // neutral's cycles, cycle_registration.h).
 //
-// For each phase of the neutral's gait cycle (from a strike of its cycle foot to the next), the
-// style's canonical pose (canonical_frame.h: hips-relative, heading removed) minus the neutral's
-// at that phase of each of the neutral's cycles (the style's registered cycle there), averaged
-// over the cycles; made periodic (what a cycle's end and its start differ by spread over it) and
-// lightly smoothed. Where a stream is not in a cycle, the posture change: the style's mean pose
+// For each phase of the neutral's gait cycle (from a strike of its cycle foot to the next; phases
+// matched by foot: in each cycle the other foot strikes at the neutral's mean phase, time linear
+// on either side), the style's canonical pose (canonical_frame.h: hips-relative, heading removed)
+// minus the neutral's at that phase of each of the neutral's cycles, the style's frame the one
+// the alignment matched with the neutral's (its registered cycle there, a smooth warp inside it:
+// alignment.h align_by_cycles), averaged over the cycles; made periodic (what a cycle's end and
+// its start differ by spread over it) and lightly smoothed. Where a stream is not in a cycle, the posture change: the style's mean pose
 // over its cycles minus the neutral's, what offline registration gives between cycles. Both on the
 // stream's bones: each take retargeted onto them as a transfer retargets its neutral and style
 // onto its content (prepare/retarget.h: scaled by leg length, the stream's joint-group shapes,
