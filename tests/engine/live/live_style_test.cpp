@@ -161,6 +161,7 @@ void compare_with_offline(const std::shared_ptr<const Clip>& content, const std:
   const size_t from = static_cast<size_t>(std::lround(kSettleSeconds * content->fps()));
   auto after = [&](const std::vector<double>& v) { return std::vector<double>(v.begin() + from, v.end()); };
   const Summary live_vs_offline = summary(after(d.canonical), live.body_height());
+  const Summary first = summary(std::vector<double>(d.canonical.begin(), d.canonical.begin() + from), live.body_height());
   const Summary offline_change = summary(after(change.canonical), live.body_height());
   const double ratio = fastest_step(styled, 1) / fastest_step(*content);
   // How fast the planted feet move (planted_feet.h), the styled stream's against the stream's own.
@@ -187,7 +188,8 @@ void compare_with_offline(const std::shared_ptr<const Clip>& content, const std:
             << kSettleSeconds << " s: " << percent(live_vs_offline) << " of the body's height (the transfer's change "
             << "from the stream: " << percent(offline_change) << "; in the world, live vs offline: "
             << percent(summary(after(d.world), live.body_height())) << ", the paths differ by design); fastest joint "
-            << ratio << "x the stream's; planted feet " << sliding_out << " body heights/s against the stream's " << sliding_in);
+            << ratio << "x the stream's; planted feet " << sliding_out << " body heights/s against the stream's " << sliding_in
+            << "; the first " << kSettleSeconds << " s: " << percent(first));
   CHECK(live_vs_offline.mean <= kOfflineMean);
   CHECK(live_vs_offline.mean <= kOfflineShare * offline_change.mean);
   CHECK(ratio <= kSpeedRatio);
@@ -372,6 +374,25 @@ TEST_CASE("live: the phase is predicted from the strikes so far, matched by foot
   CHECK(!in_cycle[76 + 48]);
   CHECK(weight[76 + 48] > 0.0);
   CHECK(weight[140] == 0.0);
+}
+
+TEST_CASE("live: stepping on the spot is not walking", "[live]") {
+  // Strikes in the rhythm of a walk, but the feet reach 0.1 leg lengths between them (turning on
+  // the spot, shifting weight): never in a cycle.
+  LivePhaseOptions o;
+  o.fps = 30.0;
+  o.leg_length = 1.0;
+  LivePhase phase(o);
+  for (long t = 0; t <= 200; ++t) {
+    std::array<long, 2> strikes{{-1, -1}};
+    if (t % 33 == 10) strikes[0] = t;
+    if (t % 33 == 26) strikes[1] = t;
+    const double shuffle = 0.05 * std::sin(2 * M_PI * t / 33.0);
+    phase.update(strikes, {Eigen::Vector2d(shuffle, 0.0), Eigen::Vector2d(-shuffle, 0.0)});
+    CHECK(!phase.in_cycle());
+    CHECK(phase.cycle_weight() == 0.0);
+  }
+  CHECK(phase.cycles() == 0);
 }
 
 TEST_CASE("live: contacts and strikes of a synthetic walk, as they happen, are the offline ones", "[live]") {
