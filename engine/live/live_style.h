@@ -1,10 +1,15 @@
 #pragma once
-// Live styling (DESIGN.md 20): a style put on a motion-capture stream frame by frame as it
+// Live styling: a style put on a motion-capture stream frame by frame as it
 // arrives (Axis Neuron "BVH broadcasting": each frame a row of a known skeleton's channel
 // values), using only that frame and the ones before it. The offline counterpart is a transfer
 // on the content's timeline (`mostyle-cli transfer CONTENT --neutral N --style S --timing
 // content`): content + strength x (style - neutral), the style and the neutral registered onto
-// the content's cycles.
+// the content's cycles. The live styler adds the change averaged over the neutral's cycles at
+// the phase the strikes so far predict, and keeps the stream's path; the transfer pairs one
+// neutral cycle and one style cycle with each content cycle, warped onto it, and walks the mixed
+// path. On 20 s of a 120 fps walk and on a 30 fps walk, styled normal -> old, the major joints
+// (each in its own body frame) stay about 3.5% of the body's height from the transfer's, whose
+// change from the stream is 5.6-6.7% and varies from cycle to cycle by about 2.5%.
 //
 // Made once (heavy): the takes prepared with the neutral as the reference and each style's
 // change by gait phase on the stream's bones (style_change.h). Then per frame:
