@@ -103,9 +103,10 @@ void LivePhase::strike_other_foot(long at) {
   const double now = step / other_share_;
   const bool in_step = now >= o_.cycles.min_gait_s * o_.fps && now <= o_.cycles.max_gait_s * o_.fps &&
                        (period_ <= 0.0 || std::abs(now / reference - 1.0) <= o_.cycles.max_change);
-  if (!in_step) return;  // a stray contact, or not a step of a walk: the prediction stands
-  in_cycle_ = true;      // a strike of each foot in step: walking
-  const double expected = period_ > 0.0 ? 0.5 * (reference + now) : now;
+  // The foot says where in the cycle the stream is, in step or not (phases matched by foot);
+  // only a step in time says it walks, and how long this cycle will be.
+  if (in_step) in_cycle_ = true;
+  const double expected = period_ > 0.0 && in_step ? 0.5 * (reference + now) : in_step ? now : reference;
   const double rest = std::max(double(last_cycle_strike_) + expected - double(at),
                                kShortestRest * (1.0 - other_share_) * expected);
   set_prediction(at, o_.other_strike_phase, (1.0 - o_.other_strike_phase) / rest);
