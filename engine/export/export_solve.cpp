@@ -242,21 +242,42 @@ ExportResult solve_export_at(const Clip& clip, const std::vector<int>& joints, c
   return solve_on(sample_clip(clip, at, fps), clip, joints, world);
 }
 
-namespace {
+// What the per-frame solve keeps: the plan for the skeleton (fixed) and the frame before's
+// angles and fits (the solve continues from them).
+struct ExportFrameSolver::State {
+  Skeleton skeleton;
+  std::vector<JointPlan> plan;
+  std::vector<std::vector<int>> chain;  // per column: the joints from its column ancestor down to it
+  int top = -1;                         // the topmost column
+  int carrier = -1;                     // the joint that carries the trajectory
+  std::vector<int> carrier_chain;       // joints below the carrier down to the top column's joint
+  double min_length = 0.0, damping = 0.0, exact_cost = 0.0;
+  bool first = true;
+  std::vector<Eigen::Matrix3d> local_rotation, global_rotation;
+  std::vector<Eigen::Vector3d> local_translation, position, previous;
+  std::vector<Eigen::Vector3d> from, to;
+  std::vector<ChildGeometry> geometry;
+  std::vector<double> previous_cost;  // joints with several children
+};
 
-ExportResult solve_on(Clip sampled, const Clip& clip, const std::vector<int>& joints, const Eigen::MatrixXd& world) {
-  ExportResult result;
-  result.clip = std::move(sampled);
-  Clip& out = result.clip;
-  const Clip source = out;  // A's values at the output rate; `out` is overwritten frame by frame
-  if (world.rows() != out.frames())
-    throw InputError("export: " + std::to_string(world.rows()) + " frames of positions for " +
-                     std::to_string(out.frames()) + " frames of " + clip.source + " at the output rate");
-
-  const Skeleton& skeleton = out.skeleton;
+ExportFrameSolver::ExportFrameSolver(const Skeleton& skeleton_in, const std::vector<int>& joints,
+                                     const std::string& source)
+    : state_(std::make_unique<State>()) {
+  State& s = *state_;
+  s.skeleton = skeleton_in;
+  const Skeleton& skeleton = s.skeleton;
   const int n = static_cast<int>(skeleton.joints.size());
   const int m = static_cast<int>(joints.size());
-  std::vector<JointPlan> plan(static_cast<size_t>(n));
+  std::vector<char> seen(static_cast<size_t>(n), 0);
+  for (int j : joints) {
+    if (j < 0 || j >= n || skeleton.joints[j].end_site)
+      throw InputError("export: " + source + " has no joint " + std::to_string(j) +
+                       " to place (End Sites cannot be targets)");
+    if (seen[j]) throw InputError("export: joint '" + skeleton.joints[j].name + "' is listed twice");
+    seen[j] = 1;
+  }
+  std::vector<JointPlan>& plan = s.plan;
+  plan.resize(static_cast<size_t>(n));
   for (int c = 0; c < m; ++c) plan[joints[c]].column = c;
   for (int j = 0; j < n; ++j) {
     const Joint& joint = skeleton.joints[j];
@@ -268,7 +289,8 @@ ExportResult solve_on(Clip sampled, const Clip& clip, const std::vector<int>& jo
       if (is_rotation(joint.channels[c])) p.rotation_channels[k++] = joint.first_channel + static_cast<int>(c);
   }
   // Each column's nearest column ancestor, and the joints from there down to it.
-  std::vector<std::vector<int>> chain(static_cast<size_t>(m));
+  std::vector<std::vector<int>>& chain = s.chain;
+  chain.resize(static_cast<size_t>(m));
   std::vector<int> parent_column(static_cast<size_t>(m), -1);
   std::vector<std::vector<int>> child_columns(static_cast<size_t>(n));
   std::vector<int> chains_through(static_cast<size_t>(n), 0);
@@ -314,11 +336,11 @@ ExportResult solve_on(Clip sampled, const Clip& clip, const std::vector<int>& jo
   }
   // The topmost column (the hips) and the joint that carries the trajectory: the nearest joint
   // at or above it with position channels (Bandai: Hips itself, not the still ROOT above it).
-  int top = -1;
+  int& top = s.top;
   for (int c = 0; c < m; ++c)
     if (parent_column[c] < 0 && (top < 0 || joints[c] < joints[top])) top = c;
-  int carrier = -1;
-  std::vector<int> carrier_chain;  // joints below the carrier down to the top column's joint
+  int& carrier = s.carrier;
+  std::vector<int>& carrier_chain = s.carrier_chain;
   for (int a = top >= 0 ? joints[top] : -1; a >= 0; a = skeleton.joints[a].parent) {
     const auto& channels = skeleton.joints[a].channels;
     if (std::any_of(channels.begin(), channels.end(), is_position)) {
@@ -329,98 +351,147 @@ ExportResult solve_on(Clip sampled, const Clip& clip, const std::vector<int>& jo
   }
   std::reverse(carrier_chain.begin(), carrier_chain.end());
   const double size = skeleton_size(skeleton);
-  const double min_length = kNoDirection * size;
-  const double damping = (kDamping * size) * (kDamping * size);
-  const double exact_cost = (kExactCost * size) * (kExactCost * size);
+  s.min_length = kNoDirection * size;
+  s.damping = (kDamping * size) * (kDamping * size);
+  s.exact_cost = (kExactCost * size) * (kExactCost * size);
 
-  std::vector<Eigen::Matrix3d> local_rotation(n), global_rotation(n);
-  std::vector<Eigen::Vector3d> local_translation(n), position(n), previous(n, Eigen::Vector3d::Zero());
-  std::vector<Eigen::Vector3d> from, to;
-  std::vector<ChildGeometry> geometry;
-  std::vector<double> previous_cost(static_cast<size_t>(n), 0.0);  // joints with several children
-  for (int f = 0; f < out.frames(); ++f) {
-    const double* a_row = source.motion.row(f).data();
-    double* row = out.motion.row(f).data();
-    for (int j = 0; j < n; ++j) {
-      local_rotation[j] = joint_local_rotation(skeleton.joints[j], a_row);
-      local_translation[j] = joint_local_translation(skeleton.joints[j], a_row);
+  s.local_rotation.resize(static_cast<size_t>(n));
+  s.global_rotation.resize(static_cast<size_t>(n));
+  s.local_translation.resize(static_cast<size_t>(n));
+  s.position.resize(static_cast<size_t>(n));
+  s.previous.assign(static_cast<size_t>(n), Eigen::Vector3d::Zero());
+  s.previous_cost.assign(static_cast<size_t>(n), 0.0);
+  // At most one entry per child column of a joint: reserved so that no frame allocates.
+  s.from.reserve(static_cast<size_t>(m));
+  s.to.reserve(static_cast<size_t>(m));
+  s.geometry.reserve(static_cast<size_t>(m));
+}
+
+ExportFrameSolver::~ExportFrameSolver() = default;
+ExportFrameSolver::ExportFrameSolver(ExportFrameSolver&&) noexcept = default;
+ExportFrameSolver& ExportFrameSolver::operator=(ExportFrameSolver&&) noexcept = default;
+
+void ExportFrameSolver::restart() { state_->first = true; }
+
+void ExportFrameSolver::solve(const double* a_row, const double* targets, double* row) {
+  State& s = *state_;
+  const Skeleton& skeleton = s.skeleton;
+  const std::vector<JointPlan>& plan = s.plan;
+  const std::vector<std::vector<int>>& chain = s.chain;
+  const int n = static_cast<int>(skeleton.joints.size());
+  const int top = s.top, carrier = s.carrier;
+  const std::vector<int>& carrier_chain = s.carrier_chain;
+  const double min_length = s.min_length, damping = s.damping, exact_cost = s.exact_cost;
+  const bool first = s.first;
+  std::vector<Eigen::Matrix3d>& local_rotation = s.local_rotation;
+  std::vector<Eigen::Matrix3d>& global_rotation = s.global_rotation;
+  std::vector<Eigen::Vector3d>& local_translation = s.local_translation;
+  std::vector<Eigen::Vector3d>& position = s.position;
+  std::vector<Eigen::Vector3d>& previous = s.previous;
+  std::vector<Eigen::Vector3d>& from = s.from;
+  std::vector<Eigen::Vector3d>& to = s.to;
+  std::vector<ChildGeometry>& geometry = s.geometry;
+  std::vector<double>& previous_cost = s.previous_cost;
+  // Every value the solve does not set is A's.
+  if (row != a_row) std::copy(a_row, a_row + skeleton.channel_count, row);
+  for (int j = 0; j < n; ++j) {
+    local_rotation[j] = joint_local_rotation(skeleton.joints[j], a_row);
+    local_translation[j] = joint_local_translation(skeleton.joints[j], a_row);
+  }
+  auto target = [&](int c) { return Eigen::Vector3d(targets[3 * c], targets[3 * c + 1], targets[3 * c + 2]); };
+  auto vector_of = [&](const std::vector<int>& joints_below) {
+    return chain_vector(joints_below, local_rotation, local_translation);
+  };
+  for (int j = 0; j < n; ++j) {
+    const Joint& joint = skeleton.joints[j];
+    const JointPlan& p = plan[j];
+    const Eigen::Matrix3d parent_rotation = joint.parent >= 0 ? global_rotation[joint.parent] : Eigen::Matrix3d::Identity();
+    const Eigen::Vector3d parent_position = joint.parent >= 0 ? position[joint.parent] : Eigen::Vector3d::Zero();
+    Eigen::Vector3d translation = local_translation[j];
+    global_rotation[j] = parent_rotation * local_rotation[j];
+    if (j == carrier) {
+      // Place the carrier so that the top column lands on its target (position channels
+      // replace the OFFSET, as Blender reads them); a missing position channel stays 0, as readers take it.
+      const Eigen::Vector3d below =
+          carrier_chain.empty() ? Eigen::Vector3d::Zero() : Eigen::Vector3d(global_rotation[j] * vector_of(carrier_chain));
+      const Eigen::Vector3d wanted = parent_rotation.transpose() * (target(top) - below - parent_position);
+      for (size_t c = 0; c < joint.channels.size(); ++c)
+        if (is_position(joint.channels[c])) row[joint.first_channel + c] = wanted[channel_axis(joint.channels[c])];
+      translation = joint_local_translation(joint, row);
     }
-    auto target = [&](int c) { return Eigen::Vector3d(world(f, 3 * c), world(f, 3 * c + 1), world(f, 3 * c + 2)); };
-    auto vector_of = [&](const std::vector<int>& joints_below) {
-      return chain_vector(joints_below, local_rotation, local_translation);
-    };
-    for (int j = 0; j < n; ++j) {
-      const Joint& joint = skeleton.joints[j];
-      const JointPlan& p = plan[j];
-      const Eigen::Matrix3d parent_rotation = joint.parent >= 0 ? global_rotation[joint.parent] : Eigen::Matrix3d::Identity();
-      const Eigen::Vector3d parent_position = joint.parent >= 0 ? position[joint.parent] : Eigen::Vector3d::Zero();
-      Eigen::Vector3d translation = local_translation[j];
-      global_rotation[j] = parent_rotation * local_rotation[j];
-      if (j == carrier) {
-        // Place the carrier so that the top column lands on its target (position channels
-        // replace the OFFSET, as Blender reads them); a missing position channel stays 0, as readers take it.
-        const Eigen::Vector3d below =
-            carrier_chain.empty() ? Eigen::Vector3d::Zero() : Eigen::Vector3d(global_rotation[j] * vector_of(carrier_chain));
-        const Eigen::Vector3d wanted = parent_rotation.transpose() * (target(top) - below - parent_position);
-        for (size_t c = 0; c < joint.channels.size(); ++c)
-          if (is_position(joint.channels[c])) row[joint.first_channel + c] = wanted[channel_axis(joint.channels[c])];
-        translation = joint_local_translation(joint, row);
-      }
-      position[j] = parent_position + parent_rotation * translation;
-      if (!p.rotates) continue;
-      Eigen::Vector3d angles;
-      for (int d = 0; d < 3; ++d) angles[d] = a_row[p.rotation_channels[d]];
-      const Eigen::Vector3d near = f > 0 ? previous[j] : angles;
-      bool solved = false;
-      if (p.children.size() >= 2) {
-        // Several children (hips, chest): the best-fit rotation of the directions
-        // to them (Kabsch), refined so the children themselves land (pivots take up the rest).
-        from.clear();
-        to.clear();
-        geometry.clear();
-        for (const ChildLink& link : p.children) {
-          const Eigen::Vector3d u = global_rotation[j] * vector_of(link.pivot >= 0 ? chain[link.column] : link.to_child);
-          const Eigen::Vector3d v = target(link.column) - position[j];
-          if (u.norm() > min_length && v.norm() > min_length) {
-            from.push_back(u.normalized());
-            to.push_back(v.normalized());
-          }
-          ChildGeometry g;
-          g.target = target(link.column);
-          if (link.pivot >= 0) {
-            g.offset = vector_of(link.to_pivot);
-            g.reach = vector_of(link.to_child).norm();
-          } else {
-            g.offset = vector_of(link.to_child);
-          }
-          geometry.push_back(g);
-        }
-        if (!from.empty()) {
-          const Eigen::Matrix3d start = best_rotation(from, to) * global_rotation[j];
-          const Eigen::Matrix3d last = parent_rotation * euler_to_matrix(p.order, previous[j]);
-          global_rotation[j] = solve_several(geometry, position[j], start, f > 0 ? &last : nullptr,
-                                             previous_cost[j], damping, exact_cost, &previous_cost[j]);
-          solved = true;
-        }
-      } else if (p.aim_column >= 0) {
-        // One child (or a pivot): the smallest rotation that turns A's bone, at the parent's
-        // solved rotation and A's own local one (so twist is kept), toward the child's target,
-        // seen from where this joint now is, so errors do not accumulate down a chain.
-        const Eigen::Vector3d u = global_rotation[j] * vector_of(p.aim_chain);
-        const Eigen::Vector3d v = target(p.aim_column) - position[j];
+    position[j] = parent_position + parent_rotation * translation;
+    if (!p.rotates) continue;
+    Eigen::Vector3d angles;
+    for (int d = 0; d < 3; ++d) angles[d] = a_row[p.rotation_channels[d]];
+    const Eigen::Vector3d near = !first ? previous[j] : angles;
+    bool solved = false;
+    if (p.children.size() >= 2) {
+      // Several children (hips, chest): the best-fit rotation of the directions
+      // to them (Kabsch), refined so the children themselves land (pivots take up the rest).
+      from.clear();
+      to.clear();
+      geometry.clear();
+      for (const ChildLink& link : p.children) {
+        const Eigen::Vector3d u = global_rotation[j] * vector_of(link.pivot >= 0 ? chain[link.column] : link.to_child);
+        const Eigen::Vector3d v = target(link.column) - position[j];
         if (u.norm() > min_length && v.norm() > min_length) {
-          global_rotation[j] = Eigen::Quaterniond::FromTwoVectors(u, v).toRotationMatrix() * global_rotation[j];
-          solved = true;
+          from.push_back(u.normalized());
+          to.push_back(v.normalized());
         }
+        ChildGeometry g;
+        g.target = target(link.column);
+        if (link.pivot >= 0) {
+          g.offset = vector_of(link.to_pivot);
+          g.reach = vector_of(link.to_child).norm();
+        } else {
+          g.offset = vector_of(link.to_child);
+        }
+        geometry.push_back(g);
       }
-      if (solved) {
-        angles = matrix_to_euler_near(p.order, parent_rotation.transpose() * global_rotation[j], near);
-      } else if (f > 0) {
-        angles = euler_near(angles, near);
+      if (!from.empty()) {
+        const Eigen::Matrix3d start = best_rotation(from, to) * global_rotation[j];
+        const Eigen::Matrix3d last = parent_rotation * euler_to_matrix(p.order, previous[j]);
+        global_rotation[j] = solve_several(geometry, position[j], start, !first ? &last : nullptr,
+                                           previous_cost[j], damping, exact_cost, &previous_cost[j]);
+        solved = true;
       }
-      for (int d = 0; d < 3; ++d) row[p.rotation_channels[d]] = angles[d];
-      previous[j] = angles;
+    } else if (p.aim_column >= 0) {
+      // One child (or a pivot): the smallest rotation that turns A's bone, at the parent's
+      // solved rotation and A's own local one (so twist is kept), toward the child's target,
+      // seen from where this joint now is, so errors do not accumulate down a chain.
+      const Eigen::Vector3d u = global_rotation[j] * vector_of(p.aim_chain);
+      const Eigen::Vector3d v = target(p.aim_column) - position[j];
+      if (u.norm() > min_length && v.norm() > min_length) {
+        global_rotation[j] = Eigen::Quaterniond::FromTwoVectors(u, v).toRotationMatrix() * global_rotation[j];
+        solved = true;
+      }
     }
+    if (solved) {
+      angles = matrix_to_euler_near(p.order, parent_rotation.transpose() * global_rotation[j], near);
+    } else if (!first) {
+      angles = euler_near(angles, near);
+    }
+    for (int d = 0; d < 3; ++d) row[p.rotation_channels[d]] = angles[d];
+    previous[j] = angles;
+  }
+  s.first = false;
+}
+
+namespace {
+
+ExportResult solve_on(Clip sampled, const Clip& clip, const std::vector<int>& joints, const Eigen::MatrixXd& world) {
+  ExportResult result;
+  result.clip = std::move(sampled);
+  Clip& out = result.clip;
+  const Clip source = out;  // A's values at the output rate; `out` is overwritten frame by frame
+  if (world.rows() != out.frames())
+    throw InputError("export: " + std::to_string(world.rows()) + " frames of positions for " +
+                     std::to_string(out.frames()) + " frames of " + clip.source + " at the output rate");
+  ExportFrameSolver solver(out.skeleton, joints, clip.source);
+  Eigen::VectorXd targets(world.cols());
+  for (int f = 0; f < out.frames(); ++f) {
+    targets = world.row(f).transpose();
+    solver.solve(source.motion.row(f).data(), targets.data(), out.motion.row(f).data());
   }
   result.fit = export_fit(out, joints, world);
   return result;

@@ -3,6 +3,7 @@
 // of take A's full skeleton, in A's channel layout and rotation orders, so animators' tools read
 // the blend as a BVH file.
 #include <Eigen/Core>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,36 @@ struct ExportResult {
 // O(F x joints); allocates the output clip.
 ExportResult solve_export(const Clip& clip, const std::vector<int>& joints, const Eigen::MatrixXd& world,
                           double fps);
+
+// The solve of solve_export one frame at a time, for frames that arrive one by one (a live
+// stream): the plan (which joint aims at which target, the joint that carries the trajectory)
+// is made once for A's skeleton and its target joints, and each frame continues from the one
+// solved before it (Euler angles unwrapped against its angles, a joint with several children
+// started from its rotation), as solve_export's frames do. solve_export runs its frames through
+// one of these.
+class ExportFrameSolver {
+ public:
+  // skeleton: A's; joints: as solve_export takes them; source: A's name in messages. Throws
+  // InputError on a bad joint index (End Sites included) or a joint listed twice. O(joints^2)
+  // at most; allocates the plan.
+  ExportFrameSolver(const Skeleton& skeleton, const std::vector<int>& joints, const std::string& source = "");
+  ~ExportFrameSolver();
+  ExportFrameSolver(ExportFrameSolver&&) noexcept;
+  ExportFrameSolver& operator=(ExportFrameSolver&&) noexcept;
+
+  // One frame. a_row: A's values at this frame (Skeleton::channel_count values, degrees and file
+  // units); targets: 3M positions of the joints' targets (x, y, z per joint), A's units and
+  // world frame, finite (not checked: solve_export checks); row: written whole, A's values with
+  // the solved rotations and the carrier's position channels (may not be a_row). O(joints);
+  // allocation-free.
+  void solve(const double* a_row, const double* targets, double* row);
+  // The next frame solved is a first frame again (nothing continues from the one before).
+  void restart();
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 // The same with A's rotations taken at fractional frames `at` of A's clip (one per row of
 // world; kinematics/resample.h sample_clip), frame time 1 / fps: a blend whose timing is not A's
