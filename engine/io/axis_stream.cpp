@@ -30,17 +30,22 @@ std::string shown(std::string_view token) {
   return out + "'";
 }
 
-// A decimal number filling the whole token ("-1.5", "2e-3", "+4"); false on anything else.
-bool parse_value(std::string_view token, double* value) {
+enum class Value { kNumber, kNotANumber, kOutOfRange };
+
+// A decimal number filling the whole token ("-1.5", "2e-3", "+4", "inf"); kOutOfRange for one
+// beyond a double's range either way ("1e999", "1e-999").
+Value parse_value(std::string_view token, double* value) {
   const char* first = token.data();
   const char* last = first + token.size();
   if (first < last && *first == '+') {  // from_chars takes no '+', C's strtod does
     ++first;
-    if (first < last && (*first == '+' || *first == '-')) return false;
+    if (first < last && (*first == '+' || *first == '-')) return Value::kNotANumber;
   }
-  if (first == last) return false;
+  if (first == last) return Value::kNotANumber;
   const auto r = std::from_chars(first, last, *value);
-  return r.ec == std::errc() && r.ptr == last;
+  if (r.ptr != last) return Value::kNotANumber;
+  if (r.ec == std::errc::result_out_of_range) return Value::kOutOfRange;
+  return r.ec == std::errc() ? Value::kNumber : Value::kNotANumber;
 }
 
 bool blank(std::string_view s) {
@@ -75,9 +80,10 @@ AxisLineStatus parse_axis_line(std::string_view line, int channels, AxisFrame* f
   values.clear();
   for (std::string_view token = next_token(&p, end); !token.empty(); token = next_token(&p, end)) {
     double v = 0.0;
-    if (!parse_value(token, &v))
+    const Value kind = parse_value(token, &v);
+    if (kind == Value::kNotANumber)
       return malformed("value " + std::to_string(values.size() + 1) + " is not a number: " + shown(token));
-    if (!std::isfinite(v))
+    if (kind == Value::kOutOfRange || !std::isfinite(v))
       return malformed("value " + std::to_string(values.size() + 1) + " is not a finite number: " + shown(token));
     values.push_back(v);
   }
@@ -153,6 +159,7 @@ bool AxisLineSplitter::finish(std::string_view* chunk, size_t end, size_t consum
     keep = !blank(*line);
     line_number_ = start_line_;
   }
+  if (!keep) clear_buffer_ = false;
   if (!clear_buffer_) buffer_.clear();
   discarding_ = false;
   last_bar_ = false;
