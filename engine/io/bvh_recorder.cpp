@@ -25,9 +25,13 @@ void format_count(long long frames, char* out) {
   }
 }
 
-void append_number(std::string* out, double v) {
-  char buffer[32];
-  const auto r = std::to_chars(buffer, buffer + sizeof buffer, v);
+constexpr int kShortDigits = 7;  // a long line's values: within 5e-7 of each, relative
+
+// Shortest text that reads back as the same double (digits 0), or `digits` significant ones.
+void append_number(std::string* out, double v, int digits = 0) {
+  char buffer[64];
+  const auto r = digits > 0 ? std::to_chars(buffer, buffer + sizeof buffer, v, std::chars_format::general, digits)
+                            : std::to_chars(buffer, buffer + sizeof buffer, v);
   out->append(buffer, r.ptr);
 }
 
@@ -89,10 +93,14 @@ void BvhRecorder::append(const double* values) {
   if (frames_ >= kMaxFrames)
     throw InputError(path_ + ": cannot write: the recording holds the most frames a BVH file may (" +
                      std::to_string(kMaxFrames) + ")");
-  line_.clear();
-  for (int c = 0; c < channels_; ++c) {
-    line_ += c ? ' ' : '\n';
-    append_number(&line_, values[c]);
+  // Exact when the line fits in a page, else shorter, so that it may (see the header).
+  for (int digits : {0, kShortDigits}) {
+    line_.clear();
+    for (int c = 0; c < channels_; ++c) {
+      line_ += c ? ' ' : '\n';
+      append_number(&line_, values[c], digits);
+    }
+    if (line_.size() <= page_) break;
   }
   if (channels_ == 0) line_ = "\n";
   const size_t before = size_;
