@@ -38,6 +38,7 @@ class LiveRun {
         styled_values_(static_cast<size_t>(channels_)) {}
 
   int run() {
+    ignore_sigpipe();
     open_server();
     addresses_ = resolve(config_.source);
     start_connecting();
