@@ -74,11 +74,14 @@ void check_recording(const std::string& path, const Clip& clip, int count, bool 
     }
 }
 
-// `live` on a source at 127.0.0.1:source_port, styling with the pass-through (neutral and style
-// given, copied as they come), serving on a port of the system's.
+// `live` on a source at 127.0.0.1:source_port, serving on a port of the system's, styling at
+// strength 0: each frame as it came, with the pass-through styler and with a real one alike.
 std::vector<std::string> live_args(int source_port, const std::string& skeleton, const std::vector<std::string>& more) {
-  std::vector<std::string> a{"live",    "--connect", "127.0.0.1:" + std::to_string(source_port),
-                             "--skeleton", skeleton, "--neutral", skeleton, "--style", kJoy, "--serve", "0"};
+  std::vector<std::string> a{"live",       "--connect", "127.0.0.1:" + std::to_string(source_port),
+                             "--skeleton", skeleton,    "--neutral",
+                             skeleton,     "--style",   kJoy,
+                             "--strength", "0",         "--serve",
+                             "0"};
   a.insert(a.end(), more.begin(), more.end());
   return a;
 }

@@ -153,7 +153,7 @@ void BM_LiveLatency(benchmark::State& state) {
   const int listener = mostyle::test::listen_local(&port);
   const std::string err = (fs::temp_directory_path() / ("mostyle_live_bench_" + std::to_string(::getpid()))).string();
   mostyle::test::CliProcess live({"live", "--connect", "127.0.0.1:" + std::to_string(port), "--skeleton", happy,
-                                  "--neutral", happy, "--style", joy, "--serve", "0"},
+                                  "--neutral", happy, "--style", joy, "--strength", "0", "--serve", "0"},
                                  err);
   const int served = live.port();
   const int client = served > 0 ? mostyle::test::connect_local(served) : -1;
