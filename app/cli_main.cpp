@@ -9,6 +9,7 @@
 #include "app/cli_grid_command.h"
 #include "app/cli_synthesis_commands.h"
 #include "app/cli_pipeline_commands.h"
+#include "app/live/live_commands.h"
 #include "engine/base/error.h"
 
 int main(int argc, char** argv) {
@@ -26,6 +27,8 @@ int main(int argc, char** argv) {
   mostyle::cli::add_transfer_command(app, &run);
   mostyle::cli::add_batch_command(app, &run);
   mostyle::cli::add_grid_command(app, &run);
+  mostyle::cli::add_live_command(app, &run);
+  mostyle::cli::add_live_send_command(app, &run);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

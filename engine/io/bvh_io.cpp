@@ -634,10 +634,8 @@ Clip read_bvh_file(const std::string& path, std::vector<std::string>* warnings,
   return parse_bvh(text, path, warnings, options);
 }
 
-std::string format_bvh(const Clip& clip) {
-  const Skeleton& s = clip.skeleton;
+std::string format_bvh_hierarchy(const Skeleton& s) {
   std::string out;
-  out.reserve(4096 + static_cast<size_t>(clip.motion.size()) * 12);
   out += "HIERARCHY\n";
   std::vector<int> open;  // joints whose brace is open
   std::vector<int> depth(s.joints.size(), 0);
@@ -685,6 +683,13 @@ std::string format_bvh(const Clip& clip) {
     open.push_back(i);
   }
   close_until(-1);
+  return out;
+}
+
+std::string format_bvh(const Clip& clip) {
+  std::string out;
+  out.reserve(4096 + static_cast<size_t>(clip.motion.size()) * 12);
+  out += format_bvh_hierarchy(clip.skeleton);
   out += "MOTION\nFrames: " + std::to_string(clip.motion.rows()) + "\nFrame Time: ";
   append_number(&out, clip.frame_time);
   out += '\n';

@@ -46,6 +46,9 @@ Clip read_bvh_file(const std::string& path, std::vector<std::string>* warnings =
 // the writer does, short of zeroing their OFFSETs and losing the rest skeleton.
 std::string format_bvh(const Clip& clip);
 
+// format_bvh's first part: "HIERARCHY" and the joints, up to and without "MOTION".
+std::string format_bvh_hierarchy(const Skeleton& skeleton);
+
 // Writes format_bvh(clip) to a temporary file beside `path` and renames it over `path`.
 // Throws InputError when the file cannot be written; never leaves a partial file.
 void write_bvh_file(const Clip& clip, const std::string& path);

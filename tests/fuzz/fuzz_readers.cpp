@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "app/job_line.h"
+#include "engine/io/axis_stream.h"
 #include "engine/io/bvh_io.h"
 #include "engine/io/csv_io.h"
 #include "engine/base/error.h"
@@ -312,9 +313,74 @@ bool write_read_back(std::string_view bytes) {
   return true;
 }
 
+namespace {
+
+// The lines the splitter gives for `bytes` cut into chunks of `chunk` bytes (0: whole).
+std::vector<std::string> split_axis_lines(std::string_view bytes, size_t chunk, size_t max_line,
+                                          long long* dropped) {
+  AxisLineSplitter splitter(max_line);
+  std::vector<std::string> lines;
+  const size_t step = chunk == 0 ? std::max<size_t>(1, bytes.size()) : chunk;
+  for (size_t at = 0; at < bytes.size(); at += step) {
+    std::string_view rest = bytes.substr(at, step), line;
+    while (splitter.next(&rest, &line)) {
+      check(line.size() <= max_line, "a line within the bound");
+      check(line.find('\n') == std::string_view::npos, "a line holds no line end");
+      lines.emplace_back(line);
+    }
+    check(rest.empty(), "the splitter takes every byte");
+  }
+  *dropped = splitter.dropped();
+  return lines;
+}
+
+}  // namespace
+
+bool read_axis_stream(std::string_view bytes) {
+  if (bytes.empty()) return false;
+  const unsigned char first = static_cast<unsigned char>(bytes[0]);
+  const int channels = 1 + first % 16;
+  const size_t chunk = first / 16;  // 0 (whole) to 15 bytes
+  const size_t max_line = 256;
+  bytes.remove_prefix(1);
+  long long dropped = 0, dropped_whole = 0;
+  const std::vector<std::string> lines = split_axis_lines(bytes, chunk, max_line, &dropped);
+  check(lines == split_axis_lines(bytes, 0, max_line, &dropped_whole) && dropped == dropped_whole,
+        "the same lines however the bytes are cut");
+  bool any = false;
+  AxisFrame frame, again;
+  std::string reason, written;
+  for (const std::string& line : lines) {
+    const AxisLineStatus status = parse_axis_line(line, channels, &frame, &reason);
+    if (status == AxisLineStatus::kMalformed) {
+      check(!reason.empty(), "a refusal says why");
+      for (char c : reason) check(c >= 0x20 && c < 0x7f, "a refusal is printable text on one line: " + reason);
+      continue;
+    }
+    check(status == AxisLineStatus::kOk, "the splitter gives no blank line");
+    any = true;
+    check(static_cast<int>(frame.values.size()) == channels, "a frame has the channels' values");
+    check(frame.reference.empty() || frame.reference.size() == kAxisReferenceValues, "a reference has 6 values");
+    check(!frame.avatar_name.empty() && frame.avatar_name.find_first_of(" \t\r\n") == std::string::npos,
+          "the avatar name is one token");
+    written.clear();
+    append_axis_line(&written, frame.avatar_index, frame.avatar_name, frame.reference.data(),
+                     static_cast<int>(frame.reference.size()), frame.values.data(), channels);
+    check(parse_axis_line(written, channels, &again, &reason) == AxisLineStatus::kOk, "a written line reads back");
+    check(again.avatar_index == frame.avatar_index && again.avatar_name == frame.avatar_name &&
+              again.reference == frame.reference,
+          "round trip: avatar and reference");
+    for (size_t i = 0; i < frame.values.size(); ++i) {
+      check(std::isfinite(frame.values[i]), "every value is finite");
+      check(std::abs(again.values[i] - frame.values[i]) <= 1e-6 * std::abs(frame.values[i]), "round trip: values");
+    }
+  }
+  return any;
+}
+
 const std::vector<std::string>& target_names() {
   static const std::vector<std::string> names = {"bvh", "mapping", "csv", "job_line", "session", "gltf", "fbx",
-                                                 "write"};
+                                                 "write", "axis"};
   return names;
 }
 
@@ -327,6 +393,7 @@ bool read_as(const std::string& target, std::string_view bytes) {
   if (target == "gltf") return read_gltf(bytes);
   if (target == "fbx") return read_fbx(bytes);
   if (target == "write") return write_read_back(bytes);
+  if (target == "axis") return read_axis_stream(bytes);
   throw std::logic_error("no fuzz target named " + target);
 }
 

@@ -31,8 +31,16 @@ bool read_fbx(std::string_view bytes);
 // loaded.
 bool write_read_back(std::string_view bytes);
 
+// A TCP byte stream of Axis Neuron BVH broadcasting lines (engine/io/axis_stream.h): the first
+// byte picks the channel count (1 to 16) and the size of the chunks the rest is cut into; each
+// line the splitter gives is parsed. The lines are the same however the bytes are cut, none
+// over the bound; a frame read is finite and as many values as the channels (and a reference of
+// 6 or none), and written and read back the same (within 1e-6); a refusal is one printable
+// clause. Returns whether any line was a frame.
+bool read_axis_stream(std::string_view bytes);
+
 // The targets by the name of their folder in tests/fuzz/regressions/: "bvh", "mapping", "csv",
-// "job_line", "session", "gltf", "fbx", "write".
+// "job_line", "session", "gltf", "fbx", "write", "axis".
 const std::vector<std::string>& target_names();
 bool read_as(const std::string& target, std::string_view bytes);
 

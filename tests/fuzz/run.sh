@@ -3,7 +3,7 @@
 # and runs each for SECONDS (default 30), seeded from tests/fuzz/seeds/, the repository's real
 # files (assemble_seeds.sh) and tests/fuzz/regressions/. Exits 1 when any target crashed, leaked,
 # timed out (10 s on one input) or went over 2 GB; the input is left in build-fuzz/findings/.
-#   tests/fuzz/run.sh [SECONDS [TARGET...]]     targets: bvh mapping csv job_line session gltf fbx write
+#   tests/fuzz/run.sh [SECONDS [TARGET...]]     targets: bvh mapping csv job_line session gltf fbx write axis
 # A finding: fix the reader, copy the input to tests/fuzz/regressions/TARGET/ (the normal test
 # build replays it: tests/fuzz/regressions_test.cpp).
 set -euo pipefail
@@ -11,13 +11,13 @@ root="$(cd "$(dirname "$0")/../.." && pwd)"
 seconds="${1:-30}"
 shift $(($# > 0 ? 1 : 0))
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(bvh mapping csv job_line session gltf fbx write)
+[ ${#targets[@]} -gt 0 ] || targets=(bvh mapping csv job_line session gltf fbx write axis)
 # Longest input per target: a BVH header of 38 joints and a few frames; a mapping file; a short
 # CSV; a JOBS line; a session with per-component alphas and a palette; a GLB or FBX of a short
 # take (the seeds: a few frames of a CMU skeleton, about 20 to 40 KB).
-# write: any of these takes, written as FBX and GLB and read back.
+# write: any of these takes, written as FBX and GLB and read back. axis: a few stream lines.
 declare -A max_len=([bvh]=16384 [mapping]=4096 [csv]=4096 [job_line]=4096 [session]=8192 [gltf]=65536
-                    [fbx]=786432 [write]=786432)
+                    [fbx]=786432 [write]=786432 [axis]=4096)
 
 "$root/app/install-deps.sh"
 export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=1  # ccache keys relative to the clone

@@ -1,0 +1,267 @@
+#include "app/live/live_run.h"
+
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <iostream>
+#include <optional>
+#include <vector>
+
+#include "app/live/frame_server.h"
+#include "app/live/stop_pipe.h"
+#include "engine/io/axis_stream.h"
+#include "engine/base/error.h"
+
+namespace mostyle::live {
+namespace {
+
+constexpr auto kRetryEvery = std::chrono::milliseconds(500);  // --reconnect's attempts
+constexpr auto kWarnEvery = std::chrono::seconds(1);           // skipped-frame warnings at most this often
+constexpr auto kDrainFor = std::chrono::seconds(2);            // clients' queues at the end
+constexpr size_t kReadBytes = size_t{1} << 16;
+
+// A line may hold each value in up to 64 bytes (a long decimal), with room for the avatar.
+size_t max_line_bytes(int channels) {
+  return std::max<size_t>(size_t{1} << 16, static_cast<size_t>(channels + kAxisReferenceValues) * 64 + 1024);
+}
+
+class LiveRun {
+ public:
+  LiveRun(LiveConfig& config, LiveStyle& style)
+      : config_(config),
+        style_(style),
+        channels_(config.skeleton.channel_count),
+        splitter_(max_line_bytes(channels_)),
+        styled_values_(static_cast<size_t>(channels_)) {}
+
+  int run() {
+    ignore_sigpipe();
+    open_server();
+    addresses_ = resolve(config_.source);
+    start_connecting();
+    while (!stop_.signal() && state_ != State::kDone) poll_once();
+    finish();
+    return 0;
+  }
+
+ private:
+  enum class State { kWaiting, kConnecting, kConnected, kDone };
+
+  // The server first, so that clients may connect while the source is awaited.
+  void open_server() {
+    if (config_.serve_port < 0) return;
+    server_.emplace(config_.serve_port);
+    std::cout << "live: serving on port " << server_->port() << std::endl;
+  }
+
+  // Tries the source's addresses in turn from address_; a refusal moves to the next.
+  void start_connecting() {
+    for (; address_ < addresses_.size(); ++address_) {
+      source_fd_ = start_connect(addresses_[address_]);
+      if (source_fd_ >= 0) {
+        state_ = State::kConnecting;
+        return;
+      }
+      last_error_ = errno;
+    }
+    connection_failed();
+  }
+
+  void connection_failed() {
+    address_ = 0;
+    if (!config_.reconnect && !connected_once_)
+      throw InputError("cannot connect to " + config_.source.text() + ": " + std::strerror(last_error_));
+    if (!config_.reconnect) {
+      state_ = State::kDone;
+      return;
+    }
+    if (!waiting_noted_) {
+      std::cerr << "mostyle: note: waiting for " << config_.source.text() << " (" << std::strerror(last_error_)
+                << ")\n";
+      waiting_noted_ = true;
+    }
+    state_ = State::kWaiting;
+    retry_at_ = Clock::now() + kRetryEvery;
+  }
+
+  void poll_once() {
+    fds_.clear();
+    fds_.push_back({stop_.fd(), POLLIN, 0});
+    const bool polling_source = state_ == State::kConnecting || state_ == State::kConnected;
+    fds_.push_back({polling_source ? source_fd_ : -1, static_cast<short>(state_ == State::kConnecting ? POLLOUT : POLLIN), 0});
+    const size_t server_at = fds_.size();
+    if (server_) server_->add_poll_fds(&fds_);
+    const Clock::time_point deadline = state_ == State::kWaiting ? retry_at_ : Clock::time_point::max();
+    if (poll_until(&fds_, deadline) < 0 && errno != EINTR) throw std::runtime_error(std::strerror(errno));
+    if (fds_[0].revents) return;  // stopped
+    if (server_) server_->handle_poll(fds_, server_at);
+    if (polling_source && fds_[1].revents) {
+      if (state_ == State::kConnecting) finish_connecting();
+      else read_source();
+    }
+    if (state_ == State::kWaiting && Clock::now() >= retry_at_) start_connecting();
+  }
+
+  void finish_connecting() {
+    const int error = connect_result(source_fd_);
+    if (error != 0) {
+      ::close(source_fd_);
+      source_fd_ = -1;
+      last_error_ = error;
+      ++address_;
+      start_connecting();
+      return;
+    }
+    state_ = State::kConnected;
+    connected_once_ = true;
+    waiting_noted_ = false;
+    splitter_.reset();
+    dropped_lines_ = 0;
+    lines_before_ = lines_in_;
+    std::cerr << "mostyle: note: connected to " << config_.source.text() << "\n";
+  }
+
+  // One read, and every complete line in it styled and sent before the next read.
+  void read_source() {
+    buffer_.resize(kReadBytes);
+    const ssize_t n = ::recv(source_fd_, buffer_.data(), buffer_.size(), 0);
+    if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR)) return;
+    if (n <= 0) {
+      source_closed();
+      return;
+    }
+    std::string_view chunk(buffer_.data(), static_cast<size_t>(n));
+    std::string_view line;
+    while (splitter_.next(&chunk, &line)) handle_line(line);
+    count_dropped_lines();
+  }
+
+  void count_dropped_lines() {
+    while (dropped_lines_ < splitter_.dropped()) {
+      ++dropped_lines_;
+      ++lines_in_;
+      skip("the line is longer than " + std::to_string(max_line_bytes(channels_)) + " bytes",
+           splitter_.dropped_line_number());
+    }
+  }
+
+  void handle_line(std::string_view line) {
+    ++lines_in_;
+    const long long number = splitter_.line_number();
+    if (parse_axis_line(line, channels_, &frame_, &reason_) != AxisLineStatus::kOk) return skip(reason_, number);
+    if (styled_avatar_ < 0) styled_avatar_ = frame_.avatar_index;
+    if (frame_.avatar_index != styled_avatar_)
+      return skip("avatar " + std::to_string(frame_.avatar_index) + " is not the one styled (" +
+                      std::to_string(styled_avatar_) + ")",
+                  number);
+    style_.style_frame(frame_.values.data(), styled_values_.data());
+    for (double v : styled_values_)
+      if (!std::isfinite(v)) return skip("the styled frame holds a value that is not a finite number", number);
+    ++styled_;
+    if (server_) {
+      line_out_.clear();
+      append_axis_line(&line_out_, frame_.avatar_index, frame_.avatar_name, frame_.reference.data(),
+                       static_cast<int>(frame_.reference.size()), styled_values_.data(), channels_);
+      server_->send(line_out_);
+    }
+    // After the send: a recording's writes never delay the frame they hold.
+    record(config_.record, styled_values_.data());
+    record(config_.record_input, frame_.values.data());
+  }
+
+  void record(std::unique_ptr<BvhRecorder>& recorder, const double* values) {
+    if (!recorder) return;
+    try {
+      recorder->append(values);
+    } catch (const InputError& e) {
+      std::cerr << "mostyle: warning: " << e.what() << "; the recording stops at " << recorder->frames()
+                << " frames\n";
+      recorder.reset();
+    }
+  }
+
+  // Counts a frame skipped; warns at most once a second (one sentence: where, what, how many).
+  void skip(const std::string& why, long long line) {
+    ++skipped_;
+    const Clock::time_point now = Clock::now();
+    if (warned_ && now - last_warning_ < kWarnEvery) return;
+    warned_ = true;
+    last_warning_ = now;
+    std::cerr << "mostyle: warning: " << config_.source.text() << " line " << line << ": " << why
+              << "; frame skipped (" << skipped_ << " skipped in all)\n";
+  }
+
+  void source_closed() {
+    if (splitter_.has_partial()) {
+      ++lines_in_;
+      skip("the stream ended inside a line", splitter_.line_number() + 1);
+    }
+    count_dropped_lines();
+    ::close(source_fd_);
+    source_fd_ = -1;
+    if (!config_.reconnect) {
+      state_ = State::kDone;
+      return;
+    }
+    std::cerr << "mostyle: note: " << config_.source.text() << " closed after " << lines_in_ - lines_before_
+              << " lines; waiting for it again\n";
+    waiting_noted_ = true;
+    last_error_ = ECONNRESET;
+    state_ = State::kWaiting;
+    retry_at_ = Clock::now() + kRetryEvery;
+  }
+
+  // The clients get what waits for them (a few seconds at most), then the end of the stream.
+  void finish() {
+    if (source_fd_ >= 0) ::close(source_fd_);
+    source_fd_ = -1;
+    if (server_) {
+      const Clock::time_point until = Clock::now() + kDrainFor;
+      while (!server_->flushed() && Clock::now() < until) {
+        fds_.clear();
+        fds_.push_back({stop_.fd(), POLLIN, 0});
+        server_->add_poll_fds(&fds_);
+        poll_until(&fds_, until);
+        server_->handle_poll(fds_, 1);
+      }
+      server_->close();
+    }
+    config_.record.reset();
+    config_.record_input.reset();
+    std::cout << "live: " << lines_in_ << " frames in, " << styled_ << " styled, " << skipped_ << " skipped; "
+              << (server_ ? server_->accepted() : 0) << " clients, " << (server_ ? server_->dropped() : 0)
+              << " dropped" << std::endl;
+  }
+
+  LiveConfig& config_;
+  LiveStyle& style_;
+  const int channels_;
+  StopPipe stop_;
+  std::optional<FrameServer> server_;
+  std::vector<SocketAddress> addresses_;
+  size_t address_ = 0;
+  int last_error_ = 0;
+  State state_ = State::kWaiting;
+  int source_fd_ = -1;
+  bool connected_once_ = false, waiting_noted_ = false;
+  Clock::time_point retry_at_;
+  std::vector<pollfd> fds_;
+  std::vector<char> buffer_;
+  AxisLineSplitter splitter_;
+  AxisFrame frame_;
+  std::string reason_, line_out_;
+  std::vector<double> styled_values_;
+  int styled_avatar_ = -1;
+  long long lines_in_ = 0, lines_before_ = 0, styled_ = 0, skipped_ = 0, dropped_lines_ = 0;
+  bool warned_ = false;
+  Clock::time_point last_warning_;
+};
+
+}  // namespace
+
+int run_live(LiveConfig& config, LiveStyle& style) { return LiveRun(config, style).run(); }
+
+}  // namespace mostyle::live
