@@ -68,8 +68,10 @@ class CliProcess {
       std::smatch m;
       if (std::regex_search(out_, m, pattern)) {
         const int port = std::stoi(m[1]);
-        out_ = m.suffix();
+        // m points into out_: take everything from it before out_ changes.
         seen_ += m.prefix().str() + m.str();
+        std::string rest = m.suffix().str();
+        out_ = std::move(rest);
         return port;
       }
       if (!read_some(TestClock::now() + kLiveTimeout)) return -1;
