@@ -28,7 +28,10 @@ Columns (see MEASURES below for each function):
           fastest joint speed, in body heights per second)
   feet    planted-foot sliding of the output over the inputs' mixed by weight (a blend (1-a)A +
           aB, a transfer its content, a mix its weights); a foot joint (ankle, toe) is planted
-          within 3% of body height of its own floor
+          within 3% of body height of its own floor (the 5th percentile of its heights), the
+          definition mostyle's report and editor use, measured here again from the positions
+  body height: every measure in heights is of the body height mostyle reports for that take
+          as a reference (its major joints stood upright from their bone lengths)
   s0      transfers: the output at strength 0 against the content, largest per-frame joint
           distance, % of height
   dir     transfers: cosine and size ratio of (output - content) against (style - neutral) on
@@ -40,7 +43,7 @@ import argparse, csv, json, math, os, re, subprocess, sys, tempfile, time
 # MEASURES: pure functions of plain lists, tested by --self-test. frames: frames x joints x 3.
 
 PLANTED_FRACTION = 0.03  # a foot joint within this fraction of body height of its own floor is planted
-FLOOR_PERCENTILE = 0.02  # a joint's floor: this low percentile of its heights (a glitch frame is no floor)
+FLOOR_PERCENTILE = 0.05  # a joint's floor: this low percentile of its heights (a glitch frame is no floor)
 FAST_PERCENTILE = 0.999  # the fastest move: this percentile of the per-frame fastest joint speed
 PERIOD_WEIGHT = 0.5      # the stride period's weight among the direction features (log seconds)
 LOOP_COVER = 0.9         # one cycle covering this fraction of a take makes it a loop
@@ -284,7 +287,7 @@ class Failed(Exception):
 class Cli:
     def __init__(self, path, work, timeout):
         self.path, self.work, self.timeout, self.seconds, self.commands = path, work, timeout, 0.0, 0
-        self._info, self._fk, self._majors = {}, {}, {}
+        self._info, self._fk, self._majors, self._body = {}, {}, {}, {}
         self.count = 0
 
     def run(self, *args):
@@ -324,12 +327,19 @@ class Cli:
         """(names, frames, roles) of the take's major joints, as mostyle reads them: the take on
         itself at strength 0, at its own rate, without the foot lock."""
         if take not in self._majors:
-            out = self.file('majors', '.csv')
+            out, rep = self.file('majors', '.csv'), self.file('majors', '.json')
             self.run('transfer', take, '--neutral', take, '--style', take, '--strength', '0', '--no-foot-lock',
-                     '--positions-out', out)
+                     '--positions-out', out, '--report', rep)
             names, frames = read_positions(out)
             self._majors[take] = (names, frames, self.roles(take, names))
+            self._body[take] = json.load(open(rep))['foot_sliding']['body_height']
         return self._majors[take]
+
+    def body_height(self, take):
+        """The body height mostyle takes for this take as a reference (its major joints stood
+        upright), the one every planted band and speed of the table is relative to."""
+        self.majors(take)
+        return self._body[take]
 
     def roles(self, take, names):
         parent_of = {j['name']: j['parent'] for j in self.info(take)['joints']}
@@ -453,20 +463,21 @@ def measure(cli, kind, label, takes, options, weights):
         return row
     try:
         r = json.load(open(rep))
-        fps, height = r['fps'], r.get('skeleton_height') or ref.height
+        fps, height = r['fps'], r['foot_sliding']['body_height']
         names, frames = read_positions(csv_out)
         row['frames'], row['seconds'] = len(frames), len(frames) / fps
         n_ref = int(round(ref.duration * fps)) + 1
         row['cover'] = shown_fraction(r['takes'][0]['source_frames'], n_ref)
         if ref.loop or '--loop' in options: row['seam'] = seam_ratio(frames)
-        inputs = max(fastest_move(cli.fk(t.path), t.fps, t.height, max(1, round(t.fps / fps))) for t in takes)
+        inputs = max(fastest_move(cli.fk(t.path), t.fps, cli.body_height(t.path), max(1, round(t.fps / fps)))
+                     for t in takes)
         row['fast'] = ratio(fastest_move(frames, fps, height), inputs)
         roles = cli.roles(ref.path, names)
         out_slide = planted_sliding(frames, fps, height, foot_joints(roles))
         slides = []
         for t in takes:
             _, tf, troles = cli.majors(t.path)
-            slides.append(planted_sliding(tf, t.fps, t.height, foot_joints(troles)))
+            slides.append(planted_sliding(tf, t.fps, cli.body_height(t.path), foot_joints(troles)))
         mixed = by_weight(slides, [1.0] + [0.0] * (len(takes) - 1) if kind == 'transfer'
                           else [t['weight'] for t in r['takes']])
         row['feet'] = ratio(out_slide, mixed)
@@ -492,12 +503,13 @@ def transfer_measures(cli, row, takes, args, frames, roles, height, bvh):
     # content itself when it is its own neutral.
     period = lambda path: (cli.info(path).get('cycles') or {}).get('period_s') or 0.0
     out_f = features(frames, roles, height, period(bvh))
-    c_f = features(c_frames, c_roles, content.height, content.period)
+    c_f = features(c_frames, c_roles, cli.body_height(content.path), content.period)
     n = takes[1] if len(takes) == 3 else content
     s = takes[-1]
     n_names, n_frames, n_roles = cli.majors(n.path)
     s_names, s_frames, s_roles = cli.majors(s.path)
-    wanted = change(features(s_frames, s_roles, s.height, s.period), features(n_frames, n_roles, n.height, n.period))
+    wanted = change(features(s_frames, s_roles, cli.body_height(s.path), s.period),
+                    features(n_frames, n_roles, cli.body_height(n.path), n.period))
     row['dir_cos'], row['dir_size'] = direction(change(out_f, c_f), wanted)
 
 
