@@ -29,7 +29,9 @@ Columns (see MEASURES below for each function):
   feet    planted-foot sliding of the output over the inputs' mixed by weight (a blend (1-a)A +
           aB, a transfer its content, a mix its weights); a foot joint (ankle, toe) is planted
           within 3% of body height of its own floor (the 5th percentile of its heights), the
-          definition mostyle's report and editor use, measured here again from the positions
+          definition mostyle's report and editor use, measured here again from the positions;
+          speeds compared in leg lengths per second (takes on other skeletons are scaled by
+          their legs when mixed)
   body height: every measure in heights is of the body height mostyle reports for that take
           as a reference (its major joints stood upright from their bone lengths)
   s0      transfers: the output at strength 0 against the content, largest per-frame joint
@@ -207,6 +209,16 @@ def major_roles(parents):
 def foot_joints(roles):
     """The ankles and toes: leg joints two or more below the hip."""
     return [i for i, r in enumerate(roles) if r and r[:5] in ('L_leg', 'R_leg') and int(r[5:]) >= 2]
+
+
+def leg_length(frames, roles):
+    """Thigh plus shin on the first frame, averaged over the legs (None without a leg): the
+    length mostyle scales a take's travel by when it retargets it onto another skeleton."""
+    index = {r: i for i, r in enumerate(roles) if r}
+    legs = [math.dist(frames[0][index[f'{s}_leg0']], frames[0][index[f'{s}_leg1']]) +
+            math.dist(frames[0][index[f'{s}_leg1']], frames[0][index[f'{s}_leg2']])
+            for s in 'LR' if all(f'{s}_leg{d}' in index for d in range(3))]
+    return sum(legs) / len(legs) if legs and frames else None
 
 
 def features(frames, roles, height, period_s):
@@ -473,11 +485,17 @@ def measure(cli, kind, label, takes, options, weights):
                      for t in takes)
         row['fast'] = ratio(fastest_move(frames, fps, height), inputs)
         roles = cli.roles(ref.path, names)
-        out_slide = planted_sliding(frames, fps, height, foot_joints(roles))
+        # Speeds of takes on different skeletons are compared in leg lengths per second, as
+        # mostyle scales a take's travel onto the reference's legs (a walk's speed goes with its
+        # legs); a take's own heights per second would weigh a long-legged body's feet wrong.
+        def slide_in_legs(f, fr, h, rl):
+            v, legs = planted_sliding(f, fr, h, foot_joints(rl)), leg_length(f, rl)
+            return None if v is None or not legs else v * h / legs
+        out_slide = slide_in_legs(frames, fps, height, roles)
         slides = []
         for t in takes:
             _, tf, troles = cli.majors(t.path)
-            slides.append(planted_sliding(tf, t.fps, cli.body_height(t.path), foot_joints(troles)))
+            slides.append(slide_in_legs(tf, t.fps, cli.body_height(t.path), troles))
         mixed = by_weight(slides, [1.0] + [0.0] * (len(takes) - 1) if kind == 'transfer'
                           else [t['weight'] for t in r['takes']])
         row['feet'] = ratio(out_slide, mixed)
@@ -666,6 +684,8 @@ def self_test():
     check('roles', roles == ['hips', 'spine1', 'head0', 'L_leg0', 'L_leg1', 'L_leg2', 'L_leg3', 'R_leg0',
                              'R_leg1', 'R_leg2', 'R_leg3'])
     check('feet', foot_joints(roles) == [5, 6, 9, 10])
+    # Both legs on the first frame: a thigh from (0, 0.5) to (+-0.25, 0.25), a shin 0.2 long.
+    check('leg length', abs(leg_length(walk, roles) - (math.sqrt(0.125) + 0.2)) < 1e-12)
     # A full skeleton: spine, chest carrying head and arms, a hand missing (left out of the majors).
     full = ['hips', 'spine', 'chest', 'head', 'ls', 'le', 'lw', 'rs', 're', 'rw', 'rh', 'lhip', 'lk', 'la', 'rhip', 'rk', 'ra']
     fp = {'hips': None, 'spine': 'hips', 'chest': 'spine', 'neck': 'chest', 'head': 'neck', 'lclav': 'chest',
