@@ -38,6 +38,10 @@ Columns (see MEASURES below for each function):
           distance, % of height
   dir     transfers: cosine and size ratio of (output - content) against (style - neutral) on
           per-joint posture, per-joint amplitude and the stride period
+  way     one style clip (no neutral): how far the output's features went towards the style's,
+          the projection of (output - content) onto (style - content) over its length
+  hips    one style clip: the output's hips' largest horizontal distance from the content's, in
+          body heights
 """
 import argparse, csv, json, math, os, re, subprocess, sys, tempfile, time
 
@@ -263,6 +267,26 @@ def direction(made, wanted):
     return sum(p * q for p, q in zip(x, y)) / (nx * ny), nx / ny
 
 
+def way_to(made, wanted):
+    """How far along the change wanted the change made goes: its projection onto wanted over
+    wanted's length (1: all the way, 0: none, negative: away); None where wanted is empty or 0."""
+    keys = [k for k in made if k in wanted]
+    ny2 = sum(wanted[k] ** 2 for k in keys)
+    return sum(made[k] * wanted[k] for k in keys) / ny2 if ny2 > 0 else None
+
+
+def hips_stray(out, reference, source_frames, height):
+    """Largest horizontal distance of the output's hips (joint 0) from the reference's at the
+    frame each output frame shows, as a fraction of height; None when no frame shows one."""
+    worst = None
+    for f, s in zip(out, source_frames):
+        if s is None: continue
+        r = interpolate(reference, s)[0]
+        d = math.hypot(f[0][0] - r[0], f[0][2] - r[2]) / height
+        worst = d if worst is None else max(worst, d)
+    return worst
+
+
 def cycles_of(info):
     """(count, kind letter, loop) of an `info --json` report: a loop is one cycle covering
     LOOP_COVER of the take (or a take `info` says loops)."""
@@ -442,11 +466,23 @@ def plan(takes, quick, per_class, style_pairs, own_neutral):
         jobs.append(('transfer', f'transfer', [c, n, s], [], None))
         if own_neutral and c is not s:
             jobs.append(('transfer', f'transfer own', [c, s], [], None))
+    # Style from one clip of the content's own dataset (as the neural style-transfer demos pair a
+    # content with a style clip and no neutral): the dataset's longest gait take styles the others.
+    if own_neutral:
+        for g in sets:
+            gaits = [t for t in g if t.kind == 'g' and t.count >= 1]
+            if len(g) < 2 or not gaits: continue
+            style = max(gaits, key=lambda t: t.frames)
+            for c in (g if not quick else g[:2]):
+                if c is not style: jobs.append(('transfer', 'transfer clip', [c, style], [], None))
     mixes = []
     big = max(sets, key=len)
     if len(big) >= 3: mixes.append(('mix same', big[:3]))
-    if len(sets) >= 4: mixes.append(('mix across', [g[0] for g in sets[:4]]))
-    elif len(sets) >= 3: mixes.append(('mix across', [g[0] for g in sets[:3]]))
+    # Across datasets, each of the first datasets' takes the reference (the first take) in turn.
+    across = [g[0] for g in sets[:4]]
+    if len(across) >= 3:
+        for k in range(len(across)):
+            mixes.append(('mix across', across[k:] + across[:k]))
     if len(loops) >= 3: mixes.append(('mix loops', loops[:3]))
     for label, ts in (mixes[:1] if quick else mixes):
         jobs.append(('mix', label, ts, [], [1.0 / len(ts)] * len(ts)))
@@ -500,7 +536,7 @@ def measure(cli, kind, label, takes, options, weights):
                           else [t['weight'] for t in r['takes']])
         row['feet'] = ratio(out_slide, mixed)
         row['feet_out'] = out_slide
-        if kind == 'transfer': transfer_measures(cli, row, takes, args, frames, roles, height, bvh)
+        if kind == 'transfer': transfer_measures(cli, row, takes, args, frames, names, roles, height, bvh, r)
     except Failed as e:
         row['status'] = 'measure: ' + str(e)
     except Exception as e:  # a measure that cannot be taken is said in its row
@@ -508,7 +544,7 @@ def measure(cli, kind, label, takes, options, weights):
     return row
 
 
-def transfer_measures(cli, row, takes, args, frames, roles, height, bvh):
+def transfer_measures(cli, row, takes, args, frames, names, roles, height, bvh, report):
     content = takes[0]
     c_names, c_frames, c_roles = cli.majors(content.path)
     # Strength 0 against the content, at the frames it shows.
@@ -529,6 +565,9 @@ def transfer_measures(cli, row, takes, args, frames, roles, height, bvh):
     wanted = change(features(s_frames, s_roles, cli.body_height(s.path), s.period),
                     features(n_frames, n_roles, cli.body_height(n.path), n.period))
     row['dir_cos'], row['dir_size'] = direction(change(out_f, c_f), wanted)
+    if len(takes) == 2:  # one style clip, the content its own neutral: how far towards S, C's path kept
+        row['way'] = way_to(change(out_f, c_f), wanted)
+        row['hips'] = hips_stray(frames, select(c_frames, c_names, names), report['takes'][0]['source_frames'], height)
 
 
 def fmt(v, spec, none='-'):
@@ -545,6 +584,8 @@ COLUMNS = [('#', lambda i, r: str(i)), ('what', lambda i, r: r['what']),
            ('feet', lambda i, r: fmt(r.get('feet'), '.2f')),
            ('s0 %h', lambda i, r: fmt(None if r.get('s0') is None else 100 * r['s0'], '.2f', '')),
            ('dir cos/size', lambda i, r: '' if r.get('dir_cos') is None else f'{r["dir_cos"]:+.2f}/{r["dir_size"]:.2f}'),
+           ('way', lambda i, r: fmt(r.get('way'), '.0%', '')),
+           ('hips', lambda i, r: fmt(r.get('hips'), '.2f', '')),
            ('status', lambda i, r: r['status'])]
 
 
@@ -684,6 +725,10 @@ def self_test():
     check('roles', roles == ['hips', 'spine1', 'head0', 'L_leg0', 'L_leg1', 'L_leg2', 'L_leg3', 'R_leg0',
                              'R_leg1', 'R_leg2', 'R_leg3'])
     check('feet', foot_joints(roles) == [5, 6, 9, 10])
+    check('way: part of the change', abs(way_to({'a': 0.3, 'b': 0.4}, {'a': 0.5, 'b': 0.5}) - 0.7) < 1e-12)
+    check('way: none asked', way_to({'a': 1.0}, {'a': 0.0}) is None)
+    moved = [[(p[0] + 0.3, p[1] + 1.0, p[2] - 0.4) for p in f] for f in walk]
+    check('hips stray: horizontal only', abs(hips_stray(moved, walk, list(range(len(walk))), 2.0) - 0.25) < 1e-12)
     # Both legs on the first frame: a thigh from (0, 0.5) to (+-0.25, 0.25), a shin 0.2 long.
     check('leg length', abs(leg_length(walk, roles) - (math.sqrt(0.125) + 0.2)) < 1e-12)
     # A full skeleton: spine, chest carrying head and arms, a hand missing (left out of the majors).
@@ -741,6 +786,7 @@ def self_test():
         def __init__(self, name, folder, skeleton, loop, count):
             self.name, self.path, self.folder, self.skeleton, self.loop, self.count = \
                 name, name, folder, skeleton, loop, count
+            self.kind, self.frames = 'g', 10 * count
 
         def cycles_label(self):
             return Take.cycles_label(self)
@@ -751,7 +797,10 @@ def self_test():
     labels = [j[1] for j in jobs]
     check('plan classes', all(any(l.startswith(c) for l in labels)
                               for c in ('blend same', 'blend across', 'blend loop+loop --loop', 'blend loop+long',
-                                        'transfer', 'transfer own', 'mix same', 'mix across', 'mix loops')))
+                                        'transfer', 'transfer own', 'transfer clip', 'mix same', 'mix across',
+                                        'mix loops')))
+    check('plan: the longest gait take of a dataset styles the others',
+          sorted(j[2][0].name for j in jobs if j[1] == 'transfer clip') == ['a1', 'a2', 'l2'])
     check('plan loop+loop has --loop', all('--loop' in j[3] for j in jobs if j[1].startswith('blend loop+loop')))
     check('plan loop+long both ways', {j[2][0].loop for j in jobs if j[1] == 'blend loop+long'} == {True, False})
     check('plan quick is smaller', len(plan(fakes, True, 0, lambda c: (fakes[0], fakes[1]), True)) < len(jobs))
