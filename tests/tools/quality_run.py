@@ -23,7 +23,8 @@ Columns (see MEASURES below for each function):
   cover   fraction of the reference's frames the output shows (its report's source_frames)
   cycles  cycles `info` finds in each input (count and kind: g gait, p periodic, n none,
           u unknown; L a loop), reference first
-  seam    loop references and --loop outputs: the last->first step over the median step inside
+  seam    loop references and --loop outputs: the last->first step over the largest step inside
+          (the fastest move of the loop; at most 1.5 is seamless to the eye)
   fast    the output's fastest move over the fastest input's (99.9th percentile of the per-frame
           fastest joint speed, in body heights per second)
   feet    planted-foot sliding of the output over the inputs' mixed by weight (a blend (1-a)A +
@@ -87,13 +88,13 @@ def pose_step(a, b):
 
 
 def seam_ratio(frames):
-    """A loop's seam: the root-relative step from the last frame to the first over the median step
-    between neighbouring frames inside. About 1 (or 0, a last frame repeating the first) is seamless."""
+    """A loop's seam: the root-relative step from the last frame to the first over the largest
+    step between neighbouring frames inside (the loop's fastest move). At most about 1 (or 0, a
+    last frame repeating the first) is seamless."""
     rel = root_relative(frames)
     if len(rel) < 3: return None
-    steps = sorted(pose_step(a, b) for a, b in zip(rel, rel[1:]))
-    median = steps[len(steps) // 2]
-    return pose_step(rel[-1], rel[0]) / median if median > 0 else None
+    largest = max(pose_step(a, b) for a, b in zip(rel, rel[1:]))
+    return pose_step(rel[-1], rel[0]) / largest if largest > 0 else None
 
 
 def planted_sliding(frames, fps, height, feet):
