@@ -269,6 +269,10 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
     if (i == 0) {
       t.world = std::move(major.world);
       p->lengths = bone_lengths(t.world, p->parents);
+      // The reference in its own mean bone lengths, as every output is (paper 3.7): a rig whose
+      // bones stretch (a glTF thigh scaled over a run) or whose major chains skip a joint is
+      // measured (planted feet, their moves) as its outputs will be, so strength 0 gives it back.
+      apply_limb_lengths(t.world, p->parents, p->lengths);
       p->feet = make_foot_rig(p->majors, p->lengths, fps, options.foot_contacts);
     } else {
       const std::vector<double> own_lengths = bone_lengths(major.world, p->parents);
@@ -280,7 +284,11 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
     t.canonical = to_canonical(t.world, 0, leg[0], leg[3]);
     t.own_local_t = t.canonical.local.transpose();
     contacts_and_cycles(t.world, t.canonical, p->feet, &t.own_contacts, &t.cycles);
-    t.planted = planted_speed(t.world, p->feet);
+    // A loop clip whose last frame shows its first again is measured without it, as its outputs
+    // (cut to the loop, closed at the seam) are.
+    const bool closing_last = t.cycles.loops() && t.cycles.loop_frames == t.world.rows() - 1;
+    t.planted = closing_last ? planted_speed(Eigen::MatrixXd(t.world.topRows(t.cycles.loop_frames)), p->feet)
+                             : planted_speed(t.world, p->feet);
     t.fastest_joint = fastest_joint_speed(t.world, fps);
     if (i == 0 && t.cycles.loops() && t.cycles.loop_frames == t.world.rows()) append_closing_frame(t, *p, leg);
   }

@@ -332,7 +332,10 @@ TEST_CASE("a real take paired with itself exports back to itself, fingers includ
   const ExportResult r = solve_export(*p->takes[0].clip, export_joints(*p), p->takes[0].world, p->fps);
   const Clip a30 = resample_clip(*a, p->fps);
   const double h = guess_units(*a).height;
-  CHECK(r.fit.max <= kExactFit * h);
+  // The reference is prepared in its mean bone lengths, a hair (0.06% of the height here) from
+  // the file's chains of majors, which skip joints: the fit is that hair, and the export, on the
+  // file's own bones, is the file itself.
+  CHECK(r.fit.max <= 1e-3 * h);
   CHECK(max_distance(joint_positions(r.clip), joint_positions(a30)) <= kExactFit * h);
   CHECK(max_euler_step(r.clip) < kMaxEulerStep);
 }

@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "engine/io/bvh_io.h"
+#include "engine/io/motion_file.h"
+#include "engine/kinematics/limb_length.h"
 #include "engine/base/error.h"
 #include "engine/kinematics/units.h"
 #include "engine/prepare/major_skeleton.h"
@@ -444,5 +446,55 @@ TEST_CASE("palette: planted feet of a mix and a transfer move as their takes' do
     const MixResult m = mix(*p, *d, transfer_weights({1.0}), mp);
     CHECK(m.foot_sliding_inputs == p->takes[0].planted.speed);
     check_planted_feet(*p, m, "a transfer of a Bandai walk from normal to old");
+  }
+}
+
+TEST_CASE("palette: strength 0 gives back takes whose bones stretch, and loop clips, feet lock on") {
+  if (test::shared_motion("wild/README.md").empty()) {
+    WARN("skipped: ../shared/motions/wild is absent");
+    return;
+  }
+  const auto clips = bundled();
+  // The robot's thighs are scaled over its run (0.19 to 0.40 long); the Mixamo walk is a loop
+  // whose last frame shows its first again.
+  for (const char* name : {"gltf_godot_robot_walk_run.glb#run", "fbx_mixamo_walking.fbx"}) {
+    INFO(name);
+    const auto content = std::make_shared<const Clip>(read_motion_file(test::shared_motion("wild/") + name));
+    const auto p = prepare_takes({content, clips[0], clips[1]}, {});
+    // The prepared content is in its own mean bone lengths, as every output is.
+    const std::vector<double> lengths = bone_lengths(p->takes[0].world, p->parents);
+    for (size_t j = 0; j < lengths.size(); ++j) CHECK(std::abs(lengths[j] - p->lengths[j]) < 1e-9);
+    const auto d = decompose_takes(*p, params());
+    MixParams mp;
+    mp.min_weight = -kMaxStrength;
+    mp.max_weight = kMaxStrength + 1;
+    mp.feet_of_reference = true;
+    const MixResult m = mix(*p, *d, transfer_weights({0.0}), mp);
+    // Its planted feet measured as its outputs are: the lock has nothing to take out.
+    CHECK(m.motion.foot_sliding_raw == Approx(m.foot_sliding_inputs).epsilon(0.01));
+    RowSampler at;
+    at.set(m.sources.col(0), p->takes[0].world.rows());
+    Eigen::MatrixXd own;
+    at.apply(p->takes[0].world, own);
+    const double height = p->feet.body_height;
+    // A loop clip's own seam (its last pose against its first, as the body holds them) is spread
+    // over the loop to close it (loop.h close_loop): that much, and no more, may move.
+    const PreparedTake& c = p->takes[0];
+    REQUIRE(c.cycles.loops());
+    const Eigen::VectorXd seam = c.own_local_t.col(c.cycles.loop_frames) - c.own_local_t.col(0);
+    double worst_seam = 0.0;
+    for (Eigen::Index j = 0; j < seam.size() / 3; ++j) worst_seam = std::max(worst_seam, seam.segment(3 * j, 3).norm());
+    INFO("the clip's own seam: " << worst_seam / height << " of the body's height");
+    // The frames that show the clip's own (a loop's output goes on past its end, the clip played
+    // again from its start moved on by its travel; a clip without its first pose again at its
+    // end is given that frame, not compared here).
+    const double last = double(c.cycles.loop_frames - 1);
+    double worst = 0.0;
+    for (Eigen::Index t = 0; t < own.rows(); ++t) {
+      if (m.sources(t, 0) > last) continue;
+      for (Eigen::Index j = 0; j < own.cols() / 3; ++j)
+        worst = std::max(worst, (m.motion.world.block(t, 3 * j, 1, 3) - own.block(t, 3 * j, 1, 3)).norm() / height);
+    }
+    CHECK(worst < 0.01 + worst_seam / height);
   }
 }
