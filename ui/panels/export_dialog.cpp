@@ -60,6 +60,14 @@ std::string with_export_format(const std::string& path, ExportFormat format) {
   return p.string();
 }
 
+std::string export_name_for(const std::string& path, const std::string& result) {
+  const std::filesystem::path p(path);
+  if (p.has_parent_path()) return path;
+  const std::string stem = p.stem().string();
+  if (stem != "blend" && stem != "mix" && stem != "transfer") return path;
+  return result + p.extension().string();
+}
+
 double export_rate_fps(ExportRate rate, double source_fps, double custom_fps) {
   switch (rate) {
     case ExportRate::kSource: return source_fps;
@@ -146,6 +154,15 @@ ExportDialog::Pressed ExportDialog::start(bool overwrite) {
 
 void ExportDialog::draw(EditorState& state) {
   poll();
+  // When the result becomes another kind (a pair a palette, a mix a transfer), not while a name
+  // is typed.
+  const PreparedTakes* p = session_.snapshot().prepared.get();
+  const std::string result = p != nullptr ? result_name(p->size(), state.document.controls.palette.transfer) : "";
+  if (p != nullptr && result != named_result_) {
+    named_result_ = result;
+    const std::string named = export_name_for(settings_.path, result);
+    std::snprintf(settings_.path, sizeof settings_.path, "%s", named.c_str());
+  }
   if (!state.view.show_export) return;
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(0.5f * display.x, 0.5f * display.y), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
