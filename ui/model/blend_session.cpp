@@ -1,4 +1,5 @@
 #include "ui/model/blend_session.h"
+#include "ui/model/take_warnings.h"
 
 #include <algorithm>
 #include <chrono>
@@ -252,11 +253,14 @@ void BlendSession::take_up_prepared(EditorState& state) {
   };
   Take a = make("A  " + stem(loaded_path(0)), kColorA, p->takes[0].own_contacts);
   a.path = loaded_path(0);
-  a.warnings = snapshot_->warnings;
-  // What could not be matched well is said where the takes are listed, not only in the DTW view.
-  a.warnings.insert(a.warnings.end(), p->takes[1].alignment.warnings.begin(), p->takes[1].alignment.warnings.end());
   Take b = make("B  " + stem(loaded_path(1)), kColorB, Eigen::MatrixXd());
   b.path = loaded_path(1);
+  // Each take's load warnings under it, and what could not be matched well under the take it
+  // speaks of: where the takes are listed, not only in the DTW view.
+  std::vector<std::vector<std::string>> warnings =
+      warnings_by_take({a.path, b.path}, snapshot_->warnings, {{}, p->takes[1].alignment.warnings}, {"A", "B"});
+  a.warnings = std::move(warnings[0]);
+  b.warnings = std::move(warnings[1]);
   Take blend = make("blend", kColorBlend, Eigen::MatrixXd());
   blend.path = "(blend of A and B)";
   blend.positions = p->takes[0].world;  // until the first blend arrives
