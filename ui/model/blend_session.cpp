@@ -188,6 +188,10 @@ void BlendSession::poll(EditorState& state) {
   if (snap->version == seen_version_) return;
   seen_version_ = snap->version;
   snapshot_ = std::move(snap);
+  // The takes before, with their weights: a take added keeps the others' weights (below).
+  const std::vector<std::string> files_before = state.document.files;
+  std::vector<double> weights_before = state.document.controls.palette.weights;
+  if (files_before.size() == 2) weights_before = {1.0 - state.document.parameters.alpha, state.document.parameters.alpha};
   // The document's takes are those loaded (a load that failed leaves them as they were).
   state.document.files = snapshot_->prepared ? snapshot_->paths : std::vector<std::string>();
   if (pair() != seen_prepared_) {
@@ -199,6 +203,8 @@ void BlendSession::poll(EditorState& state) {
     palette_view_.clear();
     if (seen_palette_ != nullptr) {
       remember_recent(snapshot_->paths);
+      std::vector<double> kept = weights_with_added_takes(files_before, weights_before, snapshot_->paths);
+      if (!kept.empty()) state.document.controls.palette.weights = std::move(kept);
       palette_view_.take_up(*seen_palette_, snapshot_->paths, snapshot_->warnings, state.document.controls.palette,
                             state);
     }

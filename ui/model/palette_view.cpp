@@ -71,6 +71,23 @@ MixParams mix_params_for(const DocumentControls& controls, const Decomposed& dec
   return m;
 }
 
+std::vector<double> weights_with_added_takes(const std::vector<std::string>& before, const std::vector<double>& weights,
+                                             const std::vector<std::string>& after) {
+  if (after.size() <= before.size() || weights.size() != before.size()) return {};
+  std::vector<double> out(after.size(), 0.0);
+  std::vector<bool> used(before.size(), false);  // a file given twice: each its own weight
+  bool kept = false;
+  for (size_t i = 0; i < after.size(); ++i)
+    for (size_t j = 0; j < before.size(); ++j)
+      if (!used[j] && before[j] == after[i]) {
+        used[j] = true;
+        out[i] = weights[j];
+        kept = true;
+        break;
+      }
+  return kept ? out : std::vector<double>();
+}
+
 void PaletteView::clear() {
   has_mix_ = false;
   mixed_decomposition_ = nullptr;
