@@ -99,7 +99,8 @@ class ExportDialog : public Panel {
   std::string confirm_path_;  // absolute
   const void* seen_pair_ = nullptr;
   bool reset_range_ = true;
-  std::string named_result_ = "blend";  // the result the file was last named after   // a new pair: in and out to all of its blend once it has one
+  std::string named_result_ = "blend";
+  bool typing_range_ = false;  // an in or out field is being typed in: they are put in order after  // the result the file was last named after   // a new pair: in and out to all of its blend once it has one
 };
 
 }  // namespace mostyle::ui

@@ -408,3 +408,49 @@ TEST_CASE("export dialog: the file is named after the result, a blend, a mix or 
   frame();
   CHECK(std::string(files.export_dialog().settings().path) == "proud.glb");
 }
+
+TEST_CASE("export dialog: the in and out fields take a frame typed after one click") {
+  LoadedSession s;
+  test::HeadlessImGui imgui;
+  ImGuiIO& io = ImGui::GetIO();
+  constexpr int kEnter = 257;
+  io.KeyMap[ImGuiKey_Enter] = kEnter;
+  ExportDialog dialog(s.session);
+  s.state.view.show_export = true;
+  dialog.settings().range = ExportRange::kInOut;
+  dialog.settings().range_in_frames = true;
+  auto frame = [&]() {
+    imgui.begin_frame();
+    dialog.draw(s.state);
+    imgui.end_frame();
+  };
+  frame();
+  frame();
+  const double out_before = dialog.settings().out_s;
+  REQUIRE(out_before * 30.0 > 40.0);
+  // The mouse over the dialog until ImGui gives the In field the hover.
+  const ImGuiWindow* window = ImGui::FindWindowByName(kExportDialogTitle);
+  REQUIRE(window != nullptr);
+  const ImGuiID in_id = ImHashStr("In##frames", 0, window->ID);
+  bool found = false;
+  const ImRect r = window->Rect();
+  for (float y = r.Min.y + 2.0f; y < r.Max.y && !found; y += 4.0f)
+    for (float x = r.Min.x + 2.0f; x < r.Max.x && !found; x += 8.0f) {
+      io.MousePos = ImVec2(x, y);
+      frame();
+      found = GImGui->HoveredId == in_id;
+    }
+  REQUIRE(found);
+  io.MouseDown[0] = true;  // one plain click
+  frame();
+  io.MouseDown[0] = false;
+  frame();
+  for (char c : std::string("40")) io.AddInputCharacter(static_cast<unsigned>(c));  // over the 0 it selected
+  frame();
+  io.KeysDown[kEnter] = true;
+  frame();
+  io.KeysDown[kEnter] = false;
+  frame();
+  CHECK(dialog.settings().in_s * 30.0 == Approx(40.0));
+  CHECK(dialog.settings().out_s == out_before);
+}
