@@ -174,17 +174,20 @@ void PalettePanel::draw_mix(EditorState& state, const PreparedTakes& p) {
       ImGui::PushID(i);
       swatch(i);
       double w = weights[static_cast<size_t>(i)];
-      ImGui::SetNextItemWidth(std::clamp(ImGui::GetContentRegionAvail().x * 0.35f, 56.0f, 80.0f));
+      // Room for a signed weight ("-0.35") whatever the panel's width; a drag, not a slider, so
+      // that no knob covers the sign and a pixel moves the weight by 0.005.
+      ImGui::SetNextItemWidth(ImGui::CalcTextSize("-0.50").x + 2.0f * ImGui::GetStyle().FramePadding.x +
+                              2.0f * ImGui::GetFontSize());
       {
         const KeyedTint tint(keyed);
-        if (range_slider("##w", w, kMixWeightRange)) {
+        if (range_drag("##w", w, kMixWeightRange)) {
           weights = set_weight_keeping_sum(weights, i, w);
           moved = true;
         }
       }
       if (ImGui::IsItemHovered())
         ImGui::SetTooltip("How much of this take's style; the others follow so that the weights sum to 1 (from -0.5 "
-                          "to 1.5: beyond 0 and 1 exaggerates)%s",
+                          "to 1.5: beyond 0 and 1 exaggerates).\nDrag sideways, or double-click and type%s",
                           keyed_hint(keyed));
       ImGui::SameLine();
       ImGui::TextUnformatted((name_of(p, i) + (i == 0 ? " (ref.)" : "")).c_str());
