@@ -10,6 +10,7 @@
 #include "engine/io/motion_file.h"
 #include "engine/io/numbers.h"
 #include "engine/kinematics/units.h"
+#include "ui/panels/fitted_text.h"
 #include "ui/panels/layout.h"
 
 namespace mostyle::ui {
@@ -123,8 +124,9 @@ void MetricsPanel::draw(EditorState& state) {
     for (const Metrics::Take& t : m.takes) {
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
-      ImGui::TextColored(kDimColor, "%s", t.name.c_str());
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", t.name.c_str());
+      ImGui::PushStyleColor(ImGuiCol_Text, kDimColor);
+      fitted_text(t.name);  // cut with "..." in the narrow column, whole on hover
+      ImGui::PopStyleColor();
       ImGui::TableNextColumn();
       ImGui::TextUnformatted(length(t.fit_error).c_str());
       if (ImGui::IsItemHovered())
