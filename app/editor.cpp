@@ -40,25 +40,6 @@ constexpr float kFrameFill = 0.62f;
 // Viewport multisampling of screenshots, whatever the renderer.
 constexpr int kScreenshotSamples = 4;
 
-// Mean of the visible joints at `frame`: where the body is (joint 0 may be a static ROOT).
-Eigen::Vector3d body_centre(const ui::Take& take, Eigen::Index frame) {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  int count = 0;
-  for (size_t j = 0; j < take.parents.size(); ++j) {
-    if (!take.hidden.empty() && take.hidden[j]) continue;
-    sum += take.positions.row(frame).segment<3>(3 * static_cast<Eigen::Index>(j)).transpose();
-    ++count;
-  }
-  return count > 0 ? Eigen::Vector3d(sum / count) : sum;
-}
-
-// Horizontal direction of travel over the take (x, z); zero when it walks in place.
-Eigen::Vector2d travel_direction(const ui::Take& take) {
-  Eigen::Vector3d d = body_centre(take, take.positions.rows() - 1) - body_centre(take, 0);
-  Eigen::Vector2d horizontal(d.x(), d.z());
-  return horizontal.norm() > 0.25 * take.size ? Eigen::Vector2d(horizontal.normalized()) : Eigen::Vector2d::Zero();
-}
-
 }  // namespace
 
 namespace {
@@ -221,13 +202,11 @@ void Editor::frame_camera(float aspect) {
   render::Bounds b;
   for (const render::SkeletonPose& pose : scene_.skeletons) b.extend(render::pose_bounds(pose));
   if (b.empty()) return;
-  // A three-quarter view from the front of the first take's direction of travel.
-  const ui::Take* reference = state_.reference_take();
-  float heading = 0.0f;
-  if (reference != nullptr) {
-    const Eigen::Vector2d travel = travel_direction(*reference);
-    if (!travel.isZero()) heading = static_cast<float>(std::atan2(travel.x(), travel.y()));
-  }
+  // A three-quarter view across the lanes the takes stand in side by side, from the front of
+  // the reference's overall travel (the lanes are across it, ui/model/lanes.h): whichever way the
+  // takes face or wander, they stand apart in the view, not one behind the other.
+  const Eigen::Vector3d side = session_->side();
+  const float heading = static_cast<float>(std::atan2(-side.z(), side.x()));  // the travel (x, z) = (-side.z, side.x)
   camera_.yaw = heading + 0.65f;
   camera_.pitch = 0.22f;
   camera_.frame(b, aspect, kFrameFill * free_fraction_);

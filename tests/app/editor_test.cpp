@@ -708,3 +708,44 @@ TEST_CASE("a state set up by flags, saved with --save-session, reopens to the sa
   }
   fs::remove_all(dir);
 }
+
+namespace {
+// How much the camera looks along the line from take A to take B (x, z): |cos| of the angle
+// between its view and that line, 0 looking straight across, 1 looking along it.
+double looking_along_lanes(mostyle::test::OffscreenEditor& e) {
+  const mostyle::ui::EditorState& s = e.editor.state();
+  REQUIRE(s.takes.size() == 3);
+  auto hips = [&](const mostyle::ui::Take& t) {
+    const Eigen::Index f = mostyle::ui::frame_at(t, s.playback.time_s);
+    return Eigen::Vector2d(t.positions(f, 0), t.positions(f, 2));
+  };
+  const Eigen::Vector2d across = hips(s.takes[mostyle::ui::kTakeB]) - hips(s.takes[mostyle::ui::kTakeA]);
+  const glm::vec3 f = e.editor.camera().forward();
+  const Eigen::Vector2d view(f.x, f.z);
+  REQUIRE(across.norm() > 0.0);
+  REQUIRE(view.norm() > 0.0);
+  return std::abs(across.normalized().dot(view.normalized()));
+}
+}  // namespace
+
+TEST_CASE("the first view looks across the lanes, the takes apart: the bundled pair and an FBX pair") {
+  std::vector<std::vector<std::string>> pairs = {{}};
+  const std::string happy = mostyle::test::shared_motion("formats/cmu142_walk_happy_30fps.fbx");
+  const std::string joy = mostyle::test::shared_motion("formats/cmu142_walk_joy.fbx");
+  if (!happy.empty() && fs::exists(happy) && fs::exists(joy)) pairs.push_back({happy, joy});
+  else WARN("skipped the FBX pair: ../shared/motions/formats is absent");
+  for (const std::vector<std::string>& files : pairs) {
+    CAPTURE(files);
+    EditorOptions options = mostyle::test::paused_small_pair();
+    options.files = files;
+    mostyle::test::OffscreenEditor e({1280, 720}, options);
+    REQUIRE(e.gl.ok());
+    e.editor.wait_for_engine();
+    REQUIRE(e.editor.session().error().empty());
+    e.editor.init_graphics();
+    for (int i = 0; i < 3; ++i) e.frame();
+    // A three-quarter view: within 45 degrees of looking straight across.
+    CHECK(looking_along_lanes(e) < std::cos(0.25 * M_PI));
+    e.editor.shutdown_graphics();
+  }
+}

@@ -53,6 +53,7 @@ class PaletteView {
   void clear();
 
   const MixResult* mix() const { return has_mix_ ? &mix_ : nullptr; }
+  const Eigen::Vector3d& side() const { return side_; }  // the lanes' direction across (ui/model/lanes.h)
   const std::string& error() const { return error_; }
   double mix_ms() const { return mix_ms_; }
   const StageTimes& mix_times() const { return mix_times_; }  // its stages (synthesize, postprocess)
