@@ -322,20 +322,13 @@ void Editor::frame(const FrameInput& input) {
   // Camera: framed once on the first poses, then the mouse and the follow mode move it.
   if (!camera_framed_ || state_.view.request_reframe) {
     frame_camera(aspect);
+    followed_centre_.reset();  // framed on the skeletons where they are now
     camera_framed_ = !scene_.skeletons.empty();
     state_.view.request_reframe = scene_.skeletons.empty() && state_.view.request_reframe;
   }
   restore_camera(aspect);
   ui::apply_camera_input(camera_);
-  // Follow the skeletons while they move (playing, or the playhead stepped or dragged); at rest
-  // the view stays where it was put, so a restored session's camera is the one drawn.
-  const bool moved = state_.playback.playing || state_.playback.time_s != followed_time_s_;
-  followed_time_s_ = state_.playback.time_s;
-  if (state_.view.follow && moved && !scene_.skeletons.empty()) {
-    glm::vec3 centre(0.0f);
-    for (const render::SkeletonPose& pose : scene_.skeletons) centre += render::pose_bounds(pose).center();
-    camera_.follow(centre / static_cast<float>(scene_.skeletons.size()), input.delta_s);
-  }
+  follow_skeletons(input.delta_s);
 
   if (state_.view.labels) ui::draw_skeleton_labels(scene_.skeletons, camera_);
   if (!deterministic_) {  // timings differ run to run: not in screenshots
@@ -373,6 +366,30 @@ void Editor::frame(const FrameInput& input) {
   session_->frame_ms = deterministic_ ? -1.0f
                                       : std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - cpu_start).count();
   session_->viewport_ms = deterministic_ ? -1.0f : viewport_timer_->milliseconds();
+}
+
+void Editor::follow_skeletons(float delta_s) {
+  // Follow the skeletons while they move: playing, or the playhead stepped or dragged, glides
+  // towards them; paused, a change that moves them where they stand (a weight, an undo, another
+  // content) moves the view with them at once, keeping where the animator put it relative to
+  // them. Otherwise the view stays where it was put, so a restored session's camera is the one
+  // drawn.
+  const bool played = state_.playback.playing || state_.playback.time_s != followed_time_s_;
+  followed_time_s_ = state_.playback.time_s;
+  if (scene_.skeletons.empty()) {
+    followed_centre_.reset();
+    return;
+  }
+  glm::vec3 centre(0.0f);
+  for (const render::SkeletonPose& pose : scene_.skeletons) centre += render::pose_bounds(pose).center();
+  centre /= static_cast<float>(scene_.skeletons.size());
+  if (state_.view.follow && played) {
+    camera_.follow(centre, delta_s);
+  } else if (state_.view.follow && followed_centre_) {
+    const glm::vec3 moved = centre - *followed_centre_;
+    camera_.target += glm::vec3(moved.x, 0.0f, moved.z);  // as follow(): not the height
+  }
+  followed_centre_ = centre;
 }
 
 void Editor::save_session_when_ready() {
@@ -483,6 +500,7 @@ void Editor::restore_camera(float aspect) {
     if (!scene_.skeletons.empty()) frame_camera(aspect);  // the zoom limits and clip planes for what is shown
     set_camera(camera_, *restore_->camera);
     followed_time_s_ = state_.playback.time_s;  // drawn as it was saved, not followed on from it
+    followed_centre_.reset();
     camera_framed_ = true;
     state_.view.request_reframe = false;
   }

@@ -138,6 +138,7 @@ class Editor {
  private:
   void build_scene();
   void frame_camera(float aspect);
+  void follow_skeletons(float delta_s);  // the camera after the skeletons (view.follow)
   // F, F1 / ?, Esc, Ctrl+0, Ctrl+E, Ctrl+Z / Ctrl+Shift+Z / Ctrl+Y, Ctrl+S / Ctrl+Shift+S, Ctrl+O
   // (space and the arrows: the playback panel)
   void handle_keys();
@@ -168,6 +169,7 @@ class Editor {
   bool graphics_ready_ = false;
   bool camera_framed_ = false;
   double followed_time_s_ = -1.0;  // the playhead when the camera last followed the skeletons
+  std::optional<glm::vec3> followed_centre_;  // where the skeletons were then; none: after a reframe
   float free_fraction_ = 1.0f;  // of the window's size that no panel covers (framing)
   bool deterministic_ = false;
   bool software_renderer_ = false;  // llvmpipe & co: no multisampling unless asked

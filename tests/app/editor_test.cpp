@@ -749,3 +749,39 @@ TEST_CASE("the first view looks across the lanes, the takes apart: the bundled p
     e.editor.shutdown_graphics();
   }
 }
+
+TEST_CASE("paused, a change that moves the result moves the view with it; at rest the view stays") {
+  mostyle::test::OffscreenEditor e({1280, 720});
+  REQUIRE(e.gl.ok());
+  Editor& editor = e.editor;
+  editor.wait_for_engine();
+  editor.init_graphics();
+  mostyle::ui::EditorState& s = editor.state();
+  const mostyle::ui::Take& blend = s.takes[mostyle::ui::kTakeBlend];
+  s.document.parameters.alpha = 0.0;
+  for (int i = 0; i < 3; ++i) e.frame();
+  s.playback.time_s = (blend.frames() - 0.5) / blend.rate();  // the last frame: far from the start
+  for (int i = 0; i < 3; ++i) e.frame();
+  REQUIRE_FALSE(s.playback.playing);
+  // The takes' mean hips (x, z) against the camera's target.
+  auto hips = [&] {
+    Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+    for (const mostyle::ui::Take& t : s.takes) {
+      const Eigen::Index f = mostyle::ui::frame_at(t, s.playback.time_s);
+      sum += Eigen::Vector2d(t.positions(f, 0), t.positions(f, 2));
+    }
+    return Eigen::Vector2d(sum / static_cast<double>(s.takes.size()));
+  };
+  auto target = [&] { return Eigen::Vector2d(editor.camera().target.x, editor.camera().target.z); };
+  const Eigen::Vector2d before = hips(), offset = target() - before;
+  for (int i = 0; i < 3; ++i) e.frame();  // at rest: nothing moves
+  CHECK((target() - before - offset).norm() < 1e-6 * blend.size);
+  // All of B: the result ends elsewhere, and the view goes with it.
+  s.document.parameters.alpha = 1.0;
+  for (int i = 0; i < 3; ++i) e.frame();
+  const Eigen::Vector2d after = hips();
+  CAPTURE(blend.size, (after - before).norm());
+  REQUIRE((after - before).norm() > 0.2 * blend.size);
+  CHECK((target() - after - offset).norm() < 0.05 * blend.size);
+  editor.shutdown_graphics();
+}
