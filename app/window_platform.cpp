@@ -87,9 +87,10 @@ void on_char(GLFWwindow*, unsigned int codepoint) {
   ++g_events;
   g_keys.push({KeyEvent::Kind::kChar, 0, 0, 0, 0, codepoint});
 }
-// Before each frame: the events it takes, through ImGui's GLFW back-end.
+// Before each frame: the events it takes, through ImGui's GLFW back-end; all that was typed at
+// once while a text field has the keyboard.
 void deliver_keys(GLFWwindow* window) {
-  for (const KeyEvent& e : g_keys.take_frame()) {
+  for (const KeyEvent& e : g_keys.take_frame(ImGui::GetIO().WantTextInput)) {
     if (e.kind == KeyEvent::Kind::kKey) ImGui_ImplGlfw_KeyCallback(window, e.key, e.scancode, e.action, e.mods);
     else ImGui_ImplGlfw_CharCallback(window, e.codepoint);
   }
