@@ -300,6 +300,7 @@ void Editor::frame(const FrameInput& input) {
   state_.view.reset_layout = false;  // laid out; a Reset layout from the keys window: next frame
   draw_keys_window();
   draw_session_windows();
+  draw_close_question();
   // After the panels: what they changed is an undo step once nothing is held (a drag is one).
   edits_.record(state_, *session_, ImGui::IsAnyItemActive());
   session_->sync(state_, ImGui::IsAnyItemActive());
@@ -431,6 +432,7 @@ bool Editor::save_session(const std::string& path) {
     return false;
   }
   session_path_ = target;
+  edits_.mark_saved(ui::capture_document(state_));
   ui::remember(recent_.sessions, target, ui::kRecentSessions);
   save_recent_files();
   session_message_.set("Saved the session to " + target, false);
@@ -452,6 +454,7 @@ bool Editor::open_session(const std::string& path) {
   }
   const std::string missing = ui::apply_session_document(file.document, where, state_, *session_);
   edits_.mark_edited();  // opening is one undo step
+  edits_.mark_opened();  // and what is saved, once its takes are in
   restore_ = ViewRestore{file.camera, file.playback, false};
   session_path_ = where;
   ui::remember(recent_.sessions, where, ui::kRecentSessions);
@@ -484,6 +487,7 @@ void Editor::draw_session_windows() {
   const ui::SessionDialog::Request asked = dialog_.draw(recent_.sessions);
   if (asked.kind != ui::SessionDialog::Kind::kNone) {
     const bool done = asked.kind == ui::SessionDialog::Kind::kSave ? save_session(asked.path) : open_session(asked.path);
+    if (asked.kind == ui::SessionDialog::Kind::kSave) close_.saved(done);  // a Save asked by closing
     if (done) {
       dialog_.done();
     } else {  // said in the dialog, where the path can be corrected
@@ -491,7 +495,41 @@ void Editor::draw_session_windows() {
       session_message_.clear();
     }
   }
-  if (!dialog_.is_open()) session_message_.draw(/*hide_successes=*/deterministic_);
+  if (!dialog_.is_open()) {
+    close_.saved(false);  // the dialog closed without a save: the editor stays open
+    session_message_.draw(/*hide_successes=*/deterministic_);
+  }
+}
+
+void Editor::answer_close(ui::CloseRequest::Answer answer) {
+  close_.answer(answer);
+  if (answer != ui::CloseRequest::Answer::kSave) return;
+  if (!session_path_.empty()) close_.saved(save_session(session_path_));
+  else command_save(/*ask=*/true);  // where: the session dialog; closes once it has saved
+}
+
+void Editor::draw_close_question() {
+  constexpr const char* kTitle = "Unsaved edits";
+  if (close_.asking() && !ImGui::IsPopupOpen(kTitle)) ImGui::OpenPopup(kTitle);
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(0.5f * display.x, 0.5f * display.y), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  if (!ImGui::BeginPopupModal(kTitle, nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings))
+    return;
+  ImGui::TextUnformatted(session_path_.empty() ? "The edits are not saved in a session. Save them before closing?"
+                                               : "The edits since the session was saved are not in it. Save them?");
+  if (!session_path_.empty()) ImGui::TextColored(ImVec4(0.6f, 0.62f, 0.66f, 1.0f), "%s", session_path_.c_str());
+  ImGui::Spacing();
+  if (ImGui::Button("Save")) answer_close(ui::CloseRequest::Answer::kSave);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Save the session (Ctrl+S), then close");
+  ImGui::SameLine();
+  if (ImGui::Button("Discard")) answer_close(ui::CloseRequest::Answer::kDiscard);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Close without saving: the edits are lost");
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false))
+    answer_close(ui::CloseRequest::Answer::kCancel);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Keep editing (Esc)");
+  if (!close_.asking()) ImGui::CloseCurrentPopup();
+  ImGui::EndPopup();
 }
 
 void Editor::restore_camera(float aspect) {

@@ -103,6 +103,14 @@ void on_drop(GLFWwindow* window, int count, const char** paths) {
   editor->drop_files(std::vector<std::string>(paths, paths + count));
 }
 
+// The window's close button: the editor asks first when there are unsaved edits (Save, Discard,
+// Cancel); the loop ends once it may close.
+void on_close(GLFWwindow* window) {
+  ++g_events;
+  glfwSetWindowShouldClose(window, GLFW_FALSE);
+  if (auto* editor = static_cast<Editor*>(glfwGetWindowUserPointer(window))) editor->request_close();
+}
+
 void neutralise_input() {
   ImGuiIO& io = ImGui::GetIO();
   io.DeltaTime = kScreenshotDeltaS;
@@ -154,13 +162,14 @@ int run_window(const EditorOptions& options) {
     // called from any thread), so its result shows at once, not at the next input.
     editor.set_wake([] { glfwPostEmptyEvent(); });
     glfwSetDropCallback(window, on_drop);
+    if (!screenshot) glfwSetWindowCloseCallback(window, on_close);
     try {
       // A screenshot of takes that did not load would show nothing: their one sentence, exit 1.
       if (screenshot && !editor.session().error().empty()) throw std::runtime_error(editor.session().error());
       editor.init_graphics();
       double last = glfwGetTime();
       int settle = 0;  // frames still drawn after the last event (ImGui needs a few to settle)
-      for (int frame = 0; !glfwWindowShouldClose(window); ++frame) {
+      for (int frame = 0; !glfwWindowShouldClose(window) && !editor.may_close(); ++frame) {
         // At rest (paused, engine idle) wait for input instead of drawing 60 frames a second;
         // the timeout keeps a finished background job from waiting long to be shown.
         if (!screenshot && !editor.animating() && settle <= 0 && g_keys.empty()) {
@@ -200,6 +209,7 @@ int run_window(const EditorOptions& options) {
     }
     editor.shutdown_graphics();
     glfwSetDropCallback(window, nullptr);
+    glfwSetWindowCloseCallback(window, nullptr);
     glfwSetWindowUserPointer(window, nullptr);
     ImGui_ImplGlfw_Shutdown();
   }

@@ -785,3 +785,75 @@ TEST_CASE("paused, a change that moves the result moves the view with it; at res
   CHECK((target() - after - offset).norm() < 0.05 * blend.size);
   editor.shutdown_graphics();
 }
+
+namespace {
+// An editor on the bundled pair, drawn a few frames; alpha set to `alpha` as a panel's command
+// sets it (one undo step) unless negative.
+void edit_alpha(mostyle::test::OffscreenEditor& e, double alpha) {
+  e.editor.wait_for_engine();
+  e.editor.init_graphics();
+  for (int i = 0; i < 3; ++i) e.frame();
+  if (alpha < 0.0) return;
+  e.editor.state().document.parameters.alpha = alpha;
+  e.editor.state().command_edits++;
+  for (int i = 0; i < 3; ++i) e.frame();
+}
+}  // namespace
+
+TEST_CASE("closing with unsaved edits asks Save / Discard / Cancel; Save writes the session, then closes") {
+  ScratchDir scratch("mostyle_editor_close");
+  {  // Nothing edited: closes at once, nothing asked.
+    mostyle::test::OffscreenEditor e({640, 360});
+    REQUIRE(e.gl.ok());
+    edit_alpha(e, -1.0);
+    e.editor.request_close();
+    CHECK(e.editor.may_close());
+    e.editor.shutdown_graphics();
+  }
+  {  // Edited: asked, in a modal; Cancel keeps editing; Save writes the session's file, then closes.
+    mostyle::test::OffscreenEditor e({1280, 720});
+    Editor& ed = e.editor;
+    edit_alpha(e, 0.9);
+    ed.request_close();
+    CHECK_FALSE(ed.may_close());
+    CHECK(ed.asking_to_close());
+    for (int i = 0; i < 3; ++i) e.frame();
+    const ImGuiWindow* modal = ImGui::FindWindowByName("Unsaved edits");
+    REQUIRE(modal != nullptr);
+    CHECK(modal->Active);
+    ed.answer_close(mostyle::ui::CloseRequest::Answer::kCancel);
+    for (int i = 0; i < 3; ++i) e.frame();
+    CHECK_FALSE(ed.may_close());
+    CHECK_FALSE(ImGui::FindWindowByName("Unsaved edits")->Active);
+    const std::string path = scratch.path("kept.mostyle");
+    REQUIRE(ed.save_session(path));
+    ed.request_close();  // saved: nothing unsaved
+    CHECK(ed.may_close());
+    ed.shutdown_graphics();
+  }
+  {  // Edited after a save: Save writes it to the session's file and closes.
+    mostyle::test::OffscreenEditor e({640, 360});
+    Editor& ed = e.editor;
+    edit_alpha(e, -1.0);
+    const std::string path = scratch.path("again.mostyle");
+    REQUIRE(ed.save_session(path));
+    ed.state().document.parameters.alpha = 0.1;
+    ed.state().command_edits++;
+    for (int i = 0; i < 3; ++i) e.frame();
+    ed.request_close();
+    REQUIRE(ed.asking_to_close());
+    ed.answer_close(mostyle::ui::CloseRequest::Answer::kSave);
+    CHECK(ed.may_close());
+    CHECK(mostyle::ui::read_session_file(path).document.parameters.alpha == 0.1);
+    ed.shutdown_graphics();
+  }
+  {  // Discard closes without writing.
+    mostyle::test::OffscreenEditor e({640, 360});
+    edit_alpha(e, 0.3);
+    e.editor.request_close();
+    REQUIRE(e.editor.asking_to_close());
+    e.editor.answer_close(mostyle::ui::CloseRequest::Answer::kDiscard);
+    CHECK(e.editor.may_close());
+    e.editor.shutdown_graphics();
+  }
+}
