@@ -40,25 +40,6 @@ constexpr float kFrameFill = 0.62f;
 // Viewport multisampling of screenshots, whatever the renderer.
 constexpr int kScreenshotSamples = 4;
 
-// Mean of the visible joints at `frame`: where the body is (joint 0 may be a static ROOT).
-Eigen::Vector3d body_centre(const ui::Take& take, Eigen::Index frame) {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  int count = 0;
-  for (size_t j = 0; j < take.parents.size(); ++j) {
-    if (!take.hidden.empty() && take.hidden[j]) continue;
-    sum += take.positions.row(frame).segment<3>(3 * static_cast<Eigen::Index>(j)).transpose();
-    ++count;
-  }
-  return count > 0 ? Eigen::Vector3d(sum / count) : sum;
-}
-
-// Horizontal direction of travel over the take (x, z); zero when it walks in place.
-Eigen::Vector2d travel_direction(const ui::Take& take) {
-  Eigen::Vector3d d = body_centre(take, take.positions.rows() - 1) - body_centre(take, 0);
-  Eigen::Vector2d horizontal(d.x(), d.z());
-  return horizontal.norm() > 0.25 * take.size ? Eigen::Vector2d(horizontal.normalized()) : Eigen::Vector2d::Zero();
-}
-
 }  // namespace
 
 namespace {
@@ -221,13 +202,11 @@ void Editor::frame_camera(float aspect) {
   render::Bounds b;
   for (const render::SkeletonPose& pose : scene_.skeletons) b.extend(render::pose_bounds(pose));
   if (b.empty()) return;
-  // A three-quarter view from the front of the first take's direction of travel.
-  const ui::Take* reference = state_.reference_take();
-  float heading = 0.0f;
-  if (reference != nullptr) {
-    const Eigen::Vector2d travel = travel_direction(*reference);
-    if (!travel.isZero()) heading = static_cast<float>(std::atan2(travel.x(), travel.y()));
-  }
+  // A three-quarter view across the lanes the takes stand in side by side, from the front of
+  // the reference's overall travel (the lanes are across it, ui/model/lanes.h): whichever way the
+  // takes face or wander, they stand apart in the view, not one behind the other.
+  const Eigen::Vector3d side = session_->side();
+  const float heading = static_cast<float>(std::atan2(-side.z(), side.x()));  // the travel (x, z) = (-side.z, side.x)
   camera_.yaw = heading + 0.65f;
   camera_.pitch = 0.22f;
   camera_.frame(b, aspect, kFrameFill * free_fraction_);
@@ -321,6 +300,7 @@ void Editor::frame(const FrameInput& input) {
   state_.view.reset_layout = false;  // laid out; a Reset layout from the keys window: next frame
   draw_keys_window();
   draw_session_windows();
+  draw_close_question();
   // After the panels: what they changed is an undo step once nothing is held (a drag is one).
   edits_.record(state_, *session_, ImGui::IsAnyItemActive());
   session_->sync(state_, ImGui::IsAnyItemActive());
@@ -343,20 +323,13 @@ void Editor::frame(const FrameInput& input) {
   // Camera: framed once on the first poses, then the mouse and the follow mode move it.
   if (!camera_framed_ || state_.view.request_reframe) {
     frame_camera(aspect);
+    followed_centre_.reset();  // framed on the skeletons where they are now
     camera_framed_ = !scene_.skeletons.empty();
     state_.view.request_reframe = scene_.skeletons.empty() && state_.view.request_reframe;
   }
   restore_camera(aspect);
   ui::apply_camera_input(camera_);
-  // Follow the skeletons while they move (playing, or the playhead stepped or dragged); at rest
-  // the view stays where it was put, so a restored session's camera is the one drawn.
-  const bool moved = state_.playback.playing || state_.playback.time_s != followed_time_s_;
-  followed_time_s_ = state_.playback.time_s;
-  if (state_.view.follow && moved && !scene_.skeletons.empty()) {
-    glm::vec3 centre(0.0f);
-    for (const render::SkeletonPose& pose : scene_.skeletons) centre += render::pose_bounds(pose).center();
-    camera_.follow(centre / static_cast<float>(scene_.skeletons.size()), input.delta_s);
-  }
+  follow_skeletons(input.delta_s);
 
   if (state_.view.labels) ui::draw_skeleton_labels(scene_.skeletons, camera_);
   if (!deterministic_) {  // timings differ run to run: not in screenshots
@@ -394,6 +367,30 @@ void Editor::frame(const FrameInput& input) {
   session_->frame_ms = deterministic_ ? -1.0f
                                       : std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - cpu_start).count();
   session_->viewport_ms = deterministic_ ? -1.0f : viewport_timer_->milliseconds();
+}
+
+void Editor::follow_skeletons(float delta_s) {
+  // Follow the skeletons while they move: playing, or the playhead stepped or dragged, glides
+  // towards them; paused, a change that moves them where they stand (a weight, an undo, another
+  // content) moves the view with them at once, keeping where the animator put it relative to
+  // them. Otherwise the view stays where it was put, so a restored session's camera is the one
+  // drawn.
+  const bool played = state_.playback.playing || state_.playback.time_s != followed_time_s_;
+  followed_time_s_ = state_.playback.time_s;
+  if (scene_.skeletons.empty()) {
+    followed_centre_.reset();
+    return;
+  }
+  glm::vec3 centre(0.0f);
+  for (const render::SkeletonPose& pose : scene_.skeletons) centre += render::pose_bounds(pose).center();
+  centre /= static_cast<float>(scene_.skeletons.size());
+  if (state_.view.follow && played) {
+    camera_.follow(centre, delta_s);
+  } else if (state_.view.follow && followed_centre_) {
+    const glm::vec3 moved = centre - *followed_centre_;
+    camera_.target += glm::vec3(moved.x, 0.0f, moved.z);  // as follow(): not the height
+  }
+  followed_centre_ = centre;
 }
 
 void Editor::save_session_when_ready() {
@@ -435,6 +432,7 @@ bool Editor::save_session(const std::string& path) {
     return false;
   }
   session_path_ = target;
+  edits_.mark_saved(ui::capture_document(state_));
   ui::remember(recent_.sessions, target, ui::kRecentSessions);
   save_recent_files();
   session_message_.set("Saved the session to " + target, false);
@@ -456,6 +454,7 @@ bool Editor::open_session(const std::string& path) {
   }
   const std::string missing = ui::apply_session_document(file.document, where, state_, *session_);
   edits_.mark_edited();  // opening is one undo step
+  edits_.mark_opened();  // and what is saved, once its takes are in
   restore_ = ViewRestore{file.camera, file.playback, false};
   session_path_ = where;
   ui::remember(recent_.sessions, where, ui::kRecentSessions);
@@ -488,6 +487,7 @@ void Editor::draw_session_windows() {
   const ui::SessionDialog::Request asked = dialog_.draw(recent_.sessions);
   if (asked.kind != ui::SessionDialog::Kind::kNone) {
     const bool done = asked.kind == ui::SessionDialog::Kind::kSave ? save_session(asked.path) : open_session(asked.path);
+    if (asked.kind == ui::SessionDialog::Kind::kSave) close_.saved(done);  // a Save asked by closing
     if (done) {
       dialog_.done();
     } else {  // said in the dialog, where the path can be corrected
@@ -495,7 +495,41 @@ void Editor::draw_session_windows() {
       session_message_.clear();
     }
   }
-  if (!dialog_.is_open()) session_message_.draw(/*hide_successes=*/deterministic_);
+  if (!dialog_.is_open()) {
+    close_.saved(false);  // the dialog closed without a save: the editor stays open
+    session_message_.draw(/*hide_successes=*/deterministic_);
+  }
+}
+
+void Editor::answer_close(ui::CloseRequest::Answer answer) {
+  close_.answer(answer);
+  if (answer != ui::CloseRequest::Answer::kSave) return;
+  if (!session_path_.empty()) close_.saved(save_session(session_path_));
+  else command_save(/*ask=*/true);  // where: the session dialog; closes once it has saved
+}
+
+void Editor::draw_close_question() {
+  constexpr const char* kTitle = "Unsaved edits";
+  if (close_.asking() && !ImGui::IsPopupOpen(kTitle)) ImGui::OpenPopup(kTitle);
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(0.5f * display.x, 0.5f * display.y), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  if (!ImGui::BeginPopupModal(kTitle, nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings))
+    return;
+  ImGui::TextUnformatted(session_path_.empty() ? "The edits are not saved in a session. Save them before closing?"
+                                               : "The edits since the session was saved are not in it. Save them?");
+  if (!session_path_.empty()) ImGui::TextColored(ImVec4(0.6f, 0.62f, 0.66f, 1.0f), "%s", session_path_.c_str());
+  ImGui::Spacing();
+  if (ImGui::Button("Save")) answer_close(ui::CloseRequest::Answer::kSave);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Save the session (Ctrl+S), then close");
+  ImGui::SameLine();
+  if (ImGui::Button("Discard")) answer_close(ui::CloseRequest::Answer::kDiscard);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Close without saving: the edits are lost");
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false))
+    answer_close(ui::CloseRequest::Answer::kCancel);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Keep editing (Esc)");
+  if (!close_.asking()) ImGui::CloseCurrentPopup();
+  ImGui::EndPopup();
 }
 
 void Editor::restore_camera(float aspect) {
@@ -504,6 +538,7 @@ void Editor::restore_camera(float aspect) {
     if (!scene_.skeletons.empty()) frame_camera(aspect);  // the zoom limits and clip planes for what is shown
     set_camera(camera_, *restore_->camera);
     followed_time_s_ = state_.playback.time_s;  // drawn as it was saved, not followed on from it
+    followed_centre_.reset();
     camera_framed_ = true;
     state_.view.request_reframe = false;
   }

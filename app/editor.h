@@ -24,6 +24,7 @@
 #include "render/render_target.h"
 #include "render/scene_renderer.h"
 #include "ui/model/blend_session.h"
+#include "ui/model/close_request.h"
 #include "ui/model/edit_history.h"
 #include "ui/model/editor_state.h"
 #include "ui/model/recent_files.h"
@@ -132,12 +133,23 @@ class Editor {
   const std::string& scripted_save_error() const { return scripted_save_error_; }
   const std::string& session_message() const { return session_message_.text(); }
   bool session_message_is_error() const { return session_message_.is_error(); }
+  // Closing (the window's close button): with unsaved edits (ui::EditHistory::unsaved) the editor
+  // asks first, a modal with Save (to the session's file, or asking where as Ctrl+S does), Discard
+  // and Cancel (ui/model/close_request.h); without, it may close at once. The platform ends its
+  // loop once may_close().
+  void request_close() { close_.request(edits_.unsaved()); }
+  bool may_close() const { return close_.may_close(); }
+  bool asking_to_close() const { return close_.asking(); }
+  // The question's buttons: Save (saving, then closing once saved), Discard or Cancel.
+  void answer_close(ui::CloseRequest::Answer answer);
+
   // The takes and sessions opened before (options.recent_path: kept across restarts there).
   const ui::RecentFiles& recent_files() const { return recent_; }
 
  private:
   void build_scene();
   void frame_camera(float aspect);
+  void follow_skeletons(float delta_s);  // the camera after the skeletons (view.follow)
   // F, F1 / ?, Esc, Ctrl+0, Ctrl+E, Ctrl+Z / Ctrl+Shift+Z / Ctrl+Y, Ctrl+S / Ctrl+Shift+S, Ctrl+O
   // (space and the arrows: the playback panel)
   void handle_keys();
@@ -146,6 +158,7 @@ class Editor {
   void command_save(bool ask);
   void command_open();
   void draw_session_windows();  // the dialog (carrying out what it asks) or the message
+  void draw_close_question();   // Save / Discard / Cancel, while close_ asks
   void restore_camera(float aspect);  // an opened session's camera, once its takes are in
   void save_session_when_ready();     // --save-session
   void keep_recent_files();           // recent.json follows the session's recent takes
@@ -168,6 +181,7 @@ class Editor {
   bool graphics_ready_ = false;
   bool camera_framed_ = false;
   double followed_time_s_ = -1.0;  // the playhead when the camera last followed the skeletons
+  std::optional<glm::vec3> followed_centre_;  // where the skeletons were then; none: after a reframe
   float free_fraction_ = 1.0f;  // of the window's size that no panel covers (framing)
   bool deterministic_ = false;
   bool software_renderer_ = false;  // llvmpipe & co: no multisampling unless asked
@@ -186,6 +200,7 @@ class Editor {
   int frames_drawn_ = 0;
   ui::SessionMessage session_message_;
   ui::SessionDialog dialog_;
+  ui::CloseRequest close_;
   // Recent takes and sessions; recent_path_ empty: not kept across restarts (tests, screenshots).
   std::string recent_path_;
   ui::RecentFiles recent_;

@@ -12,17 +12,34 @@ bool is_modifier_key(int key) {
 
 }  // namespace
 
-std::vector<KeyEvent> InputQueue::take_frame() {
+std::vector<KeyEvent> InputQueue::take_frame(bool typing) {
   std::vector<KeyEvent> out;
   std::vector<int> changed;  // keys whose state this frame changes
-  bool pressed = false;      // a key other than a modifier went down this frame
+  std::vector<int> typed;    // typing: keys whose presses typed characters this frame
+  bool pressed = false;      // a key other than a modifier went down this frame (typing: one that typed nothing)
   const bool only_releases = after_shortcut_;
   after_shortcut_ = false;
   while (!events_.empty()) {
     const KeyEvent& e = events_.front();
-    if (e.kind == KeyEvent::Kind::kChar) {
+    const bool press = e.kind == KeyEvent::Kind::kKey && e.action != kActionRelease;
+    const bool shortcut = (e.mods & (kModControl | kModAlt | kModSuper)) != 0;
+    // Typing: a press followed by its character (AltGr's too: GLFW gives none for a shortcut), a
+    // release of such a key, a modifier going down or up (Shift) before any key that types nothing.
+    const bool types = typing && !only_releases && !after_shortcut_ &&
+                       ((press && !is_modifier_key(e.key) && events_.size() > 1 &&
+                         events_[1].kind == KeyEvent::Kind::kChar) ||
+                        (e.kind == KeyEvent::Kind::kKey && e.action == kActionRelease &&
+                         std::find(typed.begin(), typed.end(), e.key) != typed.end()) ||
+                        (e.kind == KeyEvent::Kind::kKey && is_modifier_key(e.key) && !shortcut && !pressed));
+    if (types) {
+      if (press && !is_modifier_key(e.key)) {
+        if (pressed) break;  // after a key that typed nothing: the field reads characters first
+        typed.push_back(e.key);
+      }
+    } else if (e.kind == KeyEvent::Kind::kChar) {
       // A character goes with its key's press (the frame that press is in) or alone.
       if (only_releases || after_shortcut_) break;
+      if (typing && pressed) break;
     } else {
       const bool changes = e.action != kActionRepeat;
       const bool seen = std::find(changed.begin(), changed.end(), e.key) != changed.end();
@@ -30,7 +47,6 @@ std::vector<KeyEvent> InputQueue::take_frame() {
       // A press is seen with the modifiers it came with: a modifier going up or down after it
       // (xdotool lets go of Ctrl before S) waits for the next frame.
       if (changes && pressed && is_modifier_key(e.key)) break;
-      const bool press = e.action != kActionRelease;
       if (press && !is_modifier_key(e.key)) {
         if (only_releases || pressed) break;
         pressed = true;

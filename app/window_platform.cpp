@@ -87,9 +87,10 @@ void on_char(GLFWwindow*, unsigned int codepoint) {
   ++g_events;
   g_keys.push({KeyEvent::Kind::kChar, 0, 0, 0, 0, codepoint});
 }
-// Before each frame: the events it takes, through ImGui's GLFW back-end.
+// Before each frame: the events it takes, through ImGui's GLFW back-end; all that was typed at
+// once while a text field has the keyboard.
 void deliver_keys(GLFWwindow* window) {
-  for (const KeyEvent& e : g_keys.take_frame()) {
+  for (const KeyEvent& e : g_keys.take_frame(ImGui::GetIO().WantTextInput)) {
     if (e.kind == KeyEvent::Kind::kKey) ImGui_ImplGlfw_KeyCallback(window, e.key, e.scancode, e.action, e.mods);
     else ImGui_ImplGlfw_CharCallback(window, e.codepoint);
   }
@@ -100,6 +101,14 @@ void on_drop(GLFWwindow* window, int count, const char** paths) {
   auto* editor = static_cast<Editor*>(glfwGetWindowUserPointer(window));
   if (editor == nullptr || count <= 0) return;
   editor->drop_files(std::vector<std::string>(paths, paths + count));
+}
+
+// The window's close button: the editor asks first when there are unsaved edits (Save, Discard,
+// Cancel); the loop ends once it may close.
+void on_close(GLFWwindow* window) {
+  ++g_events;
+  glfwSetWindowShouldClose(window, GLFW_FALSE);
+  if (auto* editor = static_cast<Editor*>(glfwGetWindowUserPointer(window))) editor->request_close();
 }
 
 void neutralise_input() {
@@ -153,13 +162,14 @@ int run_window(const EditorOptions& options) {
     // called from any thread), so its result shows at once, not at the next input.
     editor.set_wake([] { glfwPostEmptyEvent(); });
     glfwSetDropCallback(window, on_drop);
+    if (!screenshot) glfwSetWindowCloseCallback(window, on_close);
     try {
       // A screenshot of takes that did not load would show nothing: their one sentence, exit 1.
       if (screenshot && !editor.session().error().empty()) throw std::runtime_error(editor.session().error());
       editor.init_graphics();
       double last = glfwGetTime();
       int settle = 0;  // frames still drawn after the last event (ImGui needs a few to settle)
-      for (int frame = 0; !glfwWindowShouldClose(window); ++frame) {
+      for (int frame = 0; !glfwWindowShouldClose(window) && !editor.may_close(); ++frame) {
         // At rest (paused, engine idle) wait for input instead of drawing 60 frames a second;
         // the timeout keeps a finished background job from waiting long to be shown.
         if (!screenshot && !editor.animating() && settle <= 0 && g_keys.empty()) {
@@ -199,6 +209,7 @@ int run_window(const EditorOptions& options) {
     }
     editor.shutdown_graphics();
     glfwSetDropCallback(window, nullptr);
+    glfwSetWindowCloseCallback(window, nullptr);
     glfwSetWindowUserPointer(window, nullptr);
     ImGui_ImplGlfw_Shutdown();
   }

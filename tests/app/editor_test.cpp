@@ -708,3 +708,152 @@ TEST_CASE("a state set up by flags, saved with --save-session, reopens to the sa
   }
   fs::remove_all(dir);
 }
+
+namespace {
+// How much the camera looks along the line from take A to take B (x, z): |cos| of the angle
+// between its view and that line, 0 looking straight across, 1 looking along it.
+double looking_along_lanes(mostyle::test::OffscreenEditor& e) {
+  const mostyle::ui::EditorState& s = e.editor.state();
+  REQUIRE(s.takes.size() == 3);
+  auto hips = [&](const mostyle::ui::Take& t) {
+    const Eigen::Index f = mostyle::ui::frame_at(t, s.playback.time_s);
+    return Eigen::Vector2d(t.positions(f, 0), t.positions(f, 2));
+  };
+  const Eigen::Vector2d across = hips(s.takes[mostyle::ui::kTakeB]) - hips(s.takes[mostyle::ui::kTakeA]);
+  const glm::vec3 f = e.editor.camera().forward();
+  const Eigen::Vector2d view(f.x, f.z);
+  REQUIRE(across.norm() > 0.0);
+  REQUIRE(view.norm() > 0.0);
+  return std::abs(across.normalized().dot(view.normalized()));
+}
+}  // namespace
+
+TEST_CASE("the first view looks across the lanes, the takes apart: the bundled pair and an FBX pair") {
+  std::vector<std::vector<std::string>> pairs = {{}};
+  const std::string happy = mostyle::test::shared_motion("formats/cmu142_walk_happy_30fps.fbx");
+  const std::string joy = mostyle::test::shared_motion("formats/cmu142_walk_joy.fbx");
+  if (!happy.empty() && fs::exists(happy) && fs::exists(joy)) pairs.push_back({happy, joy});
+  else WARN("skipped the FBX pair: ../shared/motions/formats is absent");
+  for (const std::vector<std::string>& files : pairs) {
+    CAPTURE(files);
+    EditorOptions options = mostyle::test::paused_small_pair();
+    options.files = files;
+    mostyle::test::OffscreenEditor e({1280, 720}, options);
+    REQUIRE(e.gl.ok());
+    e.editor.wait_for_engine();
+    REQUIRE(e.editor.session().error().empty());
+    e.editor.init_graphics();
+    for (int i = 0; i < 3; ++i) e.frame();
+    // A three-quarter view: within 45 degrees of looking straight across.
+    CHECK(looking_along_lanes(e) < std::cos(0.25 * M_PI));
+    e.editor.shutdown_graphics();
+  }
+}
+
+TEST_CASE("paused, a change that moves the result moves the view with it; at rest the view stays") {
+  mostyle::test::OffscreenEditor e({1280, 720});
+  REQUIRE(e.gl.ok());
+  Editor& editor = e.editor;
+  editor.wait_for_engine();
+  editor.init_graphics();
+  mostyle::ui::EditorState& s = editor.state();
+  const mostyle::ui::Take& blend = s.takes[mostyle::ui::kTakeBlend];
+  s.document.parameters.alpha = 0.0;
+  for (int i = 0; i < 3; ++i) e.frame();
+  s.playback.time_s = (blend.frames() - 0.5) / blend.rate();  // the last frame: far from the start
+  for (int i = 0; i < 3; ++i) e.frame();
+  REQUIRE_FALSE(s.playback.playing);
+  // The takes' mean hips (x, z) against the camera's target.
+  auto hips = [&] {
+    Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+    for (const mostyle::ui::Take& t : s.takes) {
+      const Eigen::Index f = mostyle::ui::frame_at(t, s.playback.time_s);
+      sum += Eigen::Vector2d(t.positions(f, 0), t.positions(f, 2));
+    }
+    return Eigen::Vector2d(sum / static_cast<double>(s.takes.size()));
+  };
+  auto target = [&] { return Eigen::Vector2d(editor.camera().target.x, editor.camera().target.z); };
+  const Eigen::Vector2d before = hips(), offset = target() - before;
+  for (int i = 0; i < 3; ++i) e.frame();  // at rest: nothing moves
+  CHECK((target() - before - offset).norm() < 1e-6 * blend.size);
+  // All of B: the result ends elsewhere, and the view goes with it.
+  s.document.parameters.alpha = 1.0;
+  for (int i = 0; i < 3; ++i) e.frame();
+  const Eigen::Vector2d after = hips();
+  CAPTURE(blend.size, (after - before).norm());
+  REQUIRE((after - before).norm() > 0.2 * blend.size);
+  CHECK((target() - after - offset).norm() < 0.05 * blend.size);
+  editor.shutdown_graphics();
+}
+
+namespace {
+// An editor on the bundled pair, drawn a few frames; alpha set to `alpha` as a panel's command
+// sets it (one undo step) unless negative.
+void edit_alpha(mostyle::test::OffscreenEditor& e, double alpha) {
+  e.editor.wait_for_engine();
+  e.editor.init_graphics();
+  for (int i = 0; i < 3; ++i) e.frame();
+  if (alpha < 0.0) return;
+  e.editor.state().document.parameters.alpha = alpha;
+  e.editor.state().command_edits++;
+  for (int i = 0; i < 3; ++i) e.frame();
+}
+}  // namespace
+
+TEST_CASE("closing with unsaved edits asks Save / Discard / Cancel; Save writes the session, then closes") {
+  ScratchDir scratch("mostyle_editor_close");
+  {  // Nothing edited: closes at once, nothing asked.
+    mostyle::test::OffscreenEditor e({640, 360});
+    REQUIRE(e.gl.ok());
+    edit_alpha(e, -1.0);
+    e.editor.request_close();
+    CHECK(e.editor.may_close());
+    e.editor.shutdown_graphics();
+  }
+  {  // Edited: asked, in a modal; Cancel keeps editing; Save writes the session's file, then closes.
+    mostyle::test::OffscreenEditor e({1280, 720});
+    Editor& ed = e.editor;
+    edit_alpha(e, 0.9);
+    ed.request_close();
+    CHECK_FALSE(ed.may_close());
+    CHECK(ed.asking_to_close());
+    for (int i = 0; i < 3; ++i) e.frame();
+    const ImGuiWindow* modal = ImGui::FindWindowByName("Unsaved edits");
+    REQUIRE(modal != nullptr);
+    CHECK(modal->Active);
+    ed.answer_close(mostyle::ui::CloseRequest::Answer::kCancel);
+    for (int i = 0; i < 3; ++i) e.frame();
+    CHECK_FALSE(ed.may_close());
+    CHECK_FALSE(ImGui::FindWindowByName("Unsaved edits")->Active);
+    const std::string path = scratch.path("kept.mostyle");
+    REQUIRE(ed.save_session(path));
+    ed.request_close();  // saved: nothing unsaved
+    CHECK(ed.may_close());
+    ed.shutdown_graphics();
+  }
+  {  // Edited after a save: Save writes it to the session's file and closes.
+    mostyle::test::OffscreenEditor e({640, 360});
+    Editor& ed = e.editor;
+    edit_alpha(e, -1.0);
+    const std::string path = scratch.path("again.mostyle");
+    REQUIRE(ed.save_session(path));
+    ed.state().document.parameters.alpha = 0.1;
+    ed.state().command_edits++;
+    for (int i = 0; i < 3; ++i) e.frame();
+    ed.request_close();
+    REQUIRE(ed.asking_to_close());
+    ed.answer_close(mostyle::ui::CloseRequest::Answer::kSave);
+    CHECK(ed.may_close());
+    CHECK(mostyle::ui::read_session_file(path).document.parameters.alpha == 0.1);
+    ed.shutdown_graphics();
+  }
+  {  // Discard closes without writing.
+    mostyle::test::OffscreenEditor e({640, 360});
+    edit_alpha(e, 0.3);
+    e.editor.request_close();
+    REQUIRE(e.editor.asking_to_close());
+    e.editor.answer_close(mostyle::ui::CloseRequest::Answer::kDiscard);
+    CHECK(e.editor.may_close());
+    e.editor.shutdown_graphics();
+  }
+}

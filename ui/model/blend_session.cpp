@@ -1,4 +1,5 @@
 #include "ui/model/blend_session.h"
+#include "ui/model/take_warnings.h"
 
 #include <algorithm>
 #include <chrono>
@@ -187,6 +188,10 @@ void BlendSession::poll(EditorState& state) {
   if (snap->version == seen_version_) return;
   seen_version_ = snap->version;
   snapshot_ = std::move(snap);
+  // The takes before, with their weights: a take added keeps the others' weights (below).
+  const std::vector<std::string> files_before = state.document.files;
+  std::vector<double> weights_before = state.document.controls.palette.weights;
+  if (files_before.size() == 2) weights_before = {1.0 - state.document.parameters.alpha, state.document.parameters.alpha};
   // The document's takes are those loaded (a load that failed leaves them as they were).
   state.document.files = snapshot_->prepared ? snapshot_->paths : std::vector<std::string>();
   if (pair() != seen_prepared_) {
@@ -198,6 +203,8 @@ void BlendSession::poll(EditorState& state) {
     palette_view_.clear();
     if (seen_palette_ != nullptr) {
       remember_recent(snapshot_->paths);
+      std::vector<double> kept = weights_with_added_takes(files_before, weights_before, snapshot_->paths);
+      if (!kept.empty()) state.document.controls.palette.weights = std::move(kept);
       palette_view_.take_up(*seen_palette_, snapshot_->paths, snapshot_->warnings, state.document.controls.palette,
                             state);
     }
@@ -252,11 +259,14 @@ void BlendSession::take_up_prepared(EditorState& state) {
   };
   Take a = make("A  " + stem(loaded_path(0)), kColorA, p->takes[0].own_contacts);
   a.path = loaded_path(0);
-  a.warnings = snapshot_->warnings;
-  // What could not be matched well is said where the takes are listed, not only in the DTW view.
-  a.warnings.insert(a.warnings.end(), p->takes[1].alignment.warnings.begin(), p->takes[1].alignment.warnings.end());
   Take b = make("B  " + stem(loaded_path(1)), kColorB, Eigen::MatrixXd());
   b.path = loaded_path(1);
+  // Each take's load warnings under it, and what could not be matched well under the take it
+  // speaks of: where the takes are listed, not only in the DTW view.
+  std::vector<std::vector<std::string>> warnings =
+      warnings_by_take({a.path, b.path}, snapshot_->warnings, {{}, p->takes[1].alignment.warnings}, {"A", "B"});
+  a.warnings = std::move(warnings[0]);
+  b.warnings = std::move(warnings[1]);
   Take blend = make("blend", kColorBlend, Eigen::MatrixXd());
   blend.path = "(blend of A and B)";
   blend.positions = p->takes[0].world;  // until the first blend arrives

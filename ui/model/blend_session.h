@@ -97,6 +97,9 @@ class BlendSession {
   WorkerStatus status() const { return worker_.status(); }
   const std::string& error() const { return snapshot_->error; }
   const MixResult* blend() const { return has_blend_ ? &blend_ : nullptr; }
+  // The direction the takes stand apart in side by side (x, 0, z, unit: across the reference's
+  // overall travel, ui/model/lanes.h), a pair's or a palette's; +X before any takes.
+  Eigen::Vector3d side() const { return palette() != nullptr ? palette_view_.side() : side_; }
   const std::string& blend_error() const { return blend_error_; }
   double blend_ms() const { return blend_ms_; }  // the last UI-thread blend (mix_palette), wall time
   const StageTimes& blend_times() const { return blend_times_; }  // its stages (synthesize, postprocess)

@@ -43,6 +43,12 @@ struct PaletteControls {
   bool ghosts = false;                         // show each take's warped ghost in the viewport
 };
 
+// What the result of `takes` takes is called in the editor's words and file names: "blend" for a
+// pair, "mix" for a palette, "transfer" for a palette in transfer mode.
+inline const char* result_name(int takes, bool transfer) {
+  return takes <= 2 ? "blend" : transfer ? "transfer" : "mix";
+}
+
 // What the parameter panels edit beyond the blend parameters (alpha, k, sparsity).
 struct DocumentControls {
   BlendMode mode = BlendMode::kShared;

@@ -74,6 +74,12 @@ void EditHistory::record(const EditorState& state, BlendSession& session, bool i
   const Document* top = history_.current();
   if (top == nullptr || touched_ || !same_files(now.files, top->files)) history_.commit(now);
   touched_ = false;
+  if (!saved_) saved_ = *history_.current();
+}
+
+bool EditHistory::unsaved() const {
+  const Document* top = history_.current();
+  return top != nullptr && saved_ && !(*top == *saved_);
 }
 
 bool EditHistory::undo(EditorState& state, BlendSession& session) {

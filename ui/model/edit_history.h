@@ -9,6 +9,7 @@
 // arrive. What the editor changes by itself (a decomposition that arrives with another k resizes
 // the per-component alphas) makes no step of its own: it joins the next one.
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,15 @@ class EditHistory {
   // The next record() commits even when no item was held (an opened session, a command).
   void mark_edited() { touched_ = true; }
 
+  // Unsaved edits: the document as last recorded differs from the one saved or opened (or, before
+  // any, from the first one recorded: the takes as they first arrived). Undoing back to it is no
+  // edit. O(size of a Document).
+  bool unsaved() const;
+  // The document now (capture_document) is the one saved: after a session is written.
+  void mark_saved(const Document& document) { saved_ = document; }
+  // The next document recorded is the one saved: after a session is opened (its takes arrive later).
+  void mark_opened() { saved_.reset(); }
+
   const History& history() const { return history_; }
   bool can_undo() const { return history_.can_undo(); }
   bool can_redo() const { return history_.can_redo(); }
@@ -64,6 +74,7 @@ class EditHistory {
   History history_;
   bool touched_ = false;  // an item was held, a command edited, or mark_edited(), since the last commit
   int seen_command_edits_ = 0;  // EditorState::command_edits at the last record()
+  std::optional<Document> saved_;  // what unsaved() compares with; none: the next one recorded
 };
 
 }  // namespace mostyle::ui

@@ -14,6 +14,7 @@
 #include "ui/model/joint_contacts.h"
 #include "ui/model/keyed_weights.h"
 #include "ui/model/lanes.h"
+#include "ui/model/take_warnings.h"
 #include "ui/model/weight_keys_edit.h"
 
 namespace mostyle::ui {
@@ -70,6 +71,23 @@ MixParams mix_params_for(const DocumentControls& controls, const Decomposed& dec
   return m;
 }
 
+std::vector<double> weights_with_added_takes(const std::vector<std::string>& before, const std::vector<double>& weights,
+                                             const std::vector<std::string>& after) {
+  if (after.size() <= before.size() || weights.size() != before.size()) return {};
+  std::vector<double> out(after.size(), 0.0);
+  std::vector<bool> used(before.size(), false);  // a file given twice: each its own weight
+  bool kept = false;
+  for (size_t i = 0; i < after.size(); ++i)
+    for (size_t j = 0; j < before.size(); ++j)
+      if (!used[j] && before[j] == after[i]) {
+        used[j] = true;
+        out[i] = weights[j];
+        kept = true;
+        break;
+      }
+  return kept ? out : std::vector<double>();
+}
+
 void PaletteView::clear() {
   has_mix_ = false;
   mixed_decomposition_ = nullptr;
@@ -98,6 +116,17 @@ void PaletteView::take_up(const PreparedTakes& p, const std::vector<std::string>
   mix.parents = p.parents;
   mix.positions = p.takes.front().world_placed;  // until the first mix arrives
   state.takes.push_back(std::move(mix));
+  // Each take's load warnings and alignment onto the reference under it (prepare_takes names a
+  // palette's takes by their files' names).
+  std::vector<std::vector<std::string>> aligned;
+  std::vector<std::string> aligned_names;
+  for (const PreparedTake& take : p.takes) {
+    aligned.push_back(take.alignment.warnings);
+    aligned_names.push_back(std::filesystem::path(take.clip->source).filename().string());
+  }
+  std::vector<std::string> take_paths = paths;
+  take_paths.resize(static_cast<size_t>(n));
+  std::vector<std::vector<std::string>> by_take = warnings_by_take(take_paths, warnings, aligned, aligned_names);
   for (int i = 0; i < n; ++i) {
     Take t;
     const std::string& path = static_cast<size_t>(i) < paths.size() ? paths[static_cast<size_t>(i)] : std::string();
@@ -108,12 +137,7 @@ void PaletteView::take_up(const PreparedTakes& p, const std::vector<std::string>
     t.clip = p.takes[static_cast<size_t>(i)].clip;
     t.fps = p.fps;
     t.parents = p.parents;
-    if (i == 0) {
-      t.warnings = warnings;
-      // Each take's alignment onto the reference (prepare_takes names the takes).
-      for (const PreparedTake& aligned : p.takes)
-        t.warnings.insert(t.warnings.end(), aligned.alignment.warnings.begin(), aligned.alignment.warnings.end());
-    }
+    t.warnings = std::move(by_take[static_cast<size_t>(i)]);
     state.takes.push_back(std::move(t));
   }
   // Shared floor and start, side-by-side spacing and direction (ui/model/lanes.h).

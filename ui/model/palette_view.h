@@ -29,6 +29,15 @@ constexpr int kPaletteFirst = 1;  // index of the reference; take i is at kPalet
 // says why).
 MixParams mix_params_for(const DocumentControls& controls, const Decomposed& decomposition, int takes);
 
+// The weights of takes `after` when they are the takes `before` (weighted `weights`, one per
+// take; a pair's are (1 - alpha, alpha)) with more added: each take that was there keeps its
+// weight, each one added gets 0 (a pair at 0.7/0.3 given a third take is 0.7/0.3/0). Empty when
+// no take is added (as many or fewer takes) or none of `before` is among `after`, or the weights
+// do not fit `before`: then the palette's own rule applies (equal weights for a new palette).
+// O(after x before).
+std::vector<double> weights_with_added_takes(const std::vector<std::string>& before, const std::vector<double>& weights,
+                                             const std::vector<std::string>& after);
+
 // The palette's colour of take i (the reference first).
 glm::vec3 palette_color(int take);
 
@@ -44,6 +53,7 @@ class PaletteView {
   void clear();
 
   const MixResult* mix() const { return has_mix_ ? &mix_ : nullptr; }
+  const Eigen::Vector3d& side() const { return side_; }  // the lanes' direction across (ui/model/lanes.h)
   const std::string& error() const { return error_; }
   double mix_ms() const { return mix_ms_; }
   const StageTimes& mix_times() const { return mix_times_; }  // its stages (synthesize, postprocess)

@@ -42,6 +42,36 @@ int output_frame_at(const MixResult* blend, double u) {
 }
 }  // namespace
 
+MatchedFrames matched_frames_in_files(const PreparedTakes& p) {
+  MatchedFrames m;
+  if (p.size() != 2 || p.fps <= 0.0) return m;
+  const Alignment& al = p.takes[1].alignment;
+  // A working-rate frame of take t as its file counts it, inside the file.
+  auto in_file = [&](double frame, int t) {
+    const Clip& clip = *p.takes[static_cast<size_t>(t)].clip;
+    const double at = clip.fps() > 0.0 ? frame * clip.fps() / p.fps : frame;
+    return std::clamp(static_cast<int>(std::lround(at)), 0, std::max(clip.frames() - 1, 0));
+  };
+  m.a_first = in_file(al.a_first, 0);
+  m.a_last = in_file(al.a_last, 0);
+  double b_first = al.b_first, b_last = al.b_last;
+  if (al.by_cycles()) {  // the registered take's frames back to B's own: the lowest and highest used
+    double lo = INFINITY, hi = -INFINITY;
+    for (int k = std::max(al.b_first, 0); k <= al.b_last && k < al.b_source.size(); ++k) {
+      if (std::isnan(al.b_source[k])) continue;
+      lo = std::min(lo, al.b_source[k]);
+      hi = std::max(hi, al.b_source[k]);
+    }
+    if (lo <= hi) {
+      b_first = lo;
+      b_last = hi;
+    }
+  }
+  m.b_first = in_file(b_first, 1);
+  m.b_last = in_file(b_last, 1);
+  return m;
+}
+
 void DtwPanel::draw(EditorState& state) {
   if (session_.palette() != nullptr) return;  // the style palette has the strip (palette_panel.h)
   place_panel(PanelId::kDtw, state);
@@ -69,8 +99,9 @@ void DtwPanel::draw(EditorState& state) {
   ImGui::SameLine();
   std::string joints;
   for (int k : al.feature.columns) joints += (joints.empty() ? "" : ", ") + p->takes[0].names[static_cast<size_t>(k)];
+  const MatchedFrames matched = matched_frames_in_files(*p);  // as each file counts its frames
   ImGui::TextColored(ImVec4(0.6f, 0.62f, 0.66f, 1.0f), "on %s: A %d-%d, B %d-%d matched",
-                     align_on_name(al.feature.on), al.a_first, al.a_last, al.b_first, al.b_last);
+                     align_on_name(al.feature.on), matched.a_first, matched.a_last, matched.b_first, matched.b_last);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Aligned on %s (%s), %s DTW. Frames outside the matched ranges (shaded) are left out of the "
                       "blend.\n%d x %d frames at %.0f fps, cost %.3g",

@@ -6,6 +6,15 @@
 
 namespace mostyle::ui {
 
+// The frames of each take of a pair that its alignment matched, first and last, counted as each
+// take's file counts them: B's own frames when it was registered by cycles (not the registered
+// take's, which repeats its cycles), each at its file's rate (not the working rate). All 0 for
+// a pair not aligned. O(B's matched frames).
+struct MatchedFrames {
+  int a_first = 0, a_last = 0, b_first = 0, b_last = 0;
+};
+MatchedFrames matched_frames_in_files(const PreparedTakes& p);
+
 class DtwPanel : public Panel {
  public:
   explicit DtwPanel(BlendSession& session) : session_(session) {}

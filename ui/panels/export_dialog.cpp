@@ -60,6 +60,14 @@ std::string with_export_format(const std::string& path, ExportFormat format) {
   return p.string();
 }
 
+std::string export_name_for(const std::string& path, const std::string& result) {
+  const std::filesystem::path p(path);
+  if (p.has_parent_path()) return path;
+  const std::string stem = p.stem().string();
+  if (stem != "blend" && stem != "mix" && stem != "transfer") return path;
+  return result + p.extension().string();
+}
+
 double export_rate_fps(ExportRate rate, double source_fps, double custom_fps) {
   switch (rate) {
     case ExportRate::kSource: return source_fps;
@@ -103,7 +111,8 @@ void ExportDialog::poll() {
     }
     // The result's length follows the weights when the timing is mixed: the points stay inside it.
     settings_.out_s = std::clamp(settings_.out_s, 0.0, length);
-    settings_.in_s = std::clamp(settings_.in_s, 0.0, settings_.out_s);
+    // Not while a point is typed: "2" on the way to "200" must not move the other point.
+    settings_.in_s = std::clamp(settings_.in_s, 0.0, typing_range_ ? length : settings_.out_s);
   }
   ExportOutcome outcome;
   if (job_.take_outcome(&outcome))
@@ -146,6 +155,16 @@ ExportDialog::Pressed ExportDialog::start(bool overwrite) {
 
 void ExportDialog::draw(EditorState& state) {
   poll();
+  typing_range_ = false;  // until the in or out field drawn below is found active
+  // When the result becomes another kind (a pair a palette, a mix a transfer), not while a name
+  // is typed.
+  const PreparedTakes* p = session_.snapshot().prepared.get();
+  const std::string result = p != nullptr ? result_name(p->size(), state.document.controls.palette.transfer) : "";
+  if (p != nullptr && result != named_result_) {
+    named_result_ = result;
+    const std::string named = export_name_for(settings_.path, result);
+    std::snprintf(settings_.path, sizeof settings_.path, "%s", named.c_str());
+  }
   if (!state.view.show_export) return;
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(0.5f * display.x, 0.5f * display.y), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
@@ -252,34 +271,41 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
                                        : "Turn on Loop in the parameters panel to cut a seamless loop of the result");
   if (settings_.range == ExportRange::kInOut) {
     double in = settings_.in_s, out = settings_.out_s;
+    bool in_done = false, out_done = false, typing = false;
     if (settings_.range_in_frames) {
       int in_f = static_cast<int>(std::lround(in * working));
       int out_f = static_cast<int>(std::lround(out * working));
       const int last = std::max(blend_frames - 1, 0);
       ImGui::SetNextItemWidth(kFieldWidth);
-      if (ImGui::DragInt("In##frames", &in_f, 0.25f, 0, last)) in = std::clamp(in_f, 0, last) / working;
-      tooltip("The first frame written, a frame of the result as the playback bar counts them; drag or type");
+      if (ImGui::InputInt("In##frames", &in_f, 0, 0)) in = std::clamp(in_f, 0, last) / working;
+      in_done = ImGui::IsItemDeactivatedAfterEdit();
+      typing |= ImGui::IsItemActive();
+      tooltip("The first frame written, a frame of the result as the playback bar counts them: click and type it");
       ImGui::SameLine();
       ImGui::SetNextItemWidth(kFieldWidth);
-      if (ImGui::DragInt("Out##frames", &out_f, 0.25f, 0, last)) out = std::clamp(out_f, 0, last) / working;
-      tooltip("The last frame written");
+      if (ImGui::InputInt("Out##frames", &out_f, 0, 0)) out = std::clamp(out_f, 0, last) / working;
+      out_done = ImGui::IsItemDeactivatedAfterEdit();
+      typing |= ImGui::IsItemActive();
+      tooltip("The last frame written: click and type it");
     } else {
-      const double zero = 0.0;
       ImGui::SetNextItemWidth(kFieldWidth);
-      if (ImGui::DragScalar("In##s", ImGuiDataType_Double, &in, 0.01f, &zero, &length, "%.3f s"))
-        in = std::clamp(in, 0.0, length);
-      tooltip("Where the file starts, seconds from the result's first frame; drag or type");
+      if (ImGui::InputDouble("In (s)##s", &in, 0.0, 0.0, "%.3f")) in = std::clamp(in, 0.0, length);
+      in_done = ImGui::IsItemDeactivatedAfterEdit();
+      typing |= ImGui::IsItemActive();
+      tooltip("Where the file starts, seconds from the result's first frame: click and type it");
       ImGui::SameLine();
       ImGui::SetNextItemWidth(kFieldWidth);
-      if (ImGui::DragScalar("Out##s", ImGuiDataType_Double, &out, 0.01f, &zero, &length, "%.3f s"))
-        out = std::clamp(out, 0.0, length);
-      tooltip("Where the file ends (that frame included)");
+      if (ImGui::InputDouble("Out (s)##s", &out, 0.0, 0.0, "%.3f")) out = std::clamp(out, 0.0, length);
+      out_done = ImGui::IsItemDeactivatedAfterEdit();
+      typing |= ImGui::IsItemActive();
+      tooltip("Where the file ends (that frame included): click and type it");
     }
-    // One point dragged past the other takes it along.
-    if (in != settings_.in_s) out = std::max(out, in);
-    if (out != settings_.out_s) in = std::min(in, out);
+    // A point typed past the other takes it along, once typed.
     settings_.in_s = in;
     settings_.out_s = out;
+    if (in_done) settings_.out_s = std::max(settings_.out_s, settings_.in_s);
+    if (out_done) settings_.in_s = std::min(settings_.in_s, settings_.out_s);
+    typing_range_ = typing;
     const Take* reference = state.reference_take();
     const double playhead = reference != nullptr ? frame_at(*reference, state.playback.time_s) / working : 0.0;
     if (ImGui::SmallButton("In at playhead")) {

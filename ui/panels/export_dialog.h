@@ -31,13 +31,18 @@ ExportFormat export_format(const std::string& path);
 // or ".fbx". A path without an extension gets one; "" stays "".
 std::string with_export_format(const std::string& path, ExportFormat format);
 
+// The export's file named after the result (result_name, ui/model/document.h): a bare "blend",
+// "mix" or "transfer" (the names the editor gives, with any extension) becomes `result` with that
+// extension; a name the animator chose, or one with a folder, stays as it is.
+std::string export_name_for(const std::string& path, const std::string& result);
+
 // The output rate `rate` stands for: A's own (source_fps, its file's rate), 30, 60, 120 or
 // custom_fps (checked by the export, not here).
 double export_rate_fps(ExportRate rate, double source_fps, double custom_fps);
 
 // The dialog's fields, kept from one export to the next.
 struct ExportSettings {
-  char path[512] = "blend.bvh";   // the file (the files panel's export field edits it too)
+  char path[512] = "blend.bvh";   // the file (the files panel's export field edits it too); export_name_for
   ExportRate rate = ExportRate::k30;  // 30: the blend's own frames at the editor's working rate
   double custom_fps = 24.0;
   ExportRange range = ExportRange::kAll;
@@ -50,7 +55,8 @@ class ExportDialog : public Panel {
  public:
   explicit ExportDialog(BlendSession& session);
 
-  // poll(), then the window while state.view.show_export (closing it clears that).
+  // poll(), the file named after the result shown (export_name_for), then the window while
+  // state.view.show_export (closing it clears that).
   void draw(EditorState& state) override;
 
   // What the dialog's buttons do (also for tests, with no ImGui frame).
@@ -92,7 +98,9 @@ class ExportDialog : public Panel {
   bool confirm_ = false;      // asking whether to overwrite confirm_path_
   std::string confirm_path_;  // absolute
   const void* seen_pair_ = nullptr;
-  bool reset_range_ = true;   // a new pair: in and out to all of its blend once it has one
+  bool reset_range_ = true;
+  std::string named_result_ = "blend";
+  bool typing_range_ = false;  // an in or out field is being typed in: they are put in order after  // the result the file was last named after   // a new pair: in and out to all of its blend once it has one
 };
 
 }  // namespace mostyle::ui

@@ -10,6 +10,7 @@
 #include "engine/io/motion_file.h"
 #include "engine/io/numbers.h"
 #include "engine/kinematics/units.h"
+#include "ui/panels/fitted_text.h"
 #include "ui/panels/layout.h"
 
 namespace mostyle::ui {
@@ -41,7 +42,7 @@ bool begin_table(const char* id) {
 }
 }  // namespace
 
-Metrics gather_metrics(const BlendSession& session) {
+Metrics gather_metrics(const BlendSession& session, bool transfer) {
   Metrics m;
   const WorkerSnapshot& snapshot = session.snapshot();
   const PreparedTakes* p = snapshot.prepared.get();
@@ -49,7 +50,7 @@ Metrics gather_metrics(const BlendSession& session) {
   const bool pair = p->size() == 2;
   const Decomposed* d = snapshot.decomposed.get();
   m.reference = p->takes.front().clip.get();
-  m.result = pair ? "blend" : "mix";
+  m.result = result_name(p->size(), transfer);
   std::vector<std::string> names = {"A", "B"};
   if (!pair) {
     std::vector<std::string> sources;
@@ -84,7 +85,7 @@ void MetricsPanel::draw(EditorState& state) {
     ImGui::End();
     return;
   }
-  const Metrics m = gather_metrics(session_);
+  const Metrics m = gather_metrics(session_, state.document.controls.palette.transfer);
   if (m.reference != unit_clip_) {  // a new reference: guess its unit once (one pose of forward kinematics)
     unit_clip_ = m.reference;
     cm_per_unit_ = height_ = 0.0;
@@ -123,8 +124,9 @@ void MetricsPanel::draw(EditorState& state) {
     for (const Metrics::Take& t : m.takes) {
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
-      ImGui::TextColored(kDimColor, "%s", t.name.c_str());
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", t.name.c_str());
+      ImGui::PushStyleColor(ImGuiCol_Text, kDimColor);
+      fitted_text(t.name);  // cut with "..." in the narrow column, whole on hover
+      ImGui::PopStyleColor();
       ImGui::TableNextColumn();
       ImGui::TextUnformatted(length(t.fit_error).c_str());
       if (ImGui::IsItemHovered())

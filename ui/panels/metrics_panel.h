@@ -19,15 +19,15 @@ struct Metrics {
     double foot_sliding = -1.0; // how fast its planted feet move (engine/post/planted_feet.h), reference units per second
   };
   const Clip* reference = nullptr;  // the take whose units every length is in
-  std::string result = "blend";     // "blend" for two takes, "mix" for more
+  std::string result = "blend";     // result_name (ui/model/document.h): "blend", "mix" or "transfer"
   std::vector<Take> takes;
   double bone_error = -1.0, sliding_raw = -1.0, sliding_cleaned = -1.0;  // the result's
   double sliding_inputs = -1.0;  // the takes' own planted feet, weighted as mixed (MixResult::foot_sliding_inputs)
   double load_ms = -1.0, preprocess_ms = -1.0, dtw_ms = -1.0, decompose_ms = -1.0;
   double synthesize_ms = -1.0, postprocess_ms = -1.0, result_ms = -1.0;
 };
-// O(takes): no copy of any motion.
-Metrics gather_metrics(const BlendSession& session);
+// O(takes): no copy of any motion. transfer: the palette is in transfer mode (the document's).
+Metrics gather_metrics(const BlendSession& session, bool transfer);
 
 class MetricsPanel : public Panel {
  public:

@@ -15,6 +15,7 @@
 #include "ui/model/weight_keys_edit.h"
 #include "ui/panels/keyed_tint.h"
 #include "ui/panels/layout.h"
+#include "ui/panels/fitted_text.h"
 #include "ui/panels/range_slider.h"
 #include "ui/panels/theme.h"
 
@@ -23,7 +24,7 @@ namespace {
 
 constexpr float kPi = 3.14159265358979f;
 constexpr const char* kTitle = "Style palette";
-const char* const kPartNames[] = {"Legs", "Arms", "Spine and head"};
+const char* const kPartNames[] = {"Legs", "Arms", "Spine, head"};  // short: the column is narrow at 1280 pixels
 // The transfer's neutral choice that is no take: the change is measured from the content.
 constexpr const char* kContentNeutral = "none: the content is its own neutral";
 
@@ -162,9 +163,9 @@ void PalettePanel::draw_mix(EditorState& state, const PreparedTakes& p) {
   bool moved = false;
   const float pad = std::clamp(ImGui::GetContentRegionAvail().y - 4.0f, 80.0f, 220.0f);
   if (ImGui::BeginTable("##mix", n >= 3 ? 3 : 2, ImGuiTableFlags_SizingStretchProp)) {
-    ImGui::TableSetupColumn("weights", ImGuiTableColumnFlags_WidthStretch, 2.4f);
+    ImGui::TableSetupColumn("weights", ImGuiTableColumnFlags_WidthStretch, 2.0f);
     if (n >= 3) ImGui::TableSetupColumn("pad", ImGuiTableColumnFlags_WidthFixed, pad);
-    ImGui::TableSetupColumn("parts", ImGuiTableColumnFlags_WidthStretch, 1.2f);
+    ImGui::TableSetupColumn("parts", ImGuiTableColumnFlags_WidthStretch, 1.6f);
     ImGui::TableNextColumn();
     ImGui::BeginChild("##weights", ImVec2(0, pad));
     // Compact rows, so that eight takes fit the strip of a 1280x720 window without scrolling.
@@ -174,23 +175,25 @@ void PalettePanel::draw_mix(EditorState& state, const PreparedTakes& p) {
       ImGui::PushID(i);
       swatch(i);
       double w = weights[static_cast<size_t>(i)];
-      ImGui::SetNextItemWidth(std::clamp(ImGui::GetContentRegionAvail().x * 0.35f, 56.0f, 80.0f));
+      // Room for a signed weight ("-0.35") whatever the panel's width; a drag, not a slider, so
+      // that no knob covers the sign and a pixel moves the weight by 0.005.
+      ImGui::SetNextItemWidth(ImGui::CalcTextSize("-0.50").x + 2.0f * ImGui::GetStyle().FramePadding.x +
+                              2.0f * ImGui::GetFontSize());
       {
         const KeyedTint tint(keyed);
-        if (range_slider("##w", w, kMixWeightRange)) {
+        if (range_drag("##w", w, kMixWeightRange)) {
           weights = set_weight_keeping_sum(weights, i, w);
           moved = true;
         }
       }
       if (ImGui::IsItemHovered())
         ImGui::SetTooltip("How much of this take's style; the others follow so that the weights sum to 1 (from -0.5 "
-                          "to 1.5: beyond 0 and 1 exaggerates)%s",
+                          "to 1.5: beyond 0 and 1 exaggerates).\nDrag sideways, or double-click and type%s",
                           keyed_hint(keyed));
       ImGui::SameLine();
-      ImGui::TextUnformatted((name_of(p, i) + (i == 0 ? " (ref.)" : "")).c_str());
-      if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("%s%s", p.takes[static_cast<size_t>(i)].clip->source.c_str(),
-                          i == 0 ? "\nThe reference: its skeleton, path and length lead" : "");
+      fitted_text(name_of(p, i), i == 0 ? " (ref.)" : "",
+                  p.takes[static_cast<size_t>(i)].clip->source +
+                      (i == 0 ? "\nThe reference: its skeleton, path and length lead" : ""));
       ImGui::PopID();
     }
     ImGui::PopStyleVar(2);
@@ -253,10 +256,16 @@ void PalettePanel::draw_parts(PaletteControls& c, const PreparedTakes& p) {
     int from = -1;  // -1: the weights
     for (int i = 0; i < n && static_cast<int>(row.size()) == n; ++i)
       if (row[static_cast<size_t>(i)] == 1.0) from = i;
-    const std::string shown = from < 0 ? "the weights" : name_of(p, from);
-    ImGui::SetNextItemWidth(std::max(80.0f, ImGui::GetContentRegionAvail().x * 0.6f));
+    // The part's name, then the take it comes from in what is left of the column.
+    ImGui::AlignTextToFramePadding();
+    ImGui::TextUnformatted(kPartNames[part]);
+    ImGui::SameLine(ImGui::CalcTextSize(kPartNames[2]).x + ImGui::GetStyle().ItemSpacing.x);
+    const float arrow = ImGui::GetFrameHeight() + 2.0f * ImGui::GetStyle().FramePadding.x;
+    const float width = std::max(ImGui::GetContentRegionAvail().x, arrow + ImGui::GetFontSize());
+    const std::string shown = fitted(from < 0 ? "weights" : name_of(p, from), width - arrow);
+    ImGui::SetNextItemWidth(width);
     ImGui::PushID(static_cast<int>(part));
-    if (ImGui::BeginCombo(kPartNames[part], shown.c_str())) {
+    if (ImGui::BeginCombo("##from", shown.c_str())) {
       if (ImGui::Selectable("the weights", from < 0)) row.clear();
       for (int i = 0; i < n; ++i)
         if (ImGui::Selectable(name_of(p, i).c_str(), from == i)) {
@@ -265,7 +274,9 @@ void PalettePanel::draw_parts(PaletteControls& c, const PreparedTakes& p) {
         }
       ImGui::EndCombo();
     }
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Which take this body part's style comes from");
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Which take the style of the %s comes from (weights: the weights')",
+                        part == 2 ? "spine and head" : part == 0 ? "legs" : "arms");
     ImGui::PopID();
   }
 }

@@ -5,6 +5,7 @@
 #include <system_error>
 
 #include <imgui.h>
+#include <imgui_internal.h>  // ImGui::BringWindowToDisplayFront
 
 #include "ui/panels/layout.h"
 #include "ui/panels/theme.h"
@@ -126,6 +127,8 @@ void SessionMessage::draw(bool hide_successes) {
   const ImGuiWindowFlags flags = ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse |
                                  ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing;
   if (ImGui::Begin("Session", &open, flags)) {
+    // Over the panels it may lie on (the bottom strip's), though it takes no focus.
+    ImGui::BringWindowToDisplayFront(ImGui::GetCurrentWindow());
     ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 0.5f * display.x);
     ImGui::TextColored(error_ ? kErrorColor : kOkColor, "%s", text_.c_str());
     ImGui::PopTextWrapPos();

@@ -12,6 +12,7 @@
 #include "tests/test_data.h"
 #include "tests/ui/imgui_frame.h"
 #include "tests/ui/loaded_session.h"
+#include "ui/model/close_request.h"
 #include "ui/model/edit_history.h"
 #include "ui/model/keyed_weights.h"
 #include "ui/model/session_file.h"
@@ -220,4 +221,58 @@ TEST_CASE("undo and redo keys: Set key is a step of its own, a mark's drag one m
   CHECK(state.takes[kTakeBlend].positions.rows() == keyed.rows());
   CHECK(state.takes[kTakeBlend].positions.isApprox(keyed));
   CHECK_FALSE((unkeyed.rows() == keyed.rows() && unkeyed.isApprox(keyed)));
+}
+
+TEST_CASE("unsaved edits: none as loaded, one after a change, none once saved or undone back to it") {
+  LoadedSession s;
+  EditHistory edits;
+  edits.record(s.state, s.session, false);
+  CHECK_FALSE(edits.unsaved());
+  s.state.document.parameters.alpha = 0.8;
+  edits.record(s.state, s.session, true);  // dragged
+  edits.record(s.state, s.session, false);  // let go: a step
+  CHECK(edits.unsaved());
+  REQUIRE(edits.undo(s.state, s.session));
+  s.session.sync(s.state);
+  edits.record(s.state, s.session, false);
+  CHECK_FALSE(edits.unsaved());  // back as loaded
+  REQUIRE(edits.redo(s.state, s.session));
+  edits.record(s.state, s.session, false);
+  CHECK(edits.unsaved());
+  edits.mark_saved(capture_document(s.state));
+  CHECK_FALSE(edits.unsaved());
+  s.state.document.parameters.alpha = 0.2;
+  edits.record(s.state, s.session, true);
+  edits.record(s.state, s.session, false);
+  CHECK(edits.unsaved());
+  edits.mark_opened();  // an opened session: what is recorded next is what is saved
+  edits.record(s.state, s.session, false);
+  CHECK_FALSE(edits.unsaved());
+}
+
+TEST_CASE("closing: at once with nothing unsaved; else asked, and Cancel, Discard or Save answer it") {
+  CloseRequest c;
+  c.request(false);
+  CHECK(c.may_close());
+  CloseRequest asked;
+  asked.request(true);
+  CHECK(asked.asking());
+  CHECK_FALSE(asked.may_close());
+  asked.answer(CloseRequest::Answer::kCancel);
+  CHECK_FALSE(asked.asking());
+  CHECK_FALSE(asked.may_close());
+  asked.request(true);
+  asked.answer(CloseRequest::Answer::kSave);
+  CHECK(asked.saving());
+  CHECK_FALSE(asked.may_close());
+  asked.saved(false);  // not written (or the dialog cancelled): stays open
+  CHECK_FALSE(asked.may_close());
+  asked.request(true);
+  asked.answer(CloseRequest::Answer::kSave);
+  asked.saved(true);
+  CHECK(asked.may_close());
+  CloseRequest discard;
+  discard.request(true);
+  discard.answer(CloseRequest::Answer::kDiscard);
+  CHECK(discard.may_close());
 }

@@ -82,3 +82,36 @@ TEST_CASE("palette view: keys with weights per body part are the engine's senten
   s.session.sync(s.state);
   CHECK(s.session.palette_view().error().empty());
 }
+
+TEST_CASE("palette view: a take added keeps the others' weights, the new one at 0") {
+  using V = std::vector<double>;
+  using S = std::vector<std::string>;
+  CHECK(weights_with_added_takes({"a", "b"}, {0.7, 0.3}, {"a", "b", "c"}) == V{0.7, 0.3, 0.0});
+  CHECK(weights_with_added_takes({"a", "b", "c"}, {0.5, 0.2, 0.3}, {"a", "b", "c", "d"}) == V{0.5, 0.2, 0.3, 0.0});
+  CHECK(weights_with_added_takes({"a", "a"}, {0.6, 0.4}, {"a", "a", "b"}) == V{0.6, 0.4, 0.0});
+  CHECK(weights_with_added_takes({"a", "b"}, {0.7, 0.3}, S{"c", "d", "e"}).empty());      // all new: equal weights
+  CHECK(weights_with_added_takes({"a", "b", "c"}, {0.5, 0.2, 0.3}, {"a", "c"}).empty());  // fewer
+  CHECK(weights_with_added_takes({"a", "b"}, {1.0}, {"a", "b", "c"}).empty());            // weights of other takes
+
+  // A pair at 0.7/0.3 (alpha 0.3) given a third take with +.
+  LoadedSession s;
+  s.state.document.parameters.alpha = 0.3;
+  std::vector<std::string> takes = s.session.requested_files();
+  REQUIRE(takes.size() == 2);
+  takes.push_back(test::asset("motions/cmu142_walk_joy.bvh"));
+  s.session.load_files(takes);
+  s.session.wait_idle(s.state);
+  REQUIRE(s.session.palette() != nullptr);
+  const std::vector<double>& w = s.state.document.controls.palette.weights;
+  REQUIRE(w.size() == 3);
+  CHECK(w[0] == Approx(0.7));
+  CHECK(w[1] == Approx(0.3));
+  CHECK(w[2] == 0.0);
+  // And a fourth: the three keep theirs.
+  s.state.document.controls.palette.weights = {0.5, 0.2, 0.3};
+  takes.push_back(test::asset("motions/cmu142_walk_clumsy.bvh"));
+  s.session.load_files(takes);
+  s.session.wait_idle(s.state);
+  REQUIRE(s.session.palette()->size() == 4);
+  CHECK(s.state.document.controls.palette.weights == std::vector<double>{0.5, 0.2, 0.3, 0.0});
+}

@@ -19,6 +19,8 @@
 #include "tests/ui/imgui_frame.h"
 #include "tests/ui/loaded_session.h"
 #include "ui/panels/export_dialog.h"
+#include "ui/panels/files_panel.h"
+#include "ui/panels/metrics_panel.h"
 #include "ui/model/export_job.h"
 
 using namespace mostyle;
@@ -367,4 +369,88 @@ TEST_CASE("export dialog: the format is the file's extension, glTF and FBX expor
     }
     CHECK(worst < 1e-3);  // file units (cm-like CMU units): float32 keys
   }
+}
+
+TEST_CASE("export dialog: the file is named after the result, a blend, a mix or a transfer, as the metrics say") {
+  CHECK(export_name_for("blend.bvh", "mix") == "mix.bvh");
+  CHECK(export_name_for("mix.glb", "transfer") == "transfer.glb");
+  CHECK(export_name_for("transfer", "blend") == "blend");
+  CHECK(export_name_for("walk.bvh", "mix") == "walk.bvh");          // the animator's own name
+  CHECK(export_name_for("out/blend.bvh", "mix") == "out/blend.bvh");  // a folder chosen: a name chosen
+  CHECK(std::string(result_name(2, true)) == "blend");
+
+  LoadedSession s;
+  test::HeadlessImGui imgui;
+  FilesPanel files(s.session, test::asset("motions"));
+  auto frame = [&]() {
+    imgui.begin_frame();
+    s.session.poll(s.state);
+    files.draw(s.state);
+    s.session.sync(s.state);
+    imgui.end_frame();
+  };
+  frame();
+  CHECK(std::string(files.export_dialog().settings().path) == "blend.bvh");
+  s.session.load_files({test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"),
+                        test::asset("motions/cmu142_walk_joy.bvh")});
+  s.session.wait_idle(s.state);
+  REQUIRE(s.session.palette() != nullptr);
+  frame();
+  CHECK(std::string(files.export_dialog().settings().path) == "mix.bvh");
+  CHECK(gather_metrics(s.session, s.state.document.controls.palette.transfer).result == "mix");
+  s.state.document.controls.palette.transfer = true;
+  frame();
+  CHECK(std::string(files.export_dialog().settings().path) == "transfer.bvh");
+  CHECK(gather_metrics(s.session, s.state.document.controls.palette.transfer).result == "transfer");
+  // A name typed stays, whatever the mode.
+  set_path(files.export_dialog(), "proud.glb");
+  s.state.document.controls.palette.transfer = false;
+  frame();
+  CHECK(std::string(files.export_dialog().settings().path) == "proud.glb");
+}
+
+TEST_CASE("export dialog: the in and out fields take a frame typed after one click") {
+  LoadedSession s;
+  test::HeadlessImGui imgui;
+  ImGuiIO& io = ImGui::GetIO();
+  constexpr int kEnter = 257;
+  io.KeyMap[ImGuiKey_Enter] = kEnter;
+  ExportDialog dialog(s.session);
+  s.state.view.show_export = true;
+  dialog.settings().range = ExportRange::kInOut;
+  dialog.settings().range_in_frames = true;
+  auto frame = [&]() {
+    imgui.begin_frame();
+    dialog.draw(s.state);
+    imgui.end_frame();
+  };
+  frame();
+  frame();
+  const double out_before = dialog.settings().out_s;
+  REQUIRE(out_before * 30.0 > 40.0);
+  // The mouse over the dialog until ImGui gives the In field the hover.
+  const ImGuiWindow* window = ImGui::FindWindowByName(kExportDialogTitle);
+  REQUIRE(window != nullptr);
+  const ImGuiID in_id = ImHashStr("In##frames", 0, window->ID);
+  bool found = false;
+  const ImRect r = window->Rect();
+  for (float y = r.Min.y + 2.0f; y < r.Max.y && !found; y += 4.0f)
+    for (float x = r.Min.x + 2.0f; x < r.Max.x && !found; x += 8.0f) {
+      io.MousePos = ImVec2(x, y);
+      frame();
+      found = GImGui->HoveredId == in_id;
+    }
+  REQUIRE(found);
+  io.MouseDown[0] = true;  // one plain click
+  frame();
+  io.MouseDown[0] = false;
+  frame();
+  for (char c : std::string("40")) io.AddInputCharacter(static_cast<unsigned>(c));  // over the 0 it selected
+  frame();
+  io.KeysDown[kEnter] = true;
+  frame();
+  io.KeysDown[kEnter] = false;
+  frame();
+  CHECK(dialog.settings().in_s * 30.0 == Approx(40.0));
+  CHECK(dialog.settings().out_s == out_before);
 }

@@ -126,3 +126,53 @@ TEST_CASE("palette panel: a transfer's neutral can be none, the content its own 
   CHECK(c.neutral == 1);
   CHECK(t.mix_weights() == std::vector<double>{1.0, -0.5, 0.5});
 }
+
+TEST_CASE("palette panel: a weight's field shows its sign whole, and a 46 pixel drag moves it by less than 0.5") {
+  Palette t;
+  t.s.state.document.controls.palette.transfer = false;
+  t.s.state.document.controls.palette.weights = {1.3, -0.15, -0.15};
+  t.frame();
+  REQUIRE(t.s.session.palette() != nullptr);
+  // Take 0's weight field ("##w" under PushID(0) in the weights' child window).
+  auto weight_field = [](const ImGuiWindow*, const void*) {
+    const int take = 0;
+    const ImGuiWindow* w = GImGui->HoveredWindow;
+    return w == nullptr ? ImGuiID(0) : ImHashStr("##w", 0, ImHashData(&take, sizeof take, w->ID));
+  };
+  REQUIRE(t.hover(kTitle, weight_field, nullptr));
+  ImGuiIO& io = ImGui::GetIO();
+  const ImVec2 found = io.MousePos;
+  const ImGuiID id = GImGui->HoveredId;
+  // Its width: how far the hover reaches on either side along that row.
+  float left = found.x, right = found.x;
+  for (float x = found.x; x > found.x - 400.0f; x -= 1.0f) {
+    io.MousePos = ImVec2(x, found.y);
+    t.frame();
+    if (GImGui->HoveredId != id) break;
+    left = x;
+  }
+  for (float x = found.x; x < found.x + 400.0f; x += 1.0f) {
+    io.MousePos = ImVec2(x, found.y);
+    t.frame();
+    if (GImGui->HoveredId != id) break;
+    right = x;
+  }
+  const float needed = ImGui::CalcTextSize("-0.50").x + 2.0f * ImGui::GetStyle().FramePadding.x;
+  CHECK(right - left + 1.0f >= needed + ImGui::GetFontSize());  // the value, its sign, and room to spare
+  // A 46 pixel drag to the left from the middle.
+  const float middle = 0.5f * (left + right);
+  io.MousePos = ImVec2(middle, found.y);
+  t.frame();
+  io.MouseDown[0] = true;
+  t.frame();
+  for (int step = 1; step <= 23; ++step) {
+    io.MousePos = ImVec2(middle - 2.0f * static_cast<float>(step), found.y);
+    t.frame();
+  }
+  io.MouseDown[0] = false;
+  t.frame();
+  const double after = t.s.state.document.controls.palette.weights[0];
+  CAPTURE(after);
+  CHECK(after < 1.3 - 0.05);  // it moved
+  CHECK(after > 1.3 - 0.5);   // finely
+}

@@ -309,7 +309,7 @@ TEST_CASE("files panel: a file dropped on a palette is one more take, and a load
   REQUIRE(s.session.palette() != nullptr);
   CHECK(s.session.palette()->size() == 4);
   // The metrics speak of the palette: each take's fit error and foot sliding, the mix's bones.
-  const Metrics m = gather_metrics(s.session);
+  const Metrics m = gather_metrics(s.session, s.state.document.controls.palette.transfer);
   CHECK(m.result == "mix");
   REQUIRE(m.takes.size() == 4);
   for (const Metrics::Take& t : m.takes) {

@@ -1,0 +1,77 @@
+// The DTW panel's matched frames (ui/panels/dtw_panel.h) as each take's file counts them: a short
+// B at 30 fps registered by cycles onto a longer A at 120 fps.
+#include "ui/panels/dtw_panel.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+
+#include "tests/test_data.h"
+
+using namespace mostyle;
+using namespace mostyle::ui;
+namespace fs = std::filesystem;
+
+namespace {
+
+// The bundled marching walk (120 fps) as a BVH of `frames` frames at 30 fps: every fourth frame.
+std::string short_take_at_30(const fs::path& dir, int frames) {
+  std::ifstream in(test::asset("motions/cmu142_walk_marching.bvh"));
+  std::ostringstream out;
+  std::string line;
+  while (std::getline(in, line) && line.rfind("MOTION", 0) != 0) out << line << '\n';
+  out << "MOTION\nFrames: " << frames << "\nFrame Time: 0.0333333\n";
+  std::getline(in, line);  // Frames:
+  std::getline(in, line);  // Frame Time:
+  for (int k = 0, kept = 0; kept < frames && std::getline(in, line); ++k)
+    if (k % 4 == 0) {
+      out << line << '\n';
+      ++kept;
+    }
+  const std::string path = (dir / "marching_short_30.bvh").string();
+  std::ofstream(path) << out.str();
+  return path;
+}
+
+}  // namespace
+
+TEST_CASE("DTW panel: the matched frames are each take's own, counted at its file's rate") {
+  const fs::path dir = fs::temp_directory_path() / ("mostyle_dtw_panel_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const int b_frames = 100;
+  const std::string b = short_take_at_30(dir, b_frames);
+  EditorState state;
+  state.document.parameters.components = 4;
+  BlendSession session;
+  session.load(test::asset("motions/cmu142_walk_happy.bvh"), b);
+  session.wait_idle(state);
+  fs::remove_all(dir);
+  INFO(session.error());
+  const PreparedTakes* p = session.pair();
+  REQUIRE(p != nullptr);
+  const Alignment& al = p->takes[1].alignment;
+  REQUIRE(al.by_cycles());
+  REQUIRE(p->fps == 30.0);
+  REQUIRE(p->takes[0].clip->fps() == Approx(120.0));
+  // The registered B repeats B's cycles along A: its frames run past B's own.
+  CHECK(al.b_last > b_frames - 1);
+
+  const MatchedFrames m = matched_frames_in_files(*p);
+  CHECK(m.a_first == std::lround(al.a_first * 4.0));  // A's file counts four frames to a working one
+  CHECK(m.a_last == std::lround(al.a_last * 4.0));
+  CHECK(m.a_last <= 1079);
+  CHECK(0 <= m.b_first);
+  CHECK(m.b_first < m.b_last);
+  CHECK(m.b_last <= b_frames - 1);
+  // Every own frame of B the registered frames in the matched range come from lies in B's range.
+  int outside = 0;
+  for (int k = al.b_first; k <= al.b_last; ++k)
+    if (!std::isnan(al.b_source[k])) outside += std::lround(al.b_source[k]) < m.b_first || std::lround(al.b_source[k]) > m.b_last;
+  CHECK(outside == 0);
+}
