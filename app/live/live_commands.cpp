@@ -160,6 +160,7 @@ void add_live_send_command(CLI::App& app, std::function<int()>* run) {
     std::string file, serve;
     double rate = 0.0;
     bool loop = false;
+    int clients = 1;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("FILE", args->file, "The take (BVH; FBX or glTF are sampled at their own rate)")->required();
@@ -169,9 +170,14 @@ void add_live_send_command(CLI::App& app, std::function<int()>* run) {
       ->required();
   cmd->add_option("--rate", args->rate, "Frames per second (default: the take's own)");
   cmd->add_flag("--loop", args->loop, "Start over after the last frame, until stopped (Ctrl-C)");
+  cmd->add_option("--clients", args->clients,
+                  "Start sending once this many clients have connected (default 1), so that a measuring client and "
+                  "mostyle-cli live both get every frame");
   cmd->callback([=] {
     *run = [=] {
       live::LiveSendConfig config;
+      if (args->clients < 1 || args->clients > 64) throw InputError("--clients: expected from 1 to 64 clients, found " + std::to_string(args->clients));
+      config.clients = args->clients;
       config.port = live::parse_port(args->serve, "--serve");
       if (!(std::isfinite(args->rate) && args->rate >= 0.0))
         throw InputError("--rate: expected frames per second above 0");

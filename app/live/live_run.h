@@ -32,10 +32,11 @@ struct LiveSendConfig {
   int port = 0;                            // --serve (0: any free port, printed)
   double rate = 0.0;                       // frames per second; 0: the take's own
   bool loop = false;                       // start over after the last frame, until stopped
+  int clients = 1;                         // sending starts once this many clients have connected
   std::string avatar_name = "Avatar00";    // Axis's name of its first avatar
 };
 
-// Serves `clip`'s frames as Axis Neuron does: waits for the first client, then sends frame k at
+// Serves `clip`'s frames as Axis Neuron does: waits for the first client (config.clients), then sends frame k at
 // t0 + k / rate (absolute deadlines on the steady clock: no drift) to every client. Without
 // loop, drains the clients' queues (up to 5 s), closes the connections after the last frame
 // and returns 0; SIGINT/SIGTERM end it the same way. Prints the port, then a one-line summary.

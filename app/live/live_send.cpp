@@ -1,6 +1,7 @@
 // `mostyle-cli live-send`: a take served as Axis Neuron serves its stream.
 #include <iostream>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "app/live/frame_server.h"
@@ -20,7 +21,9 @@ class LiveSend {
 
   int run(const std::string& source) {
     std::cout << "live-send: serving " << source << " (" << clip_.frames() << " frames at " << rate_
-              << " fps) on port " << server_.port() << "; waiting for a client" << std::endl;
+              << " fps) on port " << server_.port() << "; waiting for "
+              << (config_.clients == 1 ? std::string("a client") : std::to_string(config_.clients) + " clients")
+              << std::endl;
     if (wait_for_client()) send_frames();
     drain();
     std::cout << "live-send: " << sent_ << " frames sent; " << server_.accepted() << " clients, " << server_.dropped()
@@ -43,7 +46,7 @@ class LiveSend {
   }
 
   bool wait_for_client() {
-    while (server_.accepted() == 0) {
+    while (server_.accepted() < config_.clients) {
       fds_.clear();
       fds_.push_back({stop_.fd(), POLLIN, 0});
       server_.add_poll_fds(&fds_);

@@ -133,6 +133,11 @@ void LivePhase::update(const std::array<long, 2>& strikes, const std::array<Eige
   }
   const double expected = period_ > 0.0 ? period_ : o_.guess_period_s * o_.fps;
   if (in_cycle_ && double(t - cycle_clock_) > (1.0 + o_.cycles.max_change) * expected) in_cycle_ = false;
+  // A step missed: no strike of either foot for missed_step times the step expected since the
+  // last (a foot that drags or shuffles, a stumble), where offline the cycle would fail its checks.
+  const long last = std::max(last_cycle_strike_, last_other_strike_);
+  const double step = (last == last_cycle_strike_ ? other_share_ : 1.0 - other_share_) * expected;
+  if (in_cycle_ && last >= 0 && double(t - last) > o_.missed_step * step) in_cycle_ = false;
   fade_ = std::clamp(fade_ + (in_cycle_ ? 1.0 : -1.0) / std::max(1.0, o_.fade_cycles * expected), 0.0, 1.0);
   weight_ = smoothstep(fade_);
   // The phase shown: the prediction itself while it is not seen (weight 0), else one frame on at

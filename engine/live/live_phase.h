@@ -16,8 +16,11 @@
 // inside it in step, each foot reaching min_stride against the body), from a strike of the
 // other foot in step after a strike of the cycle foot, or from the first step after standing (a
 // strike of a foot that reached min_stride, none of that foot within the gait's longest cycle);
-// it is out of one (standing, turning on the spot) after a cycle that fails the checks, or when
-// the cycle foot has not struck for 1 + max_change of the expected cycle. The cycle weight eases between
+// it is out of one (standing, turning on the spot) after a cycle that fails the checks, when
+// the cycle foot has not struck for 1 + max_change of the expected cycle, or when a step is
+// missed (no strike of either foot for missed_step times the step expected since the last: a
+// foot that drags, a stumble, where the offline cycles fail their checks and a transfer gives
+// the posture). The cycle weight eases between
 // 0 (out) and 1 (in) over fade_cycles of a cycle, as offline registration fades a take's own
 // frames into its posture (cycle_registration.h).
 #include <Eigen/Core>
@@ -35,6 +38,7 @@ struct LivePhaseOptions {
   double guess_period_s = 1.1;      // a cycle's length until the stream has shown one, seconds
   double correction_seconds = 0.1;  // a small phase error is closed over this time
   double fade_cycles = 0.5;         // the cycle weight eases in and out over this many cycles
+  double missed_step = 1.3;         // no strike for this many steps expected: out of the cycle
   CycleOptions cycles;              // gait range, max_change, step_share, min_stride
 };
 

@@ -18,6 +18,7 @@
 #include "engine/io/atomic_file.h"
 #include "engine/io/axis_stream.h"
 #include "engine/io/bvh_io.h"
+#include "engine/kinematics/kinematics.h"
 #include "tests/app/cli_sandbox.h"
 #include "tests/app/live_process.h"
 #include "tests/test_data.h"
@@ -144,7 +145,84 @@ void serves_every_frame(const std::string& file) {
   check_recording(box.path("in.bvh"), clip, clip.frames());
 }
 
+// A take replayed through `live-send --clients 2` -> `live` (the real styler: Bandai normal -> old
+// at `strength`) -> a reading client, with a second client reading live-send itself (its second
+// client starts it, so live and its client miss nothing). Returns the frames served, parsed.
+Clip replay_through_live(const Sandbox& box, const std::string& take, const std::string& strength) {
+  const Clip clip = read_bvh_file(take);
+  test::CliProcess send({"live-send", take, "--serve", "0", "--clients", "2", "--rate", "1000"}, box.path("send.err"));
+  const int source_port = send.port();
+  REQUIRE(source_port > 0);
+  test::CliProcess live({"live", "--connect", "127.0.0.1:" + std::to_string(source_port), "--skeleton", take,
+                         "--neutral", test::shared_motion("bandai_walk_normal.bvh"), "--style",
+                         test::shared_motion("bandai_walk_old.bvh"), "--strength", strength, "--serve", "0"},
+                        box.path("live.err"));
+  const int served_port = live.port();
+  INFO(live.err());
+  REQUIRE(served_port > 0);
+  const int client = test::connect_local(served_port);
+  REQUIRE(client >= 0);
+  const int direct = test::connect_local(source_port);  // live takes its client before this starts the frames
+  REQUIRE(direct >= 0);
+  std::vector<std::string> sent;
+  std::thread reader([&] { sent = test::read_lines(direct); });
+  const std::vector<std::string> lines = test::read_lines(client);
+  reader.join();
+  ::close(direct);
+  ::close(client);
+  CHECK(live.wait() == 0);
+  CHECK(send.wait() == 0);
+  CHECK(static_cast<int>(sent.size()) == clip.frames());
+  REQUIRE(static_cast<int>(lines.size()) == clip.frames());  // every frame served
+  CHECK(summary(live.out()) == std::vector<long long>{clip.frames(), clip.frames(), 0, 1, 0});
+  Clip served = clip;
+  for (int f = 0; f < clip.frames(); ++f) {
+    AxisFrame frame;
+    std::string reason;
+    REQUIRE(parse_axis_line(lines[static_cast<size_t>(f)], clip.skeleton.channel_count, &frame, &reason) ==
+            AxisLineStatus::kOk);
+    for (int c = 0; c < clip.skeleton.channel_count; ++c) served.motion(f, c) = frame.values[static_cast<size_t>(c)];
+  }
+  return served;
+}
+
+// The standing height of a skeleton's rest pose, file units.
+double rest_height(const Skeleton& skeleton) {
+  double low = 0.0, high = 0.0;
+  for (const Eigen::Vector3d& p : rest_positions(skeleton)) {
+    low = std::min(low, p.y());
+    high = std::max(high, p.y());
+  }
+  return high - low;
+}
+
+// The farthest any joint of `a` is from the same joint of `b` (one skeleton), over all frames.
+double farthest_joint(const Clip& a, const Clip& b) {
+  const Eigen::MatrixXd pa = joint_positions(a), pb = joint_positions(b);
+  double out = 0.0;
+  for (Eigen::Index f = 0; f < pa.rows(); ++f)
+    for (Eigen::Index j = 0; j < pa.cols() / 3; ++j)
+      out = std::max(out, (pa.block<1, 3>(f, 3 * j) - pb.block<1, 3>(f, 3 * j)).norm());
+  return out;
+}
+
 }  // namespace
+
+TEST_CASE("live-send -> live with a real style -> a client: every frame arrives; strength 0 serves the stream",
+          "[cli][live]") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  Sandbox box;
+  const Clip clip = read_bvh_file(kHappy);
+  const double height = rest_height(clip.skeleton);
+  SECTION("strength 0: each served frame is the stream's, every joint within 1e-4 of the body's height") {
+    const Clip served = replay_through_live(box, kHappy, "0");
+    CHECK(farthest_joint(served, clip) <= 1e-4 * height);
+  }
+  SECTION("strength 1: every frame served, styled") {
+    const Clip served = replay_through_live(box, kHappy, "1");
+    CHECK(farthest_joint(served, clip) > 0.01 * height);
+  }
+}
 
 TEST_CASE("live serves every frame of a take as it came (pass-through styler), and records both streams",
           "[cli][live]") {
@@ -417,6 +495,7 @@ TEST_CASE("live and live-send refuse bad usage in one line naming the file or op
        "cannot connect to 127.0.0.1:"},
       {"live-send '" + missing + "' --serve 0", missing + ": cannot read"},
       {"live-send " + happy + " --serve 0 --rate -1", "--rate"},
+      {"live-send " + happy + " --serve 0 --clients 0", "--clients: expected from 1 to 64 clients, found 0"},
   };
   for (const Case& c : cases) {
     INFO(c.args);

@@ -2,15 +2,19 @@
 // (parse, format, split from TCP chunks), and the latency over loopback from a source sending a
 // frame to a client receiving it through `mostyle-cli live` (its styler as built), against one
 // plain loopback hop. Latencies are each frame's own (the next frame leaves once the last came),
-// as p50 / p99 / max counters in microseconds.
+// as p50 / p99 / max counters in microseconds. BM_LiveSendReplay replays a 20 s 120 fps walk at its
+// own rate through `live-send` -> `live` (the real styler, Bandai normal -> old) -> a client, and
+// counts the frames reaching the client within 8.3 ms (one frame) of the source sending them.
 #include <benchmark/benchmark.h>
 #include <netinet/tcp.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <cstdlib>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "engine/io/axis_stream.h"
@@ -174,5 +178,89 @@ void BM_LiveLatency(benchmark::State& state) {
   std::remove(err.c_str());
 }
 BENCHMARK(BM_LiveLatency)->UseManualTime()->Unit(benchmark::kMicrosecond)->Iterations(5000);
+
+// Reads lines from fd until it closes (or `count` lines came); each line's arrival time.
+std::vector<mostyle::test::TestClock::time_point> arrivals(int fd, size_t count) {
+  std::vector<mostyle::test::TestClock::time_point> out;
+  out.reserve(count);
+  char buffer[1 << 16];
+  while (out.size() < count) {
+    pollfd p{fd, POLLIN, 0};
+    if (::poll(&p, 1, 60000) <= 0) break;
+    const ssize_t n = ::recv(fd, buffer, sizeof buffer, 0);
+    if (n <= 0) break;
+    const auto now = mostyle::test::TestClock::now();
+    for (ssize_t i = 0; i < n; ++i)
+      if (buffer[i] == '\n') out.push_back(now);
+  }
+  return out;
+}
+
+// The shared motions (the lead's real data), or "" when absent.
+std::string shared_motions() {
+  const char* dir = std::getenv("MOSTYLE_SHARED_MOTIONS_DIR");
+  const std::string d = dir != nullptr ? dir : MOSTYLE_SHARED_MOTIONS;
+  return fs::exists(d + "/cmu142_walk_happy.bvh") && fs::exists(d + "/bandai_walk_old.bvh") ? d : "";
+}
+
+// live-send (a 20 s 120 fps CMU walk, at 120 fps, waiting for two clients) -> live (the real
+// styler: --neutral bandai_walk_normal --style bandai_walk_old, strength 1) -> a reading client;
+// a second client reads live-send directly. A frame's latency is its arrival at live's client
+// minus its arrival at live-send's (the source's send plus one loopback hop, tens of
+// microseconds): the time live adds. Counters: frames sent and served, the share served within
+// 8.3 ms, p50 / p99 / max in microseconds. One iteration of 20 s.
+void BM_LiveSendReplay(benchmark::State& state) {
+  const std::string dir = shared_motions();
+  if (dir.empty()) {
+    state.SkipWithError("no shared motions (MOSTYLE_SHARED_MOTIONS_DIR)");
+    for (auto _ : state) {
+    }
+    return;
+  }
+  const std::string tmp = (fs::temp_directory_path() / ("mostyle_live_replay_" + std::to_string(::getpid()))).string();
+  fs::create_directories(tmp);
+  mostyle::Clip walk = mostyle::read_bvh_file(dir + "/cmu142_walk_happy.bvh");
+  const int frames = std::min(walk.frames(), static_cast<int>(std::lround(20.0 * walk.fps())));
+  walk.motion = mostyle::MotionMatrix(walk.motion.topRows(frames));
+  const std::string take = tmp + "/walk.bvh";
+  mostyle::write_bvh_file(walk, take);
+  for (auto _ : state) {
+    mostyle::test::CliProcess send({"live-send", take, "--serve", "0", "--clients", "2"}, tmp + "/send.err");
+    const int source_port = send.port();
+    mostyle::test::CliProcess live({"live", "--connect", "127.0.0.1:" + std::to_string(source_port), "--skeleton", take,
+                                    "--neutral", dir + "/bandai_walk_normal.bvh", "--style",
+                                    dir + "/bandai_walk_old.bvh", "--serve", "0"},
+                                   tmp + "/live.err");
+    const int served_port = source_port > 0 ? live.port() : -1;
+    const int client = served_port > 0 ? mostyle::test::connect_local(served_port) : -1;
+    // live takes its client before the first frame comes: live-send starts at its second client.
+    const int direct = client >= 0 ? mostyle::test::connect_local(source_port) : -1;
+    if (direct < 0) {
+      state.SkipWithError(("live or live-send did not start: " + live.err() + send.err()).c_str());
+      break;
+    }
+    std::vector<mostyle::test::TestClock::time_point> sent, served;
+    std::thread source_reader([&] { sent = arrivals(direct, static_cast<size_t>(frames)); });
+    served = arrivals(client, static_cast<size_t>(frames));
+    source_reader.join();
+    std::vector<double> us;
+    for (size_t k = 0; k < std::min(sent.size(), served.size()); ++k)
+      us.push_back(std::chrono::duration<double, std::micro>(served[k] - sent[k]).count());
+    const double within = static_cast<double>(std::count_if(us.begin(), us.end(), [](double t) { return t <= 8333.0; }));
+    state.counters["frames_sent"] = static_cast<double>(sent.size());
+    state.counters["frames_served"] = static_cast<double>(served.size());
+    state.counters["within_8_3ms"] = served.empty() ? 0.0 : within / static_cast<double>(frames);
+    report_percentiles(state, us);
+    // The iteration's time: from the first frame sent to the last served.
+    state.SetIterationTime(sent.empty() || served.empty()
+                               ? 0.0
+                               : std::chrono::duration<double>(served.back() - sent.front()).count());
+    for (int fd : {client, direct}) ::close(fd);
+    live.wait();
+    send.wait();
+  }
+  fs::remove_all(tmp);
+}
+BENCHMARK(BM_LiveSendReplay)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace

@@ -30,12 +30,15 @@ using namespace mostyle;
 namespace {
 
 constexpr double kPassThrough = 1e-4;      // of the body's height: strength 0 gives the stream
-// Of the body's height: the mean joint distance from the offline transfer. Asked for: 2%. Met: about
-// 3.5%. The transfer's change is not one change per phase: each of its cycles pairs one cycle of
-// the neutral with one of the style, warped onto that content cycle, and its change varies from
-// cycle to cycle by about 2.5% of the body's height (mean over the major joints, at the same
-// phase of the content's cycles), which a change averaged over the neutral's cycles cannot follow.
-constexpr double kOfflineMean = 0.045;
+// Of the body's height: the mean joint distance from the offline transfer (the command line's:
+// planted feet held to the content's). Asked for: 2%. Met: 3.67% (CMU, 120 fps) and 3.79% (Bandai,
+// 30 fps). The transfer's change is not one change per phase: each of its cycles pairs one cycle
+// of the neutral with one of the style, warped onto that content cycle, and gives only the
+// posture between the cycles its checks pass. Even the transfer's own change averaged by phase
+// over the content's cycles (the content's phase, known offline) is 3.2% and 2.3% from it, which
+// no change averaged over the neutral's cycles can beat; most of what is left is at the feet,
+// whose offline lock pins them in the world on the mixed path.
+constexpr double kOfflineMean = 0.04;
 // The live styler takes the stream most of the way to the transfer: its distance from it is
 // under this share of the transfer's own change.
 constexpr double kOfflineShare = 0.7;
@@ -71,6 +74,7 @@ Clip offline_transfer(const std::shared_ptr<const Clip>& content, const std::sha
   mp.min_weight = transfer_min_weight(1);
   mp.max_weight = transfer_max_weight(1);
   mp.reference_timing = true;
+  mp.feet_of_reference = true;  // as the command line's transfer holds them
   MixScratch scratch;
   MixResult result;
   mix_palette(*p, *d, mp, scratch, result);
@@ -369,10 +373,12 @@ TEST_CASE("live: the phase is predicted from the strikes so far, matched by foot
   // It has caught up with the prediction a few frames after each correction.
   CHECK(shown[55] == Approx(predicted[55]).margin(1e-3));
   CHECK(shown[72] == Approx(predicted[72]).margin(1e-3));
-  // No left strike for 1.45 cycles after 76: out of the cycle, the weight eased to 0 over half a cycle.
-  CHECK(in_cycle[76 + 47]);
-  CHECK(!in_cycle[76 + 48]);
-  CHECK(weight[76 + 48] > 0.0);
+  // No right strike after 76, where one was expected 15 frames on (the stream's share, 15 / 33,
+  // of a 33-frame cycle): a step missed once 1.3 steps (19.5 frames) have passed: out of the
+  // cycle at 96, the weight eased to 0 over half a cycle.
+  CHECK(in_cycle[95]);
+  CHECK(!in_cycle[96]);
+  CHECK(weight[96] > 0.0);
   CHECK(weight[140] == 0.0);
 }
 
@@ -460,5 +466,3 @@ TEST_CASE("live: a 30 fps Bandai walk styled live follows the offline transfer",
   MOSTYLE_REQUIRE_SHARED_MOTIONS();
   compare_with_offline(load(test::shared_motion("bandai_walk_proud.bvh")), "Bandai proud, 11 s at 30 fps");
 }
-
-
