@@ -605,19 +605,40 @@ RigStructure find_rig_structure(const Skeleton& skeleton, const MotionMatrix* mo
   RigStructure out;
   if (motion != nullptr && (motion->cols() != skeleton.channel_count || motion->rows() == 0)) motion = nullptr;
   // A rest pose that shows no standing body (a BVH written with every rotation zero from bones
-  // that run along their own axes) is read in the first frame's pose instead.
+  // that run along their own axes, or lying as a Z-up file's skeleton does) is read in the first
+  // frame's pose instead, or the first frame sampled over the motion that shows both legs.
   std::vector<Eigen::Vector3d> pose = rest_positions(skeleton);
   bool first_frame = false;
-  const auto has_legs = [&](const std::vector<Eigen::Vector3d>& p) {
+  std::string which_frame = "the first frame's pose";
+  // The legs a pose shows: (hips, one leg's root, the other's), the roots in order; none: -1s.
+  const auto legs_of = [&](const std::vector<Eigen::Vector3d>& p) {
     const Tree probe(skeleton, p);
     int hips = -1, a = -1, b = -1;
-    return probe.height > 0 && find_legs(probe, &hips, &a, &b);
+    if (!(probe.height > 0) || !find_legs(probe, &hips, &a, &b)) return std::array<int, 3>{-1, -1, -1};
+    return std::array<int, 3>{hips, std::min(a, b), std::max(a, b)};
   };
-  if (!has_legs(pose) && motion != nullptr) {
-    std::vector<Eigen::Vector3d> first = sample_positions(skeleton, MotionMatrix(motion->topRows(1))).front();
-    if (has_legs(first)) {
-      pose = std::move(first);
+  if (legs_of(pose)[0] < 0 && motion != nullptr) {
+    // Poses over the motion, the first frame first. A pose with a foot in the air can show other
+    // limbs as its legs (the arms hang lower than a lifted foot): the legs most poses show win,
+    // read in the first pose that shows them.
+    std::vector<std::vector<Eigen::Vector3d>> poses = sample_positions(skeleton, MotionMatrix(motion->topRows(1)));
+    poses.resize(1);
+    for (std::vector<Eigen::Vector3d>& p : sample_positions(skeleton, *motion)) poses.push_back(std::move(p));
+    std::vector<std::array<int, 3>> found;
+    for (const auto& p : poses) found.push_back(legs_of(p));
+    size_t best = found.size(), votes = 0;
+    for (size_t k = 0; k < found.size(); ++k) {
+      if (found[k][0] < 0) continue;
+      const size_t n = static_cast<size_t>(std::count(found.begin(), found.end(), found[k]));
+      if (n > votes) {
+        votes = n;
+        best = k;
+      }
+    }
+    if (best < found.size()) {
+      pose = std::move(poses[best]);
       first_frame = true;
+      if (best > 0) which_frame = "a pose of the motion that stands on both legs";
     }
   }
   Tree t(skeleton, std::move(pose));
@@ -656,7 +677,7 @@ RigStructure find_rig_structure(const Skeleton& skeleton, const MotionMatrix* mo
     put(a_left > 0 ? b.arm_b : b.arm_a, MajorJoint::kRightShoulder);
   }
   out.summary = summarize(skeleton, b, a_left != 0, out.facing);
-  if (first_frame) out.summary = "read in the first frame's pose (the rest pose shows no legs): " + out.summary;
+  if (first_frame) out.summary = "read in " + which_frame + " (the rest pose shows no legs): " + out.summary;
   return out;
 }
 

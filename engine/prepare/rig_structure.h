@@ -1,8 +1,9 @@
 #pragma once
 // The major joints of a rig found from its shape rather than its names: the hierarchy, the rest
-// pose (Y up, as everywhere in the engine; the first frame's pose where the rest pose shows no
-// legs) and, where the pose cannot tell which way the body faces, the motion. map_major_joints (major_skeleton.h) fills from here what the name
-// rules leave out.
+// pose (Y up, as everywhere in the engine; where the rest pose shows no legs, the first frame's
+// pose, or the first frame sampled over the motion that stands on both) and, where the pose
+// cannot tell which way the body faces, the motion. map_major_joints (major_skeleton.h) fills
+// from here what the name rules leave out.
 //   legs: the two chains that go down from one joint (the hips) to the lowest joints, each cut
 //     at its two longest consecutive bones (thigh and shin): hip, knee, ankle, then the toe;
 //     a leg whose shin ends with no foot under it (an IK rig, whose foot joint hangs from the

@@ -408,7 +408,7 @@ TakeCycles take_cycles(const std::shared_ptr<const Clip>& clip) {
   // rate, and nothing more: FK of the hips and legs, their bones, the feet, the canonical frame,
   // contacts and cycles (contacts_and_cycles reads the same columns of the whole pose); the rest
   // of the body only for a take whose feet give no gait.
-  const MajorMapping mapping = map_major_joints(clip->skeleton);
+  const MajorMapping mapping = map_major_joints(*clip);
   const std::vector<int> majors = shared_major_joints(mapping, clip->source, mapping, clip->source);
   auto cycles_of = [&](const std::vector<int>& joints) {
     const MajorTake major = extract_major_take(*clip, mapping, joints, 0.0);
