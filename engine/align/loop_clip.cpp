@@ -10,9 +10,6 @@ namespace {
 // A loop's steps next to its seam are at least this share of its median step: one that comes to
 // rest at both ends is a take from standing to standing, not a loop.
 constexpr double kSeamMotion = 0.1;
-// A loop's seam is at most this many of its median steps: a loop made by a blend or a transfer
-// (its seam closed over the cycle) joins a little less closely than a hand-keyed one.
-constexpr double kSeamSteps = 1.5;
 // A return to the first pose: the distance from it falls below this share of its largest ...
 constexpr double kReturnEnter = 0.25;
 // ... and the return ends when it rises above this share again (hysteresis: noise around one
@@ -72,7 +69,7 @@ int loop_clip_frames(const Eigen::MatrixXd& local, int max_frames, int max_retur
   const double repeat_seam = pose_distance(last, first);
   const double follow_seam = pose_distance(Eigen::RowVectorXd(last + step_on), first);
   const int loop = static_cast<int>(repeat_seam <= follow_seam ? frames - 1 : frames);
-  if (std::min(repeat_seam, follow_seam) > kSeamSteps * step || loop > max_frames) return 0;
+  if (std::min(repeat_seam, follow_seam) > step || loop > max_frames) return 0;
   // A take that comes to rest at both ends (from standing to standing) stops at its seam; a loop
   // moves on through it.
   if (std::min(steps.front(), steps.back()) < kSeamMotion * step) return 0;

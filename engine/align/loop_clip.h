@@ -13,8 +13,8 @@ namespace mostyle {
 //   last repeats first (L = F - 1): the last pose against the first;
 //   first follows last (L = F): the first pose against the last moved on by one step (the mean of
 //   the first and the last frame's steps);
-// the smaller seam gives L. The clip is a loop when that seam is at most 1.5 median steps (it
-// plays on without a hitch much larger than its own steps), its first and last steps are not near
+// the smaller seam gives L. The clip is a loop when that seam is at most the median step (it
+// plays on without a hitch larger than its own steps), its first and last steps are not near
 // still (a take from rest to rest stops at its ends), it is at most max_frames long, and its
 // pose does not come back to its first pose more than max_returns times in between (a take of
 // many cycles that happens to end near its start pose is not a loop: each cycle is a return).

@@ -378,25 +378,6 @@ TEST_CASE("cycles: a loop's length, measured on the pose alone") {
   const CanonicalMotion follow = to_canonical(test::gait_take(g, n), 0, 1, 5);
   CHECK(loop_clip_frames(follow.local, 1000, 1) == n);
   CHECK(loop_clip_frames(follow.local, n - 1, 1) == 0);  // longer than allowed
-  {
-    // A seam up to 1.5 median steps (a blend's or a transfer's closed loop) still loops; 2 do not.
-    const Eigen::Index f = follow.local.rows();
-    const double joints = double(follow.local.cols() / 3);
-    std::vector<double> steps;
-    for (Eigen::Index t = 0; t + 1 < f; ++t)
-      steps.push_back(std::sqrt((follow.local.row(t + 1) - follow.local.row(t)).squaredNorm() / joints));
-    std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
-    const double median = steps[steps.size() / 2];
-    for (const auto& [seam, loops] : {std::pair{1.3, true}, std::pair{2.0, false}}) {
-      INFO("seam of " << seam << " median steps");
-      Eigen::MatrixXd nudged = follow.local;
-      // The last pose moved by c in every coordinate: the seam (against the pose after the last,
-      // one mean step on) moves by 1.5 c sqrt(3) over the joints, the last pose against the first
-      // by c sqrt(3) from a step's distance.
-      nudged.row(f - 1).array() += seam * median / (1.5 * std::sqrt(3.0));
-      CHECK((loop_clip_frames(nudged, 1000, 1) > 0) == loops);
-    }
-  }
   const CanonicalMotion cut = to_canonical(test::gait_take(g, n - 7), 0, 1, 5);
   CHECK(loop_clip_frames(cut.local, 1000, 1) == 0);  // ends mid-cycle
   CHECK(loop_clip_frames(Eigen::MatrixXd::Zero(40, 27), 1000, 1) == 0);  // still
