@@ -229,7 +229,7 @@ def leg_length(frames, roles):
 def features(frames, roles, height, period_s):
     """style_check.py's features, by role: per joint (but the hips) its mean height above the hips
     and reach forward of them, its RMS amplitude about its mean in the body's frame (all in
-    heights), and the stride period (PERIOD_WEIGHT log seconds; 0 without one). The body's frame:
+    heights), and the stride period (PERIOD_WEIGHT log seconds; left out where `info` finds none). The body's frame:
     lateral from the right leg's hip to the left's, forward across it on the ground."""
     li, ri = roles.index('L_leg0'), roles.index('R_leg0')
     local = []
@@ -249,7 +249,7 @@ def features(frames, roles, height, period_s):
         out['up ' + role] = mean[1] / height
         out['forward ' + role] = mean[0] / height
         out['amplitude ' + role] = amp / height
-    out['period'] = PERIOD_WEIGHT * math.log(period_s) if period_s and period_s > 0 else 0.0
+    if period_s and period_s > 0: out['period'] = PERIOD_WEIGHT * math.log(period_s)  # unknown: not compared
     return out
 
 
