@@ -5,6 +5,7 @@
 
 #include "engine/kinematics/limb_length.h"
 #include "engine/post/planted_feet.h"
+#include "engine/post/speed_limit.h"
 #include "engine/prepare/canonical_frame.h"
 
 namespace mostyle {
@@ -63,11 +64,15 @@ void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, c
     if (body_drift != nullptr) s.drift = s.drift.middleRows(out.loop.begin, out.loop.frames()).eval();
   }
   to_world(local, s.ground, s.heading, &out.world);
-  if (options.limb_lengths) {
-    LimbLengthOptions limbs;
-    limbs.short_fraction = rig.short_bone_fraction;
+  LimbLengthOptions limbs;
+  limbs.short_fraction = rig.short_bone_fraction;
+  if (options.limb_lengths) apply_limb_lengths(out.world, *rig.parents, *rig.lengths, limbs);
+  // No pops: no joint faster than the takes' fastest allows (the limb lengths held again where
+  // a step was spread).
+  if (rig.lock_limits.fastest_joint > 0.0 &&
+      limit_joint_speed(out.world, rig.feet->fps, kSpeedLimitOverTakes * rig.lock_limits.fastest_joint) > 0 &&
+      options.limb_lengths)
     apply_limb_lengths(out.world, *rig.parents, *rig.lengths, limbs);
-  }
   // Foot lock (beyond the paper): planted ankles pinned by two-bone IK, which keeps bone lengths.
   planted_frames(out.world, *rig.feet, s.planted, s.heights);
   out.foot_sliding_raw = planted_speed(out.world, s.planted, *rig.feet).speed;
