@@ -5,7 +5,6 @@
 
 #include "engine/kinematics/limb_length.h"
 #include "engine/post/planted_feet.h"
-#include "engine/post/speed_limit.h"
 #include "engine/prepare/canonical_frame.h"
 
 namespace mostyle {
@@ -70,7 +69,7 @@ void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, c
   // No pops: no joint faster than the takes' fastest allows (the limb lengths held again where
   // a step was spread).
   if (rig.lock_limits.fastest_joint > 0.0 &&
-      limit_joint_speed(out.world, rig.feet->fps, kSpeedLimitOverTakes * rig.lock_limits.fastest_joint) > 0 &&
+      limit_joint_speed(out.world, rig.feet->fps, kSpeedLimitOverTakes * rig.lock_limits.fastest_joint, s.speed) > 0 &&
       options.limb_lengths)
     apply_limb_lengths(out.world, *rig.parents, *rig.lengths, limbs);
   // Foot lock (beyond the paper): planted ankles pinned by two-bone IK, which keeps bone lengths.

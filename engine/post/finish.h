@@ -8,6 +8,7 @@
 #include "engine/align/time_warp.h"
 #include "engine/post/foot_contact.h"
 #include "engine/post/loop.h"
+#include "engine/post/speed_limit.h"
 
 namespace mostyle {
 
@@ -48,6 +49,7 @@ struct FinishScratch {
   std::vector<double> heights;
   Eigen::VectorXd heading;
   FootLockScratch foot;
+  SpeedLimitScratch speed;
 };
 
 // local: K x 3M canonical poses at the output frames, u: their K sample positions (sampler set

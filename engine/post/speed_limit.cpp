@@ -5,18 +5,20 @@
 
 namespace mostyle {
 
-int limit_joint_speed(Eigen::MatrixXd& world, double fps, double limit) {
+int limit_joint_speed(Eigen::MatrixXd& world, double fps, double limit, SpeedLimitScratch& scratch) {
   const Eigen::Index frames = world.rows(), joints = world.cols() / 3;
   if (!(limit > 0.0) || !(fps > 0.0) || frames < 3 || joints < 2) return 0;
   const double per_step = limit / fps;
   const Eigen::Index spread = std::max<Eigen::Index>(1, std::lround(kSpeedLimitSpreadSeconds * fps));
   // What each step may move relative to the root: the limit less the root's own step.
-  std::vector<double> allowed(static_cast<size_t>(frames - 1));
+  std::vector<double>& allowed = scratch.allowed;
+  allowed.resize(static_cast<size_t>(frames - 1));
   for (Eigen::Index t = 0; t + 1 < frames; ++t)
     allowed[static_cast<size_t>(t)] =
         std::max(0.0, per_step - (world.block<1, 3>(t + 1, 0) - world.block<1, 3>(t, 0)).norm());
   int changed = 0;
-  Eigen::MatrixXd steps(frames - 1, 3);
+  Eigen::MatrixXd& steps = scratch.steps;
+  steps.resize(frames - 1, 3);
   for (Eigen::Index j = 1; j < joints; ++j) {
     // The joint's steps relative to the root.
     for (Eigen::Index t = 0; t + 1 < frames; ++t)

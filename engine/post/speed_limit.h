@@ -21,7 +21,11 @@ constexpr double kSpeedLimitSpreadSeconds = 0.15;
 // it (as many as needed, up to kSpeedLimitSpreadSeconds each way, in equal shares), so positions
 // outside that window do not change. Bone lengths drift by a little where it acts: apply the
 // limb-length constraint after. limit <= 0 or fewer than 3 frames: nothing. Returns the steps
-// changed. O(F x M x w); allocates F values per joint.
-int limit_joint_speed(Eigen::MatrixXd& world, double fps, double limit);
+// changed. O(F x M x w); no allocation once the scratch has F rows.
+struct SpeedLimitScratch {
+  std::vector<double> allowed;  // F - 1: what each step may move relative to the root
+  Eigen::MatrixXd steps;        // F - 1 x 3: one joint's steps relative to the root
+};
+int limit_joint_speed(Eigen::MatrixXd& world, double fps, double limit, SpeedLimitScratch& scratch);
 
 }  // namespace mostyle

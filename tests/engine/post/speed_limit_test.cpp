@@ -30,14 +30,16 @@ double fastest_relative(const Eigen::MatrixXd& w, int j) {
   return out;
 }
 
+SpeedLimitScratch scratch;
+
 }  // namespace
 
 TEST_CASE("speed limit: a motion under it is left exactly as it is") {
   const Eigen::MatrixXd before = swing(40, 0.0, 0.1, 20);
   Eigen::MatrixXd w = before;
-  CHECK(limit_joint_speed(w, 10.0, 1.5) == 0);
+  CHECK(limit_joint_speed(w, 10.0, 1.5, scratch) == 0);
   CHECK(w == before);
-  CHECK(limit_joint_speed(w, 10.0, 0.0) == 0);  // no limit
+  CHECK(limit_joint_speed(w, 10.0, 0.0, scratch) == 0);  // no limit
   CHECK(w == before);
 }
 
@@ -45,7 +47,7 @@ TEST_CASE("speed limit: a step over it is spread over its neighbours, the rest u
   // Joint 2 jumps 0.5 in one step (5 units/s) where it otherwise moves 1 unit/s; the limit 2.
   const Eigen::MatrixXd before = swing(40, 0.0, 0.5, 20);
   Eigen::MatrixXd w = before;
-  CHECK(limit_joint_speed(w, 10.0, 2.0) == 1);
+  CHECK(limit_joint_speed(w, 10.0, 2.0, scratch) == 1);
   CHECK(fastest_relative(w, 2) <= 2.0 + 1e-9);
   // The excess (0.3) needs three steps of room (0.1 each) on either side: frames 17..24 move,
   // the others stay (the root and joint 1 everywhere).
@@ -62,7 +64,7 @@ TEST_CASE("speed limit: the root's own speed is kept, the limb's is what is limi
   // to it are left alone, and the swinging joint keeps to what the root leaves (none here).
   const Eigen::MatrixXd before = swing(30, 3.0, 0.1, 10);
   Eigen::MatrixXd w = before;
-  limit_joint_speed(w, 10.0, 2.5);
+  limit_joint_speed(w, 10.0, 2.5, scratch);
   CHECK((w.leftCols(6) - before.leftCols(6)).cwiseAbs().maxCoeff() == 0.0);
   // The last frame is where it was: a step's excess is moved, never dropped.
   CHECK((w.row(29) - before.row(29)).norm() < 1e-9);
