@@ -408,7 +408,14 @@ TakeCycles take_cycles(const std::shared_ptr<const Clip>& clip) {
   // rate, and nothing more: FK of the hips and legs, their bones, the feet, the canonical frame,
   // contacts and cycles (contacts_and_cycles reads the same columns of the whole pose); the rest
   // of the body only for a take whose feet give no gait.
-  const MajorMapping mapping = map_major_joints(*clip);
+  // The skeleton alone first (the motion is read only where the rest pose shows no legs, a
+  // Z-up rig's: then as prepare_takes reads it, with its motion).
+  MajorMapping mapping = map_major_joints(clip->skeleton);
+  bool has_legs = mapping.has(static_cast<int>(MajorJoint::kHips));
+  for (MajorJoint j : {MajorJoint::kLeftHip, MajorJoint::kLeftKnee, MajorJoint::kLeftAnkle, MajorJoint::kRightHip,
+                       MajorJoint::kRightKnee, MajorJoint::kRightAnkle})
+    has_legs &= mapping.has(static_cast<int>(j));
+  if (!has_legs) mapping = map_major_joints(*clip);
   const std::vector<int> majors = shared_major_joints(mapping, clip->source, mapping, clip->source);
   auto cycles_of = [&](const std::vector<int>& joints) {
     const MajorTake major = extract_major_take(*clip, mapping, joints, 0.0);
