@@ -121,13 +121,22 @@ void PalettePanel::draw(EditorState& state) {
   }
   PaletteControls& c = state.document.controls.palette;
   const int n = p->size();
-  if (ImGui::RadioButton("Mix", !c.transfer)) c.transfer = false;
+  // Each mode comes in on its own timing, as the command line gives it: a mix's timing mixed, a
+  // transfer on its content's (the reference timing box changes it after).
+  bool& reference_timing = state.document.controls.timing_a;
+  if (ImGui::RadioButton("Mix", !c.transfer) && c.transfer) {
+    c.transfer = false;
+    reference_timing = false;
+  }
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Mix the takes' styles with one weight each (they sum to 1)");
   ImGui::SameLine();
-  if (ImGui::RadioButton("Transfer", c.transfer)) c.transfer = true;
+  if (ImGui::RadioButton("Transfer", c.transfer) && !c.transfer) {
+    c.transfer = true;
+    reference_timing = true;
+  }
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Put the change from a neutral take (or from the content itself) to styled takes onto the "
-                      "reference (the content take)");
+                      "reference (the content take), on the content's timing");
   ImGui::SameLine();
   ImGui::Checkbox("Ghosts", &c.ghosts);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Show every take beside the result, at the moment the result is in it");

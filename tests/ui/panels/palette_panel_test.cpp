@@ -127,6 +127,31 @@ TEST_CASE("palette panel: a transfer's neutral can be none, the content its own 
   CHECK(t.mix_weights() == std::vector<double>{1.0, -0.5, 0.5});
 }
 
+TEST_CASE("palette panel: Transfer comes in on the content's timing, as the command line's, and Mix on mixed timing") {
+  Palette t;
+  bool& timing = t.s.state.document.controls.timing_a;
+  PaletteControls& c = t.s.state.document.controls.palette;
+  c.transfer = false;
+  timing = false;
+  t.frame();
+  auto labelled = [](const ImGuiWindow* w, const void* text) { return ImHashStr(static_cast<const char*>(text), 0, w->ID); };
+  REQUIRE(t.hover(kTitle, labelled, "Transfer"));
+  t.click();
+  CHECK(c.transfer);
+  CHECK(timing);
+  CHECK(mix_params_for(t.s.state.document.controls, *t.s.session.snapshot().decomposed, 3).reference_timing);
+  // Clicked again, it changes nothing (a timing the animator set stays).
+  timing = false;
+  t.click();
+  CHECK(c.transfer);
+  CHECK_FALSE(timing);
+  REQUIRE(t.hover(kTitle, labelled, "Mix"));
+  timing = true;
+  t.click();
+  CHECK_FALSE(c.transfer);
+  CHECK_FALSE(timing);
+}
+
 TEST_CASE("palette panel: a weight's field shows its sign whole, and a 46 pixel drag moves it by less than 0.5") {
   Palette t;
   t.s.state.document.controls.palette.transfer = false;
