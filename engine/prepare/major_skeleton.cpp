@@ -381,8 +381,7 @@ MajorMapping map_major(const Skeleton& skeleton, const MotionMatrix* motion, con
   // What the structure showed is told where it gave a joint, or where a needed joint is still
   // missing (why it could not give it).
   const int filled = fill_from_structure(skeleton, structure, m);
-  const bool lacks_needed = std::any_of(std::begin(kNeeded), std::end(kNeeded), [&](int major) { return !m.has(major); });
-  if (filled > 0 || lacks_needed) structure_summary = structure.summary;
+  if (filled > 0 || !has_needed_joints(m)) structure_summary = structure.summary;
   if (!swapped.empty()) structure_summary = swapped + (structure_summary.empty() ? "" : "; " + structure_summary);
   if (!m.has(0)) {
     // No pelvis by name or structure: the first joint with position channels carries the trajectory.
@@ -409,6 +408,10 @@ const char* major_source_name(MajorSource source) {
     case MajorSource::kMappingFile: return "mapping file";
   }
   return "?";
+}
+
+bool has_needed_joints(const MajorMapping& m) {
+  return std::all_of(std::begin(kNeeded), std::end(kNeeded), [&](int major) { return m.has(major); });
 }
 
 MajorMapping map_major_joints(const Skeleton& skeleton, const MappingOverrides* overrides) {
@@ -443,11 +446,8 @@ std::vector<int> shared_major_joints(const MajorMapping& a, const std::string& s
     message += required_missing.empty() ? other_missing
                                         : required_missing + (other_missing.empty() ? "" : "; also missing: " + other_missing);
     // How the joints of each file that lacks a needed one were found (what its structure showed).
-    const auto lacks = [](const MajorMapping& m) {
-      return std::any_of(std::begin(kNeeded), std::end(kNeeded), [&](int major) { return !m.has(major); });
-    };
-    if (lacks(a) && !a.how.empty()) message += "; " + source_a + ": " + a.how;
-    if (!same && lacks(b) && !b.how.empty()) message += "; " + source_b + ": " + b.how;
+    if (!has_needed_joints(a) && !a.how.empty()) message += "; " + source_a + ": " + a.how;
+    if (!same && !has_needed_joints(b) && !b.how.empty()) message += "; " + source_b + ": " + b.how;
     message += "; name them in a mapping file (--mapping-a / --mapping-b, see assets/mappings/README.md)";
     throw InputError(message);
   }

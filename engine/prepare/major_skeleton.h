@@ -81,6 +81,9 @@ MajorMapping map_major_joints(const Skeleton& skeleton, const MappingOverrides* 
 // joints the motion never moves are end markers. O(joints^2 + frames x joints) at most.
 MajorMapping map_major_joints(const Clip& clip, const MappingOverrides* overrides = nullptr);
 
+// Whether m has every joint a blend cannot do without: the hips, both hips, knees and ankles.
+bool has_needed_joints(const MajorMapping& m);
+
 // The canonical joints two mappings share, in canonical order. Throws InputError naming the
 // files and the missing joints (and which file lacks each), and how each file's joints were
 // found (MajorMapping::how), when the hips, a hip, knee or ankle, or more than

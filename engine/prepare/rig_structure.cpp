@@ -605,11 +605,11 @@ RigStructure find_rig_structure(const Skeleton& skeleton, const MotionMatrix* mo
   RigStructure out;
   if (motion != nullptr && (motion->cols() != skeleton.channel_count || motion->rows() == 0)) motion = nullptr;
   // A rest pose that shows no standing body (a BVH written with every rotation zero from bones
-  // that run along their own axes, or lying as a Z-up file's skeleton does) is read in the first
-  // frame's pose instead, or the first frame sampled over the motion that shows both legs.
+  // that run along their own axes, or lying as a Z-up file's skeleton does) is read in a pose of
+  // the motion instead: the first frame's, when it shows the legs most frames show.
   std::vector<Eigen::Vector3d> pose = rest_positions(skeleton);
-  bool first_frame = false;
-  std::string which_frame = "the first frame's pose";
+  bool from_motion = false;
+  std::string which_pose = "the first frame's pose";
   // The legs a pose shows: (hips, one leg's root, the other's), the roots in order; none: -1s.
   const auto legs_of = [&](const std::vector<Eigen::Vector3d>& p) {
     const Tree probe(skeleton, p);
@@ -621,9 +621,7 @@ RigStructure find_rig_structure(const Skeleton& skeleton, const MotionMatrix* mo
     // Poses over the motion, the first frame first. A pose with a foot in the air can show other
     // limbs as its legs (the arms hang lower than a lifted foot): the legs most poses show win,
     // read in the first pose that shows them.
-    std::vector<std::vector<Eigen::Vector3d>> poses = sample_positions(skeleton, MotionMatrix(motion->topRows(1)));
-    poses.resize(1);
-    for (std::vector<Eigen::Vector3d>& p : sample_positions(skeleton, *motion)) poses.push_back(std::move(p));
+    std::vector<std::vector<Eigen::Vector3d>> poses = sample_positions(skeleton, *motion);
     std::vector<std::array<int, 3>> found;
     for (const auto& p : poses) found.push_back(legs_of(p));
     size_t best = found.size(), votes = 0;
@@ -637,8 +635,8 @@ RigStructure find_rig_structure(const Skeleton& skeleton, const MotionMatrix* mo
     }
     if (best < found.size()) {
       pose = std::move(poses[best]);
-      first_frame = true;
-      if (best > 0) which_frame = "a pose of the motion that stands on both legs";
+      from_motion = true;
+      if (best > 0) which_pose = "a pose of the motion that stands on both legs";
     }
   }
   Tree t(skeleton, std::move(pose));
@@ -657,7 +655,7 @@ RigStructure find_rig_structure(const Skeleton& skeleton, const MotionMatrix* mo
   find_arms(t, b);
   find_head_and_spine(t, b);
   find_ik_ankles(t, b);
-  const int a_left = tell_left(skeleton, t, !first_frame, motion, named, b, out);
+  const int a_left = tell_left(skeleton, t, !from_motion, motion, named, b, out);
 
   out.joint[static_cast<int>(MajorJoint::kHips)] = b.hips;
   out.joint[static_cast<int>(MajorJoint::kSpine)] = b.lower_spine;
@@ -677,7 +675,7 @@ RigStructure find_rig_structure(const Skeleton& skeleton, const MotionMatrix* mo
     put(a_left > 0 ? b.arm_b : b.arm_a, MajorJoint::kRightShoulder);
   }
   out.summary = summarize(skeleton, b, a_left != 0, out.facing);
-  if (first_frame) out.summary = "read in " + which_frame + " (the rest pose shows no legs): " + out.summary;
+  if (from_motion) out.summary = "read in " + which_pose + " (the rest pose shows no legs): " + out.summary;
   return out;
 }
 

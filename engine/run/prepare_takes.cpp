@@ -411,11 +411,7 @@ TakeCycles take_cycles(const std::shared_ptr<const Clip>& clip) {
   // The skeleton alone first (the motion is read only where the rest pose shows no legs, a
   // Z-up rig's: then as prepare_takes reads it, with its motion).
   MajorMapping mapping = map_major_joints(clip->skeleton);
-  bool has_legs = mapping.has(static_cast<int>(MajorJoint::kHips));
-  for (MajorJoint j : {MajorJoint::kLeftHip, MajorJoint::kLeftKnee, MajorJoint::kLeftAnkle, MajorJoint::kRightHip,
-                       MajorJoint::kRightKnee, MajorJoint::kRightAnkle})
-    has_legs &= mapping.has(static_cast<int>(j));
-  if (!has_legs) mapping = map_major_joints(*clip);
+  if (!has_needed_joints(mapping)) mapping = map_major_joints(*clip);
   const std::vector<int> majors = shared_major_joints(mapping, clip->source, mapping, clip->source);
   auto cycles_of = [&](const std::vector<int>& joints) {
     const MajorTake major = extract_major_take(*clip, mapping, joints, 0.0);

@@ -41,6 +41,20 @@ std::string frames_of(InputQueue& q) {
   return text;
 }
 
+// One frame's events given to ImGui as the GLFW back-end's callbacks give them (imgui_impl_glfw
+// 1.86).
+void give_frame(InputQueue& queue, ImGuiIO& io) {
+  for (const KeyEvent& ev : queue.take_frame(io.WantTextInput)) {
+    if (ev.kind == KeyEvent::Kind::kChar) {
+      io.AddInputCharacter(ev.codepoint);
+      continue;
+    }
+    if (ev.action == kActionPress) io.KeysDown[ev.key] = true;
+    if (ev.action == kActionRelease) io.KeysDown[ev.key] = false;
+    io.KeyCtrl = io.KeysDown[kLeftControl];
+  }
+}
+
 }  // namespace
 
 TEST_CASE("input queue: one press a frame, no key changing twice, only releases after a shortcut") {
@@ -91,17 +105,8 @@ TEST_CASE("keys at rest: ten quick presses step ten frames, and typing after Ctr
   editor.wait_for_engine();
   editor.init_graphics();
   InputQueue queue;
-  // What the GLFW back-end's callbacks do with an event (imgui_impl_glfw 1.86).
   auto frame = [&] {
-    for (const KeyEvent& ev : queue.take_frame(io.WantTextInput)) {
-      if (ev.kind == KeyEvent::Kind::kChar) {
-        io.AddInputCharacter(ev.codepoint);
-        continue;
-      }
-      if (ev.action == kActionPress) io.KeysDown[ev.key] = true;
-      if (ev.action == kActionRelease) io.KeysDown[ev.key] = false;
-      io.KeyCtrl = io.KeysDown[kLeftControl];
-    }
+    give_frame(queue, io);
     io.MousePos = ImVec2(-FLT_MAX, -FLT_MAX);
     e.frame();
   };
@@ -194,15 +199,7 @@ TEST_CASE("a path typed quickly into a take's field, then Load clicked at once: 
   ImVec2 mouse(-FLT_MAX, -FLT_MAX);
   bool button = false;
   auto frame = [&] {
-    for (const KeyEvent& ev : queue.take_frame(io.WantTextInput)) {
-      if (ev.kind == KeyEvent::Kind::kChar) {
-        io.AddInputCharacter(ev.codepoint);
-        continue;
-      }
-      if (ev.action == kActionPress) io.KeysDown[ev.key] = true;
-      if (ev.action == kActionRelease) io.KeysDown[ev.key] = false;
-      io.KeyCtrl = io.KeysDown[kLeftControl];
-    }
+    give_frame(queue, io);
     io.MousePos = mouse;
     io.MouseDown[0] = button;
     e.frame();

@@ -14,6 +14,7 @@
 
 #include <chrono>
 #include <cstring>
+#include <functional>
 #include <regex>
 #include <stdexcept>
 #include <string>
@@ -176,8 +177,9 @@ inline bool send_all(int fd, const std::string& bytes) {
 }
 
 // Reads lines from `fd` until `count` lines came (count < 0: until the end of the stream) or
-// kLiveTimeout passed.
-inline std::vector<std::string> read_lines(int fd, long long count = -1) {
+// kLiveTimeout passed; `on_lines`, when given, hears how many have come after each read.
+inline std::vector<std::string> read_lines(int fd, long long count = -1,
+                                           const std::function<void(size_t)>& on_lines = {}) {
   std::vector<std::string> lines;
   std::string partial;
   const auto deadline = TestClock::now() + kLiveTimeout;
@@ -193,6 +195,7 @@ inline std::vector<std::string> read_lines(int fd, long long count = -1) {
     for (size_t nl; (nl = partial.find('\n', start)) != std::string::npos; start = nl + 1)
       lines.push_back(partial.substr(start, nl - start));
     partial.erase(0, start);
+    if (on_lines) on_lines(lines.size());
   }
   return lines;
 }

@@ -310,22 +310,8 @@ TEST_CASE("live drops a client that never reads; a reading client gets every fra
     }
     s.close_source();
   });
-  std::vector<std::string> lines;
-  std::string partial;
-  char buffer[1 << 16];
-  const auto deadline = test::TestClock::now() + test::kLiveTimeout;
-  while (static_cast<int>(lines.size()) < total && test::TestClock::now() < deadline) {
-    pollfd p{s.client, POLLIN, 0};
-    if (::poll(&p, 1, 1000) <= 0) continue;
-    const ssize_t n = ::recv(s.client, buffer, sizeof buffer, 0);
-    if (n <= 0) break;
-    partial.append(buffer, static_cast<size_t>(n));
-    size_t start = 0;
-    for (size_t nl; (nl = partial.find('\n', start)) != std::string::npos; start = nl + 1)
-      lines.push_back(partial.substr(start, nl - start));
-    partial.erase(0, start);
-    received.store(static_cast<int>(lines.size()));
-  }
+  const std::vector<std::string> lines =
+      test::read_lines(s.client, total, [&](size_t n) { received.store(static_cast<int>(n)); });
   source.join();
   REQUIRE(static_cast<int>(lines.size()) == total);
   for (int f = 0; f < total; f += 7) REQUIRE(serves_frame(lines[static_cast<size_t>(f)], clip, f));
