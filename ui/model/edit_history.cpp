@@ -61,7 +61,10 @@ std::string apply_session_document(const Document& document, const std::string& 
 bool load_pending(const BlendSession& session) {
   const WorkerStatus status = session.status();
   if (status.stage == WorkerStage::kLoading || session.load_waiting()) return true;
-  if (!status.pending || session.requested_a().empty()) return false;
+  if (session.requested_a().empty()) return false;
+  // A load the worker has finished (even its decomposition and mix: idle, nothing waiting) is
+  // still on its way until poll() takes up its snapshot; a failed one, once polled, is not.
+  if (!status.pending && !session.has_news()) return false;
   return requested_files(session) != loaded_files(session.snapshot());
 }
 

@@ -3,8 +3,10 @@
 // undone and redone through the worker; a new decomposition resizing the per-component alphas
 // makes no step; an opened session whose take is missing keeps the takes and names the file; a key
 // set and its mark dragged, undone and redone.
+#include <chrono>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -119,6 +121,14 @@ TEST_CASE("undo and redo a load: the takes come back through the worker, and no 
   REQUIRE(edits.undo(s.state, s.session));
   CHECK(s.session.requested_a() == happy);
   edits.record(s.state, s.session, false);  // on its way: nothing recorded
+  // The worker done with everything (load, decomposition, mix) before the session polls: a
+  // frame's record() in that gap still sees the load on its way, and keeps the redo.
+  s.session.sync(s.state);
+  for (WorkerStatus w = s.session.status(); w.stage != WorkerStage::kIdle || w.pending; w = s.session.status())
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  CHECK(load_pending(s.session));
+  edits.record(s.state, s.session, false);
+  CHECK(edits.can_redo());
   s.session.wait_idle(s.state);
   CHECK(s.session.error().empty());
   CHECK(s.session.snapshot().paths[0] == happy);
