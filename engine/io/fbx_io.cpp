@@ -138,6 +138,10 @@ AnimatedScene parse_fbx(std::string_view bytes, const std::string& source) {
     importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_READ_CAMERAS, false);
     importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_READ_LIGHTS, false);
     importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_READ_ANIMATIONS, true);
+    // Every curve the file keys is a track, also one key equal to the node's own transform (a
+    // one-frame take of a joint at rest), which assimp would otherwise drop: the nodes a take keys
+    // are the skeleton's joints (scene_skeleton), and a one-frame pose must keep them all.
+    importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_OPTIMIZE_EMPTY_ANIMATION_CURVES, false);
     // Only FBX: the hint alone would let assimp try its other importers on a file that is not.
     const bool binary = bytes.size() >= 18 && bytes.substr(0, 18) == "Kaydara FBX Binary";
     const bool ascii = !binary && bytes.substr(0, 4096).find("FBXHeaderExtension") != std::string_view::npos;
