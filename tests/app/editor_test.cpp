@@ -719,7 +719,7 @@ double looking_along_lanes(mostyle::test::OffscreenEditor& e) {
     const Eigen::Index f = mostyle::ui::frame_at(t, s.playback.time_s);
     return Eigen::Vector2d(t.positions(f, 0), t.positions(f, 2));
   };
-  const Eigen::Vector2d across = hips(s.takes[mostyle::ui::kTakeB]) - hips(s.takes[mostyle::ui::kTakeA]);
+  const Eigen::Vector2d across = hips(s.takes[1]) - hips(s.takes[0]);
   const glm::vec3 f = e.editor.camera().forward();
   const Eigen::Vector2d view(f.x, f.z);
   REQUIRE(across.norm() > 0.0);
@@ -757,7 +757,7 @@ TEST_CASE("paused, a change that moves the result moves the view with it; at res
   editor.wait_for_engine();
   editor.init_graphics();
   mostyle::ui::EditorState& s = editor.state();
-  const mostyle::ui::Take& blend = s.takes[mostyle::ui::kTakeBlend];
+  const mostyle::ui::Take& blend = s.takes[mostyle::ui::result_index(2)];
   s.document.parameters.alpha = 0.0;
   for (int i = 0; i < 3; ++i) e.frame();
   s.playback.time_s = (blend.frames() - 0.5) / blend.rate();  // the last frame: far from the start

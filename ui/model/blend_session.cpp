@@ -15,6 +15,7 @@
 #include "engine/export/export_solve.h"
 #include "ui/model/cycle_provenance.h"
 #include "ui/model/document_fields.h"
+#include "ui/model/document_mix.h"
 #include "ui/model/export_job.h"
 #include "ui/model/joint_contacts.h"
 #include "ui/model/keyed_weights.h"
@@ -24,15 +25,8 @@
 namespace mostyle::ui {
 namespace {
 
-// A warm orange, a sky blue and a green: A, B, and the blend between them.
-const glm::vec3 kColorA(0.96f, 0.60f, 0.28f);
-const glm::vec3 kColorB(0.36f, 0.64f, 0.97f);
-const glm::vec3 kColorBlend(0.50f, 0.88f, 0.46f);
-const glm::vec4 kHighlight(1.0f, 0.92f, 0.25f, 1.0f);
 constexpr size_t kRecentFiles = 8;
 
-using Clock = std::chrono::steady_clock;
-std::string stem(const std::string& path) { return take_label(path); }
 
 // The decomposition the document asks for (a level's sparsity not set yet: the main one).
 DecomposeParams decompose_params_for(const Document& document) {
@@ -110,7 +104,7 @@ void BlendSession::sync(EditorState& state, bool item_held) {
   } else if (realign && snapshot_->prepared) {
     worker_.load(snapshot_->paths, prepare_options(d));
   }
-  update_blend(state);
+  update_result(state);
 }
 
 // Remembered once loaded: a mistyped path never joins the recent files. paths: first the newest.
@@ -190,232 +184,67 @@ void BlendSession::poll(EditorState& state) {
   snapshot_ = std::move(snap);
   // The takes before, with their weights: a take added keeps the others' weights (below).
   const std::vector<std::string> files_before = state.document.files;
-  std::vector<double> weights_before = state.document.controls.palette.weights;
-  if (files_before.size() == 2) weights_before = {1.0 - state.document.parameters.alpha, state.document.parameters.alpha};
+  const std::vector<double> weights_before = constant_weights(state.document, static_cast<int>(files_before.size()));
   // The document's takes are those loaded (a load that failed leaves them as they were).
   state.document.files = snapshot_->prepared ? snapshot_->paths : std::vector<std::string>();
-  if (pair() != seen_prepared_) {
-    seen_prepared_ = pair();
-    take_up_prepared(state);
-  }
-  if (palette() != seen_palette_) {
-    seen_palette_ = palette();
-    palette_view_.clear();
-    if (seen_palette_ != nullptr) {
-      remember_recent(snapshot_->paths);
+  if (takes() != seen_prepared_) {
+    seen_prepared_ = takes();
+    if (palette() != nullptr) {  // a palette's weights (a pair's are its alpha)
       std::vector<double> kept = weights_with_added_takes(files_before, weights_before, snapshot_->paths);
       if (!kept.empty()) state.document.controls.palette.weights = std::move(kept);
-      palette_view_.take_up(*seen_palette_, snapshot_->paths, snapshot_->warnings, state.document.controls.palette,
-                            state);
+      size_palette_controls(state.document.controls.palette, palette()->size());
     }
+    take_up_takes(state);
   }
-  const Decomposed* d = pair() != nullptr ? snapshot_->decomposed.get() : nullptr;
+  const Decomposed* d = takes() != nullptr ? snapshot_->decomposed.get() : nullptr;
   if (d != nullptr && d != seen_decomposed_) {
     seen_decomposed_ = d;
-    DocumentControls& c = state.document.controls;  // sized to the decomposition's k
-    c.component_alpha.resize(static_cast<size_t>(d->components()), state.document.parameters.alpha);
-    if (c.selected_component >= d->components()) c.selected_component = -1;
-    ErrorPoint point{d->params.components, d->params.sparsity, d->params.mode, d->rmse[0], d->rmse[1]};
-    auto same = [&](const ErrorPoint& e) {
-      return e.components == point.components && e.sparsity == point.sparsity && e.mode == point.mode;
-    };
-    error_curve_.erase(std::remove_if(error_curve_.begin(), error_curve_.end(), same), error_curve_.end());
-    error_curve_.push_back(point);
-    std::sort(error_curve_.begin(), error_curve_.end(),
-              [](const ErrorPoint& a, const ErrorPoint& b) { return a.components < b.components; });
-    // A new pair, sparsity or mode: the curve for it is computed in the background.
-    const bool same_curve = sweep_params_.mode == d->params.mode && sweep_params_.sparsity == d->params.sparsity &&
-                            sweep_params_.basic_motions == d->params.basic_motions;
-    if (!same_curve || !sweep_worker_ || sweep_pair_ != seen_prepared_) {
-      sweep_pair_ = seen_prepared_;
-      start_error_sweep(d->params);
-    }
+    take_up_decomposition(state);
   }
 }
 
-// A new pair: the three takes on A's timeline, the placement, the DTW image.
-void BlendSession::take_up_prepared(EditorState& state) {
-  const PreparedTakes* p = pair();
-  if (p == nullptr && palette() != nullptr) return;  // the palette's view has the takes
+// New takes: the takes and their result shown, the DTW image; what spoke of the previous takes
+// (the error curve, the last export's message) goes.
+void BlendSession::take_up_takes(EditorState& state) {
   state.takes.clear();
   state.cycle_provenance.clear();  // of the previous takes' result
-  error_curve_.clear();  // of the previous pair
-  has_blend_ = false;
-  export_message_.clear();  // it spoke of the previous takes
+  error_curve_.clear();
+  export_message_.clear();
   export_ok_ = false;
-  blended_decomposed_ = nullptr;
+  view_.clear();
+  const PreparedTakes* p = takes();
   if (p == nullptr) return;
   remember_recent(snapshot_->paths);
-  const int joints = static_cast<int>(p->majors.size());
-  auto make = [&](const std::string& label, const glm::vec3& color, const Eigen::MatrixXd& contacts) {
-    Take t;
-    t.label = label;
-    t.color = color;
-    t.clip = p->takes[0].clip;
-    t.fps = p->fps;
-    t.parents = p->parents;
-    t.contacts = joint_contacts(contacts, p->feet, joints);
-    return t;
-  };
-  Take a = make("A  " + stem(loaded_path(0)), kColorA, p->takes[0].own_contacts);
-  a.path = loaded_path(0);
-  Take b = make("B  " + stem(loaded_path(1)), kColorB, Eigen::MatrixXd());
-  b.path = loaded_path(1);
-  // Each take's load warnings under it, and what could not be matched well under the take it
-  // speaks of: where the takes are listed, not only in the DTW view.
-  std::vector<std::vector<std::string>> warnings =
-      warnings_by_take({a.path, b.path}, snapshot_->warnings, {{}, p->takes[1].alignment.warnings}, {"A", "B"});
-  a.warnings = std::move(warnings[0]);
-  b.warnings = std::move(warnings[1]);
-  Take blend = make("blend", kColorBlend, Eigen::MatrixXd());
-  blend.path = "(blend of A and B)";
-  blend.positions = p->takes[0].world;  // until the first blend arrives
-  state.takes = {std::move(a), std::move(b), std::move(blend)};
-
-  // Shared floor and start, side-by-side spacing and direction (ui/model/lanes.h).
-  const Placement placed = placement_of(p->takes[0].world);
-  shift_ = placed.shift;
-  side_ = placed.side;
-  spacing_ = placed.spacing;
-  for (Take& t : state.takes) t.size = placed.size;
-  placed_overlay_ = state.document.overlay;
-  place(state);
+  view_.take_up(*p, snapshot_->paths, snapshot_->warnings, state);
   compute_dtw_image();
 }
 
-// Writes every take's positions from the engine's matrices with the current placement, all on
-// the blend's timeline: A and B are shown where the blend is in each of them (the mix's
-// sources), so the three stay in step whatever the timing. Before the first blend,
-// the warp's own samples. Slots across the travel: A left, the blend in the middle, B right.
-void BlendSession::place(EditorState& state) {
-  const PreparedTakes* p = pair();
-  if (p == nullptr || state.takes.size() != 3) return;
-  const TimeWarp& warp = p->takes[1].alignment.warp;
-  if (has_blend_) {
-    source_a_ = blend_.sources.col(0);
-    source_b_ = blend_.sources.col(1);
-  }
-  const Eigen::VectorXd& at_a = has_blend_ ? source_a_ : warp.a;
-  const Eigen::VectorXd& at_b = has_blend_ ? source_b_ : warp.b;
-  sample_rows(p->takes[0].world, at_a, shown_a_);
-  sample_rows(p->takes[1].world_placed, at_b, shown_b_);
-  const int joints = static_cast<int>(p->majors.size());
-  auto nearest = [](const Eigen::MatrixXd& contacts, const Eigen::VectorXd& at) {
-    Eigen::MatrixXd out(at.size(), contacts.cols());
-    for (Eigen::Index k = 0; k < at.size(); ++k)
-      out.row(k) = contacts.row(std::clamp<Eigen::Index>(std::lround(at[k]), 0, contacts.rows() - 1));
-    return out;
+// A new decomposition: per-component alphas sized to its k, its point on the error curve, and
+// the curve for a new pair, sparsity or mode computed in the background.
+void BlendSession::take_up_decomposition(EditorState& state) {
+  const Decomposed* d = seen_decomposed_;
+  DocumentControls& c = state.document.controls;
+  if (pair() != nullptr) c.component_alpha.resize(static_cast<size_t>(d->components()), state.document.parameters.alpha);
+  if (c.selected_component >= d->components()) c.selected_component = -1;
+  if (pair() == nullptr) return;  // the error curve: a pair's
+  ErrorPoint point{d->params.components, d->params.sparsity, d->params.mode, d->rmse[0], d->rmse[1]};
+  auto same = [&](const ErrorPoint& e) {
+    return e.components == point.components && e.sparsity == point.sparsity && e.mode == point.mode;
   };
-  state.takes[kTakeA].contacts = joint_contacts(nearest(p->takes[0].own_contacts, at_a), p->feet, joints);
-  state.takes[kTakeB].contacts = joint_contacts(nearest(p->takes[1].own_contacts, at_b), p->feet, joints);
-  state.takes[kTakeA].cycle_starts = cycle_starts_at(p->takes[0].timeline_cycles(), at_a);
-  state.takes[kTakeB].cycle_starts = cycle_starts_at(p->takes[1].timeline_cycles(), at_b);
-  state.takes[kTakeBlend].cycle_starts = state.takes[kTakeA].cycle_starts;  // the blend walks A's cycles
-  const double slots[3] = {-1.0, 1.0, 0.0};  // A, B, blend
-  const Eigen::MatrixXd* sources[3] = {&shown_a_, &shown_b_, has_blend_ ? &blend_.motion.world : &shown_a_};
-  if (!state.document.overlay && has_blend_) {
-    // Side by side: A and B in lanes beside the blend's path (ui/model/lanes.h).
-    const Lanes lanes = lanes_along(blend_.motion.world, Eigen::Vector2d(side_.x(), side_.z()));
-    for (int t = 0; t < 3; ++t) {
-      Eigen::MatrixXd& out = state.takes[static_cast<size_t>(t)].positions;
-      if (t == kTakeBlend) {
-        out = blend_.motion.world;
-        for (Eigen::Index j = 0; 3 * j < out.cols(); ++j)
-          for (int a = 0; a < 3; ++a) out.col(3 * j + a).array() += shift_[a];
-      } else {
-        place_in_lane(*sources[t], lanes, slots[t] * spacing_, shift_, out);
-      }
-    }
-    placed_overlay_ = state.document.overlay;
-    return;
-  }
-  for (int t = 0; t < 3; ++t) {
-    const Eigen::Vector3d offset = shift_ + (state.document.overlay ? 0.0 : slots[t] * spacing_) * side_;
-    Eigen::MatrixXd& out = state.takes[static_cast<size_t>(t)].positions;
-    out = *sources[t];
-    for (Eigen::Index j = 0; 3 * j < out.cols(); ++j)
-      for (int a = 0; a < 3; ++a) out.col(3 * j + a).array() += offset[a];
-  }
-  placed_overlay_ = state.document.overlay;
-}
-
-void BlendSession::update_blend(EditorState& state) {
-  if (const PreparedTakes* p = palette()) {
-    palette_view_.update(*p, snapshot_->decomposed.get(), state.document.controls, state);
-    return;
-  }
-  const PreparedTakes* p = pair();
-  const Decomposed* d = snapshot_->decomposed.get();
-  if (p == nullptr || state.takes.size() != 3) return;
-  DocumentControls& controls = state.document.controls;
-  if (d != nullptr) {
-    BlendParams params;
-    params.alpha = state.document.parameters.alpha;
-    if (d->params.mode == BlendMode::kShared && controls.per_component) {
-      controls.component_alpha.resize(static_cast<size_t>(d->components()), params.alpha);
-      params.component_alpha = controls.component_alpha;
-    }
-    params.swap_level = d->params.basic_motions > 0 ? std::clamp(controls.swap_level, 0, d->params.basic_motions - 1) : 0;
-    params.foot_lock = controls.foot_lock;
-    params.timing_a = controls.timing_a;
-    params.loop = controls.loop;
-    params.residual = controls.residual;
-    set_mix_keys(controls, 2, keys_);  // style over time, when keyed (the mix's weights over the output)
-    const bool changed = d != blended_decomposed_ || !same_keys(keys_, blended_keys_) ||
-                         params.alpha != blended_params_.alpha ||
-                         params.timing_a != blended_params_.timing_a || params.loop != blended_params_.loop ||
-                         params.residual != blended_params_.residual ||
-                         params.component_alpha != blended_params_.component_alpha ||
-                         params.swap_level != blended_params_.swap_level || params.foot_lock != blended_params_.foot_lock;
-    if (changed) {
-      const auto t0 = Clock::now();
-      try {
-        set_blend_mix_params(params, *d, blend_mix_);
-        blend_mix_.keys = keys_;  // blend_params.h speaks of one alpha: the keys are the mix's
-        mix_palette(*p, *d, blend_mix_, scratch_, blend_, &blend_times_);
-        has_blend_ = true;
-        // Where each of its cycles came from, for the timeline's tooltip: once per blend.
-        state.cycle_provenance = cycle_provenance(*p, blend_.sources, {"A", "B"});
-        blend_error_.clear();
-      } catch (const std::exception& e) {  // InputError: a bad parameter, shown as it is
-        blend_error_ = e.what();
-      }
-      blend_ms_ = ms_since(t0);
-      blended_decomposed_ = d;
-      blended_params_ = params;
-      blended_keys_ = keys_;
-      refresh_blend_take(state);
-    }
-  }
-  if (placed_overlay_ != state.document.overlay) place(state);
-
-  // The selected component's joints light up on the blend.
-  Take& blend = state.takes[kTakeBlend];
-  blend.highlights.clear();
-  const int c = controls.selected_component;
-  if (d != nullptr && c >= 0 && c < d->support.rows()) {
-    blend.highlights.assign(blend.parents.size(), glm::vec4(0.0f));
-    for (size_t j = 0; j < blend.parents.size() && 3 * j + 2 < static_cast<size_t>(d->support.cols()); ++j) {
-      const Eigen::Index col = 3 * static_cast<Eigen::Index>(j);
-      if (d->support(c, col) != 0 || d->support(c, col + 1) != 0 || d->support(c, col + 2) != 0)
-        blend.highlights[j] = kHighlight;
-    }
+  error_curve_.erase(std::remove_if(error_curve_.begin(), error_curve_.end(), same), error_curve_.end());
+  error_curve_.push_back(point);
+  std::sort(error_curve_.begin(), error_curve_.end(),
+            [](const ErrorPoint& a, const ErrorPoint& b) { return a.components < b.components; });
+  const bool same_curve = sweep_params_.mode == d->params.mode && sweep_params_.sparsity == d->params.sparsity &&
+                          sweep_params_.basic_motions == d->params.basic_motions;
+  if (!same_curve || !sweep_worker_ || sweep_pair_ != seen_prepared_) {
+    sweep_pair_ = seen_prepared_;
+    start_error_sweep(d->params);
   }
 }
 
-void BlendSession::refresh_blend_take(EditorState& state) {
-  const PreparedTakes* p = pair();
-  Take& t = state.takes[kTakeBlend];
-  char label[64];
-  if (state.document.controls.per_component && snapshot_->decomposed && snapshot_->decomposed->params.mode == BlendMode::kShared)
-    std::snprintf(label, sizeof label, "blend (per component)");
-  else if (!blended_keys_.empty())
-    std::snprintf(label, sizeof label, "blend  alpha keyed");
-  else
-    std::snprintf(label, sizeof label, "blend  alpha %.2f", state.document.parameters.alpha);
-  t.label = label;
-  if (has_blend_) t.contacts = joint_contacts(blend_.motion.contacts, p->feet, static_cast<int>(p->majors.size()));
-  place(state);
+void BlendSession::update_result(EditorState& state) {
+  if (const PreparedTakes* p = takes()) view_.update(*p, snapshot_->decomposed.get(), state);
 }
 
 void BlendSession::wait_idle(EditorState& state) {
@@ -461,8 +290,8 @@ bool BlendSession::export_bvh(const std::string& path) {
   try {
     ExportOptions options;
     options.path = path;
-    const PreparedTakes* p = pair();
-    if (p != nullptr) options.fps = p->fps;  // the blend's own frames
+    const PreparedTakes* p = takes();
+    if (p != nullptr) options.fps = p->fps;  // the result's own frames
     if (p != nullptr && p->takes[0].clip != nullptr) options.layout = default_channel_layout(*p->takes[0].clip);
     outcome = run_export(make_export_request(*this, options));
   } catch (const std::exception& e) {  // InputError: no file name, no blend yet

@@ -3,12 +3,12 @@
 // snapshot (a new pair, a new decomposition, an error) and sync() brings the engine to the
 // document (EditorState::document): what a change to it makes stale (ui/model/document_fields.h)
 // is done again, and nothing more: the takes aligned again, the decomposition asked for again
-// (both on the worker), or mix_palette run again on the UI thread when a weight moved (well under
-// 1 ms: the viewport follows in the same frame). The panels only edit the document; loads are
-// commands (load_files). Nothing here blocks, except wait_idle(), for tests and screenshots.
+// (both on the worker), or the result mixed again on the UI thread when a weight moved
+// (ResultView: the viewport follows in the same frame). The panels only edit the document; loads
+// are commands (load_files). Nothing here blocks, except wait_idle(), for tests and screenshots.
 //
-// The three takes it keeps in EditorState::takes, all on the blend's timeline (its output frames
-// at the working rate): [0] A and [1] B where the blend is in each, [2] the blend.
+// EditorState::takes while takes are loaded (ResultView, ui/model/result_view.h): take i at i,
+// the reference first, and the result last, all on the result's timeline.
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -18,10 +18,9 @@
 
 #include <Eigen/Core>
 
-#include "engine/run/blend_params.h"
 #include "engine/run/worker.h"
 #include "ui/model/editor_state.h"
-#include "ui/model/palette_view.h"
+#include "ui/model/result_view.h"
 
 namespace mostyle::ui {
 
@@ -61,7 +60,10 @@ class BlendSession {
   bool load_waiting() const { return load_waiting_; }
   // The files last asked for (pair or palette), loaded or not.
   const std::vector<std::string>& requested_files() const { return requested_files_; }
-  // The takes loaded: two are the pair (A and B), three or more the palette.
+  // The takes loaded (any number), or null.
+  const PreparedTakes* takes() const { return snapshot_->prepared.get(); }
+  // The takes loaded: two are the pair (A and B), three or more the palette (words and the
+  // views that only a pair has: the DTW view, the basic motions).
   const PreparedTakes* pair() const {
     return snapshot_->prepared && snapshot_->prepared->size() == 2 ? snapshot_->prepared.get() : nullptr;
   }
@@ -73,7 +75,7 @@ class BlendSession {
     static const std::string kNone;
     return i < snapshot_->paths.size() ? snapshot_->paths[i] : kNone;
   }
-  const PaletteView& palette_view() const { return palette_view_; }
+  const ResultView& result_view() const { return view_; }
   // Before the panels, once per frame: takes up a new snapshot (new takes: rebuilds the takes
   // shown and sets the document's files to them).
   void poll(EditorState& state);
@@ -96,13 +98,13 @@ class BlendSession {
   const WorkerSnapshot& snapshot() const { return *snapshot_; }
   WorkerStatus status() const { return worker_.status(); }
   const std::string& error() const { return snapshot_->error; }
-  const MixResult* blend() const { return has_blend_ ? &blend_ : nullptr; }
+  // The result shown (a blend, mix or transfer), or null before the first.
+  const MixResult* result() const { return view_.mix(); }
   // The direction the takes stand apart in side by side (x, 0, z, unit: across the reference's
-  // overall travel, ui/model/lanes.h), a pair's or a palette's; +X before any takes.
-  Eigen::Vector3d side() const { return palette() != nullptr ? palette_view_.side() : side_; }
-  const std::string& blend_error() const { return blend_error_; }
-  double blend_ms() const { return blend_ms_; }  // the last UI-thread blend (mix_palette), wall time
-  const StageTimes& blend_times() const { return blend_times_; }  // its stages (synthesize, postprocess)
+  // overall travel, ui/model/lanes.h); +X before any takes.
+  Eigen::Vector3d side() const { return view_.side(); }
+  // Why the document's weights or keys were refused (the last result stays), or "".
+  const std::string& result_error() const { return view_.error(); }
   const std::vector<ErrorPoint>& error_curve() const { return error_curve_; }
   const DtwCostImage& dtw_image() const { return dtw_image_; }
   // Reconstruction error against k in the background: a second worker decomposes the pair at
@@ -143,10 +145,9 @@ class BlendSession {
  private:
   PrepareOptions prepare_options(const Document& document) const;
   void request_decomposition(const Document& document);
-  void update_blend(EditorState& state);
-  void take_up_prepared(EditorState& state);
-  void place(EditorState& state);
-  void refresh_blend_take(EditorState& state);
+  void update_result(EditorState& state);
+  void take_up_takes(EditorState& state);
+  void take_up_decomposition(EditorState& state);
   void compute_dtw_image();
 
   void poll_sweep();
@@ -164,41 +165,20 @@ class BlendSession {
   std::uint64_t seen_version_ = ~std::uint64_t(0);
   const PreparedTakes* seen_prepared_ = nullptr;
   const Decomposed* seen_decomposed_ = nullptr;
-  const Decomposed* blended_decomposed_ = nullptr;
   DecomposeParams requested_;   // the decomposition last asked of the worker
   Document asked_;               // the document as the worker was last asked for it (sync)
   bool load_waiting_ = false;    // load_files() since the last sync()
-  BlendParams blended_params_;
-  MixParams blend_mix_;  // blended_params_ in a mix's terms (blend_params.h), with the keys
-  WeightKeys keys_;          // the document's keys as the mix takes them (set_mix_keys), this frame
-  WeightKeys blended_keys_;  // those of the last blend asked for (with blended_params_)
-  MixScratch scratch_;
-  MixResult blend_;
-  Eigen::VectorXd source_a_, source_b_;  // A's and B's frame at each of the blend's (its sources' columns)
-  Eigen::MatrixXd shown_a_, shown_b_;  // A and B on the blend's timeline (before placement)
-  bool has_blend_ = false;
-  std::string blend_error_;
-  double blend_ms_ = 0.0;
-  StageTimes blend_times_;
   std::vector<ErrorPoint> error_curve_;
   DtwCostImage dtw_image_;
-  // Placement: every take shares A's floor and start; side by side adds lateral offsets.
-  Eigen::Vector3d shift_ = Eigen::Vector3d::Zero();
-  Eigen::Vector3d side_ = Eigen::Vector3d::UnitX();
-  float spacing_ = 0.0f;
-  bool placed_overlay_ = false;
   std::string export_message_;
   bool export_ok_ = false;
   double export_ms_ = -1.0;
   std::deque<std::string> recent_;
   std::string requested_a_, requested_b_;
   std::vector<std::string> requested_files_;
-  PaletteView palette_view_;
-  const PreparedTakes* seen_palette_ = nullptr;
+  ResultView view_;
   std::vector<std::string> dropped_;
 };
 
-// Index of each take in EditorState::takes while a pair is loaded.
-constexpr int kTakeA = 0, kTakeB = 1, kTakeBlend = 2;
 
 }  // namespace mostyle::ui

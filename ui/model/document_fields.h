@@ -35,7 +35,7 @@ inline constexpr Range kTakesRange{0, kMaxPaletteTakes};  // how many takes; a t
 inline constexpr Range kTakeIndexRange{0, kMaxPaletteTakes - 1};
 // Each weight of a key (DocumentControls::keys): the widest range any mode mixes with, a transfer's
 // (its neutral take, or the content when it is its own neutral, loses what every style gains:
-// palette_view.cpp mix_params_for). The engine judges the weights for the mode they are mixed in
+// document_mix.cpp mix_params_for). The engine judges the weights for the mode they are mixed in
 // (MixParams::Validate).
 inline constexpr Range kKeyWeightRange{transfer_min_weight(kMaxPaletteTakes), transfer_max_weight(kMaxPaletteTakes)};
 inline constexpr Range kNoRange{};                        // not a number (a choice, a flag, options)

@@ -25,16 +25,6 @@ constexpr float kResampledProgress = 0.1f;
 
 }  // namespace
 
-namespace {
-
-// What the session shows as its result: the palette's mix, or the pair's blend (both a mix of
-// the takes, palette.h); null before the first.
-const MixResult* shown_result(const BlendSession& session) {
-  return session.palette() != nullptr ? session.palette_view().mix() : session.blend();
-}
-
-}  // namespace
-
 ExportSubject export_subject(const BlendSession& session) {
   ExportSubject subject;
   if (const PreparedTakes* takes = session.snapshot().prepared.get()) {
@@ -42,7 +32,7 @@ ExportSubject export_subject(const BlendSession& session) {
     subject.clip = takes->reference().clip.get();
     subject.working_fps = takes->fps;
     subject.takes = takes->size();
-    if (const MixResult* result = shown_result(session)) {
+    if (const MixResult* result = session.result()) {
       subject.frames = static_cast<int>(result->motion.world.rows());
       subject.loop_cycles = result->motion.loop.cycles;
     }
@@ -54,8 +44,8 @@ ExportSubject export_subject(const BlendSession& session) {
 ExportRequest make_export_request(const BlendSession& session, const ExportOptions& options) {
   if (options.path.empty()) throw InputError("Export: no file name given.");
   const std::shared_ptr<const PreparedTakes> takes = session.snapshot().prepared;
-  const MixResult* result = shown_result(session);
-  const std::string what = session.palette() != nullptr ? "mix" : "blend";
+  const MixResult* result = session.result();
+  const std::string what = result_name(takes != nullptr ? takes->size() : 2, false);
   if (takes == nullptr || result == nullptr || result->motion.world.rows() == 0)
     throw InputError("Export: nothing to export yet (no " + what + ").");
   if (options.range == ExportRange::kLoop && result->motion.loop.cycles <= 0)

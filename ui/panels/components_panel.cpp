@@ -92,7 +92,7 @@ void ComponentsPanel::draw(EditorState& state) {
     PlotArea w = begin_plot("##weights", -1.0f, plot_h, 0.0, static_cast<double>(wa->rows() - 1), -1.05 * top, 1.05 * top);
     plot_line(w, static_cast<int>(wa->rows()), [&](int i, double* x, double* y) { *x = i; *y = (*wa)(i, sel); }, color_a());
     plot_line(w, static_cast<int>(wb->rows()), [&](int i, double* x, double* y) { *x = i; *y = (*wb)(i, sel); }, color_b());
-    plot_vline(w, frame_at(state.takes[kTakeA], state.playback.time_s), IM_COL32(255, 255, 255, 140));
+    plot_vline(w, frame_at(state.takes.front(), state.playback.time_s), IM_COL32(255, 255, 255, 140));
     plot_legend(w, 0, "weight in A", color_a());
     plot_legend(w, 1, "weight in B", color_b());
     if (w.hovered) ImGui::SetTooltip("How much of this component A and B use over time; click: jump there");

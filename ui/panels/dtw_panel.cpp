@@ -90,7 +90,7 @@ void DtwPanel::draw(EditorState& state) {
   const Eigen::MatrixXd& sa = al.feature.a;
   const Eigen::MatrixXd& sb = al.feature.b;
   const TimeWarp& warp = al.warp;
-  const MixResult* blend = session_.blend();
+  const MixResult* blend = session_.result();
   DocumentControls& c = state.document.controls;
   const int fa = static_cast<int>(sa.rows()), fb = static_cast<int>(sb.rows()), samples = warp.samples();
   ImGui::SetNextItemWidth(110.0f);
@@ -116,7 +116,7 @@ void DtwPanel::draw(EditorState& state) {
   double hi = std::max(sa.col(col).maxCoeff(), sb.col(col).maxCoeff());
   if (hi <= lo) hi = lo + 1.0;
   const double span = hi - lo;
-  const int current = state.takes.empty() ? 0 : frame_at(state.takes[kTakeBlend], state.playback.time_s);
+  const int current = state.takes.empty() ? 0 : frame_at(state.takes.back(), state.playback.time_s);
   const double current_u = blend != nullptr && current < blend->sample.size() ? blend->sample[current] : 0.0;
   const float line = ImGui::GetTextLineHeightWithSpacing();
   // In the layout's bottom strip (much wider than high) the views stand side by side; a panel

@@ -16,7 +16,7 @@
 #include "engine/io/numbers.h"
 
 #include "ui/panels/layout.h"
-#include "ui/model/palette_view.h"
+#include "ui/model/result_view.h"
 
 namespace mostyle::ui {
 namespace fs = std::filesystem;
@@ -165,7 +165,7 @@ void FilesPanel::draw(EditorState& state) {
   for (int i = 0; i < n; ++i) {
     PathField& field = fields_[static_cast<size_t>(i)];
     ImGui::PushID(i);
-    const glm::vec3 c = n <= 2 ? (i == 0 ? glm::vec3(0.96f, 0.60f, 0.28f) : glm::vec3(0.36f, 0.64f, 0.97f)) : palette_color(i);
+    const glm::vec3 c = take_color(i);
     ImGui::TextColored(ImVec4(c.x, c.y, c.z, 1.0f), "%s", take_role(i, n).c_str());
     ImGui::SameLine(ImGui::GetFontSize() * 1.6f);
     const bool entered = ImGui::InputText("##take", field.text, sizeof field.text, ImGuiInputTextFlags_EnterReturnsTrue);

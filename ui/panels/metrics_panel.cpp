@@ -64,17 +64,17 @@ Metrics gather_metrics(const BlendSession& session, bool transfer) {
   m.preprocess_ms = snapshot.times.preprocess_ms;
   m.dtw_ms = snapshot.times.dtw_ms;
   if (d != nullptr) m.decompose_ms = snapshot.times.decompose_ms;
-  // The result shown: the pair's blend or the palette's mix, made on this thread.
-  const MixResult* mix = pair ? session.blend() : session.palette_view().mix();
-  if (mix != nullptr) {
-    const StageTimes& times = pair ? session.blend_times() : session.palette_view().mix_times();
+  // The result shown (a blend, mix or transfer), made on this thread.
+  const ResultView& view = session.result_view();
+  if (const MixResult* mix = view.mix()) {
+    const StageTimes& times = view.mix_times();
     m.bone_error = mix->motion.limb_length_max_error;
     m.sliding_raw = mix->motion.foot_sliding_raw;
     m.sliding_cleaned = mix->motion.foot_sliding_cleaned;
     m.sliding_inputs = mix->foot_sliding_inputs;
     m.synthesize_ms = times.synthesize_ms;
     m.postprocess_ms = times.postprocess_ms;
-    m.result_ms = pair ? session.blend_ms() : session.palette_view().mix_ms();
+    m.result_ms = view.mix_ms();
   }
   return m;
 }

@@ -39,12 +39,12 @@ std::string name_of(const PreparedTakes& p, int i) {
 }
 
 ImU32 color_u32(int take) {
-  const glm::vec3 c = palette_color(take);
+  const glm::vec3 c = take_color(take);
   return ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1.0f));
 }
 
 void swatch(int take) {
-  const glm::vec3 c = palette_color(take);
+  const glm::vec3 c = take_color(take);
   ImGui::ColorButton("##swatch", ImVec4(c.r, c.g, c.b, 1.0f), ImGuiColorEditFlags_NoTooltip, ImVec2(12, 12));
   ImGui::SameLine();
 }
@@ -147,7 +147,7 @@ void PalettePanel::draw(EditorState& state) {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Every take the same weight");
     ImGui::SameLine();
   }
-  const PaletteView& view = session_.palette_view();
+  const ResultView& view = session_.result_view();
   if (const MixResult* m = view.mix()) {
     const std::string length = duration_in_words(motion_length_s(m->motion.world.rows(), p->fps));
     ImGui::TextColored(kDimColor, "%d takes, %s", n, length.c_str());

@@ -107,9 +107,9 @@ void ParametersPanel::draw(EditorState& state) {
       ImGui::SetTooltip("The decomposition the result uses now: %d components, sparsity %.2f, %s mode, %d iterations",
                         d->params.components, d->params.sparsity, blend_mode_name(d->params.mode), d->iterations);
   }
-  if (!s.blend_error().empty()) {
+  if (!palette && !s.result_error().empty()) {  // a palette's weights say theirs in the palette panel
     ImGui::PushTextWrapPos(0.0f);
-    ImGui::TextColored(kErrorColor, "%s", s.blend_error().c_str());
+    ImGui::TextColored(kErrorColor, "%s", s.result_error().c_str());
     ImGui::PopTextWrapPos();
   }
 

@@ -24,25 +24,25 @@ bool worker_asked(const BlendSession& s) {
 
 TEST_CASE("engine link: each change does what its field makes stale, and nothing more") {
   LoadedSession s;
-  REQUIRE(s.session.blend() != nullptr);
+  REQUIRE(s.session.result() != nullptr);
   const void* prepared = s.session.snapshot().prepared.get();
   const void* decomposed = s.session.snapshot().decomposed.get();
 
   SECTION("a mix field: mixed again on this thread, the worker left alone") {
-    const Eigen::MatrixXd before = s.session.blend()->motion.world;
+    const Eigen::MatrixXd before = s.session.result()->motion.world;
     s.state.document.parameters.alpha = 0.9;
     s.session.sync(s.state);
     CHECK_FALSE(worker_asked(s.session));
-    const Eigen::MatrixXd& after = s.session.blend()->motion.world;  // the timing too: maybe another length
+    const Eigen::MatrixXd& after = s.session.result()->motion.world;  // the timing too: maybe another length
     CHECK((after.rows() != before.rows() || (after - before).norm() > 1e-6));
   }
   SECTION("a view field: nothing asked of the worker, the blend unchanged") {
-    const Eigen::MatrixXd before = s.session.blend()->motion.world;
+    const Eigen::MatrixXd before = s.session.result()->motion.world;
     s.state.document.overlay = !s.state.document.overlay;
     s.state.document.controls.palette.ghosts = true;
     s.session.sync(s.state);
     CHECK_FALSE(worker_asked(s.session));
-    CHECK(s.session.blend()->motion.world == before);
+    CHECK(s.session.result()->motion.world == before);
   }
   SECTION("a decomposition field: asked for once let go, not while held") {
     s.state.document.parameters.components = 4;
@@ -81,37 +81,37 @@ TEST_CASE("engine link: each change does what its field makes stale, and nothing
 
 TEST_CASE("engine link: a pair's keys reach the mix, and where the engine refuses them its sentence is shown") {
   LoadedSession s;
-  REQUIRE(s.session.blend() != nullptr);
+  REQUIRE(s.session.result() != nullptr);
   Document& d = s.state.document;
   // Alpha 1 without keys, then alpha 0 with one key of alpha 1: the keys are what is mixed.
   d.parameters.alpha = 1.0;
   s.session.sync(s.state);
-  const Eigen::MatrixXd at_b = s.session.blend()->motion.world;
+  const Eigen::MatrixXd at_b = s.session.result()->motion.world;
   d.parameters.alpha = 0.0;
   s.session.sync(s.state);
-  REQUIRE_FALSE(s.session.blend()->motion.world.isApprox(at_b));
+  REQUIRE_FALSE(s.session.result()->motion.world.isApprox(at_b));
   d.controls.keys = {WeightKey{1.0, {0.0, 1.0}}};
   s.session.sync(s.state);
   CHECK_FALSE(worker_asked(s.session));  // a mix field: mixed again on this thread
-  CHECK(s.session.blend_error().empty());
-  const Eigen::MatrixXd& keyed = s.session.blend()->motion.world;
+  CHECK(s.session.result_error().empty());
+  const Eigen::MatrixXd& keyed = s.session.result()->motion.world;
   REQUIRE(keyed.rows() == at_b.rows());
   CHECK(keyed.isApprox(at_b, 1e-6));
-  CHECK_THAT(s.state.takes[kTakeBlend].label, Catch::Contains("keyed"));
+  CHECK_THAT(s.state.takes[result_index(2)].label, Catch::Contains("keyed"));
   // Keys of three takes do not fit a pair: not mixed (alpha 0 again).
   d.controls.keys = {WeightKey{1.0, {0.0, 0.5, 0.5}}};
   s.session.sync(s.state);
-  CHECK(s.session.blend_error().empty());
-  CHECK_FALSE(s.session.blend()->motion.world.isApprox(at_b));
+  CHECK(s.session.result_error().empty());
+  CHECK_FALSE(s.session.result()->motion.world.isApprox(at_b));
   // Keys with an alpha per body part: the engine refuses, says why, and the last blend stays.
   d.controls.keys = {WeightKey{1.0, {0.0, 1.0}}};
   d.controls.per_component = true;
-  const Eigen::MatrixXd before = s.session.blend()->motion.world;
+  const Eigen::MatrixXd before = s.session.result()->motion.world;
   s.session.sync(s.state);
-  CHECK_THAT(s.session.blend_error(), Catch::Contains("keyed in time"));
-  CHECK(s.session.blend()->motion.world == before);
+  CHECK_THAT(s.session.result_error(), Catch::Contains("keyed in time"));
+  CHECK(s.session.result()->motion.world == before);
   // Without the keys, the per-part alphas blend again.
   d.controls.keys.clear();
   s.session.sync(s.state);
-  CHECK(s.session.blend_error().empty());
+  CHECK(s.session.result_error().empty());
 }

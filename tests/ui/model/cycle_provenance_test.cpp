@@ -194,16 +194,16 @@ TEST_CASE("cycle provenance: a pair's blend in the editor, each output cycle fro
   LoadedSession s;
   const PreparedTakes* p = s.session.pair();
   REQUIRE(p != nullptr);
-  REQUIRE(s.session.blend() != nullptr);
+  REQUIRE(s.session.result() != nullptr);
   const std::vector<CycleProvenance>& spans = s.state.cycle_provenance;
   CHECK(spans.back().end == s.state.reference_take()->frames());  // the timeline's frames
-  check_real(*p, s.session.blend()->sources, spans);
+  check_real(*p, s.session.result()->sources, spans);
   CHECK(spans.front().takes[1].take == "B");
   // A new alpha: a new blend, its spans made again (the timing may change its length).
   s.state.document.parameters.alpha = 0.9;
   s.session.sync(s.state);
-  CHECK(s.state.cycle_provenance.back().end == s.session.blend()->sources.rows());
-  check_real(*p, s.session.blend()->sources, s.state.cycle_provenance);
+  CHECK(s.state.cycle_provenance.back().end == s.session.result()->sources.rows());
+  check_real(*p, s.session.result()->sources, s.state.cycle_provenance);
 }
 
 TEST_CASE("cycle provenance: a palette's mix in the editor, a short take's cycles reused") {
@@ -213,9 +213,9 @@ TEST_CASE("cycle provenance: a palette's mix in the editor, a short take's cycle
   s.session.wait_idle(s.state);
   const PreparedTakes* p = s.session.palette();
   REQUIRE(p != nullptr);
-  REQUIRE(s.session.palette_view().mix() != nullptr);
+  REQUIRE(s.session.result_view().mix() != nullptr);
   const std::vector<CycleProvenance>& spans = s.state.cycle_provenance;
-  check_real(*p, s.session.palette_view().mix()->sources, spans);
+  check_real(*p, s.session.result_view().mix()->sources, spans);
   CHECK(spans.front().takes[2].take == "cmu142_walk_joy");
   // A take registered with fewer cycles than the reference's shown in the result has one reused.
   for (int i = 1; i < p->size(); ++i) {

@@ -69,7 +69,7 @@ TEST_CASE("undo and redo: alpha in a few steps and a drag, back to the start and
   s.state.document.parameters.alpha = 0.9;
   frame(false);
   CHECK(edits.history().undo_steps() == 4);
-  const Eigen::MatrixXd blend_at_end = s.state.takes[kTakeBlend].positions;
+  const Eigen::MatrixXd blend_at_end = s.state.takes[result_index(2)].positions;
 
   // Back: each undo puts the previous alpha back, and the blend follows in the same frame.
   for (double expected : {0.6, 0.4, 0.2, start}) {
@@ -78,7 +78,7 @@ TEST_CASE("undo and redo: alpha in a few steps and a drag, back to the start and
     CHECK(s.state.document.parameters.alpha == expected);
   }
   CHECK_FALSE(edits.undo(s.state, s.session));
-  CHECK_FALSE(same_poses(s.state.takes[kTakeBlend].positions, blend_at_end));
+  CHECK_FALSE(same_poses(s.state.takes[result_index(2)].positions, blend_at_end));
   // Forward again, to the end of the drag.
   for (double expected : {0.2, 0.4, 0.6, 0.9}) {
     REQUIRE(edits.redo(s.state, s.session));
@@ -86,7 +86,7 @@ TEST_CASE("undo and redo: alpha in a few steps and a drag, back to the start and
     CHECK(s.state.document.parameters.alpha == expected);
   }
   CHECK_FALSE(edits.redo(s.state, s.session));
-  CHECK(same_poses(s.state.takes[kTakeBlend].positions, blend_at_end));
+  CHECK(same_poses(s.state.takes[result_index(2)].positions, blend_at_end));
 
   // Undo twice, then a new change: what could be redone is gone.
   edits.undo(s.state, s.session);
@@ -196,7 +196,7 @@ TEST_CASE("undo and redo keys: Set key is a step of its own, a mark's drag one m
   state.playback.playing = false;
   state.playback.time_s = 0.0;
   edits.record(state, s.session, false);  // the starting state
-  const Eigen::MatrixXd unkeyed = state.takes[kTakeBlend].positions;
+  const Eigen::MatrixXd unkeyed = state.takes[result_index(2)].positions;
   // Set key (K: a key pressed, no item held) with alpha 1 in the key: one step, the blend keyed.
   state.document.parameters.alpha = 1.0;
   key_at_playhead(state, 2);
@@ -205,7 +205,7 @@ TEST_CASE("undo and redo keys: Set key is a step of its own, a mark's drag one m
   s.session.sync(state);
   CHECK(edits.history().undo_steps() == 1);
   REQUIRE(state.document.controls.keys.size() == 1);
-  const Eigen::MatrixXd keyed = state.takes[kTakeBlend].positions;
+  const Eigen::MatrixXd keyed = state.takes[result_index(2)].positions;
   // The key's mark dragged over a few frames (held), let go: one step.
   const double fps = state.reference_take()->rate();
   const double length_s = take_length_s(*state.reference_take());
@@ -222,14 +222,14 @@ TEST_CASE("undo and redo keys: Set key is a step of its own, a mark's drag one m
   REQUIRE(edits.undo(state, s.session));
   CHECK(state.document.controls.keys.empty());
   s.session.sync(state);
-  CHECK((state.takes[kTakeBlend].positions.rows() != keyed.rows() ||
-         !state.takes[kTakeBlend].positions.isApprox(keyed)));
+  CHECK((state.takes[result_index(2)].positions.rows() != keyed.rows() ||
+         !state.takes[result_index(2)].positions.isApprox(keyed)));
   REQUIRE(edits.redo(state, s.session));
   REQUIRE(state.document.controls.keys.size() == 1);
   CHECK(state.document.controls.keys[0].seconds == 0.0);
   s.session.sync(state);
-  CHECK(state.takes[kTakeBlend].positions.rows() == keyed.rows());
-  CHECK(state.takes[kTakeBlend].positions.isApprox(keyed));
+  CHECK(state.takes[result_index(2)].positions.rows() == keyed.rows());
+  CHECK(state.takes[result_index(2)].positions.isApprox(keyed));
   CHECK_FALSE((unkeyed.rows() == keyed.rows() && unkeyed.isApprox(keyed)));
 }
 

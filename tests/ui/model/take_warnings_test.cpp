@@ -52,10 +52,10 @@ TEST_CASE("take warnings: a pair whose B says a wrong frame count shows the warn
   session.wait_idle(state);
   fs::remove_all(dir);
   REQUIRE(state.takes.size() == 3);
-  REQUIRE(state.takes[kTakeB].ok());
-  CAPTURE(state.takes[kTakeA].warnings, state.takes[kTakeB].warnings);
+  REQUIRE(state.takes[1].ok());
+  CAPTURE(state.takes[0].warnings, state.takes[1].warnings);
   bool on_b = false;
-  for (const std::string& w : state.takes[kTakeB].warnings) on_b |= w.find("marching_cut.bvh:") != std::string::npos;
+  for (const std::string& w : state.takes[1].warnings) on_b |= w.find("marching_cut.bvh:") != std::string::npos;
   CHECK(on_b);
-  for (const std::string& w : state.takes[kTakeA].warnings) CHECK(w.find("marching_cut.bvh:") == std::string::npos);
+  for (const std::string& w : state.takes[0].warnings) CHECK(w.find("marching_cut.bvh:") == std::string::npos);
 }

@@ -65,8 +65,8 @@ Clip export_and_read(ExportDialog& dialog, BlendSession& session, const std::str
 
 TEST_CASE("export dialog: at 60 fps the file has twice the blend's frames less one, at 30 the blend's own") {
   LoadedSession s;
-  REQUIRE(s.session.blend() != nullptr);
-  const int blend_frames = static_cast<int>(s.session.blend()->motion.world.rows());
+  REQUIRE(s.session.result() != nullptr);
+  const int blend_frames = static_cast<int>(s.session.result()->motion.world.rows());
   REQUIRE(s.session.snapshot().prepared->fps == 30.0);
   ExportDialog dialog(s.session);
   dialog.poll();
@@ -110,10 +110,10 @@ TEST_CASE("export dialog: an in and an out point give the frames between them, b
   LoadedSession s;
   ExportDialog dialog(s.session);
   dialog.poll();  // the range starts as all of the blend
-  REQUIRE(s.session.blend() != nullptr);
-  REQUIRE(s.session.blend()->motion.world.rows() > 61);  // over 2 s at 30 fps
+  REQUIRE(s.session.result() != nullptr);
+  REQUIRE(s.session.result()->motion.world.rows() > 61);  // over 2 s at 30 fps
   CHECK(dialog.settings().in_s == 0.0);
-  CHECK(dialog.settings().out_s == Approx((s.session.blend()->motion.world.rows() - 1) / 30.0));
+  CHECK(dialog.settings().out_s == Approx((s.session.result()->motion.world.rows() - 1) / 30.0));
   TempFile file("mostyle_export_dialog_range.bvh");
   dialog.settings().range = ExportRange::kInOut;
   dialog.settings().in_s = 1.0;
@@ -125,16 +125,16 @@ TEST_CASE("export dialog: an in and an out point give the frames between them, b
   // An out point past the blend is brought back inside it by the next poll.
   dialog.settings().out_s = 1e6;
   dialog.poll();
-  CHECK(dialog.settings().out_s == Approx((s.session.blend()->motion.world.rows() - 1) / 30.0));
+  CHECK(dialog.settings().out_s == Approx((s.session.result()->motion.world.rows() - 1) / 30.0));
 }
 
 TEST_CASE("export dialog: the loop is written whole, so it repeats at any rate") {
   LoadedSession s;
   s.state.document.controls.loop = true;
   s.session.sync(s.state);
-  REQUIRE(s.session.blend() != nullptr);
-  REQUIRE(s.session.blend()->motion.loop.cycles >= 1);
-  const int loop_frames = static_cast<int>(s.session.blend()->motion.world.rows());
+  REQUIRE(s.session.result() != nullptr);
+  REQUIRE(s.session.result()->motion.loop.cycles >= 1);
+  const int loop_frames = static_cast<int>(s.session.result()->motion.world.rows());
   ExportDialog dialog(s.session);
   dialog.poll();
   TempFile file("mostyle_export_dialog_loop.bvh");
@@ -212,7 +212,7 @@ TEST_CASE("export job: the job copies the blend, and a cancel before the solve w
   options.fps = s.session.snapshot().prepared->fps;
   const ExportRequest request = make_export_request(s.session, options);
   CHECK(request.options.path == fs::absolute(file.path).string());
-  CHECK(request.world == s.session.blend()->motion.world);
+  CHECK(request.world == s.session.result()->motion.world);
   JobControl cancelled;
   cancelled.cancel = true;
   const ExportOutcome outcome = run_export(request, &cancelled);
@@ -226,13 +226,13 @@ TEST_CASE("export job: the job copies the blend, and a cancel before the solve w
   ExportOutcome done;
   CHECK(job.take_outcome(&done));
   CHECK(done.ok);
-  CHECK(done.frames == s.session.blend()->motion.world.rows());
+  CHECK(done.frames == s.session.result()->motion.world.rows());
   CHECK_FALSE(job.take_outcome(&done));
   CHECK(fs::exists(file.path));
   // BlendSession::export_bvh: the same export, here and now.
   fs::remove(file.path);
   CHECK(s.session.export_bvh(file.path));
-  CHECK(read_bvh_file(file.path).frames() == s.session.blend()->motion.world.rows());
+  CHECK(read_bvh_file(file.path).frames() == s.session.result()->motion.world.rows());
 }
 
 TEST_CASE("export dialog: the window draws in every mode, and the files panel opens it") {
@@ -285,7 +285,7 @@ TEST_CASE("export dialog: a palette's mix exports whole or from an in to an out 
                         test::asset("motions/cmu142_walk_joy.bvh")});
   s.session.wait_idle(s.state);
   REQUIRE(s.session.palette() != nullptr);
-  const MixResult* mix = s.session.palette_view().mix();
+  const MixResult* mix = s.session.result_view().mix();
   REQUIRE(mix != nullptr);
   const int mix_frames = static_cast<int>(mix->motion.world.rows());
   REQUIRE(mix_frames > 61);
@@ -341,7 +341,7 @@ TEST_CASE("export dialog: the format is the file's extension, glTF and FBX expor
   CHECK(with_export_format("", ExportFormat::kGltf).empty());
 
   LoadedSession s;
-  REQUIRE(s.session.blend() != nullptr);
+  REQUIRE(s.session.result() != nullptr);
   ExportDialog dialog(s.session);
   dialog.poll();
   TempFile bvh("mostyle_export_dialog_format.bvh"), glb("mostyle_export_dialog_format.glb"),

@@ -13,7 +13,8 @@
 #include "tests/ui/imgui_frame.h"
 #include "tests/ui/loaded_session.h"
 #include "ui/model/keyed_weights.h"
-#include "ui/model/palette_view.h"
+#include "ui/model/document_mix.h"
+#include "ui/model/result_view.h"
 #include "ui/panels/palette_panel.h"
 
 using namespace mostyle;
@@ -90,7 +91,7 @@ struct Palette {
     return hover(kTitle, slider, &i);
   }
   std::vector<double> mix_weights() {
-    return mix_params_for(s.state.document.controls, *s.session.snapshot().decomposed, 3).weights;
+    return mix_params_for(s.state.document, *s.session.snapshot().decomposed, 3).weights;
   }
 };
 
@@ -117,8 +118,8 @@ TEST_CASE("palette panel: a transfer's neutral can be none, the content its own 
   CHECK(t.has_strength(1));
   CHECK(t.has_strength(2));
   // The mix the editor shows is made with them, without an error.
-  CHECK(t.s.session.palette_view().error().empty());
-  REQUIRE(t.s.session.palette_view().mix() != nullptr);
+  CHECK(t.s.session.result_view().error().empty());
+  REQUIRE(t.s.session.result_view().mix() != nullptr);
 
   // A take chosen again is the neutral again.
   t.choose_neutral("marching");
@@ -139,7 +140,7 @@ TEST_CASE("palette panel: Transfer comes in on the content's timing, as the comm
   t.click();
   CHECK(c.transfer);
   CHECK(timing);
-  CHECK(mix_params_for(t.s.state.document.controls, *t.s.session.snapshot().decomposed, 3).reference_timing);
+  CHECK(mix_params_for(t.s.state.document, *t.s.session.snapshot().decomposed, 3).reference_timing);
   // Clicked again, it changes nothing (a timing the animator set stays).
   timing = false;
   t.click();

@@ -37,16 +37,16 @@ TEST_CASE("the session turns a loaded pair into A, B and the blend, in step on t
   REQUIRE(s.session.error().empty());
   REQUIRE(s.state.takes.size() == 3);
   const PreparedTakes& p = *s.session.snapshot().prepared;
-  REQUIRE(s.session.blend() != nullptr);
+  REQUIRE(s.session.result() != nullptr);
   for (const Take& t : s.state.takes) {
     CHECK(t.ok());
-    CHECK(t.frames() == s.session.blend()->motion.world.rows());  // all three in step on the blend's timeline
+    CHECK(t.frames() == s.session.result()->motion.world.rows());  // all three in step on the blend's timeline
     CHECK(t.positions.cols() == p.takes[0].world.cols());
     CHECK(t.rate() == p.fps);
     CHECK(t.parents == p.parents);
   }
-  REQUIRE(s.session.blend() != nullptr);
-  CHECK(s.state.takes[kTakeBlend].positions.rows() == s.session.blend()->motion.world.rows());
+  REQUIRE(s.session.result() != nullptr);
+  CHECK(s.state.takes[result_index(2)].positions.rows() == s.session.result()->motion.world.rows());
   const DtwCostImage& img = s.session.dtw_image();
   CHECK(img.rows > 0);
   CHECK(img.rows <= DtwCostImage::kMaxCells);
@@ -67,12 +67,12 @@ TEST_CASE("the panels build over a loaded pair, with a component picked and in b
     CHECK(imgui.end_frame() > 1000);
   }
   // The picked component lights up joints of the blend skeleton only.
-  const auto& highlights = s.state.takes[kTakeBlend].highlights;
-  REQUIRE(highlights.size() == s.state.takes[kTakeBlend].parents.size());
+  const auto& highlights = s.state.takes[result_index(2)].highlights;
+  REQUIRE(highlights.size() == s.state.takes[result_index(2)].parents.size());
   int lit = 0;
   for (const auto& h : highlights) lit += h.a > 0.0f ? 1 : 0;
   CHECK(lit > 0);
-  CHECK(s.state.takes[kTakeA].highlights.empty());
+  CHECK(s.state.takes[0].highlights.empty());
 
   // Paper mode with basic motions: a re-decomposition on the worker, panels still draw.
   s.state.document.controls.mode = BlendMode::kPaper;
@@ -84,32 +84,32 @@ TEST_CASE("the panels build over a loaded pair, with a component picked and in b
   for (auto& panel : panels) panel->draw(s.state);
   s.session.sync(s.state);
   CHECK(imgui.end_frame() > 1000);
-  CHECK(s.session.blend_error().empty());
+  CHECK(s.session.result_error().empty());
 }
 
 TEST_CASE("moving alpha changes the blended pose in the same frame, from A towards B") {
   LoadedSession s;
   s.state.document.overlay = true;  // no lateral offsets: the takes can be compared
-  const int frame = s.state.takes[kTakeA].frames() / 2;
+  const int frame = s.state.takes[0].frames() / 2;
   s.state.document.parameters.alpha = 0.0;
   s.session.sync(s.state);
-  const Eigen::MatrixXd at_a = s.state.takes[kTakeBlend].positions;
+  const Eigen::MatrixXd at_a = s.state.takes[result_index(2)].positions;
   s.state.document.parameters.alpha = 1.0;
   s.session.sync(s.state);  // no worker round trip
-  const Eigen::MatrixXd at_b = s.state.takes[kTakeBlend].positions;
+  const Eigen::MatrixXd at_b = s.state.takes[result_index(2)].positions;
   CHECK((at_a - at_b).norm() > 1.0);
-  CHECK(s.session.blend_ms() < 1000.0);  // sanity only; speed is measured in tests/bench
+  CHECK(s.session.result_view().mix_ms() < 1000.0);  // sanity only; speed is measured in tests/bench
   // A wrist at alpha 0 is nearer A's than B's, and at alpha 1 the other way round.
-  const int wrist = static_cast<int>(s.state.takes[kTakeA].parents.size()) - 1;
-  Take blend_a = s.state.takes[kTakeBlend], blend_b = s.state.takes[kTakeBlend];
+  const int wrist = static_cast<int>(s.state.takes[0].parents.size()) - 1;
+  Take blend_a = s.state.takes[result_index(2)], blend_b = s.state.takes[result_index(2)];
   blend_a.positions = at_a;
   blend_b.positions = at_b;
   double to_a = 0, to_b = 0, back_a = 0, back_b = 0;
   for (int j = 0; j <= wrist; ++j) {
-    to_a += joint_distance(blend_a, s.state.takes[kTakeA], frame, j);
-    to_b += joint_distance(blend_a, s.state.takes[kTakeB], frame, j);
-    back_a += joint_distance(blend_b, s.state.takes[kTakeA], frame, j);
-    back_b += joint_distance(blend_b, s.state.takes[kTakeB], frame, j);
+    to_a += joint_distance(blend_a, s.state.takes[0], frame, j);
+    to_b += joint_distance(blend_a, s.state.takes[1], frame, j);
+    back_a += joint_distance(blend_b, s.state.takes[0], frame, j);
+    back_b += joint_distance(blend_b, s.state.takes[1], frame, j);
   }
   CHECK(to_a < to_b);
   CHECK(back_b < back_a);
@@ -118,13 +118,13 @@ TEST_CASE("moving alpha changes the blended pose in the same frame, from A towar
 TEST_CASE("a failing load shows its error and keeps the previous pair") {
   LoadedSession s;
   const auto before = s.session.snapshot().prepared;
-  const Eigen::MatrixXd blend_before = s.state.takes[kTakeBlend].positions;
+  const Eigen::MatrixXd blend_before = s.state.takes[result_index(2)].positions;
   s.session.load("/nonexistent/walk.bvh", test::asset("motions/cmu142_walk_marching.bvh"));
   s.session.wait_idle(s.state);
   CHECK_THAT(s.session.error(), Catch::Contains("/nonexistent/walk.bvh"));
   CHECK(s.session.snapshot().prepared == before);
   REQUIRE(s.state.takes.size() == 3);
-  CHECK(s.state.takes[kTakeBlend].positions == blend_before);
+  CHECK(s.state.takes[result_index(2)].positions == blend_before);
   // The panels still draw (the files panel shows the sentence); the mistyped path never joins the
   // recent files, the pair that loaded is there.
   test::HeadlessImGui imgui;
@@ -172,7 +172,7 @@ TEST_CASE("files dropped on the window load as the pair (two) or as B (one)") {
   CHECK(s.session.error().empty());
   CHECK(s.session.snapshot().paths[1] == joy);
   CHECK(s.state.takes.size() == 3);
-  CHECK_THAT(s.state.takes[kTakeB].label, Catch::Contains("joy"));
+  CHECK_THAT(s.state.takes[1].label, Catch::Contains("joy"));
 }
 
 TEST_CASE("space plays and pauses, the arrow keys step one frame") {
@@ -211,31 +211,31 @@ TEST_CASE("space plays and pauses, the arrow keys step one frame") {
 
 TEST_CASE("timing, loop and alignment controls reach the blend and the alignment") {
   LoadedSession s;
-  REQUIRE(s.session.blend() != nullptr);
+  REQUIRE(s.session.result() != nullptr);
   const PreparedTakes& p = *s.session.snapshot().prepared;
   const Alignment& al = p.takes[1].alignment;
   DocumentControls& c = s.state.document.controls;
   // alpha 0: A's timing, as long as A's matched range; with A's timing kept at alpha 1 too.
   s.state.document.parameters.alpha = 0.0;
   s.session.sync(s.state);
-  const Eigen::Index at_a = s.session.blend()->motion.world.rows();
+  const Eigen::Index at_a = s.session.result()->motion.world.rows();
   CHECK(at_a == al.a_last - al.a_first + 1);
   s.state.document.parameters.alpha = 1.0;
   s.session.sync(s.state);
-  CHECK(s.session.blend()->motion.world.rows() == al.b_last - al.b_first + 1);
+  CHECK(s.session.result()->motion.world.rows() == al.b_last - al.b_first + 1);
   c.timing_a = true;
   s.session.sync(s.state);
-  CHECK(s.session.blend()->motion.world.rows() == at_a);
+  CHECK(s.session.result()->motion.world.rows() == at_a);
   for (const Take& t : s.state.takes) CHECK(t.frames() == at_a);  // A and B follow the blend's timeline
   // A seamless loop: whole cycles, every take cut to it.
   c.timing_a = false;
   c.loop = true;
   s.state.document.parameters.alpha = 0.5;
   s.session.sync(s.state);
-  REQUIRE(s.session.blend() != nullptr);
-  CHECK(s.session.blend()->motion.loop.cycles >= 1);
-  CHECK(s.session.blend()->motion.loop.cycles <= kLoopMaxCycles);
-  for (const Take& t : s.state.takes) CHECK(t.frames() == s.session.blend()->motion.loop.frames());
+  REQUIRE(s.session.result() != nullptr);
+  CHECK(s.session.result()->motion.loop.cycles >= 1);
+  CHECK(s.session.result()->motion.loop.cycles <= kLoopMaxCycles);
+  for (const Take& t : s.state.takes) CHECK(t.frames() == s.session.result()->motion.loop.frames());
   // Aligning on the body re-prepares the pair on the worker.
   c.loop = false;
   c.align.on = AlignOn::kBody;

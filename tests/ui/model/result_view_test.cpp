@@ -1,4 +1,4 @@
-// The palette's mix in the editor (ui/model/palette_view.h) over a palette of three bundled takes:
+// The palette's mix in the editor (ui/model/result_view.h) over a palette of three bundled takes:
 // the mix parameters built from the controls carry the keys that fit the takes (a transfer's made
 // transfer weights), and a combination the engine refuses (keys with weights per body part) is
 // shown as the engine's sentence while the last mix stays.
@@ -10,6 +10,7 @@
 #include "engine/base/error.h"
 #include "tests/test_data.h"
 #include "tests/ui/loaded_session.h"
+#include "ui/model/document_mix.h"
 #include "ui/model/weight_keys_edit.h"
 
 using namespace mostyle;
@@ -27,24 +28,25 @@ void load_palette(LoadedSession& s) {
 
 }  // namespace
 
-TEST_CASE("palette view: the mix parameters carry the keys that fit the takes") {
+TEST_CASE("result view: the mix parameters carry the keys that fit the takes") {
   LoadedSession s;
   load_palette(s);
   REQUIRE(s.session.palette() != nullptr);
   const Decomposed& d = *s.session.snapshot().decomposed;
-  DocumentControls c = s.state.document.controls;
+  Document doc = s.state.document;
+  DocumentControls& c = doc.controls;
   c.palette.weights = {0.2, 0.3, 0.5};
-  CHECK(mix_params_for(c, d, 3).keys.empty());
+  CHECK(mix_params_for(doc, d, 3).keys.empty());
   // Happy becomes joyful over two seconds.
   c.keys = {WeightKey{0.0, {1.0, 0.0, 0.0}}, WeightKey{2.0, {0.0, 0.0, 1.0}}};
-  const MixParams keyed = mix_params_for(c, d, 3);
+  const MixParams keyed = mix_params_for(doc, d, 3);
   CHECK(same_keys(keyed.keys, c.keys));
   CHECK(keyed.weights == c.palette.weights);  // the constant weights as they were
   // A transfer: the content's and the neutral's weights made from the styles'.
   c.palette.transfer = true;
   c.palette.neutral = 1;
   c.palette.strengths = {1.0, 1.0, 0.5};
-  const MixParams transfer = mix_params_for(c, d, 3);
+  const MixParams transfer = mix_params_for(doc, d, 3);
   CHECK(transfer.weights == std::vector<double>{1.0, -0.5, 0.5});
   REQUIRE(transfer.keys.size() == 2);
   CHECK(transfer.keys[0].weights == std::vector<double>{1.0, 0.0, 0.0});
@@ -52,38 +54,38 @@ TEST_CASE("palette view: the mix parameters carry the keys that fit the takes") 
   // No neutral take: the content is its own, both other takes are styles (content + s (style -
   // content)), the content 1 minus their sum.
   c.palette.content_neutral = true;
-  const MixParams own = mix_params_for(c, d, 3);
+  const MixParams own = mix_params_for(doc, d, 3);
   CHECK(own.weights == std::vector<double>{-0.5, 1.0, 0.5});
   CHECK(own.keys[0].weights == std::vector<double>{1.0, 0.0, 0.0});
   CHECK(own.keys[1].weights == std::vector<double>{0.0, 0.0, 1.0});
   c.palette.content_neutral = false;
   // A pair's keys: none for three takes.
   c.keys = {WeightKey{0.0, {1.0, 0.0}}};
-  CHECK(mix_params_for(c, d, 3).keys.empty());
+  CHECK(mix_params_for(doc, d, 3).keys.empty());
 }
 
-TEST_CASE("palette view: keys with weights per body part are the engine's sentence, the last mix stays") {
+TEST_CASE("result view: keys with weights per body part are the engine's sentence, the last mix stays") {
   LoadedSession s;
   load_palette(s);
-  REQUIRE(s.session.palette_view().mix() != nullptr);
+  REQUIRE(s.session.result_view().mix() != nullptr);
   DocumentControls& c = s.state.document.controls;
   c.keys = {WeightKey{0.0, {1.0, 0.0, 0.0}}, WeightKey{2.0, {0.0, 0.0, 1.0}}};
   s.session.sync(s.state);
-  CHECK(s.session.palette_view().error().empty());
-  const Eigen::MatrixXd keyed = s.session.palette_view().mix()->motion.world;
+  CHECK(s.session.result_view().error().empty());
+  const Eigen::MatrixXd keyed = s.session.result_view().mix()->motion.world;
   // The legs from the marching take: the engine mixes keys for the whole body only.
   c.palette.per_part = true;
   c.palette.part_weights = {{0.0, 1.0, 0.0}, {}, {}};
-  CHECK_THROWS_AS(mix_params_for(c, *s.session.snapshot().decomposed, 3), InputError);
+  CHECK_THROWS_AS(mix_params_for(s.state.document, *s.session.snapshot().decomposed, 3), InputError);
   s.session.sync(s.state);
-  CHECK_THAT(s.session.palette_view().error(), Catch::Contains("keyed in time"));
-  CHECK(s.session.palette_view().mix()->motion.world == keyed);
+  CHECK_THAT(s.session.result_view().error(), Catch::Contains("keyed in time"));
+  CHECK(s.session.result_view().mix()->motion.world == keyed);
   c.keys.clear();
   s.session.sync(s.state);
-  CHECK(s.session.palette_view().error().empty());
+  CHECK(s.session.result_view().error().empty());
 }
 
-TEST_CASE("palette view: a take added keeps the others' weights, the new one at 0") {
+TEST_CASE("result view: a take added keeps the others' weights, the new one at 0") {
   using V = std::vector<double>;
   using S = std::vector<std::string>;
   CHECK(weights_with_added_takes({"a", "b"}, {0.7, 0.3}, {"a", "b", "c"}) == V{0.7, 0.3, 0.0});

@@ -1,0 +1,218 @@
+#include "ui/model/result_view.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "engine/base/clock.h"
+#include "engine/io/motion_file.h"
+#include "ui/model/cycle_provenance.h"
+#include "ui/model/document_fields.h"
+#include "ui/model/document_mix.h"
+#include "ui/model/joint_contacts.h"
+#include "ui/model/lanes.h"
+#include "ui/model/take_warnings.h"
+#include "ui/model/weight_keys_edit.h"
+
+namespace mostyle::ui {
+namespace {
+
+const glm::vec3 kResultColor(0.50f, 0.88f, 0.46f);  // the result's green, between the takes' colours
+const glm::vec4 kHighlight(1.0f, 0.92f, 0.25f, 1.0f);
+
+using Clock = std::chrono::steady_clock;
+
+// How the engine's alignment warnings name take i of `takes` (prepare_takes: A and B for a
+// pair, its file's name for more), so each warning is filed under its take.
+std::string aligned_name(int i, int takes, const PreparedTake& take) {
+  if (takes == 2) return i == 0 ? "A" : "B";
+  return std::filesystem::path(take.clip->source).filename().string();
+}
+
+// Take i's label in the takes list and the viewport: a pair's "A  happy" and "B  marching", a
+// palette's "reference  normal" and then each take's own name.
+std::string take_caption(int i, int takes, const std::string& path) {
+  if (takes == 2) return std::string(i == 0 ? "A  " : "B  ") + take_label(path);
+  return (i == 0 ? "reference  " : "") + take_label(path);
+}
+
+// The result's label: a blend says its alpha (or that it is per component or keyed), a palette
+// says whether it mixes or transfers.
+std::string result_caption(const Document& d, const Decomposed* decomposition, int takes) {
+  if (takes > 2) return d.controls.palette.transfer ? "transfer" : "mix";
+  if (d.controls.per_component && decomposition != nullptr && decomposition->params.mode == BlendMode::kShared)
+    return "blend (per component)";
+  if (!d.controls.keys.empty() && keys_fit(d.controls.keys, takes)) return "blend  alpha keyed";
+  char label[64];
+  std::snprintf(label, sizeof label, "blend  alpha %.2f", d.parameters.alpha);
+  return label;
+}
+
+// Frames of a take's per-frame rows at the (fractional) frames `at`, rounded to the nearest.
+Eigen::MatrixXd nearest_rows(const Eigen::MatrixXd& rows, const Eigen::VectorXd& at) {
+  Eigen::MatrixXd out(at.size(), rows.cols());
+  for (Eigen::Index k = 0; k < at.size(); ++k)
+    out.row(k) = rows.row(std::clamp<Eigen::Index>(std::lround(at[k]), 0, rows.rows() - 1));
+  return out;
+}
+
+}  // namespace
+
+glm::vec3 take_color(int take) {
+  static const glm::vec3 kColors[] = {{0.96f, 0.60f, 0.28f}, {0.36f, 0.64f, 0.97f}, {0.74f, 0.52f, 0.96f},
+                                      {0.95f, 0.85f, 0.30f}, {0.96f, 0.45f, 0.66f}, {0.30f, 0.85f, 0.80f},
+                                      {0.80f, 0.80f, 0.80f}, {0.62f, 0.80f, 0.35f}};
+  return kColors[static_cast<size_t>(take) % (sizeof kColors / sizeof kColors[0])];
+}
+
+void ResultView::clear() {
+  has_mix_ = false;
+  mixed_decomposition_ = nullptr;
+  error_.clear();
+}
+
+void ResultView::take_up(const PreparedTakes& p, const std::vector<std::string>& paths,
+                         const std::vector<std::string>& warnings, EditorState& state) {
+  clear();
+  const int n = p.size();
+  state.takes.clear();
+  state.cycle_provenance.clear();  // of the previous takes' result
+  names_.clear();
+  // Each take's load warnings and its alignment onto the reference under it.
+  std::vector<std::vector<std::string>> aligned;
+  std::vector<std::string> aligned_names;
+  for (int i = 0; i < n; ++i) {
+    const PreparedTake& take = p.takes[static_cast<size_t>(i)];
+    aligned.push_back(i == 0 ? std::vector<std::string>() : take.alignment.warnings);
+    aligned_names.push_back(aligned_name(i, n, take));
+  }
+  std::vector<std::string> take_paths = paths;
+  take_paths.resize(static_cast<size_t>(n));
+  std::vector<std::vector<std::string>> by_take = warnings_by_take(take_paths, warnings, aligned, aligned_names);
+  const int joints = static_cast<int>(p.majors.size());
+  for (int i = 0; i < n; ++i) {
+    const PreparedTake& take = p.takes[static_cast<size_t>(i)];
+    Take t;
+    t.path = take_paths[static_cast<size_t>(i)];
+    t.label = take_caption(i, n, t.path);
+    names_.push_back(n == 2 ? aligned_names[static_cast<size_t>(i)] : take_label(t.path));
+    t.color = take_color(i);
+    t.clip = take.clip;
+    t.fps = p.fps;
+    t.parents = p.parents;
+    t.warnings = std::move(by_take[static_cast<size_t>(i)]);
+    t.positions = take.world_placed;  // until the first result arrives
+    t.contacts = joint_contacts(take.own_contacts, p.feet, joints);
+    state.takes.push_back(std::move(t));
+  }
+  Take result;
+  result.label = result_name(n, state.document.controls.palette.transfer);
+  result.path = n == 2 ? "(blend of A and B)" : "(mix of the palette's takes)";
+  result.color = kResultColor;
+  result.clip = p.takes.front().clip;
+  result.fps = p.fps;
+  result.parents = p.parents;
+  result.positions = p.takes.front().world_placed;  // until the first result arrives
+  state.takes.push_back(std::move(result));
+  // Shared floor and start, side-by-side spacing and direction (ui/model/lanes.h).
+  const Placement placed = placement_of(p.takes.front().world_placed);
+  shift_ = placed.shift;
+  side_ = placed.side;
+  spacing_ = placed.spacing;
+  for (Take& t : state.takes) t.size = placed.size;
+  place(p, state);
+}
+
+void ResultView::update(const PreparedTakes& p, const Decomposed* d, EditorState& state) {
+  if (static_cast<int>(state.takes.size()) != p.size() + 1) return;
+  if (d != nullptr && (d != mixed_decomposition_ || differs_at(mixed_, state.document, Stale::kMix))) remix(p, *d, state);
+  if (placed_overlay_ != state.document.overlay || placed_ghosts_ != state.document.controls.palette.ghosts)
+    place(p, state);
+  highlight(d, state);
+}
+
+void ResultView::remix(const PreparedTakes& p, const Decomposed& d, EditorState& state) {
+  mixed_decomposition_ = &d;
+  mixed_ = state.document;
+  const auto t0 = Clock::now();
+  try {
+    const MixParams params = mix_params_for(state.document, d, p.size());
+    mix_palette(p, d, params, scratch_, mix_, &mix_times_);
+  } catch (const std::exception& e) {  // refused weights or keys: said where they are set, the last result stays
+    error_ = e.what();
+    mix_ms_ = ms_since(t0);
+    return;
+  }
+  mix_ms_ = ms_since(t0);
+  has_mix_ = true;
+  error_.clear();
+  // Where each of its cycles came from, for the timeline's tooltip: once per result.
+  state.cycle_provenance = cycle_provenance(p, mix_.sources, names_);
+  Take& result = state.takes[static_cast<size_t>(result_index(p.size()))];
+  result.label = result_caption(state.document, &d, p.size());
+  result.contacts = joint_contacts(mix_.motion.contacts, p.feet, static_cast<int>(p.majors.size()));
+  place(p, state);
+}
+
+// Every take at the frame the result shows of it, on the reference's floor: the reference left of
+// the result, the other takes to its right (a palette's on demand, as ghosts), or all on one spot
+// when overlaid; side by side, each in a lane beside the result's path (ui/model/lanes.h).
+void ResultView::place(const PreparedTakes& p, EditorState& state) {
+  const int n = p.size();
+  const bool overlay = state.document.overlay, ghosts = state.document.controls.palette.ghosts;
+  const int joints = static_cast<int>(p.majors.size());
+  const bool lanes_on = !overlay && has_mix_;
+  Lanes lanes;
+  if (lanes_on) lanes = lanes_along(mix_.motion.world, Eigen::Vector2d(side_.x(), side_.z()));
+  auto shift_by = [](Eigen::MatrixXd& rows, const Eigen::Vector3d& offset) {
+    for (Eigen::Index j = 0; 3 * j < rows.cols(); ++j)
+      for (int a = 0; a < 3; ++a) rows.col(3 * j + a).array() += offset[a];
+  };
+  Take& result = state.takes[static_cast<size_t>(result_index(n))];
+  if (has_mix_) {
+    result.positions = mix_.motion.world;
+    shift_by(result.positions, shift_);
+  }
+  for (int i = 0; i < n; ++i) {
+    const PreparedTake& take = p.takes[static_cast<size_t>(i)];
+    Take& t = state.takes[static_cast<size_t>(i)];
+    // A pair's B always stands beside the blend; a palette's other takes only as ghosts.
+    t.visible = i == 0 || n == 2 || ghosts;
+    if (has_mix_) {
+      const Eigen::VectorXd at = mix_.sources.col(i);
+      sample_rows(take.world_placed, at, sampled_);
+      t.contacts = joint_contacts(nearest_rows(take.own_contacts, at), p.feet, joints);
+      t.cycle_starts = cycle_starts_at(take.timeline_cycles(), at);
+    } else {
+      sampled_ = take.world_placed;
+    }
+    const double slot = i == 0 ? -1.0 : double(i);
+    if (lanes_on) {
+      place_in_lane(sampled_, lanes, slot * spacing_, shift_, t.positions);
+    } else {
+      t.positions = sampled_;
+      shift_by(t.positions, shift_ + (overlay ? 0.0 : slot * spacing_) * side_);
+    }
+  }
+  result.cycle_starts = state.takes.front().cycle_starts;  // the result walks the reference's cycles
+  placed_overlay_ = overlay;
+  placed_ghosts_ = ghosts;
+}
+
+// The selected component's joints light up on the result.
+void ResultView::highlight(const Decomposed* d, EditorState& state) const {
+  Take& result = state.takes.back();
+  result.highlights.clear();
+  const int c = state.document.controls.selected_component;
+  if (d == nullptr || c < 0 || c >= d->support.rows()) return;
+  result.highlights.assign(result.parents.size(), glm::vec4(0.0f));
+  for (size_t j = 0; j < result.parents.size() && 3 * j + 2 < static_cast<size_t>(d->support.cols()); ++j) {
+    const Eigen::Index col = 3 * static_cast<Eigen::Index>(j);
+    if (d->support(c, col) != 0 || d->support(c, col + 1) != 0 || d->support(c, col + 2) != 0)
+      result.highlights[j] = kHighlight;
+  }
+}
+
+}  // namespace mostyle::ui
