@@ -52,7 +52,6 @@ const char* worker_stage_name(WorkerStage stage) {
     case WorkerStage::kIdle: return "idle";
     case WorkerStage::kLoading: return "loading";
     case WorkerStage::kDecomposing: return "decomposing";
-    case WorkerStage::kBlending: return "blending";
   }
   return "?";
 }
@@ -77,8 +76,8 @@ void Worker::load(const std::vector<std::string>& paths, const PrepareOptions& o
     paths_ = paths;
     if (paths_.size() == 1) paths_.push_back(paths_.front());  // the take with itself
     prepare_options_ = options;
-    // A successful load asks for the decomposition and mix itself; asking here would, when the
-    // load fails, re-run them on the previous takes and wipe the error off the snapshot.
+    // A successful load asks for the decomposition itself; asking here would, when the load
+    // fails, re-run it on the previous takes and wipe the error off the snapshot.
     need_load_ = true;
     if (running_ == WorkerStage::kLoading || running_ == WorkerStage::kDecomposing) control_.cancel = true;
   }
@@ -89,27 +88,8 @@ void Worker::decompose(const DecomposeParams& params) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     decompose_params_ = params;
-    need_decompose_ = true;  // a successful decomposition asks for the mix (see load)
+    need_decompose_ = true;
     if (running_ == WorkerStage::kDecomposing) control_.cancel = true;
-  }
-  wake_.notify_all();
-}
-
-void Worker::blend(const BlendParams& params) {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    blend_params_ = params;
-    need_mix_ = true;
-  }
-  wake_.notify_all();
-}
-
-void Worker::mix(const MixParams& params) {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    mix_params_ = params;
-    blend_params_.reset();
-    need_mix_ = true;
   }
   wake_.notify_all();
 }
@@ -136,7 +116,7 @@ void Worker::wait_idle() const {
 // Parameters without something to apply them to wait for it; they are not work yet.
 bool Worker::has_work() const {
   const WorkerSnapshot& s = *snapshot_;
-  return need_load_ || (need_decompose_ && s.prepared) || (need_mix_ && s.decomposed);
+  return need_load_ || (need_decompose_ && s.prepared);
 }
 
 // Called with mutex_ held: a new snapshot made from the current one.
@@ -157,7 +137,6 @@ void Worker::run() {
     try {
       if (need_load_) run_load(lock);
       else if (need_decompose_ && snapshot_->prepared) run_decompose(lock);
-      else if (need_mix_ && snapshot_->decomposed) run_mix(lock);
     } catch (const Cancelled&) {
       if (!lock.owns_lock()) lock.lock();
     } catch (const InputError& e) {
@@ -204,19 +183,10 @@ void Worker::run_load(std::unique_lock<std::mutex>& lock) {
     s.paths = paths;
     s.prepared = prepared;
     s.decomposed = nullptr;
-    s.mix = nullptr;
     s.warnings = warnings;
     s.error.clear();
   });
-  // Weights for another number of takes (or none yet) mean nothing for these takes: start from
-  // equal weights. Weights of the right count stay, and mix_palette judges them.
-  const int takes = prepared->size();
-  if (blend_params_ && takes != 2) blend_params_.reset();
-  if (static_cast<int>(mix_params_.weights.size()) != takes) {
-    mix_params_.weights.assign(static_cast<size_t>(takes), 1.0 / takes);
-    mix_params_.component_weights.resize(0, 0);
-  }
-  need_decompose_ = need_mix_ = true;
+  need_decompose_ = true;
 }
 
 void Worker::run_decompose(std::unique_lock<std::mutex>& lock) {
@@ -233,32 +203,6 @@ void Worker::run_decompose(std::unique_lock<std::mutex>& lock) {
       s.times.decompose_ms = times.decompose_ms;
       s.decomposed = decomposed;
       s.decompose_params = params;
-      s.error.clear();
-    });
-    need_mix_ = true;
-  }
-}
-
-void Worker::run_mix(std::unique_lock<std::mutex>& lock) {
-  need_mix_ = false;
-  running_ = WorkerStage::kBlending;
-  const std::optional<BlendParams> blend = blend_params_;
-  MixParams params = mix_params_;
-  const auto prepared = snapshot_->prepared;
-  const auto decomposed = snapshot_->decomposed;
-  lock.unlock();
-  if (blend) params = blend_mix_params(*blend, *decomposed);
-  MixScratch scratch;
-  auto result = std::make_shared<MixResult>();
-  StageTimes times;
-  mix_palette(*prepared, *decomposed, params, scratch, *result, &times);
-  lock.lock();
-  if (snapshot_->decomposed == decomposed) {
-    publish([&](WorkerSnapshot& s) {
-      s.times.synthesize_ms = times.synthesize_ms;
-      s.times.postprocess_ms = times.postprocess_ms;
-      s.mix = result;
-      s.mix_params = params;
       s.error.clear();
     });
   }

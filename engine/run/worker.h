@@ -1,6 +1,7 @@
 #pragma once
-// The engine's worker thread: runs the one chain (load and prepare_takes, decompose_takes,
-// mix_palette) off the caller's thread, for 2 to 16 takes; a pair is two. A request
+// The engine's worker thread: runs the slow stages of the one chain (load and prepare_takes,
+// decompose_takes) off the caller's thread, for 2 to 16 takes; a pair is two. The mix
+// (mix_palette) is fast and runs where its result is shown (the editor's ResultView). A request
 // replaces pending work of its stage; a running job that a request makes stale is cancelled at its
 // next check. Results are immutable snapshots, readable at any time from any thread. Every
 // exception becomes an error sentence in the snapshot; what was loaded before an error stays.
@@ -17,7 +18,6 @@
 #include "engine/io/bvh_io.h"
 #include "engine/base/job_control.h"
 #include "engine/run/palette.h"
-#include "engine/run/blend_params.h"
 
 namespace mostyle {
 
@@ -28,19 +28,16 @@ struct WorkerSnapshot {
   // The request `decomposed` was made from. More than two takes are decomposed in shared mode
   // without basic motions whatever this says; the decomposition's own params hold what it used.
   DecomposeParams decompose_params;
-  std::shared_ptr<const MixResult> mix;           // of `decomposed` with mix_params
-  MixParams mix_params;                           // the parameters `mix` was made with
-  // Beside the stage values: how long reading and preparing `prepared` (load, preprocess, dtw),
-  // making `decomposed` (decompose) and `mix` (synthesize, postprocess) took.
+  // Beside the stage values: how long reading and preparing `prepared` (load, preprocess, dtw)
+  // and making `decomposed` (decompose) took.
   StageTimes times;
   std::string error;                  // the last failed request's sentence; empty after a success
   std::vector<std::string> warnings;  // from loading `prepared`
   std::uint64_t version = 0;          // grows with every published change
 };
 
-// The stages: kLoading (read and prepare_takes), kDecomposing (decompose_takes), kBlending
-// (mix_palette).
-enum class WorkerStage { kIdle, kLoading, kDecomposing, kBlending };
+// The stages: kLoading (read and prepare_takes), kDecomposing (decompose_takes).
+enum class WorkerStage { kIdle, kLoading, kDecomposing };
 const char* worker_stage_name(WorkerStage stage);  // "idle", "loading", ...
 
 struct WorkerStatus {
@@ -61,25 +58,18 @@ class Worker {
   // Loads and prepares 2 to kMaxPaletteTakes takes (paths[0] the reference; a path given twice
   // is read once; one path: the take with itself), then decomposes them with the current
   // parameters (more than two takes: in shared mode without basic motions, which are two
-  // takes') and mixes them with the current mix parameters; when their weights are not one per
-  // take, equal weights (and no per-component weights). Replaces a pending load; cancels a
-  // running load or decomposition. Cost: reading the files, then prepare_takes.
+  // takes'). Replaces a pending load; cancels a running load or decomposition. Cost: reading
+  // the files, then prepare_takes.
   void load(const std::vector<std::string>& paths, const PrepareOptions& options = {});
-  // New decomposition parameters: re-decomposes and re-mixes. Cancels a running decomposition.
+  // New decomposition parameters: decomposes again. Cancels a running decomposition.
   void decompose(const DecomposeParams& params);
-  // New mix parameters: re-runs mix_palette only. Parameters mix_palette refuses (weights of the
-  // wrong count or not summing to 1, ...) become the snapshot's error and the previous mix stays.
-  void mix(const MixParams& params);
-  // Two takes' words for mix: weights (1 - alpha, alpha), per component in shared mode
-  // (blend_mix_params, made when the decomposition is known).
-  void blend(const BlendParams& params);
 
   std::shared_ptr<const WorkerSnapshot> snapshot() const;
   WorkerStatus status() const;
   // Blocks until nothing is running or pending (tests, batch use, screenshots).
   void wait_idle() const;
-  // Called on the worker's thread after each job (a load, a decomposition, a blend or mix, a
-  // failure or a cancellation), once its snapshot and status are published, so that an event
+  // Called on the worker's thread after each job (a load, a decomposition, a failure or a
+  // cancellation), once its snapshot and status are published, so that an event
   // loop waiting for input can wake and show it. Empty: none. Must be safe to call from another
   // thread (a GLFW empty event is); it may read the snapshot and the status.
   void set_on_change(std::function<void()> notify);
@@ -90,7 +80,6 @@ class Worker {
   // holds it again when it returns (an exception may leave it unlocked; run() relocks).
   void run_load(std::unique_lock<std::mutex>& lock);
   void run_decompose(std::unique_lock<std::mutex>& lock);
-  void run_mix(std::unique_lock<std::mutex>& lock);
   bool has_work() const;  // with mutex_ held: a request that can run now
   void publish(const std::function<void(WorkerSnapshot&)>& change);
 
@@ -98,13 +87,11 @@ class Worker {
   mutable std::condition_variable wake_;
   mutable std::condition_variable idle_;
   bool stop_ = false;
-  bool need_load_ = false, need_decompose_ = false, need_mix_ = false;
+  bool need_load_ = false, need_decompose_ = false;
   std::vector<std::string> paths_;
   const BvhReadOptions read_options_;  // set before the thread starts, never changed
   PrepareOptions prepare_options_;
   DecomposeParams decompose_params_;
-  MixParams mix_params_;
-  std::optional<BlendParams> blend_params_;  // set: the mix was asked in a blend's words
   WorkerStage running_ = WorkerStage::kIdle;
   JobControl control_;
   std::shared_ptr<const WorkerSnapshot> snapshot_;

@@ -30,12 +30,16 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// The mix a snapshot should hold: mix_palette on its own prepared and decomposed takes.
-Eigen::MatrixXd direct_blend(const WorkerSnapshot& s) {
+// What a caller makes of a snapshot: mix_palette on its own prepared and decomposed takes, with
+// `weights` (equal ones when empty).
+MixResult mix_of(const WorkerSnapshot& s, std::vector<double> weights = {}) {
+  const int n = s.prepared->size();
+  MixParams params;
+  params.weights = weights.empty() ? std::vector<double>(static_cast<size_t>(n), 1.0 / n) : weights;
   MixScratch scratch;
   MixResult out;
-  mix_palette(*s.prepared, *s.decomposed, s.mix_params, scratch, out);
-  return out.motion.world;
+  mix_palette(*s.prepared, *s.decomposed, params, scratch, out);
+  return out;
 }
 
 // Waits (polling, as the UI does) until the worker runs `stage`; false after `timeout` seconds.
@@ -47,8 +51,6 @@ bool wait_for_stage(const Worker& w, WorkerStage stage, double timeout = 30.0) {
   }
   return true;
 }
-
-Eigen::MatrixXd direct_mix(const WorkerSnapshot& s) { return direct_blend(s); }
 
 std::vector<std::string> assets(const std::vector<std::string>& names) {
   std::vector<std::string> paths;
@@ -68,7 +70,6 @@ TEST_CASE("stage names", "[worker]") {
   CHECK(std::string(worker_stage_name(WorkerStage::kIdle)) == "idle");
   CHECK(std::string(worker_stage_name(WorkerStage::kLoading)) == "loading");
   CHECK(std::string(worker_stage_name(WorkerStage::kDecomposing)) == "decomposing");
-  CHECK(std::string(worker_stage_name(WorkerStage::kBlending)) == "blending");
 }
 
 TEST_CASE("a new worker is idle with an empty snapshot", "[worker]") {
@@ -81,11 +82,9 @@ TEST_CASE("a new worker is idle with an empty snapshot", "[worker]") {
   REQUIRE(s);
   CHECK_FALSE(s->prepared);
   CHECK_FALSE(s->decomposed);
-  CHECK_FALSE(s->mix);
   CHECK(s->error.empty());
   CHECK(s->version == 0);
-  // Parameters without a pair wait for one; they are not an error.
-  w.blend(BlendParams());
+  // Parameters without takes wait for them; they are not an error.
   DecomposeParams d;
   d.components = 3;
   w.decompose(d);
@@ -94,7 +93,7 @@ TEST_CASE("a new worker is idle with an empty snapshot", "[worker]") {
   CHECK_FALSE(w.status().pending);
 }
 
-TEST_CASE("loads the bundled pair, decomposes and blends it", "[worker]") {
+TEST_CASE("loads the bundled pair and decomposes it: all a blend needs", "[worker]") {
   Worker w;
   const std::string a = test::asset(kHappy), b = test::asset(kJoy);
   w.load({a, b});
@@ -104,61 +103,38 @@ TEST_CASE("loads the bundled pair, decomposes and blends it", "[worker]") {
   REQUIRE(s->error.empty());
   REQUIRE(s->prepared);
   REQUIRE(s->decomposed);
-  REQUIRE(s->mix);
   CHECK(s->paths[0] == a);
   CHECK(s->paths[1] == b);
-  CHECK(s->version >= 3);  // loaded, decomposed, blended
+  CHECK(s->version >= 2);  // loaded, decomposed
   CHECK(s->decompose_params.components == DecomposeParams().components);
   CHECK(s->decompose_params.sparsity == DecomposeParams().sparsity);
-  CHECK(s->mix_params.weights[1] == BlendParams().alpha);
   CHECK(s->decomposed->params.components == s->decompose_params.components);
   CHECK(s->times.load_ms > 0);  // beside the stage values
-  // The blend plays on its own timeline (timing blended with alpha), within A's frames.
-  CHECK(s->mix->motion.world.rows() == s->mix->sources.col(0).size());
-  CHECK(s->mix->sources.col(0).maxCoeff() <= s->prepared->takes[0].world.rows() - 1);
-  CHECK(s->mix->motion.world.cols() == 3 * static_cast<Eigen::Index>(s->prepared->majors.size()));
-  CHECK(s->mix->motion.world == direct_blend(*s));
-  CHECK(max_bone_length_error(s->mix->motion.world, s->prepared->parents, s->prepared->lengths) < 1e-9);
+  CHECK(s->times.decompose_ms > 0);
+  // A blend of the snapshot plays on its own timeline (timing blended), within A's frames.
+  const MixResult blend = mix_of(*s, {0.5, 0.5});
+  CHECK(blend.motion.world.rows() == blend.sources.col(0).size());
+  CHECK(blend.sources.col(0).maxCoeff() <= s->prepared->takes[0].world.rows() - 1);
+  CHECK(blend.motion.world.cols() == 3 * static_cast<Eigen::Index>(s->prepared->majors.size()));
+  CHECK(max_bone_length_error(blend.motion.world, s->prepared->parents, s->prepared->lengths) < 1e-9);
   const WorkerStatus status = w.status();
   CHECK(status.stage == WorkerStage::kIdle);
   CHECK_FALSE(status.pending);
   CHECK(status.progress == 0.0f);
 }
 
-TEST_CASE("one file is blended with itself", "[worker]") {
+TEST_CASE("one file is loaded as the take with itself", "[worker]") {
   Worker w;
   const std::string a = test::asset(kClumsy);
   w.load({a});
   w.wait_idle();
   const auto s = w.snapshot();
-  REQUIRE(s->mix);
+  REQUIRE(s->decomposed);
   CHECK(s->paths[1] == a);
   CHECK(s->prepared->takes[0].clip == s->prepared->takes[1].clip);  // read once
 }
 
-TEST_CASE("an alpha change re-runs only synthesis and post-processing", "[worker]") {
-  Worker w;
-  w.load({test::asset(kHappy), test::asset(kJoy)});
-  w.wait_idle();
-  const auto before = w.snapshot();
-  REQUIRE(before->mix);
-  BlendParams params;
-  params.alpha = 0.9;
-  w.blend(params);
-  w.wait_idle();
-  const auto after = w.snapshot();
-  CHECK(after->prepared == before->prepared);
-  CHECK(after->decomposed == before->decomposed);  // the same decomposition, not a new one
-  CHECK(after->mix != before->mix);
-  CHECK(after->mix_params.weights[1] == 0.9);
-  CHECK(after->version == before->version + 1);
-  CHECK(after->mix->motion.world == direct_blend(*after));
-  // The old snapshot is untouched: results are immutable.
-  CHECK(before->mix_params.weights[1] == BlendParams().alpha);
-  CHECK(before->mix->motion.world == direct_blend(*before));
-}
-
-TEST_CASE("new decomposition parameters re-decompose and re-blend", "[worker]") {
+TEST_CASE("new decomposition parameters decompose again, on the same takes", "[worker]") {
   Worker w;
   w.load({test::asset(kHappy), test::asset(kJoy)});
   w.wait_idle();
@@ -173,8 +149,9 @@ TEST_CASE("new decomposition parameters re-decompose and re-blend", "[worker]") 
   CHECK(after->decomposed != before->decomposed);
   CHECK(after->decomposed->components() == 4);
   CHECK(after->decompose_params.sparsity == 0.3);
-  REQUIRE(after->mix);
-  CHECK(after->mix->motion.world == direct_blend(*after));
+  CHECK(after->version == before->version + 1);
+  // The old snapshot is untouched: results are immutable.
+  CHECK(before->decomposed->components() == DecomposeParams().components);
 }
 
 TEST_CASE("errors become sentences in the snapshot and keep what was loaded", "[worker]") {
@@ -182,7 +159,7 @@ TEST_CASE("errors become sentences in the snapshot and keep what was loaded", "[
   w.load({test::asset(kHappy), test::asset(kJoy)});
   w.wait_idle();
   const auto good = w.snapshot();
-  REQUIRE(good->mix);
+  REQUIRE(good->decomposed);
 
   SECTION("a malformed file") {
     const std::string bad = temporary_file("mostyle_worker_test_bad.bvh", "HIERARCHY\nROOT Hips\n{\n  OFFSET 0 0\n");
@@ -193,7 +170,6 @@ TEST_CASE("errors become sentences in the snapshot and keep what was loaded", "[
     CHECK(s->error.rfind(bad + ":", 0) == 0);  // "FILE:LINE: ..."
     CHECK(s->prepared == good->prepared);
     CHECK(s->decomposed == good->decomposed);
-    CHECK(s->mix == good->mix);
     CHECK(s->paths[0] == good->paths[0]);
     CHECK_FALSE(w.status().pending);
     std::filesystem::remove(bad);
@@ -214,24 +190,14 @@ TEST_CASE("errors become sentences in the snapshot and keep what was loaded", "[
     INFO(s->error);
     CHECK(s->error.rfind("expected from 1 to", 0) == 0);
     CHECK(s->decomposed == good->decomposed);
-    CHECK(s->mix == good->mix);
-  }
-  SECTION("a bad alpha") {
-    BlendParams b;
-    b.alpha = std::nan("");
-    w.blend(b);
-    w.wait_idle();
-    const auto s = w.snapshot();
-    CHECK(s->error == "expected a finite alpha");
-    CHECK(s->mix == good->mix);
   }
   // A later success clears the error.
-  BlendParams b;
-  b.alpha = 0.25;
-  w.blend(b);
+  DecomposeParams d;
+  d.components = 5;
+  w.decompose(d);
   w.wait_idle();
   CHECK(w.snapshot()->error.empty());
-  CHECK(w.snapshot()->mix_params.weights[1] == 0.25);
+  CHECK(w.snapshot()->decomposed->components() == 5);
 }
 
 TEST_CASE("loads are bounded by the memory limit the worker was given", "[worker]") {
@@ -335,14 +301,13 @@ TEST_CASE("a thousand parameter changes while another thread reads results", "[w
       const WorkerStatus status = w.status();
       bool ok = s && s->version >= last_version && status.progress >= 0.0f && status.progress <= 1.0f;
       if (ok) last_version = s->version;
-      if (ok && s->mix) {
-        // A published blend comes with the pair and decomposition it was made from; read all of it.
-        ok = s->prepared && s->decomposed && s->mix->motion.world.rows() == s->mix->sources.col(0).size() &&
-             s->mix->sources.col(0).maxCoeff() <= s->prepared->takes[0].world.rows() - 1 &&
-             s->mix_params.weights[1] >= 0.0 && s->mix_params.weights[1] <= 1.0;
+      if (ok && s->decomposed) {
+        // A published decomposition comes with the takes it was made from; read all of it.
+        const Decomposed& d = *s->decomposed;
+        ok = s->prepared && d.support.rows() == d.components() && d.components() == s->decompose_params.components;
         double sum = 0;
-        for (Eigen::Index i = 0; i < s->mix->motion.world.size(); ++i) sum += s->mix->motion.world.data()[i];
-        ok = ok && std::isfinite(sum) && s->decomposed->support.rows() == s->decomposed->components();
+        for (Eigen::Index i = 0; i < d.support.size(); ++i) sum += d.support.data()[i];
+        ok = ok && std::isfinite(sum);
       }
       bad_reads += ok ? 0 : 1;
       ++reads;
@@ -351,7 +316,6 @@ TEST_CASE("a thousand parameter changes while another thread reads results", "[w
 
   std::mt19937 random(42);
   DecomposeParams last_decompose;
-  BlendParams last_blend;
   std::string last_a = test::asset(kHappy), last_b = test::asset(kJoy);
   for (int i = 0; i < 1000; ++i) {
     if (i % 250 == 125) {
@@ -359,14 +323,11 @@ TEST_CASE("a thousand parameter changes while another thread reads results", "[w
       last_a = test::asset(first ? kClumsy : kHappy);
       last_b = test::asset(first ? kMarching : kJoy);
       w.load({last_a, last_b});
-    } else if (i % 10 == 3) {
+    } else {
       last_decompose.components = 2 + static_cast<int>(random() % 11);
       last_decompose.sparsity = 0.2 + 0.1 * static_cast<double>(random() % 9);
       last_decompose.max_iterations = 20;
       w.decompose(last_decompose);
-    } else {
-      last_blend.alpha = static_cast<double>(random() % 1001) / 1000.0;
-      w.blend(last_blend);
     }
     if (i % 20 == 0) std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
@@ -380,21 +341,19 @@ TEST_CASE("a thousand parameter changes while another thread reads results", "[w
   const auto s = w.snapshot();
   INFO(s->error);
   CHECK(s->error.empty());
-  REQUIRE(s->mix);
+  REQUIRE(s->decomposed);
   CHECK(s->paths[0] == last_a);
   CHECK(s->paths[1] == last_b);
   CHECK(s->decompose_params.components == last_decompose.components);
   CHECK(s->decompose_params.sparsity == last_decompose.sparsity);
   CHECK(s->decompose_params.max_iterations == last_decompose.max_iterations);
   CHECK(s->decomposed->components() == last_decompose.components);
-  CHECK(s->mix_params.weights[1] == last_blend.alpha);
-  CHECK(s->mix->motion.world == direct_blend(*s));
   CHECK_FALSE(w.status().pending);
 }
 
 // The style palette: the same worker, with prepare_palette, decompose_palette and mix_palette.
 
-TEST_CASE("loads a palette of three bundled takes, decomposes and mixes it", "[worker][palette]") {
+TEST_CASE("loads a palette of three bundled takes and decomposes it", "[worker][palette]") {
   Worker w;
   const std::vector<std::string> paths = assets({kHappy, kMarching, kJoy});
   w.load(paths);
@@ -404,104 +363,29 @@ TEST_CASE("loads a palette of three bundled takes, decomposes and mixes it", "[w
   REQUIRE(s->error.empty());
   REQUIRE(s->prepared);
   REQUIRE(s->decomposed);
-  REQUIRE(s->mix);
   CHECK(s->prepared->size() == 3);
   CHECK(s->paths == paths);
   CHECK(s->prepared->takes.front().clip->source == paths.front());
-  CHECK(s->version >= 3);  // loaded, decomposed, mixed
-  // The current parameters: the default decomposition, and equal weights (none were given).
+  CHECK(s->version >= 2);  // loaded, decomposed
+  // The current parameters: the default decomposition.
   CHECK(s->decomposed->components() == DecomposeParams().components);
   CHECK(s->decomposed->params.mode == BlendMode::kShared);
-  CHECK(s->mix_params.weights == std::vector<double>(3, 1.0 / 3.0));
-  // The mix has frames, one pose column per shared joint, and is mix_palette's own.
-  CHECK(s->mix->motion.world.rows() > 0);
-  CHECK(s->mix->motion.world.cols() == 3 * static_cast<Eigen::Index>(s->prepared->majors.size()));
-  CHECK(s->mix->sources.cols() == 3);
-  CHECK(s->mix->motion.world == direct_mix(*s));
+  // A mix of the snapshot has frames, one pose column per shared joint, a source per take.
+  const MixResult mix = mix_of(*s);
+  CHECK(mix.motion.world.rows() > 0);
+  CHECK(mix.motion.world.cols() == 3 * static_cast<Eigen::Index>(s->prepared->majors.size()));
+  CHECK(mix.sources.cols() == 3);
   const WorkerStatus status = w.status();
   CHECK(status.stage == WorkerStage::kIdle);
   CHECK_FALSE(status.pending);
 }
 
-TEST_CASE("mix parameters without a palette wait for one", "[worker][palette]") {
-  Worker w;
-  MixParams m;
-  m.weights = {0.5, 0.5};
-  w.mix(m);
-  w.wait_idle();
-  CHECK(w.snapshot()->error.empty());
-  CHECK_FALSE(w.status().pending);
-  CHECK(w.snapshot()->version == 0);
-}
-
-TEST_CASE("new mix weights re-run only the mix", "[worker][palette]") {
+TEST_CASE("new decomposition parameters decompose the palette again, in shared mode", "[worker][palette]") {
   Worker w;
   w.load(assets({kHappy, kMarching, kJoy}));
   w.wait_idle();
   const auto before = w.snapshot();
-  REQUIRE(before->mix);
-  MixParams m;
-  m.weights = {0.2, 0.5, 0.3};
-  w.mix(m);
-  w.wait_idle();
-  const auto after = w.snapshot();
-  INFO(after->error);
-  CHECK(after->error.empty());
-  CHECK(after->prepared == before->prepared);
-  CHECK(after->decomposed == before->decomposed);  // not decomposed again
-  REQUIRE(after->mix);
-  CHECK(after->mix != before->mix);
-  CHECK(after->mix_params.weights == m.weights);
-  CHECK(after->version == before->version + 1);
-  CHECK(after->mix->motion.world == direct_mix(*after));
-  // Another mix (mixed timing may also give it another length; compare sizes before values).
-  const Eigen::MatrixXd& new_world = after->mix->motion.world;
-  const Eigen::MatrixXd& old_world = before->mix->motion.world;
-  CHECK((new_world.rows() != old_world.rows() || new_world != old_world));
-  // The old snapshot is untouched: results are immutable.
-  CHECK(before->mix_params.weights == std::vector<double>(3, 1.0 / 3.0));
-  CHECK(before->mix->motion.world == direct_mix(*before));
-}
-
-TEST_CASE("mix weights mix_palette refuses become an error and keep the mix", "[worker][palette]") {
-  Worker w;
-  w.load(assets({kHappy, kMarching, kJoy}));
-  w.wait_idle();
-  const auto good = w.snapshot();
-  REQUIRE(good->mix);
-  MixParams m;
-  SECTION("weights that do not sum to 1") {
-    m.weights = {0.5, 0.5, 0.5};
-  }
-  SECTION("weights of the wrong count") {
-    m.weights = {0.5, 0.5};  // given for a palette already loaded: refused, not replaced
-  }
-  SECTION("a weight that is not finite") {
-    m.weights = {0.5, std::nan(""), 0.5};
-  }
-  w.mix(m);
-  w.wait_idle();
-  const auto s = w.snapshot();
-  INFO(s->error);
-  CHECK_FALSE(s->error.empty());
-  CHECK(s->mix == good->mix);
-  CHECK(s->mix_params.weights == good->mix_params.weights);
-  CHECK(s->decomposed == good->decomposed);
-  CHECK_FALSE(w.status().pending);
-  // A later success clears the error.
-  m.weights = {0.0, 1.0, 0.0};
-  w.mix(m);
-  w.wait_idle();
-  CHECK(w.snapshot()->error.empty());
-  CHECK(w.snapshot()->mix_params.weights == m.weights);
-}
-
-TEST_CASE("new decomposition parameters re-decompose and re-mix the palette, in shared mode", "[worker][palette]") {
-  Worker w;
-  w.load(assets({kHappy, kMarching, kJoy}));
-  w.wait_idle();
-  const auto before = w.snapshot();
-  REQUIRE(before->mix);
+  REQUIRE(before->decomposed);
   DecomposeParams d;
   d.components = 4;
   d.sparsity = 0.3;
@@ -523,11 +407,8 @@ TEST_CASE("new decomposition parameters re-decompose and re-mix the palette, in 
   CHECK(after->decomposed->params.mode == BlendMode::kShared);
   CHECK(after->decomposed->params.basic_motions == 0);
   CHECK(after->decompose_params.mode == d.mode);  // the request, as made
-  REQUIRE(after->mix);
-  CHECK(after->mix != before->mix);
-  CHECK(after->mix->motion.world == direct_mix(*after));
 
-  // Parameters decompose_palette refuses keep the decomposition and the mix.
+  // Parameters decompose_palette refuses keep the decomposition.
   DecomposeParams bad;
   bad.components = 1000;
   w.decompose(bad);
@@ -535,63 +416,39 @@ TEST_CASE("new decomposition parameters re-decompose and re-mix the palette, in 
   const auto s = w.snapshot();
   CHECK(s->error.rfind("expected from 1 to", 0) == 0);
   CHECK(s->decomposed == after->decomposed);
-  CHECK(s->mix == after->mix);
 }
 
-TEST_CASE("one chain for any number of takes: two, three, two again, with the weights that fit", "[worker][palette]") {
+TEST_CASE("one chain for any number of takes: two, three, two again", "[worker][palette]") {
   Worker w;
   w.load({test::asset(kHappy), test::asset(kJoy)});
   w.wait_idle();
-  REQUIRE(w.snapshot()->mix);
+  REQUIRE(w.snapshot()->decomposed);
 
   const std::vector<std::string> paths = assets({kClumsy, kMarching, kJoy});
   w.load(paths);
   w.wait_idle();
   const auto palette = w.snapshot();
   INFO(palette->error);
-  REQUIRE(palette->mix);
+  REQUIRE(palette->decomposed);
   CHECK(palette->paths == paths);
   CHECK(palette->prepared->size() == 3);
-  CHECK(palette->mix->sources.cols() == 3);
-  // A blend's alpha is two takes' words: three takes keep their mix.
-  BlendParams b;
-  b.alpha = 0.75;
-  w.blend(b);
-  w.wait_idle();
-  CHECK_FALSE(w.snapshot()->error.empty());
-  CHECK(w.snapshot()->mix == palette->mix);
+  CHECK(mix_of(*palette).sources.cols() == 3);
 
-  // Two takes again: the alpha asked for is their mix, (0.25, 0.75).
+  // Two takes again: decomposed with the parameters asked for, basic motions and all.
+  DecomposeParams d;
+  d.mode = BlendMode::kPaper;
+  d.basic_motions = 1;
+  d.components = 4;
+  w.decompose(d);
   w.load({test::asset(kHappy), test::asset(kJoy)});
   w.wait_idle();
   const auto pair = w.snapshot();
   INFO(pair->error);
-  REQUIRE(pair->mix);
+  REQUIRE(pair->decomposed);
   CHECK(pair->prepared->size() == 2);
-  CHECK(pair->mix_params.weights == std::vector<double>{0.25, 0.75});
-  CHECK(pair->mix->motion.world == direct_blend(*pair));
-
-  // Weights of another count are not these takes': refused, the mix stays.
-  MixParams m;
-  m.weights = {0.25, 0.25, 0.5};
-  w.mix(m);
-  w.wait_idle();
-  CHECK_FALSE(w.snapshot()->error.empty());
-  CHECK(w.snapshot()->mix == pair->mix);
-
-  // They apply to the next load of that many takes; another count starts from equal weights.
-  SECTION("three takes") {
-    w.load(paths);
-    w.wait_idle();
-    REQUIRE(w.snapshot()->mix);
-    CHECK(w.snapshot()->mix_params.weights == m.weights);
-  }
-  SECTION("two takes") {
-    w.load(assets({kClumsy, kMarching}));
-    w.wait_idle();
-    REQUIRE(w.snapshot()->mix);
-    CHECK(w.snapshot()->mix_params.weights == std::vector<double>{0.5, 0.5});
-  }
+  CHECK(pair->decomposed->params.mode == BlendMode::kPaper);
+  CHECK(pair->decomposed->params.basic_motions == 1);
+  CHECK(mix_of(*pair, {0.25, 0.75}).sources.cols() == 2);
 }
 
 TEST_CASE("a failing palette load keeps what was loaded and names the file", "[worker][palette]") {
@@ -601,7 +458,7 @@ TEST_CASE("a failing palette load keeps what was loaded and names the file", "[w
     w.load(assets({kHappy, kMarching, kJoy}));
     w.wait_idle();
     const auto good = w.snapshot();
-    REQUIRE(good->mix);
+    REQUIRE(good->decomposed);
     w.load({test::asset(kHappy), missing, test::asset(kJoy)});
     w.wait_idle();
     const auto s = w.snapshot();
@@ -609,7 +466,6 @@ TEST_CASE("a failing palette load keeps what was loaded and names the file", "[w
     CHECK(s->error.find(missing) != std::string::npos);
     CHECK(s->prepared == good->prepared);
     CHECK(s->decomposed == good->decomposed);
-    CHECK(s->mix == good->mix);
     CHECK(s->paths == good->paths);
     CHECK_FALSE(w.status().pending);
     // Seventeen takes are too many.
@@ -622,22 +478,22 @@ TEST_CASE("a failing palette load keeps what was loaded and names the file", "[w
     w.load({test::asset(kHappy), test::asset(kJoy)});
     w.wait_idle();
     const auto good = w.snapshot();
-    REQUIRE(good->mix);
+    REQUIRE(good->decomposed);
     w.load({test::asset(kHappy), test::asset(kJoy), missing});
     w.wait_idle();
     const auto s = w.snapshot();
     INFO(s->error);
     CHECK(s->error.find(missing) != std::string::npos);
     CHECK(s->prepared == good->prepared);
-    CHECK(s->mix == good->mix);
+    CHECK(s->decomposed == good->decomposed);
     CHECK(s->paths == good->paths);
     // The pair still takes parameters (nothing of the failed palette waits to run).
-    BlendParams b;
-    b.alpha = 0.25;
-    w.blend(b);
+    DecomposeParams d;
+    d.components = 5;
+    w.decompose(d);
     w.wait_idle();
     CHECK(w.snapshot()->error.empty());
-    CHECK(w.snapshot()->mix_params.weights[1] == 0.25);
+    CHECK(w.snapshot()->decomposed->components() == 5);
   }
 }
 
@@ -658,8 +514,7 @@ TEST_CASE("a new palette load replaces a running one and ends with the latest", 
   REQUIRE(s->prepared);
   CHECK(s->prepared->size() == 2);
   CHECK(s->prepared->takes.front().clip->source == latest.front());
-  REQUIRE(s->mix);
-  CHECK(s->mix->motion.world == direct_mix(*s));
+  REQUIRE(s->decomposed);
   CHECK_FALSE(w.status().pending);
 }
 
@@ -701,11 +556,9 @@ TEST_CASE("a palette load cancels a long decomposition, and so does a new decomp
   REQUIRE(s->decomposed);
   CHECK(s->decomposed->components() == 3);
   CHECK(s->decompose_params.max_iterations == 5);
-  REQUIRE(s->mix);
-  CHECK(s->mix->motion.world == direct_mix(*s));
 }
 
-TEST_CASE("mix, decomposition and load requests on a palette while another thread reads results",
+TEST_CASE("decomposition and load requests on a palette while another thread reads results",
           "[worker][palette]") {
   Worker w;
   const std::vector<std::string> palette_a = assets({kHappy, kMarching, kJoy});
@@ -721,15 +574,13 @@ TEST_CASE("mix, decomposition and load requests on a palette while another threa
       const WorkerStatus status = w.status();
       bool ok = s && s->version >= last_version && status.progress >= 0.0f && status.progress <= 1.0f;
       if (ok) last_version = s->version;
-      if (ok && s->mix) {
-        // A published mix comes with the takes and decomposition it was made from (three, or a
-        // pair in between).
-        ok = s->prepared && s->decomposed && s->paths.size() == static_cast<size_t>(s->prepared->size()) &&
-             s->mix->sources.cols() == s->prepared->size() &&
-             s->mix_params.weights.size() == static_cast<size_t>(s->prepared->size()) &&
+      if (ok && s->decomposed) {
+        // A published decomposition comes with the takes it was made from (three, or a pair in
+        // between).
+        ok = s->prepared && s->paths.size() == static_cast<size_t>(s->prepared->size()) &&
              s->decomposed->rmse.size() == static_cast<size_t>(s->prepared->size());
         double sum = 0;
-        for (Eigen::Index i = 0; i < s->mix->motion.world.size(); ++i) sum += s->mix->motion.world.data()[i];
+        for (Eigen::Index i = 0; i < s->decomposed->support.size(); ++i) sum += s->decomposed->support.data()[i];
         ok = ok && std::isfinite(sum);
       }
       bad_reads += ok ? 0 : 1;
@@ -738,7 +589,6 @@ TEST_CASE("mix, decomposition and load requests on a palette while another threa
   });
 
   std::mt19937 random(7);
-  MixParams last_mix;
   DecomposeParams last_decompose;
   std::vector<std::string> last_paths = palette_a;
   for (int i = 0; i < 200; ++i) {
@@ -747,15 +597,10 @@ TEST_CASE("mix, decomposition and load requests on a palette while another threa
     } else if (i == 100) {
       last_paths = palette_b;
       w.load(last_paths);
-    } else if (i % 20 == 7) {
+    } else {
       last_decompose.components = 2 + static_cast<int>(random() % 9);
       last_decompose.max_iterations = 20;
       w.decompose(last_decompose);
-    } else {
-      const double a = static_cast<double>(random() % 1001) / 1000.0;
-      const double b = static_cast<double>(random() % 1001) / 1000.0 * (1.0 - a);
-      last_mix.weights = {a, b, 1.0 - a - b};
-      w.mix(last_mix);
     }
     if (i % 10 == 0) std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
@@ -769,11 +614,9 @@ TEST_CASE("mix, decomposition and load requests on a palette while another threa
   const auto s = w.snapshot();
   INFO(s->error);
   CHECK(s->error.empty());
-  REQUIRE(s->mix);
+  REQUIRE(s->decomposed);
   CHECK(s->paths == last_paths);
   CHECK(s->decomposed->components() == last_decompose.components);
-  CHECK(s->mix_params.weights == last_mix.weights);
-  CHECK(s->mix->motion.world == direct_mix(*s));
   CHECK_FALSE(w.status().pending);
 }
 
@@ -792,8 +635,8 @@ TEST_CASE("the worker calls its change callback after each job, with the result 
   w.wait_idle();
   // Each call happens after the job's end; wait_idle may return just before the last call.
   const auto t0 = Clock::now();
-  while (calls < 3 && seconds_since(t0) < 30.0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  CHECK(calls >= 3);  // load, decomposition, blend
+  while (calls < 2 && seconds_since(t0) < 30.0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  CHECK(calls >= 2);  // load, decomposition
   const auto t1 = Clock::now();
   while (seen_version != w.snapshot()->version && seconds_since(t1) < 30.0)
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
