@@ -19,7 +19,7 @@
 
 #include "engine/io/axis_stream.h"
 #include "engine/io/bvh_io.h"
-#include "tests/app/live_process.h"
+#include "tests/app/live/live_process.h"
 
 namespace {
 

@@ -7,8 +7,8 @@
 
 #include <imgui.h>
 
-#include "app/editor.h"
-#include "app/imgui_context.h"
+#include "app/editor/editor.h"
+#include "app/editor/imgui_context.h"
 #include "engine/io/bvh_io.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/units.h"

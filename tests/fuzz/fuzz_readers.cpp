@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "app/job_line.h"
+#include "app/batch/job_line.h"
 #include "engine/io/axis_stream.h"
 #include "engine/io/bvh_io.h"
 #include "engine/io/csv_io.h"

@@ -16,7 +16,7 @@ namespace mostyle::fuzz {
 bool read_bvh(std::string_view bytes);       // parse_bvh (engine/io/bvh_io.h), as "fuzz.bvh"
 bool read_mapping(std::string_view bytes);   // parse_mapping_overrides (engine/prepare/major_skeleton.h)
 bool read_csv(std::string_view bytes);       // parse_csv_matrix (engine/io/csv_io.h)
-bool read_job_line(std::string_view bytes);  // parse_job_line (app/job_line.h)
+bool read_job_line(std::string_view bytes);  // parse_job_line (app/batch/job_line.h)
 bool read_session(std::string_view bytes);   // parse_session (ui/model/session_file.h), as "fuzz.mostyle"
 // parse_gltf (engine/io/gltf_io.h) as "fuzz.glb", then every take sampled into a clip
 // (scene_animation.h, 2 MB limit), written as GLB and read back with the same skeleton.

@@ -2,7 +2,7 @@
 // The session files' two windows: the Save / Open dialog (a path field, the recent sessions, an
 // error line where the path can be corrected) and the message shown above the timeline after a
 // save or an open. They draw and return what the animator asked for; the editor does it
-// (app/editor.cpp) and tells them how it went. No files are touched here.
+// (app/editor/editor.cpp) and tells them how it went. No files are touched here.
 #include <chrono>
 #include <optional>
 #include <string>

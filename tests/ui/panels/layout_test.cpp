@@ -31,7 +31,7 @@ PanelRect window_rect(PanelId id) {
   return PanelRect{w->Pos.x, w->Pos.y, w->Size.x, w->Size.y};
 }
 
-// One editor frame of the panels, laid out as app/editor.cpp does.
+// One editor frame of the panels, laid out as app/editor/editor.cpp does.
 void panels_frame(test::HeadlessImGui& imgui, test::LoadedSession& s, std::vector<std::unique_ptr<Panel>>& panels,
                   glm::vec2* last_display) {
   imgui.begin_frame();

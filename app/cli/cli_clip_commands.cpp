@@ -1,0 +1,256 @@
+#include "app/cli/cli_clip_commands.h"
+
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+
+#include <nlohmann/json.hpp>
+
+#include "app/cli/cli_common.h"
+#include "app/cli/cli_pipeline_common.h"
+#include "engine/export/export_frames.h"
+#include "engine/io/bvh_io.h"
+#include "engine/io/numbers.h"
+#include "engine/kinematics/convert.h"
+#include "engine/base/error.h"
+#include "engine/io/motion_file.h"
+#include "engine/kinematics/euler.h"
+#include "engine/kinematics/kinematics.h"
+#include "engine/kinematics/resample.h"
+#include "engine/kinematics/units.h"
+#include "engine/prepare/major_skeleton.h"
+
+namespace mostyle::cli {
+namespace {
+
+std::string channel_list(const Joint& j) {
+  std::string s;
+  for (Channel c : j.channels) {
+    if (!s.empty()) s += ' ';
+    s += channel_name(c);
+  }
+  return s;
+}
+
+std::string rotation_order(const Joint& j) {
+  std::string s;
+  for (Channel c : j.channels)
+    if (is_rotation(c)) s += static_cast<char>('X' + channel_axis(c));
+  return s;
+}
+
+// CLI::PositiveNumber lets "nan" through (every comparison with it is false).
+CLI::Validator positive_finite_rate() {
+  return CLI::Validator(
+      [](std::string& text) {
+        double v = 0;
+        if (CLI::detail::lexical_cast(text, v) && v > 0 && std::isfinite(v)) return std::string();
+        return "expected a positive frame rate, found " + text;
+      },
+      "POSITIVE");
+}
+
+}  // namespace
+
+namespace {
+
+// Where a file's one skeleton comes from, in words and as a JSON key.
+struct SkeletonOrigin {
+  const char* key;
+  const char* words;
+};
+SkeletonOrigin skeleton_origin(MotionFormat format, const SceneSkeleton* scene) {
+  if (format == MotionFormat::kBvh || scene == nullptr) return {"hierarchy", "the file's hierarchy"};
+  if (scene->from_skins) return {"skins", "the joints of the file's skins"};
+  return {"animated nodes", "the nodes the animations key"};
+}
+
+}  // namespace
+
+void add_info_command(CLI::App& app, std::function<int()>* run) {
+  auto* cmd = app.add_subcommand(
+      "info", "Print a file's skeleton, its animations, and one take's channels, frames, units and major joints");
+  auto path = std::make_shared<std::string>();
+  auto json = std::make_shared<bool>(false);
+  auto take = std::make_shared<std::string>();
+  auto fps = std::make_shared<double>(0.0);
+  auto mapping = std::make_shared<std::string>();
+  cmd->add_option("FILE", *path, "BVH, FBX, GLB or glTF file (FILE#ANIMATION picks one animation)")->required();
+  cmd->add_flag("--json", *json, "Print JSON");
+  cmd->add_option("--take", *take, "The animation to describe (FBX, glTF); default the first");
+  cmd->add_option("--fps", *fps, "Rate to sample FBX and glTF keys at; default the file's")->check(positive_finite_rate());
+  cmd->add_option("--mapping", *mapping, "Major-joint mapping file (see assets/mappings)");
+  cmd->callback([=] {
+    *run = [=] {
+      const auto clip_ptr = std::make_shared<const Clip>(load_clip(*path, *take, *fps));
+      const Clip& clip = *clip_ptr;
+      const MappingOverrides overrides = load_mapping(*mapping);
+      const MajorMapping majors = map_major_joints(clip, overrides.entries.empty() ? nullptr : &overrides);
+      // Its cycles, in its own frames; a take without the major joints has none to tell.
+      std::optional<TakeCycles> cycles;
+      std::string no_cycles;
+      try {
+        cycles = take_cycles(clip_ptr);
+      } catch (const InputError& e) {
+        no_cycles = e.what();
+      }
+      // A BVH is one take, the clip just read (not read again: a BVH may be 100 MB). An FBX or
+      // glTF file's animations all play on its one skeleton.
+      const TakePath file = split_take_path(*path);
+      const MotionFormat format = motion_format(file.path);
+      std::vector<TakeInfo> takes;
+      std::optional<SceneSkeleton> scene_skeleton_found;
+      if (has_takes(format)) {
+        const AnimatedScene scene = read_animated_scene(file.path, motion_read_options_from_environment().max_bytes);
+        takes = scene_take_infos(scene);
+        const std::string take_name = take->empty() ? file.take : *take;
+        scene_skeleton_found = scene_skeleton(scene, take_name.empty() ? 0 : find_take(scene, take_name));
+      } else {
+        takes.push_back({std::filesystem::path(file.path).stem().string(), motion_length_s(clip.frames(), clip.fps()),
+                         clip.frames(), clip.skeleton.joint_count_without_end_sites()});
+      }
+      const SkeletonOrigin origin =
+          skeleton_origin(format, scene_skeleton_found ? &*scene_skeleton_found : nullptr);
+      const Skeleton& s = clip.skeleton;
+      const int end_sites = static_cast<int>(s.joints.size()) - s.joint_count_without_end_sites();
+      const UnitsGuess units = guess_units(clip);
+      const double duration = motion_length_s(clip.frames(), clip.fps());  // first frame to last
+      if (*json) {
+        nlohmann::ordered_json j;
+        j["file"] = *path;
+        j["frames"] = clip.frames();
+        j["frame_time"] = clip.frame_time;
+        j["fps"] = clip.fps();
+        j["duration_s"] = duration;
+        j["channels"] = s.channel_count;
+        j["units_guess"] = units.name;
+        j["height"] = units.height;
+        j["skeleton"] = {{"joints", s.joint_count_without_end_sites()},
+                         {"end_sites", end_sites},
+                         {"root", s.joints.empty() ? "" : s.joints[0].name},
+                         {"from", origin.key}};
+        auto& tk = j["takes"] = nlohmann::ordered_json::array();
+        for (const TakeInfo& t : takes)
+          tk.push_back({{"name", t.name}, {"seconds", t.seconds}, {"keys", t.keys}, {"moves", t.moves}});
+        if (cycles) {
+          j["cycles"] = cycles_json(*cycles, clip.fps());
+        } else {
+          j["cycles"] = {{"kind", "unknown"}, {"reason", no_cycles}};
+        }
+        j["major_joints"] = major_joints_json(majors, s);
+        auto& joints = j["joints"] = nlohmann::ordered_json::array();
+        for (const Joint& jt : s.joints) {
+          if (jt.end_site) continue;
+          nlohmann::ordered_json o;
+          o["name"] = jt.name;
+          o["parent"] = jt.parent < 0 ? nlohmann::ordered_json() : nlohmann::ordered_json(s.joints[jt.parent].name);
+          o["offset"] = {jt.offset.x(), jt.offset.y(), jt.offset.z()};
+          auto& ch = o["channels"] = nlohmann::ordered_json::array();
+          for (Channel c : jt.channels) ch.push_back(channel_name(c));
+          o["rotation_order"] = rotation_order(jt);
+          joints.push_back(o);
+        }
+        // Joint names are bytes from the file: invalid UTF-8 is replaced, not thrown on.
+        std::cout << j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
+      } else {
+        std::cout << *path << "\n"
+                  << "  joints: " << s.joint_count_without_end_sites() << " (+" << end_sites << " End Sites), "
+                  << origin.words << (s.joints.empty() ? "" : ", root '" + s.joints[0].name + "'") << "\n"
+                  << "  takes: " << takes.size() << (takes.size() > 1 ? ", every one on this skeleton" : "") << "\n";
+        for (const TakeInfo& t : takes) {
+          std::cout << "    " << t.name << "  (" << duration_in_words(t.seconds) << ", " << t.keys << " keys";
+          if (t.moves >= 0) std::cout << ", moves " << t.moves << " joints";
+          std::cout << ")\n";
+        }
+        std::cout << "  channels per frame: " << s.channel_count << "\n"
+                  << "  frames: " << clip.frames() << "\n"
+                  << "  frame time: " << number(clip.frame_time) << " s (" << number(clip.fps()) << " fps)\n"
+                  << "  duration: " << duration_in_words(duration) << "\n"
+                  << "  units (guess): " << units.name << " (height " << number(units.height) << ")\n"
+                  << "  cycles: "
+                  << (cycles ? cycles_summary(*cycles, clip.fps(), clip.frames()) : "unknown: " + no_cycles) << "\n"
+                  << "  major joints: " << majors.how << "\n";
+        for (int m = 0; m < kMajorJointCount; ++m) {
+          if (!majors.has(m) && majors.source[m] == MajorSource::kNone) continue;
+          std::cout << "    " << major_joint_name(m) << ": "
+                    << (majors.has(m) ? s.joints[majors.joint[m]].name : std::string("-")) << " ("
+                    << major_source_name(majors.source[m]) << ")\n";
+        }
+        std::cout << "  hierarchy:\n";
+        // Depths in one pass (parents come first): walking up per joint is quadratic in depth.
+        std::vector<int> depths(s.joints.size(), 0);
+        for (size_t i = 0; i < s.joints.size(); ++i)
+          if (s.joints[i].parent >= 0) depths[i] = depths[s.joints[i].parent] + 1;
+        for (size_t i = 0; i < s.joints.size(); ++i) {
+          const Joint& jt = s.joints[i];
+          if (jt.end_site) continue;
+          std::cout << "    " << std::string(std::min(depths[i], 16) * 2, ' ') << jt.name << "  ["
+                    << channel_list(jt) << "]";
+          if (!rotation_order(jt).empty()) std::cout << " order " << rotation_order(jt);
+          std::cout << "\n";
+        }
+      }
+      return 0;
+    };
+  });
+}
+
+void add_fk_command(CLI::App& app, std::function<int()>* run) {
+  auto* cmd = app.add_subcommand("fk", "Write every joint's global position per frame as CSV");
+  auto path = std::make_shared<std::string>();
+  auto out = std::make_shared<std::string>();
+  auto take = std::make_shared<std::string>();
+  auto fps = std::make_shared<double>(0.0);
+  cmd->add_option("FILE", *path, "BVH, FBX, GLB or glTF file (FILE#ANIMATION picks one animation)")->required();
+  cmd->add_option("--out", *out, "CSV file: frame,joint,x,y,z (file units and axes)")->required();
+  cmd->add_option("--take", *take, "The animation to read (FBX, glTF); default the first");
+  cmd->add_option("--fps", *fps, "Frame rate of the rows; default the file's")->check(positive_finite_rate());
+  cmd->callback([=] {
+    *run = [=] {
+      Clip clip = load_clip(*path, *take, *fps);
+      if (*fps > 0 && motion_format(split_take_path(*path).path) == MotionFormat::kBvh) clip = resample_clip(clip, *fps);
+      std::vector<int> joints;
+      std::vector<std::string> names;
+      for (size_t i = 0; i < clip.skeleton.joints.size(); ++i) {
+        if (clip.skeleton.joints[i].end_site) continue;
+        joints.push_back(static_cast<int>(i));
+        names.push_back(clip.skeleton.joints[i].name);
+      }
+      write_output(*out, positions_csv(joint_positions(clip), joints, names));
+      return 0;
+    };
+  });
+}
+
+void add_convert_command(CLI::App& app, std::function<int()>* run) {
+  auto* cmd = app.add_subcommand("convert", "Rewrite a take as BVH, FBX or glTF, in another Euler order or frame rate");
+  auto in = std::make_shared<std::string>();
+  auto out = std::make_shared<std::string>();
+  auto order = std::make_shared<std::string>();
+  auto fps = std::make_shared<double>(0.0);
+  auto take = std::make_shared<std::string>();
+  cmd->add_option("IN", *in, "BVH, FBX, GLB or glTF file to read (FILE#ANIMATION picks one animation)")->required();
+  cmd->add_option("OUT", *out, "File to write: .bvh as BVH, .fbx as binary FBX 7.4, .glb or .gltf (with its .bin) as glTF 2.0")
+      ->required()
+      ->check(written_motion_format());
+  cmd->add_option("--take", *take, "The animation to read (FBX, glTF); default the first");
+  cmd->add_option("--order", *order, "Rotation order: XYZ, XZY, YXZ, YZX, ZXY or ZYX")
+      ->check(CLI::IsMember({"XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX"}, CLI::ignore_case));
+  cmd->add_option("--fps", *fps, "Frame rate of the output")->check(positive_finite_rate());
+  cmd->callback([=] {
+    *run = [=] {
+      Clip clip = load_clip(*in, *take, *fps);
+      if (*fps > 0 && motion_format(split_take_path(*in).path) == MotionFormat::kBvh) clip = resample_clip(clip, *fps);
+      if (!order->empty()) {
+        EulerOrder o;
+        parse_euler_order(*order, &o);
+        clip = convert_euler_order(clip, o);
+      }
+      write_motion_file(clip, *out);
+      return 0;
+    };
+  });
+}
+
+}  // namespace mostyle::cli

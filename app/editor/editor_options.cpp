@@ -1,0 +1,271 @@
+#include "app/editor/editor_options.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <system_error>
+
+#include "engine/base/error.h"
+#include "engine/io/numbers.h"
+#include "engine/run/palette.h"
+#include "ui/model/session_file.h"
+
+namespace mostyle::app {
+namespace {
+
+bool parse_double(const std::string& text, double* out) {
+  char* end = nullptr;
+  *out = std::strtod(text.c_str(), &end);
+  return !text.empty() && end == text.c_str() + text.size() && std::isfinite(*out);
+}
+
+bool parse_int(const std::string& text, int* out) {
+  auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), *out);
+  return !text.empty() && ec == std::errc() && ptr == text.data() + text.size();
+}
+
+// "WIDTHxHEIGHT", each a whole number in [kMinWindowSide, kMaxWindowSide].
+bool parse_size(const std::string& text, int* width, int* height) {
+  const size_t x = text.find_first_of("xX");
+  if (x == std::string::npos) return false;
+  return parse_int(text.substr(0, x), width) && parse_int(text.substr(x + 1), height) && *width >= kMinWindowSide &&
+         *width <= kMaxWindowSide && *height >= kMinWindowSide && *height <= kMaxWindowSide;
+}
+
+std::filesystem::path program_directory() {
+  std::error_code ec;
+  std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::filesystem::path() : exe.parent_path();
+}
+
+}  // namespace
+
+ParseResult parse_editor_options(int argc, const char* const* argv) {
+  ParseResult result;
+  EditorOptions& o = result.options;
+  auto fail = [&](const std::string& message) {
+    result.status = ParseStatus::kUsageError;
+    result.error = message;
+    return result;
+  };
+  for (int i = 1; i < argc; ++i) {
+    std::string arg = argv[i];
+    if (arg.size() < 2 || arg.compare(0, 2, "--") != 0 || arg == "--") {
+      if (arg == "--") {
+        for (++i; i < argc; ++i) o.files.emplace_back(argv[i]);
+        break;
+      }
+      if (arg.size() > 1 && arg[0] == '-') {
+        if (arg == "-h") {
+          result.status = ParseStatus::kHelp;
+          return result;
+        }
+        return fail("unknown option '" + arg + "' (see --help)");
+      }
+      o.files.push_back(arg);
+      continue;
+    }
+    std::string name = arg, value;
+    bool has_value = false;
+    if (size_t eq = arg.find('='); eq != std::string::npos) {
+      name = arg.substr(0, eq);
+      value = arg.substr(eq + 1);
+      has_value = true;
+    }
+    auto take_value = [&]() -> bool {
+      if (has_value) return true;
+      if (i + 1 >= argc) return false;
+      value = argv[++i];
+      return true;
+    };
+    if (name == "--help") {
+      result.status = ParseStatus::kHelp;
+      return result;
+    } else if (name == "--offscreen") {
+      if (has_value) return fail("--offscreen takes no value");
+      o.offscreen = true;
+    } else if (name == "--paused") {
+      if (has_value) return fail("--paused takes no value");
+      o.initial.paused = true;
+    } else if (name == "--window-size") {
+      int w = 0, h = 0;
+      if (!take_value() || !parse_size(value, &w, &h))
+        return fail("--window-size: expected WIDTHxHEIGHT in pixels, each " + std::to_string(kMinWindowSide) + " to " +
+                    std::to_string(kMaxWindowSide) + " (e.g. 1920x1080), got '" + value + "'");
+      o.width = w;
+      o.height = h;
+    } else if (name == "--screenshot") {
+      if (!take_value() || value.empty()) return fail("--screenshot: expected an output file name");
+      o.screenshot_path = value;
+    } else if (name == "--alpha") {
+      double v = 0.0;
+      if (!take_value() || !parse_double(value, &v) || v < 0.0 || v > 1.0)
+        return fail("--alpha: expected a number in [0, 1], got '" + value + "'");
+      o.initial.parameters.alpha = v;
+    } else if (name == "--components") {
+      int v = 0;
+      if (!take_value() || !parse_int(value, &v) || v < 1)
+        return fail("--components: expected a whole number >= 1, got '" + value + "'");
+      o.initial.parameters.components = v;
+    } else if (name == "--sparsity") {
+      double v = 0.0;
+      if (!take_value() || !parse_double(value, &v) || v <= 0.0 || v > 1.0)
+        return fail("--sparsity: expected a number in (0, 1], got '" + value + "'");
+      o.initial.parameters.sparsity = v;
+    } else if (name == "--weights") {
+      std::vector<double> weights;
+      bool ok = take_value() && !value.empty();
+      for (size_t begin = 0; ok && begin <= value.size();) {
+        const size_t comma = std::min(value.find(',', begin), value.size());
+        double w = 0.0;
+        ok = parse_number(value.substr(begin, comma - begin), &w) && w >= kMinMixWeight && w <= kMaxMixWeight;
+        weights.push_back(w);
+        begin = comma + 1;
+      }
+      weights = normalized_weights(weights);
+      double sum = 0.0;
+      for (double w : weights) sum += w;
+      if (!ok || weights.size() < 2 || std::abs(sum - 1.0) > 1e-9)
+        return fail("--weights: expected one weight per take, comma separated (decimals or fractions such as 1/3), "
+                    "each from -0.5 to 1.5, summing to 1, got '" + value + "'");
+      o.initial.weights = weights;
+    } else if (name == "--save-session") {
+      if (!take_value() || value.empty()) return fail("--save-session: expected a session file name (.mostyle)");
+      if (!ui::is_session_path(value) && !std::filesystem::path(value).extension().empty())
+        return fail("--save-session: a session's file name ends in .mostyle, got '" + value + "'");
+      o.save_session_path = value;
+    } else if (name == "--frame") {
+      int v = 0;
+      if (!take_value() || !parse_int(value, &v) || v < 0)
+        return fail("--frame: expected a whole number >= 0, got '" + value + "'");
+      o.initial.frame = v;
+    } else {
+      return fail("unknown option '" + name + "' (see --help)");
+    }
+  }
+  if (o.offscreen && o.screenshot_path.empty())
+    return fail("--offscreen renders for a screenshot: add --screenshot OUT.png");
+  try {
+    const char* limit = std::getenv(kMemoryLimitVariable);
+    o.max_memory_bytes = parse_memory_limit(limit ? limit : "");
+  } catch (const InputError& e) {
+    return fail(e.what());
+  }
+  // A session brings its own takes: it is the one file given.
+  for (const std::string& f : o.files) {
+    if (!ui::is_session_path(f)) continue;
+    if (o.files.size() != 1) return fail("'" + f + "' is a session: it opens alone, without other files");
+    o.session_path = f;
+    o.files.clear();
+    break;
+  }
+  if (!o.initial.weights.empty()) {
+    if (!o.session_path.empty()) return fail("--weights: a session brings its own weights; give takes instead");
+    const size_t takes = o.files.empty() ? 2 : std::max<size_t>(o.files.size(), 2);
+    if (o.initial.weights.size() != takes)
+      return fail("--weights: expected " + std::to_string(takes) + " weights, one per take, got " +
+                  std::to_string(o.initial.weights.size()));
+    if (takes == 2 && (o.initial.weights[1] < 0.0 || o.initial.weights[1] > 1.0))
+      return fail("--weights: a pair's weights are 1 - alpha and alpha, alpha from 0 to 1, got " +
+                  std::to_string(o.initial.weights[1]));
+  }
+  return result;
+}
+
+std::string session_argument_error(const EditorOptions& options) {
+  if (options.session_path.empty()) return "";
+  try {
+    ui::read_session_file(options.session_path);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+const std::vector<KeyHelp>& editor_keys() {
+  static const std::vector<KeyHelp> kKeys = {
+      {"Space", "play or pause (from the start again on the last frame)"},
+      {"Left / Right arrow", "step one frame back / forward (pauses)"},
+      {"K", "key the style at the playhead: alpha, or the palette's weights (the timeline's Set key)"},
+      {"Delete", "remove the key under the mouse on the timeline, else the one at the playhead"},
+      {"F", "frame all: turn and move the camera to show every skeleton"},
+      {"F1 or ?", "show or hide this list of keys"},
+      {"Esc", "close this list"},
+      {"Ctrl+0", "reset the layout: every panel back in its place for this window size"},
+      {"Ctrl+E", "export the blend: the export dialog (file, frame rate, frames, channels)"},
+      {"Ctrl+Z", "undo: a parameter, weight, mode, option or load back as it was (a slider drag is one step)"},
+      {"Ctrl+Shift+Z or Ctrl+Y", "redo what was undone"},
+      {"Ctrl+S", "save the session (.mostyle: takes, parameters, camera, playback); asks where the first time"},
+      {"Ctrl+Shift+S", "save the session under another name"},
+      {"Ctrl+O", "open a session (.mostyle)"},
+      {"Enter", "in a file field: load that file; in the export field: open the export dialog"},
+      {"Left drag", "in the 3D view: turn the camera around the skeletons"},
+      {"Right or middle drag", "in the 3D view: move the camera sideways and up or down"},
+      {"Mouse wheel", "in the 3D view: move the camera closer or further"},
+      {"Drag a key's diamond", "on the timeline: move the key in time; click: go to it; right-click: remove it"},
+      {"Drop .bvh files", "on the window: three or more open the style palette, two the pair, one B"},
+  };
+  return kKeys;
+}
+
+std::string editor_usage() {
+  std::string keys;
+  for (const KeyHelp& k : editor_keys()) {
+    std::string line = std::string("  ") + k.keys;
+    line.resize(std::max<size_t>(line.size() + 1, 24), ' ');
+    keys += line + k.action + "\n";
+  }
+  return "usage: mostyle [A.bvh B.bvh ... | SESSION.mostyle] [options]\n"
+         "\n"
+         "Blend the styles of motion-capture takes live. With no files, opens the bundled\n"
+         "example pair (CMU subject 142: happy and marching walks). Three to sixteen files open\n"
+         "the style palette (the first is the reference). A session (.mostyle, saved\n"
+         "with Ctrl+S) opens its takes with every parameter, the camera and the playback.\n"
+         "\n"
+         "options:\n"
+         "  --screenshot OUT.png  render the first frames, write a PNG of the whole window, exit\n"
+         "  --offscreen           no display needed (OSMesa); use with --screenshot\n"
+         "  --window-size WxH     window and screenshot size in pixels (default 1280x720)\n"
+         "  --paused              start with playback paused\n"
+         "  --alpha A             initial blend, 0 = first take, 1 = second (default 0.5)\n"
+         "  --components K        initial number of components (default 10)\n"
+         "  --sparsity F          initial fraction of non-zeros per component, (0, 1] (default 0.1)\n"
+         "  --frame N             initial frame (default 0)\n"
+         "  --weights W1,W2,...   initial weights, one per take, summing to 1 (a pair's: 1-alpha,alpha)\n"
+         "  --save-session FILE   once the takes are in, save the session to FILE (.mostyle)\n"
+         "  --help                this text\n"
+         "\n"
+         "keys and mouse (F1 in the editor lists them too):\n" +
+         keys +
+         "\n"
+         "exit status: 0 success, 1 failure (no display, a session that cannot be opened, an unwritable\n"
+         "screenshot or session), 2 bad usage.\n";
+}
+
+std::vector<std::string> default_motion_files() {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> roots;
+  if (const char* env = std::getenv("MOSTYLE_ASSETS")) roots.emplace_back(env);
+#ifdef MOSTYLE_SOURCE_ASSETS_DIR
+  roots.emplace_back(MOSTYLE_SOURCE_ASSETS_DIR);
+#endif
+  fs::path here = program_directory();
+  if (!here.empty()) {
+    roots.push_back(here / "assets");
+    roots.push_back(here.parent_path() / "assets");
+    roots.push_back(here.parent_path() / "share" / "mostyle" / "assets");
+  }
+  const char* const names[] = {"cmu142_walk_happy.bvh", "cmu142_walk_marching.bvh"};
+  for (const fs::path& root : roots) {
+    std::error_code ec;
+    if (fs::exists(root / "motions" / names[0], ec)) {
+      return {(root / "motions" / names[0]).string(), (root / "motions" / names[1]).string()};
+    }
+  }
+  // Not found: the names alone, so the load error in the UI says what is missing.
+  return {std::string("assets/motions/") + names[0], std::string("assets/motions/") + names[1]};
+}
+
+}  // namespace mostyle::app
