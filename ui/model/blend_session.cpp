@@ -52,7 +52,8 @@ bool same_decomposition(const DecomposeParams& x, const DecomposeParams& y) {
 
 }  // namespace
 
-BlendSession::BlendSession(const BvhReadOptions& read) : read_(read), worker_(read), snapshot_(worker_.snapshot()) {}
+BlendSession::BlendSession(const BvhReadOptions& read)
+    : worker_(read), sweep_(read), snapshot_(worker_.snapshot()) {}
 BlendSession::~BlendSession() = default;
 
 void BlendSession::load_files(const std::vector<std::string>& paths) {
@@ -126,58 +127,19 @@ bool BlendSession::decomposition_outdated() const {
   return !snapshot_->decomposed || !same_decomposition(snapshot_->decompose_params, requested_);
 }
 
-void BlendSession::start_error_sweep(const DecomposeParams& base) {
-  if (pair() == nullptr) return;
-  sweep_params_ = base;
-  sweep_params_.components = kSweepComponents[0];
-  sweep_next_ = 0;
-  sweep_worker_ = std::make_unique<Worker>(read_);  // the previous one (if any) is cancelled and joined
-  sweep_seen_version_ = 0;
-  if (wake_) sweep_worker_->set_on_change(wake_);
-  sweep_worker_->decompose(sweep_params_);
-  sweep_worker_->load(snapshot_->paths, prepare_options(asked_));
-}
-
 void BlendSession::set_wake(std::function<void()> wake) {
   wake_ = std::move(wake);
   worker_.set_on_change(wake_);
-  if (sweep_worker_) sweep_worker_->set_on_change(wake_);
+  sweep_.set_wake(wake_);
 }
 
 bool BlendSession::has_news() const {
   if (worker_.snapshot()->version != seen_version_) return true;
-  return sweep_next_ >= 0 && sweep_worker_ && sweep_worker_->snapshot()->version != sweep_seen_version_;
-}
-
-void BlendSession::poll_sweep() {
-  if (sweep_next_ < 0 || !sweep_worker_) return;
-  auto snap = sweep_worker_->snapshot();
-  sweep_seen_version_ = snap->version;
-  if (!snap->error.empty()) {  // e.g. k larger than the channels: the sweep stops there
-    sweep_next_ = -1;
-    return;
-  }
-  const Decomposed* d = snap->decomposed.get();
-  if (d == nullptr || d->params.components != sweep_params_.components) return;
-  ErrorPoint point{d->params.components, d->params.sparsity, d->params.mode, d->rmse[0], d->rmse[1]};
-  auto same = [&](const ErrorPoint& e) {
-    return e.components == point.components && e.sparsity == point.sparsity && e.mode == point.mode;
-  };
-  if (std::find_if(error_curve_.begin(), error_curve_.end(), same) == error_curve_.end()) {
-    error_curve_.push_back(point);
-    std::sort(error_curve_.begin(), error_curve_.end(),
-              [](const ErrorPoint& a, const ErrorPoint& b) { return a.components < b.components; });
-  }
-  if (++sweep_next_ >= static_cast<int>(std::size(kSweepComponents))) {
-    sweep_next_ = -1;
-    return;
-  }
-  sweep_params_.components = kSweepComponents[sweep_next_];
-  sweep_worker_->decompose(sweep_params_);
+  return sweep_.has_news();
 }
 
 void BlendSession::poll(EditorState& state) {
-  poll_sweep();
+  sweep_.poll();
   auto snap = worker_.snapshot();
   if (snap->version == seen_version_) return;
   seen_version_ = snap->version;
@@ -208,7 +170,7 @@ void BlendSession::poll(EditorState& state) {
 void BlendSession::take_up_takes(EditorState& state) {
   state.takes.clear();
   state.cycle_provenance.clear();  // of the previous takes' result
-  error_curve_.clear();
+  sweep_.clear();
   export_message_.clear();
   export_ok_ = false;
   view_.clear();
@@ -216,31 +178,16 @@ void BlendSession::take_up_takes(EditorState& state) {
   if (p == nullptr) return;
   remember_recent(snapshot_->paths);
   view_.take_up(*p, snapshot_->paths, snapshot_->warnings, state);
-  compute_dtw_image();
 }
 
-// A new decomposition: per-component alphas sized to its k, its point on the error curve, and
-// the curve for a new pair, sparsity or mode computed in the background.
+// A new decomposition: per-component alphas sized to its k, and a pair's point on the error
+// curve (the curve for a new pair, sparsity or mode computed in the background).
 void BlendSession::take_up_decomposition(EditorState& state) {
   const Decomposed* d = seen_decomposed_;
   DocumentControls& c = state.document.controls;
   if (pair() != nullptr) c.component_alpha.resize(static_cast<size_t>(d->components()), state.document.parameters.alpha);
   if (c.selected_component >= d->components()) c.selected_component = -1;
-  if (pair() == nullptr) return;  // the error curve: a pair's
-  ErrorPoint point{d->params.components, d->params.sparsity, d->params.mode, d->rmse[0], d->rmse[1]};
-  auto same = [&](const ErrorPoint& e) {
-    return e.components == point.components && e.sparsity == point.sparsity && e.mode == point.mode;
-  };
-  error_curve_.erase(std::remove_if(error_curve_.begin(), error_curve_.end(), same), error_curve_.end());
-  error_curve_.push_back(point);
-  std::sort(error_curve_.begin(), error_curve_.end(),
-            [](const ErrorPoint& a, const ErrorPoint& b) { return a.components < b.components; });
-  const bool same_curve = sweep_params_.mode == d->params.mode && sweep_params_.sparsity == d->params.sparsity &&
-                          sweep_params_.basic_motions == d->params.basic_motions;
-  if (!same_curve || !sweep_worker_ || sweep_pair_ != seen_prepared_) {
-    sweep_pair_ = seen_prepared_;
-    start_error_sweep(d->params);
-  }
+  if (pair() != nullptr) sweep_.add(*d, seen_prepared_, snapshot_->paths, prepare_options(asked_));  // a pair's curve
 }
 
 void BlendSession::update_result(EditorState& state) {
@@ -251,38 +198,9 @@ void BlendSession::wait_idle(EditorState& state) {
   sync(state);
   worker_.wait_idle();
   poll(state);  // a new decomposition starts the error sweep
-  while (sweep_next_ >= 0 && sweep_worker_) {  // each step's next request is made by poll_sweep
-    sweep_worker_->wait_idle();
-    poll_sweep();
-  }
+  sweep_.wait_idle();
   poll(state);
   sync(state);
-}
-
-// Local cost c(i, j) = |a_i - b_j| (the DTW's, engine/align/dtw.h) at the centre of each cell: O(cells), not
-// O(F x Fb), so a long take does not stall the frame that takes it up.
-void BlendSession::compute_dtw_image() {
-  dtw_image_ = DtwCostImage();
-  const PreparedTakes* p = pair();
-  if (p == nullptr) return;
-  const Eigen::MatrixXd& fa = p->takes[1].alignment.feature.a;
-  const Eigen::MatrixXd& fb = p->takes[1].alignment.feature.b;
-  if (fa.rows() == 0 || fb.rows() == 0) return;
-  DtwCostImage& img = dtw_image_;
-  img.frames_a = static_cast<int>(fa.rows());
-  img.frames_b = static_cast<int>(fb.rows());
-  img.rows = std::min(img.frames_a, DtwCostImage::kMaxCells);
-  img.cols = std::min(img.frames_b, DtwCostImage::kMaxCells);
-  img.cost.resize(img.rows, img.cols);
-  for (int r = 0; r < img.rows; ++r) {
-    const int i = std::min(img.frames_a - 1, static_cast<int>((r + 0.5) * img.frames_a / img.rows));
-    for (int c = 0; c < img.cols; ++c) {
-      const int j = std::min(img.frames_b - 1, static_cast<int>((c + 0.5) * img.frames_b / img.cols));
-      img.cost(r, c) = static_cast<float>((fa.row(i) - fb.row(j)).norm());
-    }
-  }
-  const float top = img.cost.maxCoeff();
-  if (top > 0.0f) img.cost /= top;
 }
 
 bool BlendSession::export_bvh(const std::string& path) {

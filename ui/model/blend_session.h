@@ -20,26 +20,10 @@
 
 #include "engine/run/worker.h"
 #include "ui/model/editor_state.h"
+#include "ui/model/error_sweep.h"
 #include "ui/model/result_view.h"
 
 namespace mostyle::ui {
-
-// One decomposition's reconstruction error, recorded as decompositions arrive.
-struct ErrorPoint {
-  int components = 0;
-  double sparsity = 0.0;
-  BlendMode mode = BlendMode::kShared;
-  double rmse_a = 0.0, rmse_b = 0.0;  // A's units
-};
-
-// The DTW local-cost matrix, sampled once per prepared pair at cell centres: rows x cols cells
-// (at most kMaxCells each way) over A frames (rows) x B frames (cols).
-struct DtwCostImage {
-  static constexpr int kMaxCells = 64;
-  int rows = 0, cols = 0;
-  int frames_a = 0, frames_b = 0;
-  Eigen::MatrixXf cost;  // rows x cols, local cost normalised to [0, 1]
-};
 
 class BlendSession {
  public:
@@ -105,14 +89,9 @@ class BlendSession {
   Eigen::Vector3d side() const { return view_.side(); }
   // Why the document's weights or keys were refused (the last result stays), or "".
   const std::string& result_error() const { return view_.error(); }
-  const std::vector<ErrorPoint>& error_curve() const { return error_curve_; }
-  const DtwCostImage& dtw_image() const { return dtw_image_; }
-  // Reconstruction error against k in the background: a second worker decomposes the pair at
-  // each k of kSweepComponents (mode and sparsity as now), one after the other, and the points
-  // join error_curve(). Restarted by a new pair or a new sparsity/mode; never touches the blend.
-  void start_error_sweep(const DecomposeParams& base);
-  bool sweeping() const { return sweep_next_ >= 0; }
-  static constexpr int kSweepComponents[] = {2, 4, 6, 8, 10, 12, 16, 20};
+  const std::vector<ErrorPoint>& error_curve() const { return sweep_.curve(); }
+  // Reconstruction error against k (ui/model/error_sweep.h), being computed in the background.
+  bool sweeping() const { return sweep_.sweeping(); }
 
   // The decomposition the panels' sliders ask for differs from the one shown.
   bool decomposition_outdated() const;
@@ -148,19 +127,12 @@ class BlendSession {
   void update_result(EditorState& state);
   void take_up_takes(EditorState& state);
   void take_up_decomposition(EditorState& state);
-  void compute_dtw_image();
 
-  void poll_sweep();
   void remember_recent(const std::vector<std::string>& paths);
 
-  const BvhReadOptions read_;
   Worker worker_;
   std::function<void()> wake_;            // set_wake(); given to the sweep worker too
-  std::unique_ptr<Worker> sweep_worker_;  // error against k, off the main worker
-  std::uint64_t sweep_seen_version_ = 0;  // of the sweep worker's snapshot, at the last poll_sweep
-  int sweep_next_ = -1;                   // index into kSweepComponents being computed; -1: none
-  DecomposeParams sweep_params_;
-  const PreparedTakes* sweep_pair_ = nullptr;  // the pair the sweep was started for
+  ErrorSweep sweep_;                      // the error curve's own worker
   std::shared_ptr<const WorkerSnapshot> snapshot_;
   std::uint64_t seen_version_ = ~std::uint64_t(0);
   const PreparedTakes* seen_prepared_ = nullptr;
@@ -168,8 +140,6 @@ class BlendSession {
   DecomposeParams requested_;   // the decomposition last asked of the worker
   Document asked_;               // the document as the worker was last asked for it (sync)
   bool load_waiting_ = false;    // load_files() since the last sync()
-  std::vector<ErrorPoint> error_curve_;
-  DtwCostImage dtw_image_;
   std::string export_message_;
   bool export_ok_ = false;
   double export_ms_ = -1.0;

@@ -178,7 +178,11 @@ void DtwPanel::draw(EditorState& state) {
                                 60.0f, 600.0f);
   ImGui::BeginGroup();
   ImGui::TextUnformatted("cost and path");
-  const DtwCostImage& img = session_.dtw_image();
+  if (imaged_ != p) {
+    image_ = dtw_cost_image(*p);
+    imaged_ = p;
+  }
+  const DtwCostImage& img = image_;
   PlotArea cost = begin_plot("##cost", side, side, 0.0, fb, fa, 0.0);  // y down: frame 0 at the top
   if (img.rows > 0 && img.cols > 0) {
     ImDrawList* dl = ImGui::GetWindowDrawList();

@@ -2,6 +2,7 @@
 // The left-foot signals before and after warping with matched frames joined (paper Fig. 2), and
 // the local-cost matrix with the optimal path. Hover: the matched frames; click: jump there.
 #include "ui/model/blend_session.h"
+#include "ui/model/dtw_image.h"
 #include "ui/panels/panel.h"
 
 namespace mostyle::ui {
@@ -22,6 +23,8 @@ class DtwPanel : public Panel {
 
  private:
   BlendSession& session_;
+  DtwCostImage image_;                     // of imaged_, made once per pair
+  const PreparedTakes* imaged_ = nullptr;
 };
 
 }  // namespace mostyle::ui
