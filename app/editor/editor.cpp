@@ -77,9 +77,8 @@ Editor::Editor(const EditorOptions& options)
   initial_frame_ = options.initial.frame;
   scripted_save_path_ = options.save_session_path;
   recent_path_ = options.recent_path;
-  recent_ = ui::read_recent_files(recent_path_);  // missing or broken: empty
-  session_->set_recent(recent_.takes);
-  seen_recent_ = recent_.takes;
+  state_.recent = ui::read_recent_files(recent_path_);  // missing or broken: empty
+  seen_recent_ = state_.recent.takes;
   // The takes go to the engine's worker: aligned, decomposed and blended off this thread. A
   // session brings its own, with every parameter; one that cannot be read says why (on the first
   // frame) and the editor starts as it would without it.
@@ -143,7 +142,7 @@ void Editor::wait_for_engine() {
 }
 
 void Editor::drop_files(const std::vector<std::string>& paths) {
-  auto& queue = session_->dropped();
+  auto& queue = state_.dropped;
   queue.insert(queue.end(), paths.begin(), paths.end());
 }
 
@@ -216,7 +215,7 @@ bool Editor::animating() const {
   const WorkerStatus status = session_->status();
   return state_.playback.playing || status.stage != WorkerStage::kIdle || status.pending || session_->has_news() ||
          session_->sweeping() || scripted_save_pending() ||
-         !session_->dropped().empty() || (files_panel_ != nullptr && files_panel_->export_dialog().busy());
+         !state_.dropped.empty() || (files_panel_ != nullptr && files_panel_->export_dialog().busy());
 }
 
 void Editor::handle_keys() {
@@ -364,9 +363,10 @@ void Editor::frame(const FrameInput& input) {
   // Shown by the metrics panel on the next frame; not in screenshots (they differ run to run).
   ++frames_drawn_;
   save_session_when_ready();
-  session_->frame_ms = deterministic_ ? -1.0f
+  state_.times.frame_ms = deterministic_ ? -1.0f
                                       : std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - cpu_start).count();
-  session_->viewport_ms = deterministic_ ? -1.0f : viewport_timer_->milliseconds();
+  state_.times.viewport_ms = deterministic_ ? -1.0f : viewport_timer_->milliseconds();
+  if (files_panel_ != nullptr) state_.times.export_ms = files_panel_->export_dialog().status().ms;
 }
 
 void Editor::follow_skeletons(float delta_s) {
@@ -433,7 +433,7 @@ bool Editor::save_session(const std::string& path) {
   }
   session_path_ = target;
   edits_.mark_saved(ui::capture_document(state_));
-  ui::remember(recent_.sessions, target, ui::kRecentSessions);
+  ui::remember(state_.recent.sessions, target, ui::kRecentSessions);
   save_recent_files();
   session_message_.set("Saved the session to " + target, false);
   return true;
@@ -457,7 +457,7 @@ bool Editor::open_session(const std::string& path) {
   edits_.mark_opened();  // and what is saved, once its takes are in
   restore_ = ViewRestore{file.camera, file.playback, false};
   session_path_ = where;
-  ui::remember(recent_.sessions, where, ui::kRecentSessions);
+  ui::remember(state_.recent.sessions, where, ui::kRecentSessions);
   save_recent_files();
   session_message_.set(missing.empty() ? "Opened the session " + where : missing, !missing.empty());
   return true;
@@ -478,13 +478,13 @@ void Editor::command_save(bool ask) {
 
 void Editor::command_open() {
   const std::string path = !session_path_.empty()     ? session_path_
-                           : !recent_.sessions.empty() ? recent_.sessions.front()
+                           : !state_.recent.sessions.empty() ? state_.recent.sessions.front()
                                                        : std::string();
   dialog_.open(ui::SessionDialog::Kind::kOpen, path);
 }
 
 void Editor::draw_session_windows() {
-  const ui::SessionDialog::Request asked = dialog_.draw(recent_.sessions);
+  const ui::SessionDialog::Request asked = dialog_.draw(state_.recent.sessions);
   if (asked.kind != ui::SessionDialog::Kind::kNone) {
     const bool done = asked.kind == ui::SessionDialog::Kind::kSave ? save_session(asked.path) : open_session(asked.path);
     if (asked.kind == ui::SessionDialog::Kind::kSave) close_.saved(done);  // a Save asked by closing
@@ -546,21 +546,22 @@ void Editor::restore_camera(float aspect) {
 }
 
 void Editor::keep_recent_files() {
-  const std::deque<std::string>& loaded = session_->recent();
-  if (std::equal(loaded.begin(), loaded.end(), seen_recent_.begin(), seen_recent_.end())) return;
-  seen_recent_.assign(loaded.begin(), loaded.end());
-  recent_.takes.clear();
-  for (const std::string& p : seen_recent_) {  // absolute: a restart may be in another folder
+  std::vector<std::string>& takes = state_.recent.takes;
+  if (takes == seen_recent_) return;
+  std::vector<std::string> absolute;
+  for (const std::string& p : takes) {  // absolute: a restart may be in another folder
     const std::string a = absolute_path(p);
-    if (std::find(recent_.takes.begin(), recent_.takes.end(), a) == recent_.takes.end()) recent_.takes.push_back(a);
+    if (std::find(absolute.begin(), absolute.end(), a) == absolute.end()) absolute.push_back(a);
   }
+  takes = std::move(absolute);
+  seen_recent_ = takes;
   save_recent_files();
 }
 
 void Editor::save_recent_files() {
   if (recent_path_.empty()) return;
   try {
-    ui::write_recent_files(recent_path_, recent_);
+    ui::write_recent_files(recent_path_, state_.recent);
   } catch (const InputError& e) {  // a read-only home: the list lives for this run only
     std::fprintf(stderr, "mostyle: %s (recent files are not kept)\n", e.what());
     recent_path_.clear();

@@ -145,7 +145,7 @@ class Editor {
   void answer_close(ui::CloseRequest::Answer answer);
 
   // The takes and sessions opened before (options.recent_path: kept across restarts there).
-  const ui::RecentFiles& recent_files() const { return recent_; }
+  const ui::RecentFiles& recent_files() const { return state_.recent; }
 
  private:
   void build_scene();
@@ -204,8 +204,7 @@ class Editor {
   ui::CloseRequest close_;
   // Recent takes and sessions; recent_path_ empty: not kept across restarts (tests, screenshots).
   std::string recent_path_;
-  ui::RecentFiles recent_;
-  std::vector<std::string> seen_recent_;  // session_->recent() when recent_ last followed it
+  std::vector<std::string> seen_recent_;  // state_.recent.takes as last written
 };
 
 }  // namespace mostyle::app

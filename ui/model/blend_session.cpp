@@ -1,31 +1,15 @@
 #include "ui/model/blend_session.h"
-#include "ui/model/take_warnings.h"
 
 #include <algorithm>
-#include <chrono>
-#include <cstdio>
-#include <cmath>
-#include <filesystem>
-#include <iterator>
 
-#include "engine/base/clock.h"
-#include "engine/io/motion_file.h"
-#include "engine/base/error.h"
-#include "engine/export/channel_layout.h"
-#include "engine/export/export_solve.h"
-#include "ui/model/cycle_provenance.h"
 #include "ui/model/document_fields.h"
 #include "ui/model/document_mix.h"
-#include "ui/model/export_job.h"
-#include "ui/model/joint_contacts.h"
 #include "ui/model/keyed_weights.h"
-#include "ui/model/lanes.h"
-#include "ui/model/weight_keys_edit.h"
+#include "ui/model/recent_files.h"
 
 namespace mostyle::ui {
 namespace {
 
-constexpr size_t kRecentFiles = 8;
 
 
 // The decomposition the document asks for (a level's sparsity not set yet: the main one).
@@ -108,21 +92,6 @@ void BlendSession::sync(EditorState& state, bool item_held) {
   update_result(state);
 }
 
-// Remembered once loaded: a mistyped path never joins the recent files. paths: first the newest.
-void BlendSession::remember_recent(const std::vector<std::string>& paths) {
-  for (auto path = paths.rbegin(); path != paths.rend(); ++path) {
-    if (path->empty()) continue;
-    recent_.erase(std::remove(recent_.begin(), recent_.end(), *path), recent_.end());
-    recent_.push_front(*path);
-  }
-  while (recent_.size() > kRecentFiles) recent_.pop_back();
-}
-
-void BlendSession::set_recent(const std::vector<std::string>& paths) {
-  recent_.assign(paths.begin(), paths.end());
-  while (recent_.size() > kRecentFiles) recent_.pop_back();
-}
-
 bool BlendSession::decomposition_outdated() const {
   return !snapshot_->decomposed || !same_decomposition(snapshot_->decompose_params, requested_);
 }
@@ -165,18 +134,18 @@ void BlendSession::poll(EditorState& state) {
   }
 }
 
-// New takes: the takes and their result shown, the DTW image; what spoke of the previous takes
-// (the error curve, the last export's message) goes.
+// New takes: the takes and their result shown, and they join the recent takes; the error curve
+// of the previous takes goes.
 void BlendSession::take_up_takes(EditorState& state) {
   state.takes.clear();
   state.cycle_provenance.clear();  // of the previous takes' result
   sweep_.clear();
-  export_message_.clear();
-  export_ok_ = false;
   view_.clear();
   const PreparedTakes* p = takes();
   if (p == nullptr) return;
-  remember_recent(snapshot_->paths);
+  // Remembered once loaded: a mistyped path never joins the recent takes. The first is the newest.
+  for (auto path = snapshot_->paths.rbegin(); path != snapshot_->paths.rend(); ++path)
+    remember(state.recent.takes, *path, kRecentTakes);
   view_.take_up(*p, snapshot_->paths, snapshot_->warnings, state);
 }
 
@@ -201,28 +170,6 @@ void BlendSession::wait_idle(EditorState& state) {
   sweep_.wait_idle();
   poll(state);
   sync(state);
-}
-
-bool BlendSession::export_bvh(const std::string& path) {
-  ExportOutcome outcome;
-  try {
-    ExportOptions options;
-    options.path = path;
-    const PreparedTakes* p = takes();
-    if (p != nullptr) options.fps = p->fps;  // the result's own frames
-    if (p != nullptr && p->takes[0].clip != nullptr) options.layout = default_channel_layout(*p->takes[0].clip);
-    outcome = run_export(make_export_request(*this, options));
-  } catch (const std::exception& e) {  // InputError: no file name, no blend yet
-    outcome.message = e.what();
-  }
-  set_export_result(outcome.ok, outcome.message, outcome.ok ? outcome.ms : export_ms_);
-  return export_ok_;
-}
-
-void BlendSession::set_export_result(bool ok, const std::string& message, double ms) {
-  export_ok_ = ok;
-  export_message_ = message;
-  export_ms_ = ms;
 }
 
 }  // namespace mostyle::ui

@@ -10,7 +10,6 @@
 // EditorState::takes while takes are loaded (ResultView, ui/model/result_view.h): take i at i,
 // the reference first, and the result last, all on the result's timeline.
 #include <cstdint>
-#include <deque>
 #include <functional>
 #include <memory>
 #include <string>
@@ -34,7 +33,7 @@ class BlendSession {
   BlendSession& operator=(const BlendSession&) = delete;
 
   // Asks for a pair (b empty: A with itself). What was loaded stays until it succeeds; a failure
-  // shows up as error() on a later poll(). The paths join recent() once they loaded.
+  // shows up as error() on a later poll(). The paths join the recent takes once they loaded.
   void load(const std::string& path_a, const std::string& path_b);
   // Several files: one or two load as the pair (one: A with itself); three to sixteen as the
   // style palette (the first the reference), mixed with the document's palette weights. The
@@ -96,30 +95,9 @@ class BlendSession {
   // The decomposition the panels' sliders ask for differs from the one shown.
   bool decomposition_outdated() const;
 
-  // Writes the blend as BVH on A's skeleton (engine export, atomic), here and now, with the
-  // export dialog's defaults: the blend's own frames, all of them, default_channel_layout(A)
-  // (ui/model/export_job.h run_export). Returns false and sets export_message() to the error sentence
-  // on failure; on success, where it went. The dialog exports on a thread of its own instead.
-  bool export_bvh(const std::string& path);
-  // The last export's outcome (export_bvh's or the export dialog's, which posts it here so the
-  // files panel shows it too). A new pair clears it: it spoke of the previous takes.
-  void set_export_result(bool ok, const std::string& message, double ms);
-  const std::string& export_message() const { return export_message_; }
-  bool export_ok() const { return export_ok_; }
-  double export_ms() const { return export_ms_; }
-
-  // Takes that loaded, newest first (a pair's two paths join when it arrives), at most 8.
-  const std::deque<std::string>& recent() const { return recent_; }
-  // Replaces recent(), newest first (the editor reads it from recent.json at start).
-  void set_recent(const std::vector<std::string>& paths);
   // The pair last asked for (what the files panel's fields show), loaded or not.
   const std::string& requested_a() const { return requested_a_; }
   const std::string& requested_b() const { return requested_b_; }
-  // Files dropped on the window, waiting for the files panel.
-  std::vector<std::string>& dropped() { return dropped_; }
-
-  // Frame times the metrics panel shows (set by the app each frame); negative: not shown.
-  float frame_ms = -1.0f, viewport_ms = -1.0f;
 
  private:
   PrepareOptions prepare_options(const Document& document) const;
@@ -127,8 +105,6 @@ class BlendSession {
   void update_result(EditorState& state);
   void take_up_takes(EditorState& state);
   void take_up_decomposition(EditorState& state);
-
-  void remember_recent(const std::vector<std::string>& paths);
 
   Worker worker_;
   std::function<void()> wake_;            // set_wake(); given to the sweep worker too
@@ -140,14 +116,9 @@ class BlendSession {
   DecomposeParams requested_;   // the decomposition last asked of the worker
   Document asked_;               // the document as the worker was last asked for it (sync)
   bool load_waiting_ = false;    // load_files() since the last sync()
-  std::string export_message_;
-  bool export_ok_ = false;
-  double export_ms_ = -1.0;
-  std::deque<std::string> recent_;
   std::string requested_a_, requested_b_;
   std::vector<std::string> requested_files_;
   ResultView view_;
-  std::vector<std::string> dropped_;
 };
 
 

@@ -13,6 +13,7 @@
 #include "engine/base/clip.h"
 #include "ui/model/cycle_provenance.h"
 #include "ui/model/document.h"
+#include "ui/model/recent_files.h"
 
 namespace mostyle::ui {
 
@@ -67,6 +68,14 @@ struct ViewOptions {
   int laid_out_takes = -1;  // the number of takes the panels were last laid out for (ui/panels/layout.h)
 };
 
+// Times the metrics panel shows, in milliseconds, set by the app each frame; negative: not shown
+// (a screenshot run shows none: they differ run to run).
+struct FrameTimes {
+  float frame_ms = -1.0f;     // building one editor frame (CPU)
+  float viewport_ms = -1.0f;  // drawing the 3D view (GPU)
+  double export_ms = -1.0;    // the last export that wrote a file
+};
+
 struct EditorState {
   // Every parameter the animator sets, once (ui/model/document.h): the panels change it, the
   // engine link (BlendSession::sync) brings the engine to it, undo keeps copies of it.
@@ -81,6 +90,12 @@ struct EditorState {
   // Where each cycle of the result shown came from (ui/model/cycle_provenance.h): spans of the
   // reference take's frames (the timeline's), made when a result arrives; empty: no result.
   std::vector<CycleProvenance> cycle_provenance;
+  // The takes and sessions opened before, newest first: a take joins when it has loaded (the
+  // engine link remembers it), the app keeps the list across restarts.
+  RecentFiles recent;
+  // Files dropped on the window, waiting for the files panel to load them.
+  std::vector<std::string> dropped;
+  FrameTimes times;
 
   // The take that sets the timeline (frame numbers, fps, length): the first that loaded.
   const Take* reference_take() const {

@@ -98,6 +98,8 @@ void ExportDialog::poll() {
   if (subject.identity != seen_pair_) {
     seen_pair_ = subject.identity;
     confirm_ = false;
+    status_.ok = false;  // it spoke of the previous takes
+    status_.message.clear();
     reset_range_ = true;
     // Once per pair or palette: O(frames x channels) of the reference.
     if (subject.clip != nullptr) settings_.layout = default_channel_layout(*subject.clip);
@@ -115,8 +117,11 @@ void ExportDialog::poll() {
     settings_.in_s = std::clamp(settings_.in_s, 0.0, typing_range_ ? length : settings_.out_s);
   }
   ExportOutcome outcome;
-  if (job_.take_outcome(&outcome))
-    session_.set_export_result(outcome.ok, outcome.message, outcome.ok ? outcome.ms : session_.export_ms());
+  if (job_.take_outcome(&outcome)) {
+    status_.ok = outcome.ok;
+    status_.message = outcome.message;
+    if (outcome.ok) status_.ms = outcome.ms;
+  }
 }
 
 ExportDialog::Pressed ExportDialog::press_export() { return start(false); }
@@ -134,7 +139,8 @@ ExportDialog::Pressed ExportDialog::start(bool overwrite) {
     request = make_export_request(session_, options());
   } catch (const std::exception& e) {  // InputError: no file name, no blend, no loop
     confirm_ = false;
-    session_.set_export_result(false, e.what(), session_.export_ms());
+    status_.ok = false;
+    status_.message = e.what();
     return Pressed::kFailed;
   }
   std::error_code ec;
@@ -148,7 +154,8 @@ ExportDialog::Pressed ExportDialog::start(bool overwrite) {
   // The last outcome is not this one's: neither the message nor one finished since the last poll.
   ExportOutcome stale;
   job_.take_outcome(&stale);
-  session_.set_export_result(false, std::string(), session_.export_ms());
+  status_.ok = false;
+  status_.message.clear();
   job_.start(std::move(request));
   return Pressed::kStarted;
 }
@@ -387,11 +394,11 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
     ImGui::SameLine();
     if (ImGui::Button("Close")) *open = false;
   }
-  if (!session_.export_message().empty()) {
-    const std::string text = without_folders(session_.export_message(),
+  if (!status_.message.empty()) {
+    const std::string text = without_folders(status_.message,
                                              {fs::path(absolute_path(settings_.path)).parent_path().string()});
-    wrapped(session_.export_ok() ? kOkColor : kErrorColor, text);
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", session_.export_message().c_str());
+    wrapped(status_.ok ? kOkColor : kErrorColor, text);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", status_.message.c_str());
   }
 }
 

@@ -7,8 +7,8 @@
 // with a progress bar, so the editor stays live and the blend may change meanwhile.
 //
 // Opened by the files panel's Export button and by Ctrl+E (state.view.show_export); the files
-// panel owns it and shares its file field. The outcome goes to BlendSession::export_message(),
-// shown here and in the files panel; a new pair clears it.
+// panel owns it and shares its file field. The last outcome (status()) is shown here and in the
+// files panel; new takes clear it.
 #include <string>
 
 #include "engine/export/channel_layout.h"
@@ -21,6 +21,13 @@ namespace mostyle::ui {
 constexpr const char* kExportDialogTitle = "Export";  // the window's title and ImGui id
 
 enum class ExportRate { kSource, k30, k60, k120, kCustom };
+
+// The last export's outcome as the editor shows it.
+struct ExportStatus {
+  bool ok = false;
+  std::string message;  // where it went, or the error sentence; empty: nothing to say
+  double ms = -1.0;     // the last export that wrote a file, wall time; negative: none yet
+};
 
 // The file format of an export, which the file's extension decides: BVH, glTF 2.0
 // as one .glb (or .gltf with its .bin, typed by hand), or binary FBX (.fbx).
@@ -76,8 +83,9 @@ class ExportDialog : public Panel {
 
   // Each frame (draw does it): a new pair resets the range to all of the blend, the layout to
   // A's default and drops a confirmation; the in and out points stay inside the blend; a
-  // finished export's outcome goes to the session's export message.
+  // finished export's outcome becomes status().
   void poll();
+  const ExportStatus& status() const { return status_; }
 
   ExportSettings& settings() { return settings_; }
   // The settings for the session's current pair: the rate resolved, the range as chosen.
@@ -95,6 +103,7 @@ class ExportDialog : public Panel {
   BlendSession& session_;
   ExportSettings settings_;
   ExportJob job_;
+  ExportStatus status_;
   bool confirm_ = false;      // asking whether to overwrite confirm_path_
   std::string confirm_path_;  // absolute
   const void* seen_pair_ = nullptr;

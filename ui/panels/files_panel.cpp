@@ -138,9 +138,9 @@ void FilesPanel::draw(EditorState& state) {
 
   // Dropped files: two or more are the new takes (three or more the style palette, the first the
   // reference); one is the pair's new B, or one more take of a palette.
-  if (!s.dropped().empty()) {
+  if (!state.dropped.empty()) {
     std::vector<std::string> files;
-    files.swap(s.dropped());
+    files.swap(state.dropped);
     if (files.size() >= 2) s.load_files(files);
     else s.load_files(with_take(takes, n <= 2 ? 1 : takes.size(), files[0]));
   }
@@ -219,8 +219,8 @@ void FilesPanel::draw(EditorState& state) {
   if (!s.error().empty()) sentence(kErrorColor, s.error(), {});
   if (export_dialog_.job().running())
     ImGui::ProgressBar(export_dialog_.job().progress(), ImVec2(-FLT_MIN, 0.0f), "exporting");
-  else if (!s.export_message().empty())
-    sentence(s.export_ok() ? kOkColor : kErrorColor, s.export_message(), folders);
+  else if (!export_dialog_.status().message.empty())
+    sentence(export_dialog_.status().ok ? kOkColor : kErrorColor, export_dialog_.status().message, folders);
   ImGui::EndChild();
 
   const bool browse = ImGui::CollapsingHeader("Browse", ImGuiTreeNodeFlags_DefaultOpen);
@@ -312,7 +312,7 @@ void FilesPanel::draw(EditorState& state) {
   const bool recent = ImGui::CollapsingHeader("Recent");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Files loaded before, newest first");
   if (recent) {
-    for (const std::string& r : s.recent()) {
+    for (const std::string& r : state.recent.takes) {
       ImGui::PushID(r.c_str());
       take_buttons(r, takes);
       ImGui::TextUnformatted(fs::path(r).filename().string().c_str());

@@ -164,7 +164,7 @@ void MetricsPanel::draw(EditorState& state) {
     ImGui::EndTable();
   }
   // Timings differ run to run: a screenshot run (frame_ms < 0) shows none of them.
-  if (session_.frame_ms < 0.0f) {
+  if (state.times.frame_ms < 0.0f) {
     ImGui::TextColored(kDimColor, "(timings hidden in screenshots)");
     ImGui::End();
     return;
@@ -183,9 +183,9 @@ void MetricsPanel::draw(EditorState& state) {
     const std::string all = pair ? "Blend, all" : "Mix, all";
     const std::string all_tip = "The whole " + m.result + " after a slider move, on the editor's thread";
     row(all.c_str(), milliseconds(m.result_ms, "%.3f ms"), all_tip.c_str());
-    row("Export", milliseconds(session_.export_ms()), "The last export");
-    row("Frame, CPU", milliseconds(session_.frame_ms, "%.2f ms"), "Building one editor frame");
-    row("Viewport, GPU", milliseconds(session_.viewport_ms, "%.2f ms"), "Drawing the 3D view");
+    row("Export", milliseconds(state.times.export_ms), "The last export");
+    row("Frame, CPU", milliseconds(state.times.frame_ms, "%.2f ms"), "Building one editor frame");
+    row("Viewport, GPU", milliseconds(state.times.viewport_ms, "%.2f ms"), "Drawing the 3D view");
     ImGui::EndTable();
   }
   ImGui::End();

@@ -56,8 +56,8 @@ Clip export_and_read(ExportDialog& dialog, BlendSession& session, const std::str
   REQUIRE(dialog.press_export() == Pressed::kStarted);
   dialog.job().wait();
   dialog.poll();
-  INFO(session.export_message());
-  REQUIRE(session.export_ok());
+  INFO(dialog.status().message);
+  REQUIRE(dialog.status().ok);
   return read_bvh_file(path);
 }
 
@@ -77,9 +77,9 @@ TEST_CASE("export dialog: at 60 fps the file has twice the blend's frames less o
   CHECK(at_60.frames() == 2 * blend_frames - 1);
   CHECK(at_60.fps() == Approx(60.0));
   // Where it went, the rate, and how closely the file follows the blend, in metric units.
-  CHECK_THAT(s.session.export_message(), Catch::Contains("mostyle_export_dialog_rate.bvh"));
-  CHECK_THAT(s.session.export_message(), Catch::Contains("at 60 fps"));
-  CHECK_THAT(s.session.export_message(), Catch::Contains("m (worst joint and frame"));
+  CHECK_THAT(dialog.status().message, Catch::Contains("mostyle_export_dialog_rate.bvh"));
+  CHECK_THAT(dialog.status().message, Catch::Contains("at 60 fps"));
+  CHECK_THAT(dialog.status().message, Catch::Contains("m (worst joint and frame"));
 
   dialog.settings().rate = ExportRate::k30;
   fs::remove(file.path);
@@ -101,8 +101,8 @@ TEST_CASE("export dialog: at 60 fps the file has twice the blend's frames less o
   REQUIRE(dialog.press_export() == Pressed::kStarted);
   dialog.job().wait();
   dialog.poll();
-  CHECK_FALSE(s.session.export_ok());
-  CHECK_THAT(s.session.export_message(), Catch::Contains("frame rate"));
+  CHECK_FALSE(dialog.status().ok);
+  CHECK_THAT(dialog.status().message, Catch::Contains("frame rate"));
   CHECK_FALSE(fs::exists(file.path));
 }
 
@@ -141,14 +141,14 @@ TEST_CASE("export dialog: the loop is written whole, so it repeats at any rate")
   dialog.settings().range = ExportRange::kLoop;
   dialog.settings().rate = ExportRate::k60;
   CHECK(export_and_read(dialog, s.session, file.path).frames() == 2 * loop_frames);
-  CHECK_THAT(s.session.export_message(), Catch::Contains("loop"));
+  CHECK_THAT(dialog.status().message, Catch::Contains("loop"));
   // Without a loop, the loop cannot be asked for.
   s.state.document.controls.loop = false;
   s.session.sync(s.state);
   fs::remove(file.path);
   set_path(dialog, file.path);
   CHECK(dialog.press_export() == Pressed::kFailed);
-  CHECK_THAT(s.session.export_message(), Catch::Contains("no loop"));
+  CHECK_THAT(dialog.status().message, Catch::Contains("no loop"));
   CHECK_FALSE(fs::exists(file.path));
 }
 
@@ -172,36 +172,39 @@ TEST_CASE("export dialog: an existing file is overwritten only once confirmed") 
   CHECK(dialog.press_overwrite() == Pressed::kStarted);
   dialog.job().wait();
   dialog.poll();
-  CHECK(s.session.export_ok());
+  CHECK(dialog.status().ok);
   CHECK(read_text(file.path).rfind("HIERARCHY", 0) == 0);
   // The next export over it asks again.
   CHECK(dialog.press_export() == Pressed::kConfirm);
 }
 
-TEST_CASE("export dialog: its message, and the session's, clears when new takes load") {
+TEST_CASE("export dialog: its message clears when new takes load") {
   LoadedSession s;
   ExportDialog dialog(s.session);
   dialog.poll();
   TempFile file("mostyle_export_dialog_message.bvh");
   export_and_read(dialog, s.session, file.path);
-  CHECK_FALSE(s.session.export_message().empty());
+  CHECK_FALSE(dialog.status().message.empty());
+  const double ms = dialog.status().ms;
+  CHECK(ms >= 0.0);
   s.session.load(test::asset("motions/cmu142_walk_joy.bvh"), test::asset("motions/cmu142_walk_happy.bvh"));
   s.session.wait_idle(s.state);
   REQUIRE(s.session.error().empty());
-  CHECK(s.session.export_message().empty());
-  CHECK_FALSE(s.session.export_ok());
   dialog.poll();
-  CHECK(s.session.export_message().empty());
+  CHECK(dialog.status().message.empty());
+  CHECK_FALSE(dialog.status().ok);
+  CHECK(dialog.status().ms == ms);  // the last export's time stays
   // A failure's sentence clears too.
   set_path(dialog, "/nonexistent/dir/out.bvh");
   REQUIRE(dialog.press_export() == Pressed::kStarted);
   dialog.job().wait();
   dialog.poll();
-  CHECK_FALSE(s.session.export_message().empty());
-  CHECK_FALSE(s.session.export_ok());
+  CHECK_FALSE(dialog.status().message.empty());
+  CHECK_FALSE(dialog.status().ok);
   s.session.load(test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"));
   s.session.wait_idle(s.state);
-  CHECK(s.session.export_message().empty());
+  dialog.poll();
+  CHECK(dialog.status().message.empty());
 }
 
 TEST_CASE("export job: the job copies the blend, and a cancel before the solve writes nothing") {
@@ -229,9 +232,9 @@ TEST_CASE("export job: the job copies the blend, and a cancel before the solve w
   CHECK(done.frames == s.session.result()->motion.world.rows());
   CHECK_FALSE(job.take_outcome(&done));
   CHECK(fs::exists(file.path));
-  // BlendSession::export_bvh: the same export, here and now.
+  // The same export here and now, without a job.
   fs::remove(file.path);
-  CHECK(s.session.export_bvh(file.path));
+  CHECK(run_export(request).ok);
   CHECK(read_bvh_file(file.path).frames() == s.session.result()->motion.world.rows());
 }
 
@@ -270,7 +273,8 @@ TEST_CASE("export dialog: the window draws in every mode, and the files panel op
   CHECK(frame() > 0);
   dialog.job().wait();
   frame();
-  CHECK(s.session.export_ok());
+  CHECK(dialog.status().ok);
+  CHECK_FALSE(dialog.status().message.empty());
   CHECK(fs::exists(file.path));
   // Asking before an overwrite, drawn.
   CHECK(dialog.press_export() == Pressed::kConfirm);
@@ -297,7 +301,7 @@ TEST_CASE("export dialog: a palette's mix exports whole or from an in to an out 
   TempFile file("mostyle_export_dialog_palette.bvh");
   dialog.settings().rate = ExportRate::k30;
   CHECK(export_and_read(dialog, s.session, file.path).frames() == mix_frames);
-  CHECK_THAT(s.session.export_message(), Catch::Contains("The skeleton of cmu142_walk_happy.bvh"));
+  CHECK_THAT(dialog.status().message, Catch::Contains("The skeleton of cmu142_walk_happy.bvh"));
   // From 1 s to 2 s: 31 frames at 30 fps; the overwrite asks first and then replaces the file.
   dialog.settings().range = ExportRange::kInOut;
   dialog.settings().in_s = 1.0;
@@ -308,7 +312,7 @@ TEST_CASE("export dialog: a palette's mix exports whole or from an in to an out 
   REQUIRE(dialog.press_overwrite() == Pressed::kStarted);
   dialog.job().wait();
   dialog.poll();
-  REQUIRE(s.session.export_ok());
+  REQUIRE(dialog.status().ok);
   CHECK(read_bvh_file(file.path).frames() == 31);
   // The dialog draws in palette mode, with the reference's words (an auto-sized window shows
   // from its second frame).
@@ -354,8 +358,8 @@ TEST_CASE("export dialog: the format is the file's extension, glTF and FBX expor
     REQUIRE(dialog.press_export() == Pressed::kStarted);
     dialog.job().wait();
     dialog.poll();
-    INFO(s.session.export_message());
-    REQUIRE(s.session.export_ok());
+    INFO(dialog.status().message);
+    REQUIRE(dialog.status().ok);
     const Clip written = read_motion_file(path);
     REQUIRE(written.frames() == as_bvh.frames());
     CHECK(written.fps() == as_bvh.fps());

@@ -2,6 +2,7 @@
 // frames with no window: the panels build over a loaded pair, alpha moves the blend in the same
 // frame, and a failed load shows its sentence while the previous pair stays.
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -14,6 +15,7 @@
 #include "tests/ui/imgui_frame.h"
 #include "tests/ui/loaded_session.h"
 #include "ui/model/dtw_image.h"
+#include "ui/panels/files_panel.h"
 #include "ui/panels/layout.h"
 #include "ui/panels/metrics_panel.h"
 
@@ -133,9 +135,10 @@ TEST_CASE("a failing load shows its error and keeps the previous pair") {
   imgui.begin_frame();
   for (auto& panel : panels) panel->draw(s.state);
   CHECK(imgui.end_frame() > 1000);
-  CHECK(std::find(s.session.recent().begin(), s.session.recent().end(), "/nonexistent/walk.bvh") ==
-        s.session.recent().end());
-  CHECK(s.session.recent().front() == test::asset("motions/cmu142_walk_happy.bvh"));
+  const std::vector<std::string>& recent = s.state.recent.takes;
+  CHECK(std::find(recent.begin(), recent.end(), "/nonexistent/walk.bvh") == recent.end());
+  REQUIRE_FALSE(recent.empty());
+  CHECK(recent.front() == test::asset("motions/cmu142_walk_happy.bvh"));
   // And a good pair after it clears the error.
   s.session.load(test::asset("motions/cmu142_walk_joy.bvh"), test::asset("motions/cmu142_walk_happy.bvh"));
   s.session.wait_idle(s.state);
@@ -144,17 +147,33 @@ TEST_CASE("a failing load shows its error and keeps the previous pair") {
   CHECK(s.state.takes.size() == 3);
 }
 
-TEST_CASE("export writes the blend as BVH or says why not") {
+TEST_CASE("export writes the blend as BVH or says why not, in the files panel") {
   LoadedSession s;
+  test::HeadlessImGui imgui;
+  FilesPanel files(s.session, test::asset("motions"));
+  auto frame = [&]() {
+    imgui.begin_frame();
+    files.draw(s.state);
+    imgui.end_frame();
+  };
   const std::string out = (std::filesystem::temp_directory_path() / "mostyle_ui_export_test.bvh").string();
   std::filesystem::remove(out);
-  CHECK(s.session.export_bvh(out));
+  ExportDialog& dialog = files.export_dialog();
+  frame();
+  std::snprintf(dialog.settings().path, sizeof dialog.settings().path, "%s", out.c_str());
+  REQUIRE(dialog.press_export() == ExportDialog::Pressed::kStarted);
+  dialog.job().wait();
+  frame();
   CHECK(std::filesystem::exists(out));
-  CHECK_THAT(s.session.export_message(), Catch::Contains("mostyle_ui_export_test.bvh"));
+  CHECK(dialog.status().ok);
+  CHECK_THAT(dialog.status().message, Catch::Contains("mostyle_ui_export_test.bvh"));
   std::filesystem::remove(out);
-  CHECK_FALSE(s.session.export_bvh("/nonexistent/dir/out.bvh"));
-  CHECK_FALSE(s.session.export_message().empty());
-  CHECK_FALSE(s.session.export_ok());
+  std::snprintf(dialog.settings().path, sizeof dialog.settings().path, "%s", "/nonexistent/dir/out.bvh");
+  REQUIRE(dialog.press_export() == ExportDialog::Pressed::kStarted);
+  dialog.job().wait();
+  frame();
+  CHECK_FALSE(dialog.status().message.empty());
+  CHECK_FALSE(dialog.status().ok);
 }
 
 TEST_CASE("files dropped on the window load as the pair (two) or as B (one)") {
@@ -162,11 +181,11 @@ TEST_CASE("files dropped on the window load as the pair (two) or as B (one)") {
   test::HeadlessImGui imgui;
   FilesPanel files(s.session, test::asset("motions"));
   const std::string joy = test::asset("motions/cmu142_walk_joy.bvh");
-  s.session.dropped() = {joy};
+  s.state.dropped = {joy};
   imgui.begin_frame();
   files.draw(s.state);
   imgui.end_frame();
-  CHECK(s.session.dropped().empty());
+  CHECK(s.state.dropped.empty());
   CHECK(s.session.requested_a() == test::asset("motions/cmu142_walk_happy.bvh"));
   CHECK(s.session.requested_b() == joy);
   s.session.wait_idle(s.state);
@@ -301,7 +320,7 @@ TEST_CASE("files panel: a file dropped on a palette is one more take, and a load
   REQUIRE(s.session.palette() != nullptr);
   draw();
   const std::string clumsy = test::asset("motions/cmu142_walk_clumsy.bvh");
-  s.session.dropped() = {clumsy};
+  s.state.dropped = {clumsy};
   draw();
   std::vector<std::string> four = palette;
   four.push_back(clumsy);
