@@ -1,0 +1,62 @@
+// The error curve against k (ui/model/error_sweep.h) through the editor's engine link over the
+// bundled pair: the shown decomposition's point, then one per k of the sweep, sorted; a new
+// sparsity starts a curve of its own; new takes clear it; a palette has none.
+#include <algorithm>
+#include <iterator>
+
+#include <catch2/catch.hpp>
+
+#include "tests/test_data.h"
+#include "tests/ui/loaded_session.h"
+
+using namespace mostyle;
+using namespace mostyle::ui;
+using test::LoadedSession;
+
+namespace {
+
+int points_at(const std::vector<ErrorPoint>& curve, double sparsity) {
+  return static_cast<int>(std::count_if(curve.begin(), curve.end(), [&](const ErrorPoint& e) { return e.sparsity == sparsity; }));
+}
+
+}  // namespace
+
+TEST_CASE("error sweep: every k of the sweep and the one shown, by k, the shown one as decomposed") {
+  LoadedSession s;  // k 6, sparsity 0.2: waited for, sweep included
+  CHECK_FALSE(s.session.sweeping());
+  const std::vector<ErrorPoint>& curve = s.session.error_curve();
+  REQUIRE(curve.size() == std::size(ErrorSweep::kComponents));  // 6 is one of the sweep's
+  for (size_t i = 0; i < curve.size(); ++i) {
+    CHECK(curve[i].components == ErrorSweep::kComponents[i]);
+    CHECK(curve[i].sparsity == 0.2);
+    CHECK(curve[i].rmse_a > 0.0);
+    CHECK(curve[i].rmse_b > 0.0);
+  }
+  // More components fit better (each its own decomposition: allow a little noise).
+  CHECK(curve.back().rmse_a < curve.front().rmse_a);
+  const Decomposed& shown = *s.session.snapshot().decomposed;
+  const auto six = std::find_if(curve.begin(), curve.end(), [](const ErrorPoint& e) { return e.components == 6; });
+  REQUIRE(six != curve.end());
+  CHECK(six->rmse_a == shown.rmse[0]);
+  CHECK(six->rmse_b == shown.rmse[1]);
+
+  // Another sparsity: a curve of its own beside the first.
+  s.state.document.parameters.sparsity = 0.3;
+  s.session.wait_idle(s.state);
+  CHECK(points_at(s.session.error_curve(), 0.3) == static_cast<int>(std::size(ErrorSweep::kComponents)));
+  CHECK(points_at(s.session.error_curve(), 0.2) == static_cast<int>(std::size(ErrorSweep::kComponents)));
+
+  // New takes: the curve is theirs alone.
+  s.session.load(test::asset("motions/cmu142_walk_joy.bvh"), test::asset("motions/cmu142_walk_happy.bvh"));
+  s.session.wait_idle(s.state);
+  CHECK(points_at(s.session.error_curve(), 0.2) == 0);
+  CHECK(points_at(s.session.error_curve(), 0.3) == static_cast<int>(std::size(ErrorSweep::kComponents)));
+
+  // A palette has no curve (the sweep is a pair's).
+  s.session.load_files({test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"),
+                        test::asset("motions/cmu142_walk_joy.bvh")});
+  s.session.wait_idle(s.state);
+  REQUIRE(s.session.palette() != nullptr);
+  CHECK(s.session.error_curve().empty());
+  CHECK_FALSE(s.session.sweeping());
+}
