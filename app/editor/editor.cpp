@@ -294,6 +294,21 @@ void Editor::frame(const FrameInput& input) {
   if (const ui::Take* reference = state_.reference_take())
     ui::advance_playback(state_.playback, static_cast<double>(input.delta_s), ui::take_length_s(*reference));
 
+  draw_windows();
+  center_view();
+  move_camera(aspect, input.delta_s);
+  draw_overlays();
+  ImGui::Render();
+
+  draw_viewport(size);
+  glViewport(0, 0, size.x, size.y);
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  ++frames_drawn_;
+  save_session_when_ready();
+  record_frame_times(cpu_start);
+}
+
+void Editor::draw_windows() {
   // Panels first: an alpha moved in this frame is blended and drawn in this frame.
   for (auto& panel : panels_) panel->draw(state_);
   state_.view.reset_layout = false;  // laid out; a Reset layout from the keys window: next frame
@@ -304,22 +319,25 @@ void Editor::frame(const FrameInput& input) {
   edits_.record(state_, *session_, ImGui::IsAnyItemActive());
   session_->sync(state_, ImGui::IsAnyItemActive());
   build_scene();
+}
 
+void Editor::center_view() {
   // The view's centre in the middle of the part of the window no panel covers (between the side
   // columns, above the bottom strip), and framing sized to that part.
-  {
-    const ImVec2 display = ImGui::GetIO().DisplaySize;
-    const auto rects = ui::compute_layout(display.x, display.y, ui::playback_bar_height());
-    const ui::PanelRect& left = rects[static_cast<size_t>(ui::PanelId::kTakes)];
-    const ui::PanelRect& right = rects[static_cast<size_t>(ui::PanelId::kComponents)];
-    const ui::PanelRect& strip = rects[static_cast<size_t>(ui::PanelId::kDtw)];
-    const float x0 = left.x + left.w, x1 = right.x, y0 = 0.0f, y1 = strip.y;
-    if (display.x > 0 && display.y > 0 && x1 > x0 && y1 > y0) {
-      camera_.lens_shift = glm::vec2((x0 + x1) / display.x - 1.0f, 1.0f - (y0 + y1) / display.y);
-      free_fraction_ = std::clamp(std::min((x1 - x0) / display.x, (y1 - y0) / display.y), 0.3f, 1.0f);
-    }
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  const auto rects = ui::compute_layout(display.x, display.y, ui::playback_bar_height());
+  const ui::PanelRect& left = rects[static_cast<size_t>(ui::PanelId::kTakes)];
+  const ui::PanelRect& right = rects[static_cast<size_t>(ui::PanelId::kComponents)];
+  const ui::PanelRect& strip = rects[static_cast<size_t>(ui::PanelId::kDtw)];
+  const float x0 = left.x + left.w, x1 = right.x, y0 = 0.0f, y1 = strip.y;
+  if (display.x > 0 && display.y > 0 && x1 > x0 && y1 > y0) {
+    camera_.lens_shift = glm::vec2((x0 + x1) / display.x - 1.0f, 1.0f - (y0 + y1) / display.y);
+    free_fraction_ = std::clamp(std::min((x1 - x0) / display.x, (y1 - y0) / display.y), 0.3f, 1.0f);
   }
-  // Camera: framed once on the first poses, then the mouse and the follow mode move it.
+}
+
+void Editor::move_camera(float aspect, float delta_s) {
+  // Framed once on the first poses, then the mouse and the follow mode move it.
   if (!camera_framed_ || state_.view.request_reframe) {
     frame_camera(aspect);
     followed_centre_.reset();  // framed on the skeletons where they are now
@@ -328,8 +346,10 @@ void Editor::frame(const FrameInput& input) {
   }
   restore_camera(aspect);
   ui::apply_camera_input(camera_);
-  follow_skeletons(input.delta_s);
+  follow_skeletons(delta_s);
+}
 
+void Editor::draw_overlays() {
   if (state_.view.labels) ui::draw_skeleton_labels(scene_.skeletons, camera_);
   if (!deterministic_) {  // timings differ run to run: not in screenshots
     char status[96];
@@ -337,10 +357,11 @@ void Editor::frame(const FrameInput& input) {
                   static_cast<double>(ImGui::GetIO().Framerate));
     ui::draw_viewport_status(status);
   }
-  ImGui::Render();
+}
 
-  // The viewport: the scene into the multisampled target, resolved into the window (or, with
-  // one sample, straight into the window).
+void Editor::draw_viewport(const glm::ivec2& size) {
+  // The scene into the multisampled target, resolved into the window (or, with one sample,
+  // straight into the window).
   style_.ground.grid = state_.view.grid;
   style_.ground.shadows = state_.view.shadows;
   style_.ground.contacts = state_.view.contacts;
@@ -358,11 +379,10 @@ void Editor::frame(const FrameInput& input) {
     scene_renderer_->draw(scene_, camera_, size, style_);
   }
   viewport_timer_->end();
-  glViewport(0, 0, size.x, size.y);
-  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+void Editor::record_frame_times(std::chrono::steady_clock::time_point cpu_start) {
   // Shown by the metrics panel on the next frame; not in screenshots (they differ run to run).
-  ++frames_drawn_;
-  save_session_when_ready();
   state_.times.frame_ms = deterministic_ ? -1.0f
                                       : std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - cpu_start).count();
   state_.times.viewport_ms = deterministic_ ? -1.0f : viewport_timer_->milliseconds();

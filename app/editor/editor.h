@@ -148,6 +148,13 @@ class Editor {
   const ui::RecentFiles& recent_files() const { return state_.recent; }
 
  private:
+  // The steps of frame() after the keys and the playback, in its order.
+  void draw_windows();  // the panels and the editor's own windows, the edits recorded, the scene built
+  void center_view();   // the view's centre and framing in the part of the window no panel covers
+  void move_camera(float aspect, float delta_s);  // framed, restored, the mouse, following
+  void draw_overlays();  // the skeletons' labels, the viewport's timing
+  void draw_viewport(const glm::ivec2& size);  // the scene into the window's framebuffer, timed
+  void record_frame_times(std::chrono::steady_clock::time_point cpu_start);  // for the metrics panel
   void build_scene();
   void frame_camera(float aspect);
   void follow_skeletons(float delta_s);  // the camera after the skeletons (view.follow)

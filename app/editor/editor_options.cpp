@@ -40,6 +40,143 @@ std::filesystem::path program_directory() {
   return ec ? std::filesystem::path() : exe.parent_path();
 }
 
+// One "--name" or "--name=value" argument; take_value() reads its value (after '=', else the
+// next argument, moving *i past it).
+struct Flag {
+  std::string name, value;
+  bool has_value = false;  // given as --name=value
+  int argc = 0;
+  const char* const* argv = nullptr;
+  int* i = nullptr;
+
+  bool take_value() {
+    if (has_value) return true;
+    if (*i + 1 >= argc) return false;
+    value = argv[++*i];
+    return true;
+  }
+};
+
+Flag split_flag(const std::string& arg, int argc, const char* const* argv, int* i) {
+  Flag f;
+  f.name = arg;
+  f.argc = argc;
+  f.argv = argv;
+  f.i = i;
+  if (size_t eq = arg.find('='); eq != std::string::npos) {
+    f.name = arg.substr(0, eq);
+    f.value = arg.substr(eq + 1);
+    f.has_value = true;
+  }
+  return f;
+}
+
+// --weights: one per take, comma separated, normalised; the usage error, or "".
+std::string read_weights(Flag& f, InitialState& initial) {
+  const std::string& value = f.value;
+  std::vector<double> weights;
+  bool ok = f.take_value() && !value.empty();
+  for (size_t begin = 0; ok && begin <= value.size();) {
+    const size_t comma = std::min(value.find(',', begin), value.size());
+    double w = 0.0;
+    ok = parse_number(value.substr(begin, comma - begin), &w) && w >= kMinMixWeight && w <= kMaxMixWeight;
+    weights.push_back(w);
+    begin = comma + 1;
+  }
+  weights = normalized_weights(weights);
+  double sum = 0.0;
+  for (double w : weights) sum += w;
+  if (!ok || weights.size() < 2 || std::abs(sum - 1.0) > 1e-9)
+    return "--weights: expected one weight per take, comma separated (decimals or fractions such as 1/3), "
+           "each from -0.5 to 1.5, summing to 1, got '" + value + "'";
+  initial.weights = weights;
+  return "";
+}
+
+// Every flag but --help; the usage error, or "".
+std::string read_flag(Flag& f, EditorOptions& o) {
+  const std::string& name = f.name;
+  const std::string& value = f.value;
+  if (name == "--offscreen") {
+    if (f.has_value) return "--offscreen takes no value";
+    o.offscreen = true;
+  } else if (name == "--paused") {
+    if (f.has_value) return "--paused takes no value";
+    o.initial.paused = true;
+  } else if (name == "--window-size") {
+    int w = 0, h = 0;
+    if (!f.take_value() || !parse_size(value, &w, &h))
+      return "--window-size: expected WIDTHxHEIGHT in pixels, each " + std::to_string(kMinWindowSide) + " to " +
+             std::to_string(kMaxWindowSide) + " (e.g. 1920x1080), got '" + value + "'";
+    o.width = w;
+    o.height = h;
+  } else if (name == "--screenshot") {
+    if (!f.take_value() || value.empty()) return "--screenshot: expected an output file name";
+    o.screenshot_path = value;
+  } else if (name == "--save-session") {
+    if (!f.take_value() || value.empty()) return "--save-session: expected a session file name (.mostyle)";
+    if (!ui::is_session_path(value) && !std::filesystem::path(value).extension().empty())
+      return "--save-session: a session's file name ends in .mostyle, got '" + value + "'";
+    o.save_session_path = value;
+  } else if (name == "--alpha") {
+    double v = 0.0;
+    if (!f.take_value() || !parse_double(value, &v) || v < 0.0 || v > 1.0)
+      return "--alpha: expected a number in [0, 1], got '" + value + "'";
+    o.initial.parameters.alpha = v;
+  } else if (name == "--components") {
+    int v = 0;
+    if (!f.take_value() || !parse_int(value, &v) || v < 1)
+      return "--components: expected a whole number >= 1, got '" + value + "'";
+    o.initial.parameters.components = v;
+  } else if (name == "--sparsity") {
+    double v = 0.0;
+    if (!f.take_value() || !parse_double(value, &v) || v <= 0.0 || v > 1.0)
+      return "--sparsity: expected a number in (0, 1], got '" + value + "'";
+    o.initial.parameters.sparsity = v;
+  } else if (name == "--weights") {
+    return read_weights(f, o.initial);
+  } else if (name == "--frame") {
+    int v = 0;
+    if (!f.take_value() || !parse_int(value, &v) || v < 0)
+      return "--frame: expected a whole number >= 0, got '" + value + "'";
+    o.initial.frame = v;
+  } else {
+    return "unknown option '" + name + "' (see --help)";
+  }
+  return "";
+}
+
+// What the flags and files mean together, and the memory limit from the environment: the
+// usage error, or "". A session given moves from o.files to o.session_path.
+std::string check_options(EditorOptions& o) {
+  if (o.offscreen && o.screenshot_path.empty()) return "--offscreen renders for a screenshot: add --screenshot OUT.png";
+  try {
+    const char* limit = std::getenv(kMemoryLimitVariable);
+    o.max_memory_bytes = parse_memory_limit(limit ? limit : "");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  // A session brings its own takes: it is the one file given.
+  for (const std::string& f : o.files) {
+    if (!ui::is_session_path(f)) continue;
+    if (o.files.size() != 1) return "'" + f + "' is a session: it opens alone, without other files";
+    o.session_path = f;
+    o.files.clear();
+    break;
+  }
+  if (!o.initial.weights.empty()) {
+    if (!o.session_path.empty()) return "--weights: a session brings its own weights; give takes instead";
+    const size_t takes = o.files.empty() ? 2 : std::max<size_t>(o.files.size(), 2);
+    if (o.initial.weights.size() != takes)
+      return "--weights: expected " + std::to_string(takes) + " weights, one per take, got " +
+             std::to_string(o.initial.weights.size());
+    if (takes == 2 && (o.initial.weights[1] < 0.0 || o.initial.weights[1] > 1.0))
+      return "--weights: a pair's weights are 1 - alpha and alpha, alpha from 0 to 1, got " +
+             std::to_string(o.initial.weights[1]);
+  }
+  return "";
+}
+
 }  // namespace
 
 ParseResult parse_editor_options(int argc, const char* const* argv) {
@@ -67,110 +204,14 @@ ParseResult parse_editor_options(int argc, const char* const* argv) {
       o.files.push_back(arg);
       continue;
     }
-    std::string name = arg, value;
-    bool has_value = false;
-    if (size_t eq = arg.find('='); eq != std::string::npos) {
-      name = arg.substr(0, eq);
-      value = arg.substr(eq + 1);
-      has_value = true;
-    }
-    auto take_value = [&]() -> bool {
-      if (has_value) return true;
-      if (i + 1 >= argc) return false;
-      value = argv[++i];
-      return true;
-    };
-    if (name == "--help") {
+    Flag flag = split_flag(arg, argc, argv, &i);
+    if (flag.name == "--help") {
       result.status = ParseStatus::kHelp;
       return result;
-    } else if (name == "--offscreen") {
-      if (has_value) return fail("--offscreen takes no value");
-      o.offscreen = true;
-    } else if (name == "--paused") {
-      if (has_value) return fail("--paused takes no value");
-      o.initial.paused = true;
-    } else if (name == "--window-size") {
-      int w = 0, h = 0;
-      if (!take_value() || !parse_size(value, &w, &h))
-        return fail("--window-size: expected WIDTHxHEIGHT in pixels, each " + std::to_string(kMinWindowSide) + " to " +
-                    std::to_string(kMaxWindowSide) + " (e.g. 1920x1080), got '" + value + "'");
-      o.width = w;
-      o.height = h;
-    } else if (name == "--screenshot") {
-      if (!take_value() || value.empty()) return fail("--screenshot: expected an output file name");
-      o.screenshot_path = value;
-    } else if (name == "--alpha") {
-      double v = 0.0;
-      if (!take_value() || !parse_double(value, &v) || v < 0.0 || v > 1.0)
-        return fail("--alpha: expected a number in [0, 1], got '" + value + "'");
-      o.initial.parameters.alpha = v;
-    } else if (name == "--components") {
-      int v = 0;
-      if (!take_value() || !parse_int(value, &v) || v < 1)
-        return fail("--components: expected a whole number >= 1, got '" + value + "'");
-      o.initial.parameters.components = v;
-    } else if (name == "--sparsity") {
-      double v = 0.0;
-      if (!take_value() || !parse_double(value, &v) || v <= 0.0 || v > 1.0)
-        return fail("--sparsity: expected a number in (0, 1], got '" + value + "'");
-      o.initial.parameters.sparsity = v;
-    } else if (name == "--weights") {
-      std::vector<double> weights;
-      bool ok = take_value() && !value.empty();
-      for (size_t begin = 0; ok && begin <= value.size();) {
-        const size_t comma = std::min(value.find(',', begin), value.size());
-        double w = 0.0;
-        ok = parse_number(value.substr(begin, comma - begin), &w) && w >= kMinMixWeight && w <= kMaxMixWeight;
-        weights.push_back(w);
-        begin = comma + 1;
-      }
-      weights = normalized_weights(weights);
-      double sum = 0.0;
-      for (double w : weights) sum += w;
-      if (!ok || weights.size() < 2 || std::abs(sum - 1.0) > 1e-9)
-        return fail("--weights: expected one weight per take, comma separated (decimals or fractions such as 1/3), "
-                    "each from -0.5 to 1.5, summing to 1, got '" + value + "'");
-      o.initial.weights = weights;
-    } else if (name == "--save-session") {
-      if (!take_value() || value.empty()) return fail("--save-session: expected a session file name (.mostyle)");
-      if (!ui::is_session_path(value) && !std::filesystem::path(value).extension().empty())
-        return fail("--save-session: a session's file name ends in .mostyle, got '" + value + "'");
-      o.save_session_path = value;
-    } else if (name == "--frame") {
-      int v = 0;
-      if (!take_value() || !parse_int(value, &v) || v < 0)
-        return fail("--frame: expected a whole number >= 0, got '" + value + "'");
-      o.initial.frame = v;
-    } else {
-      return fail("unknown option '" + name + "' (see --help)");
     }
+    if (const std::string error = read_flag(flag, o); !error.empty()) return fail(error);
   }
-  if (o.offscreen && o.screenshot_path.empty())
-    return fail("--offscreen renders for a screenshot: add --screenshot OUT.png");
-  try {
-    const char* limit = std::getenv(kMemoryLimitVariable);
-    o.max_memory_bytes = parse_memory_limit(limit ? limit : "");
-  } catch (const InputError& e) {
-    return fail(e.what());
-  }
-  // A session brings its own takes: it is the one file given.
-  for (const std::string& f : o.files) {
-    if (!ui::is_session_path(f)) continue;
-    if (o.files.size() != 1) return fail("'" + f + "' is a session: it opens alone, without other files");
-    o.session_path = f;
-    o.files.clear();
-    break;
-  }
-  if (!o.initial.weights.empty()) {
-    if (!o.session_path.empty()) return fail("--weights: a session brings its own weights; give takes instead");
-    const size_t takes = o.files.empty() ? 2 : std::max<size_t>(o.files.size(), 2);
-    if (o.initial.weights.size() != takes)
-      return fail("--weights: expected " + std::to_string(takes) + " weights, one per take, got " +
-                  std::to_string(o.initial.weights.size()));
-    if (takes == 2 && (o.initial.weights[1] < 0.0 || o.initial.weights[1] > 1.0))
-      return fail("--weights: a pair's weights are 1 - alpha and alpha, alpha from 0 to 1, got " +
-                  std::to_string(o.initial.weights[1]));
-  }
+  if (const std::string error = check_options(o); !error.empty()) return fail(error);
   return result;
 }
 

@@ -72,118 +72,126 @@ MatchedFrames matched_frames_in_files(const PreparedTakes& p) {
   return m;
 }
 
-void DtwPanel::draw(EditorState& state) {
-  if (session_.palette() != nullptr) return;  // the style palette has the strip (palette_panel.h)
-  place_panel(PanelId::kDtw, state);
-  if (!ImGui::Begin(panel_title(PanelId::kDtw))) {
-    ImGui::End();
-    return;
-  }
-  const PreparedTakes* p = session_.pair();
-  if (p == nullptr || p->takes[1].alignment.feature.a.rows() < 2 || p->takes[1].alignment.feature.b.rows() < 2 ||
-      p->takes[1].alignment.path.empty()) {
-    ImGui::TextColored(ImVec4(0.6f, 0.62f, 0.66f, 1.0f), "No pair aligned yet.");
-    ImGui::End();
-    return;
-  }
-  const Alignment& al = p->takes[1].alignment;
+namespace {
+
+// A pair aligned far enough to plot: two frames of each signal and a path.
+bool plottable(const PreparedTakes* p) {
+  return p != nullptr && p->takes[1].alignment.feature.a.rows() >= 2 && p->takes[1].alignment.feature.b.rows() >= 2 &&
+         !p->takes[1].alignment.path.empty();
+}
+
+// The aligned pair as the plots show it: the aligned joint's signals (frames x columns, file
+// units), the coordinate shown and its range, and the warp sample at the playhead.
+struct PairPlot {
+  const PreparedTakes& p;
+  const Alignment& al;
+  const Eigen::MatrixXd& sa;
+  const Eigen::MatrixXd& sb;
+  const TimeWarp& warp;
+  int fa, fb, samples;
+  int col;                // the coordinate shown
+  double lo, hi, span;    // its range over both takes
+  double current_u;       // the warp sample the playhead shows
+};
+
+// The warp's first sample at or after A's frame i (the last when none).
+double sample_at_a_frame(const TimeWarp& warp, int samples, int i) {
+  const double* at = std::lower_bound(warp.a.data(), warp.a.data() + samples, double(i));
+  return static_cast<double>(std::min<std::ptrdiff_t>(at - warp.a.data(), samples - 1));
+}
+
+// The pair's plot of the coordinate the document asks for, at the playhead.
+PairPlot pair_plot(const EditorState& state, const PreparedTakes& p, const MixResult* blend) {
+  const Alignment& al = p.takes[1].alignment;
   const Eigen::MatrixXd& sa = al.feature.a;
   const Eigen::MatrixXd& sb = al.feature.b;
-  const TimeWarp& warp = al.warp;
-  const MixResult* blend = session_.result();
-  DocumentControls& c = state.document.controls;
-  const int fa = static_cast<int>(sa.rows()), fb = static_cast<int>(sb.rows()), samples = warp.samples();
+  const int col = std::clamp(state.document.controls.dtw_coordinate, 0, static_cast<int>(sa.cols()) - 1);
+  const double lo = std::min(sa.col(col).minCoeff(), sb.col(col).minCoeff());
+  double hi = std::max(sa.col(col).maxCoeff(), sb.col(col).maxCoeff());
+  if (hi <= lo) hi = lo + 1.0;
+  const int current = state.takes.empty() ? 0 : frame_at(state.takes.back(), state.playback.time_s);
+  const double current_u = blend != nullptr && current < blend->sample.size() ? blend->sample[current] : 0.0;
+  return PairPlot{p, al, sa, sb, al.warp, static_cast<int>(sa.rows()), static_cast<int>(sb.rows()),
+                  al.warp.samples(), col, lo, hi, hi - lo, current_u};
+}
+
+// The coordinate shown, what the pair was aligned on and the frames matched, its warnings.
+void draw_header(DocumentControls& c, const PreparedTakes& p) {
+  const Alignment& al = p.takes[1].alignment;
   ImGui::SetNextItemWidth(110.0f);
   ImGui::Combo("##coordinate", &c.dtw_coordinate, "lateral x\0height y\0forward z\0");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Which coordinate of the aligned joint the plots show");
   ImGui::SameLine();
   std::string joints;
-  for (int k : al.feature.columns) joints += (joints.empty() ? "" : ", ") + p->takes[0].names[static_cast<size_t>(k)];
-  const MatchedFrames matched = matched_frames_in_files(*p);  // as each file counts its frames
+  for (int k : al.feature.columns) joints += (joints.empty() ? "" : ", ") + p.takes[0].names[static_cast<size_t>(k)];
+  const MatchedFrames matched = matched_frames_in_files(p);  // as each file counts its frames
   ImGui::TextColored(ImVec4(0.6f, 0.62f, 0.66f, 1.0f), "on %s: A %d-%d, B %d-%d matched",
                      align_on_name(al.feature.on), matched.a_first, matched.a_last, matched.b_first, matched.b_last);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Aligned on %s (%s), %s DTW. Frames outside the matched ranges (shaded) are left out of the "
                       "blend.\n%d x %d frames at %.0f fps, cost %.3g",
-                      align_on_name(al.feature.on), joints.c_str(), dtw_method_name(al.options.method), fa, fb, p->fps,
-                      al.cost);
+                      align_on_name(al.feature.on), joints.c_str(), dtw_method_name(al.options.method),
+                      static_cast<int>(al.feature.a.rows()), static_cast<int>(al.feature.b.rows()), p.fps, al.cost);
   ImGui::PushTextWrapPos(0.0f);  // warnings wrap inside the panel
   for (const std::string& w : al.warnings) ImGui::TextColored(kWarningColor, "%s", w.c_str());
   ImGui::PopTextWrapPos();
-  const int col = std::clamp(c.dtw_coordinate, 0, static_cast<int>(sa.cols()) - 1);
+}
 
-  const double lo = std::min(sa.col(col).minCoeff(), sb.col(col).minCoeff());
-  double hi = std::max(sa.col(col).maxCoeff(), sb.col(col).maxCoeff());
-  if (hi <= lo) hi = lo + 1.0;
-  const double span = hi - lo;
-  const int current = state.takes.empty() ? 0 : frame_at(state.takes.back(), state.playback.time_s);
-  const double current_u = blend != nullptr && current < blend->sample.size() ? blend->sample[current] : 0.0;
-  const float line = ImGui::GetTextLineHeightWithSpacing();
-  // In the layout's bottom strip (much wider than high) the views stand side by side; a panel
-  // the animator made tall stacks "before" above the others.
-  const ImVec2 room = ImGui::GetContentRegionAvail();
-  const bool wide = room.x > 2.5f * room.y;
-  const float plot_h = wide ? std::max(40.0f, room.y - line - 4.0f) : std::max(50.0f, (room.y - 2.0f * line) * 0.36f);
-  double hovered_u = -1.0;  // a warp sample under the mouse
+// Under the "before" plot's lines: the matched ranges shaded, matched frames joined, and ticks
+// where each take's cycles begin.
+void draw_before_marks(const PairPlot& v, const PlotArea& before) {
+  const Alignment& al = v.al;
+  const double lo = v.lo, hi = v.hi, span = v.span;
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  dl->PushClipRect(before.min, before.max, true);
+  dl->AddRectFilled(before.to_screen(al.a_first, hi + 0.1 * span), before.to_screen(al.a_last, lo - 0.05 * span),
+                    IM_COL32(230, 140, 60, 28));
+  dl->AddRectFilled(before.to_screen(al.b_first, hi - 1.1 * span), before.to_screen(al.b_last, lo - 1.15 * span),
+                    IM_COL32(80, 150, 240, 28));
+  const size_t n = al.path.size();
+  const size_t stride = std::max<size_t>(1, n / kMatchLines);
+  for (size_t s = 0; s < n; s += stride) {
+    const auto [i, j] = al.path[s];
+    dl->AddLine(before.to_screen(i, v.sa(i, v.col)), before.to_screen(j, v.sb(j, v.col) - 1.05 * span),
+                IM_COL32(150, 155, 165, 90), 1.0f);
+  }
+  // Where each take's cycles begin (engine/align/cycles.h): ticks at the top of A's band and
+  // the bottom of B's.
+  for (const Cycle& c : v.p.takes[0].cycles.cycles)
+    dl->AddLine(before.to_screen(c.begin, hi + 0.1 * span), before.to_screen(c.begin, hi - 0.1 * span), color_a(), 2.0f);
+  for (const Cycle& c : v.p.takes[1].timeline_cycles().cycles)
+    dl->AddLine(before.to_screen(c.begin, lo - 1.15 * span), before.to_screen(c.begin, lo - 0.95 * span), color_b(),
+                2.0f);
+  dl->PopClipRect();
+}
 
-  // Before warping: A above, B below, each on its own timeline; matched frames joined, the
-  // matched ranges shaded.
+// Before warping: A above, B below, each on its own timeline; matched frames joined, the
+// matched ranges shaded. A group `width` wide (-1: the panel's width).
+PlotArea draw_before(const PairPlot& v, float width, float plot_h) {
+  const double lo = v.lo, hi = v.hi, span = v.span;
+  const int col = v.col;
   ImGui::BeginGroup();
   ImGui::TextUnformatted("before warping");
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("A above, B below, each on its own timeline; matched frames joined; ticks where each take's "
                       "cycles begin");
-  const int frames = std::max(fa, fb);
-  PlotArea before = begin_plot("##before", wide ? 0.45f * room.x : -1.0f, plot_h, 0.0, frames - 1, lo - 1.15 * span,
-                               hi + 0.1 * span);
-  {
-    ImDrawList* dl = ImGui::GetWindowDrawList();
-    dl->PushClipRect(before.min, before.max, true);
-    dl->AddRectFilled(before.to_screen(al.a_first, hi + 0.1 * span), before.to_screen(al.a_last, lo - 0.05 * span),
-                      IM_COL32(230, 140, 60, 28));
-    dl->AddRectFilled(before.to_screen(al.b_first, hi - 1.1 * span), before.to_screen(al.b_last, lo - 1.15 * span),
-                      IM_COL32(80, 150, 240, 28));
-    const size_t n = al.path.size();
-    const size_t stride = std::max<size_t>(1, n / kMatchLines);
-    for (size_t s = 0; s < n; s += stride) {
-      const auto [i, j] = al.path[s];
-      dl->AddLine(before.to_screen(i, sa(i, col)), before.to_screen(j, sb(j, col) - 1.05 * span),
-                  IM_COL32(150, 155, 165, 90), 1.0f);
-    }
-    // Where each take's cycles begin (engine/align/cycles.h): ticks at the top of A's band and
-    // the bottom of B's.
-    for (const Cycle& c : p->takes[0].cycles.cycles)
-      dl->AddLine(before.to_screen(c.begin, hi + 0.1 * span), before.to_screen(c.begin, hi - 0.1 * span), color_a(), 2.0f);
-    for (const Cycle& c : p->takes[1].timeline_cycles().cycles)
-      dl->AddLine(before.to_screen(c.begin, lo - 1.15 * span), before.to_screen(c.begin, lo - 0.95 * span), color_b(),
-                  2.0f);
-    dl->PopClipRect();
-  }
-  plot_line(before, fa, [&](int i, double* x, double* y) { *x = i; *y = sa(i, col); }, color_a());
-  plot_line(before, fb, [&](int j, double* x, double* y) { *x = j; *y = sb(j, col) - 1.05 * span; }, color_b());
+  const int frames = std::max(v.fa, v.fb);
+  PlotArea before = begin_plot("##before", width, plot_h, 0.0, frames - 1, lo - 1.15 * span, hi + 0.1 * span);
+  draw_before_marks(v, before);
+  plot_line(before, v.fa, [&](int i, double* x, double* y) { *x = i; *y = v.sa(i, col); }, color_a());
+  plot_line(before, v.fb, [&](int j, double* x, double* y) { *x = j; *y = v.sb(j, col) - 1.05 * span; }, color_b());
   plot_legend(before, 0, "A", color_a());
   plot_legend(before, 1, "B", color_b());
   ImGui::EndGroup();
-  if (wide) ImGui::SameLine();
-  if (before.hovered) {
-    const int i = std::clamp(static_cast<int>(std::lround(before.x_at(ImGui::GetIO().MousePos.x))), 0, fa - 1);
-    const double* at = std::lower_bound(warp.a.data(), warp.a.data() + samples, double(i));
-    hovered_u = static_cast<double>(std::min<std::ptrdiff_t>(at - warp.a.data(), samples - 1));
-  }
+  return before;
+}
 
-  // Below (or beside): the cost matrix (A frames down, B frames across, the path and the playhead on it)
-  // beside the signals after warping, over the warp's samples, with the match quality under them.
-  const float side = std::clamp(std::min(ImGui::GetContentRegionAvail().y - line - 4.0f,
-                                         0.5f * ImGui::GetContentRegionAvail().x),
-                                60.0f, 600.0f);
+// The cost matrix (A frames down, B frames across) with the path and the playhead on it.
+PlotArea draw_cost(const PairPlot& v, const DtwCostImage& img, float side) {
+  const TimeWarp& warp = v.warp;
   ImGui::BeginGroup();
   ImGui::TextUnformatted("cost and path");
-  if (imaged_ != p) {
-    image_ = dtw_cost_image(*p);
-    imaged_ = p;
-  }
-  const DtwCostImage& img = image_;
-  PlotArea cost = begin_plot("##cost", side, side, 0.0, fb, fa, 0.0);  // y down: frame 0 at the top
+  PlotArea cost = begin_plot("##cost", side, side, 0.0, v.fb, v.fa, 0.0);  // y down: frame 0 at the top
   if (img.rows > 0 && img.cols > 0) {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const float cw = (cost.max.x - cost.min.x) / img.cols, ch = (cost.max.y - cost.min.y) / img.rows;
@@ -191,32 +199,42 @@ void DtwPanel::draw(EditorState& state) {
       for (int k = 0; k < img.cols; ++k)
         dl->AddRectFilled(ImVec2(cost.min.x + k * cw, cost.min.y + r * ch),
                           ImVec2(cost.min.x + (k + 1) * cw + 0.5f, cost.min.y + (r + 1) * ch + 0.5f), heat(img.cost(r, k)));
-    plot_line(cost, samples,
+    plot_line(cost, v.samples,
               [&](int u, double* x, double* y) {
                 *x = warp.b[u] + 0.5;
                 *y = warp.a[u] + 0.5;
               },
               IM_COL32(255, 255, 255, 230), 2.0f);
-    const int u = std::clamp(static_cast<int>(std::lround(current_u)), 0, samples - 1);
+    const int u = std::clamp(static_cast<int>(std::lround(v.current_u)), 0, v.samples - 1);
     dl->AddCircleFilled(cost.to_screen(warp.b[u] + 0.5, warp.a[u] + 0.5), 4.5f, color_blend());
   }
   ImGui::EndGroup();
-  ImGui::SameLine();
-  ImGui::BeginGroup();
+  return cost;
+}
+
+// A and B on the warp's samples. *hovered_u: the sample under the mouse, when it is over the plot.
+PlotArea draw_after(const PairPlot& v, float height, double* hovered_u) {
+  const TimeWarp& warp = v.warp;
+  const int col = v.col, samples = v.samples;
   ImGui::TextUnformatted("after warping");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("A and B on the warp's samples, and under them how well they match");
-  const float quality_h = std::max(24.0f, 0.18f * side);
-  PlotArea after = begin_plot("##after", -1.0f, side - quality_h - 4.0f, 0.0, samples - 1, lo - 0.08 * span,
-                              hi + 0.08 * span);
-  plot_line(after, samples, [&](int u, double* x, double* y) { *x = u; *y = sample(sa, warp.a[u], col); }, color_a(), 2.0f);
-  plot_line(after, samples, [&](int u, double* x, double* y) { *x = u; *y = sample(sb, warp.b[u], col); }, color_b());
-  plot_vline(after, current_u, IM_COL32(255, 255, 255, 140));
+  PlotArea after = begin_plot("##after", -1.0f, height, 0.0, samples - 1, v.lo - 0.08 * v.span, v.hi + 0.08 * v.span);
+  plot_line(after, samples, [&](int u, double* x, double* y) { *x = u; *y = sample(v.sa, warp.a[u], col); }, color_a(), 2.0f);
+  plot_line(after, samples, [&](int u, double* x, double* y) { *x = u; *y = sample(v.sb, warp.b[u], col); }, color_b());
+  plot_vline(after, v.current_u, IM_COL32(255, 255, 255, 140));
   plot_legend(after, 0, "A", color_a());
   plot_legend(after, 1, "B", color_b());
-  if (after.hovered) hovered_u = std::clamp(after.x_at(ImGui::GetIO().MousePos.x), 0.0, samples - 1.0);
-  // Local cost over the path's typical cost: 1 is a typical match, above kPoorMatchRatio poor.
+  if (after.hovered) *hovered_u = std::clamp(after.x_at(ImGui::GetIO().MousePos.x), 0.0, samples - 1.0);
+  return after;
+}
+
+// The match quality under the "after" plot: local cost over the path's typical cost, 1 a typical
+// match, above kPoorMatchRatio poor (shaded). *hovered_u as draw_after's.
+PlotArea draw_quality(const PairPlot& v, float height, double* hovered_u) {
+  const Alignment& al = v.al;
+  const int samples = v.samples;
   const double top = std::max(kPoorMatchRatio * 1.5, al.cost_ratio.size() ? al.cost_ratio.maxCoeff() : 1.0);
-  PlotArea quality = begin_plot("##quality", -1.0f, quality_h, 0.0, samples - 1, 0.0, top);
+  PlotArea quality = begin_plot("##quality", -1.0f, height, 0.0, samples - 1, 0.0, top);
   {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     for (const auto& [first, last] : al.poor)
@@ -226,23 +244,79 @@ void DtwPanel::draw(EditorState& state) {
   }
   plot_line(quality, samples, [&](int u, double* x, double* y) { *x = u; *y = al.cost_ratio[u]; },
             IM_COL32(220, 220, 225, 220));
-  plot_vline(quality, current_u, IM_COL32(255, 255, 255, 140));
-  if (quality.hovered) hovered_u = std::clamp(quality.x_at(ImGui::GetIO().MousePos.x), 0.0, samples - 1.0);
+  plot_vline(quality, v.current_u, IM_COL32(255, 255, 255, 140));
+  if (quality.hovered) *hovered_u = std::clamp(quality.x_at(ImGui::GetIO().MousePos.x), 0.0, samples - 1.0);
+  return quality;
+}
+
+// The frames matched at warp sample hovered_u, and a click there moves the playhead to the
+// output frame that shows it.
+void match_tooltip(EditorState& state, const PairPlot& v, const MixResult* blend, double hovered_u, bool clicked) {
+  const TimeWarp& warp = v.warp;
+  const int u = std::clamp(static_cast<int>(std::lround(hovered_u)), 0, v.samples - 1);
+  ImGui::SetTooltip("A frame %.1f  <->  B frame %.1f\nmatch cost %.2f x the typical, B runs %.2f x A's speed\n"
+                    "click: jump there",
+                    warp.a[u], warp.b[u], v.al.cost_ratio[u], v.al.slope[u]);
+  const int frame = output_frame_at(blend, hovered_u);
+  if (clicked && frame >= 0) state.playback.time_s = (frame + 0.5) / v.p.fps;
+}
+
+}  // namespace
+
+void DtwPanel::draw(EditorState& state) {
+  if (session_.palette() != nullptr) return;  // the style palette has the strip (palette_panel.h)
+  place_panel(PanelId::kDtw, state);
+  if (!ImGui::Begin(panel_title(PanelId::kDtw))) {
+    ImGui::End();
+    return;
+  }
+  const PreparedTakes* p = session_.pair();
+  if (!plottable(p)) {
+    ImGui::TextColored(ImVec4(0.6f, 0.62f, 0.66f, 1.0f), "No pair aligned yet.");
+    ImGui::End();
+    return;
+  }
+  const MixResult* blend = session_.result();
+  draw_header(state.document.controls, *p);
+
+  const PairPlot v = pair_plot(state, *p, blend);
+
+  const float line = ImGui::GetTextLineHeightWithSpacing();
+  // In the layout's bottom strip (much wider than high) the views stand side by side; a panel
+  // the animator made tall stacks "before" above the others.
+  const ImVec2 room = ImGui::GetContentRegionAvail();
+  const bool wide = room.x > 2.5f * room.y;
+  const float plot_h = wide ? std::max(40.0f, room.y - line - 4.0f) : std::max(50.0f, (room.y - 2.0f * line) * 0.36f);
+  double hovered_u = -1.0;  // a warp sample under the mouse
+  const PlotArea before = draw_before(v, wide ? 0.45f * room.x : -1.0f, plot_h);
+  if (wide) ImGui::SameLine();
+  if (before.hovered) {
+    const int i = std::clamp(static_cast<int>(std::lround(before.x_at(ImGui::GetIO().MousePos.x))), 0, v.fa - 1);
+    hovered_u = sample_at_a_frame(v.warp, v.samples, i);
+  }
+
+  // Below (or beside): the cost matrix (A frames down, B frames across, the path and the playhead on it)
+  // beside the signals after warping, over the warp's samples, with the match quality under them.
+  const float side = std::clamp(std::min(ImGui::GetContentRegionAvail().y - line - 4.0f,
+                                         0.5f * ImGui::GetContentRegionAvail().x),
+                                60.0f, 600.0f);
+  if (imaged_ != p) {
+    image_ = dtw_cost_image(*p);
+    imaged_ = p;
+  }
+  const PlotArea cost = draw_cost(v, image_, side);
+  ImGui::SameLine();
+  ImGui::BeginGroup();
+  const float quality_h = std::max(24.0f, 0.18f * side);
+  const PlotArea after = draw_after(v, side - quality_h - 4.0f, &hovered_u);
+  const PlotArea quality = draw_quality(v, quality_h, &hovered_u);
   ImGui::EndGroup();
   if (cost.hovered) {
-    const int i = std::clamp(static_cast<int>(cost.y_at(ImGui::GetIO().MousePos.y)), 0, fa - 1);
-    const double* at = std::lower_bound(warp.a.data(), warp.a.data() + samples, double(i));
-    hovered_u = static_cast<double>(std::min<std::ptrdiff_t>(at - warp.a.data(), samples - 1));
+    const int i = std::clamp(static_cast<int>(cost.y_at(ImGui::GetIO().MousePos.y)), 0, v.fa - 1);
+    hovered_u = sample_at_a_frame(v.warp, v.samples, i);
   }
-  if (hovered_u >= 0) {
-    const int u = std::clamp(static_cast<int>(std::lround(hovered_u)), 0, samples - 1);
-    ImGui::SetTooltip("A frame %.1f  <->  B frame %.1f\nmatch cost %.2f x the typical, B runs %.2f x A's speed\n"
-                      "click: jump there",
-                      warp.a[u], warp.b[u], al.cost_ratio[u], al.slope[u]);
-    const bool clicked = before.clicked || after.clicked || quality.clicked || cost.clicked;
-    const int frame = output_frame_at(blend, hovered_u);
-    if (clicked && frame >= 0) state.playback.time_s = (frame + 0.5) / p->fps;
-  }
+  if (hovered_u >= 0)
+    match_tooltip(state, v, blend, hovered_u, before.clicked || after.clicked || quality.clicked || cost.clicked);
   ImGui::End();
 }
 

@@ -188,15 +188,23 @@ void ExportDialog::draw(EditorState& state) {
 
 void ExportDialog::draw_contents(EditorState& state, bool* open) {
   const ExportSubject subject = export_subject(session_);
-  const double working = subject.working_fps;
-  const double source = subject.clip != nullptr ? subject.clip->fps() : 0.0;
-  const int blend_frames = subject.frames;
-  const double length = motion_length_s(blend_frames, working);
-  const bool busy = job_.running();
+  const bool busy = job_.running();  // once: the job may end while the dialog is drawn
   // A path edited after the question was asked: the question was about another file.
   if (confirm_ && absolute_path(settings_.path) != confirm_path_) confirm_ = false;
 
   ImGui::BeginDisabled(busy);
+  ExportFormat format = ExportFormat::kBvh;
+  const bool enter = draw_file_fields(&format);
+  draw_rate(subject);
+  draw_range(state, subject);
+  draw_channels(subject, format);
+  ImGui::EndDisabled();
+  draw_summary(subject);
+  draw_actions(busy, enter, open);
+  draw_status();
+}
+
+bool ExportDialog::draw_file_fields(ExportFormat* format_shown) {
   // The file.
   ImGui::SetNextItemWidth(kWrapWidth - 60.0f);
   const bool enter = ImGui::InputText("File", settings_.path, sizeof settings_.path, ImGuiInputTextFlags_EnterReturnsTrue);
@@ -207,6 +215,7 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
   }
   // The format: the file's extension, which these buttons change.
   const ExportFormat format = export_format(settings_.path);
+  *format_shown = format;
   auto format_button = [&](ExportFormat f, const char* label, const char* tip) {
     if (ImGui::RadioButton(label, format == f) && format != f) {
       const std::string path = with_export_format(settings_.path, f);
@@ -224,8 +233,12 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
                 "Binary FBX 7.4: A's skeleton as an armature of limb nodes, one take (root translation,\n"
                 "rotations as Euler curves in each joint's order, at the file's frame rate), for\n"
                 "Blender, Maya, MotionBuilder, Unity and Unreal");
+  return enter;
+}
 
-  // The frame rate.
+void ExportDialog::draw_rate(const ExportSubject& subject) {
+  const double working = subject.working_fps;
+  const double source = subject.clip != nullptr ? subject.clip->fps() : 0.0;
   ImGui::Spacing();
   ImGui::TextColored(kDimColor, "Frame rate");
   auto rate_button = [&](ExportRate rate, const char* label, const char* tip) {
@@ -251,8 +264,10 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
     ImGui::InputDouble("fps", &settings_.custom_fps, 0.0, 0.0, "%.6g");
     tooltip("Frames per second of the file");
   }
+}
 
-  // The frames.
+void ExportDialog::draw_range(const EditorState& state, const ExportSubject& subject) {
+  const double length = motion_length_s(subject.frames, subject.working_fps);
   ImGui::Spacing();
   ImGui::TextColored(kDimColor, "Frames");
   char all_label[64];
@@ -277,60 +292,75 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
                                          "hitch, at any frame rate"
                                        : "Turn on Loop in the parameters panel to cut a seamless loop of the result");
   if (settings_.range == ExportRange::kInOut) {
-    double in = settings_.in_s, out = settings_.out_s;
-    bool in_done = false, out_done = false, typing = false;
-    if (settings_.range_in_frames) {
-      int in_f = static_cast<int>(std::lround(in * working));
-      int out_f = static_cast<int>(std::lround(out * working));
-      const int last = std::max(blend_frames - 1, 0);
-      ImGui::SetNextItemWidth(kFieldWidth);
-      if (ImGui::InputInt("In##frames", &in_f, 0, 0)) in = std::clamp(in_f, 0, last) / working;
-      in_done = ImGui::IsItemDeactivatedAfterEdit();
-      typing |= ImGui::IsItemActive();
-      tooltip("The first frame written, a frame of the result as the playback bar counts them: click and type it");
-      ImGui::SameLine();
-      ImGui::SetNextItemWidth(kFieldWidth);
-      if (ImGui::InputInt("Out##frames", &out_f, 0, 0)) out = std::clamp(out_f, 0, last) / working;
-      out_done = ImGui::IsItemDeactivatedAfterEdit();
-      typing |= ImGui::IsItemActive();
-      tooltip("The last frame written: click and type it");
-    } else {
-      ImGui::SetNextItemWidth(kFieldWidth);
-      if (ImGui::InputDouble("In (s)##s", &in, 0.0, 0.0, "%.3f")) in = std::clamp(in, 0.0, length);
-      in_done = ImGui::IsItemDeactivatedAfterEdit();
-      typing |= ImGui::IsItemActive();
-      tooltip("Where the file starts, seconds from the result's first frame: click and type it");
-      ImGui::SameLine();
-      ImGui::SetNextItemWidth(kFieldWidth);
-      if (ImGui::InputDouble("Out (s)##s", &out, 0.0, 0.0, "%.3f")) out = std::clamp(out, 0.0, length);
-      out_done = ImGui::IsItemDeactivatedAfterEdit();
-      typing |= ImGui::IsItemActive();
-      tooltip("Where the file ends (that frame included): click and type it");
-    }
-    // A point typed past the other takes it along, once typed.
-    settings_.in_s = in;
-    settings_.out_s = out;
-    if (in_done) settings_.out_s = std::max(settings_.out_s, settings_.in_s);
-    if (out_done) settings_.in_s = std::min(settings_.in_s, settings_.out_s);
-    typing_range_ = typing;
-    const Take* reference = state.reference_take();
-    const double playhead = reference != nullptr ? frame_at(*reference, state.playback.time_s) / working : 0.0;
-    if (ImGui::SmallButton("In at playhead")) {
-      settings_.in_s = std::min(playhead, length);
-      settings_.out_s = std::max(settings_.out_s, settings_.in_s);
-    }
-    tooltip("The in point at the frame the playback shows");
-    ImGui::SameLine();
-    if (ImGui::SmallButton("Out at playhead")) {
-      settings_.out_s = std::min(playhead, length);
-      settings_.in_s = std::min(settings_.in_s, settings_.out_s);
-    }
-    tooltip("The out point at the frame the playback shows");
-    ImGui::SameLine();
-    ImGui::Checkbox("in frames", &settings_.range_in_frames);
-    tooltip("Count the in and out points in the result's frames; off: in seconds");
+    draw_in_out_fields(subject);
+    draw_in_out_buttons(state, subject);
   }
+}
 
+void ExportDialog::draw_in_out_fields(const ExportSubject& subject) {
+  const double working = subject.working_fps;
+  const int blend_frames = subject.frames;
+  const double length = motion_length_s(blend_frames, working);
+  double in = settings_.in_s, out = settings_.out_s;
+  bool in_done = false, out_done = false, typing = false;
+  if (settings_.range_in_frames) {
+    int in_f = static_cast<int>(std::lround(in * working));
+    int out_f = static_cast<int>(std::lround(out * working));
+    const int last = std::max(blend_frames - 1, 0);
+    ImGui::SetNextItemWidth(kFieldWidth);
+    if (ImGui::InputInt("In##frames", &in_f, 0, 0)) in = std::clamp(in_f, 0, last) / working;
+    in_done = ImGui::IsItemDeactivatedAfterEdit();
+    typing |= ImGui::IsItemActive();
+    tooltip("The first frame written, a frame of the result as the playback bar counts them: click and type it");
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(kFieldWidth);
+    if (ImGui::InputInt("Out##frames", &out_f, 0, 0)) out = std::clamp(out_f, 0, last) / working;
+    out_done = ImGui::IsItemDeactivatedAfterEdit();
+    typing |= ImGui::IsItemActive();
+    tooltip("The last frame written: click and type it");
+  } else {
+    ImGui::SetNextItemWidth(kFieldWidth);
+    if (ImGui::InputDouble("In (s)##s", &in, 0.0, 0.0, "%.3f")) in = std::clamp(in, 0.0, length);
+    in_done = ImGui::IsItemDeactivatedAfterEdit();
+    typing |= ImGui::IsItemActive();
+    tooltip("Where the file starts, seconds from the result's first frame: click and type it");
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(kFieldWidth);
+    if (ImGui::InputDouble("Out (s)##s", &out, 0.0, 0.0, "%.3f")) out = std::clamp(out, 0.0, length);
+    out_done = ImGui::IsItemDeactivatedAfterEdit();
+    typing |= ImGui::IsItemActive();
+    tooltip("Where the file ends (that frame included): click and type it");
+  }
+  // A point typed past the other takes it along, once typed.
+  settings_.in_s = in;
+  settings_.out_s = out;
+  if (in_done) settings_.out_s = std::max(settings_.out_s, settings_.in_s);
+  if (out_done) settings_.in_s = std::min(settings_.in_s, settings_.out_s);
+  typing_range_ = typing;
+}
+
+void ExportDialog::draw_in_out_buttons(const EditorState& state, const ExportSubject& subject) {
+  const double working = subject.working_fps;
+  const double length = motion_length_s(subject.frames, working);
+  const Take* reference = state.reference_take();
+  const double playhead = reference != nullptr ? frame_at(*reference, state.playback.time_s) / working : 0.0;
+  if (ImGui::SmallButton("In at playhead")) {
+    settings_.in_s = std::min(playhead, length);
+    settings_.out_s = std::max(settings_.out_s, settings_.in_s);
+  }
+  tooltip("The in point at the frame the playback shows");
+  ImGui::SameLine();
+  if (ImGui::SmallButton("Out at playhead")) {
+    settings_.out_s = std::min(playhead, length);
+    settings_.in_s = std::min(settings_.in_s, settings_.out_s);
+  }
+  tooltip("The out point at the frame the playback shows");
+  ImGui::SameLine();
+  ImGui::Checkbox("in frames", &settings_.range_in_frames);
+  tooltip("Count the in and out points in the result's frames; off: in seconds");
+}
+
+void ExportDialog::draw_channels(const ExportSubject& subject, ExportFormat format) {
   // The channels (BVH; glTF and FBX key translations where joints travel, rotations everywhere).
   ImGui::Spacing();
   ImGui::BeginDisabled(format != ExportFormat::kBvh);
@@ -353,9 +383,13 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
   }
   tooltip("How the file's channels are laid out; the default is what suits the reference take");
   ImGui::EndDisabled();
-  ImGui::EndDisabled();
+}
 
+void ExportDialog::draw_summary(const ExportSubject& subject) {
   // What will be written.
+  const double working = subject.working_fps;
+  const int blend_frames = subject.frames;
+  const double length = motion_length_s(blend_frames, working);
   const ExportOptions o = options();
   const bool rate_ok = std::isfinite(o.fps) && o.fps > 0.0 && o.fps <= kMaxExportFps;
   if (!rate_ok) {
@@ -372,7 +406,9 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
     std::snprintf(summary, sizeof summary, "Writes %d frames at %g fps.", frames, o.fps);
     ImGui::TextColored(kDimColor, "%s", summary);
   }
+}
 
+void ExportDialog::draw_actions(bool busy, bool enter, bool* open) {
   // Export, the question before an overwrite, or the progress.
   ImGui::Separator();
   if (busy) {
@@ -394,12 +430,14 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
     ImGui::SameLine();
     if (ImGui::Button("Close")) *open = false;
   }
-  if (!status_.message.empty()) {
-    const std::string text = without_folders(status_.message,
-                                             {fs::path(absolute_path(settings_.path)).parent_path().string()});
-    wrapped(status_.ok ? kOkColor : kErrorColor, text);
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", status_.message.c_str());
-  }
+}
+
+void ExportDialog::draw_status() {
+  if (status_.message.empty()) return;
+  const std::string text = without_folders(status_.message,
+                                           {fs::path(absolute_path(settings_.path)).parent_path().string()});
+  wrapped(status_.ok ? kOkColor : kErrorColor, text);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", status_.message.c_str());
 }
 
 }  // namespace mostyle::ui

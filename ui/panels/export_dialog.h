@@ -98,7 +98,20 @@ class ExportDialog : public Panel {
 
  private:
   Pressed start(bool overwrite);
+  // The window's contents, drawn as these steps in this order.
   void draw_contents(EditorState& state, bool* open);
+  // The file field and the format buttons; *format: the file's format before the buttons.
+  // true: Enter was pressed in the field.
+  bool draw_file_fields(ExportFormat* format);
+  void draw_rate(const ExportSubject& subject);                           // A's own, 30, 60, 120, other
+  void draw_range(const EditorState& state, const ExportSubject& subject);  // all, in to out, the loop
+  void draw_in_out_fields(const ExportSubject& subject);                  // typed in frames or seconds
+  void draw_in_out_buttons(const EditorState& state, const ExportSubject& subject);  // at the playhead
+  void draw_channels(const ExportSubject& subject, ExportFormat format);   // the layout (BVH only)
+  void draw_summary(const ExportSubject& subject);  // the frames and rate written, or what is wrong
+  // Export and Close; the overwrite question; or the progress and Cancel while busy.
+  void draw_actions(bool busy, bool enter, bool* open);
+  void draw_status();  // the last outcome
 
   BlendSession& session_;
   ExportSettings settings_;
@@ -107,9 +120,9 @@ class ExportDialog : public Panel {
   bool confirm_ = false;      // asking whether to overwrite confirm_path_
   std::string confirm_path_;  // absolute
   const void* seen_pair_ = nullptr;
-  bool reset_range_ = true;
-  std::string named_result_ = "blend";
-  bool typing_range_ = false;  // an in or out field is being typed in: they are put in order after  // the result the file was last named after   // a new pair: in and out to all of its blend once it has one
+  bool reset_range_ = true;              // a new pair: in and out to all of its blend once it has one
+  std::string named_result_ = "blend";   // the result the file was last named after
+  bool typing_range_ = false;  // an in or out field is being typed in: they are put in order after
 };
 
 }  // namespace mostyle::ui

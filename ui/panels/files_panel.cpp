@@ -122,28 +122,10 @@ void FilesPanel::take_buttons(const std::string& path, const std::vector<std::st
 }
 
 void FilesPanel::draw(EditorState& state) {
-  BlendSession& s = session_;
   export_dialog_.draw(state);  // its own window; polled even while hidden, so an outcome arrives
-  // The fields follow the takes last asked for (not while the animator types): after a failed
-  // load they hold the bad path, to correct.
-  std::vector<std::string> requested = s.requested_files();
-  if (requested.size() < 2) requested.resize(2);  // a pair's B field, empty: A with itself
-  if (requested != synced_) {
-    synced_ = requested;
-    fields_.assign(requested.size(), PathField());
-    for (size_t i = 0; i < requested.size(); ++i) fields_[i].set(requested[i]);
-  }
+  sync_fields();
   const std::vector<std::string>& takes = synced_;
-  const int n = static_cast<int>(takes.size());
-
-  // Dropped files: two or more are the new takes (three or more the style palette, the first the
-  // reference); one is the pair's new B, or one more take of a palette.
-  if (!state.dropped.empty()) {
-    std::vector<std::string> files;
-    files.swap(state.dropped);
-    if (files.size() >= 2) s.load_files(files);
-    else s.load_files(with_take(takes, n <= 2 ? 1 : takes.size(), files[0]));
-  }
+  load_dropped(state, takes);
   place_panel(PanelId::kFiles, state);
   if (!ImGui::Begin(panel_title(PanelId::kFiles))) {
     ImGui::End();
@@ -151,11 +133,45 @@ void FilesPanel::draw(EditorState& state) {
   }
   // Folders left out of the panel's sentences (shown whole on hover).
   std::error_code ec;
-  char* export_path = export_dialog_.settings().path;
-  const std::string export_folder = fs::absolute(fs::path(export_path), ec).parent_path().string();
+  const std::string export_folder =
+      fs::absolute(fs::path(export_dialog_.settings().path), ec).parent_path().string();
   std::vector<std::string> folders = {folder_, export_folder};
   for (const PathField& f : fields_) folders.push_back(f.folder);
 
+  draw_take_fields(takes);
+  draw_export_field(state, export_folder, static_cast<int>(takes.size()));
+  draw_messages(folders);
+  draw_browser(takes);
+  draw_recent(state, takes);
+  ImGui::End();
+}
+
+void FilesPanel::sync_fields() {
+  // The fields follow the takes last asked for (not while the animator types): after a failed
+  // load they hold the bad path, to correct.
+  std::vector<std::string> requested = session_.requested_files();
+  if (requested.size() < 2) requested.resize(2);  // a pair's B field, empty: A with itself
+  if (requested != synced_) {
+    synced_ = requested;
+    fields_.assign(requested.size(), PathField());
+    for (size_t i = 0; i < requested.size(); ++i) fields_[i].set(requested[i]);
+  }
+}
+
+void FilesPanel::load_dropped(EditorState& state, const std::vector<std::string>& takes) {
+  // Dropped files: two or more are the new takes (three or more the style palette, the first the
+  // reference); one is the pair's new B, or one more take of a palette.
+  if (state.dropped.empty()) return;
+  const int n = static_cast<int>(takes.size());
+  std::vector<std::string> files;
+  files.swap(state.dropped);
+  if (files.size() >= 2) session_.load_files(files);
+  else session_.load_files(with_take(takes, n <= 2 ? 1 : takes.size(), files[0]));
+}
+
+void FilesPanel::draw_take_fields(const std::vector<std::string>& takes) {
+  BlendSession& s = session_;
+  const int n = static_cast<int>(takes.size());
   // One path field per take: the file's name; on hover, its folder and what typing does. Enter
   // or Load loads the takes with this one as typed.
   std::vector<std::string> typed;
@@ -199,6 +215,10 @@ void FilesPanel::draw(EditorState& state) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(n <= 2 ? "Two or more files (BVH, FBX, glTF): the new takes. One file: the new B."
                              : "Two or more files (BVH, FBX, glTF): the new takes. One file: one more take.");
+}
+
+void FilesPanel::draw_export_field(EditorState& state, const std::string& export_folder, int n) {
+  char* export_path = export_dialog_.settings().path;
   ImGui::SetNextItemWidth(-92.0f);
   const bool enter_export = ImGui::InputText("##export", export_path, sizeof export_dialog_.settings().path,
                                             ImGuiInputTextFlags_EnterReturnsTrue);
@@ -211,116 +231,123 @@ void FilesPanel::draw(EditorState& state) {
     ImGui::SetTooltip("Choose the frame rate, the frames and the channels, then write the result on the\n"
                       "%s's skeleton as BVH or glTF (.glb), by the file's extension (Ctrl+E)",
                       n <= 2 ? "A take" : "reference take");
+}
 
+void FilesPanel::draw_messages(const std::vector<std::string>& folders) {
   // Messages in a space of their own that is always there: a load error (with the folder it
   // tried), the export's progress or outcome. Hover shows a message whole.
   ImGui::BeginChild("##messages", ImVec2(0.0f, ImGui::GetTextLineHeightWithSpacing() * 2.2f), false,
                     ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
-  if (!s.error().empty()) sentence(kErrorColor, s.error(), {});
+  if (!session_.error().empty()) sentence(kErrorColor, session_.error(), {});
   if (export_dialog_.job().running())
     ImGui::ProgressBar(export_dialog_.job().progress(), ImVec2(-FLT_MIN, 0.0f), "exporting");
   else if (!export_dialog_.status().message.empty())
     sentence(export_dialog_.status().ok ? kOkColor : kErrorColor, export_dialog_.status().message, folders);
   ImGui::EndChild();
+}
 
+void FilesPanel::draw_browser(const std::vector<std::string>& takes) {
   const bool browse = ImGui::CollapsingHeader("Browse", ImGuiTreeNodeFlags_DefaultOpen);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("The motion files of a folder (BVH, FBX, glTF), to load as a take or add to the takes;\n"
                       "open a file with animations to pick one");
-  if (browse) {
-    ImGui::TextColored(kDimColor, "in %s", folder_name(folder_).c_str());
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Folder: %s", folder_.c_str());
-    ImGui::SameLine();
-    if (ImGui::SmallButton("Refresh")) listed_folder_.clear();
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Read the folder again");
-    if (listed_folder_ != folder_) {
-      listed_folder_ = folder_;
-      takes_.clear();  // a pending read finishes in its future's destructor
-      dirs_.clear();
-      files_.clear();
-      list_error_.clear();
-      std::error_code list_ec;
-      for (fs::directory_iterator it(folder_, list_ec), end; !list_ec && it != end; it.increment(list_ec)) {
-        std::error_code e2;
-        if (it->is_directory(e2)) {
-          if (it->path().filename().string().rfind('.', 0) != 0) dirs_.push_back(it->path().string());
-        } else if (is_motion(it->path())) {
-          files_.push_back(it->path().string());
-        }
-      }
-      if (list_ec) list_error_ = "Cannot read " + folder_name(folder_) + ": " + list_ec.message();
-      std::sort(dirs_.begin(), dirs_.end());
-      std::sort(files_.begin(), files_.end());
-    }
-    if (!list_error_.empty()) sentence(kErrorColor, list_error_, {});
-    ImGui::BeginChild("##browser", ImVec2(0.0f, ImGui::GetTextLineHeightWithSpacing() * 5.0f), true);
-    if (ImGui::Selectable("..")) {
-      fs::path up = fs::absolute(folder_).lexically_normal();
-      if (!up.has_filename()) up = up.parent_path();  // "a/b/" -> "a/b"
-      folder_ = up.parent_path().string();
-    }
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Up to the folder above");
-    std::string next_folder;
-    for (const std::string& d : dirs_) {
-      if (ImGui::Selectable((fs::path(d).filename().string() + "/").c_str())) next_folder = d;
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Open this folder");
-    }
-    // One row: the buttons that put a take among the takes, and a label.
-    auto take_row = [&](const std::string& path, const std::string& label) {
-      ImGui::PushID(path.c_str());
-      take_buttons(path, takes);
-      ImGui::TextUnformatted(label.c_str());
-      ImGui::PopID();
-    };
-    for (const std::string& name : files_) {
-      const fs::path f(name);
-      if (!has_takes(motion_format(name))) {
-        take_row(f.string(), f.filename().string());
-        continue;
-      }
-      // FBX and glTF: the file's row opens to its animations, read on a thread the first time.
-      ImGui::PushID(name.c_str());
-      const bool open = ImGui::TreeNode("##takes", "%s", f.filename().string().c_str());
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Open to list the file's animations");
-      if (open) {
-        FileTakes& t = takes_[name];
-        if (!t.pending.valid() && t.takes.empty() && t.error.empty()) {
-          t.pending = std::async(std::launch::async, [name] { return read_motion_takes(name); });
-        }
-        if (t.pending.valid() && t.pending.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
-          try {
-            t.takes = t.pending.get();
-          } catch (const std::exception& e) {
-            t.error = e.what();
-          }
-        }
-        if (t.pending.valid()) ImGui::TextColored(kDimColor, "reading...");
-        if (!t.error.empty()) sentence(kErrorColor, t.error, {folder_});
-        for (const TakeInfo& take : t.takes) {
-          char label[320];
-          std::snprintf(label, sizeof label, "%s (%s)", take.name.c_str(), duration_in_words(take.seconds).c_str());
-          take_row(join_take_path(name, take.name), label);
-        }
-        ImGui::TreePop();
-      }
-      ImGui::PopID();
-    }
-    if (dirs_.empty() && files_.empty()) ImGui::TextColored(kDimColor, "no motion files here");
-    ImGui::EndChild();
-    if (!next_folder.empty()) folder_ = next_folder;
+  if (!browse) return;
+  ImGui::TextColored(kDimColor, "in %s", folder_name(folder_).c_str());
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Folder: %s", folder_.c_str());
+  ImGui::SameLine();
+  if (ImGui::SmallButton("Refresh")) listed_folder_.clear();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Read the folder again");
+  if (listed_folder_ != folder_) list_folder();
+  if (!list_error_.empty()) sentence(kErrorColor, list_error_, {});
+  ImGui::BeginChild("##browser", ImVec2(0.0f, ImGui::GetTextLineHeightWithSpacing() * 5.0f), true);
+  if (ImGui::Selectable("..")) {
+    fs::path up = fs::absolute(folder_).lexically_normal();
+    if (!up.has_filename()) up = up.parent_path();  // "a/b/" -> "a/b"
+    folder_ = up.parent_path().string();
   }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Up to the folder above");
+  std::string next_folder;
+  for (const std::string& d : dirs_) {
+    if (ImGui::Selectable((fs::path(d).filename().string() + "/").c_str())) next_folder = d;
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Open this folder");
+  }
+  for (const std::string& name : files_) {
+    const fs::path f(name);
+    if (has_takes(motion_format(name))) draw_file_with_takes(name, takes);
+    else take_row(f.string(), f.filename().string(), takes);
+  }
+  if (dirs_.empty() && files_.empty()) ImGui::TextColored(kDimColor, "no motion files here");
+  ImGui::EndChild();
+  if (!next_folder.empty()) folder_ = next_folder;
+}
+
+void FilesPanel::list_folder() {
+  listed_folder_ = folder_;
+  takes_.clear();  // a pending read finishes in its future's destructor
+  dirs_.clear();
+  files_.clear();
+  list_error_.clear();
+  std::error_code list_ec;
+  for (fs::directory_iterator it(folder_, list_ec), end; !list_ec && it != end; it.increment(list_ec)) {
+    std::error_code e2;
+    if (it->is_directory(e2)) {
+      if (it->path().filename().string().rfind('.', 0) != 0) dirs_.push_back(it->path().string());
+    } else if (is_motion(it->path())) {
+      files_.push_back(it->path().string());
+    }
+  }
+  if (list_ec) list_error_ = "Cannot read " + folder_name(folder_) + ": " + list_ec.message();
+  std::sort(dirs_.begin(), dirs_.end());
+  std::sort(files_.begin(), files_.end());
+}
+
+void FilesPanel::take_row(const std::string& path, const std::string& label, const std::vector<std::string>& takes) {
+  ImGui::PushID(path.c_str());
+  take_buttons(path, takes);
+  ImGui::TextUnformatted(label.c_str());
+  ImGui::PopID();
+}
+
+void FilesPanel::draw_file_with_takes(const std::string& name, const std::vector<std::string>& takes) {
+  // FBX and glTF: the file's row opens to its animations, read on a thread the first time.
+  ImGui::PushID(name.c_str());
+  const bool open = ImGui::TreeNode("##takes", "%s", fs::path(name).filename().string().c_str());
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Open to list the file's animations");
+  if (open) {
+    FileTakes& t = takes_[name];
+    if (!t.pending.valid() && t.takes.empty() && t.error.empty()) {
+      t.pending = std::async(std::launch::async, [name] { return read_motion_takes(name); });
+    }
+    if (t.pending.valid() && t.pending.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+      try {
+        t.takes = t.pending.get();
+      } catch (const std::exception& e) {
+        t.error = e.what();
+      }
+    }
+    if (t.pending.valid()) ImGui::TextColored(kDimColor, "reading...");
+    if (!t.error.empty()) sentence(kErrorColor, t.error, {folder_});
+    for (const TakeInfo& take : t.takes) {
+      char label[320];
+      std::snprintf(label, sizeof label, "%s (%s)", take.name.c_str(), duration_in_words(take.seconds).c_str());
+      take_row(join_take_path(name, take.name), label, takes);
+    }
+    ImGui::TreePop();
+  }
+  ImGui::PopID();
+}
+
+void FilesPanel::draw_recent(const EditorState& state, const std::vector<std::string>& takes) {
   const bool recent = ImGui::CollapsingHeader("Recent");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Files loaded before, newest first");
-  if (recent) {
-    for (const std::string& r : state.recent.takes) {
-      ImGui::PushID(r.c_str());
-      take_buttons(r, takes);
-      ImGui::TextUnformatted(fs::path(r).filename().string().c_str());
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Folder: %s", fs::path(r).parent_path().string().c_str());
-      ImGui::PopID();
-    }
+  if (!recent) return;
+  for (const std::string& r : state.recent.takes) {
+    ImGui::PushID(r.c_str());
+    take_buttons(r, takes);
+    ImGui::TextUnformatted(fs::path(r).filename().string().c_str());
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Folder: %s", fs::path(r).parent_path().string().c_str());
+    ImGui::PopID();
   }
-  ImGui::End();
 }
 
 }  // namespace mostyle::ui

@@ -51,6 +51,21 @@ class FilesPanel : public Panel {
   // The buttons that put `path` among `takes`: A and B (replace) and + (add) for a pair, + and
   // Replace... (which take) for a palette.
   void take_buttons(const std::string& path, const std::vector<std::string>& takes);
+  // One row of the browser: the take buttons for `path`, then `label`.
+  void take_row(const std::string& path, const std::string& label, const std::vector<std::string>& takes);
+
+  // The steps of draw, in the order it takes them; `takes` are the takes last asked for (synced_).
+  void sync_fields();  // the fields to the requested takes, when those changed
+  void load_dropped(EditorState& state, const std::vector<std::string>& takes);
+  void draw_take_fields(const std::vector<std::string>& takes);  // a field per take, Load pair / all
+  // The export field and Export... (opens the dialog); n: the number of takes.
+  void draw_export_field(EditorState& state, const std::string& export_folder, int n);
+  void draw_messages(const std::vector<std::string>& folders);  // a load error, the export's progress or outcome
+  void draw_browser(const std::vector<std::string>& takes);
+  void list_folder();  // folder_ into dirs_ and files_ (or list_error_)
+  // An FBX or glTF file's row: opens to its animations, each a take row.
+  void draw_file_with_takes(const std::string& path, const std::vector<std::string>& takes);
+  void draw_recent(const EditorState& state, const std::vector<std::string>& takes);
 
   BlendSession& session_;
   std::string folder_;  // the browser's folder

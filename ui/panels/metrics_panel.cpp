@@ -86,109 +86,126 @@ void MetricsPanel::draw(EditorState& state) {
     return;
   }
   const Metrics m = gather_metrics(session_, state.document.controls.palette.transfer);
-  if (m.reference != unit_clip_) {  // a new reference: guess its unit once (one pose of forward kinematics)
-    unit_clip_ = m.reference;
-    cm_per_unit_ = height_ = 0.0;
-    unit_name_.clear();
-    if (m.reference != nullptr) {
-      const UnitsGuess guess = guess_units(*m.reference);
-      unit_name_ = guess.name;
-      height_ = guess.height;
-      cm_per_unit_ = centimetres_per_unit(guess.name);
-    }
-  }
-  auto length = [&](double value, const char* per = "") { return length_in_words(value, cm_per_unit_, height_, per); };
+  guess_unit(m.reference);
   const bool pair = m.takes.size() <= 2;
   const char* reference = pair ? "take A" : "the reference take";
-  if (m.reference != nullptr) {
-    ImGui::PushTextWrapPos(0.0f);
-    if (cm_per_unit_ > 0.0)
-      ImGui::TextColored(kDimColor, "Lengths in metric units; the file is in %s.", unit_name_.c_str());
-    else
-      ImGui::TextColored(kDimColor, "Unknown length unit: lengths as a share of %s's height.", pair ? "A" : "the reference");
-    ImGui::PopTextWrapPos();
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("BVH files do not say their unit: it is guessed from %s's height\n"
-                        "(%.3g file units tall, taken to be a person of 1.5 to 1.9 m).", reference, height_);
-  }
-
-  // Per take: its fit error and foot sliding, one row each (names clipped to the column, whole
-  // on hover).
-  if (ImGui::BeginTable("##takes", 3, ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_BordersInnerV)) {
-    // The numbers' columns as wide as "10.6 cm/s"; the names have the rest.
-    const float number = ImGui::CalcTextSize("10.6 cm/s").x + ImGui::GetStyle().CellPadding.x * 2.0f;
-    ImGui::TableSetupColumn("take", ImGuiTableColumnFlags_WidthStretch, 1.0f);
-    ImGui::TableSetupColumn("fit", ImGuiTableColumnFlags_WidthFixed, number);
-    ImGui::TableSetupColumn("sliding", ImGuiTableColumnFlags_WidthFixed, number);
-    ImGui::TableHeadersRow();
-    for (const Metrics::Take& t : m.takes) {
-      ImGui::TableNextRow();
-      ImGui::TableNextColumn();
-      ImGui::PushStyleColor(ImGuiCol_Text, kDimColor);
-      fitted_text(t.name);  // cut with "..." in the narrow column, whole on hover
-      ImGui::PopStyleColor();
-      ImGui::TableNextColumn();
-      ImGui::TextUnformatted(length(t.fit_error).c_str());
-      if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("Fit error: how far this take is from what the components rebuild of it (root mean\n"
-                          "square). Lower: the components hold more of it.");
-      ImGui::TableNextColumn();
-      ImGui::TextUnformatted(length(t.foot_sliding, "/s").c_str());
-      if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("How fast this take's planted feet move over the floor, on average: its ankles and toes\n"
-                          "while within 3%% of the body's height of their floor (on the reference's skeleton).");
-    }
-    ImGui::EndTable();
-  }
-  if (begin_table("##quality")) {
-    const std::string bones = "The most any bone of the " + m.result + " differs from its length in " + reference + ".";
-    row("Bone length, worst", length(m.bone_error), bones.c_str());
-    const std::string label = "Foot sliding, " + m.result;
-    const std::string tip = "How fast the " + m.result + "'s planted feet move, measured as each take's are: before ->\n"
-                            "after the foot lock (the same when foot lock is off).";
-    row(label.c_str(), m.sliding_raw < 0.0 ? "-" : length(m.sliding_raw, "/s") + " -> " + length(m.sliding_cleaned, "/s"),
-        tip.c_str());
-    std::string inputs = "-";
-    if (m.sliding_inputs >= 0.0) {
-      inputs = length(m.sliding_inputs, "/s");
-      if (m.sliding_inputs > 0.0 && m.sliding_cleaned >= 0.0) {
-        char ratio[32];
-        std::snprintf(ratio, sizeof ratio, " (%.2fx)", m.sliding_cleaned / m.sliding_inputs);
-        inputs += ratio;
-      }
-    }
-    const std::string inputs_tip = "How fast the takes' own planted feet move, weighted as the " + m.result +
-                                   " weights them (a\ntransfer: its content's), and the " + m.result +
-                                   "'s after the lock as a multiple of it.";
-    row("Foot sliding, takes", inputs, inputs_tip.c_str());
-    ImGui::EndTable();
-  }
+  if (m.reference != nullptr) draw_unit_note(pair, reference);
+  draw_takes_table(m);
+  draw_quality_table(m, reference);
   // Timings differ run to run: a screenshot run (frame_ms < 0) shows none of them.
   if (state.times.frame_ms < 0.0f) {
     ImGui::TextColored(kDimColor, "(timings hidden in screenshots)");
     ImGui::End();
     return;
   }
-  if (begin_table("##times")) {
-    row("Loading", milliseconds(m.load_ms), "Reading the takes' files");
-    row("Preparing", milliseconds(m.preprocess_ms),
-        "Matching the skeletons, putting every take on the reference's bones, facing and normalising");
-    row("Time alignment", milliseconds(m.dtw_ms), "Matching the takes' steps in time (DTW)");
-    row("Decomposition", milliseconds(m.decompose_ms, "%.0f ms"),
-        "Splitting the takes into components (on the worker, not in the way of the editor)");
-    const std::string synthesis = "Making the " + m.result + " from the components";
-    row("Synthesis", milliseconds(m.synthesize_ms, "%.3f ms"), synthesis.c_str());
-    const std::string cleanup = "Bone lengths and foot lock on the " + m.result;
-    row("Clean-up", milliseconds(m.postprocess_ms, "%.3f ms"), cleanup.c_str());
-    const std::string all = pair ? "Blend, all" : "Mix, all";
-    const std::string all_tip = "The whole " + m.result + " after a slider move, on the editor's thread";
-    row(all.c_str(), milliseconds(m.result_ms, "%.3f ms"), all_tip.c_str());
-    row("Export", milliseconds(state.times.export_ms), "The last export");
-    row("Frame, CPU", milliseconds(state.times.frame_ms, "%.2f ms"), "Building one editor frame");
-    row("Viewport, GPU", milliseconds(state.times.viewport_ms, "%.2f ms"), "Drawing the 3D view");
-    ImGui::EndTable();
-  }
+  draw_times_table(m, state.times, pair);
   ImGui::End();
+}
+
+void MetricsPanel::guess_unit(const Clip* reference) {
+  if (reference == unit_clip_) return;
+  // A new reference: guess its unit once (one pose of forward kinematics).
+  unit_clip_ = reference;
+  cm_per_unit_ = height_ = 0.0;
+  unit_name_.clear();
+  if (reference != nullptr) {
+    const UnitsGuess guess = guess_units(*reference);
+    unit_name_ = guess.name;
+    height_ = guess.height;
+    cm_per_unit_ = centimetres_per_unit(guess.name);
+  }
+}
+
+std::string MetricsPanel::length(double value, const char* per) const {
+  return length_in_words(value, cm_per_unit_, height_, per);
+}
+
+void MetricsPanel::draw_unit_note(bool pair, const char* reference) {
+  ImGui::PushTextWrapPos(0.0f);
+  if (cm_per_unit_ > 0.0)
+    ImGui::TextColored(kDimColor, "Lengths in metric units; the file is in %s.", unit_name_.c_str());
+  else
+    ImGui::TextColored(kDimColor, "Unknown length unit: lengths as a share of %s's height.", pair ? "A" : "the reference");
+  ImGui::PopTextWrapPos();
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("BVH files do not say their unit: it is guessed from %s's height\n"
+                      "(%.3g file units tall, taken to be a person of 1.5 to 1.9 m).", reference, height_);
+}
+
+void MetricsPanel::draw_takes_table(const Metrics& m) {
+  // Per take: its fit error and foot sliding, one row each (names clipped to the column, whole
+  // on hover).
+  if (!ImGui::BeginTable("##takes", 3, ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_BordersInnerV)) return;
+  // The numbers' columns as wide as "10.6 cm/s"; the names have the rest.
+  const float number = ImGui::CalcTextSize("10.6 cm/s").x + ImGui::GetStyle().CellPadding.x * 2.0f;
+  ImGui::TableSetupColumn("take", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+  ImGui::TableSetupColumn("fit", ImGuiTableColumnFlags_WidthFixed, number);
+  ImGui::TableSetupColumn("sliding", ImGuiTableColumnFlags_WidthFixed, number);
+  ImGui::TableHeadersRow();
+  for (const Metrics::Take& t : m.takes) {
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    ImGui::PushStyleColor(ImGuiCol_Text, kDimColor);
+    fitted_text(t.name);  // cut with "..." in the narrow column, whole on hover
+    ImGui::PopStyleColor();
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted(length(t.fit_error).c_str());
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Fit error: how far this take is from what the components rebuild of it (root mean\n"
+                        "square). Lower: the components hold more of it.");
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted(length(t.foot_sliding, "/s").c_str());
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("How fast this take's planted feet move over the floor, on average: its ankles and toes\n"
+                        "while within 3%% of the body's height of their floor (on the reference's skeleton).");
+  }
+  ImGui::EndTable();
+}
+
+void MetricsPanel::draw_quality_table(const Metrics& m, const char* reference) {
+  if (!begin_table("##quality")) return;
+  const std::string bones = "The most any bone of the " + m.result + " differs from its length in " + reference + ".";
+  row("Bone length, worst", length(m.bone_error), bones.c_str());
+  const std::string label = "Foot sliding, " + m.result;
+  const std::string tip = "How fast the " + m.result + "'s planted feet move, measured as each take's are: before ->\n"
+                          "after the foot lock (the same when foot lock is off).";
+  row(label.c_str(), m.sliding_raw < 0.0 ? "-" : length(m.sliding_raw, "/s") + " -> " + length(m.sliding_cleaned, "/s"),
+      tip.c_str());
+  std::string inputs = "-";
+  if (m.sliding_inputs >= 0.0) {
+    inputs = length(m.sliding_inputs, "/s");
+    if (m.sliding_inputs > 0.0 && m.sliding_cleaned >= 0.0) {
+      char ratio[32];
+      std::snprintf(ratio, sizeof ratio, " (%.2fx)", m.sliding_cleaned / m.sliding_inputs);
+      inputs += ratio;
+    }
+  }
+  const std::string inputs_tip = "How fast the takes' own planted feet move, weighted as the " + m.result +
+                                 " weights them (a\ntransfer: its content's), and the " + m.result +
+                                 "'s after the lock as a multiple of it.";
+  row("Foot sliding, takes", inputs, inputs_tip.c_str());
+  ImGui::EndTable();
+}
+
+void MetricsPanel::draw_times_table(const Metrics& m, const FrameTimes& times, bool pair) {
+  if (!begin_table("##times")) return;
+  row("Loading", milliseconds(m.load_ms), "Reading the takes' files");
+  row("Preparing", milliseconds(m.preprocess_ms),
+      "Matching the skeletons, putting every take on the reference's bones, facing and normalising");
+  row("Time alignment", milliseconds(m.dtw_ms), "Matching the takes' steps in time (DTW)");
+  row("Decomposition", milliseconds(m.decompose_ms, "%.0f ms"),
+      "Splitting the takes into components (on the worker, not in the way of the editor)");
+  const std::string synthesis = "Making the " + m.result + " from the components";
+  row("Synthesis", milliseconds(m.synthesize_ms, "%.3f ms"), synthesis.c_str());
+  const std::string cleanup = "Bone lengths and foot lock on the " + m.result;
+  row("Clean-up", milliseconds(m.postprocess_ms, "%.3f ms"), cleanup.c_str());
+  const std::string all = pair ? "Blend, all" : "Mix, all";
+  const std::string all_tip = "The whole " + m.result + " after a slider move, on the editor's thread";
+  row(all.c_str(), milliseconds(m.result_ms, "%.3f ms"), all_tip.c_str());
+  row("Export", milliseconds(times.export_ms), "The last export");
+  row("Frame, CPU", milliseconds(times.frame_ms, "%.2f ms"), "Building one editor frame");
+  row("Viewport, GPU", milliseconds(times.viewport_ms, "%.2f ms"), "Drawing the 3D view");
+  ImGui::EndTable();
 }
 
 }  // namespace mostyle::ui

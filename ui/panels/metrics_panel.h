@@ -35,6 +35,16 @@ class MetricsPanel : public Panel {
   void draw(EditorState& state) override;
 
  private:
+  // The steps of draw, in its order.
+  void guess_unit(const Clip* reference);  // once per reference take (null: none)
+  // `value` (reference units, negative: "-") in words: centimetres, or a share of the height.
+  std::string length(double value, const char* per = "") const;
+  // The unit lengths are shown in; pair: A is the reference, named `reference` in the tooltip.
+  void draw_unit_note(bool pair, const char* reference);
+  void draw_takes_table(const Metrics& m);                            // fit error and foot sliding per take
+  void draw_quality_table(const Metrics& m, const char* reference);   // the result's bones and feet
+  void draw_times_table(const Metrics& m, const FrameTimes& times, bool pair);  // each stage's time
+
   BlendSession& session_;
   // The reference's unit, guessed once per loaded reference take.
   const Clip* unit_clip_ = nullptr;

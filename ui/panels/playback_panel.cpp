@@ -53,12 +53,27 @@ std::string weights_words(const std::vector<double>& w) {
   return words;
 }
 
-}  // namespace
+// What the timeline shows of the reference take: its rate, length and last frame, and the
+// number of takes mixed (the weights a key holds).
+struct Timeline {
+  const Take* reference = nullptr;
+  double fps = 0.0;
+  double length_s = 0.0;
+  int last = 0;
+  int takes = 0;
+};
 
-void PlaybackPanel::draw(EditorState& state) {
-  const ImGuiIO& io = ImGui::GetIO();
-  hovered_span_ = -1;
-  // Pinned to the bottom edge, full width: it follows the window when it is resized.
+// Where the frame slider sits, pixels.
+struct SliderPlace {
+  ImVec2 at;  // its top left corner
+  float w = 0.0f, h = 0.0f;
+  Track track;
+  float mark_y = 0.0f;  // the keys' diamonds' centres: along the slider's top edge
+};
+
+// The window, pinned to the bottom edge, full width: it follows the window when it is resized.
+// false: collapsed (ended already).
+bool begin_window() {
   const PanelRect r = panel_rect(PanelId::kPlayback);
   ImGui::SetNextWindowPos(ImVec2(r.x, r.y), ImGuiCond_Always);
   ImGui::SetNextWindowSize(ImVec2(r.w, r.h), ImGuiCond_Always);
@@ -66,45 +81,34 @@ void PlaybackPanel::draw(EditorState& state) {
                                  ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoSavedSettings;
   if (!ImGui::Begin(panel_title(PanelId::kPlayback), nullptr, flags)) {
     ImGui::End();
-    return;
+    return false;
   }
-  // The list of keys, reachable from here without knowing its key.
-  if (ImGui::Button("Keys")) command_toggle_keys(state);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Every key and mouse gesture, Frame all and Reset layout (F1 or ?)");
-  ImGui::SameLine();
-  const Take* reference = state.reference_take();
-  Playback& p = state.playback;
-  if (reference == nullptr) {
-    ImGui::TextColored(kDimColor, "No take loaded.");
-    ImGui::End();
-    return;
-  }
-  const double fps = reference->rate();
-  const double length_s = take_length_s(*reference);
-  const int last = std::max(reference->frames() - 1, 0);
-  int frame = frame_at(*reference, p.time_s);
-  // The takes mixed (two for a pair): the number of weights a key holds.
-  const int takes = static_cast<int>(state.document.files.size());
-  WeightKeys& keys = state.document.controls.keys;
-  const bool keyed = keys_fit(keys, takes);
+  return true;
+}
 
-  // Keys, unless ImGui has them (a text field, a slider held): space plays and pauses,
-  // left/right step one frame, K keys the weights here (Delete: below, over the marks).
-  const bool keyboard = !io.WantTextInput && !io.WantCaptureKeyboard;
-  if (keyboard) {
-    if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Space), false)) toggle_playback(p, length_s);
-    const bool back = ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_LeftArrow));
-    const bool forward = ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_RightArrow));
-    if (back || forward) {
-      p.playing = false;
-      frame = std::clamp(frame + (forward ? 1 : -1), 0, last);
-      p.time_s = (frame + 0.5) / fps;
-    }
-    bool key = false;
-    for (ImWchar c : io.InputQueueCharacters) key |= c == 'k' || c == 'K';  // any keyboard layout
-    if (key && !io.KeyCtrl && !io.KeyAlt && !io.KeySuper) key_at_playhead(state, takes);
+// Keys, unless ImGui has them (a text field, a slider held): space plays and pauses,
+// left/right step one frame, K keys the weights here (Delete: with the marks).
+void handle_keys(EditorState& state, const Timeline& t, int* frame) {
+  const ImGuiIO& io = ImGui::GetIO();
+  Playback& p = state.playback;
+  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Space), false)) toggle_playback(p, t.length_s);
+  const bool back = ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_LeftArrow));
+  const bool forward = ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_RightArrow));
+  if (back || forward) {
+    p.playing = false;
+    *frame = std::clamp(*frame + (forward ? 1 : -1), 0, t.last);
+    p.time_s = (*frame + 0.5) / t.fps;
   }
-  if (ImGui::Button(p.playing ? "Pause" : "Play", ImVec2(64.0f, 0.0f))) toggle_playback(p, length_s);
+  bool key = false;
+  for (ImWchar c : io.InputQueueCharacters) key |= c == 'k' || c == 'K';  // any keyboard layout
+  if (key && !io.KeyCtrl && !io.KeyAlt && !io.KeySuper) key_at_playhead(state, t.takes);
+}
+
+// Play/pause, rewind, speed, loop, the time and rate, Set key; each followed by SameLine.
+void draw_transport(EditorState& state, const Timeline& t, int frame) {
+  Playback& p = state.playback;
+  const double fps = t.fps;
+  if (ImGui::Button(p.playing ? "Pause" : "Play", ImVec2(64.0f, 0.0f))) toggle_playback(p, t.length_s);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(p.playing ? "Pause (space)" : "Play (space); from the start when on the last frame");
   ImGui::SameLine();
@@ -121,78 +125,76 @@ void PlaybackPanel::draw(EditorState& state) {
   ImGui::TextColored(kDimColor, "%6.2f s   %.0f fps", frame / fps, fps);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Time of this frame, and the frames per second of the takes");
   ImGui::SameLine();
-  if (ImGui::Button("Set key")) key_at_playhead(state, takes);
+  if (ImGui::Button("Set key")) key_at_playhead(state, t.takes);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Key the style at this frame (K): %s, as the sliders show it now (a key already here takes "
                       "it).\nThe style eases from key to key over the result; with keys, moving a weight keys it at "
                       "the playhead.\nOn the timeline: drag a key to move it, click it to go to it, right-click it "
                       "(or Delete) to remove it.",
-                      takes == 2 ? "alpha" : "the palette's weights");
+                      t.takes == 2 ? "alpha" : "the palette's weights");
   ImGui::SameLine();
+}
 
-  // The frame slider with its marks. The keys' marks are items submitted before the slider, so
-  // that a press on a mark is the mark's (ImGui gives the mouse to the item submitted first); they
-  // are drawn after it, over its frame.
-  const ImVec2 slider_at = ImGui::GetCursorScreenPos();
-  const float slider_w = ImGui::GetContentRegionAvail().x;
-  const float slider_h = ImGui::GetFrameHeight();
-  const Track track = track_of(slider_at.x, slider_w, last);
-  const float mark_y = slider_at.y + kMarkHalf + 1.0f;  // along the slider's top edge
-  int hovered = -1, removed = -1;
-  if (keyed) {
-    for (int i = 0; i < static_cast<int>(keys.size()); ++i) {
-      WeightKey& key = keys[static_cast<size_t>(i)];
-      ImGui::PushID(i);
-      ImGui::SetCursorScreenPos(ImVec2(track.x(key.seconds * fps) - kMarkHit, slider_at.y));
-      const bool released = ImGui::InvisibleButton(
-          "##key", ImVec2(2.0f * kMarkHit, 0.5f * slider_h), ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
-      if (ImGui::IsItemActivated()) mark_dragged_ = false;
-      if (ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Left)) {
-        // Dragged: to the frame under the mouse, between its neighbours (one undo step when let go).
-        const double to = track.frame(io.MousePos.x) / fps;
-        if (to != key.seconds) move_key(keys, i, to, 1.0 / fps, length_s);
-        mark_dragged_ = true;
-      }
-      const int key_frame = static_cast<int>(std::lround(key.seconds * fps));
-      if (released && ImGui::IsMouseReleased(ImGuiMouseButton_Right)) {
-        removed = i;
-      } else if (released && !mark_dragged_) {  // a click: the playhead to the key, to edit it
-        p.playing = false;
-        p.time_s = (key_frame + 0.5) / fps;
-      }
-      if (ImGui::IsItemHovered() || ImGui::IsItemActive()) {
-        hovered = i;
-        ImGui::SetTooltip("Key %d at %.2f s (frame %d): %s\nDrag to move it in time, click to go to it, right-click "
-                          "or Delete to remove it",
-                          i + 1, key.seconds, key_frame, weights_words(key.weights).c_str());
-      }
-      ImGui::PopID();
+// The keys' marks as items over the slider's top edge: drag one to move its key in time, click
+// it to go there, right-click it to remove it. Returns the key under the mouse (or held), -1:
+// none; *removed: the key right-clicked, else left as it was.
+int key_mark_items(EditorState& state, const Timeline& t, const SliderPlace& slider, bool* mark_dragged,
+                   int* removed) {
+  const ImGuiIO& io = ImGui::GetIO();
+  Playback& p = state.playback;
+  WeightKeys& keys = state.document.controls.keys;
+  const double fps = t.fps;
+  int hovered = -1;
+  for (int i = 0; i < static_cast<int>(keys.size()); ++i) {
+    WeightKey& key = keys[static_cast<size_t>(i)];
+    ImGui::PushID(i);
+    ImGui::SetCursorScreenPos(ImVec2(slider.track.x(key.seconds * fps) - kMarkHit, slider.at.y));
+    const bool released = ImGui::InvisibleButton(
+        "##key", ImVec2(2.0f * kMarkHit, 0.5f * slider.h), ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
+    if (ImGui::IsItemActivated()) *mark_dragged = false;
+    if (ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Left)) {
+      // Dragged: to the frame under the mouse, between its neighbours (one undo step when let go).
+      const double to = slider.track.frame(io.MousePos.x) / fps;
+      if (to != key.seconds) move_key(keys, i, to, 1.0 / fps, t.length_s);
+      *mark_dragged = true;
     }
-    ImGui::SetCursorScreenPos(slider_at);
+    const int key_frame = static_cast<int>(std::lround(key.seconds * fps));
+    if (released && ImGui::IsMouseReleased(ImGuiMouseButton_Right)) {
+      *removed = i;
+    } else if (released && !*mark_dragged) {  // a click: the playhead to the key, to edit it
+      p.playing = false;
+      p.time_s = (key_frame + 0.5) / fps;
+    }
+    if (ImGui::IsItemHovered() || ImGui::IsItemActive()) {
+      hovered = i;
+      ImGui::SetTooltip("Key %d at %.2f s (frame %d): %s\nDrag to move it in time, click to go to it, right-click "
+                        "or Delete to remove it",
+                        i + 1, key.seconds, key_frame, weights_words(key.weights).c_str());
+    }
+    ImGui::PopID();
   }
-  if (keyboard && keyed && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Delete), false)) {
-    const KeyTime at = key_time(state);
-    removed = hovered >= 0 ? hovered : key_near(keys, at.seconds, at.tolerance_s);
-  }
-  if (removed >= 0) {
-    remove_key(state, takes, removed);
-    hovered = -1;
-  }
+  ImGui::SetCursorScreenPos(slider.at);
+  return hovered;
+}
 
-  ImGui::SetNextItemWidth(slider_w);
-  if (ImGui::SliderInt("##frame", &frame, 0, last, "frame %d")) p.time_s = (frame + 0.5) / fps;
-  // Hovered: the output cycle under the mouse and where each take's part of it came from, then
-  // how to use the slider. Not over a key's mark: IsItemHovered does not ask whether an item
-  // submitted before took the mouse, and a later tooltip replaces an earlier one.
+// The frame slider, and its tooltip when hovered (not over a key's mark, `hovered_key`): the
+// output cycle under the mouse and where each take's part of it came from, then how to use
+// the slider. Returns that cycle's span of state.cycle_provenance; -1: none.
+int draw_frame_slider(EditorState& state, const Timeline& t, const SliderPlace& slider, int frame, int hovered_key) {
+  const ImGuiIO& io = ImGui::GetIO();
+  ImGui::SetNextItemWidth(slider.w);
+  if (ImGui::SliderInt("##frame", &frame, 0, t.last, "frame %d")) state.playback.time_s = (frame + 0.5) / t.fps;
+  // IsItemHovered does not ask whether an item submitted before took the mouse, and a later
+  // tooltip replaces an earlier one: hence not over a key's mark.
   int span = -1;
-  if (ImGui::IsItemHovered() && hovered < 0) {
+  if (ImGui::IsItemHovered() && hovered_key < 0) {
     static const char* kSliderHelp =
         "Drag to go to a frame; left and right arrow keys step one frame.\nTicks: where the "
         "reference's cycles (gait cycles, periods) begin. Diamonds: keys of the style (Set key, K)";
-    span = provenance_at(state.cycle_provenance, track.frame(io.MousePos.x));
+    span = provenance_at(state.cycle_provenance, slider.track.frame(io.MousePos.x));
     if (span >= 0) {
       ImGui::BeginTooltip();
-      ImGui::TextUnformatted(provenance_text(state.cycle_provenance[static_cast<size_t>(span)], fps).c_str());
+      ImGui::TextUnformatted(provenance_text(state.cycle_provenance[static_cast<size_t>(span)], t.fps).c_str());
       ImGui::Separator();
       ImGui::TextDisabled("%s", kSliderHelp);
       ImGui::EndTooltip();
@@ -200,37 +202,99 @@ void PlaybackPanel::draw(EditorState& state) {
       ImGui::SetTooltip("%s", kSliderHelp);
     }
   }
-  hovered_span_ = span;
+  return span;
+}
+
+// Drawn over the slider: the span the tooltip speaks of, the reference's cycle starts, the keys.
+void draw_slider_marks(const EditorState& state, const Timeline& t, const SliderPlace& slider, int span,
+                       int hovered_key) {
   ImDrawList* dl = ImGui::GetWindowDrawList();
+  const Track& track = slider.track;
   // The span the tooltip speaks of, underlined along the slider's bottom edge.
-  if (span >= 0 && last > 0) {
+  if (span >= 0 && t.last > 0) {
     const CycleProvenance& under = state.cycle_provenance[static_cast<size_t>(span)];
-    const float bottom = slider_at.y + slider_h - 1.0f;
+    const float bottom = slider.at.y + slider.h - 1.0f;
     dl->AddLine(ImVec2(track.x(under.begin), bottom), ImVec2(track.x(under.end), bottom),
                 ImGui::GetColorU32(ImGuiCol_SliderGrabActive), 2.0f);
   }
   // A tick where each of the reference's cycles begins, along the slider's bottom edge.
-  if (last > 0) {
-    const float bottom = slider_at.y + slider_h;
-    for (int f : reference->cycle_starts) {
+  if (t.last > 0) {
+    const float bottom = slider.at.y + slider.h;
+    for (int f : t.reference->cycle_starts) {
       const float x = track.x(f);
       dl->AddLine(ImVec2(x, bottom - 6.0f), ImVec2(x, bottom - 1.0f), ImGui::GetColorU32(ImGuiCol_TextDisabled), 1.5f);
     }
   }
   // A diamond at each key, along the top edge: brighter under the mouse and at the playhead.
-  if (keys_fit(keys, takes)) {
+  const WeightKeys& keys = state.document.controls.keys;
+  if (keys_fit(keys, t.takes)) {
     const KeyTime at = key_time(state);
     const int on_key = key_near(keys, at.seconds, at.tolerance_s);
+    const float mark_y = slider.mark_y;
     for (int i = 0; i < static_cast<int>(keys.size()); ++i) {
-      const float x = track.x(keys[static_cast<size_t>(i)].seconds * fps);
-      const float h = i == hovered ? kMarkHalf + 1.5f : kMarkHalf;
+      const float x = track.x(keys[static_cast<size_t>(i)].seconds * t.fps);
+      const float h = i == hovered_key ? kMarkHalf + 1.5f : kMarkHalf;
       const ImVec2 corners[4] = {{x, mark_y - h}, {x + h, mark_y}, {x, mark_y + h}, {x - h, mark_y}};
       dl->AddConvexPolyFilled(corners, 4, ImGui::GetColorU32(kKeyColor));
-      const bool lit = i == hovered || i == on_key;
+      const bool lit = i == hovered_key || i == on_key;
       dl->AddPolyline(corners, 4, lit ? IM_COL32(255, 255, 255, 235) : IM_COL32(20, 20, 20, 220), ImDrawFlags_Closed,
                       lit ? 1.5f : 1.0f);
     }
   }
+}
+
+}  // namespace
+
+void PlaybackPanel::draw(EditorState& state) {
+  const ImGuiIO& io = ImGui::GetIO();
+  hovered_span_ = -1;
+  if (!begin_window()) return;
+  // The list of keys, reachable from here without knowing its key.
+  if (ImGui::Button("Keys")) command_toggle_keys(state);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Every key and mouse gesture, Frame all and Reset layout (F1 or ?)");
+  ImGui::SameLine();
+  const Take* reference = state.reference_take();
+  if (reference == nullptr) {
+    ImGui::TextColored(kDimColor, "No take loaded.");
+    ImGui::End();
+    return;
+  }
+  Timeline t;
+  t.reference = reference;
+  t.fps = reference->rate();
+  t.length_s = take_length_s(*reference);
+  t.last = std::max(reference->frames() - 1, 0);
+  t.takes = static_cast<int>(state.document.files.size());  // the takes mixed: two for a pair
+  int frame = frame_at(*reference, state.playback.time_s);
+  WeightKeys& keys = state.document.controls.keys;
+  const bool keyed = keys_fit(keys, t.takes);
+
+  const bool keyboard = !io.WantTextInput && !io.WantCaptureKeyboard;
+  if (keyboard) handle_keys(state, t, &frame);
+  draw_transport(state, t, frame);
+
+  // The frame slider with its marks. The keys' marks are items submitted before the slider, so
+  // that a press on a mark is the mark's (ImGui gives the mouse to the item submitted first); they
+  // are drawn after it, over its frame.
+  SliderPlace slider;
+  slider.at = ImGui::GetCursorScreenPos();
+  slider.w = ImGui::GetContentRegionAvail().x;
+  slider.h = ImGui::GetFrameHeight();
+  slider.track = track_of(slider.at.x, slider.w, t.last);
+  slider.mark_y = slider.at.y + kMarkHalf + 1.0f;
+  int hovered = -1, removed = -1;
+  if (keyed) hovered = key_mark_items(state, t, slider, &mark_dragged_, &removed);
+  if (keyboard && keyed && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Delete), false)) {
+    const KeyTime at = key_time(state);
+    removed = hovered >= 0 ? hovered : key_near(keys, at.seconds, at.tolerance_s);
+  }
+  if (removed >= 0) {
+    remove_key(state, t.takes, removed);
+    hovered = -1;
+  }
+  const int span = draw_frame_slider(state, t, slider, frame, hovered);
+  hovered_span_ = span;
+  draw_slider_marks(state, t, slider, span, hovered);
   ImGui::End();
 }
 
