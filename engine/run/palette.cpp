@@ -381,38 +381,60 @@ void mix_root(const PreparedTakes& p, const MixParams& params, const PlayedStret
   s.contacts_u = (s.contacts_u.array() > 0.5).cast<double>();
 }
 
-// The clean-up (finish_motion) with the reference's rig, the foot lock held to the takes' fastest
-// joint and planted feet (out.foot_sliding_inputs), and with a lock their planted drift
-// (s.drift); then, where a loop cut the output, the sources of the loop's frames.
-void finish_mix(const PreparedTakes& p, const MixParams& params, const PlayedStretch& st, const FinishOptions& finish,
-                MixScratch& s, MixResult& out) {
-  const int n = p.size();
-  const bool keyed = !params.keys.empty();
+// The rig the clean-up measures the output with: the reference's, the foot lock held to the
+// takes' fastest joint and planted feet (MixResult::foot_sliding_inputs).
+FinishRig mix_rig(const PreparedTakes& p, double fastest, double planted_speed) {
   FinishRig rig;
   rig.parents = &p.parents;
   rig.lengths = &p.lengths;
   rig.feet = &p.feet;
   rig.short_bone_fraction = kShortBoneFraction;
-  rig.lock_limits.fastest_joint = st.fastest;
+  rig.lock_limits.fastest_joint = fastest;
+  rig.lock_limits.planted_speed = planted_speed;
+  return rig;
+}
+
+// The clean-up's first part (finish_preview): the output in the world, its limb lengths; where a
+// loop cut the output, the sources of the loop's frames (the frames before the cut kept in
+// s.sources_uncut for the planted drift). Leaves s.pending for finish_rest_of_mix.
+void preview_finish(const PreparedTakes& p, const MixParams& params, const PlayedStretch& st,
+                    const FinishOptions& finish, MixScratch& s, MixResult& out) {
+  const bool keyed = !params.keys.empty();
   out.foot_sliding_inputs = inputs_planted_speed(p, s.overall, keyed ? &s.frame_w : nullptr, params.feet_of_reference);
-  rig.lock_limits.planted_speed = out.foot_sliding_inputs;
+  const FinishRig rig = mix_rig(p, st.fastest, out.foot_sliding_inputs);
+  finish_preview(s.sampler, s.ground_u, s.heading_u, s.contacts_u, rig, finish, out.local, s.u_stretch, s.finish,
+                 out.motion);
+  if (finish.loop || finish.closed) {  // the loop's frames only
+    s.sources_uncut = out.sources;
+    s.sampler.set(s.u_stretch, st.length());
+    write_sources(p, s.sampler, st.first, out.sources);
+  }
+  s.pending.waiting = true;
+  s.pending.options = finish;
+  s.pending.fastest = st.fastest;
+}
+
+// The rest of the clean-up (finish_rest) after preview_finish: with a foot lock the takes'
+// planted drift (s.drift), then the speed limit, the lock and the measures.
+void finish_rest_of_mix(const PreparedTakes& p, const MixParams& params, MixScratch& s, MixResult& out) {
+  const int n = p.size();
+  const bool keyed = !params.keys.empty();
+  const FinishOptions& finish = s.pending.options;
+  const FinishRig rig = mix_rig(p, s.pending.fastest, out.foot_sliding_inputs);
+  const Eigen::MatrixXd& sources = finish.loop || finish.closed ? s.sources_uncut : out.sources;
   const Eigen::MatrixXd* drift = nullptr;
   if (finish.foot_lock) {
     if (params.feet_of_reference) {  // the reference's own planted moves alone
       s.drift_w.assign(static_cast<size_t>(n), 0.0);
       s.drift_w.front() = 1.0;
-      planted_drift(p, out.sources, s.drift_w, nullptr, s.drift);
+      planted_drift(p, sources, s.drift_w, nullptr, s.drift);
     } else {
-      planted_drift(p, out.sources, s.overall, keyed ? &s.frame_w : nullptr, s.drift);
+      planted_drift(p, sources, s.overall, keyed ? &s.frame_w : nullptr, s.drift);
     }
     drift = &s.drift;
   }
-  finish_motion(s.sampler, s.ground_u, s.heading_u, s.contacts_u, rig, finish, out.local, s.u_stretch, s.finish,
-                out.motion, drift);
-  if (finish.loop || finish.closed) {  // the loop's frames only
-    s.sampler.set(s.u_stretch, st.length());
-    write_sources(p, s.sampler, st.first, out.sources);
-  }
+  finish_rest(rig, finish, s.finish, out.motion, drift);
+  s.pending.waiting = false;
 }
 
 }  // namespace
@@ -420,6 +442,7 @@ void finish_mix(const PreparedTakes& p, const MixParams& params, const PlayedStr
 void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& params, MixScratch& s,
                  MixResult& out, StageTimes* times) {
   check_mix(p, d, params);
+  s.pending.waiting = false;
   const auto t0 = Clock::now();
   const bool per_component = mix_overall_weights(params, p.size(), s);
   const PlayedStretch st = played_stretch(p, params, per_component, s.timing);
@@ -434,9 +457,18 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
 
   const auto t1 = Clock::now();
   mix_root(p, params, st, s);
-  finish_mix(p, params, st, finish, s, out);
+  preview_finish(p, params, st, finish, s, out);
   out.sample = s.u_stretch.array() + double(st.first);
+  if (!params.preview) finish_rest_of_mix(p, params, s, out);
   if (times != nullptr) times->postprocess_ms = ms_since(t1);
+}
+
+void finish_mix_palette(const PreparedTakes& p, const MixParams& params, MixScratch& s, MixResult& out,
+                        StageTimes* times) {
+  if (!s.pending.waiting) return;
+  const auto t0 = Clock::now();
+  finish_rest_of_mix(p, params, s, out);
+  if (times != nullptr) times->postprocess_ms += ms_since(t0);
 }
 
 Eigen::MatrixXd part_weights(const std::vector<std::pair<BodyPart, std::vector<double>>>& given,
