@@ -722,18 +722,24 @@ void move_leg(Eigen::MatrixXd& world, const LegColumns& leg, const FootRig& rig,
 // The lock keeps heights, so the same steps stay planted; it must not move the leg's planted
 // joints more in all than they moved (where the leg could not reach its targets, say): then the
 // leg is put back as it was (s.before: its knee, ankle and toe). O(F).
+// before_moves: what the planted joints moved before the lock, as this sums it; NaN: not known
+// yet (set here: every try of one apply_foot_lock starts from the same motion).
 void keep_if_slower(Eigen::MatrixXd& world, const LockedLeg& leg, const std::array<int, kFootJoints>& columns,
-                    const FootLockScratch& s) {
+                    FootLockScratch& s, double& before_moves) {
+  const bool known = !std::isnan(before_moves);
   double before = 0.0, after = 0.0;
   for (int k = 0; k < 2; ++k) {
     const int j = leg.joints[k], c = columns[static_cast<size_t>(j)], b = 1 + k;  // b: its columns in s.before
     if (c < 0) continue;
     for (Eigen::Index t = 0; t + 1 < world.rows(); ++t) {
       if (s.planted(t, j) <= 0.5 || s.planted(t + 1, j) <= 0.5) continue;
-      before += std::hypot(s.before(t + 1, 3 * b) - s.before(t, 3 * b), s.before(t + 1, 3 * b + 2) - s.before(t, 3 * b + 2));
+      if (!known)
+        before += std::hypot(s.before(t + 1, 3 * b) - s.before(t, 3 * b), s.before(t + 1, 3 * b + 2) - s.before(t, 3 * b + 2));
       after += std::hypot(world(t + 1, 3 * c) - world(t, 3 * c), world(t + 1, 3 * c + 2) - world(t, 3 * c + 2));
     }
   }
+  if (known) before = before_moves;
+  else before_moves = before;
   if (after > before)
     for (int b = 0; b < 3; ++b) {
       const int c = b == 0 ? leg.columns.knee : b == 1 ? leg.columns.ankle : leg.columns.toe;
@@ -761,7 +767,24 @@ void lock_legs(Eigen::MatrixXd& world, const FootRig& rig, const std::array<doub
     if (max_speed > 0.0) fit_to_swings(world, leg, ramp, max_speed / rig.fps, scratch);
     ease_between_runs(frames, ramp, scratch);
     move_leg(world, leg.columns, rig, scratch);
-    keep_if_slower(world, leg, columns, scratch);
+    keep_if_slower(world, leg, columns, scratch, scratch.before_moves[static_cast<size_t>(side)]);
+  }
+}
+
+// The columns the lock moves (each usable leg's knee, ankle and toe: lock_legs changes no other)
+// copied from world into `kept` (F x 18, three per joint), or back when `restore`: the lock's
+// tries start from the motion as it was and keep the best, copying these alone.
+void copy_leg_columns(Eigen::MatrixXd& world, const FootRig& rig, Eigen::MatrixXd& kept, bool restore) {
+  if (!restore) kept.resize(world.rows(), 18);
+  for (int side = 0; side < 2; ++side) {
+    const LegColumns& leg = rig.legs[static_cast<size_t>(side)];
+    if (!leg.usable()) continue;
+    for (int b = 0; b < 3; ++b) {
+      const int c = b == 0 ? leg.knee : b == 1 ? leg.ankle : leg.toe;
+      if (c < 0) continue;
+      if (restore) world.middleCols(3 * c, 3) = kept.middleCols(9 * side + 3 * b, 3);
+      else kept.middleCols(9 * side + 3 * b, 3) = world.middleCols(3 * c, 3);
+    }
   }
 }
 
@@ -778,6 +801,7 @@ void apply_foot_lock(Eigen::MatrixXd& world, const FootRig& rig, FootLockScratch
   scratch.before.resize(frames, 9);
   std::array<double, kFootJoints> floors;
   planted_frames(world, rig, scratch.planted, scratch.heights, &floors);
+  scratch.before_moves.fill(std::numeric_limits<double>::quiet_NaN());
   if (drift == nullptr || !(limits.planted_speed > 0.0)) {
     lock_legs(world, rig, floors, drift, 1.0, limits.fastest_joint, scratch);
     return;
@@ -788,28 +812,28 @@ void apply_foot_lock(Eigen::MatrixXd& world, const FootRig& rig, FootLockScratch
   // measure need not be straight in the share, a few tries) that keeps the measure under it: the
   // least pinning that holds the limit. The heights stay, so one planted mask serves every try.
   const double limit = limits.planted_speed;
-  scratch.original = world;
+  copy_leg_columns(world, rig, scratch.original, false);
   lock_legs(world, rig, floors, drift, 1.0, limits.fastest_joint, scratch);
   double high = 1.0, at_high = planted_speed(world, scratch.planted, rig).speed;
   if (at_high <= limit) return;
-  world = scratch.original;
+  copy_leg_columns(world, rig, scratch.original, true);
   lock_legs(world, rig, floors, drift, 0.0, limits.fastest_joint, scratch);
   double low = 0.0, at_low = planted_speed(world, scratch.planted, rig).speed;
   if (at_low >= limit) return;
-  scratch.best = world;  // the motion at `low`, under the limit
+  copy_leg_columns(world, rig, scratch.best, false);  // the motion at `low`, under the limit
   // Distances from the limit, the one kept twice in a row halved (Illinois).
   double below = limit - at_low, above = at_high - limit;
   int kept = 0;  // > 0: low kept that many rounds in a row, < 0: high
   for (int round = 0; round < kShareRounds && at_low < kShareClose * limit; ++round) {
     const double share = low + below / (below + above) * (high - low);
-    world = scratch.original;
+    copy_leg_columns(world, rig, scratch.original, true);
     lock_legs(world, rig, floors, drift, share, limits.fastest_joint, scratch);
     const double at = planted_speed(world, scratch.planted, rig).speed;
     if (at <= limit) {
       low = share;
       at_low = at;
       below = limit - at;
-      scratch.best = world;
+      copy_leg_columns(world, rig, scratch.best, false);
       kept = kept < 0 ? kept - 1 : -1;
       if (kept <= -2) above *= 0.5;
     } else {
@@ -819,7 +843,7 @@ void apply_foot_lock(Eigen::MatrixXd& world, const FootRig& rig, FootLockScratch
       if (kept >= 2) below *= 0.5;
     }
   }
-  world = scratch.best;
+  copy_leg_columns(world, rig, scratch.best, true);
 }
 
 }  // namespace mostyle

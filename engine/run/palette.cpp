@@ -67,11 +67,20 @@ void planted_drift(const PreparedTakes& p, const Eigen::MatrixXd& sources, const
   for (int i = 0; i < p.size(); ++i) {
     const Eigen::MatrixXd& travel = p.takes[static_cast<size_t>(i)].foot_travel;
     const Eigen::Index rows = travel.rows();
+    if (frame_w == nullptr && weights[static_cast<size_t>(i)] == 0.0) continue;
+    // Frame k + 1's travel read once, as frame k's on the next step.
+    double at[2 * kFootJoints], next[2 * kFootJoints];
+    const auto read = [&](Eigen::Index k, double* values) {
+      const RowAt r(sources(k, i), rows);
+      for (Eigen::Index c = 0; c < 2 * kFootJoints; ++c) values[c] = r.of(travel, c);
+    };
+    if (frames > 0) read(0, at);
     for (Eigen::Index k = 0; k + 1 < frames; ++k) {
+      read(k + 1, next);
       const double w = frame_w != nullptr ? (*frame_w)(k, i) : weights[static_cast<size_t>(i)];
-      if (w == 0.0) continue;
-      const RowAt a(sources(k, i), rows), b(sources(k + 1, i), rows);
-      for (Eigen::Index c = 0; c < 2 * kFootJoints; ++c) out(k, c) += w * (b.of(travel, c) - a.of(travel, c));
+      if (w != 0.0)
+        for (Eigen::Index c = 0; c < 2 * kFootJoints; ++c) out(k, c) += w * (next[c] - at[c]);
+      std::copy(next, next + 2 * kFootJoints, at);
     }
   }
 }
