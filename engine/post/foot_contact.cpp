@@ -54,11 +54,13 @@ constexpr double kShareClose = 0.97;
 // A planted joint at the top of the planted band still has this weight in the foot's step.
 constexpr double kMinAnchorWeight = 0.1;
 
-Eigen::Vector3d joint_at(const Eigen::MatrixXd& m, Eigen::Index row, int column) {
+template <typename Matrix>
+Eigen::Vector3d joint_at(const Matrix& m, Eigen::Index row, int column) {
   return Eigen::Vector3d(m(row, 3 * column), m(row, 3 * column + 1), m(row, 3 * column + 2));
 }
 
-void set_joint(Eigen::MatrixXd& m, Eigen::Index row, int column, const Eigen::Vector3d& v) {
+template <typename Matrix>
+void set_joint(Matrix& m, Eigen::Index row, int column, const Eigen::Vector3d& v) {
   m(row, 3 * column) = v.x();
   m(row, 3 * column + 1) = v.y();
   m(row, 3 * column + 2) = v.z();
@@ -603,7 +605,8 @@ void ease_between_runs(Eigen::Index frames, int ramp, FootLockScratch& s) {
 // bend it had on the frame before (as locked) holds it, the more the straighter the knee. Both
 // fade as the ankle moves less (`moved`): a lock that does not move the ankle leaves the leg as
 // it was. O(1).
-Eigen::Vector3d knee_pole(const Eigen::MatrixXd& world, const LegColumns& leg,
+template <typename Matrix>
+Eigen::Vector3d knee_pole(const Matrix& world, const LegColumns& leg,
                           const std::array<LegColumns, 2>& rig_legs, Eigen::Index t, double moved, double leg_length) {
   const Eigen::Vector3d hip = joint_at(world, t, leg.hip), ankle = joint_at(world, t, leg.ankle);
   const Eigen::Vector3d leg_line = ankle - hip;
@@ -650,7 +653,10 @@ Eigen::Vector3d knee_pole(const Eigen::MatrixXd& world, const LegColumns& leg,
 // (all at once, a leg bending from straight in a few frames would free a whole stance's pinning
 // in a jump), and what follows a run eases from where the foot was, not from where the leg could
 // not reach. O(F).
-void move_leg(Eigen::MatrixXd& world, const LegColumns& leg, const FootRig& rig, FootLockScratch& s) {
+// rig_legs: the legs' columns in world (their hips read for the way the body faces).
+template <typename Matrix>
+void move_leg(Matrix& world, const LegColumns& leg, const std::array<LegColumns, 2>& rig_legs, const FootRig& rig,
+              FootLockScratch& s) {
   const Eigen::Index frames = world.rows();
   // The knee's bend direction where the leg is straight: the last frame's, within a second,
   // where it was not (none: two_bone_ik picks one).
@@ -708,7 +714,7 @@ void move_leg(Eigen::MatrixXd& world, const LegColumns& leg, const FootRig& rig,
     const Eigen::Quaterniond turn = (ankle - hip).norm() > 0 && (target - hip).norm() > 0
                                         ? Eigen::Quaterniond::FromTwoVectors(ankle - hip, target - hip)
                                         : Eigen::Quaterniond::Identity();
-    const Eigen::Vector3d pole = turn * knee_pole(world, leg, rig.legs, t, offset.norm(), rig.leg_length);
+    const Eigen::Vector3d pole = turn * knee_pole(world, leg, rig_legs, t, offset.norm(), rig.leg_length);
     const bool straight = !(pole.norm() > kStraightLeg * rig.leg_length);
     const Eigen::Vector3d before = straight ? Eigen::Vector3d(turn * last_bend(t)) : Eigen::Vector3d::Zero();
     Eigen::Vector3d new_knee, new_ankle;
@@ -717,6 +723,27 @@ void move_leg(Eigen::MatrixXd& world, const LegColumns& leg, const FootRig& rig,
     set_joint(world, t, leg.ankle, new_ankle);
     if (leg.toe >= 0) set_joint(world, t, leg.toe, joint_at(world, t, leg.toe) + (new_ankle - ankle));
   }
+}
+
+// move_leg on a copy of the joints it reads, one frame's values side by side (both hips, the
+// knee, ankle and toe: in world they lie a column apart, a dozen memory streams at once), the
+// knee, ankle and toe written back after: the same arithmetic on the same values. O(F).
+void move_leg_rows(Eigen::MatrixXd& world, const LegColumns& leg, const FootRig& rig, FootLockScratch& s) {
+  const int from[5] = {rig.legs[0].hip, rig.legs[1].hip, leg.knee, leg.ankle, leg.toe};
+  s.leg_rows.resize(world.rows(), 15);
+  for (int k = 0; k < 5; ++k)
+    if (from[k] >= 0) s.leg_rows.middleCols(3 * k, 3) = world.middleCols(3 * from[k], 3);
+  LegColumns rows_leg;
+  rows_leg.hip = leg.hip == rig.legs[0].hip ? 0 : 1;
+  rows_leg.knee = 2;
+  rows_leg.ankle = 3;
+  rows_leg.toe = leg.toe >= 0 ? 4 : -1;
+  std::array<LegColumns, 2> rows_legs;
+  rows_legs[0].hip = rig.legs[0].hip >= 0 ? 0 : -1;
+  rows_legs[1].hip = rig.legs[1].hip >= 0 ? 1 : -1;
+  move_leg(s.leg_rows, rows_leg, rows_legs, rig, s);
+  for (int k = 2; k < 5; ++k)
+    if (from[k] >= 0) world.middleCols(3 * from[k], 3) = s.leg_rows.middleCols(3 * k, 3);
 }
 
 // The lock keeps heights, so the same steps stay planted; it must not move the leg's planted
@@ -766,7 +793,7 @@ void lock_legs(Eigen::MatrixXd& world, const FootRig& rig, const std::array<doub
     run_offsets(world, leg, columns, floors, kPlantedHeightFraction * rig.body_height, drift, share, scratch);
     if (max_speed > 0.0) fit_to_swings(world, leg, ramp, max_speed / rig.fps, scratch);
     ease_between_runs(frames, ramp, scratch);
-    move_leg(world, leg.columns, rig, scratch);
+    move_leg_rows(world, leg.columns, rig, scratch);
     keep_if_slower(world, leg, columns, scratch, scratch.before_moves[static_cast<size_t>(side)]);
   }
 }

@@ -82,6 +82,8 @@ struct FootLockScratch {
   // F x 18: the legs' knees, ankles and toes as they were, and in the best try, where the lock
   // tries again.
   Eigen::MatrixXd original, best;
+  // F x 15, a frame a row: both hips and one leg's knee, ankle and toe, as the lock moves the leg.
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> leg_rows;
   std::array<double, 2> before_moves{};  // per leg: its planted joints' moves before the lock
 };
 
