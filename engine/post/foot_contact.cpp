@@ -761,8 +761,8 @@ void keep_if_slower(Eigen::MatrixXd& world, const LockedLeg& leg, const std::arr
     for (Eigen::Index t = 0; t + 1 < world.rows(); ++t) {
       if (s.planted(t, j) <= 0.5 || s.planted(t + 1, j) <= 0.5) continue;
       if (!known)
-        before += std::hypot(s.before(t + 1, 3 * b) - s.before(t, 3 * b), s.before(t + 1, 3 * b + 2) - s.before(t, 3 * b + 2));
-      after += std::hypot(world(t + 1, 3 * c) - world(t, 3 * c), world(t + 1, 3 * c + 2) - world(t, 3 * c + 2));
+        before += horizontal_step(s.before(t + 1, 3 * b) - s.before(t, 3 * b), s.before(t + 1, 3 * b + 2) - s.before(t, 3 * b + 2));
+      after += horizontal_step(world(t + 1, 3 * c) - world(t, 3 * c), world(t + 1, 3 * c + 2) - world(t, 3 * c + 2));
     }
   }
   if (known) before = before_moves;
