@@ -241,9 +241,8 @@ bool scale_moves(const KeyTrack& track, const SceneNode& node) {
   return false;
 }
 
-}  // namespace
-
-SceneSkeleton scene_skeleton(const AnimatedScene& scene, int take) {
+// Each node's depth below the scene's top. Throws InputError on a node before its parent.
+std::vector<int> node_depths(const AnimatedScene& scene) {
   const int n = static_cast<int>(scene.nodes.size());
   std::vector<int> depth(n, 0);
   for (int i = 0; i < n; ++i) {
@@ -251,9 +250,14 @@ SceneSkeleton scene_skeleton(const AnimatedScene& scene, int take) {
       throw InputError(scene.source + ": node '" + scene.nodes[i].name + "' comes before its parent");
     depth[i] = scene.nodes[i].parent < 0 ? 0 : depth[scene.nodes[i].parent] + 1;
   }
-  // Members: the skins' joints; else every node any take keys.
+  return depth;
+}
+
+// The skeleton's members: the skins' joints (skeleton.from_skins set); else every node any take
+// keys. Throws InputError on a track whose node the file lacks, or no member.
+std::vector<char> skeleton_members(const AnimatedScene& scene, SceneSkeleton& skeleton) {
+  const int n = static_cast<int>(scene.nodes.size());
   std::vector<char> member(n, 0);
-  SceneSkeleton skeleton;
   for (int node : scene.skin_joints) {
     if (node < 0 || node >= n) continue;
     member[node] = 1;
@@ -269,59 +273,70 @@ SceneSkeleton scene_skeleton(const AnimatedScene& scene, int take) {
       }
     }
   }
-  // The root: the members' lowest common ancestor; -1 when they have none but the scene root
-  // that holds everything (assimp's), which is no skeleton's root unless it is a member.
-  const auto common_root = [&](const std::vector<char>& in) {
-    int root = -1;
-    for (int i = 0; i < n; ++i) {
-      if (!in[i]) continue;
-      if (root < 0) {
-        root = i;
-        continue;
-      }
-      int a = root, b = i;
-      while (a != b && a >= 0 && b >= 0) {
-        if (depth[a] >= depth[b]) a = scene.nodes[a].parent;
-        else b = scene.nodes[b].parent;
-      }
-      if (a != b) return -1;
-      root = a;
-    }
-    return root == scene.scene_root && root >= 0 && !in[root] ? -1 : root;
-  };
   if (std::none_of(member.begin(), member.end(), [](char m) { return m != 0; }))
     throw InputError(scene.source + ": no animation keys a node: no skeleton moves in it");
-  int root = common_root(member);
-  if (root < 0 && take >= 0 && take < static_cast<int>(scene.takes.size())) {
-    // Several skeletons (characters) in one file: the one whose members the take keys.
-    const auto top_of = [&](int i) {
-      while (scene.nodes[i].parent >= 0 && scene.nodes[i].parent != scene.scene_root) i = scene.nodes[i].parent;
-      return i;
-    };
-    std::vector<int> tops;
-    for (const KeyTrack& track : scene.takes[take].tracks)
-      if (track.node >= 0 && track.node < n && std::find(tops.begin(), tops.end(), top_of(track.node)) == tops.end())
-        tops.push_back(top_of(track.node));
-    if (tops.size() == 1) {
-      for (int i = 0; i < n; ++i)
-        if (member[i] && top_of(i) != tops.front()) member[i] = 0;
-      root = common_root(member);
+  return member;
+}
+
+// The members' lowest common ancestor; -1 when they have none but the scene root that holds
+// everything (assimp's), which is no skeleton's root unless it is a member.
+int common_root(const AnimatedScene& scene, const std::vector<int>& depth, const std::vector<char>& in) {
+  int root = -1;
+  for (int i = 0; i < static_cast<int>(in.size()); ++i) {
+    if (!in[i]) continue;
+    if (root < 0) {
+      root = i;
+      continue;
     }
+    int a = root, b = i;
+    while (a != b && a >= 0 && b >= 0) {
+      if (depth[a] >= depth[b]) a = scene.nodes[a].parent;
+      else b = scene.nodes[b].parent;
+    }
+    if (a != b) return -1;
+    root = a;
   }
+  return root == scene.scene_root && root >= 0 && !in[root] ? -1 : root;
+}
+
+// Several skeletons (characters) in one file: the members kept to the one whose members the
+// take keys, when it keys one only; their root, or -1.
+int keyed_character_root(const AnimatedScene& scene, int take, const std::vector<int>& depth,
+                         std::vector<char>& member) {
+  const int n = static_cast<int>(scene.nodes.size());
+  const auto top_of = [&](int i) {
+    while (scene.nodes[i].parent >= 0 && scene.nodes[i].parent != scene.scene_root) i = scene.nodes[i].parent;
+    return i;
+  };
+  std::vector<int> tops;
+  for (const KeyTrack& track : scene.takes[take].tracks)
+    if (track.node >= 0 && track.node < n && std::find(tops.begin(), tops.end(), top_of(track.node)) == tops.end())
+      tops.push_back(top_of(track.node));
+  if (tops.size() != 1) return -1;
+  for (int i = 0; i < n; ++i)
+    if (member[i] && top_of(i) != tops.front()) member[i] = 0;
+  return common_root(scene, depth, member);
+}
+
+// Throws the InputError that names the several skeletons the members form.
+[[noreturn]] void fail_several_skeletons(const AnimatedScene& scene, int take, const SceneSkeleton& skeleton,
+                                         const std::vector<char>& member) {
   const std::string members = skeleton.from_skins ? "the skins' joints" : "the animations' nodes";
-  if (root < 0) {
-    std::vector<int> tops;
-    for (int i = 0; i < n; ++i) {
-      if (!member[i]) continue;
-      int up = scene.nodes[i].parent;
-      while (up >= 0 && !member[up]) up = scene.nodes[up].parent;
-      if (up < 0) tops.push_back(i);
-    }
-    throw InputError(scene.source + ": " + members + " form several skeletons (rooted at " + node_list(scene, tops) +
-                     ")" + (take >= 0 ? " and animation '" + scene.takes[take].name + "' moves more than one" : "") +
-                     ": keep one per file");
+  std::vector<int> tops;
+  for (int i = 0; i < static_cast<int>(member.size()); ++i) {
+    if (!member[i]) continue;
+    int up = scene.nodes[i].parent;
+    while (up >= 0 && !member[up]) up = scene.nodes[up].parent;
+    if (up < 0) tops.push_back(i);
   }
-  // The members and the nodes between them and the root, depth first.
+  throw InputError(scene.source + ": " + members + " form several skeletons (rooted at " + node_list(scene, tops) +
+                   ")" + (take >= 0 ? " and animation '" + scene.takes[take].name + "' moves more than one" : "") +
+                   ": keep one per file");
+}
+
+// The members and the nodes between them and the root, depth first from the root.
+std::vector<int> skeleton_nodes(const AnimatedScene& scene, const std::vector<char>& member, int root) {
+  const int n = static_cast<int>(scene.nodes.size());
   std::vector<char> in_skeleton(n, 0);
   for (int i = 0; i < n; ++i) {
     if (!member[i]) continue;
@@ -333,13 +348,28 @@ SceneSkeleton scene_skeleton(const AnimatedScene& scene, int take) {
   std::vector<std::vector<int>> children(n);
   for (int i = 0; i < n; ++i)
     if (in_skeleton[i] && i != root) children[scene.nodes[i].parent].push_back(i);
+  std::vector<int> nodes;
   std::vector<int> stack{root};
   while (!stack.empty()) {
     const int node = stack.back();
     stack.pop_back();
-    skeleton.nodes.push_back(node);
+    nodes.push_back(node);
     for (auto it = children[node].rbegin(); it != children[node].rend(); ++it) stack.push_back(*it);
   }
+  return nodes;
+}
+
+}  // namespace
+
+SceneSkeleton scene_skeleton(const AnimatedScene& scene, int take) {
+  const std::vector<int> depth = node_depths(scene);
+  SceneSkeleton skeleton;
+  std::vector<char> member = skeleton_members(scene, skeleton);
+  int root = common_root(scene, depth, member);
+  if (root < 0 && take >= 0 && take < static_cast<int>(scene.takes.size()))
+    root = keyed_character_root(scene, take, depth, member);
+  if (root < 0) fail_several_skeletons(scene, take, skeleton, member);
+  skeleton.nodes = skeleton_nodes(scene, member, root);
   return skeleton;
 }
 
