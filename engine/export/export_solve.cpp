@@ -260,14 +260,11 @@ struct ExportFrameSolver::State {
   std::vector<double> previous_cost;  // joints with several children
 };
 
-ExportFrameSolver::ExportFrameSolver(const Skeleton& skeleton_in, const std::vector<int>& joints,
-                                     const std::string& source)
-    : state_(std::make_unique<State>()) {
-  State& s = *state_;
-  s.skeleton = skeleton_in;
-  const Skeleton& skeleton = s.skeleton;
+namespace {
+
+// Throws InputError on a joint to place that the skeleton lacks, an End Site, or one listed twice.
+void check_export_joints(const Skeleton& skeleton, const std::vector<int>& joints, const std::string& source) {
   const int n = static_cast<int>(skeleton.joints.size());
-  const int m = static_cast<int>(joints.size());
   std::vector<char> seen(static_cast<size_t>(n), 0);
   for (int j : joints) {
     if (j < 0 || j >= n || skeleton.joints[j].end_site)
@@ -276,9 +273,13 @@ ExportFrameSolver::ExportFrameSolver(const Skeleton& skeleton_in, const std::vec
     if (seen[j]) throw InputError("export: joint '" + skeleton.joints[j].name + "' is listed twice");
     seen[j] = 1;
   }
-  std::vector<JointPlan>& plan = s.plan;
-  plan.resize(static_cast<size_t>(n));
-  for (int c = 0; c < m; ++c) plan[joints[c]].column = c;
+}
+
+// Each joint's column and rotation channels (aims left for plan_aims).
+std::vector<JointPlan> rotation_plan(const Skeleton& skeleton, const std::vector<int>& joints) {
+  const int n = static_cast<int>(skeleton.joints.size());
+  std::vector<JointPlan> plan(static_cast<size_t>(n));
+  for (int c = 0; c < static_cast<int>(joints.size()); ++c) plan[joints[c]].column = c;
   for (int j = 0; j < n; ++j) {
     const Joint& joint = skeleton.joints[j];
     JointPlan& p = plan[j];
@@ -288,27 +289,48 @@ ExportFrameSolver::ExportFrameSolver(const Skeleton& skeleton_in, const std::vec
     for (size_t c = 0; c < joint.channels.size(); ++c)
       if (is_rotation(joint.channels[c])) p.rotation_channels[k++] = joint.first_channel + static_cast<int>(c);
   }
-  // Each column's nearest column ancestor, and the joints from there down to it.
-  std::vector<std::vector<int>>& chain = s.chain;
-  chain.resize(static_cast<size_t>(m));
-  std::vector<int> parent_column(static_cast<size_t>(m), -1);
-  std::vector<std::vector<int>> child_columns(static_cast<size_t>(n));
-  std::vector<int> chains_through(static_cast<size_t>(n), 0);
+  return plan;
+}
+
+// How the columns hang together: each column's nearest column ancestor and the joints from there
+// down to it, each joint's child columns, and how many of those ways pass through each joint.
+struct ColumnTree {
+  std::vector<std::vector<int>> chain;         // per column
+  std::vector<int> parent_column;              // per column, -1 for none
+  std::vector<std::vector<int>> child_columns; // per joint
+  std::vector<int> chains_through;             // per joint
+};
+
+ColumnTree column_tree(const Skeleton& skeleton, const std::vector<int>& joints, const std::vector<JointPlan>& plan) {
+  const int n = static_cast<int>(skeleton.joints.size());
+  const int m = static_cast<int>(joints.size());
+  ColumnTree tree;
+  tree.chain.resize(static_cast<size_t>(m));
+  tree.parent_column.assign(static_cast<size_t>(m), -1);
+  tree.child_columns.resize(static_cast<size_t>(n));
+  tree.chains_through.assign(static_cast<size_t>(n), 0);
   for (int c = 0; c < m; ++c) {
     std::vector<int> path{joints[c]};
     for (int a = skeleton.joints[joints[c]].parent; a >= 0; a = skeleton.joints[a].parent) {
       if (plan[a].column >= 0) {
-        parent_column[c] = plan[a].column;
-        child_columns[a].push_back(c);
+        tree.parent_column[c] = plan[a].column;
+        tree.child_columns[a].push_back(c);
         break;
       }
       path.push_back(a);
     }
-    chain[c].assign(path.rbegin(), path.rend());
-    for (size_t i = 0; i + 1 < chain[c].size(); ++i) ++chains_through[chain[c][i]];
+    tree.chain[c].assign(path.rbegin(), path.rend());
+    for (size_t i = 0; i + 1 < tree.chain[c].size(); ++i) ++tree.chains_through[tree.chain[c][i]];
   }
-  for (int j = 0; j < n; ++j) {
-    const std::vector<int>& kids = child_columns[j];
+  return tree;
+}
+
+// What each joint aims at: its one child column, or with several, a link to each (through a
+// pivot where one below it turns on its own).
+void plan_aims(const ColumnTree& tree, std::vector<JointPlan>& plan) {
+  const std::vector<std::vector<int>>& chain = tree.chain;
+  for (size_t j = 0; j < plan.size(); ++j) {
+    const std::vector<int>& kids = tree.child_columns[j];
     if (kids.size() == 1) {
       plan[j].aim_column = kids[0];
       plan[j].aim_chain = chain[kids[0]];
@@ -323,7 +345,7 @@ ExportFrameSolver::ExportFrameSolver(const Skeleton& skeleton_in, const std::vec
       link.to_child = chain[c];
       for (size_t i = 0; i + 1 < chain[c].size(); ++i) {
         const int k = chain[c][i];
-        if (!plan[k].rotates || chains_through[k] != 1) continue;
+        if (!plan[k].rotates || tree.chains_through[k] != 1) continue;
         link.pivot = k;
         link.to_pivot.assign(chain[c].begin(), chain[c].begin() + i + 1);
         link.to_child.assign(chain[c].begin() + i + 1, chain[c].end());
@@ -334,22 +356,44 @@ ExportFrameSolver::ExportFrameSolver(const Skeleton& skeleton_in, const std::vec
       plan[j].children.push_back(link);
     }
   }
-  // The topmost column (the hips) and the joint that carries the trajectory: the nearest joint
-  // at or above it with position channels (Bandai: Hips itself, not the still ROOT above it).
-  int& top = s.top;
-  for (int c = 0; c < m; ++c)
-    if (parent_column[c] < 0 && (top < 0 || joints[c] < joints[top])) top = c;
-  int& carrier = s.carrier;
-  std::vector<int>& carrier_chain = s.carrier_chain;
-  for (int a = top >= 0 ? joints[top] : -1; a >= 0; a = skeleton.joints[a].parent) {
+}
+
+// The joint that carries the trajectory: the nearest at or above `from` (the topmost column's
+// joint, or -1) with position channels (Bandai: Hips itself, not the still ROOT above it), or -1;
+// below_carrier: the joints below it down to `from`, top down.
+int trajectory_carrier(const Skeleton& skeleton, int from, std::vector<int>& below_carrier) {
+  int carrier = -1;
+  for (int a = from; a >= 0; a = skeleton.joints[a].parent) {
     const auto& channels = skeleton.joints[a].channels;
     if (std::any_of(channels.begin(), channels.end(), is_position)) {
       carrier = a;
       break;
     }
-    carrier_chain.push_back(a);
+    below_carrier.push_back(a);
   }
-  std::reverse(carrier_chain.begin(), carrier_chain.end());
+  std::reverse(below_carrier.begin(), below_carrier.end());
+  return carrier;
+}
+
+}  // namespace
+
+ExportFrameSolver::ExportFrameSolver(const Skeleton& skeleton_in, const std::vector<int>& joints,
+                                     const std::string& source)
+    : state_(std::make_unique<State>()) {
+  State& s = *state_;
+  s.skeleton = skeleton_in;
+  const Skeleton& skeleton = s.skeleton;
+  const int n = static_cast<int>(skeleton.joints.size());
+  const int m = static_cast<int>(joints.size());
+  check_export_joints(skeleton, joints, source);
+  s.plan = rotation_plan(skeleton, joints);
+  ColumnTree tree = column_tree(skeleton, joints, s.plan);
+  plan_aims(tree, s.plan);
+  s.chain = std::move(tree.chain);
+  // The topmost column (the hips).
+  for (int c = 0; c < m; ++c)
+    if (tree.parent_column[c] < 0 && (s.top < 0 || joints[c] < joints[s.top])) s.top = c;
+  s.carrier = trajectory_carrier(skeleton, s.top >= 0 ? joints[s.top] : -1, s.carrier_chain);
   const double size = skeleton_size(skeleton);
   s.min_length = kNoDirection * size;
   s.damping = (kDamping * size) * (kDamping * size);

@@ -456,22 +456,9 @@ class Parser {
     const char* p = text.data() + reader_.position();
     const char* const end = text.data() + text.size();
     long long line = reader_.next_line();
-
-    // Never allocate from the declared count alone: the text bounds how many frames it holds.
-    // Products of counts stay below the text's size: no overflow.
-    const long long affordable =
-        static_cast<long long>(reader_.remaining() / kMinBytesPerValue / channels) + 1;
-    Eigen::Index capacity = static_cast<Eigen::Index>(std::min(declared, affordable));
     const size_t row_bytes = sizeof(double) * static_cast<size_t>(channels);
     const Eigen::Index max_rows = static_cast<Eigen::Index>(options_.max_bytes / row_bytes);
-    if (capacity > max_rows) {
-      const size_t needed = static_cast<size_t>(capacity) * row_bytes;
-      fail(frames_line, "expected frames within the memory limit of " +
-                            describe_bytes(options_.max_bytes) + ", found Frames: " +
-                            std::to_string(declared) + " of " + std::to_string(channels) +
-                            " values each (" + describe_bytes(needed) +
-                            (declared > affordable ? " for the frames this file can hold)" : ")"));
-    }
+    Eigen::Index capacity = frame_capacity(declared, frames_line, channels, max_rows);
     MotionMatrix motion(capacity, channels);
     advise_huge_pages(motion.data(), static_cast<size_t>(capacity) * row_bytes);
     Eigen::Index frames = 0;
@@ -486,55 +473,16 @@ class Parser {
         while (p < end && is_space(*p)) ++p;
         if (p == end || is_eol(*p)) break;
         const char* token = p;
-        if (count == channels) {
-          int extra = 0;
-          while (p < end && !is_eol(*p)) {
-            while (p < end && is_space(*p)) ++p;
-            if (p == end || is_eol(*p)) break;
-            ++extra;
-            while (p < end && !is_separator(*p)) ++p;
-          }
-          fail(line_number, "expected " + std::to_string(channels) + " values in frame " +
-                                std::to_string(frames + 1) + ", found " +
-                                std::to_string(channels + extra));
-        }
+        if (count == channels) fail_extra_values(p, end, line_number, channels, frames);
         double v;
         const char* stop = parse_number(token, end, &v);
         if (stop == nullptr || (stop != end && !is_separator(*stop)) || !std::isfinite(v)) {
-          const char* token_end = token;
-          while (token_end < end && !is_separator(*token_end)) ++token_end;
-          const std::string_view bad(token, token_end - token);
-          if (token_end == end && looks_like_cut_number(bad) &&
-              (stop == nullptr || stop != end)) {
-            // The file ends inside this number ("-1.5e"): a cut last line.
-            cut_token = true;
-            p = token_end;
-            break;
-          }
-          fail(line_number, "expected a finite number for frame " + std::to_string(frames + 1) +
-                                " channel " + std::to_string(count + 1) + " (" +
-                                channel_label(clip->skeleton.joints, count) + "), found " +
-                                shown(bad));
+          p = cut_number_end(clip, token, stop, end, line_number, frames, count);
+          cut_token = true;
+          break;
         }
         if (count == 0) {
-          if (frames == capacity) {
-            // More frames than declared: grow geometrically, within what the rest of the text
-            // can hold and the memory limit.
-            const Eigen::Index left = static_cast<Eigen::Index>(
-                static_cast<size_t>(end - token) / kMinBytesPerValue / channels) + 1;
-            capacity = std::min({std::max<Eigen::Index>(2 * capacity, 64), frames + left, max_rows});
-            if (capacity <= frames) {
-              const size_t needed = static_cast<size_t>(frames + 1) * row_bytes;
-              fail(line_number, "expected frames within the memory limit of " +
-                                    describe_bytes(options_.max_bytes) + ", found frame " +
-                                    std::to_string(frames + 1) + " of " + std::to_string(channels) +
-                                    " values (" + describe_bytes(needed) + ")");
-            }
-            MotionMatrix grown(capacity, channels);
-            advise_huge_pages(grown.data(), static_cast<size_t>(capacity) * row_bytes);
-            grown.topRows(frames) = motion.topRows(frames);
-            motion.swap(grown);
-          }
+          if (frames == capacity) grow_frames(motion, capacity, frames, token, end, line_number, max_rows);
           row = motion.data() + frames * channels;
         }
         row[count++] = v;
@@ -560,6 +508,78 @@ class Parser {
     }
     if (frames != capacity) motion.conservativeResize(frames, channels);
     clip->motion = std::move(motion);
+    warn_missing_frames(channels, declared, frames_line, frames, cut_line, cut_count);
+  }
+
+  // The frames to allocate at first: never from the declared count alone, as the text bounds how
+  // many frames it holds. Fails (on the Frames: line) beyond the memory limit, max_rows rows.
+  Eigen::Index frame_capacity(long long declared, long long frames_line, int channels, Eigen::Index max_rows) const {
+    // Products of counts stay below the text's size: no overflow.
+    const long long affordable =
+        static_cast<long long>(reader_.remaining() / kMinBytesPerValue / channels) + 1;
+    const Eigen::Index capacity = static_cast<Eigen::Index>(std::min(declared, affordable));
+    if (capacity > max_rows) {
+      const size_t needed = static_cast<size_t>(capacity) * sizeof(double) * static_cast<size_t>(channels);
+      fail(frames_line, "expected frames within the memory limit of " +
+                            describe_bytes(options_.max_bytes) + ", found Frames: " +
+                            std::to_string(declared) + " of " + std::to_string(channels) +
+                            " values each (" + describe_bytes(needed) +
+                            (declared > affordable ? " for the frames this file can hold)" : ")"));
+    }
+    return capacity;
+  }
+
+  // More frames than declared: the matrix grown geometrically, within what the rest of the text
+  // (from token) can hold and the memory limit (max_rows), or a failure on the line.
+  void grow_frames(MotionMatrix& motion, Eigen::Index& capacity, Eigen::Index frames, const char* token,
+                   const char* end, long long line_number, Eigen::Index max_rows) const {
+    const Eigen::Index channels = motion.cols();
+    const size_t row_bytes = sizeof(double) * static_cast<size_t>(channels);
+    const Eigen::Index left =
+        static_cast<Eigen::Index>(static_cast<size_t>(end - token) / kMinBytesPerValue / channels) + 1;
+    capacity = std::min({std::max<Eigen::Index>(2 * capacity, 64), frames + left, max_rows});
+    if (capacity <= frames) {
+      const size_t needed = static_cast<size_t>(frames + 1) * row_bytes;
+      fail(line_number, "expected frames within the memory limit of " + describe_bytes(options_.max_bytes) +
+                            ", found frame " + std::to_string(frames + 1) + " of " + std::to_string(channels) +
+                            " values (" + describe_bytes(needed) + ")");
+    }
+    MotionMatrix grown(capacity, channels);
+    advise_huge_pages(grown.data(), static_cast<size_t>(capacity) * row_bytes);
+    grown.topRows(frames) = motion.topRows(frames);
+    motion.swap(grown);
+  }
+
+  // A value beyond the channels at p: fails, counting the line's values.
+  [[noreturn]] void fail_extra_values(const char* p, const char* end, long long line_number, int channels,
+                                      Eigen::Index frames) const {
+    int extra = 0;
+    while (p < end && !is_eol(*p)) {
+      while (p < end && is_space(*p)) ++p;
+      if (p == end || is_eol(*p)) break;
+      ++extra;
+      while (p < end && !is_separator(*p)) ++p;
+    }
+    fail(line_number, "expected " + std::to_string(channels) + " values in frame " + std::to_string(frames + 1) +
+                          ", found " + std::to_string(channels + extra));
+  }
+
+  // A token at `token` that is no finite number (parse_number stopped at stop): where the file
+  // ends inside it ("-1.5e"), a cut last line, whose end is returned; anything else fails.
+  const char* cut_number_end(const Clip* clip, const char* token, const char* stop, const char* end,
+                             long long line_number, Eigen::Index frames, int count) const {
+    const char* token_end = token;
+    while (token_end < end && !is_separator(*token_end)) ++token_end;
+    const std::string_view bad(token, token_end - token);
+    if (token_end == end && looks_like_cut_number(bad) && (stop == nullptr || stop != end)) return token_end;
+    fail(line_number, "expected a finite number for frame " + std::to_string(frames + 1) + " channel " +
+                          std::to_string(count + 1) + " (" + channel_label(clip->skeleton.joints, count) +
+                          "), found " + shown(bad));
+  }
+
+  // Warnings for a cut last line and for a frame count other than the declared one.
+  void warn_missing_frames(int channels, long long declared, long long frames_line, Eigen::Index frames,
+                           long long cut_line, int cut_count) {
     if (cut_line != 0) {
       warn(cut_line, "the last frame line is cut (" + std::to_string(cut_count) + " of " +
                          std::to_string(channels) + " values); loaded the " +

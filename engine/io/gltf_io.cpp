@@ -165,11 +165,9 @@ std::vector<double> read_accessor(const tinygltf::Model& model, int index, int e
   return out;
 }
 
-AnimatedScene scene_from_model(const tinygltf::Model& model, const std::string& source) {
-  AnimatedScene scene;
-  scene.source = source;
+// Each node's parent, checked: glTF nodes form a forest (each node at most one parent).
+std::vector<int> node_parents(const tinygltf::Model& model, const std::string& source) {
   const int n = static_cast<int>(model.nodes.size());
-  // Parents, checked: glTF nodes form a forest (each node at most one parent, no cycles).
   std::vector<int> parent(n, -1);
   for (int i = 0; i < n; ++i) {
     for (int c : model.nodes[i].children) {
@@ -179,8 +177,15 @@ AnimatedScene scene_from_model(const tinygltf::Model& model, const std::string& 
       parent[c] = i;
     }
   }
-  // Parents first: depth-first from the roots; a node never reached sits on a cycle.
-  std::vector<int> new_index(n, -1);
+  return parent;
+}
+
+// The nodes parents first: depth-first from the roots (new_index: each node's place in that
+// order). A node never reached sits on a cycle: InputError.
+std::vector<int> parents_first(const tinygltf::Model& model, const std::vector<int>& parent,
+                               std::vector<int>& new_index, const std::string& source) {
+  const int n = static_cast<int>(model.nodes.size());
+  new_index.assign(n, -1);
   std::vector<int> order;
   for (int r = 0; r < n; ++r) {
     if (parent[r] >= 0) continue;
@@ -195,37 +200,93 @@ AnimatedScene scene_from_model(const tinygltf::Model& model, const std::string& 
     }
   }
   if (static_cast<int>(order.size()) != n) throw InputError(source + ": the node hierarchy has a cycle");
-  for (int i : order) {
-    const tinygltf::Node& gn = model.nodes[i];
-    SceneNode node;
-    node.name = gn.name.empty() ? "node " + std::to_string(i) : gn.name;
-    node.parent = parent[i] < 0 ? -1 : new_index[parent[i]];
-    if (gn.matrix.size() == 16) {
-      Eigen::Matrix4d m;
-      for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r) m(r, c) = gn.matrix[4 * c + r];  // column-major
-      if (!m.allFinite()) throw InputError(source + ": node '" + node.name + "' has a matrix that is not finite");
-      node.translation = m.block<3, 1>(0, 3);
-      Eigen::Matrix3d l = m.block<3, 3>(0, 0);
-      for (int c = 0; c < 3; ++c) {
-        node.scale(c) = l.col(c).norm();
-        if (node.scale(c) > 0) l.col(c) /= node.scale(c);
-      }
-      if (l.determinant() < 0) {  // a mirror: one negative scale
-        node.scale(0) = -node.scale(0);
-        l.col(0) = -l.col(0);
-      }
-      node.rotation = Eigen::Quaterniond(l).normalized();
-    } else {
-      if (gn.translation.size() == 3) node.translation = Eigen::Vector3d(gn.translation[0], gn.translation[1], gn.translation[2]);
-      if (gn.rotation.size() == 4)
-        node.rotation = Eigen::Quaterniond(gn.rotation[3], gn.rotation[0], gn.rotation[1], gn.rotation[2]);
-      if (gn.scale.size() == 3) node.scale = Eigen::Vector3d(gn.scale[0], gn.scale[1], gn.scale[2]);
-      if (!node.translation.allFinite() || !node.rotation.coeffs().allFinite() || !node.scale.allFinite())
-        throw InputError(source + ": node '" + node.name + "' has a transform that is not finite");
-      const double qn = node.rotation.norm();
-      node.rotation = qn > 0 ? Eigen::Quaterniond(node.rotation.coeffs() / qn) : Eigen::Quaterniond::Identity();
+  return order;
+}
+
+// Node i's name and rest transform (from its matrix, a mirror as a negative x scale, or its
+// translation, rotation and scale). Throws InputError on a transform that is not finite.
+SceneNode scene_node(const tinygltf::Node& gn, int i, const std::string& source) {
+  SceneNode node;
+  node.name = gn.name.empty() ? "node " + std::to_string(i) : gn.name;
+  if (gn.matrix.size() == 16) {
+    Eigen::Matrix4d m;
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) m(r, c) = gn.matrix[4 * c + r];  // column-major
+    if (!m.allFinite()) throw InputError(source + ": node '" + node.name + "' has a matrix that is not finite");
+    node.translation = m.block<3, 1>(0, 3);
+    Eigen::Matrix3d l = m.block<3, 3>(0, 0);
+    for (int c = 0; c < 3; ++c) {
+      node.scale(c) = l.col(c).norm();
+      if (node.scale(c) > 0) l.col(c) /= node.scale(c);
     }
+    if (l.determinant() < 0) {  // a mirror: one negative scale
+      node.scale(0) = -node.scale(0);
+      l.col(0) = -l.col(0);
+    }
+    node.rotation = Eigen::Quaterniond(l).normalized();
+  } else {
+    if (gn.translation.size() == 3) node.translation = Eigen::Vector3d(gn.translation[0], gn.translation[1], gn.translation[2]);
+    if (gn.rotation.size() == 4)
+      node.rotation = Eigen::Quaterniond(gn.rotation[3], gn.rotation[0], gn.rotation[1], gn.rotation[2]);
+    if (gn.scale.size() == 3) node.scale = Eigen::Vector3d(gn.scale[0], gn.scale[1], gn.scale[2]);
+    if (!node.translation.allFinite() || !node.rotation.coeffs().allFinite() || !node.scale.allFinite())
+      throw InputError(source + ": node '" + node.name + "' has a transform that is not finite");
+    const double qn = node.rotation.norm();
+    node.rotation = qn > 0 ? Eigen::Quaterniond(node.rotation.coeffs() / qn) : Eigen::Quaterniond::Identity();
+  }
+  return node;
+}
+
+// Channel ci of animation ga as a key track on the nodes in their new order (into `track`);
+// false for a channel that moves no skeleton (morph weights, an extension's target) or has no
+// keys. Throws InputError on a channel the file cannot back.
+bool read_track(const tinygltf::Model& model, const tinygltf::Animation& ga, size_t ci, const std::vector<int>& new_index,
+                const std::string& where, const std::string& source, KeyTrack& track) {
+  const int n = static_cast<int>(model.nodes.size());
+  const tinygltf::AnimationChannel& ch = ga.channels[ci];
+  TrackTarget target;
+  if (ch.target_path == "translation") target = TrackTarget::kTranslation;
+  else if (ch.target_path == "rotation") target = TrackTarget::kRotation;
+  else if (ch.target_path == "scale") target = TrackTarget::kScale;
+  else return false;  // morph weights: not a skeleton's
+  if (ch.target_node < 0) return false;  // an extension's target (KHR_animation_pointer)
+  const std::string channel = where + ", channel " + std::to_string(ci);
+  if (ch.target_node >= n) throw InputError(source + ": " + channel + " targets a node that is not in the file");
+  if (ch.sampler < 0 || ch.sampler >= static_cast<int>(ga.samplers.size()))
+    throw InputError(source + ": " + channel + " has a sampler that is not in the animation");
+  const tinygltf::AnimationSampler& s = ga.samplers[ch.sampler];
+  track.node = new_index[ch.target_node];
+  track.target = target;
+  if (s.interpolation == "STEP") track.interpolation = KeyInterpolation::kStep;
+  else if (s.interpolation == "CUBICSPLINE") track.interpolation = KeyInterpolation::kCubicSpline;
+  else if (s.interpolation == "LINEAR" || s.interpolation.empty()) track.interpolation = KeyInterpolation::kLinear;
+  else throw InputError(source + ": " + channel + " has interpolation '" + first_line(s.interpolation) +
+                        "', expected LINEAR, STEP or CUBICSPLINE");
+  track.times = read_accessor(model, s.input, TINYGLTF_TYPE_SCALAR, channel + " (key times)", source);
+  const int width = target == TrackTarget::kRotation ? 4 : 3;
+  const std::vector<double> values = read_accessor(
+      model, s.output, width == 4 ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3, channel + " (values)", source);
+  const size_t rows = values.size() / width;
+  const size_t expected = track.interpolation == KeyInterpolation::kCubicSpline ? 3 * track.times.size()
+                                                                                  : track.times.size();
+  if (rows != expected)
+    throw InputError(source + ": " + channel + " has " + std::to_string(rows) + " values for " +
+                     std::to_string(track.times.size()) + " key times");
+  if (track.times.empty()) return false;
+  track.values = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+      values.data(), static_cast<Eigen::Index>(rows), width);
+  return true;
+}
+
+AnimatedScene scene_from_model(const tinygltf::Model& model, const std::string& source) {
+  AnimatedScene scene;
+  scene.source = source;
+  const int n = static_cast<int>(model.nodes.size());
+  const std::vector<int> parent = node_parents(model, source);
+  std::vector<int> new_index;
+  for (int i : parents_first(model, parent, new_index, source)) {
+    SceneNode node = scene_node(model.nodes[i], i, source);
+    node.parent = parent[i] < 0 ? -1 : new_index[parent[i]];
     scene.nodes.push_back(std::move(node));
   }
   // The skins' joints (the skeleton every animation is read on; scene_animation.h). A joint
@@ -236,47 +297,14 @@ AnimatedScene scene_from_model(const tinygltf::Model& model, const std::string& 
       if (j >= 0 && j < n) skin_joint[new_index[j]] = 1;
   for (int i = 0; i < n; ++i)
     if (skin_joint[i]) scene.skin_joints.push_back(i);
-
   for (size_t ai = 0; ai < model.animations.size(); ++ai) {
     const tinygltf::Animation& ga = model.animations[ai];
     SceneTake take;
     take.name = ga.name.empty() ? "animation " + std::to_string(ai + 1) : ga.name;
     const std::string where = "animation '" + take.name + "'";
     for (size_t ci = 0; ci < ga.channels.size(); ++ci) {
-      const tinygltf::AnimationChannel& ch = ga.channels[ci];
-      TrackTarget target;
-      if (ch.target_path == "translation") target = TrackTarget::kTranslation;
-      else if (ch.target_path == "rotation") target = TrackTarget::kRotation;
-      else if (ch.target_path == "scale") target = TrackTarget::kScale;
-      else continue;  // morph weights: not a skeleton's
-      if (ch.target_node < 0) continue;  // an extension's target (KHR_animation_pointer)
-      const std::string channel = where + ", channel " + std::to_string(ci);
-      if (ch.target_node >= n) throw InputError(source + ": " + channel + " targets a node that is not in the file");
-      if (ch.sampler < 0 || ch.sampler >= static_cast<int>(ga.samplers.size()))
-        throw InputError(source + ": " + channel + " has a sampler that is not in the animation");
-      const tinygltf::AnimationSampler& s = ga.samplers[ch.sampler];
       KeyTrack track;
-      track.node = new_index[ch.target_node];
-      track.target = target;
-      if (s.interpolation == "STEP") track.interpolation = KeyInterpolation::kStep;
-      else if (s.interpolation == "CUBICSPLINE") track.interpolation = KeyInterpolation::kCubicSpline;
-      else if (s.interpolation == "LINEAR" || s.interpolation.empty()) track.interpolation = KeyInterpolation::kLinear;
-      else throw InputError(source + ": " + channel + " has interpolation '" + first_line(s.interpolation) +
-                            "', expected LINEAR, STEP or CUBICSPLINE");
-      track.times = read_accessor(model, s.input, TINYGLTF_TYPE_SCALAR, channel + " (key times)", source);
-      const int width = target == TrackTarget::kRotation ? 4 : 3;
-      const std::vector<double> values = read_accessor(
-          model, s.output, width == 4 ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3, channel + " (values)", source);
-      const size_t rows = values.size() / width;
-      const size_t expected = track.interpolation == KeyInterpolation::kCubicSpline ? 3 * track.times.size()
-                                                                                      : track.times.size();
-      if (rows != expected)
-        throw InputError(source + ": " + channel + " has " + std::to_string(rows) + " values for " +
-                         std::to_string(track.times.size()) + " key times");
-      if (track.times.empty()) continue;
-      track.values = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
-          values.data(), static_cast<Eigen::Index>(rows), width);
-      take.tracks.push_back(std::move(track));
+      if (read_track(model, ga, ci, new_index, where, source, track)) take.tracks.push_back(std::move(track));
     }
     scene.takes.push_back(std::move(take));
   }

@@ -241,9 +241,8 @@ bool scale_moves(const KeyTrack& track, const SceneNode& node) {
   return false;
 }
 
-}  // namespace
-
-SceneSkeleton scene_skeleton(const AnimatedScene& scene, int take) {
+// Each node's depth below the scene's top. Throws InputError on a node before its parent.
+std::vector<int> node_depths(const AnimatedScene& scene) {
   const int n = static_cast<int>(scene.nodes.size());
   std::vector<int> depth(n, 0);
   for (int i = 0; i < n; ++i) {
@@ -251,9 +250,14 @@ SceneSkeleton scene_skeleton(const AnimatedScene& scene, int take) {
       throw InputError(scene.source + ": node '" + scene.nodes[i].name + "' comes before its parent");
     depth[i] = scene.nodes[i].parent < 0 ? 0 : depth[scene.nodes[i].parent] + 1;
   }
-  // Members: the skins' joints; else every node any take keys.
+  return depth;
+}
+
+// The skeleton's members: the skins' joints (skeleton.from_skins set); else every node any take
+// keys. Throws InputError on a track whose node the file lacks, or no member.
+std::vector<char> skeleton_members(const AnimatedScene& scene, SceneSkeleton& skeleton) {
+  const int n = static_cast<int>(scene.nodes.size());
   std::vector<char> member(n, 0);
-  SceneSkeleton skeleton;
   for (int node : scene.skin_joints) {
     if (node < 0 || node >= n) continue;
     member[node] = 1;
@@ -269,59 +273,70 @@ SceneSkeleton scene_skeleton(const AnimatedScene& scene, int take) {
       }
     }
   }
-  // The root: the members' lowest common ancestor; -1 when they have none but the scene root
-  // that holds everything (assimp's), which is no skeleton's root unless it is a member.
-  const auto common_root = [&](const std::vector<char>& in) {
-    int root = -1;
-    for (int i = 0; i < n; ++i) {
-      if (!in[i]) continue;
-      if (root < 0) {
-        root = i;
-        continue;
-      }
-      int a = root, b = i;
-      while (a != b && a >= 0 && b >= 0) {
-        if (depth[a] >= depth[b]) a = scene.nodes[a].parent;
-        else b = scene.nodes[b].parent;
-      }
-      if (a != b) return -1;
-      root = a;
-    }
-    return root == scene.scene_root && root >= 0 && !in[root] ? -1 : root;
-  };
   if (std::none_of(member.begin(), member.end(), [](char m) { return m != 0; }))
     throw InputError(scene.source + ": no animation keys a node: no skeleton moves in it");
-  int root = common_root(member);
-  if (root < 0 && take >= 0 && take < static_cast<int>(scene.takes.size())) {
-    // Several skeletons (characters) in one file: the one whose members the take keys.
-    const auto top_of = [&](int i) {
-      while (scene.nodes[i].parent >= 0 && scene.nodes[i].parent != scene.scene_root) i = scene.nodes[i].parent;
-      return i;
-    };
-    std::vector<int> tops;
-    for (const KeyTrack& track : scene.takes[take].tracks)
-      if (track.node >= 0 && track.node < n && std::find(tops.begin(), tops.end(), top_of(track.node)) == tops.end())
-        tops.push_back(top_of(track.node));
-    if (tops.size() == 1) {
-      for (int i = 0; i < n; ++i)
-        if (member[i] && top_of(i) != tops.front()) member[i] = 0;
-      root = common_root(member);
+  return member;
+}
+
+// The members' lowest common ancestor; -1 when they have none but the scene root that holds
+// everything (assimp's), which is no skeleton's root unless it is a member.
+int common_root(const AnimatedScene& scene, const std::vector<int>& depth, const std::vector<char>& in) {
+  int root = -1;
+  for (int i = 0; i < static_cast<int>(in.size()); ++i) {
+    if (!in[i]) continue;
+    if (root < 0) {
+      root = i;
+      continue;
     }
+    int a = root, b = i;
+    while (a != b && a >= 0 && b >= 0) {
+      if (depth[a] >= depth[b]) a = scene.nodes[a].parent;
+      else b = scene.nodes[b].parent;
+    }
+    if (a != b) return -1;
+    root = a;
   }
+  return root == scene.scene_root && root >= 0 && !in[root] ? -1 : root;
+}
+
+// Several skeletons (characters) in one file: the members kept to the one whose members the
+// take keys, when it keys one only; their root, or -1.
+int keyed_character_root(const AnimatedScene& scene, int take, const std::vector<int>& depth,
+                         std::vector<char>& member) {
+  const int n = static_cast<int>(scene.nodes.size());
+  const auto top_of = [&](int i) {
+    while (scene.nodes[i].parent >= 0 && scene.nodes[i].parent != scene.scene_root) i = scene.nodes[i].parent;
+    return i;
+  };
+  std::vector<int> tops;
+  for (const KeyTrack& track : scene.takes[take].tracks)
+    if (track.node >= 0 && track.node < n && std::find(tops.begin(), tops.end(), top_of(track.node)) == tops.end())
+      tops.push_back(top_of(track.node));
+  if (tops.size() != 1) return -1;
+  for (int i = 0; i < n; ++i)
+    if (member[i] && top_of(i) != tops.front()) member[i] = 0;
+  return common_root(scene, depth, member);
+}
+
+// Throws the InputError that names the several skeletons the members form.
+[[noreturn]] void fail_several_skeletons(const AnimatedScene& scene, int take, const SceneSkeleton& skeleton,
+                                         const std::vector<char>& member) {
   const std::string members = skeleton.from_skins ? "the skins' joints" : "the animations' nodes";
-  if (root < 0) {
-    std::vector<int> tops;
-    for (int i = 0; i < n; ++i) {
-      if (!member[i]) continue;
-      int up = scene.nodes[i].parent;
-      while (up >= 0 && !member[up]) up = scene.nodes[up].parent;
-      if (up < 0) tops.push_back(i);
-    }
-    throw InputError(scene.source + ": " + members + " form several skeletons (rooted at " + node_list(scene, tops) +
-                     ")" + (take >= 0 ? " and animation '" + scene.takes[take].name + "' moves more than one" : "") +
-                     ": keep one per file");
+  std::vector<int> tops;
+  for (int i = 0; i < static_cast<int>(member.size()); ++i) {
+    if (!member[i]) continue;
+    int up = scene.nodes[i].parent;
+    while (up >= 0 && !member[up]) up = scene.nodes[up].parent;
+    if (up < 0) tops.push_back(i);
   }
-  // The members and the nodes between them and the root, depth first.
+  throw InputError(scene.source + ": " + members + " form several skeletons (rooted at " + node_list(scene, tops) +
+                   ")" + (take >= 0 ? " and animation '" + scene.takes[take].name + "' moves more than one" : "") +
+                   ": keep one per file");
+}
+
+// The members and the nodes between them and the root, depth first from the root.
+std::vector<int> skeleton_nodes(const AnimatedScene& scene, const std::vector<char>& member, int root) {
+  const int n = static_cast<int>(scene.nodes.size());
   std::vector<char> in_skeleton(n, 0);
   for (int i = 0; i < n; ++i) {
     if (!member[i]) continue;
@@ -333,39 +348,131 @@ SceneSkeleton scene_skeleton(const AnimatedScene& scene, int take) {
   std::vector<std::vector<int>> children(n);
   for (int i = 0; i < n; ++i)
     if (in_skeleton[i] && i != root) children[scene.nodes[i].parent].push_back(i);
+  std::vector<int> nodes;
   std::vector<int> stack{root};
   while (!stack.empty()) {
     const int node = stack.back();
     stack.pop_back();
-    skeleton.nodes.push_back(node);
+    nodes.push_back(node);
     for (auto it = children[node].rbegin(); it != children[node].rend(); ++it) stack.push_back(*it);
   }
+  return nodes;
+}
+
+}  // namespace
+
+SceneSkeleton scene_skeleton(const AnimatedScene& scene, int take) {
+  const std::vector<int> depth = node_depths(scene);
+  SceneSkeleton skeleton;
+  std::vector<char> member = skeleton_members(scene, skeleton);
+  int root = common_root(scene, depth, member);
+  if (root < 0 && take >= 0 && take < static_cast<int>(scene.takes.size()))
+    root = keyed_character_root(scene, take, depth, member);
+  if (root < 0) fail_several_skeletons(scene, take, skeleton, member);
+  skeleton.nodes = skeleton_nodes(scene, member, root);
   return skeleton;
 }
 
-Clip scene_take_to_clip(const AnimatedScene& scene, int take, const SceneClipOptions& options) {
-  if (take < 0 || take >= static_cast<int>(scene.takes.size()))
-    throw InputError(scene.source + ": has no animation " + std::to_string(take + 1));
+namespace {
+
+// The nodes of a take's skeleton and the poses of its joints, in world and in their parents'
+// frames, at one time or at rest.
+class SkeletonPoser {
+ public:
+  // Throws InputError when the take keys none of the skeleton's joints nor a node above them.
+  SkeletonPoser(const AnimatedScene& scene, int take, const SceneSkeleton& skeleton)
+      : scene_(scene), order_(skeleton.nodes) {
+    const SceneTake& st = scene.takes[take];
+    const int n = static_cast<int>(scene.nodes.size());
+    const int root = skeleton.root();
+    const int joints = static_cast<int>(order_.size());
+    joint_of_.assign(n, -1);
+    for (int j = 0; j < joints; ++j) joint_of_[order_[j]] = j;
+    // Nodes whose transforms matter: the skeleton and everything above its root.
+    needed_.assign(n, 0);
+    for (int node : order_) needed_[node] = 1;
+    for (int up = scene.nodes[root].parent; up >= 0; up = scene.nodes[up].parent) needed_[up] = 1;
+    if (std::none_of(st.tracks.begin(), st.tracks.end(), [&](const KeyTrack& t) { return needed_[t.node] != 0; }))
+      throw InputError(take_label(scene, take) + " keys none of the skeleton's joints (rooted at '" +
+                       scene.nodes[root].name + "') nor a node above them");
+    track_of_.assign(3 * static_cast<size_t>(n), nullptr);
+    for (const KeyTrack& t : st.tracks) track_of_[3 * t.node + static_cast<int>(t.target)] = &t;
+    global_.assign(n, Eigen::Affine3d::Identity());
+    rot_.resize(joints);
+    pos_.resize(joints);
+    parent_joint_.assign(joints, -1);
+    for (int j = 1; j < joints; ++j) parent_joint_[j] = joint_of_[scene.nodes[order_[j]].parent];
+  }
+  int joints() const { return static_cast<int>(order_.size()); }
+  int node(int joint) const { return order_[joint]; }
+  int joint_of(int node) const { return joint_of_[node]; }
+  bool needed(int node) const { return needed_[node] != 0; }
+  int parent_joint(int joint) const { return parent_joint_[joint]; }
+  const Eigen::Matrix3d& rotation(int joint) const { return rot_[joint]; }  // world, orthonormal
+  const Eigen::Vector3d& position(int joint) const { return pos_[joint]; }  // world
+
+  // World rotations (orthonormal) and positions of the joints at time t (keys within snap
+  // seconds of t read as at t), or at rest (no track read). Computed twice per frame (once to
+  // find the joints whose offsets change, once to write the channels) rather than kept for all
+  // frames: that store took more memory than the clip and its page faults most of the time on a
+  // 20 MB file.
+  void pose(double t, double snap, bool rest) {
+    for (int i = 0; i < static_cast<int>(scene_.nodes.size()); ++i) {
+      if (!needed_[i]) continue;
+      const SceneNode& node = scene_.nodes[i];
+      Eigen::Vector3d tr = node.translation, sc = node.scale;
+      Eigen::Quaterniond q = node.rotation;
+      if (!rest) {
+        if (const KeyTrack* k = track_of_[3 * i]) tr = sample_track(*k, t, snap).head<3>();
+        if (const KeyTrack* k = track_of_[3 * i + 1]) q = as_quaternion(sample_track(*k, t, snap));
+        if (const KeyTrack* k = track_of_[3 * i + 2]) sc = sample_track(*k, t, snap).head<3>();
+      }
+      Eigen::Affine3d local = Eigen::Affine3d::Identity();
+      local.translate(tr);
+      local.rotate(q.normalized());
+      local.scale(sc);
+      global_[i] = node.parent >= 0 && needed_[node.parent] ? global_[node.parent] * local : local;
+    }
+    for (int j = 0; j < joints(); ++j) {
+      const Eigen::Affine3d& g = global_[order_[j]];
+      rot_[j] = rotation_part(g.linear());
+      pos_[j] = g.translation();
+    }
+  }
+  // Joint j's offset from its parent joint in the parent's frame, at the last pose.
+  Eigen::Vector3d local_offset(int j) const {
+    return Eigen::Vector3d(rot_[parent_joint_[j]].transpose() * (pos_[j] - pos_[parent_joint_[j]]));
+  }
+  // A node's mean world scale at the last pose.
+  double world_scale(int node) const {
+    const Eigen::Matrix3d& m = global_[node].linear();
+    return (m.col(0).norm() + m.col(1).norm() + m.col(2).norm()) / 3.0;
+  }
+
+ private:
+  const AnimatedScene& scene_;
+  const std::vector<int>& order_;  // joint index -> node
+  std::vector<int> joint_of_, parent_joint_;
+  std::vector<char> needed_;
+  std::vector<const KeyTrack*> track_of_;  // per node: translation, rotation, scale
+  std::vector<Eigen::Affine3d> global_;
+  std::vector<Eigen::Matrix3d> rot_;
+  std::vector<Eigen::Vector3d> pos_;
+};
+
+// Where and how often a take is sampled.
+struct TakeFrames {
+  double first = 0.0;  // the first key's time, s
+  double fps = 0.0;
+  Eigen::Index frames = 0;
+};
+
+// The take's first key, its rate (options.fps, else the take's own) and its frames. Throws
+// InputError on a rate that is not a positive number, too many frames, or frames of `joints`
+// joints that need more memory than options.max_bytes.
+TakeFrames take_frames(const AnimatedScene& scene, int take, const SceneClipOptions& options, int joints) {
   const SceneTake& st = scene.takes[take];
-  const int n = static_cast<int>(scene.nodes.size());
-  for (const KeyTrack& t : st.tracks) check_track(scene, take, t);
-  if (st.tracks.empty()) throw InputError(take_label(scene, take) + " keys no node: no skeleton moves in it");
-
-  const SceneSkeleton skeleton = scene_skeleton(scene, take);
-  const std::vector<int>& order = skeleton.nodes;  // joint index -> node
-  const int root = skeleton.root();
-  const int joints = static_cast<int>(order.size());
-  std::vector<int> joint_of(n, -1);
-  for (int j = 0; j < joints; ++j) joint_of[order[j]] = j;
-  // Nodes whose transforms matter: the skeleton and everything above its root.
-  std::vector<char> needed(n, 0);
-  for (int node : order) needed[node] = 1;
-  for (int up = scene.nodes[root].parent; up >= 0; up = scene.nodes[up].parent) needed[up] = 1;
-  if (std::none_of(st.tracks.begin(), st.tracks.end(), [&](const KeyTrack& t) { return needed[t.node] != 0; }))
-    throw InputError(take_label(scene, take) + " keys none of the skeleton's joints (rooted at '" +
-                     scene.nodes[root].name + "') nor a node above them");
-
-  // Sampling times.
+  TakeFrames out;
   double first = std::numeric_limits<double>::infinity(), last = -first;
   for (const KeyTrack& t : st.tracks) {
     first = std::min(first, t.times.front());
@@ -380,7 +487,6 @@ Clip scene_take_to_clip(const AnimatedScene& scene, int take, const SceneClipOpt
   // Key times are often float32 (glTF, assimp's FBX rate): the last key may fall a hair short of
   // a whole frame (15.6666665 s at 30 fps is frame 469.99999): it still counts as that frame.
   const Eigen::Index frames = static_cast<Eigen::Index>(std::floor(span + kFrameTolerance)) + 1;
-
   // Channels: root 6, others 3 (+3 where the offset moves): the motion takes at most
   // frames x joints x 6 doubles.
   const double need = static_cast<double>(frames) * joints * 6 * sizeof(double);
@@ -389,74 +495,52 @@ Clip scene_take_to_clip(const AnimatedScene& scene, int take, const SceneClipOpt
                      std::to_string(joints) + " joints need " + describe_bytes(static_cast<size_t>(need)) +
                      ", more than the limit of " + describe_bytes(options.max_bytes) +
                      " (MOSTYLE_MAX_MEMORY_MB)");
+  out.first = first;
+  out.fps = fps;
+  out.frames = frames;
+  return out;
+}
 
-  // Tracks per node.
-  std::vector<const KeyTrack*> track_of(3 * static_cast<size_t>(n), nullptr);
-  for (const KeyTrack& t : st.tracks) track_of[3 * t.node + static_cast<int>(t.target)] = &t;
+// The rest pose: offsets and rotations in the parent's frame, the same for every take, and the
+// skeleton's size (its longest offset, 1 when it has none).
+struct RestPose {
+  std::vector<Eigen::Vector3d> offset;
+  std::vector<Eigen::Matrix3d> rotation;
+  double size = 0.0;
+};
 
-  // World rotations (orthonormal) and positions of the joints at one time, or at rest (no
-  // track read). Computed twice per frame (once to find the joints whose offsets change, once
-  // to write the channels) rather than kept for all frames: that store took more memory than
-  // the clip and its page faults most of the time on a 20 MB file.
-  std::vector<Eigen::Affine3d> global(n, Eigen::Affine3d::Identity());
-  std::vector<Eigen::Matrix3d> rot(joints);
-  std::vector<Eigen::Vector3d> pos(joints);
-  const double snap = kFrameTolerance / fps;
-  const auto world_pose = [&](double t, bool rest) {
-    for (int i = 0; i < n; ++i) {
-      if (!needed[i]) continue;
-      const SceneNode& node = scene.nodes[i];
-      Eigen::Vector3d tr = node.translation, sc = node.scale;
-      Eigen::Quaterniond q = node.rotation;
-      if (!rest) {
-        if (const KeyTrack* k = track_of[3 * i]) tr = sample_track(*k, t, snap).head<3>();
-        if (const KeyTrack* k = track_of[3 * i + 1]) q = as_quaternion(sample_track(*k, t, snap));
-        if (const KeyTrack* k = track_of[3 * i + 2]) sc = sample_track(*k, t, snap).head<3>();
-      }
-      Eigen::Affine3d local = Eigen::Affine3d::Identity();
-      local.translate(tr);
-      local.rotate(q.normalized());
-      local.scale(sc);
-      global[i] = node.parent >= 0 && needed[node.parent] ? global[node.parent] * local : local;
-    }
-    for (int j = 0; j < joints; ++j) {
-      const Eigen::Affine3d& g = global[order[j]];
-      rot[j] = rotation_part(g.linear());
-      pos[j] = g.translation();
-    }
-  };
-  std::vector<int> parent_joint(joints, -1);
-  for (int j = 1; j < joints; ++j) parent_joint[j] = joint_of[scene.nodes[order[j]].parent];
-  const auto local_offset = [&](int j) {
-    return Eigen::Vector3d(rot[parent_joint[j]].transpose() * (pos[j] - pos[parent_joint[j]]));
-  };
-
-  // The rest pose: offsets and rotations in the parent's frame, the same for every take.
-  world_pose(0.0, true);
-  std::vector<Eigen::Vector3d> offset(joints, Eigen::Vector3d::Zero());
-  std::vector<Eigen::Matrix3d> rest_rotation(joints);
-  double size = 0;
+RestPose rest_pose(SkeletonPoser& poser) {
+  const int joints = poser.joints();
+  poser.pose(0.0, 0.0, true);
+  RestPose rest;
+  rest.offset.assign(joints, Eigen::Vector3d::Zero());
+  rest.rotation.resize(joints);
   for (int j = 0; j < joints; ++j) {
-    rest_rotation[j] = j == 0 ? rot[0] : Eigen::Matrix3d(rot[parent_joint[j]].transpose() * rot[j]);
+    const int parent = poser.parent_joint(j);
+    rest.rotation[j] = j == 0 ? poser.rotation(0)
+                              : Eigen::Matrix3d(poser.rotation(parent).transpose() * poser.rotation(j));
     if (j == 0) continue;
-    offset[j] = local_offset(j);
-    size = std::max(size, offset[j].norm());
+    rest.offset[j] = poser.local_offset(j);
+    rest.size = std::max(rest.size, rest.offset[j].norm());
   }
-  if (!(size > 0)) size = 1;
-  // Joints whose offsets leave the rest in any take keep position channels: every take of the
-  // file then has the same channels.
+  if (!(rest.size > 0)) rest.size = 1;
+  return rest;
+}
+
+// Joints whose offsets leave the rest in any take (the root always): they keep position
+// channels, so every take of the file has the same channels. The poser at rest.
+std::vector<char> moving_joints(const AnimatedScene& scene, const SkeletonPoser& poser, double size) {
+  const int n = static_cast<int>(scene.nodes.size());
+  const int joints = poser.joints();
   std::vector<char> moving(joints, 0);
   moving[0] = 1;
-  const auto world_scale = [&](int node) {
-    const Eigen::Matrix3d& m = global[node].linear();
-    return (m.col(0).norm() + m.col(1).norm() + m.col(2).norm()) / 3.0;
-  };
   for (const SceneTake& other : scene.takes) {
     for (const KeyTrack& t : other.tracks) {
-      if (t.node < 0 || t.node >= n || !needed[t.node]) continue;
-      const int j = joint_of[t.node];
+      if (t.node < 0 || t.node >= n || !poser.needed(t.node)) continue;
+      const int j = poser.joint_of(t.node);
       if (t.target == TrackTarget::kTranslation && j > 0) {
-        if (!moving[j] && translation_moves(t, scene.nodes[t.node], world_scale(order[parent_joint[j]]),
+        if (!moving[j] && translation_moves(t, scene.nodes[t.node],
+                                            poser.world_scale(poser.node(poser.parent_joint(j))),
                                             kRestTolerance * size))
           moving[j] = 1;
       } else if (t.target == TrackTarget::kScale && scale_moves(t, scene.nodes[t.node])) {
@@ -466,52 +550,83 @@ Clip scene_take_to_clip(const AnimatedScene& scene, int take, const SceneClipOpt
             moving[k] = 1;
             continue;
           }
-          for (int up = parent_joint[k]; up >= 0; up = parent_joint[up])
+          for (int up = poser.parent_joint(k); up >= 0; up = poser.parent_joint(up))
             if (up == j) moving[k] = 1;
         }
       }
     }
   }
+  return moving;
+}
 
-  Clip clip;
-  clip.source = scene.source;
-  clip.frame_time = 1.0 / fps;
-  Skeleton& sk = clip.skeleton;
-  for (int j = 0; j < joints; ++j) {
+// The clip's skeleton: the rest pose, ZXY rotations, and positions where the joint moves.
+Skeleton clip_skeleton(const AnimatedScene& scene, const SkeletonPoser& poser, const RestPose& rest,
+                       const std::vector<char>& moving) {
+  Skeleton sk;
+  for (int j = 0; j < poser.joints(); ++j) {
     Joint joint;
-    joint.name = scene.nodes[order[j]].name;
-    joint.parent = parent_joint[j];
-    joint.offset = offset[j];
-    joint.rest_rotation = rest_rotation[j];
+    joint.name = scene.nodes[poser.node(j)].name;
+    joint.parent = poser.parent_joint(j);
+    joint.offset = rest.offset[j];
+    joint.rest_rotation = rest.rotation[j];
     joint.first_channel = sk.channel_count;
     if (moving[j]) joint.channels = {Channel::kXposition, Channel::kYposition, Channel::kZposition};
     joint.channels.insert(joint.channels.end(), {Channel::kZrotation, Channel::kXrotation, Channel::kYrotation});
     sk.channel_count += static_cast<int>(joint.channels.size());
     sk.joints.push_back(std::move(joint));
   }
-  clip.motion.resize(frames, sk.channel_count);
+  return sk;
+}
+
+// The take's frames into motion (frames x the skeleton's channels): positions, and rotations
+// in the parent's frame as Euler angles each near the frame before's.
+void write_frames(SkeletonPoser& poser, const Skeleton& sk, const std::vector<char>& moving, const TakeFrames& at,
+                  MotionMatrix& motion) {
+  const int joints = poser.joints();
+  const double snap = kFrameTolerance / at.fps;
+  motion.resize(at.frames, sk.channel_count);
   std::vector<Eigen::Vector3d> previous(joints, Eigen::Vector3d::Zero());
-  for (Eigen::Index f = 0; f < frames; ++f) {
-    world_pose(first + static_cast<double>(f) / fps, false);
+  for (Eigen::Index f = 0; f < at.frames; ++f) {
+    poser.pose(at.first + static_cast<double>(f) / at.fps, snap, false);
     for (int j = 0; j < joints; ++j) {
       const Joint& joint = sk.joints[j];
       int c = joint.first_channel;
-      Eigen::Matrix3d local = rot[j];
+      Eigen::Matrix3d local = poser.rotation(j);
       if (joint.parent >= 0) {
-        local = rot[joint.parent].transpose() * rot[j];
+        local = poser.rotation(joint.parent).transpose() * poser.rotation(j);
         if (moving[j]) {
-          const Eigen::Vector3d o = local_offset(j);
-          for (int d = 0; d < 3; ++d) clip.motion(f, c++) = o(d);
+          const Eigen::Vector3d o = poser.local_offset(j);
+          for (int d = 0; d < 3; ++d) motion(f, c++) = o(d);
         }
       } else {
-        for (int d = 0; d < 3; ++d) clip.motion(f, c++) = pos[j](d);
+        for (int d = 0; d < 3; ++d) motion(f, c++) = poser.position(j)(d);
       }
       const Eigen::Vector3d angles = f == 0 ? matrix_to_euler(EulerOrder::kZXY, local)
                                             : matrix_to_euler_near(EulerOrder::kZXY, local, previous[j]);
       previous[j] = angles;
-      for (int d = 0; d < 3; ++d) clip.motion(f, c++) = angles(d);
+      for (int d = 0; d < 3; ++d) motion(f, c++) = angles(d);
     }
   }
+}
+
+}  // namespace
+
+Clip scene_take_to_clip(const AnimatedScene& scene, int take, const SceneClipOptions& options) {
+  if (take < 0 || take >= static_cast<int>(scene.takes.size()))
+    throw InputError(scene.source + ": has no animation " + std::to_string(take + 1));
+  const SceneTake& st = scene.takes[take];
+  for (const KeyTrack& t : st.tracks) check_track(scene, take, t);
+  if (st.tracks.empty()) throw InputError(take_label(scene, take) + " keys no node: no skeleton moves in it");
+  const SceneSkeleton skeleton = scene_skeleton(scene, take);
+  SkeletonPoser poser(scene, take, skeleton);
+  const TakeFrames at = take_frames(scene, take, options, poser.joints());
+  const RestPose rest = rest_pose(poser);
+  const std::vector<char> moving = moving_joints(scene, poser, rest.size);
+  Clip clip;
+  clip.source = scene.source;
+  clip.frame_time = 1.0 / at.fps;
+  clip.skeleton = clip_skeleton(scene, poser, rest, moving);
+  write_frames(poser, clip.skeleton, moving, at, clip.motion);
   return clip;
 }
 

@@ -44,10 +44,9 @@ Eigen::Vector3d joint_at(const Eigen::MatrixXd& m, Eigen::Index row, int joint) 
   return Eigen::Vector3d(m(row, 3 * joint), m(row, 3 * joint + 1), m(row, 3 * joint + 2));
 }
 
-}  // namespace
-
-void apply_limb_lengths(Eigen::MatrixXd& positions, const std::vector<int>& parents,
-                        const std::vector<double>& lengths, const LimbLengthOptions& options) {
+// Throws InputError on a skeleton, lengths or options the constraint cannot use.
+void check_limb_inputs(const Eigen::MatrixXd& positions, const std::vector<int>& parents,
+                       const std::vector<double>& lengths, const LimbLengthOptions& options) {
   check_skeleton(positions, parents, "limb-length constraint");
   check_lengths(parents, lengths, "limb-length constraint");
   if (!(options.degenerate_fraction >= 0.0) || !std::isfinite(options.degenerate_fraction)) {
@@ -63,6 +62,52 @@ void apply_limb_lengths(Eigen::MatrixXd& positions, const std::vector<int>& pare
                      std::to_string(options.fallback_pose.size()) + " values, expected " +
                      std::to_string(positions.cols()) + ".");
   }
+}
+
+// The direction bone j (parent p) of frame f is placed along: its own (bone, child - parent),
+// turned gradually from the previous frame's where it is short, the previous frame's where it
+// is degenerate, else the fallback pose's or +y. Frame f - 1 of positions is final.
+Eigen::Vector3d placed_direction(const Eigen::MatrixXd& positions, Eigen::Index f, int j, int p,
+                                 const Eigen::Vector3d& bone, double length, const LimbLengthOptions& options) {
+  const double norm = bone.norm();
+  Eigen::Vector3d direction;
+  const double short_length = options.short_fraction * length;
+  if (norm < short_length && f > 0 && length > 0.0) {
+    // The previous output frame is final and its bone has length `length` > 0.
+    // Turn from the previous direction towards the bone's own by the fraction s of the
+    // angle between them: s = (|bone| / short length)^2, so a stub hardly turns and the
+    // bone takes its own direction again as it grows back to the short length.
+    const Eigen::Vector3d previous = (joint_at(positions, f - 1, j) - joint_at(positions, f - 1, p)) / length;
+    const double s = (norm / short_length) * (norm / short_length);
+    const double angle = norm > 0.0 ? std::acos(std::clamp(previous.dot(bone / norm), -1.0, 1.0)) : 0.0;
+    const double sine = std::sin(angle);
+    if (sine > 1e-9)
+      direction = (std::sin((1.0 - s) * angle) * previous + std::sin(s * angle) * (bone / norm)) / sine;
+    else
+      direction = previous;  // the same way, or exactly opposite (no plane to turn in): hold
+    direction.normalize();
+  } else if (norm > options.degenerate_fraction * length && norm > 0.0) {
+    direction = bone * (1.0 / norm);  // one division, not three
+  } else if (f > 0 && length > 0.0) {
+    // The previous output frame is final and its bone has length `length` > 0.
+    direction = (joint_at(positions, f - 1, j) - joint_at(positions, f - 1, p)).normalized();
+  } else {
+    direction = Eigen::Vector3d::UnitY();
+    if (options.fallback_pose.size() != 0) {
+      const Eigen::Vector3d reference =
+          options.fallback_pose.segment<3>(3 * j).transpose() -
+          options.fallback_pose.segment<3>(3 * p).transpose();
+      if (reference.norm() > 0.0) direction = reference.normalized();
+    }
+  }
+  return direction;
+}
+
+}  // namespace
+
+void apply_limb_lengths(Eigen::MatrixXd& positions, const std::vector<int>& parents,
+                        const std::vector<double>& lengths, const LimbLengthOptions& options) {
+  check_limb_inputs(positions, parents, lengths, options);
   const int joints = static_cast<int>(parents.size());
 
   // Paper 3.7: restore each bone's reference length from the root outward. Within a frame the
@@ -96,37 +141,7 @@ void apply_limb_lengths(Eigen::MatrixXd& positions, const std::vector<int>& pare
       for (Eigen::Index f = first; f < last; ++f) {
         const Eigen::Vector3d bone(child[0][f], child[1][f], child[2][f]);
         const Eigen::Vector3d parent(parent_column[0][f], parent_column[1][f], parent_column[2][f]);
-        const double norm = bone.norm();
-        Eigen::Vector3d direction;
-        const double short_length = options.short_fraction * length;
-        if (norm < short_length && f > 0 && length > 0.0) {
-          // The previous output frame is final and its bone has length `length` > 0.
-          // Turn from the previous direction towards the bone's own by the fraction s of the
-          // angle between them: s = (|bone| / short length)^2, so a stub hardly turns and the
-          // bone takes its own direction again as it grows back to the short length.
-          const Eigen::Vector3d previous = (joint_at(positions, f - 1, j) - joint_at(positions, f - 1, p)) / length;
-          const double s = (norm / short_length) * (norm / short_length);
-          const double angle = norm > 0.0 ? std::acos(std::clamp(previous.dot(bone / norm), -1.0, 1.0)) : 0.0;
-          const double sine = std::sin(angle);
-          if (sine > 1e-9)
-            direction = (std::sin((1.0 - s) * angle) * previous + std::sin(s * angle) * (bone / norm)) / sine;
-          else
-            direction = previous;  // the same way, or exactly opposite (no plane to turn in): hold
-          direction.normalize();
-        } else if (norm > options.degenerate_fraction * length && norm > 0.0) {
-          direction = bone * (1.0 / norm);  // one division, not three
-        } else if (f > 0 && length > 0.0) {
-          // The previous output frame is final and its bone has length `length` > 0.
-          direction = (joint_at(positions, f - 1, j) - joint_at(positions, f - 1, p)).normalized();
-        } else {
-          direction = Eigen::Vector3d::UnitY();
-          if (options.fallback_pose.size() != 0) {
-            const Eigen::Vector3d reference =
-                options.fallback_pose.segment<3>(3 * j).transpose() -
-                options.fallback_pose.segment<3>(3 * p).transpose();
-            if (reference.norm() > 0.0) direction = reference.normalized();
-          }
-        }
+        const Eigen::Vector3d direction = placed_direction(positions, f, j, p, bone, length, options);
         const Eigen::Vector3d placed = parent + length * direction;
         child[0][f] = placed.x();
         child[1][f] = placed.y();

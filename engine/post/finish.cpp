@@ -20,12 +20,53 @@ void nearest_rows(const Eigen::MatrixXd& x, const Eigen::VectorXd& u, Eigen::Mat
     out.row(k) = x.row(static_cast<Eigen::Index>(std::lround(std::clamp(u[k], 0.0, last))));
 }
 
+// The loop cut when asked (options.closed: all but the last frame; options.loop: find_loop's),
+// closed at the seam: local, u, the ground (s.ground), heading (s.heading) and out.contacts cut
+// to its frames; the headings before the cut kept (s.heading_uncut) for the body drift.
+void cut_loop(const FinishOptions& options, Eigen::MatrixXd& local, Eigen::VectorXd& u, FinishScratch& s,
+              FinishedMotion& out) {
+  out.loop = LoopCut();
+  if (options.closed && u.size() >= 3) {
+    out.loop.begin = 0;
+    out.loop.end = static_cast<int>(u.size()) - 1;
+    out.loop.cycles = 1;
+  } else if (options.loop) {
+    out.loop = find_loop(out.contacts, local, s.heading);
+  }
+  if (out.loop.frames() > 0) {
+    s.heading_uncut = s.heading;
+    close_loop(out.loop, local, s.ground, s.heading, out.contacts);
+    u = u.segment(out.loop.begin, out.loop.frames()).eval();
+  }
+}
+
+// The body drift (K x 2 kFootJoints, before any loop cut) into the world by the heading at each
+// output frame (s.drift), cut to the loop's frames where a loop was cut.
+void world_drift(const Eigen::MatrixXd& body_drift, const LoopCut& loop, FinishScratch& s) {
+  const Eigen::VectorXd& heading = loop.frames() > 0 ? s.heading_uncut : s.heading;
+  s.drift.resize(body_drift.rows(), 2 * kFootJoints);
+  for (Eigen::Index k = 0; k < body_drift.rows(); ++k) {
+    const double c = std::cos(heading[k]), sn = std::sin(heading[k]);
+    for (int j = 0; j < kFootJoints; ++j) {
+      const double bx = body_drift(k, 2 * j), bz = body_drift(k, 2 * j + 1);
+      s.drift(k, 2 * j) = c * bx + sn * bz;
+      s.drift(k, 2 * j + 1) = -sn * bx + c * bz;
+    }
+  }
+  if (loop.frames() > 0) s.drift = s.drift.middleRows(loop.begin, loop.frames()).eval();
+}
+
+LimbLengthOptions limb_options(const FinishRig& rig) {
+  LimbLengthOptions limbs;
+  limbs.short_fraction = rig.short_bone_fraction;
+  return limbs;
+}
+
 }  // namespace
 
-void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, const Eigen::VectorXd& heading_u,
-                   const Eigen::MatrixXd& contacts_u, const FinishRig& rig, const FinishOptions& options,
-                   Eigen::MatrixXd& local, Eigen::VectorXd& u, FinishScratch& s, FinishedMotion& out,
-                   const Eigen::MatrixXd* body_drift) {
+void finish_preview(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, const Eigen::VectorXd& heading_u,
+                    const Eigen::MatrixXd& contacts_u, const FinishRig& rig, const FinishOptions& options,
+                    Eigen::MatrixXd& local, Eigen::VectorXd& u, FinishScratch& s, FinishedMotion& out) {
   sampler.apply(ground_u, s.ground);
   s.heading.resize(u.size());
   // Headings along the shorter arc between samples: where the mixed turns carry a whole turn
@@ -38,40 +79,21 @@ void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, c
   }
   nearest_rows(contacts_u, u, out.contacts);
   tidy_contacts(out.contacts, *rig.feet);
-  if (body_drift != nullptr) {  // into the world, by the heading at each output frame
-    s.drift.resize(u.size(), 2 * kFootJoints);
-    for (Eigen::Index k = 0; k < u.size(); ++k) {
-      const double c = std::cos(s.heading[k]), sn = std::sin(s.heading[k]);
-      for (int j = 0; j < kFootJoints; ++j) {
-        const double bx = (*body_drift)(k, 2 * j), bz = (*body_drift)(k, 2 * j + 1);
-        s.drift(k, 2 * j) = c * bx + sn * bz;
-        s.drift(k, 2 * j + 1) = -sn * bx + c * bz;
-      }
-    }
-  }
-  out.loop = LoopCut();
-  if (options.closed && u.size() >= 3) {
-    out.loop.begin = 0;
-    out.loop.end = static_cast<int>(u.size()) - 1;
-    out.loop.cycles = 1;
-  } else if (options.loop) {
-    out.loop = find_loop(out.contacts, local, s.heading);
-  }
-  if (out.loop.frames() > 0) {
-    close_loop(out.loop, local, s.ground, s.heading, out.contacts);
-    u = u.segment(out.loop.begin, out.loop.frames()).eval();
-    if (body_drift != nullptr) s.drift = s.drift.middleRows(out.loop.begin, out.loop.frames()).eval();
-  }
+  cut_loop(options, local, u, s, out);
   to_world(local, s.ground, s.heading, &out.world);
-  LimbLengthOptions limbs;
-  limbs.short_fraction = rig.short_bone_fraction;
-  if (options.limb_lengths) apply_limb_lengths(out.world, *rig.parents, *rig.lengths, limbs);
+  out.foot_sliding_raw = out.foot_sliding_cleaned = out.limb_length_max_error = 0.0;
+  if (options.limb_lengths) apply_limb_lengths(out.world, *rig.parents, *rig.lengths, limb_options(rig));
+}
+
+void finish_rest(const FinishRig& rig, const FinishOptions& options, FinishScratch& s, FinishedMotion& out,
+                 const Eigen::MatrixXd* body_drift) {
+  if (body_drift != nullptr) world_drift(*body_drift, out.loop, s);
   // No pops: no joint faster than the takes' fastest allows (the limb lengths held again where
   // a step was spread).
   if (rig.lock_limits.fastest_joint > 0.0 &&
       limit_joint_speed(out.world, rig.feet->fps, kSpeedLimitOverTakes * rig.lock_limits.fastest_joint, s.speed) > 0 &&
       options.limb_lengths)
-    apply_limb_lengths(out.world, *rig.parents, *rig.lengths, limbs);
+    apply_limb_lengths(out.world, *rig.parents, *rig.lengths, limb_options(rig));
   // Foot lock (beyond the paper): planted ankles pinned by two-bone IK, which keeps bone lengths.
   planted_frames(out.world, *rig.feet, s.planted, s.heights);
   out.foot_sliding_raw = planted_speed(out.world, s.planted, *rig.feet).speed;
@@ -93,6 +115,14 @@ void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, c
     out.foot_sliding_cleaned = planted_speed(out.world, s.planted, *rig.feet).speed;
   }
   out.limb_length_max_error = max_bone_length_error(out.world, *rig.parents, *rig.lengths);
+}
+
+void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, const Eigen::VectorXd& heading_u,
+                   const Eigen::MatrixXd& contacts_u, const FinishRig& rig, const FinishOptions& options,
+                   Eigen::MatrixXd& local, Eigen::VectorXd& u, FinishScratch& s, FinishedMotion& out,
+                   const Eigen::MatrixXd* body_drift) {
+  finish_preview(sampler, ground_u, heading_u, contacts_u, rig, options, local, u, s, out);
+  finish_rest(rig, options, s, out, body_drift);
 }
 
 }  // namespace mostyle

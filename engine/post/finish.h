@@ -48,6 +48,7 @@ struct FinishScratch {
   Eigen::MatrixXd ground, drift, planted;
   std::vector<double> heights;
   Eigen::VectorXd heading;
+  Eigen::VectorXd heading_uncut;  // the headings before a loop's cut, for the body drift
   FootLockScratch foot;
   SpeedLimitScratch speed;
 };
@@ -65,5 +66,17 @@ void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, c
                    const Eigen::MatrixXd& contacts_u, const FinishRig& rig, const FinishOptions& options,
                    Eigen::MatrixXd& local, Eigen::VectorXd& u, FinishScratch& scratch, FinishedMotion& out,
                    const Eigen::MatrixXd* body_drift = nullptr);
+
+// finish_motion in two calls, for a preview that shows a motion before its slow passes are done:
+// finish_preview places the poses in the world (root, contacts, the loop cut, the limb-length
+// constraint: out.world, out.contacts, out.loop; the measures 0), O(K x M); finish_rest, given
+// the same rig, options and scratch, the out finish_preview left and the body drift, runs the
+// rest (the speed limit, the foot lock, the measures), O(K x M) with a larger constant (the lock
+// may try up to seven times). The two in turn give exactly what finish_motion gives.
+void finish_preview(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, const Eigen::VectorXd& heading_u,
+                    const Eigen::MatrixXd& contacts_u, const FinishRig& rig, const FinishOptions& options,
+                    Eigen::MatrixXd& local, Eigen::VectorXd& u, FinishScratch& scratch, FinishedMotion& out);
+void finish_rest(const FinishRig& rig, const FinishOptions& options, FinishScratch& scratch, FinishedMotion& out,
+                 const Eigen::MatrixXd* body_drift = nullptr);
 
 }  // namespace mostyle

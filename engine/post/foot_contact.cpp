@@ -54,11 +54,13 @@ constexpr double kShareClose = 0.97;
 // A planted joint at the top of the planted band still has this weight in the foot's step.
 constexpr double kMinAnchorWeight = 0.1;
 
-Eigen::Vector3d joint_at(const Eigen::MatrixXd& m, Eigen::Index row, int column) {
+template <typename Matrix>
+Eigen::Vector3d joint_at(const Matrix& m, Eigen::Index row, int column) {
   return Eigen::Vector3d(m(row, 3 * column), m(row, 3 * column + 1), m(row, 3 * column + 2));
 }
 
-void set_joint(Eigen::MatrixXd& m, Eigen::Index row, int column, const Eigen::Vector3d& v) {
+template <typename Matrix>
+void set_joint(Matrix& m, Eigen::Index row, int column, const Eigen::Vector3d& v) {
   m(row, 3 * column) = v.x();
   m(row, 3 * column + 1) = v.y();
   m(row, 3 * column + 2) = v.z();
@@ -603,7 +605,8 @@ void ease_between_runs(Eigen::Index frames, int ramp, FootLockScratch& s) {
 // bend it had on the frame before (as locked) holds it, the more the straighter the knee. Both
 // fade as the ankle moves less (`moved`): a lock that does not move the ankle leaves the leg as
 // it was. O(1).
-Eigen::Vector3d knee_pole(const Eigen::MatrixXd& world, const LegColumns& leg,
+template <typename Matrix>
+Eigen::Vector3d knee_pole(const Matrix& world, const LegColumns& leg,
                           const std::array<LegColumns, 2>& rig_legs, Eigen::Index t, double moved, double leg_length) {
   const Eigen::Vector3d hip = joint_at(world, t, leg.hip), ankle = joint_at(world, t, leg.ankle);
   const Eigen::Vector3d leg_line = ankle - hip;
@@ -650,7 +653,10 @@ Eigen::Vector3d knee_pole(const Eigen::MatrixXd& world, const LegColumns& leg,
 // (all at once, a leg bending from straight in a few frames would free a whole stance's pinning
 // in a jump), and what follows a run eases from where the foot was, not from where the leg could
 // not reach. O(F).
-void move_leg(Eigen::MatrixXd& world, const LegColumns& leg, const FootRig& rig, FootLockScratch& s) {
+// rig_legs: the legs' columns in world (their hips read for the way the body faces).
+template <typename Matrix>
+void move_leg(Matrix& world, const LegColumns& leg, const std::array<LegColumns, 2>& rig_legs, const FootRig& rig,
+              FootLockScratch& s) {
   const Eigen::Index frames = world.rows();
   // The knee's bend direction where the leg is straight: the last frame's, within a second,
   // where it was not (none: two_bone_ik picks one).
@@ -708,7 +714,7 @@ void move_leg(Eigen::MatrixXd& world, const LegColumns& leg, const FootRig& rig,
     const Eigen::Quaterniond turn = (ankle - hip).norm() > 0 && (target - hip).norm() > 0
                                         ? Eigen::Quaterniond::FromTwoVectors(ankle - hip, target - hip)
                                         : Eigen::Quaterniond::Identity();
-    const Eigen::Vector3d pole = turn * knee_pole(world, leg, rig.legs, t, offset.norm(), rig.leg_length);
+    const Eigen::Vector3d pole = turn * knee_pole(world, leg, rig_legs, t, offset.norm(), rig.leg_length);
     const bool straight = !(pole.norm() > kStraightLeg * rig.leg_length);
     const Eigen::Vector3d before = straight ? Eigen::Vector3d(turn * last_bend(t)) : Eigen::Vector3d::Zero();
     Eigen::Vector3d new_knee, new_ankle;
@@ -719,21 +725,48 @@ void move_leg(Eigen::MatrixXd& world, const LegColumns& leg, const FootRig& rig,
   }
 }
 
+// move_leg on a copy of the joints it reads, one frame's values side by side (both hips, the
+// knee, ankle and toe: in world they lie a column apart, a dozen memory streams at once), the
+// knee, ankle and toe written back after: the same arithmetic on the same values. O(F).
+void move_leg_rows(Eigen::MatrixXd& world, const LegColumns& leg, const FootRig& rig, FootLockScratch& s) {
+  const int from[5] = {rig.legs[0].hip, rig.legs[1].hip, leg.knee, leg.ankle, leg.toe};
+  s.leg_rows.resize(world.rows(), 15);
+  for (int k = 0; k < 5; ++k)
+    if (from[k] >= 0) s.leg_rows.middleCols(3 * k, 3) = world.middleCols(3 * from[k], 3);
+  LegColumns rows_leg;
+  rows_leg.hip = leg.hip == rig.legs[0].hip ? 0 : 1;
+  rows_leg.knee = 2;
+  rows_leg.ankle = 3;
+  rows_leg.toe = leg.toe >= 0 ? 4 : -1;
+  std::array<LegColumns, 2> rows_legs;
+  rows_legs[0].hip = rig.legs[0].hip >= 0 ? 0 : -1;
+  rows_legs[1].hip = rig.legs[1].hip >= 0 ? 1 : -1;
+  move_leg(s.leg_rows, rows_leg, rows_legs, rig, s);
+  for (int k = 2; k < 5; ++k)
+    if (from[k] >= 0) world.middleCols(3 * from[k], 3) = s.leg_rows.middleCols(3 * k, 3);
+}
+
 // The lock keeps heights, so the same steps stay planted; it must not move the leg's planted
 // joints more in all than they moved (where the leg could not reach its targets, say): then the
 // leg is put back as it was (s.before: its knee, ankle and toe). O(F).
+// before_moves: what the planted joints moved before the lock, as this sums it; NaN: not known
+// yet (set here: every try of one apply_foot_lock starts from the same motion).
 void keep_if_slower(Eigen::MatrixXd& world, const LockedLeg& leg, const std::array<int, kFootJoints>& columns,
-                    const FootLockScratch& s) {
+                    FootLockScratch& s, double& before_moves) {
+  const bool known = !std::isnan(before_moves);
   double before = 0.0, after = 0.0;
   for (int k = 0; k < 2; ++k) {
     const int j = leg.joints[k], c = columns[static_cast<size_t>(j)], b = 1 + k;  // b: its columns in s.before
     if (c < 0) continue;
     for (Eigen::Index t = 0; t + 1 < world.rows(); ++t) {
       if (s.planted(t, j) <= 0.5 || s.planted(t + 1, j) <= 0.5) continue;
-      before += std::hypot(s.before(t + 1, 3 * b) - s.before(t, 3 * b), s.before(t + 1, 3 * b + 2) - s.before(t, 3 * b + 2));
-      after += std::hypot(world(t + 1, 3 * c) - world(t, 3 * c), world(t + 1, 3 * c + 2) - world(t, 3 * c + 2));
+      if (!known)
+        before += horizontal_step(s.before(t + 1, 3 * b) - s.before(t, 3 * b), s.before(t + 1, 3 * b + 2) - s.before(t, 3 * b + 2));
+      after += horizontal_step(world(t + 1, 3 * c) - world(t, 3 * c), world(t + 1, 3 * c + 2) - world(t, 3 * c + 2));
     }
   }
+  if (known) before = before_moves;
+  else before_moves = before;
   if (after > before)
     for (int b = 0; b < 3; ++b) {
       const int c = b == 0 ? leg.columns.knee : b == 1 ? leg.columns.ankle : leg.columns.toe;
@@ -760,8 +793,25 @@ void lock_legs(Eigen::MatrixXd& world, const FootRig& rig, const std::array<doub
     run_offsets(world, leg, columns, floors, kPlantedHeightFraction * rig.body_height, drift, share, scratch);
     if (max_speed > 0.0) fit_to_swings(world, leg, ramp, max_speed / rig.fps, scratch);
     ease_between_runs(frames, ramp, scratch);
-    move_leg(world, leg.columns, rig, scratch);
-    keep_if_slower(world, leg, columns, scratch);
+    move_leg_rows(world, leg.columns, rig, scratch);
+    keep_if_slower(world, leg, columns, scratch, scratch.before_moves[static_cast<size_t>(side)]);
+  }
+}
+
+// The columns the lock moves (each usable leg's knee, ankle and toe: lock_legs changes no other)
+// copied from world into `kept` (F x 18, three per joint), or back when `restore`: the lock's
+// tries start from the motion as it was and keep the best, copying these alone.
+void copy_leg_columns(Eigen::MatrixXd& world, const FootRig& rig, Eigen::MatrixXd& kept, bool restore) {
+  if (!restore) kept.resize(world.rows(), 18);
+  for (int side = 0; side < 2; ++side) {
+    const LegColumns& leg = rig.legs[static_cast<size_t>(side)];
+    if (!leg.usable()) continue;
+    for (int b = 0; b < 3; ++b) {
+      const int c = b == 0 ? leg.knee : b == 1 ? leg.ankle : leg.toe;
+      if (c < 0) continue;
+      if (restore) world.middleCols(3 * c, 3) = kept.middleCols(9 * side + 3 * b, 3);
+      else kept.middleCols(9 * side + 3 * b, 3) = world.middleCols(3 * c, 3);
+    }
   }
 }
 
@@ -778,6 +828,7 @@ void apply_foot_lock(Eigen::MatrixXd& world, const FootRig& rig, FootLockScratch
   scratch.before.resize(frames, 9);
   std::array<double, kFootJoints> floors;
   planted_frames(world, rig, scratch.planted, scratch.heights, &floors);
+  scratch.before_moves.fill(std::numeric_limits<double>::quiet_NaN());
   if (drift == nullptr || !(limits.planted_speed > 0.0)) {
     lock_legs(world, rig, floors, drift, 1.0, limits.fastest_joint, scratch);
     return;
@@ -788,28 +839,28 @@ void apply_foot_lock(Eigen::MatrixXd& world, const FootRig& rig, FootLockScratch
   // measure need not be straight in the share, a few tries) that keeps the measure under it: the
   // least pinning that holds the limit. The heights stay, so one planted mask serves every try.
   const double limit = limits.planted_speed;
-  scratch.original = world;
+  copy_leg_columns(world, rig, scratch.original, false);
   lock_legs(world, rig, floors, drift, 1.0, limits.fastest_joint, scratch);
   double high = 1.0, at_high = planted_speed(world, scratch.planted, rig).speed;
   if (at_high <= limit) return;
-  world = scratch.original;
+  copy_leg_columns(world, rig, scratch.original, true);
   lock_legs(world, rig, floors, drift, 0.0, limits.fastest_joint, scratch);
   double low = 0.0, at_low = planted_speed(world, scratch.planted, rig).speed;
   if (at_low >= limit) return;
-  scratch.best = world;  // the motion at `low`, under the limit
+  copy_leg_columns(world, rig, scratch.best, false);  // the motion at `low`, under the limit
   // Distances from the limit, the one kept twice in a row halved (Illinois).
   double below = limit - at_low, above = at_high - limit;
   int kept = 0;  // > 0: low kept that many rounds in a row, < 0: high
   for (int round = 0; round < kShareRounds && at_low < kShareClose * limit; ++round) {
     const double share = low + below / (below + above) * (high - low);
-    world = scratch.original;
+    copy_leg_columns(world, rig, scratch.original, true);
     lock_legs(world, rig, floors, drift, share, limits.fastest_joint, scratch);
     const double at = planted_speed(world, scratch.planted, rig).speed;
     if (at <= limit) {
       low = share;
       at_low = at;
       below = limit - at;
-      scratch.best = world;
+      copy_leg_columns(world, rig, scratch.best, false);
       kept = kept < 0 ? kept - 1 : -1;
       if (kept <= -2) above *= 0.5;
     } else {
@@ -819,7 +870,7 @@ void apply_foot_lock(Eigen::MatrixXd& world, const FootRig& rig, FootLockScratch
       if (kept >= 2) below *= 0.5;
     }
   }
-  world = scratch.best;
+  copy_leg_columns(world, rig, scratch.best, true);
 }
 
 }  // namespace mostyle

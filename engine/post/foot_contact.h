@@ -79,7 +79,12 @@ struct FootLockScratch {
   Eigen::MatrixXd before;  // F x 9: a leg's knee, ankle and toe as they were
   std::vector<double> heights;
   std::vector<std::pair<Eigen::Index, Eigen::Index>> runs;  // a leg's runs, first and last frame
-  Eigen::MatrixXd original, best;  // F x 3M: the motion as it was, and the best try, where the lock tries again
+  // F x 18: the legs' knees, ankles and toes as they were, and in the best try, where the lock
+  // tries again.
+  Eigen::MatrixXd original, best;
+  // F x 15, a frame a row: both hips and one leg's knee, ankle and toe, as the lock moves the leg.
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> leg_rows;
+  std::array<double, 2> before_moves{};  // per leg: its planted joints' moves before the lock
 };
 
 // What the lock keeps an output under, from the takes it mixes (0: no limit), units per second.

@@ -62,7 +62,7 @@ PlantedSpeed planted_speed(const Eigen::MatrixXd& world, const Eigen::MatrixXd& 
     if (c < 0) continue;
     for (Eigen::Index t = 0; t + 1 < world.rows(); ++t) {
       if (planted(t, j) <= 0.5 || planted(t + 1, j) <= 0.5) continue;
-      sum += std::hypot(world(t + 1, 3 * c) - world(t, 3 * c), world(t + 1, 3 * c + 2) - world(t, 3 * c + 2));
+      sum += horizontal_step(world(t + 1, 3 * c) - world(t, 3 * c), world(t + 1, 3 * c + 2) - world(t, 3 * c + 2));
       ++out.steps;
     }
   }

@@ -67,11 +67,20 @@ void planted_drift(const PreparedTakes& p, const Eigen::MatrixXd& sources, const
   for (int i = 0; i < p.size(); ++i) {
     const Eigen::MatrixXd& travel = p.takes[static_cast<size_t>(i)].foot_travel;
     const Eigen::Index rows = travel.rows();
+    if (frame_w == nullptr && weights[static_cast<size_t>(i)] == 0.0) continue;
+    // Frame k + 1's travel read once, as frame k's on the next step.
+    double at[2 * kFootJoints], next[2 * kFootJoints];
+    const auto read = [&](Eigen::Index k, double* values) {
+      const RowAt r(sources(k, i), rows);
+      for (Eigen::Index c = 0; c < 2 * kFootJoints; ++c) values[c] = r.of(travel, c);
+    };
+    if (frames > 0) read(0, at);
     for (Eigen::Index k = 0; k + 1 < frames; ++k) {
+      read(k + 1, next);
       const double w = frame_w != nullptr ? (*frame_w)(k, i) : weights[static_cast<size_t>(i)];
-      if (w == 0.0) continue;
-      const RowAt a(sources(k, i), rows), b(sources(k + 1, i), rows);
-      for (Eigen::Index c = 0; c < 2 * kFootJoints; ++c) out(k, c) += w * (b.of(travel, c) - a.of(travel, c));
+      if (w != 0.0)
+        for (Eigen::Index c = 0; c < 2 * kFootJoints; ++c) out(k, c) += w * (next[c] - at[c]);
+      std::copy(next, next + 2 * kFootJoints, at);
     }
   }
 }
@@ -150,160 +159,205 @@ void MixParams::Validate(int takes, int components) const {
   }
 }
 
-void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& params, MixScratch& s,
-                 MixResult& out, StageTimes* times) {
+namespace {
+
+// Throws InputError where a mix cannot run: params.Validate, and paper mode with more than two
+// takes, weights per part or keys.
+void check_mix(const PreparedTakes& p, const Decomposed& d, const MixParams& params) {
   const int n = p.size();
   params.Validate(n, d.components());
-  const SharedComponents* shared = d.shared();
-  const PaperComponents* paper = d.paper();
-  if (paper != nullptr && (n != 2 || params.component_weights.size() > 0))
+  if (d.paper() != nullptr && (n != 2 || params.component_weights.size() > 0))
     throw InputError("paper mode blends two takes with one weight; mix several takes, or weights per body part, in "
                      "shared mode");
-  if (paper != nullptr && !params.keys.empty())
+  if (d.paper() != nullptr && !params.keys.empty())
     throw InputError("paper mode blends with one alpha for the whole take; key the weights in time in shared mode");
-  const bool keyed = !params.keys.empty();
-  const auto t0 = Clock::now();
-  // Per-component weights that are all the overall weights are the plain mix.
+}
+
+// Whether the per-component weights differ from the overall weights anywhere (per-component
+// weights that are all the overall weights are the plain mix). Sets s.overall, the body's
+// overall weights (each take's mean over the components when they differ per part), which mix
+// the root, the contacts and, unless the reference's is kept, the timing (s.timing).
+bool mix_overall_weights(const MixParams& params, int n, MixScratch& s) {
   bool per_component = false;
   for (Eigen::Index c = 0; c < params.component_weights.rows(); ++c)
     for (int i = 0; i < n; ++i) per_component |= params.component_weights(c, i) != params.weights[i];
-  // The body's overall weights (each take's mean over the components when they differ per
-  // part) mix the root, the contacts and, unless the reference's is kept, the timing.
   s.overall = params.weights;
   if (per_component)
     for (int i = 0; i < n; ++i) s.overall[i] = params.component_weights.col(i).mean();
   s.timing.assign(n, 0.0);
   if (params.reference_timing) s.timing[0] = 1.0;
   else s.timing = s.overall;
-  // The stretch every take with a weight matches (a take at weight 0 does not shorten it), and
-  // the fastest joint of those takes (the foot lock keeps the swings under it).
-  int first = 0, last = p.samples() - 1;
-  double fastest = 0.0;
-  for (int i = 0; i < n; ++i) {
-    bool weighted = params.weights[i] != 0.0 || s.timing[i] != 0.0;
+  return per_component;
+}
+
+// The samples of the common timeline a mix plays and what limits its foot lock.
+struct PlayedStretch {
+  int first = 0, last = 0;  // the stretch every take with a weight matches
+  double fastest = 0.0;     // the fastest joint of those takes (the foot lock keeps the swings under it)
+  Eigen::Index length() const { return last - first + 1; }
+};
+
+// The stretch every take with a weight matches (a take at weight 0 does not shorten it). Throws
+// InputError when they match no common stretch.
+PlayedStretch played_stretch(const PreparedTakes& p, const MixParams& params, bool per_component,
+                             const std::vector<double>& timing) {
+  PlayedStretch st;
+  st.last = p.samples() - 1;
+  for (int i = 0; i < p.size(); ++i) {
+    bool weighted = params.weights[i] != 0.0 || timing[i] != 0.0;
     for (const WeightKey& key : params.keys) weighted |= key.weights[static_cast<size_t>(i)] != 0.0;
     for (Eigen::Index c = 0; per_component && c < params.component_weights.rows(); ++c)
       weighted |= params.component_weights(c, i) != 0.0;
     if (!weighted) continue;
-    fastest = std::max(fastest, p.takes[static_cast<size_t>(i)].fastest_joint);
-    first = std::max(first, p.timeline.first[i]);
-    last = std::min(last, p.timeline.last[i]);
+    st.fastest = std::max(st.fastest, p.takes[static_cast<size_t>(i)].fastest_joint);
+    st.first = std::max(st.first, p.timeline.first[i]);
+    st.last = std::min(st.last, p.timeline.last[i]);
   }
-  if (first >= last)
+  if (st.first >= st.last)
     throw InputError("the takes given a weight match no common stretch of the reference (each matched a "
                      "different part of it); give weight to takes whose matches overlap, or align them end to "
                      "end (closed ends)");
-  out.first_sample = first;
-  out.last_sample = last;
-  const Eigen::Index length = last - first + 1;
+  return st;
+}
+
+// The output's clock: s.u (K sample positions, mixed or the reference's), with keys each sample's
+// weights (s.sample_w, U x N) and each output frame's (s.frame_w, K x N), s.u_stretch and the
+// sampler on the stretch, and each take's frame at each output frame (sources). Returns the
+// finish's options: a loop clip as the reference, shown whole, makes the output one loop, its
+// clock landed on the loop's end (the reference's last frame, its first pose again), which the
+// finish cuts off.
+FinishOptions output_clock(const PreparedTakes& p, const MixParams& params, const PlayedStretch& st, MixScratch& s,
+                           Eigen::MatrixXd& sources) {
+  const int n = p.size();
+  const bool keyed = !params.keys.empty();
   if (keyed && !params.reference_timing) {
-    mixed_timeline(p.timeline, params.keys, p.fps, first, last, s.u, &s.sample_w);
+    mixed_timeline(p.timeline, params.keys, p.fps, st.first, st.last, s.u, &s.sample_w);
   } else {
-    mixed_timeline(p.timeline, s.timing, first, last, s.u);
+    mixed_timeline(p.timeline, s.timing, st.first, st.last, s.u);
     if (keyed) {  // the reference's clock: each sample's weights at the reference's time there
-      s.sample_w.resize(length, n);
+      s.sample_w.resize(st.length(), n);
       std::vector<double> w;
       const Eigen::VectorXd& clock = p.timeline.frames[0];
-      for (Eigen::Index k = 0; k < length; ++k) {
-        weights_at(params.keys, (clock[first + k] - clock[first]) / p.fps, w);
+      for (Eigen::Index k = 0; k < st.length(); ++k) {
+        weights_at(params.keys, (clock[st.first + k] - clock[st.first]) / p.fps, w);
         for (int i = 0; i < n; ++i) s.sample_w(k, i) = w[static_cast<size_t>(i)];
       }
     }
   }
-  // A loop clip as the reference, shown whole: the output is one loop. Its clock lands on the
-  // loop's end (the reference's last frame, its first pose again), which the finish cuts off.
   FinishOptions finish = params.finish;
-  finish.closed = shows_whole_loop(p, first, last);
+  finish.closed = shows_whole_loop(p, st.first, st.last);
   if (finish.closed) {
-    land_on_last(s.u, last);
+    land_on_last(s.u, st.last);
     finish.loop = false;
   }
-  s.u_stretch = s.u.array() - double(first);
-  s.sampler.set(s.u_stretch, length);
+  s.u_stretch = s.u.array() - double(st.first);
+  s.sampler.set(s.u_stretch, st.length());
   // Each take's frame at each output frame: the residual's poses and the foot lock's drift read
   // it; written again only when a loop cuts the output.
-  write_sources(p, s.sampler, first, out.sources);
+  write_sources(p, s.sampler, st.first, sources);
   if (keyed) weights_over_frames(params.keys, s.u.size(), p.fps, s.frame_w);
-  if (paper != nullptr) {
-    // The paper's synthesis (3.6) on the samples with alpha the second take's weight: A's
-    // weights on a blend of the takes' cores, or B's basic-motion core at one level (3.5; the
-    // chain sums back to X with A's residual). No residuals otherwise, as the paper has it.
-    const double alpha = params.weights[1];
-    if (d.params.basic_motions > 0) {
-      synthesize_basic_motions(paper->basic_synthesis, params.swap_level, alpha, s.x);
-      s.x += paper->basic_a.residual;
-    } else {
-      synthesize_paper(paper->synthesis, alpha, s.x);
-    }
-    s.samples.resize(s.x.rows(), s.x.cols());
-    s.samples.noalias() = s.x * p.scale;
-    s.samples.rowwise() += params.weights[0] * p.takes[0].mean + alpha * p.takes[1].mean;
-    s.stretch = s.samples.middleRows(first, length);
-    s.sampler.apply(s.stretch, out.local);
-  } else if (!per_component) {
-    // sum_i w_i (W_i C scale + mean_i [+ residual_i]) at the output frames only. With the
-    // residual that is each take's own pose, read straight at the frame the output frame shows
-    // (one-hot weights give the take's own frames), one output frame at a time over the takes'
-    // transposed poses (a frame is a contiguous column).
-    if (params.residual) {
-      const Eigen::Index channels = p.takes.front().own_local_t.rows();
-      s.local_t.setZero(channels, out.sources.rows());
-      for (Eigen::Index k = 0; k < out.sources.rows(); ++k) {
-        auto column = s.local_t.col(k);
-        for (int i = 0; i < n; ++i) {
-          const double w = keyed ? s.frame_w(k, i) : params.weights[i];
-          if (w == 0.0) continue;
-          const Eigen::MatrixXd& x = p.takes[i].own_local_t;
-          const RowAt at(out.sources(k, i), x.cols());
-          column.noalias() += (w * (1.0 - at.f)) * x.col(at.r);
-          if (at.f != 0.0) column.noalias() += (w * at.f) * x.col(at.next);
-        }
-      }
-      out.local = s.local_t.transpose();
-    } else {
-      for (int i = 0; i < n; ++i) {
-        s.stretch = shared->reconstructed[i].middleRows(first, length);
-        if (keyed) {  // each output frame with its own weights
-          s.sampler.apply(s.stretch, s.samples);
-          if (i == 0) out.local = s.frame_w.col(0).asDiagonal() * s.samples;
-          else out.local += s.frame_w.col(i).asDiagonal() * s.samples;
-        } else if (i == 0) {
-          s.sampler.apply(s.stretch, out.local);
-          out.local *= params.weights[0];
-        } else {
-          s.sampler.accumulate(s.stretch, params.weights[i], out.local);
-        }
-      }
-    }
-  } else {
-    // Each component's weight column mixed per take, each joint's mean and residual with its
-    // components' mean weights (body_parts.h joint_values).
-    s.joint_weights = joint_values(d.support, params.component_weights);
-    s.component_w.setZero(length, d.components());
-    for (int i = 0; i < n; ++i)
-      s.component_w += shared->stacked.weights[i].middleRows(first, length) * params.component_weights.col(i).asDiagonal();
-    s.samples.noalias() = s.component_w * shared->stacked.components * p.scale;
-    // Each take's joint weights spread over the joint's three channels: the means in one row,
-    // the residuals a whole-matrix pass per take.
-    s.mixed_mean.setZero(s.samples.cols());
-    for (int i = 0; i < n; ++i) {
-      s.channel_w.resize(s.samples.cols());
-      for (Eigen::Index j = 0; j < s.joint_weights.rows(); ++j) s.channel_w.segment(3 * j, 3).setConstant(s.joint_weights(j, i));
-      s.mixed_mean += s.channel_w.cwiseProduct(p.takes[i].mean);
-      if (params.residual) s.samples += shared->residual[i].middleRows(first, length) * s.channel_w.asDiagonal();
-    }
-    s.samples.rowwise() += s.mixed_mean;
-    s.sampler.apply(s.samples, out.local);
-  }
-  if (times != nullptr) times->synthesize_ms = ms_since(t0);
+  return finish;
+}
 
-  const auto t1 = Clock::now();
-  // The root over the stretch: steps, whole-turn flips and the paths pulled towards.
+// The paper's synthesis (3.6) on the samples with alpha the second take's weight: A's weights on
+// a blend of the takes' cores, or B's basic-motion core at one level (3.5; the chain sums back to
+// X with A's residual). No residuals otherwise, as the paper has it.
+void paper_poses(const PreparedTakes& p, const Decomposed& d, const MixParams& params, const PlayedStretch& st,
+                 MixScratch& s, Eigen::MatrixXd& local) {
+  const PaperComponents* paper = d.paper();
+  const double alpha = params.weights[1];
+  if (d.params.basic_motions > 0) {
+    synthesize_basic_motions(paper->basic_synthesis, params.swap_level, alpha, s.x);
+    s.x += paper->basic_a.residual;
+  } else {
+    synthesize_paper(paper->synthesis, alpha, s.x);
+  }
+  s.samples.resize(s.x.rows(), s.x.cols());
+  s.samples.noalias() = s.x * p.scale;
+  s.samples.rowwise() += params.weights[0] * p.takes[0].mean + alpha * p.takes[1].mean;
+  s.stretch = s.samples.middleRows(st.first, st.length());
+  s.sampler.apply(s.stretch, local);
+}
+
+// sum_i w_i (W_i C scale + mean_i + residual_i) at the output frames only: each take's own pose,
+// read straight at the frame the output frame shows (one-hot weights give the take's own
+// frames), one output frame at a time over the takes' transposed poses (a frame is a contiguous
+// column).
+void own_poses(const PreparedTakes& p, const MixParams& params, const Eigen::MatrixXd& sources, MixScratch& s,
+               Eigen::MatrixXd& local) {
+  const bool keyed = !params.keys.empty();
+  const Eigen::Index channels = p.takes.front().own_local_t.rows();
+  s.local_t.setZero(channels, sources.rows());
+  for (Eigen::Index k = 0; k < sources.rows(); ++k) {
+    auto column = s.local_t.col(k);
+    for (int i = 0; i < p.size(); ++i) {
+      const double w = keyed ? s.frame_w(k, i) : params.weights[i];
+      if (w == 0.0) continue;
+      const Eigen::MatrixXd& x = p.takes[i].own_local_t;
+      const RowAt at(sources(k, i), x.cols());
+      column.noalias() += (w * (1.0 - at.f)) * x.col(at.r);
+      if (at.f != 0.0) column.noalias() += (w * at.f) * x.col(at.next);
+    }
+  }
+  local = s.local_t.transpose();
+}
+
+// sum_i w_i (W_i C scale + mean_i) at the output frames: each take's reconstruction without its
+// residual, with keys each output frame with its own weights.
+void reconstructed_poses(const PreparedTakes& p, const SharedComponents& shared, const MixParams& params,
+                         const PlayedStretch& st, MixScratch& s, Eigen::MatrixXd& local) {
+  const bool keyed = !params.keys.empty();
+  for (int i = 0; i < p.size(); ++i) {
+    s.stretch = shared.reconstructed[i].middleRows(st.first, st.length());
+    if (keyed) {
+      s.sampler.apply(s.stretch, s.samples);
+      if (i == 0) local = s.frame_w.col(0).asDiagonal() * s.samples;
+      else local += s.frame_w.col(i).asDiagonal() * s.samples;
+    } else if (i == 0) {
+      s.sampler.apply(s.stretch, local);
+      local *= params.weights[0];
+    } else {
+      s.sampler.accumulate(s.stretch, params.weights[i], local);
+    }
+  }
+}
+
+// Each component's weight column mixed per take, each joint's mean and residual with its
+// components' mean weights (body_parts.h joint_values).
+void part_poses(const PreparedTakes& p, const Decomposed& d, const MixParams& params, const PlayedStretch& st,
+                MixScratch& s, Eigen::MatrixXd& local) {
+  const SharedComponents* shared = d.shared();
+  const int n = p.size();
+  s.joint_weights = joint_values(d.support, params.component_weights);
+  s.component_w.setZero(st.length(), d.components());
+  for (int i = 0; i < n; ++i)
+    s.component_w +=
+        shared->stacked.weights[i].middleRows(st.first, st.length()) * params.component_weights.col(i).asDiagonal();
+  s.samples.noalias() = s.component_w * shared->stacked.components * p.scale;
+  // Each take's joint weights spread over the joint's three channels: the means in one row, the
+  // residuals a whole-matrix pass per take.
+  s.mixed_mean.setZero(s.samples.cols());
+  for (int i = 0; i < n; ++i) {
+    s.channel_w.resize(s.samples.cols());
+    for (Eigen::Index j = 0; j < s.joint_weights.rows(); ++j) s.channel_w.segment(3 * j, 3).setConstant(s.joint_weights(j, i));
+    s.mixed_mean += s.channel_w.cwiseProduct(p.takes[i].mean);
+    if (params.residual) s.samples += shared->residual[i].middleRows(st.first, st.length()) * s.channel_w.asDiagonal();
+  }
+  s.samples.rowwise() += s.mixed_mean;
+  s.sampler.apply(s.samples, local);
+}
+
+// The root over the stretch (s.ground_u, s.heading_u) and the contacts (s.contacts_u): steps,
+// whole-turn flips and the paths pulled towards (integrate_root_towards), as the steps are
+// weighted.
+void mix_root(const PreparedTakes& p, const MixParams& params, const PlayedStretch& st, MixScratch& s) {
+  const int n = p.size();
+  const bool keyed = !params.keys.empty();
+  const Eigen::Index first = st.first, length = st.length();
   const std::vector<double>& root_w = s.overall;
   s.steps.setZero(length, 3);
   s.target.setZero(length, 2);
   s.contacts_u.setZero(length, 2);
-  // The paths pulled towards (integrate_root_towards), as the steps are weighted.
   for (int i = 0; i < n; ++i) {
     if (keyed) {  // each sample with its own weights
       const auto w = s.sample_w.col(i).asDiagonal();
@@ -334,33 +388,96 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
   integrate_root_towards(s.steps, s.target, p.reference_heading[first], p.fps, convex ? params.root_pull_seconds : 0.0,
                          &s.ground_u, &s.heading_u);
   s.contacts_u = (s.contacts_u.array() > 0.5).cast<double>();
+}
+
+// The rig the clean-up measures the output with: the reference's, the foot lock held to the
+// takes' fastest joint and planted feet (MixResult::foot_sliding_inputs).
+FinishRig mix_rig(const PreparedTakes& p, double fastest, double planted_speed) {
   FinishRig rig;
   rig.parents = &p.parents;
   rig.lengths = &p.lengths;
   rig.feet = &p.feet;
   rig.short_bone_fraction = kShortBoneFraction;
   rig.lock_limits.fastest_joint = fastest;
+  rig.lock_limits.planted_speed = planted_speed;
+  return rig;
+}
+
+// The clean-up's first part (finish_preview): the output in the world, its limb lengths; where a
+// loop cut the output, the sources of the loop's frames (the frames before the cut kept in
+// s.sources_uncut for the planted drift). Leaves s.pending for finish_rest_of_mix.
+void preview_finish(const PreparedTakes& p, const MixParams& params, const PlayedStretch& st,
+                    const FinishOptions& finish, MixScratch& s, MixResult& out) {
+  const bool keyed = !params.keys.empty();
   out.foot_sliding_inputs = inputs_planted_speed(p, s.overall, keyed ? &s.frame_w : nullptr, params.feet_of_reference);
-  rig.lock_limits.planted_speed = out.foot_sliding_inputs;
+  const FinishRig rig = mix_rig(p, st.fastest, out.foot_sliding_inputs);
+  finish_preview(s.sampler, s.ground_u, s.heading_u, s.contacts_u, rig, finish, out.local, s.u_stretch, s.finish,
+                 out.motion);
+  if (finish.loop || finish.closed) {  // the loop's frames only
+    s.sources_uncut = out.sources;
+    s.sampler.set(s.u_stretch, st.length());
+    write_sources(p, s.sampler, st.first, out.sources);
+  }
+  s.pending.waiting = true;
+  s.pending.options = finish;
+  s.pending.fastest = st.fastest;
+}
+
+// The rest of the clean-up (finish_rest) after preview_finish: with a foot lock the takes'
+// planted drift (s.drift), then the speed limit, the lock and the measures.
+void finish_rest_of_mix(const PreparedTakes& p, const MixParams& params, MixScratch& s, MixResult& out) {
+  const int n = p.size();
+  const bool keyed = !params.keys.empty();
+  const FinishOptions& finish = s.pending.options;
+  const FinishRig rig = mix_rig(p, s.pending.fastest, out.foot_sliding_inputs);
+  const Eigen::MatrixXd& sources = finish.loop || finish.closed ? s.sources_uncut : out.sources;
   const Eigen::MatrixXd* drift = nullptr;
   if (finish.foot_lock) {
     if (params.feet_of_reference) {  // the reference's own planted moves alone
       s.drift_w.assign(static_cast<size_t>(n), 0.0);
       s.drift_w.front() = 1.0;
-      planted_drift(p, out.sources, s.drift_w, nullptr, s.drift);
+      planted_drift(p, sources, s.drift_w, nullptr, s.drift);
     } else {
-      planted_drift(p, out.sources, s.overall, keyed ? &s.frame_w : nullptr, s.drift);
+      planted_drift(p, sources, s.overall, keyed ? &s.frame_w : nullptr, s.drift);
     }
     drift = &s.drift;
   }
-  finish_motion(s.sampler, s.ground_u, s.heading_u, s.contacts_u, rig, finish, out.local, s.u_stretch, s.finish,
-                out.motion, drift);
-  if (finish.loop || finish.closed) {  // the loop's frames only
-    s.sampler.set(s.u_stretch, length);
-    write_sources(p, s.sampler, first, out.sources);
-  }
-  out.sample = s.u_stretch.array() + double(first);
+  finish_rest(rig, finish, s.finish, out.motion, drift);
+  s.pending.waiting = false;
+}
+
+}  // namespace
+
+void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& params, MixScratch& s,
+                 MixResult& out, StageTimes* times) {
+  check_mix(p, d, params);
+  s.pending.waiting = false;
+  const auto t0 = Clock::now();
+  const bool per_component = mix_overall_weights(params, p.size(), s);
+  const PlayedStretch st = played_stretch(p, params, per_component, s.timing);
+  out.first_sample = st.first;
+  out.last_sample = st.last;
+  const FinishOptions finish = output_clock(p, params, st, s, out.sources);
+  if (d.paper() != nullptr) paper_poses(p, d, params, st, s, out.local);
+  else if (per_component) part_poses(p, d, params, st, s, out.local);
+  else if (params.residual) own_poses(p, params, out.sources, s, out.local);
+  else reconstructed_poses(p, *d.shared(), params, st, s, out.local);
+  if (times != nullptr) times->synthesize_ms = ms_since(t0);
+
+  const auto t1 = Clock::now();
+  mix_root(p, params, st, s);
+  preview_finish(p, params, st, finish, s, out);
+  out.sample = s.u_stretch.array() + double(st.first);
+  if (!params.preview) finish_rest_of_mix(p, params, s, out);
   if (times != nullptr) times->postprocess_ms = ms_since(t1);
+}
+
+void finish_mix_palette(const PreparedTakes& p, const MixParams& params, MixScratch& s, MixResult& out,
+                        StageTimes* times) {
+  if (!s.pending.waiting) return;
+  const auto t0 = Clock::now();
+  finish_rest_of_mix(p, params, s, out);
+  if (times != nullptr) times->postprocess_ms += ms_since(t0);
 }
 
 Eigen::MatrixXd part_weights(const std::vector<std::pair<BodyPart, std::vector<double>>>& given,

@@ -50,6 +50,10 @@ struct MixParams {
   // planted speed and drift), whatever the weights; else to the takes' mixed by weight.
   bool feet_of_reference = false;
   FinishOptions finish;              // limb lengths, foot lock, loop
+  // A preview: the poses, the root and the limb lengths only (finish.h finish_preview), without
+  // the speed limit, the foot lock and the measures (MixResult::motion's foot_sliding_raw,
+  // _cleaned and limb_length_max_error 0); finish_mix_palette completes it.
+  bool preview = false;
   // Throws InputError, in one sentence, on a weight count that is not `takes`, a non-finite
   // weight, a weight outside [min_weight, max_weight] or weights that do not sum to 1.
   void Validate(int takes, int components) const;
@@ -64,6 +68,13 @@ struct MixScratch {
   std::vector<double> overall, timing, drift_w;
   RowSampler sampler;
   FinishScratch finish;
+  Eigen::MatrixXd sources_uncut;  // a loop's MixResult::sources before the cut, for the planted drift
+  // What a preview mix leaves for finish_mix_palette.
+  struct Pending {
+    bool waiting = false;   // a preview not finished yet
+    FinishOptions options;  // the finish's options (a loop clip's closed, ...)
+    double fastest = 0.0;   // the weighted takes' fastest joint
+  } pending;
 };
 
 struct MixResult {
@@ -89,6 +100,16 @@ struct MixResult {
 // times: when given, its synthesize_ms (the poses) and postprocess_ms (root, clean-up) are set.
 void mix_palette(const PreparedTakes& palette, const Decomposed& decomposition, const MixParams& params,
                  MixScratch& scratch, MixResult& out, StageTimes* times = nullptr);
+
+// Completes a preview (MixParams::preview) in out: the speed limit, the foot lock and the
+// measures, as mix_palette without preview would have run them; the preview then this give
+// exactly mix_palette's result without preview. p and params as the preview had them, scratch
+// and out as it left them. Does nothing when the last mix_palette with this scratch was not a
+// preview or has been completed. O(K x M), the foot lock's several tries most of it; allocates
+// nothing once sized (a loop copies its sources). times: when given, its postprocess_ms grows by
+// the time taken.
+void finish_mix_palette(const PreparedTakes& palette, const MixParams& params, MixScratch& scratch, MixResult& out,
+                        StageTimes* times = nullptr);
 
 // Per-component weights (k x N) from weights given per body part: each component takes the
 // row of the part that decides its region (body_parts.h deciding_part), else `rest`. Throws

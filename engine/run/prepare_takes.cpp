@@ -224,6 +224,175 @@ void PrepareOptions::Validate() const {
   foot_contacts.Validate();
 }
 
+namespace {
+
+// The left and right legs' hip, knee and ankle columns.
+using LegColumns6 = int[6];
+
+// The takes' major joints mapped (the first two with the options' mappings when given), the
+// joints they share (p.majors, p.parents), the working rate and the joints the alignment reads.
+std::vector<MajorMapping> map_takes(const std::vector<std::shared_ptr<const Clip>>& clips,
+                                    const PrepareOptions& options, PreparedTakes& p, LegColumns6& leg) {
+  const int n = static_cast<int>(clips.size());
+  std::vector<MajorMapping> mappings;
+  for (int i = 0; i < n; ++i) {
+    const MappingOverrides& given = i == 0 ? options.mapping_a : options.mapping_b;
+    const bool overridden = i <= 1 && !given.entries.empty();
+    mappings.push_back(map_major_joints(*clips[i], overridden ? &given : nullptr));
+  }
+  p.majors = shared_majors(clips, mappings, options.only_majors);
+  p.parents = subset_parents(p.majors);
+  p.fps = options.fps > 0 ? options.fps : clips[0]->fps();
+  auto column = [&](MajorJoint j) { return major_column(p.majors, static_cast<int>(j)); };
+  const MajorJoint legs[6] = {MajorJoint::kLeftHip,  MajorJoint::kLeftKnee,  MajorJoint::kLeftAnkle,
+                              MajorJoint::kRightHip, MajorJoint::kRightKnee, MajorJoint::kRightAnkle};
+  for (int k = 0; k < 6; ++k) leg[k] = column(legs[k]);
+  p.feature_joints.left_ankle = leg[2];
+  p.feature_joints.right_ankle = leg[5];
+  p.feature_joints.left_wrist = column(MajorJoint::kLeftWrist);
+  p.feature_joints.right_wrist = column(MajorJoint::kRightWrist);
+  return mappings;
+}
+
+// Take i on its own timeline, in the reference's bones (the reference, i = 0, sets them, and
+// the foot rig): world, canonical poses, contacts, cycles, planted feet and fastest joint.
+void prepare_own_take(int i, const std::shared_ptr<const Clip>& clip, const MajorMapping& mapping,
+                      const PrepareOptions& options, const LegColumns6& leg, PreparedTakes& p, JobControl* control) {
+  PreparedTake& t = p.takes[static_cast<size_t>(i)];
+  const double fps = p.fps;
+  t.clip = clip;
+  t.mapping = mapping;
+  MajorTake major = extract_major_take(*t.clip, t.mapping, p.majors, fps);
+  check_cancel(control);
+  t.names = std::move(major.names);
+  if (i == 0) {
+    t.world = std::move(major.world);
+    p.lengths = bone_lengths(t.world, p.parents);
+    // The reference in its own mean bone lengths, as every output is (paper 3.7): a rig whose
+    // bones stretch (a glTF thigh scaled over a run) or whose major chains skip a joint is
+    // measured (planted feet, their moves) as its outputs will be, so strength 0 gives it back.
+    apply_limb_lengths(t.world, p.parents, p.lengths);
+    p.feet = make_foot_rig(p.majors, p.lengths, fps, options.foot_contacts);
+  } else {
+    const std::vector<double> own_lengths = bone_lengths(major.world, p.parents);
+    t.world = retarget_positions(major.world, p.parents, p.lengths, leg_length(p.lengths, leg),
+                                 leg_length(own_lengths, leg));
+    adopt_group_shapes(t.world, p.takes.front().world, p.parents);
+    apply_limb_lengths(t.world, p.parents, p.lengths);
+  }
+  t.canonical = to_canonical(t.world, 0, leg[0], leg[3]);
+  t.own_local_t = t.canonical.local.transpose();
+  contacts_and_cycles(t.world, t.canonical, p.feet, &t.own_contacts, &t.cycles);
+  // A loop clip whose last frame shows its first again is measured without it, as its outputs
+  // (cut to the loop, closed at the seam) are.
+  const bool closing_last = t.cycles.loops() && t.cycles.loop_frames == t.world.rows() - 1;
+  t.planted = closing_last ? planted_speed(Eigen::MatrixXd(t.world.topRows(t.cycles.loop_frames)), p.feet)
+                           : planted_speed(t.world, p.feet);
+  t.fastest_joint = fastest_joint_speed(t.world, fps);
+  if (i == 0 && t.cycles.loops() && t.cycles.loop_frames == t.world.rows()) append_closing_frame(t, p, leg);
+}
+
+// Take i (> 0) aligned onto the reference: by cycles where both repeat (its own timeline then
+// becomes the registered take, its cycles on the reference's), else whole; with the alignment's
+// warnings.
+void align_onto_reference(int i, const PrepareOptions& options, const LegColumns6& leg, PreparedTakes& p,
+                          JobControl* control) {
+  const int n = p.size();
+  const double fps = p.fps;
+  const PreparedTake& reference = p.takes.front();
+  PreparedTake& t = p.takes[static_cast<size_t>(i)];
+  TakeCycles own = cycles_to_register(p, t, options.align);
+  const int fade = std::max(2, static_cast<int>(std::lround(kPostureFadeCycles * reference.cycles.period)));
+  // A loop take is read across its end (unrolled); a take's cycles begin at the phase of the
+  // gait the reference's begin at (a loop reference's where the clip begins).
+  const CanonicalMotion* take_motion = &t.canonical;
+  const Eigen::MatrixXd* take_contacts = &t.own_contacts;
+  UnrolledLoop unrolled;
+  if (cycles_register(reference.cycles, own) && own.loops()) {
+    const int repeats = loop_repeats(own.loop_frames, fade);
+    unrolled = unroll_loop(t.canonical, t.own_contacts, own.loop_frames, repeats);
+    const int middle = own.loop_frames * (repeats / 2);
+    own.cycles = {{middle, middle + own.loop_frames}};
+    take_motion = &unrolled.motion;
+    take_contacts = &unrolled.contacts;
+  }
+  if (cycles_register(reference.cycles, own) && own.kind == CycleKind::kGait &&
+      (own.strike_phase != 0.0 || reference.cycles.strike_phase != 0.0))
+    own = cycles_at_phase(own, reference.cycles.strike_phase, static_cast<int>(take_motion->local.rows()));
+  if (cycles_register(reference.cycles, own) && ends_inside(reference.cycles, reference.canonical.local.rows()) &&
+      ends_inside(own, take_motion->local.rows())) {
+    RegisteredMotion registered = register_by_cycles(reference.canonical, reference.own_contacts, reference.cycles,
+                                                     *take_motion, *take_contacts, own, fade);
+    // An unrolled loop's frames are its file's frames modulo the loop.
+    if (unrolled.loop_frames > 0)
+      for (double& f : registered.registration.source)
+        if (!std::isnan(f)) f = std::fmod(f, double(unrolled.loop_frames));
+    t.alignment = align_by_cycles(reference.canonical, registered, p.feature_joints, p.feet.leg_length, fps,
+                                  options.align, control);
+    // Poses faded or eased across a seam are blends: their bones are put back to the
+    // reference's lengths, and the canonical poses read again from them.
+    to_world(registered.motion.local, registered.motion.ground, registered.motion.heading, &t.world);
+    apply_limb_lengths(t.world, p.parents, p.lengths);
+    t.canonical = to_canonical(t.world, 0, leg[0], leg[3]);
+    t.own_contacts = std::move(registered.contacts);
+    t.registration = std::move(registered.registration);
+    t.own_local_t = t.canonical.local.transpose();
+  } else {
+    t.alignment = align_takes(reference.canonical, t.canonical, p.feature_joints, p.feet.leg_length, fps,
+                              options.align, control);
+    t.alignment.whole_because = why_whole(reference.cycles, own, options.align, aligned_name(0, n, *reference.clip).name,
+                                          aligned_name(i, n, *t.clip).name);
+  }
+  t.alignment.warnings = alignment_warnings(t.alignment, fps, aligned_name(0, n, *reference.clip),
+                                            aligned_name(i, n, *t.clip));
+  if (!t.alignment.whole_because.empty())
+    t.alignment.warnings.push_back("aligned whole, not by cycles: " + t.alignment.whole_because);
+}
+
+// Every take on the common timeline (p.timeline set), placed where the reference stands when its
+// match starts: poses, ground, steps and contacts per sample, and the whole turns that keep each
+// take's facing within about half a turn of the reference's.
+void place_on_timeline(PreparedTakes& p) {
+  const PreparedTake& reference = p.takes.front();
+  for (int i = 0; i < p.size(); ++i) {
+    PreparedTake& t = p.takes[static_cast<size_t>(i)];
+    PlacedRoot placed{t.canonical.ground, t.canonical.heading};
+    if (i > 0) {
+      const TimeWarp& warp = t.alignment.warp;
+      placed = place_at(reference.canonical, warp.a[0], t.canonical, warp.b[0]);
+    }
+    to_world(t.canonical.local, placed.ground, placed.heading, &t.world_placed);
+    t.frames = p.timeline.frames[static_cast<size_t>(i)];
+    t.local = sample_rows(t.canonical.local, t.frames);
+    t.ground = sample_rows(placed.ground, t.frames);
+    const Eigen::VectorXd heading = sample_rows(placed.heading, t.frames);
+    // A warp may skip frames from one sample to the next (the paper's); the root must not
+    // teleport (canonical_frame.h). Where no take skips, this changes nothing.
+    t.steps = limit_warped_steps(root_steps(t.ground, heading), t.frames, kMaxWarpSpeedup);
+    t.contacts = carry_contacts(t.own_contacts, t.frames);
+  }
+  p.reference_heading = sample_rows(reference.canonical.heading, reference.frames);
+  // Kept apart: the synthesis spreads each over a moment so a mix in between turns smoothly
+  // where it flips.
+  for (PreparedTake& t : p.takes) t.turn_flips = match_turns(t.steps, reference.steps).col(2) - t.steps.col(2);
+}
+
+// Normalization: each take's own mean pose, one scale for all (per-channel scales would divide by
+// zero on constant channels, the hips' x and z in the canonical frame).
+void normalize_takes(PreparedTakes& p) {
+  double sum = 0.0, count = 0.0;
+  for (PreparedTake& t : p.takes) {
+    t.mean = t.local.colwise().mean();
+    sum += (t.local.rowwise() - t.mean).squaredNorm();
+    count += static_cast<double>(t.local.size());
+  }
+  p.scale = count > 0 ? std::sqrt(sum / count) : 1.0;
+  if (!(p.scale > 0) || !std::isfinite(p.scale)) p.scale = 1.0;
+  for (PreparedTake& t : p.takes) t.x = (t.local.rowwise() - t.mean) / p.scale;
+}
+
+}  // namespace
+
 std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared_ptr<const Clip>>& clips,
                                                    const PrepareOptions& options, JobControl* control,
                                                    StageTimes* times) {
@@ -236,161 +405,30 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
   options.Validate();
   const auto t0 = Clock::now();
   auto p = std::make_shared<PreparedTakes>();
-  std::vector<MajorMapping> mappings;
-  for (int i = 0; i < n; ++i) {
-    const MappingOverrides& given = i == 0 ? options.mapping_a : options.mapping_b;
-    const bool overridden = i <= 1 && !given.entries.empty();
-    mappings.push_back(map_major_joints(*clips[i], overridden ? &given : nullptr));
-  }
-  p->majors = shared_majors(clips, mappings, options.only_majors);
-  p->parents = subset_parents(p->majors);
-  const double fps = options.fps > 0 ? options.fps : clips[0]->fps();
-  p->fps = fps;
+  LegColumns6 leg;
+  const std::vector<MajorMapping> mappings = map_takes(clips, options, *p, leg);
   report_progress(control, 0.1f);
-
-  auto column = [&](MajorJoint j) { return major_column(p->majors, static_cast<int>(j)); };
-  const int leg[6] = {column(MajorJoint::kLeftHip), column(MajorJoint::kLeftKnee),
-                      column(MajorJoint::kLeftAnkle), column(MajorJoint::kRightHip),
-                      column(MajorJoint::kRightKnee), column(MajorJoint::kRightAnkle)};
-  p->feature_joints.left_ankle = leg[2];
-  p->feature_joints.right_ankle = leg[5];
-  p->feature_joints.left_wrist = column(MajorJoint::kLeftWrist);
-  p->feature_joints.right_wrist = column(MajorJoint::kRightWrist);
-
-  // Each take on its own timeline, in the reference's bones.
   p->takes.resize(static_cast<size_t>(n));
-  for (int i = 0; i < n; ++i) {
-    PreparedTake& t = p->takes[static_cast<size_t>(i)];
-    t.clip = clips[static_cast<size_t>(i)];
-    t.mapping = mappings[static_cast<size_t>(i)];
-    MajorTake major = extract_major_take(*t.clip, t.mapping, p->majors, fps);
-    check_cancel(control);
-    t.names = std::move(major.names);
-    if (i == 0) {
-      t.world = std::move(major.world);
-      p->lengths = bone_lengths(t.world, p->parents);
-      // The reference in its own mean bone lengths, as every output is (paper 3.7): a rig whose
-      // bones stretch (a glTF thigh scaled over a run) or whose major chains skip a joint is
-      // measured (planted feet, their moves) as its outputs will be, so strength 0 gives it back.
-      apply_limb_lengths(t.world, p->parents, p->lengths);
-      p->feet = make_foot_rig(p->majors, p->lengths, fps, options.foot_contacts);
-    } else {
-      const std::vector<double> own_lengths = bone_lengths(major.world, p->parents);
-      t.world = retarget_positions(major.world, p->parents, p->lengths, leg_length(p->lengths, leg),
-                                   leg_length(own_lengths, leg));
-      adopt_group_shapes(t.world, p->takes.front().world, p->parents);
-      apply_limb_lengths(t.world, p->parents, p->lengths);
-    }
-    t.canonical = to_canonical(t.world, 0, leg[0], leg[3]);
-    t.own_local_t = t.canonical.local.transpose();
-    contacts_and_cycles(t.world, t.canonical, p->feet, &t.own_contacts, &t.cycles);
-    // A loop clip whose last frame shows its first again is measured without it, as its outputs
-    // (cut to the loop, closed at the seam) are.
-    const bool closing_last = t.cycles.loops() && t.cycles.loop_frames == t.world.rows() - 1;
-    t.planted = closing_last ? planted_speed(Eigen::MatrixXd(t.world.topRows(t.cycles.loop_frames)), p->feet)
-                             : planted_speed(t.world, p->feet);
-    t.fastest_joint = fastest_joint_speed(t.world, fps);
-    if (i == 0 && t.cycles.loops() && t.cycles.loop_frames == t.world.rows()) append_closing_frame(t, *p, leg);
-  }
+  for (int i = 0; i < n; ++i)
+    prepare_own_take(i, clips[static_cast<size_t>(i)], mappings[static_cast<size_t>(i)], options, leg, *p, control);
   spent.preprocess_ms = ms_since(t0);
   report_progress(control, 0.3f);
 
-  // Each other take aligned onto the reference.
   const auto t1 = Clock::now();
-  const PreparedTake& reference = p->takes.front();
   std::vector<const TimeWarp*> warps;
   for (int i = 1; i < n; ++i) {
-    PreparedTake& t = p->takes[static_cast<size_t>(i)];
-    TakeCycles own = cycles_to_register(*p, t, options.align);
-    const int fade = std::max(2, static_cast<int>(std::lround(kPostureFadeCycles * reference.cycles.period)));
-    // A loop take is read across its end (unrolled); a take's cycles begin at the phase of the
-    // gait the reference's begin at (a loop reference's where the clip begins).
-    const CanonicalMotion* take_motion = &t.canonical;
-    const Eigen::MatrixXd* take_contacts = &t.own_contacts;
-    UnrolledLoop unrolled;
-    if (cycles_register(reference.cycles, own) && own.loops()) {
-      const int repeats = loop_repeats(own.loop_frames, fade);
-      unrolled = unroll_loop(t.canonical, t.own_contacts, own.loop_frames, repeats);
-      const int middle = own.loop_frames * (repeats / 2);
-      own.cycles = {{middle, middle + own.loop_frames}};
-      take_motion = &unrolled.motion;
-      take_contacts = &unrolled.contacts;
-    }
-    if (cycles_register(reference.cycles, own) && own.kind == CycleKind::kGait &&
-        (own.strike_phase != 0.0 || reference.cycles.strike_phase != 0.0))
-      own = cycles_at_phase(own, reference.cycles.strike_phase, static_cast<int>(take_motion->local.rows()));
-    if (cycles_register(reference.cycles, own) && ends_inside(reference.cycles, reference.canonical.local.rows()) &&
-        ends_inside(own, take_motion->local.rows())) {
-      // Its own timeline becomes the registered take: its cycles on the reference's.
-      RegisteredMotion registered = register_by_cycles(reference.canonical, reference.own_contacts, reference.cycles,
-                                                       *take_motion, *take_contacts, own, fade);
-      // An unrolled loop's frames are its file's frames modulo the loop.
-      if (unrolled.loop_frames > 0)
-        for (double& f : registered.registration.source)
-          if (!std::isnan(f)) f = std::fmod(f, double(unrolled.loop_frames));
-      t.alignment = align_by_cycles(reference.canonical, registered, p->feature_joints, p->feet.leg_length, fps,
-                                    options.align, control);
-      // Poses faded or eased across a seam are blends: their bones are put back to the
-      // reference's lengths, and the canonical poses read again from them.
-      to_world(registered.motion.local, registered.motion.ground, registered.motion.heading, &t.world);
-      apply_limb_lengths(t.world, p->parents, p->lengths);
-      t.canonical = to_canonical(t.world, 0, leg[0], leg[3]);
-      t.own_contacts = std::move(registered.contacts);
-      t.registration = std::move(registered.registration);
-      t.own_local_t = t.canonical.local.transpose();
-    } else {
-      t.alignment = align_takes(reference.canonical, t.canonical, p->feature_joints, p->feet.leg_length, fps,
-                                options.align, control);
-      t.alignment.whole_because = why_whole(reference.cycles, own, options.align, aligned_name(0, n, *reference.clip).name,
-                                            aligned_name(i, n, *t.clip).name);
-    }
-    t.alignment.warnings = alignment_warnings(t.alignment, fps, aligned_name(0, n, *reference.clip),
-                                              aligned_name(i, n, *t.clip));
-    if (!t.alignment.whole_because.empty())
-      t.alignment.warnings.push_back("aligned whole, not by cycles: " + t.alignment.whole_because);
-    warps.push_back(&t.alignment.warp);
+    align_onto_reference(i, options, leg, *p, control);
+    warps.push_back(&p->takes[static_cast<size_t>(i)].alignment.warp);
   }
   spent.dtw_ms = ms_since(t1);
   report_progress(control, 0.8f);
 
   // Each take's planted foot joints' travel in its body's frame, on its own frames.
   for (PreparedTake& t : p->takes) t.foot_travel = foot_travel(t.world, t.canonical.heading, p->feet);
-
-  // Every take on the common timeline, placed where the reference stands when its match starts.
   const auto t2 = Clock::now();
   p->timeline = common_timeline(warps);
-  for (int i = 0; i < n; ++i) {
-    PreparedTake& t = p->takes[static_cast<size_t>(i)];
-    PlacedRoot placed{t.canonical.ground, t.canonical.heading};
-    if (i > 0) {
-      const TimeWarp& warp = t.alignment.warp;
-      placed = place_at(reference.canonical, warp.a[0], t.canonical, warp.b[0]);
-    }
-    to_world(t.canonical.local, placed.ground, placed.heading, &t.world_placed);
-    t.frames = p->timeline.frames[static_cast<size_t>(i)];
-    t.local = sample_rows(t.canonical.local, t.frames);
-    t.ground = sample_rows(placed.ground, t.frames);
-    const Eigen::VectorXd heading = sample_rows(placed.heading, t.frames);
-    // A warp may skip frames from one sample to the next (the paper's); the root must not
-    // teleport (canonical_frame.h). Where no take skips, this changes nothing.
-    t.steps = limit_warped_steps(root_steps(t.ground, heading), t.frames, kMaxWarpSpeedup);
-    t.contacts = carry_contacts(t.own_contacts, t.frames);
-  }
-  p->reference_heading = sample_rows(reference.canonical.heading, reference.frames);
-  // Whole turns that keep each take's facing within about half a turn of the reference's, kept
-  // apart: the synthesis spreads each over a moment so a mix in between turns smoothly where it flips.
-  for (PreparedTake& t : p->takes) t.turn_flips = match_turns(t.steps, reference.steps).col(2) - t.steps.col(2);
-  // Normalization: each take's own mean pose, one scale for all (per-channel scales would divide
-  // by zero on constant channels, the hips' x and z in the canonical frame).
-  double sum = 0.0, count = 0.0;
-  for (PreparedTake& t : p->takes) {
-    t.mean = t.local.colwise().mean();
-    sum += (t.local.rowwise() - t.mean).squaredNorm();
-    count += static_cast<double>(t.local.size());
-  }
-  p->scale = count > 0 ? std::sqrt(sum / count) : 1.0;
-  if (!(p->scale > 0) || !std::isfinite(p->scale)) p->scale = 1.0;
-  for (PreparedTake& t : p->takes) t.x = (t.local.rowwise() - t.mean) / p->scale;
+  place_on_timeline(*p);
+  normalize_takes(*p);
   spent.preprocess_ms += ms_since(t2);
   check_cancel(control);
   report_progress(control, 1.0f);

@@ -1,7 +1,8 @@
 // Speed of the style palette on eight one-minute takes at 30 fps (20 major joints):
 // the shared decomposition of all eight (goal: under 200 ms) and one mix for new weights, what
 // a weight slider or the blend pad does (goal: under 1 ms), with the timing mixed and with the
-// reference's timing.
+// reference's timing; and that mix as a preview (poses, root, limb lengths) and its completion
+// (speed limit, foot lock, measures) apart.
 //
 // Data: the eight takes of ../shared/motions it has (Bandai and CMU, two conventions, 30 and
 // 120 fps), each played slower or faster so that it lasts a minute; without ../shared, the
@@ -82,11 +83,15 @@ BENCHMARK(BM_DecomposeEightTakes)->Unit(benchmark::kMillisecond)->Iterations(3);
 // poses, timing, root, limb lengths and foot lock.
 // keyed: the weights keyed in time instead: from the reference's alone at 5 s to the
 // weights of the move at 40 s, a new set of keys every iteration.
-void mix_bench(benchmark::State& state, bool reference_timing, bool keyed = false) {
+// stage: the whole mix, its preview only (MixParams::preview), or the preview untimed and its
+// completion (finish_mix_palette) timed: what the editor shows at once and what follows.
+enum class Stage { kWhole, kPreview, kRest };
+void mix_bench(benchmark::State& state, bool reference_timing, bool keyed = false, Stage stage = Stage::kWhole) {
   const PreparedTakes& p = palette();
   const Decomposed& d = decomposition();
   MixParams params;
   params.reference_timing = reference_timing;
+  params.preview = stage != Stage::kWhole;
   MixScratch scratch;
   MixResult out;
   StageTimes times;
@@ -103,7 +108,14 @@ void mix_bench(benchmark::State& state, bool reference_timing, bool keyed = fals
       first[0] = 1.0;
       params.keys = {{5.0, first}, {40.0, params.weights}};
     }
-    mix_palette(p, d, params, scratch, out, &times);
+    if (stage == Stage::kRest) {
+      state.PauseTiming();
+      mix_palette(p, d, params, scratch, out, &times);
+      state.ResumeTiming();
+      finish_mix_palette(p, params, scratch, out, &times);
+    } else {
+      mix_palette(p, d, params, scratch, out, &times);
+    }
     benchmark::DoNotOptimize(out.motion.world.data());
   }
   state.counters["output_frames"] = double(out.motion.world.rows());
@@ -113,7 +125,11 @@ void mix_bench(benchmark::State& state, bool reference_timing, bool keyed = fals
 void BM_MixEightTakes(benchmark::State& state) { mix_bench(state, false); }
 void BM_MixEightTakesReferenceTiming(benchmark::State& state) { mix_bench(state, true); }
 void BM_MixEightTakesKeyed(benchmark::State& state) { mix_bench(state, false, true); }
+void BM_MixEightTakesPreview(benchmark::State& state) { mix_bench(state, false, false, Stage::kPreview); }
+void BM_FinishEightTakesAfterPreview(benchmark::State& state) { mix_bench(state, false, false, Stage::kRest); }
 BENCHMARK(BM_MixEightTakes)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MixEightTakesPreview)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_FinishEightTakesAfterPreview)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_MixEightTakesKeyed)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_MixEightTakesReferenceTiming)->Unit(benchmark::kMicrosecond);
 

@@ -498,3 +498,78 @@ TEST_CASE("palette: strength 0 gives back takes whose bones stretch, and loop cl
     CHECK(worst < 0.01 + worst_seam / height);
   }
 }
+
+namespace {
+
+// Every value of two mixes equal, bit for bit.
+void check_same_mix(const MixResult& a, const MixResult& b) {
+  CHECK(a.motion.world == b.motion.world);
+  CHECK(a.motion.contacts == b.motion.contacts);
+  CHECK(a.motion.loop.begin == b.motion.loop.begin);
+  CHECK(a.motion.loop.end == b.motion.loop.end);
+  CHECK(a.motion.limb_length_max_error == b.motion.limb_length_max_error);
+  CHECK(a.motion.foot_sliding_raw == b.motion.foot_sliding_raw);
+  CHECK(a.motion.foot_sliding_cleaned == b.motion.foot_sliding_cleaned);
+  CHECK(a.local == b.local);
+  CHECK(a.sample == b.sample);
+  CHECK(a.sources == b.sources);
+  CHECK(a.first_sample == b.first_sample);
+  CHECK(a.last_sample == b.last_sample);
+  CHECK(a.foot_sliding_inputs == b.foot_sliding_inputs);
+}
+
+}  // namespace
+
+TEST_CASE("palette: a preview then finish_mix_palette is the whole mix, exactly", "[palette]") {
+  const auto clips = bundled();
+  const auto p = prepare_takes(clips, {});
+  const auto d = decompose_takes(*p, params());
+  const std::vector<double> w{0.4, 0.3, 0.2, 0.1};
+  std::vector<std::pair<std::string, MixParams>> cases;
+  MixParams plain;
+  plain.weights = w;
+  cases.emplace_back("plain", plain);
+  MixParams keyed = plain;
+  keyed.keys = {{1.0, one_hot(4, 0)}, {4.0, w}};
+  cases.emplace_back("keyed", keyed);
+  MixParams parts = plain;
+  const std::vector<std::pair<BodyPart, std::vector<double>>> legs{{BodyPart::kLegs, one_hot(4, 2)}};
+  parts.component_weights = part_weights(legs, d->component_joints, w);
+  cases.emplace_back("per part", parts);
+  MixParams reference = plain;
+  reference.reference_timing = true;
+  cases.emplace_back("reference timing", reference);
+  MixParams loop = plain;
+  loop.finish.loop = true;
+  cases.emplace_back("loop", loop);
+  MixParams unlocked = plain;
+  unlocked.finish.foot_lock = false;
+  cases.emplace_back("no foot lock", unlocked);
+  MixParams feet = plain;
+  feet.weights = {1.0, -0.5, 0.5, 0.0};
+  feet.min_weight = transfer_min_weight(1);
+  feet.max_weight = transfer_max_weight(1);
+  feet.feet_of_reference = true;
+  cases.emplace_back("transfer's feet", feet);
+  MixScratch shared_scratch;  // one scratch across the cases, as the editor keeps one
+  for (const auto& c : cases) {
+    INFO(c.first);
+    MixScratch scratch;
+    MixResult whole;
+    mix_palette(*p, *d, c.second, scratch, whole);
+    if (c.second.finish.loop) CHECK(whole.motion.loop.frames() > 0);
+    MixParams preview = c.second;
+    preview.preview = true;
+    MixResult staged;
+    mix_palette(*p, *d, preview, shared_scratch, staged);
+    CHECK(staged.motion.foot_sliding_cleaned == 0.0);
+    CHECK(staged.local == whole.local);  // the poses are the preview's already
+    CHECK(staged.motion.loop.begin == whole.motion.loop.begin);
+    finish_mix_palette(*p, preview, shared_scratch, staged);
+    check_same_mix(staged, whole);
+    // Completed once: a second call changes nothing.
+    const Eigen::MatrixXd world = staged.motion.world;
+    finish_mix_palette(*p, preview, shared_scratch, staged);
+    CHECK(staged.motion.world == world);
+  }
+}
