@@ -89,7 +89,7 @@ void BlendSession::sync(EditorState& state, bool item_held) {
   } else if (realign && snapshot_->prepared) {
     worker_.load(snapshot_->paths, prepare_options(d));
   }
-  update_result(state);
+  update_result(state, item_held);
 }
 
 bool BlendSession::decomposition_outdated() const {
@@ -159,8 +159,8 @@ void BlendSession::take_up_decomposition(EditorState& state) {
   if (pair() != nullptr) sweep_.add(*d, seen_prepared_, snapshot_->paths, prepare_options(asked_));  // a pair's curve
 }
 
-void BlendSession::update_result(EditorState& state) {
-  if (const PreparedTakes* p = takes()) view_.update(*p, snapshot_->decomposed.get(), state);
+void BlendSession::update_result(EditorState& state, bool item_held) {
+  if (const PreparedTakes* p = takes()) view_.update(*p, snapshot_->decomposed.get(), state, item_held);
 }
 
 void BlendSession::wait_idle(EditorState& state) {

@@ -66,8 +66,8 @@ class BlendSession {
   // document. A load waiting goes to the worker; an alignment option that changed aligns the
   // takes again; k, sparsity, the mode or the basic motions that changed ask for a decomposition,
   // but not while item_held (an ImGui item is held: k's slider decomposes once, when let go);
-  // then the mix is run again when its inputs changed, and the blend take, the highlights and
-  // the placement (side by side / overlaid) follow.
+  // then the result is mixed again when its inputs changed (ResultView: a preview while
+  // item_held, finished once let go), and the takes shown follow.
   void sync(EditorState& state, bool item_held = false);
   // sync(), then blocks until the worker is idle (tests, screenshots), then poll() + sync().
   void wait_idle(EditorState& state);
@@ -102,7 +102,7 @@ class BlendSession {
  private:
   PrepareOptions prepare_options(const Document& document) const;
   void request_decomposition(const Document& document);
-  void update_result(EditorState& state);
+  void update_result(EditorState& state, bool item_held);
   void take_up_takes(EditorState& state);
   void take_up_decomposition(EditorState& state);
 

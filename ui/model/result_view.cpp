@@ -125,21 +125,25 @@ void ResultView::take_up(const PreparedTakes& p, const std::vector<std::string>&
   place(p, state);
 }
 
-void ResultView::update(const PreparedTakes& p, const Decomposed* d, EditorState& state) {
+void ResultView::update(const PreparedTakes& p, const Decomposed* d, EditorState& state, bool item_held) {
   if (static_cast<int>(state.takes.size()) != p.size() + 1) return;
-  if (d != nullptr && (d != mixed_decomposition_ || differs_at(mixed_, state.document, Stale::kMix))) remix(p, *d, state);
+  if (d != nullptr && (d != mixed_decomposition_ || differs_at(mixed_, state.document, Stale::kMix)))
+    remix(p, *d, state, item_held);
+  else if (!item_held && previewing())
+    finish(p, state);
   if (placed_overlay_ != state.document.overlay || placed_ghosts_ != state.document.controls.palette.ghosts)
     place(p, state);
   highlight(d, state);
 }
 
-void ResultView::remix(const PreparedTakes& p, const Decomposed& d, EditorState& state) {
+void ResultView::remix(const PreparedTakes& p, const Decomposed& d, EditorState& state, bool preview) {
   mixed_decomposition_ = &d;
   mixed_ = state.document;
   const auto t0 = Clock::now();
   try {
-    const MixParams params = mix_params_for(state.document, d, p.size());
-    mix_palette(p, d, params, scratch_, mix_, &mix_times_);
+    mixed_params_ = mix_params_for(state.document, d, p.size());
+    mixed_params_.preview = preview;
+    mix_palette(p, d, mixed_params_, scratch_, mix_, &mix_times_);
   } catch (const std::exception& e) {  // refused weights or keys: said where they are set, the last result stays
     error_ = e.what();
     mix_ms_ = ms_since(t0);
@@ -148,6 +152,26 @@ void ResultView::remix(const PreparedTakes& p, const Decomposed& d, EditorState&
   mix_ms_ = ms_since(t0);
   has_mix_ = true;
   error_.clear();
+  take_up_mix(p, state);
+}
+
+// A preview let go: the foot lock and the measures, on the mix shown.
+void ResultView::finish(const PreparedTakes& p, EditorState& state) {
+  const auto t0 = Clock::now();
+  try {
+    finish_mix_palette(p, mixed_params_, scratch_, mix_, &mix_times_);
+  } catch (const std::exception& e) {
+    error_ = e.what();
+    return;
+  }
+  mix_ms_ += ms_since(t0);  // the preview and its finish: one mix
+  take_up_mix(p, state);
+}
+
+// A new mix (or a preview finished) shown: the provenance of its cycles, the result's label and
+// contacts, every take placed at the frame the result is in it.
+void ResultView::take_up_mix(const PreparedTakes& p, EditorState& state) {
+  const Decomposed& d = *mixed_decomposition_;
   // Where each of its cycles came from, for the timeline's tooltip: once per result.
   state.cycle_provenance = cycle_provenance(p, mix_.sources, names_);
   Take& result = state.takes[static_cast<size_t>(result_index(p.size()))];

@@ -117,3 +117,27 @@ TEST_CASE("result view: a take added keeps the others' weights, the new one at 0
   REQUIRE(s.session.palette()->size() == 4);
   CHECK(s.state.document.controls.palette.weights == std::vector<double>{0.5, 0.2, 0.3, 0.0});
 }
+
+TEST_CASE("result view: a held slider mixes a preview, let go it is finished into the whole mix") {
+  LoadedSession s;
+  REQUIRE(s.session.result() != nullptr);
+  CHECK_FALSE(s.session.result_view().previewing());
+  s.state.document.parameters.alpha = 0.3;
+  s.session.sync(s.state, /*item_held=*/true);  // the alpha slider dragged
+  CHECK(s.session.result_view().previewing());
+  CHECK(s.session.result()->motion.foot_sliding_cleaned == 0.0);  // no foot lock, no measures yet
+  s.session.sync(s.state, /*item_held=*/true);  // still held, nothing new: still the preview
+  CHECK(s.session.result_view().previewing());
+  s.session.sync(s.state, /*item_held=*/false);  // let go
+  CHECK_FALSE(s.session.result_view().previewing());
+  // The same as one whole mix of the document.
+  const PreparedTakes& p = *s.session.takes();
+  const Decomposed& d = *s.session.snapshot().decomposed;
+  MixScratch scratch;
+  MixResult whole;
+  mix_palette(p, d, mix_params_for(s.state.document, d, p.size()), scratch, whole);
+  CHECK(s.session.result()->motion.world == whole.motion.world);
+  CHECK(s.session.result()->motion.contacts == whole.motion.contacts);
+  CHECK(s.session.result()->motion.foot_sliding_cleaned == whole.motion.foot_sliding_cleaned);
+  CHECK(s.state.takes.back().positions.rows() == whole.motion.world.rows());
+}
