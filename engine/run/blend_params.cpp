@@ -8,6 +8,16 @@
 
 namespace mostyle {
 
+void set_component_alpha_weights(const std::vector<double>& alphas, Eigen::MatrixXd& out) {
+  out.resize(static_cast<Eigen::Index>(alphas.size()), 2);
+  for (size_t c = 0; c < alphas.size(); ++c) {
+    const double a = alphas[c];
+    if (!std::isfinite(a)) throw InputError("expected finite component alphas");
+    out(static_cast<Eigen::Index>(c), 0) = 1.0 - a;
+    out(static_cast<Eigen::Index>(c), 1) = a;
+  }
+}
+
 void set_blend_mix_params(const BlendParams& params, const Decomposed& d, MixParams& mix) {
   if (!std::isfinite(params.alpha)) throw InputError("expected a finite alpha");
   const double alpha = params.alpha;
@@ -16,13 +26,7 @@ void set_blend_mix_params(const BlendParams& params, const Decomposed& d, MixPar
     if (static_cast<int>(params.component_alpha.size()) != d.components())
       throw InputError("expected " + std::to_string(d.components()) + " component alphas, found " +
                        std::to_string(params.component_alpha.size()));
-    mix.component_weights.resize(d.components(), 2);
-    for (int c = 0; c < d.components(); ++c) {
-      const double a = params.component_alpha[static_cast<size_t>(c)];
-      if (!std::isfinite(a)) throw InputError("expected finite component alphas");
-      mix.component_weights(c, 0) = 1.0 - a;
-      mix.component_weights(c, 1) = a;
-    }
+    set_component_alpha_weights(params.component_alpha, mix.component_weights);
   } else {
     mix.component_weights.resize(0, 0);
   }

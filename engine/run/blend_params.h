@@ -35,6 +35,9 @@ struct BlendParams {
 // alpha_c) in shared mode, any alpha (how far to exaggerate is the person's call), B's core at
 // swap_level. Throws InputError on a non-finite alpha or a wrong count of component alphas.
 MixParams blend_mix_params(const BlendParams& params, const Decomposed& decomposed);
+// Per-component alphas as per-component mix weights into `out` (k x 2): (1 - alpha_c, alpha_c).
+// Throws InputError on a non-finite alpha. No allocation once `out` is sized.
+void set_component_alpha_weights(const std::vector<double>& alphas, Eigen::MatrixXd& out);
 // The same into `mix`, whose vectors are reused: a slider move allocates nothing once they are
 // sized.
 void set_blend_mix_params(const BlendParams& params, const Decomposed& decomposed, MixParams& mix);

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "engine/base/error.h"
+#include "engine/run/blend_params.h"
 #include "ui/model/keyed_weights.h"
 
 namespace mostyle::ui {
@@ -20,15 +21,11 @@ constexpr BodyPart kParts[] = {BodyPart::kLegs, BodyPart::kArms, BodyPart::kSpin
 // by one.
 Eigen::MatrixXd component_alpha_weights(const Document& document, const Decomposed& d) {
   const DocumentControls& c = document.controls;
-  if (d.shared() == nullptr || !c.per_component) return Eigen::MatrixXd();
-  Eigen::MatrixXd w(d.components(), 2);
-  for (int k = 0; k < d.components(); ++k) {
-    const size_t at = static_cast<size_t>(k);
-    const double a = at < c.component_alpha.size() ? c.component_alpha[at] : document.parameters.alpha;
-    if (!std::isfinite(a)) throw InputError("expected finite component alphas");
-    w(k, 0) = 1.0 - a;
-    w(k, 1) = a;
-  }
+  Eigen::MatrixXd w;
+  if (d.shared() == nullptr || !c.per_component) return w;
+  std::vector<double> alphas = c.component_alpha;
+  alphas.resize(static_cast<size_t>(d.components()), document.parameters.alpha);
+  set_component_alpha_weights(alphas, w);
   return w;
 }
 
