@@ -53,6 +53,7 @@ for t in "${targets[@]}"; do
   fi
   findings="$build/findings/$t"
   log="$build/fuzz-$t.log"
+  rm -rf "$findings"  # what this run finds, only
   mkdir -p "$corpus" "$findings"
   inputs=("$corpus")
   for d in "$build/seeds/$t" "$root/tests/fuzz/seeds/$t" "$root/tests/fuzz/regressions/$t"; do
@@ -66,7 +67,13 @@ for t in "${targets[@]}"; do
     echo "fuzz $t: ok, $(sed -n 's/^stat::number_of_executed_units: *//p' "$log") inputs$([ $fixed = 1 ] && echo ", seed 1" || echo " in ${seconds} s")"
   else
     echo "fuzz $t: FAILED (log: $log, input: $findings/)"
-    grep -E "^(==[0-9]+==ERROR|SUMMARY|.*runtime error)" "$log" | head -5 || true
+    grep -E "^(==[0-9]+==ERROR|SUMMARY|.*runtime error|terminate called|  what\(\))" "$log" | head -6 || true
+    # The input itself, when small enough to paste back from a CI log (base64).
+    for f in "$findings"/*; do
+      [ -f "$f" ] || continue
+      if [ "$(stat -c %s "$f")" -le 4096 ]; then echo "input $(basename "$f") (base64):"; base64 -w 0 "$f"; echo
+      else echo "input $(basename "$f"): $(stat -c %s "$f") bytes"; fi
+    done
     failed+=("$t")
   fi
 done
