@@ -4,7 +4,6 @@
 
 #include "ui/model/document_fields.h"
 #include "ui/model/document_mix.h"
-#include "ui/model/keyed_weights.h"
 #include "ui/model/recent_files.h"
 
 namespace mostyle::ui {

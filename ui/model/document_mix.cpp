@@ -1,12 +1,10 @@
 #include "ui/model/document_mix.h"
 
 #include <algorithm>
-#include <cmath>
 #include <iterator>
 #include <limits>
 #include <utility>
 
-#include "engine/base/error.h"
 #include "engine/run/blend_params.h"
 #include "ui/model/keyed_weights.h"
 
@@ -38,7 +36,8 @@ MixParams mix_params_for(const Document& document, const Decomposed& decompositi
   m.weights = constant_weights(document, takes);
   set_mix_keys(controls, takes, m.keys);  // style over time, when keyed
   if (takes == 2) {
-    // A pair's alpha: any value (how far to exaggerate is the person's call), per component too.
+    // A pair's weights: any value (how far to exaggerate is the person's call), and its alphas
+    // per component when asked for.
     m.min_weight = -std::numeric_limits<double>::infinity();
     m.max_weight = std::numeric_limits<double>::infinity();
     m.component_weights = component_alpha_weights(document, decomposition);
