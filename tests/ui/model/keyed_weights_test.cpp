@@ -73,6 +73,22 @@ TEST_CASE("keyed weights: without keys, the controls show and take the weights a
   CHECK(transfer_neutral(c, 3) == 1);
   CHECK(weights_at_playhead(palette, 3) == std::vector<double>{1.0, -0.6, 0.6});
   CHECK(transfer_mix_weights({0.0, 0.5, 1.5}, 0, 3) == std::vector<double>{-1.0, 0.5, 1.5});
+  // The transfer's weights toggled off: the mix's weights as they were, untouched by the strengths.
+  c.transfer = false;
+  CHECK(weights_at_playhead(palette, 3) == std::vector<double>{0.2, 0.3, 0.5});
+}
+
+TEST_CASE("keyed weights: a transfer's document before its takes are in has only the weights it holds") {
+  // A session in transfer mode whose takes are not loaded (missing, or still loading): no
+  // transfer of nothing, and a pair is never a transfer.
+  Document d;
+  d.controls.palette.transfer = true;
+  d.controls.palette.strengths = {0.0, 1.0, 1.25};
+  CHECK(constant_weights(d, 0).empty());
+  CHECK(constant_weights(d, 2) == std::vector<double>{0.5, 0.5});
+  set_pair_alpha(d, 0.25);
+  CHECK(constant_weights(d, 2) == std::vector<double>{0.75, 0.25});
+  CHECK(constant_weights(d, 3) == std::vector<double>{1.0, -1.25, 1.25});  // neutral 1 loses what the style gains
 }
 
 TEST_CASE("keyed weights: a normal walk that becomes tired over ten seconds") {
