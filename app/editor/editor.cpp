@@ -196,27 +196,21 @@ void Editor::update_live() {
   if (live_.active() && session_->takes() != nullptr)
     live_.set_strengths(ui::live_strengths(state_.document, session_->takes()->size()));
   const bool changed = live_.poll();
-  const bool show = !live_.takes().empty() && (live_.active() || live_.status().state == ui::LiveState::kClosed);
+  const bool show = live_.has_window() && (live_.active() || live_.status().state == ui::LiveState::kClosed);
   if (show) show_live_takes(changed);
   else show_result_takes();
 }
 
 void Editor::show_live_takes(bool changed) {
-  std::vector<bool> visible;
   if (!live_shown_) {  // ResultView's takes aside until the live ones go
     result_takes_ = std::move(state_.takes);
     result_provenance_ = std::move(state_.cycle_provenance);
     state_.takes.clear();
     state_.cycle_provenance.clear();
     live_shown_ = true;
-    changed = true;
     state_.view.request_reframe = true;
-  } else {
-    for (const ui::Take& t : state_.takes) visible.push_back(t.visible);  // as the takes panel left them
   }
-  if (!changed) return;
-  state_.takes = live_.takes();
-  for (size_t i = 0; i < visible.size() && i < state_.takes.size(); ++i) state_.takes[i].visible = visible[i];
+  if (changed || state_.takes.empty()) live_.move_takes_into(&state_.takes);  // as the takes panel left them shown
 }
 
 void Editor::show_result_takes() {

@@ -514,6 +514,13 @@ void LiveSource::make_takes() {
   }
 }
 
+void LiveSource::move_takes_into(std::vector<Take>* shown) {
+  if (takes_.empty()) return;
+  for (size_t i = 0; i < shown->size() && i < takes_.size(); ++i) takes_[i].visible = (*shown)[i].visible;
+  *shown = std::move(takes_);
+  takes_.clear();
+}
+
 bool LiveSource::wait_until(const std::function<bool(const LiveStatus&)>& done, std::chrono::milliseconds timeout) {
   const Clock::time_point until = Clock::now() + timeout;
   for (;;) {

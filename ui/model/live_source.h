@@ -153,6 +153,11 @@ class LiveSource {
   // the styled stream 1, as ResultView lays out a take and its result): every joint's position
   // on the stream's floor, the styled stream beside it. Empty before the first frame.
   const std::vector<Take>& takes() const { return takes_; }
+  // Whether there is a window to show (a frame styled since connect()).
+  bool has_window() const { return input_ != nullptr && input_->frames() > 0; }
+  // Moves takes() into *shown (the editor's EditorState::takes), each keeping the `visible` it
+  // had there; takes() is empty until the next window. No copy of the positions.
+  void move_takes_into(std::vector<Take>* shown);
 
   // Blocks until `done` holds for status() (polling), or `timeout` passes; returns whether it
   // held. Tests and screenshots only.
