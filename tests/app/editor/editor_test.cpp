@@ -953,3 +953,25 @@ TEST_CASE("editor: the Live source connects over loopback and shows the stream a
   CHECK(editor.state().takes[2].label == blend_label);
   editor.shutdown_graphics();
 }
+
+TEST_CASE("editor: a Live address nobody serves, or that is not one, is said in one sentence") {
+  namespace ui = mostyle::ui;
+  int port = 0;
+  ::close(mostyle::live::listen_on(0, &port));  // a port just freed: nothing listens there
+  Editor editor(mostyle::test::paused_small_pair());
+  editor.wait_for_engine();
+  editor.live().settings().address = "localhost:" + std::to_string(port);
+  editor.live().settings().skeleton = mostyle::test::asset("motions/cmu142_walk_clumsy.bvh");
+  REQUIRE(editor.connect_live());
+  REQUIRE(editor.live().wait_until([](const ui::LiveStatus& s) { return s.state == ui::LiveState::kFailed; },
+                                   std::chrono::seconds(120)));
+  CHECK_THAT(editor.live().status().error, Catch::StartsWith("cannot connect to localhost:" + std::to_string(port)));
+  editor.update_engine();
+  CHECK_FALSE(editor.live_shown());
+  CHECK(editor.state().takes.size() == 3);
+
+  editor.live().settings().address = "localhost";
+  REQUIRE(editor.connect_live());
+  CHECK(editor.live().status().state == ui::LiveState::kFailed);
+  CHECK_THAT(ui::live_status_line(editor.live().status()), Catch::StartsWith("Live address: expected HOST:PORT"));
+}
