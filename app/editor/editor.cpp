@@ -96,12 +96,9 @@ Editor::Editor(const EditorOptions& options)
     first_take = session_->requested_a().empty() ? session_path_ : session_->requested_a();
   } else {
     const std::vector<std::string> files = options.files.empty() ? default_motion_files() : options.files;
-    // --weights: a pair's are (1 - alpha, alpha), a palette's its sliders' (parse_editor_options
-    // checked their count).
-    const std::vector<double>& weights = options.initial.weights;
-    if (weights.size() == 2) state_.document.parameters.alpha = weights[1];
-    else if (!weights.empty()) state_.document.controls.palette.weights = weights;
-    session_->load_files(files);  // three or more: the style palette
+    // --weights (or a pair's --alpha), one per take: parse_editor_options checked their count.
+    state_.document.weights = options.initial.weights;
+    session_->load_files(files, ui::WeightsOf::kNewTakes);  // three or more: the style palette
     first_take = files.empty() ? std::string() : files[0];
   }
   std::string folder = std::filesystem::path(first_take).parent_path().string();

@@ -122,7 +122,7 @@ std::string read_flag(Flag& f, EditorOptions& o) {
     double v = 0.0;
     if (!f.take_value() || !parse_double(value, &v) || v < 0.0 || v > 1.0)
       return "--alpha: expected a number in [0, 1], got '" + value + "'";
-    o.initial.parameters.alpha = v;
+    o.initial.alpha = v;
   } else if (name == "--components") {
     int v = 0;
     if (!f.take_value() || !parse_int(value, &v) || v < 1)
@@ -172,9 +172,12 @@ std::string check_options(EditorOptions& o) {
     o.files.clear();
     break;
   }
+  const size_t takes = o.files.empty() ? 2 : std::max<size_t>(o.files.size(), 2);
+  // --alpha: a pair's weights, unless --weights gives them (a palette and a session have no alpha).
+  if (o.initial.alpha && o.initial.weights.empty() && o.session_path.empty() && takes == 2)
+    o.initial.weights = ui::pair_weights(*o.initial.alpha);
   if (!o.initial.weights.empty()) {
     if (!o.session_path.empty()) return "--weights: a session brings its own weights; give takes instead";
-    const size_t takes = o.files.empty() ? 2 : std::max<size_t>(o.files.size(), 2);
     if (o.initial.weights.size() != takes)
       return "--weights: expected " + std::to_string(takes) + " weights, one per take, got " +
              std::to_string(o.initial.weights.size());

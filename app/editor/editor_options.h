@@ -3,6 +3,7 @@
 // [--window-size WxH] [--paused] [--alpha A] [--components K] [--sparsity F] [--frame N]
 // [--live HOST:PORT --live-skeleton FILE] [--help]`, and the list of the editor's keys (the
 // keys window and --help show it).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,9 +14,11 @@ namespace mostyle::app {
 
 // Where the editor starts, so a screenshot is reproducible. Panels take it from EditorState.
 struct InitialState {
-  ui::BlendParameters parameters;
-  // --weights: one per take, summing to 1 (a pair's are 1 - alpha, alpha); empty: the defaults.
+  ui::BlendParameters parameters;  // --components, --sparsity
+  // --weights, one per take, summing to 1, or a pair's (1 - alpha, alpha) from --alpha; empty:
+  // the defaults (equal weights).
   std::vector<double> weights;
+  std::optional<double> alpha;  // --alpha as given (a palette has none: left unused)
   int frame = 0;  // first frame shown, of the reference (first) take
   bool paused = false;  // start with playback paused (screenshots always are)
 };

@@ -16,6 +16,7 @@
 #include "engine/io/scene_animation.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/prepare/major_skeleton.h"
+#include "engine/run/palette.h"
 #include "ui/model/session_file.h"
 
 namespace mostyle::fuzz {
@@ -190,7 +191,7 @@ bool read_session(std::string_view bytes) {
   }
   const ui::Document& d = session.document;
   const ui::DocumentControls& c = d.controls;
-  check(d.parameters.alpha >= 0.0 && d.parameters.alpha <= 1.0, "alpha in [0, 1]");
+  for (double w : d.weights) check(w >= kMinMixWeight && w <= kMaxMixWeight, "weights in the palette's range");
   check(d.parameters.components >= 1, "at least one component");
   check(d.parameters.sparsity > 0.0 && d.parameters.sparsity <= 1.0, "sparsity in (0, 1]");
   for (double a : c.component_alpha) check(a >= 0.0 && a <= 1.0, "component alphas in [0, 1]");

@@ -9,7 +9,7 @@ namespace mostyle::ui {
 std::vector<double> live_strengths(const Document& document, int takes) {
   std::vector<double> strengths;
   if (takes == 2) {
-    strengths.push_back(document.parameters.alpha);
+    strengths.push_back(pair_alpha(document));
   } else {
     const std::vector<double>& set = document.controls.palette.strengths;
     for (int i = 1; i < takes; ++i) strengths.push_back(static_cast<size_t>(i) < set.size() ? set[static_cast<size_t>(i)] : 1.0);

@@ -12,7 +12,7 @@ namespace mostyle::ui {
 
 // The strengths of the styles of `takes` loaded takes (takes - 1 of them), from the document: a
 // palette's transfer strengths of takes 1 to takes - 1 (1 where one is not set yet), a pair's
-// alpha. Each clamped to the styler's range [-1, 2]. The one place the live source reads the
+// alpha (pair_alpha: its second weight). Each clamped to the styler's range [-1, 2]. The one place the live source reads the
 // document's weights. O(takes).
 std::vector<double> live_strengths(const Document& document, int takes);
 

@@ -45,7 +45,7 @@ std::string result_caption(const Document& d, const Decomposed* decomposition, i
     return "blend (per component)";
   if (!d.controls.keys.empty() && keys_fit(d.controls.keys, takes)) return "blend  alpha keyed";
   char label[64];
-  std::snprintf(label, sizeof label, "blend  alpha %.2f", d.parameters.alpha);
+  std::snprintf(label, sizeof label, "blend  alpha %.2f", pair_alpha(d));
   return label;
 }
 

@@ -303,7 +303,7 @@ TEST_CASE("live source: a bad address, a missing skeleton and too few takes are 
   CHECK(!l.live.active());
 
   Document d;
-  d.parameters.alpha = 0.25;
+  set_pair_alpha(d, 0.25);
   CHECK(live_strengths(d, 2) == std::vector<double>{0.25});
   d.controls.palette.strengths = {1.0, 0.5, 3.0};
   CHECK(live_strengths(d, 3) == std::vector<double>{0.5, 2.0});  // clamped to the styler's range
