@@ -17,6 +17,8 @@
 #include <thread>
 #include <vector>
 
+#include <poll.h>
+#include <sys/socket.h>
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
@@ -26,6 +28,9 @@
 #include "tests/app/editor/offscreen_editor.h"
 #include "tests/render/osmesa_context.h"
 
+#include "app/live/tcp.h"
+#include "engine/io/axis_stream.h"
+#include "engine/io/bvh_io.h"
 #include "render/png_io.h"
 #include "tests/test_data.h"
 #include "ui/panels/export_dialog.h"
@@ -856,4 +861,117 @@ TEST_CASE("closing with unsaved edits asks Save / Discard / Cancel; Save writes 
     CHECK(e.editor.may_close());
     e.editor.shutdown_graphics();
   }
+}
+
+namespace {
+
+// A stand-in for Axis Neuron in this process: serves `clip`'s frames as BVH broadcasting lines
+// to the first client that connects, all at once, then closes (app/live/tcp.h's calls).
+struct LoopbackSource {
+  int listener = -1, port = 0;
+  std::thread thread;
+
+  explicit LoopbackSource(const mostyle::Clip& clip) {
+    listener = mostyle::live::listen_on(0, &port);
+    std::string lines;
+    for (int f = 0; f < clip.frames(); ++f)
+      mostyle::append_axis_line(&lines, 0, "Avatar00", nullptr, 0, clip.motion.row(f).data(), clip.skeleton.channel_count);
+    thread = std::thread([this, lines] {
+      pollfd p{listener, POLLIN, 0};
+      if (::poll(&p, 1, 120000) != 1) return;
+      const int client = ::accept4(listener, nullptr, nullptr, SOCK_CLOEXEC);
+      if (client < 0) return;
+      for (size_t sent = 0; sent < lines.size();) {
+        const ssize_t n = ::send(client, lines.data() + sent, lines.size() - sent, MSG_NOSIGNAL);
+        if (n <= 0) break;
+        sent += static_cast<size_t>(n);
+      }
+      ::close(client);
+    });
+  }
+  ~LoopbackSource() {
+    thread.join();
+    ::close(listener);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("editor options: --live and --live-skeleton go together") {
+  const ParseResult both = parse({"--live", "localhost:7001", "--live-skeleton", "axis.bvh"});
+  REQUIRE(both.status == ParseStatus::kRun);
+  CHECK(both.options.live_address == "localhost:7001");
+  CHECK(both.options.live_skeleton == "axis.bvh");
+  const ParseResult alone = parse({"--live", "localhost:7001"});
+  CHECK(alone.status == ParseStatus::kUsageError);
+  CHECK_THAT(alone.error, Catch::Contains("--live-skeleton"));
+}
+
+TEST_CASE("editor: the Live source connects over loopback and shows the stream and the styled stream") {
+  namespace ui = mostyle::ui;
+  const std::string stream_file = mostyle::test::asset("motions/cmu142_walk_clumsy.bvh");
+  const mostyle::Clip stream = mostyle::read_bvh_file(stream_file);
+  LoopbackSource source(stream);
+  mostyle::test::OffscreenEditor e({960, 540});
+  REQUIRE(e.gl.ok());
+  Editor& editor = e.editor;
+  editor.wait_for_engine();
+  editor.init_graphics();
+  REQUIRE(editor.state().takes.size() == 3);  // the bundled pair and its blend
+  const std::string blend_label = editor.state().takes[2].label;
+
+  // What Connect does: the address and skeleton as typed, the loaded takes as neutral and style.
+  editor.live().settings().address = "localhost:" + std::to_string(source.port);
+  editor.live().settings().skeleton = stream_file;
+  REQUIRE(editor.connect_live());
+  REQUIRE(editor.live().wait_until([](const ui::LiveStatus& s) { return s.state == ui::LiveState::kClosed ||
+                                                                        s.state == ui::LiveState::kFailed; },
+                                   std::chrono::seconds(120)));
+  INFO(editor.live().status().error);
+  CHECK(editor.live().status().state == ui::LiveState::kClosed);
+  CHECK(editor.live().status().styled == stream.frames());
+  CHECK(editor.live().status().skipped == 0);
+  CHECK(editor.live().status().strengths == std::vector<double>{0.5});  // the pair's alpha
+  e.frame();
+  e.frame();
+
+  // The stream and the styled stream in place of the pair, the last window of the stream.
+  CHECK(editor.live_shown());
+  const auto& takes = editor.state().takes;
+  REQUIRE(takes.size() == 2);
+  CHECK(takes[0].label.find("stream") != std::string::npos);
+  CHECK(takes[1].label == "styled");
+  CHECK(takes[0].frames() == std::min(stream.frames(), static_cast<int>(ui::kLiveWindowSeconds * stream.fps())));
+  CHECK(takes[1].frames() == takes[0].frames());
+  CHECK(ui::live_status_line(editor.live().status()).rfind("source closed", 0) == 0);
+
+  // Disconnect: the pair and its blend come back as they were.
+  editor.live().disconnect();
+  e.frame();
+  CHECK_FALSE(editor.live_shown());
+  REQUIRE(editor.state().takes.size() == 3);
+  CHECK(editor.state().takes[2].label == blend_label);
+  editor.shutdown_graphics();
+}
+
+TEST_CASE("editor: a Live address nobody serves, or that is not one, is said in one sentence") {
+  namespace ui = mostyle::ui;
+  int port = 0;
+  ::close(mostyle::live::listen_on(0, &port));  // a port just freed: nothing listens there
+  Editor editor(mostyle::test::paused_small_pair());
+  editor.wait_for_engine();
+  editor.live().settings().address = "localhost:" + std::to_string(port);
+  editor.live().settings().skeleton = mostyle::test::asset("motions/cmu142_walk_clumsy.bvh");
+  REQUIRE(editor.connect_live());
+  REQUIRE(editor.live().wait_until([](const ui::LiveStatus& s) { return s.state == ui::LiveState::kFailed; },
+                                   std::chrono::seconds(120)));
+  CHECK_THAT(editor.live().status().error, Catch::StartsWith("cannot connect to localhost:" + std::to_string(port)));
+  editor.update_engine();
+  CHECK_FALSE(editor.live_shown());
+  CHECK(editor.state().takes.size() == 3);
+
+  editor.live().settings().address = "localhost";
+  REQUIRE(editor.connect_live());
+  CHECK(editor.live().status().state == ui::LiveState::kFailed);
+  CHECK_THAT(ui::live_status_line(editor.live().status()), Catch::StartsWith("Live address: expected HOST:PORT"));
 }
