@@ -111,6 +111,7 @@ struct Posed {
   bool has_position = false;
   std::array<int, 3> position{{-1, -1, -1}};  // column of each axis's position channel
   Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+  bool leaf = false;  // no posed joint below it: only its position is needed, not its rotation
 };
 
 // The joints to pose for `joints` (those and their ancestors), parents first, each once; *slot:
@@ -140,6 +141,15 @@ std::vector<Posed> posed_joints(const Skeleton& s, const std::vector<int>& joint
     slot[i] = static_cast<int>(posed.size());
     posed.push_back(std::move(p));
   }
+  // A leaf's own rotation moves nothing posed: its angles are not read.
+  std::vector<char> has_child(posed.size(), 0);
+  for (const Posed& p : posed)
+    if (p.parent >= 0) has_child[static_cast<size_t>(p.parent)] = 1;
+  for (size_t k = 0; k < posed.size(); ++k)
+    if (!has_child[k]) {
+      posed[k].leaf = true;
+      posed[k].turns.clear();
+    }
   return posed;
 }
 
@@ -176,15 +186,21 @@ Eigen::MatrixXd joint_positions(const Clip& clip, const std::vector<int>& joints
       const double* c = cosines.data() + static_cast<size_t>(b) * turns;
       for (size_t k = 0; k < posed.size(); ++k) {
         const Posed& p = posed[k];
+        Eigen::Vector3d at = p.offset;
+        if (p.has_position)
+          for (int a = 0; a < 3; ++a)
+            at[a] = p.position[static_cast<size_t>(a)] >= 0 ? values[p.position[static_cast<size_t>(a)]] : 0.0;
+        if (p.leaf) {
+          positions[k] = p.parent < 0 ? at
+                                      : Eigen::Vector3d(positions[static_cast<size_t>(p.parent)] +
+                                                        rotations[static_cast<size_t>(p.parent)] * at);
+          continue;
+        }
         Eigen::Matrix3d local = Eigen::Matrix3d::Identity();
         for (size_t t = 0; t < p.turns.size(); ++t, ++s, ++c) {
           if (t == 0) local = axis_rotation(p.turns[t].first, *s, *c);
           else rotate_columns(local, p.turns[t].first, *s, *c);
         }
-        Eigen::Vector3d at = p.offset;
-        if (p.has_position)
-          for (int a = 0; a < 3; ++a)
-            at[a] = p.position[static_cast<size_t>(a)] >= 0 ? values[p.position[static_cast<size_t>(a)]] : 0.0;
         if (p.parent < 0) {
           rotations[k] = local;
           positions[k] = at;
