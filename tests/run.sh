@@ -33,4 +33,14 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 
 cmake -S "$root" -B "$build" "${flags[@]}" >/dev/null
 cmake --build "$build" -j"$(nproc)" "${targets[@]}"
+# A test program that cannot start (a sanitizer's runtime refusing it) lists no tests, and ctest
+# would then run none of them and pass: each must list its tests.
+for program in "$build"/tests/mostyle_*_tests; do
+  [ -x "$program" ] || continue
+  listed="$("$program" --list-test-names-only 2>&1)" || true
+  if [ -z "$listed" ]; then
+    echo "$(basename "$program") does not start: it lists no tests"
+    exit 1
+  fi
+done
 ctest --test-dir "$build" --output-on-failure -j"$(nproc)" "${filter[@]}"

@@ -88,13 +88,14 @@ typedef long long Integers4 __attribute__((vector_size(32)));
 
 }  // namespace
 
+namespace {
+
 // sin_cos_degrees's arithmetic on four angles at once, operation for operation (so the values are
 // the same bit for bit); a group holding an angle sin_cos_degrees does not reduce (huge, not a
-// number) goes one at a time.
-#if defined(__x86_64__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
-void sin_cos_degrees_n(const double* degrees, size_t n, double* sine, double* cosine) {
+// number) goes one at a time. Inlined into each of the functions below, which compile it for
+// their instruction sets.
+inline __attribute__((always_inline)) void sin_cos_fours(const double* degrees, size_t n, double* sine,
+                                                         double* cosine) {
   constexpr double k3 = 1.0 / 6, k5 = 1.0 / 120, k7 = 1.0 / 5040, k9 = 1.0 / 362880, k11 = 1.0 / 39916800,
                    k13 = 1.0 / 6227020800.0, k15 = 1.0 / 1307674368000.0, k17 = 1.0 / 355687428096000.0;
   constexpr double k2 = 1.0 / 2, k4 = 1.0 / 24, k6 = 1.0 / 720, k8 = 1.0 / 40320, k10 = 1.0 / 3628800,
@@ -124,6 +125,28 @@ void sin_cos_degrees_n(const double* degrees, size_t n, double* sine, double* co
     std::memcpy(cosine + i, &out_c, sizeof out_c);
   }
   for (; i < n; ++i) sin_cos_degrees(degrees[i], sine + i, cosine + i);
+}
+
+#if defined(__x86_64__)
+__attribute__((target("avx2"))) void sin_cos_avx2(const double* degrees, size_t n, double* sine, double* cosine) {
+  sin_cos_fours(degrees, n, sine, cosine);
+}
+#endif
+
+void sin_cos_baseline(const double* degrees, size_t n, double* sine, double* cosine) {
+  sin_cos_fours(degrees, n, sine, cosine);
+}
+
+}  // namespace
+
+// Chosen at the first call, not by the loader (an ifunc resolver runs before the sanitizers'
+// runtimes are up and crashes them).
+void sin_cos_degrees_n(const double* degrees, size_t n, double* sine, double* cosine) {
+#if defined(__x86_64__)
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (avx2) return sin_cos_avx2(degrees, n, sine, cosine);
+#endif
+  sin_cos_baseline(degrees, n, sine, cosine);
 }
 
 Eigen::Matrix3d axis_rotation(int axis, double degrees) {
