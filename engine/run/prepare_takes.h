@@ -23,12 +23,12 @@
 #include "engine/align/common_timeline.h"
 #include "engine/base/clip.h"
 #include "engine/base/job_control.h"
+#include "engine/base/stage_times.h"
 #include "engine/post/foot_contact.h"
 #include "engine/post/fastest_joint.h"
 #include "engine/post/planted_feet.h"
 #include "engine/prepare/canonical_frame.h"
 #include "engine/prepare/major_skeleton.h"
-#include "engine/run/stage_times.h"
 
 namespace mostyle {
 
