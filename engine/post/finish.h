@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "engine/align/time_warp.h"
+#include "engine/kinematics/sample_rows.h"
 #include "engine/post/foot_contact.h"
 #include "engine/post/loop.h"
 #include "engine/post/speed_limit.h"
