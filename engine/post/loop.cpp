@@ -4,8 +4,8 @@
 #include <limits>
 #include <vector>
 
-#include "engine/align/cycles.h"
 #include "engine/base/error.h"
+#include "engine/post/foot_contact.h"
 #include "engine/prepare/canonical_frame.h"
 
 namespace mostyle {

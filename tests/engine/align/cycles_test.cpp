@@ -84,20 +84,6 @@ int cycle_frames(const test::GaitSpec& g) { return static_cast<int>(std::lround(
 
 }  // namespace
 
-TEST_CASE("cycles: foot strikes are landings, worked by hand") {
-  Eigen::MatrixXd c(8, 2);
-  c << 1, 0,  //
-      1, 0,   //
-      0, 1,   // right lands at 2
-      0, 1,   //
-      1, 0,   // left lands at 4
-      1, 1,   // right lands at 5
-      0, 0,   //
-      1, 1;   // both land at 7
-  CHECK(foot_strikes(c, 0) == std::vector<int>{4, 7});  // frame 0 planted is not a strike
-  CHECK(foot_strikes(c, 1) == std::vector<int>{2, 5, 7});
-}
-
 TEST_CASE("cycles: where a take shown at other frames starts its cycles") {
   TakeCycles t;
   t.cycles = {{10, 40}, {40, 70}};
