@@ -17,7 +17,7 @@ struct FinishOptions {
   bool foot_lock = true;     // pin planted feet after the limb lengths (foot_contact.h)
   bool loop = false;         // cut a seamless loop of whole gait cycles (loop.h)
   // The motion is one whole loop whose last frame shows its first pose again (a loop clip's cycle
-  // as the reference, its clock landed on the loop's end: timing.h land_on_last): that frame is
+  // as the reference, its clock landed on the loop's end: mixed_clock.h land_on_last): that frame is
   // cut off and the seam closed, so the last frame leads into the first as any frame into the
   // next. Replaces `loop`.
   bool closed = false;

@@ -6,7 +6,7 @@
 
 #include "engine/base/error.h"
 #include "engine/post/foot_contact.h"
-#include "engine/prepare/canonical_frame.h"
+#include "engine/prepare/root_path.h"
 
 namespace mostyle {
 

@@ -6,9 +6,9 @@
 // its parameters in a mix's terms.
 #include <vector>
 
-#include "engine/prepare/canonical_frame.h"
 #include "engine/run/decompose_takes.h"
 #include "engine/run/palette.h"
+#include "engine/trajectory/mixed_root.h"
 
 namespace mostyle {
 
@@ -17,9 +17,9 @@ struct BlendParams {
   std::vector<double> component_alpha;   // shared mode: per component, overrides alpha; empty: none
   int swap_level = 0;                    // basic motions: the level whose core comes from B
   bool limb_lengths = true;              // paper 3.7
-  double root_pull_seconds = kRootPullSeconds;  // keeps the path between A's and B's (canonical_frame.h)
+  double root_pull_seconds = kRootPullSeconds;  // keeps the path between A's and B's (trajectory/mixed_root.h)
   bool foot_lock = true;                 // pin planted feet after the limb lengths (foot_contact.h)
-  // Timing (align/timing.h): false blends A's and B's timing with alpha (alpha 0 plays at A's
+  // Timing (trajectory/mixed_clock.h): false blends A's and B's timing with alpha (alpha 0 plays at A's
   // timing and length, 1 at B's); true keeps A's timeline, for a blend that must stay in sync.
   bool timing_a = false;
   bool loop = false;                     // cut a seamless loop of whole gait cycles (post/loop.h)

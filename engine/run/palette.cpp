@@ -7,11 +7,11 @@
 
 #include <Eigen/QR>
 
-#include "engine/align/timing.h"
 #include "engine/base/clock.h"
 #include "engine/base/error.h"
-#include "engine/prepare/canonical_frame.h"
 #include "engine/prepare/major_skeleton.h"
+#include "engine/trajectory/mixed_clock.h"
+#include "engine/trajectory/mixed_root.h"
 
 namespace mostyle {
 namespace {

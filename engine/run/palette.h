@@ -20,6 +20,7 @@
 #include "engine/post/finish.h"
 #include "engine/run/decompose_takes.h"
 #include "engine/run/prepare_takes.h"
+#include "engine/trajectory/mixed_root.h"
 
 namespace mostyle {
 
@@ -96,7 +97,7 @@ struct MixResult {
 // root on the samples, O(U x N); per-component weights add O(U x k x (3M + N)).
 // Allocation-free once scratch and out are sized (per-component weights, keys and a loop allocate).
 // With keys, each output frame's pose takes the keys' weights at its time, and the root, contacts
-// and timing each sample's (timing.h mixed_timeline with keys): O(K x N x 3M + U x N) as above.
+// and timing each sample's (trajectory/mixed_clock.h mixed_timeline with keys): O(K x N x 3M + U x N) as above.
 // times: when given, its synthesize_ms (the poses) and postprocess_ms (root, clean-up) are set.
 void mix_palette(const PreparedTakes& palette, const Decomposed& decomposition, const MixParams& params,
                  MixScratch& scratch, MixResult& out, StageTimes* times = nullptr);

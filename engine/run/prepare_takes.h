@@ -29,6 +29,7 @@
 #include "engine/post/planted_feet.h"
 #include "engine/prepare/canonical_frame.h"
 #include "engine/prepare/major_skeleton.h"
+#include "engine/prepare/root_path.h"
 
 namespace mostyle {
 
@@ -80,7 +81,7 @@ struct PreparedTake {
   Eigen::VectorXd frames;            // U: the take's frame at each sample (fractional)
   Eigen::MatrixXd local;             // U x 3M canonical poses
   Eigen::MatrixXd ground;            // U x 2 hips ground path, placed at the reference's start
-  Eigen::MatrixXd steps;             // U x 3 root steps (canonical_frame.h)
+  Eigen::MatrixXd steps;             // U x 3 root steps (root_path.h)
   Eigen::VectorXd turn_flips;        // U: whole turns match_turns adds to keep its facing near the reference's
   Eigen::MatrixXd contacts;          // U x 2 foot contacts carried onto the timeline
   Eigen::RowVectorXd mean;           // normalization: the take's mean pose
