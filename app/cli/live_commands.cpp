@@ -13,7 +13,7 @@
 #include "engine/base/error.h"
 #include "engine/live/live_style.h"
 #include "engine/run/palette.h"
-#include "engine/run/prepare_takes.h"
+#include "engine/align/prepare_takes.h"
 
 namespace mostyle::cli {
 namespace {

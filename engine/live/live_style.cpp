@@ -19,7 +19,7 @@
 #include "engine/prepare/major_skeleton.h"
 #include "engine/prepare/major_take.h"
 #include "engine/run/palette.h"
-#include "engine/run/prepare_takes.h"
+#include "engine/align/prepare_takes.h"
 
 namespace mostyle {
 namespace {

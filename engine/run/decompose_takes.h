@@ -19,7 +19,7 @@
 #include "engine/decompose/decomposition.h"
 #include "engine/base/job_control.h"
 #include "engine/run/decompose_params.h"
-#include "engine/run/prepare_takes.h"
+#include "engine/align/prepare_takes.h"
 #include "engine/synthesize/synthesis.h"
 
 namespace mostyle {

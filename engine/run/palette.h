@@ -19,7 +19,7 @@
 #include "engine/decompose/decomposition.h"
 #include "engine/post/finish.h"
 #include "engine/run/decompose_takes.h"
-#include "engine/run/prepare_takes.h"
+#include "engine/align/prepare_takes.h"
 #include "engine/trajectory/mixed_root.h"
 
 namespace mostyle {

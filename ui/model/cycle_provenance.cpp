@@ -8,7 +8,7 @@
 #include <limits>
 #include <map>
 
-#include "engine/run/prepare_takes.h"
+#include "engine/align/prepare_takes.h"
 
 namespace mostyle::ui {
 namespace {

@@ -7,7 +7,7 @@
 // one list: a field added to Document, DocumentControls, PaletteControls or BlendParameters goes
 // here, and nowhere else.
 #include "engine/run/palette.h"
-#include "engine/run/prepare_takes.h"
+#include "engine/align/prepare_takes.h"
 #include "ui/model/document.h"
 #include "ui/model/weight_keys_edit.h"
 

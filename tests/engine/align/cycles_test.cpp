@@ -16,7 +16,7 @@
 #include "engine/base/error.h"
 #include "engine/io/motion_file.h"
 #include "engine/prepare/canonical_frame.h"
-#include "engine/run/prepare_takes.h"
+#include "engine/align/prepare_takes.h"
 #include "tests/engine/synthetic_gait.h"
 #include "tests/test_data.h"
 

@@ -20,7 +20,7 @@
 #include "engine/prepare/major_skeleton.h"
 #include "engine/run/decompose_takes.h"
 #include "engine/run/palette.h"
-#include "engine/run/prepare_takes.h"
+#include "engine/align/prepare_takes.h"
 #include "tests/engine/live/axis_rig.h"
 #include "tests/engine/synthetic_gait.h"
 #include "tests/test_data.h"

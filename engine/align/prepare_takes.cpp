@@ -1,4 +1,4 @@
-#include "engine/run/prepare_takes.h"
+#include "engine/align/prepare_takes.h"
 
 #include <algorithm>
 #include <chrono>
