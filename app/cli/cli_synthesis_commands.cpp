@@ -13,7 +13,7 @@
 #include "engine/base/clock.h"
 #include "engine/base/error.h"
 #include "engine/kinematics/units.h"
-#include "engine/run/decompose_takes.h"
+#include "engine/decompose/decompose_takes.h"
 #include "engine/run/palette.h"
 #include "engine/run/blend_params.h"
 

@@ -6,7 +6,7 @@
 // its parameters in a mix's terms.
 #include <vector>
 
-#include "engine/run/decompose_takes.h"
+#include "engine/decompose/decompose_takes.h"
 #include "engine/run/palette.h"
 #include "engine/trajectory/mixed_root.h"
 

@@ -10,6 +10,7 @@
 #include "engine/base/clock.h"
 #include "engine/base/error.h"
 #include "engine/prepare/major_skeleton.h"
+#include "engine/synthesize/synthesis.h"
 #include "engine/trajectory/mixed_clock.h"
 #include "engine/trajectory/mixed_root.h"
 

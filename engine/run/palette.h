@@ -18,7 +18,7 @@
 #include "engine/decompose/body_parts.h"
 #include "engine/decompose/decomposition.h"
 #include "engine/post/finish.h"
-#include "engine/run/decompose_takes.h"
+#include "engine/decompose/decompose_takes.h"
 #include "engine/align/prepare_takes.h"
 #include "engine/trajectory/mixed_root.h"
 

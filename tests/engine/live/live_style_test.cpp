@@ -18,7 +18,7 @@
 #include "engine/post/foot_contact.h"
 #include "engine/post/planted_feet.h"
 #include "engine/prepare/major_skeleton.h"
-#include "engine/run/decompose_takes.h"
+#include "engine/decompose/decompose_takes.h"
 #include "engine/run/palette.h"
 #include "engine/align/prepare_takes.h"
 #include "tests/engine/live/axis_rig.h"

@@ -14,13 +14,14 @@
 #include <variant>
 #include <vector>
 
+#include "engine/align/prepare_takes.h"
+#include "engine/base/job_control.h"
+#include "engine/base/stage_times.h"
 #include "engine/decompose/basic_motions.h"
 #include "engine/decompose/body_parts.h"
+#include "engine/decompose/core_components.h"
+#include "engine/decompose/decompose_params.h"
 #include "engine/decompose/decomposition.h"
-#include "engine/base/job_control.h"
-#include "engine/run/decompose_params.h"
-#include "engine/align/prepare_takes.h"
-#include "engine/synthesize/synthesis.h"
 
 namespace mostyle {
 
