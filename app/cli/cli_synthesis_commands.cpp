@@ -14,7 +14,7 @@
 #include "engine/base/error.h"
 #include "engine/kinematics/units.h"
 #include "engine/decompose/decompose_takes.h"
-#include "engine/run/palette.h"
+#include "engine/synthesize/mix_palette.h"
 #include "engine/run/blend_params.h"
 
 namespace mostyle::cli {

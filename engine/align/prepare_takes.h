@@ -11,7 +11,7 @@
 //   and steps, whole-turn flips, contacts, then normalized: each take less its own
 //   mean pose, all divided by one scale (the spread of every take's centred values).
 // A pair is two takes: its common timeline is the alignment's own warp, unchanged. The
-// decomposition (decompose_takes.h) and the synthesis (palette.h) read this value; nothing here
+// decomposition (decompose_takes.h) and the synthesis (mix_palette.h) read this value; nothing here
 // knows of them.
 #include <Eigen/Core>
 #include <memory>
@@ -72,7 +72,7 @@ struct PreparedTake {
   // f -> f + 1 where it is planted at both ends, each in the body's frame at f (turned by
   // -heading[f]): the planted move from
   // frame a to b in the body's frame is row b minus row a (what the foot lock lets a planted foot
-  // of an output do, palette.cpp planted_drift).
+  // of an output do, mix_palette.cpp planted_drift).
   Eigen::MatrixXd foot_travel;
   TakeCycles cycles;                 // where it repeats, as detected on its file's frames (cycles.h)
   CycleRegistration registration;    // by cycles onto the reference: its cycles, sources, spans; empty otherwise

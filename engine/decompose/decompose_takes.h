@@ -4,7 +4,7 @@
 // forms:
 //   shared (any number of takes; the editor's and the CLI's default): one set of components C
 //     that every take shares, local (each a connected piece of the skeleton: a body part), and
-//     each take's weights W_i; a mix blends the weights (palette.h);
+//     each take's weights W_i; a mix blends the weights (mix_palette.h);
 //   paper (two takes, the paper's own synthesis, 3.4 to 3.6): each take decomposed on its own,
 //     or into its chain of basic motions (3.5) when DecomposeParams::basic_motions > 0.
 // Both carry the same summary: each take's reconstruction error, the components' support and

@@ -28,8 +28,8 @@ double motion_length_s(Eigen::Index frames, double fps);
 int export_frame_count(double first_s, double last_s, double fps);
 
 // The motion resampled for export.
-//   world:       F x 3M positions at working_fps (a MixResult's motion.world, palette.h), F >= 1
-//   at:          F source frames in A's clip (palette.h source_frames_in_clip)
+//   world:       F x 3M positions at working_fps (a MixResult's motion.world, mix_palette.h), F >= 1
+//   at:          F source frames in A's clip (mix_palette.h source_frames_in_clip)
 //   working_fps: the rate of world's rows; row i is at i / working_fps seconds
 //   out_fps:     the output rate, in (0, kMaxExportFps]
 //   first_s, last_s: the range, seconds of the motion: 0 <= first_s <= last_s <= its length

@@ -58,7 +58,7 @@ struct FinishScratch {
 // local and u are cut to the loop's frames (closed: all but the last). Throws InputError when a
 // loop is asked of a motion without two foot strikes. body_drift: when given (K x 2 kFootJoints:
 // x, z per foot joint, planted_feet.h), how far each planted foot joint may move from output
-// frame k to k + 1 in the body's frame there (the mixed takes' own planted moves, palette.cpp
+// frame k to k + 1 in the body's frame there (the mixed takes' own planted moves, mix_palette.cpp
 // planted_drift), for the foot lock (apply_foot_lock's drift). foot_sliding_raw and _cleaned:
 // planted_feet.h's measure before and after the lock. O(K x M); allocation-free once sized,
 // except the loop.

@@ -1,13 +1,13 @@
 #pragma once
 // A blend of two takes (A the reference, B the other) in the words the editor's pair and `blend`
 // use: one alpha (or one per component), B's basic-motion core at a level, A's timing. A blend is
-// the mix of the two takes with weights (1 - alpha, alpha) (palette.h, mix_palette), in shared or
+// the mix of the two takes with weights (1 - alpha, alpha) (mix_palette.h, mix_palette), in shared or
 // paper mode (decompose_takes.h): the same synthesis, timing, root path and clean-up; these are
 // its parameters in a mix's terms.
 #include <vector>
 
 #include "engine/decompose/decompose_takes.h"
-#include "engine/run/palette.h"
+#include "engine/synthesize/mix_palette.h"
 #include "engine/trajectory/mixed_root.h"
 
 namespace mostyle {

@@ -1,7 +1,7 @@
 #pragma once
 // Motion synthesis (paper 3.6) from decompositions X = W C: the paper's core-component blend,
 // the paper's basic-motion core swap. (Shared components blend their weights in mix_palette,
-// engine/run/palette.h.)
+// engine/synthesize/mix_palette.h.)
 // Each mode has a prepare_* step run once per decomposition (pair), whose motions the
 // decomposition keeps (decompose/core_components.h), and a synthesize_* step run per slider
 // move; the latter writes into a caller-owned output so it need not allocate.

@@ -19,7 +19,7 @@
 #include "engine/post/planted_feet.h"
 #include "engine/prepare/major_skeleton.h"
 #include "engine/decompose/decompose_takes.h"
-#include "engine/run/palette.h"
+#include "engine/synthesize/mix_palette.h"
 #include "engine/align/prepare_takes.h"
 #include "tests/engine/live/axis_rig.h"
 #include "tests/engine/synthetic_gait.h"
