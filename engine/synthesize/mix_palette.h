@@ -14,13 +14,14 @@
 #include <vector>
 
 #include "engine/align/common_timeline.h"
+#include "engine/align/prepare_takes.h"
 #include "engine/align/weight_keys.h"
 #include "engine/decompose/body_parts.h"
+#include "engine/decompose/decompose_takes.h"
 #include "engine/decompose/decomposition.h"
 #include "engine/post/finish.h"
-#include "engine/decompose/decompose_takes.h"
-#include "engine/align/prepare_takes.h"
 #include "engine/trajectory/mixed_root.h"
+#include "engine/trajectory/mixed_trajectory.h"
 
 namespace mostyle {
 
@@ -61,13 +62,11 @@ struct MixParams {
 };
 
 struct MixScratch {
-  Eigen::MatrixXd x, samples, steps, ground_u, target, contacts_u, joint_weights, stretch, local_t, component_w;
-  Eigen::MatrixXd frame_w, sample_w;  // keyed weights: per output frame (K x N), per sample (L x N)
+  Eigen::MatrixXd x, samples, joint_weights, stretch, local_t, component_w;
   Eigen::MatrixXd drift;              // K x 2 kFootJoints: the planted feet's expected moves (the foot lock's)
-  Eigen::VectorXd heading_u, u, u_stretch, flips;
   Eigen::RowVectorXd channel_w, mixed_mean;
   std::vector<double> overall, timing, drift_w;
-  RowSampler sampler;
+  MixedTrajectory trajectory;         // the clock, the root and the contacts (trajectory/mixed_trajectory.h)
   FinishScratch finish;
   Eigen::MatrixXd sources_uncut;  // a loop's MixResult::sources before the cut, for the planted drift
   // What a preview mix leaves for finish_mix_palette.
