@@ -297,6 +297,89 @@ void GroundRenderer::draw_shadow_map(const std::vector<SkeletonPose>& poses, flo
   glViewport(previous_viewport[0], previous_viewport[1], previous_viewport[2], previous_viewport[3]);
 }
 
+void GroundRenderer::draw_floor(const glm::mat4& view_projection, const glm::vec2& viewport, float stage,
+                                float fade_radius, float ground_height, const OrbitCamera& camera,
+                                const GroundStyle& style) {
+  glDepthFunc(GL_LESS);
+  floor_program_.use();
+  floor_program_.set("u_view_projection", view_projection);
+  floor_program_.set("u_viewport", viewport);
+  floor_program_.set("u_top", style.background_top);
+  floor_program_.set("u_bottom", style.background_bottom);
+  floor_program_.set("u_vignette", style.vignette);
+  floor_program_.set("u_spacing", style.grid_spacing > 0.0f ? style.grid_spacing : auto_grid_spacing(stage));
+  floor_program_.set("u_grid", style.grid ? 1.0f : 0.0f);
+  floor_program_.set("u_color", style.color);
+  floor_program_.set("u_minor_color", style.minor_line_color);
+  floor_program_.set("u_major_color", style.major_line_color);
+  floor_program_.set("u_x_axis_color", style.x_axis_color);
+  floor_program_.set("u_z_axis_color", style.z_axis_color);
+  instances_.assign(1, glm::vec4(camera.target.x, ground_height, camera.target.z, fade_radius));
+  disc_.draw(instances_);
+}
+
+void GroundRenderer::draw_background(const glm::vec2& viewport, const GroundStyle& style) {
+  // Depth 1.0 passes GL_LEQUAL only where nothing was drawn.
+  glDepthFunc(GL_LEQUAL);
+  glDepthMask(GL_FALSE);
+  background_program_.use();
+  background_program_.set("u_viewport", viewport);
+  background_program_.set("u_top", style.background_top);
+  background_program_.set("u_bottom", style.background_bottom);
+  background_program_.set("u_vignette", style.vignette);
+  glBindVertexArray(empty_vao_);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindVertexArray(0);
+  glDepthMask(GL_TRUE);
+  glDepthFunc(GL_LESS);
+}
+
+void GroundRenderer::draw_shadow(const glm::mat4& view_projection, const glm::vec4& shadow_rect, float fade_radius,
+                                 float ground_height, const OrbitCamera& camera, const GroundStyle& style) {
+  // On the floor, under everything the skeletons will draw: no depth test needed.
+  glDisable(GL_DEPTH_TEST);
+  glEnable(GL_BLEND);
+  glBlendFuncSeparate(GL_ZERO, GL_ONE_MINUS_SRC_COLOR, GL_ZERO, GL_ONE);
+  shadow_program_.use();
+  shadow_program_.set("u_view_projection", view_projection);
+  shadow_program_.set("u_strength", style.shadow_strength);
+  shadow_program_.set("u_fade_centre", glm::vec2(camera.target.x, camera.target.z));
+  shadow_program_.set("u_fade_radius", fade_radius);
+  shadow_program_.set("u_shadow", 0);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, shadow_texture_);
+  instances_.assign(1, glm::vec4(shadow_rect.x, shadow_rect.y, 1.0f / shadow_rect.z, ground_height));
+  quad1_.draw(instances_);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glDisable(GL_BLEND);
+  glEnable(GL_DEPTH_TEST);
+}
+
+void GroundRenderer::draw_contact_markers(const std::vector<SkeletonPose>& poses, const glm::mat4& view_projection,
+                                          float ground_height) {
+  instances_.clear();
+  for (const SkeletonPose& pose : poses) {
+    if (!is_valid(pose) || pose.contacts.empty()) continue;
+    float pose_size = effective_size(pose);
+    for (size_t i = 0; i < pose.positions.size(); ++i) {
+      if (!pose.contacts[i] || is_hidden(pose, i)) continue;
+      const glm::vec3& p = pose.positions[i];
+      instances_.emplace_back(p.x, ground_height, p.z, kMarkerRadius * pose_size);
+      instances_.emplace_back(glm::min(pose.color * 1.15f + 0.05f, glm::vec3(1.0f)), 0.9f);
+    }
+  }
+  if (instances_.empty()) return;
+  // On the floor, under everything the skeletons will draw: no depth test needed.
+  glDisable(GL_DEPTH_TEST);
+  glEnable(GL_BLEND);
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+  marker_program_.use();
+  marker_program_.set("u_view_projection", view_projection);
+  quad2_.draw(instances_);
+  glDisable(GL_BLEND);
+  glEnable(GL_DEPTH_TEST);
+}
+
 void GroundRenderer::draw(const std::vector<SkeletonPose>& poses, float ground_height,
                           const OrbitCamera& camera, const glm::ivec2& size, const GroundStyle& style) {
   const float stage = stage_size(poses, camera);
@@ -316,84 +399,10 @@ void GroundRenderer::draw(const std::vector<SkeletonPose>& poses, float ground_h
   glClearDepth(1.0);
   glClear(GL_DEPTH_BUFFER_BIT);
   const glm::vec2 viewport(static_cast<float>(size.x), static_cast<float>(size.y));
-
-  if (style.floor) {
-    glDepthFunc(GL_LESS);
-    floor_program_.use();
-    floor_program_.set("u_view_projection", view_projection);
-    floor_program_.set("u_viewport", viewport);
-    floor_program_.set("u_top", style.background_top);
-    floor_program_.set("u_bottom", style.background_bottom);
-    floor_program_.set("u_vignette", style.vignette);
-    floor_program_.set("u_spacing", style.grid_spacing > 0.0f ? style.grid_spacing : auto_grid_spacing(stage));
-    floor_program_.set("u_grid", style.grid ? 1.0f : 0.0f);
-    floor_program_.set("u_color", style.color);
-    floor_program_.set("u_minor_color", style.minor_line_color);
-    floor_program_.set("u_major_color", style.major_line_color);
-    floor_program_.set("u_x_axis_color", style.x_axis_color);
-    floor_program_.set("u_z_axis_color", style.z_axis_color);
-    instances_.assign(1, glm::vec4(camera.target.x, ground_height, camera.target.z, fade_radius));
-    disc_.draw(instances_);
-  }
-
-  // The background where the floor is not: depth 1.0 passes GL_LEQUAL only where nothing was drawn.
-  glDepthFunc(GL_LEQUAL);
-  glDepthMask(GL_FALSE);
-  background_program_.use();
-  background_program_.set("u_viewport", viewport);
-  background_program_.set("u_top", style.background_top);
-  background_program_.set("u_bottom", style.background_bottom);
-  background_program_.set("u_vignette", style.vignette);
-  glBindVertexArray(empty_vao_);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  glBindVertexArray(0);
-  glDepthMask(GL_TRUE);
-  glDepthFunc(GL_LESS);
-
-  if (shadow_rect.w > 0.0f) {
-    // On the floor, under everything the skeletons will draw: no depth test needed.
-    glDisable(GL_DEPTH_TEST);
-    glEnable(GL_BLEND);
-    glBlendFuncSeparate(GL_ZERO, GL_ONE_MINUS_SRC_COLOR, GL_ZERO, GL_ONE);
-    shadow_program_.use();
-    shadow_program_.set("u_view_projection", view_projection);
-    shadow_program_.set("u_strength", style.shadow_strength);
-    shadow_program_.set("u_fade_centre", glm::vec2(camera.target.x, camera.target.z));
-    shadow_program_.set("u_fade_radius", fade_radius);
-    shadow_program_.set("u_shadow", 0);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, shadow_texture_);
-    instances_.assign(1, glm::vec4(shadow_rect.x, shadow_rect.y, 1.0f / shadow_rect.z, ground_height));
-    quad1_.draw(instances_);
-    glBindTexture(GL_TEXTURE_2D, 0);
-    glDisable(GL_BLEND);
-    glEnable(GL_DEPTH_TEST);
-  }
-
-  if (style.floor && style.contacts) {
-    instances_.clear();
-    for (const SkeletonPose& pose : poses) {
-      if (!is_valid(pose) || pose.contacts.empty()) continue;
-      float pose_size = effective_size(pose);
-      for (size_t i = 0; i < pose.positions.size(); ++i) {
-        if (!pose.contacts[i] || is_hidden(pose, i)) continue;
-        const glm::vec3& p = pose.positions[i];
-        instances_.emplace_back(p.x, ground_height, p.z, kMarkerRadius * pose_size);
-        instances_.emplace_back(glm::min(pose.color * 1.15f + 0.05f, glm::vec3(1.0f)), 0.9f);
-      }
-    }
-    if (!instances_.empty()) {
-      // On the floor, under everything the skeletons will draw: no depth test needed.
-      glDisable(GL_DEPTH_TEST);
-      glEnable(GL_BLEND);
-      glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
-      marker_program_.use();
-      marker_program_.set("u_view_projection", view_projection);
-      quad2_.draw(instances_);
-      glDisable(GL_BLEND);
-      glEnable(GL_DEPTH_TEST);
-    }
-  }
+  if (style.floor) draw_floor(view_projection, viewport, stage, fade_radius, ground_height, camera, style);
+  draw_background(viewport, style);
+  if (shadow_rect.w > 0.0f) draw_shadow(view_projection, shadow_rect, fade_radius, ground_height, camera, style);
+  if (style.floor && style.contacts) draw_contact_markers(poses, view_projection, ground_height);
   glUseProgram(0);
 }
 

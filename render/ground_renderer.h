@@ -61,6 +61,16 @@ class GroundRenderer {
   // Renders the blobs; *rect = (x, z origin, 1 / side, 1), or all 0 when there is no shadow.
   void draw_shadow_map(const std::vector<SkeletonPose>& poses, float ground_height, const glm::vec3& focus,
                        glm::vec4* rect);
+  // The passes of draw, in order: the floor disc (grid, axes) fading at fade_radius around the
+  // camera's target; the background where the floor is not; the shadow texture laid on the floor;
+  // the contact markers under planted joints.
+  void draw_floor(const glm::mat4& view_projection, const glm::vec2& viewport, float stage, float fade_radius,
+                  float ground_height, const OrbitCamera& camera, const GroundStyle& style);
+  void draw_background(const glm::vec2& viewport, const GroundStyle& style);
+  void draw_shadow(const glm::mat4& view_projection, const glm::vec4& shadow_rect, float fade_radius,
+                   float ground_height, const OrbitCamera& camera, const GroundStyle& style);
+  void draw_contact_markers(const std::vector<SkeletonPose>& poses, const glm::mat4& view_projection,
+                            float ground_height);
 
   ShaderProgram background_program_;
   ShaderProgram floor_program_;

@@ -179,21 +179,19 @@ void print_summary(const ShardRun& r, const std::string& jobs_file, const std::s
             << number(std::round(r.seconds * 100) / 100) << " s, " << parallel << " at a time\n";
 }
 
-}  // namespace
+// What `batch` is given.
+struct BatchArgs {
+  std::string jobs_file;
+  std::string shard = "0/1";
+  int parallel = 0;
+  std::string summary;
+  double timeout = 0.0;
+  int retries = 0;
+  bool skip_existing = false;
+};
 
-void add_batch_command(CLI::App& app, std::function<int()>* run) {
-  auto* cmd = app.add_subcommand("batch", "Run the mostyle-cli commands of a JOBS file, several at a time");
-  struct Args {
-    std::string jobs_file;
-    std::string shard = "0/1";
-    int parallel = 0;
-    std::string summary;
-    double timeout = 0.0;
-    int retries = 0;
-    bool skip_existing = false;
-  };
-  auto args = std::make_shared<Args>();
-  cmd->add_option("JOBS", args->jobs_file,
+void add_batch_options(CLI::App* cmd, BatchArgs& args) {
+  cmd->add_option("JOBS", args.jobs_file,
                   "JSON lines: each non-empty line is one command's arguments as an array of strings, e.g. "
                   "[\"blend\", \"a.bvh\", \"b.bvh\", \"--out\", \"ab.bvh\"] (paths relative to the working folder)")
       ->required();
@@ -203,14 +201,14 @@ void add_batch_command(CLI::App& app, std::function<int()>* run) {
         return parse_shard(text, &s) ? std::string() : "expected I/N with 0 <= I < N, found " + text;
       },
       "I/N");
-  cmd->add_option("--shard", args->shard,
+  cmd->add_option("--shard", args.shard,
                   "Run only the jobs (non-empty lines, counted from 0) whose index modulo N is I: N copies, "
                   "on N machines, share one JOBS file without talking to each other")
       ->check(shard_format)
       ->capture_default_str();
-  cmd->add_option("--jobs,-j", args->parallel, "Jobs at once (default: the number of cores)")
+  cmd->add_option("--jobs,-j", args.parallel, "Jobs at once (default: the number of cores)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--summary", args->summary,
+  cmd->add_option("--summary", args.summary,
                   "JSON file: totals, and per job its line, args, status (ok, failed or skipped), error, seconds, "
                   "attempts and peak memory (max_rss_mb); kept current while jobs run in SUMMARY.journal (one "
                   "record per finished job, JSON lines), removed once the summary is written. Without it a "
@@ -223,16 +221,16 @@ void add_batch_command(CLI::App& app, std::function<int()>* run) {
         return good ? std::string() : "expected a number of seconds above 0, found " + text;
       },
       "SECONDS");
-  cmd->add_option("--timeout", args->timeout,
+  cmd->add_option("--timeout", args.timeout,
                   "Seconds a job may run: one still running then is stopped (SIGTERM to its process group, SIGKILL "
                   "5 s later) and recorded as failed, \"timed out after SECONDS s\"; the others go on")
       ->check(finite_seconds);
-  cmd->add_option("--retries", args->retries,
+  cmd->add_option("--retries", args.retries,
                   "Run a job killed by a signal (a crash, an out-of-memory kill) again, up to this many times; a job "
                   "that fails on its input (exit status 1), its usage (2) or the timeout is not run again")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  cmd->add_flag("--skip-existing", args->skip_existing,
+  cmd->add_flag("--skip-existing", args.skip_existing,
                 "Do not run a job whose outputs (--out, --positions-out, --report, --jobs-out) all exist: it is "
                 "recorded as skipped. A job that names no output so is always run");
   cmd->footer(
@@ -242,56 +240,73 @@ void add_batch_command(CLI::App& app, std::function<int()>* run) {
       "no more; the summary is written, then batch ends by that signal. "
       "Exit status 1 when any job failed (one line on stderr naming the lines), 0 when all succeeded or were "
       "skipped.");
-  cmd->callback([=] {
-    *run = [=] {
-      // First, so that it is the last to go: the summary is written before a stop signal ends
-      // the process.
-      StopSignal stop;
-      const auto t0 = Clock::now();
-      // Read first: a JOBS file that cannot be read leaves no journal behind.
-      const std::vector<JobLine> all = parse_jobs(read_file(args->jobs_file), args->jobs_file);
-      BatchSettings settings;
-      parse_shard(args->shard, &settings.shard);
-      JobRunnerOptions& o = settings.runner;
-      o.parallel = args->parallel > 0 ? args->parallel
-                                      : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-      o.timeout_seconds = args->timeout;
-      o.retries = args->retries;
-      o.stop = &stop.requested();
-      settings.skip_existing = args->skip_existing;
-      std::unique_ptr<SummaryJournal> journal;
-      if (!args->summary.empty()) {
-        journal = std::make_unique<SummaryJournal>(journal_path(args->summary));
-        settings.journal = journal.get();
-      }
-      const ShardRun r = run_shard(all, settings, t0);
-      const std::string of_shard = settings.shard.count > 1 ? " of shard " + args->shard : "";
-      if (journal) {
-        if (!journal->error().empty()) std::cerr << "mostyle: warning: " << journal->error() << "\n";
-        Json s;
-        s["jobs_file"] = args->jobs_file;
-        s["shard"] = args->shard;
-        s["parallel"] = o.parallel;
-        s["totals"] = {{"jobs", r.jobs.size()}, {"ok", ok_count(r)}, {"failed", r.failed_lines.size()},
-                       {"skipped", r.skipped}, {"seconds", r.seconds}};
-        s["jobs"] = records_json(r);
-        // Messages quote file contents (joint names): invalid UTF-8 is replaced, not thrown on.
-        write_output(args->summary, s.dump(2, ' ', false, Json::error_handler_t::replace) + "\n");
-        journal->remove();
-      } else {
-        print_summary(r, args->jobs_file, of_shard, o.parallel);
-      }
-      if (r.failed_lines.empty()) return 0;
-      std::string lines;
-      for (size_t k = 0; k < r.failed_lines.size() && k < 10; ++k)
-        lines += (k ? ", " : "") + std::to_string(r.failed_lines[k]);
-      if (r.failed_lines.size() > 10) lines += ", ...";
-      std::cerr << "mostyle: " << args->jobs_file << ": " << r.failed_lines.size() << " of "
-                << plural(r.jobs.size(), "job") << of_shard
-                << " failed (line" << (r.failed_lines.size() == 1 ? " " : "s ") << lines << ")\n";
-      return 1;
-    };
-  });
+}
+
+// The summary file: totals, and a record per job.
+void write_summary_file(const BatchArgs& args, const ShardRun& r, int parallel) {
+  Json s;
+  s["jobs_file"] = args.jobs_file;
+  s["shard"] = args.shard;
+  s["parallel"] = parallel;
+  s["totals"] = {{"jobs", r.jobs.size()}, {"ok", ok_count(r)}, {"failed", r.failed_lines.size()},
+                 {"skipped", r.skipped}, {"seconds", r.seconds}};
+  s["jobs"] = records_json(r);
+  // Messages quote file contents (joint names): invalid UTF-8 is replaced, not thrown on.
+  write_output(args.summary, s.dump(2, ' ', false, Json::error_handler_t::replace) + "\n");
+}
+
+// 0 when no job failed; else 1, after one line on stderr naming the failed lines (at most ten).
+int report_failed_lines(const BatchArgs& args, const ShardRun& r, const std::string& of_shard) {
+  if (r.failed_lines.empty()) return 0;
+  std::string lines;
+  for (size_t k = 0; k < r.failed_lines.size() && k < 10; ++k)
+    lines += (k ? ", " : "") + std::to_string(r.failed_lines[k]);
+  if (r.failed_lines.size() > 10) lines += ", ...";
+  std::cerr << "mostyle: " << args.jobs_file << ": " << r.failed_lines.size() << " of "
+            << plural(r.jobs.size(), "job") << of_shard
+            << " failed (line" << (r.failed_lines.size() == 1 ? " " : "s ") << lines << ")\n";
+  return 1;
+}
+
+int run_batch(const BatchArgs& args) {
+  // First, so that it is the last to go: the summary is written before a stop signal ends
+  // the process.
+  StopSignal stop;
+  const auto t0 = Clock::now();
+  // Read first: a JOBS file that cannot be read leaves no journal behind.
+  const std::vector<JobLine> all = parse_jobs(read_file(args.jobs_file), args.jobs_file);
+  BatchSettings settings;
+  parse_shard(args.shard, &settings.shard);
+  JobRunnerOptions& o = settings.runner;
+  o.parallel = args.parallel > 0 ? args.parallel : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  o.timeout_seconds = args.timeout;
+  o.retries = args.retries;
+  o.stop = &stop.requested();
+  settings.skip_existing = args.skip_existing;
+  std::unique_ptr<SummaryJournal> journal;
+  if (!args.summary.empty()) {
+    journal = std::make_unique<SummaryJournal>(journal_path(args.summary));
+    settings.journal = journal.get();
+  }
+  const ShardRun r = run_shard(all, settings, t0);
+  const std::string of_shard = settings.shard.count > 1 ? " of shard " + args.shard : "";
+  if (journal) {
+    if (!journal->error().empty()) std::cerr << "mostyle: warning: " << journal->error() << "\n";
+    write_summary_file(args, r, o.parallel);
+    journal->remove();
+  } else {
+    print_summary(r, args.jobs_file, of_shard, o.parallel);
+  }
+  return report_failed_lines(args, r, of_shard);
+}
+
+}  // namespace
+
+void add_batch_command(CLI::App& app, std::function<int()>* run) {
+  auto* cmd = app.add_subcommand("batch", "Run the mostyle-cli commands of a JOBS file, several at a time");
+  auto args = std::make_shared<BatchArgs>();
+  add_batch_options(cmd, *args);
+  cmd->callback([=] { *run = [=] { return run_batch(*args); }; });
 }
 
 }  // namespace mostyle::cli

@@ -57,13 +57,143 @@ namespace {
 
 // Where a file's one skeleton comes from, in words and as a JSON key.
 struct SkeletonOrigin {
-  const char* key;
-  const char* words;
+  const char* key = "";
+  const char* words = "";
 };
 SkeletonOrigin skeleton_origin(MotionFormat format, const SceneSkeleton* scene) {
   if (format == MotionFormat::kBvh || scene == nullptr) return {"hierarchy", "the file's hierarchy"};
   if (scene->from_skins) return {"skins", "the joints of the file's skins"};
   return {"animated nodes", "the nodes the animations key"};
+}
+
+// What `info` prints of one take of a file.
+struct FileInfo {
+  std::shared_ptr<const Clip> clip;
+  MajorMapping majors;
+  std::optional<TakeCycles> cycles;  // in its own frames; none when it has no major joints
+  std::string no_cycles;             // why there are none
+  std::vector<TakeInfo> takes;       // every take of the file
+  SkeletonOrigin origin;
+  UnitsGuess units;
+};
+
+FileInfo read_file_info(const std::string& path, const std::string& take, double fps, const std::string& mapping) {
+  FileInfo info;
+  info.clip = std::make_shared<const Clip>(load_clip(path, take, fps));
+  const Clip& clip = *info.clip;
+  const MappingOverrides overrides = load_mapping(mapping);
+  info.majors = map_major_joints(clip, overrides.entries.empty() ? nullptr : &overrides);
+  try {
+    info.cycles = take_cycles(info.clip);
+  } catch (const InputError& e) {
+    info.no_cycles = e.what();
+  }
+  // A BVH is one take, the clip just read (not read again: a BVH may be 100 MB). An FBX or
+  // glTF file's animations all play on its one skeleton.
+  const TakePath file = split_take_path(path);
+  const MotionFormat format = motion_format(file.path);
+  std::optional<SceneSkeleton> scene_skeleton_found;
+  if (has_takes(format)) {
+    const AnimatedScene scene = read_animated_scene(file.path, motion_read_options_from_environment().max_bytes);
+    info.takes = scene_take_infos(scene);
+    const std::string take_name = take.empty() ? file.take : take;
+    scene_skeleton_found = scene_skeleton(scene, take_name.empty() ? 0 : find_take(scene, take_name));
+  } else {
+    info.takes.push_back({std::filesystem::path(file.path).stem().string(), motion_length_s(clip.frames(), clip.fps()),
+                          clip.frames(), clip.skeleton.joint_count_without_end_sites()});
+  }
+  info.origin = skeleton_origin(format, scene_skeleton_found ? &*scene_skeleton_found : nullptr);
+  info.units = guess_units(clip);
+  return info;
+}
+
+void print_info_json(const std::string& path, const FileInfo& info) {
+  const Clip& clip = *info.clip;
+  const Skeleton& s = clip.skeleton;
+  nlohmann::ordered_json j;
+  j["file"] = path;
+  j["frames"] = clip.frames();
+  j["frame_time"] = clip.frame_time;
+  j["fps"] = clip.fps();
+  j["duration_s"] = motion_length_s(clip.frames(), clip.fps());  // first frame to last
+  j["channels"] = s.channel_count;
+  j["units_guess"] = info.units.name;
+  j["height"] = info.units.height;
+  j["skeleton"] = {{"joints", s.joint_count_without_end_sites()},
+                   {"end_sites", static_cast<int>(s.joints.size()) - s.joint_count_without_end_sites()},
+                   {"root", s.joints.empty() ? "" : s.joints[0].name},
+                   {"from", info.origin.key}};
+  auto& tk = j["takes"] = nlohmann::ordered_json::array();
+  for (const TakeInfo& t : info.takes)
+    tk.push_back({{"name", t.name}, {"seconds", t.seconds}, {"keys", t.keys}, {"moves", t.moves}});
+  if (info.cycles) {
+    j["cycles"] = cycles_json(*info.cycles, clip.fps());
+  } else {
+    j["cycles"] = {{"kind", "unknown"}, {"reason", info.no_cycles}};
+  }
+  j["major_joints"] = major_joints_json(info.majors, s);
+  auto& joints = j["joints"] = nlohmann::ordered_json::array();
+  for (const Joint& jt : s.joints) {
+    if (jt.end_site) continue;
+    nlohmann::ordered_json o;
+    o["name"] = jt.name;
+    o["parent"] = jt.parent < 0 ? nlohmann::ordered_json() : nlohmann::ordered_json(s.joints[jt.parent].name);
+    o["offset"] = {jt.offset.x(), jt.offset.y(), jt.offset.z()};
+    auto& ch = o["channels"] = nlohmann::ordered_json::array();
+    for (Channel c : jt.channels) ch.push_back(channel_name(c));
+    o["rotation_order"] = rotation_order(jt);
+    joints.push_back(o);
+  }
+  // Joint names are bytes from the file: invalid UTF-8 is replaced, not thrown on.
+  std::cout << j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
+}
+
+// Every joint but the End Sites, indented by depth, with its channels.
+void print_hierarchy(const Skeleton& s) {
+  std::cout << "  hierarchy:\n";
+  // Depths in one pass (parents come first): walking up per joint is quadratic in depth.
+  std::vector<int> depths(s.joints.size(), 0);
+  for (size_t i = 0; i < s.joints.size(); ++i)
+    if (s.joints[i].parent >= 0) depths[i] = depths[s.joints[i].parent] + 1;
+  for (size_t i = 0; i < s.joints.size(); ++i) {
+    const Joint& jt = s.joints[i];
+    if (jt.end_site) continue;
+    std::cout << "    " << std::string(std::min(depths[i], 16) * 2, ' ') << jt.name << "  [" << channel_list(jt) << "]";
+    if (!rotation_order(jt).empty()) std::cout << " order " << rotation_order(jt);
+    std::cout << "\n";
+  }
+}
+
+void print_info_text(const std::string& path, const FileInfo& info) {
+  const Clip& clip = *info.clip;
+  const Skeleton& s = clip.skeleton;
+  const int end_sites = static_cast<int>(s.joints.size()) - s.joint_count_without_end_sites();
+  std::cout << path << "\n"
+            << "  joints: " << s.joint_count_without_end_sites() << " (+" << end_sites << " End Sites), "
+            << info.origin.words << (s.joints.empty() ? "" : ", root '" + s.joints[0].name + "'") << "\n"
+            << "  takes: " << info.takes.size() << (info.takes.size() > 1 ? ", every one on this skeleton" : "")
+            << "\n";
+  for (const TakeInfo& t : info.takes) {
+    std::cout << "    " << t.name << "  (" << duration_in_words(t.seconds) << ", " << t.keys << " keys";
+    if (t.moves >= 0) std::cout << ", moves " << t.moves << " joints";
+    std::cout << ")\n";
+  }
+  std::cout << "  channels per frame: " << s.channel_count << "\n"
+            << "  frames: " << clip.frames() << "\n"
+            << "  frame time: " << number(clip.frame_time) << " s (" << number(clip.fps()) << " fps)\n"
+            << "  duration: " << duration_in_words(motion_length_s(clip.frames(), clip.fps())) << "\n"
+            << "  units (guess): " << info.units.name << " (height " << number(info.units.height) << ")\n"
+            << "  cycles: "
+            << (info.cycles ? cycles_summary(*info.cycles, clip.fps(), clip.frames()) : "unknown: " + info.no_cycles)
+            << "\n"
+            << "  major joints: " << info.majors.how << "\n";
+  for (int m = 0; m < kMajorJointCount; ++m) {
+    if (!info.majors.has(m) && info.majors.source[m] == MajorSource::kNone) continue;
+    std::cout << "    " << major_joint_name(m) << ": "
+              << (info.majors.has(m) ? s.joints[info.majors.joint[m]].name : std::string("-")) << " ("
+              << major_source_name(info.majors.source[m]) << ")\n";
+  }
+  print_hierarchy(s);
 }
 
 }  // namespace
@@ -83,114 +213,9 @@ void add_info_command(CLI::App& app, std::function<int()>* run) {
   cmd->add_option("--mapping", *mapping, "Major-joint mapping file (see assets/mappings)");
   cmd->callback([=] {
     *run = [=] {
-      const auto clip_ptr = std::make_shared<const Clip>(load_clip(*path, *take, *fps));
-      const Clip& clip = *clip_ptr;
-      const MappingOverrides overrides = load_mapping(*mapping);
-      const MajorMapping majors = map_major_joints(clip, overrides.entries.empty() ? nullptr : &overrides);
-      // Its cycles, in its own frames; a take without the major joints has none to tell.
-      std::optional<TakeCycles> cycles;
-      std::string no_cycles;
-      try {
-        cycles = take_cycles(clip_ptr);
-      } catch (const InputError& e) {
-        no_cycles = e.what();
-      }
-      // A BVH is one take, the clip just read (not read again: a BVH may be 100 MB). An FBX or
-      // glTF file's animations all play on its one skeleton.
-      const TakePath file = split_take_path(*path);
-      const MotionFormat format = motion_format(file.path);
-      std::vector<TakeInfo> takes;
-      std::optional<SceneSkeleton> scene_skeleton_found;
-      if (has_takes(format)) {
-        const AnimatedScene scene = read_animated_scene(file.path, motion_read_options_from_environment().max_bytes);
-        takes = scene_take_infos(scene);
-        const std::string take_name = take->empty() ? file.take : *take;
-        scene_skeleton_found = scene_skeleton(scene, take_name.empty() ? 0 : find_take(scene, take_name));
-      } else {
-        takes.push_back({std::filesystem::path(file.path).stem().string(), motion_length_s(clip.frames(), clip.fps()),
-                         clip.frames(), clip.skeleton.joint_count_without_end_sites()});
-      }
-      const SkeletonOrigin origin =
-          skeleton_origin(format, scene_skeleton_found ? &*scene_skeleton_found : nullptr);
-      const Skeleton& s = clip.skeleton;
-      const int end_sites = static_cast<int>(s.joints.size()) - s.joint_count_without_end_sites();
-      const UnitsGuess units = guess_units(clip);
-      const double duration = motion_length_s(clip.frames(), clip.fps());  // first frame to last
-      if (*json) {
-        nlohmann::ordered_json j;
-        j["file"] = *path;
-        j["frames"] = clip.frames();
-        j["frame_time"] = clip.frame_time;
-        j["fps"] = clip.fps();
-        j["duration_s"] = duration;
-        j["channels"] = s.channel_count;
-        j["units_guess"] = units.name;
-        j["height"] = units.height;
-        j["skeleton"] = {{"joints", s.joint_count_without_end_sites()},
-                         {"end_sites", end_sites},
-                         {"root", s.joints.empty() ? "" : s.joints[0].name},
-                         {"from", origin.key}};
-        auto& tk = j["takes"] = nlohmann::ordered_json::array();
-        for (const TakeInfo& t : takes)
-          tk.push_back({{"name", t.name}, {"seconds", t.seconds}, {"keys", t.keys}, {"moves", t.moves}});
-        if (cycles) {
-          j["cycles"] = cycles_json(*cycles, clip.fps());
-        } else {
-          j["cycles"] = {{"kind", "unknown"}, {"reason", no_cycles}};
-        }
-        j["major_joints"] = major_joints_json(majors, s);
-        auto& joints = j["joints"] = nlohmann::ordered_json::array();
-        for (const Joint& jt : s.joints) {
-          if (jt.end_site) continue;
-          nlohmann::ordered_json o;
-          o["name"] = jt.name;
-          o["parent"] = jt.parent < 0 ? nlohmann::ordered_json() : nlohmann::ordered_json(s.joints[jt.parent].name);
-          o["offset"] = {jt.offset.x(), jt.offset.y(), jt.offset.z()};
-          auto& ch = o["channels"] = nlohmann::ordered_json::array();
-          for (Channel c : jt.channels) ch.push_back(channel_name(c));
-          o["rotation_order"] = rotation_order(jt);
-          joints.push_back(o);
-        }
-        // Joint names are bytes from the file: invalid UTF-8 is replaced, not thrown on.
-        std::cout << j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
-      } else {
-        std::cout << *path << "\n"
-                  << "  joints: " << s.joint_count_without_end_sites() << " (+" << end_sites << " End Sites), "
-                  << origin.words << (s.joints.empty() ? "" : ", root '" + s.joints[0].name + "'") << "\n"
-                  << "  takes: " << takes.size() << (takes.size() > 1 ? ", every one on this skeleton" : "") << "\n";
-        for (const TakeInfo& t : takes) {
-          std::cout << "    " << t.name << "  (" << duration_in_words(t.seconds) << ", " << t.keys << " keys";
-          if (t.moves >= 0) std::cout << ", moves " << t.moves << " joints";
-          std::cout << ")\n";
-        }
-        std::cout << "  channels per frame: " << s.channel_count << "\n"
-                  << "  frames: " << clip.frames() << "\n"
-                  << "  frame time: " << number(clip.frame_time) << " s (" << number(clip.fps()) << " fps)\n"
-                  << "  duration: " << duration_in_words(duration) << "\n"
-                  << "  units (guess): " << units.name << " (height " << number(units.height) << ")\n"
-                  << "  cycles: "
-                  << (cycles ? cycles_summary(*cycles, clip.fps(), clip.frames()) : "unknown: " + no_cycles) << "\n"
-                  << "  major joints: " << majors.how << "\n";
-        for (int m = 0; m < kMajorJointCount; ++m) {
-          if (!majors.has(m) && majors.source[m] == MajorSource::kNone) continue;
-          std::cout << "    " << major_joint_name(m) << ": "
-                    << (majors.has(m) ? s.joints[majors.joint[m]].name : std::string("-")) << " ("
-                    << major_source_name(majors.source[m]) << ")\n";
-        }
-        std::cout << "  hierarchy:\n";
-        // Depths in one pass (parents come first): walking up per joint is quadratic in depth.
-        std::vector<int> depths(s.joints.size(), 0);
-        for (size_t i = 0; i < s.joints.size(); ++i)
-          if (s.joints[i].parent >= 0) depths[i] = depths[s.joints[i].parent] + 1;
-        for (size_t i = 0; i < s.joints.size(); ++i) {
-          const Joint& jt = s.joints[i];
-          if (jt.end_site) continue;
-          std::cout << "    " << std::string(std::min(depths[i], 16) * 2, ' ') << jt.name << "  ["
-                    << channel_list(jt) << "]";
-          if (!rotation_order(jt).empty()) std::cout << " order " << rotation_order(jt);
-          std::cout << "\n";
-        }
-      }
+      const FileInfo info = read_file_info(*path, *take, *fps, *mapping);
+      if (*json) print_info_json(*path, info);
+      else print_info_text(*path, info);
       return 0;
     };
   });

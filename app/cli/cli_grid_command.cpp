@@ -112,6 +112,98 @@ std::vector<std::string> transfer_job(const std::string& content, const std::str
   return job;
 }
 
+// What `grid` is given.
+struct GridArgs {
+  std::vector<std::string> takes;
+  std::vector<double> alphas;
+  bool transfer = false;
+  std::vector<std::string> contents, styles;
+  std::string neutral;
+  std::vector<double> strengths;
+  std::string out_dir, jobs_out;
+  std::vector<std::string> options;
+};
+
+void add_grid_options(CLI::App* cmd, GridArgs& args) {
+  cmd->add_option("--takes", args.takes, "Blends: takes (BVH, FBX, glTF; FILE#ANIMATION for one animation), 2 or more; each is A with every other one as B");
+  cmd->add_option("--alphas", args.alphas, "Blends: alpha values, comma separated, e.g. 0,0.25,0.5")->delimiter(',');
+  cmd->add_flag("--transfer", args.transfer, "Style transfers instead of blends (--contents, --neutral, --styles, "
+                                             "--strengths)");
+  cmd->add_option("--contents", args.contents, "Transfers: takes (BVH, FBX, glTF, FILE#ANIMATION) that take on the styles, 1 or more");
+  cmd->add_option("--neutral", args.neutral,
+                  "Transfers: take of the action without the styles; without it each content is its own neutral");
+  cmd->add_option("--styles", args.styles, "Transfers: takes of the action in each style, comma separated")
+      ->delimiter(',');
+  cmd->add_option("--strengths", args.strengths, "Transfers: strengths, comma separated, each from -1 to 2")
+      ->delimiter(',');
+  cmd->add_option("--out-dir", args.out_dir,
+                  "Folder of the outputs (created): OUT_DIR/<A>__<B>__a<alpha>.bvh, or with --transfer "
+                  "OUT_DIR/<CONTENT>__<STYLE>__s<strength>.bvh, and its report, .json")
+      ->required();
+  cmd->add_option("--jobs-out", args.jobs_out, "JOBS file to write (default: stdout)");
+  cmd->add_option("JOB_OPTIONS", args.options,
+                  "After --: blend (or with --transfer, transfer) options for every job, e.g. -- --components 4 --loop");
+  cmd->footer("Each line is [\"blend\", A, B, \"--alpha\", a, \"--out\", ..., \"--report\", ..., JOB_OPTIONS], or "
+              "[\"transfer\", CONTENT, \"--neutral\", N, \"--style\", S, \"--strength\", s, \"--out\", ..., "
+              "\"--report\", ..., JOB_OPTIONS] (without --neutral, no \"--neutral\", N).");
+}
+
+// Bad values are usage errors (exit 2), found before any file is written.
+void check_grid_args(const GridArgs& args) {
+  const bool blend_given = !args.takes.empty() || !args.alphas.empty();
+  const bool transfer_given =
+      !args.contents.empty() || !args.neutral.empty() || !args.styles.empty() || !args.strengths.empty();
+  if (!args.transfer) {
+    if (transfer_given)
+      throw CLI::ValidationError("--transfer", "--contents, --neutral, --styles and --strengths need --transfer");
+    if (args.takes.size() < 2)
+      throw CLI::ValidationError("--takes", "expected 2 or more takes, found " + std::to_string(args.takes.size()));
+    if (args.alphas.empty()) throw CLI::ValidationError("--alphas", "expected alpha values, found none");
+    check_stems(args.takes, "--takes");
+    check_values(args.alphas, "--alphas", kMinMixWeight, kMaxMixWeight);  // as blend checks --alpha
+    check_job_options(args.options, {"blend", args.takes[0], args.takes[1]},
+                      {"--alpha", "--out", "--report", "--positions-out"}, &add_blend_command);
+  } else {
+    if (blend_given) throw CLI::ValidationError("--transfer", "--takes and --alphas are a blend grid's");
+    if (args.contents.empty()) throw CLI::ValidationError("--contents", "expected 1 or more takes, found none");
+    if (args.styles.empty()) throw CLI::ValidationError("--styles", "expected 1 or more takes, found none");
+    if (args.strengths.empty()) throw CLI::ValidationError("--strengths", "expected strengths, found none");
+    check_stems(args.contents, "--contents");
+    check_stems(args.styles, "--styles");
+    check_values(args.strengths, "--strengths", kMinStrength, kMaxStrength);
+    check_job_options(args.options, transfer_job(args.contents[0], args.neutral, args.styles[0]),
+                      {"--neutral", "--style", "--strength", "--out", "--report", "--positions-out"},
+                      &add_transfer_command);
+  }
+}
+
+int run_grid(const GridArgs& args) {
+  std::error_code ec;
+  fs::create_directories(args.out_dir, ec);
+  if (ec) throw InputError(args.out_dir + ": cannot create: " + ec.message());
+  std::string text;
+  if (!args.transfer) {
+    for (const std::string& a : args.takes)
+      for (const std::string& b : args.takes) {
+        if (&a == &b) continue;
+        for (double alpha : args.alphas)
+          text += job_line({"blend", a, b, "--alpha", number(alpha)}, args.out_dir,
+                           take_stem(a) + "__" + take_stem(b) + "__a" + number(alpha), args.options);
+      }
+  } else {
+    for (const std::string& content : args.contents)
+      for (const std::string& style : args.styles)
+        for (double s : args.strengths)
+          text += job_line(transfer_job(content, args.neutral, style, number(s)), args.out_dir,
+                           take_stem(content) + "__" + take_stem(style) + "__s" + number(s), args.options);
+  }
+  if (args.jobs_out.empty())
+    std::cout << text;
+  else
+    write_output(args.jobs_out, text);
+  return 0;
+}
+
 }  // namespace
 
 void add_grid_command(CLI::App& app, std::function<int()>* run) {
@@ -119,90 +211,11 @@ void add_grid_command(CLI::App& app, std::function<int()>* run) {
       "grid",
       "Write a JOBS file for batch: one blend per ordered pair of different takes and alpha, or with --transfer "
       "one transfer per content, style and strength");
-  struct Args {
-    std::vector<std::string> takes;
-    std::vector<double> alphas;
-    bool transfer = false;
-    std::vector<std::string> contents, styles;
-    std::string neutral;
-    std::vector<double> strengths;
-    std::string out_dir, jobs_out;
-    std::vector<std::string> options;
-  };
-  auto args = std::make_shared<Args>();
-  cmd->add_option("--takes", args->takes, "Blends: takes (BVH, FBX, glTF; FILE#ANIMATION for one animation), 2 or more; each is A with every other one as B");
-  cmd->add_option("--alphas", args->alphas, "Blends: alpha values, comma separated, e.g. 0,0.25,0.5")->delimiter(',');
-  cmd->add_flag("--transfer", args->transfer, "Style transfers instead of blends (--contents, --neutral, --styles, "
-                                              "--strengths)");
-  cmd->add_option("--contents", args->contents, "Transfers: takes (BVH, FBX, glTF, FILE#ANIMATION) that take on the styles, 1 or more");
-  cmd->add_option("--neutral", args->neutral,
-                  "Transfers: take of the action without the styles; without it each content is its own neutral");
-  cmd->add_option("--styles", args->styles, "Transfers: takes of the action in each style, comma separated")
-      ->delimiter(',');
-  cmd->add_option("--strengths", args->strengths, "Transfers: strengths, comma separated, each from -1 to 2")
-      ->delimiter(',');
-  cmd->add_option("--out-dir", args->out_dir,
-                  "Folder of the outputs (created): OUT_DIR/<A>__<B>__a<alpha>.bvh, or with --transfer "
-                  "OUT_DIR/<CONTENT>__<STYLE>__s<strength>.bvh, and its report, .json")
-      ->required();
-  cmd->add_option("--jobs-out", args->jobs_out, "JOBS file to write (default: stdout)");
-  cmd->add_option("JOB_OPTIONS", args->options,
-                  "After --: blend (or with --transfer, transfer) options for every job, e.g. -- --components 4 --loop");
-  cmd->footer("Each line is [\"blend\", A, B, \"--alpha\", a, \"--out\", ..., \"--report\", ..., JOB_OPTIONS], or "
-              "[\"transfer\", CONTENT, \"--neutral\", N, \"--style\", S, \"--strength\", s, \"--out\", ..., "
-              "\"--report\", ..., JOB_OPTIONS] (without --neutral, no \"--neutral\", N).");
+  auto args = std::make_shared<GridArgs>();
+  add_grid_options(cmd, *args);
   cmd->callback([=] {
-    // Bad values are usage errors (exit 2), found before any file is written.
-    const bool blend_given = !args->takes.empty() || !args->alphas.empty();
-    const bool transfer_given =
-        !args->contents.empty() || !args->neutral.empty() || !args->styles.empty() || !args->strengths.empty();
-    if (!args->transfer) {
-      if (transfer_given)
-        throw CLI::ValidationError("--transfer", "--contents, --neutral, --styles and --strengths need --transfer");
-      if (args->takes.size() < 2)
-        throw CLI::ValidationError("--takes", "expected 2 or more takes, found " + std::to_string(args->takes.size()));
-      if (args->alphas.empty()) throw CLI::ValidationError("--alphas", "expected alpha values, found none");
-      check_stems(args->takes, "--takes");
-      check_values(args->alphas, "--alphas", kMinMixWeight, kMaxMixWeight);  // as blend checks --alpha
-      check_job_options(args->options, {"blend", args->takes[0], args->takes[1]},
-                        {"--alpha", "--out", "--report", "--positions-out"}, &add_blend_command);
-    } else {
-      if (blend_given) throw CLI::ValidationError("--transfer", "--takes and --alphas are a blend grid's");
-      if (args->contents.empty()) throw CLI::ValidationError("--contents", "expected 1 or more takes, found none");
-      if (args->styles.empty()) throw CLI::ValidationError("--styles", "expected 1 or more takes, found none");
-      if (args->strengths.empty()) throw CLI::ValidationError("--strengths", "expected strengths, found none");
-      check_stems(args->contents, "--contents");
-      check_stems(args->styles, "--styles");
-      check_values(args->strengths, "--strengths", kMinStrength, kMaxStrength);
-      check_job_options(args->options, transfer_job(args->contents[0], args->neutral, args->styles[0]),
-                        {"--neutral", "--style", "--strength", "--out", "--report", "--positions-out"},
-                        &add_transfer_command);
-    }
-    *run = [=] {
-      std::error_code ec;
-      fs::create_directories(args->out_dir, ec);
-      if (ec) throw InputError(args->out_dir + ": cannot create: " + ec.message());
-      std::string text;
-      if (!args->transfer) {
-        for (const std::string& a : args->takes)
-          for (const std::string& b : args->takes) {
-            if (&a == &b) continue;
-            for (double alpha : args->alphas)
-              text += job_line({"blend", a, b, "--alpha", number(alpha)}, args->out_dir,
-                               take_stem(a) + "__" + take_stem(b) + "__a" + number(alpha), args->options);
-          }
-      } else {
-        for (const std::string& content : args->contents)
-          for (const std::string& style : args->styles)
-            for (double s : args->strengths)
-              text += job_line(transfer_job(content, args->neutral, style, number(s)), args->out_dir, take_stem(content) + "__" + take_stem(style) + "__s" + number(s), args->options);
-      }
-      if (args->jobs_out.empty())
-        std::cout << text;
-      else
-        write_output(args->jobs_out, text);
-      return 0;
-    };
+    check_grid_args(*args);
+    *run = [=] { return run_grid(*args); };
   });
 }
 

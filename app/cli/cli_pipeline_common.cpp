@@ -146,20 +146,19 @@ std::string keys_in_words(const Json& keys, const std::function<std::string(cons
 
 std::string file_name(const std::string& path) { return std::filesystem::path(path).filename().string(); }
 
-}  // namespace
+// v[from..] as text, `decimals` decimals each, space separated.
+std::string joined(const std::vector<double>& v, size_t from, int decimals) {
+  std::string out;
+  for (size_t i = from; i < v.size(); ++i) out += (i > from ? " " : "") + fixed(v[i], decimals);
+  return out;
+}
 
-std::string report_summary(const Json& r, const std::string& out, const std::string& positions_out) {
-  const double height = r.value("skeleton_height", 0.0);
-  auto of_height = [&](double v) { return height > 0 ? fixed(100.0 * v / height, 2) + "% of height" : fixed(v, 3); };
+// The summary's first line: what was made of which takes, with which weights. With keys in time
+// the weights given as constants are not used: the keys are said instead.
+std::string result_headline(const Json& r) {
   const std::string command = r.value("command", std::string("blend"));
-  std::string text;
-  // With keys in time the weights given as constants are not used: the keys are said instead.
   const bool keyed = r.contains("keys") && !r["keys"].empty();
-  auto joined = [](const std::vector<double>& v, size_t from, int decimals) {
-    std::string out;
-    for (size_t i = from; i < v.size(); ++i) out += (i > from ? " " : "") + fixed(v[i], decimals);
-    return out;
-  };
+  std::string text;
   if (command == "blend") {
     text = "blend of " + file_name(r["a"]) + " and " + file_name(r["b"]);
     if (keyed)
@@ -192,6 +191,33 @@ std::string report_summary(const Json& r, const std::string& out, const std::str
       for (const Json& s : r["strengths"]) text += " " + fixed(s.get<double>(), 2);
     }
   }
+  return text;
+}
+
+// "\n  major joints of FILE: HOW" for each take whose major joints were not all found by their
+// names (the report has every take's).
+std::string major_joints_not_by_name(const Json& r) {
+  std::string text;
+  if (!r.contains("takes")) return text;
+  for (const Json& t : r["takes"]) {
+    if (!t.contains("major_joints") || !t.contains("file")) continue;
+    const std::string how = t["major_joints"].value("how", std::string());
+    bool by_names = how.find("structure:") == std::string::npos;
+    for (const Json& j : t["major_joints"]["joints"]) {
+      const std::string by = j.value("found_by", std::string());
+      by_names = by_names && (by == "name" || by == "none");
+    }
+    if (!by_names) text += "\n  major joints of " + file_name(t["file"]) + ": " + how;
+  }
+  return text;
+}
+
+}  // namespace
+
+std::string report_summary(const Json& r, const std::string& out, const std::string& positions_out) {
+  const double height = r.value("skeleton_height", 0.0);
+  auto of_height = [&](double v) { return height > 0 ? fixed(100.0 * v / height, 2) + "% of height" : fixed(v, 3); };
+  std::string text = result_headline(r);
   text += "\n  " + std::to_string(r["frames"].get<long>()) + " frames at " + fixed(r["fps"].get<double>(), 0) +
           " fps (" + duration_in_words(r["duration_s"].get<double>()) + ")";
   if (r.contains("loop")) text += ", a loop of " + std::to_string(r["loop"].value("cycles", 0)) + " cycles";
@@ -214,19 +240,7 @@ std::string report_summary(const Json& r, const std::string& out, const std::str
       text += " (follows the result within " + of_height(r["export_fit"]["mean"].get<double>()) + " mean, " +
               of_height(r["export_fit"]["max"].get<double>()) + " at worst)";
   }
-  // How a take's major joints were found, where not all by their names (the report has every take's).
-  if (r.contains("takes")) {
-    for (const Json& t : r["takes"]) {
-      if (!t.contains("major_joints") || !t.contains("file")) continue;
-      const std::string how = t["major_joints"].value("how", std::string());
-      bool by_names = how.find("structure:") == std::string::npos;
-      for (const Json& j : t["major_joints"]["joints"]) {
-        const std::string by = j.value("found_by", std::string());
-        by_names = by_names && (by == "name" || by == "none");
-      }
-      if (!by_names) text += "\n  major joints of " + file_name(t["file"]) + ": " + how;
-    }
-  }
+  text += major_joints_not_by_name(r);
   if (!positions_out.empty()) text += "\n  wrote " + positions_out;
   if (out.empty() && positions_out.empty()) text += "\n  nothing written: give --out, --positions-out or --report";
   return text + "\n";

@@ -198,118 +198,135 @@ void check_alpha(double alpha, const std::string& flag) {
                      " (B's weight; A's is 1 - alpha), found " + number(alpha));
 }
 
+// What `blend` is given.
+struct BlendArgs {
+  std::string a, b, mapping_a, mapping_b;
+  double alpha = 0.5;
+  std::string mode = "shared";
+  int basic = 0;
+  std::vector<double> basic_sparsities;
+  int swap = 0;
+  std::vector<double> component_alpha;
+  std::vector<std::string> part_alpha;
+  std::string alpha_at;
+  SynthesisFlags flags;
+};
+
+void add_blend_options(CLI::App* cmd, BlendArgs& args) {
+  cmd->add_option("A", args.a, "Take A (the reference: its skeleton, units and world frame)")->required();
+  cmd->add_option("B", args.b, "Take B (retargeted onto A and aligned onto it in time)")->required();
+  cmd->add_option("--mapping-a", args.mapping_a, "Major-joint mapping file for A (see assets/mappings)");
+  cmd->add_option("--mapping-b", args.mapping_b, "Major-joint mapping file for B");
+  cmd->add_option("--alpha", args.alpha, "0 gives A, 1 gives B; from -0.5 to 1.5")->capture_default_str();
+  cmd->add_option("--mode", args.mode, "shared (one component set, alpha 1 is B) or paper (core components)")
+      ->check(CLI::IsMember({"shared", "paper"}))
+      ->capture_default_str();
+  cmd->add_option("--basic", args.basic, "Paper mode: decompose into M basic motions")->capture_default_str();
+  cmd->add_option("--basic-sparsity", args.basic_sparsities, "Sparsity of each basic motion")->delimiter(',');
+  cmd->add_option("--swap", args.swap, "Basic motion (0-based) whose core is taken from B")->capture_default_str();
+  cmd->add_option("--part-alpha", args.part_alpha,
+                  "Shared mode: PART:a, the alpha of one body part's components (legs, arms, spine, left-leg, "
+                  "right-leg, left-arm, right-arm; repeat for several, a side wins over both sides); the rest "
+                  "take --alpha");
+  cmd->add_option("--component-alpha", args.component_alpha, "Shared mode: one alpha per component, comma separated")
+      ->delimiter(',');
+  cmd->add_option("--alpha-at", args.alpha_at,
+                  "Alpha keyed in time, T:a,T:a,... (T in seconds of the output; eased between keys, held before "
+                  "the first and after the last); replaces --alpha (shared mode)");
+  args.flags.add_to(cmd, {"blend", "a", "blend: the output's timing moves from A's (alpha 0) to B's (alpha 1); a: keep A's timeline",
+                          "File of the blend on A's skeleton: BVH (A's rotation orders), FBX when it ends in .fbx, glTF 2.0 in .glb or .gltf",
+                          ""});
+}
+
+// The alphas given per body part (--part-alpha, "legs:0.2,arms:0.8" or repeated), each checked.
+std::vector<std::pair<BodyPart, double>> part_alphas(const std::vector<std::string>& part_alpha) {
+  std::vector<std::string> entries;
+  for (const std::string& e : part_alpha)
+    for (size_t begin = 0; begin <= e.size();) {
+      const size_t comma = std::min(e.find(',', begin), e.size());
+      entries.push_back(e.substr(begin, comma - begin));
+      begin = comma + 1;
+    }
+  std::vector<std::pair<BodyPart, double>> given;
+  for (const auto& [part, values] : parse_part_entries(entries, "--part-alpha", 1)) {
+    check_alpha(values[0], std::string("--part-alpha ") + body_part_name(part));
+    given.emplace_back(part, values[0]);
+  }
+  return given;
+}
+
+// A's and B's words in a blend's report: the alignment per output frame, each take's fit and sliding.
+void add_pair_words(const PreparedTakes& prepared, const Decomposed& d, const MixResult& result, Json& report) {
+  const Alignment& al = prepared.takes[1].alignment;
+  report["dtw"] = {{"cost", al.cost}, {"path_length", al.path.size()}};
+  Json alignment = alignment_json(prepared, 1);
+  // Per output frame: where in A and B it is, how well they match there, the warp's slope.
+  Eigen::VectorXd ratio(result.sample.size()), slope(result.sample.size());
+  for (Eigen::Index k = 0; k < result.sample.size(); ++k) {
+    const Eigen::Index u = std::lround(result.sample[k]);
+    ratio[k] = al.cost_ratio[u];
+    slope[k] = al.slope[u];
+  }
+  alignment["per_frame"] = {{"source_a", vector_json(result.sources.col(0))},
+                            {"source_b", vector_json(result.sources.col(1))},
+                            {"cost_ratio", vector_json(ratio)},
+                            {"slope", vector_json(slope)}};
+  report["alignment"] = alignment;
+  report["reconstruction_rmse"] = {{"a", d.rmse[0]}, {"b", d.rmse[1]}};
+  report["component_nonzero_fraction"] = {{"a", d.nonzero[0]}, {"b", d.nonzero[1]}};
+  report["foot_sliding"]["a"] = take_foot_sliding(prepared, 0);
+  report["foot_sliding"]["b"] = take_foot_sliding(prepared, 1);
+}
+
+int run_blend(const BlendArgs& args) {
+  DecomposeParams dp = args.flags.decompose_params();
+  dp.mode = args.mode == "paper" ? BlendMode::kPaper : BlendMode::kShared;
+  dp.basic_motions = args.basic;
+  dp.basic_sparsities = args.basic_sparsities;
+  if (!args.part_alpha.empty()) {
+    if (!args.component_alpha.empty()) throw InputError("give --part-alpha or --component-alpha, not both");
+    if (dp.mode != BlendMode::kShared) throw InputError("--part-alpha needs shared mode (--mode shared)");
+  }
+  // Every alpha is checked before the files are read.
+  check_alpha(args.alpha, "--alpha");
+  for (double a : args.component_alpha) check_alpha(a, "--component-alpha");
+  const std::vector<std::pair<BodyPart, double>> given = part_alphas(args.part_alpha);
+  const auto keys = parse_keys(args.alpha_at, "--alpha-at", 1);
+  for (const auto& key : keys) check_alpha(key.second[0], "--alpha-at");
+  const std::vector<std::string> files{args.a, args.b};
+  const Prepared p = prepare(files, args.flags, dp, args.mapping_a, args.mapping_b);
+  const Decomposed& d = *p.decomposition;
+  BlendParams bp;
+  bp.alpha = args.alpha;
+  bp.component_alpha = args.component_alpha;
+  if (!given.empty()) bp.component_alpha = weights_for_parts(given, d.component_joints, args.alpha);
+  bp.swap_level = args.swap;
+  MixParams mp = blend_mix_params(bp, d);
+  for (const auto& key : keys) mp.keys.push_back({key.first, {1.0 - key.second[0], key.second[0]}});
+  args.flags.set(mp);
+  Json r;
+  r["command"] = "blend";
+  r["a"] = args.a;
+  r["b"] = args.b;
+  r["alpha"] = args.alpha;
+  if (!mp.keys.empty()) r["keys"] = keys_json(mp.keys);
+  r["mode"] = args.mode;
+  if (args.basic > 0) {
+    r["basic_motions"] = args.basic;
+    r["swap"] = args.swap;
+  }
+  return run_synthesis(p, files, args.flags, mp, r, [&](const MixResult& result, Json& report) {
+    add_pair_words(*p.prepared, d, result, report);
+  });
+}
+
 }  // namespace
 
 void add_blend_command(CLI::App& app, std::function<int()>* run) {
   auto* cmd = app.add_subcommand("blend", "Blend the styles of two takes");
-  struct Args {
-    std::string a, b, mapping_a, mapping_b;
-    double alpha = 0.5;
-    std::string mode = "shared";
-    int basic = 0;
-    std::vector<double> basic_sparsities;
-    int swap = 0;
-    std::vector<double> component_alpha;
-    std::vector<std::string> part_alpha;
-    std::string alpha_at;
-    SynthesisFlags flags;
-  };
-  auto args = std::make_shared<Args>();
-  cmd->add_option("A", args->a, "Take A (the reference: its skeleton, units and world frame)")->required();
-  cmd->add_option("B", args->b, "Take B (retargeted onto A and aligned onto it in time)")->required();
-  cmd->add_option("--mapping-a", args->mapping_a, "Major-joint mapping file for A (see assets/mappings)");
-  cmd->add_option("--mapping-b", args->mapping_b, "Major-joint mapping file for B");
-  cmd->add_option("--alpha", args->alpha, "0 gives A, 1 gives B; from -0.5 to 1.5")->capture_default_str();
-  cmd->add_option("--mode", args->mode, "shared (one component set, alpha 1 is B) or paper (core components)")
-      ->check(CLI::IsMember({"shared", "paper"}))
-      ->capture_default_str();
-  cmd->add_option("--basic", args->basic, "Paper mode: decompose into M basic motions")->capture_default_str();
-  cmd->add_option("--basic-sparsity", args->basic_sparsities, "Sparsity of each basic motion")->delimiter(',');
-  cmd->add_option("--swap", args->swap, "Basic motion (0-based) whose core is taken from B")->capture_default_str();
-  cmd->add_option("--part-alpha", args->part_alpha,
-                  "Shared mode: PART:a, the alpha of one body part's components (legs, arms, spine, left-leg, "
-                  "right-leg, left-arm, right-arm; repeat for several, a side wins over both sides); the rest "
-                  "take --alpha");
-  cmd->add_option("--component-alpha", args->component_alpha, "Shared mode: one alpha per component, comma separated")
-      ->delimiter(',');
-  cmd->add_option("--alpha-at", args->alpha_at,
-                  "Alpha keyed in time, T:a,T:a,... (T in seconds of the output; eased between keys, held before "
-                  "the first and after the last); replaces --alpha (shared mode)");
-  args->flags.add_to(cmd, {"blend", "a", "blend: the output's timing moves from A's (alpha 0) to B's (alpha 1); a: keep A's timeline",
-                           "File of the blend on A's skeleton: BVH (A's rotation orders), FBX when it ends in .fbx, glTF 2.0 in .glb or .gltf"});
-  cmd->callback([=] {
-    *run = [=] {
-      DecomposeParams dp = args->flags.decompose_params();
-      dp.mode = args->mode == "paper" ? BlendMode::kPaper : BlendMode::kShared;
-      dp.basic_motions = args->basic;
-      dp.basic_sparsities = args->basic_sparsities;
-      if (!args->part_alpha.empty()) {
-        if (!args->component_alpha.empty()) throw InputError("give --part-alpha or --component-alpha, not both");
-        if (dp.mode != BlendMode::kShared) throw InputError("--part-alpha needs shared mode (--mode shared)");
-      }
-      // Every alpha is checked before the files are read.
-      check_alpha(args->alpha, "--alpha");
-      for (double a : args->component_alpha) check_alpha(a, "--component-alpha");
-      std::vector<std::pair<BodyPart, double>> given;
-      std::vector<std::string> entries;  // "legs:0.2,arms:0.8" or repeated
-      for (const std::string& e : args->part_alpha)
-        for (size_t begin = 0; begin <= e.size();) {
-          const size_t comma = std::min(e.find(',', begin), e.size());
-          entries.push_back(e.substr(begin, comma - begin));
-          begin = comma + 1;
-        }
-      for (const auto& [part, values] : parse_part_entries(entries, "--part-alpha", 1)) {
-        check_alpha(values[0], std::string("--part-alpha ") + body_part_name(part));
-        given.emplace_back(part, values[0]);
-      }
-      const auto keys = parse_keys(args->alpha_at, "--alpha-at", 1);
-      for (const auto& key : keys) check_alpha(key.second[0], "--alpha-at");
-      const std::vector<std::string> files{args->a, args->b};
-      const Prepared p = prepare(files, args->flags, dp, args->mapping_a, args->mapping_b);
-      const Decomposed& d = *p.decomposition;
-      BlendParams bp;
-      bp.alpha = args->alpha;
-      bp.component_alpha = args->component_alpha;
-      if (!given.empty()) bp.component_alpha = weights_for_parts(given, d.component_joints, args->alpha);
-      bp.swap_level = args->swap;
-      MixParams mp = blend_mix_params(bp, d);
-      for (const auto& key : keys) mp.keys.push_back({key.first, {1.0 - key.second[0], key.second[0]}});
-      args->flags.set(mp);
-      Json r;
-      r["command"] = "blend";
-      r["a"] = args->a;
-      r["b"] = args->b;
-      r["alpha"] = args->alpha;
-      if (!mp.keys.empty()) r["keys"] = keys_json(mp.keys);
-      r["mode"] = args->mode;
-      if (args->basic > 0) {
-        r["basic_motions"] = args->basic;
-        r["swap"] = args->swap;
-      }
-      // A's and B's words: the alignment per output frame, each take's fit and sliding.
-      return run_synthesis(p, files, args->flags, mp, r, [&](const MixResult& result, Json& report) {
-        const Alignment& al = p.prepared->takes[1].alignment;
-        report["dtw"] = {{"cost", al.cost}, {"path_length", al.path.size()}};
-        Json alignment = alignment_json(*p.prepared, 1);
-        // Per output frame: where in A and B it is, how well they match there, the warp's slope.
-        Eigen::VectorXd ratio(result.sample.size()), slope(result.sample.size());
-        for (Eigen::Index k = 0; k < result.sample.size(); ++k) {
-          const Eigen::Index u = std::lround(result.sample[k]);
-          ratio[k] = al.cost_ratio[u];
-          slope[k] = al.slope[u];
-        }
-        alignment["per_frame"] = {{"source_a", vector_json(result.sources.col(0))},
-                                  {"source_b", vector_json(result.sources.col(1))},
-                                  {"cost_ratio", vector_json(ratio)},
-                                  {"slope", vector_json(slope)}};
-        report["alignment"] = alignment;
-        report["reconstruction_rmse"] = {{"a", d.rmse[0]}, {"b", d.rmse[1]}};
-        report["component_nonzero_fraction"] = {{"a", d.nonzero[0]}, {"b", d.nonzero[1]}};
-        report["foot_sliding"]["a"] = take_foot_sliding(*p.prepared, 0);
-        report["foot_sliding"]["b"] = take_foot_sliding(*p.prepared, 1);
-      });
-    };
-  });
+  auto args = std::make_shared<BlendArgs>();
+  add_blend_options(cmd, *args);
+  cmd->callback([=] { *run = [=] { return run_blend(*args); }; });
 }
 
 void add_mix_command(CLI::App& app, std::function<int()>* run) {
@@ -335,7 +352,8 @@ void add_mix_command(CLI::App& app, std::function<int()>* run) {
                   "Weights keyed in time, T:w1,w2,...;T:... (T in seconds of the output, one weight per take, "
                   "summing to 1; eased between keys, held before the first and after the last); replaces --weights");
   args->flags.add_to(cmd, {"mix", "reference", "mix: the output's timing is mixed with the weights; reference: keep the first take's timeline",
-                          "File of the result on the first take's skeleton: BVH, FBX when it ends in .fbx, glTF 2.0 in .glb or .gltf"});
+                          "File of the result on the first take's skeleton: BVH, FBX when it ends in .fbx, glTF 2.0 in .glb or .gltf",
+                           ""});
   cmd->callback([=] {
     *run = [=] {
       const size_t n = args->files.size();
@@ -381,99 +399,116 @@ void add_mix_command(CLI::App& app, std::function<int()>* run) {
   });
 }
 
+namespace {
+
+// What `transfer` is given.
+struct TransferArgs {
+  std::string content, neutral;
+  std::vector<std::string> styles;
+  std::vector<std::string> strengths;
+  std::vector<std::string> part_strengths;
+  std::string strength_at;
+  SynthesisFlags flags;
+};
+
+void add_transfer_options(CLI::App* cmd, TransferArgs& args) {
+  args.flags.align.fps = 0.0;  // the content keeps its own frame rate unless --fps says otherwise
+  cmd->add_option("CONTENT", args.content,
+                  "BVH take that keeps its skeleton, path, length and timing base and takes on the style")
+      ->required();
+  cmd->add_option("--neutral", args.neutral,
+                  "BVH take of the action without the style; without it CONTENT is its own neutral (CONTENT + s "
+                  "(STYLE - CONTENT))");
+  cmd->add_option("--style", args.styles, "BVH take of the action in the style (repeat for several styles)")
+      ->required();
+  cmd->add_option("--strength", args.strengths,
+                  "How much of each style, one per --style (comma separated or repeated, decimals or fractions), "
+                  "from -1 to 2; 0 leaves CONTENT as it is, 1 adds the whole change (without --neutral, 1 is the "
+                  "style on CONTENT's timeline; default 1)");
+  cmd->add_option("--part-strength", args.part_strengths,
+                  "PART:s1,...: one body part's strengths, one per style (legs, arms, spine, left-leg, right-leg, "
+                  "left-arm, right-arm); the rest take --strength");
+  cmd->add_option("--strength-at", args.strength_at,
+                  "Strength keyed in time, T:s,T:s,... (T in seconds of the output; with several styles "
+                  "T:s1,s2;T:...; eased between keys, held before the first and after the last); replaces --strength");
+  // The content keeps its timing and length by default: a transfer styles one's own take, which
+  // has to stay in sync with whatever it was made for; the style's timing is there on request.
+  args.flags.add_to(cmd, {"mix", "content",
+                          "content: keep CONTENT's timeline and length; mix: the output's timing is mixed with the "
+                          "weights too (the style's timing change, so the length changes)",
+                          "File of the result on CONTENT's skeleton: BVH, FBX when it ends in .fbx, glTF 2.0 in .glb or .gltf",
+                          "content"});
+}
+
+// One strength per style (--strength, comma separated or repeated; default 1 each).
+std::vector<double> transfer_strengths(const TransferArgs& args) {
+  const size_t styles = args.styles.size();
+  std::vector<double> strengths;
+  for (const std::string& s : args.strengths)
+    for (double v : parse_numbers(s, "--strength")) strengths.push_back(v);
+  if (args.strengths.empty()) strengths.assign(styles, 1.0);
+  if (strengths.size() != styles)
+    throw InputError("expected " + std::to_string(styles) + " strengths, one per --style, found " +
+                     std::to_string(strengths.size()));
+  return strengths;
+}
+
+int run_transfer(const TransferArgs& args) {
+  const size_t styles = args.styles.size();
+  const std::vector<double> strengths = transfer_strengths(args);
+  // The takes: the content, the neutral when given, the styles. Without a neutral the content
+  // is its own: the same mix, on one take fewer, with the content's weight 1 - sum s.
+  const TransferNeutral neutral = args.neutral.empty() ? TransferNeutral::kContent : TransferNeutral::kTake;
+  std::vector<std::string> files{args.content};
+  if (neutral == TransferNeutral::kTake) files.push_back(args.neutral);
+  files.insert(files.end(), args.styles.begin(), args.styles.end());
+  if (files.size() > static_cast<size_t>(kMaxPaletteTakes))
+    throw InputError("transfer takes at most " + std::to_string(kMaxPaletteTakes - (files.size() - styles)) +
+                     " styles");
+  MixParams mp;
+  mp.weights = transfer_weights(strengths, neutral);
+  // Content 1, neutral minus the strengths' sum (or the content 1 minus it), each style its strength.
+  mp.min_weight = transfer_min_weight(static_cast<int>(styles));
+  mp.max_weight = transfer_max_weight(static_cast<int>(styles));
+  mp.feet_of_reference = true;
+  for (const auto& [seconds, s] : parse_keys(args.strength_at, "--strength-at", styles))
+    mp.keys.push_back({seconds, transfer_weights(s, neutral)});
+  if (!mp.keys.empty() && !args.part_strengths.empty())
+    throw InputError("give --strength-at or --part-strength, not both: keys in time style the whole body");
+  const auto given = parse_part_entries(args.part_strengths, "--part-strength", styles);
+  std::vector<std::pair<BodyPart, std::vector<double>>> given_weights;
+  for (const auto& [part, s] : given) given_weights.emplace_back(part, transfer_weights(s, neutral));
+  args.flags.set(mp);
+  const Prepared p = prepare(files, args.flags, args.flags.decompose_params());
+  if (!given_weights.empty())
+    mp.component_weights = part_weights(given_weights, p.decomposition->component_joints, mp.weights);
+  Json r;
+  r["command"] = "transfer";
+  r["content"] = args.content;
+  // null: the content is its own neutral (the change is from the content to each style).
+  r["neutral"] = neutral == TransferNeutral::kTake ? Json(args.neutral) : Json(nullptr);
+  r["styles"] = args.styles;
+  r["strengths"] = strengths;
+  r["weights"] = mp.weights;
+  if (!mp.keys.empty()) r["keys"] = keys_json(mp.keys);
+  if (!given.empty()) {
+    Json parts = Json::object();
+    for (const auto& [part, s] : given) parts[body_part_name(part)] = s;
+    r["part_strengths"] = parts;
+  }
+  return run_synthesis(p, files, args.flags, mp, r);
+}
+
+}  // namespace
+
 void add_transfer_command(CLI::App& app, std::function<int()>* run) {
   auto* cmd = app.add_subcommand(
       "transfer",
       "Put the style change from a neutral take (or, without one, from the content itself) to a styled one onto a "
       "take of your own");
-  struct Args {
-    std::string content, neutral;
-    std::vector<std::string> styles;
-    std::vector<std::string> strengths;
-    std::vector<std::string> part_strengths;
-    std::string strength_at;
-    SynthesisFlags flags;
-  };
-  auto args = std::make_shared<Args>();
-  args->flags.align.fps = 0.0;  // the content keeps its own frame rate unless --fps says otherwise
-  cmd->add_option("CONTENT", args->content,
-                  "BVH take that keeps its skeleton, path, length and timing base and takes on the style")
-      ->required();
-  cmd->add_option("--neutral", args->neutral,
-                  "BVH take of the action without the style; without it CONTENT is its own neutral (CONTENT + s "
-                  "(STYLE - CONTENT))");
-  cmd->add_option("--style", args->styles, "BVH take of the action in the style (repeat for several styles)")
-      ->required();
-  cmd->add_option("--strength", args->strengths,
-                  "How much of each style, one per --style (comma separated or repeated, decimals or fractions), "
-                  "from -1 to 2; 0 leaves CONTENT as it is, 1 adds the whole change (without --neutral, 1 is the "
-                  "style on CONTENT's timeline; default 1)");
-  cmd->add_option("--part-strength", args->part_strengths,
-                  "PART:s1,...: one body part's strengths, one per style (legs, arms, spine, left-leg, right-leg, "
-                  "left-arm, right-arm); the rest take --strength");
-  cmd->add_option("--strength-at", args->strength_at,
-                  "Strength keyed in time, T:s,T:s,... (T in seconds of the output; with several styles "
-                  "T:s1,s2;T:...; eased between keys, held before the first and after the last); replaces --strength");
-  // The content keeps its timing and length by default: a transfer styles one's own take, which
-  // has to stay in sync with whatever it was made for; the style's timing is there on request.
-  args->flags.add_to(cmd, {"mix", "content",
-                           "content: keep CONTENT's timeline and length; mix: the output's timing is mixed with the "
-                           "weights too (the style's timing change, so the length changes)",
-                           "File of the result on CONTENT's skeleton: BVH, FBX when it ends in .fbx, glTF 2.0 in .glb or .gltf",
-                           "content"});
-  cmd->callback([=] {
-    *run = [=] {
-      const size_t styles = args->styles.size();
-      std::vector<double> strengths;
-      for (const std::string& s : args->strengths)
-        for (double v : parse_numbers(s, "--strength")) strengths.push_back(v);
-      if (args->strengths.empty()) strengths.assign(styles, 1.0);
-      if (strengths.size() != styles)
-        throw InputError("expected " + std::to_string(styles) + " strengths, one per --style, found " +
-                         std::to_string(strengths.size()));
-      // The takes: the content, the neutral when given, the styles. Without a neutral the content
-      // is its own: the same mix, on one take fewer, with the content's weight 1 - sum s.
-      const TransferNeutral neutral = args->neutral.empty() ? TransferNeutral::kContent : TransferNeutral::kTake;
-      std::vector<std::string> files{args->content};
-      if (neutral == TransferNeutral::kTake) files.push_back(args->neutral);
-      files.insert(files.end(), args->styles.begin(), args->styles.end());
-      if (files.size() > static_cast<size_t>(kMaxPaletteTakes))
-        throw InputError("transfer takes at most " + std::to_string(kMaxPaletteTakes - (files.size() - styles)) +
-                         " styles");
-      MixParams mp;
-      mp.weights = transfer_weights(strengths, neutral);
-      // Content 1, neutral minus the strengths' sum (or the content 1 minus it), each style its strength.
-      mp.min_weight = transfer_min_weight(static_cast<int>(styles));
-      mp.max_weight = transfer_max_weight(static_cast<int>(styles));
-      mp.feet_of_reference = true;
-      for (const auto& [seconds, s] : parse_keys(args->strength_at, "--strength-at", styles))
-        mp.keys.push_back({seconds, transfer_weights(s, neutral)});
-      if (!mp.keys.empty() && !args->part_strengths.empty())
-        throw InputError("give --strength-at or --part-strength, not both: keys in time style the whole body");
-      const auto given = parse_part_entries(args->part_strengths, "--part-strength", styles);
-      std::vector<std::pair<BodyPart, std::vector<double>>> given_weights;
-      for (const auto& [part, s] : given) given_weights.emplace_back(part, transfer_weights(s, neutral));
-      args->flags.set(mp);
-      const Prepared p = prepare(files, args->flags, args->flags.decompose_params());
-      if (!given_weights.empty())
-        mp.component_weights = part_weights(given_weights, p.decomposition->component_joints, mp.weights);
-      Json r;
-      r["command"] = "transfer";
-      r["content"] = args->content;
-      // null: the content is its own neutral (the change is from the content to each style).
-      r["neutral"] = neutral == TransferNeutral::kTake ? Json(args->neutral) : Json(nullptr);
-      r["styles"] = args->styles;
-      r["strengths"] = strengths;
-      r["weights"] = mp.weights;
-      if (!mp.keys.empty()) r["keys"] = keys_json(mp.keys);
-      if (!given.empty()) {
-        Json parts = Json::object();
-        for (const auto& [part, s] : given) parts[body_part_name(part)] = s;
-        r["part_strengths"] = parts;
-      }
-      return run_synthesis(p, files, args->flags, mp, r);
-    };
-  });
+  auto args = std::make_shared<TransferArgs>();
+  add_transfer_options(cmd, *args);
+  cmd->callback([=] { *run = [=] { return run_transfer(*args); }; });
 }
 
 }  // namespace mostyle::cli

@@ -10,14 +10,17 @@
 #include <limits>
 #include <stdexcept>
 #include <system_error>
+#include <thread>
 
 #include <imgui.h>
 #include <imgui_impl_opengl3.h>
 
+#include "app/editor/tcp_frame_source.h"
 #include "engine/io/bvh_io.h"
 #include "engine/base/error.h"
 #include "render/gl.h"
 #include "render/skeleton_pose.h"
+#include "ui/model/live_style_spec.h"
 #include "ui/panels/playback_panel.h"
 #include "ui/panels/components_panel.h"
 #include "ui/panels/dtw_panel.h"
@@ -71,13 +74,19 @@ void set_camera(render::OrbitCamera& c, const ui::SessionCamera& s) {
 }  // namespace
 
 Editor::Editor(const EditorOptions& options)
-    : session_(std::make_unique<ui::BlendSession>(BvhReadOptions{options.max_memory_bytes})) {
+    : session_(std::make_unique<ui::BlendSession>(BvhReadOptions{options.max_memory_bytes})),
+      live_(make_tcp_frame_source) {
   state_.document.parameters = options.initial.parameters;
   state_.playback.playing = !options.initial.paused;
   initial_frame_ = options.initial.frame;
   scripted_save_path_ = options.save_session_path;
   recent_path_ = options.recent_path;
   state_.recent = ui::read_recent_files(recent_path_);  // missing or broken: empty
+  if (!options.live_address.empty()) {  // --live: connected once the takes are in
+    live_.settings().address = options.live_address;
+    live_.settings().skeleton = options.live_skeleton;
+    live_on_start_ = true;
+  }
   seen_recent_ = state_.recent.takes;
   // The takes go to the engine's worker: aligned, decomposed and blended off this thread. A
   // session brings its own, with every parameter; one that cannot be read says why (on the first
@@ -87,12 +96,9 @@ Editor::Editor(const EditorOptions& options)
     first_take = session_->requested_a().empty() ? session_path_ : session_->requested_a();
   } else {
     const std::vector<std::string> files = options.files.empty() ? default_motion_files() : options.files;
-    // --weights: a pair's are (1 - alpha, alpha), a palette's its sliders' (parse_editor_options
-    // checked their count).
-    const std::vector<double>& weights = options.initial.weights;
-    if (weights.size() == 2) state_.document.parameters.alpha = weights[1];
-    else if (!weights.empty()) state_.document.controls.palette.weights = weights;
-    session_->load_files(files);  // three or more: the style palette
+    // --weights (or a pair's --alpha), one per take: parse_editor_options checked their count.
+    state_.document.weights = options.initial.weights;
+    session_->load_files(files, ui::WeightsOf::kNewTakes);  // three or more: the style palette
     first_take = files.empty() ? std::string() : files[0];
   }
   std::string folder = std::filesystem::path(first_take).parent_path().string();
@@ -102,19 +108,37 @@ Editor::Editor(const EditorOptions& options)
   add_panel(std::make_unique<ui::ParametersPanel>(*session_));
   auto files_panel = std::make_unique<ui::FilesPanel>(*session_, folder);
   files_panel_ = files_panel.get();
+  files_panel->set_live(&live_);
   add_panel(std::move(files_panel));
   add_panel(std::make_unique<ui::DtwPanel>(*session_));
   add_panel(std::make_unique<ui::PalettePanel>(*session_));
   add_panel(std::make_unique<ui::ComponentsPanel>(*session_));
-  add_panel(std::make_unique<ui::MetricsPanel>(*session_));
+  auto metrics_panel = std::make_unique<ui::MetricsPanel>(*session_);
+  metrics_panel->set_live(&live_);
+  add_panel(std::move(metrics_panel));
   add_panel(std::make_unique<ui::PlaybackPanel>());
+}
+
+template <class F>
+void Editor::on_result_takes(F&& engine_call) {
+  if (!live_shown_) {
+    engine_call();
+    return;
+  }
+  std::swap(state_.takes, result_takes_);
+  std::swap(state_.cycle_provenance, result_provenance_);
+  engine_call();
+  std::swap(state_.takes, result_takes_);
+  std::swap(state_.cycle_provenance, result_provenance_);
 }
 
 void Editor::update_engine() {
   // Before poll(): a load the worker has published by now is in the snapshot poll() takes up.
   const bool loading = ui::load_pending(*session_);
-  session_->poll(state_);
-  session_->sync(state_, /*item_held=*/true);  // the new snapshot shown; worker requests after the panels
+  on_result_takes([this] {
+    session_->poll(state_);
+    session_->sync(state_, /*item_held=*/true);  // the new snapshot shown; worker requests after the panels
+  });
   // The takes, a pair or a palette alike.
   const void* pair = session_->snapshot().prepared.get();
   if (pair != nullptr && pair != framed_pair_) {  // new takes: frame them, start at --frame once
@@ -134,11 +158,66 @@ void Editor::update_engine() {
     restore_->takes_in = true;
   }
   keep_recent_files();
+  update_live();
 }
 
 void Editor::wait_for_engine() {
-  session_->wait_idle(state_);
+  on_result_takes([this] { session_->wait_idle(state_); });
   update_engine();
+}
+
+bool Editor::connect_live() {
+  const PreparedTakes* takes = session_->takes();
+  if (takes == nullptr) return false;
+  live_.connect(live_.settings(), ui::live_style_spec(*takes, state_.document));
+  return true;
+}
+
+void Editor::wait_for_live(double seconds, std::chrono::milliseconds timeout) {
+  live_.wait_until(
+      [this, seconds](const ui::LiveStatus& s) {
+        const bool ended = s.state == ui::LiveState::kClosed || s.state == ui::LiveState::kFailed ||
+                           (s.state == ui::LiveState::kOff && !live_on_start_);
+        return ended || (live_.input() != nullptr && live_.input()->frames() >= seconds * live_.input()->fps());
+      },
+      timeout);
+  update_engine();
+}
+
+void Editor::update_live() {
+  if (live_on_start_ && session_->takes() != nullptr && !ui::load_pending(*session_)) {
+    live_on_start_ = false;
+    connect_live();
+  }
+  // The strengths follow the document's weights as they move (the styler eases to them).
+  if (live_.active() && session_->takes() != nullptr)
+    live_.set_strengths(ui::live_strengths(state_.document, session_->takes()->size()));
+  const bool changed = live_.poll();
+  const bool show = live_.has_window() && (live_.active() || live_.status().state == ui::LiveState::kClosed);
+  if (show) show_live_takes(changed);
+  else show_result_takes();
+}
+
+void Editor::show_live_takes(bool changed) {
+  if (!live_shown_) {  // ResultView's takes aside until the live ones go
+    result_takes_ = std::move(state_.takes);
+    result_provenance_ = std::move(state_.cycle_provenance);
+    state_.takes.clear();
+    state_.cycle_provenance.clear();
+    live_shown_ = true;
+    state_.view.request_reframe = true;
+  }
+  if (changed || state_.takes.empty()) live_.move_takes_into(&state_.takes);  // as the takes panel left them shown
+}
+
+void Editor::show_result_takes() {
+  if (!live_shown_) return;
+  state_.takes = std::move(result_takes_);
+  state_.cycle_provenance = std::move(result_provenance_);
+  result_takes_.clear();
+  result_provenance_.clear();
+  live_shown_ = false;
+  state_.view.request_reframe = true;
 }
 
 void Editor::drop_files(const std::vector<std::string>& paths) {
@@ -215,7 +294,7 @@ bool Editor::animating() const {
   const WorkerStatus status = session_->status();
   return state_.playback.playing || status.stage != WorkerStage::kIdle || status.pending || session_->has_news() ||
          session_->sweeping() || scripted_save_pending() ||
-         !state_.dropped.empty() || (files_panel_ != nullptr && files_panel_->export_dialog().busy());
+         !state_.dropped.empty() || (files_panel_ != nullptr && files_panel_->export_dialog().busy()) || live_.active();
 }
 
 void Editor::handle_keys() {
@@ -293,6 +372,9 @@ void Editor::frame(const FrameInput& input) {
   // Playback on A's aligned timeline; with loop off it stops on the last frame.
   if (const ui::Take* reference = state_.reference_take())
     ui::advance_playback(state_.playback, static_cast<double>(input.delta_s), ui::take_length_s(*reference));
+  // A live stream plays at its newest frame while it streams.
+  if (live_shown_ && live_.active() && !state_.takes.empty())
+    state_.playback.time_s = ui::take_length_s(state_.takes.front());
 
   draw_windows();
   center_view();
@@ -317,7 +399,7 @@ void Editor::draw_windows() {
   draw_close_question();
   // After the panels: what they changed is an undo step once nothing is held (a drag is one).
   edits_.record(state_, *session_, ImGui::IsAnyItemActive());
-  session_->sync(state_, ImGui::IsAnyItemActive());
+  on_result_takes([this] { session_->sync(state_, ImGui::IsAnyItemActive()); });
   build_scene();
 }
 

@@ -27,6 +27,7 @@
 #include "ui/model/blend_session.h"
 #include "ui/model/close_request.h"
 #include "ui/model/edit_history.h"
+#include "ui/model/live_source.h"
 #include "ui/model/editor_state.h"
 #include "ui/model/recent_files.h"
 #include "ui/model/session_file.h"
@@ -91,6 +92,19 @@ class Editor {
   void add_panel(std::unique_ptr<ui::Panel> panel) { panels_.push_back(std::move(panel)); }
   ui::EditorState& state() { return state_; }
   ui::BlendSession& session() { return *session_; }
+
+  // The Live source (the Files panel's Live section; --live): a stream styled with the loaded
+  // takes as it arrives, over TCP. While it streams (and after its source closed, until
+  // Disconnect) EditorState::takes are its two, the stream and the styled stream, played at the
+  // newest frame; ResultView's takes are kept aside meanwhile and come back on Disconnect.
+  ui::LiveSource& live() { return live_; }
+  bool live_shown() const { return live_shown_; }
+  // Connects the live source to its settings' address with the loaded takes and the document's
+  // strengths; false when no takes are loaded (connecting, or failing, goes on on its own thread).
+  bool connect_live();
+  // Blocks until the live source has styled `seconds` of its stream, or ended, or `timeout`
+  // passed (screenshots with --live, tests); then update_engine().
+  void wait_for_live(double seconds, std::chrono::milliseconds timeout);
 
   // Takes up the worker's latest results and re-blends if asked (what frame() does first);
   // needs no GL context. Never blocks.
@@ -170,10 +184,24 @@ class Editor {
   void restore_camera(float aspect);  // an opened session's camera, once its takes are in
   void save_session_when_ready();     // --save-session
   void keep_recent_files();           // recent.json follows the session's recent takes
+  // The live source: --live connected once the takes are in, the strengths handed on, its window
+  // taken up and shown instead of ResultView's takes (or those back), the playhead at its head.
+  void update_live();
+  void show_live_takes(bool changed);
+  void show_result_takes();
+  // Runs `engine_call` (the engine link's poll, sync, wait) on ResultView's takes, also while the
+  // live takes are shown.
+  template <class F>
+  void on_result_takes(F&& engine_call);
   void save_recent_files();
 
   ui::EditorState state_;
   std::unique_ptr<ui::BlendSession> session_;  // before panels_: they hold references to it
+  ui::LiveSource live_;                        // before panels_ too
+  bool live_shown_ = false;                    // state_.takes are the live source's
+  bool live_on_start_ = false;                 // --live: connect once the takes are in
+  std::vector<ui::Take> result_takes_;         // ResultView's, aside while the live takes are shown
+  std::vector<ui::CycleProvenance> result_provenance_;
   std::vector<std::unique_ptr<ui::Panel>> panels_;
   ui::FilesPanel* files_panel_ = nullptr;  // in panels_; owns the export dialog (animating())
   const void* framed_pair_ = nullptr;  // the prepared pair or palette the camera was framed on

@@ -122,7 +122,7 @@ std::string read_flag(Flag& f, EditorOptions& o) {
     double v = 0.0;
     if (!f.take_value() || !parse_double(value, &v) || v < 0.0 || v > 1.0)
       return "--alpha: expected a number in [0, 1], got '" + value + "'";
-    o.initial.parameters.alpha = v;
+    o.initial.alpha = v;
   } else if (name == "--components") {
     int v = 0;
     if (!f.take_value() || !parse_int(value, &v) || v < 1)
@@ -135,6 +135,12 @@ std::string read_flag(Flag& f, EditorOptions& o) {
     o.initial.parameters.sparsity = v;
   } else if (name == "--weights") {
     return read_weights(f, o.initial);
+  } else if (name == "--live") {
+    if (!f.take_value() || value.empty()) return "--live: expected HOST:PORT of a BVH broadcasting server";
+    o.live_address = value;
+  } else if (name == "--live-skeleton") {
+    if (!f.take_value() || value.empty()) return "--live-skeleton: expected the stream's skeleton, a BVH file";
+    o.live_skeleton = value;
   } else if (name == "--frame") {
     int v = 0;
     if (!f.take_value() || !parse_int(value, &v) || v < 0)
@@ -150,6 +156,8 @@ std::string read_flag(Flag& f, EditorOptions& o) {
 // usage error, or "". A session given moves from o.files to o.session_path.
 std::string check_options(EditorOptions& o) {
   if (o.offscreen && o.screenshot_path.empty()) return "--offscreen renders for a screenshot: add --screenshot OUT.png";
+  if (o.live_address.empty() != o.live_skeleton.empty())
+    return "--live and --live-skeleton go together: the stream's address and its skeleton (a BVH file)";
   try {
     const char* limit = std::getenv(kMemoryLimitVariable);
     o.max_memory_bytes = parse_memory_limit(limit ? limit : "");
@@ -164,9 +172,12 @@ std::string check_options(EditorOptions& o) {
     o.files.clear();
     break;
   }
+  const size_t takes = o.files.empty() ? 2 : std::max<size_t>(o.files.size(), 2);
+  // --alpha: a pair's weights, unless --weights gives them (a palette and a session have no alpha).
+  if (o.initial.alpha && o.initial.weights.empty() && o.session_path.empty() && takes == 2)
+    o.initial.weights = ui::pair_weights(*o.initial.alpha);
   if (!o.initial.weights.empty()) {
     if (!o.session_path.empty()) return "--weights: a session brings its own weights; give takes instead";
-    const size_t takes = o.files.empty() ? 2 : std::max<size_t>(o.files.size(), 2);
     if (o.initial.weights.size() != takes)
       return "--weights: expected " + std::to_string(takes) + " weights, one per take, got " +
              std::to_string(o.initial.weights.size());
@@ -276,6 +287,10 @@ std::string editor_usage() {
          "  --frame N             initial frame (default 0)\n"
          "  --weights W1,W2,...   initial weights, one per take, summing to 1 (a pair's: 1-alpha,alpha)\n"
          "  --save-session FILE   once the takes are in, save the session to FILE (.mostyle)\n"
+         "  --live HOST:PORT      once the takes are in, style the BVH broadcasting stream there (the\n"
+         "                        first take the neutral, the others the styles); with --screenshot,\n"
+         "                        the picture is taken once a second of it is styled\n"
+         "  --live-skeleton FILE  the stream's skeleton: a BVH file with its hierarchy and channels\n"
          "  --help                this text\n"
          "\n"
          "keys and mouse (F1 in the editor lists them too):\n" +

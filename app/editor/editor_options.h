@@ -1,7 +1,9 @@
 #pragma once
 // The editor's command line: `mostyle [A.bvh B.bvh ... | SESSION.mostyle] [--screenshot OUT.png] [--offscreen]
 // [--window-size WxH] [--paused] [--alpha A] [--components K] [--sparsity F] [--frame N]
-// [--help]`, and the list of the editor's keys (the keys window and --help show it).
+// [--live HOST:PORT --live-skeleton FILE] [--help]`, and the list of the editor's keys (the
+// keys window and --help show it).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,9 +14,11 @@ namespace mostyle::app {
 
 // Where the editor starts, so a screenshot is reproducible. Panels take it from EditorState.
 struct InitialState {
-  ui::BlendParameters parameters;
-  // --weights: one per take, summing to 1 (a pair's are 1 - alpha, alpha); empty: the defaults.
+  ui::BlendParameters parameters;  // --components, --sparsity
+  // --weights, one per take, summing to 1, or a pair's (1 - alpha, alpha) from --alpha; empty:
+  // the defaults (equal weights).
   std::vector<double> weights;
+  std::optional<double> alpha;  // --alpha as given (a palette has none: left unused)
   int frame = 0;  // first frame shown, of the reference (first) take
   bool paused = false;  // start with playback paused (screenshots always are)
 };
@@ -33,6 +37,9 @@ struct EditorOptions {
   // (--save-session), so that a state set up by flags can be reopened (scripted use).
   std::string save_session_path;
   bool offscreen = false;           // no display: OSMesa (needs screenshot_path)
+  // --live HOST:PORT and --live-skeleton FILE (both or neither): the live source connects once
+  // the takes are in (ui/model/live_source.h).
+  std::string live_address, live_skeleton;
   InitialState initial;
   int width = 1280;                 // window / offscreen size, pixels (--window-size), also the
   int height = 720;                 // screenshot's; each in [kMinWindowSide, kMaxWindowSide]

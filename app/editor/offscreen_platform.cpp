@@ -3,6 +3,7 @@
 #include <cfloat>
 #include <cstdint>
 #include <cstdio>
+#include <chrono>
 #include <exception>
 #include <stdexcept>
 #include <vector>
@@ -46,6 +47,8 @@ int run_offscreen(const EditorOptions& options) {
     Editor editor(options);
     editor.set_deterministic(true);
     editor.wait_for_engine();  // the same aligned, decomposed pair every run
+    // --live: a second of the stream styled first (or its end, or its error in the Files panel).
+    if (!options.live_address.empty()) editor.wait_for_live(1.0, std::chrono::seconds(60));
     try {
       // Takes that did not load leave nothing to show: their one sentence, exit 1, no picture.
       if (!editor.session().error().empty()) throw std::runtime_error(editor.session().error());

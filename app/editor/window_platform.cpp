@@ -119,6 +119,87 @@ void neutralise_input() {
   io.MouseWheel = io.MouseWheelH = 0.0f;
 }
 
+// A window with a GL 3.3 core context made current; null after one line on stderr.
+GLFWwindow* open_window(const EditorOptions& options, bool screenshot) {
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  glfwWindowHint(GLFW_SAMPLES, 0);  // the viewport multisamples in its own target
+  glfwWindowHint(GLFW_RESIZABLE, screenshot ? GLFW_FALSE : GLFW_TRUE);
+  GLFWwindow* window = glfwCreateWindow(options.width, options.height, "mostyle", nullptr, nullptr);
+  if (window == nullptr) {
+    std::fprintf(stderr, "%s (%s)\n", kNoDisplay, g_glfw_error.c_str());
+    return nullptr;
+  }
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(screenshot ? 0 : 1);
+  return window;
+}
+
+// The window's input goes to `editor`: keys and text through the key queue, dropped files, the
+// close button (unless a screenshot is taken), and a finished background job wakes the loop.
+void connect_window(GLFWwindow* window, Editor& editor, bool screenshot) {
+  count_events(window);
+  ImGui_ImplGlfw_InitForOpenGL(window, /*install_callbacks=*/true);
+  glfwSetKeyCallback(window, on_key);  // instead of ImGui's, which deliver_keys calls
+  glfwSetCharCallback(window, on_char);
+  glfwSetWindowUserPointer(window, &editor);
+  // A finished background job wakes the loop below from waiting (glfwPostEmptyEvent may be
+  // called from any thread), so its result shows at once, not at the next input.
+  editor.set_wake([] { glfwPostEmptyEvent(); });
+  glfwSetDropCallback(window, on_drop);
+  if (!screenshot) glfwSetWindowCloseCallback(window, on_close);
+}
+
+void disconnect_window(GLFWwindow* window) {
+  glfwSetDropCallback(window, nullptr);
+  glfwSetWindowCloseCallback(window, nullptr);
+  glfwSetWindowUserPointer(window, nullptr);
+  ImGui_ImplGlfw_Shutdown();
+}
+
+// The frames until the window closes (or, for a screenshot, the frame it is taken at): the exit
+// status.
+int run_frames(GLFWwindow* window, Editor& editor, const EditorOptions& options, bool screenshot) {
+  int status = 0;
+  double last = glfwGetTime();
+  int settle = 0;  // frames still drawn after the last event (ImGui needs a few to settle)
+  for (int frame = 0; !glfwWindowShouldClose(window) && !editor.may_close(); ++frame) {
+    // At rest (paused, engine idle) wait for input instead of drawing 60 frames a second;
+    // the timeout keeps a finished background job from waiting long to be shown.
+    if (!screenshot && !editor.animating() && settle <= 0 && g_keys.empty()) {
+      const int before = g_events;
+      glfwWaitEventsTimeout(kRestWakeSeconds);
+      if (g_events == before && !editor.animating()) continue;  // nothing happened: nothing to draw
+      settle = kSettleFrames;
+    } else {
+      glfwPollEvents();
+      --settle;
+    }
+    deliver_keys(window);
+    ImGui_ImplGlfw_NewFrame();
+    const double now = glfwGetTime();
+    FrameInput input;
+    glfwGetFramebufferSize(window, &input.framebuffer_size.x, &input.framebuffer_size.y);
+    input.delta_s = static_cast<float>(now - last);
+    last = now;
+    if (screenshot) {
+      neutralise_input();
+      input.delta_s = kScreenshotDeltaS;
+    }
+    if (input.framebuffer_size.x > 0 && input.framebuffer_size.y > 0) editor.frame(input);  // minimised: skip
+    if (status == 0 && !editor.scripted_save_error().empty()) {  // --save-session: said once, on stderr too
+      std::fprintf(stderr, "mostyle: %s\n", editor.scripted_save_error().c_str());
+      status = 1;
+    }
+    if (screenshot && frame + 1 == kScreenshotFrames)
+      return std::max(status, write_screenshot(input.framebuffer_size, options.screenshot_path));
+    glfwSwapBuffers(window);
+  }
+  return status;
+}
+
 }  // namespace
 
 int run_window(const EditorOptions& options) {
@@ -132,86 +213,29 @@ int run_window(const EditorOptions& options) {
     return 1;
   }
   const bool screenshot = !options.screenshot_path.empty();
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  glfwWindowHint(GLFW_SAMPLES, 0);  // the viewport multisamples in its own target
-  glfwWindowHint(GLFW_RESIZABLE, screenshot ? GLFW_FALSE : GLFW_TRUE);
-  GLFWwindow* window = glfwCreateWindow(options.width, options.height, "mostyle", nullptr, nullptr);
+  GLFWwindow* window = open_window(options, screenshot);
   if (window == nullptr) {
-    std::fprintf(stderr, "%s (%s)\n", kNoDisplay, g_glfw_error.c_str());
     glfwTerminate();
     return 1;
   }
-  glfwMakeContextCurrent(window);
-  glfwSwapInterval(screenshot ? 0 : 1);
-
   int status = 0;
   {
     ImGuiContextScope imgui(/*persist_layout=*/!screenshot);
     Editor editor(options);
     editor.set_deterministic(screenshot);
     if (screenshot) editor.wait_for_engine();  // the same aligned, decomposed pair every run
-    count_events(window);
-    ImGui_ImplGlfw_InitForOpenGL(window, /*install_callbacks=*/true);
-    glfwSetKeyCallback(window, on_key);  // instead of ImGui's, which deliver_keys calls
-    glfwSetCharCallback(window, on_char);
-    glfwSetWindowUserPointer(window, &editor);
-    // A finished background job wakes the loop below from waiting (glfwPostEmptyEvent may be
-    // called from any thread), so its result shows at once, not at the next input.
-    editor.set_wake([] { glfwPostEmptyEvent(); });
-    glfwSetDropCallback(window, on_drop);
-    if (!screenshot) glfwSetWindowCloseCallback(window, on_close);
+    connect_window(window, editor, screenshot);
     try {
       // A screenshot of takes that did not load would show nothing: their one sentence, exit 1.
       if (screenshot && !editor.session().error().empty()) throw std::runtime_error(editor.session().error());
       editor.init_graphics();
-      double last = glfwGetTime();
-      int settle = 0;  // frames still drawn after the last event (ImGui needs a few to settle)
-      for (int frame = 0; !glfwWindowShouldClose(window) && !editor.may_close(); ++frame) {
-        // At rest (paused, engine idle) wait for input instead of drawing 60 frames a second;
-        // the timeout keeps a finished background job from waiting long to be shown.
-        if (!screenshot && !editor.animating() && settle <= 0 && g_keys.empty()) {
-          const int before = g_events;
-          glfwWaitEventsTimeout(kRestWakeSeconds);
-          if (g_events == before && !editor.animating()) continue;  // nothing happened: nothing to draw
-          settle = kSettleFrames;
-        } else {
-          glfwPollEvents();
-          --settle;
-        }
-        deliver_keys(window);
-        ImGui_ImplGlfw_NewFrame();
-        const double now = glfwGetTime();
-        FrameInput input;
-        glfwGetFramebufferSize(window, &input.framebuffer_size.x, &input.framebuffer_size.y);
-        input.delta_s = static_cast<float>(now - last);
-        last = now;
-        if (screenshot) {
-          neutralise_input();
-          input.delta_s = kScreenshotDeltaS;
-        }
-        if (input.framebuffer_size.x > 0 && input.framebuffer_size.y > 0) editor.frame(input);  // minimised: skip
-        if (status == 0 && !editor.scripted_save_error().empty()) {  // --save-session: said once, on stderr too
-          std::fprintf(stderr, "mostyle: %s\n", editor.scripted_save_error().c_str());
-          status = 1;
-        }
-        if (screenshot && frame + 1 == kScreenshotFrames) {
-          status = std::max(status, write_screenshot(input.framebuffer_size, options.screenshot_path));
-          break;
-        }
-        glfwSwapBuffers(window);
-      }
+      status = run_frames(window, editor, options, screenshot);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "mostyle: %s\n", e.what());
       status = 1;
     }
     editor.shutdown_graphics();
-    glfwSetDropCallback(window, nullptr);
-    glfwSetWindowCloseCallback(window, nullptr);
-    glfwSetWindowUserPointer(window, nullptr);
-    ImGui_ImplGlfw_Shutdown();
+    disconnect_window(window);
   }
   glfwDestroyWindow(window);
   glfwTerminate();

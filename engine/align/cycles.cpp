@@ -227,27 +227,33 @@ bool feet_land_together(const GaitInput& in) {
   return true;
 }
 
-// Periods of the channels that move most (autocorrelation), cut at the minima of the one that
-// moves most.
-TakeCycles periodic_cycles(const Eigen::MatrixXd& local, double fps, double leg_length, const CycleOptions& o) {
-  TakeCycles none;
+// The channels that move most (at most kPeriodicChannels, each at least o.min_amplitude of the
+// leg), centred and scaled to unit spread, the one that moves most first (frames x channels);
+// no columns when nothing moves (standing still).
+Eigen::MatrixXd moving_channels(const Eigen::MatrixXd& local, double leg_length, const CycleOptions& o) {
   const Eigen::Index frames = local.rows();
-  if (frames < 4) return none;
   const Eigen::MatrixXd centred = local.rowwise() - local.colwise().mean();
   const Eigen::RowVectorXd spread = (centred.colwise().squaredNorm() / double(frames)).cwiseSqrt();
   std::vector<Eigen::Index> moving;
   for (Eigen::Index c = 0; c < spread.size(); ++c)
     if (spread[c] >= o.min_amplitude * leg_length) moving.push_back(c);
-  if (moving.empty()) return none;  // standing still
   std::sort(moving.begin(), moving.end(), [&](Eigen::Index a, Eigen::Index b) { return spread[a] > spread[b]; });
   moving.resize(std::min<size_t>(moving.size(), kPeriodicChannels));
   Eigen::MatrixXd x(frames, static_cast<Eigen::Index>(moving.size()));
   for (size_t k = 0; k < moving.size(); ++k)
     x.col(static_cast<Eigen::Index>(k)) = centred.col(moving[k]) / spread[moving[k]];
+  return x;
+}
 
+// The period of x's channels in frames: the lag of the highest autocorrelation peak between
+// o.min_period_s and o.max_period_s (at most half the take), or the shortest of its fractions
+// that correlates nearly as well (a multiple of the period can correlate as well as the period
+// itself). -1 when the take is too short to repeat or repeats less than o.min_periodicity.
+int autocorrelation_period(const Eigen::MatrixXd& x, double fps, const CycleOptions& o) {
+  const Eigen::Index frames = x.rows();
   const int min_lag = std::max(2, static_cast<int>(std::lround(o.min_period_s * fps)));
   const int max_lag = std::min(static_cast<int>(std::lround(o.max_period_s * fps)), static_cast<int>(frames / 2));
-  if (max_lag <= min_lag + 1) return none;  // too short to repeat
+  if (max_lag <= min_lag + 1) return -1;  // too short to repeat
   std::vector<double> r(static_cast<size_t>(max_lag + 2), 0.0);
   for (int lag = min_lag - 1; lag <= max_lag + 1 && lag < frames; ++lag) {
     const Eigen::Index n = frames - lag;
@@ -261,8 +267,7 @@ TakeCycles periodic_cycles(const Eigen::MatrixXd& local, double fps, double leg_
   int best = -1;
   for (int lag = min_lag; lag <= max_lag; ++lag)
     if (peak(lag) && (best < 0 || r[static_cast<size_t>(lag)] > r[static_cast<size_t>(best)])) best = lag;
-  if (best < 0 || r[static_cast<size_t>(best)] < o.min_periodicity) return none;
-  // A multiple of the period can correlate as well as the period itself: take the shortest.
+  if (best < 0 || r[static_cast<size_t>(best)] < o.min_periodicity) return -1;
   for (int d = 4; d >= 2; --d) {
     const int guess = static_cast<int>(std::lround(double(best) / d));
     const int slack = std::max(1, static_cast<int>(0.15 * guess));
@@ -271,15 +276,15 @@ TakeCycles periodic_cycles(const Eigen::MatrixXd& local, double fps, double leg_
       if (peak(lag) && r[static_cast<size_t>(lag)] >= kHarmonicShare * r[static_cast<size_t>(best)] &&
           (found < 0 || r[static_cast<size_t>(lag)] > r[static_cast<size_t>(found)]))
         found = lag;
-    if (found >= 0) {
-      best = found;
-      break;
-    }
+    if (found >= 0) return found;
   }
+  return best;
+}
 
-  // Boundaries at the minima of the channel that moves most, one period apart (within slack).
-  const double period = best;
-  const auto anchor = x.col(0);
+// Boundaries at the minima of `anchor` (the channel that moves most), one period apart (within
+// kBoundarySlack); a last cycle cut off by the take's end is left out.
+std::vector<Cycle> cut_at_minima(const Eigen::VectorXd& anchor, int period) {
+  const Eigen::Index frames = anchor.size();
   auto lowest = [&](Eigen::Index from, Eigen::Index to) {  // [from, to]
     Eigen::Index at = from;
     for (Eigen::Index f = from + 1; f <= to; ++f)
@@ -287,7 +292,7 @@ TakeCycles periodic_cycles(const Eigen::MatrixXd& local, double fps, double leg_
     return at;
   };
   std::vector<Cycle> cycles;
-  Eigen::Index begin = lowest(0, std::min<Eigen::Index>(frames - 1, best - 1));
+  Eigen::Index begin = lowest(0, std::min<Eigen::Index>(frames - 1, period - 1));
   for (;;) {
     const Eigen::Index from = begin + static_cast<Eigen::Index>(std::lround((1.0 - kBoundarySlack) * period));
     const Eigen::Index to =
@@ -298,8 +303,12 @@ TakeCycles periodic_cycles(const Eigen::MatrixXd& local, double fps, double leg_
     cycles.push_back({static_cast<int>(begin), static_cast<int>(end)});
     begin = end;
   }
-  // Cycles where the joints hardly move, in either half (a still start or end), are not cycles of
-  // the action.
+  return cycles;
+}
+
+// The cycles in which x's channels move, in each half too: cycles where the joints hardly move
+// (a still start or end) are not cycles of the action.
+std::vector<Cycle> moving_cycles(const Eigen::MatrixXd& x, const std::vector<Cycle>& cycles) {
   auto range = [&](Eigen::Index from, Eigen::Index to) {  // [from, to]
     const auto rows = x.middleRows(from, to - from + 1);
     return (rows.colwise().maxCoeff() - rows.colwise().minCoeff()).sum();
@@ -312,12 +321,25 @@ TakeCycles periodic_cycles(const Eigen::MatrixXd& local, double fps, double leg_
     second_half.push_back(range(middle, c.end));
   }
   const double typical = median(amplitude);
-  TakeCycles out;
+  std::vector<Cycle> kept;
   for (size_t k = 0; k < cycles.size(); ++k)
     if (amplitude[k] >= kMinCycleAmplitude * typical && first_half[k] >= 0.5 * kMinCycleAmplitude * typical &&
         second_half[k] >= 0.5 * kMinCycleAmplitude * typical)
-      out.cycles.push_back(cycles[k]);
-  if (out.cycles.empty()) return none;
+      kept.push_back(cycles[k]);
+  return kept;
+}
+
+// Periods of the channels that move most (autocorrelation), cut at the minima of the one that
+// moves most.
+TakeCycles periodic_cycles(const Eigen::MatrixXd& local, double fps, double leg_length, const CycleOptions& o) {
+  TakeCycles out;
+  if (local.rows() < 4) return out;
+  const Eigen::MatrixXd x = moving_channels(local, leg_length, o);
+  if (x.cols() == 0) return out;  // standing still
+  const int period = autocorrelation_period(x, fps, o);
+  if (period < 0) return out;
+  out.cycles = moving_cycles(x, cut_at_minima(x.col(0), period));
+  if (out.cycles.empty()) return out;
   out.kind = CycleKind::kPeriodic;
   out.period = period;
   return out;

@@ -94,6 +94,73 @@ std::vector<std::vector<int>> neighbours_of(const std::vector<int>& parents) {
   return out;
 }
 
+namespace {
+
+// Column groups: every column steps with 1/L, L = ||gram||_2, then keeps its largest entries.
+// Returns the iterations run.
+int column_group_steps(const Eigen::MatrixXd& gram, const Eigen::MatrixXd& correlation, Eigen::MatrixXd& codes,
+                       const SparseCodingOptions& options) {
+  std::vector<double> scratch;
+  scratch.reserve(static_cast<size_t>(std::max(codes.rows(), codes.cols())));
+  Eigen::MatrixXd previous(codes.rows(), codes.cols());
+  const double lipschitz =
+      gram.rows() > 0
+          ? Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(gram, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff()
+          : 0.0;
+  const double step = lipschitz > 0.0 ? 1.0 / lipschitz : 0.0;
+  Eigen::MatrixXd gradient(codes.rows(), codes.cols());
+  int iteration = 0;
+  while (iteration < options.max_iterations) {
+    ++iteration;
+    previous = codes;
+    gradient.noalias() = gram * codes;
+    gradient -= correlation;
+    codes.noalias() -= step * gradient;
+    keep_largest(codes, options.nonzeros, options.group, scratch);
+    if (options.tolerance > 0.0 && (codes - previous).norm() <= options.tolerance * codes.norm()) break;
+  }
+  return iteration;
+}
+
+// Row groups: sweeps of block-coordinate descent, row i stepping with 1/gram(i, i) given the
+// others, then kept sparse (connected on the skeleton when options.joint_neighbours is set).
+// Returns the sweeps run.
+int row_group_sweeps(const Eigen::MatrixXd& gram, const Eigen::MatrixXd& correlation, Eigen::MatrixXd& codes,
+                     const SparseCodingOptions& options) {
+  std::vector<double> scratch;
+  scratch.reserve(static_cast<size_t>(std::max(codes.rows(), codes.cols())));
+  Eigen::MatrixXd previous(codes.rows(), codes.cols());
+  Eigen::RowVectorXd row(codes.cols()), target(codes.cols());
+  std::vector<char> chosen;
+  int iteration = 0;
+  while (iteration < options.max_iterations) {
+    ++iteration;
+    previous = codes;
+    for (Eigen::Index i = 0; i < codes.rows(); ++i) {
+      const double curvature = gram(i, i);
+      if (!(curvature > 0.0)) continue;  // a zero atom: the cost does not depend on this row
+      // row_i - (1/G_ii) (G_i X - B_i): the gradient of row i at the current (partly updated) X.
+      row.noalias() = gram.row(i) * codes;
+      row = codes.row(i) - (row - correlation.row(i)) / curvature;
+      if (options.joint_neighbours != nullptr) {
+        // The row's cost is curvature/2 |row - target|^2 + const with target the unprojected
+        // step: keep the projection only when it is at least as close as the current row (the
+        // greedy connected projection is not exact), so the objective still never increases.
+        target = row;
+        keep_connected(row, options.nonzeros, *options.joint_neighbours, chosen);
+        if ((row - target).squaredNorm() > (codes.row(i) - target).squaredNorm()) continue;
+      } else {
+        keep_largest_in_group(row, options.nonzeros, scratch);
+      }
+      codes.row(i) = row;
+    }
+    if (options.tolerance > 0.0 && (codes - previous).norm() <= options.tolerance * codes.norm()) break;
+  }
+  return iteration;
+}
+
+}  // namespace
+
 int sparse_code_normal(const Eigen::MatrixXd& gram, const Eigen::MatrixXd& correlation,
                        Eigen::MatrixXd& codes, const SparseCodingOptions& options) {
   assert(gram.rows() == gram.cols());
@@ -122,64 +189,8 @@ int sparse_code_normal(const Eigen::MatrixXd& gram, const Eigen::MatrixXd& corre
   //   row given the others. A shared step 1/L would shrink the entries outside a row's support
   //   by up to L/(D^T D)_ii (about k when the atoms overlap), which freezes the support at its
   //   initial guess; per-row steps let it move. Same cost per sweep: O(atoms^2 * signals).
-  std::vector<double> scratch;
-  scratch.reserve(static_cast<size_t>(std::max(codes.rows(), codes.cols())));
-  Eigen::MatrixXd previous(codes.rows(), codes.cols());
-  int iteration = 0;
-
-  if (options.group == SparseGroup::kColumn) {
-    const double lipschitz =
-        gram.rows() > 0
-            ? Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(gram, Eigen::EigenvaluesOnly)
-                  .eigenvalues()
-                  .maxCoeff()
-            : 0.0;
-    const double step = lipschitz > 0.0 ? 1.0 / lipschitz : 0.0;
-    Eigen::MatrixXd gradient(codes.rows(), codes.cols());
-    while (iteration < options.max_iterations) {
-      ++iteration;
-      previous = codes;
-      gradient.noalias() = gram * codes;
-      gradient -= correlation;
-      codes.noalias() -= step * gradient;
-      keep_largest(codes, options.nonzeros, options.group, scratch);
-      if (options.tolerance > 0.0 &&
-          (codes - previous).norm() <= options.tolerance * codes.norm()) {
-        break;
-      }
-    }
-    return iteration;
-  }
-
-  Eigen::RowVectorXd row(codes.cols()), target(codes.cols());
-  std::vector<char> chosen;
-  while (iteration < options.max_iterations) {
-    ++iteration;
-    previous = codes;
-    for (Eigen::Index i = 0; i < codes.rows(); ++i) {
-      const double curvature = gram(i, i);
-      if (!(curvature > 0.0)) continue;  // a zero atom: the cost does not depend on this row
-      // row_i - (1/G_ii) (G_i X - B_i): the gradient of row i at the current (partly updated) X.
-      row.noalias() = gram.row(i) * codes;
-      row = codes.row(i) - (row - correlation.row(i)) / curvature;
-      if (options.joint_neighbours != nullptr) {
-        // The row's cost is curvature/2 |row - target|^2 + const with target the unprojected
-        // step: keep the projection only when it is at least as close as the current row (the
-        // greedy connected projection is not exact), so the objective still never increases.
-        target = row;
-        keep_connected(row, options.nonzeros, *options.joint_neighbours, chosen);
-        if ((row - target).squaredNorm() > (codes.row(i) - target).squaredNorm()) continue;
-      } else {
-        keep_largest_in_group(row, options.nonzeros, scratch);
-      }
-      codes.row(i) = row;
-    }
-    if (options.tolerance > 0.0 &&
-        (codes - previous).norm() <= options.tolerance * codes.norm()) {
-      break;
-    }
-  }
-  return iteration;
+  return options.group == SparseGroup::kColumn ? column_group_steps(gram, correlation, codes, options)
+                                               : row_group_sweeps(gram, correlation, codes, options);
 }
 
 }  // namespace mostyle

@@ -258,6 +258,19 @@ struct ExportFrameSolver::State {
   std::vector<Eigen::Vector3d> from, to;
   std::vector<ChildGeometry> geometry;
   std::vector<double> previous_cost;  // joints with several children
+
+  // The vector from the first of `joints_below` down the chain, at the local values now set.
+  Eigen::Vector3d vector_of(const std::vector<int>& joints_below) const {
+    return chain_vector(joints_below, local_rotation, local_translation);
+  }
+  // Column c's target.
+  static Eigen::Vector3d target(const double* targets, int c) {
+    return Eigen::Vector3d(targets[3 * c], targets[3 * c + 1], targets[3 * c + 2]);
+  }
+  Eigen::Vector3d place_carrier(int j, const Eigen::Matrix3d& parent_rotation, const Eigen::Vector3d& parent_position,
+                                const double* targets, double* row) const;
+  bool turn_to_children(int j, const Eigen::Matrix3d& parent_rotation, const double* targets);
+  bool aim_at_child(int j, const double* targets);
 };
 
 namespace {
@@ -417,106 +430,100 @@ ExportFrameSolver& ExportFrameSolver::operator=(ExportFrameSolver&&) noexcept = 
 
 void ExportFrameSolver::restart() { state_->first = true; }
 
+// The carrier's local translation that lands the top column on its target (position channels
+// replace the OFFSET, as Blender reads them; a missing position channel stays 0, as readers take
+// it), written into `row`.
+Eigen::Vector3d ExportFrameSolver::State::place_carrier(int j, const Eigen::Matrix3d& parent_rotation,
+                                                        const Eigen::Vector3d& parent_position, const double* targets,
+                                                        double* row) const {
+  const Joint& joint = skeleton.joints[j];
+  const Eigen::Vector3d below =
+      carrier_chain.empty() ? Eigen::Vector3d::Zero() : Eigen::Vector3d(global_rotation[j] * vector_of(carrier_chain));
+  const Eigen::Vector3d wanted = parent_rotation.transpose() * (target(targets, top) - below - parent_position);
+  for (size_t c = 0; c < joint.channels.size(); ++c)
+    if (is_position(joint.channels[c])) row[joint.first_channel + c] = wanted[channel_axis(joint.channels[c])];
+  return joint_local_translation(joint, row);
+}
+
+// Several children (hips, chest): joint j's world rotation turned by the best-fit rotation of the
+// directions to them (Kabsch), refined so the children themselves land (pivots take up the rest).
+// False, the rotation untouched, when no direction is long enough to tell.
+bool ExportFrameSolver::State::turn_to_children(int j, const Eigen::Matrix3d& parent_rotation, const double* targets) {
+  const JointPlan& p = plan[j];
+  from.clear();
+  to.clear();
+  geometry.clear();
+  for (const ChildLink& link : p.children) {
+    const Eigen::Vector3d u = global_rotation[j] * vector_of(link.pivot >= 0 ? chain[link.column] : link.to_child);
+    const Eigen::Vector3d v = target(targets, link.column) - position[j];
+    if (u.norm() > min_length && v.norm() > min_length) {
+      from.push_back(u.normalized());
+      to.push_back(v.normalized());
+    }
+    ChildGeometry g;
+    g.target = target(targets, link.column);
+    if (link.pivot >= 0) {
+      g.offset = vector_of(link.to_pivot);
+      g.reach = vector_of(link.to_child).norm();
+    } else {
+      g.offset = vector_of(link.to_child);
+    }
+    geometry.push_back(g);
+  }
+  if (from.empty()) return false;
+  const Eigen::Matrix3d start = best_rotation(from, to) * global_rotation[j];
+  const Eigen::Matrix3d last = parent_rotation * euler_to_matrix(p.order, previous[j]);
+  global_rotation[j] = solve_several(geometry, position[j], start, !first ? &last : nullptr, previous_cost[j], damping,
+                                     exact_cost, &previous_cost[j]);
+  return true;
+}
+
+// One child (or a pivot): the smallest rotation that turns A's bone, at the parent's solved
+// rotation and A's own local one (so twist is kept), toward the child's target, seen from where
+// joint j now is, so errors do not accumulate down a chain. False when either is too short.
+bool ExportFrameSolver::State::aim_at_child(int j, const double* targets) {
+  const JointPlan& p = plan[j];
+  const Eigen::Vector3d u = global_rotation[j] * vector_of(p.aim_chain);
+  const Eigen::Vector3d v = target(targets, p.aim_column) - position[j];
+  if (!(u.norm() > min_length && v.norm() > min_length)) return false;
+  global_rotation[j] = Eigen::Quaterniond::FromTwoVectors(u, v).toRotationMatrix() * global_rotation[j];
+  return true;
+}
+
 void ExportFrameSolver::solve(const double* a_row, const double* targets, double* row) {
   State& s = *state_;
   const Skeleton& skeleton = s.skeleton;
-  const std::vector<JointPlan>& plan = s.plan;
-  const std::vector<std::vector<int>>& chain = s.chain;
   const int n = static_cast<int>(skeleton.joints.size());
-  const int top = s.top, carrier = s.carrier;
-  const std::vector<int>& carrier_chain = s.carrier_chain;
-  const double min_length = s.min_length, damping = s.damping, exact_cost = s.exact_cost;
-  const bool first = s.first;
-  std::vector<Eigen::Matrix3d>& local_rotation = s.local_rotation;
-  std::vector<Eigen::Matrix3d>& global_rotation = s.global_rotation;
-  std::vector<Eigen::Vector3d>& local_translation = s.local_translation;
-  std::vector<Eigen::Vector3d>& position = s.position;
-  std::vector<Eigen::Vector3d>& previous = s.previous;
-  std::vector<Eigen::Vector3d>& from = s.from;
-  std::vector<Eigen::Vector3d>& to = s.to;
-  std::vector<ChildGeometry>& geometry = s.geometry;
-  std::vector<double>& previous_cost = s.previous_cost;
   // Every value the solve does not set is A's.
   if (row != a_row) std::copy(a_row, a_row + skeleton.channel_count, row);
   for (int j = 0; j < n; ++j) {
-    local_rotation[j] = joint_local_rotation(skeleton.joints[j], a_row);
-    local_translation[j] = joint_local_translation(skeleton.joints[j], a_row);
+    s.local_rotation[j] = joint_local_rotation(skeleton.joints[j], a_row);
+    s.local_translation[j] = joint_local_translation(skeleton.joints[j], a_row);
   }
-  auto target = [&](int c) { return Eigen::Vector3d(targets[3 * c], targets[3 * c + 1], targets[3 * c + 2]); };
-  auto vector_of = [&](const std::vector<int>& joints_below) {
-    return chain_vector(joints_below, local_rotation, local_translation);
-  };
   for (int j = 0; j < n; ++j) {
     const Joint& joint = skeleton.joints[j];
-    const JointPlan& p = plan[j];
-    const Eigen::Matrix3d parent_rotation = joint.parent >= 0 ? global_rotation[joint.parent] : Eigen::Matrix3d::Identity();
-    const Eigen::Vector3d parent_position = joint.parent >= 0 ? position[joint.parent] : Eigen::Vector3d::Zero();
-    Eigen::Vector3d translation = local_translation[j];
-    global_rotation[j] = parent_rotation * local_rotation[j];
-    if (j == carrier) {
-      // Place the carrier so that the top column lands on its target (position channels
-      // replace the OFFSET, as Blender reads them); a missing position channel stays 0, as readers take it.
-      const Eigen::Vector3d below =
-          carrier_chain.empty() ? Eigen::Vector3d::Zero() : Eigen::Vector3d(global_rotation[j] * vector_of(carrier_chain));
-      const Eigen::Vector3d wanted = parent_rotation.transpose() * (target(top) - below - parent_position);
-      for (size_t c = 0; c < joint.channels.size(); ++c)
-        if (is_position(joint.channels[c])) row[joint.first_channel + c] = wanted[channel_axis(joint.channels[c])];
-      translation = joint_local_translation(joint, row);
-    }
-    position[j] = parent_position + parent_rotation * translation;
+    const JointPlan& p = s.plan[j];
+    const Eigen::Matrix3d parent_rotation =
+        joint.parent >= 0 ? s.global_rotation[joint.parent] : Eigen::Matrix3d::Identity();
+    const Eigen::Vector3d parent_position = joint.parent >= 0 ? s.position[joint.parent] : Eigen::Vector3d::Zero();
+    s.global_rotation[j] = parent_rotation * s.local_rotation[j];
+    const Eigen::Vector3d translation =
+        j == s.carrier ? s.place_carrier(j, parent_rotation, parent_position, targets, row) : s.local_translation[j];
+    s.position[j] = parent_position + parent_rotation * translation;
     if (!p.rotates) continue;
     Eigen::Vector3d angles;
     for (int d = 0; d < 3; ++d) angles[d] = a_row[p.rotation_channels[d]];
-    const Eigen::Vector3d near = !first ? previous[j] : angles;
-    bool solved = false;
-    if (p.children.size() >= 2) {
-      // Several children (hips, chest): the best-fit rotation of the directions
-      // to them (Kabsch), refined so the children themselves land (pivots take up the rest).
-      from.clear();
-      to.clear();
-      geometry.clear();
-      for (const ChildLink& link : p.children) {
-        const Eigen::Vector3d u = global_rotation[j] * vector_of(link.pivot >= 0 ? chain[link.column] : link.to_child);
-        const Eigen::Vector3d v = target(link.column) - position[j];
-        if (u.norm() > min_length && v.norm() > min_length) {
-          from.push_back(u.normalized());
-          to.push_back(v.normalized());
-        }
-        ChildGeometry g;
-        g.target = target(link.column);
-        if (link.pivot >= 0) {
-          g.offset = vector_of(link.to_pivot);
-          g.reach = vector_of(link.to_child).norm();
-        } else {
-          g.offset = vector_of(link.to_child);
-        }
-        geometry.push_back(g);
-      }
-      if (!from.empty()) {
-        const Eigen::Matrix3d start = best_rotation(from, to) * global_rotation[j];
-        const Eigen::Matrix3d last = parent_rotation * euler_to_matrix(p.order, previous[j]);
-        global_rotation[j] = solve_several(geometry, position[j], start, !first ? &last : nullptr,
-                                           previous_cost[j], damping, exact_cost, &previous_cost[j]);
-        solved = true;
-      }
-    } else if (p.aim_column >= 0) {
-      // One child (or a pivot): the smallest rotation that turns A's bone, at the parent's
-      // solved rotation and A's own local one (so twist is kept), toward the child's target,
-      // seen from where this joint now is, so errors do not accumulate down a chain.
-      const Eigen::Vector3d u = global_rotation[j] * vector_of(p.aim_chain);
-      const Eigen::Vector3d v = target(p.aim_column) - position[j];
-      if (u.norm() > min_length && v.norm() > min_length) {
-        global_rotation[j] = Eigen::Quaterniond::FromTwoVectors(u, v).toRotationMatrix() * global_rotation[j];
-        solved = true;
-      }
-    }
+    const Eigen::Vector3d near = !s.first ? s.previous[j] : angles;
+    const bool solved = p.children.size() >= 2 ? s.turn_to_children(j, parent_rotation, targets)
+                        : p.aim_column >= 0    ? s.aim_at_child(j, targets)
+                                               : false;
     if (solved) {
-      angles = matrix_to_euler_near(p.order, parent_rotation.transpose() * global_rotation[j], near);
-    } else if (!first) {
+      angles = matrix_to_euler_near(p.order, parent_rotation.transpose() * s.global_rotation[j], near);
+    } else if (!s.first) {
       angles = euler_near(angles, near);
     }
     for (int d = 0; d < 3; ++d) row[p.rotation_channels[d]] = angles[d];
-    previous[j] = angles;
+    s.previous[j] = angles;
   }
   s.first = false;
 }

@@ -45,21 +45,7 @@ std::string_view trim(std::string_view s) {
 
 // A token as it may be shown in a message: quoted, printable, short.
 std::string shown(std::string_view token) {
-  if (token.empty()) return "end of line";
-  std::string out = "'";
-  for (size_t i = 0; i < token.size() && i < kShownTokenLength; ++i) {
-    const unsigned char c = static_cast<unsigned char>(token[i]);
-    if (c >= 32 && c < 127) {
-      out += static_cast<char>(c);
-    } else {
-      static const char* kHex = "0123456789abcdef";
-      out += "\\x";
-      out += kHex[c >> 4];
-      out += kHex[c & 15];
-    }
-  }
-  if (token.size() > kShownTokenLength) out += "...";
-  return out + "'";
+  return token.empty() ? "end of line" : quoted_bytes(token, kShownTokenLength);
 }
 
 // The frame values real files hold ("-23.251000", "0", "1.5"): an optional '-', at most 19

@@ -371,9 +371,17 @@ std::string format_fbx(const Clip& clip, const std::string& take_name, const Fbx
   if (clip.frames() == 0) throw InputError(clip.source + ": has no frames to write as FBX");
   const double fps = clip.fps();
   if (!(fps > 0) || !std::isfinite(fps)) throw InputError(clip.source + ": the frame rate is not a positive number");
-  for (const Joint& j : s.joints)
+  std::unordered_set<std::string_view> names;
+  for (const Joint& j : s.joints) {
+    if (j.end_site) continue;  // not written: no key moves an End Site
     if (j.name.find('\0') != std::string::npos)
-      throw InputError(clip.source + ": joint name '" + j.name.c_str() + "...' holds a NUL byte, which FBX names cannot");
+      throw InputError(clip.source + ": joint name " + quoted_bytes(j.name) + " holds a NUL byte, which FBX names cannot");
+    // FBX readers (assimp, game engines' importers) match a take's curves to joints by name: one
+    // of two joints of one name would lose its motion.
+    if (!names.insert(j.name).second)
+      throw InputError(clip.source + ": two joints are named " + quoted_bytes(j.name) +
+                       ", and FBX readers tell joints apart by name; rename one to write FBX");
+  }
   if (!clip.motion.allFinite()) throw InputError(clip.source + ": a value is not a finite number");
   // KeyTime is a 64-bit count of ticks: about 6.3 years at most.
   if (static_cast<double>(clip.frames() - 1) / fps * static_cast<double>(kFbxTicksPerSecond) > 9e18)

@@ -692,8 +692,8 @@ std::string format_gltf(const Clip& clip, const std::string& animation_name, con
   const Skeleton& s = clip.skeleton;
   for (const Joint& joint : s.joints)
     if (!is_utf8(joint.name))
-      throw InputError(clip.source + ": joint name '" + joint.name +
-                       "' is not UTF-8 text, which glTF's names must be; rename it to write glTF");
+      throw InputError(clip.source + ": joint name " + quoted_bytes(joint.name) +
+                       " is not UTF-8 text, which glTF's names must be; rename it to write glTF");
   const int joints = static_cast<int>(s.joints.size());
   bin->clear();
   json doc;

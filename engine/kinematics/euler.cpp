@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstring>
 
 namespace mostyle {
 namespace {
@@ -78,16 +79,57 @@ bool parse_euler_order(std::string_view text, EulerOrder* order) {
   return false;
 }
 
+namespace {
+
+// Four doubles, and four 64-bit integers, as GCC's and Clang's vector extensions hold them: one
+// AVX register, or two SSE2 ones.
+typedef double Doubles4 __attribute__((vector_size(32)));
+typedef long long Integers4 __attribute__((vector_size(32)));
+
+}  // namespace
+
+// sin_cos_degrees's arithmetic on four angles at once, operation for operation (so the values are
+// the same bit for bit); a group holding an angle sin_cos_degrees does not reduce (huge, not a
+// number) goes one at a time.
+#if defined(__x86_64__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void sin_cos_degrees_n(const double* degrees, size_t n, double* sine, double* cosine) {
+  constexpr double k3 = 1.0 / 6, k5 = 1.0 / 120, k7 = 1.0 / 5040, k9 = 1.0 / 362880, k11 = 1.0 / 39916800,
+                   k13 = 1.0 / 6227020800.0, k15 = 1.0 / 1307674368000.0, k17 = 1.0 / 355687428096000.0;
+  constexpr double k2 = 1.0 / 2, k4 = 1.0 / 24, k6 = 1.0 / 720, k8 = 1.0 / 40320, k10 = 1.0 / 3628800,
+                   k12 = 1.0 / 479001600, k14 = 1.0 / 87178291200.0, k16 = 1.0 / 20922789888000.0;
+  size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    Doubles4 d;
+    std::memcpy(&d, degrees + i, sizeof d);
+    const Doubles4 size = d < 0.0 ? -d : d;
+    const Integers4 reduced = size <= kLargestReducedDegrees;  // false for NaN
+    if (!(reduced[0] && reduced[1] && reduced[2] && reduced[3])) {
+      for (size_t k = i; k < i + 4; ++k) sin_cos_degrees(degrees[k], sine + k, cosine + k);
+      continue;
+    }
+    const Doubles4 q = d * (1.0 / 90.0);
+    const Doubles4 half = q >= 0.0 ? Doubles4{0.5, 0.5, 0.5, 0.5} : Doubles4{-0.5, -0.5, -0.5, -0.5};
+    const Integers4 turns = __builtin_convertvector(q + half, Integers4);
+    const Doubles4 r = (d - __builtin_convertvector(turns, Doubles4) * 90.0) * (3.14159265358979323846 / 180.0);
+    const Doubles4 r2 = r * r, r4 = r2 * r2, r8 = r4 * r4;
+    const Doubles4 s =
+        r * ((1.0 - k3 * r2) + r4 * (k5 - k7 * r2) + r8 * ((k9 - k11 * r2) + r4 * (k13 - k15 * r2) + r8 * k17));
+    const Doubles4 c = (1.0 - k2 * r2) + r4 * (k4 - k6 * r2) + r8 * ((k8 - k10 * r2) + r4 * (k12 - k14 * r2) + r8 * k16);
+    const Integers4 odd = (turns & 1) != 0;
+    const Doubles4 out_s = (odd ? c : s) * (1.0 - __builtin_convertvector(turns & 2, Doubles4));
+    const Doubles4 out_c = (odd ? s : c) * (1.0 - __builtin_convertvector((turns + 1) & 2, Doubles4));
+    std::memcpy(sine + i, &out_s, sizeof out_s);
+    std::memcpy(cosine + i, &out_c, sizeof out_c);
+  }
+  for (; i < n; ++i) sin_cos_degrees(degrees[i], sine + i, cosine + i);
+}
+
 Eigen::Matrix3d axis_rotation(int axis, double degrees) {
   double s, c;
   sin_cos_degrees(degrees, &s, &c);
-  Eigen::Matrix3d m;
-  switch (axis) {
-    case 0: m << 1, 0, 0, 0, c, -s, 0, s, c; break;
-    case 1: m << c, 0, s, 0, 1, 0, -s, 0, c; break;
-    default: m << c, -s, 0, s, c, 0, 0, 0, 1; break;
-  }
-  return m;
+  return axis_rotation(axis, s, c);
 }
 
 Eigen::Matrix3d euler_to_matrix(EulerOrder order, const Eigen::Vector3d& angles) {

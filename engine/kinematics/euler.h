@@ -22,8 +22,22 @@ bool parse_euler_order(std::string_view text, EulerOrder* order);  // "zxy" too;
 // forward kinematics takes three of each per joint and frame. Not finite: NaN.
 inline void sin_cos_degrees(double degrees, double* sine, double* cosine);
 
+// sin_cos_degrees of n angles at once, the same values bit for bit, four at a time on a CPU with
+// AVX2 (several times faster than one at a time: batches of forward kinematics use it).
+void sin_cos_degrees_n(const double* degrees, size_t n, double* sine, double* cosine);
+
 // Rotation about axis 0, 1 or 2 by `degrees` (right-handed).
 Eigen::Matrix3d axis_rotation(int axis, double degrees);
+// The same, from the angle's sine and cosine (sin_cos_degrees).
+inline Eigen::Matrix3d axis_rotation(int axis, double s, double c) {
+  Eigen::Matrix3d m;
+  switch (axis) {
+    case 0: m << 1, 0, 0, 0, c, -s, 0, s, c; break;
+    case 1: m << c, 0, s, 0, 1, 0, -s, 0, c; break;
+    default: m << c, -s, 0, s, c, 0, 0, 0, 1; break;
+  }
+  return m;
+}
 
 // angles: degrees, in the order's channel order (for kZXY: z, x, y).
 Eigen::Matrix3d euler_to_matrix(EulerOrder order, const Eigen::Vector3d& angles);

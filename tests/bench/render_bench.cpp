@@ -150,7 +150,7 @@ void BM_EditorFrame(benchmark::State& state) {
     if (decomposing && editor.session().status().stage == WorkerStage::kIdle) {
       editor.state().document.parameters.components = editor.state().document.parameters.components == 30 ? 32 : 30;  // ~0.3 s each
     }
-    editor.state().document.parameters.alpha = 0.5 + 0.4 * std::sin(0.05 * frames);  // re-blended each frame
+    set_pair_alpha(editor.state().document, 0.5 + 0.4 * std::sin(0.05 * frames));  // re-blended each frame
     io.DisplaySize = ImVec2(static_cast<float>(kSize.x), static_cast<float>(kSize.y));
     io.DeltaTime = 1.0f / 60.0f;
     editor.frame(app::FrameInput{kSize, 1.0f / 60.0f});

@@ -4,13 +4,10 @@
 
 #include "ui/model/document_fields.h"
 #include "ui/model/document_mix.h"
-#include "ui/model/keyed_weights.h"
 #include "ui/model/recent_files.h"
 
 namespace mostyle::ui {
 namespace {
-
-
 
 // The decomposition the document asks for (a level's sparsity not set yet: the main one).
 DecomposeParams decompose_params_for(const Document& document) {
@@ -40,15 +37,16 @@ BlendSession::BlendSession(const BvhReadOptions& read)
     : worker_(read), sweep_(read), snapshot_(worker_.snapshot()) {}
 BlendSession::~BlendSession() = default;
 
-void BlendSession::load_files(const std::vector<std::string>& paths) {
+void BlendSession::load_files(const std::vector<std::string>& paths, WeightsOf weights) {
   if (paths.size() <= 2) {
     load(paths.empty() ? std::string() : paths[0], paths.size() > 1 ? paths[1] : std::string());
-    return;
+  } else {
+    requested_files_ = paths;
+    requested_a_ = paths[0];
+    requested_b_ = paths[1];
+    load_waiting_ = true;
   }
-  requested_files_ = paths;
-  requested_a_ = paths[0];
-  requested_b_ = paths[1];
-  load_waiting_ = true;
+  weights_of_ = weights;
 }
 
 void BlendSession::load(const std::string& path_a, const std::string& path_b) {
@@ -57,6 +55,7 @@ void BlendSession::load(const std::string& path_a, const std::string& path_b) {
   requested_files_ = {path_a};
   if (!path_b.empty()) requested_files_.push_back(path_b);
   load_waiting_ = true;
+  weights_of_ = WeightsOf::kLoadedTakes;
 }
 
 PrepareOptions BlendSession::prepare_options(const Document& document) const {
@@ -113,18 +112,18 @@ void BlendSession::poll(EditorState& state) {
   if (snap->version == seen_version_) return;
   seen_version_ = snap->version;
   snapshot_ = std::move(snap);
-  // The takes before, with their weights: a take added keeps the others' weights (below).
+  // The takes before: the weights were theirs, unless the load said they are the new takes'.
   const std::vector<std::string> files_before = state.document.files;
-  const std::vector<double> weights_before = constant_weights(state.document, static_cast<int>(files_before.size()));
   // The document's takes are those loaded (a load that failed leaves them as they were).
   state.document.files = snapshot_->prepared ? snapshot_->paths : std::vector<std::string>();
   if (takes() != seen_prepared_) {
     seen_prepared_ = takes();
-    if (palette() != nullptr) {  // a palette's weights (a pair's are its alpha)
-      std::vector<double> kept = weights_with_added_takes(files_before, weights_before, snapshot_->paths);
-      if (!kept.empty()) state.document.controls.palette.weights = std::move(kept);
-      size_palette_controls(state.document.controls.palette, palette()->size());
+    if (takes() != nullptr) {  // the weights follow the takes, one rule for any number of them
+      const std::vector<std::string>& weights_of = weights_of_ == WeightsOf::kNewTakes ? snapshot_->paths : files_before;
+      state.document.weights = weights_for_takes(weights_of, state.document.weights, snapshot_->paths);
+      weights_of_ = WeightsOf::kLoadedTakes;
     }
+    if (palette() != nullptr) size_palette_controls(state.document.controls.palette, palette()->size());
     take_up_takes(state);
   }
   const Decomposed* d = takes() != nullptr ? snapshot_->decomposed.get() : nullptr;
@@ -154,7 +153,7 @@ void BlendSession::take_up_takes(EditorState& state) {
 void BlendSession::take_up_decomposition(EditorState& state) {
   const Decomposed* d = seen_decomposed_;
   DocumentControls& c = state.document.controls;
-  if (pair() != nullptr) c.component_alpha.resize(static_cast<size_t>(d->components()), state.document.parameters.alpha);
+  if (pair() != nullptr) c.component_alpha.resize(static_cast<size_t>(d->components()), pair_alpha(state.document));
   if (c.selected_component >= d->components()) c.selected_component = -1;
   if (pair() != nullptr) sweep_.add(*d, seen_prepared_, snapshot_->paths, prepare_options(asked_));  // a pair's curve
 }

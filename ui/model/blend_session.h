@@ -24,6 +24,12 @@
 
 namespace mostyle::ui {
 
+// Whose weights the document holds (Document::weights) when a load is asked for: the takes
+// loaded now (a take added, replaced or removed: the new takes' weights follow from them by
+// weights_for_takes, ui/model/document_mix.h), or the new takes' already (undo, a session, a new
+// order of the takes, the command line: kept when they are one per take).
+enum class WeightsOf { kLoadedTakes, kNewTakes };
+
 class BlendSession {
  public:
   // Takes are read with `read` (the editor passes the memory limit MOSTYLE_MAX_MEMORY_MB sets).
@@ -33,12 +39,14 @@ class BlendSession {
   BlendSession& operator=(const BlendSession&) = delete;
 
   // Asks for a pair (b empty: A with itself). What was loaded stays until it succeeds; a failure
-  // shows up as error() on a later poll(). The paths join the recent takes once they loaded.
+  // shows up as error() on a later poll(). The paths join the recent takes once they loaded. The
+  // document's weights are the loaded takes' (WeightsOf::kLoadedTakes).
   void load(const std::string& path_a, const std::string& path_b);
   // Several files: one or two load as the pair (one: A with itself); three to sixteen as the
-  // style palette (the first the reference), mixed with the document's palette weights. The
-  // worker is asked at the next sync(), with the document's alignment options then.
-  void load_files(const std::vector<std::string>& paths);
+  // style palette (the first the reference), mixed with the document's weights, taken as
+  // `weights` says once the takes arrive. The worker is asked at the next sync(), with the
+  // document's alignment options then.
+  void load_files(const std::vector<std::string>& paths, WeightsOf weights = WeightsOf::kLoadedTakes);
   // A load asked for that the worker has not been given yet (the next sync() gives it).
   bool load_waiting() const { return load_waiting_; }
   // The files last asked for (pair or palette), loaded or not.
@@ -60,7 +68,7 @@ class BlendSession {
   }
   const ResultView& result_view() const { return view_; }
   // Before the panels, once per frame: takes up a new snapshot (new takes: rebuilds the takes
-  // shown and sets the document's files to them).
+  // shown and sets the document's files to them, and its weights: weights_for_takes).
   void poll(EditorState& state);
   // After the panels (and before them, after poll, with item_held): brings the engine to the
   // document. A load waiting goes to the worker; an alignment option that changed aligns the
@@ -116,6 +124,7 @@ class BlendSession {
   DecomposeParams requested_;   // the decomposition last asked of the worker
   Document asked_;               // the document as the worker was last asked for it (sync)
   bool load_waiting_ = false;    // load_files() since the last sync()
+  WeightsOf weights_of_ = WeightsOf::kLoadedTakes;  // of the load last asked for, until its takes arrive
   std::string requested_a_, requested_b_;
   std::vector<std::string> requested_files_;
   ResultView view_;

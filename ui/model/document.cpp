@@ -82,7 +82,9 @@ bool same_files(const std::vector<std::string>& x, const std::vector<std::string
   return true;
 }
 
-PaletteControls reorder_takes(const PaletteControls& c, const std::vector<int>& order) {
+double pair_alpha(const Document& d) { return d.weights.size() == 2 ? d.weights[1] : 0.5; }
+
+Document reorder_takes(const Document& d, const std::vector<int>& order) {
   const size_t n = order.size();
   auto reordered = [&](const std::vector<double>& v) {
     if (v.size() != n) return v;
@@ -90,15 +92,17 @@ PaletteControls reorder_takes(const PaletteControls& c, const std::vector<int>& 
     for (size_t k = 0; k < n; ++k) out[k] = v[static_cast<size_t>(order[k])];
     return out;
   };
-  PaletteControls out = c;
-  out.weights = reordered(c.weights);
+  const PaletteControls& c = d.controls.palette;
+  Document reordered_document = d;
+  reordered_document.weights = reordered(d.weights);
+  PaletteControls& out = reordered_document.controls.palette;
   out.strengths = reordered(c.strengths);
   for (std::vector<double>& row : out.part_weights) row = reordered(row);
   for (size_t k = 0; k < n; ++k) {
     if (order[k] == c.neutral) out.neutral = static_cast<int>(k);
     if (order[k] == c.content) out.content = static_cast<int>(k);
   }
-  return out;
+  return reordered_document;
 }
 
 }  // namespace mostyle::ui

@@ -21,17 +21,16 @@
 
 namespace mostyle::ui {
 
-// The blend the animator asks for (defaults from the paper's figures).
+// The decomposition the animator asks for (defaults from the paper's figures).
 struct BlendParameters {
-  double alpha = 0.5;     // 0: take A, 1: take B
   int components = 10;    // k
   double sparsity = 0.1;  // f in (0, 1]: fraction of non-zeros kept per component
 };
 
-// The style palette: three or more takes mixed with weights, or a transfer (a style
-// change from a neutral take, or from the content itself, to a styled one put on a content take).
+// The style palette's controls beyond the weights (Document::weights): weights per body part, or
+// a transfer (a style change from a neutral take, or from the content itself, to a styled one put
+// on a content take).
 struct PaletteControls {
-  std::vector<double> weights;                 // one per take, summing to 1
   bool per_part = false;                       // weights per body part (legs, arms, spine)
   std::vector<std::vector<double>> part_weights;  // [legs, arms, spine] x takes; empty row: the overall weights
   bool transfer = false;                       // transfer mode instead of a mix
@@ -39,7 +38,9 @@ struct PaletteControls {
   // Transfer: no neutral take, the content is its own neutral (content + s (style - content)):
   // every take but the content is a style, and `neutral` is kept for when one is chosen again.
   bool content_neutral = false;
-  std::vector<double> strengths;               // transfer: one per take (used for the styles)
+  // Transfer: one per take (used for the styles). Their own field, not Document::weights: the
+  // mix's weights stay as they were while the transfer is toggled on and off.
+  std::vector<double> strengths;
   bool ghosts = false;                         // show each take's warped ghost in the viewport
 };
 
@@ -49,7 +50,7 @@ inline const char* result_name(int takes, bool transfer) {
   return takes <= 2 ? "blend" : transfer ? "transfer" : "mix";
 }
 
-// What the parameter panels edit beyond the blend parameters (alpha, k, sparsity).
+// What the parameter panels edit beyond the weights and the decomposition's k and sparsity.
 struct DocumentControls {
   BlendMode mode = BlendMode::kShared;
   bool per_component = false;            // shared mode: one alpha per component
@@ -63,8 +64,8 @@ struct DocumentControls {
   bool loop = false;                     // cut a seamless loop of whole gait cycles
   bool residual = true;                  // blend the takes' residual detail too (BlendParams)
   // Style over time: the mix's weights keyed at seconds of the result, each key one
-  // mix weight per take (a pair's (1 - alpha, alpha)); they replace alpha or the palette's weights
-  // while they fit the takes (ui/model/keyed_weights.h). Empty: the constant weights.
+  // mix weight per take (a pair's (1 - alpha, alpha)); they replace Document::weights (a
+  // transfer's strengths) while they fit the takes (ui/model/keyed_weights.h). Empty: the constant weights.
   WeightKeys keys;
   int selected_component = -1;           // components view; -1: none
   int dtw_coordinate = 1;                // DTW view: 0 lateral, 1 height, 2 forward
@@ -72,12 +73,17 @@ struct DocumentControls {
 };
 
 struct Document {
-  BlendParameters parameters;        // alpha, k, sparsity
+  BlendParameters parameters;        // k, sparsity
   DocumentControls controls;         // selected_component and dtw_coordinate at their defaults
   // The loaded takes as paths: a pair is A then B (A twice for A with itself); a palette is every
   // take, the reference first. Empty: nothing loaded. The engine link sets them as takes arrive;
   // a load is a command (BlendSession::load_files), not an edit of this field.
   std::vector<std::string> files;
+  // The mix's weight of each take, in the order of `files`, summing to 1: a pair's are
+  // (1 - alpha, alpha) (pair_alpha), a palette's its sliders'. Not one per take (nothing loaded
+  // yet, or takes just changed): equal weights are mixed (constant_weights). The engine link sizes
+  // them when the takes change (weights_for_takes, ui/model/document_mix.h).
+  std::vector<double> weights;
   bool overlay = false;              // the takes drawn on one spot instead of side by side
 };
 
@@ -92,6 +98,14 @@ inline bool operator!=(const PaletteControls& x, const PaletteControls& y) { ret
 inline bool operator!=(const DocumentControls& x, const DocumentControls& y) { return !(x == y); }
 inline bool operator!=(const Document& x, const Document& y) { return !(x == y); }
 
+// A pair's alpha, as its two weights show it: weights[1] (0: take A, 1: take B); 0.5, the
+// default, while the weights are not a pair's.
+double pair_alpha(const Document& d);
+// A pair's weights at alpha: (1 - alpha, alpha).
+inline std::vector<double> pair_weights(double alpha) { return {1.0 - alpha, alpha}; }
+// Sets the document's weights to a pair's at alpha: (1 - alpha, alpha).
+inline void set_pair_alpha(Document& d, double alpha) { d.weights = pair_weights(alpha); }
+
 // `controls` with what a Document leaves out (selected_component, dtw_coordinate) at defaults.
 DocumentControls document_controls(DocumentControls controls);
 
@@ -99,11 +113,13 @@ DocumentControls document_controls(DocumentControls controls);
 // ("a/../b.bvh" and "b.bvh", relative to the working folder or absolute). No file is opened.
 bool same_files(const std::vector<std::string>& x, const std::vector<std::string>& y);
 
-// The palette's controls with its takes in another order: take k of the result is take order[k]
-// of `c`. Every per-take value follows its take (weights, per-part weights, strengths, the
-// neutral take's index; the content is the reference, take 0), so a take keeps its weight when
-// another becomes the content. order: a permutation of 0..n-1 for n takes; a per-take vector of
-// another length (not yet sized for these takes) is left as it is.
-PaletteControls reorder_takes(const PaletteControls& c, const std::vector<int>& order);
+// The document with its takes in another order: take k of the result is take order[k] of `d`.
+// Every per-take value follows its take (the weights, the palette's per-part weights and
+// strengths, the neutral take's index; the content is the reference, take 0), so a take keeps
+// its weight when another becomes the content. The files and the keys are left as they are (the
+// takes are loaded again in the new order; weight_keys_edit.h reorder_keys). order: a
+// permutation of 0..n-1 for n takes; a per-take vector of another length (not yet sized for
+// these takes) is left as it is.
+Document reorder_takes(const Document& d, const std::vector<int>& order);
 
 }  // namespace mostyle::ui

@@ -25,11 +25,11 @@ struct Range {
   double lo = 0.0, hi = 0.0;
   bool open_low = false;  // lo itself is not allowed
 };
-inline constexpr Range kAlphaRange{0.0, 1.0};
+inline constexpr Range kAlphaRange{0.0, 1.0};            // a pair's alpha slider, each component's alpha
 inline constexpr Range kComponentsRange{1, 40};
 inline constexpr Range kSparsityRange{0.01, 1.0};        // also each basic-motion level's
 inline constexpr Range kBasicMotionsRange{0, 5};
-inline constexpr Range kMixWeightRange{kMinMixWeight, kMaxMixWeight};
+inline constexpr Range kMixWeightRange{kMinMixWeight, kMaxMixWeight};  // Document::weights, per-part weights
 inline constexpr Range kStrengthRange{kMinStrength, kMaxStrength};
 inline constexpr Range kTakesRange{0, kMaxPaletteTakes};  // how many takes; a take's index is below hi
 inline constexpr Range kTakeIndexRange{0, kMaxPaletteTakes - 1};
@@ -45,7 +45,7 @@ inline constexpr Range kNoRange{};                        // not a number (a cho
 inline Range swap_level_range(int basic_motions) { return Range{0, basic_motions > 1 ? basic_motions - 1.0 : 0.0}; }
 
 struct Field {
-  const char* key;   // "controls.palette.weights": the session file's object path, dot separated
+  const char* key;   // "controls.palette.strengths": the session file's object path, dot separated
   Stale stale;       // what a change to it makes stale
   Range range;       // numbers only
   bool saved = true; // false: where one looks, not what one made (not in session files)
@@ -57,8 +57,8 @@ struct Field {
 template <typename Doc, typename F>
 void document_fields(Doc& x, Doc& y, F&& f) {
   f(Field{"takes", Stale::kTakes, kTakesRange}, x.files, y.files);
+  f(Field{"weights", Stale::kMix, kMixWeightRange}, x.weights, y.weights);
   auto &px = x.parameters, &py = y.parameters;
-  f(Field{"parameters.alpha", Stale::kMix, kAlphaRange}, px.alpha, py.alpha);
   f(Field{"parameters.components", Stale::kDecomposition, kComponentsRange}, px.components, py.components);
   f(Field{"parameters.sparsity", Stale::kDecomposition, kSparsityRange}, px.sparsity, py.sparsity);
   auto &cx = x.controls, &cy = y.controls;
@@ -79,7 +79,6 @@ void document_fields(Doc& x, Doc& y, F&& f) {
   f(Field{"controls.selected_component", Stale::kView, kNoRange, false}, cx.selected_component, cy.selected_component);
   f(Field{"controls.dtw_coordinate", Stale::kView, kNoRange, false}, cx.dtw_coordinate, cy.dtw_coordinate);
   auto &wx = cx.palette, &wy = cy.palette;
-  f(Field{"controls.palette.weights", Stale::kMix, kMixWeightRange}, wx.weights, wy.weights);
   f(Field{"controls.palette.per_part", Stale::kMix, kNoRange}, wx.per_part, wy.per_part);
   f(Field{"controls.palette.part_weights", Stale::kMix, kMixWeightRange}, wx.part_weights, wy.part_weights);
   f(Field{"controls.palette.transfer", Stale::kMix, kNoRange}, wx.transfer, wy.transfer);

@@ -1,12 +1,10 @@
 #include "ui/model/document_mix.h"
 
 #include <algorithm>
-#include <cmath>
 #include <iterator>
 #include <limits>
 #include <utility>
 
-#include "engine/base/error.h"
 #include "engine/run/blend_params.h"
 #include "ui/model/keyed_weights.h"
 
@@ -24,7 +22,7 @@ Eigen::MatrixXd component_alpha_weights(const Document& document, const Decompos
   Eigen::MatrixXd w;
   if (d.shared() == nullptr || !c.per_component) return w;
   std::vector<double> alphas = c.component_alpha;
-  alphas.resize(static_cast<size_t>(d.components()), document.parameters.alpha);
+  alphas.resize(static_cast<size_t>(d.components()), pair_alpha(document));
   set_component_alpha_weights(alphas, w);
   return w;
 }
@@ -35,11 +33,11 @@ MixParams mix_params_for(const Document& document, const Decomposed& decompositi
   const DocumentControls& controls = document.controls;
   const PaletteControls& c = controls.palette;
   MixParams m;
-  if (takes == 2 && !std::isfinite(document.parameters.alpha)) throw InputError("expected a finite alpha");
   m.weights = constant_weights(document, takes);
   set_mix_keys(controls, takes, m.keys);  // style over time, when keyed
   if (takes == 2) {
-    // A pair's alpha: any value (how far to exaggerate is the person's call), per component too.
+    // A pair's weights: any value (how far to exaggerate is the person's call), and its alphas
+    // per component when asked for.
     m.min_weight = -std::numeric_limits<double>::infinity();
     m.max_weight = std::numeric_limits<double>::infinity();
     m.component_weights = component_alpha_weights(document, decomposition);
@@ -66,26 +64,22 @@ MixParams mix_params_for(const Document& document, const Decomposed& decompositi
   return m;
 }
 
-std::vector<double> weights_with_added_takes(const std::vector<std::string>& before, const std::vector<double>& weights,
-                                             const std::vector<std::string>& after) {
-  if (after.size() <= before.size() || weights.size() != before.size()) return {};
-  std::vector<double> out(after.size(), 0.0);
-  std::vector<bool> used(before.size(), false);  // a file given twice: each its own weight
-  bool kept = false;
-  for (size_t i = 0; i < after.size(); ++i)
-    for (size_t j = 0; j < before.size(); ++j)
-      if (!used[j] && before[j] == after[i]) {
-        used[j] = true;
-        out[i] = weights[j];
-        kept = true;
-        break;
-      }
-  return kept ? out : std::vector<double>();
+std::vector<double> weights_for_takes(const std::vector<std::string>& before, const std::vector<double>& weights,
+                                      const std::vector<std::string>& after) {
+  const bool fit = weights.size() == before.size() && !before.empty();
+  if (fit && same_files(before, after)) return weights;
+  const bool added_at_end = after.size() > before.size() &&
+                            same_files(before, std::vector<std::string>(after.begin(), after.begin() + before.size()));
+  if (fit && added_at_end) {
+    std::vector<double> out = weights;
+    out.resize(after.size(), 0.0);
+    return out;
+  }
+  return std::vector<double>(after.size(), 1.0 / static_cast<double>(after.size()));
 }
 
 void size_palette_controls(PaletteControls& controls, int takes) {
   const size_t n = static_cast<size_t>(takes);
-  if (controls.weights.size() != n) controls.weights.assign(n, 1.0 / takes);
   if (controls.strengths.size() != n) controls.strengths.assign(n, 1.0);
   controls.part_weights.resize(std::size(kParts));
   for (auto& w : controls.part_weights)

@@ -1,7 +1,7 @@
 #pragma once
 // The one translation from what the animator set (a Document) to the engine's mix (MixParams),
-// for any number of takes: the weights (constant_weights: a pair's alpha is the weights
-// (1 - alpha, alpha)), per-component or per-part weights, the keys, a transfer's weight limits,
+// for any number of takes: the weights (constant_weights: Document::weights, a transfer's made
+// from its strengths), a pair's per-component or per-part weights, the keys, a transfer's weight limits,
 // the basic-motion level swapped, the timing and the clean-up options. Which document fields make
 // a mix stale is the field list's business (document_fields.h, Stale::kMix): whoever mixes
 // compares documents with differs_at, not parameters by hand.
@@ -18,17 +18,16 @@ namespace mostyle::ui {
 // says why). O(k x takes).
 MixParams mix_params_for(const Document& document, const Decomposed& decomposition, int takes);
 
-// The weights of takes `after` when they are the takes `before` (weighted `weights`, one per
-// take; a pair's are (1 - alpha, alpha)) with more added: each take that was there keeps its
-// weight, each one added gets 0 (a pair at 0.7/0.3 given a third take is 0.7/0.3/0). Empty when
-// no take is added (as many or fewer takes) or none of `before` is among `after`, or the weights
-// do not fit `before`: then the palette's own rule applies (equal weights for a new palette).
-// O(after x before).
-std::vector<double> weights_with_added_takes(const std::vector<std::string>& before, const std::vector<double>& weights,
-                                             const std::vector<std::string>& after);
+// The weights of takes `after` (one per take, in order) when the document's `weights` were those
+// of the takes `before`, the one rule for any number of takes: the same takes (same_files) keep
+// theirs; takes added at the end (`before` the first of `after`) keep theirs and each one added
+// gets 0 (a pair at 0.7/0.3 given a third take is 0.7/0.3/0); otherwise, or when `weights` is not
+// one per take of `before`, equal weights (a pair's 0.5/0.5). O(after).
+std::vector<double> weights_for_takes(const std::vector<std::string>& before, const std::vector<double>& weights,
+                                      const std::vector<std::string>& after);
 
-// The palette controls sized for `takes` takes: equal weights and full strengths when theirs are
-// not one per take, per-part rows cleared when they do not fit, the neutral among the takes.
+// The palette controls sized for `takes` takes: full strengths when theirs are not one per take,
+// per-part rows cleared when they do not fit, the neutral among the takes.
 void size_palette_controls(PaletteControls& controls, int takes);
 
 }  // namespace mostyle::ui

@@ -41,7 +41,7 @@ void apply_document(const Document& document, EditorState& state, BlendSession& 
   c.selected_component = selected;
   c.dtw_coordinate = coordinate;
   if (!document.files.empty() && !same_files(takes, document.files))
-    session.load_files(document.files);  // a pair, or a palette of three or more
+    session.load_files(document.files, WeightsOf::kNewTakes);  // a pair, or a palette of three or more
 }
 
 std::string apply_session_document(const Document& document, const std::string& session_path, EditorState& state,

@@ -26,13 +26,9 @@ void make_transfer(std::vector<double>& w, int neutral) {
 // The constant controls set from mix weights, as the controls set them without keys: the inverse
 // of constant_weights (a transfer's content and neutral weights are its own: only the styles').
 void set_constant_weights(Document& d, int takes, const std::vector<double>& weights) {
-  if (takes == 2) {
-    d.parameters.alpha = weights[1];
-    return;
-  }
   PaletteControls& c = d.controls.palette;
-  if (!c.transfer) {
-    c.weights = weights;
+  if (!is_transfer(d.controls, takes)) {
+    d.weights = weights;
     return;
   }
   const int neutral = transfer_neutral(c, takes);
@@ -54,15 +50,11 @@ std::vector<double> transfer_mix_weights(const std::vector<double>& values, int 
   return w;
 }
 
-std::vector<double> palette_weights(const PaletteControls& c, int takes) {
-  if (c.transfer) return transfer_mix_weights(c.strengths, transfer_neutral(c, takes), takes);
-  if (static_cast<int>(c.weights.size()) == takes) return c.weights;
-  return std::vector<double>(static_cast<size_t>(takes), 1.0 / takes);
-}
-
 std::vector<double> constant_weights(const Document& d, int takes) {
-  if (takes == 2) return {1.0 - d.parameters.alpha, d.parameters.alpha};
-  return palette_weights(d.controls.palette, takes);
+  if (is_transfer(d.controls, takes))
+    return transfer_mix_weights(d.controls.palette.strengths, transfer_neutral(d.controls.palette, takes), takes);
+  if (static_cast<int>(d.weights.size()) == takes) return d.weights;
+  return std::vector<double>(static_cast<size_t>(takes), 1.0 / takes);
 }
 
 void set_mix_keys(const DocumentControls& c, int takes, WeightKeys& out) {

@@ -1,6 +1,6 @@
 #pragma once
 // Style over time in the editor: the weights the result has at a moment, from the
-// document's constant controls (alpha, the palette's weights, a transfer's strengths) or from its
+// document's constant weights (Document::weights, a transfer's strengths) or from its
 // keys (DocumentControls::keys), and the edits the weight controls, the timeline's Key button and
 // its marks make at the playhead. Plain data: no ImGui; tests drive it with an EditorState made
 // by hand.
@@ -35,12 +35,9 @@ int transfer_neutral(const PaletteControls& c, int takes);
 // sum; every take but the content and the neutral is a style; a value missing counts 0. takes >= 2.
 std::vector<double> transfer_mix_weights(const std::vector<double>& values, int neutral, int takes);
 
-// The palette's mix weights with nothing keyed, one per take: its weights (equal ones while they
-// are not sized for `takes`), or a transfer's transfer_mix_weights of the strengths.
-std::vector<double> palette_weights(const PaletteControls& c, int takes);
-
-// The document's mix weights with nothing keyed: a pair's (two takes) (1 - alpha, alpha), else
-// palette_weights.
+// The document's mix weights with nothing keyed, one per take: Document::weights (equal ones while
+// they are not one per take, so a pair's default is 0.5/0.5), or a transfer's (three or more takes
+// in transfer mode) transfer_mix_weights of its strengths.
 std::vector<double> constant_weights(const Document& d, int takes);
 
 // The keys as the engine takes them (MixParams::keys) into `out`: none unless they fit the takes
@@ -71,9 +68,9 @@ std::vector<double> weights_at_playhead(const EditorState& state, int takes);
 
 // Auto-key, the weight controls' edit: `weights` (mix weights, one per take) at the playhead.
 // With keys that fit the takes, the key at the playhead takes them, or a new key there, and the
-// playback pauses (a drag edits one key); without keys, the constant controls take them (alpha
-// = weights[1]; the palette's weights; a transfer's strengths of its styles), as those controls
-// set them themselves.
+// playback pauses (a drag edits one key); without keys, the constant weights take them
+// (Document::weights; a transfer's strengths of its styles), as those controls set them
+// themselves.
 void set_weights_at_playhead(EditorState& state, int takes, const std::vector<double>& weights);
 
 // The timeline's Key button and K: a key at the playhead with the weights shown there, the one

@@ -19,7 +19,6 @@
 namespace mostyle::ui {
 namespace {
 
-const glm::vec3 kResultColor(0.50f, 0.88f, 0.46f);  // the result's green, between the takes' colours
 const glm::vec4 kHighlight(1.0f, 0.92f, 0.25f, 1.0f);
 
 using Clock = std::chrono::steady_clock;
@@ -46,7 +45,7 @@ std::string result_caption(const Document& d, const Decomposed* decomposition, i
     return "blend (per component)";
   if (!d.controls.keys.empty() && keys_fit(d.controls.keys, takes)) return "blend  alpha keyed";
   char label[64];
-  std::snprintf(label, sizeof label, "blend  alpha %.2f", d.parameters.alpha);
+  std::snprintf(label, sizeof label, "blend  alpha %.2f", pair_alpha(d));
   return label;
 }
 
@@ -65,6 +64,20 @@ glm::vec3 take_color(int take) {
                                       {0.95f, 0.85f, 0.30f}, {0.96f, 0.45f, 0.66f}, {0.30f, 0.85f, 0.80f},
                                       {0.80f, 0.80f, 0.80f}, {0.62f, 0.80f, 0.35f}};
   return kColors[static_cast<size_t>(take) % (sizeof kColors / sizeof kColors[0])];
+}
+
+glm::vec3 result_color() { return {0.50f, 0.88f, 0.46f}; }
+
+Take shown_take(std::string label, glm::vec3 color, std::shared_ptr<const Clip> clip, double fps,
+                std::vector<int> parents, Eigen::MatrixXd positions) {
+  Take t;
+  t.label = std::move(label);
+  t.color = color;
+  t.clip = std::move(clip);
+  t.fps = fps;
+  t.parents = std::move(parents);
+  t.positions = std::move(positions);
+  return t;
 }
 
 void ResultView::clear() {
@@ -94,27 +107,18 @@ void ResultView::take_up(const PreparedTakes& p, const std::vector<std::string>&
   const int joints = static_cast<int>(p.majors.size());
   for (int i = 0; i < n; ++i) {
     const PreparedTake& take = p.takes[static_cast<size_t>(i)];
-    Take t;
-    t.path = take_paths[static_cast<size_t>(i)];
-    t.label = take_caption(i, n, t.path);
+    const std::string& path = take_paths[static_cast<size_t>(i)];
+    // Its positions until the first result arrives.
+    Take t = shown_take(take_caption(i, n, path), take_color(i), take.clip, p.fps, p.parents, take.world_placed);
+    t.path = path;
     names_.push_back(n == 2 ? aligned_names[static_cast<size_t>(i)] : take_label(t.path));
-    t.color = take_color(i);
-    t.clip = take.clip;
-    t.fps = p.fps;
-    t.parents = p.parents;
     t.warnings = std::move(by_take[static_cast<size_t>(i)]);
-    t.positions = take.world_placed;  // until the first result arrives
     t.contacts = joint_contacts(take.own_contacts, p.feet, joints);
     state.takes.push_back(std::move(t));
   }
-  Take result;
-  result.label = result_name(n, state.document.controls.palette.transfer);
+  Take result = shown_take(result_name(n, state.document.controls.palette.transfer), result_color(),
+                           p.takes.front().clip, p.fps, p.parents, p.takes.front().world_placed);
   result.path = n == 2 ? "(blend of A and B)" : "(mix of the palette's takes)";
-  result.color = kResultColor;
-  result.clip = p.takes.front().clip;
-  result.fps = p.fps;
-  result.parents = p.parents;
-  result.positions = p.takes.front().world_placed;  // until the first result arrives
   state.takes.push_back(std::move(result));
   // Shared floor and start, side-by-side spacing and direction (ui/model/lanes.h).
   const Placement placed = placement_of(p.takes.front().world_placed);

@@ -27,6 +27,14 @@ constexpr int result_index(int takes) { return takes; }
 // The colour of take i (the reference first): a pair's A orange and B blue, then violet, yellow,
 // pink, teal, ... around the wheel.
 glm::vec3 take_color(int take);
+// The result's colour: green, between the takes' colours.
+glm::vec3 result_color();
+
+// One take as the viewport shows it, for whatever makes the takes shown (ResultView; the live
+// source, ui/model/live_source.h): its label, colour, clip, the rate of `positions` (frames x
+// 3*joints, world units) and the joints' parents; the rest at Take's defaults.
+Take shown_take(std::string label, glm::vec3 color, std::shared_ptr<const Clip> clip, double fps,
+                std::vector<int> parents, Eigen::MatrixXd positions);
 
 class ResultView {
  public:

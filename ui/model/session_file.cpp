@@ -378,7 +378,7 @@ AlignmentOptions read_align(const Reader& r, const Json& j, const Where& w) {
 
 // ---- The document: its fields from the one list (ui/model/document_fields.h) ----
 
-// A field's place in the file: "controls.palette.weights" is /controls/palette/weights.
+// A field's place in the file: "controls.palette.strengths" is /controls/palette/strengths.
 Where field_where(const Field& field) {
   Where w;
   w.name = field.key;
@@ -555,6 +555,35 @@ Document read_document(const Reader& r, const Json& root, const fs::path& folder
   return d;
 }
 
+// Version 1 kept a pair's weights as its alpha ("parameters.alpha": the weights (1 - alpha,
+// alpha)) and a palette's as "controls.palette.weights". Both are read (with the ranges version 1
+// read them with) and taken out of `j`, and the weights of its takes put in as version 2 keeps
+// them ("weights"): the palette's for three or more takes, else the pair's alpha; neither when
+// the one its takes use is left out (the defaults: equal weights).
+void read_version_1_weights(const Reader& r, Json& j) {
+  const Where top;
+  if (j.contains("weights"))
+    r.fail(top.key("weights"), "unknown key " + quoted("weights") + " in a version 1 session (version 2 keeps the weights there)");
+  std::vector<double> pair, palette;
+  const auto parameters = j.find("parameters");
+  if (parameters != j.end() && parameters->is_object() && parameters->contains("alpha")) {
+    pair = pair_weights(r.number(parameters->at("alpha"), top.key("parameters").key("alpha"), kAlphaRange));
+    parameters->erase("alpha");
+  }
+  const auto controls = j.find("controls");
+  if (controls != j.end() && controls->is_object()) {
+    const auto c = controls->find("palette");
+    if (c != controls->end() && c->is_object() && c->contains("weights")) {
+      palette = r.numbers(c->at("weights"), top.key("controls").key("palette").key("weights"), kMixWeightRange);
+      c->erase("weights");
+    }
+  }
+  const auto takes = j.find("takes");
+  const std::size_t n = takes != j.end() && takes->is_array() ? takes->size() : 0;
+  const std::vector<double>& weights = n >= 3 ? palette : pair;
+  if (!weights.empty()) j["weights"] = weights;
+}
+
 SessionCamera read_camera(const Reader& r, const Json& j, const Where& w) {
   r.object(j, w);
   r.only_keys(j, w, {"target", "yaw", "pitch", "distance", "fov_y"});
@@ -645,9 +674,11 @@ SessionFile parse_session(std::string_view text, const std::string& session_path
   if (version == j.end())
     r.fail(top, "no \"version\": not a mostyle session (expected \"version\": " + std::to_string(kSessionVersion) + ")");
   if (!version->is_number_integer()) r.expected(top.key("version"), "a whole number", *version);
-  if (*version != kSessionVersion)
-    r.fail(top.key("version"), "version " + a_json_type(*version) + " is not one this mostyle reads (it reads version " +
+  if (*version != 1 && *version != kSessionVersion)
+    r.fail(top.key("version"), "version " + a_json_type(*version) +
+                                   " is not one this mostyle reads (it reads versions 1 to " +
                                    std::to_string(kSessionVersion) + ")");
+  if (*version == 1) read_version_1_weights(r, j);
   check_keys(r, j, top, "", {"version", "camera", "playback"});
 
   SessionFile session;

@@ -1,11 +1,12 @@
 #pragma once
 // The editor's session file (.mostyle): the takes, every parameter (a Document,
 // ui/model/document.h), the camera and the playback, as JSON, so that a day's work opens again as it
-// was left. Version 1 reads:
+// was left. Version 2 reads:
 //   {
-//     "version": 1,
+//     "version": 2,
 //     "takes": ["walks/happy.bvh", "walks/marching.bvh"],      (relative to the session's folder)
-//     "parameters": {"alpha": 0.5, "components": 10, "sparsity": 0.1},
+//     "weights": [0.7, 0.3],                                    (one per take; a pair's: 1 - alpha, alpha)
+//     "parameters": {"components": 10, "sparsity": 0.1},
 //     "controls": {"mode": "shared", "per_component": false, "component_alpha": [...], ...,
 //                  "keys": [{"seconds": 0, "weights": [1, 0]}, {"seconds": 10, "weights": [0, 1]}],
 //                  "align": {"method": "slope", "on": "auto", ...}, "palette": {...}},
@@ -16,7 +17,9 @@
 // Only "version" is required; a key left out keeps its default, an unknown key is refused (a
 // typo is never silently ignored), and so is a value out of its range. The document's keys, the
 // ranges they are read with (those the editor's controls allow) and the keys known are those of
-// the one list of its fields (ui/model/document_fields.h).
+// the one list of its fields (ui/model/document_fields.h). Version 1 files read too: they kept a
+// pair's weights as "parameters": {"alpha": a} and a palette's as "controls": {"palette":
+// {"weights": [...]}}, read into "weights" (a palette's for three or more takes, else the alpha's).
 #include <array>
 #include <cstddef>
 #include <optional>
@@ -29,7 +32,7 @@
 
 namespace mostyle::ui {
 
-constexpr int kSessionVersion = 1;
+constexpr int kSessionVersion = 2;  // the version written; 1 and 2 are read
 constexpr const char* kSessionExtension = ".mostyle";
 constexpr std::size_t kMaxSessionBytes = std::size_t{16} << 20;  // a larger file is refused unread
 

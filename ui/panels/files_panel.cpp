@@ -16,6 +16,7 @@
 #include "engine/io/numbers.h"
 
 #include "ui/panels/layout.h"
+#include "ui/model/live_style_spec.h"
 #include "ui/model/result_view.h"
 
 namespace mostyle::ui {
@@ -141,6 +142,7 @@ void FilesPanel::draw(EditorState& state) {
   draw_take_fields(takes);
   draw_export_field(state, export_folder, static_cast<int>(takes.size()));
   draw_messages(folders);
+  draw_live(state);
   draw_browser(takes);
   draw_recent(state, takes);
   ImGui::End();
@@ -347,6 +349,107 @@ void FilesPanel::draw_recent(const EditorState& state, const std::vector<std::st
     ImGui::TextUnformatted(fs::path(r).filename().string().c_str());
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Folder: %s", fs::path(r).parent_path().string().c_str());
     ImGui::PopID();
+  }
+}
+
+void FilesPanel::sync_live_fields() {
+  const LiveSettings& l = live_->settings();
+  if (live_fields_filled_ && l.address == live_synced_.address && l.skeleton == live_synced_.skeleton &&
+      l.record_path == live_synced_.record_path)
+    return;
+  live_synced_ = l;
+  live_fields_filled_ = true;
+  copy_to(live_address_, sizeof live_address_, l.address);
+  copy_to(live_skeleton_, sizeof live_skeleton_, l.skeleton);
+  copy_to(live_record_, sizeof live_record_, l.record_path);
+}
+
+void FilesPanel::draw_live(const EditorState& state) {
+  if (live_ == nullptr) return;
+  // Open from the start when the editor connects by itself (--live).
+  if (live_->status().state != LiveState::kOff) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
+  const bool open = ImGui::CollapsingHeader("Live");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Style a motion-capture stream as it comes (Axis Neuron's BVH broadcasting, string format,\n"
+                      "TCP): the first take is the neutral, the others the styles, at the palette's strengths\n"
+                      "(a pair: at alpha)");
+  if (!open) return;
+  sync_live_fields();
+  LiveSettings& settings = live_->settings();
+  const bool active = live_->active();
+  ImGui::PushItemWidth(-92.0f);
+  ImGui::InputText("##live-address", live_address_, sizeof live_address_);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("HOST:PORT of the stream's server (Axis Neuron's BVH port is 7001 by default)");
+  ImGui::SameLine();
+  if (ImGui::Button(active ? "Disconnect" : "Connect")) {
+    live_error_.clear();
+    if (active) {
+      live_->disconnect();
+    } else if (session_.takes() == nullptr) {
+      live_error_ = "Live: load two takes or more first: the first is the neutral, the others the styles.";
+    } else {
+      settings.address = live_address_;
+      settings.skeleton = live_skeleton_;
+      live_synced_ = settings;
+      try {
+        live_->connect(settings, live_style_spec(*session_.takes(), state.document));
+      } catch (const std::exception& e) {
+        live_error_ = e.what();
+      }
+    }
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(active ? "Stop styling the stream (a recording ends complete)"
+                             : "Connect to the stream and style it with the loaded takes");
+  ImGui::InputText("##live-skeleton", live_skeleton_, sizeof live_skeleton_);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("A BVH file with the stream's hierarchy and channels (exported from Axis with the same\n"
+                      "output settings); its frames are ignored, its Frame Time is the stream's rate");
+  ImGui::SameLine();
+  ImGui::TextColored(kDimColor, "skeleton");
+  ImGui::PopItemWidth();
+  draw_live_status();
+  draw_live_recording();
+}
+
+void FilesPanel::draw_live_status() {
+  const LiveStatus& s = live_->status();
+  const bool failed = !live_error_.empty() || s.state == LiveState::kFailed;
+  const ImVec4 color = failed ? kErrorColor : s.state == LiveState::kStreaming ? kOkColor : kDimColor;
+  sentence(color, live_error_.empty() ? live_status_line(s) : live_error_, {});
+  if (!s.last_skip.empty() && ImGui::IsItemHovered()) ImGui::SetTooltip("last skipped: %s", s.last_skip.c_str());
+  if (!s.strength_error.empty()) sentence(kErrorColor, s.strength_error, {});
+}
+
+void FilesPanel::draw_live_recording() {
+  const LiveStatus& s = live_->status();
+  LiveSettings& settings = live_->settings();
+  ImGui::SetNextItemWidth(-122.0f);
+  ImGui::InputText("##live-record", live_record_, sizeof live_record_);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("The BVH file the styled stream is recorded to: it reads whole at every moment");
+  ImGui::SameLine();
+  if (ImGui::Button(s.recording ? "Stop recording" : "Record")) {
+    if (s.recording) {
+      live_->stop_recording();
+    } else {
+      settings.record_path = live_record_;
+      live_synced_.record_path = settings.record_path;
+      live_->start_recording(settings.record_path, settings.record_input);
+    }
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(s.recording ? "End the recording: the file holds every frame so far"
+                                  : "Record the styled stream from the next frame on");
+  ImGui::Checkbox("record the stream as it came too", &settings.record_input);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Beside the styled recording, as NAME.input.bvh");
+  if (s.recording) {
+    ImGui::TextColored(kOkColor, "recording: %lld frames", s.recorded);
+  } else if (!s.record_error.empty()) {
+    sentence(kErrorColor, s.record_error, {});
+  } else if (s.recorded > 0) {
+    ImGui::TextColored(kDimColor, "recorded %lld frames to %s", s.recorded, fs::path(s.record_path).filename().string().c_str());
   }
 }
 

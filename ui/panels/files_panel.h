@@ -16,6 +16,7 @@
 #include "engine/io/scene_animation.h"
 
 #include "ui/model/blend_session.h"
+#include "ui/model/live_source.h"
 #include "ui/panels/export_dialog.h"
 #include "ui/panels/panel.h"
 
@@ -46,6 +47,8 @@ class FilesPanel : public Panel {
   FilesPanel(BlendSession& session, std::string folder);
   void draw(EditorState& state) override;
   ExportDialog& export_dialog() { return export_dialog_; }
+  // The live source the Live section drives (the editor's); none: no Live section.
+  void set_live(LiveSource* live) { live_ = live; }
 
  private:
   // The buttons that put `path` among `takes`: A and B (replace) and + (add) for a pair, + and
@@ -66,6 +69,18 @@ class FilesPanel : public Panel {
   // An FBX or glTF file's row: opens to its animations, each a take row.
   void draw_file_with_takes(const std::string& path, const std::vector<std::string>& takes);
   void draw_recent(const EditorState& state, const std::vector<std::string>& takes);
+  // The Live section: the address and skeleton fields, Connect / Disconnect, the status line,
+  // the recording's field and Record / Stop recording.
+  void draw_live(const EditorState& state);
+  void sync_live_fields();  // the fields to the live settings, when those changed elsewhere
+  void draw_live_status();
+  void draw_live_recording();
+
+  LiveSource* live_ = nullptr;
+  char live_address_[256] = "", live_skeleton_[512] = "", live_record_[512] = "";
+  LiveSettings live_synced_;  // the settings the fields were last filled from
+  bool live_fields_filled_ = false;
+  std::string live_error_;    // why Connect did nothing (no takes), until the next Connect
 
   BlendSession& session_;
   std::string folder_;  // the browser's folder

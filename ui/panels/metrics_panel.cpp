@@ -85,6 +85,7 @@ void MetricsPanel::draw(EditorState& state) {
     ImGui::End();
     return;
   }
+  draw_live_table();
   const Metrics m = gather_metrics(session_, state.document.controls.palette.transfer);
   guess_unit(m.reference);
   const bool pair = m.takes.size() <= 2;
@@ -206,6 +207,30 @@ void MetricsPanel::draw_times_table(const Metrics& m, const FrameTimes& times, b
   row("Frame, CPU", milliseconds(times.frame_ms, "%.2f ms"), "Building one editor frame");
   row("Viewport, GPU", milliseconds(times.viewport_ms, "%.2f ms"), "Drawing the 3D view");
   ImGui::EndTable();
+}
+
+void MetricsPanel::draw_live_table() {
+  if (live_ == nullptr || (live_->status().state == LiveState::kOff && live_->status().styled == 0)) return;
+  const LiveMetrics& m = live_->metrics();
+  ImGui::TextColored(kDimColor, "Live, over the last %.0f s", kLiveMetricsSeconds);
+  if (!begin_table("##live")) return;
+  char text[64];
+  std::snprintf(text, sizeof text, "%.1f", m.frames_per_s);
+  row("Styled frames/s", text, "Frames of the stream styled per second");
+  auto microseconds = [&text](double us) {
+    if (us < 0.0) return std::string("-");
+    std::snprintf(text, sizeof text, "%.0f us", us);
+    return std::string(text);
+  };
+  row("Latency, mean", microseconds(m.latency_mean_us),
+      "From a frame's bytes read from the connection to the frame styled (microseconds)");
+  row("Latency, 99th pct", microseconds(m.latency_p99_us), "99 of 100 frames are styled at least this soon");
+  std::snprintf(text, sizeof text, "%lld", m.skipped);
+  row("Dropped frames", text,
+      "Lines of the stream that were not frames (a wrong number of values, not numbers, too long,\n"
+      "another avatar's): skipped and counted");
+  ImGui::EndTable();
+  ImGui::Separator();
 }
 
 }  // namespace mostyle::ui

@@ -1,11 +1,12 @@
 #pragma once
-// Reconstruction error, bone-length error, foot sliding, stage times and the frame time, in
-// plain words with units: lengths in centimetres when the file's unit can be guessed from the
+// Reconstruction error, bone-length error, foot sliding, stage times and the frame time, and a
+// live stream's rate, latency and skipped frames, in plain words with units: lengths in centimetres when the file's unit can be guessed from the
 // skeleton's height (engine/kinematics/units.h), else as a percentage of that height.
 #include <string>
 #include <vector>
 
 #include "ui/model/blend_session.h"
+#include "ui/model/live_source.h"
 #include "ui/panels/panel.h"
 
 namespace mostyle::ui {
@@ -33,6 +34,9 @@ class MetricsPanel : public Panel {
  public:
   explicit MetricsPanel(BlendSession& session) : session_(session) {}
   void draw(EditorState& state) override;
+  // The live source whose rate, latency and skipped frames are shown first while it runs; none:
+  // not shown.
+  void set_live(const LiveSource* live) { live_ = live; }
 
  private:
   // The steps of draw, in its order.
@@ -44,6 +48,9 @@ class MetricsPanel : public Panel {
   void draw_takes_table(const Metrics& m);                            // fit error and foot sliding per take
   void draw_quality_table(const Metrics& m, const char* reference);   // the result's bones and feet
   void draw_times_table(const Metrics& m, const FrameTimes& times, bool pair);  // each stage's time
+  void draw_live_table();  // the live source's, once it has been connected
+
+  const LiveSource* live_ = nullptr;
 
   BlendSession& session_;
   // The reference's unit, guessed once per loaded reference take.

@@ -165,7 +165,6 @@ void PalettePanel::draw(EditorState& state) {
 void PalettePanel::draw_mix(EditorState& state, const PreparedTakes& p) {
   PaletteControls& c = state.document.controls.palette;
   const int n = p.size();
-  if (static_cast<int>(c.weights.size()) != n) c.weights.assign(static_cast<size_t>(n), 1.0 / n);
   // Keyed over time: the weights at the playhead; an edit keys them there (auto-key).
   const Keyed keyed = keyed_at_playhead(state, n);
   std::vector<double> weights = weights_at_playhead(state, n);
@@ -313,9 +312,9 @@ void PalettePanel::draw_transfer(EditorState& state, const PreparedTakes& p) {
           for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
           std::rotate(order.begin(), order.begin() + i, order.begin() + i + 1);
           std::rotate(files.begin(), files.begin() + i, files.begin() + i + 1);
-          c = reorder_takes(c, order);
+          state.document = reorder_takes(state.document, order);
           state.document.controls.keys = reorder_keys(state.document.controls.keys, order);
-          session_.load_files(files);
+          session_.load_files(files, WeightsOf::kNewTakes);
         }
       }
     ImGui::EndPopup();

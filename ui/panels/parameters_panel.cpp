@@ -25,7 +25,7 @@ void draw_alpha(EditorState& state) {
     const KeyedTint tint(keyed);
     moved = range_slider("alpha", alpha, kAlphaRange);
   }
-  if (moved) set_weights_at_playhead(state, 2, {1.0 - alpha, alpha});  // blended this frame
+  if (moved) set_weights_at_playhead(state, 2, pair_weights(alpha));  // blended this frame
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: style A, 1: style B. Applied immediately.%s", keyed_hint(keyed));
 }
 
@@ -157,7 +157,7 @@ void draw_component_alphas(DocumentControls& c, const Decomposed& d) {
 }
 
 // Shared mode: a different alpha for each body part or component.
-void draw_body_parts(DocumentControls& c, const BlendParameters& p, const Decomposed* d) {
+void draw_body_parts(DocumentControls& c, double alpha, const Decomposed* d) {
   const bool parts = ImGui::CollapsingHeader("Body parts");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("A different alpha for the legs, the arms, the spine, or each component");
   if (!parts) return;
@@ -165,8 +165,8 @@ void draw_body_parts(DocumentControls& c, const BlendParameters& p, const Decomp
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Take each body part's style from A or B on its own: legs from one, arms from the other.");
   if (d == nullptr || d->params.mode != BlendMode::kShared) return;
-  c.component_alpha.resize(static_cast<size_t>(d->components()), p.alpha);
-  if (ImGui::SmallButton("all = alpha")) std::fill(c.component_alpha.begin(), c.component_alpha.end(), p.alpha);
+  c.component_alpha.resize(static_cast<size_t>(d->components()), alpha);
+  if (ImGui::SmallButton("all = alpha")) std::fill(c.component_alpha.begin(), c.component_alpha.end(), alpha);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Set every body part and component back to the main alpha");
   draw_part_alphas(c, *d);
   draw_component_alphas(c, *d);
@@ -221,7 +221,7 @@ void ParametersPanel::draw(EditorState& state) {
   draw_mode_and_alignment(c, palette);
   draw_options(c, palette);
   draw_status(s, d, palette);
-  if (c.mode == BlendMode::kShared && !palette) draw_body_parts(c, p, d);
+  if (c.mode == BlendMode::kShared && !palette) draw_body_parts(c, pair_alpha(state.document), d);
   else if (!palette) draw_basic_motions(c, p);
 
   ImGui::PopItemWidth();

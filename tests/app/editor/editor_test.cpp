@@ -17,6 +17,8 @@
 #include <thread>
 #include <vector>
 
+#include <poll.h>
+#include <sys/socket.h>
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
@@ -26,6 +28,9 @@
 #include "tests/app/editor/offscreen_editor.h"
 #include "tests/render/osmesa_context.h"
 
+#include "app/live/tcp.h"
+#include "engine/io/axis_stream.h"
+#include "engine/io/bvh_io.h"
 #include "render/png_io.h"
 #include "tests/test_data.h"
 #include "ui/panels/export_dialog.h"
@@ -83,7 +88,7 @@ TEST_CASE("editor options: files and flags, both spellings") {
                          "b.bvh", "--screenshot", "out.png"});
   REQUIRE(r.status == ParseStatus::kRun);
   CHECK(r.options.files == std::vector<std::string>{"a.bvh", "b.bvh"});
-  CHECK(r.options.initial.parameters.alpha == 0.25);
+  CHECK(r.options.initial.weights == std::vector<double>{0.75, 0.25});  // --alpha: a pair's weights
   CHECK(r.options.initial.parameters.components == 7);
   CHECK(r.options.initial.parameters.sparsity == 0.5);
   CHECK(r.options.initial.frame == 12);
@@ -118,7 +123,7 @@ TEST_CASE("editor options: defaults are the paper's, and --help") {
   ParseResult r = parse({});
   REQUIRE(r.status == ParseStatus::kRun);
   CHECK(r.options.files.empty());
-  CHECK(r.options.initial.parameters.alpha == 0.5);
+  CHECK(r.options.initial.weights.empty());  // equal weights: a pair's alpha 0.5
   CHECK(r.options.initial.parameters.components == 10);
   CHECK(r.options.initial.parameters.sparsity == 0.1);
   CHECK(parse({"--help"}).status == ParseStatus::kHelp);
@@ -236,7 +241,7 @@ TEST_CASE("the editor keeps rendering offscreen for hundreds of frames while dec
       state.document.parameters.sparsity = frame % 120 == 30 ? 0.2 : 0.3;
       ++decompositions_requested;
     }
-    state.document.parameters.alpha = 0.5 + 0.5 * std::sin(frame * 0.1);  // blended in this very frame
+    set_pair_alpha(state.document, 0.5 + 0.5 * std::sin(frame * 0.1));  // blended in this very frame
     if (frame % 90 == 45) state.document.overlay = !state.document.overlay;
     editor.frame(FrameInput{size, 1.0f / 60.0f});
     // The frame went on while the decomposition it asked for was not there yet.
@@ -513,7 +518,7 @@ TEST_CASE("sessions and undo: Ctrl+Z / Ctrl+Y undo and redo a load, a saved sess
     CHECK(editor.session().snapshot().paths[0] == joy);
 
     // Saved: the takes, every parameter, the camera and the playback. ".mostyle" is added.
-    editor.state().document.parameters.alpha = 0.8;
+    set_pair_alpha(editor.state().document, 0.8);
     editor.state().document.overlay = true;
     frame(editor);
     CHECK_FALSE(editor.save_session((dir / "day.bvh").string()));  // never over a take
@@ -534,7 +539,7 @@ TEST_CASE("sessions and undo: Ctrl+Z / Ctrl+Y undo and redo a load, a saved sess
     editor.shutdown_graphics();
   }
   REQUIRE(saved.camera.has_value());
-  CHECK(saved.document.parameters.alpha == 0.8);
+  CHECK(pair_alpha(saved.document) == 0.8);
   CHECK(saved.document.overlay);
   CHECK(saved.document.files == std::vector<std::string>{joy, marching});
 
@@ -545,7 +550,7 @@ TEST_CASE("sessions and undo: Ctrl+Z / Ctrl+Y undo and redo a load, a saved sess
   Editor reopened(again);
   CHECK(reopened.session_path() == day);
   CHECK_FALSE(reopened.session_message_is_error());
-  CHECK(reopened.state().document.parameters.alpha == 0.8);
+  CHECK(pair_alpha(reopened.state().document) == 0.8);
   CHECK(reopened.state().document.parameters.components == 4);
   CHECK(reopened.state().document.overlay);
   CHECK(reopened.recent_files().sessions.front() == day);
@@ -568,24 +573,24 @@ TEST_CASE("sessions and undo: Ctrl+Z / Ctrl+Y undo and redo a load, a saved sess
   CHECK_FALSE(reopened.open_session(bad));
   CHECK_THAT(reopened.session_message(), Catch::StartsWith(bad + ":3: "));
   CHECK(reopened.session_message().find('\n') == std::string::npos);
-  CHECK(reopened.state().document.parameters.alpha == 0.8);
+  CHECK(pair_alpha(reopened.state().document) == 0.8);
   CHECK(reopened.session_path() == day);
 
   // A session whose take moved away: it opens, names the file, restores the rest and keeps the
   // takes loaded; Ctrl+Z goes back to before it was opened.
   ui::SessionFile moved = saved;
   moved.document.files = {(dir / "gone.bvh").string(), marching};
-  moved.document.parameters.alpha = 0.1;
+  set_pair_alpha(moved.document, 0.1);
   ui::write_session_file((dir / "moved.mostyle").string(), moved);
   CHECK(reopened.open_session((dir / "moved.mostyle").string()));
   CHECK(reopened.session_message_is_error());
   CHECK_THAT(reopened.session_message(), Catch::Contains("gone.bvh"));
-  CHECK(reopened.state().document.parameters.alpha == 0.1);
+  CHECK(pair_alpha(reopened.state().document) == 0.1);
   reopened.wait_for_engine();
   frame(reopened);
   CHECK(reopened.session().snapshot().paths[0] == joy);
   press(reopened, kKeyZ, true, false);
-  CHECK(reopened.state().document.parameters.alpha == 0.8);
+  CHECK(pair_alpha(reopened.state().document) == 0.8);
   reopened.shutdown_graphics();
   fs::remove_all(dir);
 }
@@ -696,8 +701,8 @@ TEST_CASE("a state set up by flags, saved with --save-session, reopens to the sa
     INFO(err);
     REQUIRE(fs::exists(session));
     const mostyle::ui::SessionFile saved = mostyle::ui::read_session_file(session);
-    if (c.name == "palette") CHECK(saved.document.controls.palette.weights[0] == Approx(1.3));
-    else CHECK(saved.document.parameters.alpha == Approx(0.7));
+    if (c.name == "palette") CHECK(saved.document.weights[0] == Approx(1.3));
+    else CHECK(pair_alpha(saved.document) == Approx(0.7));
     REQUIRE(run(program + " " + session + " --window-size 640x360 --screenshot " + again, &err) == 0);
     const mostyle::render::Image a = mostyle::render::read_png(first), b = mostyle::render::read_png(again);
     REQUIRE(a.rgba.size() == b.rgba.size());
@@ -758,7 +763,7 @@ TEST_CASE("paused, a change that moves the result moves the view with it; at res
   editor.init_graphics();
   mostyle::ui::EditorState& s = editor.state();
   const mostyle::ui::Take& blend = s.takes[mostyle::ui::result_index(2)];
-  s.document.parameters.alpha = 0.0;
+  set_pair_alpha(s.document, 0.0);
   for (int i = 0; i < 3; ++i) e.frame();
   s.playback.time_s = (blend.frames() - 0.5) / blend.rate();  // the last frame: far from the start
   for (int i = 0; i < 3; ++i) e.frame();
@@ -777,7 +782,7 @@ TEST_CASE("paused, a change that moves the result moves the view with it; at res
   for (int i = 0; i < 3; ++i) e.frame();  // at rest: nothing moves
   CHECK((target() - before - offset).norm() < 1e-6 * blend.size);
   // All of B: the result ends elsewhere, and the view goes with it.
-  s.document.parameters.alpha = 1.0;
+  set_pair_alpha(s.document, 1.0);
   for (int i = 0; i < 3; ++i) e.frame();
   const Eigen::Vector2d after = hips();
   CAPTURE(blend.size, (after - before).norm());
@@ -794,7 +799,7 @@ void edit_alpha(mostyle::test::OffscreenEditor& e, double alpha) {
   e.editor.init_graphics();
   for (int i = 0; i < 3; ++i) e.frame();
   if (alpha < 0.0) return;
-  e.editor.state().document.parameters.alpha = alpha;
+  set_pair_alpha(e.editor.state().document, alpha);
   e.editor.state().command_edits++;
   for (int i = 0; i < 3; ++i) e.frame();
 }
@@ -837,14 +842,14 @@ TEST_CASE("closing with unsaved edits asks Save / Discard / Cancel; Save writes 
     edit_alpha(e, -1.0);
     const std::string path = scratch.path("again.mostyle");
     REQUIRE(ed.save_session(path));
-    ed.state().document.parameters.alpha = 0.1;
+    set_pair_alpha(ed.state().document, 0.1);
     ed.state().command_edits++;
     for (int i = 0; i < 3; ++i) e.frame();
     ed.request_close();
     REQUIRE(ed.asking_to_close());
     ed.answer_close(mostyle::ui::CloseRequest::Answer::kSave);
     CHECK(ed.may_close());
-    CHECK(mostyle::ui::read_session_file(path).document.parameters.alpha == 0.1);
+    CHECK(mostyle::ui::pair_alpha(mostyle::ui::read_session_file(path).document) == 0.1);
     ed.shutdown_graphics();
   }
   {  // Discard closes without writing.
@@ -856,4 +861,117 @@ TEST_CASE("closing with unsaved edits asks Save / Discard / Cancel; Save writes 
     CHECK(e.editor.may_close());
     e.editor.shutdown_graphics();
   }
+}
+
+namespace {
+
+// A stand-in for Axis Neuron in this process: serves `clip`'s frames as BVH broadcasting lines
+// to the first client that connects, all at once, then closes (app/live/tcp.h's calls).
+struct LoopbackSource {
+  int listener = -1, port = 0;
+  std::thread thread;
+
+  explicit LoopbackSource(const mostyle::Clip& clip) {
+    listener = mostyle::live::listen_on(0, &port);
+    std::string lines;
+    for (int f = 0; f < clip.frames(); ++f)
+      mostyle::append_axis_line(&lines, 0, "Avatar00", nullptr, 0, clip.motion.row(f).data(), clip.skeleton.channel_count);
+    thread = std::thread([this, lines] {
+      pollfd p{listener, POLLIN, 0};
+      if (::poll(&p, 1, 120000) != 1) return;
+      const int client = ::accept4(listener, nullptr, nullptr, SOCK_CLOEXEC);
+      if (client < 0) return;
+      for (size_t sent = 0; sent < lines.size();) {
+        const ssize_t n = ::send(client, lines.data() + sent, lines.size() - sent, MSG_NOSIGNAL);
+        if (n <= 0) break;
+        sent += static_cast<size_t>(n);
+      }
+      ::close(client);
+    });
+  }
+  ~LoopbackSource() {
+    thread.join();
+    ::close(listener);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("editor options: --live and --live-skeleton go together") {
+  const ParseResult both = parse({"--live", "localhost:7001", "--live-skeleton", "axis.bvh"});
+  REQUIRE(both.status == ParseStatus::kRun);
+  CHECK(both.options.live_address == "localhost:7001");
+  CHECK(both.options.live_skeleton == "axis.bvh");
+  const ParseResult alone = parse({"--live", "localhost:7001"});
+  CHECK(alone.status == ParseStatus::kUsageError);
+  CHECK_THAT(alone.error, Catch::Contains("--live-skeleton"));
+}
+
+TEST_CASE("editor: the Live source connects over loopback and shows the stream and the styled stream") {
+  namespace ui = mostyle::ui;
+  const std::string stream_file = mostyle::test::asset("motions/cmu142_walk_clumsy.bvh");
+  const mostyle::Clip stream = mostyle::read_bvh_file(stream_file);
+  LoopbackSource source(stream);
+  mostyle::test::OffscreenEditor e({960, 540});
+  REQUIRE(e.gl.ok());
+  Editor& editor = e.editor;
+  editor.wait_for_engine();
+  editor.init_graphics();
+  REQUIRE(editor.state().takes.size() == 3);  // the bundled pair and its blend
+  const std::string blend_label = editor.state().takes[2].label;
+
+  // What Connect does: the address and skeleton as typed, the loaded takes as neutral and style.
+  editor.live().settings().address = "localhost:" + std::to_string(source.port);
+  editor.live().settings().skeleton = stream_file;
+  REQUIRE(editor.connect_live());
+  REQUIRE(editor.live().wait_until([](const ui::LiveStatus& s) { return s.state == ui::LiveState::kClosed ||
+                                                                        s.state == ui::LiveState::kFailed; },
+                                   std::chrono::seconds(120)));
+  INFO(editor.live().status().error);
+  CHECK(editor.live().status().state == ui::LiveState::kClosed);
+  CHECK(editor.live().status().styled == stream.frames());
+  CHECK(editor.live().status().skipped == 0);
+  CHECK(editor.live().status().strengths == std::vector<double>{0.5});  // the pair's alpha
+  e.frame();
+  e.frame();
+
+  // The stream and the styled stream in place of the pair, the last window of the stream.
+  CHECK(editor.live_shown());
+  const auto& takes = editor.state().takes;
+  REQUIRE(takes.size() == 2);
+  CHECK(takes[0].label.find("stream") != std::string::npos);
+  CHECK(takes[1].label == "styled");
+  CHECK(takes[0].frames() == std::min(stream.frames(), static_cast<int>(ui::kLiveWindowSeconds * stream.fps())));
+  CHECK(takes[1].frames() == takes[0].frames());
+  CHECK(ui::live_status_line(editor.live().status()).rfind("source closed", 0) == 0);
+
+  // Disconnect: the pair and its blend come back as they were.
+  editor.live().disconnect();
+  e.frame();
+  CHECK_FALSE(editor.live_shown());
+  REQUIRE(editor.state().takes.size() == 3);
+  CHECK(editor.state().takes[2].label == blend_label);
+  editor.shutdown_graphics();
+}
+
+TEST_CASE("editor: a Live address nobody serves, or that is not one, is said in one sentence") {
+  namespace ui = mostyle::ui;
+  int port = 0;
+  ::close(mostyle::live::listen_on(0, &port));  // a port just freed: nothing listens there
+  Editor editor(mostyle::test::paused_small_pair());
+  editor.wait_for_engine();
+  editor.live().settings().address = "localhost:" + std::to_string(port);
+  editor.live().settings().skeleton = mostyle::test::asset("motions/cmu142_walk_clumsy.bvh");
+  REQUIRE(editor.connect_live());
+  REQUIRE(editor.live().wait_until([](const ui::LiveStatus& s) { return s.state == ui::LiveState::kFailed; },
+                                   std::chrono::seconds(120)));
+  CHECK_THAT(editor.live().status().error, Catch::StartsWith("cannot connect to localhost:" + std::to_string(port)));
+  editor.update_engine();
+  CHECK_FALSE(editor.live_shown());
+  CHECK(editor.state().takes.size() == 3);
+
+  editor.live().settings().address = "localhost";
+  REQUIRE(editor.connect_live());
+  CHECK(editor.live().status().state == ui::LiveState::kFailed);
+  CHECK_THAT(ui::live_status_line(editor.live().status()), Catch::StartsWith("Live address: expected HOST:PORT"));
 }

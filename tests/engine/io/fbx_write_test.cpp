@@ -20,6 +20,7 @@
 namespace fs = std::filesystem;
 using namespace mostyle;
 using Catch::Matchers::Contains;
+using Catch::Matchers::Equals;
 
 namespace {
 
@@ -200,7 +201,13 @@ TEST_CASE("FBX write: what cannot be written is one sentence naming the clip", "
   CHECK_THROWS_WITH(format_fbx(still, "x"), Contains("walk.bvh: has no frames"));
   Clip named = clip;
   named.skeleton.joints[1].name = std::string("a\0b", 3);
-  CHECK_THROWS_WITH(format_fbx(named, "x"), Contains("walk.bvh: joint name"));
+  CHECK_THROWS_WITH(format_fbx(named, "x"), Contains("walk.bvh: joint name 'a\\x00b' holds a NUL byte"));
+  // Two joints of one name: a reader would give both names' curves to one of them.
+  Clip twice = clip;
+  twice.skeleton.joints[2].name = twice.skeleton.joints[1].name;
+  CHECK_THROWS_WITH(format_fbx(twice, "x"),
+                    Equals("walk.bvh: two joints are named '" + clip.skeleton.joints[1].name +
+                           "', and FBX readers tell joints apart by name; rename one to write FBX"));
   FbxWriteOptions old;
   old.version = 6100;
   CHECK_THROWS_WITH(format_fbx(clip, "x", old), Contains("walk.bvh: FBX version 6100 is not written"));

@@ -264,6 +264,17 @@ TEST_CASE("glTF: every animation of a file reads on its one skeleton, the skin's
   }
 }
 
+TEST_CASE("glTF write: a joint name that is not UTF-8 is refused in one whole sentence", "[gltf][write][errors]") {
+  Clip clip = read_bvh_file(test::asset("motions/cmu142_walk_clumsy.bvh"));
+  clip.source = "walk.bvh";
+  // A NUL and a byte no UTF-8 text holds: shown as \x00 and \xe8, so the message is not cut at
+  // the NUL and stays one line of text.
+  clip.skeleton.joints[3].name = std::string("Foot\0\xe8\n", 7);
+  const std::string expected = "walk.bvh: joint name 'Foot\\x00\\xe8\\x0a' is not UTF-8 text, which glTF's names "
+                               "must be; rename it to write glTF";
+  CHECK_THROWS_WITH(format_glb(clip, "walk"), expected);
+}
+
 TEST_CASE("glTF: bad files are one sentence naming the file", "[gltf][errors]") {
   TempDir tmp;
   const Clip bvh = read_bvh_file(test::asset("motions/cmu142_walk_clumsy.bvh"));

@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstring>
 #include <random>
+#include <vector>
 
 using namespace mostyle;
 
@@ -185,4 +187,32 @@ TEST_CASE("sines and cosines of degrees: to the last digits, exact at quarter tu
   sin_cos_degrees(1e300, &s, &c);  // beyond exact reduction: as the library computes it
   CHECK(s == std::sin(1e300 * (M_PI / 180.0)));
   CHECK(std::abs(axis_rotation(2, 30.0)(1, 0) - 0.5) < 1e-16);
+}
+
+TEST_CASE("sines and cosines of many angles at once: the same values bit for bit as one at a time", "[euler]") {
+  // Every kind of angle sin_cos_degrees meets, in groups of four and not: quarter turns of both
+  // signs (and -0, which BVH files write as -0.000000), halves between quarters, huge angles and
+  // NaN (one at a time inside a group), and ordinary ones.
+  std::vector<double> degrees = {0.0, -0.0, 45.0, -45.0, 90.0, -90.0, 135.0, -225.0, 180.0, -180.0, 270.0,
+                                 -270.0, 360.0, -360.0, 1e12, -1e12, std::nan(""), INFINITY, -INFINITY, 1e9,
+                                 -1e9, 44.99999999, -135.0000001, 89.5, -0.5, 1099511627776.0, -1099511627777.0};
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> any(-1000.0, 1000.0);
+  for (int k = 0; k < 4001; ++k) degrees.push_back(any(random));
+  for (size_t n : {degrees.size(), size_t{0}, size_t{1}, size_t{3}, size_t{5}}) {
+    std::vector<double> s(n), c(n);
+    sin_cos_degrees_n(degrees.data(), n, s.data(), c.data());
+    for (size_t k = 0; k < n; ++k) {
+      double one_s, one_c;
+      sin_cos_degrees(degrees[k], &one_s, &one_c);
+      INFO("angle " << degrees[k]);
+      if (std::isnan(one_s)) {
+        CHECK(std::isnan(s[k]));
+        CHECK(std::isnan(c[k]));
+        continue;
+      }
+      CHECK(std::memcmp(&s[k], &one_s, sizeof(double)) == 0);  // -0 and +0 told apart
+      CHECK(std::memcmp(&c[k], &one_c, sizeof(double)) == 0);
+    }
+  }
 }

@@ -30,7 +30,7 @@ TEST_CASE("engine link: each change does what its field makes stale, and nothing
 
   SECTION("a mix field: mixed again on this thread, the worker left alone") {
     const Eigen::MatrixXd before = s.session.result()->motion.world;
-    s.state.document.parameters.alpha = 0.9;
+    set_pair_alpha(s.state.document, 0.9);
     s.session.sync(s.state);
     CHECK_FALSE(worker_asked(s.session));
     const Eigen::MatrixXd& after = s.session.result()->motion.world;  // the timing too: maybe another length
@@ -84,10 +84,10 @@ TEST_CASE("engine link: a pair's keys reach the mix, and where the engine refuse
   REQUIRE(s.session.result() != nullptr);
   Document& d = s.state.document;
   // Alpha 1 without keys, then alpha 0 with one key of alpha 1: the keys are what is mixed.
-  d.parameters.alpha = 1.0;
+  set_pair_alpha(d, 1.0);
   s.session.sync(s.state);
   const Eigen::MatrixXd at_b = s.session.result()->motion.world;
-  d.parameters.alpha = 0.0;
+  set_pair_alpha(d, 0.0);
   s.session.sync(s.state);
   REQUIRE_FALSE(s.session.result()->motion.world.isApprox(at_b));
   d.controls.keys = {WeightKey{1.0, {0.0, 1.0}}};

@@ -200,7 +200,7 @@ TEST_CASE("cycle provenance: a pair's blend in the editor, each output cycle fro
   check_real(*p, s.session.result()->sources, spans);
   CHECK(spans.front().takes[1].take == "B");
   // A new alpha: a new blend, its spans made again (the timing may change its length).
-  s.state.document.parameters.alpha = 0.9;
+  set_pair_alpha(s.state.document, 0.9);
   s.session.sync(s.state);
   CHECK(s.state.cycle_provenance.back().end == s.session.result()->sources.rows());
   check_real(*p, s.session.result()->sources, s.state.cycle_provenance);

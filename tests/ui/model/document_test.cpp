@@ -10,31 +10,47 @@ using namespace mostyle::ui;
 
 TEST_CASE("reorder_takes: each take keeps its weight, per-part weights and strength when the content changes") {
   // Takes: normal (content), tired, proud, old. Making "proud" (2) the content moves it first.
-  PaletteControls c;
-  c.weights = {0.63, 0.08, 0.2, 0.09};
+  Document d;
+  d.files = {"normal.bvh", "tired.bvh", "proud.bvh", "old.bvh"};
+  d.weights = {0.63, 0.08, 0.2, 0.09};
+  PaletteControls& c = d.controls.palette;
   c.part_weights = {{1, 0, 0, 0}, {}, {0, 0, 0.5, 0.5}};
   c.strengths = {0.0, 1.5, -1.0, 0.7};
   c.neutral = 3;  // old
   c.transfer = true;
   const std::vector<int> order = {2, 0, 1, 3};  // proud, normal, tired, old
-  const PaletteControls r = reorder_takes(c, order);
+  const Document r = reorder_takes(d, order);
   CHECK(r.weights == std::vector<double>{0.2, 0.63, 0.08, 0.09});
-  CHECK(r.part_weights[0] == std::vector<double>{0, 1, 0, 0});
-  CHECK(r.part_weights[1].empty());  // "the weights": nothing to reorder
-  CHECK(r.part_weights[2] == std::vector<double>{0.5, 0, 0, 0.5});
-  CHECK(r.strengths == std::vector<double>{-1.0, 0.0, 1.5, 0.7});
-  CHECK(r.neutral == 3);
-  CHECK(r.transfer);
-  // And back: the inverse order gives the controls we started from.
+  CHECK(r.files == d.files);  // loaded again in the new order: the engine link sets them
+  const PaletteControls& rc = r.controls.palette;
+  CHECK(rc.part_weights[0] == std::vector<double>{0, 1, 0, 0});
+  CHECK(rc.part_weights[1].empty());  // "the weights": nothing to reorder
+  CHECK(rc.part_weights[2] == std::vector<double>{0.5, 0, 0, 0.5});
+  CHECK(rc.strengths == std::vector<double>{-1.0, 0.0, 1.5, 0.7});
+  CHECK(rc.neutral == 3);
+  CHECK(rc.transfer);
+  // And back: the inverse order gives the document we started from.
   std::vector<int> inverse(order.size());
   for (size_t k = 0; k < order.size(); ++k) inverse[static_cast<size_t>(order[k])] = static_cast<int>(k);
-  CHECK(reorder_takes(r, inverse) == c);
+  CHECK(reorder_takes(r, inverse) == d);
   // The neutral moves with its take; values not sized for these takes are left alone.
   c.neutral = 1;
-  c.weights = {0.5, 0.5};
-  const PaletteControls moved = reorder_takes(c, {1, 2, 0, 3});
-  CHECK(moved.neutral == 0);
+  d.weights = {0.5, 0.5};
+  const Document moved = reorder_takes(d, {1, 2, 0, 3});
+  CHECK(moved.controls.palette.neutral == 0);
   CHECK(moved.weights == std::vector<double>{0.5, 0.5});
+}
+
+TEST_CASE("pair_alpha: a pair's alpha is its second weight, 0.5 while the weights are not a pair's") {
+  Document d;
+  CHECK(pair_alpha(d) == 0.5);  // nothing loaded: the default
+  set_pair_alpha(d, 0.3);
+  CHECK(d.weights == std::vector<double>{0.7, 0.3});
+  CHECK(pair_alpha(d) == 0.3);
+  set_pair_alpha(d, 0.0);
+  CHECK(d.weights == std::vector<double>{1.0, 0.0});  // exactly A
+  d.weights = {0.2, 0.3, 0.5};
+  CHECK(pair_alpha(d) == 0.5);  // a palette's weights: no alpha
 }
 
 TEST_CASE("document fields: each one, changed alone, differs and makes stale what it should", "[document]") {
@@ -45,7 +61,6 @@ TEST_CASE("document fields: each one, changed alone, differs and makes stale wha
   };
   // By hand, from what each control does in the editor.
   const Change changes[] = {
-      {"alpha", [](Document& d) { d.parameters.alpha = 0.7; }, Stale::kMix},
       {"k", [](Document& d) { d.parameters.components = 4; }, Stale::kDecomposition},
       {"sparsity", [](Document& d) { d.parameters.sparsity = 0.3; }, Stale::kDecomposition},
       {"mode", [](Document& d) { d.controls.mode = BlendMode::kPaper; }, Stale::kDecomposition},
@@ -63,7 +78,7 @@ TEST_CASE("document fields: each one, changed alone, differs and makes stale wha
       {"keys", [](Document& d) { d.controls.keys = {WeightKey{1.0, {0.5, 0.5}}}; }, Stale::kMix},
       {"picked component", [](Document& d) { d.controls.selected_component = 3; }, Stale::kView},
       {"DTW coordinate", [](Document& d) { d.controls.dtw_coordinate = 0; }, Stale::kView},
-      {"weights", [](Document& d) { d.controls.palette.weights = {0.2, 0.8}; }, Stale::kMix},
+      {"weights", [](Document& d) { set_pair_alpha(d, 0.7); }, Stale::kMix},
       {"per part", [](Document& d) { d.controls.palette.per_part = true; }, Stale::kMix},
       {"part weights", [](Document& d) { d.controls.palette.part_weights = {{0.5, 0.5}}; }, Stale::kMix},
       {"transfer", [](Document& d) { d.controls.palette.transfer = true; }, Stale::kMix},
@@ -103,7 +118,7 @@ TEST_CASE("document fields: each one, changed alone, differs and makes stale wha
   CHECK(differs_at(keyed, reweighted, Stale::kMix));
   // Several changes: the most they make stale.
   Document several = base;
-  several.parameters.alpha = 0.2;
+  set_pair_alpha(several, 0.2);
   several.overlay = true;
   CHECK(stale_after(base, several) == Stale::kMix);
   several.controls.align.on = AlignOn::kBody;

@@ -48,7 +48,7 @@ TEST_CASE("undo and redo: alpha in a few steps and a drag, back to the start and
     s.session.sync(s.state, held || ImGui::IsAnyItemActive());
     imgui.end_frame();
   };
-  const double start = s.state.document.parameters.alpha;
+  const double start = pair_alpha(s.state.document);
   frame(false);  // the starting state
   for (int i = 0; i < 5; ++i) frame(false);
   CHECK(edits.history().undo_steps() == 0);  // frames with no input make no step
@@ -58,15 +58,15 @@ TEST_CASE("undo and redo: alpha in a few steps and a drag, back to the start and
   const std::vector<double> steps = {0.2, 0.4, 0.6};
   for (double a : steps) {
     frame(true);
-    s.state.document.parameters.alpha = a;
+    set_pair_alpha(s.state.document, a);
     frame(false);
   }
   // A drag through many values, let go at 0.9: one step.
   for (double a = 0.61; a < 0.9; a += 0.05) {
-    s.state.document.parameters.alpha = a;
+    set_pair_alpha(s.state.document, a);
     frame(true);
   }
-  s.state.document.parameters.alpha = 0.9;
+  set_pair_alpha(s.state.document, 0.9);
   frame(false);
   CHECK(edits.history().undo_steps() == 4);
   const Eigen::MatrixXd blend_at_end = s.state.takes[result_index(2)].positions;
@@ -75,7 +75,7 @@ TEST_CASE("undo and redo: alpha in a few steps and a drag, back to the start and
   for (double expected : {0.6, 0.4, 0.2, start}) {
     REQUIRE(edits.undo(s.state, s.session));
     frame(false);
-    CHECK(s.state.document.parameters.alpha == expected);
+    CHECK(pair_alpha(s.state.document) == expected);
   }
   CHECK_FALSE(edits.undo(s.state, s.session));
   CHECK_FALSE(same_poses(s.state.takes[result_index(2)].positions, blend_at_end));
@@ -83,7 +83,7 @@ TEST_CASE("undo and redo: alpha in a few steps and a drag, back to the start and
   for (double expected : {0.2, 0.4, 0.6, 0.9}) {
     REQUIRE(edits.redo(s.state, s.session));
     frame(false);
-    CHECK(s.state.document.parameters.alpha == expected);
+    CHECK(pair_alpha(s.state.document) == expected);
   }
   CHECK_FALSE(edits.redo(s.state, s.session));
   CHECK(same_poses(s.state.takes[result_index(2)].positions, blend_at_end));
@@ -97,7 +97,7 @@ TEST_CASE("undo and redo: alpha in a few steps and a drag, back to the start and
   CHECK_FALSE(edits.can_redo());
   REQUIRE(edits.undo(s.state, s.session));
   CHECK(s.state.document.controls.foot_lock);
-  CHECK(s.state.document.parameters.alpha == 0.4);
+  CHECK(pair_alpha(s.state.document) == 0.4);
 }
 
 TEST_CASE("undo and redo a load: the takes come back through the worker, and no extra step") {
@@ -170,14 +170,14 @@ TEST_CASE("an opened session whose take is missing keeps the takes, restores the
   LoadedSession s;
   const std::vector<std::string> before = capture_document(s.state).files;
   Document d = capture_document(s.state);
-  d.parameters.alpha = 0.85;
+  set_pair_alpha(d, 0.85);
   d.controls.timing_a = true;
   d.overlay = true;
   d.files = {test::asset("motions/cmu142_walk_happy.bvh"), "/nonexistent/folder/walk_gone.bvh"};
   const std::string message = apply_session_document(d, "/sessions/day.mostyle", s.state, s.session);
   CHECK_THAT(message, Catch::StartsWith("/sessions/day.mostyle: ") && Catch::Contains("/nonexistent/folder/walk_gone.bvh"));
   CHECK_FALSE(load_pending(s.session));
-  CHECK(s.state.document.parameters.alpha == 0.85);
+  CHECK(pair_alpha(s.state.document) == 0.85);
   CHECK(s.state.document.controls.timing_a);
   CHECK(s.state.document.overlay);
   s.session.wait_idle(s.state);
@@ -198,9 +198,9 @@ TEST_CASE("undo and redo keys: Set key is a step of its own, a mark's drag one m
   edits.record(state, s.session, false);  // the starting state
   const Eigen::MatrixXd unkeyed = state.takes[result_index(2)].positions;
   // Set key (K: a key pressed, no item held) with alpha 1 in the key: one step, the blend keyed.
-  state.document.parameters.alpha = 1.0;
+  set_pair_alpha(state.document, 1.0);
   key_at_playhead(state, 2);
-  state.document.parameters.alpha = 0.5;  // the constant alpha no longer counts
+  set_pair_alpha(state.document, 0.5);  // the constant alpha no longer counts
   edits.record(state, s.session, false);
   s.session.sync(state);
   CHECK(edits.history().undo_steps() == 1);
@@ -238,7 +238,7 @@ TEST_CASE("unsaved edits: none as loaded, one after a change, none once saved or
   EditHistory edits;
   edits.record(s.state, s.session, false);
   CHECK_FALSE(edits.unsaved());
-  s.state.document.parameters.alpha = 0.8;
+  set_pair_alpha(s.state.document, 0.8);
   edits.record(s.state, s.session, true);  // dragged
   edits.record(s.state, s.session, false);  // let go: a step
   CHECK(edits.unsaved());
@@ -251,7 +251,7 @@ TEST_CASE("unsaved edits: none as loaded, one after a change, none once saved or
   CHECK(edits.unsaved());
   edits.mark_saved(capture_document(s.state));
   CHECK_FALSE(edits.unsaved());
-  s.state.document.parameters.alpha = 0.2;
+  set_pair_alpha(s.state.document, 0.2);
   edits.record(s.state, s.session, true);
   edits.record(s.state, s.session, false);
   CHECK(edits.unsaved());

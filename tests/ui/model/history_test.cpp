@@ -16,7 +16,7 @@ namespace {
 
 Document with_alpha(double alpha) {
   Document d;
-  d.parameters.alpha = alpha;
+  set_pair_alpha(d, alpha);
   d.files = {"/takes/a.bvh", "/takes/b.bvh"};
   return d;
 }
@@ -38,7 +38,7 @@ TEST_CASE("history: the first commit is the start, each different one a step") {
   h.commit(with_alpha(0.6));
   h.commit(with_alpha(0.7));
   CHECK(h.undo_steps() == 2);
-  CHECK(h.current()->parameters.alpha == 0.7);
+  CHECK(pair_alpha(*h.current()) == 0.7);
 }
 
 TEST_CASE("history: undo goes back step by step, redo forward again, to each end") {
@@ -46,17 +46,17 @@ TEST_CASE("history: undo goes back step by step, redo forward again, to each end
   for (double a : {0.1, 0.2, 0.3, 0.4}) h.commit(with_alpha(a));
   auto d = h.undo();
   REQUIRE(d.has_value());
-  CHECK(d->parameters.alpha == 0.3);
-  CHECK(h.undo()->parameters.alpha == 0.2);
-  CHECK(h.undo()->parameters.alpha == 0.1);
+  CHECK(pair_alpha(*d) == 0.3);
+  CHECK(pair_alpha(*h.undo()) == 0.2);
+  CHECK(pair_alpha(*h.undo()) == 0.1);
   CHECK_FALSE(h.undo().has_value());  // at the start
-  CHECK(h.current()->parameters.alpha == 0.1);
+  CHECK(pair_alpha(*h.current()) == 0.1);
   CHECK(h.redo_steps() == 3);
-  CHECK(h.redo()->parameters.alpha == 0.2);
-  CHECK(h.redo()->parameters.alpha == 0.3);
-  CHECK(h.redo()->parameters.alpha == 0.4);
+  CHECK(pair_alpha(*h.redo()) == 0.2);
+  CHECK(pair_alpha(*h.redo()) == 0.3);
+  CHECK(pair_alpha(*h.redo()) == 0.4);
   CHECK_FALSE(h.redo().has_value());  // at the end
-  CHECK(h.current()->parameters.alpha == 0.4);
+  CHECK(pair_alpha(*h.current()) == 0.4);
 }
 
 TEST_CASE("history: a new commit after undo drops what could be redone") {
@@ -70,7 +70,7 @@ TEST_CASE("history: a new commit after undo drops what could be redone") {
   h.commit(with_alpha(0.9));  // a new change
   CHECK_FALSE(h.can_redo());
   CHECK_FALSE(h.redo().has_value());
-  CHECK(h.undo()->parameters.alpha == 0.1);
+  CHECK(pair_alpha(*h.undo()) == 0.1);
   CHECK_FALSE(h.can_undo());
 }
 
@@ -78,9 +78,9 @@ TEST_CASE("history: at the cap the oldest steps go") {
   History h(3);
   for (int i = 0; i <= 10; ++i) h.commit(with_alpha(i / 10.0));
   CHECK(h.undo_steps() == 3);
-  CHECK(h.undo()->parameters.alpha == Approx(0.9));
-  CHECK(h.undo()->parameters.alpha == Approx(0.8));
-  CHECK(h.undo()->parameters.alpha == Approx(0.7));
+  CHECK(pair_alpha(*h.undo()) == Approx(0.9));
+  CHECK(pair_alpha(*h.undo()) == Approx(0.8));
+  CHECK(pair_alpha(*h.undo()) == Approx(0.7));
   CHECK_FALSE(h.undo().has_value());
   History defaults;
   for (int i = 0; i < 500; ++i) defaults.commit(with_alpha(i / 1000.0));
@@ -99,7 +99,7 @@ TEST_CASE("document: every edited field counts, the view's own state does not") 
   changed[4].controls.foot_lock = false;
   changed[5].controls.align.on = AlignOn::kBody;
   changed[6].controls.align.slope.max_slope = 3;
-  changed[7].controls.palette.weights = {0.5, 0.25, 0.25};
+  changed[7].weights = {0.5, 0.25, 0.25};
   changed[8].controls.palette.part_weights = {{1.0, 0.0}};
   changed[9].files = {"/takes/a.bvh", "/takes/c.bvh"};
   changed[10].overlay = true;

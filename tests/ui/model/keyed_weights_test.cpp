@@ -39,17 +39,17 @@ void go_to(EditorState& state, int frame) { state.playback.time_s = (frame + 0.5
 
 TEST_CASE("keyed weights: without keys, the controls show and take the weights as they did") {
   EditorState pair = loaded(2);
-  pair.document.parameters.alpha = 0.3;
+  set_pair_alpha(pair.document, 0.3);
   CHECK(weights_at_playhead(pair, 2) == std::vector<double>{0.7, 0.3});
   CHECK(keyed_at_playhead(pair, 2) == Keyed::kNo);
   set_weights_at_playhead(pair, 2, {0.4, 0.6});
-  CHECK(pair.document.parameters.alpha == 0.6);
+  CHECK(pair_alpha(pair.document) == 0.6);
   CHECK(pair.document.controls.keys.empty());
 
   EditorState palette = loaded(3);
   CHECK(weights_at_playhead(palette, 3) == std::vector<double>(3, 1.0 / 3.0));  // not sized yet: equal
   set_weights_at_playhead(palette, 3, {0.2, 0.3, 0.5});
-  CHECK(palette.document.controls.palette.weights == std::vector<double>{0.2, 0.3, 0.5});
+  CHECK(palette.document.weights == std::vector<double>{0.2, 0.3, 0.5});
   // A transfer: content 1, each style its strength, the neutral (take 1) minus their sum.
   PaletteControls& c = palette.document.controls.palette;
   c.transfer = true;
@@ -73,11 +73,27 @@ TEST_CASE("keyed weights: without keys, the controls show and take the weights a
   CHECK(transfer_neutral(c, 3) == 1);
   CHECK(weights_at_playhead(palette, 3) == std::vector<double>{1.0, -0.6, 0.6});
   CHECK(transfer_mix_weights({0.0, 0.5, 1.5}, 0, 3) == std::vector<double>{-1.0, 0.5, 1.5});
+  // The transfer's weights toggled off: the mix's weights as they were, untouched by the strengths.
+  c.transfer = false;
+  CHECK(weights_at_playhead(palette, 3) == std::vector<double>{0.2, 0.3, 0.5});
+}
+
+TEST_CASE("keyed weights: a transfer's document before its takes are in has only the weights it holds") {
+  // A session in transfer mode whose takes are not loaded (missing, or still loading): no
+  // transfer of nothing, and a pair is never a transfer.
+  Document d;
+  d.controls.palette.transfer = true;
+  d.controls.palette.strengths = {0.0, 1.0, 1.25};
+  CHECK(constant_weights(d, 0).empty());
+  CHECK(constant_weights(d, 2) == std::vector<double>{0.5, 0.5});
+  set_pair_alpha(d, 0.25);
+  CHECK(constant_weights(d, 2) == std::vector<double>{0.75, 0.25});
+  CHECK(constant_weights(d, 3) == std::vector<double>{1.0, -1.25, 1.25});  // neutral 1 loses what the style gains
 }
 
 TEST_CASE("keyed weights: a normal walk that becomes tired over ten seconds") {
   EditorState state = loaded(2);  // A normal, B tired
-  state.document.parameters.alpha = 0.0;
+  set_pair_alpha(state.document, 0.0);
   // Key alpha 0 at the start: the weights shown, at the start of frame 0.
   const int edits = state.command_edits;
   key_at_playhead(state, 2);
@@ -93,7 +109,7 @@ TEST_CASE("keyed weights: a normal walk that becomes tired over ten seconds") {
   state.playback.playing = true;
   set_weights_at_playhead(state, 2, {0.0, 1.0});
   CHECK_FALSE(state.playback.playing);  // paused: a drag edits this one key
-  CHECK(state.document.parameters.alpha == 0.0);
+  CHECK(pair_alpha(state.document) == 0.0);
   const WeightKeys& keys = state.document.controls.keys;
   REQUIRE(keys.size() == 2);
   CHECK(keys[1].seconds == Approx(10.0));
@@ -115,7 +131,7 @@ TEST_CASE("keyed weights: a normal walk that becomes tired over ten seconds") {
 
 TEST_CASE("keyed weights: removing keys, the last one leaves the controls at its weights") {
   EditorState state = loaded(2);
-  state.document.parameters.alpha = 0.2;
+  set_pair_alpha(state.document, 0.2);
   key_at_playhead(state, 2);
   go_to(state, 60);
   set_weights_at_playhead(state, 2, {0.3, 0.7});
@@ -123,11 +139,11 @@ TEST_CASE("keyed weights: removing keys, the last one leaves the controls at its
   const int edits = state.command_edits;
   remove_key(state, 2, 0);
   CHECK(state.command_edits == edits + 1);
-  CHECK(state.document.parameters.alpha == 0.2);  // keys were left: the controls as they were
+  CHECK(pair_alpha(state.document) == 0.2);  // keys were left: the controls as they were
   REQUIRE(state.document.controls.keys.size() == 1);
   remove_key(state, 2, 0);
   CHECK(state.document.controls.keys.empty());
-  CHECK(state.document.parameters.alpha == 0.7);  // no jump when the last key goes
+  CHECK(pair_alpha(state.document) == 0.7);  // no jump when the last key goes
   remove_key(state, 2, 0);                        // nothing left to remove
   CHECK(state.command_edits == edits + 2);
 }
@@ -185,11 +201,11 @@ TEST_CASE("keyed weights: the engine's keys, a transfer's made from its styles' 
 TEST_CASE("keyed weights: keys made for another number of takes are left out, and a new key replaces them") {
   EditorState state = loaded(3);  // a palette of three, keys of a pair kept from before
   state.document.controls.keys = {WeightKey{0.0, {1.0, 0.0}}, WeightKey{10.0, {0.0, 1.0}}};
-  state.document.controls.palette.weights = {0.2, 0.3, 0.5};
+  state.document.weights = {0.2, 0.3, 0.5};
   CHECK(keyed_at_playhead(state, 3) == Keyed::kNo);
   CHECK(weights_at_playhead(state, 3) == std::vector<double>{0.2, 0.3, 0.5});
   set_weights_at_playhead(state, 3, {0.6, 0.2, 0.2});  // the constant weights, as without keys
-  CHECK(state.document.controls.palette.weights == std::vector<double>{0.6, 0.2, 0.2});
+  CHECK(state.document.weights == std::vector<double>{0.6, 0.2, 0.2});
   CHECK(state.document.controls.keys.size() == 2);
   go_to(state, 30);
   key_at_playhead(state, 3);

@@ -35,13 +35,13 @@ TEST_CASE("result view: the mix parameters carry the keys that fit the takes") {
   const Decomposed& d = *s.session.snapshot().decomposed;
   Document doc = s.state.document;
   DocumentControls& c = doc.controls;
-  c.palette.weights = {0.2, 0.3, 0.5};
+  doc.weights = {0.2, 0.3, 0.5};
   CHECK(mix_params_for(doc, d, 3).keys.empty());
   // Happy becomes joyful over two seconds.
   c.keys = {WeightKey{0.0, {1.0, 0.0, 0.0}}, WeightKey{2.0, {0.0, 0.0, 1.0}}};
   const MixParams keyed = mix_params_for(doc, d, 3);
   CHECK(same_keys(keyed.keys, c.keys));
-  CHECK(keyed.weights == c.palette.weights);  // the constant weights as they were
+  CHECK(keyed.weights == doc.weights);  // the constant weights as they were
   // A transfer: the content's and the neutral's weights made from the styles'.
   c.palette.transfer = true;
   c.palette.neutral = 1;
@@ -85,44 +85,95 @@ TEST_CASE("result view: keys with weights per body part are the engine's sentenc
   CHECK(s.session.result_view().error().empty());
 }
 
-TEST_CASE("result view: a take added keeps the others' weights, the new one at 0") {
+TEST_CASE("result view: the weights follow the takes, a take added keeps the others' weights, the new one at 0") {
   using V = std::vector<double>;
   using S = std::vector<std::string>;
-  CHECK(weights_with_added_takes({"a", "b"}, {0.7, 0.3}, {"a", "b", "c"}) == V{0.7, 0.3, 0.0});
-  CHECK(weights_with_added_takes({"a", "b", "c"}, {0.5, 0.2, 0.3}, {"a", "b", "c", "d"}) == V{0.5, 0.2, 0.3, 0.0});
-  CHECK(weights_with_added_takes({"a", "a"}, {0.6, 0.4}, {"a", "a", "b"}) == V{0.6, 0.4, 0.0});
-  CHECK(weights_with_added_takes({"a", "b"}, {0.7, 0.3}, S{"c", "d", "e"}).empty());      // all new: equal weights
-  CHECK(weights_with_added_takes({"a", "b", "c"}, {0.5, 0.2, 0.3}, {"a", "c"}).empty());  // fewer
-  CHECK(weights_with_added_takes({"a", "b"}, {1.0}, {"a", "b", "c"}).empty());            // weights of other takes
+  // The same takes keep theirs, for any number of takes.
+  CHECK(weights_for_takes({"a", "b"}, {0.7, 0.3}, {"a", "b"}) == V{0.7, 0.3});
+  CHECK(weights_for_takes({"a", "b", "c"}, {0.5, 0.2, 0.3}, {"a", "b", "c"}) == V{0.5, 0.2, 0.3});
+  CHECK(weights_for_takes({"a", "sub/../b"}, {0.7, 0.3}, {"a", "b"}) == V{0.7, 0.3});  // the same file
+  // Takes added at the end: the others keep theirs, the new ones 0.
+  CHECK(weights_for_takes({"a", "b"}, {0.7, 0.3}, {"a", "b", "c"}) == V{0.7, 0.3, 0.0});
+  CHECK(weights_for_takes({"a", "b", "c"}, {0.5, 0.2, 0.3}, {"a", "b", "c", "d"}) == V{0.5, 0.2, 0.3, 0.0});
+  CHECK(weights_for_takes({"a", "a"}, {0.6, 0.4}, {"a", "a", "b"}) == V{0.6, 0.4, 0.0});
+  CHECK(weights_for_takes({"a", "b"}, {0.7, 0.3}, {"a", "b", "c", "d"}) == V{0.7, 0.3, 0.0, 0.0});
+  // Otherwise equal weights: other takes, fewer, another order, weights that are not one per take
+  // of those before, nothing loaded before.
+  CHECK(weights_for_takes({"a", "b"}, {0.7, 0.3}, S{"c", "d", "e"}) == V(3, 1.0 / 3));
+  CHECK(weights_for_takes({"a", "b"}, {0.7, 0.3}, S{"a", "c"}) == V{0.5, 0.5});  // a new pair: 0.5/0.5
+  CHECK(weights_for_takes({"a", "b", "c"}, {0.5, 0.2, 0.3}, {"a", "c"}) == V{0.5, 0.5});
+  CHECK(weights_for_takes({"a", "b", "c"}, {0.5, 0.2, 0.3}, {"c", "a", "b"}) == V(3, 1.0 / 3));
+  CHECK(weights_for_takes({"a", "b"}, {1.0}, {"a", "b", "c"}) == V(3, 1.0 / 3));
+  CHECK(weights_for_takes({"a", "b"}, {}, {"a", "b"}) == V{0.5, 0.5});
+  CHECK(weights_for_takes({}, {0.7, 0.3}, {"a", "b"}) == V{0.5, 0.5});
+  CHECK(weights_for_takes({"a", "b"}, {0.7, 0.3}, S{}).empty());
 
   // A pair at 0.7/0.3 (alpha 0.3) given a third take with +.
   LoadedSession s;
-  s.state.document.parameters.alpha = 0.3;
+  set_pair_alpha(s.state.document, 0.3);
   std::vector<std::string> takes = s.session.requested_files();
   REQUIRE(takes.size() == 2);
   takes.push_back(test::asset("motions/cmu142_walk_joy.bvh"));
   s.session.load_files(takes);
   s.session.wait_idle(s.state);
   REQUIRE(s.session.palette() != nullptr);
-  const std::vector<double>& w = s.state.document.controls.palette.weights;
+  const std::vector<double>& w = s.state.document.weights;
   REQUIRE(w.size() == 3);
   CHECK(w[0] == Approx(0.7));
   CHECK(w[1] == Approx(0.3));
   CHECK(w[2] == 0.0);
   // And a fourth: the three keep theirs.
-  s.state.document.controls.palette.weights = {0.5, 0.2, 0.3};
+  s.state.document.weights = {0.5, 0.2, 0.3};
   takes.push_back(test::asset("motions/cmu142_walk_clumsy.bvh"));
   s.session.load_files(takes);
   s.session.wait_idle(s.state);
   REQUIRE(s.session.palette()->size() == 4);
-  CHECK(s.state.document.controls.palette.weights == std::vector<double>{0.5, 0.2, 0.3, 0.0});
+  CHECK(s.state.document.weights == std::vector<double>{0.5, 0.2, 0.3, 0.0});
+}
+
+TEST_CASE("result view: weights set for the takes asked for stay theirs; other takes in their place get equal weights") {
+  const std::string happy = test::asset("motions/cmu142_walk_happy.bvh"),
+                    marching = test::asset("motions/cmu142_walk_marching.bvh"),
+                    joy = test::asset("motions/cmu142_walk_joy.bvh"), clumsy = test::asset("motions/cmu142_walk_clumsy.bvh");
+  LoadedSession s;
+  REQUIRE(s.state.document.weights == std::vector<double>{0.5, 0.5});  // a pair's default, sized
+  // Undo, a session or the command line: the weights are the new takes' already.
+  s.state.document.weights = {0.2, 0.5, 0.3};
+  s.session.load_files({happy, marching, joy}, WeightsOf::kNewTakes);
+  s.session.wait_idle(s.state);
+  REQUIRE(s.session.palette() != nullptr);
+  CHECK(s.state.document.weights == std::vector<double>{0.2, 0.5, 0.3});
+  // Another order (a new content): reordered with them, each take keeps its weight.
+  s.state.document = reorder_takes(s.state.document, {2, 0, 1});
+  s.session.load_files({joy, happy, marching}, WeightsOf::kNewTakes);
+  s.session.wait_idle(s.state);
+  CHECK(s.state.document.files.back() == marching);
+  CHECK(s.state.document.weights == std::vector<double>{0.3, 0.2, 0.5});
+  // A take replaced by another: as many takes, not the same ones, equal weights.
+  s.session.load_files({joy, happy, clumsy});
+  s.session.wait_idle(s.state);
+  CHECK(s.state.document.weights == std::vector<double>(3, 1.0 / 3));
+  // A take taken out: a pair again, at 0.5/0.5; another pair the same.
+  s.state.document.weights = {0.6, 0.3, 0.1};
+  s.session.load_files({joy, happy});
+  s.session.wait_idle(s.state);
+  CHECK(s.state.document.weights == std::vector<double>{0.5, 0.5});
+  set_pair_alpha(s.state.document, 0.9);
+  s.session.load_files({joy, clumsy});
+  s.session.wait_idle(s.state);
+  CHECK(pair_alpha(s.state.document) == 0.5);
+  // The same takes aligned again: their weights stay.
+  set_pair_alpha(s.state.document, 0.8);
+  s.state.document.controls.align.on = AlignOn::kHands;
+  s.session.wait_idle(s.state);
+  CHECK(pair_alpha(s.state.document) == 0.8);
 }
 
 TEST_CASE("result view: a held slider mixes a preview, let go it is finished into the whole mix") {
   LoadedSession s;
   REQUIRE(s.session.result() != nullptr);
   CHECK_FALSE(s.session.result_view().previewing());
-  s.state.document.parameters.alpha = 0.3;
+  set_pair_alpha(s.state.document, 0.3);
   s.session.sync(s.state, /*item_held=*/true);  // the alpha slider dragged
   CHECK(s.session.result_view().previewing());
   CHECK(s.session.result()->motion.foot_sliding_cleaned == 0.0);  // no foot lock, no measures yet

@@ -27,7 +27,7 @@ namespace {
 SessionFile full_session() {
   SessionFile s;
   Document& d = s.document;
-  d.parameters = {0.35, 7, 0.25};
+  d.parameters = {7, 0.25};
   DocumentControls& c = d.controls;
   c.mode = BlendMode::kPaper;
   c.per_component = true;
@@ -49,7 +49,7 @@ SessionFile full_session() {
   // Style over time: a walk that becomes tired over ten seconds, then exaggerated.
   c.keys = {WeightKey{0.0, {1.0, 0.0}}, WeightKey{10.0, {0.0, 1.0}}, WeightKey{12.345678901234, {-2.0 / 3.0, 5.0 / 3.0}}};
   // The ends of the sliders' ranges, as a float slider leaves them (1.3f is 1.2999999523...).
-  c.palette.weights = {static_cast<double>(1.3f), -0.5, 1.0 - static_cast<double>(1.3f) + 0.5};
+  d.weights = {static_cast<double>(1.3f), -0.5, 1.0 - static_cast<double>(1.3f) + 0.5};
   c.palette.per_part = true;
   c.palette.part_weights = {{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.2, 0.2, 0.6}};
   c.palette.transfer = true;
@@ -172,11 +172,11 @@ TEST_CASE("session files: every field of the list reads back at both ends of its
       }
     }
   }
-  CHECK(numeric == 12);  // alpha, k, sparsity, component alphas, levels, level sparsities, swap level; 5 of the palette
+  CHECK(numeric == 11);  // weights, k, sparsity, component alphas, levels, level sparsities, swap level; 4 of the palette
   // The sliders' own float ends read back (0.01f is 0.0099999998 as a double).
   Document slid;
   slid.parameters.sparsity = static_cast<double>(0.01f);
-  slid.controls.palette.weights = {static_cast<double>(1.5f), static_cast<double>(-0.5f)};
+  slid.weights = {static_cast<double>(1.5f), static_cast<double>(-0.5f)};
   CHECK(parse_session(format_session(SessionFile{slid, std::nullopt, {}}, "s.mostyle"), "s.mostyle").document == slid);
   // More takes than a palette holds.
   Document many;
@@ -209,6 +209,63 @@ TEST_CASE("session files: takes resolve against the session's folder, wherever i
   CHECK_FALSE(is_session_path("mostyle"));
 }
 
+TEST_CASE("session files: version 1 files read a pair's alpha or a palette's weights into the weights") {
+  // A pair as version 1 wrote it: alpha 0.3 is the weights (0.7, 0.3); the palette's weights
+  // (empty) are not the pair's.
+  const std::string pair = R"({
+  "version": 1,
+  "takes": ["happy.bvh", "marching.bvh"],
+  "parameters": {"alpha": 0.3, "components": 12, "sparsity": 0.15},
+  "controls": {
+    "per_component": true,
+    "component_alpha": [0.3, 1.0, 0.0],
+    "palette": {"weights": [], "per_part": false, "part_weights": [], "strengths": [], "ghosts": false}
+  }
+})";
+  const Document p = parse_session(pair, "/day/pair.mostyle").document;
+  CHECK(p.files == std::vector<std::string>{"/day/happy.bvh", "/day/marching.bvh"});
+  CHECK(p.weights == std::vector<double>{0.7, 0.3});
+  CHECK(pair_alpha(p) == 0.3);
+  CHECK(p.parameters.components == 12);
+  CHECK(p.parameters.sparsity == 0.15);
+  CHECK(p.controls.component_alpha == std::vector<double>{0.3, 1.0, 0.0});
+  // A palette as version 1 wrote it: its weights; the alpha written beside them was not its.
+  const std::string palette = R"({
+  "version": 1,
+  "takes": ["neutral.bvh", "happy.bvh", "sad.bvh", "proud.bvh"],
+  "parameters": {"alpha": 0.5, "components": 10, "sparsity": 0.1},
+  "controls": {
+    "palette": {"weights": [0.4, 0.3, 0.2, 0.1], "per_part": true, "part_weights": [[1, 0, 0, 0], [], []],
+                "transfer": false, "content": 0, "neutral": 2, "strengths": [1, 1, 1, 1]}
+  }
+})";
+  const Document m = parse_session(palette, "/day/palette.mostyle").document;
+  CHECK(m.files.size() == 4);
+  CHECK(m.weights == std::vector<double>{0.4, 0.3, 0.2, 0.1});
+  CHECK(m.controls.palette.per_part);
+  CHECK(m.controls.palette.part_weights[0] == std::vector<double>{1, 0, 0, 0});
+  CHECK(m.controls.palette.neutral == 2);
+  CHECK(m.controls.palette.strengths == std::vector<double>{1, 1, 1, 1});
+  // Written again, they are version 2: the weights at the top, neither alpha nor the palette's.
+  for (const Document& d : {p, m}) {
+    const std::string text = format_session(SessionFile{d, std::nullopt, {}}, "/day/s.mostyle");
+    CHECK_THAT(text, Catch::Contains("\"version\": 2") && Catch::Contains("\"weights\": [") &&
+                         !Catch::Contains("\"alpha\""));
+    CHECK(parse_session(text, "/day/s.mostyle").document == d);
+  }
+  // Without the weights its takes use (a pair's alpha, a palette's weights): the defaults, equal
+  // weights once the takes are in.
+  CHECK(parse_session(R"({"version": 1, "takes": ["a.bvh", "b.bvh"], "controls": {"palette": {"weights": [0.2, 0.8]}}})",
+                      "s.mostyle")
+            .document.weights.empty());
+  CHECK(parse_session(R"({"version": 1, "takes": ["a.bvh", "b.bvh", "c.bvh"], "parameters": {"alpha": 0.9}})",
+                      "s.mostyle")
+            .document.weights.empty());
+  // No takes: the alpha, a pair's weights.
+  CHECK(parse_session(R"({"version": 1, "parameters": {"alpha": 0.25}})", "s.mostyle").document.weights ==
+        std::vector<double>{0.75, 0.25});
+}
+
 TEST_CASE("session files: a bad file is refused with one line naming the file and the line") {
   struct Case {
     std::string text;
@@ -222,7 +279,8 @@ TEST_CASE("session files: a bad file is refused with one line naming the file an
       {"[1, 2]", 1, "expected a mostyle session"},
       {"{\n  \"takes\": []\n}", 1, "no \"version\""},
       {"{\n  \"version\": \"1\"\n}", 2, "version: expected a whole number"},
-      {"{\n  \"version\": 2\n}", 2, "version 2 is not one this mostyle reads"},
+      {"{\n  \"version\": 3\n}", 2, "version 3 is not one this mostyle reads (it reads versions 1 to 2)"},
+      {"{\n  \"version\": 0\n}", 2, "version 0 is not one this mostyle reads"},
       {"{\n  \"version\": 1,\n  \"parameters\": {\n    \"alpha\": \"half\"\n  }\n}", 4,
        "parameters.alpha: expected a number from 0 to 1, found the string 'half'"},
       {"{\"version\": 1,\n\"parameters\": {\"alpha\": 1.5}}", 2, "parameters.alpha: expected a number from 0 to 1, found 1.5"},
@@ -244,7 +302,7 @@ TEST_CASE("session files: a bad file is refused with one line naming the file an
       {"{\"version\": 1,\n\"view\": []}", 2, "view: expected an object"},
       {"{\"version\": 1,\n\"controls\": {\"palette\": 3}}", 2, "controls.palette: expected an object"},
       {"{\"version\": 1,\n\"controls\": {\"palette\": {\n\"wieghts\": []}}}", 3,
-       "unknown key 'wieghts' in controls.palette (known: weights, per_part"},
+       "unknown key 'wieghts' in controls.palette (known: per_part"},
       {"{\"version\": 1,\n\"controls\": {\n\"selected_component\": 2}}", 3,
        "unknown key 'selected_component' in controls"},  // where one looks: not kept
       {"{\"version\": 1,\n\"parameters\": {\n\"components\": 41}}", 3,
@@ -254,6 +312,14 @@ TEST_CASE("session files: a bad file is refused with one line naming the file an
        "controls.palette.weights[0]: expected a number from -0.5 to 1.5, found 1.6"},
       {"{\"version\": 1,\n\"controls\": {\"palette\": {\"strengths\": [\n0, 2.5]}}}", 3,
        "controls.palette.strengths[1]"},
+      // Version 2: one weight per take at the top; alpha and the palette's weights are version 1's.
+      {"{\"version\": 2,\n\"weights\": [1.6, -0.6]}", 2, "weights[0]: expected a number from -0.5 to 1.5, found 1.6"},
+      {"{\"version\": 2,\n\"weights\": 0.5}", 2, "weights: expected an array"},
+      {"{\"version\": 2,\n\"parameters\": {\n\"alpha\": 0.5}}", 3,
+       "unknown key 'alpha' in parameters (known: components, sparsity)"},
+      {"{\"version\": 2,\n\"controls\": {\"palette\": {\n\"weights\": [0.5, 0.5]}}}", 3,
+       "unknown key 'weights' in controls.palette"},
+      {"{\"version\": 1,\n\"weights\": [0.5, 0.5]}", 2, "unknown key 'weights' in a version 1 session"},
       // Keys: each a time and a weight per take, in order of time, as many weights in each.
       {"{\"version\": 1,\n\"controls\": {\"keys\": 3}}", 2, "controls.keys: expected an array of keys"},
       {"{\"version\": 1,\n\"controls\": {\"keys\": [\n{\"seconds\": 1}]}}", 3,

@@ -51,7 +51,7 @@ std::string read_text(const std::string& path) {
 }
 
 // Export with the dialog's settings, waiting for its thread; the written clip.
-Clip export_and_read(ExportDialog& dialog, BlendSession& session, const std::string& path) {
+Clip export_and_read(ExportDialog& dialog, const std::string& path) {
   set_path(dialog, path);
   REQUIRE(dialog.press_export() == Pressed::kStarted);
   dialog.job().wait();
@@ -73,7 +73,7 @@ TEST_CASE("export dialog: at 60 fps the file has twice the blend's frames less o
   TempFile file("mostyle_export_dialog_rate.bvh");
 
   dialog.settings().rate = ExportRate::k60;
-  const Clip at_60 = export_and_read(dialog, s.session, file.path);
+  const Clip at_60 = export_and_read(dialog, file.path);
   CHECK(at_60.frames() == 2 * blend_frames - 1);
   CHECK(at_60.fps() == Approx(60.0));
   // Where it went, the rate, and how closely the file follows the blend, in metric units.
@@ -83,13 +83,13 @@ TEST_CASE("export dialog: at 60 fps the file has twice the blend's frames less o
 
   dialog.settings().rate = ExportRate::k30;
   fs::remove(file.path);
-  const Clip at_30 = export_and_read(dialog, s.session, file.path);
+  const Clip at_30 = export_and_read(dialog, file.path);
   CHECK(at_30.frames() == blend_frames);
 
   // A's own rate: CMU's 120 fps.
   dialog.settings().rate = ExportRate::kSource;
   fs::remove(file.path);
-  const Clip at_source = export_and_read(dialog, s.session, file.path);
+  const Clip at_source = export_and_read(dialog, file.path);
   CHECK(at_source.fps() == Approx(120.0));
   CHECK(at_source.frames() == 4 * (blend_frames - 1) + 1);
 
@@ -118,10 +118,10 @@ TEST_CASE("export dialog: an in and an out point give the frames between them, b
   dialog.settings().range = ExportRange::kInOut;
   dialog.settings().in_s = 1.0;
   dialog.settings().out_s = 2.0;
-  CHECK(export_and_read(dialog, s.session, file.path).frames() == 31);
+  CHECK(export_and_read(dialog, file.path).frames() == 31);
   fs::remove(file.path);
   dialog.settings().rate = ExportRate::k60;
-  CHECK(export_and_read(dialog, s.session, file.path).frames() == 61);
+  CHECK(export_and_read(dialog, file.path).frames() == 61);
   // An out point past the blend is brought back inside it by the next poll.
   dialog.settings().out_s = 1e6;
   dialog.poll();
@@ -140,7 +140,7 @@ TEST_CASE("export dialog: the loop is written whole, so it repeats at any rate")
   TempFile file("mostyle_export_dialog_loop.bvh");
   dialog.settings().range = ExportRange::kLoop;
   dialog.settings().rate = ExportRate::k60;
-  CHECK(export_and_read(dialog, s.session, file.path).frames() == 2 * loop_frames);
+  CHECK(export_and_read(dialog, file.path).frames() == 2 * loop_frames);
   CHECK_THAT(dialog.status().message, Catch::Contains("loop"));
   // Without a loop, the loop cannot be asked for.
   s.state.document.controls.loop = false;
@@ -183,7 +183,7 @@ TEST_CASE("export dialog: its message clears when new takes load") {
   ExportDialog dialog(s.session);
   dialog.poll();
   TempFile file("mostyle_export_dialog_message.bvh");
-  export_and_read(dialog, s.session, file.path);
+  export_and_read(dialog, file.path);
   CHECK_FALSE(dialog.status().message.empty());
   const double ms = dialog.status().ms;
   CHECK(ms >= 0.0);
@@ -300,7 +300,7 @@ TEST_CASE("export dialog: a palette's mix exports whole or from an in to an out 
   CHECK(dialog.settings().out_s == Approx((mix_frames - 1) / 30.0));
   TempFile file("mostyle_export_dialog_palette.bvh");
   dialog.settings().rate = ExportRate::k30;
-  CHECK(export_and_read(dialog, s.session, file.path).frames() == mix_frames);
+  CHECK(export_and_read(dialog, file.path).frames() == mix_frames);
   CHECK_THAT(dialog.status().message, Catch::Contains("The skeleton of cmu142_walk_happy.bvh"));
   // From 1 s to 2 s: 31 frames at 30 fps; the overwrite asks first and then replaces the file.
   dialog.settings().range = ExportRange::kInOut;
@@ -351,7 +351,7 @@ TEST_CASE("export dialog: the format is the file's extension, glTF and FBX expor
   TempFile bvh("mostyle_export_dialog_format.bvh"), glb("mostyle_export_dialog_format.glb"),
       fbx("mostyle_export_dialog_format.fbx");
   dialog.settings().rate = ExportRate::k30;
-  const Clip as_bvh = export_and_read(dialog, s.session, bvh.path);
+  const Clip as_bvh = export_and_read(dialog, bvh.path);
   for (const std::string& path : {glb.path, fbx.path}) {
     INFO(path);
     set_path(dialog, path);

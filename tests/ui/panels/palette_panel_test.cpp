@@ -156,7 +156,7 @@ TEST_CASE("palette panel: Transfer comes in on the content's timing, as the comm
 TEST_CASE("palette panel: a weight's field shows its sign whole, and a 46 pixel drag moves it by less than 0.5") {
   Palette t;
   t.s.state.document.controls.palette.transfer = false;
-  t.s.state.document.controls.palette.weights = {1.3, -0.15, -0.15};
+  t.s.state.document.weights = {1.3, -0.15, -0.15};
   t.frame();
   REQUIRE(t.s.session.palette() != nullptr);
   // Take 0's weight field ("##w" under PushID(0) in the weights' child window).
@@ -197,7 +197,7 @@ TEST_CASE("palette panel: a weight's field shows its sign whole, and a 46 pixel 
   }
   io.MouseDown[0] = false;
   t.frame();
-  const double after = t.s.state.document.controls.palette.weights[0];
+  const double after = t.s.state.document.weights[0];
   CAPTURE(after);
   CHECK(after < 1.3 - 0.05);  // it moved
   CHECK(after > 1.3 - 0.5);   // finely

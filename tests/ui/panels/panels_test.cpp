@@ -94,10 +94,10 @@ TEST_CASE("moving alpha changes the blended pose in the same frame, from A towar
   LoadedSession s;
   s.state.document.overlay = true;  // no lateral offsets: the takes can be compared
   const int frame = s.state.takes[0].frames() / 2;
-  s.state.document.parameters.alpha = 0.0;
+  set_pair_alpha(s.state.document, 0.0);
   s.session.sync(s.state);
   const Eigen::MatrixXd at_a = s.state.takes[result_index(2)].positions;
-  s.state.document.parameters.alpha = 1.0;
+  set_pair_alpha(s.state.document, 1.0);
   s.session.sync(s.state);  // no worker round trip
   const Eigen::MatrixXd at_b = s.state.takes[result_index(2)].positions;
   CHECK((at_a - at_b).norm() > 1.0);
@@ -236,11 +236,11 @@ TEST_CASE("timing, loop and alignment controls reach the blend and the alignment
   const Alignment& al = p.takes[1].alignment;
   DocumentControls& c = s.state.document.controls;
   // alpha 0: A's timing, as long as A's matched range; with A's timing kept at alpha 1 too.
-  s.state.document.parameters.alpha = 0.0;
+  set_pair_alpha(s.state.document, 0.0);
   s.session.sync(s.state);
   const Eigen::Index at_a = s.session.result()->motion.world.rows();
   CHECK(at_a == al.a_last - al.a_first + 1);
-  s.state.document.parameters.alpha = 1.0;
+  set_pair_alpha(s.state.document, 1.0);
   s.session.sync(s.state);
   CHECK(s.session.result()->motion.world.rows() == al.b_last - al.b_first + 1);
   c.timing_a = true;
@@ -250,7 +250,7 @@ TEST_CASE("timing, loop and alignment controls reach the blend and the alignment
   // A seamless loop: whole cycles, every take cut to it.
   c.timing_a = false;
   c.loop = true;
-  s.state.document.parameters.alpha = 0.5;
+  set_pair_alpha(s.state.document, 0.5);
   s.session.sync(s.state);
   REQUIRE(s.session.result() != nullptr);
   CHECK(s.session.result()->motion.loop.cycles >= 1);

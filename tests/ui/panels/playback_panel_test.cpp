@@ -96,7 +96,7 @@ TEST_CASE("timeline: K keys the style at the playhead, a mark drags in time as o
   t.frame();
   REQUIRE(t.keys().size() == 2);
   CHECK(t.edits.history().undo_steps() == 2);
-  CHECK(state.document.parameters.alpha == 0.5);
+  CHECK(pair_alpha(state.document) == 0.5);
 
   // The second key's mark dragged 30 pixels left over a few frames: later than the first key
   // still, earlier than it was; one undo step when let go; the playhead stays.
@@ -140,7 +140,7 @@ TEST_CASE("timeline: K keys the style at the playhead, a mark drags in time as o
   io.KeysDown[kDeleteKey] = false;
   t.frame();
   CHECK(t.keys().empty());
-  CHECK(state.document.parameters.alpha == 1.0);
+  CHECK(pair_alpha(state.document) == 1.0);
   CHECK(t.edits.history().undo_steps() == 5);
 
   // Undone step by step: the last key back, then the first, then the drag.

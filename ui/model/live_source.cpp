@@ -1,0 +1,534 @@
+#include "ui/model/live_source.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <mutex>
+#include <string_view>
+#include <thread>
+
+#include "engine/base/error.h"
+#include "engine/io/axis_stream.h"
+#include "engine/io/bvh_io.h"
+#include "engine/io/bvh_recorder.h"
+#include "engine/kinematics/kinematics.h"
+#include "ui/model/lanes.h"
+#include "ui/model/result_view.h"
+
+namespace mostyle::ui {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// A line may hold each value in up to 64 bytes (a long decimal), with room for the avatar: the
+// bound `mostyle-cli live` reads with.
+size_t max_line_bytes(int channels) {
+  return std::max<size_t>(size_t{1} << 16, static_cast<size_t>(channels + kAxisReferenceValues) * 64 + 1024);
+}
+
+// Every joint's global position at one frame (values: the frame's channels), into out (3 per
+// joint, file units), as joint_positions (engine/kinematics/kinematics.h) poses it, one frame at
+// a time so that the worker poses each frame as it comes. O(joints).
+void pose_frame(const Skeleton& s, const double* values, std::vector<Eigen::Matrix3d>& rotations, double* out) {
+  const size_t n = s.joints.size();
+  rotations.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    const Joint& j = s.joints[i];
+    const Eigen::Matrix3d r = joint_local_rotation(j, values);
+    const Eigen::Vector3d t = joint_local_translation(j, values);
+    Eigen::Map<Eigen::Vector3d> p(out + 3 * i);
+    if (j.parent < 0) {
+      rotations[i] = r;
+      p = t;
+    } else {
+      const size_t parent = static_cast<size_t>(j.parent);
+      rotations[i] = rotations[parent] * r;
+      p = Eigen::Map<const Eigen::Vector3d>(out + 3 * parent) + rotations[parent] * t;
+    }
+  }
+}
+
+// The last `capacity` frames of a stream, as it came and styled, with where every joint was and
+// when each frame was styled: a ring, so that memory stays bounded however long it runs.
+class FrameRing {
+ public:
+  void reset(int capacity, int channels, int coordinates) {
+    capacity_ = std::max(capacity, 1);
+    input_.resize(capacity_, channels);
+    styled_.resize(capacity_, channels);
+    input_at_.resize(capacity_, coordinates);
+    styled_at_.resize(capacity_, coordinates);
+    times_.assign(static_cast<size_t>(capacity_), Clock::time_point());
+    latency_us_.assign(static_cast<size_t>(capacity_), 0.0);
+    next_ = 0;
+    count_ = 0;
+    total_ = 0;
+  }
+
+  // The row the next frame goes into (the oldest, once full).
+  int push() {
+    const int row = next_;
+    next_ = (next_ + 1) % capacity_;
+    count_ = std::min(count_ + 1, capacity_);
+    ++total_;
+    return row;
+  }
+
+  // Row k of the window, oldest first.
+  int row(int k) const { return (next_ - count_ + k + capacity_) % capacity_; }
+  int count() const { return count_; }
+  long long total() const { return total_; }
+
+  RowMatrix input_, styled_, input_at_, styled_at_;  // capacity x channels, capacity x 3*joints
+  std::vector<Clock::time_point> times_;             // when each frame was styled
+  std::vector<double> latency_us_;                   // its bytes read to it styled
+
+ private:
+  int capacity_ = 1, next_ = 0, count_ = 0;
+  long long total_ = 0;
+};
+
+// Why a line was skipped, with its number in the stream.
+std::string at_line(long long line, const std::string& why) { return "line " + std::to_string(line) + ": " + why; }
+
+}  // namespace
+
+std::string input_recording_path(const std::string& styled_path) {
+  std::filesystem::path p(styled_path);
+  const std::string extension = p.has_extension() ? p.extension().string() : std::string(".bvh");
+  p.replace_extension();
+  return p.string() + ".input" + extension;
+}
+
+std::string live_status_line(const LiveStatus& s) {
+  const std::string skipped = s.skipped > 0 ? ", " + std::to_string(s.skipped) + " skipped" : std::string();
+  switch (s.state) {
+    case LiveState::kOff:
+      return s.styled > 0 ? "disconnected after " + std::to_string(s.styled) + " frames" : "not connected";
+    case LiveState::kPreparing:
+      return "preparing the styles for " + s.source;
+    case LiveState::kConnecting:
+      return "connecting to " + s.source;
+    case LiveState::kStreaming:
+      if (s.styled == 0) return "connected to " + s.source + ", waiting for frames" + skipped;
+      return "styled " + std::to_string(s.styled) + " frames, " + (s.in_cycle ? "in cycle" : "not walking") + skipped;
+    case LiveState::kClosed:
+      return "source closed after " + std::to_string(s.styled) + " frames" + skipped;
+    case LiveState::kFailed:
+      return s.error;
+  }
+  return std::string();
+}
+
+// One connection: its worker thread and what it shares with the UI thread.
+struct LiveSource::Run {
+  // Set before the thread starts; read-only then.
+  LiveSettings settings;
+  LiveStyleSpec spec;
+  double window_seconds = kLiveWindowSeconds;
+  std::unique_ptr<FrameSource> source;
+  std::atomic<bool> stopping{false};
+  std::atomic<bool> finished{false};
+  std::thread thread;
+
+  // Shared with the UI thread, under `mutex`.
+  std::mutex mutex;
+  LiveStatus status;
+  std::uint64_t version = 1;  // changes with the status or the window
+  Skeleton skeleton;          // the stream's, once read
+  double frame_time = 0.0;    // 0: not read yet
+  FrameRing ring;
+  std::vector<double> strengths;
+  bool strengths_waiting = false;
+  std::unique_ptr<BvhRecorder> record, record_input;
+
+  // The worker's own.
+  std::unique_ptr<LiveStyle> style;
+  std::vector<Eigen::Matrix3d> rotations;
+  std::vector<double> styled_values, input_at, styled_at;
+
+  void work() {
+    try {
+      prepare();
+      if (!stopping) connect();
+      if (!stopping) stream();
+      end(stopping ? LiveState::kOff : LiveState::kClosed, std::string());
+    } catch (const std::exception& e) {  // InputError and the rest alike: one sentence, shown
+      end(stopping ? LiveState::kOff : LiveState::kFailed, e.what());
+    }
+    finished = true;
+  }
+
+  void set_state(LiveState state) {
+    std::lock_guard<std::mutex> lock(mutex);
+    status.state = state;
+    ++version;
+  }
+
+  // The stream's skeleton, then the styler (the heavy part: the takes prepared at its rate).
+  void prepare() {
+    if (settings.skeleton.empty())
+      throw InputError("no skeleton file: give a BVH file with the stream's hierarchy and channels");
+    Clip clip = read_bvh_file(settings.skeleton);
+    const double fps = clip.fps();
+    style = std::make_unique<LiveStyle>(clip.skeleton, fps, spec);
+    const int channels = clip.skeleton.channel_count;
+    const int coordinates = 3 * static_cast<int>(clip.skeleton.joints.size());
+    styled_values.assign(static_cast<size_t>(channels), 0.0);
+    input_at.assign(static_cast<size_t>(coordinates), 0.0);
+    styled_at.assign(static_cast<size_t>(coordinates), 0.0);
+    std::lock_guard<std::mutex> lock(mutex);
+    skeleton = std::move(clip.skeleton);
+    frame_time = clip.frame_time;
+    ring.reset(static_cast<int>(std::ceil(window_seconds * fps)), channels, coordinates);
+    status.state = LiveState::kConnecting;
+    ++version;
+  }
+
+  void connect() {
+    source->open();
+    set_state(LiveState::kStreaming);
+  }
+
+  // Reads until the source closes or the run is stopped, each complete line handled as it comes.
+  void stream() {
+    AxisLineSplitter splitter(max_line_bytes(skeleton.channel_count));
+    AxisFrame frame;
+    std::string bytes, reason;
+    int avatar = -1;
+    long long dropped = 0;
+    while (!stopping && source->read(&bytes)) {
+      const Clock::time_point arrival = Clock::now();
+      std::string_view chunk(bytes), line;
+      while (splitter.next(&chunk, &line)) {
+        const long long number = splitter.line_number();
+        if (parse_axis_line(line, skeleton.channel_count, &frame, &reason) != AxisLineStatus::kOk) {
+          skip(at_line(number, reason));
+        } else if (avatar >= 0 && frame.avatar_index != avatar) {
+          skip(at_line(number, "avatar " + std::to_string(frame.avatar_index) + " is not the one styled (" +
+                                   std::to_string(avatar) + ")"));
+        } else {
+          avatar = frame.avatar_index;
+          style_frame(frame.values.data(), number, arrival);
+        }
+      }
+      for (; dropped < splitter.dropped(); ++dropped)
+        skip(at_line(splitter.dropped_line_number(),
+                     "the line is longer than " + std::to_string(max_line_bytes(skeleton.channel_count)) + " bytes"));
+    }
+    if (!stopping && splitter.has_partial()) skip(at_line(splitter.line_number() + 1, "the stream ended inside a line"));
+  }
+
+  // One frame: the strengths set since the last, styled, posed, recorded, in the window.
+  void style_frame(const double* in, long long line, Clock::time_point arrival) {
+    take_strengths();
+    style->style_frame(in, styled_values.data());
+    const Clock::time_point done = Clock::now();
+    for (double v : styled_values)
+      if (!std::isfinite(v)) return skip(at_line(line, "the styled frame holds a value that is not a finite number"));
+    pose_frame(skeleton, in, rotations, input_at.data());
+    pose_frame(skeleton, styled_values.data(), rotations, styled_at.data());
+    std::lock_guard<std::mutex> lock(mutex);
+    const int row = ring.push();
+    const Eigen::Index c = skeleton.channel_count, x = static_cast<Eigen::Index>(input_at.size());
+    ring.input_.row(row) = Eigen::Map<const Eigen::RowVectorXd>(in, c);
+    ring.styled_.row(row) = Eigen::Map<const Eigen::RowVectorXd>(styled_values.data(), c);
+    ring.input_at_.row(row) = Eigen::Map<const Eigen::RowVectorXd>(input_at.data(), x);
+    ring.styled_at_.row(row) = Eigen::Map<const Eigen::RowVectorXd>(styled_at.data(), x);
+    ring.times_[static_cast<size_t>(row)] = done;
+    ring.latency_us_[static_cast<size_t>(row)] = std::chrono::duration<double, std::micro>(done - arrival).count();
+    ++status.lines;
+    ++status.styled;
+    status.in_cycle = style->in_cycle();
+    status.phase = style->phase();
+    status.strengths = style->strengths();
+    record_frame(in);
+    ++version;
+  }
+
+  // Under the lock: the recordings' next frame (a recording that cannot be written stops, said).
+  void record_frame(const double* in) {
+    try {
+      if (record) record->append(styled_values.data());
+      if (record_input) record_input->append(in);
+      if (record) status.recorded = record->frames();
+    } catch (const InputError& e) {
+      status.record_error = std::string(e.what()) + "; the recording stops at " + std::to_string(status.recorded) + " frames";
+      record.reset();
+      record_input.reset();
+      status.recording = false;
+    }
+  }
+
+  void take_strengths() {
+    std::vector<double> asked;
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      if (!strengths_waiting) return;
+      strengths_waiting = false;
+      asked = strengths;
+    }
+    std::string refused;
+    try {
+      style->set_strengths(asked);
+    } catch (const InputError& e) {
+      refused = e.what();
+    }
+    std::lock_guard<std::mutex> lock(mutex);
+    status.strength_error = refused;
+  }
+
+  void skip(const std::string& why) {
+    std::lock_guard<std::mutex> lock(mutex);
+    ++status.lines;
+    ++status.skipped;
+    status.last_skip = why;
+    ++version;
+  }
+
+  // The recordings end complete; the state says how the stream ended.
+  void end(LiveState state, const std::string& error) {
+    std::lock_guard<std::mutex> lock(mutex);
+    record.reset();
+    record_input.reset();
+    status.recording = false;
+    status.state = state;
+    status.error = error;
+    ++version;
+  }
+};
+
+LiveSource::LiveSource(FrameSourceMaker sources, double window_seconds)
+    : sources_(std::move(sources)), window_seconds_(window_seconds) {}
+
+LiveSource::~LiveSource() {
+  disconnect();
+  for (const std::shared_ptr<Run>& run : retired_) run->thread.join();
+}
+
+void LiveSource::connect(const LiveSettings& settings, const LiveStyleSpec& spec) {
+  disconnect();
+  auto run = std::make_shared<Run>();
+  run->settings = settings;
+  run->spec = spec;
+  run->window_seconds = window_seconds_;
+  run->status.source = settings.address;
+  run->status.state = LiveState::kPreparing;
+  run->strengths = spec.strengths;
+  // A fresh window: the stream shown before goes, the next is placed anew.
+  status_ = run->status;
+  metrics_ = LiveMetrics();
+  input_.reset();
+  styled_.reset();
+  takes_.clear();
+  placed_ = false;
+  first_frame_ = 0;
+  seen_version_ = 0;
+  try {
+    run->source = sources_(settings.address);
+  } catch (const std::exception& e) {
+    status_.state = LiveState::kFailed;
+    status_.error = e.what();
+    return;
+  }
+  Run* r = run.get();
+  run->thread = std::thread([r] { r->work(); });
+  run_ = std::move(run);
+}
+
+void LiveSource::disconnect() {
+  if (!run_) return;
+  run_->stopping = true;
+  run_->source->stop();
+  poll();  // what it had styled stays shown
+  retired_.push_back(std::move(run_));
+  run_.reset();
+  status_.state = LiveState::kOff;
+  status_.recording = false;
+  metrics_.frames_per_s = 0.0;
+}
+
+bool LiveSource::active() const {
+  return status_.state == LiveState::kPreparing || status_.state == LiveState::kConnecting ||
+         status_.state == LiveState::kStreaming;
+}
+
+void LiveSource::set_strengths(const std::vector<double>& strengths) {
+  if (!run_) return;
+  std::lock_guard<std::mutex> lock(run_->mutex);
+  if (run_->strengths == strengths) return;
+  run_->strengths = strengths;
+  run_->strengths_waiting = true;
+}
+
+bool LiveSource::start_recording(const std::string& path, bool with_input) {
+  if (!run_) {
+    status_.record_error = "Record: connect to a stream first.";
+    return false;
+  }
+  std::lock_guard<std::mutex> lock(run_->mutex);
+  Run& r = *run_;
+  r.record.reset();
+  r.record_input.reset();
+  r.status.recording = false;
+  if (r.frame_time <= 0.0 || r.status.state != LiveState::kStreaming) {
+    r.status.record_error = "Record: wait until the stream is connected.";
+  } else {
+    try {
+      auto styled = std::make_unique<BvhRecorder>(path, r.skeleton, r.frame_time);
+      std::unique_ptr<BvhRecorder> input;
+      if (with_input) input = std::make_unique<BvhRecorder>(input_recording_path(path), r.skeleton, r.frame_time);
+      r.record = std::move(styled);
+      r.record_input = std::move(input);
+      r.status.recording = true;
+      r.status.record_path = path;
+      r.status.recorded = 0;
+      r.status.record_error.clear();
+    } catch (const InputError& e) {
+      r.status.record_error = e.what();
+    }
+  }
+  ++r.version;
+  status_.recording = r.status.recording;
+  status_.record_error = r.status.record_error;
+  return r.status.recording;
+}
+
+void LiveSource::stop_recording() {
+  if (!run_) return;
+  std::lock_guard<std::mutex> lock(run_->mutex);
+  run_->record.reset();  // the last line ended: the file is complete
+  run_->record_input.reset();
+  run_->status.recording = false;
+  ++run_->version;
+  status_.recording = false;
+}
+
+bool LiveSource::poll() {
+  // Workers that were stopped and have finished are done with.
+  for (auto it = retired_.begin(); it != retired_.end();) {
+    if ((*it)->finished) {
+      (*it)->thread.join();
+      it = retired_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  if (!run_) return false;
+  bool changed = false;
+  {
+    std::lock_guard<std::mutex> lock(run_->mutex);
+    if (run_->version != seen_version_) {
+      seen_version_ = run_->version;
+      changed = run_->ring.total() != first_frame_ + (input_ ? input_->frames() : 0);
+      status_ = run_->status;
+      if (changed) take_up_window(*run_);
+    }
+  }
+  // The rate and the latency over the last seconds, also when no frame comes.
+  const Clock::time_point now = Clock::now();
+  const FrameRing& ring = run_->ring;  // its times: only the worker writes them, under the lock
+  std::vector<double> recent;
+  {
+    std::lock_guard<std::mutex> lock(run_->mutex);
+    const auto since = now - std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(kLiveMetricsSeconds));
+    Clock::time_point first = now;
+    for (int k = ring.count() - 1; k >= 0; --k) {
+      const size_t row = static_cast<size_t>(ring.row(k));
+      if (ring.times_[row] < since) break;
+      recent.push_back(ring.latency_us_[row]);
+      first = ring.times_[row];
+    }
+    const double span = std::chrono::duration<double>(now - first).count();
+    metrics_.frames_per_s = recent.size() > 1 && span > 0.0 ? static_cast<double>(recent.size()) / std::max(span, 1e-3) : 0.0;
+  }
+  metrics_.skipped = status_.skipped;
+  if (recent.empty()) {
+    metrics_.latency_mean_us = metrics_.latency_p99_us = -1.0;
+  } else {
+    double sum = 0.0;
+    for (double v : recent) sum += v;
+    metrics_.latency_mean_us = sum / static_cast<double>(recent.size());
+    const size_t at = std::min(recent.size() - 1, static_cast<size_t>(std::ceil(0.99 * static_cast<double>(recent.size()))) - 1);
+    std::nth_element(recent.begin(), recent.begin() + static_cast<std::ptrdiff_t>(at), recent.end());
+    metrics_.latency_p99_us = recent[at];
+  }
+  return changed;
+}
+
+// Under the run's lock: the window as two clips and their joints' positions, oldest first.
+void LiveSource::take_up_window(Run& run) {
+  const FrameRing& ring = run.ring;
+  const int n = ring.count();
+  auto input = std::make_shared<Clip>();
+  input->source = run.settings.address;
+  input->skeleton = run.skeleton;
+  input->frame_time = run.frame_time;
+  input->motion.resize(n, ring.input_.cols());
+  auto styled = std::make_shared<Clip>(*input);
+  styled->source = run.settings.address + " (styled)";
+  input_positions_.resize(n, ring.input_at_.cols());
+  styled_positions_.resize(n, ring.styled_at_.cols());
+  for (int k = 0; k < n; ++k) {
+    const int row = ring.row(k);
+    input->motion.row(k) = ring.input_.row(row);
+    styled->motion.row(k) = ring.styled_.row(row);
+    input_positions_.row(k) = ring.input_at_.row(row);
+    styled_positions_.row(k) = ring.styled_at_.row(row);
+  }
+  first_frame_ = ring.total() - n;
+  input_ = std::move(input);
+  styled_ = std::move(styled);
+  make_takes();
+}
+
+// The stream and the styled stream as the viewport's takes: on the stream's floor, its first
+// body centre at the origin, the styled one beside it (placed once per stream, so that the
+// skeletons walk on).
+void LiveSource::make_takes() {
+  if (!input_ || input_->frames() == 0) return;
+  if (!placed_) {
+    const Placement placed = placement_of(input_positions_);
+    shift_ = placed.shift;
+    side_ = placed.side;
+    size_ = placed.size;
+    spacing_ = placed.spacing;
+    placed_ = true;
+  }
+  std::vector<int> parents;
+  for (const Joint& j : input_->skeleton.joints) parents.push_back(j.parent);
+  auto placed = [this](Eigen::MatrixXd positions, const Eigen::Vector3d& offset) {
+    for (Eigen::Index j = 0; 3 * j < positions.cols(); ++j)
+      for (int a = 0; a < 3; ++a) positions.col(3 * j + a).array() += offset[a];
+    return positions;
+  };
+  takes_.clear();
+  takes_.push_back(shown_take("stream  " + input_->source, take_color(0), input_, input_->fps(), parents,
+                              placed(input_positions_, shift_)));
+  takes_.push_back(shown_take("styled", result_color(), styled_, styled_->fps(), parents,
+                              placed(styled_positions_, shift_ + static_cast<double>(spacing_) * side_)));
+  for (Take& t : takes_) {
+    t.path = input_->source;
+    t.size = size_;
+  }
+}
+
+void LiveSource::move_takes_into(std::vector<Take>* shown) {
+  if (takes_.empty()) return;
+  for (size_t i = 0; i < shown->size() && i < takes_.size(); ++i) takes_[i].visible = (*shown)[i].visible;
+  *shown = std::move(takes_);
+  takes_.clear();
+}
+
+bool LiveSource::wait_until(const std::function<bool(const LiveStatus&)>& done, std::chrono::milliseconds timeout) {
+  const Clock::time_point until = Clock::now() + timeout;
+  for (;;) {
+    poll();
+    if (done(status_)) return true;
+    if (Clock::now() >= until) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+}
+
+}  // namespace mostyle::ui
