@@ -14,7 +14,7 @@
 #include "app/cli/cli_pipeline_commands.h"
 #include "engine/base/error.h"
 #include "engine/io/motion_file.h"
-#include "engine/run/palette.h"
+#include "engine/synthesize/mix_palette.h"
 
 namespace mostyle::cli {
 namespace {

@@ -13,7 +13,7 @@
 #include "engine/prepare/major_skeleton.h"
 #include "engine/post/loop.h"
 #include "engine/run/blend_params.h"
-#include "engine/run/palette.h"
+#include "engine/synthesize/mix_palette.h"
 
 namespace mostyle::cli {
 

@@ -13,8 +13,8 @@
 #include "engine/base/clock.h"
 #include "engine/base/error.h"
 #include "engine/kinematics/units.h"
-#include "engine/run/decompose_takes.h"
-#include "engine/run/palette.h"
+#include "engine/decompose/decompose_takes.h"
+#include "engine/synthesize/mix_palette.h"
 #include "engine/run/blend_params.h"
 
 namespace mostyle::cli {

@@ -12,8 +12,8 @@
 #include "app/live/live_run.h"
 #include "engine/base/error.h"
 #include "engine/live/live_style.h"
-#include "engine/run/palette.h"
-#include "engine/run/prepare_takes.h"
+#include "engine/synthesize/mix_palette.h"
+#include "engine/align/prepare_takes.h"
 
 namespace mostyle::cli {
 namespace {

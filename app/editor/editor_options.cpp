@@ -9,7 +9,7 @@
 
 #include "engine/base/error.h"
 #include "engine/io/numbers.h"
-#include "engine/run/palette.h"
+#include "engine/synthesize/mix_palette.h"
 #include "ui/model/session_file.h"
 
 namespace mostyle::app {

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "engine/base/error.h"
+#include "engine/prepare/root_path.h"
 
 namespace mostyle {
 

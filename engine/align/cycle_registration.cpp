@@ -7,6 +7,7 @@
 
 #include "engine/base/error.h"
 #include "engine/kinematics/ease.h"
+#include "engine/prepare/root_path.h"
 
 namespace mostyle {
 

@@ -9,6 +9,7 @@
 
 #include "engine/align/loop_clip.h"
 #include "engine/base/error.h"
+#include "engine/post/foot_contact.h"
 
 namespace mostyle {
 namespace {
@@ -404,13 +405,6 @@ int TakeCycles::frames_in_cycles() const {
   int n = 0;
   for (const Cycle& c : cycles) n += c.frames();
   return n;
-}
-
-std::vector<int> foot_strikes(const Eigen::MatrixXd& contacts, int foot) {
-  std::vector<int> out;
-  for (Eigen::Index t = 1; t < contacts.rows(); ++t)
-    if (contacts(t, foot) > 0.5 && contacts(t - 1, foot) <= 0.5) out.push_back(static_cast<int>(t));
-  return out;
 }
 
 std::vector<int> cycle_starts_at(const TakeCycles& cycles, const Eigen::VectorXd& frames) {

@@ -82,10 +82,6 @@ struct TakeCycles {
   int frames_in_cycles() const;
 };
 
-// Frames where a foot lands: contacts(f, foot) planted and not at f - 1 (never frame 0: a take
-// that starts planted has not struck). contacts: F x 2, 1 planted. O(F).
-std::vector<int> foot_strikes(const Eigen::MatrixXd& contacts, int foot);
-
 // Where a take shown at `frames` (its frame, fractional, at each shown frame: a mix's sources)
 // starts one of its cycles: the shown frames k where frames[k] reaches a cycle's begin from below
 // (frame 0 when it is one exactly). In order; a cycle shown twice is marked twice.

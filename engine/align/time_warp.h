@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "engine/align/dtw.h"
+#include "engine/kinematics/sample_rows.h"
 
 namespace mostyle {
 
@@ -31,23 +32,5 @@ TimeWarp smooth_warp(const std::vector<std::pair<int, int>>& steps, double smoot
 // frame the plain DTW path matches to it (dtw.h warp_map). B may skip frames from one sample to
 // the next. Throws as warp_map does.
 TimeWarp paper_warp(const DtwPath& path, int frames_a);
-
-// Rows of x (frames x channels) at fractional rows t (each clamped to [0, rows - 1]), linearly
-// interpolated, into out (t.size() x channels; no allocation when it has that size). Throws
-// InputError when x has no rows. O(t.size() x channels).
-void sample_rows(const Eigen::MatrixXd& x, const Eigen::VectorXd& t, Eigen::MatrixXd& out);
-Eigen::MatrixXd sample_rows(const Eigen::MatrixXd& x, const Eigen::VectorXd& t);
-
-// The same with the rows and fractions worked out once for several matrices of `rows` rows:
-// the alpha slider's path samples a few of them at every output frame.
-struct RowSampler {
-  Eigen::VectorXi row;    // K: the row before each sample time
-  Eigen::VectorXd frac;   // K: how far towards the next row, 0..1
-  void set(const Eigen::VectorXd& t, Eigen::Index rows);  // rows >= 1; no allocation once sized
-  // out = x at the times (resized to K x x.cols()).
-  void apply(const Eigen::MatrixXd& x, Eigen::MatrixXd& out) const;
-  // out += weight times x at the times (out already K x x.cols()).
-  void accumulate(const Eigen::MatrixXd& x, double weight, Eigen::MatrixXd& out) const;
-};
 
 }  // namespace mostyle

@@ -4,7 +4,7 @@
 // (smoothstep: no kink at a key, so no joint changes speed at once); before the first key they
 // are the first key's, after the last the last's. A key may fall anywhere, inside a cycle too:
 // the ease spans the whole time between keys. The timing follows the weights as they change
-// (timing.h mixed_timeline with keys), so the times are seconds of the output itself.
+// (trajectory/mixed_clock.h mixed_timeline with keys), so the times are seconds of the output itself.
 #include <Eigen/Core>
 #include <vector>
 

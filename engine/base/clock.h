@@ -1,5 +1,5 @@
 #pragma once
-// Wall time for stage timings (run/stage_times.h), reports and the editor's metrics.
+// Wall time for stage timings (base/stage_times.h), reports and the editor's metrics.
 #include <chrono>
 
 namespace mostyle {

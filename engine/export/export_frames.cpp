@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <string>
 
-#include "engine/align/time_warp.h"
 #include "engine/base/error.h"
+#include "engine/kinematics/sample_rows.h"
 
 namespace mostyle {
 namespace {

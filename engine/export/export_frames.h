@@ -28,15 +28,15 @@ double motion_length_s(Eigen::Index frames, double fps);
 int export_frame_count(double first_s, double last_s, double fps);
 
 // The motion resampled for export.
-//   world:       F x 3M positions at working_fps (a MixResult's motion.world, palette.h), F >= 1
-//   at:          F source frames in A's clip (palette.h source_frames_in_clip)
+//   world:       F x 3M positions at working_fps (a MixResult's motion.world, mix_palette.h), F >= 1
+//   at:          F source frames in A's clip (mix_palette.h source_frames_in_clip)
 //   working_fps: the rate of world's rows; row i is at i / working_fps seconds
 //   out_fps:     the output rate, in (0, kMaxExportFps]
 //   first_s, last_s: the range, seconds of the motion: 0 <= first_s <= last_s <= its length
 //                (motion_length_s(F, working_fps)); a bound off by less than
 //                kExportTimeTolerance of a working frame is taken as the end it misses
 // Output frame k is at first_s + k / out_fps, for k in [0, export_frame_count(first_s, last_s,
-// out_fps)): rows of world and at linearly interpolated there (align/time_warp.h sample_rows);
+// out_fps)): rows of world and at linearly interpolated there (kinematics/sample_rows.h);
 // a frame that lands on a working frame (within 1e-9 of one) copies it. Throws InputError with
 // one sentence on a rate that is not a finite number in (0, kMaxExportFps] (either rate), a
 // range that is not finite, empty (first_s after last_s) or outside the motion, no frames, or

@@ -87,7 +87,7 @@ class ExportFrameSolver {
 
 // The same with A's rotations taken at fractional frames `at` of A's clip (one per row of
 // world; kinematics/resample.h sample_clip), frame time 1 / fps: a blend whose timing is not A's
-// (align/timing.h) takes A's rotations where the blend is in A's motion.
+// (trajectory/mixed_clock.h) takes A's rotations where the blend is in A's motion.
 ExportResult solve_export_at(const Clip& clip, const std::vector<int>& joints, const Eigen::MatrixXd& world,
                              const Eigen::VectorXd& at, double fps);
 

@@ -18,8 +18,8 @@
 #include "engine/post/planted_feet.h"
 #include "engine/prepare/major_skeleton.h"
 #include "engine/prepare/major_take.h"
-#include "engine/run/palette.h"
-#include "engine/run/prepare_takes.h"
+#include "engine/synthesize/mix_palette.h"
+#include "engine/align/prepare_takes.h"
 
 namespace mostyle {
 namespace {

@@ -1,7 +1,7 @@
 #pragma once
 // What a style changes in a walk, as a function of the gait's phase, on a stream's bones: the
 // live styler's table (live_style.h), made once from a neutral take and styled takes prepared
-// with the neutral as the reference (run/prepare_takes.h: each style registered onto the
+// with the neutral as the reference (align/prepare_takes.h: each style registered onto the
 // neutral's cycles, cycle_registration.h).
 //
 // For each phase of the neutral's gait cycle (from a strike of its cycle foot to the next; phases
@@ -19,7 +19,7 @@
 #include <array>
 #include <vector>
 
-#include "engine/run/prepare_takes.h"
+#include "engine/align/prepare_takes.h"
 
 namespace mostyle {
 

@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "engine/align/time_warp.h"
+#include "engine/kinematics/sample_rows.h"
 #include "engine/post/foot_contact.h"
 #include "engine/post/loop.h"
 #include "engine/post/speed_limit.h"
@@ -17,7 +17,7 @@ struct FinishOptions {
   bool foot_lock = true;     // pin planted feet after the limb lengths (foot_contact.h)
   bool loop = false;         // cut a seamless loop of whole gait cycles (loop.h)
   // The motion is one whole loop whose last frame shows its first pose again (a loop clip's cycle
-  // as the reference, its clock landed on the loop's end: timing.h land_on_last): that frame is
+  // as the reference, its clock landed on the loop's end: mixed_clock.h land_on_last): that frame is
   // cut off and the seam closed, so the last frame leads into the first as any frame into the
   // next. Replaces `loop`.
   bool closed = false;
@@ -58,7 +58,7 @@ struct FinishScratch {
 // local and u are cut to the loop's frames (closed: all but the last). Throws InputError when a
 // loop is asked of a motion without two foot strikes. body_drift: when given (K x 2 kFootJoints:
 // x, z per foot joint, planted_feet.h), how far each planted foot joint may move from output
-// frame k to k + 1 in the body's frame there (the mixed takes' own planted moves, palette.cpp
+// frame k to k + 1 in the body's frame there (the mixed takes' own planted moves, mix_palette.cpp
 // planted_drift), for the foot lock (apply_foot_lock's drift). foot_sliding_raw and _cleaned:
 // planted_feet.h's measure before and after the lock. O(K x M); allocation-free once sized,
 // except the loop.

@@ -400,6 +400,13 @@ Eigen::MatrixXd carry_contacts(const Eigen::MatrixXd& contacts_b, const Eigen::V
   return out;
 }
 
+std::vector<int> foot_strikes(const Eigen::MatrixXd& contacts, int foot) {
+  std::vector<int> out;
+  for (Eigen::Index t = 1; t < contacts.rows(); ++t)
+    if (contacts(t, foot) > 0.5 && contacts(t - 1, foot) <= 0.5) out.push_back(static_cast<int>(t));
+  return out;
+}
+
 void two_bone_ik(const Eigen::Vector3d& hip, const Eigen::Vector3d& knee, const Eigen::Vector3d& ankle,
                  const Eigen::Vector3d& target, const Eigen::Vector3d& bend_fallback,
                  Eigen::Vector3d* new_knee, Eigen::Vector3d* new_ankle) {

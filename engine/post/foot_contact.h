@@ -69,6 +69,10 @@ void tidy_contacts(Eigen::MatrixXd& contacts, const FootRig& rig);
 // dtw.h warp_map, F values in B's frames). Throws InputError on an empty B. O(F).
 Eigen::MatrixXd carry_contacts(const Eigen::MatrixXd& contacts_b, const Eigen::VectorXd& warp);
 
+// Frames where a foot lands: contacts(f, foot) planted and not at f - 1 (never frame 0: a take
+// that starts planted has not struck). contacts: F x 2, 1 planted. O(F).
+std::vector<int> foot_strikes(const Eigen::MatrixXd& contacts, int foot);
+
 // Buffers apply_foot_lock reuses, so the lock does not allocate once they have the right size.
 struct FootLockScratch {
   Eigen::VectorXd weight;  // F: 1 where the ankle is moved, 0 where it is left as it is

@@ -4,9 +4,9 @@
 #include <limits>
 #include <vector>
 
-#include "engine/align/cycles.h"
 #include "engine/base/error.h"
-#include "engine/prepare/canonical_frame.h"
+#include "engine/post/foot_contact.h"
+#include "engine/prepare/root_path.h"
 
 namespace mostyle {
 

@@ -1,14 +1,14 @@
 #pragma once
 // A blend of two takes (A the reference, B the other) in the words the editor's pair and `blend`
 // use: one alpha (or one per component), B's basic-motion core at a level, A's timing. A blend is
-// the mix of the two takes with weights (1 - alpha, alpha) (palette.h, mix_palette), in shared or
+// the mix of the two takes with weights (1 - alpha, alpha) (mix_palette.h, mix_palette), in shared or
 // paper mode (decompose_takes.h): the same synthesis, timing, root path and clean-up; these are
 // its parameters in a mix's terms.
 #include <vector>
 
-#include "engine/prepare/canonical_frame.h"
-#include "engine/run/decompose_takes.h"
-#include "engine/run/palette.h"
+#include "engine/decompose/decompose_takes.h"
+#include "engine/synthesize/mix_palette.h"
+#include "engine/trajectory/mixed_root.h"
 
 namespace mostyle {
 
@@ -17,9 +17,9 @@ struct BlendParams {
   std::vector<double> component_alpha;   // shared mode: per component, overrides alpha; empty: none
   int swap_level = 0;                    // basic motions: the level whose core comes from B
   bool limb_lengths = true;              // paper 3.7
-  double root_pull_seconds = kRootPullSeconds;  // keeps the path between A's and B's (canonical_frame.h)
+  double root_pull_seconds = kRootPullSeconds;  // keeps the path between A's and B's (trajectory/mixed_root.h)
   bool foot_lock = true;                 // pin planted feet after the limb lengths (foot_contact.h)
-  // Timing (align/timing.h): false blends A's and B's timing with alpha (alpha 0 plays at A's
+  // Timing (trajectory/mixed_clock.h): false blends A's and B's timing with alpha (alpha 0 plays at A's
   // timing and length, 1 at B's); true keeps A's timeline, for a blend that must stay in sync.
   bool timing_a = false;
   bool loop = false;                     // cut a seamless loop of whole gait cycles (post/loop.h)

@@ -17,7 +17,7 @@
 
 #include "engine/io/bvh_io.h"
 #include "engine/base/job_control.h"
-#include "engine/run/palette.h"
+#include "engine/synthesize/mix_palette.h"
 
 namespace mostyle {
 

@@ -15,7 +15,7 @@
 #include "engine/io/atomic_file.h"
 #include "engine/io/bvh_io.h"
 #include "engine/io/motion_file.h"
-#include "engine/run/prepare_takes.h"
+#include "engine/align/prepare_takes.h"
 
 namespace {
 

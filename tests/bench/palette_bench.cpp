@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "engine/io/bvh_io.h"
-#include "engine/run/palette.h"
+#include "engine/synthesize/mix_palette.h"
 
 namespace {
 

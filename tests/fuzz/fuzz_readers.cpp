@@ -16,7 +16,7 @@
 #include "engine/io/scene_animation.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/prepare/major_skeleton.h"
-#include "engine/run/palette.h"
+#include "engine/synthesize/mix_palette.h"
 #include "ui/model/session_file.h"
 
 namespace mostyle::fuzz {

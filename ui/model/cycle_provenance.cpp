@@ -8,7 +8,7 @@
 #include <limits>
 #include <map>
 
-#include "engine/run/prepare_takes.h"
+#include "engine/align/prepare_takes.h"
 
 namespace mostyle::ui {
 namespace {
@@ -18,7 +18,7 @@ const TakeCycles& own_cycles(const PreparedTake& take) {
   return take.registration.empty() ? take.cycles : take.registration.take_cycles;
 }
 
-// Frames of the take's file at its own rate per frame at the working rate (as palette.cpp
+// Frames of the take's file at its own rate per frame at the working rate (as mix_palette.cpp
 // source_frames_in_clip); 1 without a clip (a take made by hand).
 double file_rate_ratio(const PreparedTake& take, double working_fps) {
   return take.clip != nullptr && working_fps > 0.0 ? take.clip->fps() / working_fps : 1.0;

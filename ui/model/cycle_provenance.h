@@ -8,7 +8,7 @@
 // The output is cut into spans where the reference shows one of its cycles (an output cycle) and
 // the stretches in between (before the first, after the last, a gap the reference's cycle
 // detection left out: outside cycles). Within a span, each take is said to show the cycle it
-// shows at most of the span's frames (engine/run/prepare_takes.h cycles_shown), or, outside its
+// shows at most of the span's frames (engine/align/prepare_takes.h cycles_shown), or, outside its
 // cycles, the frames of its file shown there, or its posture only (a take registered by cycles
 // gives only its posture where the reference does not repeat: frames_in_take is NaN there).
 #include <string>

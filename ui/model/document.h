@@ -17,7 +17,7 @@
 
 #include "engine/align/alignment.h"
 #include "engine/align/weight_keys.h"
-#include "engine/run/decompose_params.h"
+#include "engine/decompose/decompose_params.h"
 
 namespace mostyle::ui {
 

@@ -6,8 +6,8 @@
 // the ranges it reads with, the keys it refuses) and the panels' sliders are all made from this
 // one list: a field added to Document, DocumentControls, PaletteControls or BlendParameters goes
 // here, and nowhere else.
-#include "engine/run/palette.h"
-#include "engine/run/prepare_takes.h"
+#include "engine/synthesize/mix_palette.h"
+#include "engine/align/prepare_takes.h"
 #include "ui/model/document.h"
 #include "ui/model/weight_keys_edit.h"
 

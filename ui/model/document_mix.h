@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/run/palette.h"
+#include "engine/synthesize/mix_palette.h"
 #include "ui/model/document.h"
 
 namespace mostyle::ui {

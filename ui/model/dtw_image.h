@@ -3,7 +3,7 @@
 // onto take 0), sampled at cell centres, for the DTW panel to draw. Plain data, no ImGui.
 #include <Eigen/Core>
 
-#include "engine/run/prepare_takes.h"
+#include "engine/align/prepare_takes.h"
 
 namespace mostyle::ui {
 

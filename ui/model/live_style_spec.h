@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "engine/live/live_style.h"
-#include "engine/run/prepare_takes.h"
+#include "engine/align/prepare_takes.h"
 #include "ui/model/document.h"
 
 namespace mostyle::ui {

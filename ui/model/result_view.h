@@ -15,7 +15,7 @@
 
 #include <Eigen/Core>
 
-#include "engine/run/palette.h"
+#include "engine/synthesize/mix_palette.h"
 #include "ui/model/document.h"
 #include "ui/model/editor_state.h"
 

@@ -9,7 +9,7 @@
 #include "engine/align/cycle_registration.h"
 #include "engine/base/error.h"
 #include "engine/io/motion_file.h"
-#include "engine/run/prepare_takes.h"
+#include "engine/align/prepare_takes.h"
 #include "tests/test_data.h"
 
 using namespace mostyle;

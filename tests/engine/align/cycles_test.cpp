@@ -16,7 +16,7 @@
 #include "engine/base/error.h"
 #include "engine/io/motion_file.h"
 #include "engine/prepare/canonical_frame.h"
-#include "engine/run/prepare_takes.h"
+#include "engine/align/prepare_takes.h"
 #include "tests/engine/synthetic_gait.h"
 #include "tests/test_data.h"
 
@@ -83,20 +83,6 @@ Detected detect(const test::GaitSpec& g, int frames, const CycleOptions& o = {})
 int cycle_frames(const test::GaitSpec& g) { return static_cast<int>(std::lround(g.cycle_s * g.fps)); }
 
 }  // namespace
-
-TEST_CASE("cycles: foot strikes are landings, worked by hand") {
-  Eigen::MatrixXd c(8, 2);
-  c << 1, 0,  //
-      1, 0,   //
-      0, 1,   // right lands at 2
-      0, 1,   //
-      1, 0,   // left lands at 4
-      1, 1,   // right lands at 5
-      0, 0,   //
-      1, 1;   // both land at 7
-  CHECK(foot_strikes(c, 0) == std::vector<int>{4, 7});  // frame 0 planted is not a strike
-  CHECK(foot_strikes(c, 1) == std::vector<int>{2, 5, 7});
-}
 
 TEST_CASE("cycles: where a take shown at other frames starts its cycles") {
   TakeCycles t;

@@ -1,11 +1,11 @@
 // Weights keyed in time (engine/align/weight_keys.h): eased between keys (smoothstep) worked by
 // hand, held outside them, per frame as at each time, every bad key refused in a sentence; and
-// the keyed clock (timing.h) the same as the constant one when every key is the same.
+// the keyed clock (trajectory/mixed_clock.h) the same as the constant one when every key is the same.
 #include "engine/align/weight_keys.h"
 
 #include <catch2/catch.hpp>
 
-#include "engine/align/timing.h"
+#include "engine/trajectory/mixed_clock.h"
 #include "engine/base/error.h"
 
 using namespace mostyle;

@@ -303,7 +303,7 @@ Blended blend_files(const std::string& path_a, const std::string& path_b, double
 // the read-back clip's major positions.
 Eigen::MatrixXd check_blend_export(const Blended& blend) {
   const PreparedTakes& p = *blend.prepared;
-  // A's rotations where the blend is in A's motion (its own timeline, align/timing.h).
+  // A's rotations where the blend is in A's motion (its own timeline, trajectory/mixed_clock.h).
   const ExportResult r =
       solve_export_at(*p.takes[0].clip, export_joints(p), blend.result.motion.world, source_frames_in_clip(p, blend.result), p.fps);
   const Clip back = parse_bvh(format_bvh(r.clip), "blend.bvh");

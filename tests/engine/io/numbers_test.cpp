@@ -6,7 +6,7 @@
 
 #include "engine/base/error.h"
 #include "engine/io/numbers.h"
-#include "engine/run/palette.h"
+#include "engine/synthesize/mix_palette.h"
 
 using namespace mostyle;
 

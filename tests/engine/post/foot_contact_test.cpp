@@ -560,3 +560,17 @@ TEST_CASE("the pipeline locks planted feet of real blends from ../shared/motions
   check_pipeline_foot_lock(test::shared_motion("bandai_walk_normal.bvh"), test::shared_motion("bandai_walk_tired.bvh"));
   check_pipeline_foot_lock(test::shared_motion("cmu142_walk_joy.bvh"), test::shared_motion("bandai_walk_sad.bvh"));
 }
+
+TEST_CASE("foot contacts: foot strikes are landings, worked by hand", "[foot_contact]") {
+  Eigen::MatrixXd c(8, 2);
+  c << 1, 0,  //
+      1, 0,   //
+      0, 1,   // right lands at 2
+      0, 1,   //
+      1, 0,   // left lands at 4
+      1, 1,   // right lands at 5
+      0, 0,   //
+      1, 1;   // both land at 7
+  CHECK(foot_strikes(c, 0) == std::vector<int>{4, 7});  // frame 0 planted is not a strike
+  CHECK(foot_strikes(c, 1) == std::vector<int>{2, 5, 7});
+}

@@ -2,7 +2,7 @@
 // One blend (the mix of two takes with weights (1 - alpha, alpha), blend_params.h) with fresh
 // scratch, for tests of the pipeline.
 #include "engine/run/blend_params.h"
-#include "engine/run/palette.h"
+#include "engine/synthesize/mix_palette.h"
 
 namespace mostyle::test {
 

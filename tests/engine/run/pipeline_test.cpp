@@ -82,7 +82,7 @@ Eigen::MatrixXd reference_positions(const Clip& a, const PreparedTakes& p) {
 }
 
 // The reference at the frames of A a blend shows (MixResult::source_a): a blend plays only A's
-// matched range, on its own timeline (align/timing.h).
+// matched range, on its own timeline (trajectory/mixed_clock.h).
 Eigen::MatrixXd reference_at(const Clip& a, const PreparedTakes& p, const MixResult& r) {
   return sample_rows(reference_positions(a, p), r.sources.col(0));
 }

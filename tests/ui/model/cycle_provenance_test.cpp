@@ -12,7 +12,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "engine/run/prepare_takes.h"
+#include "engine/align/prepare_takes.h"
 #include "tests/test_data.h"
 #include "tests/ui/loaded_session.h"
 #include "ui/model/cycle_provenance.h"

@@ -1,4 +1,4 @@
-#include "engine/run/palette.h"
+#include "engine/synthesize/mix_palette.h"
 
 #include <algorithm>
 #include <chrono>
@@ -7,11 +7,10 @@
 
 #include <Eigen/QR>
 
-#include "engine/align/timing.h"
 #include "engine/base/clock.h"
 #include "engine/base/error.h"
-#include "engine/prepare/canonical_frame.h"
 #include "engine/prepare/major_skeleton.h"
+#include "engine/synthesize/synthesis.h"
 
 namespace mostyle {
 namespace {
@@ -22,20 +21,6 @@ using Clock = std::chrono::steady_clock;
 // a half, a wrist of a 7 s and a 22 s walk at alpha 0.5 turned 90 degrees in four frames.
 constexpr double kShortBoneFraction = 0.75;
 constexpr double kWeightSumTolerance = 1e-6;
-
-// Each take's frame (K x N) at the sampler's output frames; the sampler's rows count from
-// sample `first`.
-void write_sources(const PreparedTakes& p, const RowSampler& at, int first, Eigen::MatrixXd& sources) {
-  const Eigen::Index frames = at.row.size();
-  sources.resize(frames, p.size());
-  for (int i = 0; i < p.size(); ++i) {
-    const Eigen::VectorXd& f = p.timeline.frames[i];
-    for (Eigen::Index k = 0; k < frames; ++k) {
-      const Eigen::Index r = first + at.row[k];
-      sources(k, i) = r + 1 < f.size() ? (1 - at.frac[k]) * f[r] + at.frac[k] * f[r + 1] : f[r];
-    }
-  }
-}
 
 // A fractional row, clamped to [0, rows - 1]: the row before it and how far towards the next.
 struct RowAt {
@@ -83,15 +68,6 @@ void planted_drift(const PreparedTakes& p, const Eigen::MatrixXd& sources, const
       std::copy(next, next + 2 * kFootJoints, at);
     }
   }
-}
-
-// Whether samples first..last show a loop reference's whole loop: its one cycle from its first
-// frame to its last (the loop's end: prepare_takes gives a loop reference that frame).
-bool shows_whole_loop(const PreparedTakes& p, int first, int last) {
-  const PreparedTake& r = p.reference();
-  const Eigen::Index frames = r.own_local_t.cols();
-  if (!r.cycles.loops() || r.cycles.loop_frames != frames - 1) return false;
-  return r.frames[first] <= 0.0 && r.frames[last] >= double(frames - 1);
 }
 
 // MixResult::foot_sliding_inputs: weights, one per take, or with keys each take's mean over the
@@ -190,75 +166,6 @@ bool mix_overall_weights(const MixParams& params, int n, MixScratch& s) {
   return per_component;
 }
 
-// The samples of the common timeline a mix plays and what limits its foot lock.
-struct PlayedStretch {
-  int first = 0, last = 0;  // the stretch every take with a weight matches
-  double fastest = 0.0;     // the fastest joint of those takes (the foot lock keeps the swings under it)
-  Eigen::Index length() const { return last - first + 1; }
-};
-
-// The stretch every take with a weight matches (a take at weight 0 does not shorten it). Throws
-// InputError when they match no common stretch.
-PlayedStretch played_stretch(const PreparedTakes& p, const MixParams& params, bool per_component,
-                             const std::vector<double>& timing) {
-  PlayedStretch st;
-  st.last = p.samples() - 1;
-  for (int i = 0; i < p.size(); ++i) {
-    bool weighted = params.weights[i] != 0.0 || timing[i] != 0.0;
-    for (const WeightKey& key : params.keys) weighted |= key.weights[static_cast<size_t>(i)] != 0.0;
-    for (Eigen::Index c = 0; per_component && c < params.component_weights.rows(); ++c)
-      weighted |= params.component_weights(c, i) != 0.0;
-    if (!weighted) continue;
-    st.fastest = std::max(st.fastest, p.takes[static_cast<size_t>(i)].fastest_joint);
-    st.first = std::max(st.first, p.timeline.first[i]);
-    st.last = std::min(st.last, p.timeline.last[i]);
-  }
-  if (st.first >= st.last)
-    throw InputError("the takes given a weight match no common stretch of the reference (each matched a "
-                     "different part of it); give weight to takes whose matches overlap, or align them end to "
-                     "end (closed ends)");
-  return st;
-}
-
-// The output's clock: s.u (K sample positions, mixed or the reference's), with keys each sample's
-// weights (s.sample_w, U x N) and each output frame's (s.frame_w, K x N), s.u_stretch and the
-// sampler on the stretch, and each take's frame at each output frame (sources). Returns the
-// finish's options: a loop clip as the reference, shown whole, makes the output one loop, its
-// clock landed on the loop's end (the reference's last frame, its first pose again), which the
-// finish cuts off.
-FinishOptions output_clock(const PreparedTakes& p, const MixParams& params, const PlayedStretch& st, MixScratch& s,
-                           Eigen::MatrixXd& sources) {
-  const int n = p.size();
-  const bool keyed = !params.keys.empty();
-  if (keyed && !params.reference_timing) {
-    mixed_timeline(p.timeline, params.keys, p.fps, st.first, st.last, s.u, &s.sample_w);
-  } else {
-    mixed_timeline(p.timeline, s.timing, st.first, st.last, s.u);
-    if (keyed) {  // the reference's clock: each sample's weights at the reference's time there
-      s.sample_w.resize(st.length(), n);
-      std::vector<double> w;
-      const Eigen::VectorXd& clock = p.timeline.frames[0];
-      for (Eigen::Index k = 0; k < st.length(); ++k) {
-        weights_at(params.keys, (clock[st.first + k] - clock[st.first]) / p.fps, w);
-        for (int i = 0; i < n; ++i) s.sample_w(k, i) = w[static_cast<size_t>(i)];
-      }
-    }
-  }
-  FinishOptions finish = params.finish;
-  finish.closed = shows_whole_loop(p, st.first, st.last);
-  if (finish.closed) {
-    land_on_last(s.u, st.last);
-    finish.loop = false;
-  }
-  s.u_stretch = s.u.array() - double(st.first);
-  s.sampler.set(s.u_stretch, st.length());
-  // Each take's frame at each output frame: the residual's poses and the foot lock's drift read
-  // it; written again only when a loop cuts the output.
-  write_sources(p, s.sampler, st.first, sources);
-  if (keyed) weights_over_frames(params.keys, s.u.size(), p.fps, s.frame_w);
-  return finish;
-}
-
 // The paper's synthesis (3.6) on the samples with alpha the second take's weight: A's weights on
 // a blend of the takes' cores, or B's basic-motion core at one level (3.5; the chain sums back to
 // X with A's residual). No residuals otherwise, as the paper has it.
@@ -276,7 +183,7 @@ void paper_poses(const PreparedTakes& p, const Decomposed& d, const MixParams& p
   s.samples.noalias() = s.x * p.scale;
   s.samples.rowwise() += params.weights[0] * p.takes[0].mean + alpha * p.takes[1].mean;
   s.stretch = s.samples.middleRows(st.first, st.length());
-  s.sampler.apply(s.stretch, local);
+  s.trajectory.sampler.apply(s.stretch, local);
 }
 
 // sum_i w_i (W_i C scale + mean_i + residual_i) at the output frames only: each take's own pose,
@@ -291,7 +198,7 @@ void own_poses(const PreparedTakes& p, const MixParams& params, const Eigen::Mat
   for (Eigen::Index k = 0; k < sources.rows(); ++k) {
     auto column = s.local_t.col(k);
     for (int i = 0; i < p.size(); ++i) {
-      const double w = keyed ? s.frame_w(k, i) : params.weights[i];
+      const double w = keyed ? s.trajectory.frame_w(k, i) : params.weights[i];
       if (w == 0.0) continue;
       const Eigen::MatrixXd& x = p.takes[i].own_local_t;
       const RowAt at(sources(k, i), x.cols());
@@ -310,14 +217,14 @@ void reconstructed_poses(const PreparedTakes& p, const SharedComponents& shared,
   for (int i = 0; i < p.size(); ++i) {
     s.stretch = shared.reconstructed[i].middleRows(st.first, st.length());
     if (keyed) {
-      s.sampler.apply(s.stretch, s.samples);
-      if (i == 0) local = s.frame_w.col(0).asDiagonal() * s.samples;
-      else local += s.frame_w.col(i).asDiagonal() * s.samples;
+      s.trajectory.sampler.apply(s.stretch, s.samples);
+      if (i == 0) local = s.trajectory.frame_w.col(0).asDiagonal() * s.samples;
+      else local += s.trajectory.frame_w.col(i).asDiagonal() * s.samples;
     } else if (i == 0) {
-      s.sampler.apply(s.stretch, local);
+      s.trajectory.sampler.apply(s.stretch, local);
       local *= params.weights[0];
     } else {
-      s.sampler.accumulate(s.stretch, params.weights[i], local);
+      s.trajectory.sampler.accumulate(s.stretch, params.weights[i], local);
     }
   }
 }
@@ -344,50 +251,7 @@ void part_poses(const PreparedTakes& p, const Decomposed& d, const MixParams& pa
     if (params.residual) s.samples += shared->residual[i].middleRows(st.first, st.length()) * s.channel_w.asDiagonal();
   }
   s.samples.rowwise() += s.mixed_mean;
-  s.sampler.apply(s.samples, local);
-}
-
-// The root over the stretch (s.ground_u, s.heading_u) and the contacts (s.contacts_u): steps,
-// whole-turn flips and the paths pulled towards (integrate_root_towards), as the steps are
-// weighted.
-void mix_root(const PreparedTakes& p, const MixParams& params, const PlayedStretch& st, MixScratch& s) {
-  const int n = p.size();
-  const bool keyed = !params.keys.empty();
-  const Eigen::Index first = st.first, length = st.length();
-  const std::vector<double>& root_w = s.overall;
-  s.steps.setZero(length, 3);
-  s.target.setZero(length, 2);
-  s.contacts_u.setZero(length, 2);
-  for (int i = 0; i < n; ++i) {
-    if (keyed) {  // each sample with its own weights
-      const auto w = s.sample_w.col(i).asDiagonal();
-      s.steps += w * p.takes[i].steps.middleRows(first, length);
-      s.target += w * p.takes[i].ground.middleRows(first, length);
-      s.contacts_u += w * p.takes[i].contacts.middleRows(first, length);
-      continue;
-    }
-    s.steps += root_w[i] * p.takes[i].steps.middleRows(first, length);
-    s.target += root_w[i] * p.takes[i].ground.middleRows(first, length);
-    s.contacts_u += root_w[i] * p.takes[i].contacts.middleRows(first, length);
-  }
-  for (int i = 1; i < n; ++i) {
-    s.flips = p.takes[i].turn_flips.segment(first, length);
-    if (keyed) add_spread_turns(s.flips, s.sample_w.col(i), p.fps, s.steps);
-    else add_spread_turns(s.flips, root_w[i], p.fps, s.steps);
-  }
-  // The pull keeps a mix among its takes' paths (a warp matches steps, not turns, so integrated
-  // steps alone drift away from every take). With a negative weight (a transfer's on its neutral
-  // take, an exaggeration) there is no path among them to keep to: the weighted paths are a path
-  // no take walks (content + style - neutral, each registered path with its own drift), and the
-  // planted feet would slide to follow it. Such a mix integrates its steps alone.
-  bool convex = true;
-  for (int i = 0; i < n; ++i) {
-    convex &= root_w[i] >= 0.0;
-    for (const WeightKey& key : params.keys) convex &= key.weights[static_cast<size_t>(i)] >= 0.0;
-  }
-  integrate_root_towards(s.steps, s.target, p.reference_heading[first], p.fps, convex ? params.root_pull_seconds : 0.0,
-                         &s.ground_u, &s.heading_u);
-  s.contacts_u = (s.contacts_u.array() > 0.5).cast<double>();
+  s.trajectory.sampler.apply(s.samples, local);
 }
 
 // The rig the clean-up measures the output with: the reference's, the foot lock held to the
@@ -409,14 +273,14 @@ FinishRig mix_rig(const PreparedTakes& p, double fastest, double planted_speed) 
 void preview_finish(const PreparedTakes& p, const MixParams& params, const PlayedStretch& st,
                     const FinishOptions& finish, MixScratch& s, MixResult& out) {
   const bool keyed = !params.keys.empty();
-  out.foot_sliding_inputs = inputs_planted_speed(p, s.overall, keyed ? &s.frame_w : nullptr, params.feet_of_reference);
+  out.foot_sliding_inputs = inputs_planted_speed(p, s.overall, keyed ? &s.trajectory.frame_w : nullptr, params.feet_of_reference);
   const FinishRig rig = mix_rig(p, st.fastest, out.foot_sliding_inputs);
-  finish_preview(s.sampler, s.ground_u, s.heading_u, s.contacts_u, rig, finish, out.local, s.u_stretch, s.finish,
+  finish_preview(s.trajectory.sampler, s.trajectory.ground_u, s.trajectory.heading_u, s.trajectory.contacts_u, rig, finish, out.local, s.trajectory.u_stretch, s.finish,
                  out.motion);
   if (finish.loop || finish.closed) {  // the loop's frames only
     s.sources_uncut = out.sources;
-    s.sampler.set(s.u_stretch, st.length());
-    write_sources(p, s.sampler, st.first, out.sources);
+    s.trajectory.sampler.set(s.trajectory.u_stretch, st.length());
+    write_sources(p, s.trajectory.sampler, st.first, out.sources);
   }
   s.pending.waiting = true;
   s.pending.options = finish;
@@ -438,7 +302,7 @@ void finish_rest_of_mix(const PreparedTakes& p, const MixParams& params, MixScra
       s.drift_w.front() = 1.0;
       planted_drift(p, sources, s.drift_w, nullptr, s.drift);
     } else {
-      planted_drift(p, sources, s.overall, keyed ? &s.frame_w : nullptr, s.drift);
+      planted_drift(p, sources, s.overall, keyed ? &s.trajectory.frame_w : nullptr, s.drift);
     }
     drift = &s.drift;
   }
@@ -454,10 +318,12 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
   s.pending.waiting = false;
   const auto t0 = Clock::now();
   const bool per_component = mix_overall_weights(params, p.size(), s);
-  const PlayedStretch st = played_stretch(p, params, per_component, s.timing);
+  const PlayedStretch st =
+      played_stretch(p, params.weights, params.keys, params.component_weights, per_component, s.timing);
   out.first_sample = st.first;
   out.last_sample = st.last;
-  const FinishOptions finish = output_clock(p, params, st, s, out.sources);
+  const FinishOptions finish =
+      output_clock(p, params.keys, params.reference_timing, s.timing, params.finish, st, s.trajectory, out.sources);
   if (d.paper() != nullptr) paper_poses(p, d, params, st, s, out.local);
   else if (per_component) part_poses(p, d, params, st, s, out.local);
   else if (params.residual) own_poses(p, params, out.sources, s, out.local);
@@ -465,9 +331,9 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
   if (times != nullptr) times->synthesize_ms = ms_since(t0);
 
   const auto t1 = Clock::now();
-  mix_root(p, params, st, s);
+  mix_root(p, params.keys, s.overall, params.root_pull_seconds, st, s.trajectory);
   preview_finish(p, params, st, finish, s, out);
-  out.sample = s.u_stretch.array() + double(st.first);
+  out.sample = s.trajectory.u_stretch.array() + double(st.first);
   if (!params.preview) finish_rest_of_mix(p, params, s, out);
   if (times != nullptr) times->postprocess_ms = ms_since(t1);
 }

@@ -14,12 +14,14 @@
 #include <vector>
 
 #include "engine/align/common_timeline.h"
+#include "engine/align/prepare_takes.h"
 #include "engine/align/weight_keys.h"
 #include "engine/decompose/body_parts.h"
+#include "engine/decompose/decompose_takes.h"
 #include "engine/decompose/decomposition.h"
 #include "engine/post/finish.h"
-#include "engine/run/decompose_takes.h"
-#include "engine/run/prepare_takes.h"
+#include "engine/trajectory/mixed_root.h"
+#include "engine/trajectory/mixed_trajectory.h"
 
 namespace mostyle {
 
@@ -60,13 +62,11 @@ struct MixParams {
 };
 
 struct MixScratch {
-  Eigen::MatrixXd x, samples, steps, ground_u, target, contacts_u, joint_weights, stretch, local_t, component_w;
-  Eigen::MatrixXd frame_w, sample_w;  // keyed weights: per output frame (K x N), per sample (L x N)
+  Eigen::MatrixXd x, samples, joint_weights, stretch, local_t, component_w;
   Eigen::MatrixXd drift;              // K x 2 kFootJoints: the planted feet's expected moves (the foot lock's)
-  Eigen::VectorXd heading_u, u, u_stretch, flips;
   Eigen::RowVectorXd channel_w, mixed_mean;
   std::vector<double> overall, timing, drift_w;
-  RowSampler sampler;
+  MixedTrajectory trajectory;         // the clock, the root and the contacts (trajectory/mixed_trajectory.h)
   FinishScratch finish;
   Eigen::MatrixXd sources_uncut;  // a loop's MixResult::sources before the cut, for the planted drift
   // What a preview mix leaves for finish_mix_palette.
@@ -96,7 +96,7 @@ struct MixResult {
 // root on the samples, O(U x N); per-component weights add O(U x k x (3M + N)).
 // Allocation-free once scratch and out are sized (per-component weights, keys and a loop allocate).
 // With keys, each output frame's pose takes the keys' weights at its time, and the root, contacts
-// and timing each sample's (timing.h mixed_timeline with keys): O(K x N x 3M + U x N) as above.
+// and timing each sample's (trajectory/mixed_clock.h mixed_timeline with keys): O(K x N x 3M + U x N) as above.
 // times: when given, its synthesize_ms (the poses) and postprocess_ms (root, clean-up) are set.
 void mix_palette(const PreparedTakes& palette, const Decomposed& decomposition, const MixParams& params,
                  MixScratch& scratch, MixResult& out, StageTimes* times = nullptr);

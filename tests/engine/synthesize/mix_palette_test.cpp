@@ -1,4 +1,4 @@
-#include "engine/run/palette.h"
+#include "engine/synthesize/mix_palette.h"
 
 #include <algorithm>
 #include <catch2/catch.hpp>

@@ -1,4 +1,4 @@
-#include "engine/run/decompose_takes.h"
+#include "engine/decompose/decompose_takes.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,4 +1,4 @@
-#include "engine/run/prepare_takes.h"
+#include "engine/align/prepare_takes.h"
 
 #include <algorithm>
 #include <chrono>
@@ -367,7 +367,7 @@ void place_on_timeline(PreparedTakes& p) {
     t.ground = sample_rows(placed.ground, t.frames);
     const Eigen::VectorXd heading = sample_rows(placed.heading, t.frames);
     // A warp may skip frames from one sample to the next (the paper's); the root must not
-    // teleport (canonical_frame.h). Where no take skips, this changes nothing.
+    // teleport (root_path.h limit_warped_steps). Where no take skips, this changes nothing.
     t.steps = limit_warped_steps(root_steps(t.ground, heading), t.frames, kMaxWarpSpeedup);
     t.contacts = carry_contacts(t.own_contacts, t.frames);
   }

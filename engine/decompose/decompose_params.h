@@ -1,6 +1,6 @@
 #pragma once
 // What a decomposition is asked for (the stage after prepare_takes): shared components of the
-// takes (palette.h, any number of takes) or the paper's own decomposition of each of two takes,
+// takes (mix_palette.h, any number of takes) or the paper's own decomposition of each of two takes,
 // with or without basic motions (decompose_takes.h).
 #include <vector>
 

@@ -1,4 +1,4 @@
-#include "engine/run/decompose_params.h"
+#include "engine/decompose/decompose_params.h"
 
 #include <cmath>
 #include <string>

@@ -1,4 +1,4 @@
-#include "engine/align/timing.h"
+#include "engine/trajectory/mixed_clock.h"
 
 #include <catch2/catch.hpp>
 

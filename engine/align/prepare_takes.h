@@ -11,7 +11,7 @@
 //   and steps, whole-turn flips, contacts, then normalized: each take less its own
 //   mean pose, all divided by one scale (the spread of every take's centred values).
 // A pair is two takes: its common timeline is the alignment's own warp, unchanged. The
-// decomposition (decompose_takes.h) and the synthesis (palette.h) read this value; nothing here
+// decomposition (decompose_takes.h) and the synthesis (mix_palette.h) read this value; nothing here
 // knows of them.
 #include <Eigen/Core>
 #include <memory>
@@ -23,12 +23,13 @@
 #include "engine/align/common_timeline.h"
 #include "engine/base/clip.h"
 #include "engine/base/job_control.h"
+#include "engine/base/stage_times.h"
 #include "engine/post/foot_contact.h"
 #include "engine/post/fastest_joint.h"
 #include "engine/post/planted_feet.h"
 #include "engine/prepare/canonical_frame.h"
 #include "engine/prepare/major_skeleton.h"
-#include "engine/run/stage_times.h"
+#include "engine/prepare/root_path.h"
 
 namespace mostyle {
 
@@ -71,7 +72,7 @@ struct PreparedTake {
   // f -> f + 1 where it is planted at both ends, each in the body's frame at f (turned by
   // -heading[f]): the planted move from
   // frame a to b in the body's frame is row b minus row a (what the foot lock lets a planted foot
-  // of an output do, palette.cpp planted_drift).
+  // of an output do, mix_palette.cpp planted_drift).
   Eigen::MatrixXd foot_travel;
   TakeCycles cycles;                 // where it repeats, as detected on its file's frames (cycles.h)
   CycleRegistration registration;    // by cycles onto the reference: its cycles, sources, spans; empty otherwise
@@ -80,7 +81,7 @@ struct PreparedTake {
   Eigen::VectorXd frames;            // U: the take's frame at each sample (fractional)
   Eigen::MatrixXd local;             // U x 3M canonical poses
   Eigen::MatrixXd ground;            // U x 2 hips ground path, placed at the reference's start
-  Eigen::MatrixXd steps;             // U x 3 root steps (canonical_frame.h)
+  Eigen::MatrixXd steps;             // U x 3 root steps (root_path.h)
   Eigen::VectorXd turn_flips;        // U: whole turns match_turns adds to keep its facing near the reference's
   Eigen::MatrixXd contacts;          // U x 2 foot contacts carried onto the timeline
   Eigen::RowVectorXd mean;           // normalization: the take's mean pose

@@ -4,7 +4,7 @@
 // forms:
 //   shared (any number of takes; the editor's and the CLI's default): one set of components C
 //     that every take shares, local (each a connected piece of the skeleton: a body part), and
-//     each take's weights W_i; a mix blends the weights (palette.h);
+//     each take's weights W_i; a mix blends the weights (mix_palette.h);
 //   paper (two takes, the paper's own synthesis, 3.4 to 3.6): each take decomposed on its own,
 //     or into its chain of basic motions (3.5) when DecomposeParams::basic_motions > 0.
 // Both carry the same summary: each take's reconstruction error, the components' support and
@@ -14,13 +14,14 @@
 #include <variant>
 #include <vector>
 
+#include "engine/align/prepare_takes.h"
+#include "engine/base/job_control.h"
+#include "engine/base/stage_times.h"
 #include "engine/decompose/basic_motions.h"
 #include "engine/decompose/body_parts.h"
+#include "engine/decompose/core_components.h"
+#include "engine/decompose/decompose_params.h"
 #include "engine/decompose/decomposition.h"
-#include "engine/base/job_control.h"
-#include "engine/run/decompose_params.h"
-#include "engine/run/prepare_takes.h"
-#include "engine/synthesize/synthesis.h"
 
 namespace mostyle {
 

@@ -1,0 +1,33 @@
+#pragma once
+// The root path of a mix: the takes' steps weighted (prepare/root_path.h), their whole-turn flips
+// spread where a weight makes them visible, integrated and pulled towards the takes' own paths.
+#include <Eigen/Core>
+
+namespace mostyle {
+
+// Adds weight times a take's whole-turn flips (U: match_turns's change of its turn channel, 0
+// where none) to mixed steps' turns (U x 3), each flip spread over 2h + 1 samples, h growing to
+// half a second at weight 1/2: at weights 0 and 1 a whole turn is invisible, in between a flip in
+// one frame would turn the body by 2 pi weight at once (for weights outside [0, 1], h follows
+// the weight's fraction: 1.5 turns by half a turn). O(U + flips x h), no allocation.
+void add_spread_turns(const Eigen::VectorXd& flips, double weight, double fps, Eigen::MatrixXd& steps);
+// The same with the weight given per sample (U values: weights keyed in time), each flip spread
+// as its sample's weight says.
+void add_spread_turns(const Eigen::VectorXd& flips, const Eigen::VectorXd& weights, double fps, Eigen::MatrixXd& steps);
+
+// The root trajectory of a mix (steps: F x 3, the takes' steps weighted after match_turns),
+// integrated as integrate_root does from target's first row, each step then pulled towards the
+// path `target` (F x 2: the takes' own paths, weighted the same way) by the fraction
+// 1 - exp(-1 / (fps * pull_seconds)) of the gap. Integrated steps alone drift apart from every
+// take wherever their turns are not aligned in time (the alignment matches steps, not turns),
+// so that a mix would not lie between the takes; the pull keeps it there while moving as the
+// weighted steps say, up to a correction (a slide of the feet) as fast as the takes' paths part,
+// spread over pull_seconds: slight for takes on similar paths, a few tenths of the body height
+// per second for a straight walk mixed with one that turns back. A take alone (weight 1) gives
+// its own path (the pull has nothing to correct). pull_seconds <= 0: no pull (integrate_root).
+// Writes ground (F x 2) and heading (F); allocation-free when they have that size. O(F).
+constexpr double kRootPullSeconds = 2.0;
+void integrate_root_towards(const Eigen::MatrixXd& steps, const Eigen::MatrixXd& target, double start_heading,
+                            double fps, double pull_seconds, Eigen::MatrixXd* ground, Eigen::VectorXd* heading);
+
+}  // namespace mostyle

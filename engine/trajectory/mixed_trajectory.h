@@ -1,0 +1,69 @@
+#pragma once
+// The trajectory of a mix: the stretch of the takes' common timeline it plays, its clock (each
+// output frame's sample: the takes' timing mixed with the weights, mixed_clock.h, or the
+// reference's) and its root path and foot contacts on the stretch's samples, from the takes' steps
+// weighted as the poses are (mixed_root.h). Animation runtimes blend motion (the root) beside the
+// poses the same way; mix_palette (synthesize/mix_palette.h) runs these steps around its poses.
+#include <Eigen/Core>
+#include <vector>
+
+#include "engine/align/prepare_takes.h"
+#include "engine/align/weight_keys.h"
+#include "engine/kinematics/sample_rows.h"
+#include "engine/post/finish.h"
+
+namespace mostyle {
+
+// The samples of the common timeline a mix plays and what limits its foot lock.
+struct PlayedStretch {
+  int first = 0, last = 0;  // the stretch every take with a weight matches
+  double fastest = 0.0;     // the fastest joint of those takes (the foot lock keeps the swings under it)
+  Eigen::Index length() const { return last - first + 1; }
+};
+
+// A mix's clock and root, and the buffers they are made in: a mix reuses one, so that it
+// allocates nothing once sized. K output frames, U samples in the stretch, N takes.
+struct MixedTrajectory {
+  Eigen::VectorXd u;          // K: each output frame's sample position (first..last), from output_clock
+  Eigen::VectorXd u_stretch;  // K: the same counted from the stretch's first sample
+  RowSampler sampler;         // u_stretch on the stretch's rows: reads anything of the stretch at the output frames
+  Eigen::MatrixXd sample_w;   // keyed weights: per sample (U x N)
+  Eigen::MatrixXd frame_w;    // keyed weights: per output frame (K x N)
+  Eigen::MatrixXd ground_u;   // U x 2: the root's ground path, from mix_root
+  Eigen::VectorXd heading_u;  // U: its heading, radians
+  Eigen::MatrixXd contacts_u; // U x 2: the foot contacts, 1 planted
+  Eigen::MatrixXd steps, target;  // U x 3, U x 2: the weighted steps and paths mix_root integrates
+  Eigen::VectorXd flips;      // U: one take's whole-turn flips
+};
+
+// The stretch every take with a weight matches (a take at weight 0 does not shorten it): weights,
+// keys and component_weights as MixParams has them (synthesize/mix_palette.h), per_component when
+// the component weights differ from `weights`, timing the weights the clock mixes. Throws
+// InputError when they match no common stretch. O(N x (keys + components)).
+PlayedStretch played_stretch(const PreparedTakes& p, const std::vector<double>& weights, const WeightKeys& keys,
+                             const Eigen::MatrixXd& component_weights, bool per_component,
+                             const std::vector<double>& timing);
+
+// The output's clock (keys, reference_timing and options as MixParams has them; timing as above):
+// s.u (K sample positions, mixed or the reference's), with keys each sample's
+// weights (s.sample_w, U x N) and each output frame's (s.frame_w, K x N), s.u_stretch and the
+// sampler on the stretch, and each take's frame at each output frame (sources). Returns the
+// finish's options: a loop clip as the reference, shown whole, makes the output one loop, its
+// clock landed on the loop's end (the reference's last frame, its first pose again), which the
+// finish cuts off.
+FinishOptions output_clock(const PreparedTakes& p, const WeightKeys& keys, bool reference_timing,
+                           const std::vector<double>& timing, const FinishOptions& options, const PlayedStretch& st,
+                           MixedTrajectory& s, Eigen::MatrixXd& sources);
+
+// The root over the stretch (s.ground_u, s.heading_u) and the contacts (s.contacts_u): steps,
+// whole-turn flips and the paths pulled towards (integrate_root_towards), as the steps are
+// weighted (root_w: one weight per take, or keys, with s.sample_w from output_clock; the pull as
+// MixParams::root_pull_seconds). O(U x N).
+void mix_root(const PreparedTakes& p, const WeightKeys& keys, const std::vector<double>& root_w, double root_pull_seconds,
+              const PlayedStretch& st, MixedTrajectory& s);
+
+// Each take's frame (K x N) at the sampler's output frames; the sampler's rows count from
+// sample `first`.
+void write_sources(const PreparedTakes& p, const RowSampler& at, int first, Eigen::MatrixXd& sources);
+
+}  // namespace mostyle
