@@ -49,12 +49,27 @@ std::vector<std::string> property_texts(std::string_view bytes, size_t at, size_
 }
 
 // A record's meaning to the scan: a Model's id, or a connection, by the scope it is in.
+// An object's id as assimp reads it from text: the number its leading digits make ("1000",
+// "01000" and "1000" followed by bytes that are not digits are one id), its decimal digits
+// without leading zeros. A token that does not start with a digit, or whose number does not fit
+// 64 bits (assimp refuses both), is kept as it is.
+std::string object_id(const std::string& token) {
+  uint64_t value = 0;
+  size_t digits = 0;
+  for (; digits < token.size() && token[digits] >= '0' && token[digits] <= '9'; ++digits) {
+    const uint64_t digit = static_cast<uint64_t>(token[digits] - '0');
+    if (value > (UINT64_MAX - digit) / 10) return token;
+    value = value * 10 + digit;
+  }
+  return digits == 0 ? token : std::to_string(value);
+}
+
 void note_record(const std::string& scope, std::string_view name, const std::vector<std::string>& values,
                  FbxStructure* out) {
   if (scope == "Objects" && name == "Model" && !values.empty() && !values[0].empty())
-    out->models.push_back(values[0]);
+    out->models.push_back(object_id(values[0]));
   if (scope == "Connections" && (name == "C" || name == "Connect") && values.size() >= 3 && values[0] == "OO")
-    out->parents.emplace_back(values[1], values[2]);
+    out->parents.emplace_back(object_id(values[1]), object_id(values[2]));
 }
 
 // Binary records: a header (end offset, property count, property bytes, name length; 32-bit

@@ -155,6 +155,12 @@ TEST_CASE("FBX structure: ASCII tokens as assimp reads them (comments, strings, 
   const std::string loop = ascii_models(3, "\tC: \"OO\",1,3\n");
   CHECK_THROWS_WITH(parse_fbx(loop, "loop.fbx"),
                     Contains("loop.fbx: not a readable FBX file: its models are connected in a loop"));
+  // Ids as assimp reads them: the number the leading digits make, whatever bytes follow them
+  // (\x16 here, as a fuzzer found) and with leading zeros.
+  const std::string hidden_loop = ascii_models(3, "\tC: \"OO\",001,3\x16\x16\x16\n");
+  CHECK(scan_fbx_structure(hidden_loop).parents.back() == std::pair<std::string, std::string>{"1", "3"});
+  CHECK_THROWS_WITH(parse_fbx(hidden_loop, "hidden.fbx"),
+                    Contains("hidden.fbx: not a readable FBX file: its models are connected in a loop"));
   const std::string self = ascii_models(3, "\tC: \"OO\",2,2\n");
   CHECK_THROWS_WITH(check_fbx_structure(self, "self.fbx"), Contains("self.fbx: not a readable FBX file"));
 
