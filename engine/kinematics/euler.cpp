@@ -96,10 +96,7 @@ namespace {
 // their instruction sets.
 inline __attribute__((always_inline)) void sin_cos_fours(const double* degrees, size_t n, double* sine,
                                                          double* cosine) {
-  constexpr double k3 = 1.0 / 6, k5 = 1.0 / 120, k7 = 1.0 / 5040, k9 = 1.0 / 362880, k11 = 1.0 / 39916800,
-                   k13 = 1.0 / 6227020800.0, k15 = 1.0 / 1307674368000.0, k17 = 1.0 / 355687428096000.0;
-  constexpr double k2 = 1.0 / 2, k4 = 1.0 / 24, k6 = 1.0 / 720, k8 = 1.0 / 40320, k10 = 1.0 / 3628800,
-                   k12 = 1.0 / 479001600, k14 = 1.0 / 87178291200.0, k16 = 1.0 / 20922789888000.0;
+  using namespace sin_cos_terms;
   size_t i = 0;
   for (; i + 4 <= n; i += 4) {
     Doubles4 d;

@@ -61,6 +61,14 @@ Eigen::Vector3d euler_near(const Eigen::Vector3d& angles, const Eigen::Vector3d&
 // sin_cos_degrees reduces angles up to this size exactly (quarter turns times 90 stay exact).
 constexpr double kLargestReducedDegrees = 1099511627776.0;  // 2^40
 
+// The Taylor coefficients (1 / n!) sin_cos_degrees and sin_cos_degrees_n sum.
+namespace sin_cos_terms {
+constexpr double k3 = 1.0 / 6, k5 = 1.0 / 120, k7 = 1.0 / 5040, k9 = 1.0 / 362880, k11 = 1.0 / 39916800,
+                 k13 = 1.0 / 6227020800.0, k15 = 1.0 / 1307674368000.0, k17 = 1.0 / 355687428096000.0;
+constexpr double k2 = 1.0 / 2, k4 = 1.0 / 24, k6 = 1.0 / 720, k8 = 1.0 / 40320, k10 = 1.0 / 3628800,
+                 k12 = 1.0 / 479001600, k14 = 1.0 / 87178291200.0, k16 = 1.0 / 20922789888000.0;
+}  // namespace sin_cos_terms
+
 inline void sin_cos_degrees(double degrees, double* sine, double* cosine) {
   if (!(std::abs(degrees) <= kLargestReducedDegrees)) {  // huge, or not a number
     const double r = degrees * (3.14159265358979323846 / 180.0);
@@ -74,11 +82,8 @@ inline void sin_cos_degrees(double degrees, double* sine, double* cosine) {
   const long long turns = static_cast<long long>(q + (q >= 0.0 ? 0.5 : -0.5));
   const double r = (degrees - static_cast<double>(turns) * 90.0) * (3.14159265358979323846 / 180.0);
   // Taylor series to r^17 and r^16 (the next terms are under 1e-19 for |r| <= pi / 4), summed in
-  // pairs of powers so the steps do not wait on one another; coefficients 1 / n!.
-  constexpr double k3 = 1.0 / 6, k5 = 1.0 / 120, k7 = 1.0 / 5040, k9 = 1.0 / 362880, k11 = 1.0 / 39916800,
-                   k13 = 1.0 / 6227020800.0, k15 = 1.0 / 1307674368000.0, k17 = 1.0 / 355687428096000.0;
-  constexpr double k2 = 1.0 / 2, k4 = 1.0 / 24, k6 = 1.0 / 720, k8 = 1.0 / 40320, k10 = 1.0 / 3628800,
-                   k12 = 1.0 / 479001600, k14 = 1.0 / 87178291200.0, k16 = 1.0 / 20922789888000.0;
+  // pairs of powers so the steps do not wait on one another (coefficients: sin_cos_terms).
+  using namespace sin_cos_terms;
   const double r2 = r * r, r4 = r2 * r2, r8 = r4 * r4;
   const double s = r * ((1.0 - k3 * r2) + r4 * (k5 - k7 * r2) + r8 * ((k9 - k11 * r2) + r4 * (k13 - k15 * r2) + r8 * k17));
   const double c = (1.0 - k2 * r2) + r4 * (k4 - k6 * r2) + r8 * ((k8 - k10 * r2) + r4 * (k12 - k14 * r2) + r8 * k16);
