@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "engine/kinematics/four_lanes.h"
+
 namespace mostyle {
 namespace {
 
@@ -78,15 +80,6 @@ bool parse_euler_order(std::string_view text, EulerOrder* order) {
   }
   return false;
 }
-
-namespace {
-
-// Four doubles, and four 64-bit integers, as GCC's and Clang's vector extensions hold them: one
-// AVX register, or two SSE2 ones.
-typedef double Doubles4 __attribute__((vector_size(32)));
-typedef long long Integers4 __attribute__((vector_size(32)));
-
-}  // namespace
 
 namespace {
 

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cassert>
+#include <cstring>
 #include <utility>
 
 #include "engine/kinematics/euler.h"
+#include "engine/kinematics/four_lanes.h"
 
 namespace mostyle {
 
@@ -155,65 +157,167 @@ std::vector<Posed> posed_joints(const Skeleton& s, const std::vector<int>& joint
 
 }  // namespace
 
+namespace {
+
+// Four doubles kept in memory that may not be aligned to their size (a vector's heap).
+typedef double StoredDoubles4 __attribute__((vector_size(32), aligned(8)));
+
+// One posed joint's global rotation (row by row) and position at four frames.
+struct Lanes4 {
+  StoredDoubles4 r[9];
+  StoredDoubles4 p[3];
+};
+
+inline __attribute__((always_inline)) Doubles4 broadcast(double x) { return Doubles4{x, x, x, x}; }
+
+// axis_rotation's entries (row by row) from four angles' sines and cosines.
+inline __attribute__((always_inline)) void axis_rotation4(int axis, Doubles4 s, Doubles4 c, Doubles4* m) {
+  const Doubles4 zero = broadcast(0.0), one = broadcast(1.0);
+  switch (axis) {
+    case 0: m[0] = one, m[1] = zero, m[2] = zero, m[3] = zero, m[4] = c, m[5] = -s, m[6] = zero, m[7] = s, m[8] = c; break;
+    case 1: m[0] = c, m[1] = zero, m[2] = s, m[3] = zero, m[4] = one, m[5] = zero, m[6] = -s, m[7] = zero, m[8] = c; break;
+    default: m[0] = c, m[1] = -s, m[2] = zero, m[3] = s, m[4] = c, m[5] = zero, m[6] = zero, m[7] = zero, m[8] = one; break;
+  }
+}
+
+// rotate_columns on four frames (row by row entries), the same arithmetic.
+inline __attribute__((always_inline)) void rotate_columns4(Doubles4* r, int axis, Doubles4 s, Doubles4 c) {
+  const int a = axis == 0 ? 1 : 0, b = axis == 2 ? 1 : 2;
+  const Doubles4 m_ba = axis == 1 ? -s : s, m_ab = -m_ba;
+  for (int i = 0; i < 3; ++i) {
+    const Doubles4 ra = r[3 * i + a], rb = r[3 * i + b];
+    r[3 * i + a] = ra * c + rb * m_ba;
+    r[3 * i + b] = ra * m_ab + rb * c;
+  }
+}
+
+// Row i of a 3x3 product's sum, in Eigen's order for fixed 3x3 products compiled for SSE2 (the
+// first two rows a packet, summed from the first term; the third row a scalar reduction, summed
+// from the last): (t0 + t1) + t2 for rows 0 and 1, t0 + (t1 + t2) for row 2.
+inline __attribute__((always_inline)) Doubles4 row_sum(int i, Doubles4 t0, Doubles4 t1, Doubles4 t2) {
+  return i < 2 ? (t0 + t1) + t2 : t0 + (t1 + t2);
+}
+
+// parent's position plus its rotation times `at`, as Eigen sums it.
+inline __attribute__((always_inline)) void place4(const Lanes4& parent, const Doubles4* at, StoredDoubles4* p) {
+  for (int i = 0; i < 3; ++i)
+    p[i] = parent.p[i] + row_sum(i, parent.r[3 * i] * at[0], parent.r[3 * i + 1] * at[1], parent.r[3 * i + 2] * at[2]);
+}
+
+// The rotation channels of a block's frames, gathered for sin_cos_degrees_n, then FK of the posed
+// joints four frames at a time in the order joint_positions(clip) poses each (the same values).
+struct BlockFk {
+  static constexpr int kBlock = 64;  // frames per block, a multiple of four
+  const Clip& clip;
+  const std::vector<Posed>& posed;
+  const std::vector<int>& joints;    // the joints asked for
+  const std::vector<int>& slot;
+  std::vector<int> turn_columns;     // each posed joint's rotation channels, one after another
+  std::vector<double> angles, sines, cosines;  // [turn][frame in block]
+  std::vector<Lanes4> lanes;         // per posed joint
+
+  BlockFk(const Clip& c, const std::vector<Posed>& p, const std::vector<int>& j, const std::vector<int>& s)
+      : clip(c), posed(p), joints(j), slot(s) {
+    for (const Posed& q : posed)
+      for (const auto& turn : q.turns) turn_columns.push_back(turn.second);
+    const size_t n = turn_columns.size() * kBlock;
+    angles.assign(n, 0.0);
+    sines.assign(n, 0.0);
+    cosines.assign(n, 0.0);
+    lanes.resize(posed.size());
+  }
+
+  // Frames [first, first + block): rows past the clip's end repeat its last frame (not stored).
+  const double* row(int frame) const { return clip.motion.row(std::min(frame, clip.frames() - 1)).data(); }
+
+  void angles_of(int first) {
+    for (size_t t = 0; t < turn_columns.size(); ++t)
+      for (int b = 0; b < kBlock; ++b) angles[t * kBlock + static_cast<size_t>(b)] = row(first + b)[turn_columns[t]];
+    sin_cos_degrees_n(angles.data(), angles.size(), sines.data(), cosines.data());
+  }
+
+  // Four frames from `frame` (b: its place in the block).
+  inline __attribute__((always_inline)) void pose4(int frame, int b, Eigen::MatrixXd& out) {
+    const double* rows[4] = {row(frame), row(frame + 1), row(frame + 2), row(frame + 3)};
+    size_t turn = 0;
+    for (size_t k = 0; k < posed.size(); ++k) {
+      const Posed& p = posed[k];
+      Doubles4 at[3];
+      for (int a = 0; a < 3; ++a) {
+        const int column = p.position[static_cast<size_t>(a)];
+        at[a] = !p.has_position ? broadcast(p.offset[a])
+                : column >= 0   ? Doubles4{rows[0][column], rows[1][column], rows[2][column], rows[3][column]}
+                                : broadcast(0.0);
+      }
+      Lanes4& l = lanes[k];
+      if (p.leaf) {
+        if (p.parent < 0) for (int a = 0; a < 3; ++a) l.p[a] = at[a];
+        else place4(lanes[static_cast<size_t>(p.parent)], at, l.p);
+        continue;
+      }
+      Doubles4 local[9];
+      if (p.turns.empty()) axis_rotation4(0, broadcast(0.0), broadcast(1.0), local);  // the identity
+      for (size_t t = 0; t < p.turns.size(); ++t, ++turn) {
+        Doubles4 s, c;
+        std::memcpy(&s, sines.data() + turn * kBlock + static_cast<size_t>(b), sizeof s);
+        std::memcpy(&c, cosines.data() + turn * kBlock + static_cast<size_t>(b), sizeof c);
+        if (t == 0) axis_rotation4(p.turns[t].first, s, c, local);
+        else rotate_columns4(local, p.turns[t].first, s, c);
+      }
+      if (p.parent < 0) {
+        for (int e = 0; e < 9; ++e) l.r[e] = local[e];
+        for (int a = 0; a < 3; ++a) l.p[a] = at[a];
+      } else {
+        const Lanes4& q = lanes[static_cast<size_t>(p.parent)];
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j)
+            l.r[3 * i + j] = row_sum(i, q.r[3 * i] * local[j], q.r[3 * i + 1] * local[3 + j], q.r[3 * i + 2] * local[6 + j]);
+        place4(q, at, l.p);
+      }
+    }
+    // Column-major output: four frames of one coordinate are contiguous.
+    const int stored = std::min(4, clip.frames() - frame);
+    for (size_t i = 0; i < joints.size(); ++i) {
+      const Lanes4& l = lanes[static_cast<size_t>(slot[static_cast<size_t>(joints[i])])];
+      for (int a = 0; a < 3; ++a) {
+        double* to = out.data() + (3 * static_cast<Eigen::Index>(i) + a) * out.rows() + frame;
+        if (stored == 4) std::memcpy(to, &l.p[a], sizeof(Doubles4));
+        else for (int e = 0; e < stored; ++e) to[e] = l.p[a][e];
+      }
+    }
+  }
+
+  inline __attribute__((always_inline)) void run(Eigen::MatrixXd& out) {
+    for (int first = 0; first < clip.frames(); first += kBlock) {
+      angles_of(first);
+      for (int b = 0; b < kBlock && first + b < clip.frames(); b += 4) pose4(first + b, b, out);
+    }
+  }
+};
+
+#if defined(__x86_64__)
+__attribute__((target("avx2"))) void block_fk_avx2(BlockFk& fk, Eigen::MatrixXd& out) { fk.run(out); }
+#endif
+void block_fk_baseline(BlockFk& fk, Eigen::MatrixXd& out) { fk.run(out); }
+
+}  // namespace
+
+// Chosen at the first call, not by the loader (an ifunc resolver runs before the sanitizers'
+// runtimes are up).
 Eigen::MatrixXd joint_positions(const Clip& clip, const std::vector<int>& joints) {
   std::vector<int> slot;
   const std::vector<Posed> posed = posed_joints(clip.skeleton, joints, &slot);
-  // The rotation channels' columns, each posed joint's in channel order, one after another.
-  std::vector<int> turn_columns;
-  for (const Posed& p : posed)
-    for (const auto& turn : p.turns) turn_columns.push_back(turn.second);
-  // Per block of frames, the sines and cosines of its rotation channels at once (the same values
-  // as one at a time, several times faster: sin_cos_degrees_n), then per frame each posed joint
-  // as frame_pose poses it (joint_local_rotation's and joint_local_translation's arithmetic, the
-  // same values).
-  constexpr int kBlock = 64;
-  const size_t turns = turn_columns.size();
-  std::vector<double> angles(turns * kBlock), sines(turns * kBlock), cosines(turns * kBlock);
   Eigen::MatrixXd out(clip.frames(), 3 * static_cast<Eigen::Index>(joints.size()));
-  std::vector<Eigen::Matrix3d> rotations(posed.size());
-  std::vector<Eigen::Vector3d> positions(posed.size());
-  for (int first = 0; first < clip.frames(); first += kBlock) {
-    const int block = std::min(kBlock, clip.frames() - first);
-    for (int b = 0; b < block; ++b) {
-      const double* values = clip.motion.row(first + b).data();
-      for (size_t t = 0; t < turns; ++t) angles[static_cast<size_t>(b) * turns + t] = values[turn_columns[t]];
-    }
-    sin_cos_degrees_n(angles.data(), static_cast<size_t>(block) * turns, sines.data(), cosines.data());
-    for (int b = 0; b < block; ++b) {
-      const int f = first + b;
-      const double* values = clip.motion.row(f).data();
-      const double* s = sines.data() + static_cast<size_t>(b) * turns;
-      const double* c = cosines.data() + static_cast<size_t>(b) * turns;
-      for (size_t k = 0; k < posed.size(); ++k) {
-        const Posed& p = posed[k];
-        Eigen::Vector3d at = p.offset;
-        if (p.has_position)
-          for (int a = 0; a < 3; ++a)
-            at[a] = p.position[static_cast<size_t>(a)] >= 0 ? values[p.position[static_cast<size_t>(a)]] : 0.0;
-        if (p.leaf) {
-          positions[k] = p.parent < 0 ? at
-                                      : Eigen::Vector3d(positions[static_cast<size_t>(p.parent)] +
-                                                        rotations[static_cast<size_t>(p.parent)] * at);
-          continue;
-        }
-        Eigen::Matrix3d local = Eigen::Matrix3d::Identity();
-        for (size_t t = 0; t < p.turns.size(); ++t, ++s, ++c) {
-          if (t == 0) local = axis_rotation(p.turns[t].first, *s, *c);
-          else rotate_columns(local, p.turns[t].first, *s, *c);
-        }
-        if (p.parent < 0) {
-          rotations[k] = local;
-          positions[k] = at;
-        } else {
-          rotations[k] = rotations[static_cast<size_t>(p.parent)] * local;
-          positions[k] = positions[static_cast<size_t>(p.parent)] + rotations[static_cast<size_t>(p.parent)] * at;
-        }
-      }
-      for (size_t i = 0; i < joints.size(); ++i)
-        out.block<1, 3>(f, 3 * static_cast<Eigen::Index>(i)) =
-            positions[static_cast<size_t>(slot[static_cast<size_t>(joints[i])])].transpose();
-    }
+  if (clip.frames() == 0 || joints.empty()) return out;
+  BlockFk fk(clip, posed, joints, slot);
+#if defined(__x86_64__)
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (avx2) {
+    block_fk_avx2(fk, out);
+    return out;
   }
+#endif
+  block_fk_baseline(fk, out);
   return out;
 }
 
