@@ -160,11 +160,28 @@ std::vector<double> floor_levels(const std::vector<double>& heights, double fps)
   const Eigen::Index width = std::min(frames, 2 * half + 1);
   const size_t k = static_cast<size_t>(kFloorPercentile * static_cast<double>(width - 1));
   std::vector<double> window(static_cast<size_t>(width));
+  // Only the heights up to a bound take part in the selection when at least k + 1 of the window's
+  // are under it: its (k+1)-th lowest is then among them, the same value. The bound is the last
+  // window's floor raised by how far its lowest height was below it, so that a floor moving
+  // slowly keeps the heights selected from to a few dozen; else the whole window.
+  double bound = std::numeric_limits<double>::infinity();
   auto floor_at = [&](Eigen::Index t) {
     const Eigen::Index from = std::clamp<Eigen::Index>(t - half, 0, frames - width);
-    std::copy(heights.begin() + from, heights.begin() + from + width, window.begin());
-    std::nth_element(window.begin(), window.begin() + static_cast<std::ptrdiff_t>(k), window.end());
-    return window[k];
+    size_t kept = 0;
+    for (Eigen::Index u = from; u < from + width; ++u) {
+      const double h = heights[static_cast<size_t>(u)];
+      window[kept] = h;
+      kept += h <= bound ? 1 : 0;
+    }
+    if (kept <= k) {
+      std::copy(heights.begin() + from, heights.begin() + from + width, window.begin());
+      kept = static_cast<size_t>(width);
+    }
+    const auto begin = window.begin(), end = window.begin() + static_cast<std::ptrdiff_t>(kept);
+    std::nth_element(begin, begin + static_cast<std::ptrdiff_t>(k), end);
+    const double floor = window[k], lowest = *std::min_element(begin, begin + static_cast<std::ptrdiff_t>(k) + 1);
+    bound = floor + 2.0 * (floor - lowest);
+    return floor;
   };
   std::vector<double> out(heights.size());
   double previous = floor_at(0);
