@@ -168,6 +168,12 @@ struct Lanes4 {
   StoredDoubles4 p[3];
 };
 
+// The helpers below are always inlined, so no four-lane value crosses a call: GCC's note that
+// one would be passed differently with and without AVX does not apply.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
 inline __attribute__((always_inline)) Doubles4 broadcast(double x) { return Doubles4{x, x, x, x}; }
 
 // axis_rotation's entries (row by row) from four angles' sines and cosines.

@@ -24,7 +24,8 @@ Eigen::MatrixXd joint_positions(const Clip& clip);
 
 // Global positions of `joints` only (indices into the skeleton), in that order: frames x
 // 3*joints.size(). Only the joints on their chains to the root are posed, each as
-// joint_positions poses it (the same values). O(frames * joints on those chains).
+// joint_positions poses it (the same values), four frames at a time (AVX2 where the CPU has
+// it). O(frames * joints on those chains).
 Eigen::MatrixXd joint_positions(const Clip& clip, const std::vector<int>& joints);
 
 // Global positions and rotations of all joints at one frame.
