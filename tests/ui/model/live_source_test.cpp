@@ -301,11 +301,70 @@ TEST_CASE("live source: a bad address, a missing skeleton and too few takes are 
   REQUIRE(l.live.wait_until([](const LiveStatus& s) { return s.state == LiveState::kFailed; }, kPatience));
   CHECK(l.live.status().error.find("skeleton.bvh") != std::string::npos);
   CHECK(!l.live.active());
+}
 
+TEST_CASE("live style plan: a pair's alpha, a mix's weights, a transfer's neutral and strengths") {
   Document d;
+  CHECK(live_style_plan(d, 1).takes.empty());  // nothing to style with
+  CHECK(live_style_plan(d, 1).strengths.empty());
+
+  // A pair: A the neutral, B the style, at alpha (transfer mode is a palette's only).
   set_pair_alpha(d, 0.25);
+  d.controls.palette.transfer = true;
+  CHECK(live_style_plan(d, 2).takes == std::vector<int>{0, 1});
   CHECK(live_strengths(d, 2) == std::vector<double>{0.25});
-  d.controls.palette.strengths = {1.0, 0.5, 3.0};
-  CHECK(live_strengths(d, 3) == std::vector<double>{0.5, 2.0});  // clamped to the styler's range
-  CHECK(live_strengths(d, 4) == std::vector<double>{0.5, 2.0, 1.0});
+  d.controls.palette.transfer = false;
+
+  // A mix: the stream stands in for take 0, the others' weights are their strengths.
+  d.weights = {0.5, 0.25, 0.25};
+  CHECK(live_style_plan(d, 3).takes == std::vector<int>{0, 1, 2});
+  CHECK(live_strengths(d, 3) == std::vector<double>{0.25, 0.25});
+  d.weights = {-0.5, 0.25, 1.25};
+  CHECK(live_strengths(d, 3) == std::vector<double>{0.25, 1.25});
+  // Weights not one per take (takes just changed): equal ones, as the mix takes them.
+  d.weights = {0.5, 0.5};
+  CHECK(live_strengths(d, 4) == std::vector<double>{0.25, 0.25, 0.25});
+  // The palette's strengths are the transfer's, not the mix's.
+  d.controls.palette.strengths = {1.0, 0.7, 0.7, 0.7};
+  CHECK(live_strengths(d, 4) == std::vector<double>{0.25, 0.25, 0.25});
+
+  // A transfer: the stream stands in for the content (take 0), take `neutral` is the neutral,
+  // every other take a style at its strength (1 where unset), clamped to [-1, 2].
+  d.controls.palette.transfer = true;
+  d.controls.palette.neutral = 2;
+  d.controls.palette.strengths = {1.0, 0.5, 0.9, 3.0};
+  CHECK(live_style_plan(d, 4).takes == std::vector<int>{2, 1, 3});
+  CHECK(live_strengths(d, 4) == std::vector<double>{0.5, 2.0});
+  CHECK(live_style_plan(d, 5).takes == std::vector<int>{2, 1, 3, 4});
+  CHECK(live_strengths(d, 5) == std::vector<double>{0.5, 2.0, 1.0});
+  d.controls.palette.strengths = {1.0, -4.0, 0.9, 0.0};
+  CHECK(live_strengths(d, 4) == std::vector<double>{-1.0, 0.0});
+  // A neutral beyond the takes is the last one, as the transfer takes it.
+  d.controls.palette.neutral = 7;
+  CHECK(live_style_plan(d, 4).takes == std::vector<int>{3, 1, 2});
+  CHECK(live_strengths(d, 4) == std::vector<double>{-1.0, 0.9});
+  // The content its own neutral: the content take is the neutral, every other take a style.
+  d.controls.palette.content_neutral = true;
+  CHECK(live_style_plan(d, 4).takes == std::vector<int>{0, 1, 2, 3});
+  CHECK(live_strengths(d, 4) == std::vector<double>{-1.0, 0.9, 0.0});
+
+  // The spec: the loaded takes' clips in the plan's order, shared.
+  PreparedTakes prepared;
+  for (int i = 0; i < 4; ++i) {
+    PreparedTake take;
+    auto clip = std::make_shared<Clip>();
+    clip->source = "take" + std::to_string(i);
+    take.clip = clip;
+    prepared.takes.push_back(std::move(take));
+  }
+  d.controls.palette.content_neutral = false;
+  d.controls.palette.neutral = 3;
+  const LiveStyleSpec s = live_style_spec(prepared, d);
+  REQUIRE(s.takes.size() == 3);
+  CHECK(s.takes[0] == prepared.takes[3].clip);
+  CHECK(s.takes[1] == prepared.takes[1].clip);
+  CHECK(s.takes[2] == prepared.takes[2].clip);
+  CHECK(s.strengths == std::vector<double>{-1.0, 0.9});
+  prepared.takes.resize(1);
+  CHECK_THROWS_AS(live_style_spec(prepared, d), InputError);
 }
