@@ -40,7 +40,7 @@ std::vector<double> live_strengths(const Document& document, int takes) {
 
 LiveStyleSpec live_style_spec(const PreparedTakes& takes, const Document& document) {
   if (takes.size() < 2)
-    throw InputError("Live: load two takes or more first: the first is the neutral, the others the styles.");
+    throw InputError("Live: load two takes or more first: a neutral and the styles.");
   const LiveStylePlan plan = live_style_plan(document, takes.size());
   LiveStyleSpec spec;
   for (int i : plan.takes) spec.takes.push_back(takes.takes[static_cast<size_t>(i)].clip);

@@ -371,8 +371,9 @@ void FilesPanel::draw_live(const EditorState& state) {
   const bool open = ImGui::CollapsingHeader("Live");
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Style a motion-capture stream as it comes (Axis Neuron's BVH broadcasting, string format,\n"
-                      "TCP): the first take is the neutral, the others the styles, at the palette's strengths\n"
-                      "(a pair: at alpha)");
+                      "TCP) with the loaded takes as the result shows them: a pair at alpha (A the neutral), a mix\n"
+                      "with the stream as the first take, a transfer with the stream as the content; new takes\n"
+                      "restyle it on the same connection");
   if (!open) return;
   sync_live_fields();
   LiveSettings& settings = live_->settings();
@@ -386,7 +387,7 @@ void FilesPanel::draw_live(const EditorState& state) {
     if (active) {
       live_->disconnect();
     } else if (session_.takes() == nullptr) {
-      live_error_ = "Live: load two takes or more first: the first is the neutral, the others the styles.";
+      live_error_ = "Live: load two takes or more first: a neutral and the styles.";
     } else {
       settings.address = live_address_;
       settings.skeleton = live_skeleton_;
@@ -419,6 +420,7 @@ void FilesPanel::draw_live_status() {
   sentence(color, live_error_.empty() ? live_status_line(s) : live_error_, {});
   if (!s.last_skip.empty() && ImGui::IsItemHovered()) ImGui::SetTooltip("last skipped: %s", s.last_skip.c_str());
   if (!s.strength_error.empty()) sentence(kErrorColor, s.strength_error, {});
+  if (!s.restyle_error.empty()) sentence(kErrorColor, s.restyle_error, {});
 }
 
 void FilesPanel::draw_live_recording() {
