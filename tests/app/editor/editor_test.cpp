@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <future>
@@ -1040,6 +1041,52 @@ TEST_CASE("editor: takes loaded while the Live source streams restyle it on the 
   CHECK(s.strengths == mix);
   editor.live().disconnect();
   e.frame();
+  editor.shutdown_graphics();
+}
+
+TEST_CASE("editor: at 1280x720 the Files panel's Live section shows whole at its foot, closed and open") {
+  namespace ui = mostyle::ui;
+  mostyle::test::OffscreenEditor e({1280, 720});
+  REQUIRE(e.gl.ok());
+  Editor& editor = e.editor;
+  editor.wait_for_engine();
+  editor.init_graphics();
+  // The Files panel and its Live section (a child window of it, "Files/##live_<id>").
+  auto live_in_view = [&e](float at_least) {
+    e.frame();
+    e.frame();
+    const ImGuiWindow* files = ImGui::FindWindowByName(ui::panel_title(ui::PanelId::kFiles));
+    REQUIRE(files != nullptr);
+    const ImGuiWindow* live = nullptr;
+    for (const ImGuiWindow* w : GImGui->Windows)
+      if (w->ParentWindow == files && std::strstr(w->Name, "/##live_") != nullptr) live = w;
+    REQUIRE(live != nullptr);
+    CHECK(live->Active);
+    CHECK(live->Pos.y >= files->InnerClipRect.Min.y - 0.5f);
+    CHECK(live->Pos.y + live->Size.y <= files->InnerClipRect.Max.y + 0.5f);  // no part of it below the fold
+    CHECK(live->Size.y >= at_least);
+    CHECK(files->ScrollMax.y == 0.0f);  // the panel itself does not scroll: its body does
+  };
+  live_in_view(ImGui::GetFrameHeight());  // the pair: its header
+  editor.session().load_files({mostyle::test::asset("motions/cmu142_walk_happy.bvh"),
+                               mostyle::test::asset("motions/cmu142_walk_marching.bvh"),
+                               mostyle::test::asset("motions/cmu142_walk_joy.bvh"),
+                               mostyle::test::asset("motions/cmu142_walk_clumsy.bvh")},
+                              ui::WeightsOf::kNewTakes);
+  editor.wait_for_engine();
+  REQUIRE(editor.session().takes() != nullptr);
+  REQUIRE(editor.session().takes()->size() == 4);
+  live_in_view(ImGui::GetFrameHeight());  // four take fields above it: still in view
+  // Connected (here to a port nobody serves): the section opens, its fields, status and
+  // recording rows in view.
+  int port = 0;
+  ::close(mostyle::live::listen_on(0, &port));
+  editor.live().settings().address = "127.0.0.1:" + std::to_string(port);
+  editor.live().settings().skeleton = mostyle::test::asset("motions/cmu142_walk_clumsy.bvh");
+  REQUIRE(editor.connect_live());
+  REQUIRE(editor.live().wait_until([](const ui::LiveStatus& s) { return s.state == ui::LiveState::kFailed; },
+                                   std::chrono::seconds(120)));
+  live_in_view(5.0f * ImGui::GetFrameHeight());
   editor.shutdown_graphics();
 }
 
