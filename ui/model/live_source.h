@@ -2,7 +2,7 @@
 // The editor's Live source: a motion-capture stream in Axis Neuron's "BVH broadcasting" string
 // format (engine/io/axis_stream.h) styled frame by frame as it arrives, as `mostyle-cli live`
 // styles it (engine/live/live_style.h), with the takes loaded in the editor as the neutral and
-// the styles. The viewport shows the stream and the styled stream side by side at the newest
+// the styles (ui/model/live_style_spec.h says which is which in each mode). The viewport shows the stream and the styled stream side by side at the newest
 // frame; the Files panel connects and records, the Metrics panel shows the latency.
 //
 // Threads: connect() starts one worker thread of its own, which reads the stream's skeleton,
