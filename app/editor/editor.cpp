@@ -189,9 +189,10 @@ void Editor::update_live() {
     live_on_start_ = false;
     connect_live();
   }
-  // The strengths follow the document's weights as they move (the styler eases to them).
-  if (live_.active() && session_->takes() != nullptr)
-    live_.set_strengths(ui::live_strengths(state_.document, session_->takes()->size()));
+  // The styler follows the takes and the document as the editor shows them: strengths as they
+  // move (eased to), a new styler, the connection kept, when the takes or the mode change.
+  const PreparedTakes* takes = session_->takes();
+  if (live_.active() && takes != nullptr && takes->size() >= 2) live_.set_style(ui::live_style_spec(*takes, state_.document));
   const bool changed = live_.poll();
   const bool show = live_.has_window() && (live_.active() || live_.status().state == ui::LiveState::kClosed);
   if (show) show_live_takes(changed);

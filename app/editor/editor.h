@@ -184,7 +184,8 @@ class Editor {
   void restore_camera(float aspect);  // an opened session's camera, once its takes are in
   void save_session_when_ready();     // --save-session
   void keep_recent_files();           // recent.json follows the session's recent takes
-  // The live source: --live connected once the takes are in, the strengths handed on, its window
+  // The live source: --live connected once the takes are in, the takes and strengths handed on
+  // (live_style_spec: new takes or another mode restyle it, the connection kept), its window
   // taken up and shown instead of ResultView's takes (or those back), the playhead at its head.
   void update_live();
   void show_live_takes(bool changed);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
 #include <filesystem>
 #include <mutex>
 #include <string_view>
@@ -110,9 +111,12 @@ std::string live_status_line(const LiveStatus& s) {
       return "preparing the styles for " + s.source;
     case LiveState::kConnecting:
       return "connecting to " + s.source;
-    case LiveState::kStreaming:
-      if (s.styled == 0) return "connected to " + s.source + ", waiting for frames" + skipped;
-      return "styled " + std::to_string(s.styled) + " frames, " + (s.in_cycle ? "in cycle" : "not walking") + skipped;
+    case LiveState::kStreaming: {
+      const std::string restyling = s.restyling ? ", restyling with the new takes" : std::string();
+      if (s.styled == 0) return "connected to " + s.source + ", waiting for frames" + skipped + restyling;
+      return "styled " + std::to_string(s.styled) + " frames, " + (s.in_cycle ? "in cycle" : "not walking") + skipped +
+             restyling;
+    }
     case LiveState::kClosed:
       return "source closed after " + std::to_string(s.styled) + " frames" + skipped;
     case LiveState::kFailed:
@@ -121,32 +125,47 @@ std::string live_status_line(const LiveStatus& s) {
   return std::string();
 }
 
-// One connection: its worker thread and what it shares with the UI thread.
+// One connection: its worker thread, its builder thread (new takes made into a styler) and what
+// they share with the UI thread. Each spec asked is a generation: 0 the one connect() is given,
+// then one more for each set_style with other takes; strengths belong to a generation and are
+// handed only to the styler made from it.
 struct LiveSource::Run {
-  // Set before the thread starts; read-only then.
+  // Set before the threads start; read-only then.
   LiveSettings settings;
   LiveStyleSpec spec;
   double window_seconds = kLiveWindowSeconds;
   std::unique_ptr<FrameSource> source;
   std::atomic<bool> stopping{false};
-  std::atomic<bool> finished{false};
-  std::thread thread;
+  std::thread thread, builder;
+  std::atomic<bool> worker_done{false}, builder_done{false};
 
   // Shared with the UI thread, under `mutex`.
   std::mutex mutex;
+  std::condition_variable wake;  // the builder waits on it for new takes, the skeleton, or the end
   LiveStatus status;
   std::uint64_t version = 1;  // changes with the status or the window
   Skeleton skeleton;          // the stream's, once read
   double frame_time = 0.0;    // 0: not read yet
+  double fps = 0.0;           // the skeleton file's rate; 0: not read yet
   FrameRing ring;
   std::vector<double> strengths;
+  std::uint64_t strengths_generation = 0;  // the spec `strengths` are for
   bool strengths_waiting = false;
+  LiveStyleSpec wanted;                    // the takes set last (set_style)
+  std::uint64_t wanted_generation = 0;     // theirs
+  std::uint64_t built_for = 0;             // the last generation the builder finished with
+  std::unique_ptr<LiveStyle> built;        // made, not yet taken up by the worker
+  std::uint64_t built_generation = 0;
+  long long built_through = 0;             // the stream frames fed to `built` (0 .. built_through - 1)
   std::unique_ptr<BvhRecorder> record, record_input;
 
-  // The worker's own.
+  // The worker's own (the ring too: it alone writes it, under the lock).
   std::unique_ptr<LiveStyle> style;
+  std::uint64_t style_generation = 0;  // the spec `style` was made from
   std::vector<Eigen::Matrix3d> rotations;
   std::vector<double> styled_values, input_at, styled_at;
+
+  bool finished() const { return worker_done && builder_done; }
 
   void work() {
     try {
@@ -157,7 +176,102 @@ struct LiveSource::Run {
     } catch (const std::exception& e) {  // InputError and the rest alike: one sentence, shown
       end(stopping ? LiveState::kOff : LiveState::kFailed, e.what());
     }
-    finished = true;
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      worker_done = true;
+    }
+    wake.notify_all();
+  }
+
+  // Wakes the builder to see `stopping` (set outside the lock): locking first means it is either
+  // not yet waiting, and sees it, or waiting, and is woken.
+  void wake_builder() {
+    { std::lock_guard<std::mutex> lock(mutex); }
+    wake.notify_all();
+  }
+
+  // The builder's thread: each generation of takes asked (set_style), once the stream's skeleton
+  // is read, made into a styler (seconds), fed the window, and left for the worker to take up.
+  // Takes asked while a styler is being made replace it: the one made is dropped, the newest made.
+  void build() {
+    for (;;) {
+      LiveStyleSpec asked;
+      std::uint64_t generation = 0;
+      Skeleton stream_skeleton;
+      double stream_fps = 0.0;
+      {
+        std::unique_lock<std::mutex> lock(mutex);
+        wake.wait(lock, [this] { return stopping || worker_done || (built_for != wanted_generation && fps > 0.0); });
+        if (stopping || worker_done) break;
+        asked = wanted;
+        generation = wanted_generation;
+        if (strengths_generation == generation) asked.strengths = strengths;
+        stream_skeleton = skeleton;
+        stream_fps = fps;
+        status.restyling = true;
+        ++version;
+      }
+      std::unique_ptr<LiveStyle> made;
+      long long through = 0;
+      std::string error;
+      try {
+        made = std::make_unique<LiveStyle>(stream_skeleton, stream_fps, asked);
+        through = warm_up(*made);
+      } catch (const std::exception& e) {
+        made.reset();
+        error = e.what();
+      }
+      std::lock_guard<std::mutex> lock(mutex);
+      if (generation != wanted_generation) continue;  // newer takes asked meanwhile
+      built_for = generation;
+      status.restyling = false;
+      if (made) {
+        built = std::move(made);
+        built_generation = generation;
+        built_through = through;
+        status.restyle_error.clear();
+      } else {
+        status.restyle_error = "the new takes cannot style the stream (" + error + "); styled with the takes before";
+      }
+      ++version;
+    }
+    builder_done = true;
+  }
+
+  // The window's frames as they came, oldest first, through a styler just made, so that it takes up
+  // the stream's gait (its strikes, its phase, its planted feet) where the stream is; returns the
+  // number of stream frames it has seen then. About 30 microseconds a frame, off the worker.
+  long long warm_up(LiveStyle& made) {
+    RowMatrix frames;
+    long long through = 0;
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      frames.resize(ring.count(), ring.input_.cols());
+      for (int k = 0; k < ring.count(); ++k) frames.row(k) = ring.input_.row(ring.row(k));
+      through = ring.total();
+    }
+    std::vector<double> out(static_cast<size_t>(frames.cols()));
+    for (Eigen::Index k = 0; k < frames.rows(); ++k) made.style_frame(frames.row(k).data(), out.data());
+    return through;
+  }
+
+  // The worker, before a frame: a styler made from new takes, when there is one, fed the frames
+  // that came since its window (from the ring, so that it has seen every frame the window holds)
+  // and styling from this frame on.
+  void take_up_style() {
+    std::unique_ptr<LiveStyle> made;
+    long long through = 0;
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      if (!built) return;
+      made = std::move(built);
+      through = built_through;
+      style_generation = built_generation;
+    }
+    const long long first = ring.total() - ring.count();
+    for (long long f = std::max(through, first); f < ring.total(); ++f)
+      made->style_frame(ring.input_.row(ring.row(static_cast<int>(f - first))).data(), styled_values.data());
+    style = std::move(made);
   }
 
   void set_state(LiveState state) {
@@ -171,19 +285,23 @@ struct LiveSource::Run {
     if (settings.skeleton.empty())
       throw InputError("no skeleton file: give a BVH file with the stream's hierarchy and channels");
     Clip clip = read_bvh_file(settings.skeleton);
-    const double fps = clip.fps();
-    style = std::make_unique<LiveStyle>(clip.skeleton, fps, spec);
+    const double rate = clip.fps();
+    style = std::make_unique<LiveStyle>(clip.skeleton, rate, spec);
     const int channels = clip.skeleton.channel_count;
     const int coordinates = 3 * static_cast<int>(clip.skeleton.joints.size());
     styled_values.assign(static_cast<size_t>(channels), 0.0);
     input_at.assign(static_cast<size_t>(coordinates), 0.0);
     styled_at.assign(static_cast<size_t>(coordinates), 0.0);
-    std::lock_guard<std::mutex> lock(mutex);
-    skeleton = std::move(clip.skeleton);
-    frame_time = clip.frame_time;
-    ring.reset(static_cast<int>(std::ceil(window_seconds * fps)), channels, coordinates);
-    status.state = LiveState::kConnecting;
-    ++version;
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      skeleton = std::move(clip.skeleton);
+      frame_time = clip.frame_time;
+      fps = rate;
+      ring.reset(static_cast<int>(std::ceil(window_seconds * rate)), channels, coordinates);
+      status.state = LiveState::kConnecting;
+      ++version;
+    }
+    wake.notify_all();  // takes set while preparing can be made now
   }
 
   void connect() {
@@ -222,6 +340,7 @@ struct LiveSource::Run {
 
   // One frame: the strengths set since the last, styled, posed, recorded, in the window.
   void style_frame(const double* in, long long line, Clock::time_point arrival) {
+    take_up_style();
     take_strengths();
     style->style_frame(in, styled_values.data());
     const Clock::time_point done = Clock::now();
@@ -265,7 +384,8 @@ struct LiveSource::Run {
     std::vector<double> asked;
     {
       std::lock_guard<std::mutex> lock(mutex);
-      if (!strengths_waiting) return;
+      // Strengths for a styler still being made wait for it (their count may not be this one's).
+      if (!strengths_waiting || strengths_generation != style_generation) return;
       strengths_waiting = false;
       asked = strengths;
     }
@@ -293,6 +413,7 @@ struct LiveSource::Run {
     record.reset();
     record_input.reset();
     status.recording = false;
+    status.restyling = false;
     status.state = state;
     status.error = error;
     ++version;
@@ -304,7 +425,10 @@ LiveSource::LiveSource(FrameSourceMaker sources, double window_seconds)
 
 LiveSource::~LiveSource() {
   disconnect();
-  for (const std::shared_ptr<Run>& run : retired_) run->thread.join();
+  for (const std::shared_ptr<Run>& run : retired_) {
+    run->thread.join();
+    run->builder.join();
+  }
 }
 
 void LiveSource::connect(const LiveSettings& settings, const LiveStyleSpec& spec) {
@@ -316,6 +440,8 @@ void LiveSource::connect(const LiveSettings& settings, const LiveStyleSpec& spec
   run->status.source = settings.address;
   run->status.state = LiveState::kPreparing;
   run->strengths = spec.strengths;
+  run->wanted = spec;
+  styled_with_ = spec.takes;
   // A fresh window: the stream shown before goes, the next is placed anew.
   status_ = run->status;
   metrics_ = LiveMetrics();
@@ -334,6 +460,7 @@ void LiveSource::connect(const LiveSettings& settings, const LiveStyleSpec& spec
   }
   Run* r = run.get();
   run->thread = std::thread([r] { r->work(); });
+  run->builder = std::thread([r] { r->build(); });
   run_ = std::move(run);
 }
 
@@ -341,11 +468,13 @@ void LiveSource::disconnect() {
   if (!run_) return;
   run_->stopping = true;
   run_->source->stop();
+  run_->wake_builder();
   poll();  // what it had styled stays shown
   retired_.push_back(std::move(run_));
   run_.reset();
   status_.state = LiveState::kOff;
   status_.recording = false;
+  status_.restyling = false;  // a styler being made is dropped with its stream
   metrics_.frames_per_s = 0.0;
 }
 
@@ -358,8 +487,27 @@ void LiveSource::set_strengths(const std::vector<double>& strengths) {
   if (!run_) return;
   std::lock_guard<std::mutex> lock(run_->mutex);
   if (run_->strengths == strengths) return;
-  run_->strengths = strengths;
+  run_->strengths = strengths;  // for the takes set last (their generation's)
   run_->strengths_waiting = true;
+}
+
+void LiveSource::set_style(const LiveStyleSpec& spec) {
+  if (!run_ || !active()) return;
+  if (spec.takes == styled_with_) return set_strengths(spec.strengths);  // the same clips: no new styler
+  {
+    std::lock_guard<std::mutex> lock(run_->mutex);
+    if (run_->worker_done) return;  // the stream ended since the last poll(): nothing to restyle
+    styled_with_ = spec.takes;
+    run_->wanted = spec;
+    ++run_->wanted_generation;
+    run_->strengths = spec.strengths;
+    run_->strengths_generation = run_->wanted_generation;
+    run_->strengths_waiting = false;  // the new styler is made with them
+    run_->status.restyling = true;
+    ++run_->version;
+  }
+  run_->wake.notify_all();
+  status_.restyling = true;
 }
 
 bool LiveSource::start_recording(const std::string& path, bool with_input) {
@@ -408,8 +556,9 @@ void LiveSource::stop_recording() {
 bool LiveSource::poll() {
   // Workers that were stopped and have finished are done with.
   for (auto it = retired_.begin(); it != retired_.end();) {
-    if ((*it)->finished) {
+    if ((*it)->finished()) {
       (*it)->thread.join();
+      (*it)->builder.join();
       it = retired_.erase(it);
     } else {
       ++it;

@@ -2,14 +2,16 @@
 // The editor's Live source: a motion-capture stream in Axis Neuron's "BVH broadcasting" string
 // format (engine/io/axis_stream.h) styled frame by frame as it arrives, as `mostyle-cli live`
 // styles it (engine/live/live_style.h), with the takes loaded in the editor as the neutral and
-// the styles. The viewport shows the stream and the styled stream side by side at the newest
+// the styles (ui/model/live_style_spec.h says which is which in each mode). The viewport shows the stream and the styled stream side by side at the newest
 // frame; the Files panel connects and records, the Metrics panel shows the latency.
 //
 // Threads: connect() starts one worker thread of its own, which reads the stream's skeleton,
 // prepares the styler (heavy: seconds), opens the FrameSource, then reads its bytes, cuts them
 // into lines, parses each, styles it, records it and appends it to a window of the last
 // window_seconds. The styler is the worker's alone: strengths set from the UI thread are handed
-// to it under a lock and applied before its next frame. The UI thread calls the public
+// to it under a lock and applied before its next frame. New takes (set_style) are made into a
+// new styler on a second thread of the connection's, which hands it to the worker when made;
+// the worker styles with the one it has meanwhile and keeps the connection. The UI thread calls the public
 // functions; poll() takes up the newest window as two Clips and two takes for the viewport
 // (copies: the worker never waits for the UI). Memory is bounded however long it runs: the
 // window, a line, the styler's.
@@ -83,6 +85,8 @@ struct LiveStatus {
   long long styled = 0;     // frames styled
   long long skipped = 0;    // lines that are not frames (malformed, too long, another avatar's): counted, skipped
   std::string last_skip;    // why the last one was skipped: "line 12: expected 96 values ..., found 95"
+  bool restyling = false;   // new takes are being made into a styler; the stream is styled with the one before until made
+  std::string restyle_error;  // why the takes set last could not style the stream (it is styled as before), or ""
   bool in_cycle = false;    // the styler's, on the last frame (LiveStyle::in_cycle)
   double phase = 0.0;       // [0, 1) within the neutral's gait cycle
   std::vector<double> strengths;  // as eased on the last frame, one per style
@@ -101,7 +105,8 @@ struct LiveMetrics {
 };
 
 // The status in one line for the Files panel: "preparing the styles", "connecting to HOST:PORT",
-// "styled 1200 frames, in cycle" (", 3 skipped"), "source closed after 1200 frames", the error.
+// "styled 1200 frames, in cycle" (", 3 skipped", ", restyling with the new takes"), "source closed
+// after 1200 frames", the error.
 std::string live_status_line(const LiveStatus& status);
 
 class LiveSource {
@@ -130,6 +135,16 @@ class LiveSource {
   // frame (LiveStyle::set_strengths). Strengths the styler refuses (a wrong count, a value out
   // of range) change nothing and are said in status().strength_error.
   void set_strengths(const std::vector<double>& strengths);
+
+  // The takes and strengths to style with from now on, for the editor to call every frame while
+  // active(). The same takes as the spec asked last (the same clips, in the same order): only the
+  // strengths are handed on (set_strengths). Other takes (reloaded, another mode or neutral): a
+  // new styler is made off this thread and the worker's, the connection kept and the stream
+  // styled with the styler before meanwhile (status().restyling, until it is made); from the next
+  // frame on the new one styles, first fed every frame the window holds so that it takes up the
+  // stream's gait where it is. New takes that cannot style the stream leave the styler as it was and say why
+  // in status().restyle_error. Not connected: nothing. O(takes) when the takes are the same.
+  void set_style(const LiveStyleSpec& spec);
 
   // Records the styled stream to `path` (and the stream as it came, to input_recording_path,
   // when with_input), from the next frame on: a BVH file that reads whole at every moment
@@ -172,6 +187,7 @@ class LiveSource {
   double window_seconds_;
   LiveSettings settings_;
   std::shared_ptr<Run> run_;                    // the stream connected last
+  std::vector<std::shared_ptr<const Clip>> styled_with_;  // the takes of the spec set last (connect, set_style)
   std::vector<std::shared_ptr<Run>> retired_;   // disconnected, their workers finishing
   std::uint64_t seen_version_ = 0;
   LiveStatus status_;

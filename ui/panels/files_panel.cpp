@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <imgui.h>
+#include <imgui_internal.h>  // PushOverrideID: the panel's items keep their ids inside its body
 
 #include <chrono>
 
@@ -139,12 +140,32 @@ void FilesPanel::draw(EditorState& state) {
   std::vector<std::string> folders = {folder_, export_folder};
   for (const PathField& f : fields_) folders.push_back(f.folder);
 
-  draw_take_fields(takes);
-  draw_export_field(state, export_folder, static_cast<int>(takes.size()));
-  draw_messages(folders);
-  draw_live(state);
-  draw_browser(takes);
-  draw_recent(state, takes);
+  // The Live section sits at the panel's foot, so that it shows at any window size and for any
+  // number of takes; the rest scrolls above it, in what the Live section leaves (as much as it
+  // needs when open, as measured on the frame before; all of it, scrolling, when that is more).
+  const float spacing = ImGui::GetStyle().ItemSpacing.y;
+  const float avail = ImGui::GetContentRegionAvail().y;
+  const float foot = live_ == nullptr ? 0.0f : std::min(live_height_, avail);
+  const float body = live_ == nullptr ? avail : avail - foot - spacing;
+  if (body >= ImGui::GetFrameHeight()) {
+    const ImGuiID panel_id = ImGui::GetCurrentWindow()->ID;
+    ImGui::BeginChild("##files-body", ImVec2(0.0f, body), false);
+    ImGui::PushOverrideID(panel_id);  // the fields' and buttons' ids are the panel's, as without a body
+    draw_take_fields(takes);
+    draw_export_field(state, export_folder, static_cast<int>(takes.size()));
+    draw_messages(folders);
+    draw_browser(takes);
+    draw_recent(state, takes);
+    ImGui::PopID();
+    ImGui::EndChild();
+  }
+  if (live_ != nullptr) {
+    const bool fits = live_height_ <= avail;
+    ImGui::BeginChild("##live", ImVec2(0.0f, foot), false, fits ? ImGuiWindowFlags_NoScrollbar : 0);
+    draw_live(state);
+    live_height_ = std::max(ImGui::GetFrameHeight(), ImGui::GetCursorPosY() - spacing);
+    ImGui::EndChild();
+  }
   ImGui::End();
 }
 
@@ -185,7 +206,8 @@ void FilesPanel::draw_take_fields(const std::vector<std::string>& takes) {
     ImGui::PushID(i);
     const glm::vec3 c = take_color(i);
     ImGui::TextColored(ImVec4(c.x, c.y, c.z, 1.0f), "%s", take_role(i, n).c_str());
-    ImGui::SameLine(ImGui::GetFontSize() * 1.6f);
+    // The field 1.6 font sizes from the panel's edge (the body it is in starts at the panel's padding).
+    ImGui::SameLine(ImGui::GetFontSize() * 1.6f - ImGui::GetStyle().WindowPadding.x);
     const bool entered = ImGui::InputText("##take", field.text, sizeof field.text, ImGuiInputTextFlags_EnterReturnsTrue);
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("Folder: %s\nType a file name in that folder, or a path; Enter loads it.",
@@ -371,8 +393,9 @@ void FilesPanel::draw_live(const EditorState& state) {
   const bool open = ImGui::CollapsingHeader("Live");
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Style a motion-capture stream as it comes (Axis Neuron's BVH broadcasting, string format,\n"
-                      "TCP): the first take is the neutral, the others the styles, at the palette's strengths\n"
-                      "(a pair: at alpha)");
+                      "TCP) with the loaded takes as the result shows them: a pair at alpha (A the neutral), a mix\n"
+                      "with the stream as the first take, a transfer with the stream as the content; new takes\n"
+                      "restyle it on the same connection");
   if (!open) return;
   sync_live_fields();
   LiveSettings& settings = live_->settings();
@@ -386,7 +409,7 @@ void FilesPanel::draw_live(const EditorState& state) {
     if (active) {
       live_->disconnect();
     } else if (session_.takes() == nullptr) {
-      live_error_ = "Live: load two takes or more first: the first is the neutral, the others the styles.";
+      live_error_ = "Live: load two takes or more first: a neutral and the styles.";
     } else {
       settings.address = live_address_;
       settings.skeleton = live_skeleton_;
@@ -419,6 +442,7 @@ void FilesPanel::draw_live_status() {
   sentence(color, live_error_.empty() ? live_status_line(s) : live_error_, {});
   if (!s.last_skip.empty() && ImGui::IsItemHovered()) ImGui::SetTooltip("last skipped: %s", s.last_skip.c_str());
   if (!s.strength_error.empty()) sentence(kErrorColor, s.strength_error, {});
+  if (!s.restyle_error.empty()) sentence(kErrorColor, s.restyle_error, {});
 }
 
 void FilesPanel::draw_live_recording() {

@@ -5,7 +5,8 @@
 // on a thread when its row is opened, each loadable as FILE#ANIMATION) and the recent files,
 // whose buttons replace a take or add one; dropped files; and the export of the result: the
 // export field and button open the export dialog (ui/panels/export_dialog.h), which this panel owns and
-// draws. Files show by name, their folder on hover; a load error names the folder tried.
+// draws; and at the panel's foot, always in view, the Live section (a motion-capture stream styled
+// with the takes). Files show by name, their folder on hover; a load error names the folder tried.
 // Messages sit in a space of their own below the fields, so nothing moves under the mouse when
 // one comes or goes.
 #include <future>
@@ -81,6 +82,7 @@ class FilesPanel : public Panel {
   LiveSettings live_synced_;  // the settings the fields were last filled from
   bool live_fields_filled_ = false;
   std::string live_error_;    // why Connect did nothing (no takes), until the next Connect
+  float live_height_ = 24.0f; // the Live section's height on the frame before, pixels (at the panel's foot)
 
   BlendSession& session_;
   std::string folder_;  // the browser's folder

@@ -11,8 +11,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <string>
 #include <thread>
 #include <vector>
@@ -33,6 +35,7 @@
 #include "engine/io/bvh_io.h"
 #include "render/png_io.h"
 #include "tests/test_data.h"
+#include "ui/model/live_style_spec.h"
 #include "ui/panels/export_dialog.h"
 #include "ui/panels/layout.h"
 
@@ -895,6 +898,44 @@ struct LoopbackSource {
   }
 };
 
+// The same, sending the first `first` frames at once, then the rest once `release` is set, then
+// closing: a connection that stays open while the test changes the takes.
+struct HeldLoopbackSource {
+  int listener = -1, port = 0;
+  std::promise<void> release;
+  std::thread thread;
+
+  HeldLoopbackSource(const mostyle::Clip& clip, int first) {
+    listener = mostyle::live::listen_on(0, &port);
+    std::string head, tail;
+    for (int f = 0; f < clip.frames(); ++f)
+      mostyle::append_axis_line(f < first ? &head : &tail, 0, "Avatar00", nullptr, 0, clip.motion.row(f).data(),
+                                clip.skeleton.channel_count);
+    std::shared_future<void> released = release.get_future().share();
+    thread = std::thread([this, head, tail, released] {
+      pollfd p{listener, POLLIN, 0};
+      if (::poll(&p, 1, 120000) != 1) return;
+      const int client = ::accept4(listener, nullptr, nullptr, SOCK_CLOEXEC);
+      if (client < 0) return;
+      auto send_all = [client](const std::string& lines) {
+        for (size_t sent = 0; sent < lines.size();) {
+          const ssize_t n = ::send(client, lines.data() + sent, lines.size() - sent, MSG_NOSIGNAL);
+          if (n <= 0) return;
+          sent += static_cast<size_t>(n);
+        }
+      };
+      send_all(head);
+      released.wait_for(std::chrono::seconds(120));
+      send_all(tail);
+      ::close(client);
+    });
+  }
+  ~HeldLoopbackSource() {
+    thread.join();
+    ::close(listener);
+  }
+};
+
 }  // namespace
 
 TEST_CASE("editor options: --live and --live-skeleton go together") {
@@ -951,6 +992,101 @@ TEST_CASE("editor: the Live source connects over loopback and shows the stream a
   CHECK_FALSE(editor.live_shown());
   REQUIRE(editor.state().takes.size() == 3);
   CHECK(editor.state().takes[2].label == blend_label);
+  editor.shutdown_graphics();
+}
+
+TEST_CASE("editor: takes loaded while the Live source streams restyle it on the same connection") {
+  namespace ui = mostyle::ui;
+  const std::string stream_file = mostyle::test::asset("motions/cmu142_walk_clumsy.bvh");
+  const mostyle::Clip stream = mostyle::read_bvh_file(stream_file);
+  HeldLoopbackSource source(stream, 300);
+  mostyle::test::OffscreenEditor e({960, 540});
+  REQUIRE(e.gl.ok());
+  Editor& editor = e.editor;
+  editor.wait_for_engine();
+  editor.init_graphics();
+  editor.live().settings().address = "localhost:" + std::to_string(source.port);
+  editor.live().settings().skeleton = stream_file;
+  REQUIRE(editor.connect_live());
+  REQUIRE(editor.live().wait_until([](const ui::LiveStatus& s) { return s.styled >= 300 || s.state == ui::LiveState::kFailed; },
+                                   std::chrono::seconds(120)));
+  CHECK(editor.live().status().strengths == std::vector<double>{0.5});  // the pair's alpha
+
+  // A third take, as loading it in the Files panel does: a mix of three, the stream still open.
+  editor.session().load_files({mostyle::test::asset("motions/cmu142_walk_happy.bvh"),
+                               mostyle::test::asset("motions/cmu142_walk_marching.bvh"),
+                               mostyle::test::asset("motions/cmu142_walk_joy.bvh")},
+                              ui::WeightsOf::kNewTakes);
+  editor.wait_for_engine();
+  REQUIRE(editor.session().takes() != nullptr);
+  REQUIRE(editor.session().takes()->size() == 3);
+  CHECK(editor.live().status().state == ui::LiveState::kStreaming);
+  CHECK(editor.live().status().restyling);
+  const std::vector<double> mix = ui::live_strengths(editor.state().document, 3);
+  REQUIRE(mix.size() == 2);
+
+  // The rest of the stream on the same connection, styled with the three takes once they are made.
+  REQUIRE(editor.live().wait_until([](const ui::LiveStatus& st) { return !st.restyling; }, std::chrono::seconds(120)));
+  CHECK(editor.live().status().state == ui::LiveState::kStreaming);
+  source.release.set_value();
+  REQUIRE(editor.live().wait_until([](const ui::LiveStatus& s) { return s.state == ui::LiveState::kClosed ||
+                                                                        s.state == ui::LiveState::kFailed; },
+                                   std::chrono::seconds(120)));
+  INFO(editor.live().status().error);
+  const ui::LiveStatus& s = editor.live().status();
+  CHECK(s.state == ui::LiveState::kClosed);
+  CHECK(s.styled == stream.frames());  // every frame, one connection
+  CHECK(s.restyle_error.empty());
+  CHECK_FALSE(s.restyling);
+  CHECK(s.strengths == mix);
+  editor.live().disconnect();
+  e.frame();
+  editor.shutdown_graphics();
+}
+
+TEST_CASE("editor: at 1280x720 the Files panel's Live section shows whole at its foot, closed and open") {
+  namespace ui = mostyle::ui;
+  mostyle::test::OffscreenEditor e({1280, 720});
+  REQUIRE(e.gl.ok());
+  Editor& editor = e.editor;
+  editor.wait_for_engine();
+  editor.init_graphics();
+  // The Files panel and its Live section (a child window of it, "Files/##live_<id>").
+  auto live_in_view = [&e](float at_least) {
+    e.frame();
+    e.frame();
+    const ImGuiWindow* files = ImGui::FindWindowByName(ui::panel_title(ui::PanelId::kFiles));
+    REQUIRE(files != nullptr);
+    const ImGuiWindow* live = nullptr;
+    for (const ImGuiWindow* w : GImGui->Windows)
+      if (w->ParentWindow == files && std::strstr(w->Name, "/##live_") != nullptr) live = w;
+    REQUIRE(live != nullptr);
+    CHECK(live->Active);
+    CHECK(live->Pos.y >= files->InnerClipRect.Min.y - 0.5f);
+    CHECK(live->Pos.y + live->Size.y <= files->InnerClipRect.Max.y + 0.5f);  // no part of it below the fold
+    CHECK(live->Size.y >= at_least);
+    CHECK(files->ScrollMax.y == 0.0f);  // the panel itself does not scroll: its body does
+  };
+  live_in_view(ImGui::GetFrameHeight());  // the pair: its header
+  editor.session().load_files({mostyle::test::asset("motions/cmu142_walk_happy.bvh"),
+                               mostyle::test::asset("motions/cmu142_walk_marching.bvh"),
+                               mostyle::test::asset("motions/cmu142_walk_joy.bvh"),
+                               mostyle::test::asset("motions/cmu142_walk_clumsy.bvh")},
+                              ui::WeightsOf::kNewTakes);
+  editor.wait_for_engine();
+  REQUIRE(editor.session().takes() != nullptr);
+  REQUIRE(editor.session().takes()->size() == 4);
+  live_in_view(ImGui::GetFrameHeight());  // four take fields above it: still in view
+  // Connected (here to a port nobody serves): the section opens, its fields, status and
+  // recording rows in view.
+  int port = 0;
+  ::close(mostyle::live::listen_on(0, &port));
+  editor.live().settings().address = "127.0.0.1:" + std::to_string(port);
+  editor.live().settings().skeleton = mostyle::test::asset("motions/cmu142_walk_clumsy.bvh");
+  REQUIRE(editor.connect_live());
+  REQUIRE(editor.live().wait_until([](const ui::LiveStatus& s) { return s.state == ui::LiveState::kFailed; },
+                                   std::chrono::seconds(120)));
+  live_in_view(5.0f * ImGui::GetFrameHeight());
   editor.shutdown_graphics();
 }
 

@@ -1,7 +1,8 @@
 // The editor's live source (ui/model/live_source.h) over a fake FrameSource that feeds the lines
 // of a bundled take as Axis Neuron sends them: every frame is styled as the styler styles it
 // alone, the strengths set reach the styler, the window stays bounded, bad lines are counted and
-// skipped, the source closing is said, and a recording reads back as BVH with its frames.
+// skipped, the source closing is said, a recording reads back as BVH with its frames, and new
+// takes restyle the stream on the same connection.
 #include <condition_variable>
 #include <deque>
 #include <filesystem>
@@ -107,11 +108,12 @@ struct Live {
   explicit Live(double window_seconds = kLiveWindowSeconds)
       : live([this](const std::string&) { return std::make_unique<FakeSource>(stream); }, window_seconds) {}
 
-  void connect(std::vector<double> strengths = {1.0}) {
+  void connect(std::vector<double> strengths = {1.0}) { connect(spec(std::move(strengths))); }
+  void connect(const LiveStyleSpec& with) {
     LiveSettings settings;
     settings.address = "fake:1";
     settings.skeleton = test::asset("motions/" + kStream);
-    live.connect(settings, spec(std::move(strengths)));
+    live.connect(settings, with);
     REQUIRE(live.wait_until([](const LiveStatus& s) { return s.state != LiveState::kPreparing; }, kPatience));
     REQUIRE(live.wait_until([](const LiveStatus& s) { return s.state != LiveState::kConnecting; }, kPatience));
     REQUIRE(live.status().state == LiveState::kStreaming);
@@ -301,11 +303,213 @@ TEST_CASE("live source: a bad address, a missing skeleton and too few takes are 
   REQUIRE(l.live.wait_until([](const LiveStatus& s) { return s.state == LiveState::kFailed; }, kPatience));
   CHECK(l.live.status().error.find("skeleton.bvh") != std::string::npos);
   CHECK(!l.live.active());
+}
 
+TEST_CASE("live style plan: a pair's alpha, a mix's weights, a transfer's neutral and strengths") {
   Document d;
+  CHECK(live_style_plan(d, 1).takes.empty());  // nothing to style with
+  CHECK(live_style_plan(d, 1).strengths.empty());
+
+  // A pair: A the neutral, B the style, at alpha (transfer mode is a palette's only).
   set_pair_alpha(d, 0.25);
+  d.controls.palette.transfer = true;
+  CHECK(live_style_plan(d, 2).takes == std::vector<int>{0, 1});
   CHECK(live_strengths(d, 2) == std::vector<double>{0.25});
-  d.controls.palette.strengths = {1.0, 0.5, 3.0};
-  CHECK(live_strengths(d, 3) == std::vector<double>{0.5, 2.0});  // clamped to the styler's range
-  CHECK(live_strengths(d, 4) == std::vector<double>{0.5, 2.0, 1.0});
+  d.controls.palette.transfer = false;
+
+  // A mix: the stream stands in for take 0, the others' weights are their strengths.
+  d.weights = {0.5, 0.25, 0.25};
+  CHECK(live_style_plan(d, 3).takes == std::vector<int>{0, 1, 2});
+  CHECK(live_strengths(d, 3) == std::vector<double>{0.25, 0.25});
+  d.weights = {-0.5, 0.25, 1.25};
+  CHECK(live_strengths(d, 3) == std::vector<double>{0.25, 1.25});
+  // Weights not one per take (takes just changed): equal ones, as the mix takes them.
+  d.weights = {0.5, 0.5};
+  CHECK(live_strengths(d, 4) == std::vector<double>{0.25, 0.25, 0.25});
+  // The palette's strengths are the transfer's, not the mix's.
+  d.controls.palette.strengths = {1.0, 0.7, 0.7, 0.7};
+  CHECK(live_strengths(d, 4) == std::vector<double>{0.25, 0.25, 0.25});
+
+  // A transfer: the stream stands in for the content (take 0), take `neutral` is the neutral,
+  // every other take a style at its strength (1 where unset), clamped to [-1, 2].
+  d.controls.palette.transfer = true;
+  d.controls.palette.neutral = 2;
+  d.controls.palette.strengths = {1.0, 0.5, 0.9, 3.0};
+  CHECK(live_style_plan(d, 4).takes == std::vector<int>{2, 1, 3});
+  CHECK(live_strengths(d, 4) == std::vector<double>{0.5, 2.0});
+  CHECK(live_style_plan(d, 5).takes == std::vector<int>{2, 1, 3, 4});
+  CHECK(live_strengths(d, 5) == std::vector<double>{0.5, 2.0, 1.0});
+  d.controls.palette.strengths = {1.0, -4.0, 0.9, 0.0};
+  CHECK(live_strengths(d, 4) == std::vector<double>{-1.0, 0.0});
+  // A neutral beyond the takes is the last one, as the transfer takes it.
+  d.controls.palette.neutral = 7;
+  CHECK(live_style_plan(d, 4).takes == std::vector<int>{3, 1, 2});
+  CHECK(live_strengths(d, 4) == std::vector<double>{-1.0, 0.9});
+  // The content its own neutral: the content take is the neutral, every other take a style.
+  d.controls.palette.content_neutral = true;
+  CHECK(live_style_plan(d, 4).takes == std::vector<int>{0, 1, 2, 3});
+  CHECK(live_strengths(d, 4) == std::vector<double>{-1.0, 0.9, 0.0});
+
+  // The spec: the loaded takes' clips in the plan's order, shared.
+  PreparedTakes prepared;
+  for (int i = 0; i < 4; ++i) {
+    PreparedTake take;
+    auto clip = std::make_shared<Clip>();
+    clip->source = "take" + std::to_string(i);
+    take.clip = clip;
+    prepared.takes.push_back(std::move(take));
+  }
+  d.controls.palette.content_neutral = false;
+  d.controls.palette.neutral = 3;
+  const LiveStyleSpec s = live_style_spec(prepared, d);
+  REQUIRE(s.takes.size() == 3);
+  CHECK(s.takes[0] == prepared.takes[3].clip);
+  CHECK(s.takes[1] == prepared.takes[1].clip);
+  CHECK(s.takes[2] == prepared.takes[2].clip);
+  CHECK(s.strengths == std::vector<double>{-1.0, 0.9});
+  prepared.takes.resize(1);
+  CHECK_THROWS_AS(live_style_spec(prepared, d), InputError);
+}
+
+namespace {
+
+// The stream's frames [from, to) through `style`, each frame's output a row (frames x channels).
+Eigen::MatrixXd styled_alone(LiveStyle& style, const StreamLines& lines, int from, int to) {
+  const int channels = lines.clip->skeleton.channel_count;
+  Eigen::MatrixXd out(to - from, channels);
+  AxisFrame frame;
+  std::string reason;
+  std::vector<double> row(static_cast<size_t>(channels));
+  for (int f = from; f < to; ++f) {
+    const std::string line = lines.line(f);
+    REQUIRE(parse_axis_line(line.substr(0, line.size() - 1), channels, &frame, &reason) == AxisLineStatus::kOk);
+    style.style_frame(frame.values.data(), row.data());
+    out.row(f - from) = Eigen::Map<const Eigen::RowVectorXd>(row.data(), channels);
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("live source: new takes restyle the stream on the same connection, from where its gait is") {
+  const StreamLines lines;
+  Live l;  // a window of 10 s holds the whole 9 s stream: every frame stays to compare
+  const LiveStyleSpec marching = spec({1.0});
+  l.connect(marching);
+  l.stream->send(lines.lines(0, 300));
+  l.wait_lines(300);
+
+  // The same takes at another strength: handed on, no styler made.
+  LiveStyleSpec softer = marching;
+  softer.strengths = {0.5};
+  l.live.set_style(softer);
+  CHECK_FALSE(l.live.status().restyling);
+  l.stream->send(lines.lines(300, 400));
+  l.wait_lines(400);
+  CHECK(l.live.status().strengths == std::vector<double>{0.5});
+
+  // Other takes (a style added, as a mix of three takes would): the stream goes on, styled as
+  // before, until the new styler is made; from then on the new one styles it.
+  LiveStyleSpec two;
+  two.takes = {marching.takes[0], load("cmu142_walk_joy.bvh"), marching.takes[1]};
+  two.strengths = {1.0, 0.25};
+  l.live.set_style(two);
+  CHECK(l.live.status().restyling);
+  CHECK(live_status_line(l.live.status()).find("restyling with the new takes") != std::string::npos);
+  int sent = 400;
+  while (l.live.status().restyling) {  // a frame at a time until the worker takes the new one up
+    REQUIRE(sent < lines.clip->frames());
+    l.stream->send(lines.line(sent++));
+    l.wait_lines(sent);
+    l.live.wait_until([](const LiveStatus& s) { return !s.restyling; }, std::chrono::milliseconds(20));
+  }
+  l.stream->send(lines.lines(sent, sent + 60));
+  sent += 60;
+  l.wait_lines(sent);
+  l.live.poll();
+  const LiveStatus& s = l.live.status();
+  CHECK(s.state == LiveState::kStreaming);  // the same connection throughout
+  CHECK(s.styled == sent);
+  CHECK(s.skipped == 0);
+  CHECK(s.restyle_error.empty());
+  CHECK(s.strengths == std::vector<double>{1.0, 0.25});
+  // Strengths of the new takes' count are taken.
+  l.live.set_strengths({0.5, 0.5});
+  l.stream->send(lines.lines(sent, sent + 80));
+  sent += 80;
+  l.wait_lines(sent);
+  CHECK(l.live.status().strengths == std::vector<double>{0.5, 0.5});
+  CHECK(l.live.status().strength_error.empty());
+
+  // Each frame as one of the two stylers alone gives it, bit for bit: the first up to the frame
+  // the new one was taken up at, the new one after, as if it had styled the stream from its start.
+  l.live.poll();
+  REQUIRE(l.live.window_first_frame() == 0);
+  const Eigen::MatrixXd& shown = l.live.styled()->motion;
+  REQUIRE(shown.rows() == sent);
+  const Skeleton& skeleton = lines.clip->skeleton;
+  LiveStyle before(skeleton, lines.clip->fps(), marching);
+  Eigen::MatrixXd old_rows(sent, skeleton.channel_count);
+  old_rows.topRows(300) = styled_alone(before, lines, 0, 300);
+  before.set_strengths({0.5});
+  old_rows.bottomRows(sent - 300) = styled_alone(before, lines, 300, sent);
+  LiveStyle after(skeleton, lines.clip->fps(), two);
+  Eigen::MatrixXd new_rows(sent, skeleton.channel_count);
+  const int set_at = sent - 80;
+  new_rows.topRows(set_at) = styled_alone(after, lines, 0, set_at);
+  after.set_strengths({0.5, 0.5});
+  new_rows.bottomRows(80) = styled_alone(after, lines, set_at, sent);
+  int taken_up = 0;
+  while (taken_up < sent && shown.row(taken_up) == old_rows.row(taken_up)) ++taken_up;
+  CHECK(taken_up >= 400);        // not before the takes were set
+  CHECK(taken_up <= sent - 140);  // the last frame before the restyle was seen done, at the latest
+  for (int f = taken_up; f < sent; ++f) REQUIRE(shown.row(f) == new_rows.row(f));
+  CHECK((new_rows.row(sent - 1) - old_rows.row(sent - 1)).cwiseAbs().maxCoeff() > 1.0);  // the takes differ
+
+  // Takes that cannot style the stream (a neutral too short to hold a gait cycle): said, and the
+  // stream styled on as it was.
+  LiveStyleSpec bad = two;
+  auto short_neutral = std::make_shared<Clip>(*two.takes[0]);
+  short_neutral->motion = Eigen::MatrixXd(short_neutral->motion.topRows(10));
+  bad.takes[0] = short_neutral;
+  l.live.set_style(bad);
+  REQUIRE(l.live.wait_until([](const LiveStatus& st) { return !st.restyle_error.empty(); }, kPatience));
+  CHECK_FALSE(l.live.status().restyling);
+  CHECK(l.live.status().restyle_error.find("styled with the takes before") != std::string::npos);
+  l.stream->send(lines.lines(sent, sent + 20));
+  l.wait_lines(sent + 20);
+  l.live.poll();
+  CHECK(l.live.status().state == LiveState::kStreaming);
+  CHECK(l.live.status().styled == sent + 20);
+  CHECK(l.live.status().strengths == std::vector<double>{0.5, 0.5});
+  const Eigen::MatrixXd more = styled_alone(after, lines, sent, sent + 20);
+  CHECK(l.live.styled()->motion.bottomRows(20) == more);
+
+  // Disconnecting while a styler is being made: the stream ends, nothing waits on the UI thread.
+  l.live.set_style(marching);
+  l.live.disconnect();
+  CHECK_FALSE(l.live.active());
+  CHECK_FALSE(l.live.status().restyling);
+}
+
+TEST_CASE("live source: takes set while it prepares style the stream once it is made") {
+  const StreamLines lines;
+  Live l;
+  LiveSettings settings;
+  settings.address = "fake:1";
+  settings.skeleton = test::asset("motions/" + kStream);
+  l.live.connect(settings, spec({1.0}));
+  LiveStyleSpec two = spec({1.0, 0.5});
+  l.live.set_style(two);  // preparing: made after the first styler
+  REQUIRE(l.live.wait_until([](const LiveStatus& st) { return st.state == LiveState::kStreaming; }, kPatience));
+  int sent = 0;
+  while (l.live.status().restyling || l.live.status().strengths.size() != 2) {
+    REQUIRE(sent < lines.clip->frames());
+    l.stream->send(lines.line(sent++));
+    l.wait_lines(sent);
+    l.live.wait_until([](const LiveStatus& st) { return !st.restyling; }, std::chrono::milliseconds(20));
+  }
+  CHECK(l.live.status().strengths == std::vector<double>{1.0, 0.5});
+  CHECK(l.live.status().restyle_error.empty());
+  CHECK(l.live.status().styled == sent);
 }
