@@ -424,7 +424,12 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
   report_progress(control, 0.8f);
 
   // Each take's planted foot joints' travel in its body's frame, on its own frames.
-  for (PreparedTake& t : p->takes) t.foot_travel = foot_travel(t.world, t.canonical.heading, p->feet);
+  // and where each is planted.
+  std::vector<double> heights;
+  for (PreparedTake& t : p->takes) {
+    t.foot_travel = foot_travel(t.world, t.canonical.heading, p->feet);
+    planted_frames(t.world, p->feet, t.foot_planted, heights);
+  }
   const auto t2 = Clock::now();
   p->timeline = common_timeline(warps);
   place_on_timeline(*p);

@@ -74,6 +74,10 @@ struct PreparedTake {
   // frame a to b in the body's frame is row b minus row a (what the foot lock lets a planted foot
   // of an output do, mix_palette.cpp planted_drift).
   Eigen::MatrixXd foot_travel;
+  // F x kFootJoints: 1 where that foot joint is planted (planted_feet.h's measure, its band) on its
+  // own frames, else 0: where an output of it may bring the foot down (mix_palette.cpp
+  // feet_in_air).
+  Eigen::MatrixXd foot_planted;
   TakeCycles cycles;                 // where it repeats, as detected on its file's frames (cycles.h)
   CycleRegistration registration;    // by cycles onto the reference: its cycles, sources, spans; empty otherwise
   Alignment alignment;               // onto the reference (the reference's own: empty)

@@ -70,6 +70,27 @@ void planted_drift(const PreparedTakes& p, const Eigen::MatrixXd& sources, const
   }
 }
 
+// K x kFootJoints: 1 where the takes mixed hold that foot joint in the air at output frame k (its
+// planted mask, PreparedTake::foot_planted, at the frame shown, nearest, mixed with the weights
+// the planted drift takes, under a half), else 0. O(K x N), no allocation once `out` is sized.
+void feet_in_air(const PreparedTakes& p, const Eigen::MatrixXd& sources, const std::vector<double>& weights,
+                 const Eigen::MatrixXd* frame_w, Eigen::MatrixXd& out) {
+  const Eigen::Index frames = sources.rows();
+  out.setZero(frames, kFootJoints);
+  for (int i = 0; i < p.size(); ++i) {
+    const Eigen::MatrixXd& planted = p.takes[static_cast<size_t>(i)].foot_planted;
+    const Eigen::Index last = planted.rows() - 1;
+    if (last < 0) continue;
+    for (Eigen::Index k = 0; k < frames; ++k) {
+      const double w = frame_w != nullptr ? (*frame_w)(k, i) : weights[static_cast<size_t>(i)];
+      if (w == 0.0) continue;
+      const Eigen::Index r = static_cast<Eigen::Index>(std::lround(std::clamp(sources(k, i), 0.0, double(last))));
+      out.row(k) += w * planted.row(r);
+    }
+  }
+  out = (out.array() < 0.5).cast<double>();
+}
+
 // MixResult::foot_sliding_inputs: weights, one per take, or with keys each take's mean over the
 // output frames (frame_w, K x N); the reference's own when of_reference (a transfer). O(K x N).
 double inputs_planted_speed(const PreparedTakes& p, const std::vector<double>& weights, const Eigen::MatrixXd* frame_w,
@@ -296,17 +317,21 @@ void finish_rest_of_mix(const PreparedTakes& p, const MixParams& params, MixScra
   const FinishRig rig = mix_rig(p, s.pending.fastest, out.foot_sliding_inputs);
   const Eigen::MatrixXd& sources = finish.loop || finish.closed ? s.sources_uncut : out.sources;
   const Eigen::MatrixXd* drift = nullptr;
+  const Eigen::MatrixXd* air = nullptr;
   if (finish.foot_lock) {
-    if (params.feet_of_reference) {  // the reference's own planted moves alone
+    if (params.feet_of_reference) {  // the reference's own planted moves and feet alone
       s.drift_w.assign(static_cast<size_t>(n), 0.0);
       s.drift_w.front() = 1.0;
       planted_drift(p, sources, s.drift_w, nullptr, s.drift);
+      feet_in_air(p, sources, s.drift_w, nullptr, s.air);
     } else {
       planted_drift(p, sources, s.overall, keyed ? &s.trajectory.frame_w : nullptr, s.drift);
+      feet_in_air(p, sources, s.overall, keyed ? &s.trajectory.frame_w : nullptr, s.air);
     }
     drift = &s.drift;
+    air = &s.air;
   }
-  finish_rest(rig, finish, s.finish, out.motion, drift);
+  finish_rest(rig, finish, s.finish, out.motion, drift, air);
   s.pending.waiting = false;
 }
 

@@ -64,6 +64,7 @@ struct MixParams {
 struct MixScratch {
   Eigen::MatrixXd x, samples, joint_weights, stretch, local_t, component_w;
   Eigen::MatrixXd drift;              // K x 2 kFootJoints: the planted feet's expected moves (the foot lock's)
+  Eigen::MatrixXd air;                // K x kFootJoints: 1 where the takes hold a foot joint in the air (swing clearance)
   Eigen::RowVectorXd channel_w, mixed_mean;
   std::vector<double> overall, timing, drift_w;
   MixedTrajectory trajectory;         // the clock, the root and the contacts (trajectory/mixed_trajectory.h)
