@@ -109,7 +109,8 @@ void finish_rest(const FinishRig& rig, const FinishOptions& options, FinishScrat
       else s.air = *feet_air;
       lift_swinging_feet(out.world, *rig.feet, s.air, s.swing);
     }
-    apply_foot_lock(out.world, *rig.feet, s.foot, body_drift != nullptr ? &s.drift : nullptr, rig.lock_limits);
+    apply_foot_lock(out.world, *rig.feet, s.foot, body_drift != nullptr ? &s.drift : nullptr, rig.lock_limits,
+                    feet_air != nullptr ? &s.air : nullptr);
     // The lock reads the loop as a take with two ends: what it moves at the last frame and at the
     // first differ, a jump at the seam. That difference is spread over the loop, so the last frame
     // is moved as the first is and leads into it as any frame into the next.

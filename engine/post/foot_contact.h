@@ -89,6 +89,7 @@ struct FootLockScratch {
   // F x 15, a frame a row: both hips and one leg's knee, ankle and toe, as the lock moves the leg.
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> leg_rows;
   std::array<double, 2> before_moves{};  // per leg: its planted joints' moves before the lock
+  const Eigen::MatrixXd* feet_air = nullptr;  // apply_foot_lock's, for the tries
 };
 
 // What the lock keeps an output under, from the takes it mixes (0: no limit), units per second.
@@ -130,7 +131,8 @@ struct FootLockLimits {
 // once scratch has size F.
 // limits: see FootLockLimits; with planted_speed the lock may run up to seven times.
 void apply_foot_lock(Eigen::MatrixXd& world, const FootRig& rig, FootLockScratch& scratch,
-                     const Eigen::MatrixXd* drift = nullptr, const FootLockLimits& limits = {});
+                     const Eigen::MatrixXd* drift = nullptr, const FootLockLimits& limits = {},
+                     const Eigen::MatrixXd* feet_air = nullptr);
 
 // One two-bone IK solve, exposed for tests: hip, knee, ankle are the chain's joints, `target`
 // where the ankle should go. Returns the new knee and ankle (hip unchanged); thigh |knee - hip|
