@@ -215,6 +215,17 @@ Eigen::MatrixXd foot_travel(const Eigen::MatrixXd& world, const Eigen::VectorXd&
   return out;
 }
 
+// F x kFootJoints: PreparedTake::foot_height of world (F x 3M).
+Eigen::MatrixXd foot_height(const Eigen::MatrixXd& world, const FootRig& feet) {
+  const std::array<int, kFootJoints> columns = foot_joint_columns(feet);
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(world.rows(), kFootJoints);
+  for (int j = 0; j < kFootJoints; ++j) {
+    const int c = columns[static_cast<size_t>(j)];
+    if (c >= 0) out.col(j) = world.col(3 * c + 1);
+  }
+  return out;
+}
+
 }  // namespace
 
 void PrepareOptions::Validate() const {
@@ -424,11 +435,10 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
   report_progress(control, 0.8f);
 
   // Each take's planted foot joints' travel in its body's frame, on its own frames.
-  // and where each is planted.
-  std::vector<double> heights;
+  // and how high each is.
   for (PreparedTake& t : p->takes) {
     t.foot_travel = foot_travel(t.world, t.canonical.heading, p->feet);
-    planted_frames(t.world, p->feet, t.foot_planted, heights);
+    t.foot_height = foot_height(t.world, p->feet);
   }
   const auto t2 = Clock::now();
   p->timeline = common_timeline(warps);

@@ -87,7 +87,7 @@ void finish_preview(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, 
 }
 
 void finish_rest(const FinishRig& rig, const FinishOptions& options, FinishScratch& s, FinishedMotion& out,
-                 const Eigen::MatrixXd* body_drift, const Eigen::MatrixXd* feet_air) {
+                 const Eigen::MatrixXd* body_drift, const Eigen::MatrixXd* feet_height) {
   if (body_drift != nullptr) world_drift(*body_drift, out.loop, s);
   // No pops: no joint faster than the takes' fastest allows (the limb lengths held again where
   // a step was spread).
@@ -102,15 +102,18 @@ void finish_rest(const FinishRig& rig, const FinishOptions& options, FinishScrat
   if (options.foot_lock) {
     const bool looped = out.loop.frames() > 1;
     if (looped) s.before_lock = out.world;
-    // Feet the takes hold in the air lifted out of the planted band first: the lock then pins
-    // the steps the takes plant, not a swing that skims the floor.
-    if (feet_air != nullptr) {
-      if (out.loop.frames() > 0) s.air = feet_air->middleRows(out.loop.begin, out.loop.frames());
-      else s.air = *feet_air;
+    // Feet the takes hold in the air lifted out of the planted band first, and the feet they
+    // plant pinned with the output's own planted feet: the lock then pins the steps the takes
+    // plant, not a swing that skims the floor.
+    if (feet_height != nullptr) {
+      if (out.loop.frames() > 0) s.feet_height = feet_height->middleRows(out.loop.begin, out.loop.frames());
+      else s.feet_height = *feet_height;
+      s.air = (s.feet_height.array() > kSwingAirBands).cast<double>();
+      s.held = (s.feet_height.array() <= 1.0).cast<double>();
       lift_swinging_feet(out.world, *rig.feet, s.air, s.swing);
     }
     apply_foot_lock(out.world, *rig.feet, s.foot, body_drift != nullptr ? &s.drift : nullptr, rig.lock_limits,
-                    feet_air != nullptr ? &s.air : nullptr);
+                    feet_height != nullptr ? &s.held : nullptr);
     // The lock reads the loop as a take with two ends: what it moves at the last frame and at the
     // first differ, a jump at the seam. That difference is spread over the loop, so the last frame
     // is moved as the first is and leads into it as any frame into the next.
@@ -129,9 +132,9 @@ void finish_rest(const FinishRig& rig, const FinishOptions& options, FinishScrat
 void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, const Eigen::VectorXd& heading_u,
                    const Eigen::MatrixXd& contacts_u, const FinishRig& rig, const FinishOptions& options,
                    Eigen::MatrixXd& local, Eigen::VectorXd& u, FinishScratch& s, FinishedMotion& out,
-                   const Eigen::MatrixXd* body_drift, const Eigen::MatrixXd* feet_air) {
+                   const Eigen::MatrixXd* body_drift, const Eigen::MatrixXd* feet_height) {
   finish_preview(sampler, ground_u, heading_u, contacts_u, rig, options, local, u, s, out);
-  finish_rest(rig, options, s, out, body_drift, feet_air);
+  finish_rest(rig, options, s, out, body_drift, feet_height);
 }
 
 }  // namespace mostyle

@@ -13,6 +13,10 @@
 
 namespace mostyle {
 
+// A foot joint the takes hold more than this many planted bands above its floor is in the air:
+// more than one, as their floors and an output's differ a little (an output showing part of a
+// take has a floor of its own).
+constexpr double kSwingAirBands = 1.0;
 // A swinging foot joint is lifted to this many planted bands (kPlantedHeightFraction of the body's
 // height) above its floor: clear of the band by a margin, so that rounding and the lock's small
 // moves leave it out.
