@@ -110,7 +110,11 @@ void finish_rest(const FinishRig& rig, const FinishOptions& options, FinishScrat
       else s.feet_height = *feet_height;
       s.air = (s.feet_height.array() > kSwingAirBands).cast<double>();
       s.held = (s.feet_height.array() <= 1.0).cast<double>();
-      lift_swinging_feet(out.world, *rig.feet, s.air, s.swing);
+      // Not a loop: closing its seam blends its last frames towards its first, so there the
+      // takes' heights at the frames shown do not describe the output's feet (a foot eased down
+      // towards its first frame's step would be lifted against the seam, and the lift spread
+      // over the whole loop with the lock's).
+      if (out.loop.frames() == 0) lift_swinging_feet(out.world, *rig.feet, s.air, s.swing);
     }
     apply_foot_lock(out.world, *rig.feet, s.foot, body_drift != nullptr ? &s.drift : nullptr, rig.lock_limits,
                     feet_height != nullptr ? &s.held : nullptr);

@@ -66,7 +66,8 @@ struct FinishScratch {
 // planted_drift), for the foot lock (apply_foot_lock's drift). feet_height: when given (K x
 // kFootJoints, before any loop cut), how high the mixed takes hold each foot joint at output frame
 // k, in planted bands above its floor (mix_palette.cpp feet_heights): with the foot lock, joints
-// above kSwingAirBands are first lifted clear of the floor (swing_clearance.h), and joints within
+// above kSwingAirBands are first lifted clear of the floor (swing_clearance.h; not in a loop,
+// whose seam is closed by blending its ends), and joints within
 // one band are pinned as the output's planted ones are (apply_foot_lock's held). foot_sliding_raw
 // and _cleaned: planted_feet.h's measure before and after the lift and the lock. O(K x M);
 // allocation-free once sized, except the loop.

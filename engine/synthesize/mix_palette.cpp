@@ -72,7 +72,8 @@ void planted_drift(const PreparedTakes& p, const Eigen::MatrixXd& sources, const
 
 // K x kFootJoints: how high the takes mixed hold each foot joint at output frame k, in planted
 // bands (kPlantedHeightFraction of the body's height) above its floor, mixed with the weights the
-// planted drift takes. Each take's joint at the frame shown (nearest, PreparedTake::foot_height)
+// planted drift takes. Each take's joint at the frame shown (PreparedTake::foot_height, linear
+// between frames, as the output's poses are read)
 // over its floor as planted_feet.h takes it, a low percentile of its heights, but over the frames
 // shown: an output that shows part of a take has the floor of that part, and the take's heights
 // are read against the same. O(K x N), no allocation once `out` and `scratch` are sized.
@@ -85,19 +86,18 @@ void feet_heights(const PreparedTakes& p, const Eigen::MatrixXd& sources, const 
   const size_t k_floor = static_cast<size_t>(kPlantedFloorPercentile * static_cast<double>(frames - 1));
   for (int i = 0; i < p.size(); ++i) {
     const Eigen::MatrixXd& height = p.takes[static_cast<size_t>(i)].foot_height;
-    const Eigen::Index last = height.rows() - 1;
-    if (last < 0 || (frame_w == nullptr && weights[static_cast<size_t>(i)] == 0.0)) continue;
-    auto row = [&](Eigen::Index k) {
-      return static_cast<Eigen::Index>(std::lround(std::clamp(sources(k, i), 0.0, double(last))));
-    };
+    if (height.rows() == 0 || (frame_w == nullptr && weights[static_cast<size_t>(i)] == 0.0)) continue;
     for (int j = 0; j < kFootJoints; ++j) {
-      scratch.resize(static_cast<size_t>(frames));
-      for (Eigen::Index k = 0; k < frames; ++k) scratch[static_cast<size_t>(k)] = height(row(k), j);
-      std::nth_element(scratch.begin(), scratch.begin() + static_cast<std::ptrdiff_t>(k_floor), scratch.end());
+      scratch.resize(2 * static_cast<size_t>(frames));
+      for (Eigen::Index k = 0; k < frames; ++k)
+        scratch[static_cast<size_t>(frames + k)] = scratch[static_cast<size_t>(k)] =
+            RowAt(sources(k, i), height.rows()).of(height, j);
+      std::nth_element(scratch.begin(), scratch.begin() + static_cast<std::ptrdiff_t>(k_floor),
+                       scratch.begin() + frames);
       const double floor = scratch[k_floor];
       for (Eigen::Index k = 0; k < frames; ++k) {
         const double w = frame_w != nullptr ? (*frame_w)(k, i) : weights[static_cast<size_t>(i)];
-        if (w != 0.0) out(k, j) += w * (height(row(k), j) - floor) / band;
+        if (w != 0.0) out(k, j) += w * (scratch[static_cast<size_t>(frames + k)] - floor) / band;
       }
     }
   }
