@@ -17,6 +17,8 @@ constexpr double kKneeFullLift = 0.02;
 // How far forwards a lifted knee is biased, leg lengths: enough to pick a side where the leg is
 // straight, too little to turn a bent knee's plane.
 constexpr double kKneeForwardBias = 0.02;
+// Passes of lifting against the floor the last one left (lift_swinging_feet).
+constexpr int kSwingPasses = 4;
 
 Eigen::Vector3d joint_at(const Eigen::MatrixXd& m, Eigen::Index row, int column) {
   return m.block<1, 3>(row, 3 * column).transpose();
@@ -85,29 +87,39 @@ double lift_swinging_feet(Eigen::MatrixXd& world, const FootRig& rig, const Eige
     throw InputError("swing clearance: expected the feet in the air as " + std::to_string(frames) + " x " +
                      std::to_string(kFootJoints) + ", found " + std::to_string(air.rows()) + " x " +
                      std::to_string(air.cols()));
-  std::array<double, kFootJoints> floors;
-  planted_frames(world, rig, s.planted, s.heights, &floors);
   const double band = kPlantedHeightFraction * rig.body_height, clear = kSwingClearanceBands * band;
   const int ramp = std::max(1, static_cast<int>(std::lround(kSwingEaseSeconds * rig.fps)));
   const std::array<int, kFootJoints> columns = foot_joint_columns(rig);
-  double largest = 0.0;
-  for (int side = 0; side < 2; ++side) {
-    const LegColumns& leg = rig.legs[static_cast<size_t>(side)];
-    if (!leg.usable()) continue;
-    s.need.setZero(frames);
-    for (int j = 2 * side; j < 2 * side + 2; ++j) {
-      const int c = columns[static_cast<size_t>(j)];
-      if (c < 0) continue;
-      for (Eigen::Index t = 0; t < frames; ++t) {
-        const double above = world(t, 3 * c + 1) - floors[static_cast<size_t>(j)];
-        if (air(t, j) > 0.5 && above <= band) s.need[t] = std::max(s.need[t], clear - above);
+  s.total.setZero(frames, 2);
+  // A joint's floor is a low percentile of its own heights: where the frames lifted were its
+  // lowest (a mix that sinks a swinging foot below the floor), the floor rises with them, and the
+  // lifted frames are in the band of the new floor. Lifted again against it, a few passes settle
+  // on the floor the planted frames give.
+  for (int pass = 0; pass < kSwingPasses; ++pass) {
+    std::array<double, kFootJoints> floors;
+    planted_frames(world, rig, s.planted, s.heights, &floors);
+    bool lifted = false;
+    for (int side = 0; side < 2; ++side) {
+      const LegColumns& leg = rig.legs[static_cast<size_t>(side)];
+      if (!leg.usable()) continue;
+      s.need.setZero(frames);
+      for (int j = 2 * side; j < 2 * side + 2; ++j) {
+        const int c = columns[static_cast<size_t>(j)];
+        if (c < 0) continue;
+        for (Eigen::Index t = 0; t < frames; ++t) {
+          const double above = world(t, 3 * c + 1) - floors[static_cast<size_t>(j)];
+          if (air(t, j) > 0.5 && above <= band) s.need[t] = std::max(s.need[t], clear - above);
+        }
       }
+      if (!(s.need.maxCoeff() > 0.0)) continue;
+      ease_lift(s.need, ramp, s.lift);
+      raise_leg(world, leg, rig.legs, rig.leg_length, s.lift);
+      s.total.col(side) += s.lift;
+      lifted = true;
     }
-    if (!(s.need.maxCoeff() > 0.0)) continue;
-    ease_lift(s.need, ramp, s.lift);
-    raise_leg(world, leg, rig.legs, rig.leg_length, s.lift);
-    largest = std::max(largest, s.lift.maxCoeff());
+    if (!lifted) break;
   }
+  const double largest = frames > 0 ? s.total.maxCoeff() : 0.0;
   return largest;
 }
 

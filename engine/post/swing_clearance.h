@@ -29,6 +29,7 @@ struct SwingClearanceScratch {
   Eigen::MatrixXd planted;     // F x kFootJoints (planted_frames)
   std::vector<double> heights;
   Eigen::VectorXd need, lift;  // F: one leg's lift needed on each frame, and eased
+  Eigen::MatrixXd total;       // F x 2: each leg's lift over all passes
 };
 
 // Lifts, in world (F x 3M, Y up, file units) itself, each foot joint (planted_feet.h's ankles and
@@ -37,8 +38,9 @@ struct SwingClearanceScratch {
 // floor: the leg's ankle is raised by the most any of its joints needs there, eased over kSwingEaseSeconds at rig.fps on either side
 // (the largest of the eased needs near each frame, so every frame gets at least its own), with
 // two-bone IK (the hip stays, thigh and shin keep their lengths, the knee bends in its own plane);
-// the toe moves with the ankle. Frames no lift reaches are left exactly as they were. Returns the
-// largest lift, file units. Throws InputError on a shape mismatch or a rig without a body height.
+// the toe moves with the ankle. Where the lift raises a joint's floor (the frames lifted were its
+// lowest), it lifts again against the new floor, a few passes at most. Frames no lift reaches are
+// left exactly as they were. Returns the largest lift, file units. Throws InputError on a shape mismatch or a rig without a body height.
 // O(F x w) for w frames of easing; no allocation once scratch has size F.
 double lift_swinging_feet(Eigen::MatrixXd& world, const FootRig& rig, const Eigen::MatrixXd& air,
                           SwingClearanceScratch& scratch);
