@@ -118,6 +118,13 @@ void finish_rest(const FinishRig& rig, const FinishOptions& options, FinishScrat
     }
     apply_foot_lock(out.world, *rig.feet, s.foot, body_drift != nullptr ? &s.drift : nullptr, rig.lock_limits,
                     feet_height != nullptr ? &s.held : nullptr);
+    // The lift and the lock bend knees; where that moves one faster than the limit (a knee
+    // turning its bend in a frame), the speed limit spreads it as it did the mix's, and the limb
+    // lengths are held again.
+    if (rig.lock_limits.fastest_joint > 0.0 &&
+        limit_joint_speed(out.world, rig.feet->fps, kSpeedLimitOverTakes * rig.lock_limits.fastest_joint, s.speed) > 0 &&
+        options.limb_lengths)
+      apply_limb_lengths(out.world, *rig.parents, *rig.lengths, limb_options(rig));
     // The lock reads the loop as a take with two ends: what it moves at the last frame and at the
     // first differ, a jump at the seam. That difference is spread over the loop, so the last frame
     // is moved as the first is and leads into it as any frame into the next.
