@@ -109,3 +109,21 @@ TEST_CASE("swing clearance refuses a mask of the wrong shape", "[swing_clearance
   CHECK_THROWS_AS(lift_swinging_feet(w, rig(), Eigen::MatrixXd::Zero(kFrames - 1, kFootJoints), scratch), InputError);
   CHECK_THROWS_AS(lift_swinging_feet(w, rig(), Eigen::MatrixXd::Zero(kFrames, 2), scratch), InputError);
 }
+
+TEST_CASE("swing clearance lifts a swing sunk below the floor clear of the planted frames' floor",
+          "[swing_clearance]") {
+  // The skimming foot sunk 2 below its planted height while the takes hold it in the air: those
+  // frames are the joint's lowest, its floor, until they are lifted; the passes lift them clear of
+  // the floor the planted frames give.
+  Eigen::MatrixXd before = skimming();
+  for (int f = kAirFirst; f <= kAirLast; ++f)
+    for (int c = 1; c <= 3; ++c) before(f, 3 * c + 1) -= c == 1 ? 1.0 : 2.5;
+  Eigen::MatrixXd w = before;
+  SwingClearanceScratch scratch;
+  lift_swinging_feet(w, rig(), left_in_air(), scratch);
+  const double clear = kSwingClearanceBands * kPlantedHeightFraction * kHeight;
+  for (int f = kAirFirst; f <= kAirLast; ++f) {
+    CHECK(at(w, f, 2).y() - 1.0 >= clear - kTolerance);
+    CHECK(at(w, f, 3).y() >= clear - kTolerance);
+  }
+}
