@@ -27,6 +27,9 @@ constexpr double kPostureFadeCycles = 0.5;
 // (their floors differ a little, as their frames do) may move as that foot does. The lock keeps
 // the output's measure to the takes' own as a whole (FootLockLimits::planted_speed).
 constexpr double kTravelBandScale = 2.0;
+// A take's cycle moved to begin at the other foot's strike may lose this fraction of itself at the
+// take's first or last frame (cycles_from_other_foot).
+constexpr double kOtherFootClip = 0.1;
 
 std::string take_name(int i, const Clip& clip) {
   return "take " + std::to_string(i + 1) + " (" + clip.source + ")";
@@ -123,6 +126,39 @@ void contacts_and_cycles(const Eigen::MatrixXd& world, const CanonicalMotion& ca
   *cycles = cycles_from_feet(*contacts, legs, joints, feet, {}, [&]() -> const Eigen::MatrixXd& { return canonical.local; });
 }
 
+// A take whose gait cycles begin at one foot's strikes, with too few strikes of the other foot for
+// a whole cycle between two of them (a one-cycle take: each foot strikes once or twice): its
+// cycles begun at `foot`'s strike inside each instead, each as long as the cycle it comes from,
+// ending at that strike (the cycle before it) or beginning there, whichever the take's frames
+// hold with at most kOtherFootClip of it cut off at the take's end (the cut cycle begins a few
+// frames after the strike or ends a few frames short of the next). None when neither fits.
+// cycles: gait cycles (TakeCycles::foot the other foot); contacts: F x 2. O(F).
+TakeCycles cycles_from_other_foot(const TakeCycles& cycles, const Eigen::MatrixXd& contacts, int foot, int frames) {
+  TakeCycles out = cycles;
+  out.cycles.clear();
+  out.foot = foot;
+  out.strike_phase = 0.0;
+  if (cycles.kind != CycleKind::kGait || cycles.loops() || foot < 0) return out;
+  const std::vector<int> strikes = foot_strikes(contacts, foot);
+  for (const Cycle& c : cycles.cycles) {
+    for (int s : strikes) {
+      if (s <= c.begin || s >= c.end) continue;
+      const int length = c.frames(), most_cut = static_cast<int>(kOtherFootClip * length);
+      const Cycle before{std::max(0, s - length), s}, after{s, std::min(frames - 1, s + length)};
+      const Cycle& pick = before.frames() >= after.frames() ? before : after;
+      if (length - pick.frames() <= most_cut &&
+          (out.cycles.empty() || out.cycles.back().end <= pick.begin))
+        out.cycles.push_back(pick);
+      break;
+    }
+  }
+  if (out.cycles.empty()) {
+    out.kind = CycleKind::kNone;
+    out.reason = "no whole gait cycle begins at the other foot's strikes";
+  }
+  return out;
+}
+
 // A take's cycles as registration needs them: gait cycles beginning at the foot the reference's
 // begin at (detected again at that foot when the take's own begin at the other); none when the
 // alignment is not by cycles (the paper's DTW aligns whole takes).
@@ -135,8 +171,10 @@ TakeCycles cycles_to_register(const PreparedTakes& p, const PreparedTake& t, con
   at_foot.foot = reference.foot;
   GaitJoints joints;
   const Eigen::MatrixXd legs = feet_signals(t.canonical.local, p.feet, &joints);
-  return cycles_from_feet(t.own_contacts, legs, joints, p.feet, at_foot,
-                          [&]() -> const Eigen::MatrixXd& { return t.canonical.local; });
+  TakeCycles at = cycles_from_feet(t.own_contacts, legs, joints, p.feet, at_foot,
+                                   [&]() -> const Eigen::MatrixXd& { return t.canonical.local; });
+  if (at.kind == CycleKind::kGait && !at.cycles.empty()) return at;
+  return cycles_from_other_foot(t.cycles, t.own_contacts, reference.foot, static_cast<int>(t.world.rows()));
 }
 
 // Whether every cycle ends before the take's last frame, as register_by_cycles reads them (a
@@ -211,6 +249,17 @@ Eigen::MatrixXd foot_travel(const Eigen::MatrixXd& world, const Eigen::VectorXd&
       out(f + 1, 2 * j) = out(f, 2 * j) + bx;
       out(f + 1, 2 * j + 1) = out(f, 2 * j + 1) + bz;
     }
+  }
+  return out;
+}
+
+// F x kFootJoints: PreparedTake::foot_height of world (F x 3M).
+Eigen::MatrixXd foot_height(const Eigen::MatrixXd& world, const FootRig& feet) {
+  const std::array<int, kFootJoints> columns = foot_joint_columns(feet);
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(world.rows(), kFootJoints);
+  for (int j = 0; j < kFootJoints; ++j) {
+    const int c = columns[static_cast<size_t>(j)];
+    if (c >= 0) out.col(j) = world.col(3 * c + 1);
   }
   return out;
 }
@@ -424,7 +473,11 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
   report_progress(control, 0.8f);
 
   // Each take's planted foot joints' travel in its body's frame, on its own frames.
-  for (PreparedTake& t : p->takes) t.foot_travel = foot_travel(t.world, t.canonical.heading, p->feet);
+  // and how high each is.
+  for (PreparedTake& t : p->takes) {
+    t.foot_travel = foot_travel(t.world, t.canonical.heading, p->feet);
+    t.foot_height = foot_height(t.world, p->feet);
+  }
   const auto t2 = Clock::now();
   p->timeline = common_timeline(warps);
   place_on_timeline(*p);

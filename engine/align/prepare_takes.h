@@ -74,6 +74,10 @@ struct PreparedTake {
   // frame a to b in the body's frame is row b minus row a (what the foot lock lets a planted foot
   // of an output do, mix_palette.cpp planted_drift).
   Eigen::MatrixXd foot_travel;
+  // F x kFootJoints: each foot joint's height (planted_feet.h's order; 0 for a joint the rig
+  // lacks), on its own frames, file units: where an output of it keeps the foot planted or in the
+  // air (mix_palette.cpp feet_heights).
+  Eigen::MatrixXd foot_height;
   TakeCycles cycles;                 // where it repeats, as detected on its file's frames (cycles.h)
   CycleRegistration registration;    // by cycles onto the reference: its cycles, sources, spans; empty otherwise
   Alignment alignment;               // onto the reference (the reference's own: empty)

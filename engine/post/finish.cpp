@@ -87,7 +87,7 @@ void finish_preview(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, 
 }
 
 void finish_rest(const FinishRig& rig, const FinishOptions& options, FinishScratch& s, FinishedMotion& out,
-                 const Eigen::MatrixXd* body_drift) {
+                 const Eigen::MatrixXd* body_drift, const Eigen::MatrixXd* feet_height) {
   if (body_drift != nullptr) world_drift(*body_drift, out.loop, s);
   // No pops: no joint faster than the takes' fastest allows (the limb lengths held again where
   // a step was spread).
@@ -102,7 +102,29 @@ void finish_rest(const FinishRig& rig, const FinishOptions& options, FinishScrat
   if (options.foot_lock) {
     const bool looped = out.loop.frames() > 1;
     if (looped) s.before_lock = out.world;
-    apply_foot_lock(out.world, *rig.feet, s.foot, body_drift != nullptr ? &s.drift : nullptr, rig.lock_limits);
+    // Feet the takes hold in the air lifted out of the planted band first, and the feet they
+    // plant pinned with the output's own planted feet: the lock then pins the steps the takes
+    // plant, not a swing that skims the floor.
+    if (feet_height != nullptr) {
+      if (out.loop.frames() > 0) s.feet_height = feet_height->middleRows(out.loop.begin, out.loop.frames());
+      else s.feet_height = *feet_height;
+      s.air = (s.feet_height.array() > kSwingAirBands).cast<double>();
+      s.held = (s.feet_height.array() <= 1.0).cast<double>();
+      // Not a loop: closing its seam blends its last frames towards its first, so there the
+      // takes' heights at the frames shown do not describe the output's feet (a foot eased down
+      // towards its first frame's step would be lifted against the seam, and the lift spread
+      // over the whole loop with the lock's).
+      if (out.loop.frames() == 0) lift_swinging_feet(out.world, *rig.feet, s.air, s.swing);
+    }
+    apply_foot_lock(out.world, *rig.feet, s.foot, body_drift != nullptr ? &s.drift : nullptr, rig.lock_limits,
+                    feet_height != nullptr ? &s.held : nullptr);
+    // The lift and the lock bend knees; where that moves one faster than the limit (a knee
+    // turning its bend in a frame), the speed limit spreads it as it did the mix's, and the limb
+    // lengths are held again.
+    if (rig.lock_limits.fastest_joint > 0.0 &&
+        limit_joint_speed(out.world, rig.feet->fps, kSpeedLimitOverTakes * rig.lock_limits.fastest_joint, s.speed) > 0 &&
+        options.limb_lengths)
+      apply_limb_lengths(out.world, *rig.parents, *rig.lengths, limb_options(rig));
     // The lock reads the loop as a take with two ends: what it moves at the last frame and at the
     // first differ, a jump at the seam. That difference is spread over the loop, so the last frame
     // is moved as the first is and leads into it as any frame into the next.
@@ -121,9 +143,9 @@ void finish_rest(const FinishRig& rig, const FinishOptions& options, FinishScrat
 void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, const Eigen::VectorXd& heading_u,
                    const Eigen::MatrixXd& contacts_u, const FinishRig& rig, const FinishOptions& options,
                    Eigen::MatrixXd& local, Eigen::VectorXd& u, FinishScratch& s, FinishedMotion& out,
-                   const Eigen::MatrixXd* body_drift) {
+                   const Eigen::MatrixXd* body_drift, const Eigen::MatrixXd* feet_height) {
   finish_preview(sampler, ground_u, heading_u, contacts_u, rig, options, local, u, s, out);
-  finish_rest(rig, options, s, out, body_drift);
+  finish_rest(rig, options, s, out, body_drift, feet_height);
 }
 
 }  // namespace mostyle

@@ -9,6 +9,7 @@
 #include "engine/post/foot_contact.h"
 #include "engine/post/loop.h"
 #include "engine/post/speed_limit.h"
+#include "engine/post/swing_clearance.h"
 
 namespace mostyle {
 
@@ -49,7 +50,10 @@ struct FinishScratch {
   std::vector<double> heights;
   Eigen::VectorXd heading;
   Eigen::VectorXd heading_uncut;  // the headings before a loop's cut, for the body drift
+  Eigen::MatrixXd feet_height;    // feet_height cut to a loop's frames
+  Eigen::MatrixXd air, held;      // where it is above kSwingAirBands, and within one band
   FootLockScratch foot;
+  SwingClearanceScratch swing;
   SpeedLimitScratch speed;
 };
 
@@ -59,13 +63,18 @@ struct FinishScratch {
 // loop is asked of a motion without two foot strikes. body_drift: when given (K x 2 kFootJoints:
 // x, z per foot joint, planted_feet.h), how far each planted foot joint may move from output
 // frame k to k + 1 in the body's frame there (the mixed takes' own planted moves, mix_palette.cpp
-// planted_drift), for the foot lock (apply_foot_lock's drift). foot_sliding_raw and _cleaned:
-// planted_feet.h's measure before and after the lock. O(K x M); allocation-free once sized,
-// except the loop.
+// planted_drift), for the foot lock (apply_foot_lock's drift). feet_height: when given (K x
+// kFootJoints, before any loop cut), how high the mixed takes hold each foot joint at output frame
+// k, in planted bands above its floor (mix_palette.cpp feet_heights): with the foot lock, joints
+// above kSwingAirBands are first lifted clear of the floor (swing_clearance.h; not in a loop,
+// whose seam is closed by blending its ends), and joints within
+// one band are pinned as the output's planted ones are (apply_foot_lock's held). foot_sliding_raw
+// and _cleaned: planted_feet.h's measure before and after the lift and the lock. O(K x M);
+// allocation-free once sized, except the loop.
 void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, const Eigen::VectorXd& heading_u,
                    const Eigen::MatrixXd& contacts_u, const FinishRig& rig, const FinishOptions& options,
                    Eigen::MatrixXd& local, Eigen::VectorXd& u, FinishScratch& scratch, FinishedMotion& out,
-                   const Eigen::MatrixXd* body_drift = nullptr);
+                   const Eigen::MatrixXd* body_drift = nullptr, const Eigen::MatrixXd* feet_height = nullptr);
 
 // finish_motion in two calls, for a preview that shows a motion before its slow passes are done:
 // finish_preview places the poses in the world (root, contacts, the loop cut, the limb-length
@@ -77,6 +86,6 @@ void finish_preview(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, 
                     const Eigen::MatrixXd& contacts_u, const FinishRig& rig, const FinishOptions& options,
                     Eigen::MatrixXd& local, Eigen::VectorXd& u, FinishScratch& scratch, FinishedMotion& out);
 void finish_rest(const FinishRig& rig, const FinishOptions& options, FinishScratch& scratch, FinishedMotion& out,
-                 const Eigen::MatrixXd* body_drift = nullptr);
+                 const Eigen::MatrixXd* body_drift = nullptr, const Eigen::MatrixXd* feet_height = nullptr);
 
 }  // namespace mostyle

@@ -474,7 +474,8 @@ void find_runs(const LockedLeg& leg, int max_gap, FootLockScratch& s) {
   const Eigen::Index frames = s.planted.rows();
   s.pinned.resize(frames);
   for (Eigen::Index t = 0; t < frames; ++t)
-    s.pinned[t] = s.planted(t, leg.joints[0]) > 0.5 || s.planted(t, leg.joints[1]) > 0.5;
+    s.pinned[t] = s.planted(t, leg.joints[0]) > 0.5 || s.planted(t, leg.joints[1]) > 0.5 ||
+                  (s.held != nullptr && ((*s.held)(t, leg.joints[0]) > 0.5 || (*s.held)(t, leg.joints[1]) > 0.5));
   for (Eigen::Index t = 0; t < frames;) {
     if (s.pinned[t]) {
       ++t;
@@ -842,7 +843,11 @@ void copy_leg_columns(Eigen::MatrixXd& world, const FootRig& rig, Eigen::MatrixX
 }  // namespace
 
 void apply_foot_lock(Eigen::MatrixXd& world, const FootRig& rig, FootLockScratch& scratch, const Eigen::MatrixXd* drift,
-                     const FootLockLimits& limits) {
+                     const FootLockLimits& limits, const Eigen::MatrixXd* held) {
+  if (held != nullptr && (held->rows() != world.rows() || held->cols() != kFootJoints))
+    throw InputError("foot lock: expected the takes' planted feet as " + std::to_string(world.rows()) + " x " +
+                     std::to_string(kFootJoints));
+  scratch.held = held;
   if (drift != nullptr && (drift->rows() != world.rows() || drift->cols() != 2 * kFootJoints))
     throw InputError("foot lock: expected the planted feet's drift as " + std::to_string(world.rows()) + " x " +
                      std::to_string(2 * kFootJoints));

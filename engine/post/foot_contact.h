@@ -89,6 +89,7 @@ struct FootLockScratch {
   // F x 15, a frame a row: both hips and one leg's knee, ankle and toe, as the lock moves the leg.
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> leg_rows;
   std::array<double, 2> before_moves{};  // per leg: its planted joints' moves before the lock
+  const Eigen::MatrixXd* held = nullptr;  // apply_foot_lock's, for its tries
 };
 
 // What the lock keeps an output under, from the takes it mixes (0: no limit), units per second.
@@ -129,8 +130,12 @@ struct FootLockLimits {
 // is. Throws InputError on a shape mismatch or a rig without a body height. O(F), no allocation
 // once scratch has size F.
 // limits: see FootLockLimits; with planted_speed the lock may run up to seven times.
+// held: when given (F x kFootJoints, planted_feet.h's order), 1 where the takes mixed plant that
+// foot joint: a foot is pinned over those frames too (a foot the takes stand on, which the mix
+// lifts before it comes down, is held over its spot, not eased towards its next run).
 void apply_foot_lock(Eigen::MatrixXd& world, const FootRig& rig, FootLockScratch& scratch,
-                     const Eigen::MatrixXd* drift = nullptr, const FootLockLimits& limits = {});
+                     const Eigen::MatrixXd* drift = nullptr, const FootLockLimits& limits = {},
+                     const Eigen::MatrixXd* held = nullptr);
 
 // One two-bone IK solve, exposed for tests: hip, knee, ankle are the chain's joints, `target`
 // where the ankle should go. Returns the new knee and ankle (hip unchanged); thigh |knee - hip|

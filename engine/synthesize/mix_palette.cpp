@@ -70,6 +70,39 @@ void planted_drift(const PreparedTakes& p, const Eigen::MatrixXd& sources, const
   }
 }
 
+// K x kFootJoints: how high the takes mixed hold each foot joint at output frame k, in planted
+// bands (kPlantedHeightFraction of the body's height) above its floor, mixed with the weights the
+// planted drift takes. Each take's joint at the frame shown (PreparedTake::foot_height, linear
+// between frames, as the output's poses are read)
+// over its floor as planted_feet.h takes it, a low percentile of its heights, but over the frames
+// shown: an output that shows part of a take has the floor of that part, and the take's heights
+// are read against the same. O(K x N), no allocation once `out` and `scratch` are sized.
+void feet_heights(const PreparedTakes& p, const Eigen::MatrixXd& sources, const std::vector<double>& weights,
+                  const Eigen::MatrixXd* frame_w, Eigen::MatrixXd& out, std::vector<double>& scratch) {
+  const Eigen::Index frames = sources.rows();
+  out.setZero(frames, kFootJoints);
+  if (frames == 0) return;
+  const double band = kPlantedHeightFraction * p.feet.body_height;
+  const size_t k_floor = static_cast<size_t>(kPlantedFloorPercentile * static_cast<double>(frames - 1));
+  for (int i = 0; i < p.size(); ++i) {
+    const Eigen::MatrixXd& height = p.takes[static_cast<size_t>(i)].foot_height;
+    if (height.rows() == 0 || (frame_w == nullptr && weights[static_cast<size_t>(i)] == 0.0)) continue;
+    for (int j = 0; j < kFootJoints; ++j) {
+      scratch.resize(2 * static_cast<size_t>(frames));
+      for (Eigen::Index k = 0; k < frames; ++k)
+        scratch[static_cast<size_t>(frames + k)] = scratch[static_cast<size_t>(k)] =
+            RowAt(sources(k, i), height.rows()).of(height, j);
+      std::nth_element(scratch.begin(), scratch.begin() + static_cast<std::ptrdiff_t>(k_floor),
+                       scratch.begin() + frames);
+      const double floor = scratch[k_floor];
+      for (Eigen::Index k = 0; k < frames; ++k) {
+        const double w = frame_w != nullptr ? (*frame_w)(k, i) : weights[static_cast<size_t>(i)];
+        if (w != 0.0) out(k, j) += w * (scratch[static_cast<size_t>(frames + k)] - floor) / band;
+      }
+    }
+  }
+}
+
 // MixResult::foot_sliding_inputs: weights, one per take, or with keys each take's mean over the
 // output frames (frame_w, K x N); the reference's own when of_reference (a transfer). O(K x N).
 double inputs_planted_speed(const PreparedTakes& p, const std::vector<double>& weights, const Eigen::MatrixXd* frame_w,
@@ -296,17 +329,21 @@ void finish_rest_of_mix(const PreparedTakes& p, const MixParams& params, MixScra
   const FinishRig rig = mix_rig(p, s.pending.fastest, out.foot_sliding_inputs);
   const Eigen::MatrixXd& sources = finish.loop || finish.closed ? s.sources_uncut : out.sources;
   const Eigen::MatrixXd* drift = nullptr;
+  const Eigen::MatrixXd* feet_height = nullptr;
   if (finish.foot_lock) {
-    if (params.feet_of_reference) {  // the reference's own planted moves alone
+    if (params.feet_of_reference) {  // the reference's own planted moves and feet alone
       s.drift_w.assign(static_cast<size_t>(n), 0.0);
       s.drift_w.front() = 1.0;
       planted_drift(p, sources, s.drift_w, nullptr, s.drift);
+      feet_heights(p, sources, s.drift_w, nullptr, s.feet_height, s.heights);
     } else {
       planted_drift(p, sources, s.overall, keyed ? &s.trajectory.frame_w : nullptr, s.drift);
+      feet_heights(p, sources, s.overall, keyed ? &s.trajectory.frame_w : nullptr, s.feet_height, s.heights);
     }
     drift = &s.drift;
+    feet_height = &s.feet_height;
   }
-  finish_rest(rig, finish, s.finish, out.motion, drift);
+  finish_rest(rig, finish, s.finish, out.motion, drift, feet_height);
   s.pending.waiting = false;
 }
 

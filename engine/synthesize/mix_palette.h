@@ -64,6 +64,8 @@ struct MixParams {
 struct MixScratch {
   Eigen::MatrixXd x, samples, joint_weights, stretch, local_t, component_w;
   Eigen::MatrixXd drift;              // K x 2 kFootJoints: the planted feet's expected moves (the foot lock's)
+  Eigen::MatrixXd feet_height;        // K x kFootJoints: the takes' foot joints' heights, planted bands (feet_heights)
+  std::vector<double> heights;        // one take's joint's heights at the frames shown, twice (feet_heights)
   Eigen::RowVectorXd channel_w, mixed_mean;
   std::vector<double> overall, timing, drift_w;
   MixedTrajectory trajectory;         // the clock, the root and the contacts (trajectory/mixed_trajectory.h)

@@ -4,6 +4,7 @@ whole motion-capture database: every kind of output mostyle makes, on every kind
 measured the same way, in one table.
 
 usage: quality_run.py CLI DIR [DIR ...] [--quick] [--json OUT] [--per-class N] [--timeout S]
+                      [--only TEXT ...]
        quality_run.py --self-test
 
 Takes: every BVH file of each folder, and of each FBX or glTF file its walk and run animations
@@ -490,6 +491,16 @@ def plan(takes, quick, per_class, style_pairs, own_neutral):
     return jobs
 
 
+def job_text(job):
+    """A job as its row reads: 'what: take + take'."""
+    return f'{job[1]}: ' + ' + '.join(t.name for t in job[2])
+
+
+def only(jobs, texts):
+    """The jobs whose row text holds one of `texts` (all of them when none is given)."""
+    return [j for j in jobs if not texts or any(t in job_text(j) for t in texts)]
+
+
 def measure(cli, kind, label, takes, options, weights):
     """One output made and measured: a dict of the row's values (status 'ok' or why not)."""
     row = {'kind': kind, 'what': label, 'takes': [t.name for t in takes],
@@ -618,6 +629,8 @@ def main(argv):
     ap.add_argument('--quick', action='store_true', help='two pairings per class, one transfer per dataset, one mix')
     ap.add_argument('--per-class', type=int, default=0, help='pairings per blend class (default 6, --quick 2)')
     ap.add_argument('--json', help='write the rows as JSON here')
+    ap.add_argument('--only', action='append', default=[], metavar='TEXT',
+                    help='make only the outputs whose row ("what: take + take") holds TEXT; repeatable')
     ap.add_argument('--timeout', type=float, default=600.0, help='seconds one command may take')
     ap.add_argument('--self-test', action='store_true', help='check the measures on synthetic motion and exit')
     a = ap.parse_args(argv)
@@ -640,7 +653,7 @@ def main(argv):
         own = [t for t in takes if t.folder == content.folder]
         return (own[0], own[1]) if len(own) >= 2 else (None, None)
 
-    jobs = plan(takes, a.quick, a.per_class, style_pair, takes_neutral_optional(cli))
+    jobs = only(plan(takes, a.quick, a.per_class, style_pair, takes_neutral_optional(cli)), a.only)
     sets = datasets_of(takes)
     print(f'{len(takes)} takes in {len(sets)} datasets ('
           + ', '.join(f'{len(g)} {os.path.basename(g[0].folder.rstrip("/")) or g[0].folder}/{g[0].name}...' for g in sets)
@@ -804,6 +817,9 @@ def self_test():
           sorted(j[2][0].name for j in jobs if j[1] == 'transfer clip') == ['a1', 'a2', 'l2'])
     check('plan loop+loop has --loop', all('--loop' in j[3] for j in jobs if j[1].startswith('blend loop+loop')))
     check('plan loop+long both ways', {j[2][0].loop for j in jobs if j[1] == 'blend loop+long'} == {True, False})
+    check('only: a row by its text', [job_text(j) for j in only(jobs, ['transfer clip: a2'])] ==
+          ['transfer clip: a2 + a3'])
+    check('only: none given keeps all', only(jobs, []) == jobs)
     check('plan quick is smaller', len(plan(fakes, True, 0, lambda c: (fakes[0], fakes[1]), True)) < len(jobs))
     # A command that fails is a row saying so.
     failing = Cli('false', tempfile.mkdtemp(prefix='quality-run-test-'), 10)

@@ -1,0 +1,129 @@
+#include "engine/post/swing_clearance.h"
+
+#include <catch2/catch.hpp>
+
+#include "engine/base/error.h"
+#include "engine/post/planted_feet.h"
+
+using namespace mostyle;
+
+namespace {
+
+constexpr double kFps = 30.0;
+constexpr double kHeight = 100.0;  // body height: the planted band is 3 units
+constexpr int kFrames = 30;
+constexpr int kAirFirst = 14, kAirLast = 25;  // the frames the takes hold the left foot in the air
+constexpr double kTolerance = 1e-9;
+
+// Columns: left hip, knee, ankle, toe, then the right leg's.
+FootRig rig() {
+  FootRig r;
+  r.legs[0] = {0, 1, 2, 3};
+  r.legs[1] = {4, 5, 6, 7};
+  r.leg_length = 80.0;
+  r.body_height = kHeight;
+  r.fps = kFps;
+  return r;
+}
+
+Eigen::Vector3d at(const Eigen::MatrixXd& w, int f, int c) { return w.block<1, 3>(f, 3 * c).transpose(); }
+
+void put(Eigen::MatrixXd& w, int f, int c, const Eigen::Vector3d& v) { w.block<1, 3>(f, 3 * c) = v.transpose(); }
+
+// Hips 20 apart along x, the body facing +z. The left foot planted (ankle 1 above the floor, toe
+// on it) for frames 0-9, then moving forwards along z half a unit above that, inside the band,
+// the whole time; its knee bent slightly forwards. The right foot planted and still.
+Eigen::MatrixXd skimming() {
+  Eigen::MatrixXd w = Eigen::MatrixXd::Zero(kFrames, 24);
+  for (int f = 0; f < kFrames; ++f) {
+    const double z = f < 10 ? 0.0 : 0.5 * (f - 9);
+    const double lift = f < 10 ? 0.0 : 0.5;
+    for (int side = 0; side < 2; ++side) {
+      const double x = side == 0 ? 10.0 : -10.0;
+      const double dz = side == 0 ? z : 0.0, dy = side == 0 ? lift : 0.0;
+      put(w, f, 4 * side, {x, 80.0, 0.0});
+      put(w, f, 4 * side + 1, {x, 40.0 + 0.5 * dy, 0.5 * dz + 2.0});
+      put(w, f, 4 * side + 2, {x, 1.0 + dy, dz});
+      put(w, f, 4 * side + 3, {x, 0.0 + dy, dz + 8.0});
+    }
+  }
+  return w;
+}
+
+Eigen::MatrixXd left_in_air() {
+  Eigen::MatrixXd air = Eigen::MatrixXd::Zero(kFrames, kFootJoints);
+  air.block(kAirFirst, 0, kAirLast - kAirFirst + 1, 2).setOnes();
+  return air;
+}
+
+}  // namespace
+
+TEST_CASE("swing clearance lifts a foot the takes hold in the air out of the planted band", "[swing_clearance]") {
+  const Eigen::MatrixXd before = skimming();
+  Eigen::MatrixXd w = before;
+  SwingClearanceScratch scratch;
+  const double largest = lift_swinging_feet(w, rig(), left_in_air(), scratch);
+  const double clear = kSwingClearanceBands * kPlantedHeightFraction * kHeight;  // 3.75
+  // Both joints were 0.5 above their floors (1 and 0): lifted by 3.25.
+  CHECK(largest == Approx(clear - 0.5).margin(kTolerance));
+  for (int f = kAirFirst; f <= kAirLast; ++f) {
+    CHECK(at(w, f, 2).y() - 1.0 >= clear - kTolerance);
+    CHECK(at(w, f, 3).y() >= clear - kTolerance);
+    // The leg keeps its bones, the hip stays, the toe moves with the ankle, the knee bends forwards.
+    CHECK((at(w, f, 1) - at(w, f, 0)).norm() == Approx((at(before, f, 1) - at(before, f, 0)).norm()).epsilon(1e-12));
+    CHECK((at(w, f, 2) - at(w, f, 1)).norm() == Approx((at(before, f, 2) - at(before, f, 1)).norm()).epsilon(1e-12));
+    CHECK((at(w, f, 0) - at(before, f, 0)).norm() == 0.0);
+    CHECK(((at(w, f, 3) - at(w, f, 2)) - (at(before, f, 3) - at(before, f, 2))).norm() < kTolerance);
+    CHECK(at(w, f, 1).z() > at(before, f, 1).z());
+  }
+  // Eased in over kSwingEaseSeconds (3 frames) before the swing: frames before that are as they were.
+  const int ramp = 3;
+  CHECK(w.topRows(kAirFirst - ramp) == before.topRows(kAirFirst - ramp));
+  for (int f = kAirFirst - ramp; f < kAirFirst; ++f) {
+    const double lifted = at(w, f, 2).y() - at(before, f, 2).y();
+    CHECK(lifted > 0.0);
+    CHECK(lifted < clear - 0.5);
+  }
+  // The right leg is not touched.
+  CHECK(w.middleCols(12, 12) == before.middleCols(12, 12));
+}
+
+TEST_CASE("swing clearance leaves feet alone where the takes plant them or they are clear", "[swing_clearance]") {
+  const Eigen::MatrixXd before = skimming();
+  SwingClearanceScratch scratch;
+  Eigen::MatrixXd w = before;
+  CHECK(lift_swinging_feet(w, rig(), Eigen::MatrixXd::Zero(kFrames, kFootJoints), scratch) == 0.0);
+  CHECK(w == before);
+  // The same foot lifted 5 above the band by the motion itself: nothing to lift.
+  Eigen::MatrixXd high = before;
+  for (int f = 10; f < kFrames; ++f)
+    for (int c = 1; c <= 3; ++c) high(f, 3 * c + 1) += c == 1 ? 0.0 : 8.0;
+  w = high;
+  CHECK(lift_swinging_feet(w, rig(), left_in_air(), scratch) == 0.0);
+  CHECK(w == high);
+}
+
+TEST_CASE("swing clearance refuses a mask of the wrong shape", "[swing_clearance]") {
+  Eigen::MatrixXd w = skimming();
+  SwingClearanceScratch scratch;
+  CHECK_THROWS_AS(lift_swinging_feet(w, rig(), Eigen::MatrixXd::Zero(kFrames - 1, kFootJoints), scratch), InputError);
+  CHECK_THROWS_AS(lift_swinging_feet(w, rig(), Eigen::MatrixXd::Zero(kFrames, 2), scratch), InputError);
+}
+
+TEST_CASE("swing clearance lifts a swing sunk below the floor clear of the planted frames' floor",
+          "[swing_clearance]") {
+  // The skimming foot sunk 2 below its planted height while the takes hold it in the air: those
+  // frames are the joint's lowest, its floor, until they are lifted; the passes lift them clear of
+  // the floor the planted frames give.
+  Eigen::MatrixXd before = skimming();
+  for (int f = kAirFirst; f <= kAirLast; ++f)
+    for (int c = 1; c <= 3; ++c) before(f, 3 * c + 1) -= c == 1 ? 1.0 : 2.5;
+  Eigen::MatrixXd w = before;
+  SwingClearanceScratch scratch;
+  lift_swinging_feet(w, rig(), left_in_air(), scratch);
+  const double clear = kSwingClearanceBands * kPlantedHeightFraction * kHeight;
+  for (int f = kAirFirst; f <= kAirLast; ++f) {
+    CHECK(at(w, f, 2).y() - 1.0 >= clear - kTolerance);
+    CHECK(at(w, f, 3).y() >= clear - kTolerance);
+  }
+}
