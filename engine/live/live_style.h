@@ -9,7 +9,7 @@
 // neutral cycle and one style cycle with each content cycle, warped onto it, and walks the mixed
 // path. On 20 s of a 120 fps walk and on a 30 fps walk, styled normal -> old, the major joints
 // (each in its own body frame) stay 3.7-3.8% of the body's height from the transfer's (mean per
-// frame; 95th percentile 5.3-6%), whose change from the stream is 5.7-7% and varies from cycle
+// frame; 95th percentile 4.9-6.2%), whose change from the stream is 5.8-7% and varies from cycle
 // to cycle: the transfer's own change averaged by phase over the content's cycles is 2.3-3.2%
 // from it.
 //
