@@ -63,6 +63,17 @@ LimbLengthOptions limb_options(const FinishRig& rig) {
   return limbs;
 }
 
+// The speed limit (speed_limit.h) at kSpeedLimitOverTakes times the takes' fastest joint, the
+// limb lengths held after it when they are asked for.
+void limit_speed(const FinishRig& rig, const FinishOptions& options, FinishScratch& s, Eigen::MatrixXd& world) {
+  if (!(rig.lock_limits.fastest_joint > 0.0)) return;
+  const double limit = kSpeedLimitOverTakes * rig.lock_limits.fastest_joint;
+  if (options.limb_lengths)
+    limit_joint_speed_keeping_bones(world, rig.feet->fps, limit, *rig.parents, *rig.lengths, limb_options(rig), s.speed);
+  else
+    limit_joint_speed(world, rig.feet->fps, limit, s.speed);
+}
+
 }  // namespace
 
 void finish_preview(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, const Eigen::VectorXd& heading_u,
@@ -89,12 +100,8 @@ void finish_preview(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, 
 void finish_rest(const FinishRig& rig, const FinishOptions& options, FinishScratch& s, FinishedMotion& out,
                  const Eigen::MatrixXd* body_drift, const Eigen::MatrixXd* feet_height) {
   if (body_drift != nullptr) world_drift(*body_drift, out.loop, s);
-  // No pops: no joint faster than the takes' fastest allows (the limb lengths held again where
-  // a step was spread).
-  if (rig.lock_limits.fastest_joint > 0.0 &&
-      limit_joint_speed(out.world, rig.feet->fps, kSpeedLimitOverTakes * rig.lock_limits.fastest_joint, s.speed) > 0 &&
-      options.limb_lengths)
-    apply_limb_lengths(out.world, *rig.parents, *rig.lengths, limb_options(rig));
+  // No pops: no joint faster than the takes' fastest allows.
+  limit_speed(rig, options, s, out.world);
   // Foot lock (beyond the paper): planted ankles pinned by two-bone IK, which keeps bone lengths.
   planted_frames(out.world, *rig.feet, s.planted, s.heights);
   out.foot_sliding_raw = planted_speed(out.world, s.planted, *rig.feet).speed;
@@ -119,12 +126,8 @@ void finish_rest(const FinishRig& rig, const FinishOptions& options, FinishScrat
     apply_foot_lock(out.world, *rig.feet, s.foot, body_drift != nullptr ? &s.drift : nullptr, rig.lock_limits,
                     feet_height != nullptr ? &s.held : nullptr);
     // The lift and the lock bend knees; where that moves one faster than the limit (a knee
-    // turning its bend in a frame), the speed limit spreads it as it did the mix's, and the limb
-    // lengths are held again.
-    if (rig.lock_limits.fastest_joint > 0.0 &&
-        limit_joint_speed(out.world, rig.feet->fps, kSpeedLimitOverTakes * rig.lock_limits.fastest_joint, s.speed) > 0 &&
-        options.limb_lengths)
-      apply_limb_lengths(out.world, *rig.parents, *rig.lengths, limb_options(rig));
+    // turning its bend in a frame), the speed limit spreads it as it did the mix's.
+    limit_speed(rig, options, s, out.world);
     // The lock reads the loop as a take with two ends: what it moves at the last frame and at the
     // first differ, a jump at the seam. That difference is spread over the loop, so the last frame
     // is moved as the first is and leads into it as any frame into the next.

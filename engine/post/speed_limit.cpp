@@ -58,4 +58,15 @@ int limit_joint_speed(Eigen::MatrixXd& world, double fps, double limit, SpeedLim
   return changed;
 }
 
+int limit_joint_speed_keeping_bones(Eigen::MatrixXd& world, double fps, double limit, const std::vector<int>& parents,
+                                    const std::vector<double>& lengths, const LimbLengthOptions& limbs,
+                                    SpeedLimitScratch& scratch) {
+  int passes = 0;
+  for (; passes < kSpeedLimitPasses; ++passes) {
+    if (limit_joint_speed(world, fps, limit, scratch) == 0) break;
+    apply_limb_lengths(world, parents, lengths, limbs);
+  }
+  return passes;
+}
+
 }  // namespace mostyle

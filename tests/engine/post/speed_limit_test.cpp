@@ -70,4 +70,36 @@ TEST_CASE("speed limit: the root's own speed is kept, the limb's is what is limi
   CHECK((w.row(29) - before.row(29)).norm() < 1e-9);
 }
 
+TEST_CASE("speed limit with bones kept: a child swung round its parent ends nearer the limit than one pass") {
+  // At 10 fps: a root standing, a joint 1 above it, and a child 0.5 from that joint turning round
+  // it 0.1 radians a frame but 0.8 for six frames (4 units/s against 0.5).
+  const int frames = 60;
+  Eigen::MatrixXd w = Eigen::MatrixXd::Zero(frames, 9);
+  double angle = 0.0;
+  for (int t = 0; t < frames; ++t) {
+    w.block<1, 3>(t, 3) << 0.0, 1.0, 0.0;
+    w.block<1, 3>(t, 6) << 0.5 * std::sin(angle), 1.0, 0.5 * std::cos(angle);
+    angle += t >= 20 && t < 26 ? 0.8 : 0.1;
+  }
+  const std::vector<int> parents{-1, 0, 1};
+  const std::vector<double> lengths{0.0, 1.0, 0.5};
+  const double limit = 2.0;
+  Eigen::MatrixXd once = w;
+  REQUIRE(limit_joint_speed(once, 10.0, limit, scratch) > 0);
+  apply_limb_lengths(once, parents, lengths);
+  Eigen::MatrixXd kept = w;
+  const int passes = limit_joint_speed_keeping_bones(kept, 10.0, limit, parents, lengths, {}, scratch);
+  INFO("one pass: " << fastest_relative(once, 2) << ", " << passes << " passes: " << fastest_relative(kept, 2));
+  CHECK(fastest_relative(once, 2) > 1.1 * limit);  // the bone's length gives back what the limit took
+  CHECK(passes > 1);
+  CHECK(fastest_relative(kept, 2) < fastest_relative(once, 2));
+  for (int t = 0; t < frames; ++t)
+    CHECK((kept.block<1, 3>(t, 6) - kept.block<1, 3>(t, 3)).norm() == Approx(0.5).epsilon(1e-9));
+  // A motion under the limit: no pass changes it.
+  Eigen::MatrixXd slow = swing(30, 0.0, 0.1, 5);
+  const Eigen::MatrixXd before = slow;
+  CHECK(limit_joint_speed_keeping_bones(slow, 10.0, 5.0, {-1, 0, 0}, {0.0, 1.0, 0.5}, {}, scratch) == 0);
+  CHECK(slow == before);
+}
+
 }  // namespace mostyle
