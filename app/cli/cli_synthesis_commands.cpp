@@ -471,6 +471,7 @@ int run_transfer(const TransferArgs& args) {
   mp.min_weight = transfer_min_weight(static_cast<int>(styles));
   mp.max_weight = transfer_max_weight(static_cast<int>(styles));
   mp.feet_of_reference = true;
+  mp.path_leash = transfer_path_leash(neutral);
   for (const auto& [seconds, s] : parse_keys(args.strength_at, "--strength-at", styles))
     mp.keys.push_back({seconds, transfer_weights(s, neutral)});
   if (!mp.keys.empty() && !args.part_strengths.empty())

@@ -368,7 +368,7 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
   if (times != nullptr) times->synthesize_ms = ms_since(t0);
 
   const auto t1 = Clock::now();
-  mix_root(p, params.keys, s.overall, params.root_pull_seconds, st, s.trajectory);
+  mix_root(p, params.keys, s.overall, params.root_pull_seconds, params.path_leash, st, s.trajectory);
   preview_finish(p, params, st, finish, s, out);
   out.sample = s.trajectory.u_stretch.array() + double(st.first);
   if (!params.preview) finish_rest_of_mix(p, params, s, out);

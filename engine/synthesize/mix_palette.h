@@ -51,6 +51,10 @@ struct MixParams {
   // A transfer: the output's planted feet are held to the reference take's own (the content's
   // planted speed and drift), whatever the weights; else to the takes' mixed by weight.
   bool feet_of_reference = false;
+  // Body heights: the root kept within this of the reference's own path (trajectory/mixed_root.h
+  // keep_near_path); 0: the mixed path as it comes. A transfer whose content is its own neutral
+  // takes kOwnNeutralPathLeash.
+  double path_leash = 0.0;
   FinishOptions finish;              // limb lengths, foot lock, loop
   // A preview: the poses, the root and the limb lengths only (finish.h finish_preview), without
   // the speed limit, the foot lock and the measures (MixResult::motion's foot_sliding_raw,
@@ -133,6 +137,15 @@ constexpr double kMinStrength = -1.0;
 constexpr double kMaxStrength = 2.0;
 std::vector<double> transfer_weights(const std::vector<double>& strengths,
                                      TransferNeutral neutral = TransferNeutral::kTake);
+// A transfer's MixParams::path_leash. With a neutral take, the style's change of path (an old
+// walk's shorter steps) is part of the style and the root walks it. With the content its own
+// neutral, the change is everything between the two takes, the style's path too (another take's
+// walk, possibly another direction and pace): the content's path is kept, within a fifth of the
+// body's height.
+constexpr double kOwnNeutralPathLeash = 0.2;
+constexpr double transfer_path_leash(TransferNeutral neutral) {
+  return neutral == TransferNeutral::kContent ? kOwnNeutralPathLeash : 0.0;
+}
 // The range a transfer's weights of `styles` styles take (MixParams::min_weight, max_weight):
 // the neutral's (or the content's, when it is its own neutral) down to -kMaxStrength per style,
 // up to the larger of a style's kMaxStrength (the content's 1 beside it) and 1 - kMinStrength per

@@ -28,6 +28,20 @@ void integrate_root_towards(const Eigen::MatrixXd& steps, const Eigen::MatrixXd&
   }
 }
 
+void keep_near_path(Eigen::MatrixXd& ground, const Eigen::Ref<const Eigen::MatrixXd>& path, double leash) {
+  assert(path.rows() == ground.rows() && path.cols() == 2 && ground.cols() == 2);
+  if (!(leash > 0.0)) return;
+  const double free = 0.5 * leash, ease = leash - free;
+  for (Eigen::Index t = 0; t < ground.rows(); ++t) {
+    const double dx = ground(t, 0) - path(t, 0), dz = ground(t, 1) - path(t, 1);
+    const double gap = std::hypot(dx, dz);
+    if (gap <= free) continue;
+    const double scale = (free + ease * std::tanh((gap - free) / ease)) / gap;
+    ground(t, 0) = path(t, 0) + scale * dx;
+    ground(t, 1) = path(t, 1) + scale * dz;
+  }
+}
+
 namespace {
 
 // One flip of `flip` radians at sample r, weighted, spread as add_spread_turns says.

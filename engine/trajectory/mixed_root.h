@@ -30,4 +30,15 @@ constexpr double kRootPullSeconds = 2.0;
 void integrate_root_towards(const Eigen::MatrixXd& steps, const Eigen::MatrixXd& target, double start_heading,
                             double fps, double pull_seconds, Eigen::MatrixXd* ground, Eigen::VectorXd* heading);
 
+// Keeps a root path (ground, F x 2) near another (path, F x 2: the content's own, for a transfer
+// whose content is its own neutral) on a soft leash: where the gap between them is under
+// leash / 2 the path is as it was; beyond, the gap is eased towards `leash` and never reaches it
+// (r/2 + r/2 tanh((d - r/2) / (r/2)): its rate of change is continuous, so the root does not
+// jump where the leash tightens). Without a neutral, the change from a content to its style is the
+// whole difference of the two takes, their paths too: walking the style's path, a 22 s walk styled
+// by another take's 27 s ended 11 body heights from where it went. Where the leash holds, the
+// root goes at the content's pace while the legs take the style's steps, and the lock then has
+// that difference to take up. leash <= 0: nothing. O(F), no allocation.
+void keep_near_path(Eigen::MatrixXd& ground, const Eigen::Ref<const Eigen::MatrixXd>& path, double leash);
+
 }  // namespace mostyle

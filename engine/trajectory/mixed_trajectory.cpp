@@ -78,7 +78,7 @@ FinishOptions output_clock(const PreparedTakes& p, const WeightKeys& keys, bool 
 }
 
 void mix_root(const PreparedTakes& p, const WeightKeys& keys, const std::vector<double>& root_w, double root_pull_seconds,
-              const PlayedStretch& st, MixedTrajectory& s) {
+              double leash, const PlayedStretch& st, MixedTrajectory& s) {
   const int n = p.size();
   const bool keyed = !keys.empty();
   const Eigen::Index first = st.first, length = st.length();
@@ -114,6 +114,7 @@ void mix_root(const PreparedTakes& p, const WeightKeys& keys, const std::vector<
   }
   integrate_root_towards(s.steps, s.target, p.reference_heading[first], p.fps, convex ? root_pull_seconds : 0.0,
                          &s.ground_u, &s.heading_u);
+  keep_near_path(s.ground_u, p.takes.front().ground.middleRows(first, length), leash * p.feet.body_height);
   s.contacts_u = (s.contacts_u.array() > 0.5).cast<double>();
 }
 

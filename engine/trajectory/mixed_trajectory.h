@@ -58,9 +58,10 @@ FinishOptions output_clock(const PreparedTakes& p, const WeightKeys& keys, bool 
 // The root over the stretch (s.ground_u, s.heading_u) and the contacts (s.contacts_u): steps,
 // whole-turn flips and the paths pulled towards (integrate_root_towards), as the steps are
 // weighted (root_w: one weight per take, or keys, with s.sample_w from output_clock; the pull as
-// MixParams::root_pull_seconds). O(U x N).
+// MixParams::root_pull_seconds), kept within `leash` body heights of the reference's own path
+// (keep_near_path; MixParams::path_leash, 0: free). O(U x N).
 void mix_root(const PreparedTakes& p, const WeightKeys& keys, const std::vector<double>& root_w, double root_pull_seconds,
-              const PlayedStretch& st, MixedTrajectory& s);
+              double leash, const PlayedStretch& st, MixedTrajectory& s);
 
 // Each take's frame (K x N) at the sampler's output frames; the sampler's rows count from
 // sample `first`.

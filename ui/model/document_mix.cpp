@@ -47,6 +47,7 @@ MixParams mix_params_for(const Document& document, const Decomposed& decompositi
     m.min_weight = transfer_min_weight(takes);
     m.max_weight = transfer_max_weight(takes);
     m.feet_of_reference = true;
+    m.path_leash = transfer_path_leash(c.content_neutral ? TransferNeutral::kContent : TransferNeutral::kTake);
   } else if (c.per_part) {
     // Each part: its own weights when given (one per take), else the overall weights.
     std::vector<std::pair<BodyPart, std::vector<double>>> given;

@@ -40,3 +40,36 @@ TEST_CASE("integrate_root_towards: A and B exactly at 0 and 1, between them in b
   INFO("pulled " << pulled << ", free " << free);
   CHECK(pulled < 0.7 * free);
 }
+
+TEST_CASE("keep_near_path: free within half the leash, eased towards it beyond, never past it", "[mixed_root]") {
+  // A path along x at 1 a frame, and a root that parts from it sideways by 0.1 a frame.
+  const int frames = 40;
+  Eigen::MatrixXd path(frames, 2), ground(frames, 2);
+  for (int t = 0; t < frames; ++t) {
+    path.row(t) << t, 0.0;
+    ground.row(t) << t, 0.1 * t;
+  }
+  const double leash = 2.0;
+  Eigen::MatrixXd kept = ground;
+  keep_near_path(kept, path, leash);
+  for (int t = 0; t < frames; ++t) {
+    const double gap = 0.1 * t;
+    INFO("frame " << t);
+    CHECK(kept(t, 0) == ground(t, 0));  // the gap is sideways: along the path nothing moves
+    if (gap <= 1.0) {
+      CHECK(kept(t, 1) == ground(t, 1));  // within half the leash, as it was
+    } else {
+      // Worked by hand: 1 + tanh(gap - 1), half the leash plus the other half eased.
+      CHECK(kept(t, 1) == Approx(1.0 + std::tanh(gap - 1.0)).epsilon(1e-12));
+      CHECK(kept(t, 1) < leash);
+    }
+  }
+  // The gap's rate of change has no jump where the leash starts to act (slope 1 on both sides).
+  for (int t = 1; t + 1 < frames; ++t) CHECK(std::abs((kept(t + 1, 1) - kept(t, 1)) - (kept(t, 1) - kept(t - 1, 1))) < 0.011);
+  // No leash: nothing; a path that is the root's: nothing.
+  Eigen::MatrixXd same = ground;
+  keep_near_path(same, path, 0.0);
+  CHECK(same == ground);
+  keep_near_path(same, ground, leash);
+  CHECK(same == ground);
+}
