@@ -141,7 +141,7 @@ std::vector<double> transfer_weights(const std::vector<double>& strengths,
 // walk's shorter steps) is part of the style and the root walks it. With the content its own
 // neutral, the change is everything between the two takes, the style's path too (another take's
 // walk, possibly another direction and pace): the content's path is kept, within a fifth of the
-// body's height.
+// body's height, facing as the content does (trajectory/mixed_root.h).
 constexpr double kOwnNeutralPathLeash = 0.2;
 constexpr double transfer_path_leash(TransferNeutral neutral) {
   return neutral == TransferNeutral::kContent ? kOwnNeutralPathLeash : 0.0;

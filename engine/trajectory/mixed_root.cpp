@@ -28,17 +28,36 @@ void integrate_root_towards(const Eigen::MatrixXd& steps, const Eigen::MatrixXd&
   }
 }
 
+namespace {
+
+// The gap d >= 0 on a leash: itself within leash / 2, beyond eased towards the leash.
+double leashed(double d, double leash) {
+  const double free = 0.5 * leash, ease = leash - free;
+  return d <= free ? d : free + ease * std::tanh((d - free) / ease);
+}
+
+}  // namespace
+
 void keep_near_path(Eigen::MatrixXd& ground, const Eigen::Ref<const Eigen::MatrixXd>& path, double leash) {
   assert(path.rows() == ground.rows() && path.cols() == 2 && ground.cols() == 2);
   if (!(leash > 0.0)) return;
-  const double free = 0.5 * leash, ease = leash - free;
   for (Eigen::Index t = 0; t < ground.rows(); ++t) {
     const double dx = ground(t, 0) - path(t, 0), dz = ground(t, 1) - path(t, 1);
     const double gap = std::hypot(dx, dz);
-    if (gap <= free) continue;
-    const double scale = (free + ease * std::tanh((gap - free) / ease)) / gap;
+    if (gap <= 0.5 * leash) continue;
+    const double scale = leashed(gap, leash) / gap;
     ground(t, 0) = path(t, 0) + scale * dx;
     ground(t, 1) = path(t, 1) + scale * dz;
+  }
+}
+
+void keep_near_heading(Eigen::VectorXd& heading, const Eigen::Ref<const Eigen::VectorXd>& path, double leash) {
+  assert(path.size() == heading.size());
+  if (!(leash > 0.0)) return;
+  for (Eigen::Index t = 0; t < heading.size(); ++t) {
+    const double gap = std::remainder(heading[t] - path[t], 2.0 * 3.14159265358979323846);
+    const double size = std::abs(gap);
+    if (size > 0.5 * leash) heading[t] -= std::copysign(size - leashed(size, leash), gap);
   }
 }
 

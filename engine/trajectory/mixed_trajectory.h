@@ -59,7 +59,8 @@ FinishOptions output_clock(const PreparedTakes& p, const WeightKeys& keys, bool 
 // whole-turn flips and the paths pulled towards (integrate_root_towards), as the steps are
 // weighted (root_w: one weight per take, or keys, with s.sample_w from output_clock; the pull as
 // MixParams::root_pull_seconds), kept within `leash` body heights of the reference's own path
-// (keep_near_path; MixParams::path_leash, 0: free). O(U x N).
+// (keep_near_path; MixParams::path_leash, 0: free), and then facing within kPathLeashHeading of
+// its heading (keep_near_heading). O(U x N).
 void mix_root(const PreparedTakes& p, const WeightKeys& keys, const std::vector<double>& root_w, double root_pull_seconds,
               double leash, const PlayedStretch& st, MixedTrajectory& s);
 

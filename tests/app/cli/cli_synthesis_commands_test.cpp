@@ -46,15 +46,18 @@ double max_difference(const std::vector<double>& a, const std::vector<double>& b
   return worst;
 }
 
-// positions() with each frame's root (its first joint) taken away on the ground (x, z): the poses
-// where they stand, whatever path the root takes. joints: per frame.
-std::vector<double> on_root(std::vector<double> values, size_t joints) {
+// positions() as each joint's height and horizontal distance from its frame's root (its first
+// joint): the poses where they stand, whatever path the root takes and wherever it faces.
+// joints: per frame.
+std::vector<double> on_root(const std::vector<double>& values, size_t joints) {
+  std::vector<double> out;
   for (size_t frame = 0; frame + 3 * joints <= values.size(); frame += 3 * joints)
-    for (size_t j = joints; j-- > 0;) {
-      values[frame + 3 * j] -= values[frame];
-      values[frame + 3 * j + 2] -= values[frame + 2];
+    for (size_t j = 0; j < joints; ++j) {
+      const size_t at = frame + 3 * j;
+      out.push_back(std::hypot(values[at] - values[frame], values[at + 2] - values[frame + 2]));
+      out.push_back(values[at + 1]);
     }
-  return values;
+  return out;
 }
 
 std::string quoted(const std::string& path) { return "\"" + path + "\""; }
@@ -181,8 +184,8 @@ TEST_CASE("cli transfer without --neutral: the content is its own neutral", "[cl
                        positions(test::slurp(box.path("with_neutral.csv")))) < 1e-3 * height);
   // Strength 1: the mix of content and style with weights 0 and 1 on the content's timeline (the
   // style on the content's timing), the content the reference; strength 0.4: the mix (0.6, 0.4).
-  // The same poses where they stand; the path the content's, within the leash (the mix walks the
-  // style's).
+  // The same poses where they stand; the path the content's, within the leash, facing as it does
+  // (the mix walks the style's).
   run("transfer " + kClumsy + " --style " + kMarching + " --strength 0 --fps 60", "content60");
   for (const std::string s : {"1", "0.4"}) {
     const double strength = std::stod(s);

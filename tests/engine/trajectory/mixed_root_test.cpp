@@ -73,3 +73,24 @@ TEST_CASE("keep_near_path: free within half the leash, eased towards it beyond, 
   keep_near_path(same, ground, leash);
   CHECK(same == ground);
 }
+
+TEST_CASE("keep_near_heading: the shorter arc eased as a gap is, across a whole turn too", "[mixed_root]") {
+  const double leash = 0.2, pi = 3.14159265358979323846;
+  Eigen::VectorXd path(5), heading(5);
+  path << 0.0, 0.0, 1.0, pi - 0.05, 0.0;
+  // Within half the leash; 0.3 over; 0.3 under; 0.1 over across the turn at pi (the long way
+  // round 2 pi - 0.1); a whole turn on, the same facing.
+  heading << 0.05, 0.3, 0.7, -pi + 0.05, 2.0 * pi;
+  Eigen::VectorXd kept = heading;
+  keep_near_heading(kept, path, leash);
+  const double eased = 0.1 + 0.1 * std::tanh((0.3 - 0.1) / 0.1);  // worked by hand
+  CHECK(kept[0] == heading[0]);
+  CHECK(kept[1] == Approx(eased).epsilon(1e-12));
+  CHECK(kept[2] == Approx(1.0 - eased).epsilon(1e-12));
+  // 0.1 past the path's heading the short way: half the leash, left as it was.
+  CHECK(kept[3] == heading[3]);
+  CHECK(kept[4] == heading[4]);
+  Eigen::VectorXd none = heading;
+  keep_near_heading(none, path, 0.0);
+  CHECK(none == heading);
+}
