@@ -48,6 +48,17 @@ ParseResult parse(std::vector<const char*> args) {
   return parse_editor_options(static_cast<int>(args.size()), args.data());
 }
 
+// Loads bundled walks (motions/NAME.bvh) as the Files panel does, new takes at weight 0, and
+// waits for the worker to prepare them.
+void load_walks(Editor& editor, const std::vector<std::string>& names) {
+  std::vector<std::string> files;
+  for (const std::string& name : names) files.push_back(mostyle::test::asset("motions/" + name + ".bvh"));
+  editor.session().load_files(files, mostyle::ui::WeightsOf::kNewTakes);
+  editor.wait_for_engine();
+  REQUIRE(editor.session().takes() != nullptr);
+  REQUIRE(editor.session().takes()->size() == names.size());
+}
+
 // Runs a shell command; returns its exit status and (if asked) what it wrote on stderr.
 int run(const std::string& command, std::string* stderr_text = nullptr) {
   // One file per test process: ctest runs this program's test cases side by side.
@@ -1013,13 +1024,7 @@ TEST_CASE("editor: takes loaded while the Live source streams restyle it on the 
   CHECK(editor.live().status().strengths == std::vector<double>{0.5});  // the pair's alpha
 
   // A third take, as loading it in the Files panel does: a mix of three, the stream still open.
-  editor.session().load_files({mostyle::test::asset("motions/cmu142_walk_happy.bvh"),
-                               mostyle::test::asset("motions/cmu142_walk_marching.bvh"),
-                               mostyle::test::asset("motions/cmu142_walk_joy.bvh")},
-                              ui::WeightsOf::kNewTakes);
-  editor.wait_for_engine();
-  REQUIRE(editor.session().takes() != nullptr);
-  REQUIRE(editor.session().takes()->size() == 3);
+  load_walks(editor, {"cmu142_walk_happy", "cmu142_walk_marching", "cmu142_walk_joy"});
   CHECK(editor.live().status().state == ui::LiveState::kStreaming);
   CHECK(editor.live().status().restyling);
   const std::vector<double> mix = ui::live_strengths(editor.state().document, 3);
@@ -1068,14 +1073,7 @@ TEST_CASE("editor: at 1280x720 the Files panel's Live section shows whole at its
     CHECK(files->ScrollMax.y == 0.0f);  // the panel itself does not scroll: its body does
   };
   live_in_view(ImGui::GetFrameHeight());  // the pair: its header
-  editor.session().load_files({mostyle::test::asset("motions/cmu142_walk_happy.bvh"),
-                               mostyle::test::asset("motions/cmu142_walk_marching.bvh"),
-                               mostyle::test::asset("motions/cmu142_walk_joy.bvh"),
-                               mostyle::test::asset("motions/cmu142_walk_clumsy.bvh")},
-                              ui::WeightsOf::kNewTakes);
-  editor.wait_for_engine();
-  REQUIRE(editor.session().takes() != nullptr);
-  REQUIRE(editor.session().takes()->size() == 4);
+  load_walks(editor, {"cmu142_walk_happy", "cmu142_walk_marching", "cmu142_walk_joy", "cmu142_walk_clumsy"});
   live_in_view(ImGui::GetFrameHeight());  // four take fields above it: still in view
   // Connected (here to a port nobody serves): the section opens, its fields, status and
   // recording rows in view.
