@@ -33,7 +33,9 @@ struct BlendParameters {
 struct PaletteControls {
   bool per_part = false;                       // weights per body part (legs, arms, spine)
   std::vector<std::vector<double>> part_weights;  // [legs, arms, spine] x takes; empty row: the overall weights
-  bool transfer = false;                       // transfer mode instead of a mix
+  // Transfer mode instead of a mix. A pair in transfer mode puts B's style on A, A its own
+  // neutral (content_neutral is then set): alpha is the strength.
+  bool transfer = false;
   int content = 0, neutral = 1;                // transfer: takes by index; every other take is a style
   // Transfer: no neutral take, the content is its own neutral (content + s (style - content)):
   // every take but the content is a style, and `neutral` is kept for when one is chosen again.
@@ -44,10 +46,11 @@ struct PaletteControls {
   bool ghosts = false;                         // show each take's warped ghost in the viewport
 };
 
-// What the result of `takes` takes is called in the editor's words and file names: "blend" for a
-// pair, "mix" for a palette, "transfer" for a palette in transfer mode.
+// What the result of `takes` takes is called in the editor's words and file names: "transfer" in
+// transfer mode (a palette's, or a pair's: B's style put on A), else "blend" for a pair and "mix"
+// for a palette.
 inline const char* result_name(int takes, bool transfer) {
-  return takes <= 2 ? "blend" : transfer ? "transfer" : "mix";
+  return transfer ? "transfer" : takes <= 2 ? "blend" : "mix";
 }
 
 // What the parameter panels edit beyond the weights and the decomposition's k and sparsity.

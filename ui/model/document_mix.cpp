@@ -41,6 +41,12 @@ MixParams mix_params_for(const Document& document, const Decomposed& decompositi
     m.min_weight = -std::numeric_limits<double>::infinity();
     m.max_weight = std::numeric_limits<double>::infinity();
     m.component_weights = component_alpha_weights(document, decomposition);
+    // A pair's transfer: B's style on A, A its own neutral, as `transfer A --style B` (the
+    // weights are the same: 1 - alpha and alpha).
+    if (c.transfer) {
+      m.feet_of_reference = true;
+      m.path_leash = transfer_path_leash(TransferNeutral::kContent);
+    }
   } else if (c.transfer) {
     // A transfer: content is the reference (take 0); the neutral take (or the content, when it
     // is its own neutral) loses what each style gains.

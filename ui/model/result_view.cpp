@@ -37,15 +37,18 @@ std::string take_caption(int i, int takes, const std::string& path) {
   return (i == 0 ? "reference  " : "") + take_label(path);
 }
 
-// The result's label: a blend says its alpha (or that it is per component or keyed), a palette
-// says whether it mixes or transfers.
+// The result's label: a blend says its alpha (a pair's transfer its strength), or that it is per
+// component or keyed; a palette says whether it mixes or transfers.
 std::string result_caption(const Document& d, const Decomposed* decomposition, int takes) {
-  if (takes > 2) return d.controls.palette.transfer ? "transfer" : "mix";
+  const bool transfer = d.controls.palette.transfer;
+  const std::string name = result_name(takes, transfer);
+  if (takes > 2) return name;
+  const char* amount = transfer ? "strength" : "alpha";
   if (d.controls.per_component && decomposition != nullptr && decomposition->params.mode == BlendMode::kShared)
-    return "blend (per component)";
-  if (!d.controls.keys.empty() && keys_fit(d.controls.keys, takes)) return "blend  alpha keyed";
+    return name + " (per component)";
+  if (!d.controls.keys.empty() && keys_fit(d.controls.keys, takes)) return name + "  " + amount + " keyed";
   char label[64];
-  std::snprintf(label, sizeof label, "blend  alpha %.2f", pair_alpha(d));
+  std::snprintf(label, sizeof label, "%s  %s %.2f", name.c_str(), amount, pair_alpha(d));
   return label;
 }
 

@@ -16,17 +16,36 @@ namespace mostyle::ui {
 namespace {
 
 // A pair's alpha: keyed over time, the value at the playhead, and moving it keys it there
-// (auto-key).
+// (auto-key). In transfer mode it is the strength of B's style put on A.
 void draw_alpha(EditorState& state) {
   const Keyed keyed = keyed_at_playhead(state, 2);
+  const bool transfer = state.document.controls.palette.transfer;
   double alpha = weights_at_playhead(state, 2)[1];
   bool moved = false;
   {
     const KeyedTint tint(keyed);
-    moved = range_slider("alpha", alpha, kAlphaRange);
+    moved = range_slider(transfer ? "strength###alpha" : "alpha###alpha", alpha, kAlphaRange);
   }
   if (moved) set_weights_at_playhead(state, 2, pair_weights(alpha));  // blended this frame
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: style A, 1: style B. Applied immediately.%s", keyed_hint(keyed));
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("%s Applied immediately.%s",
+                      transfer ? "0 leaves A as it is, 1 puts B's whole style on A." : "0: style A, 1: style B.",
+                      keyed_hint(keyed));
+}
+
+// A pair's mode: a blend of A and B, or a transfer of B's style onto A, A its own neutral (the
+// command line's `transfer A --style B`): A keeps its path, its pace and its timeline.
+void draw_pair_transfer(DocumentControls& c) {
+  bool transfer = c.palette.transfer;
+  if (ImGui::Checkbox("put B's style on A", &transfer)) {
+    c.palette.transfer = transfer;
+    if (transfer) c.palette.content_neutral = true;  // a pair has no other take to be the neutral
+    c.timing_a = transfer;                           // as the palette's Transfer button does
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("On: A is your own take and B a style. A keeps its path, its timing and its planted\n"
+                      "feet's pace, and takes on B's style as far as the strength says.\n"
+                      "Off: a blend between A and B, their paths and timing mixed too.");
 }
 
 // k and sparsity: the decomposition, recomputed when the slider is let go.
@@ -216,7 +235,10 @@ void ParametersPanel::draw(EditorState& state) {
   // With the style palette loaded, its panel holds the weights; alpha, the mode and the body
   // parts' alphas are the pair's.
   const bool palette = s.palette() != nullptr;
-  if (!palette) draw_alpha(state);
+  if (!palette) {
+    draw_alpha(state);
+    draw_pair_transfer(c);
+  }
   draw_decomposition(p);
   draw_mode_and_alignment(c, palette);
   draw_options(c, palette);

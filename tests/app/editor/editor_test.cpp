@@ -56,7 +56,7 @@ void load_walks(Editor& editor, const std::vector<std::string>& names) {
   editor.session().load_files(files, mostyle::ui::WeightsOf::kNewTakes);
   editor.wait_for_engine();
   REQUIRE(editor.session().takes() != nullptr);
-  REQUIRE(editor.session().takes()->size() == names.size());
+  REQUIRE(editor.session().takes()->size() == static_cast<int>(names.size()));
 }
 
 // Runs a shell command; returns its exit status and (if asked) what it wrote on stderr.

@@ -381,7 +381,9 @@ TEST_CASE("export dialog: the file is named after the result, a blend, a mix or 
   CHECK(export_name_for("transfer", "blend") == "blend");
   CHECK(export_name_for("walk.bvh", "mix") == "walk.bvh");          // the animator's own name
   CHECK(export_name_for("out/blend.bvh", "mix") == "out/blend.bvh");  // a folder chosen: a name chosen
-  CHECK(std::string(result_name(2, true)) == "blend");
+  CHECK(std::string(result_name(2, false)) == "blend");
+  CHECK(std::string(result_name(2, true)) == "transfer");  // a pair's transfer: B's style on A
+  CHECK(std::string(result_name(3, false)) == "mix");
 
   LoadedSession s;
   test::HeadlessImGui imgui;

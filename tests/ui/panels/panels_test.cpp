@@ -2,6 +2,7 @@
 // frames with no window: the panels build over a loaded pair, alpha moves the blend in the same
 // frame, and a failed load shows its sentence while the previous pair stays.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -17,7 +18,9 @@
 #include "ui/model/dtw_image.h"
 #include "ui/panels/files_panel.h"
 #include "ui/panels/layout.h"
+#include "ui/model/document_mix.h"
 #include "ui/panels/metrics_panel.h"
+#include "ui/panels/parameters_panel.h"
 
 using namespace mostyle;
 using namespace mostyle::ui;
@@ -227,6 +230,108 @@ TEST_CASE("space plays and pauses, the arrow keys step one frame") {
   CHECK(frame_at(*reference, state.playback.time_s) == 2);
   press(3);
   CHECK(frame_at(*reference, state.playback.time_s) == 1);
+}
+
+namespace {
+
+// The largest horizontal distance between two takes' hips over their frames (Y up).
+double hips_gap(const Take& a, const Take& b) {
+  double gap = 0.0;
+  for (int f = 0; f < std::min(a.frames(), b.frames()); ++f) {
+    const Eigen::Vector3d d = a.positions.row(f).head<3>() - b.positions.row(f).head<3>();
+    gap = std::max(gap, std::hypot(d.x(), d.z()));
+  }
+  return gap;
+}
+
+// The mean distance of the joints from where they stand on the hips, between two takes at a frame.
+double pose_distance(const Take& a, const Take& b, int frame) {
+  const int joints = static_cast<int>(a.positions.cols() / 3);
+  double sum = 0.0;
+  for (int j = 0; j < joints; ++j) {
+    const Eigen::Vector3d pa = a.positions.row(frame).segment<3>(3 * j) - a.positions.row(frame).head<3>();
+    const Eigen::Vector3d pb = b.positions.row(frame).segment<3>(3 * j) - b.positions.row(frame).head<3>();
+    sum += (pa - pb).norm();
+  }
+  return sum / joints;
+}
+
+// The parameters panel drawn one editor frame at a time, and clicked as a person would.
+struct ParametersFrames {
+  LoadedSession& s;
+  test::HeadlessImGui imgui;
+  ParametersPanel panel;
+
+  explicit ParametersFrames(LoadedSession& session) : s(session), panel(session.session) {}
+
+  void frame() {
+    imgui.begin_frame();
+    s.session.poll(s.state);
+    panel.draw(s.state);
+    s.session.sync(s.state, ImGui::IsAnyItemActive());
+    imgui.end_frame();
+  }
+  // A click on the check box `label`: the mouse moved down the panel's left edge until ImGui
+  // hovers the box, pressed for a frame, then let go.
+  void click_box(const char* label) {
+    ImGuiIO& io = ImGui::GetIO();
+    const PanelRect r = panel_rect(PanelId::kParameters);
+    const float x = r.x + ImGui::GetStyle().WindowPadding.x + 0.5f * ImGui::GetFrameHeight();
+    for (float y = r.y; y < r.y + r.h; y += 0.25f * ImGui::GetFrameHeight()) {
+      io.MousePos = ImVec2(x, y);
+      frame();
+      const ImGuiWindow* window = ImGui::FindWindowByName(panel_title(PanelId::kParameters));
+      if (GImGui->HoveredId != ImHashStr(label, 0, window->ID)) continue;
+      io.MouseDown[0] = true;
+      frame();
+      io.MouseDown[0] = false;
+      frame();
+      return;
+    }
+    FAIL("no box \"" << label << "\" in the parameters panel");
+  }
+};
+
+}  // namespace
+
+TEST_CASE("a pair's transfer puts B's style on A, which keeps its path, as `transfer A --style B` does") {
+  LoadedSession s;
+  s.state.document.overlay = true;  // no lateral offsets: the takes can be compared
+  DocumentControls& c = s.state.document.controls;
+  c.timing_a = true;
+  set_pair_alpha(s.state.document, 1.0);
+  s.session.sync(s.state);
+  const Take& a = s.state.takes[0];
+  const Take& result = s.state.takes[result_index(2)];
+  const Eigen::VectorXd ys = a.positions.row(0)(Eigen::seqN(1, a.positions.cols() / 3, 3)).transpose();
+  const double height = ys.maxCoeff() - ys.minCoeff();
+  // A blend at alpha 1 walks B's route: the marching take goes its own way, far from A's.
+  CHECK(hips_gap(result, a) > height);
+  CHECK(result.label.rfind("blend", 0) == 0);
+
+  // The box ticked: A's timeline, A its own neutral, the transfer shown.
+  c.timing_a = false;
+  ParametersFrames panel(s);
+  panel.click_box("put B's style on A");
+  CHECK(c.palette.transfer);
+  CHECK(c.palette.content_neutral);
+  CHECK(c.timing_a);
+  REQUIRE(s.session.result() != nullptr);
+  const MixParams m = mix_params_for(s.state.document, *s.session.snapshot().decomposed, 2);
+  CHECK(m.feet_of_reference);
+  CHECK(m.path_leash == transfer_path_leash(TransferNeutral::kContent));
+  CHECK(m.weights == std::vector<double>{0.0, 1.0});
+  // A's whole take, its hips within the leash (a fifth of the body's height) of A's own.
+  CHECK(result.frames() == a.frames());
+  CHECK(hips_gap(result, a) < 0.25 * height);
+  CHECK(result.label == "transfer  strength 1.00");
+  // B's style: where it stands on its hips, the body is not A's.
+  CHECK(pose_distance(result, a, a.frames() / 2) > 0.02 * height);
+  // Ticked off: a blend again, on the timing the blend had.
+  panel.click_box("put B's style on A");
+  CHECK_FALSE(c.palette.transfer);
+  CHECK_FALSE(c.timing_a);
+  CHECK(result.label.rfind("blend", 0) == 0);
 }
 
 TEST_CASE("timing, loop and alignment controls reach the blend and the alignment") {
