@@ -5,6 +5,7 @@
 #include <string>
 
 #include "engine/base/error.h"
+#include "engine/kinematics/joint_rows.h"
 
 namespace mostyle {
 
@@ -38,10 +39,6 @@ void check_lengths(const std::vector<int>& parents, const std::vector<double>& l
                        " must be a finite number >= 0, got " + std::to_string(lengths[j]) + ".");
     }
   }
-}
-
-Eigen::Vector3d joint_at(const Eigen::MatrixXd& m, Eigen::Index row, int joint) {
-  return Eigen::Vector3d(m(row, 3 * joint), m(row, 3 * joint + 1), m(row, 3 * joint + 2));
 }
 
 // Throws InputError on a skeleton, lengths or options the constraint cannot use.

@@ -8,6 +8,7 @@
 
 #include "engine/base/error.h"
 #include "engine/kinematics/ease.h"
+#include "engine/kinematics/joint_rows.h"
 #include "engine/post/planted_feet.h"
 #include "engine/prepare/major_skeleton.h"
 #include "engine/prepare/major_take.h"
@@ -53,18 +54,6 @@ constexpr int kShareRounds = 5;
 constexpr double kShareClose = 0.97;
 // A planted joint at the top of the planted band still has this weight in the foot's step.
 constexpr double kMinAnchorWeight = 0.1;
-
-template <typename Matrix>
-Eigen::Vector3d joint_at(const Matrix& m, Eigen::Index row, int column) {
-  return Eigen::Vector3d(m(row, 3 * column), m(row, 3 * column + 1), m(row, 3 * column + 2));
-}
-
-template <typename Matrix>
-void set_joint(Matrix& m, Eigen::Index row, int column, const Eigen::Vector3d& v) {
-  m(row, 3 * column) = v.x();
-  m(row, 3 * column + 1) = v.y();
-  m(row, 3 * column + 2) = v.z();
-}
 
 double median_of(std::vector<double> v) {
   if (v.empty()) return 0.0;

@@ -7,6 +7,7 @@
 
 #include "engine/base/error.h"
 #include "engine/kinematics/ease.h"
+#include "engine/kinematics/joint_rows.h"
 #include "engine/post/planted_feet.h"
 
 namespace mostyle {
@@ -19,14 +20,6 @@ constexpr double kKneeFullLift = 0.02;
 constexpr double kKneeForwardBias = 0.02;
 // Passes of lifting against the floor the last one left (lift_swinging_feet).
 constexpr int kSwingPasses = 4;
-
-Eigen::Vector3d joint_at(const Eigen::MatrixXd& m, Eigen::Index row, int column) {
-  return m.block<1, 3>(row, 3 * column).transpose();
-}
-
-void set_joint(Eigen::MatrixXd& m, Eigen::Index row, int column, const Eigen::Vector3d& v) {
-  m.block<1, 3>(row, 3 * column) = v.transpose();
-}
 
 // need (F) eased into lift (F): on each frame the largest of its neighbours' needs within `ramp`
 // frames, each scaled by smoothstep of how near it is (1 on the frame itself). O(F x ramp).
