@@ -9,6 +9,7 @@
 
 #include "engine/base/clock.h"
 #include "engine/base/error.h"
+#include "engine/post/stride_warp.h"
 #include "engine/prepare/major_skeleton.h"
 #include "engine/synthesize/synthesis.h"
 
@@ -369,6 +370,10 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
 
   const auto t1 = Clock::now();
   mix_root(p, params.keys, s.overall, params.root_pull_seconds, params.path_leash, st, s.trajectory);
+  if (s.trajectory.stride_u.rows() > 0) {  // a root on a leash: the strides fitted to its pace
+    s.trajectory.sampler.apply(s.trajectory.stride_u, s.stride);
+    warp_strides(out.local, s.stride, p.feet);
+  }
   preview_finish(p, params, st, finish, s, out);
   out.sample = s.trajectory.u_stretch.array() + double(st.first);
   if (!params.preview) finish_rest_of_mix(p, params, s, out);

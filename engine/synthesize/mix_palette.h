@@ -75,6 +75,7 @@ struct MixScratch {
   MixedTrajectory trajectory;         // the clock, the root and the contacts (trajectory/mixed_trajectory.h)
   FinishScratch finish;
   Eigen::MatrixXd sources_uncut;  // a loop's MixResult::sources before the cut, for the planted drift
+  Eigen::MatrixXd stride;         // K x 4: a leashed root's stride map at the output frames (stride_warp.h)
   // What a preview mix leaves for finish_mix_palette.
   struct Pending {
     bool waiting = false;   // a preview not finished yet
@@ -85,7 +86,7 @@ struct MixScratch {
 
 struct MixResult {
   FinishedMotion motion;     // world (K x 3M, the reference's units and world), contacts, loop, ...
-  Eigen::MatrixXd local;     // K x 3M canonical poses before the root and the clean-up
+  Eigen::MatrixXd local;     // K x 3M canonical poses before the root and the clean-up (a leashed root's strides fitted)
   Eigen::VectorXd sample;    // K: the common timeline's sample each output frame is at
   int first_sample = 0, last_sample = 0;  // the stretch played: where every take with a weight is matched
   Eigen::MatrixXd sources;   // K x N: each take's frame (fractional, working rate) at each output frame

@@ -63,6 +63,47 @@ void keep_near_heading(Eigen::VectorXd& heading, const Eigen::Ref<const Eigen::V
 
 namespace {
 
+// The root's travel over samples a..b (ground U x 2) in the body frame at sample t (heading[t]):
+// R_y(-heading) of the world move (canonical_frame.h), per second.
+Eigen::Vector2d body_travel(const Eigen::MatrixXd& ground, const Eigen::VectorXd& heading, Eigen::Index a,
+                            Eigen::Index b, Eigen::Index t, double fps) {
+  const double seconds = double(b - a) / fps;
+  const double dx = (ground(b, 0) - ground(a, 0)) / seconds, dz = (ground(b, 1) - ground(a, 1)) / seconds;
+  const double c = std::cos(heading[t]), s = std::sin(heading[t]);
+  return Eigen::Vector2d(c * dx - s * dz, s * dx + c * dz);
+}
+
+}  // namespace
+
+void stride_map(const Eigen::MatrixXd& free_ground, const Eigen::VectorXd& free_heading, const Eigen::MatrixXd& ground,
+                const Eigen::VectorXd& heading, double fps, double body_height, Eigen::MatrixXd& map) {
+  const Eigen::Index samples = ground.rows();
+  assert(free_ground.rows() == samples && free_heading.size() == samples && heading.size() == samples);
+  map.resize(samples, 4);
+  const Eigen::Index half = std::max<Eigen::Index>(1, std::lround(0.5 * kStrideWindowSeconds * fps));
+  const double still = kStrideStillSpeed * body_height;
+  for (Eigen::Index t = 0; t < samples; ++t) {
+    map.row(t) << 1.0, 0.0, 0.0, 1.0;
+    const Eigen::Index a = std::max<Eigen::Index>(0, t - half), b = std::min(samples - 1, t + half);
+    if (b <= a || !(fps > 0.0)) continue;
+    const Eigen::Vector2d v = body_travel(free_ground, free_heading, a, b, t, fps);
+    const Eigen::Vector2d w = body_travel(ground, heading, a, b, t, fps);
+    // Shorter steps only. Where the kept root goes faster than the free one, the style's steps
+    // are shorter than the pace needs; stretched to it (as far as the legs reach), the planted
+    // feet slid more on the rows tried, not less (Bandai happy styled by Bandai old: 1.02 times
+    // the content's, 1.51 stretched), the legs straightening against the speed limit.
+    Eigen::Vector2d gain = w - v;
+    const double along = v.squaredNorm() > 0.0 ? gain.dot(v) / v.norm() : 0.0;
+    if (along > 0.0) gain -= along * v / v.norm();
+    Eigen::Matrix2d change = gain * v.transpose() / (v.squaredNorm() + still * still);
+    const double size = change.norm();
+    if (size > kStrideMapLimit) change *= kStrideMapLimit / size;
+    map.row(t) << 1.0 + change(0, 0), change(0, 1), change(1, 0), 1.0 + change(1, 1);
+  }
+}
+
+namespace {
+
 // One flip of `flip` radians at sample r, weighted, spread as add_spread_turns says.
 void spread_turn(double flip, Eigen::Index r, double weight, double fps, Eigen::MatrixXd& steps) {
   // What a flip shows is the weight's fraction of a whole turn (weight 1.5 turns by half a turn).

@@ -114,8 +114,15 @@ void mix_root(const PreparedTakes& p, const WeightKeys& keys, const std::vector<
   }
   integrate_root_towards(s.steps, s.target, p.reference_heading[first], p.fps, convex ? root_pull_seconds : 0.0,
                          &s.ground_u, &s.heading_u);
-  keep_near_path(s.ground_u, p.takes.front().ground.middleRows(first, length), leash * p.feet.body_height);
-  if (leash > 0.0) keep_near_heading(s.heading_u, p.reference_heading.segment(first, length), kPathLeashHeading);
+  if (leash > 0.0) {
+    s.free_ground_u = s.ground_u;
+    s.free_heading_u = s.heading_u;
+    keep_near_path(s.ground_u, p.takes.front().ground.middleRows(first, length), leash * p.feet.body_height);
+    keep_near_heading(s.heading_u, p.reference_heading.segment(first, length), kPathLeashHeading);
+    stride_map(s.free_ground_u, s.free_heading_u, s.ground_u, s.heading_u, p.fps, p.feet.body_height, s.stride_u);
+  } else {
+    s.stride_u.resize(0, 4);
+  }
   s.contacts_u = (s.contacts_u.array() > 0.5).cast<double>();
 }
 

@@ -34,6 +34,10 @@ struct MixedTrajectory {
   Eigen::MatrixXd contacts_u; // U x 2: the foot contacts, 1 planted
   Eigen::MatrixXd steps, target;  // U x 3, U x 2: the weighted steps and paths mix_root integrates
   Eigen::VectorXd flips;      // U: one take's whole-turn flips
+  // A root on a leash (MixParams::path_leash): the root before it (U x 2, U) and the stride map
+  // (U x 4, stride_map) that fits the legs to the root kept; stride_u is empty without a leash.
+  Eigen::MatrixXd free_ground_u, stride_u;
+  Eigen::VectorXd free_heading_u;
 };
 
 // The stretch every take with a weight matches (a take at weight 0 does not shorten it): weights,
@@ -60,7 +64,8 @@ FinishOptions output_clock(const PreparedTakes& p, const WeightKeys& keys, bool 
 // weighted (root_w: one weight per take, or keys, with s.sample_w from output_clock; the pull as
 // MixParams::root_pull_seconds), kept within `leash` body heights of the reference's own path
 // (keep_near_path; MixParams::path_leash, 0: free), and then facing within kPathLeashHeading of
-// its heading (keep_near_heading). O(U x N).
+// its heading (keep_near_heading), with the stride map from the root before the leash to the root
+// kept (s.stride_u, stride_map; empty without a leash). O(U x N).
 void mix_root(const PreparedTakes& p, const WeightKeys& keys, const std::vector<double>& root_w, double root_pull_seconds,
               double leash, const PlayedStretch& st, MixedTrajectory& s);
 

@@ -94,3 +94,61 @@ TEST_CASE("keep_near_heading: the shorter arc eased as a gap is, across a whole 
   keep_near_heading(none, path, 0.0);
   CHECK(none == heading);
 }
+
+namespace {
+
+// A root going straight at `speed` per second (body heights 1) in world direction `way` (radians
+// from +Z towards +X), facing `facing`, over 61 samples at 30 per second.
+void straight(double speed, double way, double facing, Eigen::MatrixXd& ground, Eigen::VectorXd& heading) {
+  ground.resize(61, 2);
+  heading.setConstant(61, facing);
+  for (int t = 0; t < 61; ++t) {
+    ground(t, 0) = std::sin(way) * speed * t / 30.0;
+    ground(t, 1) = std::cos(way) * speed * t / 30.0;
+  }
+}
+
+}  // namespace
+
+TEST_CASE("stride_map: the free root's pace to the kept root's, in each one's body frame", "[mixed_root]") {
+  Eigen::MatrixXd free_g, kept_g, map;
+  Eigen::VectorXd free_h, kept_h;
+  // Free at 2 heights per second facing the way it goes, kept at 1: the stride along the way
+  // halves, e = 0.1: 1 + (1 - 2) 2 / (4 + 0.01).
+  straight(2.0, 0.0, 0.0, free_g, free_h);
+  straight(1.0, 0.0, 0.0, kept_g, kept_h);
+  stride_map(free_g, free_h, kept_g, kept_h, 30.0, 1.0, map);
+  REQUIRE(map.rows() == 61);
+  const double half = 1.0 - 2.0 / 4.01;
+  for (int t : {0, 30, 60}) {
+    CHECK(map(t, 0) == Approx(1.0));
+    CHECK(map(t, 1) == Approx(0.0).margin(1e-12));
+    CHECK(map(t, 2) == Approx(0.0).margin(1e-12));
+    CHECK(map(t, 3) == Approx(half));
+  }
+  // The kept root going along +X and facing it: the same in its body frame.
+  straight(1.0, 0.5 * 3.14159265358979323846, 0.5 * 3.14159265358979323846, kept_g, kept_h);
+  stride_map(free_g, free_h, kept_g, kept_h, 30.0, 1.0, map);
+  CHECK(map(30, 0) == Approx(1.0));
+  CHECK(map(30, 1) == Approx(0.0).margin(1e-12));
+  CHECK(map(30, 2) == Approx(0.0).margin(1e-12));
+  CHECK(map(30, 3) == Approx(half));
+  // Going alike: the identity, exactly. A free root standing still: no stride to fit.
+  stride_map(free_g, free_h, free_g, free_h, 30.0, 1.0, map);
+  for (int t = 0; t < 61; ++t) CHECK(map.row(t) == Eigen::RowVector4d(1.0, 0.0, 0.0, 1.0));
+  straight(0.0, 0.0, 0.0, free_g, free_h);
+  stride_map(free_g, free_h, kept_g, kept_h, 30.0, 1.0, map);
+  for (int t = 0; t < 61; ++t) CHECK(map.row(t) == Eigen::RowVector4d(1.0, 0.0, 0.0, 1.0));
+  // Kept faster than free: strides are never stretched.
+  straight(1.0, 0.0, 0.0, free_g, free_h);
+  straight(2.0, 0.0, 0.0, kept_g, kept_h);
+  stride_map(free_g, free_h, kept_g, kept_h, 30.0, 1.0, map);
+  for (int t = 0; t < 61; ++t) CHECK(map.row(t) == Eigen::RowVector4d(1.0, 0.0, 0.0, 1.0));
+  // Kept at a tenth of the pace and turned a quarter off the way: the change held to the limit.
+  straight(2.0, 0.0, 0.0, free_g, free_h);
+  straight(0.2, 0.5 * 3.14159265358979323846, 0.0, kept_g, kept_h);
+  stride_map(free_g, free_h, kept_g, kept_h, 30.0, 1.0, map);
+  const Eigen::Matrix2d change{{map(30, 0) - 1.0, map(30, 1)}, {map(30, 2), map(30, 3) - 1.0}};
+  CHECK(change.norm() == Approx(kStrideMapLimit));
+  CHECK(change(0, 1) > 0.0);  // the kept root goes across (+x): the feet's way under the body turns with it
+}
