@@ -25,11 +25,14 @@ double reach(const Eigen::MatrixXd& local, Eigen::Index k, const LegColumns& leg
 
 // The target, or where the way from the ankle to it leaves the leg's reach: a stride stretched
 // past what the leg reaches stops there with the foot at its height (two-bone IK would otherwise
-// keep the target's direction and lift the foot off the floor). An ankle already beyond it stays.
+// keep the target's direction and lift the foot off the floor). An ankle already beyond the reach
+// (a leg nearly straight at a heel strike) goes to a target no further from the hip than itself,
+// and stays where the target is further.
 Eigen::Vector3d within_reach(const Eigen::Vector3d& hip, const Eigen::Vector3d& ankle, const Eigen::Vector3d& target,
                              double reach) {
-  if ((target - hip).norm() <= reach) return target;
-  if ((ankle - hip).norm() >= reach) return ankle;
+  const double from_hip = (ankle - hip).norm();
+  if ((target - hip).norm() <= std::max(reach, from_hip)) return target;
+  if (from_hip >= reach) return ankle;
   // |ankle + t (target - ankle) - hip| = reach for t in (0, 1): the root of a quadratic.
   const Eigen::Vector3d d = target - ankle, a = ankle - hip;
   const double qa = d.squaredNorm(), qb = 2.0 * a.dot(d), qc = a.squaredNorm() - reach * reach;
@@ -59,7 +62,7 @@ void warp_strides(Eigen::MatrixXd& local, const Eigen::MatrixXd& map, const Foot
       two_bone_ik(hip, knee, ankle, target, forwards, &new_knee, &new_ankle);
       if (leg.toe >= 0) {
         const Eigen::Vector3d toe = joint_at(local, k, leg.toe);
-        const Eigen::Vector3d foot = mapped(map, k, toe) - target;
+        const Eigen::Vector3d foot = mapped(map, k, toe) - mapped(map, k, ankle);
         const double length = (toe - ankle).norm();
         const double norm = foot.norm();
         set_joint(local, k, leg.toe, new_ankle + (norm > 0.0 ? Eigen::Vector3d(foot * (length / norm)) : toe - ankle));

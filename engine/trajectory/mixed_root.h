@@ -50,15 +50,17 @@ constexpr double kPathLeashHeading = 0.05;  // radians: the leash on a heading k
 void keep_near_heading(Eigen::VectorXd& heading, const Eigen::Ref<const Eigen::VectorXd>& path, double leash);
 
 // The stride map of a root kept on a leash (post/stride_warp.h): at each sample, the 2 x 2 map
-// on the body frame's (x, z) (row-major in map's 4 columns) that takes the free root's travel to
-// the kept root's, each measured in its own body frame over kStrideWindowSeconds about the sample
-// (a gait cycle or so: the pace, not the sway within a step). For travel v (free) and w (kept) it
-// is I + g v^T / (|v|^2 + e^2), g = w - v less any part of it along v (strides are shortened to a
-// slower pace, never stretched to a faster one: the style's own step is as long as its legs took
-// it), e kStrideStillSpeed body heights per second: the identity where the two go alike, and
-// fading to it where the free root barely moves (a stand, a turn on the spot: no stride to fit). The map's change from the identity is held to kStrideMapLimit (in
-// Frobenius norm): a pace far beyond the free root's is not a stride to stretch a leg to. free_ground, ground: U x 2; free_heading,
-// heading: U. Writes map (U x 4); allocation-free when it has that size. O(U).
+// on the body frame's (x, z) (row-major in map's 4 columns) that shortens the feet's way under
+// the body as the kept root goes slower than the free one, each root's travel measured in its own
+// body frame over kStrideWindowSeconds about the sample (a gait cycle or so: the pace, not the
+// sway within a step). For the free travel v (speed |v|, way d = v / |v|) and the kept one w it
+// scales along d by 1 + min(0, w.d - |v|) |v| / (|v|^2 + e^2), e kStrideStillSpeed body heights
+// per second, and leaves the way across as it is: the identity where the kept root goes as fast
+// along d or faster (the style's own step is as long as its legs took it: stretching it lifts
+// or slides the feet), and fading to it where the free root barely moves (a stand, a turn on the
+// spot: no stride to fit). The scale is at least 1 - kStrideMapLimit: a pace far below the free
+// root's is not a stride to fold a leg to. free_ground, ground: U x 2; free_heading, heading: U.
+// Writes map (U x 4); allocation-free when it has that size. O(U).
 constexpr double kStrideWindowSeconds = 1.0;
 constexpr double kStrideStillSpeed = 0.1;
 constexpr double kStrideMapLimit = 0.6;

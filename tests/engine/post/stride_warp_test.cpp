@@ -105,3 +105,16 @@ TEST_CASE("stride warp: a stride stretched past the leg's reach stops there, the
   CHECK(bone(w, 0, 0, 1) == Approx(bone(before, 0, 0, 1)).epsilon(kTolerance));
   CHECK(bone(w, 0, 1, 2) == Approx(bone(before, 0, 1, 2)).epsilon(kTolerance));
 }
+
+TEST_CASE("stride warp: a leg nearly straight at its heel strike still takes a shorter stride") {
+  // The left ankle 20 ahead with the leg within the reach margin of straight: halved, it comes in.
+  Eigen::MatrixXd w = striding(1);
+  const double leg = bone(w, 0, 0, 1) + bone(w, 0, 1, 2);
+  REQUIRE((joint_at(w, 0, 2) - joint_at(w, 0, 0)).norm() > (1.0 - kStrideReachMargin) * leg);
+  warp_strides(w, maps(1, 1.0, 0.0, 0.0, 0.5), rig());
+  CHECK(joint_at(w, 0, 2).isApprox(Eigen::Vector3d(10.0, 1.0, 10.0), kTolerance));
+  // Stretched instead, it stays where it was: it has no reach left.
+  Eigen::MatrixXd v = striding(1);
+  warp_strides(v, maps(1, 1.0, 0.0, 0.0, 2.0), rig());
+  CHECK(joint_at(v, 0, 2).isApprox(Eigen::Vector3d(10.0, 1.0, 20.0), kTolerance));
+}
