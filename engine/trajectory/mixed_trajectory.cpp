@@ -119,7 +119,11 @@ void mix_root(const PreparedTakes& p, const WeightKeys& keys, const std::vector<
     s.free_heading_u = s.heading_u;
     keep_near_path(s.ground_u, p.takes.front().ground.middleRows(first, length), leash * p.feet.body_height);
     keep_near_heading(s.heading_u, p.reference_heading.segment(first, length), kPathLeashHeading);
-    stride_map(s.free_ground_u, s.free_heading_u, s.ground_u, s.heading_u, p.fps, p.feet.body_height, s.stride_u);
+    // A content that does not walk (no gait cycles: a jump, a stand) has no stride to fit.
+    if (p.reference().cycles.kind == CycleKind::kGait)
+      stride_map(s.free_ground_u, s.free_heading_u, s.ground_u, s.heading_u, p.fps, p.feet.body_height, s.stride_u);
+    else
+      s.stride_u.resize(0, 4);
   } else {
     s.stride_u.resize(0, 4);
   }

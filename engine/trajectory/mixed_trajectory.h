@@ -65,7 +65,8 @@ FinishOptions output_clock(const PreparedTakes& p, const WeightKeys& keys, bool 
 // MixParams::root_pull_seconds), kept within `leash` body heights of the reference's own path
 // (keep_near_path; MixParams::path_leash, 0: free), and then facing within kPathLeashHeading of
 // its heading (keep_near_heading), with the stride map from the root before the leash to the root
-// kept (s.stride_u, stride_map; empty without a leash). O(U x N).
+// kept (s.stride_u, stride_map; empty without a leash, and for a reference without gait cycles).
+// O(U x N).
 void mix_root(const PreparedTakes& p, const WeightKeys& keys, const std::vector<double>& root_w, double root_pull_seconds,
               double leash, const PlayedStretch& st, MixedTrajectory& s);
 
