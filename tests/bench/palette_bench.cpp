@@ -2,7 +2,8 @@
 // the shared decomposition of all eight (goal: under 200 ms) and one mix for new weights, what
 // a weight slider or the blend pad does (goal: under 1 ms), with the timing mixed and with the
 // reference's timing; and that mix as a preview (poses, root, limb lengths) and its completion
-// (speed limit, foot lock, measures) apart.
+// (speed limit, foot lock, measures) apart; and a transfer onto the reference as its own neutral
+// (a style's strength slider: the root on a leash, the strides fitted), whole and as a preview.
 //
 // Data: the eight takes of ../shared/motions it has (Bandai and CMU, two conventions, 30 and
 // 120 fps), each played slower or faster so that it lasts a minute; without ../shared, the
@@ -85,8 +86,12 @@ BENCHMARK(BM_DecomposeEightTakes)->Unit(benchmark::kMillisecond)->Iterations(3);
 // weights of the move at 40 s, a new set of keys every iteration.
 // stage: the whole mix, its preview only (MixParams::preview), or the preview untimed and its
 // completion (finish_mix_palette) timed: what the editor shows at once and what follows.
+// own_transfer: a transfer whose content (the reference) is its own neutral, one style at strength
+// t: its root on the content's path (the leash) and the strides fitted to it, on the content's
+// timing, as the editor's pair transfer and `transfer C --style S` run.
 enum class Stage { kWhole, kPreview, kRest };
-void mix_bench(benchmark::State& state, bool reference_timing, bool keyed = false, Stage stage = Stage::kWhole) {
+void mix_bench(benchmark::State& state, bool reference_timing, bool keyed = false, Stage stage = Stage::kWhole,
+               bool own_transfer = false) {
   const PreparedTakes& p = palette();
   const Decomposed& d = decomposition();
   MixParams params;
@@ -103,6 +108,14 @@ void mix_bench(benchmark::State& state, bool reference_timing, bool keyed = fals
     double sum = 0;
     for (double w : params.weights) sum += w;
     params.weights[0] += 1.0 - sum;
+    if (own_transfer) {
+      params.weights.assign(p.size(), 0.0);
+      params.weights[0] = 1.0 - t;
+      params.weights[1 + step % (p.size() - 1)] = t;
+      params.reference_timing = true;
+      params.feet_of_reference = true;
+      params.path_leash = transfer_path_leash(TransferNeutral::kContent);
+    }
     if (keyed) {
       std::vector<double> first(p.size(), 0.0);
       first[0] = 1.0;
@@ -127,7 +140,11 @@ void BM_MixEightTakesReferenceTiming(benchmark::State& state) { mix_bench(state,
 void BM_MixEightTakesKeyed(benchmark::State& state) { mix_bench(state, false, true); }
 void BM_MixEightTakesPreview(benchmark::State& state) { mix_bench(state, false, false, Stage::kPreview); }
 void BM_FinishEightTakesAfterPreview(benchmark::State& state) { mix_bench(state, false, false, Stage::kRest); }
+void BM_OwnTransferPreview(benchmark::State& state) { mix_bench(state, true, false, Stage::kPreview, true); }
+void BM_OwnTransfer(benchmark::State& state) { mix_bench(state, true, false, Stage::kWhole, true); }
 BENCHMARK(BM_MixEightTakes)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_OwnTransferPreview)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_OwnTransfer)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_MixEightTakesPreview)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_FinishEightTakesAfterPreview)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_MixEightTakesKeyed)->Unit(benchmark::kMicrosecond);
