@@ -61,11 +61,14 @@ void warp_strides(Eigen::MatrixXd& local, const Eigen::MatrixXd& map, const Foot
       Eigen::Vector3d new_knee, new_ankle;
       two_bone_ik(hip, knee, ankle, target, forwards, &new_knee, &new_ankle);
       if (leg.toe >= 0) {
-        const Eigen::Vector3d toe = joint_at(local, k, leg.toe);
-        const Eigen::Vector3d foot = mapped(map, k, toe) - mapped(map, k, ankle);
-        const double length = (toe - ankle).norm();
-        const double norm = foot.norm();
-        set_joint(local, k, leg.toe, new_ankle + (norm > 0.0 ? Eigen::Vector3d(foot * (length / norm)) : toe - ankle));
+        // The foot keeps its length and its pitch (the toe's drop below the ankle): only the way
+        // it points across the floor follows the map. Mapped whole, a foot shortened along the
+        // way and stretched back to its length would tip its toe into the floor.
+        const Eigen::Vector3d foot = joint_at(local, k, leg.toe) - ankle;
+        const Eigen::Vector2d flat(foot.x(), foot.z());
+        Eigen::Vector2d way(map(k, 0) * flat.x() + map(k, 1) * flat.y(), map(k, 2) * flat.x() + map(k, 3) * flat.y());
+        way = way.norm() > 0.0 ? Eigen::Vector2d(way * (flat.norm() / way.norm())) : flat;
+        set_joint(local, k, leg.toe, new_ankle + Eigen::Vector3d(way.x(), foot.y(), way.y()));
       }
       set_joint(local, k, leg.knee, new_knee);
       set_joint(local, k, leg.ankle, new_ankle);

@@ -21,9 +21,10 @@ constexpr double kStrideReachMargin = 0.02;
 // trajectory/mixed_root.h stride_map): each usable leg's ankle is moved to the map of its (x, z),
 // its height kept, by two-bone IK from the hip (thigh and shin keep their lengths, the knee bends
 // in its own plane, forwards where the leg is straight), and no further than the leg reaches
-// (kStrideReachMargin): a stretched stride stops where the leg would straighten; the toe follows, the foot's length kept
-// and its direction mapped too. A map of the identity leaves the frame as it is. Throws
-// InputError when map's rows differ from local's or it has not 4 columns. O(K).
+// (kStrideReachMargin): a stretched stride stops where the leg would straighten. The toe follows
+// the ankle, the foot's length and pitch kept and the way it points across the floor mapped. A
+// map of the identity leaves the frame as it is. Throws InputError when map's rows differ from
+// local's or it has not 4 columns. O(K).
 void warp_strides(Eigen::MatrixXd& local, const Eigen::MatrixXd& map, const FootRig& rig);
 
 }  // namespace mostyle

@@ -1,6 +1,7 @@
 #include "engine/post/stride_warp.h"
 
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "engine/base/error.h"
 #include "engine/kinematics/joint_rows.h"
@@ -71,9 +72,10 @@ TEST_CASE("stride warp: a stride halved brings the ankle to half its way ahead, 
   CHECK(joint_at(w, 0, 0) == joint_at(before, 0, 0));
   CHECK(joint_at(w, 0, 1).z() > joint_at(w, 0, 2).z() - 10.0);
   CHECK(joint_at(w, 0, 1).z() > 0.0);
-  // The toe ahead of the ankle, its step shortened with the stride: (0, -1, 4) scaled to the foot.
+  // The toe ahead of the ankle as it was: the foot keeps its length and pitch (its toe does not
+  // tip into the floor), and it points the way it did.
   const Eigen::Vector3d foot = joint_at(w, 0, 3) - joint_at(w, 0, 2);
-  CHECK(foot.normalized().isApprox(Eigen::Vector3d(0.0, -1.0, 4.0).normalized(), kTolerance));
+  CHECK(foot.isApprox(Eigen::Vector3d(0.0, -1.0, 8.0), kTolerance));
   // The right foot, under its hip, moves by its own z only (0): the map keeps it.
   CHECK((joint_at(w, 0, 6) - joint_at(before, 0, 6)).norm() < kTolerance);
   // The other frame: untouched.
@@ -117,4 +119,14 @@ TEST_CASE("stride warp: a leg nearly straight at its heel strike still takes a s
   Eigen::MatrixXd v = striding(1);
   warp_strides(v, maps(1, 1.0, 0.0, 0.0, 2.0), rig());
   CHECK(joint_at(v, 0, 2).isApprox(Eigen::Vector3d(10.0, 1.0, 20.0), kTolerance));
+}
+
+TEST_CASE("stride warp: a foot pointing across the way turns with the map, its length and pitch kept") {
+  Eigen::MatrixXd w = striding(1);
+  set_joint(w, 0, 3, {16.0, 0.0, 26.0});  // the left toe 6 out and 6 ahead of the ankle, 1 below it
+  warp_strides(w, maps(1, 1.0, 0.0, 0.0, 0.5), rig());
+  const Eigen::Vector3d foot = joint_at(w, 0, 3) - joint_at(w, 0, 2);
+  CHECK(foot.y() == Approx(-1.0));
+  CHECK(std::hypot(foot.x(), foot.z()) == Approx(std::hypot(6.0, 6.0)));
+  CHECK(foot.z() / foot.x() == Approx(0.5));  // (6, 6) through the map: (6, 3), the way it points
 }
