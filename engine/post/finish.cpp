@@ -1,7 +1,9 @@
 #include "engine/post/finish.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <vector>
 
 #include "engine/kinematics/limb_length.h"
 #include "engine/post/planted_feet.h"
@@ -74,6 +76,83 @@ void limit_speed(const FinishRig& rig, const FinishOptions& options, FinishScrat
     limit_joint_speed(world, rig.feet->fps, limit, s.speed);
 }
 
+// The lock reads a loop as a take with two ends: what it moves at the last frame and at the
+// first differ, a jump at the seam. That difference is taken up over the loop so the last frame
+// is moved as the first is and leads into it as any frame into the next. Spread evenly over the
+// loop, it slid the planted feet with it (a Mixamo walk loop styled by an old walk: planted feet
+// 1.15 times as fast after the lock as before it), so a leg takes its share over its swings
+// instead, where its foot moves anyway (each swing's steps weighted by a bump that starts and
+// ends at zero: no jump in speed at lift-off or landing), as much of it as keeps the leg's
+// joints under `limit` (units per frame; no faster than they were where they already were), the
+// rest evenly. Joints of no leg, and a leg that never swings, take it evenly. s.before_lock: the
+// world before the lock.
+void close_locked_seam(const FootRig& feet, double limit, FinishScratch& s, Eigen::MatrixXd& world) {
+  const Eigen::Index k = world.rows();
+  const Eigen::RowVectorXd gap = (world.row(0) - s.before_lock.row(0)) - (world.row(k - 1) - s.before_lock.row(k - 1));
+  planted_frames(world, feet, s.planted, s.heights);
+  const std::array<int, kFootJoints> columns = foot_joint_columns(feet);
+  auto even = [&](Eigen::Index f) { return double(f) / double(k - 1); };
+  std::vector<char> on_leg(world.cols() / 3, 0);
+  s.seam_share.resize(k);
+  for (int side = 0; side < 2; ++side) {
+    const LegColumns& leg = feet.legs[side];
+    if (!leg.usable()) continue;
+    const std::array<int, 3> joints = {leg.knee, leg.ankle, leg.toe};
+    for (int c : joints)
+      if (c >= 0) on_leg[c] = 1;
+    // A step f - 1 -> f swings where no planted joint of the foot holds it at both ends.
+    auto swinging = [&](Eigen::Index f) {
+      for (int j = 2 * side; j < 2 * side + 2; ++j)
+        if (columns[j] >= 0 && s.planted(f - 1, j) > 0.0 && s.planted(f, j) > 0.0) return false;
+      return true;
+    };
+    s.seam_share.setZero();
+    for (Eigen::Index f = 1; f < k;) {
+      if (!swinging(f)) { ++f; continue; }
+      Eigen::Index end = f;
+      while (end < k && swinging(end)) ++end;
+      const double n = double(end - f);
+      for (Eigen::Index g = f; g < end; ++g) s.seam_share[g] = std::pow(std::sin(kPi * (double(g - f) + 0.5) / n), 2);
+      f = end;
+    }
+    const double total = s.seam_share.sum();
+    if (total > 0.0) {
+      for (Eigen::Index f = 1; f < k; ++f) s.seam_share[f] = s.seam_share[f - 1] + s.seam_share[f] / total;
+    }
+    s.seam_share[0] = 0.0;
+    // The step of joint c into frame f with `swing` of the share over the swings, the rest even.
+    auto step = [&](int c, Eigen::Index f, double swing) {
+      const double moved = swing * (s.seam_share[f] - s.seam_share[f - 1]) + (1.0 - swing) / double(k - 1);
+      return (world.block(f, 3 * c, 1, 3) - world.block(f - 1, 3 * c, 1, 3) + moved * gap.segment(3 * c, 3)).norm();
+    };
+    auto fits = [&](double swing) {
+      for (Eigen::Index f = 1; f < k; ++f)
+        for (int c : joints)
+          if (c >= 0 && step(c, f, swing) > std::max(limit, step(c, f, 0.0)) + 1e-12) return false;
+      return true;
+    };
+    double swing = 0.0;
+    if (total > 0.0) {
+      if (!(limit > 0.0) || fits(1.0)) {
+        swing = 1.0;
+      } else {
+        double lo = 0.0, hi = 1.0;
+        for (int i = 0; i < 20; ++i) (fits(0.5 * (lo + hi)) ? lo : hi) = 0.5 * (lo + hi);
+        swing = lo;
+      }
+    }
+    for (Eigen::Index f = 1; f < k; ++f) {
+      const double share = swing * s.seam_share[f] + (1.0 - swing) * even(f);
+      for (int c : joints)
+        if (c >= 0) world.block(f, 3 * c, 1, 3) += share * gap.segment(3 * c, 3);
+    }
+  }
+  for (Eigen::Index c = 0; c < Eigen::Index(on_leg.size()); ++c) {
+    if (on_leg[c]) continue;
+    for (Eigen::Index f = 1; f < k; ++f) world.block(f, 3 * c, 1, 3) += even(f) * gap.segment(3 * c, 3);
+  }
+}
+
 }  // namespace
 
 void finish_preview(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, const Eigen::VectorXd& heading_u,
@@ -131,12 +210,7 @@ void finish_rest(const FinishRig& rig, const FinishOptions& options, FinishScrat
     // The lock reads the loop as a take with two ends: what it moves at the last frame and at the
     // first differ, a jump at the seam. That difference is spread over the loop, so the last frame
     // is moved as the first is and leads into it as any frame into the next.
-    if (looped) {
-      const Eigen::Index k = out.world.rows();
-      const Eigen::RowVectorXd gap = (out.world.row(0) - s.before_lock.row(0)) -
-                                     (out.world.row(k - 1) - s.before_lock.row(k - 1));
-      for (Eigen::Index f = 1; f < k; ++f) out.world.row(f) += (double(f) / double(k - 1)) * gap;
-    }
+    if (looped) close_locked_seam(*rig.feet, kSpeedLimitOverTakes * rig.lock_limits.fastest_joint / rig.feet->fps, s, out.world);
     planted_frames(out.world, *rig.feet, s.planted, s.heights);
     out.foot_sliding_cleaned = planted_speed(out.world, s.planted, *rig.feet).speed;
   }

@@ -52,6 +52,7 @@ struct FinishScratch {
   Eigen::VectorXd heading_uncut;  // the headings before a loop's cut, for the body drift
   Eigen::MatrixXd feet_height;    // feet_height cut to a loop's frames
   Eigen::MatrixXd air, held;      // where it is above kSwingAirBands, and within one band
+  Eigen::VectorXd seam_share;     // a loop's seam taken up over a leg's swings
   FootLockScratch foot;
   SwingClearanceScratch swing;
   SpeedLimitScratch speed;
