@@ -525,6 +525,40 @@ void run_offsets(const Eigen::MatrixXd& world, const LockedLeg& leg, const std::
   }
 }
 
+// How far the offset has gone from one run's to the next's at each frame of the swings between
+// runs (s.swing: 0 at a run's last frame, 1 at the next's first). Each step takes a share of the
+// change that grows with the room the foot has under `fastest` (units a frame) on that step, its
+// ankle's or toe's own speed taken off, times a bump that starts and ends at zero (no jump in
+// speed at lift-off or landing): the change goes where the swinging foot is slow, not where it is
+// fastest. A plain smoothstep put most of it mid-swing, where a foot is at its fastest, and left
+// the lock no room to pin a stride the takes' feet do not take (a style's shorter steps under the
+// content's pace). Without a limit (fastest 0), the bump alone. O(F).
+void swing_profile(const Eigen::MatrixXd& world, const LockedLeg& leg, double fastest, FootLockScratch& s) {
+  const Eigen::Index frames = world.rows();
+  s.swing.setZero(frames);
+  for (size_t r = 1; r < s.runs.size(); ++r) {
+    const Eigen::Index from = s.runs[r - 1].second, to = s.runs[r].first, span = to - from;
+    auto bump = [&](Eigen::Index u) { return std::pow(std::sin(kPi * (double(u - from) + 0.5) / double(span)), 2); };
+    double total = 0.0;
+    for (Eigen::Index u = from; u < to; ++u) {  // the step u -> u + 1
+      double room = 1.0;
+      if (fastest > 0.0) {
+        double own = 0.0;
+        for (int c : {leg.columns.ankle, leg.columns.toe})
+          if (c >= 0) own = std::max(own, (joint_at(world, u + 1, c) - joint_at(world, u, c)).norm());
+        room = std::max(0.0, fastest - own);
+      }
+      total += bump(u) * room;
+      s.swing[u + 1] = total;
+    }
+    if (!(total > 0.0)) {  // no step with room: the bump alone (the run is then not pinned)
+      total = 0.0;
+      for (Eigen::Index u = from; u < to; ++u) s.swing[u + 1] = total += bump(u);
+    }
+    for (Eigen::Index u = from + 1; u <= to; ++u) s.swing[u] /= total;
+  }
+}
+
 // Each run's offsets scaled down where the change of offset before or after it (spread over a
 // swing, or a fade) would move the foot faster than `fastest` units a frame: on every step of the
 // swing the foot's own speed plus the offset's change at most that (each run may take half of a
@@ -554,16 +588,16 @@ void fit_to_swings(const Eigen::MatrixXd& world, const LockedLeg& leg, int ramp,
         return u >= start ? 1.0 : u < start - ramp ? 0.0 : smoothstep(1.0 - double(start - u) / (ramp + 1));
       });
     } else {
-      const Eigen::Index from = s.runs[r - 1].second, span = start - from;
-      before = 0.5 * room(from, start, [&](Eigen::Index u) { return smoothstep(double(u - from) / span); });
+      const Eigen::Index from = s.runs[r - 1].second;
+      before = 0.5 * room(from, start, [&](Eigen::Index u) { return u <= from ? 0.0 : s.swing[u]; });
     }
     if (r + 1 == s.runs.size()) {
       after = room(end, end + ramp + 1, [&](Eigen::Index u) {
         return u <= end ? 1.0 : u > end + ramp ? 0.0 : smoothstep(1.0 - double(u - end) / (ramp + 1));
       });
     } else {
-      const Eigen::Index to = s.runs[r + 1].first, span = to - end;
-      after = 0.5 * room(end, to, [&](Eigen::Index u) { return smoothstep(double(u - end) / span); });
+      const Eigen::Index to = s.runs[r + 1].first;
+      after = 0.5 * room(end, to, [&](Eigen::Index u) { return u <= end ? 0.0 : s.swing[u]; });
     }
     auto rows = s.target.middleRows(start, end - start + 1);
     const double at_start = rows.row(0).norm(), at_end = rows.row(end - start).norm();
@@ -586,9 +620,9 @@ void ease_between_runs(Eigen::Index frames, int ramp, FootLockScratch& s) {
     const auto [start, end] = s.runs[r];
     s.weight.segment(start, end - start + 1).setOnes();
     if (r > 0) {  // the swing from the previous run
-      const Eigen::Index previous_end = s.runs[r - 1].second, span = start - previous_end;
+      const Eigen::Index previous_end = s.runs[r - 1].second;
       for (Eigen::Index u = previous_end + 1; u < start; ++u) {
-        const double f = smoothstep(static_cast<double>(u - previous_end) / span);
+        const double f = s.swing[u];
         s.weight[u] = 1.0;
         s.ease[u] = f;
         s.target.row(u) = (1.0 - f) * s.target.row(previous_end) + f * s.target.row(start);
@@ -805,6 +839,7 @@ void lock_legs(Eigen::MatrixXd& world, const FootRig& rig, const std::array<doub
     find_runs(leg, seconds_to_frames(rig.options.max_gap_seconds, rig.fps), scratch);
     scratch.target.setZero();
     run_offsets(world, leg, columns, floors, kPlantedHeightFraction * rig.body_height, drift, share, scratch);
+    swing_profile(world, leg, max_speed / rig.fps, scratch);
     if (max_speed > 0.0) fit_to_swings(world, leg, ramp, max_speed / rig.fps, scratch);
     ease_between_runs(frames, ramp, scratch);
     move_leg_rows(world, leg.columns, rig, scratch);

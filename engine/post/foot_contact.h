@@ -80,6 +80,7 @@ struct FootLockScratch {
   Eigen::MatrixXd planted; // F x 4: planted_feet.h's planted frames
   Eigen::VectorXi pinned;  // F: 1 on the frames a foot is pinned over
   Eigen::VectorXd ease;    // F: after a run, how far its offset has eased to the next (-1 elsewhere)
+  Eigen::VectorXd swing;   // F: within a swing, how far the offset has gone from one run's to the next's
   Eigen::MatrixXd before;  // F x 9: a leg's knee, ankle and toe as they were
   std::vector<double> heights;
   std::vector<std::pair<Eigen::Index, Eigen::Index>> runs;  // a leg's runs, first and last frame
@@ -111,9 +112,10 @@ struct FootLockLimits {
 // weighted by how near each is to its floor (a lifting heel leaves the toe to hold the foot), so
 // the foot moves as it may and never faster than it did; the run's offsets have a mean of zero
 // (the least total correction). The offset changes from one run to the next; between runs the
-// change is spread over the whole swing (smoothstep: no jump in speed at landing or lift-off, and
-// little added to the swing, where a fade of a few frames at landing or lift-off would add it
-// all at the foot's fastest moments); before the first run and after the last it fades over
+// change is spread over the whole swing, each step's share a bump that is zero at landing and
+// lift-off (no jump in speed there) times the room that step leaves under the limit's fastest
+// joint (the foot's own speed taken off): the change goes where the swinging foot is slow, not
+// mid-swing where it is at its fastest; before the first run and after the last it fades over
 // blend_frames(). Each such frame moves the ankle horizontally (its height kept, so the same
 // steps stay planted) with analytic two-bone IK: the hip stays, thigh and shin keep their
 // lengths, the knee bends in the plane of hip, target and the knee's own offset from its

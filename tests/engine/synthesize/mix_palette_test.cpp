@@ -470,6 +470,23 @@ TEST_CASE("palette: planted feet of a mix and a transfer move as their takes' do
     INFO("planted feet raw " << m.motion.foot_sliding_raw << ", locked " << m.motion.foot_sliding_cleaned);
     CHECK(m.motion.foot_sliding_cleaned <= m.motion.foot_sliding_raw);
   }
+  {
+    // A short Xia walk, brisker than the style, styled by Bandai old as its own neutral: the
+    // style's short steps under the content's pace slide unless the lock pins them, and it can
+    // only where the offset between runs changes on the swing's slow steps (spread mid-swing, at
+    // the foot's fastest, the speed limit left it no room: 2.5 times the content's).
+    const auto p = prepare_takes({shared("wild/xia_old_13.bvh"), shared("bandai_walk_old.bvh")}, {});
+    const auto d = decompose_takes(*p, params());
+    MixParams mp;
+    mp.min_weight = transfer_min_weight(1);
+    mp.max_weight = transfer_max_weight(1);
+    mp.feet_of_reference = true;
+    mp.path_leash = transfer_path_leash(TransferNeutral::kContent);
+    mp.reference_timing = true;
+    const MixResult m = mix(*p, *d, transfer_weights({1.0}, TransferNeutral::kContent), mp);
+    CHECK(m.foot_sliding_inputs == p->takes[0].planted.speed);
+    check_planted_feet(*p, m, "a Xia walk styled by Bandai old, its own neutral");
+  }
 }
 
 TEST_CASE("palette: strength 0 gives back takes whose bones stretch, and loop clips, feet lock on") {
