@@ -462,9 +462,13 @@ struct LockedLeg {
 void find_runs(const LockedLeg& leg, int max_gap, FootLockScratch& s) {
   const Eigen::Index frames = s.planted.rows();
   s.pinned.resize(frames);
+  // A joint the rig lacks (a toeless leg's toe) has no height, which reads as held: not counted.
+  const bool toe = leg.columns.toe >= 0;
+  auto held = [&](Eigen::Index t) {
+    return s.held != nullptr && ((*s.held)(t, leg.joints[0]) > 0.5 || (toe && (*s.held)(t, leg.joints[1]) > 0.5));
+  };
   for (Eigen::Index t = 0; t < frames; ++t)
-    s.pinned[t] = s.planted(t, leg.joints[0]) > 0.5 || s.planted(t, leg.joints[1]) > 0.5 ||
-                  (s.held != nullptr && ((*s.held)(t, leg.joints[0]) > 0.5 || (*s.held)(t, leg.joints[1]) > 0.5));
+    s.pinned[t] = s.planted(t, leg.joints[0]) > 0.5 || s.planted(t, leg.joints[1]) > 0.5 || held(t);
   for (Eigen::Index t = 0; t < frames;) {
     if (s.pinned[t]) {
       ++t;

@@ -133,8 +133,9 @@ struct FootLockLimits {
 // once scratch has size F.
 // limits: see FootLockLimits; with planted_speed the lock may run up to seven times.
 // held: when given (F x kFootJoints, planted_feet.h's order), 1 where the takes mixed plant that
-// foot joint: a foot is pinned over those frames too (a foot the takes stand on, which the mix
-// lifts before it comes down, is held over its spot, not eased towards its next run).
+// foot joint (read only for the joints the rig has): a foot is pinned over those frames too (a
+// foot the takes stand on, which the mix lifts before it comes down, is held over its spot, not
+// eased towards its next run).
 void apply_foot_lock(Eigen::MatrixXd& world, const FootRig& rig, FootLockScratch& scratch,
                      const Eigen::MatrixXd* drift = nullptr, const FootLockLimits& limits = {},
                      const Eigen::MatrixXd* held = nullptr);

@@ -487,6 +487,22 @@ TEST_CASE("palette: planted feet of a mix and a transfer move as their takes' do
     CHECK(m.foot_sliding_inputs == p->takes[0].planted.speed);
     check_planted_feet(*p, m, "a Xia walk styled by Bandai old, its own neutral");
   }
+  {
+    // A toeless rig (Aalto: ankles only): the toe it lacks has no height, which must not read as
+    // a foot the content holds on the floor (it did: each leg pinned over the whole take as one
+    // run, its ankle dragged up to a third of the body's height, 1.20 times the content's).
+    const auto p = prepare_takes({shared("wild/aalto_k_walk_fast.bvh"), shared("wild/aalto_k_walk_slow.bvh")}, {});
+    REQUIRE(p->feet.legs[0].toe < 0);
+    const auto d = decompose_takes(*p, params());
+    MixParams mp;
+    mp.min_weight = transfer_min_weight(1);
+    mp.max_weight = transfer_max_weight(1);
+    mp.feet_of_reference = true;
+    mp.path_leash = transfer_path_leash(TransferNeutral::kContent);
+    mp.reference_timing = true;
+    check_planted_feet(*p, mix(*p, *d, transfer_weights({1.0}, TransferNeutral::kContent), mp),
+                       "a fast Aalto walk styled by a slow one, its own neutral");
+  }
 }
 
 TEST_CASE("palette: strength 0 gives back takes whose bones stretch, and loop clips, feet lock on") {
