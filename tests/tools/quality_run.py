@@ -39,7 +39,8 @@ Columns (see MEASURES below for each function):
   s0      transfers: the output at strength 0 against the content, largest per-frame joint
           distance, % of height
   dir     transfers: cosine and size ratio of (output - content) against (style - neutral) on
-          per-joint posture, per-joint amplitude and the stride period
+          per-joint posture, per-joint amplitude and the stride period (the period only where
+          the output's timing is not the content's: --timing mix)
   way     one style clip (no neutral): how far the output's features went towards the style's,
           the projection of (output - content) onto (style - content) over its length
   hips    one style clip: the output's hips' largest horizontal distance from the content's, in
@@ -568,7 +569,11 @@ def transfer_measures(cli, row, takes, args, frames, names, roles, height, bvh, 
     # The change made against the change asked for: (output - content) against (S - N), N the
     # content itself when it is its own neutral.
     period = lambda path: (cli.info(path).get('cycles') or {}).get('period_s') or 0.0
-    out_f = features(frames, roles, height, period(bvh))
+    # On the content's timeline (--timing content, the default) the output's period is the
+    # content's by construction: compared, it would count against every output whose cycles
+    # `info` finds and for none whose it does not.
+    content_timing = '--timing' not in args or args[args.index('--timing') + 1] == 'content'
+    out_f = features(frames, roles, height, 0.0 if content_timing else period(bvh))
     c_f = features(c_frames, c_roles, cli.body_height(content.path), content.period)
     n = takes[1] if len(takes) == 3 else content
     s = takes[-1]
