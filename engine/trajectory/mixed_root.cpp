@@ -88,17 +88,19 @@ void stride_map(const Eigen::MatrixXd& free_ground, const Eigen::VectorXd& free_
     if (b <= a || !(fps > 0.0)) continue;
     const Eigen::Vector2d v = body_travel(free_ground, free_heading, a, b, t, fps);
     const Eigen::Vector2d w = body_travel(ground, heading, a, b, t, fps);
-    // Shorter steps along the way the free root goes, only. Where the kept root goes faster, the
-    // style's steps are shorter than the pace needs; stretched to it (as far as the legs reach),
-    // the planted feet slid more on the rows tried, not less (Bandai happy styled by Bandai old:
-    // 1.02 times the content's, 1.51 stretched), the legs straightening against the speed limit.
-    // Across the way (a kept heading), a foot mapped sideways is further from its hip too.
+    // Along the way the free root goes only: across it (a kept heading), a foot mapped sideways
+    // is further from its hip. Where the kept root goes faster, the style's steps are shorter than
+    // the pace needs and slide by the difference: they are stretched, by at most
+    // kStrideLongerLimit (a foot lock that eases each run's offset mid-swing, where the foot is
+    // at its fastest, had no room to pin them: stretched then, Bandai happy styled by Bandai old
+    // slid 1.51 times the content's; with the offsets changed on the swing's slow steps, 0.77,
+    // and a Mixamo walk loop styled by the same 0.98, not 1.79).
     const double speed = v.norm();
     if (!(speed > 0.0)) continue;
     const Eigen::Vector2d way = v / speed;
     const double kept = std::max(0.0, w.dot(way));
-    const double shorter = std::min(0.0, (kept - speed) * speed / (speed * speed + still * still));
-    Eigen::Matrix2d change = shorter * way * way.transpose();
+    const double scale = std::min(kStrideLongerLimit, (kept - speed) * speed / (speed * speed + still * still));
+    Eigen::Matrix2d change = scale * way * way.transpose();
     const double size = change.norm();
     if (size > kStrideMapLimit) change *= kStrideMapLimit / size;
     map.row(t) << 1.0 + change(0, 0), change(0, 1), change(1, 0), 1.0 + change(1, 1);

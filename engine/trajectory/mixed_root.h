@@ -50,20 +50,22 @@ constexpr double kPathLeashHeading = 0.05;  // radians: the leash on a heading k
 void keep_near_heading(Eigen::VectorXd& heading, const Eigen::Ref<const Eigen::VectorXd>& path, double leash);
 
 // The stride map of a root kept on a leash (post/stride_warp.h): at each sample, the 2 x 2 map
-// on the body frame's (x, z) (row-major in map's 4 columns) that shortens the feet's way under
-// the body as the kept root goes slower than the free one, each root's travel measured in its own
-// body frame over kStrideWindowSeconds about the sample (a gait cycle or so: the pace, not the
-// sway within a step). For the free travel v (speed |v|, way d = v / |v|) and the kept one w it
-// scales along d by 1 + min(0, w.d - |v|) |v| / (|v|^2 + e^2), e kStrideStillSpeed body heights
-// per second, and leaves the way across as it is: the identity where the kept root goes as fast
-// along d or faster (the style's own step is as long as its legs took it: stretching it lifts
-// or slides the feet), and fading to it where the free root barely moves (a stand, a turn on the
-// spot: no stride to fit). The scale is at least 1 - kStrideMapLimit: a pace far below the free
-// root's is not a stride to fold a leg to. free_ground, ground: U x 2; free_heading, heading: U.
-// Writes map (U x 4); allocation-free when it has that size. O(U).
+// on the body frame's (x, z) (row-major in map's 4 columns) that fits the feet's way under the
+// body to the kept root's pace, each root's travel measured in its own body frame over
+// kStrideWindowSeconds about the sample (a gait cycle or so: the pace, not the sway within a
+// step). For the free travel v (speed |v|, way d = v / |v|) and the kept one w it scales along d
+// by 1 + min(kStrideLongerLimit, (w.d - |v|) |v| / (|v|^2 + e^2)), e kStrideStillSpeed body
+// heights per second, and leaves the way across as it is: shorter steps where the kept root goes
+// slower along d, longer ones (by at most kStrideLongerLimit: the legs' reach and the speed limit
+// bound the rest) where it goes faster, and fading to the identity where the free root barely
+// moves (a stand, a turn on the spot: no stride to fit). The scale is at least 1 -
+// kStrideMapLimit: a pace far below the free root's is not a stride to fold a leg to.
+// free_ground, ground: U x 2; free_heading, heading: U. Writes map (U x 4); allocation-free when
+// it has that size. O(U).
 constexpr double kStrideWindowSeconds = 1.0;
 constexpr double kStrideStillSpeed = 0.1;
 constexpr double kStrideMapLimit = 0.6;
+constexpr double kStrideLongerLimit = 0.5;
 void stride_map(const Eigen::MatrixXd& free_ground, const Eigen::VectorXd& free_heading, const Eigen::MatrixXd& ground,
                 const Eigen::VectorXd& heading, double fps, double body_height, Eigen::MatrixXd& map);
 

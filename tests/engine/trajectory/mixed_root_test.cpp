@@ -139,11 +139,19 @@ TEST_CASE("stride_map: the free root's pace to the kept root's, in each one's bo
   straight(0.0, 0.0, 0.0, free_g, free_h);
   stride_map(free_g, free_h, kept_g, kept_h, 30.0, 1.0, map);
   for (int t = 0; t < 61; ++t) CHECK(map.row(t) == Eigen::RowVector4d(1.0, 0.0, 0.0, 1.0));
-  // Kept faster than free: strides are never stretched.
+  // Kept a fifth faster than free: the stride along the way stretched, 1 + (1.2 - 1) 1 / (1 + 0.01);
+  // twice as fast: stretched by the limit alone.
   straight(1.0, 0.0, 0.0, free_g, free_h);
+  straight(1.2, 0.0, 0.0, kept_g, kept_h);
+  stride_map(free_g, free_h, kept_g, kept_h, 30.0, 1.0, map);
+  for (int t : {0, 30, 60}) {
+    CHECK(map(t, 0) == Approx(1.0));
+    CHECK(map(t, 1) == Approx(0.0).margin(1e-12));
+    CHECK(map(t, 3) == Approx(1.0 + 0.2 / 1.01));
+  }
   straight(2.0, 0.0, 0.0, kept_g, kept_h);
   stride_map(free_g, free_h, kept_g, kept_h, 30.0, 1.0, map);
-  for (int t = 0; t < 61; ++t) CHECK(map.row(t) == Eigen::RowVector4d(1.0, 0.0, 0.0, 1.0));
+  for (int t : {0, 30, 60}) CHECK(map(t, 3) == Approx(1.0 + kStrideLongerLimit));
   // Kept at a tenth of the pace, across the way: none of it along the way, the scale held to the limit.
   straight(2.0, 0.0, 0.0, free_g, free_h);
   straight(0.2, 0.5 * 3.14159265358979323846, 0.0, kept_g, kept_h);
