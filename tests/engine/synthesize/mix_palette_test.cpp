@@ -52,6 +52,19 @@ MixResult mix(const PreparedTakes& p, const Decomposed& d, std::vector<double> w
   return out;
 }
 
+// Takes 0 and 1 as `transfer` makes them with no neutral at strength 1: take 1's style on take 0,
+// its own neutral, on its timeline and path.
+MixResult own_transfer(const PreparedTakes& p) {
+  const auto d = decompose_takes(p, params());
+  MixParams mp;
+  mp.min_weight = transfer_min_weight(1);
+  mp.max_weight = transfer_max_weight(1);
+  mp.feet_of_reference = true;
+  mp.path_leash = transfer_path_leash(TransferNeutral::kContent);
+  mp.reference_timing = true;  // on the content's timeline, as transfer is
+  return mix(p, *d, transfer_weights({1.0}, TransferNeutral::kContent), mp);
+}
+
 std::vector<double> one_hot(int n, int i) {
   std::vector<double> w(static_cast<size_t>(n), 0.0);
   w[static_cast<size_t>(i)] = 1.0;
@@ -457,14 +470,7 @@ TEST_CASE("palette: planted feet of a mix and a transfer move as their takes' do
                                   shared("bandai_walk_old.bvh")},
                                  {});
     REQUIRE(p->takes[0].cycles.loops());
-    const auto d = decompose_takes(*p, params());
-    MixParams mp;
-    mp.min_weight = transfer_min_weight(1);
-    mp.max_weight = transfer_max_weight(1);
-    mp.feet_of_reference = true;
-    mp.path_leash = transfer_path_leash(TransferNeutral::kContent);
-    mp.reference_timing = true;  // on the content's timeline, as transfer is
-    const MixResult m = mix(*p, *d, transfer_weights({1.0}, TransferNeutral::kContent), mp);
+    const MixResult m = own_transfer(*p);
     REQUIRE(m.motion.loop.frames() > 0);
     check_planted_feet(*p, m, "a Mixamo walk loop styled by Bandai old, its own neutral");
   }
@@ -474,14 +480,7 @@ TEST_CASE("palette: planted feet of a mix and a transfer move as their takes' do
     // only where the offset between runs changes on the swing's slow steps (spread mid-swing, at
     // the foot's fastest, the speed limit left it no room: 2.5 times the content's).
     const auto p = prepare_takes({shared("wild/xia_old_13.bvh"), shared("bandai_walk_old.bvh")}, {});
-    const auto d = decompose_takes(*p, params());
-    MixParams mp;
-    mp.min_weight = transfer_min_weight(1);
-    mp.max_weight = transfer_max_weight(1);
-    mp.feet_of_reference = true;
-    mp.path_leash = transfer_path_leash(TransferNeutral::kContent);
-    mp.reference_timing = true;
-    const MixResult m = mix(*p, *d, transfer_weights({1.0}, TransferNeutral::kContent), mp);
+    const MixResult m = own_transfer(*p);
     CHECK(m.foot_sliding_inputs == p->takes[0].planted.speed);
     check_planted_feet(*p, m, "a Xia walk styled by Bandai old, its own neutral");
   }
@@ -491,14 +490,7 @@ TEST_CASE("palette: planted feet of a mix and a transfer move as their takes' do
     // run, its ankle dragged up to a third of the body's height, 1.20 times the content's).
     const auto p = prepare_takes({shared("wild/aalto_k_walk_fast.bvh"), shared("wild/aalto_k_walk_slow.bvh")}, {});
     REQUIRE(p->feet.legs[0].toe < 0);
-    const auto d = decompose_takes(*p, params());
-    MixParams mp;
-    mp.min_weight = transfer_min_weight(1);
-    mp.max_weight = transfer_max_weight(1);
-    mp.feet_of_reference = true;
-    mp.path_leash = transfer_path_leash(TransferNeutral::kContent);
-    mp.reference_timing = true;
-    check_planted_feet(*p, mix(*p, *d, transfer_weights({1.0}, TransferNeutral::kContent), mp),
+    check_planted_feet(*p, own_transfer(*p),
                        "a fast Aalto walk styled by a slow one, its own neutral");
   }
 }
