@@ -564,7 +564,7 @@ void swing_profile(const Eigen::MatrixXd& world, const LockedLeg& leg, double fa
 }
 
 // Each run's offsets scaled down where the change of offset before or after it (spread over a
-// swing, or a fade) would move the foot faster than `fastest` units a frame: on every step of the
+// swing as s.swing shares it, or a fade) would move the foot faster than `fastest` units a frame: on every step of the
 // swing the foot's own speed plus the offset's change at most that (each run may take half of a
 // swing's room, a fade's whole). A run next to a swing of a few frames (a foot that barely leaves
 // the band) or a swing already near the takes' fastest is pinned in part rather than make the
@@ -613,10 +613,9 @@ void fit_to_swings(const Eigen::MatrixXd& world, const LockedLeg& leg, int ramp,
 }
 
 // The offsets between runs (s.target, s.weight 1 wherever the ankle moves, s.ease): the change
-// from one run to the next spread over the whole swing (smoothstep: no jump in speed at landing
-// or lift-off, and little added to the swing, where a fade of a few frames at landing or lift-off
-// would add it all at the foot's fastest moments); before the first run and after the last a fade
-// over ramp frames. O(F).
+// from one run to the next spread over the whole swing as swing_profile shares it (s.swing: no
+// jump in speed at landing or lift-off, most of it on the swing's slow steps); before the first
+// run and after the last a fade over ramp frames. O(F).
 void ease_between_runs(Eigen::Index frames, int ramp, FootLockScratch& s) {
   s.weight.setZero(frames);
   s.ease.setConstant(frames, -1.0);
