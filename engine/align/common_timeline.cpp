@@ -45,6 +45,9 @@ class WarpReader {
   Eigen::Index segment_ = 0;
 };
 
+// Reference frames this close to a whole frame are on it.
+constexpr double kOnFrame = 1e-9;
+
 }  // namespace
 
 CommonTimeline common_timeline(const std::vector<const TimeWarp*>& warps) {
@@ -53,9 +56,25 @@ CommonTimeline common_timeline(const std::vector<const TimeWarp*>& warps) {
     if (w->samples() == 0) throw InputError("cannot build a common timeline on an empty time warp");
   CommonTimeline t;
   if (warps.size() == 1) {
-    t.frames = {warps[0]->a, warps[0]->b};
+    const TimeWarp& w = *warps[0];
+    std::vector<double> reference, take;
+    for (Eigen::Index s = 0; s < w.a.size(); ++s) {
+      if (s > 0) {  // the reference's whole frames the warp steps over, on the warp's line
+        const double a0 = w.a[s - 1], a1 = w.a[s];
+        for (double r = std::floor(a0) + 1.0; r < a1 - kOnFrame; r += 1.0) {
+          if (r <= a0 + kOnFrame) continue;
+          reference.push_back(r);
+          take.push_back(w.b[s - 1] + (r - a0) / (a1 - a0) * (w.b[s] - w.b[s - 1]));
+        }
+      }
+      reference.push_back(w.a[s]);
+      take.push_back(w.b[s]);
+    }
+    const Eigen::Index samples = static_cast<Eigen::Index>(reference.size());
+    t.frames = {Eigen::Map<const Eigen::VectorXd>(reference.data(), samples),
+                Eigen::Map<const Eigen::VectorXd>(take.data(), samples)};
     t.first = {0, 0};
-    t.last = {warps[0]->samples() - 1, warps[0]->samples() - 1};
+    t.last = {static_cast<int>(samples) - 1, static_cast<int>(samples) - 1};
     return t;
   }
   // The union of the matched ranges, with every range's ends as samples.
@@ -75,12 +94,17 @@ CommonTimeline common_timeline(const std::vector<const TimeWarp*>& warps) {
     reference.push_back(r);
     for (size_t i = 0; i < readers.size(); ++i) takes[i].push_back(readers[i].at(r));
     if (r >= last) break;
+    // The next knot: a range's end or the reference's next whole frame, whichever comes first;
+    // the stretch to it split evenly, as finely as the fastest take over it asks.
+    while (next_end < ends.size() && ends[next_end] <= r + kOnFrame) ++next_end;
+    const double whole = std::floor(r + kOnFrame) + 1.0;
+    const double knot = std::min(next_end < ends.size() ? ends[next_end] : last, whole);
     double slope = 1.0;
-    for (WarpReader& reader : readers) slope = std::max(slope, reader.max_slope(r, 1.0));
+    for (WarpReader& reader : readers) slope = std::max(slope, reader.max_slope(r, knot - r));
     const double step = std::max(kMinCommonStep, 1.0 / slope);
-    while (next_end < ends.size() && ends[next_end] <= r + 1e-9) ++next_end;
-    const double stop = next_end < ends.size() ? ends[next_end] : last;
-    r = stop - r <= step * 1.000001 ? stop : r + step;
+    const double parts = std::ceil((knot - r) / step - 1e-6);
+    r = parts <= 1.0 ? knot : r + (knot - r) / parts;
+    if (knot - r <= kOnFrame) r = knot;
   }
   const Eigen::Index samples = static_cast<Eigen::Index>(reference.size());
   t.frames.resize(warps.size() + 1);

@@ -21,15 +21,20 @@ struct CommonTimeline {
 };
 
 // The common timeline of warps[i - 1] (reference onto take i, warp.a the reference's frames).
-// One warp: its own samples, unchanged (so a palette of two takes is the pair's blend exactly).
-// Several: the reference's frames that any warp matches (the union of their matched ranges,
-// each range's ends among the samples), stepped by at most one reference frame and by less where
-// a matched take runs faster (1 / its largest slope over the step), but never below
-// kMinCommonStep, so a warp that skips frames (the paper's) does not multiply the samples. Each
-// take's frame is its warp read at the reference's frame, linearly between samples, held at its
-// ends outside its range. A mix then plays the stretch every take with a weight matches, so a
-// take with weight 0 does not shorten it. Throws InputError on no warps or an empty warp.
-// O(sum of warp lengths + U x N).
+// Every whole reference frame within the timeline is one of its samples: a mix played on the
+// reference's own clock (a transfer on its content's timeline) reads the reference's poses, paths
+// and contacts at its own frames, not interpolated between samples either side (which smoothed a
+// swinging toe by up to 0.35% of the body's height, so that strength 0 was not the content).
+// One warp: its own samples, with the reference's whole frames it steps over added on its line
+// (the same piecewise-linear warp, so a palette of two takes is the pair's blend). Several: the
+// reference's frames that any warp matches (the union of their matched ranges, each range's ends
+// among the samples), each stretch between knots (those ends and the whole frames) split evenly
+// into steps of at most one reference frame and less where a matched take runs faster (1 / its
+// largest slope over the stretch), but never below kMinCommonStep, so a warp that skips frames
+// (the paper's) does not multiply the samples. Each take's frame is its warp read at the
+// reference's frame, linearly between samples, held at its ends outside its range. A mix then
+// plays the stretch every take with a weight matches, so a take with weight 0 does not shorten
+// it. Throws InputError on no warps or an empty warp. O(sum of warp lengths + U x N).
 constexpr double kMinCommonStep = 0.25;
 CommonTimeline common_timeline(const std::vector<const TimeWarp*>& warps);
 

@@ -14,7 +14,7 @@ namespace {
 // advance from sample k - 1 to k (negative advances hold). One pass to count the frames, one to
 // place them: nothing is allocated but u.
 template <typename Step>
-void timeline_from_steps(int samples, const Step& step, Eigen::VectorXd& u) {
+double timeline_from_steps(int samples, const Step& step, Eigen::VectorXd& u) {
   double total = 0.0;
   for (int k = 1; k < samples; ++k) total += std::max(0.0, step(k));
   const int frames = static_cast<int>(std::floor(total + 1e-9)) + 1;
@@ -35,6 +35,7 @@ void timeline_from_steps(int samples, const Step& step, Eigen::VectorXd& u) {
     const double span = after - before;
     u[f] = k + (span > 0 ? std::clamp((f - before) / span, 0.0, 1.0) : 0.0);
   }
+  return total;
 }
 
 }  // namespace
@@ -66,22 +67,23 @@ double mixed_step(const CommonTimeline& timeline, const Weight& weight, int k) {
 }  // namespace
 
 void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& weights, int first, int last,
-                    Eigen::VectorXd& u) {
+                    Eigen::VectorXd& u, double* clock_at_last) {
   if (static_cast<int>(weights.size()) != timeline.takes())
     throw InputError("expected " + std::to_string(timeline.takes()) + " timing weights, found " +
                      std::to_string(weights.size()));
   for (double w : weights)
     if (!std::isfinite(w)) throw InputError("expected finite timing weights");
   check_stretch(timeline, first, last);
-  timeline_from_steps(
+  const double total = timeline_from_steps(
       last - first + 1,
       [&](int k) { return mixed_step(timeline, [&](int i) { return weights[static_cast<size_t>(i)]; }, first + k); },
       u);
   u.array() += first;
+  if (clock_at_last != nullptr) *clock_at_last = total;
 }
 
 void mixed_timeline(const CommonTimeline& timeline, const WeightKeys& keys, double fps, int first, int last,
-                    Eigen::VectorXd& u, Eigen::MatrixXd* sample_weights) {
+                    Eigen::VectorXd& u, Eigen::MatrixXd* sample_weights, double* clock_at_last) {
   validate_keys(keys, timeline.takes());
   if (keys.empty()) throw InputError("cannot time a mix by keys without a key");
   if (!(fps > 0.0) || !std::isfinite(fps)) throw InputError("expected a frame rate above 0 to time keys in seconds");
@@ -102,22 +104,26 @@ void mixed_timeline(const CommonTimeline& timeline, const WeightKeys& keys, doub
       clock += std::max(0.0, steps[k + 1]);
     }
   }
-  timeline_from_steps(samples, [&](int k) { return steps[k]; }, u);
+  const double total = timeline_from_steps(samples, [&](int k) { return steps[k]; }, u);
   u.array() += first;
+  if (clock_at_last != nullptr) *clock_at_last = total;
 }
 
-void land_on_last(Eigen::VectorXd& u, double last) {
+void land_on_last(Eigen::VectorXd& u, double last, double clock_at_last) {
   const Eigen::Index k = u.size();
   if (k < 2) return;
-  const double step = u[k - 1] - u[k - 2];
-  if (!(step > 0.0)) return;
-  // The index (fractional) at which the clock reaches `last`, its last step carried on.
-  const double reach = double(k - 1) + std::max(0.0, last - u[k - 1]) / step;
+  // The clock's end: at frame k - 1 it is at u's last, at clock_at_last (not below) on `last`.
+  const double reach = std::max(clock_at_last, double(k - 1));
   const Eigen::Index frames = std::max<Eigen::Index>(2, std::lround(reach) + 1);
   const Eigen::VectorXd clock = u;
   u.resize(frames);
   for (Eigen::Index j = 0; j < frames; ++j) {
     const double x = double(j) * reach / double(frames - 1);
+    if (x >= double(k - 1)) {  // between u's last frame and the clock's end
+      const double tail = reach - double(k - 1);
+      u[j] = tail > 0.0 ? clock[k - 1] + (x - double(k - 1)) / tail * (last - clock[k - 1]) : last;
+      continue;
+    }
     const Eigen::Index r = std::min<Eigen::Index>(static_cast<Eigen::Index>(x), k - 2);
     u[j] = clock[r] + (x - double(r)) * (clock[r + 1] - clock[r]);
   }

@@ -18,12 +18,13 @@ namespace mostyle {
 // to the next (weights: one per take, summing to 1; negative ones exaggerate), but never less than
 // the slowest weighted take advances, so that negative weights cannot stall the clock; T is linear
 // between samples. Writes each output frame's fractional sample position (first..last) into u
-// (floor(T(last)) + 1 frames; no allocation when it has that size). Two takes with weights
+// (floor(T(last)) + 1 frames; no allocation when it has that size) and, when clock_at_last is
+// given, T(last) there (output frames, fractional). Two takes with weights
 // (1 - w, w) on a one-warp timeline play at A's timing and length for w = 0 and at B's for w = 1.
 // Throws InputError on a weight count that is not the takes', a non-finite weight, or an empty
 // or out-of-range stretch. O((last - first) x N + frames).
 void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& weights, int first, int last,
-                    Eigen::VectorXd& u);
+                    Eigen::VectorXd& u, double* clock_at_last = nullptr);
 
 // The same with the weights keyed in time (weight_keys.h, validated for the timeline's takes):
 // the clock's advance from sample k - 1 to k takes the keys' weights at the output time the clock
@@ -32,14 +33,17 @@ void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& w
 // sample's output time ((last - first + 1) x N), for the root and contacts. Throws as the above.
 // O((last - first) x N + frames); allocates.
 void mixed_timeline(const CommonTimeline& timeline, const WeightKeys& keys, double fps, int first, int last,
-                    Eigen::VectorXd& u, Eigen::MatrixXd* sample_weights = nullptr);
+                    Eigen::VectorXd& u, Eigen::MatrixXd* sample_weights = nullptr, double* clock_at_last = nullptr);
 
 // Output frames (u: K sample positions, increasing, from mixed_timeline) retimed so that the last
 // lands exactly on sample `last`: a whole loop (its last sample repeats its first pose) then ends
-// on a frame, to be cut off as the loop closes. The clock's end, where it would reach `last`
-// (a fraction of a frame past u's last, at its last step), is rounded to a whole number of frames
-// and the clock stretched or squeezed evenly to it (by at most half a frame in all). u keeps at
-// least two frames. O(K); allocates.
-void land_on_last(Eigen::VectorXd& u, double last);
+// on a frame, to be cut off as the loop closes. The clock's end, clock_at_last (mixed_timeline's
+// T(last), a fraction of a frame past u's last), is rounded to a whole number of frames and the
+// clock stretched or squeezed evenly to it (by at most half a frame in all); between u's last
+// frame and `last` the clock runs linearly. Read from the clock, not from u's last step carried
+// on: samples are not evenly spread in time (the reference's whole frames are among them), so a
+// last step carried on could end a frame off and the loop's seam then step by twice a frame. u
+// keeps at least two frames. O(K); allocates.
+void land_on_last(Eigen::VectorXd& u, double last, double clock_at_last);
 
 }  // namespace mostyle

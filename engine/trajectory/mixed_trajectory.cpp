@@ -48,10 +48,11 @@ FinishOptions output_clock(const PreparedTakes& p, const WeightKeys& keys, bool 
                            MixedTrajectory& s, Eigen::MatrixXd& sources) {
   const int n = p.size();
   const bool keyed = !keys.empty();
+  double clock_at_last = 0.0;
   if (keyed && !reference_timing) {
-    mixed_timeline(p.timeline, keys, p.fps, st.first, st.last, s.u, &s.sample_w);
+    mixed_timeline(p.timeline, keys, p.fps, st.first, st.last, s.u, &s.sample_w, &clock_at_last);
   } else {
-    mixed_timeline(p.timeline, timing, st.first, st.last, s.u);
+    mixed_timeline(p.timeline, timing, st.first, st.last, s.u, &clock_at_last);
     if (keyed) {  // the reference's clock: each sample's weights at the reference's time there
       s.sample_w.resize(st.length(), n);
       std::vector<double> w;
@@ -65,7 +66,7 @@ FinishOptions output_clock(const PreparedTakes& p, const WeightKeys& keys, bool 
   FinishOptions finish = options;
   finish.closed = shows_whole_loop(p, st.first, st.last);
   if (finish.closed) {
-    land_on_last(s.u, st.last);
+    land_on_last(s.u, st.last, clock_at_last);
     finish.loop = false;
   }
   s.u_stretch = s.u.array() - double(st.first);

@@ -48,12 +48,36 @@ TimeWarp random_warp(std::mt19937& rng, int samples) {
 
 }  // namespace
 
+// Whether every whole reference frame from the timeline's first sample to its last is one of its
+// samples (so a take read at the reference's own frames is read on its frames, not between).
+bool whole_frames_sampled(const CommonTimeline& t) {
+  const Eigen::VectorXd& r = t.frames[0];
+  for (double f = std::ceil(r[0] - 1e-9); f <= r[r.size() - 1] + 1e-9; f += 1.0)
+    if ((r.array() - f).abs().minCoeff() > 1e-9) return false;
+  return true;
+}
+
 TEST_CASE("one warp is its own common timeline") {
   const TimeWarp w = warp_of({0, 1, 2, 2.5, 3}, {0, 0.5, 1.5, 2.5, 3.5});
   const CommonTimeline t = common_timeline({&w});
   REQUIRE(t.takes() == 2);
   CHECK(t.frames[0] == w.a);
   CHECK(t.frames[1] == w.b);
+}
+
+TEST_CASE("one warp's common timeline gains the reference's whole frames it steps over, on its line") {
+  // Reference frames 1 and 2 fall inside the warp's first two steps: they become samples, B read
+  // on the warp's line there (1 is halfway from 0.5 to 1.5: B 0.5; 2 is 0.5 / 0.7 of 1.5 to 2.2).
+  const TimeWarp w = warp_of({0.5, 1.5, 2.2, 3}, {0, 1, 2, 3});
+  const CommonTimeline t = common_timeline({&w});
+  REQUIRE(t.samples() == 6);
+  const std::vector<double> a{0.5, 1, 1.5, 2, 2.2, 3}, b{0, 0.5, 1, 1 + 0.5 / 0.7, 2, 3};
+  for (int s = 0; s < 6; ++s) {
+    CHECK(t.frames[0][s] == Approx(a[static_cast<size_t>(s)]).margin(1e-12));
+    CHECK(t.frames[1][s] == Approx(b[static_cast<size_t>(s)]).margin(1e-12));
+  }
+  CHECK(t.first == std::vector<int>{0, 0});
+  CHECK(t.last == std::vector<int>{5, 5});
 }
 
 TEST_CASE("a hand-worked common timeline of two warps") {
@@ -89,6 +113,11 @@ TEST_CASE("common timelines of random warps against brute force") {
     for (const TimeWarp& w : warps) pointers.push_back(&w);
     const CommonTimeline t = common_timeline(pointers);
     REQUIRE(t.takes() == takes + 1);
+    CHECK(whole_frames_sampled(t));
+    const CommonTimeline alone = common_timeline({pointers[0]});
+    CHECK(whole_frames_sampled(alone));
+    for (int s = 0; s < alone.samples(); ++s)
+      CHECK(alone.frames[1][s] == Approx(brute_at(warps[0], alone.frames[0][s])).margin(1e-9));
     for (int i = 0; i < takes; ++i) {
       // Each warp's matched range is a stretch of samples, its ends among them.
       CHECK(t.frames[0][t.first[i + 1]] == Approx(warps[i].a[0]).margin(1e-9));

@@ -108,7 +108,13 @@ TEST_CASE("timing: where the blended clock would run backwards, it advances as t
 }
 
 TEST_CASE("timing: w = 0 plays A's frames, w = 1 B's, 0.5 in between", "[timing]") {
-  const TimeWarp w = walk_warp();
+  // The warp as its common timeline samples it (A's whole frames among the samples): the output
+  // frames are read on those samples.
+  const TimeWarp walk = walk_warp();
+  const CommonTimeline on = common_timeline({&walk});
+  TimeWarp w;
+  w.a = on.frames[0];
+  w.b = on.frames[1];
   REQUIRE(w.samples() > 1);
   const double a0 = w.a[0], b0 = w.b[0];
   const double range_a = w.a[w.samples() - 1] - a0, range_b = w.b[w.samples() - 1] - b0;
@@ -120,7 +126,9 @@ TEST_CASE("timing: w = 0 plays A's frames, w = 1 B's, 0.5 in between", "[timing]
   for (Eigen::Index k = 0; k < u0.size(); ++k) {
     INFO("output frame " << k << " at sample " << u0[k]);
     CHECK(at(w.a, u0[k]) - a0 == Approx(k).margin(kExact));  // on A's frames, one per output frame
+    if (a0 == 0.0) CHECK(u0[k] == Approx(std::round(u0[k])).margin(kExact));  // and on samples: A's own poses
   }
+  CHECK(w.a[0] == 0.0);
 
   const Eigen::VectorXd u1 = timeline(w, 1.0);
   CHECK(u1.size() == static_cast<Eigen::Index>(std::floor(range_b + 1e-9)) + 1);
@@ -191,19 +199,46 @@ TEST_CASE("timing: a whole loop's clock lands on its last sample, stretched even
   // reach sample 9 at 10 frames: 11 frames, the last on 9.
   Eigen::VectorXd u(10);
   for (int k = 0; k < 10; ++k) u[k] = 0.9 * k;
-  land_on_last(u, 9.0);
+  land_on_last(u, 9.0, 10.0);
   REQUIRE(u.size() == 11);
   for (int k = 0; k < 11; ++k) CHECK(u[k] == Approx(0.9 * k));
   // Frames every 0.8 reach 8.8 at 12 frames; sample 9 at 11.25: rounded to 11 steps of 9/11.
   u.resize(12);
   for (int k = 0; k < 12; ++k) u[k] = 0.8 * k;
-  land_on_last(u, 9.0);
+  land_on_last(u, 9.0, 11.25);
   REQUIRE(u.size() == 12);
   for (int k = 0; k < 12; ++k) CHECK(u[k] == Approx(9.0 * k / 11.0));
   // Already on it: unchanged.
   u.resize(4);
   u << 0.0, 1.0, 2.0, 3.0;
-  land_on_last(u, 3.0);
+  land_on_last(u, 3.0, 3.0);
   REQUIRE(u.size() == 4);
   CHECK(u[3] == 3.0);
+}
+
+TEST_CASE("timing: a loop's clock lands by the clock's end, not by its last step carried on", "[timing]") {
+  // Frames on samples 0, 2, 4, 5 (the samples twice as dense, then not), and the clock reaching
+  // sample 7 at 3.5 frames (denser again after 5): 3.5 rounds to 4 steps of 3.5 / 4 frames, read
+  // on (0, 0) (1, 2) (2, 4) (3, 5) (3.5, 7). Its last step carried on (one sample a frame) would
+  // have reached sample 7 at frame 5: a frame too many.
+  Eigen::VectorXd u(4);
+  u << 0.0, 2.0, 4.0, 5.0;
+  land_on_last(u, 7.0, 3.5);
+  REQUIRE(u.size() == 5);
+  const double expected[5] = {0.0, 1.75, 3.5, 4.625, 7.0};
+  for (int k = 0; k < 5; ++k) CHECK(u[k] == Approx(expected[k]));
+}
+
+TEST_CASE("timing: the clock's end is given with the frames", "[timing]") {
+  // Frames every 0.9 samples over samples 0..9: T(9) = 10.
+  CommonTimeline t;
+  t.frames = {Eigen::VectorXd::LinSpaced(10, 0, 9), Eigen::VectorXd::LinSpaced(10, 0, 9 / 0.9)};
+  Eigen::VectorXd u;
+  double end = -1.0;
+  mixed_timeline(t, {0.0, 1.0}, 0, 9, u, &end);
+  CHECK(end == Approx(10.0));
+  CHECK(u.size() == 11);
+  end = -1.0;
+  mixed_timeline(t, WeightKeys{{0.0, {0.0, 1.0}}}, 30.0, 0, 9, u, nullptr, &end);
+  CHECK(end == Approx(10.0));
 }
