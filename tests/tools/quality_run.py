@@ -64,10 +64,15 @@ def percentile(values, q):
     return v[min(len(v) - 1, int(q * len(v)))] if v else None
 
 
-def shown_fraction(source_frames, n):
+def shown_fraction(source_frames, n, period=0.0):
     """Fraction of a take's n frames an output shows: frame i counts when the output shows a frame
-    within one of it (source_frames: the take's frame at each output frame; None entries skipped)."""
-    got = set(int(round(f)) for f in source_frames if f is not None)
+    within one of it (source_frames: the take's frame at each output frame; None entries skipped).
+    For a loop (period: its loop's length in these frames, 0 for none), a frame shown is shown a
+    period later too: the loop's end is its start again (a closed output shows the start, and the
+    take's last frame, a copy of its first or a step short of it, is that same moment)."""
+    shown = [f for f in source_frames if f is not None]
+    got = set(int(round(f)) for f in shown)
+    if period > 0: got |= set(int(round(f + period)) for f in shown)
     return sum(1 for i in range(n) if i in got or i - 1 in got or i + 1 in got) / max(1, n)
 
 
@@ -420,6 +425,8 @@ class Take:
         self.duration = info['duration_s']
         self.count, self.kind, self.loop = cycles_of(info)
         self.period = (info.get('cycles') or {}).get('period_s') or 0.0
+        # A loop's length in seconds (its loop frames at its rate), 0 for a take that is no loop.
+        self.loop_s = ((info.get('cycles') or {}).get('loop_frames') or 0) / self.fps if self.loop else 0.0
         self.skeleton = tuple(sorted(j['name'] for j in info.get('joints', [])))
 
     def cycles_label(self):
@@ -528,7 +535,7 @@ def measure(cli, kind, label, takes, options, weights):
         names, frames = read_positions(csv_out)
         row['frames'], row['seconds'] = len(frames), len(frames) / fps
         n_ref = int(round(ref.duration * fps)) + 1
-        row['cover'] = shown_fraction(r['takes'][0]['source_frames'], n_ref)
+        row['cover'] = shown_fraction(r['takes'][0]['source_frames'], n_ref, ref.loop_s * fps)
         if ref.loop or '--loop' in options: row['seam'] = seam_ratio(frames)
         inputs = max(fastest_move(cli.fk(t.path), t.fps, cli.body_height(t.path), max(1, round(t.fps / fps)))
                      for t in takes)
@@ -722,6 +729,8 @@ def self_test():
     check('cover every third', shown_fraction([0, 3, 6, 9], 10) == 1.0)
     check('cover half', abs(shown_fraction([0, 1, 2, 3], 10) - 0.5) < 1e-12)
     check('cover posture-only frames skipped', shown_fraction([None, None], 10) == 0.0)
+    check('cover a loop end shown as its start', shown_fraction([0, 2, 4, 6, 8], 10, 9.0) == 1.0)
+    check('cover no loop, end unseen', shown_fraction([0, 2, 4, 6], 10) == 0.8)
     # Fastest move: one joint at 2 heights/s, a pop of 0.5 heights in one frame.
     line = [[(2.0 * k / 30.0, 0.0, 0.0), (0.0, 1.0, 0.0)] for k in range(300)]
     check('fast steady', abs(fastest_move(line, 30.0, 1.0) - 2.0) < 1e-9)
