@@ -24,12 +24,13 @@ class WarpReader {
     return w_.b[segment_] + f * (w_.b[segment_ + 1] - w_.b[segment_]);
   }
 
-  // The largest take frames per reference frame over the segments that meet [r, r + span].
+  // The largest take frames per reference frame over the segments that meet [r, r + span) (one
+  // that starts at r + span is the next stretch's).
   double max_slope(double r, double span) {
     if (r + span < w_.a[0] || r > w_.a[w_.a.size() - 1]) return 0.0;  // held: not moving
     seek(r);
     double slope = 0.0;
-    for (Eigen::Index s = segment_; s + 1 < w_.a.size() && w_.a[s] <= r + span; ++s) {
+    for (Eigen::Index s = segment_; s + 1 < w_.a.size() && w_.a[s] < r + span; ++s) {
       const double da = w_.a[s + 1] - w_.a[s], db = w_.b[s + 1] - w_.b[s];
       if (da > 0) slope = std::max(slope, db / da);
       else if (db > 0) slope = INFINITY;
@@ -55,28 +56,6 @@ CommonTimeline common_timeline(const std::vector<const TimeWarp*>& warps) {
   for (const TimeWarp* w : warps)
     if (w->samples() == 0) throw InputError("cannot build a common timeline on an empty time warp");
   CommonTimeline t;
-  if (warps.size() == 1) {
-    const TimeWarp& w = *warps[0];
-    std::vector<double> reference, take;
-    for (Eigen::Index s = 0; s < w.a.size(); ++s) {
-      if (s > 0) {  // the reference's whole frames the warp steps over, on the warp's line
-        const double a0 = w.a[s - 1], a1 = w.a[s];
-        for (double r = std::floor(a0) + 1.0; r < a1 - kOnFrame; r += 1.0) {
-          if (r <= a0 + kOnFrame) continue;
-          reference.push_back(r);
-          take.push_back(w.b[s - 1] + (r - a0) / (a1 - a0) * (w.b[s] - w.b[s - 1]));
-        }
-      }
-      reference.push_back(w.a[s]);
-      take.push_back(w.b[s]);
-    }
-    const Eigen::Index samples = static_cast<Eigen::Index>(reference.size());
-    t.frames = {Eigen::Map<const Eigen::VectorXd>(reference.data(), samples),
-                Eigen::Map<const Eigen::VectorXd>(take.data(), samples)};
-    t.first = {0, 0};
-    t.last = {static_cast<int>(samples) - 1, static_cast<int>(samples) - 1};
-    return t;
-  }
   // The union of the matched ranges, with every range's ends as samples.
   std::vector<double> ends;
   for (const TimeWarp* w : warps) {

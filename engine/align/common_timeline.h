@@ -25,10 +25,8 @@ struct CommonTimeline {
 // reference's own clock (a transfer on its content's timeline) reads the reference's poses, paths
 // and contacts at its own frames, not interpolated between samples either side (which smoothed a
 // swinging toe by up to 0.35% of the body's height, so that strength 0 was not the content).
-// One warp: its own samples, with the reference's whole frames it steps over added on its line
-// (the same piecewise-linear warp, so a palette of two takes is the pair's blend). Several: the
-// reference's frames that any warp matches (the union of their matched ranges, each range's ends
-// among the samples), each stretch between knots (those ends and the whole frames) split evenly
+// One warp or several, one way: the reference's frames that any warp matches (the union of their
+// matched ranges, each range's ends among the samples), each stretch between knots (those ends and the whole frames) split evenly
 // into steps of at most one reference frame and less where a matched take runs faster (1 / its
 // largest slope over the stretch), but never below kMinCommonStep, so a warp that skips frames
 // (the paper's) does not multiply the samples. Each take's frame is its warp read at the

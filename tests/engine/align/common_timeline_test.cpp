@@ -57,7 +57,7 @@ bool whole_frames_sampled(const CommonTimeline& t) {
   return true;
 }
 
-TEST_CASE("one warp is its own common timeline") {
+TEST_CASE("one warp on whole frames, no take faster than one frame a sample, is its own common timeline") {
   const TimeWarp w = warp_of({0, 1, 2, 2.5, 3}, {0, 0.5, 1.5, 2.5, 3.5});
   const CommonTimeline t = common_timeline({&w});
   REQUIRE(t.takes() == 2);
@@ -65,13 +65,14 @@ TEST_CASE("one warp is its own common timeline") {
   CHECK(t.frames[1] == w.b);
 }
 
-TEST_CASE("one warp's common timeline gains the reference's whole frames it steps over, on its line") {
-  // Reference frames 1 and 2 fall inside the warp's first two steps: they become samples, B read
-  // on the warp's line there (1 is halfway from 0.5 to 1.5: B 0.5; 2 is 0.5 / 0.7 of 1.5 to 2.2).
+TEST_CASE("one warp's common timeline has the reference's whole frames among its samples") {
+  // Reference 0.5 to 3: knots at 1, 2 and 3. Over 1..2 the warp's steepest segment (1.5 to 2.2,
+  // B one frame in 0.7) runs 1 / 0.7 B frames a reference frame: two steps there, and over 2..3
+  // (slopes 1 / 0.7 and 1 / 0.8) two more, B read on the warp's line at each.
   const TimeWarp w = warp_of({0.5, 1.5, 2.2, 3}, {0, 1, 2, 3});
   const CommonTimeline t = common_timeline({&w});
   REQUIRE(t.samples() == 6);
-  const std::vector<double> a{0.5, 1, 1.5, 2, 2.2, 3}, b{0, 0.5, 1, 1 + 0.5 / 0.7, 2, 3};
+  const std::vector<double> a{0.5, 1, 1.5, 2, 2.5, 3}, b{0, 0.5, 1, 1 + 0.5 / 0.7, 2 + 0.3 / 0.8, 3};
   for (int s = 0; s < 6; ++s) {
     CHECK(t.frames[0][s] == Approx(a[static_cast<size_t>(s)]).margin(1e-12));
     CHECK(t.frames[1][s] == Approx(b[static_cast<size_t>(s)]).margin(1e-12));

@@ -34,9 +34,19 @@ double at(const Eigen::VectorXd& v, double u) {
   return (1 - f) * v[i] + f * v[i + 1];
 }
 
+// A timeline of two takes whose samples are the warp's own (the clock read on given samples;
+// common_timeline's own sampling is its test's).
+CommonTimeline samples_of(const TimeWarp& w) {
+  CommonTimeline t;
+  t.frames = {w.a, w.b};
+  t.first = {0, 0};
+  t.last = {w.samples() - 1, w.samples() - 1};
+  return t;
+}
+
 // The output frames of takes A and B (one warp) mixed with weights (1 - weight, weight).
 Eigen::VectorXd timeline(const TimeWarp& w, double weight) {
-  const CommonTimeline t = common_timeline({&w});
+  const CommonTimeline t = samples_of(w);
   Eigen::VectorXd u;
   mixed_timeline(t, {1.0 - weight, weight}, 0, t.samples() - 1, u);
   return u;
@@ -155,7 +165,7 @@ TEST_CASE("timing: w = 0 plays A's frames, w = 1 B's, 0.5 in between", "[timing]
 
 TEST_CASE("timing: no allocation when u has the right size", "[timing]") {
   const TimeWarp w = warp_of({0, 1, 2, 3}, {0, 2, 4, 6});
-  const CommonTimeline t = common_timeline({&w});
+  const CommonTimeline t = samples_of(w);
   Eigen::VectorXd u(7);
   const double* data = u.data();
   mixed_timeline(t, {0.0, 1.0}, 0, 3, u);
