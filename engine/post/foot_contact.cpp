@@ -23,6 +23,8 @@ constexpr double kTimeEpsilon = 1e-9;
 constexpr double kStraightLeg = 1e-4;
 // Fraction of the leg's length the IK keeps away from full extension or folding.
 constexpr double kExtensionMargin = 1e-9;
+// Bisection steps for a run's fitting shift (fitting_shift): 2^-30 of the balanced shift.
+constexpr int kFitShiftSteps = 30;
 // How far (leg lengths) the knee's pole leans towards where the foot points (apply_foot_lock).
 constexpr double kKneeForwardBias = 0.02;
 // The toe bias is whole once the lock moves the ankle this many leg lengths, less below.
@@ -563,7 +565,38 @@ void swing_profile(const Eigen::MatrixXd& world, const LockedLeg& leg, double fa
   }
 }
 
-// Each run's offsets scaled down where the change of offset before or after it (spread over a
+// The shift (taken off every offset of a run) that lets a run's offsets at its ends (first,
+// last) fit the rooms before and after it, or come as near as they can: the offsets are centred
+// on the run (the least total correction), so where one side's swing has little room and the
+// other's much, the whole pin would be scaled down to the smaller room although moving the pinned
+// spot towards the roomier side fits it. The shift goes from none towards the balanced one (the
+// two ends' offsets in proportion to their rooms, the largest fit), only as far as the fit needs
+// (bisection on that way; each end's distance is convex along it, so where the balanced shift
+// fits, the shifts that fit from there back towards none are one stretch). A run that fits as it
+// is gets none. O(1).
+Eigen::RowVector2d fitting_shift(const Eigen::RowVector2d& first, const Eigen::RowVector2d& last, double before,
+                                 double after) {
+  auto fits = [&](const Eigen::RowVector2d& shift) {
+    return (first - shift).norm() <= before && (last - shift).norm() <= after;
+  };
+  if (fits(Eigen::RowVector2d::Zero())) return Eigen::RowVector2d::Zero();
+  double towards_last;  // the balanced shift: first + towards_last (last - first)
+  if (std::isinf(before) && std::isinf(after)) return Eigen::RowVector2d::Zero();
+  if (std::isinf(before)) towards_last = 1.0;
+  else if (std::isinf(after)) towards_last = 0.0;
+  else if (before + after > 0.0) towards_last = before / (before + after);
+  else return Eigen::RowVector2d::Zero();
+  const Eigen::RowVector2d balanced = first + towards_last * (last - first);
+  if (!fits(balanced)) return balanced;
+  double lo = 0.0, hi = 1.0;  // lo does not fit, hi does
+  for (int i = 0; i < kFitShiftSteps; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (fits(mid * balanced) ? hi : lo) = mid;
+  }
+  return hi * balanced;
+}
+
+// Each run's offsets, shifted as fitting_shift finds, then scaled down where the change of offset before or after it (spread over a
 // swing as s.swing shares it, or a fade) would move the foot faster than `fastest` units a frame: on every step of the
 // swing the foot's own speed plus the offset's change at most that (each run may take half of a
 // swing's room, a fade's whole). A run next to a swing of a few frames (a foot that barely leaves
@@ -604,6 +637,7 @@ void fit_to_swings(const Eigen::MatrixXd& world, const LockedLeg& leg, int ramp,
       after = 0.5 * room(end, to, [&](Eigen::Index u) { return u <= end ? 0.0 : s.swing[u]; });
     }
     auto rows = s.target.middleRows(start, end - start + 1);
+    rows.rowwise() -= fitting_shift(rows.row(0), rows.row(end - start), before, after);
     const double at_start = rows.row(0).norm(), at_end = rows.row(end - start).norm();
     double scale = 1.0;
     if (at_start > before) scale = std::min(scale, before / at_start);

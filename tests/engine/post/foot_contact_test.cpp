@@ -298,6 +298,41 @@ TEST_CASE("the foot lock keeps each swing under a speed, pinning the runs beside
   CHECK(planted_speed(w, rig).speed <= planted_speed(skating, rig).speed);
 }
 
+TEST_CASE("the foot lock moves a run's pin towards the side with room rather than pin it in part", "[foot_contact]") {
+  // The walk cut at frame 138: the left foot's last stance (frames 120-137) runs to the take's
+  // end, so after it nothing limits its offset; before it the swing is held to a speed. Centred
+  // on the run, its pin would ask the swing before it for half the run's slide and be scaled down
+  // to what that swing has room for; moved towards the end, it fits whole.
+  const FootRig rig = test_rig();
+  Eigen::MatrixXd planted_all;
+  const Eigen::MatrixXd long_walk = walk(150, 20.0, &planted_all);
+  const Eigen::MatrixXd skating = long_walk.topRows(138);
+  const Eigen::MatrixXd planted = planted_all.topRows(138);
+  REQUIRE(planted(137, 0) == 1.0);
+  REQUIRE(planted(119, 0) == 0.0);
+  auto ankle_speed = [&](const Eigen::MatrixXd& w, int f) { return (at(w, f + 1, 2) - at(w, f, 2)).norm() * kFps; };
+  double fastest = 0.0;
+  for (int f = 0; f + 1 < 138; ++f) fastest = std::max(fastest, ankle_speed(skating, f));
+  FootLockScratch scratch;
+  Eigen::MatrixXd free = skating;
+  apply_foot_lock(free, rig, scratch);
+  double fastest_free = 0.0;
+  for (int f = 0; f + 1 < 138; ++f) fastest_free = std::max(fastest_free, ankle_speed(free, f));
+  const double limit = 0.5 * (fastest + fastest_free);
+  FootLockLimits limits;
+  limits.fastest_joint = limit;
+  Eigen::MatrixXd w = skating;
+  apply_foot_lock(w, rig, scratch, nullptr, limits);
+  double last_run = 0.0;  // the left ankle's travel over its last stance
+  for (int f = 120; f < 137; ++f) last_run += std::hypot(w(f + 1, 6) - w(f, 6), w(f + 1, 8) - w(f, 8));
+  INFO("last stance: " << last_run << " cm, skating " << 20.0 * 17 / kFps << " cm");
+  CHECK(last_run < 1e-6);
+  for (int f = 0; f + 1 < 138; ++f) {
+    INFO("frame " << f);
+    CHECK(ankle_speed(w, f) <= limit * (1 + 1e-9));
+  }
+}
+
 TEST_CASE("contacts are tidied as detection tidies them: short breaks filled, short contacts dropped",
           "[foot_contact]") {
   FootRig rig = test_rig();  // 30 fps: breaks of up to 2 frames filled, contacts under 3 frames dropped
