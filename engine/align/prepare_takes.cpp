@@ -303,6 +303,63 @@ std::vector<MajorMapping> map_takes(const std::vector<std::shared_ptr<const Clip
   return mappings;
 }
 
+// A take's cycles at its own rate, with its joints as `mapping` finds them: FK of the hips and
+// legs, their bones, the feet, the canonical frame, contacts and cycles (contacts_and_cycles
+// reads the same columns of the whole pose); the rest of the body only for a take whose feet
+// give no gait.
+TakeCycles own_rate_cycles(const std::shared_ptr<const Clip>& clip, const MajorMapping& mapping) {
+  const std::vector<int> majors = shared_major_joints(mapping, clip->source, mapping, clip->source);
+  auto cycles_of = [&](const std::vector<int>& joints) {
+    const MajorTake major = extract_major_take(*clip, mapping, joints, 0.0);
+    const FootRig feet = make_foot_rig(joints, bone_lengths(major.world, subset_parents(joints)), major.fps);
+    const CanonicalMotion canonical = to_canonical(major.world, 0, feet.legs[0].hip, feet.legs[1].hip);
+    Eigen::MatrixXd contacts;
+    TakeCycles cycles;
+    contacts_and_cycles(major.world, canonical, feet, &contacts, &cycles);
+    return cycles;
+  };
+  std::vector<int> legs;
+  for (int m : majors) {
+    const auto j = static_cast<MajorJoint>(m);
+    if (j == MajorJoint::kHips || (j >= MajorJoint::kLeftHip && j <= MajorJoint::kLeftToe) ||
+        (j >= MajorJoint::kRightHip && j <= MajorJoint::kRightToe))
+      legs.push_back(m);
+  }
+  if (legs.size() < majors.size()) {
+    TakeCycles cycles = cycles_of(legs);
+    if (cycles.kind == CycleKind::kGait) return cycles;
+  }
+  return cycles_of(majors);
+}
+
+// A file's rate this little (relatively) above the working rate is the working rate.
+constexpr double kRateEpsilon = 1e-9;
+
+// A take with no gait cycles at the working rate that has them at its own, higher rate gets its
+// own cycles, carried to the working rate (frame f of the file at f x fps / its rate, rounded,
+// within the take's frames): a strike in the last hundredths of a second of a short clip can
+// fall after the working rate's last frame (a 120 fps Xia walk read at 30 fps loses its last
+// 25 ms, where its left foot lands; at 30 and 24 fps it had no cycles, and blends with it were
+// aligned whole). A loop is left as the working rate finds it (its length must be whole frames
+// there). frames: the take's frames at the working rate.
+void carry_own_rate_cycles(const std::shared_ptr<const Clip>& clip, const MajorMapping& mapping, double fps,
+                           Eigen::Index frames, TakeCycles& cycles) {
+  if (cycles.kind == CycleKind::kGait || cycles.loops() || !(clip->fps() > fps * (1.0 + kRateEpsilon))) return;
+  const TakeCycles own = own_rate_cycles(clip, mapping);
+  if (own.kind != CycleKind::kGait || own.loops() || own.cycles.empty()) return;
+  const double scale = fps / clip->fps();
+  TakeCycles carried = own;
+  carried.cycles.clear();
+  for (const Cycle& c : own.cycles) {
+    const Cycle at{static_cast<int>(std::lround(c.begin * scale)),
+                   static_cast<int>(std::min<long>(std::lround(c.end * scale), static_cast<long>(frames) - 1))};
+    if (at.frames() >= 2 && (carried.cycles.empty() || carried.cycles.back().end <= at.begin)) carried.cycles.push_back(at);
+  }
+  if (carried.cycles.empty()) return;
+  carried.period = own.period * scale;
+  cycles = carried;
+}
+
 // Take i on its own timeline, in the reference's bones (the reference, i = 0, sets them, and
 // the foot rig): world, canonical poses, contacts, cycles, planted feet and fastest joint.
 void prepare_own_take(int i, const std::shared_ptr<const Clip>& clip, const MajorMapping& mapping,
@@ -332,6 +389,7 @@ void prepare_own_take(int i, const std::shared_ptr<const Clip>& clip, const Majo
   t.canonical = to_canonical(t.world, 0, leg[0], leg[3]);
   t.own_local_t = t.canonical.local.transpose();
   contacts_and_cycles(t.world, t.canonical, p.feet, &t.own_contacts, &t.cycles);
+  carry_own_rate_cycles(t.clip, t.mapping, fps, t.world.rows(), t.cycles);
   // A loop clip whose last frame shows its first again is measured without it, as its outputs
   // (cut to the loop, closed at the seam) are.
   const bool closing_last = t.cycles.loops() && t.cycles.loop_frames == t.world.rows() - 1;
@@ -496,35 +554,12 @@ std::vector<int> export_joints(const PreparedTakes& prepared) {
 
 TakeCycles take_cycles(const std::shared_ptr<const Clip>& clip) {
   // What prepare_takes does for the reference of a pair of the take with itself, at its own
-  // rate, and nothing more: FK of the hips and legs, their bones, the feet, the canonical frame,
-  // contacts and cycles (contacts_and_cycles reads the same columns of the whole pose); the rest
-  // of the body only for a take whose feet give no gait.
-  // The skeleton alone first (the motion is read only where the rest pose shows no legs, a
-  // Z-up rig's: then as prepare_takes reads it, with its motion).
+  // rate, and nothing more (own_rate_cycles). The skeleton alone first (the motion is read only
+  // where the rest pose shows no legs, a Z-up rig's: then as prepare_takes reads it, with its
+  // motion).
   MajorMapping mapping = map_major_joints(clip->skeleton);
   if (!has_needed_joints(mapping)) mapping = map_major_joints(*clip);
-  const std::vector<int> majors = shared_major_joints(mapping, clip->source, mapping, clip->source);
-  auto cycles_of = [&](const std::vector<int>& joints) {
-    const MajorTake major = extract_major_take(*clip, mapping, joints, 0.0);
-    const FootRig feet = make_foot_rig(joints, bone_lengths(major.world, subset_parents(joints)), major.fps);
-    const CanonicalMotion canonical = to_canonical(major.world, 0, feet.legs[0].hip, feet.legs[1].hip);
-    Eigen::MatrixXd contacts;
-    TakeCycles cycles;
-    contacts_and_cycles(major.world, canonical, feet, &contacts, &cycles);
-    return cycles;
-  };
-  std::vector<int> legs;
-  for (int m : majors) {
-    const auto j = static_cast<MajorJoint>(m);
-    if (j == MajorJoint::kHips || (j >= MajorJoint::kLeftHip && j <= MajorJoint::kLeftToe) ||
-        (j >= MajorJoint::kRightHip && j <= MajorJoint::kRightToe))
-      legs.push_back(m);
-  }
-  if (legs.size() < majors.size()) {
-    TakeCycles cycles = cycles_of(legs);
-    if (cycles.kind == CycleKind::kGait) return cycles;
-  }
-  return cycles_of(majors);
+  return own_rate_cycles(clip, mapping);
 }
 
 Eigen::VectorXd frames_in_take(const PreparedTake& take, const Eigen::VectorXd& frames) {

@@ -2,7 +2,8 @@
 // The first stage of the one chain (any number of takes, one code path), for 2 to 16 takes of one action; take 0 is the
 // reference, whose skeleton, bones, world and timeline the others are brought onto:
 //   each take, once: its major joints at the working rate (FK), retargeted onto the reference's
-//   bones (the reference as it is), in the canonical frame (canonical_frame.h), its foot contacts;
+//   bones (the reference as it is), in the canonical frame (canonical_frame.h), its foot contacts
+//   and cycles (its own rate's, carried over, where the working rate's frames miss a strike);
 //   each other take: registered onto the reference by cycles when both repeat (its cycles laid
 //   on the reference's, its posture in between: cycle_registration.h; its own timeline is then
 //   the registered one, which covers the whole reference), else aligned whole (left-foot DTW or
