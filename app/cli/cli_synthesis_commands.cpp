@@ -8,6 +8,7 @@
 
 #include "app/cli/cli_common.h"
 #include "app/cli/cli_pipeline_common.h"
+#include "engine/align/warp_position.h"
 #include "engine/export/export_frames.h"
 #include "engine/export/export_solve.h"
 #include "engine/base/clock.h"
@@ -263,7 +264,7 @@ void add_pair_words(const PreparedTakes& prepared, const Decomposed& d, const Mi
   // Per output frame: where in A and B it is, how well they match there, the warp's slope.
   Eigen::VectorXd ratio(result.sample.size()), slope(result.sample.size());
   for (Eigen::Index k = 0; k < result.sample.size(); ++k) {
-    const Eigen::Index u = std::lround(result.sample[k]);
+    const Eigen::Index u = std::lround(warp_position(al.warp, prepared.timeline, 1, result.sample[k]));
     ratio[k] = al.cost_ratio[u];
     slope[k] = al.slope[u];
   }

@@ -10,6 +10,7 @@
 
 #include "ui/panels/layout.h"
 #include "ui/panels/plot.h"
+#include "engine/align/warp_position.h"
 
 namespace mostyle::ui {
 namespace {
@@ -32,13 +33,19 @@ ImU32 heat(float v) {
   return ImGui::ColorConvertFloat4ToU32(ImVec4(0.08f + 0.9f * r, 0.06f + g, std::max(0.05f, b), 1.0f));
 }
 
-// The output frame showing warp sample u (the first at or after it), or -1 without a blend.
-int output_frame_at(const MixResult* blend, double u) {
+// The output frame showing warp sample u (the first at or after it, the last when none), or -1
+// without a blend: the output's frames are common-timeline samples, found on the warp
+// (warp_position.h), in order.
+int output_frame_at(const PreparedTakes& p, const MixResult* blend, double u) {
   if (blend == nullptr || blend->sample.size() == 0) return -1;
-  const double* begin = blend->sample.data();
-  const double* end = begin + blend->sample.size();
-  const double* it = std::lower_bound(begin, end, u);
-  return static_cast<int>(std::min<std::ptrdiff_t>(it - begin, blend->sample.size() - 1));
+  const TimeWarp& warp = p.takes[1].alignment.warp;
+  Eigen::Index lo = 0, hi = blend->sample.size() - 1;
+  while (lo < hi) {
+    const Eigen::Index mid = (lo + hi) / 2;
+    if (warp_position(warp, p.timeline, 1, blend->sample[mid]) < u) lo = mid + 1;
+    else hi = mid;
+  }
+  return static_cast<int>(lo);
 }
 }  // namespace
 
@@ -110,7 +117,9 @@ PairPlot pair_plot(const EditorState& state, const PreparedTakes& p, const MixRe
   double hi = std::max(sa.col(col).maxCoeff(), sb.col(col).maxCoeff());
   if (hi <= lo) hi = lo + 1.0;
   const int current = state.takes.empty() ? 0 : frame_at(state.takes.back(), state.playback.time_s);
-  const double current_u = blend != nullptr && current < blend->sample.size() ? blend->sample[current] : 0.0;
+  const double current_u = blend != nullptr && current < blend->sample.size()
+                               ? warp_position(al.warp, p.timeline, 1, blend->sample[current])
+                               : 0.0;
   return PairPlot{p, al, sa, sb, al.warp, static_cast<int>(sa.rows()), static_cast<int>(sb.rows()),
                   al.warp.samples(), col, lo, hi, hi - lo, current_u};
 }
@@ -257,7 +266,7 @@ void match_tooltip(EditorState& state, const PairPlot& v, const MixResult* blend
   ImGui::SetTooltip("A frame %.1f  <->  B frame %.1f\nmatch cost %.2f x the typical, B runs %.2f x A's speed\n"
                     "click: jump there",
                     warp.a[u], warp.b[u], v.al.cost_ratio[u], v.al.slope[u]);
-  const int frame = output_frame_at(blend, hovered_u);
+  const int frame = output_frame_at(v.p, blend, hovered_u);
   if (clicked && frame >= 0) state.playback.time_s = (frame + 0.5) / v.p.fps;
 }
 
