@@ -7,17 +7,13 @@
 #include <vector>
 
 #include "engine/base/error.h"
+#include "tests/engine/align/made_warps.h"
 
 using namespace mostyle;
+using test::random_warp;
+using test::warp_of;
 
 namespace {
-
-TimeWarp warp_of(std::vector<double> a, std::vector<double> b) {
-  TimeWarp w;
-  w.a = Eigen::Map<Eigen::VectorXd>(a.data(), static_cast<Eigen::Index>(a.size()));
-  w.b = Eigen::Map<Eigen::VectorXd>(b.data(), static_cast<Eigen::Index>(b.size()));
-  return w;
-}
 
 // Brute force: b at reference frame r by scanning every segment.
 double brute_at(const TimeWarp& w, double r) {
@@ -31,19 +27,6 @@ double brute_at(const TimeWarp& w, double r) {
       return w.b[last] + std::clamp(f, 0.0, 1.0) * (w.b[last + 1] - w.b[last]);
     }
   return r <= w.a[0] ? w.b[0] : w.b[w.samples() - 1];
-}
-
-// A random smooth-warp-like curve: slopes between 1/2 and 2, starting somewhere in 0..10.
-TimeWarp random_warp(std::mt19937& rng, int samples) {
-  std::uniform_real_distribution<double> start(0.0, 10.0), slope(0.5, 2.0);
-  std::vector<double> a{start(rng)}, b{start(rng)};
-  for (int s = 1; s < samples; ++s) {
-    const double k = slope(rng);
-    // the faster advances by one frame per sample
-    a.push_back(a.back() + (k > 1 ? 1.0 / k : 1.0));
-    b.push_back(b.back() + (k > 1 ? 1.0 : k));
-  }
-  return warp_of(a, b);
 }
 
 }  // namespace

@@ -2,22 +2,15 @@
 // worked by hand, and against the warp's own samples on random warps.
 #include "engine/align/warp_position.h"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <random>
-#include <vector>
+
+#include "tests/engine/align/made_warps.h"
 
 using namespace mostyle;
-
-namespace {
-
-TimeWarp warp_of(std::vector<double> a, std::vector<double> b) {
-  TimeWarp w;
-  w.a = Eigen::Map<Eigen::VectorXd>(a.data(), static_cast<Eigen::Index>(a.size()));
-  w.b = Eigen::Map<Eigen::VectorXd>(b.data(), static_cast<Eigen::Index>(b.size()));
-  return w;
-}
-
-}  // namespace
+using test::random_warp;
+using test::warp_of;
 
 TEST_CASE("warp position: a timeline sample found on its warp, worked by hand") {
   // Samples of the warp at reference 0.5, 1.5, 2.2, 3; the timeline's at 0.5, 1, 1.5, 2, 2.5, 3
@@ -40,15 +33,8 @@ TEST_CASE("warp position: a timeline sample found on its warp, worked by hand") 
 
 TEST_CASE("warp position: every sample of random warps is found where it is") {
   std::mt19937 rng(5);
-  std::uniform_real_distribution<double> slope(0.5, 2.0);
   for (int trial = 0; trial < 50; ++trial) {
-    std::vector<double> a{0.0}, b{0.0};
-    for (int s = 1; s < 60; ++s) {
-      const double k = slope(rng);
-      a.push_back(a.back() + (k > 1 ? 1.0 / k : 1.0));
-      b.push_back(b.back() + (k > 1 ? 1.0 : k));
-    }
-    const TimeWarp w = warp_of(a, b);
+    const TimeWarp w = random_warp(rng, 60);
     const CommonTimeline t = common_timeline({&w});
     for (int s = 0; s < t.samples(); ++s) {
       const double u = warp_position(w, t, 1, s);

@@ -9,23 +9,14 @@
 #include "engine/align/common_timeline.h"
 #include "engine/align/slope_dtw.h"
 #include "engine/base/error.h"
+#include "tests/engine/align/made_warps.h"
 
 using namespace mostyle;
+using test::warp_of;
 
 namespace {
 
 constexpr double kExact = 1e-9;  // frames: piecewise-linear arithmetic, rounding only
-
-TimeWarp warp_of(std::initializer_list<double> a, std::initializer_list<double> b) {
-  TimeWarp w;
-  w.a.resize(static_cast<Eigen::Index>(a.size()));
-  w.b.resize(static_cast<Eigen::Index>(b.size()));
-  Eigen::Index i = 0;
-  for (double v : a) w.a[i++] = v;
-  i = 0;
-  for (double v : b) w.b[i++] = v;
-  return w;
-}
 
 // v linearly interpolated at fractional sample u, written here independently of the engine.
 double at(const Eigen::VectorXd& v, double u) {
