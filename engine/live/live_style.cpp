@@ -35,6 +35,11 @@ constexpr double kFastestHalfLifeSeconds = 10.0;
 // Where a foot lands away from where its swing was taking it (a strike sooner or later than the
 // phase said), the difference closes over this time after the landing.
 constexpr double kLandingSettleSeconds = 0.15;
+// A foot joint is never nearer its floor than the stream's is to its own, up to this share of
+// the body's height: twice the band the planted-feet measure calls planted (planted_feet.h), so
+// that a style whose swings skim the floor does not glide a foot along it where the stream lifts
+// it, and no foot goes below the floor.
+constexpr double kSwingClearance = 2.0 * kPlantedHeightFraction;
 // The first frame tells the up axis when the head stands this share of the body's height above
 // the ankles along it, and along it more than along the other two together.
 constexpr double kUpAxisShare = 0.5;
@@ -64,10 +69,15 @@ struct FootJointLock {
   Eigen::Vector3d offset = Eigen::Vector3d::Zero();  // this frame's offset
 };
 
+// A foot is planted for the lock while its ankle or its toe is (LiveFeet of each): from the heel
+// strike, or the toe's in a run, to the toe-off, so that a foot rolling onto its toe pivots as the
+// stream's does.
 struct LegLock {
   std::array<FootJointLock, 2> joints;  // ankle, toe (column -1 where the rig has none)
   bool planted = false;
   long landed = -1, lifted = -1;  // the frames its landing and its lift were seen
+  long strike = -1, lift = -1;    // the frames they happened (seen a few frames late)
+  double last_swing = 0.0;        // the stream's last swing of this foot, frames (0: none yet)
   double swing_frames = 1.0;      // how long its swing is expected to last from `lifted`
 };
 
@@ -107,7 +117,8 @@ std::vector<int> posed_joints(const Skeleton& skeleton, const std::vector<int>& 
 }  // namespace
 
 struct LiveStyle::State {
-  State(const LiveFeet& f, const LivePhase& p, ExportFrameSolver&& s) : feet(f), phase(p), solver(std::move(s)) {}
+  State(const LiveFeet& f, const LivePhase& p, ExportFrameSolver&& s)
+      : feet(f), toes(f), phase(p), solver(std::move(s)) {}
 
   Skeleton skeleton;
   double fps = 30.0;
@@ -126,7 +137,8 @@ struct LiveStyle::State {
   int phase_row = 0, next_phase_row = 0;  // the change tables' rows this frame's phase lies between
   double phase_fraction = 0.0;            // and how far towards the second
   bool has_heading = false;
-  LiveFeet feet;
+  LiveFeet feet;  // the ankles' contacts: the gait's strikes, and the lock's
+  LiveFeet toes;  // the toes' (the ankles again on a leg without one): the lock's
   LivePhase phase;
   std::vector<double> from, to, eased;  // strengths: the ease's start and end, and where it is
   double ease = 1.0;                    // its progress, 0 to 1
@@ -147,7 +159,9 @@ struct LiveStyle::State {
   void place_targets();
   Eigen::Vector3d joint_change(int style, int column, bool stance_mean, int side) const;
   void lock_feet();
-  void lock_joint(LegLock& leg, FootJointLock& joint, int side);
+  void plant_leg(LegLock& leg, int side, bool* struck, bool* lifted);
+  double lowest(const FootJointLock& joint, double floor) const;
+  void lock_joint(LegLock& leg, FootJointLock& joint, int side, bool struck, bool lifted);
   void limit_speed();
   void solve(const double* values, double* out);
 };
@@ -215,6 +229,8 @@ void LiveStyle::State::to_canonical() {
 void LiveStyle::State::track_gait() {
   const int la = rig.legs[0].ankle, ra = rig.legs[1].ankle;
   feet.update(at(in, la), at(in, ra));
+  const int lt = rig.legs[0].toe, rt = rig.legs[1].toe;
+  toes.update(at(in, lt >= 0 ? lt : la), at(in, rt >= 0 ? rt : ra));
   std::array<long, 2> strikes{{-1, -1}};
   for (size_t side = 0; side < 2; ++side)
     if (feet.foot(static_cast<int>(side)).struck_now) strikes[side] = feet.foot(static_cast<int>(side)).strike;
@@ -298,29 +314,23 @@ Eigen::Vector3d LiveStyle::State::joint_change(int style, int column, bool stanc
 }
 
 // A foot joint's offset from the stream's: while planted, where the change put it when the foot
-// landed (the change over the neutral's stance, at each style's strength now, so a planted foot
-// stays planted), what the landing differed from that settling over kLandingSettleSeconds;
+// landed (the ankle's change over the neutral's stance, at each style's strength now, so a
+// planted foot stays planted; the toe takes the ankle's, so that the planted foot is the stream's
+// moved whole and rolls onto its toe as the stream's does), what the landing differed from that
+// settling over kLandingSettleSeconds;
 // over a swing, from where the lock held it at the lift to where the next stance will hold it
 // (smoothstep over the swing expected), about the change at this phase.
-void LiveStyle::State::lock_joint(LegLock& leg, FootJointLock& joint, int side) {
+void LiveStyle::State::lock_joint(LegLock& leg, FootJointLock& joint, int side, bool struck, bool lifted) {
   if (joint.column < 0) return;
   const Eigen::Vector3d free = at(target, joint.column) - at(in, joint.column);
-  const LiveFoot& foot = feet.foot(side);
-  if (foot.struck_now) {  // held from here on
-    leg.planted = true;
-    leg.landed = frames;
+  if (struck) {  // held from here on
     Eigen::Vector3d held = Eigen::Vector3d::Zero();
     for (size_t i = 0; i < eased.size(); ++i) {
-      joint.hold[i] = joint_change(static_cast<int>(i), joint.column, true, side);
+      joint.hold[i] = joint_change(static_cast<int>(i), leg.joints[0].column, true, side);
       held += eased[i] * joint.hold[i];
     }
     joint.settle = joint.offset - held;
-  } else if (foot.lifted_now) {  // eased away from here
-    leg.planted = false;
-    leg.lifted = frames;
-    const double period = phase.period_frames() > 0 ? phase.period_frames() : change.period_s * fps;
-    leg.swing_frames = std::max(1.0, (1.0 - change.stance_share[static_cast<size_t>(side)]) * period -
-                                         double(frames - foot.lift));
+  } else if (lifted) {  // eased away from here
     joint.lift = joint.offset - free;
   }
   if (leg.planted) {
@@ -331,10 +341,36 @@ void LiveStyle::State::lock_joint(LegLock& leg, FootJointLock& joint, int side) 
   Eigen::Vector3d toward = Eigen::Vector3d::Zero();
   for (size_t i = 0; i < eased.size(); ++i)
     if (eased[i] != 0.0)
-      toward += eased[i] * (joint_change(static_cast<int>(i), joint.column, true, side) -
+      toward += eased[i] * (joint_change(static_cast<int>(i), leg.joints[0].column, true, side) -
                             joint_change(static_cast<int>(i), joint.column, false, side));
   const double u = leg.lifted < 0 ? 1.0 : smoothstep(double(frames - leg.lifted) / leg.swing_frames);
   joint.offset = free + (1.0 - u) * joint.lift + u * toward;
+}
+
+// Whether the leg is planted this frame (its ankle or its toe is), and whether it struck or lifted
+// now. A swing is expected to last as long as the stream's last swing of this foot (from the
+// table's stance share of the cycle until the stream has shown one), less the frames it was seen
+// late.
+void LiveStyle::State::plant_leg(LegLock& leg, int side, bool* struck, bool* lifted) {
+  const LiveFoot& ankle = feet.foot(side);
+  const LiveFoot& toe = toes.foot(side);
+  const bool planted = ankle.planted || toe.planted;
+  if (planted && !leg.planted) {
+    *struck = true;
+    leg.landed = frames;
+    leg.strike = ankle.planted && toe.planted ? std::min(ankle.strike, toe.strike) : ankle.planted ? ankle.strike : toe.strike;
+    if (leg.lift >= 0) leg.last_swing = double(leg.strike - leg.lift);
+  } else if (!planted && leg.planted) {
+    *lifted = true;
+    leg.lifted = frames;
+    leg.lift = std::max(ankle.lift, toe.lift);
+    const double period = phase.period_frames() > 0 ? phase.period_frames() : change.period_s * fps;
+    const double expected = leg.last_swing > 0.0 && leg.last_swing < period
+                                ? leg.last_swing
+                                : (1.0 - change.stance_share[static_cast<size_t>(side)]) * period;
+    leg.swing_frames = std::max(1.0, expected - double(frames - leg.lift));
+  }
+  leg.planted = planted;
 }
 
 // Each leg's ankle and toe at their locked offsets, the knee bent so the leg reaches the ankle
@@ -343,9 +379,12 @@ void LiveStyle::State::lock_joint(LegLock& leg, FootJointLock& joint, int side) 
 void LiveStyle::State::lock_feet() {
   for (int side = 0; side < 2; ++side) {
     LegLock& leg = legs[static_cast<size_t>(side)];
-    for (FootJointLock& joint : leg.joints) lock_joint(leg, joint, side);
+    bool struck = false, lifted = false;
+    plant_leg(leg, side, &struck, &lifted);
+    for (FootJointLock& joint : leg.joints) lock_joint(leg, joint, side, struck, lifted);
     const LegColumns& c = rig.legs[static_cast<size_t>(side)];
-    const Eigen::Vector3d wanted = at(in, c.ankle) + leg.joints[0].offset;
+    Eigen::Vector3d wanted = at(in, c.ankle) + leg.joints[0].offset;
+    wanted.y() = std::max(wanted.y(), lowest(leg.joints[0], feet.floor(side)));
     Eigen::Vector3d forward;
     from_body(heading_cos, heading_sin, 0.0, 1.0, &forward.x(), &forward.z());
     forward.y() = 0.0;
@@ -358,9 +397,35 @@ void LiveStyle::State::lock_feet() {
       target.segment<3>(3 * c.knee) = knee;
       target.segment<3>(3 * c.ankle) = ankle;
     }
-    if (c.toe >= 0 && leg.joints[1].column >= 0)
-      target.segment<3>(3 * c.toe) = at(in, c.toe) + leg.joints[1].offset + (ankle - wanted);
+    if (c.toe >= 0 && leg.joints[1].column >= 0) {
+      // The toe where its lock puts it, moved with the ankle, on the foot's own length from the
+      // ankle (the solve aims the foot at it: a toe target nearer the ankle than the foot is long
+      // would tip the toe down), and above its lowest (the foot tipped up to it where needed).
+      const Eigen::Vector3d own = at(in, c.toe) - at(in, c.ankle);
+      const Eigen::Vector3d aim = at(in, c.toe) + leg.joints[1].offset + (ankle - wanted) - ankle;
+      const double length = own.norm();
+      Eigen::Vector3d toe = ankle + (aim.norm() > 0.0 ? Eigen::Vector3d(length * aim.normalized()) : own);
+      const double low = lowest(leg.joints[1], toes.floor(side));
+      if (toe.y() < low) {
+        const double dy = std::clamp(low - ankle.y(), -length, length);
+        Eigen::Vector2d across(toe.x() - ankle.x(), toe.z() - ankle.z());
+        if (across.norm() == 0.0) across = Eigen::Vector2d(own.x(), own.z());
+        if (across.norm() > 0.0) across.normalize();
+        const double reach = std::sqrt(std::max(0.0, length * length - dy * dy));
+        toe = ankle + Eigen::Vector3d(reach * across.x(), dy, reach * across.y());
+      }
+      target.segment<3>(3 * c.toe) = toe;
+    }
   }
+}
+
+// The lowest a foot joint may go this frame: its planted level (the stream's floor under it, and
+// the height its hold adds at the strengths now) plus the stream's own height above that floor,
+// up to kSwingClearance.
+double LiveStyle::State::lowest(const FootJointLock& joint, double floor) const {
+  double level = floor;
+  for (size_t i = 0; i < eased.size(); ++i) level += eased[i] * joint.hold[i].y();
+  return level + std::min(in[3 * joint.column + 1] - floor, kSwingClearance * body_height);
 }
 
 // Each joint's change moves at most kChangeSpeedShare of the stream's fastest joint step lately
