@@ -30,6 +30,16 @@ constexpr double kExactCost = 1e-10;
 // A frame whose fit is this many times worse than the previous frame's looks caught in another
 // minimum: more starts are tried.
 constexpr double kWorseFit = 4.0;
+// A joint with several children whose fit has more than one minimum (targets its children cannot
+// all reach: a chest whose neck and clavicles pivot leaves a valley of near-equal fits) keeps to
+// the one near its rotation on the frame before: a minimum elsewhere is taken only when it fits
+// better by more than this (a fraction of the skeleton's size per radian of the turn, squared).
+// Else the chest turns back and forth between them from one frame to the next, and the neck and
+// collars with it (a pop).
+constexpr double kCoherence = 0.05;
+// Two fits this many radians apart or more are two minima (the coherence above chooses between
+// them); nearer, one minimum reached from two starts, the lower cost is taken.
+constexpr double kDistinctMinima = 0.05;
 
 // One child column of a joint with several: reached through a pivot (the first joint below with
 // its own rotation, such as a clavicle or a neck base) or, without one, rigidly.
@@ -169,18 +179,31 @@ double rotation_distance(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
 // The rotation of a joint with several children: refine_rotation from the direction fit; where
 // that stops short of placing every child (the least squares has other minima), also from the
 // previous frame's solution and from the direction fit turned a quarter turn about each axis,
-// keeping the lowest cost and, among costs that are equally good, the rotation nearest the
-// direction fit (the one that changes A's pose least). previous: null on the first frame.
+// keeping a fit that places every child (within exact_cost) over one that does not, among such
+// fits the rotation nearest the direction fit (the one that changes A's pose least), and among
+// the others the lowest cost, counted, between two distinct minima, with coherence (file units
+// squared per radian squared) times the squared turn from the frame before's rotation.
+// previous: null on the first frame.
 Eigen::Matrix3d solve_several(const std::vector<ChildGeometry>& children, const Eigen::Vector3d& position,
                               const Eigen::Matrix3d& start, const Eigen::Matrix3d* previous,
-                              double previous_cost, double damping, double exact_cost, double* cost_out) {
+                              double previous_cost, double damping, double coherence, double exact_cost,
+                              double* cost_out) {
+  auto score = [&](const Eigen::Matrix3d& r, double cost) {
+    if (!previous) return cost;
+    const double turn = rotation_distance(r, *previous);
+    return cost + coherence * turn * turn;
+  };
   Eigen::Matrix3d best = refine_rotation(children, position, start, damping);
   double best_cost = fit_cost(children, position, best);
   auto consider = [&](const Eigen::Matrix3d& from) {
     const Eigen::Matrix3d r = refine_rotation(children, position, from, damping);
     const double cost = fit_cost(children, position, r);
-    const bool tie = std::max(cost, best_cost) <= exact_cost;
-    if (tie ? rotation_distance(r, start) < rotation_distance(best, start) : cost < best_cost) {
+    const bool exact = cost <= exact_cost, best_exact = best_cost <= exact_cost;
+    const bool better = exact && best_exact ? rotation_distance(r, start) < rotation_distance(best, start)
+                        : exact != best_exact                               ? exact
+                        : rotation_distance(r, best) > kDistinctMinima ? score(r, cost) < score(best, best_cost)
+                                                                        : cost < best_cost;
+    if (better) {
       best = r;
       best_cost = cost;
     }
@@ -251,7 +274,7 @@ struct ExportFrameSolver::State {
   int top = -1;                         // the topmost column
   int carrier = -1;                     // the joint that carries the trajectory
   std::vector<int> carrier_chain;       // joints below the carrier down to the top column's joint
-  double min_length = 0.0, damping = 0.0, exact_cost = 0.0;
+  double min_length = 0.0, damping = 0.0, coherence = 0.0, exact_cost = 0.0;
   bool first = true;
   std::vector<Eigen::Matrix3d> local_rotation, global_rotation;
   std::vector<Eigen::Vector3d> local_translation, position, previous;
@@ -410,6 +433,7 @@ ExportFrameSolver::ExportFrameSolver(const Skeleton& skeleton_in, const std::vec
   const double size = skeleton_size(skeleton);
   s.min_length = kNoDirection * size;
   s.damping = (kDamping * size) * (kDamping * size);
+  s.coherence = (kCoherence * size) * (kCoherence * size);
   s.exact_cost = (kExactCost * size) * (kExactCost * size);
 
   s.local_rotation.resize(static_cast<size_t>(n));
@@ -474,7 +498,7 @@ bool ExportFrameSolver::State::turn_to_children(int j, const Eigen::Matrix3d& pa
   const Eigen::Matrix3d start = best_rotation(from, to) * global_rotation[j];
   const Eigen::Matrix3d last = parent_rotation * euler_to_matrix(p.order, previous[j]);
   global_rotation[j] = solve_several(geometry, position[j], start, !first ? &last : nullptr, previous_cost[j], damping,
-                                     exact_cost, &previous_cost[j]);
+                                     coherence, exact_cost, &previous_cost[j]);
   return true;
 }
 
