@@ -161,7 +161,8 @@ int run_synthesis(const Prepared& p, const std::vector<std::string>& files, cons
     t["source_frames"] = vector_json(frames_in_take(palette.takes[static_cast<size_t>(i)], result.sources.col(i)));
     const Eigen::VectorXi shown = cycles_shown(palette.takes[static_cast<size_t>(i)], result.sources.col(i));
     t["source_cycles"] = std::vector<int>(shown.data(), shown.data() + shown.size());
-    t["time_base"] = palette.takes[static_cast<size_t>(i)].registration.empty() ? "whole" : "cycles";
+    const CycleRegistration& registration = palette.takes[static_cast<size_t>(i)].registration;
+    t["time_base"] = registration.empty() ? "whole" : registration.posture_only() ? "posture" : "cycles";
     takes.push_back(t);
   }
   r["takes"] = takes;

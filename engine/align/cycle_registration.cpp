@@ -207,4 +207,33 @@ RegisteredMotion register_by_cycles(const CanonicalMotion& reference, const Eige
   return out;
 }
 
+RegisteredMotion register_posture_only(const CanonicalMotion& reference, const Eigen::MatrixXd& reference_contacts,
+                                       const CanonicalMotion& take, const TakeCycles& take_cycles) {
+  const Eigen::Index fr = reference.local.rows(), ft = take.local.rows();
+  if (fr < 1 || ft < 1 || take.local.cols() != reference.local.cols() || reference_contacts.rows() != fr)
+    throw InputError("posture registration: the takes' poses and contacts do not have matching sizes");
+  if (take_cycles.cycles.empty()) throw InputError("posture registration: the take has no cycles to give a posture");
+  // The take's mean pose over its cycles, a loop's read across its end.
+  Eigen::RowVectorXd sum = Eigen::RowVectorXd::Zero(take.local.cols());
+  double n = 0.0;
+  for (const Cycle& c : take_cycles.cycles)
+    for (int f = c.begin; f < c.end; ++f) {
+      const Eigen::Index row = f < ft ? f : take_cycles.loops() ? f % take_cycles.loop_frames : ft - 1;
+      sum += take.local.row(row);
+      n += 1.0;
+    }
+  const Eigen::RowVectorXd posture = sum / n - reference.local.colwise().mean();
+  RegisteredMotion out;
+  out.motion.local = reference.local.rowwise() + posture;
+  out.motion.ground = reference.ground;
+  out.motion.heading = reference.heading;
+  out.contacts = reference_contacts;
+  CycleRegistration& reg = out.registration;
+  reg.take_cycles = take_cycles;
+  reg.source = Eigen::VectorXd::Constant(fr, std::numeric_limits<double>::quiet_NaN());
+  reg.source_cycle = Eigen::VectorXi::Constant(fr, -1);
+  reg.anchors = {{0, 0, false}, {static_cast<int>(fr) - 1, static_cast<int>(fr) - 1, false}};
+  return out;
+}
+
 }  // namespace mostyle

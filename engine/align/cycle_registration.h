@@ -42,7 +42,10 @@ struct CycleRegistration {
   std::vector<Anchor> anchors;
   Eigen::VectorXd source;             // V: the take's own frame each registered frame shows; NaN: its posture only
   Eigen::VectorXi source_cycle;       // V: which of the take's cycles that frame is from; -1 outside them
-  bool empty() const { return pairs.empty(); }
+  // No registration (the take aligned whole). One without pairs but with anchors lays the take's
+  // posture alone on a reference that has no cycles (register_posture_only).
+  bool empty() const { return pairs.empty() && anchors.empty(); }
+  bool posture_only() const { return !anchors.empty() && pairs.empty(); }
 };
 
 struct RegisteredMotion {
@@ -63,5 +66,15 @@ bool cycles_register(const TakeCycles& reference, const TakeCycles& take);
 RegisteredMotion register_by_cycles(const CanonicalMotion& reference, const Eigen::MatrixXd& reference_contacts,
                                     const TakeCycles& reference_cycles, const CanonicalMotion& take,
                                     const Eigen::MatrixXd& take_contacts, const TakeCycles& take_cycles, int fade);
+
+// A take that walks laid on a reference that has no cycles (standing, a jump, a reach): no frame
+// of the take matches one of the reference's, so it gives its posture only, throughout, as it
+// does between the reference's cycles: the reference's own motion (its poses, root and contacts)
+// moved by the take's mean pose over its cycles minus the reference's mean pose. Frames run 1:1
+// (anchors at both ends); every source is NaN. reference: Fr frames; take_cycles: the take's
+// (a loop's may be read across its end). Throws InputError on mismatched sizes or a take without
+// cycles. O(Fr x 3M + take's cycle frames x 3M).
+RegisteredMotion register_posture_only(const CanonicalMotion& reference, const Eigen::MatrixXd& reference_contacts,
+                                       const CanonicalMotion& take, const TakeCycles& take_cycles);
 
 }  // namespace mostyle

@@ -426,6 +426,19 @@ void align_onto_reference(int i, const PrepareOptions& options, const LegColumns
   if (cycles_register(reference.cycles, own) && own.kind == CycleKind::kGait &&
       (own.strike_phase != 0.0 || reference.cycles.strike_phase != 0.0))
     own = cycles_at_phase(own, reference.cycles.strike_phase, static_cast<int>(take_motion->local.rows()));
+  // The take registered (its timeline becomes the registered motion): aligned along it, and its
+  // poses, faded or eased across a seam or moved by a posture, put back to the reference's bone
+  // lengths, the canonical poses read again from them.
+  auto adopt = [&](RegisteredMotion& registered) {
+    t.alignment = align_by_cycles(reference.canonical, registered, p.feature_joints, p.feet.leg_length, fps,
+                                  options.align, control);
+    to_world(registered.motion.local, registered.motion.ground, registered.motion.heading, &t.world);
+    apply_limb_lengths(t.world, p.parents, p.lengths);
+    t.canonical = to_canonical(t.world, 0, leg[0], leg[3]);
+    t.own_contacts = std::move(registered.contacts);
+    t.registration = std::move(registered.registration);
+    t.own_local_t = t.canonical.local.transpose();
+  };
   if (cycles_register(reference.cycles, own) && ends_inside(reference.cycles, reference.canonical.local.rows()) &&
       ends_inside(own, take_motion->local.rows())) {
     RegisteredMotion registered = register_by_cycles(reference.canonical, reference.own_contacts, reference.cycles,
@@ -434,16 +447,14 @@ void align_onto_reference(int i, const PrepareOptions& options, const LegColumns
     if (unrolled.loop_frames > 0)
       for (double& f : registered.registration.source)
         if (!std::isnan(f)) f = std::fmod(f, double(unrolled.loop_frames));
-    t.alignment = align_by_cycles(reference.canonical, registered, p.feature_joints, p.feet.leg_length, fps,
-                                  options.align, control);
-    // Poses faded or eased across a seam are blends: their bones are put back to the
-    // reference's lengths, and the canonical poses read again from them.
-    to_world(registered.motion.local, registered.motion.ground, registered.motion.heading, &t.world);
-    apply_limb_lengths(t.world, p.parents, p.lengths);
-    t.canonical = to_canonical(t.world, 0, leg[0], leg[3]);
-    t.own_contacts = std::move(registered.contacts);
-    t.registration = std::move(registered.registration);
-    t.own_local_t = t.canonical.local.transpose();
+    adopt(registered);
+  } else if (reference.cycles.kind == CycleKind::kNone && own.kind == CycleKind::kGait) {
+    // A walk on a reference that does not repeat (standing, a jump): no frame of it matches, so
+    // it gives its posture only, as between a reference's cycles (matching its steps to a
+    // standing take by DTW slid the feet and shook the limbs: a walk's style put on an idle moved
+    // its planted feet 50 times as fast as the idle's).
+    RegisteredMotion registered = register_posture_only(reference.canonical, reference.own_contacts, t.canonical, own);
+    adopt(registered);
   } else {
     t.alignment = align_takes(reference.canonical, t.canonical, p.feature_joints, p.feet.leg_length, fps,
                               options.align, control);
@@ -454,6 +465,12 @@ void align_onto_reference(int i, const PrepareOptions& options, const LegColumns
                                             aligned_name(i, n, *t.clip));
   if (!t.alignment.whole_because.empty())
     t.alignment.warnings.push_back("aligned whole, not by cycles: " + t.alignment.whole_because);
+  if (t.registration.posture_only())
+    t.alignment.warnings.push_back("its posture only: " +
+                                   why_whole(reference.cycles, own, options.align, aligned_name(0, n, *reference.clip).name,
+                                             aligned_name(i, n, *t.clip).name) +
+                                   "; " + aligned_name(i, n, *t.clip).name +
+                                   " gives its mean pose over its cycles throughout, none of its motion");
 }
 
 // Every take on the common timeline (p.timeline set), placed where the reference stands when its

@@ -10,6 +10,9 @@
 #include "engine/base/error.h"
 #include "engine/io/motion_file.h"
 #include "engine/align/prepare_takes.h"
+#include "engine/kinematics/kinematics.h"
+#include "engine/kinematics/units.h"
+#include "tests/engine/transfer_run.h"
 #include "tests/test_data.h"
 
 using namespace mostyle;
@@ -209,4 +212,62 @@ TEST_CASE("cycle registration: a 6.5 s walk registered onto a 22 s one covers it
   const auto w = prepare_takes(std::vector<std::shared_ptr<const Clip>>{content, neutral}, whole);
   CHECK(w->takes[1].registration.empty());
   CHECK(w->takes[1].alignment.a_last - w->takes[1].alignment.a_first < frames / 2);
+}
+
+TEST_CASE("posture registration: a walk on a reference with no cycles gives its mean pose, worked by hand") {
+  // Reference: 6 frames, x = 0..5 (mean 2.5), y = 1. Take: 20 frames, x = 0..19, y = 5, cycles over
+  // frames 4-11 (mean x 7.5). Posture: (5, 4, 0).
+  const CanonicalMotion reference = ramp_motion(6, 1.0), take = ramp_motion(20, 5.0);
+  TakeCycles cycles;
+  cycles.kind = CycleKind::kGait;
+  cycles.foot = 0;
+  cycles.cycles = {{4, 8}, {8, 12}};
+  const RegisteredMotion r = register_posture_only(reference, contacts_marked(6, 1.0), take, cycles);
+  REQUIRE(r.motion.local.rows() == 6);
+  for (int f = 0; f < 6; ++f) {
+    CHECK(r.motion.local(f, 0) == Approx(f + 5.0));
+    CHECK(r.motion.local(f, 1) == Approx(5.0));
+    CHECK(r.motion.local(f, 2) == Approx(0.0).margin(1e-12));
+    CHECK(std::isnan(r.registration.source[f]));
+    CHECK(r.registration.source_cycle[f] == -1);
+  }
+  CHECK(r.motion.ground == reference.ground);  // the reference's root and contacts
+  CHECK(r.motion.heading == reference.heading);
+  CHECK(r.contacts == contacts_marked(6, 1.0));
+  CHECK(r.registration.posture_only());
+  CHECK_FALSE(r.registration.empty());
+  REQUIRE(r.registration.anchors.size() == 2);
+  CHECK(r.registration.anchors[1].reference == 5);
+  CHECK(r.registration.anchors[1].registered == 5);
+  // A loop's cycle read across its end: a 10-frame loop's cycle 5-15 is frames 5-9 and 0-4
+  // (mean x 4.5).
+  TakeCycles loop;
+  loop.kind = CycleKind::kGait;
+  loop.loop_frames = 10;
+  loop.cycles = {{5, 15}};
+  const RegisteredMotion l = register_posture_only(reference, contacts_marked(6, 0.0), ramp_motion(10, 1.0), loop);
+  CHECK(l.motion.local(0, 0) == Approx(0.0 + 4.5 - 2.5));
+  // A take without cycles has no posture to give.
+  CHECK_THROWS_AS(register_posture_only(reference, contacts_marked(6, 0.0), take, TakeCycles()), InputError);
+}
+
+TEST_CASE("posture registration: a walk's style put on a standing take moves only its posture", "[shared]") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  // Mannequiny's idle stands; matched by DTW to the walks' steps, the transfer slid its feet 54
+  // times as fast as the idle's and moved a toe 38 times as fast as its fastest joint.
+  const auto load = [](const std::string& name) {
+    return std::make_shared<const Clip>(read_motion_file(test::shared_motion(name)));
+  };
+  const auto idle = load("wild/gltf_mannequiny_run.glb");
+  const auto neutral = load("bandai_walk_normal.bvh"), style = load("bandai_walk_old.bvh");
+  const auto p = prepare_takes(std::vector<std::shared_ptr<const Clip>>{idle, neutral, style}, PrepareOptions());
+  REQUIRE(p->takes[0].cycles.kind == CycleKind::kNone);
+  for (int i = 1; i < 3; ++i) {
+    CHECK(p->takes[static_cast<size_t>(i)].registration.posture_only());
+    CHECK(p->takes[static_cast<size_t>(i)].alignment.whole_because.empty());
+  }
+  const Clip out = test::transfer_on_content(idle, neutral, style, 1.0);
+  CHECK(test::fastest_joint_step(out) <= 1.25 * test::fastest_joint_step(*idle));
+  // The posture does change: the old walk's stoop.
+  CHECK((joint_positions(out) - joint_positions(*idle)).cwiseAbs().maxCoeff() > 0.02 * guess_units(*idle).height);
 }
