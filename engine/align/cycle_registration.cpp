@@ -21,17 +21,6 @@ std::vector<int> pair_cycles(const TakeCycles& reference, const TakeCycles& take
 
 namespace {
 
-// The mean pose (a row) over a take's cycle frames.
-Eigen::RowVectorXd cycle_mean(const Eigen::MatrixXd& local, const TakeCycles& cycles) {
-  Eigen::RowVectorXd sum = Eigen::RowVectorXd::Zero(local.cols());
-  double n = 0.0;
-  for (const Cycle& c : cycles.cycles) {
-    sum += local.middleRows(c.begin, c.frames()).colwise().sum();
-    n += c.frames();
-  }
-  return n > 0 ? Eigen::RowVectorXd(sum / n) : sum;
-}
-
 void check_cycles(const TakeCycles& cycles, Eigen::Index frames, const char* which) {
   int last_end = 0;
   for (size_t k = 0; k < cycles.cycles.size(); ++k) {
@@ -159,6 +148,20 @@ void fill_between_cycles(const Registering& in, size_t si, RegisteredMotion& out
 
 }  // namespace
 
+Eigen::RowVectorXd cycles_mean_pose(const Eigen::MatrixXd& local, const TakeCycles& cycles) {
+  Eigen::RowVectorXd sum = Eigen::RowVectorXd::Zero(local.cols());
+  double n = 0.0;
+  const Eigen::Index rows = local.rows();
+  for (const Cycle& c : cycles.cycles) {
+    const Eigen::Index inside = std::clamp<Eigen::Index>(rows - c.begin, 0, c.frames());
+    if (inside > 0) sum += local.middleRows(c.begin, inside).colwise().sum();
+    for (Eigen::Index f = c.begin + inside; f < c.end; ++f)  // past the last frame
+      sum += local.row(cycles.loops() ? f % cycles.loop_frames : rows - 1);
+    n += c.frames();
+  }
+  return n > 0 ? Eigen::RowVectorXd(sum / n) : sum;
+}
+
 RegisteredMotion register_by_cycles(const CanonicalMotion& reference, const Eigen::MatrixXd& reference_contacts,
                                     const TakeCycles& reference_cycles, const CanonicalMotion& take,
                                     const Eigen::MatrixXd& take_contacts, const TakeCycles& take_cycles, int fade) {
@@ -186,7 +189,7 @@ RegisteredMotion register_by_cycles(const CanonicalMotion& reference, const Eige
                        take_contacts,
                        take_cycles,
                        spans,
-                       cycle_mean(take.local, take_cycles) - cycle_mean(reference.local, reference_cycles),
+                       cycles_mean_pose(take.local, take_cycles) - cycles_mean_pose(reference.local, reference_cycles),
                        root_steps(reference),
                        root_steps(take),
                        fade};
@@ -213,16 +216,7 @@ RegisteredMotion register_posture_only(const CanonicalMotion& reference, const E
   if (fr < 1 || ft < 1 || take.local.cols() != reference.local.cols() || reference_contacts.rows() != fr)
     throw InputError("posture registration: the takes' poses and contacts do not have matching sizes");
   if (take_cycles.cycles.empty()) throw InputError("posture registration: the take has no cycles to give a posture");
-  // The take's mean pose over its cycles, a loop's read across its end.
-  Eigen::RowVectorXd sum = Eigen::RowVectorXd::Zero(take.local.cols());
-  double n = 0.0;
-  for (const Cycle& c : take_cycles.cycles)
-    for (int f = c.begin; f < c.end; ++f) {
-      const Eigen::Index row = f < ft ? f : take_cycles.loops() ? f % take_cycles.loop_frames : ft - 1;
-      sum += take.local.row(row);
-      n += 1.0;
-    }
-  const Eigen::RowVectorXd posture = sum / n - reference.local.colwise().mean();
+  const Eigen::RowVectorXd posture = cycles_mean_pose(take.local, take_cycles) - reference.local.colwise().mean();
   RegisteredMotion out;
   out.motion.local = reference.local.rowwise() + posture;
   out.motion.ground = reference.ground;

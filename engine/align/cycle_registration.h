@@ -67,6 +67,11 @@ RegisteredMotion register_by_cycles(const CanonicalMotion& reference, const Eige
                                     const TakeCycles& reference_cycles, const CanonicalMotion& take,
                                     const Eigen::MatrixXd& take_contacts, const TakeCycles& take_cycles, int fade);
 
+// The mean pose (a row of local, F x 3M) over the frames of a take's cycles; a loop's cycle may be
+// read across its end (frame f + L shows frame f), another's past the last frame holds it. The
+// zero row when there are no cycles. O(cycle frames x 3M).
+Eigen::RowVectorXd cycles_mean_pose(const Eigen::MatrixXd& local, const TakeCycles& cycles);
+
 // A take that walks laid on a reference that has no cycles (standing, a jump, a reach): no frame
 // of the take matches one of the reference's, so it gives its posture only, throughout, as it
 // does between the reference's cycles: the reference's own motion (its poses, root and contacts)

@@ -63,8 +63,7 @@ inline Eigen::Vector3d at(const Eigen::VectorXd& v, int column) { return v.segme
 // One foot joint (ankle or toe) under the lock: world offsets from the stream's joint.
 struct FootJointLock {
   int column = -1;
-  std::vector<Eigen::Vector3d> hold;  // per style, at strength 1: the offset while planted
-  Eigen::Vector3d settle = Eigen::Vector3d::Zero();  // at the landing: where the foot was against the hold
+  Eigen::Vector3d settle = Eigen::Vector3d::Zero();  // at the landing: where the joint was against the hold
   Eigen::Vector3d lift = Eigen::Vector3d::Zero();    // at the lift: the lock's correction then
   Eigen::Vector3d offset = Eigen::Vector3d::Zero();  // this frame's offset
 };
@@ -74,6 +73,9 @@ struct FootJointLock {
 // stream's does.
 struct LegLock {
   std::array<FootJointLock, 2> joints;  // ankle, toe (column -1 where the rig has none)
+  // Per style, at strength 1: the offset both joints are held at while planted (the ankle's
+  // change over the neutral's stance, set at the landing: the planted foot is moved whole).
+  std::vector<Eigen::Vector3d> hold;
   bool planted = false;
   long landed = -1, lifted = -1;  // the frames its landing and its lift were seen
   long strike = -1, lift = -1;    // the frames they happened (seen a few frames late)
@@ -160,8 +162,9 @@ struct LiveStyle::State {
   Eigen::Vector3d joint_change(int style, int column, bool stance_mean, int side) const;
   void lock_feet();
   void plant_leg(LegLock& leg, int side, bool* struck, bool* lifted);
-  double lowest(const FootJointLock& joint, double floor) const;
-  void lock_joint(LegLock& leg, FootJointLock& joint, int side, bool struck, bool lifted);
+  double lowest(const LegLock& leg, int column, double floor) const;
+  void lock_joint(LegLock& leg, FootJointLock& joint, int side, bool struck, bool lifted,
+                  const Eigen::Vector3d& stance);
   void limit_speed();
   void solve(const double* values, double* out);
 };
@@ -313,36 +316,32 @@ Eigen::Vector3d LiveStyle::State::joint_change(int style, int column, bool stanc
   return world;
 }
 
-// A foot joint's offset from the stream's: while planted, where the change put it when the foot
-// landed (the ankle's change over the neutral's stance, at each style's strength now, so a
-// planted foot stays planted; the toe takes the ankle's, so that the planted foot is the stream's
-// moved whole and rolls onto its toe as the stream's does), what the landing differed from that
-// settling over kLandingSettleSeconds;
-// over a swing, from where the lock held it at the lift to where the next stance will hold it
-// (smoothstep over the swing expected), about the change at this phase.
-void LiveStyle::State::lock_joint(LegLock& leg, FootJointLock& joint, int side, bool struck, bool lifted) {
+// A foot joint's offset from the stream's: while planted, the leg's hold (where the change put
+// the foot when it landed, at each style's strength now, so a planted foot stays planted; the toe
+// takes the ankle's, so that the planted foot is the stream's moved whole and rolls onto its toe
+// as the stream's does), what the landing differed from that settling over
+// kLandingSettleSeconds; over a swing, from where the lock held it at the lift to where the next
+// stance will hold it (smoothstep over the swing expected), about the change at this phase.
+// stance: over a swing, the ankle's change over the neutral's stance at the strengths now.
+void LiveStyle::State::lock_joint(LegLock& leg, FootJointLock& joint, int side, bool struck, bool lifted,
+                                  const Eigen::Vector3d& stance) {
   if (joint.column < 0) return;
   const Eigen::Vector3d free = at(target, joint.column) - at(in, joint.column);
+  Eigen::Vector3d held = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < eased.size(); ++i) held += eased[i] * leg.hold[i];
   if (struck) {  // held from here on
-    Eigen::Vector3d held = Eigen::Vector3d::Zero();
-    for (size_t i = 0; i < eased.size(); ++i) {
-      joint.hold[i] = joint_change(static_cast<int>(i), leg.joints[0].column, true, side);
-      held += eased[i] * joint.hold[i];
-    }
     joint.settle = joint.offset - held;
   } else if (lifted) {  // eased away from here
     joint.lift = joint.offset - free;
   }
   if (leg.planted) {
     joint.offset = (1.0 - smoothstep(double(frames - leg.landed) / std::max(1.0, kLandingSettleSeconds * fps))) * joint.settle;
-    for (size_t i = 0; i < eased.size(); ++i) joint.offset += eased[i] * joint.hold[i];
+    joint.offset += held;
     return;
   }
-  Eigen::Vector3d toward = Eigen::Vector3d::Zero();
+  Eigen::Vector3d toward = stance;
   for (size_t i = 0; i < eased.size(); ++i)
-    if (eased[i] != 0.0)
-      toward += eased[i] * (joint_change(static_cast<int>(i), leg.joints[0].column, true, side) -
-                            joint_change(static_cast<int>(i), joint.column, false, side));
+    if (eased[i] != 0.0) toward -= eased[i] * joint_change(static_cast<int>(i), joint.column, false, side);
   const double u = leg.lifted < 0 ? 1.0 : smoothstep(double(frames - leg.lifted) / leg.swing_frames);
   joint.offset = free + (1.0 - u) * joint.lift + u * toward;
 }
@@ -358,6 +357,7 @@ void LiveStyle::State::plant_leg(LegLock& leg, int side, bool* struck, bool* lif
   if (planted && !leg.planted) {
     *struck = true;
     leg.landed = frames;
+    for (size_t i = 0; i < eased.size(); ++i) leg.hold[i] = joint_change(static_cast<int>(i), leg.joints[0].column, true, side);
     leg.strike = ankle.planted && toe.planted ? std::min(ankle.strike, toe.strike) : ankle.planted ? ankle.strike : toe.strike;
     if (leg.lift >= 0) leg.last_swing = double(leg.strike - leg.lift);
   } else if (!planted && leg.planted) {
@@ -381,10 +381,14 @@ void LiveStyle::State::lock_feet() {
     LegLock& leg = legs[static_cast<size_t>(side)];
     bool struck = false, lifted = false;
     plant_leg(leg, side, &struck, &lifted);
-    for (FootJointLock& joint : leg.joints) lock_joint(leg, joint, side, struck, lifted);
+    Eigen::Vector3d stance = Eigen::Vector3d::Zero();
+    if (!leg.planted)
+      for (size_t i = 0; i < eased.size(); ++i)
+        if (eased[i] != 0.0) stance += eased[i] * joint_change(static_cast<int>(i), leg.joints[0].column, true, side);
+    for (FootJointLock& joint : leg.joints) lock_joint(leg, joint, side, struck, lifted, stance);
     const LegColumns& c = rig.legs[static_cast<size_t>(side)];
     Eigen::Vector3d wanted = at(in, c.ankle) + leg.joints[0].offset;
-    wanted.y() = std::max(wanted.y(), lowest(leg.joints[0], feet.floor(side)));
+    wanted.y() = std::max(wanted.y(), lowest(leg, leg.joints[0].column, feet.floor(side)));
     Eigen::Vector3d forward;
     from_body(heading_cos, heading_sin, 0.0, 1.0, &forward.x(), &forward.z());
     forward.y() = 0.0;
@@ -405,7 +409,7 @@ void LiveStyle::State::lock_feet() {
       const Eigen::Vector3d aim = at(in, c.toe) + leg.joints[1].offset + (ankle - wanted) - ankle;
       const double length = own.norm();
       Eigen::Vector3d toe = ankle + (aim.norm() > 0.0 ? Eigen::Vector3d(length * aim.normalized()) : own);
-      const double low = lowest(leg.joints[1], toes.floor(side));
+      const double low = lowest(leg, leg.joints[1].column, toes.floor(side));
       if (toe.y() < low) {
         const double dy = std::clamp(low - ankle.y(), -length, length);
         Eigen::Vector2d across(toe.x() - ankle.x(), toe.z() - ankle.z());
@@ -422,10 +426,10 @@ void LiveStyle::State::lock_feet() {
 // The lowest a foot joint may go this frame: its planted level (the stream's floor under it, and
 // the height its hold adds at the strengths now) plus the stream's own height above that floor,
 // up to kSwingClearance.
-double LiveStyle::State::lowest(const FootJointLock& joint, double floor) const {
+double LiveStyle::State::lowest(const LegLock& leg, int column, double floor) const {
   double level = floor;
-  for (size_t i = 0; i < eased.size(); ++i) level += eased[i] * joint.hold[i].y();
-  return level + std::min(in[3 * joint.column + 1] - floor, kSwingClearance * body_height);
+  for (size_t i = 0; i < eased.size(); ++i) level += eased[i] * leg.hold[i].y();
+  return level + std::min(in[3 * column + 1] - floor, kSwingClearance * body_height);
 }
 
 // Each joint's change moves at most kChangeSpeedShare of the stream's fastest joint step lately
@@ -502,7 +506,7 @@ LiveStyle::LiveStyle(const Skeleton& skeleton, double fps, const LiveStyleSpec& 
     LegLock& leg = s.legs[side];
     leg.joints[0].column = rig.legs[side].ankle;
     leg.joints[1].column = rig.legs[side].toe;
-    for (FootJointLock& j : leg.joints) j.hold.assign(spec.strengths.size(), Eigen::Vector3d::Zero());
+    leg.hold.assign(spec.strengths.size(), Eigen::Vector3d::Zero());
   }
 }
 

@@ -126,17 +126,6 @@ Eigen::MatrixXd mean_poses(const Eigen::MatrixXd& local, const Eigen::MatrixXd& 
   return out / static_cast<double>(frames.cols());
 }
 
-// The mean pose over the cycles' frames.
-Eigen::RowVectorXd cycle_mean(const Eigen::MatrixXd& local, const std::vector<Cycle>& cycles) {
-  Eigen::RowVectorXd sum = Eigen::RowVectorXd::Zero(local.cols());
-  double n = 0.0;
-  for (const Cycle& c : cycles) {
-    sum += local.middleRows(c.begin, c.frames()).colwise().sum();
-    n += c.frames();
-  }
-  return n > 0 ? Eigen::RowVectorXd(sum / n) : sum;
-}
-
 // A change by phase ((phases + 1) rows, the last the cycles' ends) made periodic: what the end
 // and the start differ by spread evenly over the cycle (half taken off the end, half added to the
 // start), the end row dropped, then smoothed by a [1 2 1] / 4 filter around the cycle.
@@ -228,7 +217,7 @@ StyleChange style_change(const PreparedTakes& p, const Eigen::RowVectorXd& strea
   const CanonicalMotion neutral = on_stream_bones(neutral_take.world, p, rest, lengths, leg_stream, leg_neutral);
   const Eigen::MatrixXd neutral_frames = phase_frames(neutral_cycles, neutral_strikes, mean_strike, phases);
   const Eigen::MatrixXd neutral_phases = mean_poses(neutral.local, neutral_frames);
-  const Eigen::RowVectorXd neutral_mean = cycle_mean(neutral.local, neutral_cycles);
+  const Eigen::RowVectorXd neutral_mean = cycles_mean_pose(neutral.local, neutral_take.cycles);
   // Phase 0 is a strike of the cycle foot: a loop's one cycle begins where the clip does, its
   // strike at strike_phase of it, so its phases are rolled on by that much.
   const double shift = neutral_take.cycles.strike_phase;
@@ -241,14 +230,13 @@ StyleChange style_change(const PreparedTakes& p, const Eigen::RowVectorXd& strea
 
   for (size_t i = 1; i < p.takes.size(); ++i) {
     const PreparedTake& t = p.takes[i];
-    const std::vector<Cycle>& registered = t.registration.cycles.cycles;  // one per neutral cycle, in order
     // The style's frames matching the neutral's, as the alignment matched them (its cycles
     // laid on the neutral's, a smooth warp inside each: align_by_cycles).
     const CanonicalMotion style = on_stream_bones(t.world, p, rest, lengths, leg_stream, leg_neutral);
     const Eigen::MatrixXd style_phases =
         mean_poses(style.local, matched_frames(neutral_frames, neutral_take.frames, t.frames));
     out.cycle.push_back(rolled(periodic_table(style_phases - neutral_phases), roll));
-    out.posture.push_back(cycle_mean(style.local, registered) - neutral_mean);
+    out.posture.push_back(cycles_mean_pose(style.local, t.registration.cycles) - neutral_mean);
     out.planted.push_back(planted_change(out.cycle.back(), out.stance, out.posture.back()));
   }
   return out;

@@ -8,7 +8,6 @@
 #include <string>
 #include <vector>
 
-#include "engine/export/export_solve.h"
 #include "engine/io/bvh_io.h"
 #include "engine/base/error.h"
 #include "engine/kinematics/kinematics.h"
@@ -18,8 +17,6 @@
 #include "engine/post/foot_contact.h"
 #include "engine/post/planted_feet.h"
 #include "engine/prepare/major_skeleton.h"
-#include "engine/decompose/decompose_takes.h"
-#include "engine/synthesize/mix_palette.h"
 #include "engine/align/prepare_takes.h"
 #include "tests/engine/live/axis_rig.h"
 #include "tests/engine/synthetic_gait.h"
