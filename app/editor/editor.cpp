@@ -13,6 +13,7 @@
 #include <thread>
 
 #include <imgui.h>
+#include <imgui_internal.h>  // ImGuiContext: windows still laid out, popups opened
 #include <imgui_impl_opengl3.h>
 
 #include "app/editor/tcp_frame_source.h"
@@ -291,6 +292,22 @@ void Editor::frame_camera(float aspect) {
   camera_.frame(b, aspect, kFrameFill * free_fraction_);
 }
 
+bool Editor::imgui_settling() {
+  // A window that appeared or changed size is laid out over the next frames (an auto-sized one
+  // is measured hidden first), and a popup opened or closed shows in the next: without them, a
+  // dialog opened by a button would stay unseen until the mouse moved.
+  const ImGuiContext& g = *ImGui::GetCurrentContext();
+  bool settling = g.OpenPopupStack.Size != popups_open_ || dialog_.opening() || question_.asking() != asked_shown_;
+  popups_open_ = g.OpenPopupStack.Size;
+  asked_shown_ = question_.asking();
+  for (const ImGuiWindow* w : g.Windows) {
+    if (!w->Active && !w->WasActive) continue;
+    settling = settling || w->Appearing || w->AutoFitFramesX > 0 || w->AutoFitFramesY > 0 ||
+               w->HiddenFramesCanSkipItems > 0 || w->HiddenFramesCannotSkipItems > 0;
+  }
+  return settling;
+}
+
 bool Editor::animating() const {
   const WorkerStatus status = session_->status();
   return state_.playback.playing || status.stage != WorkerStage::kIdle || status.pending || session_->has_news() ||
@@ -386,6 +403,7 @@ void Editor::frame(const FrameInput& input) {
   draw_viewport(size);
   glViewport(0, 0, size.x, size.y);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  settling_ = imgui_settling();
   ++frames_drawn_;
   save_session_when_ready();
   record_frame_times(cpu_start);
@@ -393,11 +411,12 @@ void Editor::frame(const FrameInput& input) {
 
 void Editor::draw_windows() {
   // Panels first: an alpha moved in this frame is blended and drawn in this frame.
+  state_.files_folder = session_folder();
   for (auto& panel : panels_) panel->draw(state_);
   state_.view.reset_layout = false;  // laid out; a Reset layout from the keys window: next frame
   draw_keys_window();
   draw_session_windows();
-  draw_close_question();
+  draw_unsaved_question();
   // After the panels: what they changed is an undo step once nothing is held (a drag is one).
   edits_.record(state_, *session_, ImGui::IsAnyItemActive());
   on_result_takes([this] { session_->sync(state_, ImGui::IsAnyItemActive()); });
@@ -435,9 +454,14 @@ void Editor::move_camera(float aspect, float delta_s) {
 void Editor::draw_overlays() {
   if (state_.view.labels) ui::draw_skeleton_labels(scene_.skeletons, camera_);
   if (!deterministic_) {  // timings differ run to run: not in screenshots
+    // At rest the window draws only on input, so a frame rate would count the waits between
+    // events (and read as lag): the cost of a frame is what tells whether it keeps up.
     char status[96];
-    std::snprintf(status, sizeof status, "viewport %.1f ms   %.0f fps", viewport_timer_->milliseconds(),
-                  static_cast<double>(ImGui::GetIO().Framerate));
+    if (animating())
+      std::snprintf(status, sizeof status, "viewport %.1f ms   %.0f fps", viewport_timer_->milliseconds(),
+                    static_cast<double>(ImGui::GetIO().Framerate));
+    else
+      std::snprintf(status, sizeof status, "viewport %.1f ms   at rest", viewport_timer_->milliseconds());
     ui::draw_viewport_status(status);
   }
 }
@@ -556,14 +580,36 @@ bool Editor::open_session(const std::string& path) {
     return false;
   }
   const std::string missing = ui::apply_session_document(file.document, where, state_, *session_);
-  edits_.mark_edited();  // opening is one undo step
-  edits_.mark_opened();  // and what is saved, once its takes are in
+  // An opened session is a new document, as in any animation package: no undo reaches back to
+  // the one before, which would show other takes under this session's name (and Save would
+  // write them into it). What is saved is the document once its takes are in.
+  edits_ = ui::EditHistory();
   restore_ = ViewRestore{file.camera, file.playback, false};
-  session_path_ = where;
+  // A session opened without a missing take is not what its file holds: Ctrl+S asks where
+  // rather than writing the file without that take.
+  session_path_ = missing.empty() ? where : std::string();
+  session_folder_ = std::filesystem::path(where).parent_path().string();
   ui::remember(state_.recent.sessions, where, ui::kRecentSessions);
   save_recent_files();
   session_message_.set(missing.empty() ? "Opened the session " + where : missing, !missing.empty());
   return true;
+}
+
+void Editor::request_open(const std::string& path) {
+  question_.request(edits_.unsaved(), ui::UnsavedQuestion::Leave::kOpen, path);
+  open_when_answered();
+}
+
+void Editor::open_when_answered() {
+  if (const std::optional<std::string> path = question_.take_open()) open_session(*path);
+}
+
+std::string Editor::session_folder() const {
+  if (!session_path_.empty()) return std::filesystem::path(session_path_).parent_path().string();
+  if (!session_folder_.empty()) return session_folder_;
+  const std::string& a = session_->loaded_path(0);
+  if (!a.empty()) return std::filesystem::path(absolute_path(a)).parent_path().string();
+  return absolute_path(".");
 }
 
 void Editor::command_save(bool ask) {
@@ -571,26 +617,33 @@ void Editor::command_save(bool ask) {
     save_session(session_path_);
     return;
   }
-  std::string path = session_path_;
-  if (path.empty()) {  // beside take A
-    const std::string& a = session_->loaded_path(0);
-    path = a.empty() ? std::string("untitled.mostyle") : (std::filesystem::path(a).parent_path() / "untitled.mostyle").string();
-  }
+  const std::string path =
+      !session_path_.empty() ? session_path_ : (std::filesystem::path(session_folder()) / "untitled.mostyle").string();
   dialog_.open(ui::SessionDialog::Kind::kSave, path);
 }
 
 void Editor::command_open() {
-  const std::string path = !session_path_.empty()     ? session_path_
+  // The session's file, else the newest recent session, else the folder new sessions go to, so
+  // the field never starts empty.
+  const std::string path = !session_path_.empty()           ? session_path_
                            : !state_.recent.sessions.empty() ? state_.recent.sessions.front()
-                                                       : std::string();
+                                                             : session_folder() + "/";
   dialog_.open(ui::SessionDialog::Kind::kOpen, path);
 }
 
 void Editor::draw_session_windows() {
-  const ui::SessionDialog::Request asked = dialog_.draw(state_.recent.sessions);
-  if (asked.kind != ui::SessionDialog::Kind::kNone) {
-    const bool done = asked.kind == ui::SessionDialog::Kind::kSave ? save_session(asked.path) : open_session(asked.path);
-    if (asked.kind == ui::SessionDialog::Kind::kSave) close_.saved(done);  // a Save asked by closing
+  ui::SessionDialog::Request asked = dialog_.draw(state_.recent.sessions);
+  const bool save = asked.kind == ui::SessionDialog::Kind::kSave;
+  // A name typed alone is in the session's folder (else the first take's), as an export's is; a
+  // path on the command line is the shell's, from the working folder.
+  if (!asked.path.empty() && std::filesystem::path(asked.path).is_relative())
+    asked.path = (std::filesystem::path(session_folder()) / asked.path).string();
+  if (asked.kind == ui::SessionDialog::Kind::kOpen && edits_.unsaved()) {
+    dialog_.done();  // the unsaved question takes over; the session opens once it is answered
+    request_open(asked.path);
+  } else if (asked.kind != ui::SessionDialog::Kind::kNone) {
+    const bool done = save ? save_session(asked.path) : open_session(asked.path);
+    if (save) question_.saved(done);  // a Save asked by closing or by opening another session
     if (done) {
       dialog_.done();
     } else {  // said in the dialog, where the path can be corrected
@@ -599,39 +652,50 @@ void Editor::draw_session_windows() {
     }
   }
   if (!dialog_.is_open()) {
-    close_.saved(false);  // the dialog closed without a save: the editor stays open
+    question_.saved(false);  // the dialog closed without a save: the editor stays as it is
     session_message_.draw(/*hide_successes=*/deterministic_);
   }
+  open_when_answered();
 }
 
-void Editor::answer_close(ui::CloseRequest::Answer answer) {
-  close_.answer(answer);
-  if (answer != ui::CloseRequest::Answer::kSave) return;
-  if (!session_path_.empty()) close_.saved(save_session(session_path_));
-  else command_save(/*ask=*/true);  // where: the session dialog; closes once it has saved
+void Editor::answer_unsaved(ui::UnsavedQuestion::Answer answer) {
+  question_.answer(answer);
+  if (answer == ui::UnsavedQuestion::Answer::kSave) {
+    if (!session_path_.empty()) question_.saved(save_session(session_path_));
+    else command_save(/*ask=*/true);  // where: the session dialog; goes ahead once it has saved
+  }
+  open_when_answered();
 }
 
-void Editor::draw_close_question() {
+void Editor::draw_unsaved_question() {
   constexpr const char* kTitle = "Unsaved edits";
-  if (close_.asking() && !ImGui::IsPopupOpen(kTitle)) ImGui::OpenPopup(kTitle);
+  if (question_.asking() && !ImGui::IsPopupOpen(kTitle)) ImGui::OpenPopup(kTitle);
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(0.5f * display.x, 0.5f * display.y), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
   if (!ImGui::BeginPopupModal(kTitle, nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings))
     return;
-  ImGui::TextUnformatted(session_path_.empty() ? "The edits are not saved in a session. Save them before closing?"
-                                               : "The edits since the session was saved are not in it. Save them?");
+  const bool opening = question_.leave() == ui::UnsavedQuestion::Leave::kOpen;
+  const char* before = opening ? "opening the other session" : "closing";
+  if (session_path_.empty())
+    ImGui::Text("The edits are not saved in a session. Save them before %s?", before);
+  else
+    ImGui::Text("The edits since the session was saved are not in it. Save them before %s?", before);
   if (!session_path_.empty()) ImGui::TextColored(ImVec4(0.6f, 0.62f, 0.66f, 1.0f), "%s", session_path_.c_str());
+  if (opening) ImGui::TextColored(ImVec4(0.6f, 0.62f, 0.66f, 1.0f), "to open: %s", question_.path().c_str());
   ImGui::Spacing();
-  if (ImGui::Button("Save")) answer_close(ui::CloseRequest::Answer::kSave);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Save the session (Ctrl+S), then close");
+  if (ImGui::Button("Save")) answer_unsaved(ui::UnsavedQuestion::Answer::kSave);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(opening ? "Save the session (Ctrl+S), then open the other" : "Save the session (Ctrl+S), then close");
   ImGui::SameLine();
-  if (ImGui::Button("Discard")) answer_close(ui::CloseRequest::Answer::kDiscard);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Close without saving: the edits are lost");
+  if (ImGui::Button("Discard")) answer_unsaved(ui::UnsavedQuestion::Answer::kDiscard);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(opening ? "Open the other session without saving: the edits are lost"
+                              : "Close without saving: the edits are lost");
   ImGui::SameLine();
   if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false))
-    answer_close(ui::CloseRequest::Answer::kCancel);
+    answer_unsaved(ui::UnsavedQuestion::Answer::kCancel);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Keep editing (Esc)");
-  if (!close_.asking()) ImGui::CloseCurrentPopup();
+  if (!question_.asking()) ImGui::CloseCurrentPopup();
   ImGui::EndPopup();
 }
 

@@ -25,7 +25,7 @@
 #include "render/render_target.h"
 #include "render/scene_renderer.h"
 #include "ui/model/blend_session.h"
-#include "ui/model/close_request.h"
+#include "ui/model/unsaved_question.h"
 #include "ui/model/edit_history.h"
 #include "ui/model/live_source.h"
 #include "ui/model/editor_state.h"
@@ -124,6 +124,9 @@ class Editor {
   // taken up. When not, the window platform
   // waits for events instead of drawing (an editor at rest uses next to no CPU).
   bool animating() const;
+  // Whether the last frame left ImGui laying out (a window appearing or resizing, a popup opened
+  // or closed, a dialog asked for): the next frames must be drawn though nothing else changed.
+  bool settling() const { return settling_; }
 
   // Undo and redo (Ctrl+Z; Ctrl+Shift+Z or Ctrl+Y) of every parameter, weight, mode, option and
   // load (ui/model/edit_history.h: a slider drag is one step). false: nothing to undo (redo). A load
@@ -137,8 +140,11 @@ class Editor {
   // extension) and makes it the file Ctrl+S saves to. open_session reads one and applies it: its
   // takes load on the worker, and the playback and the camera are restored once they are in.
   // Both return false with session_message() saying why, one line, and then change nothing (a
-  // malformed file: "FILE:LINE: ..."). A session whose take is missing opens (true) with the rest
-  // restored, the takes loaded before kept, and session_message() naming the file.
+  // malformed file: "FILE:LINE: ..."). An opened session is a new document: the undo history
+  // starts again with it. A session whose take is missing opens (true) with its other takes
+  // (ui::keep_takes; none there: the takes loaded before stay), session_message() naming the
+  // file, and no file to save to (Ctrl+S asks where: its file is never written without the take).
+  // open_session opens at once; request_open (Ctrl+O's dialog) asks first over unsaved edits.
   bool save_session(const std::string& path);
   bool open_session(const std::string& path);
   const std::string& session_path() const { return session_path_; }  // absolute; "" before a save or open
@@ -148,15 +154,20 @@ class Editor {
   const std::string& scripted_save_error() const { return scripted_save_error_; }
   const std::string& session_message() const { return session_message_.text(); }
   bool session_message_is_error() const { return session_message_.is_error(); }
-  // Closing (the window's close button): with unsaved edits (ui::EditHistory::unsaved) the editor
-  // asks first, a modal with Save (to the session's file, or asking where as Ctrl+S does), Discard
-  // and Cancel (ui/model/close_request.h); without, it may close at once. The platform ends its
-  // loop once may_close().
-  void request_close() { close_.request(edits_.unsaved()); }
-  bool may_close() const { return close_.may_close(); }
-  bool asking_to_close() const { return close_.asking(); }
-  // The question's buttons: Save (saving, then closing once saved), Discard or Cancel.
-  void answer_close(ui::CloseRequest::Answer answer);
+  // Closing (the window's close button) or opening a session (request_open): with unsaved edits
+  // (ui::EditHistory::unsaved) the editor asks first, a modal with Save (to the session's file, or
+  // asking where as Ctrl+S does), Discard and Cancel (ui/model/unsaved_question.h); without, it
+  // goes ahead at once. The platform ends its loop once may_close().
+  void request_close() { question_.request(edits_.unsaved()); }
+  void request_open(const std::string& path);
+  bool may_close() const { return question_.may_close(); }
+  bool asking_unsaved() const { return question_.asking(); }
+  // The question's buttons: Save (saving, then going ahead once saved), Discard or Cancel.
+  void answer_unsaved(ui::UnsavedQuestion::Answer answer);
+  // Where session files and exports given without a folder go, and where their dialogs start:
+  // the session's folder, else the first take's (absolute). One rule for every file the editor
+  // writes.
+  std::string session_folder() const;
 
   // The takes and sessions opened before (options.recent_path: kept across restarts there).
   const ui::RecentFiles& recent_files() const { return state_.recent; }
@@ -169,6 +180,7 @@ class Editor {
   void draw_overlays();  // the skeletons' labels, the viewport's timing
   void draw_viewport(const glm::ivec2& size);  // the scene into the window's framebuffer, timed
   void record_frame_times(std::chrono::steady_clock::time_point cpu_start);  // for the metrics panel
+  bool imgui_settling();  // settling(), after the frame is drawn
   void build_scene();
   void frame_camera(float aspect);
   void follow_skeletons(float delta_s);  // the camera after the skeletons (view.follow)
@@ -180,7 +192,8 @@ class Editor {
   void command_save(bool ask);
   void command_open();
   void draw_session_windows();  // the dialog (carrying out what it asks) or the message
-  void draw_close_question();   // Save / Discard / Cancel, while close_ asks
+  void draw_unsaved_question();  // Save / Discard / Cancel, while question_ asks
+  void open_when_answered();     // the session request_open asked for, once it may be opened
   void restore_camera(float aspect);  // an opened session's camera, once its takes are in
   void save_session_when_ready();     // --save-session
   void keep_recent_files();           // recent.json follows the session's recent takes
@@ -221,6 +234,9 @@ class Editor {
   std::optional<glm::vec3> followed_centre_;  // where the skeletons were then; none: after a reframe
   float free_fraction_ = 1.0f;  // of the window's size that no panel covers (framing)
   bool deterministic_ = false;
+  bool settling_ = false;     // settling()
+  int popups_open_ = 0;       // ImGui's open popups after the frame before
+  bool asked_shown_ = false;  // the unsaved question was asking after the frame before
   bool software_renderer_ = false;  // llvmpipe & co: no multisampling unless asked
 
   ui::EditHistory edits_;  // undo and redo
@@ -237,7 +253,8 @@ class Editor {
   int frames_drawn_ = 0;
   ui::SessionMessage session_message_;
   ui::SessionDialog dialog_;
-  ui::CloseRequest close_;
+  ui::UnsavedQuestion question_;
+  std::string session_folder_;  // the last session opened's folder (session_folder)
   // Recent takes and sessions; recent_path_ empty: not kept across restarts (tests, screenshots).
   std::string recent_path_;
   std::vector<std::string> seen_recent_;  // state_.recent.takes as last written

@@ -168,7 +168,7 @@ int run_frames(GLFWwindow* window, Editor& editor, const EditorOptions& options,
   for (int frame = 0; !glfwWindowShouldClose(window) && !editor.may_close(); ++frame) {
     // At rest (paused, engine idle) wait for input instead of drawing 60 frames a second;
     // the timeout keeps a finished background job from waiting long to be shown.
-    if (!screenshot && !editor.animating() && settle <= 0 && g_keys.empty()) {
+    if (!screenshot && !editor.animating() && !editor.settling() && settle <= 0 && g_keys.empty()) {
       const int before = g_events;
       glfwWaitEventsTimeout(kRestWakeSeconds);
       if (g_events == before && !editor.animating()) continue;  // nothing happened: nothing to draw

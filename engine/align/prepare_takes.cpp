@@ -463,7 +463,10 @@ void align_onto_reference(int i, const PrepareOptions& options, const LegColumns
   }
   t.alignment.warnings = alignment_warnings(t.alignment, fps, aligned_name(0, n, *reference.clip),
                                             aligned_name(i, n, *t.clip));
-  if (!t.alignment.whole_because.empty())
+  // Whole-take alignment is the method for takes of which neither repeats (a bow, a wave once, a
+  // kick): said only where one of them has cycles that could not be matched.
+  const bool neither_repeats = reference.cycles.cycles.empty() && own.cycles.empty();
+  if (!t.alignment.whole_because.empty() && !neither_repeats)
     t.alignment.warnings.push_back("aligned whole, not by cycles: " + t.alignment.whole_because);
   if (t.registration.posture_only())
     t.alignment.warnings.push_back("its posture only: " +

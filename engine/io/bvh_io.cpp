@@ -449,6 +449,7 @@ class Parser {
     advise_huge_pages(motion.data(), static_cast<size_t>(capacity) * row_bytes);
     Eigen::Index frames = 0;
     long long cut_line = 0;  // line of a short frame line; only the last line may be one
+    long long last_line = frames_line + 1;  // the last line holding values (Frame Time: before any)
     int cut_count = 0;       // values on it
     while (p < end) {
       const long long line_number = line;
@@ -480,6 +481,7 @@ class Parser {
         ++line;
       }
       if (count == 0 && !cut_token) continue;  // blank line
+      last_line = line_number;
       if (cut_line != 0) {
         // A short line followed by more data was not the cut last line: refuse it.
         fail(cut_line, "expected " + std::to_string(channels) + " values in frame " +
@@ -494,7 +496,7 @@ class Parser {
     }
     if (frames != capacity) motion.conservativeResize(frames, channels);
     clip->motion = std::move(motion);
-    warn_missing_frames(channels, declared, frames_line, frames, cut_line, cut_count);
+    check_frame_count(channels, declared, frames_line, frames, last_line, cut_line, cut_count);
   }
 
   // The frames to allocate at first: never from the declared count alone, as the text bounds how
@@ -564,8 +566,20 @@ class Parser {
   }
 
   // Warnings for a cut last line and for a frame count other than the declared one.
-  void warn_missing_frames(int channels, long long declared, long long frames_line, Eigen::Index frames,
-                           long long cut_line, int cut_count) {
+  // Fewer frames than Frames: declares is a file cut short (a copy or an export that stopped):
+  // refused, as a part of a take would be aligned and styled as if it were the whole. More frames
+  // than declared lose nothing: loaded, with a warning.
+  void check_frame_count(int channels, long long declared, long long frames_line, Eigen::Index frames,
+                         long long last_line, long long cut_line, int cut_count) {
+    if (frames < declared) {
+      const std::string cut = cut_line != 0 ? ", its last line cut (" + std::to_string(cut_count) + " of " +
+                                                  std::to_string(channels) + " values)"
+                                            : std::string();
+      fail(last_line, "the file ends after " + std::to_string(frames) + " complete frame" + (frames == 1 ? "" : "s") +
+                          " of the " + std::to_string(declared) + " that Frames: declares on line " +
+                          std::to_string(frames_line) + cut + ": it was cut short; copy or export it again (or set " +
+                          "Frames: to " + std::to_string(frames) + " to load what is there)");
+    }
     if (cut_line != 0) {
       warn(cut_line, "the last frame line is cut (" + std::to_string(cut_count) + " of " +
                          std::to_string(channels) + " values); loaded the " +
@@ -589,10 +603,11 @@ class Parser {
                                  ", found " + shown(first_word(l, nullptr)));
       if (lines < declared) ++lines;  // blank lines past the declared count are just blank
     }
-    if (lines != declared) {
-      warn(frames_line, "Frames: says " + std::to_string(declared) + " but the file has " +
-                            std::to_string(lines) + " frame lines; loaded " +
-                            std::to_string(lines));
+    if (lines != declared) {  // blank lines past the count are blank; fewer: the file was cut short
+      fail(reader_.line(), "the file ends after " + std::to_string(lines) + " frame line" + (lines == 1 ? "" : "s") +
+                               " of the " + std::to_string(declared) + " that Frames: declares on line " +
+                               std::to_string(frames_line) + ": it was cut short; copy or export it again (or set " +
+                               "Frames: to " + std::to_string(lines) + " to load what is there)");
     }
     clip->motion.resize(static_cast<Eigen::Index>(lines), 0);
   }

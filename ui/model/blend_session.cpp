@@ -120,10 +120,12 @@ void BlendSession::poll(EditorState& state) {
     seen_prepared_ = takes();
     if (takes() != nullptr) {  // the weights follow the takes, one rule for any number of them
       const std::vector<std::string>& weights_of = weights_of_ == WeightsOf::kNewTakes ? snapshot_->paths : files_before;
-      state.document.weights = weights_for_takes(weights_of, state.document.weights, snapshot_->paths);
+      const std::vector<double> weights_before = state.document.weights;
+      state.document.weights = weights_for_takes(weights_of, weights_before, snapshot_->paths);
+      if (palette() != nullptr)
+        size_palette_controls(state.document.controls.palette, weights_of, weights_before, snapshot_->paths);
       weights_of_ = WeightsOf::kLoadedTakes;
     }
-    if (palette() != nullptr) size_palette_controls(state.document.controls.palette, palette()->size());
     take_up_takes(state);
   }
   const Decomposed* d = takes() != nullptr ? snapshot_->decomposed.get() : nullptr;

@@ -84,25 +84,50 @@ bool same_files(const std::vector<std::string>& x, const std::vector<std::string
 
 double pair_alpha(const Document& d) { return d.weights.size() == 2 ? d.weights[1] : 0.5; }
 
-Document reorder_takes(const Document& d, const std::vector<int>& order) {
+namespace {
+
+// Take k of the result is take order[k] of `d`, for a permutation or for a selection of takes;
+// per-take vectors of another length than d's takes are left as they are.
+Document select_takes(const Document& d, const std::vector<int>& order, size_t takes) {
   const size_t n = order.size();
-  auto reordered = [&](const std::vector<double>& v) {
-    if (v.size() != n) return v;
+  auto selected = [&](const std::vector<double>& v) {
+    if (v.size() != takes) return v;
     std::vector<double> out(n);
     for (size_t k = 0; k < n; ++k) out[k] = v[static_cast<size_t>(order[k])];
     return out;
   };
   const PaletteControls& c = d.controls.palette;
-  Document reordered_document = d;
-  reordered_document.weights = reordered(d.weights);
-  PaletteControls& out = reordered_document.controls.palette;
-  out.strengths = reordered(c.strengths);
-  for (std::vector<double>& row : out.part_weights) row = reordered(row);
+  Document selected_document = d;
+  selected_document.weights = selected(d.weights);
+  PaletteControls& out = selected_document.controls.palette;
+  out.strengths = selected(c.strengths);
+  for (std::vector<double>& row : out.part_weights) row = selected(row);
   for (size_t k = 0; k < n; ++k) {
     if (order[k] == c.neutral) out.neutral = static_cast<int>(k);
     if (order[k] == c.content) out.content = static_cast<int>(k);
   }
-  return reordered_document;
+  return selected_document;
+}
+
+}  // namespace
+
+Document reorder_takes(const Document& d, const std::vector<int>& order) {
+  return select_takes(d, order, order.size());
+}
+
+Document keep_takes(const Document& d, const std::vector<int>& kept) {
+  Document out = select_takes(d, kept, d.files.size());
+  out.files.clear();
+  for (int k : kept) out.files.push_back(d.files[static_cast<size_t>(k)]);
+  const PaletteControls& c = d.controls.palette;
+  if (c.transfer && std::find(kept.begin(), kept.end(), c.neutral) == kept.end()) out.controls.palette.content_neutral = true;
+  out.controls.palette.content = 0;  // the content is the reference, whichever take that now is
+  if (out.weights.size() == kept.size() && !kept.empty()) {
+    double sum = 0.0;
+    for (double w : out.weights) sum += w;
+    for (double& w : out.weights) w = sum != 0.0 ? w / sum : 1.0 / static_cast<double>(kept.size());
+  }
+  return out;
 }
 
 }  // namespace mostyle::ui

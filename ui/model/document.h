@@ -125,4 +125,12 @@ bool same_files(const std::vector<std::string>& x, const std::vector<std::string
 // these takes) is left as it is.
 Document reorder_takes(const Document& d, const std::vector<int>& order);
 
+// The document with only some of its takes (a session whose other takes are not there): take k
+// of the result is take kept[k] of `d`, with its file and every per-take value as
+// reorder_takes gives them, the weights scaled to sum to 1 again (equal weights when the kept
+// ones sum to 0). A neutral take left out makes the content its own neutral. kept: distinct
+// indices of takes of `d`, in the order wanted. The keys are left as they are (their weights
+// no longer fit: the constant weights are mixed).
+Document keep_takes(const Document& d, const std::vector<int>& kept);
+
 }  // namespace mostyle::ui

@@ -25,7 +25,9 @@ struct Range {
   double lo = 0.0, hi = 0.0;
   bool open_low = false;  // lo itself is not allowed
 };
-inline constexpr Range kAlphaRange{0.0, 1.0};            // a pair's alpha slider, each component's alpha
+// A pair's alpha slider and each component's alpha: the weights (1 - alpha, alpha) within the mix's
+// bounds, as `blend --alpha` takes it (0 is A, 1 is B; beyond them, mild exaggeration).
+inline constexpr Range kAlphaRange{1.0 - kMaxMixWeight, kMaxMixWeight};
 inline constexpr Range kComponentsRange{1, 40};
 inline constexpr Range kSparsityRange{0.01, 1.0};        // also each basic-motion level's
 inline constexpr Range kBasicMotionsRange{0, 5};

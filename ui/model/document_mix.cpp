@@ -1,6 +1,10 @@
 #include "ui/model/document_mix.h"
 
 #include <algorithm>
+#include <string>
+#include <optional>
+#include <filesystem>
+#include <cctype>
 #include <iterator>
 #include <limits>
 #include <utility>
@@ -71,26 +75,66 @@ MixParams mix_params_for(const Document& document, const Decomposed& decompositi
   return m;
 }
 
-std::vector<double> weights_for_takes(const std::vector<std::string>& before, const std::vector<double>& weights,
-                                      const std::vector<std::string>& after) {
-  const bool fit = weights.size() == before.size() && !before.empty();
-  if (fit && same_files(before, after)) return weights;
+std::optional<std::vector<double>> values_for_takes(const std::vector<std::string>& before,
+                                                    const std::vector<double>& values,
+                                                    const std::vector<std::string>& after, double added) {
+  const bool fit = values.size() == before.size() && !before.empty();
+  if (!fit) return std::nullopt;
+  if (same_files(before, after)) return values;
   const bool added_at_end = after.size() > before.size() &&
                             same_files(before, std::vector<std::string>(after.begin(), after.begin() + before.size()));
-  if (fit && added_at_end) {
-    std::vector<double> out = weights;
-    out.resize(after.size(), 0.0);
-    return out;
-  }
-  return std::vector<double>(after.size(), 1.0 / static_cast<double>(after.size()));
+  if (!added_at_end) return std::nullopt;
+  std::vector<double> out = values;
+  out.resize(after.size(), added);
+  return out;
 }
 
-void size_palette_controls(PaletteControls& controls, int takes) {
-  const size_t n = static_cast<size_t>(takes);
-  if (controls.strengths.size() != n) controls.strengths.assign(n, 1.0);
+std::vector<double> weights_for_takes(const std::vector<std::string>& before, const std::vector<double>& weights,
+                                      const std::vector<std::string>& after) {
+  return values_for_takes(before, weights, after, 0.0)
+      .value_or(std::vector<double>(after.size(), 1.0 / static_cast<double>(after.size())));
+}
+
+int named_neutral(const std::vector<std::string>& files) {
+  for (size_t k = 1; k < files.size(); ++k) {
+    std::string stem = std::filesystem::path(files[k]).stem().string();
+    std::transform(stem.begin(), stem.end(), stem.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    // A word of the name, as takes are named (walk_neutral, bye-normal, Neutral01): not "abnormal".
+    for (const char* word : {"neutral", "normal"}) {
+      const size_t at = stem.find(word);
+      if (at == std::string::npos) continue;
+      const bool starts = at == 0 || !std::isalpha(static_cast<unsigned char>(stem[at - 1]));
+      const size_t end = at + std::char_traits<char>::length(word);
+      const bool ends = end == stem.size() || !std::isalpha(static_cast<unsigned char>(stem[end]));
+      if (starts && ends) return static_cast<int>(k);
+    }
+  }
+  return -1;
+}
+
+void size_palette_controls(PaletteControls& controls, const std::vector<std::string>& before,
+                           const std::vector<double>& weights_before, const std::vector<std::string>& after) {
+  const size_t n = after.size();
+  const int takes = static_cast<int>(n);
+  // A pair's transfer keeps its strength in the pair's alpha (B's weight): B's strength once it
+  // is a palette.
+  std::vector<double> strengths = controls.strengths;
+  if (strengths.size() != before.size() && before.size() == 2 && weights_before.size() == 2 && controls.transfer)
+    strengths = {1.0, weights_before[1]};
+  // Takes added keep every value there was and start neutral themselves (strength and weights 0).
+  if (const auto kept = values_for_takes(before, strengths, after, 0.0)) {
+    controls.strengths = *kept;
+  } else if (controls.strengths.size() != n) {  // new takes: full strength, and a neutral as named
+    controls.strengths.assign(n, 1.0);
+    const int neutral = named_neutral(after);
+    controls.content_neutral = neutral < 0;
+    if (neutral >= 0) controls.neutral = neutral;
+  }
   controls.part_weights.resize(std::size(kParts));
-  for (auto& w : controls.part_weights)
-    if (w.size() != n) w.clear();  // empty: the part follows the overall weights
+  for (auto& w : controls.part_weights) {
+    const auto kept = values_for_takes(before, w, after, 0.0);
+    w = kept ? *kept : std::vector<double>();  // empty: the part follows the overall weights
+  }
   controls.neutral = std::clamp(controls.neutral, 1, std::max(1, takes - 1));
 }
 

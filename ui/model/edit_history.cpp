@@ -1,5 +1,6 @@
 #include "ui/model/edit_history.h"
 
+#include <algorithm>
 #include <optional>
 
 #include "ui/model/session_file.h"
@@ -47,15 +48,14 @@ void apply_document(const Document& document, EditorState& state, BlendSession& 
 std::string apply_session_document(const Document& document, const std::string& session_path, EditorState& state,
                                    BlendSession& session) {
   const std::vector<std::string> missing = missing_takes(document);
-  if (missing.empty()) {
-    apply_document(document, state, session);
-    return std::string();
-  }
-  Document kept = document;
-  kept.files = capture_document(state).files;
-  if (load_pending(session)) kept.files = requested_files(session);
-  apply_document(kept, state, session);
-  return missing_takes_message(session_path, missing);
+  std::vector<int> kept;
+  for (size_t k = 0; k < document.files.size(); ++k)
+    if (std::find(missing.begin(), missing.end(), document.files[k]) == missing.end()) kept.push_back(static_cast<int>(k));
+  Document opened = missing.empty() || kept.empty() ? document : keep_takes(document, kept);
+  if (kept.empty()) opened.files = capture_document(state).files;  // none there: the takes loaded stay
+  if (kept.empty() && load_pending(session)) opened.files = requested_files(session);
+  apply_document(opened, state, session);
+  return missing_takes_message(session_path, missing, !kept.empty());
 }
 
 bool load_pending(const BlendSession& session) {

@@ -31,9 +31,10 @@ Document capture_document(const EditorState& state);
 // Returns at once: the takes arrive on a later poll().
 void apply_document(const Document& document, EditorState& state, BlendSession& session);
 
-// A document read from a session file at `session_path`: apply_document, except that when one
-// of its takes is not there the takes loaded stay (everything else is applied). Returns the
-// sentence naming the missing files (missing_takes_message, ui/model/session_file.h), or "".
+// A document read from a session file at `session_path`: apply_document, except that takes not
+// there are left out (keep_takes: the others load, with their weights), and when none is there the
+// takes loaded stay (everything else is applied). Returns the sentence naming the missing files
+// (missing_takes_message, ui/model/session_file.h), or "".
 std::string apply_session_document(const Document& document, const std::string& session_path, EditorState& state,
                                    BlendSession& session);
 

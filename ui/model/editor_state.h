@@ -23,6 +23,7 @@ struct Take {
   std::string label;                      // file name without folder and extension
   std::string error;                      // non-empty: loading failed, shown as it is
   std::vector<std::string> warnings;      // recoverable defects the reader reported
+  std::vector<std::string> notes;         // how it was aligned onto the reference, where that changes what plays
   std::shared_ptr<const Clip> clip;       // null when error is set
   Eigen::MatrixXd positions;              // frames x 3*joints, world units (placed, see below)
   std::vector<int> parents;               // per joint, -1 for roots
@@ -95,6 +96,10 @@ struct EditorState {
   RecentFiles recent;
   // Files dropped on the window, waiting for the files panel to load them.
   std::vector<std::string> dropped;
+  // Where a file the editor writes goes when it is named without a folder, and where its dialog
+  // starts: the session's folder, else the first take's (absolute; the editor sets it each frame).
+  // Empty: the working folder.
+  std::string files_folder;
   FrameTimes times;
 
   // The take that sets the timeline (frame numbers, fps, length): the first that loaded.

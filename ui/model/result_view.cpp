@@ -106,7 +106,7 @@ void ResultView::take_up(const PreparedTakes& p, const std::vector<std::string>&
   }
   std::vector<std::string> take_paths = paths;
   take_paths.resize(static_cast<size_t>(n));
-  std::vector<std::vector<std::string>> by_take = warnings_by_take(take_paths, warnings, aligned, aligned_names);
+  std::vector<TakeMessages> by_take = warnings_by_take(take_paths, warnings, aligned, aligned_names);
   const int joints = static_cast<int>(p.majors.size());
   for (int i = 0; i < n; ++i) {
     const PreparedTake& take = p.takes[static_cast<size_t>(i)];
@@ -115,7 +115,8 @@ void ResultView::take_up(const PreparedTakes& p, const std::vector<std::string>&
     Take t = shown_take(take_caption(i, n, path), take_color(i), take.clip, p.fps, p.parents, take.world_placed);
     t.path = path;
     names_.push_back(n == 2 ? aligned_names[static_cast<size_t>(i)] : take_label(t.path));
-    t.warnings = std::move(by_take[static_cast<size_t>(i)]);
+    t.warnings = std::move(by_take[static_cast<size_t>(i)].load);
+    t.notes = std::move(by_take[static_cast<size_t>(i)].alignment);
     t.contacts = joint_contacts(take.own_contacts, p.feet, joints);
     state.takes.push_back(std::move(t));
   }

@@ -704,13 +704,17 @@ std::vector<std::string> missing_takes(const Document& document) {
   return missing;
 }
 
-std::string missing_takes_message(const std::string& session_path, const std::vector<std::string>& missing) {
+std::string missing_takes_message(const std::string& session_path, const std::vector<std::string>& missing,
+                                  bool others_open) {
   if (missing.empty()) return std::string();
   std::string names;
   for (std::size_t i = 0; i < missing.size(); ++i)
     names += (i == 0 ? "" : i + 1 == missing.size() ? " and " : ", ") + missing[i];
   return one_line(session_path + ": cannot find the take" + (missing.size() > 1 ? "s " : " ") + names +
-                  "; the rest of the session is restored, and the takes loaded before stay");
+                  (others_open ? "; the other takes and the rest of the session are open"
+                               : "; the rest of the session is restored, and the takes loaded before stay") +
+                  ", and the session file is left as it is (put the take back and open it again, or save as a new "
+                  "file with Ctrl+Shift+S to keep the session without it)");
 }
 
 bool is_session_path(const std::string& path) {

@@ -76,8 +76,11 @@ void write_session_file(const std::string& path, const SessionFile& session);
 // file system (stat only).
 std::vector<std::string> missing_takes(const Document& document);
 // One sentence for the animator: "SESSION: cannot find the take PATH; ..." (several: "the takes
-// A and B"). Empty when `missing` is.
-std::string missing_takes_message(const std::string& session_path, const std::vector<std::string>& missing);
+// A and B"), saying whether the other takes are open (others_open) or those loaded before stay,
+// that the session file is left as it is, and how to keep a session without them. Empty when
+// `missing` is.
+std::string missing_takes_message(const std::string& session_path, const std::vector<std::string>& missing,
+                                  bool others_open);
 
 // Whether `path` names a session file: it ends in .mostyle (any case).
 bool is_session_path(const std::string& path);

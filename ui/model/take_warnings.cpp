@@ -1,6 +1,7 @@
 #include "ui/model/take_warnings.h"
 
 #include <filesystem>
+#include <utility>
 
 #include "engine/io/motion_file.h"
 
@@ -25,23 +26,36 @@ int named_file(const std::string& warning, const std::vector<std::string>& paths
 
 }  // namespace
 
-std::vector<std::vector<std::string>> warnings_by_take(const std::vector<std::string>& paths,
-                                                       const std::vector<std::string>& load,
-                                                       const std::vector<std::vector<std::string>>& aligned,
-                                                       const std::vector<std::string>& names) {
-  std::vector<std::vector<std::string>> out(paths.size());
+std::vector<TakeMessages> warnings_by_take(const std::vector<std::string>& paths, const std::vector<std::string>& load,
+                                           const std::vector<std::vector<std::string>>& aligned,
+                                           const std::vector<std::string>& names) {
+  std::vector<TakeMessages> out(paths.size());
   if (out.empty()) return out;
   for (const std::string& w : load) {
     const int take = named_file(w, paths);
-    out[static_cast<size_t>(take < 0 ? 0 : take)].push_back(w);
+    out[static_cast<size_t>(take < 0 ? 0 : take)].load.push_back(w);
   }
+  // Each sentence once: where it is first given, with how many takes it was given for.
+  std::vector<std::pair<std::string, int>> said;  // sentence, times given
+  std::vector<std::pair<size_t, size_t>> placed;  // (take, index in its alignment list) per sentence
   for (size_t i = 0; i < aligned.size() && i < out.size(); ++i)
     for (const std::string& w : aligned[i]) {
+      size_t k = 0;
+      while (k < said.size() && said[k].first != w) ++k;
+      if (k < said.size()) {
+        ++said[k].second;
+        continue;
+      }
       size_t take = i;
       for (size_t j = 0; j < names.size() && j < out.size(); ++j)
         if (starts_with(w, "only " + names[j] + "'s ")) take = j;
-      out[take].push_back(w);
+      said.emplace_back(w, 1);
+      placed.emplace_back(take, out[take].alignment.size());
+      out[take].alignment.push_back(w);
     }
+  for (size_t k = 0; k < said.size(); ++k)
+    if (said[k].second > 1)
+      out[placed[k].first].alignment[placed[k].second] += " (the same for " + std::to_string(said[k].second) + " takes)";
   return out;
 }
 

@@ -8,14 +8,22 @@
 
 namespace mostyle::ui {
 
+// What is said of one take, kept apart: the file reader's repairs and omissions (load), and how
+// the take was aligned onto the reference where that changes what plays (alignment).
+struct TakeMessages {
+  std::vector<std::string> load;
+  std::vector<std::string> alignment;
+  bool operator==(const TakeMessages& o) const { return load == o.load && alignment == o.alignment; }
+};
+
 // paths: the takes' files (N, FILE#ANIMATION too); load: every load's warnings; aligned: per take,
 // its alignment's warnings (the reference's own: empty; shorter than N: none for the rest);
 // names: how those name each take ("A", "B", or its file's name in a palette). Returns N lists,
 // each in the order given. A load warning naming no take's file goes under the reference (0).
-// O(warnings x N).
-std::vector<std::vector<std::string>> warnings_by_take(const std::vector<std::string>& paths,
-                                                       const std::vector<std::string>& load,
-                                                       const std::vector<std::vector<std::string>>& aligned,
-                                                       const std::vector<std::string>& names);
+// An alignment sentence given for several takes (the same words: about the reference, say) is
+// said once, under the first of them, with how many takes it holds for. O(warnings x N).
+std::vector<TakeMessages> warnings_by_take(const std::vector<std::string>& paths, const std::vector<std::string>& load,
+                                           const std::vector<std::vector<std::string>>& aligned,
+                                           const std::vector<std::string>& names);
 
 }  // namespace mostyle::ui

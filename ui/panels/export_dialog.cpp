@@ -84,7 +84,10 @@ ExportDialog::ExportDialog(BlendSession& session) : session_(session) {}
 ExportOptions ExportDialog::options() const {
   const ExportSubject subject = export_subject(session_);
   ExportOptions o;
-  o.path = settings_.path;
+  // A name alone goes beside the session (or the first take), as every file the editor writes.
+  const fs::path typed(settings_.path);
+  o.path = typed.is_relative() && !typed.empty() && !folder_.empty() ? (fs::path(folder_) / typed).string()
+                                                                     : typed.string();
   o.fps = export_rate_fps(settings_.rate, subject.clip != nullptr ? subject.clip->fps() : 0.0, settings_.custom_fps);
   o.range = settings_.range;
   o.in_s = settings_.in_s;
@@ -161,6 +164,7 @@ ExportDialog::Pressed ExportDialog::start(bool overwrite) {
 }
 
 void ExportDialog::draw(EditorState& state) {
+  folder_ = state.files_folder;
   poll();
   typing_range_ = false;  // until the in or out field drawn below is found active
   // When the result becomes another kind (a pair a palette, a mix a transfer), not while a name
@@ -172,13 +176,30 @@ void ExportDialog::draw(EditorState& state) {
     const std::string named = export_name_for(settings_.path, result);
     std::snprintf(settings_.path, sizeof settings_.path, "%s", named.c_str());
   }
-  if (!state.view.show_export) return;
+  if (!state.view.show_export) {
+    shown_ = false;
+    return;
+  }
+  if (!shown_ && !job_.running()) {  // opened anew: the last export's outcome was read where it was said
+    status_.ok = false;
+    status_.message.clear();
+  }
+  shown_ = true;
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(0.5f * display.x, 0.5f * display.y), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
   bool open = true;
   const ImGuiWindowFlags flags =
       ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings;
-  if (ImGui::Begin(kExportDialogTitle, &open, flags)) draw_contents(state, &open);
+  if (ImGui::Begin(kExportDialogTitle, &open, flags)) {
+    draw_contents(state, &open);
+    // Esc closes it, as every other dialog of the editor, unless it asks about an overwrite (Esc
+    // keeps the file then) or a field is being typed in (Esc leaves the field first).
+    const bool esc = ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false);
+    if (esc && ImGui::IsWindowFocused(ImGuiFocusedFlags_RootAndChildWindows) && !ImGui::GetIO().WantTextInput) {
+      if (confirm_) press_cancel();
+      else open = false;
+    }
+  }
   ImGui::End();
   if (!open) {
     state.view.show_export = false;
@@ -190,7 +211,7 @@ void ExportDialog::draw_contents(EditorState& state, bool* open) {
   const ExportSubject subject = export_subject(session_);
   const bool busy = job_.running();  // once: the job may end while the dialog is drawn
   // A path edited after the question was asked: the question was about another file.
-  if (confirm_ && absolute_path(settings_.path) != confirm_path_) confirm_ = false;
+  if (confirm_ && absolute_path(options().path) != confirm_path_) confirm_ = false;
 
   ImGui::BeginDisabled(busy);
   ExportFormat format = ExportFormat::kBvh;
@@ -211,7 +232,7 @@ bool ExportDialog::draw_file_fields(ExportFormat* format_shown) {
   if (ImGui::IsItemHovered()) {
     std::error_code ec;
     ImGui::SetTooltip("The file to write (.bvh, .glb / .gltf for glTF, .fbx); a name alone goes in %s.\nEnter exports.",
-                      fs::current_path(ec).string().c_str());
+                      folder_.empty() ? fs::current_path(ec).string().c_str() : folder_.c_str());
   }
   // The format: the file's extension, which these buttons change.
   const ExportFormat format = export_format(settings_.path);
@@ -434,9 +455,7 @@ void ExportDialog::draw_actions(bool busy, bool enter, bool* open) {
 
 void ExportDialog::draw_status() {
   if (status_.message.empty()) return;
-  const std::string text = without_folders(status_.message,
-                                           {fs::path(absolute_path(settings_.path)).parent_path().string()});
-  wrapped(status_.ok ? kOkColor : kErrorColor, text);
+  wrapped(status_.ok ? kOkColor : kErrorColor, status_.message);  // the full path: where it went
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", status_.message.c_str());
 }
 

@@ -123,6 +123,8 @@ class ExportDialog : public Panel {
   bool reset_range_ = true;              // a new pair: in and out to all of its blend once it has one
   std::string named_result_ = "blend";   // the result the file was last named after
   bool typing_range_ = false;  // an in or out field is being typed in: they are put in order after
+  std::string folder_;         // EditorState::files_folder: where a file named alone goes
+  bool shown_ = false;         // the window was drawn last frame (opened anew: no old outcome shown)
 };
 
 }  // namespace mostyle::ui

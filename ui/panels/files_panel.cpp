@@ -135,8 +135,10 @@ void FilesPanel::draw(EditorState& state) {
   }
   // Folders left out of the panel's sentences (shown whole on hover).
   std::error_code ec;
-  const std::string export_folder =
-      fs::absolute(fs::path(export_dialog_.settings().path), ec).parent_path().string();
+  const fs::path export_path(export_dialog_.settings().path);
+  const std::string export_folder = export_path.is_relative() && !state.files_folder.empty()
+                                        ? (fs::path(state.files_folder) / export_path).parent_path().string()
+                                        : fs::absolute(export_path, ec).parent_path().string();
   std::vector<std::string> folders = {folder_, export_folder};
   for (const PathField& f : fields_) folders.push_back(f.folder);
 
@@ -153,7 +155,7 @@ void FilesPanel::draw(EditorState& state) {
     ImGui::PushOverrideID(panel_id);  // the fields' and buttons' ids are the panel's, as without a body
     draw_take_fields(takes);
     draw_export_field(state, export_folder, static_cast<int>(takes.size()));
-    draw_messages(folders);
+    draw_messages();
     draw_browser(takes);
     draw_recent(state, takes);
     ImGui::PopID();
@@ -257,7 +259,7 @@ void FilesPanel::draw_export_field(EditorState& state, const std::string& export
                       n <= 2 ? "A take" : "reference take");
 }
 
-void FilesPanel::draw_messages(const std::vector<std::string>& folders) {
+void FilesPanel::draw_messages() {
   // Messages in a space of their own that is always there: a load error (with the folder it
   // tried), the export's progress or outcome. Hover shows a message whole.
   ImGui::BeginChild("##messages", ImVec2(0.0f, ImGui::GetTextLineHeightWithSpacing() * 2.2f), false,
@@ -266,7 +268,7 @@ void FilesPanel::draw_messages(const std::vector<std::string>& folders) {
   if (export_dialog_.job().running())
     ImGui::ProgressBar(export_dialog_.job().progress(), ImVec2(-FLT_MIN, 0.0f), "exporting");
   else if (!export_dialog_.status().message.empty())
-    sentence(export_dialog_.status().ok ? kOkColor : kErrorColor, export_dialog_.status().message, folders);
+    sentence(export_dialog_.status().ok ? kOkColor : kErrorColor, export_dialog_.status().message, {});  // where, whole
   ImGui::EndChild();
 }
 

@@ -64,7 +64,7 @@ class FilesPanel : public Panel {
   void draw_take_fields(const std::vector<std::string>& takes);  // a field per take, Load pair / all
   // The export field and Export... (opens the dialog); n: the number of takes.
   void draw_export_field(EditorState& state, const std::string& export_folder, int n);
-  void draw_messages(const std::vector<std::string>& folders);  // a load error, the export's progress or outcome
+  void draw_messages();  // a load error, the export's progress or outcome
   void draw_browser(const std::vector<std::string>& takes);
   void list_folder();  // folder_ into dirs_ and files_ (or list_error_)
   // An FBX or glTF file's row: opens to its animations, each a take row.

@@ -50,6 +50,7 @@ Metrics gather_metrics(const BlendSession& session, bool transfer) {
   const bool pair = p->size() == 2;
   const Decomposed* d = snapshot.decomposed.get();
   m.reference = p->takes.front().clip.get();
+  m.body_height = p->feet.body_height;
   m.result = result_name(p->size(), transfer);
   std::vector<std::string> names = {"A", "B"};
   if (!pair) {
@@ -141,7 +142,7 @@ void MetricsPanel::draw_takes_table(const Metrics& m) {
   const float number = ImGui::CalcTextSize("10.6 cm/s").x + ImGui::GetStyle().CellPadding.x * 2.0f;
   ImGui::TableSetupColumn("take", ImGuiTableColumnFlags_WidthStretch, 1.0f);
   ImGui::TableSetupColumn("fit", ImGuiTableColumnFlags_WidthFixed, number);
-  ImGui::TableSetupColumn("sliding", ImGuiTableColumnFlags_WidthFixed, number);
+  ImGui::TableSetupColumn("planted", ImGuiTableColumnFlags_WidthFixed, number);
   ImGui::TableHeadersRow();
   for (const Metrics::Take& t : m.takes) {
     ImGui::TableNextRow();
@@ -155,36 +156,45 @@ void MetricsPanel::draw_takes_table(const Metrics& m) {
       ImGui::SetTooltip("Fit error: how far this take is from what the components rebuild of it (root mean\n"
                         "square). Lower: the components hold more of it.");
     ImGui::TableNextColumn();
-    ImGui::TextUnformatted(length(t.foot_sliding, "/s").c_str());
+    ImGui::TextUnformatted(planted_speed(t.foot_sliding, m.body_height).c_str());
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("How fast this take's planted feet move over the floor, on average: its ankles and toes\n"
-                        "while within 3%% of the body's height of their floor (on the reference's skeleton).");
+      ImGui::SetTooltip("How fast this take's planted feet move over the floor, on average, in %% of the body's\n"
+                        "height per second: its ankles and toes while within 3%% of the body's height of their\n"
+                        "floor (on the reference's skeleton), as mostyle-cli reports it.");
   }
   ImGui::EndTable();
+}
+
+std::string MetricsPanel::planted_speed(double value, double body_height) {
+  if (value < 0.0 || !(body_height > 0.0)) return "-";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f%%h/s", 100.0 * value / body_height);
+  return text;
 }
 
 void MetricsPanel::draw_quality_table(const Metrics& m, const char* reference) {
   if (!begin_table("##quality")) return;
   const std::string bones = "The most any bone of the " + m.result + " differs from its length in " + reference + ".";
   row("Bone length, worst", length(m.bone_error), bones.c_str());
-  const std::string label = "Foot sliding, " + m.result;
-  const std::string tip = "How fast the " + m.result + "'s planted feet move, measured as each take's are: before ->\n"
-                          "after the foot lock (the same when foot lock is off).";
-  row(label.c_str(), m.sliding_raw < 0.0 ? "-" : length(m.sliding_raw, "/s") + " -> " + length(m.sliding_cleaned, "/s"),
-      tip.c_str());
-  std::string inputs = "-";
-  if (m.sliding_inputs >= 0.0) {
-    inputs = length(m.sliding_inputs, "/s");
-    if (m.sliding_inputs > 0.0 && m.sliding_cleaned >= 0.0) {
-      char ratio[32];
-      std::snprintf(ratio, sizeof ratio, " (%.2fx)", m.sliding_cleaned / m.sliding_inputs);
-      inputs += ratio;
-    }
+  // Planted feet as mostyle-cli reports them: the result's against the takes' own, in the body's
+  // height per second (a mean in cm/s reads as sliding where it is the measure's floor).
+  std::string ratio = "-";
+  if (m.sliding_inputs > 0.0 && m.sliding_cleaned >= 0.0) {
+    char text[48];
+    std::snprintf(text, sizeof text, "%.2fx the takes'", m.sliding_cleaned / m.sliding_inputs);
+    ratio = text;
   }
-  const std::string inputs_tip = "How fast the takes' own planted feet move, weighted as the " + m.result +
-                                 " weights them (a\ntransfer: its content's), and the " + m.result +
-                                 "'s after the lock as a multiple of it.";
-  row("Foot sliding, takes", inputs, inputs_tip.c_str());
+  const std::string ratio_tip = "How fast the " + m.result + "'s planted feet move after the foot lock, as a multiple of\n"
+                                "the takes' own (weighted as the " + m.result + " weights them; a transfer: its content's).\n"
+                                "1x or under: no more sliding than the takes have.";
+  row("Planted feet", ratio, ratio_tip.c_str());
+  const std::string tip = "How fast the " + m.result + "'s planted feet move, measured as each take's are, in % of\n"
+                          "the body's height per second: before -> after the foot lock (the same when it is off).";
+  row("  result", m.sliding_raw < 0.0 ? "-" : planted_speed(m.sliding_raw, m.body_height) + " -> " +
+                                               planted_speed(m.sliding_cleaned, m.body_height),
+      tip.c_str());
+  row("  takes", planted_speed(m.sliding_inputs, m.body_height),
+      "How fast the takes' own planted feet move, weighted as mixed, in % of the body's height per second");
   ImGui::EndTable();
 }
 

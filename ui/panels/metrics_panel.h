@@ -24,6 +24,7 @@ struct Metrics {
   std::vector<Take> takes;
   double bone_error = -1.0, sliding_raw = -1.0, sliding_cleaned = -1.0;  // the result's
   double sliding_inputs = -1.0;  // the takes' own planted feet, weighted as mixed (MixResult::foot_sliding_inputs)
+  double body_height = -1.0;     // what planted feet are measured against, as the CLI's report (FootRig::body_height)
   double load_ms = -1.0, preprocess_ms = -1.0, dtw_ms = -1.0, decompose_ms = -1.0;
   double synthesize_ms = -1.0, postprocess_ms = -1.0, result_ms = -1.0;
 };
@@ -43,6 +44,9 @@ class MetricsPanel : public Panel {
   void guess_unit(const Clip* reference);  // once per reference take (null: none)
   // `value` (reference units, negative: "-") in words: centimetres, or a share of the height.
   std::string length(double value, const char* per = "") const;
+  // A speed of planted feet (reference units per second) as the CLI says it: a share of the body's
+  // height per second ("0.85%h/s"); "-" when negative or without a height.
+  static std::string planted_speed(double value, double body_height);
   // The unit lengths are shown in; pair: A is the reference, named `reference` in the tooltip.
   void draw_unit_note(bool pair, const char* reference);
   void draw_takes_table(const Metrics& m);                            // fit error and foot sliding per take

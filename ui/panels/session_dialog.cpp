@@ -67,7 +67,8 @@ SessionDialog::Request SessionDialog::draw(const std::vector<std::string>& recen
   bool confirm = ImGui::InputText("##session_path", path_, sizeof path_,
                                   ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_AutoSelectAll);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("A path, absolute or from the folder mostyle was started in; Enter %s", save ? "saves" : "opens");
+    ImGui::SetTooltip("A path, absolute or from the session's folder (else the first take's); Enter %s",
+                      save ? "saves" : "opens");
   std::error_code ec;
   if (save && std::filesystem::exists(path_, ec))
     ImGui::TextColored(kWarningColor, "A file of that name is there: saving replaces it.");

@@ -21,6 +21,7 @@ class SessionDialog {
   // Opens the dialog on the next draw(), its field holding `path`.
   void open(Kind kind, const std::string& path);
   bool is_open() const { return kind_ != Kind::kNone; }
+  bool opening() const { return opening_ || close_; }  // a popup to open or close on the next draw()
   // Between ImGui::NewFrame() and ImGui::Render(): the dialog when open. A confirmed path (Enter,
   // the button, a double click on a recent session) is returned; the dialog stays open until
   // done() or failed() says how it went.

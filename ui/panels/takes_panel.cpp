@@ -10,6 +10,20 @@
 
 namespace mostyle::ui {
 namespace {
+
+void messages(const char* id, const std::vector<std::string>& lines, const char* what, const ImVec4& color,
+              const char* tooltip) {
+  if (lines.empty()) return;
+  ImGui::PushStyleColor(ImGuiCol_Text, color);
+  const bool open = ImGui::TreeNode(id, "%zu %s%s", lines.size(), what, lines.size() == 1 ? "" : "s");
+  ImGui::PopStyleColor();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tooltip);
+  if (!open) return;
+  ImGui::PushTextWrapPos(0.0f);
+  for (const std::string& w : lines) ImGui::TextColored(color, "%s", w.c_str());
+  ImGui::PopTextWrapPos();
+  ImGui::TreePop();
+}
 }  // namespace
 
 void TakesPanel::draw(EditorState& state) {
@@ -31,20 +45,12 @@ void TakesPanel::draw(EditorState& state) {
                           std::filesystem::path(take.path).parent_path().string().c_str(), take.frames(), take.rate(),
                           take.parents.size());
       }
-      if (!take.warnings.empty()) {
-        // Collapsed to one line; opened, the sentences wrap inside this panel.
-        ImGui::PushStyleColor(ImGuiCol_Text, kWarningColor);
-        const bool open = ImGui::TreeNode("##warnings", "%zu load warning%s", take.warnings.size(),
-                                          take.warnings.size() == 1 ? "" : "s");
-        ImGui::PopStyleColor();
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("What the file reader repaired or left out; click to read");
-        if (open) {
-          ImGui::PushTextWrapPos(0.0f);
-          for (const std::string& w : take.warnings) ImGui::TextColored(kWarningColor, "%s", w.c_str());
-          ImGui::PopTextWrapPos();
-          ImGui::TreePop();
-        }
-      }
+      // Collapsed to one line each; opened, the sentences wrap inside this panel. What the reader
+      // did to the file and how the take was aligned are told apart.
+      messages("##load", take.warnings, "load warning", kWarningColor,
+               "What the file reader repaired or left out; click to read");
+      messages("##alignment", take.notes, "alignment note", kWarningColor,
+               "How this take was aligned onto the reference, where that changes what plays; click to read");
     } else {
       ImGui::PushTextWrapPos(0.0f);
       ImGui::TextColored(kErrorColor, "%s", take.error.c_str());

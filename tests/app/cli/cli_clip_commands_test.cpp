@@ -175,13 +175,22 @@ TEST_CASE("cli: bad input exits 1 with one line naming file and line", "[cli][bv
   CHECK(missing.status == 1);
   CHECK(lines_in(missing.err) == 1);
   CHECK(missing.err.rfind("mostyle: " + box.path("none.bvh") + ": cannot read: ", 0) == 0);
-  // Warnings go to stderr and the command still succeeds.
+  // A file cut short: where it ends and how many frames it declared, exit 1.
   const std::string cut = box.write(
-      "cut.bvh", "HIERARCHY\nROOT A\n{\nOFFSET 0 0 0\nCHANNELS 1 Xrotation\n}\nMOTION\nFrames: 3\n"
-                 "Frame Time: 0.1\n1\n2\n");
-  const Run warned = box.cli("info \"" + cut + "\"");
+      "cut.bvh", "HIERARCHY\nROOT A\n{\nOFFSET 0 0 0\nCHANNELS 1 Xrotation\n}\nMOTION\nFrames: 120\n"
+                 "Frame Time: 0.1\n1\n");
+  const Run refused = box.cli("info \"" + cut + "\"");
+  CHECK(refused.status == 1);
+  CHECK(lines_in(refused.err) == 1);
+  CHECK_THAT(refused.err, Catch::StartsWith("mostyle: " + cut + ":10: the file ends after 1 complete frame of the 120 "
+                                            "that Frames: declares on line 8"));
+  // Warnings go to stderr and the command still succeeds.
+  const std::string more = box.write(
+      "more.bvh", "HIERARCHY\nROOT A\n{\nOFFSET 0 0 0\nCHANNELS 1 Xrotation\n}\nMOTION\nFrames: 1\n"
+                  "Frame Time: 0.1\n1\n2\n");
+  const Run warned = box.cli("info \"" + more + "\"");
   CHECK(warned.status == 0);
-  CHECK(warned.err == "mostyle: warning: " + cut + ":8: Frames: says 3 but the file has 2 complete frames; loaded 2\n");
+  CHECK(warned.err == "mostyle: warning: " + more + ":8: Frames: says 1 but the file has 2 complete frames; loaded 2\n");
 }
 
 TEST_CASE("cli: MOSTYLE_MAX_MEMORY_MB bounds the memory a take's frames may need", "[cli][bvh]") {

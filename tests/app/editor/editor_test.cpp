@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <future>
+#include <iterator>
 #include <string>
 #include <thread>
 #include <vector>
@@ -590,21 +591,30 @@ TEST_CASE("sessions and undo: Ctrl+Z / Ctrl+Y undo and redo a load, a saved sess
   CHECK(pair_alpha(reopened.state().document) == 0.8);
   CHECK(reopened.session_path() == day);
 
-  // A session whose take moved away: it opens, names the file, restores the rest and keeps the
-  // takes loaded; Ctrl+Z goes back to before it was opened.
+  // A session whose take moved away: it opens with its other take, names the file, restores
+  // the rest, and is no file to save to (its file is never written without the take). No undo
+  // reaches back before an open.
   ui::SessionFile moved = saved;
   moved.document.files = {(dir / "gone.bvh").string(), marching};
   set_pair_alpha(moved.document, 0.1);
   ui::write_session_file((dir / "moved.mostyle").string(), moved);
+  const std::string moved_text = [&] {
+    std::ifstream in(dir / "moved.mostyle");
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  }();
   CHECK(reopened.open_session((dir / "moved.mostyle").string()));
   CHECK(reopened.session_message_is_error());
-  CHECK_THAT(reopened.session_message(), Catch::Contains("gone.bvh"));
-  CHECK(pair_alpha(reopened.state().document) == 0.1);
+  CHECK_THAT(reopened.session_message(), Catch::Contains("gone.bvh") && Catch::Contains("left as it is"));
+  CHECK(reopened.session_path().empty());
   reopened.wait_for_engine();
   frame(reopened);
-  CHECK(reopened.session().snapshot().paths[0] == joy);
-  press(reopened, kKeyZ, true, false);
-  CHECK(pair_alpha(reopened.state().document) == 0.8);
+  CHECK(reopened.session().snapshot().paths[0] == marching);
+  CHECK_FALSE(reopened.edits().can_undo());
+  press(reopened, kKeyS, true, false);  // Ctrl+S asks where, in the session's folder
+  CHECK(shown("Save session"));
+  press(reopened, 256, false, false);
+  std::ifstream unchanged(dir / "moved.mostyle");
+  CHECK(std::string((std::istreambuf_iterator<char>(unchanged)), std::istreambuf_iterator<char>()) == moved_text);
   reopened.shutdown_graphics();
   fs::remove_all(dir);
 }
@@ -680,7 +690,7 @@ TEST_CASE("a session given on the command line that cannot be opened: one line, 
   std::string err;
   CHECK(run(std::string("env ASAN_OPTIONS=detect_leaks=0 ") + MOSTYLE_OFFSCREEN_EXE + " " + bad + " --screenshot " + png,
             &err) == 1);
-  CHECK(err == "mostyle: " + bad + ":3: parameters.alpha: expected a number from 0 to 1, found 2\n");
+  CHECK(err == "mostyle: " + bad + ":3: parameters.alpha: expected a number from -0.5 to 1.5, found 2\n");
   CHECK_FALSE(fs::exists(png));
   CHECK(run(std::string("env -u DISPLAY -u WAYLAND_DISPLAY ") + MOSTYLE_EXE + " " + scratch.path("none.mostyle"),
             &err) == 1);
@@ -835,12 +845,12 @@ TEST_CASE("closing with unsaved edits asks Save / Discard / Cancel; Save writes 
     edit_alpha(e, 0.9);
     ed.request_close();
     CHECK_FALSE(ed.may_close());
-    CHECK(ed.asking_to_close());
+    CHECK(ed.asking_unsaved());
     for (int i = 0; i < 3; ++i) e.frame();
     const ImGuiWindow* modal = ImGui::FindWindowByName("Unsaved edits");
     REQUIRE(modal != nullptr);
     CHECK(modal->Active);
-    ed.answer_close(mostyle::ui::CloseRequest::Answer::kCancel);
+    ed.answer_unsaved(mostyle::ui::UnsavedQuestion::Answer::kCancel);
     for (int i = 0; i < 3; ++i) e.frame();
     CHECK_FALSE(ed.may_close());
     CHECK_FALSE(ImGui::FindWindowByName("Unsaved edits")->Active);
@@ -860,8 +870,8 @@ TEST_CASE("closing with unsaved edits asks Save / Discard / Cancel; Save writes 
     ed.state().command_edits++;
     for (int i = 0; i < 3; ++i) e.frame();
     ed.request_close();
-    REQUIRE(ed.asking_to_close());
-    ed.answer_close(mostyle::ui::CloseRequest::Answer::kSave);
+    REQUIRE(ed.asking_unsaved());
+    ed.answer_unsaved(mostyle::ui::UnsavedQuestion::Answer::kSave);
     CHECK(ed.may_close());
     CHECK(mostyle::ui::pair_alpha(mostyle::ui::read_session_file(path).document) == 0.1);
     ed.shutdown_graphics();
@@ -870,11 +880,62 @@ TEST_CASE("closing with unsaved edits asks Save / Discard / Cancel; Save writes 
     mostyle::test::OffscreenEditor e({640, 360});
     edit_alpha(e, 0.3);
     e.editor.request_close();
-    REQUIRE(e.editor.asking_to_close());
-    e.editor.answer_close(mostyle::ui::CloseRequest::Answer::kDiscard);
+    REQUIRE(e.editor.asking_unsaved());
+    e.editor.answer_unsaved(mostyle::ui::UnsavedQuestion::Answer::kDiscard);
     CHECK(e.editor.may_close());
     e.editor.shutdown_graphics();
   }
+}
+
+TEST_CASE("opening a session over unsaved edits asks first; undo never ties a session to other takes") {
+  namespace ui = mostyle::ui;
+  ScratchDir scratch("mostyle_editor_open_over");
+  const std::string happy = mostyle::test::asset("motions/cmu142_walk_happy.bvh");
+  const std::string marching = mostyle::test::asset("motions/cmu142_walk_marching.bvh");
+  const std::string joy = mostyle::test::asset("motions/cmu142_walk_joy.bvh");
+  // The session on disk: joy and marching at alpha 0.2.
+  const std::string bowday = scratch.path("bowday.mostyle");
+  ui::SessionFile file;
+  file.document.files = {joy, marching};
+  file.document.parameters.components = 4;
+  ui::set_pair_alpha(file.document, 0.2);
+  ui::write_session_file(bowday, file);
+  const ui::SessionFile on_disk = ui::read_session_file(bowday);
+
+  mostyle::test::OffscreenEditor e({1280, 720});
+  REQUIRE(e.gl.ok());
+  Editor& ed = e.editor;
+  edit_alpha(e, 0.9);  // unsaved work on the bundled pair
+  REQUIRE(ed.edits().unsaved());
+  // Opening asks first; Cancel keeps the work and opens nothing.
+  ed.request_open(bowday);
+  CHECK(ed.asking_unsaved());
+  for (int i = 0; i < 3; ++i) e.frame();
+  const ImGuiWindow* modal = ImGui::FindWindowByName("Unsaved edits");
+  REQUIRE(modal != nullptr);
+  CHECK(modal->Active);
+  ed.answer_unsaved(ui::UnsavedQuestion::Answer::kCancel);
+  for (int i = 0; i < 3; ++i) e.frame();
+  CHECK(ed.session_path().empty());
+  CHECK(ui::pair_alpha(ed.state().document) == Approx(0.9));
+  // Discard opens it.
+  ed.request_open(bowday);
+  REQUIRE(ed.asking_unsaved());
+  ed.answer_unsaved(ui::UnsavedQuestion::Answer::kDiscard);
+  CHECK(ed.session_path() == fs::absolute(bowday).lexically_normal().string());
+  ed.wait_for_engine();
+  for (int i = 0; i < 3; ++i) e.frame();
+  CHECK(ed.session().snapshot().paths[0] == joy);
+  // Ctrl+Z cannot bring the old takes back under this session's name: the open began anew.
+  CHECK_FALSE(ed.edits().can_undo());
+  CHECK_FALSE(ed.undo());
+  CHECK(ed.session().snapshot().paths[0] == joy);
+  CHECK_FALSE(ed.edits().unsaved());
+  // Closing now asks nothing, and the session file still holds its own takes.
+  ed.request_close();
+  CHECK(ed.may_close());
+  CHECK(ui::read_session_file(bowday).document == on_disk.document);
+  ed.shutdown_graphics();
 }
 
 namespace {

@@ -14,7 +14,7 @@
 #include "tests/test_data.h"
 #include "tests/ui/imgui_frame.h"
 #include "tests/ui/loaded_session.h"
-#include "ui/model/close_request.h"
+#include "ui/model/unsaved_question.h"
 #include "ui/model/edit_history.h"
 #include "ui/model/keyed_weights.h"
 #include "ui/model/session_file.h"
@@ -166,27 +166,58 @@ TEST_CASE("undo and redo k: a new decomposition resizing the per-component alpha
   CHECK(edits.can_redo());
 }
 
-TEST_CASE("an opened session whose take is missing keeps the takes, restores the rest, names the file") {
+TEST_CASE("an opened session whose take is missing opens its other takes, restores the rest, names the file") {
   LoadedSession s;
   const std::vector<std::string> before = capture_document(s.state).files;
   Document d = capture_document(s.state);
   set_pair_alpha(d, 0.85);
   d.controls.timing_a = true;
   d.overlay = true;
-  d.files = {test::asset("motions/cmu142_walk_happy.bvh"), "/nonexistent/folder/walk_gone.bvh"};
+  const std::string joy = test::asset("motions/cmu142_walk_joy.bvh");
+  d.files = {joy, "/nonexistent/folder/walk_gone.bvh"};
   const std::string message = apply_session_document(d, "/sessions/day.mostyle", s.state, s.session);
-  CHECK_THAT(message, Catch::StartsWith("/sessions/day.mostyle: ") && Catch::Contains("/nonexistent/folder/walk_gone.bvh"));
-  CHECK_FALSE(load_pending(s.session));
-  CHECK(pair_alpha(s.state.document) == 0.85);
+  CHECK_THAT(message, Catch::StartsWith("/sessions/day.mostyle: ") && Catch::Contains("/nonexistent/folder/walk_gone.bvh") &&
+                          Catch::Contains("other takes") && Catch::Contains("left as it is"));
   CHECK(s.state.document.controls.timing_a);
   CHECK(s.state.document.overlay);
   s.session.wait_idle(s.state);
-  CHECK(capture_document(s.state).files == before);
+  CHECK(capture_document(s.state).files == std::vector<std::string>{joy, joy});  // the take there, with itself
+  // None of its takes there: the takes loaded stay, everything else is applied.
+  Document gone = d;
+  gone.files = {"/nonexistent/a.bvh", "/nonexistent/b.bvh"};
+  set_pair_alpha(gone, 0.3);
+  CHECK_THAT(apply_session_document(gone, "/sessions/day.mostyle", s.state, s.session), Catch::Contains("loaded before stay"));
+  CHECK_FALSE(load_pending(s.session));
+  CHECK(pair_alpha(s.state.document) == 0.3);
+  s.session.wait_idle(s.state);
+  CHECK(capture_document(s.state).files == std::vector<std::string>{joy, joy});
   // Every take there: applied as it is, the takes loaded.
   d.files = {test::asset("motions/cmu142_walk_joy.bvh"), test::asset("motions/cmu142_walk_marching.bvh")};
   CHECK(apply_session_document(d, "/sessions/day.mostyle", s.state, s.session).empty());
   s.session.wait_idle(s.state);
   CHECK(capture_document(s.state) == d);
+  (void)before;
+}
+
+TEST_CASE("keep_takes: a session's takes left out take their values with them; the weights sum to 1 again") {
+  Document d;
+  d.files = {"a.bvh", "b.bvh", "c.bvh", "d.bvh"};
+  d.weights = {0.4, 0.2, 0.2, 0.2};
+  d.controls.palette.transfer = true;
+  d.controls.palette.neutral = 2;
+  d.controls.palette.strengths = {1.0, 0.5, 1.0, 0.25};
+  d.controls.palette.part_weights = {{0.1, 0.2, 0.3, 0.4}, {}, {}};
+  const Document kept = keep_takes(d, {0, 1, 3});
+  CHECK(kept.files == std::vector<std::string>{"a.bvh", "b.bvh", "d.bvh"});
+  CHECK(kept.weights[0] == Approx(0.5));
+  CHECK(kept.weights[1] == Approx(0.25));
+  CHECK(kept.weights[2] == Approx(0.25));
+  CHECK(kept.controls.palette.strengths == std::vector<double>{1.0, 0.5, 0.25});
+  CHECK(kept.controls.palette.part_weights[0] == std::vector<double>{0.1, 0.2, 0.4});
+  CHECK(kept.controls.palette.content_neutral);  // its neutral (c) is gone: the content is its own
+  const Document neutral_kept = keep_takes(d, {0, 2, 3});
+  CHECK_FALSE(neutral_kept.controls.palette.content_neutral);
+  CHECK(neutral_kept.controls.palette.neutral == 1);
 }
 
 TEST_CASE("undo and redo keys: Set key is a step of its own, a mark's drag one more, and the blend follows") {
@@ -261,28 +292,52 @@ TEST_CASE("unsaved edits: none as loaded, one after a change, none once saved or
 }
 
 TEST_CASE("closing: at once with nothing unsaved; else asked, and Cancel, Discard or Save answer it") {
-  CloseRequest c;
+  UnsavedQuestion c;
   c.request(false);
   CHECK(c.may_close());
-  CloseRequest asked;
+  UnsavedQuestion asked;
   asked.request(true);
   CHECK(asked.asking());
   CHECK_FALSE(asked.may_close());
-  asked.answer(CloseRequest::Answer::kCancel);
+  asked.answer(UnsavedQuestion::Answer::kCancel);
   CHECK_FALSE(asked.asking());
   CHECK_FALSE(asked.may_close());
   asked.request(true);
-  asked.answer(CloseRequest::Answer::kSave);
+  asked.answer(UnsavedQuestion::Answer::kSave);
   CHECK(asked.saving());
   CHECK_FALSE(asked.may_close());
   asked.saved(false);  // not written (or the dialog cancelled): stays open
   CHECK_FALSE(asked.may_close());
   asked.request(true);
-  asked.answer(CloseRequest::Answer::kSave);
+  asked.answer(UnsavedQuestion::Answer::kSave);
   asked.saved(true);
   CHECK(asked.may_close());
-  CloseRequest discard;
+  UnsavedQuestion discard;
   discard.request(true);
-  discard.answer(CloseRequest::Answer::kDiscard);
+  discard.answer(UnsavedQuestion::Answer::kDiscard);
   CHECK(discard.may_close());
+}
+
+TEST_CASE("opening a session over unsaved edits: asked first; the session opens once, after Save or Discard") {
+  UnsavedQuestion clean;
+  clean.request(false, UnsavedQuestion::Leave::kOpen, "day.mostyle");
+  CHECK_FALSE(clean.may_close());  // an open never closes the window
+  CHECK(clean.take_open() == std::optional<std::string>("day.mostyle"));
+  CHECK_FALSE(clean.take_open());  // once
+  UnsavedQuestion asked;
+  asked.request(true, UnsavedQuestion::Leave::kOpen, "day.mostyle");
+  CHECK(asked.asking());
+  CHECK(asked.leave() == UnsavedQuestion::Leave::kOpen);
+  CHECK_FALSE(asked.take_open());
+  asked.answer(UnsavedQuestion::Answer::kCancel);
+  CHECK_FALSE(asked.take_open());
+  asked.request(true, UnsavedQuestion::Leave::kOpen, "night.mostyle");
+  asked.answer(UnsavedQuestion::Answer::kSave);
+  CHECK_FALSE(asked.take_open());  // not before the edits are written
+  asked.saved(true);
+  CHECK(asked.take_open() == std::optional<std::string>("night.mostyle"));
+  asked.request(true, UnsavedQuestion::Leave::kOpen, "day.mostyle");
+  asked.answer(UnsavedQuestion::Answer::kDiscard);
+  CHECK_FALSE(asked.may_close());
+  CHECK(asked.take_open() == std::optional<std::string>("day.mostyle"));
 }

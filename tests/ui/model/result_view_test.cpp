@@ -44,6 +44,7 @@ TEST_CASE("result view: the mix parameters carry the keys that fit the takes") {
   CHECK(keyed.weights == doc.weights);  // the constant weights as they were
   // A transfer: the content's and the neutral's weights made from the styles'.
   c.palette.transfer = true;
+  c.palette.content_neutral = false;
   c.palette.neutral = 1;
   c.palette.strengths = {1.0, 1.0, 0.5};
   const MixParams transfer = mix_params_for(doc, d, 3);
@@ -129,6 +130,67 @@ TEST_CASE("result view: the weights follow the takes, a take added keeps the oth
   s.session.wait_idle(s.state);
   REQUIRE(s.session.palette()->size() == 4);
   CHECK(s.state.document.weights == std::vector<double>{0.5, 0.2, 0.3, 0.0});
+}
+
+TEST_CASE("result view: a take added to a transfer keeps every strength and the result; the new one starts at 0") {
+  using V = std::vector<double>;
+  CHECK(values_for_takes({"a", "b"}, {1.0, 0.5}, {"a", "b", "c"}, 0.0) == V{1.0, 0.5, 0.0});
+  CHECK_FALSE(values_for_takes({"a", "b"}, {1.0, 0.5}, {"c", "a", "b"}, 0.0));
+  CHECK_FALSE(values_for_takes({"a", "b"}, {}, {"a", "b", "c"}, 0.0));
+  // A pair's transfer at strength 0.5 (B's style on A, its alpha), given a third take with +.
+  LoadedSession s;
+  s.state.document.controls.palette.transfer = true;
+  s.state.document.controls.palette.content_neutral = true;
+  set_pair_alpha(s.state.document, 0.5);
+  s.session.sync(s.state);
+  s.session.wait_idle(s.state);
+  REQUIRE(s.session.result_view().mix() != nullptr);
+  const Eigen::MatrixXd before = s.session.result_view().mix()->motion.world;
+  std::vector<std::string> takes = s.session.requested_files();
+  takes.push_back(test::asset("motions/cmu142_walk_joy.bvh"));
+  s.session.load_files(takes);
+  s.session.wait_idle(s.state);
+  REQUIRE(s.session.palette() != nullptr);
+  const PaletteControls& c = s.state.document.controls.palette;
+  CHECK(c.transfer);
+  CHECK(c.content_neutral);
+  REQUIRE(c.strengths.size() == 3);
+  CHECK(c.strengths[1] == 0.5);
+  CHECK(c.strengths[2] == 0.0);
+  REQUIRE(s.session.result_view().mix() != nullptr);
+  // The same result: a take at weight 0 changes no pose (the takes are decomposed again together,
+  // and the common timeline is sampled for three, so within a small part of the body's size).
+  const Eigen::MatrixXd& after = s.session.result_view().mix()->motion.world;
+  REQUIRE(after.rows() == before.rows());
+  Eigen::VectorXd heights(before.cols() / 3);
+  for (Eigen::Index j = 0; j < heights.size(); ++j) heights(j) = before.col(3 * j + 1).mean();
+  const double size = heights.maxCoeff() - heights.minCoeff();
+  const double moved = (after - before).cwiseAbs().maxCoeff();
+  const double mean = (after - before).cwiseAbs().mean();
+  INFO("largest joint change " << moved / size << " of the body's size, " << mean / size << " on average");
+  CHECK(mean < 0.002 * size);
+  CHECK(moved < 0.02 * size);
+  // A palette's strengths of 0.5 and 0.25, given a fourth take: they stay, the new one at 0.
+  s.state.document.controls.palette.strengths = {1.0, 0.5, 0.25};
+  takes.push_back(test::asset("motions/cmu142_walk_clumsy.bvh"));
+  s.session.load_files(takes);
+  s.session.wait_idle(s.state);
+  REQUIRE(s.session.palette()->size() == 4);
+  CHECK(s.state.document.controls.palette.strengths == V{1.0, 0.5, 0.25, 0.0});
+}
+
+TEST_CASE("result view: new takes' transfer starts on the take named neutral, else on the content as its own") {
+  CHECK(named_neutral({"normal.bvh", "bye_active.bvh", "bye_normal.bvh"}) == 2);  // never the content
+  CHECK(named_neutral({"a/walk_angry.bvh", "b/Neutral01.fbx"}) == 1);
+  CHECK(named_neutral({"walk_angry.bvh", "abnormal_walk.bvh", "neutrality.bvh"}) == -1);
+  PaletteControls c;
+  size_palette_controls(c, {}, {}, {"bye_normal.bvh", "bye_active.bvh", "bye_giant.bvh"});
+  CHECK(c.content_neutral);  // the content is the normal take: it is its own neutral
+  CHECK(c.strengths == std::vector<double>{1.0, 1.0, 1.0});
+  PaletteControls named;
+  size_palette_controls(named, {}, {}, {"bye_active.bvh", "bye_giant.bvh", "bye_normal.bvh"});
+  CHECK_FALSE(named.content_neutral);
+  CHECK(named.neutral == 2);
 }
 
 TEST_CASE("result view: weights set for the takes asked for stay theirs; other takes in their place get equal weights") {

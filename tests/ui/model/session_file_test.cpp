@@ -282,8 +282,8 @@ TEST_CASE("session files: a bad file is refused with one line naming the file an
       {"{\n  \"version\": 3\n}", 2, "version 3 is not one this mostyle reads (it reads versions 1 to 2)"},
       {"{\n  \"version\": 0\n}", 2, "version 0 is not one this mostyle reads"},
       {"{\n  \"version\": 1,\n  \"parameters\": {\n    \"alpha\": \"half\"\n  }\n}", 4,
-       "parameters.alpha: expected a number from 0 to 1, found the string 'half'"},
-      {"{\"version\": 1,\n\"parameters\": {\"alpha\": 1.5}}", 2, "parameters.alpha: expected a number from 0 to 1, found 1.5"},
+       "parameters.alpha: expected a number from -0.5 to 1.5, found the string 'half'"},
+      {"{\"version\": 1,\n\"parameters\": {\"alpha\": 1.6}}", 2, "parameters.alpha: expected a number from -0.5 to 1.5, found 1.6"},
       {"{\"version\": 1,\n\"parameters\": {\n\"components\": 2.5}}", 3, "parameters.components: expected a whole number"},
       {"{\"version\": 1,\n\"parameters\": {\n\"sparsity\": 0}}", 3, "parameters.sparsity: expected a number from 0.01 to 1, found 0"},
       {"{\"version\": 1,\n\"parameters\": {\n\n\"alpah\": 0.5}}", 4, "unknown key 'alpah' in parameters"},
@@ -357,9 +357,12 @@ TEST_CASE("session files: a missing take is reported, and the rest of the sessio
   CHECK(*back.camera == *s.camera);
   const std::vector<std::string> missing = missing_takes(back.document);
   CHECK(missing == std::vector<std::string>{dir + "/gone.bvh"});
-  const std::string message = missing_takes_message(path, missing);
-  CHECK_THAT(message, Catch::StartsWith(path + ": cannot find the take ") && Catch::Contains("gone.bvh"));
-  CHECK(missing_takes_message(path, {}).empty());
+  const std::string message = missing_takes_message(path, missing, true);
+  CHECK_THAT(message, Catch::StartsWith(path + ": cannot find the take ") && Catch::Contains("gone.bvh") &&
+                          Catch::Contains("other takes") && Catch::Contains("left as it is"));
+  CHECK(message.find('\n') == std::string::npos);
+  CHECK_THAT(missing_takes_message(path, missing, false), Catch::Contains("loaded before stay"));
+  CHECK(missing_takes_message(path, {}, true).empty());
   // Writes are atomic: a failed one leaves the file as it was.
   CHECK_THROWS_AS(write_session_file(dir + "/no/such/folder/day.mostyle", s), InputError);
   CHECK(read_session_file(path).document == s.document);

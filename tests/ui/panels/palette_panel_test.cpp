@@ -102,6 +102,9 @@ TEST_CASE("palette panel: a transfer's neutral can be none, the content its own 
   t.frame();
   REQUIRE(t.s.session.palette() != nullptr);
   PaletteControls& c = t.s.state.document.controls.palette;
+  // No take is named neutral: the transfer starts with the content its own neutral.
+  CHECK(c.content_neutral);
+  c.content_neutral = false;
   c.strengths = {1.0, 0.25, 0.5};
   t.frame();
   // A neutral take (marching): joy is the only style.
