@@ -302,8 +302,9 @@ bool Editor::imgui_settling() {
   asked_shown_ = question_.asking();
   for (const ImGuiWindow* w : g.Windows) {
     if (!w->Active && !w->WasActive) continue;
+    // (HiddenFramesCanSkipItems is not asked: a child scrolled out of its parent has it on every frame.)
     settling = settling || w->Appearing || w->AutoFitFramesX > 0 || w->AutoFitFramesY > 0 ||
-               w->HiddenFramesCanSkipItems > 0 || w->HiddenFramesCannotSkipItems > 0;
+               w->HiddenFramesCannotSkipItems > 0;
   }
   return settling;
 }

@@ -160,6 +160,9 @@ class Editor {
   // goes ahead at once. The platform ends its loop once may_close().
   void request_close() { question_.request(edits_.unsaved()); }
   void request_open(const std::string& path);
+  // Ctrl+O: the Open session dialog, starting on the session's file, the newest recent session,
+  // or the folder sessions go to (session_folder).
+  void command_open();
   bool may_close() const { return question_.may_close(); }
   bool asking_unsaved() const { return question_.asking(); }
   // The question's buttons: Save (saving, then going ahead once saved), Discard or Cancel.
@@ -190,7 +193,6 @@ class Editor {
   void draw_keys_window();  // the list of keys, with Frame all and Reset layout
   // Sessions: Ctrl+S / Ctrl+Shift+S / Ctrl+O, the path dialog they open, the message window.
   void command_save(bool ask);
-  void command_open();
   void draw_session_windows();  // the dialog (carrying out what it asks) or the message
   void draw_unsaved_question();  // Save / Discard / Cancel, while question_ asks
   void open_when_answered();     // the session request_open asked for, once it may be opened

@@ -619,6 +619,31 @@ TEST_CASE("sessions and undo: Ctrl+Z / Ctrl+Y undo and redo a load, a saved sess
   fs::remove_all(dir);
 }
 
+TEST_CASE("at rest the editor still draws the frames a dialog asked for needs to show, then rests") {
+  mostyle::test::OffscreenEditor e({800, 450});
+  REQUIRE(e.gl.ok());
+  Editor& editor = e.editor;
+  editor.wait_for_engine();
+  editor.init_graphics();
+  for (int i = 0; i < 5; ++i) e.frame();
+  CHECK_FALSE(editor.settling());
+  // Ctrl+O's command, as a button gives it: the dialog opens over the next frames, which the
+  // window draws without input (settling), and it is whole once they are drawn.
+  editor.command_open();
+  CHECK_FALSE(editor.animating());
+  e.frame();
+  int frames = 1;
+  for (; editor.settling() && frames < 10; ++frames) e.frame();
+  CHECK(frames >= 2);
+  CHECK_FALSE(editor.settling());
+  const ImGuiWindow* dialog = ImGui::FindWindowByName("Open session");
+  REQUIRE(dialog != nullptr);
+  CHECK(dialog->Active);
+  CHECK(dialog->HiddenFramesCannotSkipItems == 0);
+  CHECK(dialog->Size.x > 100.0f);
+  editor.shutdown_graphics();
+}
+
 TEST_CASE("at rest, a finished decomposition wakes the editor and shows at once (no input needed)") {
   mostyle::test::OffscreenEditor e({800, 450});
   REQUIRE(e.gl.ok());
@@ -634,6 +659,9 @@ TEST_CASE("at rest, a finished decomposition wakes the editor and shows at once 
     frame();
   }
   REQUIRE_FALSE(editor.animating());
+  // Nor is ImGui still laying anything out: the window may wait for input.
+  for (int i = 0; i < 3 && editor.settling(); ++i) frame();
+  CHECK_FALSE(editor.settling());
   // A new k (as the slider gives it): the worker decomposes while no input comes.
   const int before = wakes;
   editor.state().document.parameters.components = 6;
