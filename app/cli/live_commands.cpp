@@ -11,6 +11,7 @@
 #include "app/cli/cli_pipeline_common.h"
 #include "app/live/live_run.h"
 #include "engine/base/error.h"
+#include "engine/io/numbers.h"
 #include "engine/live/live_style.h"
 #include "engine/synthesize/mix_palette.h"
 #include "engine/align/prepare_takes.h"
@@ -92,6 +93,30 @@ std::unique_ptr<BvhRecorder> recorder(const std::string& path, const std::string
   return std::make_unique<BvhRecorder>(path, skeleton.skeleton, skeleton.frame_time);
 }
 
+// --connect-timeout as typed: seconds from 0 up; none: for ever (-1).
+double parse_connect_timeout(const std::string& text) {
+  if (text.empty()) return -1.0;
+  double seconds = 0.0;
+  if (!parse_number(text, &seconds) || seconds < 0.0)
+    throw InputError("--connect-timeout: expected seconds from 0 (one try, and the end when the source closes) up, "
+                     "found '" + text + "'");
+  return seconds;
+}
+
+// --max-clients as typed: enough for any studio, few enough that descriptors never run out.
+int checked_max_clients(int n) {
+  constexpr int kMostClients = 1024;
+  if (n < 1 || n > kMostClients)
+    throw InputError("--max-clients: expected from 1 to " + std::to_string(kMostClients) + " clients, found " +
+                     std::to_string(n));
+  return n;
+}
+
+constexpr const char* kServeHelp =
+    "PORT: this machine only (127.0.0.1); ADDRESS:PORT opens it to a network on purpose: 0.0.0.0:PORT every IPv4 "
+    "interface, an interface's own address, [::]:PORT every interface; port 0 picks a free one. Where it listens is "
+    "printed";
+
 }  // namespace
 
 void add_live_command(CLI::App& app, std::function<int()>* run) {
@@ -100,8 +125,9 @@ void add_live_command(CLI::App& app, std::function<int()>* run) {
       "Put a style on a live motion-capture stream in Axis Neuron's BVH broadcasting format (string, TCP) and "
       "serve it on in the same format, each frame as it comes");
   struct Args {
-    std::string connect, skeleton, serve, record, record_input;
+    std::string connect, skeleton, serve, record, record_input, connect_timeout;
     bool reconnect = false;
+    int max_clients = live::kDefaultMaxClients;
     StyleFlags style;
   };
   auto args = std::make_shared<Args>();
@@ -123,19 +149,27 @@ void add_live_command(CLI::App& app, std::function<int()>* run) {
   cmd->add_option("--weights", args->style.weights,
                   "With --mix: one weight per take, comma separated, summing to 1 (default: equal)");
   cmd->add_option("--serve", args->serve,
-                  "Port to serve the styled stream on, to any number of clients (the Unity or Unreal Axis plugin "
-                  "set to this machine and port); 0 picks a free port; the port is printed");
+                  std::string("Where to serve the styled stream (the Unity or Unreal Axis plugin set to this machine "
+                              "and port). ") + kServeHelp);
+  cmd->add_option("--max-clients", args->max_clients,
+                  "The most clients served at once (default 16); one more is refused, with a warning on stderr");
   cmd->add_option("--record", args->record,
                   "BVH file of the styled stream, written frame by frame (a valid BVH file at every moment)");
   cmd->add_option("--record-input", args->record_input, "BVH file of the stream as it came, written the same way");
+  cmd->add_option("--connect-timeout", args->connect_timeout,
+                  "Seconds to wait for the source, at the start and after it closes, trying again every 0.25 s to "
+                  "2 s (default: for ever, as the Axis plugins do, so a restart of the mocap software is "
+                  "survived); 0: one try, and the end when the source closes");
   cmd->add_flag("--reconnect", args->reconnect,
-                "When the source closes (or is not there yet), wait for it and go on instead of ending");
+                "Kept for older command lines: waiting for the source and reconnecting is the default now "
+                "(--connect-timeout)");
   cmd->callback([=] {
     *run = [=] {
       live::LiveConfig config;
       config.source = live::parse_host_port(args->connect, "--connect");
-      config.reconnect = args->reconnect;
-      if (!args->serve.empty()) config.serve_port = live::parse_port(args->serve, "--serve");
+      config.connect_timeout_s = parse_connect_timeout(args->connect_timeout);
+      if (!args->serve.empty()) config.serve = live::parse_serve_address(args->serve, "--serve");
+      config.max_clients = checked_max_clients(args->max_clients);
       if (!args->record.empty() && args->record == args->record_input)
         throw InputError(args->record + ": --record and --record-input name the same file");
       LiveStyleSpec spec;
@@ -161,13 +195,16 @@ void add_live_send_command(CLI::App& app, std::function<int()>* run) {
     double rate = 0.0;
     bool loop = false;
     int clients = 1;
+    int max_clients = live::kDefaultMaxClients;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("FILE", args->file, "The take (BVH; FBX or glTF are sampled at their own rate)")->required();
   cmd->add_option("--serve", args->serve,
-                  "Port to serve on; 0 picks a free port. The port is printed; sending starts when the first client "
-                  "connects, so a test or a plugin started later misses nothing")
+                  std::string("Where to serve; sending starts when the first client connects, so a test or a plugin "
+                              "started later misses nothing. ") + kServeHelp)
       ->required();
+  cmd->add_option("--max-clients", args->max_clients,
+                  "The most clients served at once (default 16); one more is refused, with a warning on stderr");
   cmd->add_option("--rate", args->rate, "Frames per second (default: the take's own)");
   cmd->add_flag("--loop", args->loop, "Start over after the last frame, until stopped (Ctrl-C)");
   cmd->add_option("--clients", args->clients,
@@ -178,7 +215,11 @@ void add_live_send_command(CLI::App& app, std::function<int()>* run) {
       live::LiveSendConfig config;
       if (args->clients < 1 || args->clients > 64) throw InputError("--clients: expected from 1 to 64 clients, found " + std::to_string(args->clients));
       config.clients = args->clients;
-      config.port = live::parse_port(args->serve, "--serve");
+      config.max_clients = checked_max_clients(args->max_clients);
+      if (config.clients > config.max_clients)
+        throw InputError("--clients: " + std::to_string(config.clients) + " clients cannot connect with --max-clients " +
+                         std::to_string(config.max_clients));
+      config.serve = live::parse_serve_address(args->serve, "--serve");
       if (!(std::isfinite(args->rate) && args->rate >= 0.0))
         throw InputError("--rate: expected frames per second above 0");
       config.rate = args->rate;

@@ -5,8 +5,13 @@
 # mostyle-cli is $MOSTYLE_CLI when set, else build/app/mostyle-cli of the submitting folder.
 # Each task writes logs/summary_I.json (its journal, logs/summary_I.json.journal, while it runs).
 # --skip-existing: a task requeued or run again after a time limit does only what is missing.
+# Each task asks for one CPU and runs one job at a time, so the array runs on any node. To run N
+# jobs at once in each task, ask for N CPUs on the submit line, which overrides the line below
+# (batch's --jobs follows SLURM_CPUS_PER_TASK); a task asking more CPUs than any node has waits
+# for ever (squeue's reason: PartitionConfig), so keep N within a node's (sinfo -o %c):
+#   mkdir -p logs && sbatch --array=0-15 --cpus-per-task=8 app/cluster/slurm-array.sh jobs.jsonl
 #SBATCH --job-name=mostyle-library
-#SBATCH --cpus-per-task=8
+#SBATCH --cpus-per-task=1
 #SBATCH --output=logs/%A_%a.out
 set -euo pipefail
 jobs_file="${1:?usage: sbatch --array=0-(N-1) $0 JOBS.jsonl [batch options]}"

@@ -6,13 +6,18 @@
 #include <algorithm>
 #include <cerrno>
 
-#include "app/live/tcp.h"
-
 namespace mostyle::live {
+namespace {
 
-FrameServer::FrameServer(int port, const FrameServerOptions& options) : options_(options) {
+constexpr auto kRefusalWarnEvery = std::chrono::seconds(1);
+
+}  // namespace
+
+FrameServer::FrameServer(const HostPort& where, const FrameServerOptions& options)
+    : options_(options), where_(where) {
+  options_.max_clients = std::max(1, options_.max_clients);
   ignore_sigpipe();
-  listen_fd_ = listen_on(port, &port_);
+  listen_fd_ = listen_on(where, &where_.port);
 }
 
 FrameServer::~FrameServer() { close(); }
@@ -33,8 +38,6 @@ void FrameServer::add_poll_fds(std::vector<pollfd>* fds) const {
 
 void FrameServer::handle_poll(const std::vector<pollfd>& fds, size_t first) {
   if (accept_pause_ > 0) --accept_pause_;
-  if (fds[first].revents & POLLIN) accept_clients();
-  // Clients accepted just now come after those polled; they have no events yet.
   const size_t polled = std::min(clients_.size(), fds.size() - first - 1);
   for (size_t i = 0; i < polled; ++i) {
     Client& c = clients_[i];
@@ -54,14 +57,22 @@ void FrameServer::handle_poll(const std::vector<pollfd>& fds, size_t first) {
     if (!c.gone && (events & POLLOUT)) flush(c);
   }
   remove_gone();
+  // After the clients' hang-ups: a client that takes the place of one gone is not refused.
+  if (fds[first].revents & POLLIN) accept_clients();
 }
 
 void FrameServer::accept_clients() {
   for (;;) {
-    const int fd = ::accept4(listen_fd_, nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC);
+    sockaddr_storage peer{};
+    socklen_t length = sizeof peer;
+    const int fd = ::accept4(listen_fd_, reinterpret_cast<sockaddr*>(&peer), &length, SOCK_NONBLOCK | SOCK_CLOEXEC);
     if (fd < 0) {
       if (errno == EMFILE || errno == ENFILE || errno == ENOBUFS || errno == ENOMEM) accept_pause_ = 10;
       return;  // EAGAIN: no more waiting; a client that left before accept: nothing to do
+    }
+    if (static_cast<int>(clients_.size()) >= options_.max_clients) {
+      refuse(fd, peer);
+      continue;
     }
     set_no_delay(fd);
     ::setsockopt(fd, SOL_SOCKET, SO_SNDBUF, &options_.send_buffer_bytes, sizeof options_.send_buffer_bytes);
@@ -70,6 +81,21 @@ void FrameServer::accept_clients() {
     clients_.push_back(std::move(c));
     ++accepted_;
   }
+}
+
+// Accepted only to be closed: left waiting, it would hold a place in the backlog and think it
+// was served; closed, it sees the end of the stream at once.
+void FrameServer::refuse(int fd, const sockaddr_storage& peer) {
+  ::close(fd);
+  ++refused_;
+  if (!options_.warn) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (refusal_warned_ && now - last_refusal_warning_ < kRefusalWarnEvery) return;
+  refusal_warned_ = true;
+  last_refusal_warning_ = now;
+  options_.warn("refused a client from " + address_host(peer) + ": " + std::to_string(options_.max_clients) +
+                " clients are connected, the most --max-clients allows (" + std::to_string(refused_) +
+                " refused in all)");
 }
 
 void FrameServer::flush(Client& c) {

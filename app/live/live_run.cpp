@@ -8,6 +8,7 @@
 #include <cstring>
 #include <iostream>
 #include <optional>
+#include <sstream>
 #include <vector>
 
 #include "app/live/frame_server.h"
@@ -18,7 +19,13 @@
 namespace mostyle::live {
 namespace {
 
-constexpr auto kRetryEvery = std::chrono::milliseconds(500);  // --reconnect's attempts
+// A source not there is tried again after kFirstRetry, the wait doubling up to kLongestRetry: a
+// mocap program restarting is found within a few seconds without a flood of attempts.
+constexpr auto kFirstRetry = std::chrono::milliseconds(250);
+constexpr auto kLongestRetry = std::chrono::seconds(2);
+// One attempt's handshake at most: a host that drops the attempt (down, a firewall) is tried
+// again instead of being waited for as long as the kernel would.
+constexpr auto kAttemptFor = std::chrono::seconds(2);
 constexpr auto kWarnEvery = std::chrono::seconds(1);           // skipped-frame warnings at most this often
 constexpr auto kDrainFor = std::chrono::seconds(2);            // clients' queues at the end
 constexpr size_t kReadBytes = size_t{1} << 16;
@@ -41,6 +48,7 @@ class LiveRun {
     ignore_sigpipe();
     open_server();
     addresses_ = resolve(config_.source);
+    start_waiting();
     start_connecting();
     while (!stop_.signal() && state_ != State::kDone) poll_once();
     finish();
@@ -52,9 +60,22 @@ class LiveRun {
 
   // The server first, so that clients may connect while the source is awaited.
   void open_server() {
-    if (config_.serve_port < 0) return;
-    server_.emplace(config_.serve_port);
-    std::cout << "live: serving on port " << server_->port() << std::endl;
+    if (!config_.serve) return;
+    FrameServerOptions options;
+    options.max_clients = config_.max_clients;
+    options.warn = [](const std::string& sentence) { std::cerr << "mostyle: warning: " << sentence << "\n"; };
+    server_.emplace(*config_.serve, options);
+    std::cout << "live: serving on " << server_->serving() << std::endl;
+  }
+
+  bool waits_for_ever() const { return config_.connect_timeout_s < 0.0; }
+
+  // The source is awaited from now: at the start, or once it closed.
+  void start_waiting() {
+    retry_in_ = kFirstRetry;
+    give_up_at_ = waits_for_ever() ? Clock::time_point::max()
+                                   : Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                                        std::chrono::duration<double>(config_.connect_timeout_s));
   }
 
   // Tries the source's addresses in turn from address_; a refusal moves to the next.
@@ -63,28 +84,48 @@ class LiveRun {
       source_fd_ = start_connect(addresses_[address_]);
       if (source_fd_ >= 0) {
         state_ = State::kConnecting;
+        attempt_until_ = Clock::now() + kAttemptFor;
         return;
       }
       last_error_ = errno;
     }
-    connection_failed();
+    attempt_failed();
   }
 
-  void connection_failed() {
+  // Every address refused: wait and try again, said once until a connection comes, or give up
+  // once the timeout has passed.
+  void attempt_failed() {
     address_ = 0;
-    if (!config_.reconnect && !connected_once_)
-      throw InputError("cannot connect to " + config_.source.text() + ": " + std::strerror(last_error_));
-    if (!config_.reconnect) {
-      state_ = State::kDone;
-      return;
-    }
+    const Clock::time_point now = Clock::now();
+    if (now >= give_up_at_) return give_up();
     if (!waiting_noted_) {
       std::cerr << "mostyle: note: waiting for " << config_.source.text() << " (" << std::strerror(last_error_)
                 << ")\n";
       waiting_noted_ = true;
     }
+    wait_to_retry();
+  }
+
+  void wait_to_retry() {
     state_ = State::kWaiting;
-    retry_at_ = Clock::now() + kRetryEvery;
+    retry_at_ = std::min(give_up_at_, Clock::now() + retry_in_);
+    retry_in_ = std::min<Clock::duration>(2 * retry_in_, kLongestRetry);
+  }
+
+  void give_up() {
+    const std::string within = config_.connect_timeout_s > 0.0
+                                   ? " within " + format_seconds(config_.connect_timeout_s) + " s (--connect-timeout)"
+                                   : "";
+    if (!connected_once_)
+      throw InputError("cannot connect to " + config_.source.text() + within + ": " + std::strerror(last_error_));
+    if (!within.empty()) std::cerr << "mostyle: note: " << config_.source.text() << " did not come back" << within << "\n";
+    state_ = State::kDone;
+  }
+
+  static std::string format_seconds(double s) {
+    std::ostringstream out;
+    out << s;
+    return out.str();
   }
 
   void poll_once() {
@@ -94,30 +135,40 @@ class LiveRun {
     fds_.push_back({polling_source ? source_fd_ : -1, static_cast<short>(state_ == State::kConnecting ? POLLOUT : POLLIN), 0});
     const size_t server_at = fds_.size();
     if (server_) server_->add_poll_fds(&fds_);
-    const Clock::time_point deadline = state_ == State::kWaiting ? retry_at_ : Clock::time_point::max();
+    const Clock::time_point deadline = state_ == State::kWaiting      ? retry_at_
+                                       : state_ == State::kConnecting ? attempt_until_
+                                                                      : Clock::time_point::max();
     if (poll_until(&fds_, deadline) < 0 && errno != EINTR) throw std::runtime_error(std::strerror(errno));
     if (fds_[0].revents) return;  // stopped
     if (server_) server_->handle_poll(fds_, server_at);
     if (polling_source && fds_[1].revents) {
       if (state_ == State::kConnecting) finish_connecting();
       else read_source();
+    } else if (state_ == State::kConnecting && Clock::now() >= attempt_until_) {
+      next_address(ETIMEDOUT);
     }
     if (state_ == State::kWaiting && Clock::now() >= retry_at_) start_connecting();
   }
 
+  // This address failed (its errno): the next one, or a wait.
+  void next_address(int error) {
+    ::close(source_fd_);
+    source_fd_ = -1;
+    last_error_ = error;
+    ++address_;
+    start_connecting();
+  }
+
   void finish_connecting() {
     const int error = connect_result(source_fd_);
-    if (error != 0) {
-      ::close(source_fd_);
-      source_fd_ = -1;
-      last_error_ = error;
-      ++address_;
-      start_connecting();
-      return;
-    }
+    if (error != 0) return next_address(error);
     state_ = State::kConnected;
-    connected_once_ = true;
     waiting_noted_ = false;
+    // A new connection is a new stream (the mocap program restarted, maybe the performer
+    // elsewhere, another avatar first): nothing of the last one carries over.
+    if (connected_once_) style_.restart();
+    connected_once_ = true;
+    styled_avatar_ = -1;
     splitter_.reset();
     dropped_lines_ = 0;
     lines_before_ = lines_in_;
@@ -202,7 +253,7 @@ class LiveRun {
     count_dropped_lines();
     ::close(source_fd_);
     source_fd_ = -1;
-    if (!config_.reconnect) {
+    if (config_.connect_timeout_s == 0.0) {  // one try: the stream's end is the end
       state_ = State::kDone;
       return;
     }
@@ -210,8 +261,8 @@ class LiveRun {
               << " lines; waiting for it again\n";
     waiting_noted_ = true;
     last_error_ = ECONNRESET;
-    state_ = State::kWaiting;
-    retry_at_ = Clock::now() + kRetryEvery;
+    start_waiting();
+    wait_to_retry();
   }
 
   // The clients get what waits for them (a few seconds at most), then the end of the stream.
@@ -233,7 +284,7 @@ class LiveRun {
     config_.record_input.reset();
     std::cout << "live: " << lines_in_ << " frames in, " << styled_ << " styled, " << skipped_ << " skipped; "
               << (server_ ? server_->accepted() : 0) << " clients, " << (server_ ? server_->dropped() : 0)
-              << " dropped" << std::endl;
+              << " dropped, " << (server_ ? server_->refused() : 0) << " refused" << std::endl;
   }
 
   LiveConfig& config_;
@@ -247,7 +298,8 @@ class LiveRun {
   State state_ = State::kWaiting;
   int source_fd_ = -1;
   bool connected_once_ = false, waiting_noted_ = false;
-  Clock::time_point retry_at_;
+  Clock::time_point retry_at_, attempt_until_, give_up_at_;
+  Clock::duration retry_in_ = kFirstRetry;
   std::vector<pollfd> fds_;
   std::vector<char> buffer_;
   AxisLineSplitter splitter_;

@@ -17,21 +17,31 @@ constexpr auto kDrainFor = std::chrono::seconds(5);  // the last frames to the c
 class LiveSend {
  public:
   LiveSend(const Clip& clip, const LiveSendConfig& config)
-      : clip_(clip), config_(config), server_(config.port), rate_(config.rate > 0 ? config.rate : clip.fps()) {}
+      : clip_(clip),
+        config_(config),
+        server_(config.serve, server_options(config)),
+        rate_(config.rate > 0 ? config.rate : clip.fps()) {}
 
   int run(const std::string& source) {
     std::cout << "live-send: serving " << source << " (" << clip_.frames() << " frames at " << rate_
-              << " fps) on port " << server_.port() << "; waiting for "
+              << " fps) on " << server_.serving() << "; waiting for "
               << (config_.clients == 1 ? std::string("a client") : std::to_string(config_.clients) + " clients")
               << std::endl;
     if (wait_for_client()) send_frames();
     drain();
     std::cout << "live-send: " << sent_ << " frames sent; " << server_.accepted() << " clients, " << server_.dropped()
-              << " dropped" << std::endl;
+              << " dropped, " << server_.refused() << " refused" << std::endl;
     return 0;
   }
 
  private:
+  static FrameServerOptions server_options(const LiveSendConfig& config) {
+    FrameServerOptions options;
+    options.max_clients = config.max_clients;
+    options.warn = [](const std::string& sentence) { std::cerr << "mostyle: warning: " << sentence << "\n"; };
+    return options;
+  }
+
   // Polls the stop pipe and the server until `deadline`; false once stopped.
   bool serve_until(Clock::time_point deadline) {
     do {

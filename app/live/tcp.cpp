@@ -1,5 +1,6 @@
 #include "app/live/tcp.h"
 
+#include <arpa/inet.h>
 #include <fcntl.h>
 #include <netdb.h>
 #include <netinet/in.h>
@@ -44,11 +45,32 @@ HostPort parse_host_port(const std::string& text, const std::string& flag) {
   return r;
 }
 
-int parse_port(const std::string& text, const std::string& flag) {
-  int port = -1;
-  if (!parse_int(text, &port) || port < 0 || port > 65535)
-    throw InputError(flag + ": expected a port from 0 (any free one) to 65535, found '" + text + "'");
-  return port;
+HostPort parse_serve_address(const std::string& text, const std::string& flag) {
+  const auto bad = [&](const std::string& why) {
+    return InputError(flag + ": expected PORT or ADDRESS:PORT (7001 for this machine only, 0.0.0.0:7001 for every " +
+                      "IPv4 interface, [::]:7001 for every interface), found '" + text + "': " + why);
+  };
+  HostPort r;
+  r.host = kDefaultServeHost;
+  std::string port_text = text;
+  const size_t colon = text.rfind(':');
+  if (colon != std::string::npos) {
+    std::string host = text.substr(0, colon);
+    port_text = text.substr(colon + 1);
+    const bool bracketed = host.size() >= 2 && host.front() == '[' && host.back() == ']';
+    if (bracketed) host = host.substr(1, host.size() - 2);
+    // ":7001" means every interface to some tools and this machine to others: ask which.
+    if (host.empty()) throw bad("give the address to listen on before ':'");
+    unsigned char scratch[sizeof(in6_addr)];
+    if (bracketed && ::inet_pton(AF_INET6, host.c_str(), scratch) != 1) throw bad("'" + host + "' is not an IPv6 address");
+    if (!bracketed && ::inet_pton(AF_INET, host.c_str(), scratch) != 1)
+      throw bad(host.find(':') != std::string::npos ? "an IPv6 address goes in brackets ([::1]:7001)"
+                                                    : "'" + host + "' is not a numeric IPv4 address");
+    r.host = host;
+  }
+  if (!parse_int(port_text, &r.port) || r.port < 0 || r.port > 65535)
+    throw bad("the port is not a number from 0 (any free one) to 65535");
+  return r;
 }
 
 void ignore_sigpipe() { ::signal(SIGPIPE, SIG_IGN); }
@@ -63,52 +85,63 @@ void set_no_delay(int fd) {
   ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &on, sizeof on);
 }
 
-int listen_on(int port, int* bound) {
+int listen_on(const HostPort& where, int* bound) {
+  const std::string host = where.host.find(':') != std::string::npos ? "[" + where.host + "]" : where.host;
   const auto fail = [&](int error) {
-    return InputError("cannot serve on port " + std::to_string(port) + ": " + std::strerror(error));
+    return InputError("cannot serve on " + host + " port " + std::to_string(where.port) + ": " + std::strerror(error));
   };
-  const int on = 1, off = 0;
-  // IPv6 with IPv4-mapped addresses takes both; a system without IPv6 gets IPv4 alone.
-  int fd = ::socket(AF_INET6, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
-  if (fd >= 0) {
-    ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &on, sizeof on);
-    ::setsockopt(fd, IPPROTO_IPV6, IPV6_V6ONLY, &off, sizeof off);
-    sockaddr_in6 a{};
-    a.sin6_family = AF_INET6;
-    a.sin6_addr = in6addr_any;
-    a.sin6_port = htons(static_cast<uint16_t>(port));
-    if (::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
-      const int e = errno;
-      ::close(fd);
-      if (e != EAFNOSUPPORT && e != EADDRNOTAVAIL) throw fail(e);
-      fd = -1;
-    }
+  sockaddr_storage address{};
+  socklen_t length = 0;
+  const uint16_t port = htons(static_cast<uint16_t>(where.port));
+  auto* a6 = reinterpret_cast<sockaddr_in6*>(&address);
+  auto* a4 = reinterpret_cast<sockaddr_in*>(&address);
+  if (::inet_pton(AF_INET6, where.host.c_str(), &a6->sin6_addr) == 1) {
+    a6->sin6_family = AF_INET6;
+    a6->sin6_port = port;
+    length = sizeof *a6;
+  } else if (::inet_pton(AF_INET, where.host.c_str(), &a4->sin_addr) == 1) {
+    a4->sin_family = AF_INET;
+    a4->sin_port = port;
+    length = sizeof *a4;
+  } else {
+    throw InputError("cannot serve on " + where.host + ": expected a numeric address (127.0.0.1, 0.0.0.0, ::)");
   }
-  if (fd < 0) {
-    fd = ::socket(AF_INET, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
-    if (fd < 0) throw fail(errno);
-    ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &on, sizeof on);
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_addr.s_addr = htonl(INADDR_ANY);
-    a.sin_port = htons(static_cast<uint16_t>(port));
-    if (::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
-      const int e = errno;
-      ::close(fd);
-      throw fail(e);
-    }
-  }
-  if (::listen(fd, 64) != 0) {
-    const int e = errno;
+  const int fd = ::socket(address.ss_family, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+  if (fd < 0) throw fail(errno);
+  const auto close_and_fail = [&](int error) {
     ::close(fd);
-    throw fail(e);
+    return fail(error);
+  };
+  const int on = 1;
+  ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &on, sizeof on);
+  if (address.ss_family == AF_INET6 && IN6_IS_ADDR_UNSPECIFIED(&a6->sin6_addr)) {
+    // "::" is every interface, IPv4 ones too, whatever the system's default for IPv6 sockets.
+    const int off = 0;
+    ::setsockopt(fd, IPPROTO_IPV6, IPV6_V6ONLY, &off, sizeof off);
   }
+  if (::bind(fd, reinterpret_cast<const sockaddr*>(&address), length) != 0) throw close_and_fail(errno);
+  if (::listen(fd, 64) != 0) throw close_and_fail(errno);
   sockaddr_storage s{};
-  socklen_t length = sizeof s;
-  ::getsockname(fd, reinterpret_cast<sockaddr*>(&s), &length);
+  socklen_t bound_length = sizeof s;
+  ::getsockname(fd, reinterpret_cast<sockaddr*>(&s), &bound_length);
   *bound = s.ss_family == AF_INET6 ? ntohs(reinterpret_cast<sockaddr_in6*>(&s)->sin6_port)
                                    : ntohs(reinterpret_cast<sockaddr_in*>(&s)->sin_port);
   return fd;
+}
+
+std::string serving_text(const HostPort& where) {
+  const bool v6 = where.host.find(':') != std::string::npos;
+  std::string text = (v6 ? "[" + where.host + "]" : where.host) + " port " + std::to_string(where.port);
+  in_addr a4{};
+  in6_addr a6{};
+  if (::inet_pton(AF_INET, where.host.c_str(), &a4) == 1) {
+    if ((ntohl(a4.s_addr) >> 24) == 127) return text + " (this machine only)";
+    if (a4.s_addr == htonl(INADDR_ANY)) return text + " (every IPv4 interface)";
+  } else if (::inet_pton(AF_INET6, where.host.c_str(), &a6) == 1) {
+    if (IN6_IS_ADDR_LOOPBACK(&a6)) return text + " (this machine only)";
+    if (IN6_IS_ADDR_UNSPECIFIED(&a6)) return text + " (every interface)";
+  }
+  return text;
 }
 
 std::vector<SocketAddress> resolve(const HostPort& where) {
@@ -127,6 +160,16 @@ std::vector<SocketAddress> resolve(const HostPort& where) {
   }
   ::freeaddrinfo(list);
   return out;
+}
+
+std::string address_host(const sockaddr_storage& address) {
+  char host[NI_MAXHOST] = "?";
+  const socklen_t length = address.ss_family == AF_INET6 ? sizeof(sockaddr_in6) : sizeof(sockaddr_in);
+  ::getnameinfo(reinterpret_cast<const sockaddr*>(&address), length, host, sizeof host, nullptr, 0, NI_NUMERICHOST);
+  const std::string text = host;
+  const std::string mapped = "::ffff:";
+  if (text.rfind(mapped, 0) == 0 && text.find('.') != std::string::npos) return text.substr(mapped.size());
+  return text;
 }
 
 int start_connect(const SocketAddress& address) {

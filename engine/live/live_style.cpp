@@ -120,7 +120,7 @@ std::vector<int> posed_joints(const Skeleton& skeleton, const std::vector<int>& 
 
 struct LiveStyle::State {
   State(const LiveFeet& f, const LivePhase& p, ExportFrameSolver&& s)
-      : feet(f), toes(f), phase(p), solver(std::move(s)) {}
+      : feet(f), toes(f), phase(p), fresh_feet(f), fresh_phase(p), solver(std::move(s)) {}
 
   Skeleton skeleton;
   double fps = 30.0;
@@ -142,6 +142,8 @@ struct LiveStyle::State {
   LiveFeet feet;  // the ankles' contacts: the gait's strikes, and the lock's
   LiveFeet toes;  // the toes' (the ankles again on a leg without one): the lock's
   LivePhase phase;
+  const LiveFeet fresh_feet;    // feet, toes and phase as a stream's first frame finds them
+  const LivePhase fresh_phase;
   std::vector<double> from, to, eased;  // strengths: the ease's start and end, and where it is
   double ease = 1.0;                    // its progress, 0 to 1
   std::array<LegLock, 2> legs;
@@ -152,6 +154,7 @@ struct LiveStyle::State {
   bool copied = false;                  // the frame before was copied through
   ExportFrameSolver solver;
 
+  void start_stream();
   void pose(const double* values);
   void read_up_axis();
   void to_canonical();
@@ -168,6 +171,40 @@ struct LiveStyle::State {
   void limit_speed();
   void solve(const double* values, double* out);
 };
+
+// Everything a stream's frames build up, as before its first frame; the strengths at their
+// targets, the ease done.
+void LiveStyle::State::start_stream() {
+  const Eigen::Index n = 3 * static_cast<Eigen::Index>(joints.size());
+  for (Eigen::VectorXd* v : {&in, &previous_in, &local, &change_local, &raw, &target, &delta, &previous_delta,
+                             &solve_targets})
+    v->setZero(n);
+  up.setIdentity();
+  ground.setZero();
+  heading = 0.0;
+  heading_cos = 1.0;
+  heading_sin = 0.0;
+  phase_row = next_phase_row = 0;
+  phase_fraction = 0.0;
+  has_heading = false;
+  feet = fresh_feet;
+  toes = fresh_feet;
+  phase = fresh_phase;
+  from = eased = to;
+  ease = 1.0;
+  for (size_t side = 0; side < 2; ++side) {
+    LegLock fresh;
+    fresh.joints[0].column = rig.legs[side].ankle;
+    fresh.joints[1].column = rig.legs[side].toe;
+    fresh.hold.assign(to.size(), Eigen::Vector3d::Zero());
+    legs[side] = std::move(fresh);
+  }
+  fastest = 0.0;
+  last_out.assign(static_cast<size_t>(skeleton.channel_count), 0.0);
+  frames = 0;
+  copied = false;
+  solver.restart();
+}
 
 // FK of the joints posed, in the stream's axes, then the major joints turned to Y up.
 void LiveStyle::State::pose(const double* values) {
@@ -496,21 +533,14 @@ LiveStyle::LiveStyle(const Skeleton& skeleton, double fps, const LiveStyleSpec& 
   s.chain = posed_joints(skeleton, joints);
   s.rotation.assign(skeleton.joints.size(), Eigen::Matrix3d::Identity());
   s.position.assign(skeleton.joints.size(), Eigen::Vector3d::Zero());
-  for (Eigen::VectorXd* v : {&s.in, &s.previous_in, &s.local, &s.change_local, &s.raw, &s.target, &s.delta,
-                             &s.previous_delta, &s.solve_targets})
-    v->setZero(3 * m);
-  s.from = s.to = s.eased = spec.strengths;
+  s.to = spec.strengths;
   s.fastest_decay = std::pow(0.5, 1.0 / (kFastestHalfLifeSeconds * fps));
-  s.last_out.assign(static_cast<size_t>(skeleton.channel_count), 0.0);
-  for (size_t side = 0; side < 2; ++side) {
-    LegLock& leg = s.legs[side];
-    leg.joints[0].column = rig.legs[side].ankle;
-    leg.joints[1].column = rig.legs[side].toe;
-    leg.hold.assign(spec.strengths.size(), Eigen::Vector3d::Zero());
-  }
+  s.start_stream();
 }
 
 LiveStyle::~LiveStyle() = default;
+
+void LiveStyle::restart() { state_->start_stream(); }
 
 void LiveStyle::set_strengths(const std::vector<double>& strengths) {
   State& s = *state_;

@@ -76,6 +76,12 @@ class LiveStyle {
   // however long it runs.
   void style_frame(const double* in, double* out);
 
+  // The next frame is a new stream's first, as after construction: the feet, the gait phase, the
+  // up axis, the foot holds and the speed limit's memory start afresh (a source reconnected may
+  // stream another place, another performer), the strengths at their targets (no ease left).
+  // The takes' change tables are kept: O(joints), nothing prepared again.
+  void restart();
+
   // What the last frame styled showed (the editor's metrics, tests).
   double phase() const;            // [0, 1): within the neutral's gait cycle, as used
   bool in_cycle() const;           // the stream walks in cycles (else the posture change)

@@ -157,7 +157,8 @@ void BM_LiveLatency(benchmark::State& state) {
   const int listener = mostyle::test::listen_local(&port);
   const std::string err = (fs::temp_directory_path() / ("mostyle_live_bench_" + std::to_string(::getpid()))).string();
   mostyle::test::CliProcess live({"live", "--connect", "127.0.0.1:" + std::to_string(port), "--skeleton", happy,
-                                  "--neutral", happy, "--style", joy, "--strength", "0", "--serve", "0"},
+                                  "--neutral", happy, "--style", joy, "--strength", "0", "--serve", "0",
+                                  "--connect-timeout", "0"},
                                  err);
   const int served = live.port();
   const int client = served > 0 ? mostyle::test::connect_local(served) : -1;
@@ -229,7 +230,7 @@ void BM_LiveSendReplay(benchmark::State& state) {
     const int source_port = send.port();
     mostyle::test::CliProcess live({"live", "--connect", "127.0.0.1:" + std::to_string(source_port), "--skeleton", take,
                                     "--neutral", dir + "/bandai_walk_normal.bvh", "--style",
-                                    dir + "/bandai_walk_old.bvh", "--serve", "0"},
+                                    dir + "/bandai_walk_old.bvh", "--serve", "0", "--connect-timeout", "0"},
                                    tmp + "/live.err");
     const int served_port = source_port > 0 ? live.port() : -1;
     const int client = served_port > 0 ? mostyle::test::connect_local(served_port) : -1;

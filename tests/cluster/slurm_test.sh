@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # app/cluster/slurm-array.sh on a real one-node Slurm (Debian's slurm-wlm and munge): munged with
-# a fresh key, slurmctld and slurmd with a configuration in a temporary folder (no cgroups), an
-# array of 3 tasks over a grid of 4 blends. Checks that every output exists exactly once and
-# that the tasks' summaries cover every job exactly once; stops the daemons by their process ids
-# and removes the folder however it ends. Needs root (the daemons); says "skipped: ..." and
+# a fresh key, slurmctld and slurmd with a configuration in a temporary folder (no cgroups), the
+# node given 2 CPUs whatever the machine has (a recipe asking more would wait for ever). Submits
+# the README's command as written, an array of 3 tasks over a grid of 4 blends, and checks that
+# every output exists exactly once, that the tasks' summaries cover every job exactly once and
+# that each task ran one job at a time; then one task with --cpus-per-task=2 on the submit line,
+# which runs batch with --jobs 2. Stops the daemons by their process ids and removes the folder
+# however it ends. Needs root (the daemons); says "skipped: ..." and
 # exits 0 otherwise.
 #   tests/cluster/slurm_test.sh [MOSTYLE_CLI]     (default: build/app/mostyle-cli)
 set -euo pipefail
@@ -49,10 +52,12 @@ munged --foreground --force --socket="$socket" --key-file="$tmp/munge/munge.key"
     --pid-file="$tmp/munge/munged.pid" --log-file="$tmp/munged.log" --seed-file="$tmp/munge/munged.seed" 2>>"$tmp/munged.log" &
 pids+=($!)
 
-# Slurm: this host as the one node (slurmd -C gives its CPUs and memory), ports of our own so
+# Slurm: this host as the one node with 2 CPUs, as small as a node gets (config_overrides: a
+# larger machine registers as configured), its memory as slurmd -C reads it; ports of our own so
 # that another Slurm on the machine is left alone.
 host="$(hostname -s)"
-node="$(slurmd -C | head -n 1 | sed 's/ UpTime=.*//')"
+memory="$(slurmd -C | head -n 1 | sed -n 's/.*RealMemory=\([0-9]*\).*/\1/p')"
+node="NodeName=$host CPUs=2 Boards=1 SocketsPerBoard=1 CoresPerSocket=2 ThreadsPerCore=1 RealMemory=${memory:-1024}"
 port=$((20000 + RANDOM % 20000))
 cat >"$tmp/slurm.conf" <<CONF
 ClusterName=mostyle-test
@@ -72,6 +77,7 @@ SelectType=select/cons_tres
 SelectTypeParameters=CR_Core
 MpiDefault=none
 ReturnToService=2
+SlurmdParameters=config_overrides
 StateSaveLocation=$tmp/state
 SlurmdSpoolDir=$tmp/spool
 SlurmctldPidFile=$tmp/slurmctld.pid
@@ -101,15 +107,36 @@ cp "$root/assets/motions/cmu142_walk_happy.bvh" "$root/assets/motions/cmu142_wal
 "$cli" grid --takes cmu142_walk_happy.bvh cmu142_walk_joy.bvh --alphas 0,1 --out-dir out --jobs-out jobs.jsonl \
     -- --components 4 --iterations 20
 [ "$(wc -l <jobs.jsonl)" -eq 4 ] || fail "expected 4 jobs, found $(wc -l <jobs.jsonl)"
-export MOSTYLE_CLI="$cli"
-job="$(sbatch --parsable --array=0-2 --cpus-per-task=1 --output='logs/%A_%a.out' \
-      "$root/app/cluster/slurm-array.sh" jobs.jsonl)"
+# mostyle-cli behind a wrapper that writes down the arguments each task ran batch with.
+cat >"$tmp/cli-args.sh" <<WRAP
+#!/bin/sh
+echo "\$@" >"$tmp/work/logs/args_\$SLURM_ARRAY_TASK_ID"
+exec "$cli" "\$@"
+WRAP
+chmod +x "$tmp/cli-args.sh"
+export MOSTYLE_CLI="$tmp/cli-args.sh"
+
+# Waits for array $1 to leave the queue (120 s at most); a task that cannot run on this node
+# fails at once, naming squeue's reason.
+wait_for_array() {
+  local reason
+  for _ in $(seq 600); do
+    [ -z "$(squeue -h -j "$1" 2>/dev/null)" ] && return 0
+    reason="$(squeue -h -j "$1" -o %r 2>/dev/null | sort -u | tr '\n' ' ')"
+    case "$reason" in
+      *PartitionConfig*)
+        fail "array $1 cannot run on a node of 2 CPUs (squeue's reason: $reason)" ;;
+    esac
+    sleep 0.2
+  done
+  fail "the array $1 has not finished after 120 s"
+}
+
+# The README's command as written (--parsable only to read the array's id).
+job="$(sbatch --parsable --array=0-2 "$root/app/cluster/slurm-array.sh" jobs.jsonl)" ||
+  fail "sbatch refused the README's command on a node of 2 CPUs"
 echo "slurm test: submitted array $job"
-for _ in $(seq 600); do
-  [ -z "$(squeue -h -j "$job" 2>/dev/null)" ] && break
-  sleep 0.2
-done
-[ -z "$(squeue -h -j "$job")" ] || fail "the array $job has not finished after 120 s"
+wait_for_array "$job"
 
 # Every output exactly once: the folder holds the 8 files of the 4 jobs and nothing else.
 expected="$(sed 's/.*"--out","\([^"]*\)","--report","\([^"]*\)".*/\1\n\2/' jobs.jsonl | sort)"
@@ -124,4 +151,15 @@ lines="$(cat logs/summary_*.json | grep -o '"line": [0-9]*' | sort -t: -k2 -n | 
 [ "$lines" = '"line":1 "line":2 "line":3 "line":4 ' ] || fail "summaries cover lines: $lines"
 ok="$(cat logs/summary_*.json | grep -c '"status": "ok"')"
 [ "$ok" -eq 4 ] || fail "expected 4 ok jobs in the summaries, found $ok"
+for t in 0 1 2; do
+  grep -q -- "--jobs 1 " "logs/args_$t" || fail "task $t ran: $(cat "logs/args_$t"), expected --jobs 1"
+done
 echo "slurm test: array $job of 3 tasks ran 4 blends, every output once, summaries cover every job once"
+
+# N CPUs from the submit line: batch runs N jobs at once (every output is there: all skipped).
+rm -f logs/args_*
+job="$(sbatch --parsable --array=0-0 --cpus-per-task=2 "$root/app/cluster/slurm-array.sh" jobs.jsonl)" ||
+  fail "sbatch refused --cpus-per-task=2 on a node of 2 CPUs"
+wait_for_array "$job"
+grep -q -- "--jobs 2 " logs/args_0 || fail "with --cpus-per-task=2 the task ran: $(cat logs/args_0 2>/dev/null)"
+echo "slurm test: --cpus-per-task=2 on the submit line ran batch with --jobs 2"

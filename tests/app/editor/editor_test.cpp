@@ -975,7 +975,7 @@ struct LoopbackSource {
   std::thread thread;
 
   explicit LoopbackSource(const mostyle::Clip& clip) {
-    listener = mostyle::live::listen_on(0, &port);
+    listener = mostyle::live::listen_on({"127.0.0.1", 0}, &port);
     std::string lines;
     for (int f = 0; f < clip.frames(); ++f)
       mostyle::append_axis_line(&lines, 0, "Avatar00", nullptr, 0, clip.motion.row(f).data(), clip.skeleton.channel_count);
@@ -1006,7 +1006,7 @@ struct HeldLoopbackSource {
   std::thread thread;
 
   HeldLoopbackSource(const mostyle::Clip& clip, int first) {
-    listener = mostyle::live::listen_on(0, &port);
+    listener = mostyle::live::listen_on({"127.0.0.1", 0}, &port);
     std::string head, tail;
     for (int f = 0; f < clip.frames(); ++f)
       mostyle::append_axis_line(f < first ? &head : &tail, 0, "Avatar00", nullptr, 0, clip.motion.row(f).data(),
@@ -1167,7 +1167,7 @@ TEST_CASE("editor: at 1280x720 the Files panel's Live section shows whole at its
   // Connected (here to a port nobody serves): the section opens, its fields, status and
   // recording rows in view.
   int port = 0;
-  ::close(mostyle::live::listen_on(0, &port));
+  ::close(mostyle::live::listen_on({"127.0.0.1", 0}, &port));
   editor.live().settings().address = "127.0.0.1:" + std::to_string(port);
   editor.live().settings().skeleton = mostyle::test::asset("motions/cmu142_walk_clumsy.bvh");
   REQUIRE(editor.connect_live());
@@ -1180,7 +1180,7 @@ TEST_CASE("editor: at 1280x720 the Files panel's Live section shows whole at its
 TEST_CASE("editor: a Live address nobody serves, or that is not one, is said in one sentence") {
   namespace ui = mostyle::ui;
   int port = 0;
-  ::close(mostyle::live::listen_on(0, &port));  // a port just freed: nothing listens there
+  ::close(mostyle::live::listen_on({"127.0.0.1", 0}, &port));  // a port just freed: nothing listens there
   Editor editor(mostyle::test::paused_small_pair());
   editor.wait_for_engine();
   editor.live().settings().address = "localhost:" + std::to_string(port);

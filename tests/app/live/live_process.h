@@ -4,7 +4,9 @@
 // loopback (ports picked by the system), and reading lines with generous deadlines, so that a
 // loaded two-core machine slows the tests down but never fails them.
 #include <arpa/inet.h>
+#include <dirent.h>
 #include <fcntl.h>
+#include <ifaddrs.h>
 #include <netinet/in.h>
 #include <poll.h>
 #include <signal.h>
@@ -12,6 +14,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cstring>
 #include <functional>
@@ -79,6 +82,14 @@ class CliProcess {
     }
   }
 
+  // Reads stdout until it holds `text`; false if it has not within kLiveTimeout.
+  bool wait_for_output(const std::string& text) {
+    const auto deadline = TestClock::now() + kLiveTimeout;
+    while (out().find(text) == std::string::npos)
+      if (!read_some(deadline)) return false;
+    return true;
+  }
+
   // Waits for the exit (killing it after kLiveTimeout); returns the exit status, or -1 when a
   // signal ended it. Collects the rest of stdout.
   int wait() {
@@ -97,6 +108,7 @@ class CliProcess {
   }
 
   void signal(int sig) { ::kill(pid_, sig); }
+  pid_t pid() const { return pid_; }
   std::string out() const { return seen_ + out_; }
   std::string err() const {
     std::FILE* f = std::fopen(stderr_path_.c_str(), "rb");
@@ -157,6 +169,88 @@ inline int listen_local(int* port) {
   ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &length);
   *port = ntohs(a.sin_port);
   return fd;
+}
+
+// A socket bound to 127.0.0.1 (port picked by the system, in *port) and not listening:
+// connections to it are refused until the test calls listen().
+inline int bound_not_listening(int* port) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  const int on = 1;
+  ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &on, sizeof on);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a);
+  socklen_t length = sizeof a;
+  ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &length);
+  *port = ntohs(a.sin_port);
+  return fd;
+}
+
+// Listening on 127.0.0.1:port again (SO_REUSEADDR: the port of a source closed a moment ago);
+// -1 if it cannot.
+inline int listen_local_on(int port) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  const int on = 1;
+  ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &on, sizeof on);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  a.sin_port = htons(static_cast<uint16_t>(port));
+  if (::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0 || ::listen(fd, 8) != 0) {
+    ::close(fd);
+    return -1;
+  }
+  return fd;
+}
+
+// This machine's own IPv4 addresses outside 127.0.0.0/8 (its interfaces', from getifaddrs): a
+// connection to one reaches this machine by a network interface's address, not by loopback.
+inline std::vector<in_addr> own_network_addresses() {
+  std::vector<in_addr> out;
+  ifaddrs* list = nullptr;
+  if (::getifaddrs(&list) != 0) return out;
+  for (const ifaddrs* i = list; i; i = i->ifa_next) {
+    if (i->ifa_addr == nullptr || i->ifa_addr->sa_family != AF_INET) continue;
+    const in_addr a = reinterpret_cast<const sockaddr_in*>(i->ifa_addr)->sin_addr;
+    if ((ntohl(a.s_addr) >> 24) != 127) out.push_back(a);
+  }
+  ::freeifaddrs(list);
+  return out;
+}
+
+// A blocking TCP connection to address:port (an address of this machine); -1 with errno set
+// when refused.
+inline int connect_to(in_addr address, int port) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr = address;
+  a.sin_port = htons(static_cast<uint16_t>(port));
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
+    const int e = errno;
+    ::close(fd);
+    errno = e;
+    return -1;
+  }
+  return fd;
+}
+
+inline std::string address_text(in_addr address) {
+  char text[INET_ADDRSTRLEN] = "";
+  ::inet_ntop(AF_INET, &address, text, sizeof text);
+  return text;
+}
+
+// The descriptors a process has open (/proc/PID/fd; "self" for this one).
+inline int open_descriptors(const std::string& pid = "self") {
+  DIR* d = ::opendir(("/proc/" + pid + "/fd").c_str());
+  if (d == nullptr) return -1;
+  int n = 0;
+  while (const dirent* e = ::readdir(d))
+    if (e->d_name[0] != '.') ++n;
+  ::closedir(d);
+  return pid == "self" ? n - 1 : n;  // not the one opendir holds
 }
 
 // Accepts one connection within kLiveTimeout; -1 if none came.

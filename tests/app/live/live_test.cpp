@@ -1,7 +1,9 @@
 // mostyle-cli live and live-send, run as a user runs them, over loopback: every frame served (the
 // pass-through styler: served values equal the input's within 1e-6), garbage skipped and counted,
 // a reference passed through, a client that never reads dropped while a reading one gets every
-// frame, a killed source, SIGTERM, --reconnect, recordings whole after a kill, and bad usage.
+// frame, a killed source, SIGTERM, a source awaited and reconnected (--connect-timeout), the
+// servers on this machine only unless opened, clients past --max-clients refused, recordings
+// whole after a kill, and bad usage.
 // Most tests play the source themselves (a socket in the test), so they send exactly what they
 // check; deadlines are generous and ports the system's, so a loaded machine slows them only.
 #include <catch2/catch.hpp>
@@ -77,12 +79,16 @@ void check_recording(const std::string& path, const Clip& clip, int count, bool 
 
 // `live` on a source at 127.0.0.1:source_port, serving on a port of the system's, styling at
 // strength 0: each frame as it came, with the pass-through styler and with a real one alike.
-std::vector<std::string> live_args(int source_port, const std::string& skeleton, const std::vector<std::string>& more) {
+// connect_timeout: --connect-timeout's value ("0": one try, the end when the source closes, as
+// the tests that read a stream to its end need); "": not given (wait for ever).
+std::vector<std::string> live_args(int source_port, const std::string& skeleton, const std::vector<std::string>& more,
+                                   const std::string& connect_timeout = "0") {
   std::vector<std::string> a{"live",       "--connect", "127.0.0.1:" + std::to_string(source_port),
                              "--skeleton", skeleton,    "--neutral",
                              skeleton,     "--style",   kJoy,
                              "--strength", "0",         "--serve",
                              "0"};
+  if (!connect_timeout.empty()) a.insert(a.end(), {"--connect-timeout", connect_timeout});
   a.insert(a.end(), more.begin(), more.end());
   return a;
 }
@@ -155,7 +161,8 @@ Clip replay_through_live(const Sandbox& box, const std::string& take, const std:
   REQUIRE(source_port > 0);
   test::CliProcess live({"live", "--connect", "127.0.0.1:" + std::to_string(source_port), "--skeleton", take,
                          "--neutral", test::shared_motion("bandai_walk_normal.bvh"), "--style",
-                         test::shared_motion("bandai_walk_old.bvh"), "--strength", strength, "--serve", "0"},
+                         test::shared_motion("bandai_walk_old.bvh"), "--strength", strength, "--serve", "0",
+                         "--connect-timeout", "0"},
                         box.path("live.err"));
   const int served_port = live.port();
   INFO(live.err());
@@ -408,54 +415,379 @@ TEST_CASE("live ends cleanly at SIGTERM, its recording complete", "[cli][live]")
   CHECK(test::read_lines(s.client).empty());  // clients get the end of the stream
 }
 
-TEST_CASE("live --reconnect waits for its source, and for it again after it closes", "[cli][live]") {
+// How many times `text` holds `part`.
+long occurrences(const std::string& text, const std::string& part) {
+  long n = 0;
+  for (size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + part.size())) ++n;
+  return n;
+}
+
+// Long enough for several tries of a source not there (0.25 s, 0.5 s, 1 s apart).
+constexpr auto kSeveralTries = std::chrono::milliseconds(1800);
+
+TEST_CASE("live waits for its source, and for it again after it drops, saying so once each time; its client stays "
+          "connected and the new stream starts afresh",
+          "[cli][live]") {
   Sandbox box;
   const Clip clip = read_bvh_file(kHappy);
-  // A port bound but not yet listening: connections to it are refused until listen().
-  const int source_listen = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  REQUIRE(::bind(source_listen, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0);
-  socklen_t length = sizeof a;
-  ::getsockname(source_listen, reinterpret_cast<sockaddr*>(&a), &length);
-  test::CliProcess live(live_args(ntohs(a.sin_port), kHappy, {"--reconnect", "--record", box.path("out.bvh")}),
-                        box.path("live.err"));
+  int port = 0;
+  int source_listen = test::bound_not_listening(&port);
+  test::CliProcess live(live_args(port, kHappy, {"--record", box.path("out.bvh")}, ""), box.path("live.err"));
   const int served = live.port();
   REQUIRE(served > 0);
   const int client = test::connect_local(served);
-  REQUIRE(test::eventually([&] { return live.err().find("waiting for 127.0.0.1:") != std::string::npos; }));
+  REQUIRE(client >= 0);
+  REQUIRE(test::eventually([&] { return live.err().find("note: waiting for 127.0.0.1:") != std::string::npos; }));
+  std::this_thread::sleep_for(kSeveralTries);
   REQUIRE(::listen(source_listen, 4) == 0);
-  for (int round = 0; round < 2; ++round) {
-    const int source = test::accept_within(source_listen);
-    REQUIRE(source >= 0);
-    std::string stream;
-    for (int f = 3 * round; f < 3 * round + 3; ++f) stream += frame_line(clip, f);
-    test::send_all(source, stream);
-    REQUIRE(test::read_lines(client, 3).size() == 3);
-    ::close(source);
+
+  // The first stream, then the source gone (nothing listening) for several tries.
+  int source = test::accept_within(source_listen);
+  REQUIRE(source >= 0);
+  std::string stream;
+  for (int f = 0; f < 3; ++f) stream += frame_line(clip, f);
+  test::send_all(source, stream);
+  REQUIRE(test::read_lines(client, 3).size() == 3);
+  ::close(source);
+  ::close(source_listen);
+  REQUIRE(test::eventually([&] { return live.err().find("closed after 3 lines; waiting for it again") != std::string::npos; }));
+  std::this_thread::sleep_for(kSeveralTries);
+
+  // The source back, its stream another avatar's (a new stream's first frame picks the avatar).
+  source_listen = test::listen_local_on(port);
+  REQUIRE(source_listen >= 0);
+  source = test::accept_within(source_listen);
+  REQUIRE(source >= 0);
+  stream.clear();
+  const int n = clip.skeleton.channel_count;
+  for (int f = 3; f < 6; ++f) append_axis_line(&stream, 1, "Avatar01", nullptr, 0, clip.motion.row(f).data(), n);
+  test::send_all(source, stream);
+  const std::vector<std::string> lines = test::read_lines(client, 3);  // the same client, still connected
+  REQUIRE(lines.size() == 3);
+  for (int f = 3; f < 6; ++f) {
+    AxisFrame frame;
+    std::string reason;
+    REQUIRE(parse_axis_line(lines[static_cast<size_t>(f - 3)], n, &frame, &reason) == AxisLineStatus::kOk);
+    CHECK(frame.avatar_index == 1);
+    CHECK(frame.avatar_name == "Avatar01");
+    for (int c = 0; c < n; ++c) CHECK(std::abs(frame.values[static_cast<size_t>(c)] - clip.motion(f, c)) <= kServed * std::max(1.0, std::abs(clip.motion(f, c))));
   }
   live.signal(SIGTERM);
   CHECK(live.wait() == 0);
-  INFO(live.err());
+  const std::string err = live.err();
+  INFO(err);
   CHECK(summary(live.out()) == std::vector<long long>{6, 6, 0, 1, 0});
   check_recording(box.path("out.bvh"), clip, 6);
-  ::close(client);
-  ::close(source_listen);
+  // Once each: waiting at the start, connected, closed, connected again; not once per try.
+  CHECK(occurrences(err, "mostyle: note: waiting for 127.0.0.1:" + std::to_string(port) + " (Connection refused)\n") == 1);
+  CHECK(occurrences(err, "mostyle: note: connected to 127.0.0.1:" + std::to_string(port) + "\n") == 2);
+  CHECK(occurrences(err, " closed after 3 lines; waiting for it again\n") == 1);
+  CHECK(std::count(err.begin(), err.end(), '\n') == 4);
+  for (int fd : {client, source, source_listen}) ::close(fd);
+}
+
+TEST_CASE("live stopped at Ctrl-C while it waits for its source ends cleanly, its client told the end",
+          "[cli][live]") {
+  Sandbox box;
+  int port = 0;
+  const int source_listen = test::bound_not_listening(&port);
+  test::CliProcess live(live_args(port, kHappy, {}, ""), box.path("live.err"));
+  const int served = live.port();
+  REQUIRE(served > 0);
+  const int client = test::connect_local(served);
+  REQUIRE(test::eventually([&] { return live.err().find("note: waiting for 127.0.0.1:") != std::string::npos; }));
+  live.signal(SIGINT);
+  CHECK(live.wait() == 0);
+  CHECK(summary(live.out()) == std::vector<long long>{0, 0, 0, 1, 0});
+  CHECK(test::read_lines(client).empty());
+  for (int fd : {client, source_listen}) ::close(fd);
+}
+
+TEST_CASE("live --reconnect, kept for older command lines, waits as live does", "[cli][live]") {
+  Sandbox box;
+  const Clip clip = read_bvh_file(kHappy);
+  int port = 0;
+  const int source_listen = test::bound_not_listening(&port);
+  test::CliProcess live(live_args(port, kHappy, {"--reconnect"}, ""), box.path("live.err"));
+  const int served = live.port();
+  REQUIRE(served > 0);
+  const int client = test::connect_local(served);
+  REQUIRE(test::eventually([&] { return live.err().find("note: waiting for 127.0.0.1:") != std::string::npos; }));
+  REQUIRE(::listen(source_listen, 4) == 0);
+  const int source = test::accept_within(source_listen);
+  REQUIRE(source >= 0);
+  test::send_all(source, frame_line(clip, 0));
+  CHECK(test::read_lines(client, 1).size() == 1);
+  live.signal(SIGTERM);
+  CHECK(live.wait() == 0);
+  for (int fd : {client, source, source_listen}) ::close(fd);
+}
+
+TEST_CASE("live --connect-timeout gives up on a source not there, at the start with status 1, after a drop with 0",
+          "[cli][live]") {
+  Sandbox box;
+  const Clip clip = read_bvh_file(kHappy);
+  SECTION("at the start: one note, then the error, after the timeout") {
+    int port = 0;
+    const int closed = test::bound_not_listening(&port);
+    const std::string connect = "127.0.0.1:" + std::to_string(port);
+    const auto t0 = test::TestClock::now();
+    const test::CliRun r = box.cli("live --connect " + connect + " --skeleton " + test::shell_quoted(kHappy) +
+                                   " --neutral " + test::shell_quoted(kHappy) + " --style " + test::shell_quoted(kJoy) +
+                                   " --connect-timeout 1");
+    const double waited = std::chrono::duration<double>(test::TestClock::now() - t0).count();
+    INFO(r.err);
+    CHECK(r.status == 1);
+    CHECK(waited >= 1.0);
+    CHECK(r.err == "mostyle: note: waiting for " + connect + " (Connection refused)\nmostyle: cannot connect to " +
+                       connect + " within 1 s (--connect-timeout): Connection refused\n");
+    ::close(closed);
+  }
+  SECTION("after a drop: the stream's end, once the source has not come back within the timeout") {
+    int port = 0;
+    int source_listen = test::listen_local(&port);
+    test::CliProcess live(live_args(port, kHappy, {}, "1.5"), box.path("live.err"));
+    const int served = live.port();
+    REQUIRE(served > 0);
+    const int client = test::connect_local(served);
+    const int source = test::accept_within(source_listen);
+    REQUIRE(source >= 0);
+    std::string stream;
+    for (int f = 0; f < 3; ++f) stream += frame_line(clip, f);
+    test::send_all(source, stream);
+    REQUIRE(test::read_lines(client, 3).size() == 3);
+    ::close(source_listen);
+    ::close(source);
+    const auto t0 = test::TestClock::now();
+    CHECK(test::read_lines(client).empty());  // the end of the stream, once live gives up
+    CHECK(std::chrono::duration<double>(test::TestClock::now() - t0).count() >= 1.4);
+    CHECK(live.wait() == 0);
+    const std::string err = live.err();
+    INFO(err);
+    CHECK(summary(live.out()) == std::vector<long long>{3, 3, 0, 1, 0});
+    CHECK(err.find("mostyle: note: 127.0.0.1:" + std::to_string(port) + " did not come back within 1.5 s (--connect-timeout)\n") !=
+          std::string::npos);
+    ::close(client);
+  }
+}
+
+TEST_CASE("live and live-send listen on this machine only unless told an address, and say where", "[cli][live]") {
+  Sandbox box;
+  const std::vector<in_addr> own = test::own_network_addresses();
+  SECTION("--serve PORT: 127.0.0.1; a connection by an interface's own address is refused") {
+    test::CliProcess send({"live-send", kHappy, "--serve", "0", "--loop"}, box.path("send.err"));
+    const int port = send.port();
+    REQUIRE(port > 0);
+    CHECK(send.wait_for_output("on 127.0.0.1 port " + std::to_string(port) + " (this machine only); waiting for a client\n"));
+    if (own.empty()) WARN("no network interface with an IPv4 address of its own: only loopback checked");
+    for (const in_addr& a : own) {
+      INFO(test::address_text(a));
+      errno = 0;
+      CHECK(test::connect_to(a, port) < 0);
+      CHECK(errno == ECONNREFUSED);
+    }
+    const int client = test::connect_local(port);
+    CHECK(test::read_lines(client, 5).size() == 5);
+    ::close(client);
+    send.signal(SIGTERM);
+    CHECK(send.wait() == 0);
+
+    int source = 0;
+    const int source_listen = test::listen_local(&source);
+    test::CliProcess live(live_args(source, kHappy, {}), box.path("live.err"));
+    const int served = live.port();
+    REQUIRE(served > 0);
+    CHECK(live.wait_for_output("live: serving on 127.0.0.1 port " + std::to_string(served) + " (this machine only)\n"));
+    for (const in_addr& a : own) CHECK(test::connect_to(a, served) < 0);
+    live.signal(SIGTERM);
+    CHECK(live.wait() == 0);
+    ::close(source_listen);
+  }
+  SECTION("--serve 0.0.0.0:PORT opens it to every IPv4 interface on purpose") {
+    test::CliProcess send({"live-send", kHappy, "--serve", "0.0.0.0:0", "--loop"}, box.path("send.err"));
+    const int port = send.port();
+    REQUIRE(port > 0);
+    CHECK(send.wait_for_output("on 0.0.0.0 port " + std::to_string(port) + " (every IPv4 interface);"));
+    for (const in_addr& a : own) {
+      INFO(test::address_text(a));
+      const int client = test::connect_to(a, port);
+      CHECK(client >= 0);
+      CHECK(test::read_lines(client, 2).size() == 2);
+      ::close(client);
+    }
+    const int client = test::connect_local(port);
+    CHECK(test::read_lines(client, 2).size() == 2);
+    ::close(client);
+    send.signal(SIGTERM);
+    CHECK(send.wait() == 0);
+  }
+  SECTION("--serve ADDRESS:PORT: that interface only") {
+    if (own.empty()) return;
+    const std::string address = test::address_text(own[0]);
+    test::CliProcess send({"live-send", kHappy, "--serve", address + ":0", "--loop"}, box.path("send.err"));
+    const int port = send.port();
+    REQUIRE(port > 0);
+    CHECK(send.wait_for_output("on " + address + " port " + std::to_string(port) + "; waiting for a client\n"));
+    CHECK(test::connect_local(port) < 0);
+    const int client = test::connect_to(own[0], port);
+    CHECK(client >= 0);
+    CHECK(test::read_lines(client, 2).size() == 2);
+    ::close(client);
+    send.signal(SIGTERM);
+    CHECK(send.wait() == 0);
+  }
+}
+
+TEST_CASE("live-send and live serve --max-clients clients and refuse the next, saying so, serving the others",
+          "[cli][live]") {
+  Sandbox box;
+  const Clip clip = read_bvh_file(kHappy);
+  test::CliProcess send({"live-send", kHappy, "--serve", "0", "--loop", "--rate", "480", "--max-clients", "2"},
+                        box.path("send.err"));
+  const int port = send.port();
+  REQUIRE(port > 0);
+  const int a = test::connect_local(port), b = test::connect_local(port);
+  REQUIRE(test::read_lines(a, 10).size() == 10);
+  REQUIRE(test::read_lines(b, 10).size() == 10);
+  const int c = test::connect_local(port);  // one past the cap: accepted, closed at once
+  REQUIRE(c >= 0);
+  CHECK(test::read_lines(c).empty());
+  REQUIRE(test::eventually([&] { return send.err().find("refused") != std::string::npos; }));
+  CHECK(send.err() == "mostyle: warning: refused a client from 127.0.0.1: 2 clients are connected, the most "
+                      "--max-clients allows (1 refused in all)\n");
+  // The two served go on, each line the next frame.
+  for (int fd : {a, b}) {
+    const std::vector<std::string> lines = test::read_lines(fd, 20);
+    REQUIRE(lines.size() == 20);
+    int first = -1;
+    for (int f = 0; f < clip.frames() && first < 0; ++f)
+      if (serves_frame(lines[0], clip, f)) first = f;
+    REQUIRE(first >= 0);
+    for (int k = 1; k < 20; ++k) CHECK(serves_frame(lines[static_cast<size_t>(k)], clip, first + k));
+  }
+  // A place freed is a place taken, once the server has let go of it.
+  const std::string pid = std::to_string(send.pid());
+  const int with_b = test::open_descriptors(pid);
+  ::close(b);
+  REQUIRE(test::eventually([&] { return test::open_descriptors(pid) == with_b - 1; }));
+  const int d = test::connect_local(port);
+  REQUIRE(test::eventually([&] {
+    pollfd p{d, POLLIN, 0};
+    return ::poll(&p, 1, 0) == 1;
+  }));
+  CHECK(test::read_lines(d, 5).size() == 5);
+  send.signal(SIGTERM);
+  CHECK(send.wait() == 0);
+  INFO(send.out());
+  CHECK(send.out().find(" frames sent; 3 clients, 0 dropped, 1 refused\n") != std::string::npos);
+  for (int fd : {a, c, d}) ::close(fd);
+
+  // live the same (its own flag and line).
+  int source = 0;
+  const int source_listen = test::listen_local(&source);
+  test::CliProcess live(live_args(source, kHappy, {"--max-clients", "1"}), box.path("live.err"));
+  const int served = live.port();
+  REQUIRE(served > 0);
+  const int kept = test::connect_local(served), refused = test::connect_local(served);
+  CHECK(test::read_lines(refused).empty());
+  const int from = test::accept_within(source_listen);
+  REQUIRE(from >= 0);
+  test::send_all(from, frame_line(clip, 0) + frame_line(clip, 1));
+  const std::vector<std::string> lines = test::read_lines(kept, 2);
+  REQUIRE(lines.size() == 2);
+  CHECK(serves_frame(lines[1], clip, 1));
+  ::close(from);
+  CHECK(live.wait() == 0);
+  INFO(live.err());
+  CHECK(live.err().find("mostyle: warning: refused a client from 127.0.0.1: 1 clients are connected") != std::string::npos);
+  CHECK(live.out().find("live: 2 frames in, 2 styled, 0 skipped; 1 clients, 0 dropped, 1 refused\n") != std::string::npos);
+  for (int fd : {kept, refused, source_listen}) ::close(fd);
+}
+
+TEST_CASE("live-send: a thousand connections opened and closed leave its descriptors and a kept client's stream as "
+          "they were",
+          "[cli][live]") {
+  Sandbox box;
+  const Clip clip = read_bvh_file(kHappy);
+  test::CliProcess send({"live-send", kHappy, "--serve", "0", "--loop", "--rate", "240"}, box.path("send.err"));
+  const int port = send.port();
+  REQUIRE(port > 0);
+  const int kept = test::connect_local(port);
+  REQUIRE(test::read_lines(kept, 1).size() == 1);
+  const std::string pid = std::to_string(send.pid());
+  const int before = test::open_descriptors(pid);
+  REQUIRE(before > 0);
+  // The kept client reads all along, on a thread of its own; the stream must stay whole.
+  std::atomic<bool> done{false};
+  std::vector<std::string> kept_lines;
+  std::thread reader([&] {
+    std::string partial;
+    char buffer[1 << 16];
+    while (!done.load()) {
+      pollfd p{kept, POLLIN, 0};
+      if (::poll(&p, 1, 100) <= 0) continue;
+      const ssize_t n = ::recv(kept, buffer, sizeof buffer, 0);
+      if (n <= 0) break;
+      partial.append(buffer, static_cast<size_t>(n));
+      size_t start = 0;
+      for (size_t nl; (nl = partial.find('\n', start)) != std::string::npos; start = nl + 1)
+        kept_lines.push_back(partial.substr(start, nl - start));
+      partial.erase(0, start);
+    }
+  });
+  // In batches of 25 held at once, past the cap of 16, 1000 in all. Once each of a batch has
+  // been served (a frame came) or refused (the end came), the server holds no more descriptors
+  // than its clients allowed: the kept one and 15 others at most.
+  constexpr int kConnections = 1000, kBatch = 25;
+  int opened = 0, most = 0;
+  for (int round = 0; round < kConnections / kBatch; ++round) {
+    std::vector<pollfd> batch;
+    for (int k = 0; k < kBatch; ++k) {
+      const int fd = test::connect_local(port);
+      if (fd >= 0) ++opened;
+      batch.push_back({fd, POLLIN, 0});
+    }
+    REQUIRE(test::eventually([&] {
+      return ::poll(batch.data(), batch.size(), 0) == static_cast<int>(batch.size());
+    }));
+    most = std::max(most, test::open_descriptors(pid) - before);
+    for (const pollfd& p : batch)
+      if (p.fd >= 0) ::close(p.fd);
+  }
+  CHECK(opened == kConnections);
+  CHECK(most <= 15);
+  // Every connection closed is let go of (each one served finds its peer gone at its next frame).
+  CHECK(test::eventually([&] { return test::open_descriptors(pid) == before; }));
+  done = true;
+  reader.join();
+  CHECK(test::open_descriptors(pid) == before);
+  send.signal(SIGTERM);
+  CHECK(send.wait() == 0);
+  INFO(send.err());
+  // The kept client's stream: consecutive frames throughout.
+  REQUIRE(kept_lines.size() >= 50);
+  int first = -1;
+  for (int f = 0; f < clip.frames() && first < 0; ++f)
+    if (serves_frame(kept_lines[0], clip, f)) first = f;
+  REQUIRE(first >= 0);
+  for (size_t k = 1; k < kept_lines.size(); ++k) REQUIRE(serves_frame(kept_lines[k], clip, first + static_cast<int>(k)));
+  // Each connection served or refused, none dropped as slow.
+  std::smatch m;
+  const std::string out = send.out();
+  REQUIRE(std::regex_search(out, m, std::regex("([0-9]+) clients, ([0-9]+) dropped, ([0-9]+) refused")));
+  CHECK(std::stoll(m[1]) + std::stoll(m[3]) == kConnections + 1);
+  CHECK(std::stoll(m[2]) == 0);
+  CHECK(std::stoll(m[3]) > 0);
+  ::close(kept);
 }
 
 TEST_CASE("live and live-send refuse bad usage in one line naming the file or option", "[cli][live]") {
   Sandbox box;
   const std::string happy = test::shell_quoted(kHappy), joy = test::shell_quoted(kJoy);
   // A port nothing listens on: bound, never listening.
-  const int closed = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  ::bind(closed, reinterpret_cast<sockaddr*>(&a), sizeof a);
-  socklen_t length = sizeof a;
-  ::getsockname(closed, reinterpret_cast<sockaddr*>(&a), &length);
-  const std::string source = "--connect 127.0.0.1:" + std::to_string(ntohs(a.sin_port));
+  int closed_port = 0;
+  const int closed = test::bound_not_listening(&closed_port);
+  const std::string source = "--connect 127.0.0.1:" + std::to_string(closed_port);
   const std::string missing = box.path("missing.bvh");
   const std::string rec = box.path("rec.bvh");
   struct Case {
@@ -476,12 +808,33 @@ TEST_CASE("live and live-send refuse bad usage in one line naming the file or op
        "out.glb: --record writes BVH"},
       {"live --connect nowhere --skeleton " + happy + " --neutral " + happy + " --style " + joy, "--connect: expected HOST:PORT"},
       {"live " + source + " --skeleton " + happy + " --neutral " + happy + " --style " + joy + " --serve 70000",
-       "--serve: expected a port"},
-      {"live " + source + " --skeleton " + happy + " --neutral " + happy + " --style " + joy + " --record '" + rec + "'",
-       "cannot connect to 127.0.0.1:"},
+       "--serve: expected PORT or ADDRESS:PORT (7001 for this machine only, 0.0.0.0:7001 for every IPv4 interface, "
+       "[::]:7001 for every interface), found '70000': the port is not a number from 0 (any free one) to 65535"},
+      {"live " + source + " --skeleton " + happy + " --neutral " + happy + " --style " + joy + " --serve localhost:7001",
+       "found 'localhost:7001': 'localhost' is not a numeric IPv4 address"},
+      {"live " + source + " --skeleton " + happy + " --neutral " + happy + " --style " + joy + " --serve :7001",
+       "found ':7001': give the address to listen on before ':'"},
+      {"live " + source + " --skeleton " + happy + " --neutral " + happy + " --style " + joy + " --serve ::1:7001",
+       "an IPv6 address goes in brackets ([::1]:7001)"},
+      {"live " + source + " --skeleton " + happy + " --neutral " + happy + " --style " + joy + " --serve '[1.2.3.4]:7001'",
+       "'1.2.3.4' is not an IPv6 address"},
+      {"live " + source + " --skeleton " + happy + " --neutral " + happy + " --style " + joy + " --serve 127.0.0.1:x",
+       "found '127.0.0.1:x': the port is not a number"},
+      {"live " + source + " --skeleton " + happy + " --neutral " + happy + " --style " + joy + " --serve 0 --max-clients 0",
+       "--max-clients: expected from 1 to 1024 clients, found 0"},
+      {"live " + source + " --skeleton " + happy + " --neutral " + happy + " --style " + joy + " --connect-timeout -1",
+       "--connect-timeout: expected seconds from 0 (one try, and the end when the source closes) up, found '-1'"},
+      {"live " + source + " --skeleton " + happy + " --neutral " + happy + " --style " + joy + " --connect-timeout soon",
+       "--connect-timeout: expected seconds"},
+      {"live " + source + " --skeleton " + happy + " --neutral " + happy + " --style " + joy + " --record '" + rec +
+           "' --connect-timeout 0",
+       "cannot connect to 127.0.0.1:" + std::to_string(closed_port) + ": Connection refused"},
       {"live-send '" + missing + "' --serve 0", missing + ": cannot read"},
       {"live-send " + happy + " --serve 0 --rate -1", "--rate"},
       {"live-send " + happy + " --serve 0 --clients 0", "--clients: expected from 1 to 64 clients, found 0"},
+      {"live-send " + happy + " --serve 0 --clients 3 --max-clients 2", "--clients: 3 clients cannot connect with --max-clients 2"},
+      {"live-send " + happy + " --serve 0 --max-clients 2000", "--max-clients: expected from 1 to 1024 clients, found 2000"},
+      {"live-send " + happy + " --serve 0.0.0.0.0:1", "'0.0.0.0.0' is not a numeric IPv4 address"},
   };
   for (const Case& c : cases) {
     INFO(c.args);

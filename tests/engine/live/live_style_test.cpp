@@ -379,6 +379,37 @@ TEST_CASE("live: a frame that is not numbers repeats the frame before and change
   }
 }
 
+TEST_CASE("live: restarted, a styler styles a new stream exactly as a new styler does", "[live]") {
+  const auto neutral = load(test::asset("motions/cmu142_walk_happy.bvh"));
+  const auto style = load(test::asset("motions/cmu142_walk_marching.bvh"));
+  const Clip joy = *load(test::asset("motions/cmu142_walk_joy.bvh"));
+  const Clip first = first_frames(joy, 400);
+  // The second stream: later frames of the walk, elsewhere on the floor, as a source restarted
+  // with the performer somewhere else would send.
+  Clip second = joy;
+  second.motion = joy.motion.middleRows(500, 400);
+  const Joint& root = joy.skeleton.joints[0];
+  for (size_t c = 0; c < root.channels.size(); ++c) {
+    const Eigen::Index column = root.first_channel + static_cast<Eigen::Index>(c);
+    if (root.channels[c] == Channel::kXposition) second.motion.col(column).array() += 250.0;
+    if (root.channels[c] == Channel::kZposition) second.motion.col(column).array() -= 180.0;
+  }
+  LiveStyle restarted(joy.skeleton, joy.fps(), {{neutral, style}, {1.0}});
+  stream(restarted, first_frames(first, 300));
+  restarted.set_strengths({0.5});  // a stream cut off mid-ease: the next one starts at 0.5
+  stream(restarted, first);
+  restarted.restart();
+  CHECK(restarted.frames() == 0);
+  CHECK(restarted.strengths() == std::vector<double>{0.5});
+  LiveStyle fresh(joy.skeleton, joy.fps(), {{neutral, style}, {0.5}});
+  const Clip a = stream(restarted, second), b = stream(fresh, second);
+  CHECK(a.motion == b.motion);
+  // Without the restart the first stream's feet, phase and holds carry over into the second.
+  LiveStyle carried(joy.skeleton, joy.fps(), {{neutral, style}, {0.5}});
+  stream(carried, first);
+  CHECK(stream(carried, second).motion != b.motion);
+}
+
 TEST_CASE("live: bad strengths and takes are refused in one sentence", "[live]") {
   const auto neutral = load(test::asset("motions/cmu142_walk_happy.bvh"));
   const auto style = load(test::asset("motions/cmu142_walk_marching.bvh"));
