@@ -6,7 +6,6 @@
 #include <arpa/inet.h>
 #include <dirent.h>
 #include <fcntl.h>
-#include <ifaddrs.h>
 #include <netinet/in.h>
 #include <poll.h>
 #include <signal.h>
@@ -20,6 +19,7 @@
 #include <functional>
 #include <regex>
 #include <stdexcept>
+#include <cstdio>
 #include <string>
 #include <thread>
 #include <vector>
@@ -204,23 +204,59 @@ inline int listen_local_on(int port) {
   return fd;
 }
 
-// This machine's own IPv4 addresses outside 127.0.0.0/8 (its interfaces', from getifaddrs): a
-// connection to one reaches this machine by a network interface's address, not by loopback.
-inline std::vector<in_addr> own_network_addresses() {
-  std::vector<in_addr> out;
-  ifaddrs* list = nullptr;
-  if (::getifaddrs(&list) != 0) return out;
-  for (const ifaddrs* i = list; i; i = i->ifa_next) {
-    if (i->ifa_addr == nullptr || i->ifa_addr->sa_family != AF_INET) continue;
-    const in_addr a = reinterpret_cast<const sockaddr_in*>(i->ifa_addr)->sin_addr;
-    if ((ntohl(a.s_addr) >> 24) != 127) out.push_back(a);
+// The address a TCP socket listening on `port` is bound to, as the kernel lists it
+// (/proc/net/tcp, then tcp6): "127.0.0.1", "0.0.0.0", "::" ...; "" when none listens there. No
+// traffic: a socket bound to a loopback address is one no other machine can reach, which is what
+// the tests need to know without sending anything to an interface's address.
+inline std::string listening_address(int port) {
+  for (const char* table : {"/proc/net/tcp", "/proc/net/tcp6"}) {
+    std::FILE* f = std::fopen(table, "r");
+    if (f == nullptr) continue;
+    char line[512];
+    std::string found;
+    while (found.empty() && std::fgets(line, sizeof line, f)) {
+      char local[64] = "", remote[64] = "", state[8] = "";
+      unsigned slot = 0;
+      if (std::sscanf(line, " %u: %63s %63s %7s", &slot, local, remote, state) != 4) continue;
+      const std::string l = local;
+      const size_t colon = l.rfind(':');
+      if (colon == std::string::npos || std::string(state) != "0A") continue;  // 0A: LISTEN
+      if (std::stoi(l.substr(colon + 1), nullptr, 16) != port) continue;
+      const std::string hex = l.substr(0, colon);
+      if (hex.size() == 8) {
+        in_addr a{};
+        a.s_addr = static_cast<in_addr_t>(std::stoul(hex, nullptr, 16));  // the kernel's byte order
+        char text[INET_ADDRSTRLEN] = "";
+        ::inet_ntop(AF_INET, &a, text, sizeof text);
+        found = text;
+      } else if (hex.size() == 32) {
+        in6_addr a{};
+        for (int w = 0; w < 4; ++w) {
+          const uint32_t word = static_cast<uint32_t>(std::stoul(hex.substr(8 * w, 8), nullptr, 16));
+          std::memcpy(a.s6_addr + 4 * w, &word, 4);
+        }
+        char text[INET6_ADDRSTRLEN] = "";
+        ::inet_ntop(AF_INET6, &a, text, sizeof text);
+        found = text;
+      }
+    }
+    std::fclose(f);
+    if (!found.empty()) return found;
   }
-  ::freeifaddrs(list);
-  return out;
+  return std::string();
 }
 
-// A blocking TCP connection to address:port (an address of this machine); -1 with errno set
-// when refused.
+// An address of the loopback range other than 127.0.0.1 (Linux answers the whole 127.0.0.0/8 on
+// lo): a server bound to it alone is refused by 127.0.0.1, as one bound to an interface's address
+// is by every other, with nothing leaving this machine.
+inline in_addr other_loopback() {
+  in_addr a{};
+  a.s_addr = htonl(0x7F000002u);  // 127.0.0.2
+  return a;
+}
+
+// A blocking TCP connection to address:port (a loopback address: never another machine's); -1
+// with errno set when refused.
 inline int connect_to(in_addr address, int port) {
   const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
   sockaddr_in a{};
