@@ -134,13 +134,29 @@ void draw_header(DocumentControls& c, const PreparedTakes& p) {
   std::string joints;
   for (int k : al.feature.columns) joints += (joints.empty() ? "" : ", ") + p.takes[0].names[static_cast<size_t>(k)];
   const MatchedFrames matched = matched_frames_in_files(p);  // as each file counts its frames
-  ImGui::TextColored(ImVec4(0.6f, 0.62f, 0.66f, 1.0f), "on %s: A %d-%d, B %d-%d matched",
-                     align_on_name(al.feature.on), matched.a_first, matched.a_last, matched.b_first, matched.b_last);
+  ImGui::TextColored(ImVec4(0.6f, 0.62f, 0.66f, 1.0f), "A %d-%d, B %d-%d matched", matched.a_first, matched.a_last,
+                     matched.b_first, matched.b_last);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Aligned on %s (%s), %s DTW. Frames outside the matched ranges (shaded) are left out of the "
                       "blend.\n%d x %d frames at %.0f fps, cost %.3g",
                       align_on_name(al.feature.on), joints.c_str(), dtw_method_name(al.options.method),
                       static_cast<int>(al.feature.a.rows()), static_cast<int>(al.feature.b.rows()), p.fps, al.cost);
+  // The cost matrix's colours: a gradient from a good match to a poor one.
+  ImGui::SameLine();
+  ImGui::TextColored(kDimColor, "cost: low");
+  ImGui::SameLine(0.0f, 4.0f);
+  const ImVec2 at = ImGui::GetCursorScreenPos();
+  const float bar_w = 48.0f, bar_h = ImGui::GetTextLineHeight();
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  for (int k = 0; k < 12; ++k)
+    dl->AddRectFilled(ImVec2(at.x + k * bar_w / 12.0f, at.y + 2.0f), ImVec2(at.x + (k + 1) * bar_w / 12.0f + 0.5f, at.y + bar_h - 2.0f),
+                      heat(static_cast<float>(k) / 11.0f));
+  ImGui::Dummy(ImVec2(bar_w, bar_h));
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("The cost matrix's colours: how unlike A's frame (down) is to B's (across); the path keeps to "
+                      "the low cost");
+  ImGui::SameLine(0.0f, 4.0f);
+  ImGui::TextColored(kDimColor, "high");
   ImGui::PushTextWrapPos(0.0f);  // warnings wrap inside the panel
   for (const std::string& w : al.warnings) ImGui::TextColored(kWarningColor, "%s", w.c_str());
   ImGui::PopTextWrapPos();
@@ -191,6 +207,7 @@ PlotArea draw_before(const PairPlot& v, float width, float plot_h) {
   plot_line(before, v.fb, [&](int j, double* x, double* y) { *x = j; *y = v.sb(j, col) - 1.05 * span; }, color_b());
   plot_legend(before, 0, "A", color_a());
   plot_legend(before, 1, "B", color_b());
+  plot_axis_label(before, "frames");
   ImGui::EndGroup();
   return before;
 }
@@ -216,6 +233,8 @@ PlotArea draw_cost(const PairPlot& v, const DtwCostImage& img, float side) {
               IM_COL32(255, 255, 255, 230), 2.0f);
     const int u = std::clamp(static_cast<int>(std::lround(v.current_u)), 0, v.samples - 1);
     dl->AddCircleFilled(cost.to_screen(warp.b[u] + 0.5, warp.a[u] + 0.5), 4.5f, color_blend());
+    plot_axis_label(cost, "B ->");
+    plot_axis_label(cost, "A v", /*left=*/true);
   }
   ImGui::EndGroup();
   return cost;
@@ -226,7 +245,9 @@ PlotArea draw_after(const PairPlot& v, float height, double* hovered_u) {
   const TimeWarp& warp = v.warp;
   const int col = v.col, samples = v.samples;
   ImGui::TextUnformatted("after warping");
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("A and B on the warp's samples, and under them how well they match");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("A and B on the common timeline (the warp's samples); under them, how well they match: the\n"
+                      "local cost over the path's typical cost (1 typical; above the red line, shaded, poor)");
   PlotArea after = begin_plot("##after", -1.0f, height, 0.0, samples - 1, v.lo - 0.08 * v.span, v.hi + 0.08 * v.span);
   plot_line(after, samples, [&](int u, double* x, double* y) { *x = u; *y = sample(v.sa, warp.a[u], col); }, color_a(), 2.0f);
   plot_line(after, samples, [&](int u, double* x, double* y) { *x = u; *y = sample(v.sb, warp.b[u], col); }, color_b());
@@ -254,6 +275,7 @@ PlotArea draw_quality(const PairPlot& v, float height, double* hovered_u) {
   plot_line(quality, samples, [&](int u, double* x, double* y) { *x = u; *y = al.cost_ratio[u]; },
             IM_COL32(220, 220, 225, 220));
   plot_vline(quality, v.current_u, IM_COL32(255, 255, 255, 140));
+  plot_legend(quality, 0, "match", IM_COL32(200, 200, 205, 255));
   if (quality.hovered) *hovered_u = std::clamp(quality.x_at(ImGui::GetIO().MousePos.x), 0.0, samples - 1.0);
   return quality;
 }
@@ -316,7 +338,8 @@ void DtwPanel::draw(EditorState& state) {
   const PlotArea cost = draw_cost(v, image_, side);
   ImGui::SameLine();
   ImGui::BeginGroup();
-  const float quality_h = std::max(24.0f, 0.18f * side);
+  // Tall enough for its curve and its legend to read (a third of the square beside it).
+  const float quality_h = std::max(1.6f * ImGui::GetFontSize(), 0.4f * side);
   const PlotArea after = draw_after(v, side - quality_h - 4.0f, &hovered_u);
   const PlotArea quality = draw_quality(v, quality_h, &hovered_u);
   ImGui::EndGroup();

@@ -147,24 +147,27 @@ void FilesPanel::draw(EditorState& state) {
   // needs when open, as measured on the frame before; all of it, scrolling, when that is more).
   const float spacing = ImGui::GetStyle().ItemSpacing.y;
   const float avail = ImGui::GetContentRegionAvail().y;
-  const float foot = live_ == nullptr ? 0.0f : std::min(live_height_, avail);
-  const float body = live_ == nullptr ? avail : avail - foot - spacing;
+  const float foot = std::min(live_height_, avail);
+  const float body = avail - foot - spacing;
   if (body >= ImGui::GetFrameHeight()) {
     const ImGuiID panel_id = ImGui::GetCurrentWindow()->ID;
     ImGui::BeginChild("##files-body", ImVec2(0.0f, body), false);
     ImGui::PushOverrideID(panel_id);  // the fields' and buttons' ids are the panel's, as without a body
     draw_take_fields(takes);
-    draw_export_field(state, export_folder, static_cast<int>(takes.size()));
     draw_messages();
     draw_browser(takes);
     draw_recent(state, takes);
     ImGui::PopID();
     ImGui::EndChild();
   }
-  if (live_ != nullptr) {
+  {  // The export field and the Live section: at the foot, in view at any window size.
     const bool fits = live_height_ <= avail;
+    const ImGuiID panel_id = ImGui::GetCurrentWindow()->ID;
     ImGui::BeginChild("##live", ImVec2(0.0f, foot), false, fits ? ImGuiWindowFlags_NoScrollbar : 0);
-    draw_live(state);
+    ImGui::PushOverrideID(panel_id);  // the export field's id is the panel's, wherever it is drawn
+    draw_export_field(state, export_folder, static_cast<int>(takes.size()));
+    ImGui::PopID();
+    if (live_ != nullptr) draw_live(state);
     live_height_ = std::max(ImGui::GetFrameHeight(), ImGui::GetCursorPosY() - spacing);
     ImGui::EndChild();
   }

@@ -82,7 +82,7 @@ class FilesPanel : public Panel {
   LiveSettings live_synced_;  // the settings the fields were last filled from
   bool live_fields_filled_ = false;
   std::string live_error_;    // why Connect did nothing (no takes), until the next Connect
-  float live_height_ = 24.0f; // the Live section's height on the frame before, pixels (at the panel's foot)
+  float live_height_ = 24.0f; // the foot's height on the frame before (the export field, the Live section), pixels
 
   BlendSession& session_;
   std::string folder_;  // the browser's folder

@@ -170,23 +170,30 @@ void PalettePanel::draw_mix(EditorState& state, const PreparedTakes& p) {
   std::vector<double> weights = weights_at_playhead(state, n);
   bool moved = false;
   const float pad = std::clamp(ImGui::GetContentRegionAvail().y - 4.0f, 80.0f, 220.0f);
+  // Compact rows, in as many columns as it takes for every take to show without scrolling (seven
+  // takes in the strip of a 1280x720 window: two columns).
+  const float row = ImGui::GetFontSize() + 2.0f * 1.0f + 2.0f;
+  const int rows = std::max(1, static_cast<int>(pad / row));
+  const int columns = std::clamp((n + rows - 1) / rows, 1, 4);
   if (ImGui::BeginTable("##mix", n >= 3 ? 3 : 2, ImGuiTableFlags_SizingStretchProp)) {
-    ImGui::TableSetupColumn("weights", ImGuiTableColumnFlags_WidthStretch, 2.0f);
+    ImGui::TableSetupColumn("weights", ImGuiTableColumnFlags_WidthStretch, 2.0f * static_cast<float>(columns));
     if (n >= 3) ImGui::TableSetupColumn("pad", ImGuiTableColumnFlags_WidthFixed, pad);
-    ImGui::TableSetupColumn("parts", ImGuiTableColumnFlags_WidthStretch, 1.6f);
+    ImGui::TableSetupColumn("parts", ImGuiTableColumnFlags_WidthStretch, columns > 1 ? 1.3f : 1.6f);
     ImGui::TableNextColumn();
     ImGui::BeginChild("##weights", ImVec2(0, pad));
-    // Compact rows, so that eight takes fit the strip of a 1280x720 window without scrolling.
     ImGui::PushStyleVar(ImGuiStyleVar_ItemSpacing, ImVec2(ImGui::GetStyle().ItemSpacing.x, 2.0f));
     ImGui::PushStyleVar(ImGuiStyleVar_FramePadding, ImVec2(ImGui::GetStyle().FramePadding.x, 1.0f));
+    const bool in_columns = columns > 1 && ImGui::BeginTable("##weight_columns", columns, ImGuiTableFlags_SizingStretchSame);
     for (int i = 0; i < n; ++i) {
+      if (in_columns && i % columns == 0) ImGui::TableNextRow();
+      if (in_columns) ImGui::TableNextColumn();
       ImGui::PushID(i);
       swatch(i);
       double w = weights[static_cast<size_t>(i)];
       // Room for a signed weight ("-0.35") whatever the panel's width; a drag, not a slider, so
       // that no knob covers the sign and a pixel moves the weight by 0.005.
       ImGui::SetNextItemWidth(ImGui::CalcTextSize("-0.50").x + 2.0f * ImGui::GetStyle().FramePadding.x +
-                              2.0f * ImGui::GetFontSize());
+                              (columns > 1 ? 0.5f : 2.0f) * ImGui::GetFontSize());
       {
         const KeyedTint tint(keyed);
         if (range_drag("##w", w, kMixWeightRange)) {
@@ -204,6 +211,7 @@ void PalettePanel::draw_mix(EditorState& state, const PreparedTakes& p) {
                       (i == 0 ? "\nThe reference: its skeleton, path and length lead" : ""));
       ImGui::PopID();
     }
+    if (in_columns) ImGui::EndTable();
     ImGui::PopStyleVar(2);
     ImGui::EndChild();
     if (n >= 3) {

@@ -71,6 +71,14 @@ void plot_legend(const PlotArea& area, int row, const char* text, ImU32 color) {
   dl->AddText(at, color, text);
 }
 
+void plot_axis_label(const PlotArea& area, const char* text, bool left) {
+  const ImVec2 size = ImGui::CalcTextSize(text);
+  const ImVec2 at(left ? area.min.x + 4.0f : area.max.x - size.x - 4.0f, area.max.y - size.y - 2.0f);
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  dl->AddRectFilled(ImVec2(at.x - 2.0f, at.y), ImVec2(at.x + size.x + 2.0f, at.y + size.y), IM_COL32(22, 24, 28, 200));
+  dl->AddText(at, IM_COL32(160, 164, 172, 255), text);
+}
+
 ImU32 color_a() { return IM_COL32(245, 153, 71, 255); }
 ImU32 color_b() { return IM_COL32(92, 163, 247, 255); }
 ImU32 color_blend() { return IM_COL32(128, 224, 117, 255); }

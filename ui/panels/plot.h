@@ -29,6 +29,9 @@ void plot_line(const PlotArea& area, int n, const std::function<void(int, double
 void plot_vline(const PlotArea& area, double x, ImU32 color);
 // A small text at the plot's top-left (legend line `row`).
 void plot_legend(const PlotArea& area, int row, const char* text, ImU32 color);
+// An axis's name, dim, inside the plot at its bottom-right corner (x: what runs across) or, with
+// `left`, its bottom-left (what a left-hand axis counts).
+void plot_axis_label(const PlotArea& area, const char* text, bool left = false);
 
 // Colours shared by the plots: A, B and the blend as in the viewport.
 ImU32 color_a();

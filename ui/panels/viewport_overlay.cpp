@@ -33,6 +33,8 @@ bool apply_camera_input(render::OrbitCamera& camera) {
   return moved;
 }
 
+constexpr int kMaxStackedLabels = 3;  // labels stacked over one spot, at most
+
 void draw_skeleton_labels(const std::vector<render::SkeletonPose>& poses, const render::OrbitCamera& camera) {
   ImGuiIO& io = ImGui::GetIO();
   const glm::ivec2 viewport(static_cast<int>(io.DisplaySize.x), static_cast<int>(io.DisplaySize.y));
@@ -41,7 +43,14 @@ void draw_skeleton_labels(const std::vector<render::SkeletonPose>& poses, const 
       camera.view_projection(io.DisplaySize.x / io.DisplaySize.y);
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
   std::vector<ImVec4> placed;  // label boxes so far (x0, y0, x1, y1): later ones step up
-  for (const render::SkeletonPose& pose : poses) {
+  // The reference and the result (the first and the last skeleton) are labelled before the
+  // other takes, so that they keep their labels where some are left out.
+  std::vector<size_t> order;
+  if (!poses.empty()) order = {0, poses.size() - 1};
+  for (size_t i = 1; i + 1 < poses.size(); ++i) order.push_back(i);
+  if (poses.size() == 1) order.pop_back();
+  for (size_t index : order) {
+    const render::SkeletonPose& pose = poses[index];
     if (pose.label.empty() || pose.positions.empty()) continue;
     render::ScreenPoint p = render::project_to_pixels(view_projection, render::label_anchor(pose), viewport);
     if (!p.visible) continue;
@@ -50,6 +59,7 @@ void draw_skeleton_labels(const std::vector<render::SkeletonPose>& poses, const 
     ImVec2 at(p.pixel.x - 0.5f * extent.x, p.pixel.y - extent.y);
     const float pad = 4.0f;
     ImVec4 box(at.x - pad - 8.0f, at.y - 2.0f, at.x + extent.x + pad, at.y + extent.y + 2.0f);
+    int steps = 0;  // labels this one was moved above
     for (bool moved = true; moved;) {
       moved = false;
       for (const ImVec4& other : placed) {
@@ -59,9 +69,13 @@ void draw_skeleton_labels(const std::vector<render::SkeletonPose>& poses, const 
           box.w -= up;
           at.y -= up;
           moved = true;
+          ++steps;
         }
       }
     }
+    // Skeletons on one spot (overlaid, a palette's ghosts) would pile their labels into a column
+    // far above them: past a few, a label is left out (the takes panel names every colour).
+    if (steps >= kMaxStackedLabels) continue;
     placed.push_back(box);
     draw->AddRectFilled(ImVec2(box.x, box.y), ImVec2(box.z, box.w), IM_COL32(16, 17, 19, 170), 4.0f);
     draw->AddCircleFilled(ImVec2(at.x - 5.0f, at.y + 0.5f * extent.y), 3.5f, to_imgui_color(pose.color));
