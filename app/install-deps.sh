@@ -13,6 +13,8 @@ packages=(build-essential cmake pkg-config libeigen3-dev libglfw3-dev libglm-dev
           libtinygltf-dev nodejs)
 # slurm-wlm (slurmctld, slurmd, sbatch) and munge (its authentication): CI's real Slurm.
 if [ "${1:-}" = "--cluster" ]; then packages+=(slurm-wlm munge); fi
+# Debian's Blender imports glTF only with numpy: where Blender is, the [blender] tests need it.
+if command -v blender >/dev/null 2>&1; then packages+=(python3-numpy); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

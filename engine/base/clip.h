@@ -34,6 +34,10 @@ struct Joint {
 struct Skeleton {
   std::vector<Joint> joints;
   int channel_count = 0;     // values per frame
+  // What one file unit is in metres where the file says it (glTF: 1, its unit being the metre);
+  // 0 where it does not (BVH has no unit; FBX as assimp gives it): kinematics/units.h
+  // metres_per_unit then guesses it from the skeleton's size.
+  double metres_per_unit = 0.0;
 
   int find(const std::string& name) const;  // index or -1 (End Sites never match)
   int joint_count_without_end_sites() const;

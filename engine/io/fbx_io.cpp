@@ -67,6 +67,11 @@ AnimatedScene scene_from_assimp(const aiScene& ai, const std::string& source) {
       throw InputError(source + ": node '" + sn.name + "' has a transform that is not finite");
     const double qn = sn.rotation.norm();
     sn.rotation = qn > 0 ? Eigen::Quaterniond(sn.rotation.coeffs() / qn) : Eigen::Quaterniond::Identity();
+    // assimp marks each FBX model's kind in its metadata: "IsNull" is false for a LimbNode (and
+    // for a mesh's model, which carries meshes); its own root node has none.
+    bool is_null = true;
+    sn.limb = node->mMetaData != nullptr && node->mMetaData->Get("IsNull", is_null) && !is_null &&
+              node->mNumMeshes == 0;
     const int index = static_cast<int>(scene.nodes.size());
     by_name.emplace(sn.name, index);
     scene.nodes.push_back(std::move(sn));

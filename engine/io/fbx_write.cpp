@@ -57,10 +57,11 @@ FbxRecord vector_property(const std::string& name, const std::string& type, cons
   return property(name, type, label, flags, {fbx_double(v.x()), fbx_double(v.y()), fbx_double(v.z())});
 }
 
-// Centimetres per file unit, from the unit the skeleton's size suggests; 1 when unknown.
+// Centimetres per file unit: the unit the skeleton's file states, else the one its size suggests;
+// 1 (FBX's own centimetre) when neither tells.
 double unit_scale_factor(const Clip& clip) {
-  const double cm = centimetres_per_unit(guess_units(clip).name);
-  return cm > 0.0 ? cm : 1.0;
+  const double metres = metres_per_unit(clip);
+  return metres > 0.0 ? 100.0 * metres : 1.0;
 }
 
 // FBX's Euler order enum (0 XYZ, 1 XZY, 2 YZX, 3 YXZ, 4 ZXY, 5 ZYX: the order the rotations

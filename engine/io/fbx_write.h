@@ -7,7 +7,8 @@
 //
 // What the file holds:
 // - GlobalSettings: Y up, Z front, X right (right-handed), UnitScaleFactor the centimetres per
-//   file unit (kinematics/units.h's guess; 1 when unknown), TimeMode the motion's rate (an FBX
+//   file unit (kinematics/units.h metres_per_unit: the unit the source file states, else the
+//   guess from the skeleton's size; 1 when neither tells), TimeMode the motion's rate (an FBX
 //   rate when it is one of them, else custom), CustomFrameRate the rate, TimeSpan the frames.
 // - Model "Null" named after the take: the armature, parent of the skeleton's roots, with a
 //   NodeAttribute "Null".

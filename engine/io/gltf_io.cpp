@@ -14,6 +14,7 @@
 #include "engine/base/error.h"
 #include "engine/io/numbers.h"
 #include "engine/kinematics/kinematics.h"
+#include "engine/kinematics/units.h"
 
 // The same settings as tiny_gltf_impl.cpp, which holds the implementation.
 #define TINYGLTF_NO_STB_IMAGE
@@ -281,6 +282,7 @@ bool read_track(const tinygltf::Model& model, const tinygltf::Animation& ga, siz
 AnimatedScene scene_from_model(const tinygltf::Model& model, const std::string& source) {
   AnimatedScene scene;
   scene.source = source;
+  scene.metres_per_unit = 1.0;  // glTF 2.0, "Coordinate System and Units": lengths are metres
   const int n = static_cast<int>(model.nodes.size());
   const std::vector<int> parent = node_parents(model, source);
   std::vector<int> new_index;
@@ -408,15 +410,22 @@ std::vector<char> moving_joints(const Clip& clip) {
   return moves;
 }
 
+// Metres per file unit for writing: the clip's unit (kinematics/units.h), or 1 where nothing
+// tells it (the file's numbers taken as metres).
+double metres_scale(const Clip& clip) {
+  const double metres = metres_per_unit(clip);
+  return metres > 0.0 ? metres : 1.0;
+}
+
 // The rest pose: each joint's local translation at the first frame (the OFFSETs when there
-// are no frames), no rotation. rest: joints x 3, file units.
-Eigen::MatrixX3d rest_translations(const Clip& clip) {
+// are no frames), no rotation. rest: joints x 3, metres (file units times `metres`).
+Eigen::MatrixX3d rest_translations(const Clip& clip, double metres) {
   const Skeleton& s = clip.skeleton;
   const MotionMatrix frame0 =
       clip.frames() > 0 ? MotionMatrix(clip.motion.topRows(1)) : MotionMatrix::Zero(1, s.channel_count);
   Eigen::MatrixX3d rest(s.joints.size(), 3);
   for (size_t j = 0; j < s.joints.size(); ++j)
-    rest.row(j) = joint_local_translation(s.joints[j], frame0.data()).transpose();
+    rest.row(j) = metres * joint_local_translation(s.joints[j], frame0.data()).transpose();
   return rest;
 }
 
@@ -443,19 +452,10 @@ json skeleton_nodes(const Skeleton& s, const Eigen::MatrixX3d& rest, const std::
   return nodes;
 }
 
-// Inverse bind matrices of the rest pose, column-major: the inverse of a joint's rest world
-// transform, a translation by minus its rest position (the armature node has no transform).
-// Each joint's place in the skin's joint list: End Sites are no bones (no skin joint, -1), so a
-// reader takes them back as End Sites.
-std::vector<int> skin_indices(const Skeleton& s) {
-  std::vector<int> out(s.joints.size(), -1);
-  int next = 0;
-  for (size_t j = 0; j < s.joints.size(); ++j)
-    if (!s.joints[j].end_site) out[j] = next++;
-  return out;
-}
-
-// The skin's joints' inverse bind matrices, in skin_indices' order.
+// Inverse bind matrices of the rest pose, column-major, one per joint (End Sites too: the skin's
+// joints are every joint, so Blender makes each a bone, not an Empty; our reader takes a leaf no
+// animation keys back as an End Site): the inverse of a joint's rest world transform, a
+// translation by minus its rest position (the armature node has no transform). rest: metres.
 std::vector<float> inverse_bind_matrices(const Skeleton& s, const Eigen::MatrixX3d& rest) {
   std::vector<Eigen::Vector3d> world(s.joints.size());
   std::vector<float> out;
@@ -465,17 +465,17 @@ std::vector<float> inverse_bind_matrices(const Skeleton& s, const Eigen::MatrixX
     world[j] = s.joints[j].parent < 0 ? local : world[s.joints[j].parent] + local;
     Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
     m.block<3, 1>(0, 3) = -world[j];
-    if (s.joints[j].end_site) continue;
     for (int c = 0; c < 4; ++c)
       for (int r = 0; r < 4; ++r) out.push_back(to_float32(m(r, c)));
   }
   return out;
 }
 
-// Translation keys of one joint: frames x 3 floats.
-void append_translations(const Clip& clip, int joint, std::vector<float>* values) {
+// Translation keys of one joint: frames x 3 floats, metres (file units times `metres`).
+void append_translations(const Clip& clip, int joint, double metres, std::vector<float>* values) {
   for (int f = 0; f < clip.frames(); ++f) {
-    const Eigen::Vector3d t = joint_local_translation(clip.skeleton.joints[joint], clip.motion.row(f).data());
+    const Eigen::Vector3d t =
+        metres * joint_local_translation(clip.skeleton.joints[joint], clip.motion.row(f).data());
     values->insert(values->end(), {to_float32(t.x()), to_float32(t.y()), to_float32(t.z())});
   }
 }
@@ -526,7 +526,7 @@ struct BufferLayout {
 
 // One animation: the translation keys of the moving joints, the rotation keys of every joint
 // but End Sites, all on one key-time accessor.
-json animation(const Clip& clip, const std::string& name, BufferLayout* buffer) {
+json animation(const Clip& clip, const std::string& name, double metres, BufferLayout* buffer) {
   const Skeleton& s = clip.skeleton;
   const int joints = static_cast<int>(s.joints.size());
   const int frames = clip.frames();
@@ -545,7 +545,7 @@ json animation(const Clip& clip, const std::string& name, BufferLayout* buffer) 
   for (int j = 0; j < joints; ++j) {
     if (!moves[j]) continue;
     translations.push_back({j, values.size() * 4});
-    append_translations(clip, j, &values);
+    append_translations(clip, j, metres, &values);
   }
   const int translation_view = buffer->add_view(values);
   values.clear();
@@ -573,7 +573,7 @@ json animation(const Clip& clip, const std::string& name, BufferLayout* buffer) 
 // the parent's rest position to its own, skinned wholly to the parent, so the mesh moves with
 // the bones. Segments shorter than 1e-6 of the skeleton's extent are left out.
 struct BoneMesh {
-  std::vector<float> positions;   // vertices x 3, file units
+  std::vector<float> positions;   // vertices x 3, metres
   std::vector<int> joints;        // the joint each vertex follows
   std::vector<uint32_t> indices;  // triangles x 3, counter-clockwise seen from outside
 };
@@ -587,7 +587,6 @@ BoneMesh bone_mesh(const Skeleton& s, const Eigen::MatrixX3d& rest) {
     extent = std::max(extent, (world[j] - world[0]).norm());
   }
   BoneMesh mesh;
-  const std::vector<int> skin = skin_indices(s);
   for (size_t j = 0; j < s.joints.size(); ++j) {
     const int p = s.joints[j].parent;
     if (p < 0) continue;
@@ -610,7 +609,7 @@ BoneMesh bone_mesh(const Skeleton& s, const Eigen::MatrixX3d& rest) {
     for (const Eigen::Vector3d& c : corners) {
       mesh.positions.insert(mesh.positions.end(),
                             {to_float32(c.x()), to_float32(c.y()), to_float32(c.z())});
-      mesh.joints.push_back(skin[static_cast<size_t>(p)]);
+      mesh.joints.push_back(p);  // the skin's joints are the skeleton's, in order
     }
     for (uint32_t k = 0; k < 4; ++k) {
       const uint32_t a = first + 2 + k, b = first + 2 + (k + 1) % 4;
@@ -699,14 +698,14 @@ std::string format_gltf(const Clip& clip, const std::string& animation_name, con
   json doc;
   doc["asset"] = {{"version", "2.0"}, {"generator", "mostyle"}};
   doc["scene"] = 0;
-  const Eigen::MatrixX3d rest = rest_translations(clip);
+  const double metres = metres_scale(clip);
+  const Eigen::MatrixX3d rest = rest_translations(clip, metres);
   json nodes = skeleton_nodes(s, rest, animation_name);
   json scene_nodes = json::array({joints});
   BufferLayout buffer{bin};
   if (joints > 0) {
     json joint_list = json::array();
-    for (int j = 0; j < joints; ++j)
-      if (!s.joints[j].end_site) joint_list.push_back(j);
+    for (int j = 0; j < joints; ++j) joint_list.push_back(j);
     const int ibm = buffer.add_accessor({{"bufferView", buffer.add_view(inverse_bind_matrices(s, rest))},
                                          {"componentType", 5126}, {"count", joint_list.size()}, {"type", "MAT4"}});
     doc["skins"] = json::array(
@@ -719,7 +718,7 @@ std::string format_gltf(const Clip& clip, const std::string& animation_name, con
   }
   doc["scenes"] = json::array({{{"nodes", scene_nodes}}});
   doc["nodes"] = nodes;
-  if (clip.frames() > 0) doc["animations"] = json::array({animation(clip, animation_name, &buffer)});
+  if (clip.frames() > 0) doc["animations"] = json::array({animation(clip, animation_name, metres, &buffer)});
   if (!bin->empty()) {
     doc["accessors"] = buffer.accessors;
     doc["bufferViews"] = buffer.views;

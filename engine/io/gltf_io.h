@@ -20,7 +20,9 @@ namespace mostyle {
 // `source` names the file in messages; `base_dir` is where a .gltf's relative buffer URIs are
 // found ("": no file is read, a buffer URI that is not a data URI is an error). Accessors may
 // be float or normalized integers (KHR_mesh_quantization), interleaved (byteStride) or not; sparse accessors are refused. Nodes come back parents first;
-// a node without a name is called "node N" (its index). Throws InputError
+// a node without a name is called "node N" (its index); lengths are metres
+// (AnimatedScene::metres_per_unit 1), so a file mostyle wrote from a take in centimetres reads
+// back in metres, the source's positions times 0.01. Throws InputError
 // "SOURCE: what is wrong" (one sentence, tinygltf's first error line quoted) on a file that is
 // not glTF, is cut, has a bad hierarchy (a cycle, a node with two parents), an animation
 // channel pointing outside the file, accessor data outside its buffer, or no animation at all.
@@ -40,12 +42,16 @@ struct GltfWriteOptions {
   bool bone_mesh = false;
 };
 
-// A clip as one glTF document. Nodes 0 .. J-1 are the skeleton's joints (End Sites too) with
+// A clip as one glTF document, in metres (glTF's unit): lengths are the clip's file units times
+// kinematics/units.h metres_per_unit (the unit its file states, else the guess from its size;
+// as they are when neither tells), so a BVH in centimetres stands as tall in Blender as its
+// FBX does. Nodes 0 .. J-1 are the skeleton's joints (End Sites too) with
 // their rest translations (each joint's local translation at frame 0), children in skeleton
 // order; node J, named `animation_name`, is the armature: the parent of the skeleton's roots,
-// without a transform, and the one root of the scene. Skin 0 lists the J joints, its skeleton
-// is node J, its inverse bind matrices the inverses of the joints' rest world transforms (so
-// Blender imports one armature whose bones carry one action). One animation named
+// without a transform, and the one root of the scene. Skin 0 lists all J joints, End Sites too
+// (Blender makes bones of a skin's joints only, Empties of other nodes), its skeleton is node
+// J, its inverse bind matrices the inverses of the joints' rest world transforms (so Blender
+// imports one armature whose bones carry one action). One animation named
 // `animation_name` whose samplers are LINEAR, key times i / clip.fps() (float32, min and max
 // given): the root's translation, every other joint's translation when its position channels
 // change, and every joint's rotation but End Sites' as a unit quaternion, the sign chosen so

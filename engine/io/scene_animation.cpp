@@ -359,6 +359,19 @@ std::vector<int> skeleton_nodes(const AnimatedScene& scene, const std::vector<ch
   return nodes;
 }
 
+// The limbs that hang from the skeleton with only limbs between, made members: end bones no
+// take keys (FBX files keep them as LimbNodes, which Blender imports as bones).
+void add_hanging_limbs(const AnimatedScene& scene, const std::vector<int>& nodes, std::vector<char>& member) {
+  std::vector<char> in(scene.nodes.size(), 0);
+  for (int node : nodes) in[node] = 1;
+  for (size_t i = 0; i < scene.nodes.size(); ++i) {  // parents come first
+    const int parent = scene.nodes[i].parent;
+    if (in[i] || !scene.nodes[i].limb || parent < 0 || !in[parent]) continue;
+    in[i] = 1;
+    member[i] = 1;
+  }
+}
+
 }  // namespace
 
 SceneSkeleton scene_skeleton(const AnimatedScene& scene, int take) {
@@ -370,6 +383,10 @@ SceneSkeleton scene_skeleton(const AnimatedScene& scene, int take) {
     root = keyed_character_root(scene, take, depth, member);
   if (root < 0) fail_several_skeletons(scene, take, skeleton, member);
   skeleton.nodes = skeleton_nodes(scene, member, root);
+  const size_t found = std::count(member.begin(), member.end(), 1);
+  add_hanging_limbs(scene, skeleton.nodes, member);
+  if (static_cast<size_t>(std::count(member.begin(), member.end(), 1)) != found)
+    skeleton.nodes = skeleton_nodes(scene, member, root);
   return skeleton;
 }
 
@@ -559,10 +576,28 @@ std::vector<char> moving_joints(const AnimatedScene& scene, const SkeletonPoser&
   return moving;
 }
 
-// The clip's skeleton: the rest pose, ZXY rotations, and positions where the joint moves.
+// The skeleton's End Sites: leaves no take of the file keys whose offsets stay at rest.
+std::vector<char> end_sites(const AnimatedScene& scene, const SkeletonPoser& poser, const std::vector<char>& moving) {
+  const int joints = poser.joints();
+  std::vector<char> end(joints, 1);
+  end[0] = 0;  // the root has channels, even alone
+  for (int j = 1; j < joints; ++j)
+    if (moving[j]) end[j] = 0;
+  for (int j = 1; j < joints; ++j) end[poser.parent_joint(j)] = 0;
+  for (const SceneTake& take : scene.takes)
+    for (const KeyTrack& t : take.tracks)
+      if (t.node >= 0 && t.node < static_cast<int>(scene.nodes.size()) && poser.needed(t.node) &&
+          poser.joint_of(t.node) >= 0)
+        end[poser.joint_of(t.node)] = 0;
+  return end;
+}
+
+// The clip's skeleton: the rest pose, ZXY rotations, and positions where the joint moves; End
+// Sites without channels.
 Skeleton clip_skeleton(const AnimatedScene& scene, const SkeletonPoser& poser, const RestPose& rest,
-                       const std::vector<char>& moving) {
+                       const std::vector<char>& moving, const std::vector<char>& end_site) {
   Skeleton sk;
+  sk.metres_per_unit = scene.metres_per_unit;
   for (int j = 0; j < poser.joints(); ++j) {
     Joint joint;
     joint.name = scene.nodes[poser.node(j)].name;
@@ -570,6 +605,11 @@ Skeleton clip_skeleton(const AnimatedScene& scene, const SkeletonPoser& poser, c
     joint.offset = rest.offset[j];
     joint.rest_rotation = rest.rotation[j];
     joint.first_channel = sk.channel_count;
+    if (end_site[j]) {
+      joint.end_site = true;
+      sk.joints.push_back(std::move(joint));
+      continue;
+    }
     if (moving[j]) joint.channels = {Channel::kXposition, Channel::kYposition, Channel::kZposition};
     joint.channels.insert(joint.channels.end(), {Channel::kZrotation, Channel::kXrotation, Channel::kYrotation});
     sk.channel_count += static_cast<int>(joint.channels.size());
@@ -590,6 +630,7 @@ void write_frames(SkeletonPoser& poser, const Skeleton& sk, const std::vector<ch
     poser.pose(at.first + static_cast<double>(f) / at.fps, snap, false);
     for (int j = 0; j < joints; ++j) {
       const Joint& joint = sk.joints[j];
+      if (joint.end_site) continue;
       int c = joint.first_channel;
       Eigen::Matrix3d local = poser.rotation(j);
       if (joint.parent >= 0) {
@@ -625,7 +666,7 @@ Clip scene_take_to_clip(const AnimatedScene& scene, int take, const SceneClipOpt
   Clip clip;
   clip.source = scene.source;
   clip.frame_time = 1.0 / at.fps;
-  clip.skeleton = clip_skeleton(scene, poser, rest, moving);
+  clip.skeleton = clip_skeleton(scene, poser, rest, moving, end_sites(scene, poser, moving));
   write_frames(poser, clip.skeleton, moving, at, clip.motion);
   return clip;
 }

@@ -39,6 +39,10 @@ struct SceneNode {
   Eigen::Vector3d translation = Eigen::Vector3d::Zero();
   Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
   Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+  // A bone of the file's skeleton wherever it hangs in it, keyed or not (FBX: a LimbNode, no
+  // Null nor mesh), so the end bones below the keyed joints (Mixamo's HeadTop_End) stay in it.
+  // glTF's bones are its skins' joints: false.
+  bool limb = false;
 };
 
 struct SceneTake {
@@ -57,6 +61,9 @@ struct AnimatedScene {
   // The nodes the file's skins name as their joints (glTF skins, FBX deformers), each once, in
   // node order; empty when the file has no skin.
   std::vector<int> skin_joints;
+  // Metres per unit of the nodes' translations where the format fixes it (glTF: 1), else 0; it
+  // becomes the clips' Skeleton::metres_per_unit.
+  double metres_per_unit = 0.0;
 };
 
 // The file's one skeleton, which every take is read on.
@@ -68,7 +75,8 @@ struct SceneSkeleton {
 
 // The skeleton of a file: the joints of its skins and the nodes between them, rooted at their
 // lowest common ancestor; in a file without skins, the nodes any take keys (the union over all
-// takes) and the nodes between them, likewise. Nodes above the root only place it. Where those
+// takes) and the nodes between them, likewise; then the limbs (SceneNode::limb) that hang from
+// those with only limbs between, keyed or not. Nodes above the root only place it. Where those
 // nodes have no common ancestor but the scene root (several characters in one file), the one
 // skeleton among them whose nodes take `take` keys (every take of that character gets the same).
 // Throws InputError naming the source when there are several skeletons and `take` is -1 or keys
@@ -117,7 +125,10 @@ struct SceneClipOptions {
 // Throws InputError naming the source and the take when the take keys no node of the skeleton
 // or above it, as scene_skeleton does, on a bad track (times not increasing, non-finite values,
 // wrong sizes) or when the frames would take more than options.max_bytes (checked before
-// allocating them). O(frames x nodes + keys of all takes).
+// allocating them). A leaf of the skeleton that no take keys and whose offset never moves is an
+// End Site (Joint::end_site, no channels, named as its node), as BVH has it: a file mostyle
+// wrote from a BVH reads back with its End Sites, and Mixamo's end bones read as theirs. The
+// skeleton's metres_per_unit is the scene's. O(frames x nodes + keys of all takes).
 Clip scene_take_to_clip(const AnimatedScene& scene, int take, const SceneClipOptions& options = {});
 
 // The rate a take is sampled at when the caller gives none: scene.frame_rate; else, when the

@@ -1,6 +1,7 @@
 #include "engine/kinematics/units.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "engine/kinematics/kinematics.h"
 
@@ -49,6 +50,12 @@ double centimetres_per_unit(const std::string& unit_name) {
   if (unit_name == "centimetres") return 1.0;
   if (unit_name == "millimetres") return 0.1;
   return 0.0;
+}
+
+double metres_per_unit(const Clip& clip) {
+  if (clip.skeleton.metres_per_unit > 0.0 && std::isfinite(clip.skeleton.metres_per_unit))
+    return clip.skeleton.metres_per_unit;
+  return centimetres_per_unit(guess_units(clip).name) / 100.0;
 }
 
 double motion_height(const Eigen::MatrixXd& positions) {

@@ -21,6 +21,12 @@ UnitsGuess guess_units(const Clip& clip);
 // (1/0.45 inch)", ...); 0 for a name it does not know ("unknown").
 double centimetres_per_unit(const std::string& unit_name);
 
+// Metres per file unit: the skeleton's own (Skeleton::metres_per_unit) where its file states one,
+// else from guess_units (centimetres_per_unit / 100); 0 when neither tells (a skeleton whose
+// height is no human's, from a file without a unit). What the writers of files with a unit
+// (glTF's metres, FBX's UnitScaleFactor) scale by. O(joints), O(1) when the unit is stated.
+double metres_per_unit(const Clip& clip);
+
 // How tall a motion stands: the largest vertical (Y) extent of a single frame, over all frames.
 // positions: frames x 3J, file units; 0 without frames. One value for the whole clip, so a
 // crouch does not shrink it. O(frames x J).

@@ -12,8 +12,14 @@ namespace {
 
 // Lengths and heights are fractions of the rest pose's height (its vertical extent).
 constexpr double kLegsLevel = 0.25;      // the legs' lowest points lie within this of each other (a foot in the air)
-constexpr double kMinHipsHeight = 0.25;  // the hips stand at least this high above the lowest joint
-constexpr double kMinLegDrop = 0.2;      // each leg goes at least this far down from the hips
+constexpr double kMinHipsHeight = 0.05;  // the hips stand at least this high above the lowest joint
+// Of the hips' height above the lowest joint: how far down the legs go. One reaches the floor (a
+// robot's or a cartoon's legs are short, but they are what it stands on), the other at least
+// down to where a knee would be (a foot in the air). Arms hanging by the sides end well above
+// the floor. Only where no pair reaches the floor do legs that end at the knees count (an IK
+// rig whose feet hang from the root).
+constexpr double kFloorReach = 0.9;
+constexpr double kKneeReach = 0.4;
 constexpr double kMinFeetApart = 0.04;   // the legs' lowest points lie at least this far apart
 constexpr double kMaxLegRatio = 1.5;     // the longer leg is at most this times the shorter
 constexpr double kMinLimbReach = 0.15;   // a leg or an arm reaches at least this far
@@ -235,29 +241,37 @@ void find_ik_ankle(const Tree& t, Limb& leg, const std::vector<char>& taken) {
   leg.tip = tip_after(t, best, t.p[best] - t.p[leg.middle], false);
 }
 
-// The hips and the roots of its two legs: of all pairs of chains that leave one joint standing
-// well above the floor and go down well below it, apart sideways and of a like length, the pair
-// whose lowest points lie lowest (the legs reach the floor, or the knees do in an IK rig whose
-// feet hang elsewhere; arms hanging in an A-pose end higher).
-bool find_legs(const Tree& t, int* hips, int* root_a, int* root_b) {
+// The hips and the roots of its two legs: of the pairs of chains that leave one joint standing
+// above the floor and go down from it, one at least `reach` of the way to the floor, apart sideways
+// and of a like length, the pair that stands most like two legs under the body: its lowest
+// points lowest, and placed on either side of the joint (their midpoint under it), so a tail on
+// the floor behind a cartoon is no leg. Proportions are not a human's: a robot's legs may be a
+// fifth of its height and its arms hang lower than its hips stand.
+bool find_legs_reaching(const Tree& t, double reach, int* hips, int* root_a, int* root_b) {
   double best = std::numeric_limits<double>::infinity();
   for (int x = 0; x < t.size(); ++x) {
-    if (!t.real(x) || t.p[x].y() - t.floor < kMinHipsHeight * t.height) continue;
-    const double drop_to = t.p[x].y() - kMinLegDrop * t.height;
+    const double above = t.p[x].y() - t.floor;
+    if (!t.real(x) || above < kMinHipsHeight * t.height) continue;
+    const auto reach_down = [&](int c) { return (t.p[x].y() - t.low[c]) / above; };
     const std::vector<int>& children = t.children[x];
     for (size_t i = 0; i < children.size(); ++i) {
       const int c = children[i];
-      if (!t.real(c) || t.low[c] > drop_to) continue;
+      if (!t.real(c) || reach_down(c) < kKneeReach) continue;
       for (size_t k = i + 1; k < children.size(); ++k) {
         const int d = children[k];
-        if (!t.real(d) || t.low[d] > drop_to) continue;
+        if (!t.real(d) || reach_down(d) < kKneeReach) continue;
+        if (std::max(reach_down(c), reach_down(d)) < reach) continue;
         if (std::abs(t.low[c] - t.low[d]) > kLegsLevel * t.height) continue;
-        if (horizontal(t.p[t.lowest[c]] - t.p[t.lowest[d]]).norm() < kMinFeetApart * t.height) continue;
+        const Eigen::Vector3d foot_c = t.p[t.lowest[c]], foot_d = t.p[t.lowest[d]];
+        if (horizontal(foot_c - foot_d).norm() < kMinFeetApart * t.height) continue;
         const double reach_c = t.bone(x, c) + t.reach[c], reach_d = t.bone(x, d) + t.reach[d];
         if (std::max(reach_c, reach_d) > kMaxLegRatio * std::min(reach_c, reach_d)) continue;
-        const double lowest = std::max(t.low[c], t.low[d]);
-        if (lowest < best) {
-          best = lowest;
+        // Both terms are lengths: how far the higher foot is off the floor, and how far the feet's
+        // midpoint lies from under the joint they hang from.
+        const double off_floor = std::max(t.low[c], t.low[d]) - t.floor;
+        const double off_centre = horizontal(0.5 * (foot_c + foot_d) - t.p[x]).norm();
+        if (off_floor + off_centre < best) {
+          best = off_floor + off_centre;
           *hips = x;
           *root_a = c;
           *root_b = d;
@@ -266,6 +280,11 @@ bool find_legs(const Tree& t, int* hips, int* root_a, int* root_b) {
     }
   }
   return best < std::numeric_limits<double>::infinity();
+}
+
+bool find_legs(const Tree& t, int* hips, int* root_a, int* root_b) {
+  return find_legs_reaching(t, kFloorReach, hips, root_a, root_b) ||
+         find_legs_reaching(t, kKneeReach, hips, root_a, root_b);
 }
 
 // The way up from the hips: the hips' other child whose subtree stands highest (or, when the

@@ -4,8 +4,10 @@
 // pose, or the first frame sampled over the motion that stands on both) and, where the pose
 // cannot tell which way the body faces, the motion. map_major_joints (major_skeleton.h) fills
 // from here what the name rules leave out.
-//   legs: the two chains that go down from one joint (the hips) to the lowest joints, each cut
-//     at its two longest consecutive bones (thigh and shin): hip, knee, ankle, then the toe;
+//   legs: the two chains that go down from one joint (the hips) to the floor (the lowest joint),
+//     side by side under it, whatever their share of the height (a robot's or a cartoon's legs
+//     may be a fifth of it, and its arms hang lower than its hips), each cut at its two longest
+//     consecutive bones (thigh and shin): hip, knee, ankle, then the toe;
 //     a leg whose shin ends with no foot under it (an IK rig, whose foot joint hangs from the
 //     root) takes the joint nearest the shin's end as its ankle;
 //   spine: the chain that goes up from the hips to the highest joint (the head's end); the

@@ -15,6 +15,7 @@
 #include "engine/io/gltf_io.h"
 #include "engine/io/scene_animation.h"
 #include "engine/kinematics/kinematics.h"
+#include "engine/kinematics/units.h"
 #include "engine/prepare/major_skeleton.h"
 #include "engine/synthesize/mix_palette.h"
 #include "ui/model/session_file.h"
@@ -246,7 +247,10 @@ bool moderate(const Clip& clip) {
 // and for a moderate clip the same joint positions. A glTF file states no frame rate: keys
 // spaced as no capture is (under 1 or over 1000 per second) are read at 30 per second
 // (scene_animation.h default_take_rate), so such a take comes back as long, in other frames.
-void check_read_back(const Clip& clip, const Clip& back, const std::string& what, bool rate_from_keys = false) {
+// back: read from what was written of clip, its lengths `metres` times clip's (glTF is written
+// in metres).
+void check_read_back(const Clip& clip, const Clip& back, const std::string& what, bool rate_from_keys = false,
+                     double metres = 1.0) {
   check(back.skeleton.joint_count_without_end_sites() == clip.skeleton.joint_count_without_end_sites(),
         what + ": the joints");
   if (rate_from_keys && !(clip.fps() >= 1.0 && clip.fps() <= 1000.0)) {
@@ -256,8 +260,8 @@ void check_read_back(const Clip& clip, const Clip& back, const std::string& what
   }
   check(back.frames() == clip.frames(), what + ": the frames");
   if (!moderate(clip)) return;
-  const Eigen::MatrixXd a = joint_positions(clip), b = joint_positions(back);
-  const double extent = std::max(1.0, a.cwiseAbs().maxCoeff());
+  const Eigen::MatrixXd a = metres * joint_positions(clip), b = joint_positions(back);
+  const double extent = std::max(metres, a.cwiseAbs().maxCoeff());
   for (size_t i = 0; i < clip.skeleton.joints.size(); ++i) {
     if (clip.skeleton.joints[i].end_site) continue;
     const int j = back.skeleton.find(clip.skeleton.joints[i].name);
@@ -308,8 +312,9 @@ bool write_read_back(std::string_view bytes) {
   }
   if (clip.skeleton.joints.empty() || clip.frames() == 0) return true;
   try {
+    const double metres = metres_per_unit(clip);
     check_read_back(clip, first_take(parse_gltf(format_glb(clip, "again"), "again.glb")), "glTF round trip",
-                    /*rate_from_keys=*/true);
+                    /*rate_from_keys=*/true, metres > 0.0 ? metres : 1.0);
   } catch (const InputError& e) {
     // Names glTF cannot hold are refused by the writer, in one sentence.
     // So are read-backs sampled past the readers' memory limit (a take whose key times the

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 
@@ -82,6 +83,33 @@ void check_round_trip(const Clip& clip, const Clip& back) {
   CHECK(r.max <= kReadBackMax);
 }
 
+// GlobalSettings' UnitScaleFactor in a written file: the double after its name, its type
+// ("double", "Number") and an empty flags string.
+double unit_scale_factor_of(const std::string& bytes) {
+  const size_t at = bytes.find("UnitScaleFactor");
+  REQUIRE(at != std::string::npos);
+  const std::string empty_then_double("S\0\0\0\0D", 6);
+  const size_t value = bytes.find(empty_then_double, at);
+  REQUIRE(value != std::string::npos);
+  double v = 0;
+  std::memcpy(&v, bytes.data() + value + 6, 8);
+  return v;
+}
+
+// The End Sites of a and b, in skeleton order, at the same places (b's of the same index).
+void check_end_sites(const Clip& a, const Clip& b) {
+  REQUIRE(b.skeleton.joints.size() == a.skeleton.joints.size());
+  const Eigen::MatrixXd pa = joint_positions(a), pb = joint_positions(b);
+  double worst = 0;
+  for (size_t j = 0; j < a.skeleton.joints.size(); ++j) {
+    CHECK(b.skeleton.joints[j].end_site == a.skeleton.joints[j].end_site);
+    if (!a.skeleton.joints[j].end_site) continue;
+    for (Eigen::Index f = 0; f < std::min(pa.rows(), pb.rows()); ++f)
+      worst = std::max(worst, (pa.block<1, 3>(f, 3 * j) - pb.block<1, 3>(f, 3 * j)).norm());
+  }
+  CHECK(worst / guess_units(a).height <= kReadBackMax);
+}
+
 }  // namespace
 
 TEST_CASE("FBX write: BVH -> FBX -> our reader gives the same joint positions, 7400 and 7500", "[fbx][write]") {
@@ -96,6 +124,8 @@ TEST_CASE("FBX write: BVH -> FBX -> our reader gives the same joint positions, 7
       const std::string file = tmp.path("walk" + std::to_string(version) + (compress ? "z" : "") + ".fbx");
       const Clip back = fbx_round_trip(bvh, file, o);
       check_round_trip(bvh, back);
+      // The End Sites are LimbNodes no curve keys: they come back as End Sites.
+      check_end_sites(bvh, back);
       const std::vector<TakeInfo> takes = read_motion_takes(file);
       REQUIRE(takes.size() == 1);
       CHECK(takes[0].name == fs::path(file).stem().string());
@@ -222,5 +252,45 @@ TEST_CASE("FBX write: the shared Bandai (30 fps), CMU (120 fps) and Aalto (100 f
     check_round_trip(bvh, back);
     const ReadBack r = read_back_error(bvh, back);
     WARN(name << " -> FBX -> read back: mean " << r.mean << ", max " << r.max << " of the height");
+  }
+}
+
+TEST_CASE("FBX write: UnitScaleFactor is the unit the source states, else the one its size suggests",
+          "[fbx][write]") {
+  Clip clip = read_bvh_file(test::asset("motions/cmu142_walk_clumsy.bvh"));
+  CHECK(unit_scale_factor_of(format_fbx(clip, "walk")) == Approx(2.54 / 0.45));  // CMU units by their size
+  // The same skeleton read from glTF, whose unit is the metre: 100, whatever its size suggests.
+  clip.skeleton.metres_per_unit = 1.0;
+  CHECK(unit_scale_factor_of(format_fbx(clip, "walk")) == 100.0);
+  // Nothing tells: FBX's own centimetre.
+  clip.skeleton.metres_per_unit = 0.0;
+  for (Joint& j : clip.skeleton.joints) j.offset *= 400.0;
+  for (const Joint& j : clip.skeleton.joints)
+    for (size_t k = 0; k < j.channels.size(); ++k)
+      if (is_position(j.channels[k])) clip.motion.col(j.first_channel + static_cast<int>(k)) *= 400.0;
+  REQUIRE(guess_units(clip).name == "unknown");
+  CHECK(unit_scale_factor_of(format_fbx(clip, "walk")) == 1.0);
+}
+
+TEST_CASE("FBX: Mixamo's end bones are read and written, 61 joints and 15 end bones", "[fbx][write][shared]") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  TempDir tmp;
+  // The file has no mesh: its skeleton is the animated LimbNodes and the ones that hang from
+  // them (HeadTop_End, the fingers' 4th bones, Toe_End, Hair_End, Cloak_End), as Blender reads it.
+  const Clip mixamo = read_motion_file(test::shared_motion("wild/fbx_mixamo_walking.fbx"));
+  CHECK(mixamo.skeleton.joints.size() == 76);
+  CHECK(mixamo.skeleton.joint_count_without_end_sites() == 61);
+  const int head_top = static_cast<int>(std::find_if(mixamo.skeleton.joints.begin(), mixamo.skeleton.joints.end(),
+                                                     [](const Joint& j) { return j.name == "mixamorig:HeadTop_End"; }) -
+                                        mixamo.skeleton.joints.begin());
+  REQUIRE(head_top < 76);
+  CHECK(mixamo.skeleton.joints[head_top].end_site);
+  for (const char* ext : {".fbx", ".glb"}) {
+    INFO(ext);
+    const std::string file = tmp.path(std::string("walking") + ext);
+    write_motion_file(mixamo, file);
+    const Clip back = read_motion_file(file);
+    CHECK(back.skeleton.joints.size() == 76);
+    CHECK(back.skeleton.joint_count_without_end_sites() == 61);
   }
 }

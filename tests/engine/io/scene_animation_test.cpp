@@ -229,6 +229,65 @@ TEST_CASE("scene_take_to_clip: every take of a file on one skeleton, a joint a t
   }
 }
 
+TEST_CASE("scene_take_to_clip: end bones no take keys stay in the skeleton, as End Sites", "[scene_animation]") {
+  // An FBX rig as assimp gives it: LimbNodes (limb) under an armature; Leg and Head keyed, the
+  // end bones LegEnd and HeadTop keyed by no take, a prop (a Null) on the head.
+  AnimatedScene scene;
+  scene.source = "rig.fbx";
+  const auto limb = [](SceneNode n) {
+    n.limb = true;
+    return n;
+  };
+  scene.nodes = {node("Armature", -1),                  // 0
+                 limb(node("Hips", 0, {0, 1, 0})),      // 1
+                 limb(node("Leg", 1, {0, -0.5, 0})),    // 2
+                 limb(node("LegEnd", 2, {0, -0.5, 0})), // 3
+                 limb(node("Head", 1, {0, 0.5, 0})),    // 4
+                 limb(node("HeadTop", 4, {0, 0.2, 0})), // 5
+                 node("Prop", 4, {0.3, 0, 0})};         // 6
+  const double s = std::sin(M_PI / 4), c = std::cos(M_PI / 4);
+  SceneTake walk;
+  walk.name = "walk";
+  walk.tracks.push_back(track(1, TrackTarget::kTranslation, KeyInterpolation::kLinear, {0, 1}, {0, 1, 0, 0, 1, 1}));
+  walk.tracks.push_back(track(2, TrackTarget::kRotation, KeyInterpolation::kLinear, {0, 1}, {0, 0, 0, 1, 0, 0, s, c}));
+  walk.tracks.push_back(track(4, TrackTarget::kRotation, KeyInterpolation::kLinear, {0, 1}, {0, 0, 0, 1, s, 0, 0, c}));
+  scene.takes = {walk};
+  SceneClipOptions o;
+  o.fps = 2;
+
+  const SceneSkeleton sk = scene_skeleton(scene);
+  CHECK(sk.nodes == std::vector<int>{1, 2, 3, 4, 5});  // the prop is no bone
+  const Clip clip = scene_take_to_clip(scene, 0, o);
+  REQUIRE(clip.skeleton.joints.size() == 5);
+  CHECK(clip.skeleton.joint_count_without_end_sites() == 3);
+  for (int j : {2, 4}) {
+    INFO(clip.skeleton.joints[j].name);
+    CHECK(clip.skeleton.joints[j].end_site);
+    CHECK(clip.skeleton.joints[j].channels.empty());
+  }
+  CHECK(clip.skeleton.joints[2].name == "LegEnd");
+  CHECK(clip.skeleton.find("LegEnd") == -1);  // End Sites match no name, as BVH's
+  // The end bones follow their joints: the leg's a quarter turn about Z at t = 1, the head's
+  // about X.
+  const Eigen::MatrixXd p = joint_positions(clip);
+  CHECK((p.block<1, 3>(2, 6) - Eigen::RowVector3d(0.5, 0.5, 1)).norm() < 1e-9);
+  CHECK((p.block<1, 3>(2, 12) - Eigen::RowVector3d(0, 1.5, 1.2)).norm() < 1e-9);
+  CHECK(clip.skeleton.metres_per_unit == 0.0);  // FBX as assimp reads it states no unit
+
+  // A take that turns an end bone makes it a joint in every take.
+  SceneTake tip;
+  tip.name = "tip";
+  tip.tracks.push_back(track(3, TrackTarget::kRotation, KeyInterpolation::kLinear, {0, 1}, {0, 0, 0, 1, 0, 0, s, c}));
+  scene.takes.push_back(tip);
+  const Clip again = scene_take_to_clip(scene, 0, o);
+  CHECK_FALSE(again.skeleton.joints[2].end_site);
+  CHECK(again.skeleton.joints[2].channels.size() == 3);
+  CHECK(again.skeleton.joints[4].end_site);
+  // A unit the format fixes comes with the clip.
+  scene.metres_per_unit = 1.0;
+  CHECK(scene_take_to_clip(scene, 0, o).skeleton.metres_per_unit == 1.0);
+}
+
 TEST_CASE("scene_take_to_clip: two characters in one file, each take on its own one's skeleton",
           "[scene_animation]") {
   AnimatedScene scene;

@@ -1,12 +1,17 @@
 #include "engine/prepare/rig_structure.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
+#include "engine/io/motion_file.h"
 #include "tests/engine/skeleton_builder.h"
+#include "tests/test_data.h"
 
 using namespace mostyle;
 using Catch::Matchers::Contains;
@@ -317,4 +322,119 @@ TEST_CASE("structure: what cannot be read is one sentence of what was found and 
     CHECK(r.joint[kLeftShoulder] == -1);
     CHECK_THAT(r.summary, Contains("hips 'p' with two legs") && Contains("not found: arms"));
   }
+}
+
+namespace {
+
+// A robot as game characters are drawn: the hips at 22 of its 100 units (short legs, 9 and 9),
+// a tall torso and head, and long arms hanging by its sides down to 23, whose forearms end in a
+// palm and a thumb. Joints named as in a Blender rig.
+Skeleton robot_rig() {
+  test::SkeletonBuilder b;
+  b.joint("Hips", "", 0, 22, 0);
+  for (double sign : {-1.0, 1.0}) {
+    const std::string s = sign > 0 ? ".L" : ".R";
+    b.joint("UpperLeg" + s, "Hips", sign * 8, -2, 0)
+        .joint("LowerLeg" + s, "UpperLeg" + s, 0, -9, 0)
+        .joint("Foot" + s, "LowerLeg" + s, 0, -9, 0)
+        .end("Foot" + s, 0, -2, 5);
+  }
+  b.joint("Abdomen", "Hips", 0, 8, 0).joint("Torso", "Abdomen", 0, 15, 0);
+  b.joint("Neck", "Torso", 0, 20, 0).joint("Head", "Neck", 0, 5, 0).end("Head", 0, 30, 0);
+  for (double sign : {-1.0, 1.0}) {
+    const std::string s = sign > 0 ? ".L" : ".R";
+    b.joint("Shoulder" + s, "Torso", sign * 15, 15, 0)
+        .joint("UpperArm" + s, "Shoulder" + s, sign * 5, 0, 0)
+        .joint("LowerArm" + s, "UpperArm" + s, 0, -15, 0)
+        .joint("Palm" + s, "LowerArm" + s, 0, -12, 0)
+        .end("Palm" + s, 0, -10, 0);
+    b.joint("Thumb" + s, "LowerArm" + s, -sign * 3, -6, 3).end("Thumb" + s, 0, -8, 0);
+  }
+  return b.skeleton();
+}
+
+// A cartoon: a head half its height, legs of 12 (the hips at 13), a tail from the hips that lies
+// on the floor behind it, and stubby arms.
+Skeleton cartoon_rig() {
+  test::SkeletonBuilder b;
+  b.joint("root", "", 0, 13, 0);
+  for (double sign : {1.0, -1.0}) {
+    const std::string s = sign > 0 ? "_l" : "_r";
+    b.joint("thigh" + s, "root", sign * 6, -1, 0)
+        .joint("shin" + s, "thigh" + s, 0, -6, 1)
+        .joint("ankle" + s, "shin" + s, 0, -6, -1)
+        .end("ankle" + s, 0, 0, 6);
+  }
+  b.joint("tail1", "root", 0, -4, -8).joint("tail2", "tail1", 0, -6, -8).joint("tail3", "tail2", 0, -3, -8);
+  b.joint("belly", "root", 0, 10, 0).joint("chest", "belly", 0, 12, 0);
+  b.joint("head", "chest", 0, 10, 0).end("head", 0, 55, 0);
+  for (double sign : {1.0, -1.0}) {
+    const std::string s = sign > 0 ? "_l" : "_r";
+    b.joint("arm" + s, "chest", sign * 10, 2, 0).joint("elbow" + s, "arm" + s, sign * 6, -4, 0)
+        .joint("hand" + s, "elbow" + s, sign * 6, -4, 0).end("hand" + s, sign * 3, -2, 0);
+  }
+  return b.skeleton();
+}
+
+}  // namespace
+
+TEST_CASE("structure: the hips of a robot and a cartoon, whose legs are short and whose arms or tail hang low",
+          "[rig_structure]") {
+  SECTION("a robot: long arms whose forearms branch downwards are no legs") {
+    const Skeleton k = robot_rig();
+    const RigStructure r = find_rig_structure(k);
+    INFO(r.summary);
+    CHECK(r.joint[kHips] == joint(k, "Hips"));
+    CHECK(r.joint[kLeftHip] == joint(k, "UpperLeg.L"));
+    CHECK(r.joint[kLeftKnee] == joint(k, "LowerLeg.L"));
+    CHECK(r.joint[kLeftAnkle] == joint(k, "Foot.L"));
+    CHECK(r.joint[kRightAnkle] == joint(k, "Foot.R"));
+    CHECK(r.joint[kLeftShoulder] == joint(k, "UpperArm.L"));
+    CHECK(r.joint[static_cast<int>(MajorJoint::kHead)] == joint(k, "Head"));
+    const RigStructure bare = find_rig_structure(unnamed(k));
+    CHECK(bare.joint[kHips] == joint(k, "Hips"));
+  }
+  SECTION("a cartoon: the tail on the floor is no leg") {
+    const Skeleton k = cartoon_rig();
+    const RigStructure r = find_rig_structure(k);
+    INFO(r.summary);
+    CHECK(r.joint[kHips] == joint(k, "root"));
+    CHECK(r.joint[kLeftHip] == joint(k, "thigh_l"));
+    CHECK(r.joint[kLeftAnkle] == joint(k, "ankle_l"));
+    CHECK(r.joint[kRightAnkle] == joint(k, "ankle_r"));
+    CHECK(r.joint[static_cast<int>(MajorJoint::kHead)] == joint(k, "head"));
+  }
+}
+
+TEST_CASE("structure: the hips of every rig in shared/motions, by structure alone", "[rig_structure][shared]") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  // The joint the legs and the spine branch from, read off each rig's hierarchy by hand.
+  const std::map<std::string, std::string> hips_of = {
+      {"fbx_mixamo_walking.fbx", "mixamorig:Hips"},
+      {"gltf_cesiumman_walk.glb", "Skeleton_torso_joint_1"},
+      {"gltf_godot_mixamo_walk_run.glb", "mixamorig:Hips"},
+      {"gltf_godot_robot_walk_run.glb", "hip"},
+      {"gltf_mannequiny_run.glb", "pelvis"},
+  };
+  int rigs = 0;
+  for (const char* folder : {"", "actions", "formats", "wild"}) {
+    const std::string dir = test::shared_motion(folder);
+    if (dir.empty()) continue;
+    std::vector<std::string> files;
+    for (const auto& entry : std::filesystem::directory_iterator(dir))
+      if (is_motion_file(entry.path().string())) files.push_back(entry.path().string());
+    std::sort(files.begin(), files.end());
+    for (const std::string& file : files) {
+      INFO(file);
+      const Clip clip = read_motion_file(file);
+      const RigStructure r = find_rig_structure(unnamed(clip.skeleton), &clip.motion);
+      INFO(r.summary);
+      const auto known = hips_of.find(std::filesystem::path(file).filename().string());
+      const std::string expected = known != hips_of.end() ? known->second : "Hips";
+      REQUIRE(r.joint[kHips] >= 0);
+      CHECK(clip.skeleton.joints[r.joint[kHips]].name == expected);
+      ++rigs;
+    }
+  }
+  CHECK(rigs >= 50);
 }
