@@ -473,7 +473,6 @@ int run_transfer(const TransferArgs& args) {
   mp.min_weight = transfer_min_weight(static_cast<int>(styles));
   mp.max_weight = transfer_max_weight(static_cast<int>(styles));
   mp.feet_of_reference = true;
-  mp.path_leash = transfer_path_leash(neutral);
   for (const auto& [seconds, s] : parse_keys(args.strength_at, "--strength-at", styles))
     mp.keys.push_back({seconds, transfer_weights(s, neutral)});
   if (!mp.keys.empty() && !args.part_strengths.empty())
@@ -482,6 +481,7 @@ int run_transfer(const TransferArgs& args) {
   std::vector<std::pair<BodyPart, std::vector<double>>> given_weights;
   for (const auto& [part, s] : given) given_weights.emplace_back(part, transfer_weights(s, neutral));
   args.flags.set(mp);
+  mp.path_leash = transfer_path_leash(neutral, mp.reference_timing);
   const Prepared p = prepare(files, args.flags, args.flags.decompose_params());
   if (!given_weights.empty())
     mp.component_weights = part_weights(given_weights, p.decomposition->component_joints, mp.weights);

@@ -51,10 +51,9 @@ struct MixParams {
   // A transfer: the output's planted feet are held to the reference take's own (the content's
   // planted speed and drift), whatever the weights; else to the takes' mixed by weight.
   bool feet_of_reference = false;
-  // Body heights: the root kept within this of the reference's own path (trajectory/mixed_root.h
-  // keep_near_path); 0: the mixed path as it comes. A transfer whose content is its own neutral
-  // takes kOwnNeutralPathLeash.
-  double path_leash = 0.0;
+  // The root kept near the reference's own path (trajectory/mixed_root.h PathLeash); none: the
+  // mixed path as it comes. A transfer takes transfer_path_leash.
+  PathLeash path_leash;
   FinishOptions finish;              // limb lengths, foot lock, loop
   // A preview: the poses, the root and the limb lengths only (finish.h finish_preview), without
   // the speed limit, the foot lock and the measures (MixResult::motion's foot_sliding_raw,
@@ -138,14 +137,20 @@ constexpr double kMinStrength = -1.0;
 constexpr double kMaxStrength = 2.0;
 std::vector<double> transfer_weights(const std::vector<double>& strengths,
                                      TransferNeutral neutral = TransferNeutral::kTake);
-// A transfer's MixParams::path_leash. With a neutral take, the style's change of path (an old
-// walk's shorter steps) is part of the style and the root walks it. With the content its own
-// neutral, the change is everything between the two takes, the style's path too (another take's
-// walk, possibly another direction and pace): the content's path is kept, within a fifth of the
-// body's height, facing as the content does (trajectory/mixed_root.h).
+// A transfer's MixParams::path_leash. A content that is its own neutral keeps its path, within a
+// fifth of the body's height, facing as it does (trajectory/mixed_root.h): its change is
+// everything between two takes, the style take's walk too (another direction and pace). So does
+// a content on its own timing (content_timing: MixParams::reference_timing) styled from a neutral
+// take, its drift from the content's path taken away first (remove_path_drift): the style's change
+// of stride length would otherwise cut the content's travel and turns, and the leash alone would
+// hold the root at its end. Only a transfer from a neutral take on the mixed timing walks the
+// style's change of path (an old walk's shorter steps), as it takes its pace. The strides are
+// fitted to the pace kept (post/stride_warp.h).
 constexpr double kOwnNeutralPathLeash = 0.2;
-constexpr double transfer_path_leash(TransferNeutral neutral) {
-  return neutral == TransferNeutral::kContent ? kOwnNeutralPathLeash : 0.0;
+constexpr PathLeash transfer_path_leash(TransferNeutral neutral, bool content_timing) {
+  if (neutral == TransferNeutral::kContent) return PathLeash{kOwnNeutralPathLeash, 0.0};
+  if (content_timing) return PathLeash{kOwnNeutralPathLeash, kPathDriftSeconds};
+  return PathLeash{};
 }
 // The range a transfer's weights of `styles` styles take (MixParams::min_weight, max_weight):
 // the neutral's (or the content's, when it is its own neutral) down to -kMaxStrength per style,

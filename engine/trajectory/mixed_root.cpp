@@ -51,6 +51,25 @@ void keep_near_path(Eigen::MatrixXd& ground, const Eigen::Ref<const Eigen::Matri
   }
 }
 
+void remove_path_drift(Eigen::MatrixXd& ground, const Eigen::Ref<const Eigen::MatrixXd>& path, Eigen::Index window,
+                       Eigen::MatrixXd& scratch) {
+  assert(path.rows() == ground.rows() && path.cols() == 2 && ground.cols() == 2);
+  const Eigen::Index n = ground.rows();
+  if (window <= 1 || n < 2) return;
+  // scratch row t + 1: the sum of the gaps of samples 0..t (row 0: zero).
+  scratch.resize(n + 1, 2);
+  scratch.row(0).setZero();
+  for (Eigen::Index t = 0; t < n; ++t) scratch.row(t + 1) = scratch.row(t) + (ground.row(t) - path.row(t));
+  const Eigen::Index half = window / 2;
+  // Each mean from the sums before any gap is changed: ground is written row by row below.
+  Eigen::Vector2d mean;
+  for (Eigen::Index t = 0; t < n; ++t) {
+    const Eigen::Index a = std::max<Eigen::Index>(0, t - half), b = std::min<Eigen::Index>(n, t + half + 1);
+    mean = (scratch.row(b) - scratch.row(a)).transpose() / static_cast<double>(b - a);
+    ground.row(t) -= mean.transpose();
+  }
+}
+
 void keep_near_heading(Eigen::VectorXd& heading, const Eigen::Ref<const Eigen::VectorXd>& path, double leash) {
   assert(path.size() == heading.size());
   if (!(leash > 0.0)) return;

@@ -41,11 +41,30 @@ void integrate_root_towards(const Eigen::MatrixXd& steps, const Eigen::MatrixXd&
 // that difference to take up. leash <= 0: nothing. O(F), no allocation.
 void keep_near_path(Eigen::MatrixXd& ground, const Eigen::Ref<const Eigen::MatrixXd>& path, double leash);
 
+// A root on a leash drifts from the path it is kept near as the mix's steps add up (an old walk's
+// shorter steps put on a longer-striding content travel less), and the leash would then hold it
+// at its end, a steady gap beside the content's way. This takes that drift away before the
+// leash: the gap from `path`, averaged over `window` samples centred on each (the ends: what the
+// window holds), is subtracted, leaving the gap's swings within about a second (a sway, a
+// lunge of the style) as they were. ground, path: F x 2 (x, z); scratch: resized to F x 2.
+// window <= 1 or F < 2: nothing. O(F).
+void remove_path_drift(Eigen::MatrixXd& ground, const Eigen::Ref<const Eigen::MatrixXd>& path, Eigen::Index window,
+                       Eigen::MatrixXd& scratch);
+
 // The same for a heading (F, radians) and the path's (F): the shorter arc between them eased as
 // keep_near_path eases a gap. A root kept on a path faces as the path's walker does: facing where
 // the style take turned while going where the content went, its legs would step sideways to the
 // way it goes (on a 22 s walk styled by another's 27 s, planted feet 1.76 times the content's,
 // 1.31 with the heading kept too).
+// remove_path_drift's window: longer than a gait cycle, so a stride's sway is kept.
+constexpr double kPathDriftSeconds = 1.2;
+
+// A root kept near the reference's own path (a transfer's content), as MixParams asks it.
+struct PathLeash {
+  double body_heights = 0.0;   // keep_near_path's leash, in body heights; 0: the mixed path as it comes
+  double drift_seconds = 0.0;  // remove_path_drift's window before the leash, seconds; 0: none
+  bool operator==(const PathLeash& o) const { return body_heights == o.body_heights && drift_seconds == o.drift_seconds; }
+};
 constexpr double kPathLeashHeading = 0.05;  // radians: the leash on a heading kept with its path
 void keep_near_heading(Eigen::VectorXd& heading, const Eigen::Ref<const Eigen::VectorXd>& path, double leash);
 

@@ -1,6 +1,7 @@
 #include "engine/trajectory/mixed_trajectory.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "engine/base/error.h"
@@ -79,7 +80,7 @@ FinishOptions output_clock(const PreparedTakes& p, const WeightKeys& keys, bool 
 }
 
 void mix_root(const PreparedTakes& p, const WeightKeys& keys, const std::vector<double>& root_w, double root_pull_seconds,
-              double leash, const PlayedStretch& st, MixedTrajectory& s) {
+              const PathLeash& leash, const PlayedStretch& st, MixedTrajectory& s) {
   const int n = p.size();
   const bool keyed = !keys.empty();
   const Eigen::Index first = st.first, length = st.length();
@@ -115,10 +116,12 @@ void mix_root(const PreparedTakes& p, const WeightKeys& keys, const std::vector<
   }
   integrate_root_towards(s.steps, s.target, p.reference_heading[first], p.fps, convex ? root_pull_seconds : 0.0,
                          &s.ground_u, &s.heading_u);
-  if (leash > 0.0) {
+  if (leash.body_heights > 0.0) {
     s.free_ground_u = s.ground_u;
     s.free_heading_u = s.heading_u;
-    keep_near_path(s.ground_u, p.takes.front().ground.middleRows(first, length), leash * p.feet.body_height);
+    remove_path_drift(s.ground_u, p.takes.front().ground.middleRows(first, length),
+                      static_cast<Eigen::Index>(std::lround(leash.drift_seconds * p.fps)), s.drift_u);
+    keep_near_path(s.ground_u, p.takes.front().ground.middleRows(first, length), leash.body_heights * p.feet.body_height);
     keep_near_heading(s.heading_u, p.reference_heading.segment(first, length), kPathLeashHeading);
     // A content that does not walk (no gait cycles: a jump, a stand) has no stride to fit.
     if (p.reference().cycles.kind == CycleKind::kGait)

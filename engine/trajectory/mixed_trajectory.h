@@ -11,6 +11,7 @@
 #include "engine/align/weight_keys.h"
 #include "engine/kinematics/sample_rows.h"
 #include "engine/post/finish.h"
+#include "engine/trajectory/mixed_root.h"
 
 namespace mostyle {
 
@@ -34,6 +35,7 @@ struct MixedTrajectory {
   Eigen::MatrixXd contacts_u; // U x 2: the foot contacts, 1 planted
   Eigen::MatrixXd steps, target;  // U x 3, U x 2: the weighted steps and paths mix_root integrates
   Eigen::VectorXd flips;      // U: one take's whole-turn flips
+  Eigen::MatrixXd drift_u;    // (U + 1) x 2: remove_path_drift's sums
   // A root on a leash (MixParams::path_leash): the root before it (U x 2, U) and the stride map
   // (U x 4, stride_map) that fits the legs to the root kept; stride_u is empty without a leash.
   Eigen::MatrixXd free_ground_u, stride_u;
@@ -62,13 +64,14 @@ FinishOptions output_clock(const PreparedTakes& p, const WeightKeys& keys, bool 
 // The root over the stretch (s.ground_u, s.heading_u) and the contacts (s.contacts_u): steps,
 // whole-turn flips and the paths pulled towards (integrate_root_towards), as the steps are
 // weighted (root_w: one weight per take, or keys, with s.sample_w from output_clock; the pull as
-// MixParams::root_pull_seconds), kept within `leash` body heights of the reference's own path
-// (keep_near_path; MixParams::path_leash, 0: free), and then facing within kPathLeashHeading of
+// MixParams::root_pull_seconds), its drift from the reference's own path taken away when asked
+// (remove_path_drift) and kept within `leash` body heights of it (keep_near_path;
+// MixParams::path_leash, 0: free), and then facing within kPathLeashHeading of
 // its heading (keep_near_heading), with the stride map from the root before the leash to the root
 // kept (s.stride_u, stride_map; empty without a leash, and for a reference without gait cycles).
 // O(U x N).
 void mix_root(const PreparedTakes& p, const WeightKeys& keys, const std::vector<double>& root_w, double root_pull_seconds,
-              double leash, const PlayedStretch& st, MixedTrajectory& s);
+              const PathLeash& leash, const PlayedStretch& st, MixedTrajectory& s);
 
 // Each take's frame (K x N) at the sampler's output frames; the sampler's rows count from
 // sample `first`.

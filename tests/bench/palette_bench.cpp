@@ -114,7 +114,7 @@ void mix_bench(benchmark::State& state, bool reference_timing, bool keyed = fals
       params.weights[1 + step % (p.size() - 1)] = t;
       params.reference_timing = true;
       params.feet_of_reference = true;
-      params.path_leash = transfer_path_leash(TransferNeutral::kContent);
+      params.path_leash = transfer_path_leash(TransferNeutral::kContent, false);
     }
     if (keyed) {
       std::vector<double> first(p.size(), 0.0);

@@ -49,7 +49,7 @@ MixParams mix_params_for(const Document& document, const Decomposed& decompositi
     // weights are the same: 1 - alpha and alpha).
     if (c.transfer) {
       m.feet_of_reference = true;
-      m.path_leash = transfer_path_leash(TransferNeutral::kContent);
+      m.path_leash = transfer_path_leash(TransferNeutral::kContent, controls.timing_a);
     }
   } else if (c.transfer) {
     // A transfer: content is the reference (take 0); the neutral take (or the content, when it
@@ -57,7 +57,7 @@ MixParams mix_params_for(const Document& document, const Decomposed& decompositi
     m.min_weight = transfer_min_weight(takes);
     m.max_weight = transfer_max_weight(takes);
     m.feet_of_reference = true;
-    m.path_leash = transfer_path_leash(c.content_neutral ? TransferNeutral::kContent : TransferNeutral::kTake);
+    m.path_leash = transfer_path_leash(c.content_neutral ? TransferNeutral::kContent : TransferNeutral::kTake, controls.timing_a);
   } else if (c.per_part) {
     // Each part: its own weights when given (one per take), else the overall weights.
     std::vector<std::pair<BodyPart, std::vector<double>>> given;

@@ -224,6 +224,26 @@ TEST_CASE("cli transfer without --neutral: the content is its own neutral", "[cl
     CHECK(ground_gap(mixed) > kOwnNeutralPathLeash);
     CHECK(ground_gap(transferred) < kOwnNeutralPathLeash);
   }
+  // With a neutral take, on the content's timing: the content's path too, frame by frame, through
+  // its turns, the drift of the style's shorter or longer steps taken away (its travel kept).
+  run("transfer " + kClumsy + " --neutral " + kHappy + " --style " + kMarching + " --strength 0 --fps 60", "n0");
+  const auto neutral_path = run("transfer " + kClumsy + " --neutral " + kHappy + " --style " + kMarching + " --fps 60", "n1");
+  {
+    const std::vector<double> styled = positions(test::slurp(box.path("n1.csv")));
+    const std::vector<double> content = positions(test::slurp(box.path("n0.csv")));
+    REQUIRE(styled.size() == content.size());
+    const size_t row = 3 * neutral_path["joints"].size();
+    double worst = 0.0, sum = 0.0;
+    for (size_t at = 0; at < styled.size(); at += row) {  // the hips, the first joint
+      const double gap = std::hypot(styled[at] - content[at], styled[at + 2] - content[at + 2]) / height;
+      worst = std::max(worst, gap);
+      sum += gap;
+    }
+    const double mean = sum / static_cast<double>(styled.size() / row);
+    INFO("the hips' gap from the content's: worst " << worst << ", mean " << mean << " body heights");
+    CHECK(worst < kOwnNeutralPathLeash);
+    CHECK(mean < 0.05);
+  }
   // Keys: from none of the style to all of it; two styles each with its own strength.
   const auto keyed = run("transfer " + kClumsy + " --style " + kMarching + " --strength-at 0:0,2:1", "keyed");
   REQUIRE(keyed["keys"].size() == 2);

@@ -60,7 +60,7 @@ MixResult own_transfer(const PreparedTakes& p) {
   mp.min_weight = transfer_min_weight(1);
   mp.max_weight = transfer_max_weight(1);
   mp.feet_of_reference = true;
-  mp.path_leash = transfer_path_leash(TransferNeutral::kContent);
+  mp.path_leash = transfer_path_leash(TransferNeutral::kContent, false);
   mp.reference_timing = true;  // on the content's timeline, as transfer is
   return mix(p, *d, transfer_weights({1.0}, TransferNeutral::kContent), mp);
 }

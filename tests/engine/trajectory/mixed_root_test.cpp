@@ -74,6 +74,36 @@ TEST_CASE("keep_near_path: free within half the leash, eased towards it beyond, 
   CHECK(same == ground);
 }
 
+TEST_CASE("remove_path_drift: a gap that grows steadily goes, a sway within the window stays", "[mixed_root]") {
+  // A path along x; a root that falls behind it by 0.3 a frame (shorter steps) and sways
+  // sideways by 0.5 with a period of 10 frames.
+  const int frames = 200, window = 21;
+  const double two_pi = 6.28318530717958647692;
+  Eigen::MatrixXd path(frames, 2), ground(frames, 2);
+  for (int t = 0; t < frames; ++t) {
+    path.row(t) << t, 0.0;
+    ground.row(t) << 0.7 * t, 0.5 * std::sin(two_pi * t / 10.0);
+  }
+  Eigen::MatrixXd kept = ground, scratch;
+  remove_path_drift(kept, path, window, scratch);
+  for (int t = window / 2; t + window / 2 < frames; ++t) {
+    INFO("frame " << t);
+    // A linear drift is its own centred mean: along the path the gap is gone.
+    CHECK(kept(t, 0) == Approx(path(t, 0)).margin(1e-9));
+    // Over 21 frames the sway's mean is one period's worth of it: a tenth of its size at most.
+    CHECK(std::abs(kept(t, 1) - ground(t, 1)) < 0.06);
+  }
+  // At the ends the window holds what it can: the gap is still far smaller than it was.
+  CHECK(std::abs(kept(frames - 1, 0) - path(frames - 1, 0)) < 0.1 * std::abs(ground(frames - 1, 0) - path(frames - 1, 0)));
+  // A window of one sample, or a root on its path: nothing.
+  Eigen::MatrixXd same = ground;
+  remove_path_drift(same, path, 1, scratch);
+  CHECK(same == ground);
+  same = path;
+  remove_path_drift(same, path, window, scratch);
+  CHECK(same == path);
+}
+
 TEST_CASE("keep_near_heading: the shorter arc eased as a gap is, across a whole turn too", "[mixed_root]") {
   const double leash = 0.2, pi = 3.14159265358979323846;
   Eigen::VectorXd path(5), heading(5);
