@@ -128,6 +128,7 @@ void print_info_json(const std::string& path, const FileInfo& info) {
     tk.push_back({{"name", t.name}, {"seconds", t.seconds}, {"keys", t.keys}, {"moves", t.moves}});
   if (info.cycles) {
     j["cycles"] = cycles_json(*info.cycles, clip.fps());
+    j["structure"] = action_structure_summary(*info.cycles, clip.fps());
   } else {
     j["cycles"] = {{"kind", "unknown"}, {"reason", info.no_cycles}};
   }
@@ -185,8 +186,9 @@ void print_info_text(const std::string& path, const FileInfo& info) {
             << "  units (guess): " << info.units.name << " (height " << number(info.units.height) << ")\n"
             << "  cycles: "
             << (info.cycles ? cycles_summary(*info.cycles, clip.fps(), clip.frames()) : "unknown: " + info.no_cycles)
-            << "\n"
-            << "  major joints: " << info.majors.how << "\n";
+            << "\n";
+  if (info.cycles) std::cout << "  structure: " << action_structure_summary(*info.cycles, clip.fps()) << "\n";
+  std::cout << "  major joints: " << info.majors.how << "\n";
   for (int m = 0; m < kMajorJointCount; ++m) {
     if (!info.majors.has(m) && info.majors.source[m] == MajorSource::kNone) continue;
     std::cout << "    " << major_joint_name(m) << ": "

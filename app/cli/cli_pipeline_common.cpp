@@ -306,7 +306,9 @@ Json alignment_json(const PreparedTakes& p, int take) {
   const Alignment& al = p.takes[static_cast<size_t>(take)].alignment;
   Json j;
   j["method"] = dtw_method_name(al.options.method);
-  j["time_base"] = al.by_cycles() ? "cycles" : "whole";  // what it was aligned by (cycles fall back to whole)
+  // What it was aligned by (cycles fall back to structure or whole).
+  j["time_base"] = al.by_cycles() ? "cycles" : al.by_structure ? "structure" : "whole";
+  if (!al.notes.empty()) j["notes"] = al.notes;
   if (!al.whole_because.empty()) j["whole_because"] = al.whole_because;
   j["feature"] = align_on_name(al.feature.on);
   j["locomotion"] = al.feature.locomotion;

@@ -162,7 +162,12 @@ int run_synthesis(const Prepared& p, const std::vector<std::string>& files, cons
     const Eigen::VectorXi shown = cycles_shown(palette.takes[static_cast<size_t>(i)], result.sources.col(i));
     t["source_cycles"] = std::vector<int>(shown.data(), shown.data() + shown.size());
     const CycleRegistration& registration = palette.takes[static_cast<size_t>(i)].registration;
-    t["time_base"] = registration.empty() ? "whole" : registration.posture_only() ? "posture" : "cycles";
+    const PreparedTake& take = palette.takes[static_cast<size_t>(i)];
+    t["time_base"] = take.alignment.by_structure ? "structure"
+                     : registration.empty()      ? "whole"
+                     : registration.posture_only() ? "posture"
+                                                   : "cycles";
+    t["structure"] = action_structure_summary(take.cycles, palette.fps);
     takes.push_back(t);
   }
   r["takes"] = takes;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <array>
 #include <cstdio>
 
 #include "engine/base/error.h"
@@ -51,6 +52,64 @@ void assess(Alignment& al, int frames_a, int frames_b, double fps) {
   al.frames_a = frames_a;
   al.frames_b = frames_b;
   al.warnings = alignment_warnings(al, fps, {"A", 0.0}, {"B", 0.0});
+}
+
+// A piece of the structure path: frames [a0, a1] of A onto [b0, b1] of B, inclusive.
+struct PathPiece {
+  int a0, a1, b0, b1;
+  bool dtw;  // matched by DTW (the moving spans), else a straight line (rests, holds)
+};
+
+// The three pieces (rest, action, rest) of each take as frame knots: 0, action begin, action
+// end (last moving frame), last frame.
+std::array<int, 4> structure_knots(const ActionSpans& s, int frames) {
+  if (s.still()) return {0, 0, frames - 1, frames - 1};
+  const FrameSpan active = s.active();
+  return {0, active.begin, std::max(active.begin, active.end - 1), frames - 1};
+}
+
+std::string span_words(int first, int last, double fps) {
+  char s[64];
+  std::snprintf(s, sizeof s, "%.1f-%.1f s", first / fps, (last + 1) / fps);
+  return s;
+}
+
+// The pieces of the structure path, and what they hold or leave out.
+std::vector<PathPiece> structure_pieces(const ActionSpans& sa, int fa, const ActionSpans& sb, int fb, double fps,
+                                        std::vector<std::string>* notes) {
+  std::vector<PathPiece> pieces;
+  if (sa.still() || sb.still()) {
+    // A take at rest throughout: the whole of A onto B's rest before, or B's whole take.
+    if (sa.still() && !sb.still()) {
+      if (sb.rest_before > 0) {
+        pieces.push_back({0, fa - 1, 0, sb.rest_before - 1, false});
+        notes->push_back("A is at rest throughout: it is matched with B's rest before its action; B's action (" +
+                         span_words(sb.active().begin, sb.active().end - 1, fps) + ") is left out");
+      } else {
+        pieces.push_back({0, fa - 1, 0, 0, false});
+        notes->push_back("A is at rest throughout and B has no rest: B holds its first pose; its action is left out");
+      }
+    } else {
+      pieces.push_back({0, fa - 1, 0, fb - 1, !sa.still()});
+      if (sb.still() && !sa.still())
+        notes->push_back("B is at rest throughout: its rest is laid on the whole of A's action");
+    }
+    return pieces;
+  }
+  const std::array<int, 4> ka = structure_knots(sa, fa), kb = structure_knots(sb, fb);
+  const char* where[3] = {"before", "", "after"};
+  for (int k = 0; k < 3; ++k) {
+    PathPiece piece{ka[k], ka[k + 1], kb[k], kb[k + 1], k == 1};
+    const bool a_has = ka[k + 1] > ka[k], b_has = kb[k + 1] > kb[k];
+    if (k != 1 && a_has && !b_has)
+      notes->push_back(std::string("B has no rest ") + where[k] + " its action: it holds its " +
+                       (k == 0 ? "first" : "last") + " pose over A's rest (" + span_words(ka[k], ka[k + 1], fps) + ")");
+    if (k != 1 && !a_has && b_has)
+      notes->push_back(std::string("A has no rest ") + where[k] + " its action: B's (" +
+                       span_words(kb[k], kb[k + 1], fps) + ") is left out");
+    pieces.push_back(piece);
+  }
+  return pieces;
 }
 
 }  // namespace
@@ -195,6 +254,53 @@ Alignment align_by_cycles(const CanonicalMotion& a, const RegisteredMotion& b, c
   al.b_last = anchors.back().registered;
   al.b_source = b.registration.source;
   assess(al, static_cast<int>(a.local.rows()), static_cast<int>(b.motion.local.rows()), fps);
+  return al;
+}
+
+Alignment align_by_structure(const CanonicalMotion& a, const ActionSpans& a_spans, const CanonicalMotion& b,
+                             const ActionSpans& b_spans, const FeatureJoints& joints, double leg_length, double fps,
+                             const AlignmentOptions& options, JobControl* control) {
+  options.Validate();
+  const int fa = static_cast<int>(a.local.rows()), fb = static_cast<int>(b.local.rows());
+  if (a_spans.frames != fa || b_spans.frames != fb || fa < 1 || fb < 1)
+    throw InputError("structure alignment: the takes' rests and actions were read on other frames than the takes'");
+  Alignment al;
+  al.options = options;
+  al.by_structure = true;
+  al.feature = alignment_feature(a, b, joints, options.on, leg_length, fps);
+  const Eigen::MatrixXd& ea = al.feature.a;
+  const Eigen::MatrixXd& eb = al.feature.b;
+  auto add = [&](int i, int j) {
+    if (!al.path.empty() && al.path.back() == std::make_pair(i, j)) return;
+    al.path.emplace_back(i, j);
+  };
+  SlopeDtwOptions closed = options.slope;
+  closed.open_ends = false;
+  for (const PathPiece& p : structure_pieces(a_spans, fa, b_spans, fb, fps, &al.notes)) {
+    check_cancel(control);
+    const int n = p.a1 - p.a0, m = p.b1 - p.b0;
+    if (n == 0 && fa > 1) continue;  // a part of B that A lacks: left out, not played in no time
+    if (p.dtw && n > 0 && m > 0) {
+      try {
+        const SlopeDtwPath path = align_slope_dtw(ea.middleRows(p.a0, n + 1), eb.middleRows(p.b0, m + 1), closed, control);
+        for (const auto& [i, j] : path.steps) add(p.a0 + i, p.b0 + j);
+        al.cost += path.cost;
+        continue;
+      } catch (const InputError&) {
+        // Lengths too far apart for the slope limit: the straight line below.
+      }
+    }
+    const int steps = std::max(n, m);
+    for (int k = 0; k <= steps; ++k)
+      add(p.a0 + (steps > 0 ? static_cast<int>(std::lround(double(k) * n / steps)) : 0),
+          p.b0 + (steps > 0 ? static_cast<int>(std::lround(double(k) * m / steps)) : 0));
+  }
+  al.warp = smooth_warp(al.path, options.smoothing_frames);
+  al.a_first = al.path.front().first;
+  al.a_last = al.path.back().first;
+  al.b_first = al.path.front().second;
+  al.b_last = al.path.back().second;
+  assess(al, fa, fb, fps);
   return al;
 }
 

@@ -80,6 +80,11 @@ struct Alignment {
   // frame at each of B's frames (NaN where it gives its posture only); empty when aligned whole.
   Eigen::VectorXd b_source;
   bool by_cycles() const { return b_source.size() > 0; }
+  // By structure (align_by_structure): rest matched to rest, action to action.
+  bool by_structure = false;
+  // Where B lacks a part of A's structure or has one A lacks, what was done ("B has no rest
+  // before its action: it holds its first pose over A's rest, 0.0-0.8 s"); plain sentences.
+  std::vector<std::string> notes;
 };
 
 // A take as an alignment's warnings name it: its name and its file's frame rate, so that frames
@@ -109,6 +114,19 @@ Alignment align_takes(const CanonicalMotion& a, const CanonicalMotion& b, const 
 // registered take. Throws InputError (bad options, missing joints) or Cancelled. Cost: the sum over cycles of
 // their DTWs, O(sum of Lr x Lt x features), plus O(Fa + V).
 constexpr double kCycleWarpSmoothing = 0.2;
+
+// Aligns B onto A (as align_takes does) piece by piece along their structures (action_structure.h:
+// a, b the spans of A and B): the rest before A's action onto B's, the moving span onto B's by the
+// slope-limited DTW with closed ends (a straight line where their lengths differ more than
+// options.slope.max_slope allows), the rest after onto B's. Where B lacks a rest A has, B holds its
+// nearest pose (its first or last) over it; a rest of B that A lacks is left out; a take at rest
+// throughout is matched whole to the other's rest, or held at its first pose. Covers all of A,
+// never cutting B (its frames only advance or hold). notes: say what was held or left out.
+// Throws InputError (bad options, missing joints, spans that do not fit the takes) or Cancelled.
+// Cost: the moving spans' DTW, O(La x Lb x features), plus O(Fa + Fb).
+Alignment align_by_structure(const CanonicalMotion& a, const ActionSpans& a_spans, const CanonicalMotion& b,
+                             const ActionSpans& b_spans, const FeatureJoints& joints, double leg_length, double fps,
+                             const AlignmentOptions& options, JobControl* control = nullptr);
 Alignment align_by_cycles(const CanonicalMotion& a, const RegisteredMotion& b, const FeatureJoints& joints,
                           double leg_length, double fps, const AlignmentOptions& options, JobControl* control = nullptr);
 

@@ -345,6 +345,72 @@ TakeCycles periodic_cycles(const Eigen::MatrixXd& local, double fps, double leg_
   return out;
 }
 
+// local less its moving average over kStrokeTrendS: the strokes of a hand waved with the arm
+// raised, without the raising and lowering that would hide them from the autocorrelation.
+constexpr double kStrokeTrendS = 1.2;
+Eigen::MatrixXd detrended(const Eigen::MatrixXd& local, double fps) {
+  const Eigen::Index frames = local.rows();
+  const Eigen::Index half = std::max<Eigen::Index>(1, std::lround(0.5 * kStrokeTrendS * fps));
+  Eigen::MatrixXd prefix = Eigen::MatrixXd::Zero(frames + 1, local.cols());
+  for (Eigen::Index f = 0; f < frames; ++f) prefix.row(f + 1) = prefix.row(f) + local.row(f);
+  Eigen::MatrixXd out(frames, local.cols());
+  for (Eigen::Index f = 0; f < frames; ++f) {
+    const Eigen::Index lo = std::max<Eigen::Index>(0, f - half), hi = std::min(frames, f + half + 1);
+    out.row(f) = local.row(f) - (prefix.row(hi) - prefix.row(lo)) / double(hi - lo);
+  }
+  return out;
+}
+
+// The period of one stroke of the joint that moves most (x: its detrended channel): the first
+// lag, past the first where it swings the other way (its correlation below 0), at which it comes
+// back, correlating at least kStrokePeriodicity with itself; -1 when it does not. Read on the one
+// channel, so channels swinging out of phase (a hand's x and y) do not cancel.
+constexpr double kStrokePeriodicity = 0.3;
+int stroke_period(const Eigen::VectorXd& x, double fps, const CycleOptions& o) {
+  const Eigen::Index frames = x.size();
+  const int min_lag = std::max(2, static_cast<int>(std::lround(o.min_period_s * fps)));
+  const int max_lag = std::min(static_cast<int>(std::lround(o.max_period_s * fps)), static_cast<int>(frames / 2));
+  if (max_lag <= min_lag + 1) return -1;
+  auto r = [&](int lag) {
+    const Eigen::Index n = frames - lag;
+    const auto a = x.head(n), b = x.tail(n);
+    const double d = std::sqrt(a.squaredNorm() * b.squaredNorm());
+    return d > 0 ? a.dot(b) / d : 0.0;
+  };
+  bool swung = false;
+  double previous = r(min_lag - 1), here = r(min_lag);
+  for (int lag = min_lag; lag < max_lag; ++lag) {
+    const double next = r(lag + 1);
+    if (here < 0) swung = true;
+    if (swung && here >= previous && here >= next && here >= kStrokePeriodicity) return lag;
+    previous = here;
+    here = next;
+  }
+  return -1;
+}
+
+// The strokes of the take's moving span: its periods (periodic_cycles read on the span alone, so
+// the rests around it do not dilute the repeats), two or more; none for a one-shot action.
+TakeCycles strokes_of_action(const Eigen::MatrixXd& local, const ActionSpans& spans, double fps, double leg_length,
+                             const CycleOptions& o) {
+  const FrameSpan active = spans.active();
+  if (active.frames() < 4) return {};
+  const Eigen::MatrixXd x = moving_channels(detrended(local.middleRows(active.begin, active.frames()), fps), leg_length, o);
+  if (x.cols() == 0) return {};
+  const int period = stroke_period(x.col(0), fps, o);
+  if (period < 0) return {};
+  TakeCycles out;
+  out.cycles = moving_cycles(x, cut_at_minima(x.col(0), period));
+  if (out.cycles.size() < 2) return {};
+  out.kind = CycleKind::kPeriodic;
+  out.period = period;
+  for (Cycle& c : out.cycles) {
+    c.begin += active.begin;
+    c.end += active.begin;
+  }
+  return out;
+}
+
 // A loop clip that is no gait: its one cycle [0, L) when some joint moves (min_amplitude) and the
 // loop is as long as a period may be (up to kMaxLoopCycles of the longest), else none.
 TakeCycles loop_period(const Eigen::MatrixXd& local, int loop, double fps, double leg_length, const CycleOptions& o) {
@@ -425,9 +491,14 @@ std::vector<int> cycle_starts_at(const TakeCycles& cycles, const Eigen::VectorXd
   return out;
 }
 
-int cycle_loop_frames(const Eigen::MatrixXd& local, double fps, const CycleOptions& options) {
+int cycle_loop_frames(const Eigen::MatrixXd& local, double fps, const ActionSpans& spans, const CycleOptions& options) {
+  if (spans.still() || spans.rests_at_both_ends()) return 0;
   const int longest = static_cast<int>(std::floor(kMaxLoopCycles * options.max_gait_s * fps));
   return loop_clip_frames(local, longest, kMaxLoopCycles - 1);
+}
+
+int cycle_loop_frames(const Eigen::MatrixXd& local, double fps, double leg_length, const CycleOptions& options) {
+  return cycle_loop_frames(local, fps, find_action_spans(local, fps, leg_length), options);
 }
 
 TakeCycles detect_cycles(const Eigen::MatrixXd& contacts, const Eigen::MatrixXd& local, double fps, double leg_length,
@@ -443,7 +514,8 @@ TakeCycles detect_cycles(const Eigen::MatrixXd& contacts, const Eigen::MatrixXd&
     if (j < -1 || 3 * static_cast<Eigen::Index>(j) + 2 >= local.cols())
       throw InputError("cycle detection: joint " + std::to_string(j) + " is not among the take's " +
                        std::to_string(local.cols() / 3) + " joints");
-  const int loop = cycle_loop_frames(local, fps, options);
+  const ActionSpans spans = find_action_spans(local, fps, leg_length);
+  const int loop = cycle_loop_frames(local, fps, spans, options);
   GaitInput in{local, fps, leg_length, options, joints, loop, {}};
   for (int foot : {0, 1}) {
     const std::vector<int> strikes = loop > 0 ? loop_strikes(contacts, foot, loop) : foot_strikes(contacts, foot);
@@ -452,6 +524,7 @@ TakeCycles detect_cycles(const Eigen::MatrixXd& contacts, const Eigen::MatrixXd&
 
   TakeCycles out;
   out.loop_frames = loop;
+  out.spans = spans;
   FootGait best;
   int best_foot = options.foot >= 0 ? options.foot : 0;
   for (int foot : {0, 1}) {
@@ -465,7 +538,9 @@ TakeCycles detect_cycles(const Eigen::MatrixXd& contacts, const Eigen::MatrixXd&
       best_foot = foot;
     }
   }
-  if (!best.cycles.empty()) {
+  const bool lone_step = loop == 0 && best.cycles.size() == 1 &&
+                         best.cycles[0].frames() < kLoneGaitShare * spans.active().frames();
+  if (!best.cycles.empty() && !lone_step) {
     out.kind = CycleKind::kGait;
     out.cycles = std::move(best.cycles);
     out.foot = best_foot;
@@ -477,16 +552,52 @@ TakeCycles detect_cycles(const Eigen::MatrixXd& contacts, const Eigen::MatrixXd&
   }
   // Feet that land together say so, however far the cycles got (one jump strikes each foot once).
   const GaitStage got = best.stage < GaitStage::kTogether && feet_land_together(in) ? GaitStage::kTogether : best.stage;
-  const std::string why = gait_reason(got, best_foot, options);
-  if (feet_alternate(in)) {  // a gait that fails its checks is no other repeated action either
+  const std::string why = lone_step ? "one step inside another action, not a walk" : gait_reason(got, best_foot, options);
+  if (feet_alternate(in) && !lone_step) {  // a gait that fails its checks is no other repeated action either
     out.reason = why;
     return out;
   }
   TakeCycles periodic = loop > 0 ? loop_period(local, loop, fps, leg_length, options)
-                                 : periodic_cycles(local, fps, leg_length, options);
+                                 : strokes_of_action(local, spans, fps, leg_length, options);
   periodic.loop_frames = loop;
+  periodic.spans = spans;
   periodic.reason = periodic.kind == CycleKind::kNone ? why + "; nothing else repeats" : why;
   return periodic;
+}
+
+std::string action_structure_summary(const TakeCycles& cycles, double fps) {
+  const ActionSpans& spans = cycles.spans;
+  auto at = [&](double frame) {
+    char s[32];
+    std::snprintf(s, sizeof s, "%.1f", frame / fps);
+    return std::string(s);
+  };
+  auto span = [&](const FrameSpan& f) { return at(f.begin) + "-" + at(f.end) + " s"; };
+  const int n = static_cast<int>(cycles.cycles.size());
+  if (cycles.kind == CycleKind::kGait)
+    return "gait: " + std::to_string(n) + (n == 1 ? " cycle" : " cycles") + (cycles.foot == 0 ? " (left foot)" : " (right foot)") +
+           (cycles.loops() ? ", a loop" : "");
+  if (cycles.kind == CycleKind::kPeriodic && cycles.loops()) {
+    char s[64];
+    std::snprintf(s, sizeof s, "periodic: a loop of %.2f s", cycles.loop_frames / fps);
+    return s + (spans.mover_part.empty() ? std::string() : " of the " + spans.mover_part);
+  }
+  if (spans.still()) return "at rest throughout";
+  std::string rests;
+  if (spans.rests_at_both_ends()) rests = " between rests";
+  else if (spans.rest_before > 0) rests = ", a rest before";
+  else if (spans.rest_after > 0) rests = ", a rest after";
+  if (cycles.kind == CycleKind::kPeriodic) {
+    const FrameSpan strokes{cycles.cycles.front().begin, cycles.cycles.back().end};
+    return "periodic: " + std::to_string(n) + " strokes" +
+           (spans.mover_part.empty() ? std::string() : " of the " + spans.mover_part) + " (" + span(strokes) + ")" + rests;
+  }
+  const size_t actions = spans.actions.size();
+  std::string s = (actions == 1 ? std::string("one action") : std::to_string(actions) + " actions");
+  if (!spans.mover_part.empty() && spans.mover_part != "body") s += " of the " + spans.mover_part;
+  s += " (";
+  for (size_t k = 0; k < actions; ++k) s += (k > 0 ? ", " : "") + span(spans.actions[k]);
+  return s + ")" + rests;
 }
 
 }  // namespace mostyle

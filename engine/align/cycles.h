@@ -23,6 +23,8 @@
 #include <string>
 #include <vector>
 
+#include "engine/align/action_structure.h"
+
 namespace mostyle {
 
 enum class CycleKind { kNone, kGait, kPeriodic };
@@ -61,6 +63,9 @@ struct GaitJoints {
 // A loop is at most this many gait cycles (options.max_gait_s each) long; its pose comes back to
 // its first at most this many times less one in between.
 constexpr int kMaxLoopCycles = 2;
+// A take's one gait cycle that is not a loop's is gait only when it covers this share of the
+// take's moving span.
+constexpr double kLoneGaitShare = 0.5;
 
 struct TakeCycles {
   CycleKind kind = CycleKind::kNone;
@@ -78,6 +83,9 @@ struct TakeCycles {
   // Why the take has no cycles, or no gait cycles ("no foot strike of the right foot"); empty
   // for gait cycles.
   std::string reason;
+  // The take read as rest, actions and rest (action_structure.h), on the poses the cycles were
+  // read from; a periodic take's cycles are the strokes of its moving span.
+  ActionSpans spans;
   bool loops() const { return loop_frames > 0; }
   int frames_in_cycles() const;
 };
@@ -89,10 +97,14 @@ struct TakeCycles {
 std::vector<int> cycle_starts_at(const TakeCycles& cycles, const Eigen::VectorXd& frames);
 
 // The loop a take is, as detect_cycles reads it (TakeCycles::loop_frames): loop_clip.h
-// loop_clip_frames for a take of at most kMaxLoopCycles gait cycles; 0 for any other. Contacts
+// loop_clip_frames for a take of at most kMaxLoopCycles gait cycles; 0 for any other, and for a
+// take at rest throughout or at rest at both ends (a one-shot action's first and last poses are
+// alike because it stands still there, not because it repeats). Contacts
 // detected across the loop's end (foot_contact.h detect_foot_contacts) use it. local: F x 3M
-// canonical poses. O(F x M).
-int cycle_loop_frames(const Eigen::MatrixXd& local, double fps, const CycleOptions& options = {});
+// canonical poses, leg_length what its speeds are judged in (the same units). O(F x M).
+int cycle_loop_frames(const Eigen::MatrixXd& local, double fps, double leg_length, const CycleOptions& options = {});
+// The same for a take whose spans are already read (find_action_spans of local).
+int cycle_loop_frames(const Eigen::MatrixXd& local, double fps, const ActionSpans& spans, const CycleOptions& options = {});
 
 // The cycles of one take. contacts: F x 2 (left, right foot; foot_contact.h; for a loop clip
 // detected across its end), local: F x 3M joint positions in the canonical frame
@@ -109,5 +121,11 @@ int cycle_loop_frames(const Eigen::MatrixXd& local, double fps, const CycleOptio
 // for gait; O(F x P) more for another action (P: the longest period tried, in frames).
 TakeCycles detect_cycles(const Eigen::MatrixXd& contacts, const Eigen::MatrixXd& local, double fps, double leg_length,
                          const CycleOptions& options = {}, const GaitJoints& joints = {});
+
+// The structure of a take in words: "gait: 6 cycles (left foot)", "periodic: 4 strokes of the
+// left hand (1.2-5.6 s) between rests", "one action (0.8-3.1 s) between rests", "2 actions
+// (0.5-1.9 s, 2.6-4.0 s), a rest before", "at rest throughout", "periodic: a loop of 1.00 s".
+// fps: the rate the cycles' frames are at. O(cycles + actions).
+std::string action_structure_summary(const TakeCycles& cycles, double fps);
 
 }  // namespace mostyle

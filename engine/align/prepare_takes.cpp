@@ -118,12 +118,17 @@ TakeCycles cycles_from_feet(const Eigen::MatrixXd& contacts, const Eigen::Matrix
 
 // A take's foot contacts and cycles on its own frames (world F x 3M, canonical its canonical
 // frame, at feet.fps): a loop clip's contacts are read across its end.
+// majors: the canonical joint of each column, which names the body part that moves most.
 void contacts_and_cycles(const Eigen::MatrixXd& world, const CanonicalMotion& canonical, const FootRig& feet,
-                         Eigen::MatrixXd* contacts, TakeCycles* cycles) {
+                         const std::vector<int>& majors, Eigen::MatrixXd* contacts, TakeCycles* cycles) {
   GaitJoints joints;
   const Eigen::MatrixXd legs = feet_signals(canonical.local, feet, &joints);
-  *contacts = detect_foot_contacts(world, feet, cycle_loop_frames(legs, feet.fps));
+  *contacts = detect_foot_contacts(world, feet, cycle_loop_frames(legs, feet.fps, feet.leg_length));
   *cycles = cycles_from_feet(*contacts, legs, joints, feet, {}, [&]() -> const Eigen::MatrixXd& { return canonical.local; });
+  // Gait's spans are read on the legs' columns alone; another action's on the whole pose.
+  const int mover = cycles->spans.mover;
+  if (cycles->kind != CycleKind::kGait && mover >= 0 && mover < static_cast<int>(majors.size()))
+    cycles->spans.mover_part = body_part_of(major_joint_name(majors[static_cast<size_t>(mover)]));
 }
 
 // A take whose gait cycles begin at one foot's strikes, with too few strikes of the other foot for
@@ -220,7 +225,7 @@ void append_closing_frame(PreparedTake& t, const PreparedTakes& p, const int leg
   t.world.row(frames) = closing.row(0);
   t.canonical = to_canonical(t.world, 0, leg[0], leg[3]);
   t.own_local_t = t.canonical.local.transpose();
-  contacts_and_cycles(t.world, t.canonical, p.feet, &t.own_contacts, &t.cycles);
+  contacts_and_cycles(t.world, t.canonical, p.feet, p.majors, &t.own_contacts, &t.cycles);
 }
 
 // How many times a loop take is repeated to be registered: enough for one cycle window moved to
@@ -315,7 +320,7 @@ TakeCycles own_rate_cycles(const std::shared_ptr<const Clip>& clip, const MajorM
     const CanonicalMotion canonical = to_canonical(major.world, 0, feet.legs[0].hip, feet.legs[1].hip);
     Eigen::MatrixXd contacts;
     TakeCycles cycles;
-    contacts_and_cycles(major.world, canonical, feet, &contacts, &cycles);
+    contacts_and_cycles(major.world, canonical, feet, joints, &contacts, &cycles);
     return cycles;
   };
   std::vector<int> legs;
@@ -388,7 +393,7 @@ void prepare_own_take(int i, const std::shared_ptr<const Clip>& clip, const Majo
   }
   t.canonical = to_canonical(t.world, 0, leg[0], leg[3]);
   t.own_local_t = t.canonical.local.transpose();
-  contacts_and_cycles(t.world, t.canonical, p.feet, &t.own_contacts, &t.cycles);
+  contacts_and_cycles(t.world, t.canonical, p.feet, p.majors, &t.own_contacts, &t.cycles);
   carry_own_rate_cycles(t.clip, t.mapping, fps, t.world.rows(), t.cycles);
   // A loop clip whose last frame shows its first again is measured without it, as its outputs
   // (cut to the loop, closed at the seam) are.
@@ -397,6 +402,32 @@ void prepare_own_take(int i, const std::shared_ptr<const Clip>& clip, const Majo
                            : planted_speed(t.world, p.feet);
   t.fastest_joint = fastest_joint_speed(t.world, fps);
   if (i == 0 && t.cycles.loops() && t.cycles.loop_frames == t.world.rows()) append_closing_frame(t, p, leg);
+}
+
+// Takes that neither walk are aligned by their structure (rest, action, rest: align_by_structure)
+// on the default method and time base, unless one is a loop clip (registered by cycles, its
+// cycle read across its end) or both repeat without a rest (registered stroke by stroke, by cycles).
+bool aligns_by_structure(const TakeCycles& reference, const TakeCycles& take, const AlignmentOptions& o) {
+  if (o.method != DtwMethod::kSlope || o.time_base != TimeBase::kCycles) return false;
+  if (reference.kind == CycleKind::kGait || take.kind == CycleKind::kGait) return false;
+  if (reference.loops() || take.loops()) return false;
+  const bool rests = reference.spans.rest_before + reference.spans.rest_after + take.spans.rest_before +
+                         take.spans.rest_after > 0 || reference.spans.still() || take.spans.still();
+  return rests || !cycles_register(reference, take);
+}
+
+// A structure note with the takes' names for "A" and "B" where they are not a pair's.
+std::string named_note(const std::string& note, const std::string& a, const std::string& b) {
+  if (a == "A" && b == "B") return note;
+  std::string out;
+  for (size_t k = 0; k < note.size(); ++k) {
+    const bool word = (k == 0 || note[k - 1] == ' ' || note[k - 1] == '(') &&
+                      (k + 1 == note.size() || note[k + 1] == ' ' || note[k + 1] == '\'');
+    if (word && note[k] == 'A') out += a;
+    else if (word && note[k] == 'B') out += b;
+    else out += note[k];
+  }
+  return out;
 }
 
 // Take i (> 0) aligned onto the reference: by cycles where both repeat (its own timeline then
@@ -455,6 +486,9 @@ void align_onto_reference(int i, const PrepareOptions& options, const LegColumns
     // its planted feet 50 times as fast as the idle's).
     RegisteredMotion registered = register_posture_only(reference.canonical, reference.own_contacts, t.canonical, own);
     adopt(registered);
+  } else if (aligns_by_structure(reference.cycles, own, options.align)) {
+    t.alignment = align_by_structure(reference.canonical, reference.cycles.spans, t.canonical, t.cycles.spans,
+                                     p.feature_joints, p.feet.leg_length, fps, options.align, control);
   } else {
     t.alignment = align_takes(reference.canonical, t.canonical, p.feature_joints, p.feet.leg_length, fps,
                               options.align, control);
@@ -463,6 +497,7 @@ void align_onto_reference(int i, const PrepareOptions& options, const LegColumns
   }
   t.alignment.warnings = alignment_warnings(t.alignment, fps, aligned_name(0, n, *reference.clip),
                                             aligned_name(i, n, *t.clip));
+  for (const std::string& note : t.alignment.notes) t.alignment.warnings.push_back(named_note(note, aligned_name(0, n, *reference.clip).name, aligned_name(i, n, *t.clip).name));
   // Whole-take alignment is the method for takes of which neither repeats (a bow, a wave once, a
   // kick): said only where one of them has cycles that could not be matched.
   const bool neither_repeats = reference.cycles.cycles.empty() && own.cycles.empty();

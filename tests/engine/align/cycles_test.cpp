@@ -74,7 +74,7 @@ Detected detect(const test::GaitSpec& g, int frames, const CycleOptions& o = {})
   const CanonicalMotion canonical = to_canonical(world, 0, 1, 5);
   Detected d;
   d.frames = frames;
-  d.contacts = detect_foot_contacts(world, rig, cycle_loop_frames(canonical.local, g.fps, o));
+  d.contacts = detect_foot_contacts(world, rig, cycle_loop_frames(canonical.local, g.fps, rig.leg_length, o));
   d.cycles = detect_cycles(d.contacts, canonical.local, g.fps, rig.leg_length, o, test::gait_joints());
   return d;
 }
