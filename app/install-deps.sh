@@ -13,8 +13,9 @@ packages=(build-essential cmake pkg-config libeigen3-dev libglfw3-dev libglm-dev
           libtinygltf-dev nodejs)
 # slurm-wlm (slurmctld, slurmd, sbatch) and munge (its authentication): CI's real Slurm.
 if [ "${1:-}" = "--cluster" ]; then packages+=(slurm-wlm munge); fi
-# Debian's Blender imports glTF only with numpy: where Blender is, the [blender] tests need it.
-if command -v blender >/dev/null 2>&1; then packages+=(python3-numpy); fi
+# blender and python3-numpy (Debian's Blender imports glTF only with numpy): the [blender] tests
+# open what mostyle writes with Blender's own importers, as an animator would.
+packages+=(blender python3-numpy)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

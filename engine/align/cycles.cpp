@@ -15,7 +15,6 @@ namespace mostyle {
 namespace {
 
 constexpr int kPeriodicChannels = 6;    // the channels that move most carry the period
-constexpr double kHarmonicShare = 0.85;  // a peak at P/d this high is the period instead of P
 constexpr double kBoundarySlack = 0.3;   // a period boundary is looked for within +-30% of P
 constexpr double kMinCycleAmplitude = 0.5;  // of the median cycle's: less is a still stretch
 
@@ -245,42 +244,6 @@ Eigen::MatrixXd moving_channels(const Eigen::MatrixXd& local, double leg_length,
   return x;
 }
 
-// The period of x's channels in frames: the lag of the highest autocorrelation peak between
-// o.min_period_s and o.max_period_s (at most half the take), or the shortest of its fractions
-// that correlates nearly as well (a multiple of the period can correlate as well as the period
-// itself). -1 when the take is too short to repeat or repeats less than o.min_periodicity.
-int autocorrelation_period(const Eigen::MatrixXd& x, double fps, const CycleOptions& o) {
-  const Eigen::Index frames = x.rows();
-  const int min_lag = std::max(2, static_cast<int>(std::lround(o.min_period_s * fps)));
-  const int max_lag = std::min(static_cast<int>(std::lround(o.max_period_s * fps)), static_cast<int>(frames / 2));
-  if (max_lag <= min_lag + 1) return -1;  // too short to repeat
-  std::vector<double> r(static_cast<size_t>(max_lag + 2), 0.0);
-  for (int lag = min_lag - 1; lag <= max_lag + 1 && lag < frames; ++lag) {
-    const Eigen::Index n = frames - lag;
-    r[static_cast<size_t>(lag)] =
-        (x.topRows(n).array() * x.bottomRows(n).array()).sum() / (double(n) * double(x.cols()));
-  }
-  auto peak = [&](int lag) {
-    return lag > min_lag - 1 && lag < max_lag + 1 && r[static_cast<size_t>(lag)] >= r[static_cast<size_t>(lag - 1)] &&
-           r[static_cast<size_t>(lag)] >= r[static_cast<size_t>(lag + 1)];
-  };
-  int best = -1;
-  for (int lag = min_lag; lag <= max_lag; ++lag)
-    if (peak(lag) && (best < 0 || r[static_cast<size_t>(lag)] > r[static_cast<size_t>(best)])) best = lag;
-  if (best < 0 || r[static_cast<size_t>(best)] < o.min_periodicity) return -1;
-  for (int d = 4; d >= 2; --d) {
-    const int guess = static_cast<int>(std::lround(double(best) / d));
-    const int slack = std::max(1, static_cast<int>(0.15 * guess));
-    int found = -1;
-    for (int lag = std::max(min_lag, guess - slack); lag <= std::min(max_lag, guess + slack); ++lag)
-      if (peak(lag) && r[static_cast<size_t>(lag)] >= kHarmonicShare * r[static_cast<size_t>(best)] &&
-          (found < 0 || r[static_cast<size_t>(lag)] > r[static_cast<size_t>(found)]))
-        found = lag;
-    if (found >= 0) return found;
-  }
-  return best;
-}
-
 // Boundaries at the minima of `anchor` (the channel that moves most), one period apart (within
 // kBoundarySlack); a last cycle cut off by the take's end is left out.
 std::vector<Cycle> cut_at_minima(const Eigen::VectorXd& anchor, int period) {
@@ -329,22 +292,6 @@ std::vector<Cycle> moving_cycles(const Eigen::MatrixXd& x, const std::vector<Cyc
   return kept;
 }
 
-// Periods of the channels that move most (autocorrelation), cut at the minima of the one that
-// moves most.
-TakeCycles periodic_cycles(const Eigen::MatrixXd& local, double fps, double leg_length, const CycleOptions& o) {
-  TakeCycles out;
-  if (local.rows() < 4) return out;
-  const Eigen::MatrixXd x = moving_channels(local, leg_length, o);
-  if (x.cols() == 0) return out;  // standing still
-  const int period = autocorrelation_period(x, fps, o);
-  if (period < 0) return out;
-  out.cycles = moving_cycles(x, cut_at_minima(x.col(0), period));
-  if (out.cycles.empty()) return out;
-  out.kind = CycleKind::kPeriodic;
-  out.period = period;
-  return out;
-}
-
 // local less its moving average over kStrokeTrendS: the strokes of a hand waved with the arm
 // raised, without the raising and lowering that would hide them from the autocorrelation.
 constexpr double kStrokeTrendS = 1.2;
@@ -389,8 +336,8 @@ int stroke_period(const Eigen::VectorXd& x, double fps, const CycleOptions& o) {
   return -1;
 }
 
-// The strokes of the take's moving span: its periods (periodic_cycles read on the span alone, so
-// the rests around it do not dilute the repeats), two or more; none for a one-shot action.
+// The strokes of the take's moving span: the period of its most moving joint (read on the span
+// alone, so the rests around it do not dilute the repeats), two or more; none for a one-shot action.
 TakeCycles strokes_of_action(const Eigen::MatrixXd& local, const ActionSpans& spans, double fps, double leg_length,
                              const CycleOptions& o) {
   const FrameSpan active = spans.active();
