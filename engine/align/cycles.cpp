@@ -402,8 +402,6 @@ void CycleOptions::Validate() const {
     throw InputError("cycle detection: a period's shortest and longest length must be positive, shortest first");
   if (!(max_change > 0.0 && max_change < 1.0))
     throw InputError("cycle detection: the change allowed from the typical cycle must be above 0 and below 1");
-  if (!(min_periodicity > 0.0 && min_periodicity <= 1.0))
-    throw InputError("cycle detection: the periodicity asked for must be above 0, up to 1");
   if (!(min_amplitude >= 0.0) || !std::isfinite(min_amplitude))
     throw InputError("cycle detection: the smallest amplitude must be a number from 0 up");
   if (foot < -1 || foot > 1) throw InputError("cycle detection: the foot must be left (0), right (1) or either (-1)");

@@ -41,7 +41,6 @@ struct CycleOptions {
   // A cycle more than this fraction longer or shorter than the median of the take's candidates
   // is not one (a pause, a turn on the spot, a stumble).
   double max_change = 0.45;
-  double min_periodicity = 0.5;  // correlation of the moving joints with themselves one period on
   double min_amplitude = 0.04;   // leg lengths: joints that move less count as still
   int foot = -1;  // gait cycles begin at this foot's strikes (0 left, 1 right); -1: the foot giving more
   // The other foot strikes once in a gait cycle, within [step_share, 1 - step_share] of it (a step

@@ -171,25 +171,9 @@ inline int listen_local(int* port) {
   return fd;
 }
 
-// A socket bound to 127.0.0.1 (port picked by the system, in *port) and not listening:
-// connections to it are refused until the test calls listen().
-inline int bound_not_listening(int* port) {
-  const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-  const int on = 1;
-  ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &on, sizeof on);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  ::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a);
-  socklen_t length = sizeof a;
-  ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &length);
-  *port = ntohs(a.sin_port);
-  return fd;
-}
-
-// Listening on 127.0.0.1:port again (SO_REUSEADDR: the port of a source closed a moment ago);
-// -1 if it cannot.
-inline int listen_local_on(int port) {
+// A socket bound to 127.0.0.1:port (0: picked by the system), SO_REUSEADDR (the port of a source
+// closed a moment ago); its port in *bound. -1 if it cannot be bound.
+inline int bound_local(int port, int* bound) {
   const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
   const int on = 1;
   ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &on, sizeof on);
@@ -197,7 +181,26 @@ inline int listen_local_on(int port) {
   a.sin_family = AF_INET;
   a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
   a.sin_port = htons(static_cast<uint16_t>(port));
-  if (::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0 || ::listen(fd, 8) != 0) {
+  if (::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
+    ::close(fd);
+    return -1;
+  }
+  socklen_t length = sizeof a;
+  ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &length);
+  *bound = ntohs(a.sin_port);
+  return fd;
+}
+
+// A socket bound to 127.0.0.1 (port picked by the system, in *port) and not listening:
+// connections to it are refused until the test calls listen().
+inline int bound_not_listening(int* port) { return bound_local(0, port); }
+
+// Listening on 127.0.0.1:port again (SO_REUSEADDR: the port of a source closed a moment ago);
+// -1 if it cannot.
+inline int listen_local_on(int port) {
+  int bound = 0;
+  const int fd = bound_local(port, &bound);
+  if (fd >= 0 && ::listen(fd, 8) != 0) {
     ::close(fd);
     return -1;
   }

@@ -8,6 +8,8 @@
 #include <string>
 
 #include <catch2/catch.hpp>
+
+#include "engine/kinematics/units.h"
 #include <imgui.h>
 #include <imgui_internal.h>  // ImGui::FindWindowByName
 
@@ -363,7 +365,11 @@ TEST_CASE("export dialog: the format is the file's extension, glTF and FBX expor
     const Clip written = read_motion_file(path);
     REQUIRE(written.frames() == as_bvh.frames());
     CHECK(written.fps() == as_bvh.fps());
-    const Eigen::MatrixXd a = joint_positions(as_bvh), b = joint_positions(written);
+    // In metres: glTF is written in them whatever the take's unit (FBX keeps the take's).
+    const double a_metres = metres_per_unit(as_bvh), b_metres = metres_per_unit(written);
+    REQUIRE(a_metres > 0.0);
+    REQUIRE(b_metres > 0.0);
+    const Eigen::MatrixXd a = joint_positions(as_bvh) * a_metres, b = joint_positions(written) * b_metres;
     double worst = 0;
     for (size_t i = 0; i < as_bvh.skeleton.joints.size(); ++i) {
       if (as_bvh.skeleton.joints[i].end_site) continue;
@@ -371,7 +377,7 @@ TEST_CASE("export dialog: the format is the file's extension, glTF and FBX expor
       REQUIRE(j >= 0);
       worst = std::max(worst, (a.middleCols(3 * i, 3) - b.middleCols(3 * j, 3)).rowwise().norm().maxCoeff());
     }
-    CHECK(worst < 1e-3);  // file units (cm-like CMU units): float32 keys
+    CHECK(worst < 1e-3 * a_metres);  // a thousandth of a file unit (cm-like CMU units): float32 keys
   }
 }
 
