@@ -195,7 +195,8 @@ bool read_session(std::string_view bytes) {
   for (double w : d.weights) check(w >= kMinMixWeight && w <= kMaxMixWeight, "weights in the palette's range");
   check(d.parameters.components >= 1, "at least one component");
   check(d.parameters.sparsity > 0.0 && d.parameters.sparsity <= 1.0, "sparsity in (0, 1]");
-  for (double a : c.component_alpha) check(a >= 0.0 && a <= 1.0, "component alphas in [0, 1]");
+  for (double a : c.component_alpha)  // a pair's alpha range: weights (1 - a, a) within the mix's
+    check(a >= 1.0 - kMaxMixWeight && a <= kMaxMixWeight, "component alphas from -0.5 to 1.5");
   for (double f : c.basic_sparsities) check(f > 0.0 && f <= 1.0, "basic sparsities in (0, 1]");
   check(c.basic_motions >= 0 && c.swap_level >= 0 && (c.swap_level == 0 || c.swap_level < c.basic_motions),
         "the level from B is one of the basic motions");
