@@ -405,12 +405,14 @@ void prepare_own_take(int i, const std::shared_ptr<const Clip>& clip, const Majo
 }
 
 // Takes that neither walk are aligned by their structure (rest, action, rest: align_by_structure)
-// on the default method and time base, unless one is a loop clip (registered by cycles, its
-// cycle read across its end) or both repeat without a rest (registered stroke by stroke, by cycles).
+// on the default method and time base, unless one is a loop clip that the other's cycles
+// register with (its cycle read across its end) or both repeat without a rest (registered stroke
+// by stroke, by cycles). A loop whose other take has no cycles to match (a gesture held against a
+// looping one) is aligned by structure too: whole DTW would leave out what it cannot match.
 bool aligns_by_structure(const TakeCycles& reference, const TakeCycles& take, const AlignmentOptions& o) {
   if (o.method != DtwMethod::kSlope || o.time_base != TimeBase::kCycles) return false;
   if (reference.kind == CycleKind::kGait || take.kind == CycleKind::kGait) return false;
-  if (reference.loops() || take.loops()) return false;
+  if ((reference.loops() || take.loops()) && cycles_register(reference, take)) return false;
   const bool rests = reference.spans.rest_before + reference.spans.rest_after + take.spans.rest_before +
                          take.spans.rest_after > 0 || reference.spans.still() || take.spans.still();
   return rests || !cycles_register(reference, take);

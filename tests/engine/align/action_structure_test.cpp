@@ -228,6 +228,23 @@ TEST_CASE("action structure: a styled action's blend and its seven-take mix play
   }
 }
 
+TEST_CASE("action structure: a looping action styled from another action's takes plays all of it") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  if (!std::ifstream(test::shared_motion("actions/bandai_respond_normal.bvh"))) {
+    WARN("skipped: ../shared/motions/actions is absent");
+    return;
+  }
+  // The respond take loops; the raised hand and the wave have no cycles its cycles register with.
+  const auto content = action("bandai_respond_normal");
+  for (const char* family : {"bandai2_raise-up-right-hand_", "bandai2_wave-left-hand_"}) {
+    INFO(family);
+    const auto p = prepare_takes({content, action(std::string(family) + "normal"), action(std::string(family) + "feminine")},
+                                 PrepareOptions());
+    REQUIRE(p->reference().cycles.loops());
+    check_reference_whole(*p);
+  }
+}
+
 TEST_CASE("action structure: no styled action or single action is read as a walk or a loop") {
   MOSTYLE_REQUIRE_SHARED_MOTIONS();
   if (!std::ifstream(test::shared_motion("actions/bandai_bye_normal.bvh"))) {
