@@ -81,14 +81,15 @@ std::vector<PathPiece> structure_pieces(const ActionSpans& sa, int fa, const Act
   if (sa.still() || sb.still()) {
     // A take at rest throughout: the whole of A onto B's rest before, or B's whole take.
     if (sa.still() && !sb.still()) {
-      if (sb.rest_before > 0) {
-        pieces.push_back({0, fa - 1, 0, sb.rest_before - 1, false});
-        notes->push_back("A is at rest throughout: it is matched with B's rest before its action; B's action (" +
-                         span_words(sb.active().begin, sb.active().end - 1, fps) + ") is left out");
-      } else {
-        pieces.push_back({0, fa - 1, 0, 0, false});
-        notes->push_back("A is at rest throughout and B has no rest: B holds its first pose; its action is left out");
-      }
+      // B's action (and the rest after it) plays while A holds its last pose: all of B at weight 1.
+      const int rest = sb.rest_before > 0 ? sb.rest_before - 1 : 0;
+      pieces.push_back({0, fa - 1, 0, rest, false});
+      pieces.push_back({fa - 1, fa - 1, rest, fb - 1, false});
+      notes->push_back(std::string("A is at rest throughout: ") +
+                       (sb.rest_before > 0 ? "it is matched with B's rest before its action, then holds"
+                                           : "it holds") +
+                       " its last pose while B's action (" + span_words(sb.active().begin, sb.active().end - 1, fps) +
+                       ") plays");
     } else {
       pieces.push_back({0, fa - 1, 0, fb - 1, !sa.still()});
       if (sb.still() && !sa.still())
@@ -105,8 +106,9 @@ std::vector<PathPiece> structure_pieces(const ActionSpans& sa, int fa, const Act
       notes->push_back(std::string("B has no rest ") + where[k] + " its action: it holds its " +
                        (k == 0 ? "first" : "last") + " pose over A's rest (" + span_words(ka[k], ka[k + 1], fps) + ")");
     if (k != 1 && !a_has && b_has)
-      notes->push_back(std::string("A has no rest ") + where[k] + " its action: B's (" +
-                       span_words(kb[k], kb[k + 1], fps) + ") is left out");
+      notes->push_back(std::string("A has no rest ") + where[k] + " its action: it holds its " +
+                       (k == 0 ? "first" : "last") + " pose while B's (" + span_words(kb[k], kb[k + 1], fps) +
+                       ") plays");
     pieces.push_back(piece);
   }
   return pieces;
@@ -278,8 +280,9 @@ Alignment align_by_structure(const CanonicalMotion& a, const ActionSpans& a_span
   closed.open_ends = false;
   for (const PathPiece& p : structure_pieces(a_spans, fa, b_spans, fb, fps, &al.notes)) {
     check_cancel(control);
+    // A part of B that A lacks (n == 0) is a hold of A: the common timeline gives it B's time at
+    // B's weight, none on A's clock.
     const int n = p.a1 - p.a0, m = p.b1 - p.b0;
-    if (n == 0 && fa > 1) continue;  // a part of B that A lacks: left out, not played in no time
     if (p.dtw && n > 0 && m > 0) {
       try {
         const SlopeDtwPath path = align_slope_dtw(ea.middleRows(p.a0, n + 1), eb.middleRows(p.b0, m + 1), closed, control);

@@ -119,9 +119,11 @@ constexpr double kCycleWarpSmoothing = 0.2;
 // a, b the spans of A and B): the rest before A's action onto B's, the moving span onto B's by the
 // slope-limited DTW with closed ends (a straight line where their lengths differ more than
 // options.slope.max_slope allows), the rest after onto B's. Where B lacks a rest A has, B holds its
-// nearest pose (its first or last) over it; a rest of B that A lacks is left out; a take at rest
-// throughout is matched whole to the other's rest, or held at its first pose. Covers all of A,
-// never cutting B (its frames only advance or hold). notes: say what was held or left out.
+// nearest pose (its first or last) over it; over a rest of B that A lacks, A holds its nearest
+// pose (a hold of A: the path stays on A's frame while B advances, common_timeline.h); A at rest
+// throughout is matched with B's rest before its action, then holds while B's action plays; B at
+// rest throughout is laid on the whole of A. Covers all of A and all of B, never cutting either
+// (frames only advance or hold). notes: say what was held.
 // Throws InputError (bad options, missing joints, spans that do not fit the takes) or Cancelled.
 // Cost: the moving spans' DTW, O(La x Lb x features), plus O(Fa + Fb).
 Alignment align_by_structure(const CanonicalMotion& a, const ActionSpans& a_spans, const CanonicalMotion& b,

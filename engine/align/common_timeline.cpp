@@ -9,6 +9,9 @@
 namespace mostyle {
 namespace {
 
+// Reference frames this close to a whole frame are on it.
+constexpr double kOnFrame = 1e-9;
+
 // A warp read as a function of the reference's frame, for a reference frame that only grows.
 class WarpReader {
  public:
@@ -22,6 +25,19 @@ class WarpReader {
     const double a0 = w_.a[segment_], a1 = w_.a[segment_ + 1];
     const double f = a1 > a0 ? std::clamp((r - a0) / (a1 - a0), 0.0, 1.0) : 1.0;
     return w_.b[segment_] + f * (w_.b[segment_ + 1] - w_.b[segment_]);
+  }
+
+  // Where the warp holds the reference at r while the take moves on (its samples there share r:
+  // the take plays a part the reference lacks, such as a rest before its action), the take's
+  // frame as that hold begins; at(r) is where it ends. Elsewhere at(r).
+  double entering(double r) {
+    const double leaving = at(r);
+    if (w_.a.size() < 2) return leaving;
+    Eigen::Index k = segment_;
+    if (std::abs(w_.a[k + 1] - r) <= kOnFrame && w_.a.size() == k + 2) ++k;  // a hold at the warp's end
+    if (std::abs(w_.a[k] - r) > kOnFrame) return leaving;
+    while (k > 0 && std::abs(w_.a[k - 1] - r) <= kOnFrame) --k;
+    return w_.b[k];
   }
 
   // The largest take frames per reference frame over the segments that meet [r, r + span) (one
@@ -46,10 +62,8 @@ class WarpReader {
   Eigen::Index segment_ = 0;
 };
 
-// Reference frames this close to a whole frame are on it.
-constexpr double kOnFrame = 1e-9;
-
 }  // namespace
+
 
 CommonTimeline common_timeline(const std::vector<const TimeWarp*>& warps) {
   if (warps.empty()) throw InputError("a palette needs at least two takes");
@@ -69,9 +83,24 @@ CommonTimeline common_timeline(const std::vector<const TimeWarp*>& warps) {
   std::vector<double> reference;
   std::vector<std::vector<double>> takes(warps.size());
   size_t next_end = 0;
+  std::vector<double> entering(warps.size()), leaving(warps.size());
   for (double r = first;;) {
     reference.push_back(r);
-    for (size_t i = 0; i < readers.size(); ++i) takes[i].push_back(readers[i].at(r));
+    double hold = 0.0;
+    for (size_t i = 0; i < readers.size(); ++i) {
+      leaving[i] = readers[i].at(r);
+      entering[i] = readers[i].entering(r);
+      takes[i].push_back(entering[i]);
+      hold = std::max(hold, leaving[i] - entering[i]);
+    }
+    // A hold: the reference stays at r while the takes that hold it there play on, one of their
+    // frames a sample at most; the other takes stay where they are.
+    const double held = std::ceil(hold - 1e-6);
+    for (double p = 1.0; p <= held; p += 1.0) {
+      reference.push_back(r);
+      for (size_t i = 0; i < readers.size(); ++i)
+        takes[i].push_back(entering[i] + (leaving[i] - entering[i]) * p / held);
+    }
     if (r >= last) break;
     // The next knot: a range's end or the reference's next whole frame, whichever comes first;
     // the stretch to it split evenly, as finely as the fastest take over it asks.

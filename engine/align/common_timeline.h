@@ -32,7 +32,10 @@ struct CommonTimeline {
 // (the paper's) does not multiply the samples. Each take's frame is its warp read at the
 // reference's frame, linearly between samples, held at its ends outside its range. A mix then
 // plays the stretch every take with a weight matches, so a take with weight 0 does not shorten
-// it. Throws InputError on no warps or an empty warp. O(sum of warp lengths + U x N).
+// it. Where a warp holds the reference at a whole frame while its take plays on (a part of the
+// take the reference lacks: a rest, an action of a take the reference's stillness is matched
+// with), the timeline holds there too, a sample for each frame of that take, the other takes
+// still: a mix gives it the time its weights give that take, none on the reference's clock. Throws InputError on no warps or an empty warp. O(sum of warp lengths + U x N).
 constexpr double kMinCommonStep = 0.25;
 CommonTimeline common_timeline(const std::vector<const TimeWarp*>& warps);
 

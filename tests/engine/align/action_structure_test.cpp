@@ -166,14 +166,26 @@ TEST_CASE("action structure: alignment by structure matches all of A, holding B'
   CHECK(al.warp.b[0] == Approx(0.0).margin(0.5));
   REQUIRE_FALSE(al.notes.empty());
   CHECK(al.notes[0].find("B has no rest before its action") != std::string::npos);
-  // A at rest throughout: matched with B's rest before, B's action said to be left out.
+  // B's rest after, which A lacks... here A has one; the other way round, A holds its first pose
+  // while B's rest before plays: the path starts with a hold of A, so all of B is on it.
+  const Alignment back = align_by_structure(motion_of(b), sb, motion_of(a), sa, joints, 1.0, kFps, AlignmentOptions());
+  CHECK(back.b_first == 0);
+  CHECK(back.b_last == a.rows() - 1);
+  CHECK(back.path.front() == std::make_pair(0, 0));
+  CHECK(back.path[1].first == 0);  // A held while B's rest plays
+  REQUIRE_FALSE(back.notes.empty());
+  CHECK(back.notes[0] == "A has no rest before its action: it holds its first pose while B's (0.0-1.0 s) plays");
+  // A at rest throughout: matched with B's rest before, then holding its last pose while B's
+  // action and rest after play: all of B.
   const Eigen::MatrixXd rest = standing(60);
   const Alignment still = align_by_structure(motion_of(rest), find_action_spans(rest, kFps, 1.0), motion_of(a), sa,
                                              joints, 1.0, kFps, AlignmentOptions());
   CHECK(still.a_last == 59);
-  CHECK(still.b_last <= sa.rest_before);
+  CHECK(still.b_first == 0);
+  CHECK(still.b_last == a.rows() - 1);
   REQUIRE_FALSE(still.notes.empty());
-  CHECK(still.notes[0].find("left out") != std::string::npos);
+  CHECK(still.notes[0].find("holds its last pose while B's action") != std::string::npos);
+  CHECK(still.notes[0].find("left out") == std::string::npos);
   // Spans read on other frames are refused.
   CHECK_THROWS_AS(align_by_structure(motion_of(a), sb, motion_of(b), sb, joints, 1.0, kFps, AlignmentOptions()),
                   InputError);

@@ -87,6 +87,26 @@ TEST_CASE("a hand-worked common timeline of two warps") {
   }
 }
 
+TEST_CASE("a hand-worked common timeline with holds of the reference") {
+  // Take 1 plays frames 0..3 while the reference holds its frame 0 (a rest the reference lacks),
+  // then both run together to 6, then take 1 plays 2.5 frames more with the reference held on
+  // its last frame. Take 2 runs with the reference and stays still over both holds.
+  const TimeWarp one = warp_of({0, 0, 0, 0, 1, 2, 3, 4, 5, 6, 6, 6}, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11.5});
+  const TimeWarp two = warp_of({0, 6}, {0, 6});
+  const CommonTimeline t = common_timeline({&one, &two});
+  const std::vector<double> reference{0, 0, 0, 0, 1, 2, 3, 4, 5, 6, 6, 6, 6};
+  const std::vector<double> first{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 9 + 2.5 / 3, 9 + 5.0 / 3, 11.5};
+  const std::vector<double> second{0, 0, 0, 0, 1, 2, 3, 4, 5, 6, 6, 6, 6};
+  REQUIRE(t.samples() == static_cast<int>(reference.size()));
+  for (int s = 0; s < t.samples(); ++s) {
+    CHECK(t.frames[0][s] == Approx(reference[static_cast<size_t>(s)]));
+    CHECK(t.frames[1][s] == Approx(first[static_cast<size_t>(s)]));
+    CHECK(t.frames[2][s] == Approx(second[static_cast<size_t>(s)]));
+  }
+  CHECK(t.first == std::vector<int>{0, 0, 0});
+  CHECK(t.last == std::vector<int>{12, 12, 12});
+}
+
 TEST_CASE("common timelines of random warps against brute force") {
   std::mt19937 rng(9);
   for (int trial = 0; trial < 100; ++trial) {

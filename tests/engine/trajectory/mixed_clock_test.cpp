@@ -243,3 +243,24 @@ TEST_CASE("timing: the clock's end is given with the frames", "[timing]") {
   mixed_timeline(t, WeightKeys{{0.0, {0.0, 1.0}}}, 30.0, 0, 9, u, nullptr, &end);
   CHECK(end == Approx(10.0));
 }
+
+TEST_CASE("timing: a hold of the reference takes B's time at B's weight, none on A's clock", "[timing]") {
+  // B plays 3 frames of rest while A holds its first frame, then both run 6 frames together.
+  const TimeWarp rest_first = warp_of({0, 0, 0, 0, 1, 2, 3, 4, 5, 6}, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9});
+  const CommonTimeline t = common_timeline({&rest_first});
+  REQUIRE(t.samples() == 10);
+  for (const auto& [weight, frames] : {std::pair{0.0, 7}, std::pair{1.0, 10}, std::pair{0.5, 8}}) {
+    Eigen::VectorXd u;
+    mixed_timeline(t, {1.0 - weight, weight}, 0, t.samples() - 1, u);
+    INFO("weight " << weight);
+    REQUIRE(u.size() == frames);
+    CHECK(non_decreasing(u));
+    // A's frame at each output frame: held at 0 while the hold plays, then one a frame.
+    const double a_last = at(t.frames[0], u[u.size() - 1]), b_first = at(t.frames[1], u[0]);
+    CHECK(a_last == Approx(weight == 0.5 ? 5.5 : 6.0).margin(kExact));  // 0.5: the clock ends at 7.5
+    CHECK(b_first == Approx(0.0).margin(kExact));
+  }
+  Eigen::VectorXd u;
+  mixed_timeline(t, {1.0, 0.0}, 0, t.samples() - 1, u);
+  for (Eigen::Index k = 0; k < u.size(); ++k) CHECK(at(t.frames[0], u[k]) == Approx(double(k)).margin(kExact));
+}
