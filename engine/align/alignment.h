@@ -109,10 +109,12 @@ Alignment align_takes(const CanonicalMotion& a, const CanonicalMotion& b, const 
 // allows), then smoothed as smooth_warp does over kCycleWarpSmoothing of the take's typical cycle
 // (at least options.smoothing_frames): the warp keeps each cycle's length and the broad shape of
 // its timing, not the sharp bends that would play one take up to max_slope times as fast for a
-// moment (measured: a transfer onto a 120 fps walk moved its toes 2.3 times as fast as any input
-// with 3 frames of smoothing, 1.15 times with a fifth of a cycle). Covers all of A and all of the
+// moment. A few frames of smoothing are not enough at 120 fps, where a frame is short: the
+// smoothing is a share of the cycle, not a count of frames. Covers all of A and all of the
 // registered take. Throws InputError (bad options, missing joints) or Cancelled. Cost: the sum over cycles of
 // their DTWs, O(sum of Lr x Lt x features), plus O(Fa + V).
+// Test: "alignment pipeline: no pops on the shared motions' hardest pairs, across conventions"
+// (tests/engine/run/alignment_pipeline_test.cpp); the quality run's `fast` column (docs/quality.md).
 constexpr double kCycleWarpSmoothing = 0.2;
 
 // Aligns B onto A (as align_takes does) piece by piece along their structures (action_structure.h:

@@ -23,8 +23,10 @@ struct CommonTimeline {
 // The common timeline of warps[i - 1] (reference onto take i, warp.a the reference's frames).
 // Every whole reference frame within the timeline is one of its samples: a mix played on the
 // reference's own clock (a transfer on its content's timeline) reads the reference's poses, paths
-// and contacts at its own frames, not interpolated between samples either side (which smoothed a
-// swinging toe by up to 0.35% of the body's height, so that strength 0 was not the content).
+// and contacts at its own frames, not interpolated between samples either side (which would
+// smooth a swinging toe, so that strength 0 would not be the content).
+// Tests: "one warp's common timeline has the reference's whole frames among its samples"
+// (common_timeline_test.cpp); "palette: transfer identities" (tests/engine/synthesize/mix_palette_test.cpp).
 // One warp or several, one way: the reference's frames that any warp matches (the union of their
 // matched ranges, each range's ends among the samples), each stretch between knots (those ends and the whole frames) split evenly
 // into steps of at most one reference frame and less where a matched take runs faster (1 / its

@@ -343,10 +343,10 @@ constexpr double kRateEpsilon = 1e-9;
 // A take with no gait cycles at the working rate that has them at its own, higher rate gets its
 // own cycles, carried to the working rate (frame f of the file at f x fps / its rate, rounded,
 // within the take's frames): a strike in the last hundredths of a second of a short clip can
-// fall after the working rate's last frame (a 120 fps Xia walk read at 30 fps loses its last
-// 25 ms, where its left foot lands; at 30 and 24 fps it had no cycles, and blends with it were
-// aligned whole). A loop is left as the working rate finds it (its length must be whole frames
+// fall after the working rate's last frame, and without it the clip would have no cycles and be
+// aligned whole. A loop is left as the working rate finds it (its length must be whole frames
 // there). frames: the take's frames at the working rate.
+// Test: "cycles: the wild's short clips keep their cycles at the working rates 24 and 30 fps" (tests/engine/align/cycles_test.cpp).
 void carry_own_rate_cycles(const std::shared_ptr<const Clip>& clip, const MajorMapping& mapping, double fps,
                            Eigen::Index frames, TakeCycles& cycles) {
   if (cycles.kind == CycleKind::kGait || cycles.loops() || !(clip->fps() > fps * (1.0 + kRateEpsilon))) return;
@@ -484,8 +484,8 @@ void align_onto_reference(int i, const PrepareOptions& options, const LegColumns
   } else if (reference.cycles.kind == CycleKind::kNone && own.kind == CycleKind::kGait) {
     // A walk on a reference that does not repeat (standing, a jump): no frame of it matches, so
     // it gives its posture only, as between a reference's cycles (matching its steps to a
-    // standing take by DTW slid the feet and shook the limbs: a walk's style put on an idle moved
-    // its planted feet 50 times as fast as the idle's).
+    // standing take by DTW would slide the feet and shake the limbs). Test: "posture registration:
+    // a walk's style put on a standing take moves only its posture" (cycle_registration_test.cpp).
     RegisteredMotion registered = register_posture_only(reference.canonical, reference.own_contacts, t.canonical, own);
     adopt(registered);
   } else if (aligns_by_structure(reference.cycles, own, options.align)) {

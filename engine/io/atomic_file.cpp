@@ -55,9 +55,9 @@ std::string read_file(const std::string& path, size_t max_bytes) {
     return InputError(path + ": cannot read: its " + describe_bytes(bytes) +
                       " exceed the memory limit of " + describe_bytes(max_bytes));
   };
-  // One buffer of the file's size, filled by one read. Growing a string chunk by chunk copied
-  // the text about twice over and faulted in three times its pages: more than half the time
-  // `mostyle-cli info` spent on a 10 MB file.
+  // One buffer of the file's size, filled by one read: growing a string chunk by chunk copies
+  // the text over and faults in more pages than it holds, which dominates reading a large take.
+  // Bench: BM_ReadPair22MB (tests/bench/bvh_bench.cpp).
   struct stat st {};
   size_t size = 0;
   if (::fstat(::fileno(f.get()), &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0)

@@ -79,13 +79,13 @@ void limit_speed(const FinishRig& rig, const FinishOptions& options, FinishScrat
 // The lock reads a loop as a take with two ends: what it moves at the last frame and at the
 // first differ, a jump at the seam. That difference is taken up over the loop so the last frame
 // is moved as the first is and leads into it as any frame into the next. Spread evenly over the
-// loop, it slid the planted feet with it (a Mixamo walk loop styled by an old walk: planted feet
-// 1.15 times as fast after the lock as before it), so a leg takes its share over its swings
+// loop, it would slide the planted feet with it, so a leg takes its share over its swings
 // instead, where its foot moves anyway (each swing's steps weighted by a bump that starts and
 // ends at zero: no jump in speed at lift-off or landing), as much of it as keeps the leg's
 // joints under `limit` (units per frame; no faster than they were where they already were), the
 // rest evenly. Joints of no leg, and a leg that never swings, take it evenly. s.before_lock: the
 // world before the lock.
+// Test: the Mixamo loop of "palette: planted feet of a mix and a transfer move as their takes' do" (mix_palette_test.cpp).
 void close_locked_seam(const FootRig& feet, double limit, FinishScratch& s, Eigen::MatrixXd& world) {
   const Eigen::Index k = world.rows();
   const Eigen::RowVectorXd gap = (world.row(0) - s.before_lock.row(0)) - (world.row(k - 1) - s.before_lock.row(k - 1));

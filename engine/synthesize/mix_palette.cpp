@@ -18,8 +18,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 // A bone a mix leaves shorter than this fraction of its length (the takes' limbs pointing apart)
-// turns towards its own direction gradually (limb_length.h LimbLengthOptions::short_fraction): at
-// a half, a wrist of a 7 s and a 22 s walk at alpha 0.5 turned 90 degrees in four frames.
+// turns towards its own direction gradually (limb_length.h LimbLengthOptions::short_fraction); a
+// lower fraction lets a short bone, a wrist, spin round in a few frames.
+// Test: "a short bone leans on its previous direction instead of spinning round" (tests/engine/kinematics/limb_length_test.cpp).
 constexpr double kShortBoneFraction = 0.75;
 constexpr double kWeightSumTolerance = 1e-6;
 

@@ -15,9 +15,9 @@ namespace mostyle {
 // Paper mode: X_syn = W_A ((1 - alpha) K_A + alpha K_B) V_A^T (PaperSynthesis). Paper mode,
 // basic motions: one level's core blended (BasicMotionSynthesis).
 // Every mode is linear in alpha, so prepare_* forms the two (or m + 1) frames x 3N motions the
-// blend moves between, and a slider move is one pass over frames x 3N: about 25 us for
-// 1800 x 60, against 110 us for even one frames x k by k x 3N product. Memory: a few
-// frames x 3N matrices per prepared pair.
+// blend moves between, and a slider move is one pass over frames x 3N, several times cheaper
+// than even one frames x k by k x 3N product. Memory: a few frames x 3N matrices per prepared
+// pair. Bench: BM_SynthesizePaper (tests/bench/decomposition_bench.cpp).
 
 // out: resized to frames x 3N (no allocation when it already has that size). alpha is usually
 // in [0, 1]; values outside extrapolate. Throws InputError on a non-finite alpha.

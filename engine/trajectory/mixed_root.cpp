@@ -110,10 +110,10 @@ void stride_map(const Eigen::MatrixXd& free_ground, const Eigen::VectorXd& free_
     // Along the way the free root goes only: across it (a kept heading), a foot mapped sideways
     // is further from its hip. Where the kept root goes faster, the style's steps are shorter than
     // the pace needs and slide by the difference: they are stretched, by at most
-    // kStrideLongerLimit (a foot lock that eases each run's offset mid-swing, where the foot is
-    // at its fastest, had no room to pin them: stretched then, Bandai happy styled by Bandai old
-    // slid 1.51 times the content's; with the offsets changed on the swing's slow steps, 0.77,
-    // and a Mixamo walk loop styled by the same 0.98, not 1.79).
+    // kStrideLongerLimit, and the foot lock pins the rest. It can, because it changes each run's
+    // offset on the swing's slow steps; mid-swing, where the foot is at its fastest, the speed
+    // limit would leave it no room.
+    // Test: "palette: planted feet of a mix and a transfer move as their takes' do" (mix_palette_test.cpp).
     const double speed = v.norm();
     if (!(speed > 0.0)) continue;
     const Eigen::Vector2d way = v / speed;

@@ -35,10 +35,11 @@ void integrate_root_towards(const Eigen::MatrixXd& steps, const Eigen::MatrixXd&
 // leash / 2 the path is as it was; beyond, the gap is eased towards `leash` and never reaches it
 // (r/2 + r/2 tanh((d - r/2) / (r/2)): its rate of change is continuous, so the root does not
 // jump where the leash tightens). Without a neutral, the change from a content to its style is the
-// whole difference of the two takes, their paths too: walking the style's path, a 22 s walk styled
-// by another take's 27 s ended 11 body heights from where it went. Where the leash holds, the
+// whole difference of the two takes, their paths too: walking the style's path, a long take would
+// end far from where its content went. Where the leash holds, the
 // root goes at the content's pace while the legs take the style's steps, and the lock then has
 // that difference to take up. leash <= 0: nothing. O(F), no allocation.
+// Test: "cli transfer without --neutral: the content is its own neutral" (tests/app/cli/cli_synthesis_commands_test.cpp).
 void keep_near_path(Eigen::MatrixXd& ground, const Eigen::Ref<const Eigen::MatrixXd>& path, double leash);
 
 // A root on a leash drifts from the path it is kept near as the mix's steps add up (an old walk's
@@ -54,8 +55,8 @@ void remove_path_drift(Eigen::MatrixXd& ground, const Eigen::Ref<const Eigen::Ma
 // The same for a heading (F, radians) and the path's (F): the shorter arc between them eased as
 // keep_near_path eases a gap. A root kept on a path faces as the path's walker does: facing where
 // the style take turned while going where the content went, its legs would step sideways to the
-// way it goes (on a 22 s walk styled by another's 27 s, planted feet 1.76 times the content's,
-// 1.31 with the heading kept too).
+// way it goes, and its planted feet would slide.
+// Test: "palette: planted feet of a mix and a transfer move as their takes' do" (tests/engine/synthesize/mix_palette_test.cpp).
 // remove_path_drift's window: longer than a gait cycle, so a stride's sway is kept.
 constexpr double kPathDriftSeconds = 1.2;
 

@@ -2,7 +2,7 @@
 # app/cluster/slurm-array.sh on a real one-node Slurm (Debian's slurm-wlm and munge): munged with
 # a fresh key, slurmctld and slurmd with a configuration in a temporary folder (no cgroups), the
 # node given 2 CPUs whatever the machine has (a recipe asking more would wait for ever). Submits
-# the README's command as written, an array of 3 tasks over a grid of 4 blends, and checks that
+# docs/cluster.md's command as written, an array of 3 tasks over a grid of 4 blends, and checks that
 # every output exists exactly once, that the tasks' summaries cover every job exactly once and
 # that each task ran one job at a time; then one task with --cpus-per-task=2 on the submit line,
 # which runs batch with --jobs 2. Stops the daemons by their process ids and removes the folder
@@ -132,9 +132,9 @@ wait_for_array() {
   fail "the array $1 has not finished after 120 s"
 }
 
-# The README's command as written (--parsable only to read the array's id).
+# docs/cluster.md's command as written (--parsable only to read the array's id).
 job="$(sbatch --parsable --array=0-2 "$root/app/cluster/slurm-array.sh" jobs.jsonl)" ||
-  fail "sbatch refused the README's command on a node of 2 CPUs"
+  fail "sbatch refused docs/cluster.md's command on a node of 2 CPUs"
 echo "slurm test: submitted array $job"
 wait_for_array "$job"
 

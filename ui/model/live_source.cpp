@@ -240,7 +240,8 @@ struct LiveSource::Run {
 
   // The window's frames as they came, oldest first, through a styler just made, so that it takes up
   // the stream's gait (its strikes, its phase, its planted feet) where the stream is; returns the
-  // number of stream frames it has seen then. About 30 microseconds a frame, off the worker.
+  // number of stream frames it has seen then. Off the worker; a frame costs what style_frame does
+  // (bench: BM_LiveStyleFrame_Axis59, tests/bench/live_style_bench.cpp).
   long long warm_up(LiveStyle& made) {
     RowMatrix frames;
     long long through = 0;
