@@ -494,6 +494,69 @@ void find_runs(const LockedLeg& leg, int max_gap, FootLockScratch& s) {
   }
 }
 
+// The heading (radians about the vertical) from a foot's ankle to its toe at frame t, each
+// moved by (its x, z) first.
+double foot_heading(const Eigen::MatrixXd& world, Eigen::Index t, int ankle, int toe, const Eigen::Vector2d& ankle_by,
+                    const Eigen::Vector2d& toe_by) {
+  return std::atan2(world(t, 3 * toe + 2) + toe_by.y() - world(t, 3 * ankle + 2) - ankle_by.y(),
+                    world(t, 3 * toe) + toe_by.x() - world(t, 3 * ankle) - ankle_by.x());
+}
+
+double wrapped(double angle) { return std::remainder(angle, 2.0 * kPi); }
+
+// Within each run, the turn about the vertical (s.yaw) that holds the foot's heading where both
+// its joints are planted, as run_offsets holds its place: each step's turn beyond what the drift
+// allows (share of it; never more than the step turned) taken out, centred on the run, and faded
+// out over `ramp` frames either side of it; the toe is turned about the ankle by it (its height
+// and its distance from the ankle kept). The offset, which moves the foot by its joints' averaged
+// step, then holds both: a foot the mix turns from frame to frame (the style's legs turning it,
+// on a content that stands still) would otherwise keep half of each joint's move, the ankle
+// and the toe going opposite ways. O(F).
+void hold_foot_heading(Eigen::MatrixXd& world, const LockedLeg& leg, const Eigen::MatrixXd* drift, double share,
+                       int ramp, FootLockScratch& s) {
+  const int ankle = leg.columns.ankle, toe = leg.columns.toe;
+  const Eigen::Index frames = world.rows();
+  s.yaw.setZero(frames);
+  if (toe < 0 || ankle < 0) return;
+  const int ja = leg.joints[0], jt = leg.joints[1];
+  auto planted = [&](Eigen::Index t) { return s.planted(t, ja) > 0.5 && s.planted(t, jt) > 0.5; };
+  const Eigen::Vector2d none = Eigen::Vector2d::Zero();
+  for (const auto& [start, end] : s.runs) {
+    for (Eigen::Index u = start; u < end; ++u) {
+      s.yaw[u + 1] = s.yaw[u];
+      if (!planted(u) || !planted(u + 1)) continue;
+      const double from = foot_heading(world, u, ankle, toe, none, none);
+      const double turned = wrapped(foot_heading(world, u + 1, ankle, toe, none, none) - from);
+      double allowed = 0.0;
+      if (drift != nullptr) {
+        const Eigen::Vector2d ankle_by = share * Eigen::Vector2d((*drift)(u, 2 * ja), (*drift)(u, 2 * ja + 1));
+        const Eigen::Vector2d toe_by = share * Eigen::Vector2d((*drift)(u, 2 * jt), (*drift)(u, 2 * jt + 1));
+        allowed = std::clamp(wrapped(foot_heading(world, u, ankle, toe, ankle_by, toe_by) - from), -std::abs(turned),
+                             std::abs(turned));
+      }
+      s.yaw[u + 1] += allowed - turned;
+    }
+    auto run = s.yaw.segment(start, end - start + 1);
+    run.array() -= run.mean();
+  }
+  for (size_t r = 0; r < s.runs.size(); ++r) {
+    const auto [start, end] = s.runs[r];
+    const Eigen::Index before = r > 0 ? s.runs[r - 1].second + 1 : 0;
+    const Eigen::Index after = r + 1 < s.runs.size() ? s.runs[r + 1].first - 1 : frames - 1;
+    for (Eigen::Index u = std::max(before, start - ramp); u < start; ++u)
+      s.yaw[u] += smoothstep(1.0 - static_cast<double>(start - u) / (ramp + 1)) * s.yaw[start];
+    for (Eigen::Index u = end + 1; u <= std::min(after, end + ramp); ++u)
+      s.yaw[u] += smoothstep(1.0 - static_cast<double>(u - end) / (ramp + 1)) * s.yaw[end];
+  }
+  for (Eigen::Index t = 0; t < frames; ++t) {
+    if (s.yaw[t] == 0.0) continue;
+    const double c = std::cos(s.yaw[t]), n = std::sin(s.yaw[t]);
+    const double dx = world(t, 3 * toe) - world(t, 3 * ankle), dz = world(t, 3 * toe + 2) - world(t, 3 * ankle + 2);
+    world(t, 3 * toe) = world(t, 3 * ankle) + c * dx - n * dz;
+    world(t, 3 * toe + 2) = world(t, 3 * ankle + 2) + n * dx + c * dz;
+  }
+}
+
 // Within each run, the offset (s.target) that takes out, step by step, what the foot's planted
 // joints move beyond what they may (share of drift; none: nothing), so they move by that much and never
 // faster than they did; centred on the run (the least total correction). A step's move is its
@@ -875,6 +938,7 @@ void lock_legs(Eigen::MatrixXd& world, const FootRig& rig, const std::array<doub
     }
     find_runs(leg, seconds_to_frames(rig.options.max_gap_seconds, rig.fps), scratch);
     scratch.target.setZero();
+    hold_foot_heading(world, leg, drift, share, ramp, scratch);
     run_offsets(world, leg, columns, floors, kPlantedHeightFraction * rig.body_height, drift, share, scratch);
     swing_profile(world, leg, max_speed / rig.fps, scratch);
     if (max_speed > 0.0) fit_to_swings(world, leg, ramp, max_speed / rig.fps, scratch);

@@ -81,6 +81,7 @@ struct FootLockScratch {
   Eigen::VectorXi pinned;  // F: 1 on the frames a foot is pinned over
   Eigen::VectorXd ease;    // F: after a run, how far its offset has eased to the next (-1 elsewhere)
   Eigen::VectorXd swing;   // F: within a swing, how far the offset has gone from one run's to the next's
+  Eigen::VectorXd yaw;     // F: the turn (radians about the vertical) that holds a planted foot's heading
   Eigen::MatrixXd before;  // F x 9: a leg's knee, ankle and toe as they were
   std::vector<double> heights;
   std::vector<std::pair<Eigen::Index, Eigen::Index>> runs;  // a leg's runs, first and last frame

@@ -22,7 +22,12 @@ saying so, never a crash):
   transfers of every take with one style pair (bandai_walk_normal -> bandai_walk_old when both
     are given, else the first two takes of the take's folder), and, when the CLI takes a transfer
     without --neutral, each take with the style alone (the content its own neutral);
-  mixes of 3 and 4 takes with equal weights.
+  mixes of 3 and 4 takes with equal weights;
+  styled families (takes named FAMILY_STYLE of one folder with a FAMILY_normal or FAMILY_neutral
+    among them, as actions/ and the Bandai walks are): each style's blend with the family's
+    neutral at alpha 0 (A shown whole?) and at alpha 1 (is it B?), the family's palette (a mix of
+    all of its takes, equal weights), and the family's change (neutral -> style) transferred onto
+    another family's neutral (cross-action), with the neutral and with the style clip alone.
 Columns (see MEASURES below for each function):
   cover   fraction of the reference's frames the output shows (its report's source_frames)
   cycles  cycles `info` finds in each input (count and kind: g gait, p periodic, n none,
@@ -48,6 +53,10 @@ Columns (see MEASURES below for each function):
           the projection of (output - content) onto (style - content) over its length
   hips    one style clip: the output's hips' largest horizontal distance from the content's, in
           body heights
+  toB     blends at alpha 1: the output's mean pose distance to B over the distance from A to B,
+          poses in the body's frame about the hips (as for `features`), in body heights, each pair
+          of takes matched by a DTW (at most 0.2: alpha 1 is B's performance)
+  lenB    blends at alpha 1: the output's length over B's
 """
 import argparse, csv, json, math, os, re, subprocess, sys, tempfile, time
 
@@ -286,6 +295,48 @@ def way_to(made, wanted):
     return sum(made[k] * wanted[k] for k in keys) / ny2 if ny2 > 0 else None
 
 
+def body_frame(frames, roles):
+    """Each frame's joints about its hips, in the body's frame (forward, up, lateral; as
+    `features` takes it)."""
+    li, ri = roles.index('L_leg0'), roles.index('R_leg0')
+    out = []
+    for f in frames:
+        hips, l, r = f[0], f[li], f[ri]
+        lat = (l[0] - r[0], l[2] - r[2])
+        n = math.hypot(*lat) or 1.0
+        lat = (lat[0] / n, lat[1] / n)
+        fwd = (lat[1], -lat[0])
+        out.append([((p[0] - hips[0]) * fwd[0] + (p[2] - hips[2]) * fwd[1], p[1] - hips[1],
+                     (p[0] - hips[0]) * lat[0] + (p[2] - hips[2]) * lat[1]) for p in f])
+    return out
+
+
+def resampled(frames, n):
+    """frames (at least one) read at n evenly spread fractional frames, linearly."""
+    if n <= 1 or len(frames) == 1: return [frames[0]] * max(1, n)
+    return [interpolate(frames, k * (len(frames) - 1) / (n - 1)) for k in range(n)]
+
+
+def pose_gap(x, y):
+    """Mean pose distance of two motions (frames x joints x 3, one skeleton's joints) along their
+    DTW path (steps (1,0), (0,1), (1,1)): the mean over the path's cells of the mean joint
+    distance."""
+    n, m = len(x), len(y)
+    if n == 0 or m == 0: return None
+    cost = [[sum(math.dist(p, q) for p, q in zip(a, b)) / len(a) for b in y] for a in x]
+    inf = float('inf')
+    total = [[inf] * (m + 1) for _ in range(n + 1)]
+    steps = [[0] * (m + 1) for _ in range(n + 1)]
+    total[0][0] = 0.0
+    for i in range(1, n + 1):
+        for j in range(1, m + 1):
+            best = min((total[i - 1][j - 1], steps[i - 1][j - 1]), (total[i - 1][j], steps[i - 1][j]),
+                       (total[i][j - 1], steps[i][j - 1]))
+            total[i][j] = best[0] + cost[i - 1][j - 1]
+            steps[i][j] = best[1] + 1
+    return total[n][m] / steps[n][m]
+
+
 def hips_stray(out, reference, source_frames, height):
     """Largest horizontal distance of the output's hips (joint 0) from the reference's at the
     frame each output frame shows, as a fraction of height; None when no frame shows one."""
@@ -499,6 +550,51 @@ def plan(takes, quick, per_class, style_pairs, own_neutral):
     if len(loops) >= 3: mixes.append(('mix loops', loops[:3]))
     for label, ts in (mixes[:1] if quick else mixes):
         jobs.append(('mix', label, ts, [], [1.0 / len(ts)] * len(ts)))
+    return jobs + family_jobs(takes, quick, own_neutral)
+
+
+NEUTRAL_STYLES = ('normal', 'neutral')
+
+
+def families_of(takes):
+    """Styled families: takes of one folder named FAMILY_STYLE, one of them FAMILY_normal (or
+    _neutral), as [(neutral, [style takes])] in the order first met; a family of its neutral
+    alone has no style takes (it is still a content for another family's change)."""
+    groups = {}
+    for t in takes:
+        if '_' not in t.name or '#' in t.name: continue
+        family, style = t.name.rsplit('_', 1)
+        groups.setdefault((t.folder, family), []).append((style.lower(), t))
+    out = []
+    for members in groups.values():
+        neutral = next((t for style, t in members if style in NEUTRAL_STYLES), None)
+        if neutral is not None: out.append((neutral, [t for _, t in members if t is not neutral]))
+    return out
+
+
+def family_jobs(takes, quick, own_neutral):
+    """The styled families' outputs: each style against its neutral at alpha 0 and 1, each
+    family's palette, and each family's change onto another family's neutral (the next one in
+    turn, so every content is used), with the neutral and, where the CLI takes it, alone."""
+    families = families_of(takes)
+    jobs = []
+    for n, styles in families:
+        for s in (styles[:1] if quick else styles):
+            for alpha in ('0', '1'):
+                jobs.append(('blend', f'family blend a={alpha}', [n, s], ['--alpha', alpha], [1 - float(alpha), float(alpha)]))
+        if len(styles) >= 2:
+            members = [n] + styles
+            jobs.append(('mix', 'family palette', members, [], [1.0 / len(members)] * len(members)))
+    contents = [n for n, _ in families]
+    turn = 0
+    for n, styles in families:
+        others = [c for c in contents if c is not n]
+        if not others: continue
+        for s in (styles[:1] if quick else styles):
+            c = others[turn % len(others)]
+            turn += 1
+            jobs.append(('transfer', 'transfer across', [c, n, s], [], None))
+            if own_neutral: jobs.append(('transfer', 'transfer across clip', [c, s], [], None))
     return jobs
 
 
@@ -560,11 +656,35 @@ def measure(cli, kind, label, takes, options, weights):
         row['feet'] = ratio(out_slide, mixed)
         row['feet_out'] = out_slide
         if kind == 'transfer': transfer_measures(cli, row, takes, args, frames, names, roles, height, bvh, r)
+        if kind == 'blend' and options[:2] == ['--alpha', '1']: to_b_measures(cli, row, takes, frames, names, roles, fps, height)
     except Failed as e:
         row['status'] = 'measure: ' + str(e)
     except Exception as e:  # a measure that cannot be taken is said in its row
         row['status'] = f'measure: {type(e).__name__}: {str(e)[:100]}'
     return row
+
+
+GAP_FRAMES = 150  # poses compared a take at most (longer takes read at every k-th frame): the DTW is plain Python
+
+
+def to_b_measures(cli, row, takes, frames, names, roles, fps, height):
+    """A blend at alpha 1 against B: its pose distance to B over A's, and its length over B's."""
+    def posed(path):
+        t_names, t_frames, t_roles = cli.majors(path)
+        t = next(x for x in takes if x.path == path)
+        return t_roles, resampled(body_frame(t_frames, t_roles), max(2, int(round(len(t_frames) * fps / t.fps))))
+    a_roles, a = posed(takes[0].path)
+    b_roles, b = posed(takes[1].path)
+    o = body_frame(frames, roles)
+    shared = [r for r in roles if r and r != 'hips' and r in a_roles and r in b_roles]
+    def pick(x, x_roles):
+        index = [x_roles.index(r) for r in shared]
+        step = max(1, -(-len(x) // GAP_FRAMES))
+        return [[f[i] for i in index] for f in x[::step]]
+    o_b = pose_gap(pick(o, roles), pick(b, b_roles))
+    a_b = pose_gap(pick(a, a_roles), pick(b, b_roles))
+    row['to_b'] = ratio(o_b, a_b)
+    row['len_b'] = len(frames) / len(b)
 
 
 def transfer_measures(cli, row, takes, args, frames, names, roles, height, bvh, report):
@@ -613,6 +733,8 @@ COLUMNS = [('#', lambda i, r: str(i)), ('what', lambda i, r: r['what']),
            ('dir cos/size', lambda i, r: '' if r.get('dir_cos') is None else f'{r["dir_cos"]:+.2f}/{r["dir_size"]:.2f}'),
            ('way', lambda i, r: fmt(r.get('way'), '.0%', '')),
            ('hips', lambda i, r: fmt(r.get('hips'), '.2f', '')),
+           ('toB', lambda i, r: fmt(r.get('to_b'), '.2f', '')),
+           ('lenB', lambda i, r: fmt(r.get('len_b'), '.2f', '')),
            ('status', lambda i, r: r['status'])]
 
 

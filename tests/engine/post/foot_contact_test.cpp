@@ -219,6 +219,44 @@ TEST_CASE("the foot lock removes sliding on a skating foot and leaves swing alon
   CHECK(worst < 1.5 * worst_raw);
 }
 
+TEST_CASE("the foot lock holds a planted foot's heading: a foot that pivots keeps ankle and toe still",
+          "[foot_contact]") {
+  // Standing, both feet planted throughout; the left foot turns about the point between its ankle
+  // and toe (the ankle and toe going opposite ways, as a style's turning legs make a still
+  // content's foot pivot), the right stands. An averaged translation would leave each half its move.
+  const FootRig rig = test_rig();
+  const int frames = 90;
+  Eigen::MatrixXd w(frames, 24);
+  for (int f = 0; f < frames; ++f)
+    for (int side = 0; side < 2; ++side) {
+      const double z = side == 0 ? 10.0 : -10.0;
+      const double turn = side == 0 ? 0.15 * std::sin(2 * M_PI * f / 45.0) : 0.0;
+      const Eigen::Vector3d mid(6.0, 0.0, z), half(6.0 * std::cos(turn), 0.0, 6.0 * std::sin(turn));
+      const Eigen::Vector3d ankle = mid - half + Eigen::Vector3d(0, kAnkleHeight, 0), toe = mid + half;
+      const Eigen::Vector3d hip(0.0, kHipHeight, z);
+      const Eigen::Vector3d d = ankle - hip;
+      const double len = d.norm();
+      const Eigen::Vector3d n = d / len, bend = (Eigen::Vector3d::UnitX() - n * n.x()).normalized();
+      const double along = (kThigh * kThigh - kShin * kShin + len * len) / (2 * len);
+      put(w, f, 4 * side, hip);
+      put(w, f, 4 * side + 1, hip + n * along + bend * std::sqrt(kThigh * kThigh - along * along));
+      put(w, f, 4 * side + 2, ankle);
+      put(w, f, 4 * side + 3, toe);
+    }
+  const Eigen::MatrixXd before = w;
+  FootLockScratch scratch;
+  apply_foot_lock(w, rig, scratch);
+  CHECK(planted_speed(before, rig).speed > 1.0);  // cm/s, the mean over both feet
+  CHECK(planted_speed(w, rig).speed < 1e-6);
+  for (int f = 0; f < frames; ++f) {
+    // The foot keeps its length and its joints their heights; the standing foot is untouched.
+    CHECK((at(w, f, 3) - at(w, f, 2)).norm() == Approx((at(before, f, 3) - at(before, f, 2)).norm()));
+    CHECK(w(f, 3 * 3 + 1) == Approx(before(f, 3 * 3 + 1)).margin(kExact));
+    CHECK(w(f, 3 * 2 + 1) == Approx(before(f, 3 * 2 + 1)).margin(kExact));
+    for (int c : {5, 6, 7}) CHECK(at(w, f, c) == at(before, f, c));
+  }
+}
+
 TEST_CASE("the foot lock keeps the planted feet's expected drift and pins only what moves beyond it",
           "[foot_contact]") {
   const FootRig rig = test_rig();
