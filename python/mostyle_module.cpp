@@ -357,7 +357,7 @@ Eigen::MatrixXd to_matrix(const py::array_t<double>& a, Eigen::Index rows, Eigen
 }
 
 Take take_from_arrays(py::handle joint_names, py::handle parents, py::handle offsets, py::handle rotations,
-                      py::handle root_positions, double fps) {
+                      py::handle root_positions, double fps, py::handle translations) {
   return guarded([&] {
     TakeArrays arrays;
     try {
@@ -379,6 +379,11 @@ Take take_from_arrays(py::handle joint_names, py::handle parents, py::handle off
     arrays.offsets = to_matrix(o, joints, 3);
     arrays.rotations = to_matrix(r, frames, 4 * joints);
     arrays.root_positions = to_matrix(t, frames, 3);
+    if (!translations.is_none()) {
+      const auto l = array_of_shape(translations, "translations", {frames, joints, 3},
+                                    std::to_string(frames) + " x " + j + " x 3 (frames x joints x 3)");
+      arrays.translations = to_matrix(l, frames, 3 * joints);
+    }
     arrays.fps = fps;
     Take take;
     take.clip = std::make_shared<const Clip>(clip_from_arrays(arrays, "take from arrays"));
@@ -412,9 +417,11 @@ PYBIND11_MODULE(mostyle, m) {
 
   py::class_<Take>(m, "Take",
                    "A take read from a file, built from arrays, or a result. Arrays are copies: "
-                   "rotations F x J x 4 (local, w x y z), root_positions F x 3, offsets J x 3, file units.")
+                   "rotations F x J x 4 (local, w x y z), root_positions F x 3, offsets J x 3, file units; "
+                   "translations F x J x 3 (optional) for joints below the root that move.")
       .def(py::init(&take_from_arrays), py::arg("joint_names"), py::arg("parents"), py::arg("offsets"),
-           py::arg("rotations"), py::arg("root_positions"), py::arg("fps") = 30.0)
+           py::arg("rotations"), py::arg("root_positions"), py::arg("fps") = 30.0,
+           py::arg("translations") = py::none())
       .def_property_readonly("joint_names", [](const Take& t) { return arrays_from_clip(*t.clip).joint_names; })
       .def_property_readonly("parents", [](const Take& t) {
         const std::vector<int> p = arrays_from_clip(*t.clip).parents;
@@ -432,6 +439,10 @@ PYBIND11_MODULE(mostyle, m) {
         const TakeArrays a = arrays_from_clip(*t.clip);
         return numpy_copy(a.root_positions, {a.root_positions.rows(), 3});
       })
+      .def_property_readonly("translations", [](const Take& t) {
+        const TakeArrays a = arrays_from_clip(*t.clip);
+        return numpy_copy(a.translations, {a.translations.rows(), a.translations.cols() / 3, 3});
+      }, "F x J x 3 local translations (a joint's offset, or its position channels where it has them)")
       .def_property_readonly("positions", [](Take& t) {
         t.compute_positions();
         return numpy_copy(t.positions, {t.positions.rows(), t.positions.cols() / 3, 3});

@@ -1,7 +1,6 @@
 #include "python/take_arrays.h"
 
 #include <Eigen/Geometry>
-#include <algorithm>
 #include <cmath>
 
 #include "engine/base/error.h"
@@ -37,6 +36,10 @@ void check_arrays(const TakeArrays& a, const std::string& source) {
     throw InputError(source + ": expected root_positions of " + shape_text(frames, 3) +
                      " (one row per frame of rotations), found " +
                      shape_text(a.root_positions.rows(), a.root_positions.cols()));
+  if (a.translations.size() > 0 && (a.translations.rows() != frames || a.translations.cols() != 3 * joints))
+    throw InputError(source + ": expected translations of frames x " + std::to_string(joints) + " x 3 (" +
+                     std::to_string(frames) + " frames, as rotations), found " +
+                     shape_text(a.translations.rows(), a.translations.cols() / 3) + " x 3");
   if (!(a.fps > 0.0 && std::isfinite(a.fps)))
     throw InputError(source + ": expected a positive frame rate, found " + std::to_string(a.fps));
   if (a.parents[0] != -1)
@@ -50,6 +53,17 @@ void check_arrays(const TakeArrays& a, const std::string& source) {
   check_finite(a.offsets, "offsets", source);
   check_finite(a.rotations, "rotations", source);
   check_finite(a.root_positions, "root_positions", source);
+  check_finite(a.translations, "translations", source);
+}
+
+// A joint below the root whose translation leaves its offset at some frame: it needs position
+// channels to hold it.
+bool translation_moves(const TakeArrays& a, size_t joint) {
+  if (joint == 0 || a.translations.size() == 0) return false;
+  const Eigen::Index c = 3 * static_cast<Eigen::Index>(joint);
+  for (Eigen::Index f = 0; f < a.translations.rows(); ++f)
+    if (a.translations.block<1, 3>(f, c) != a.offsets.row(static_cast<Eigen::Index>(joint))) return true;
+  return false;
 }
 
 Skeleton skeleton_from_arrays(const TakeArrays& a) {
@@ -64,7 +78,8 @@ Skeleton skeleton_from_arrays(const TakeArrays& a) {
     joint.offset = a.offsets.row(static_cast<Eigen::Index>(j)).transpose();
     joint.end_site = j > 0 && !has_children[j] &&
                      joint.name == a.joint_names[static_cast<size_t>(joint.parent)] + " End Site";
-    if (j == 0) joint.channels = {Channel::kXposition, Channel::kYposition, Channel::kZposition};
+    if (j == 0 || (!joint.end_site && translation_moves(a, j)))
+      joint.channels = {Channel::kXposition, Channel::kYposition, Channel::kZposition};
     if (!joint.end_site)
       joint.channels.insert(joint.channels.end(), {Channel::kZrotation, Channel::kXrotation, Channel::kYrotation});
     joint.first_channel = s.channel_count;
@@ -87,7 +102,10 @@ Clip clip_from_arrays(const TakeArrays& a, const std::string& source) {
   for (size_t j = 0; j < clip.skeleton.joints.size(); ++j) {
     const Joint& joint = clip.skeleton.joints[j];
     if (joint.end_site) continue;
-    const int rotation = joint.first_channel + (j == 0 ? 3 : 0);
+    const bool positions = is_position(joint.channels.front());
+    if (positions && j > 0)
+      clip.motion.block(0, joint.first_channel, frames, 3) = a.translations.block(0, 3 * j, frames, 3);
+    const int rotation = joint.first_channel + (positions ? 3 : 0);
     Eigen::Vector3d previous = Eigen::Vector3d::Zero();
     for (Eigen::Index f = 0; f < frames; ++f) {
       const Eigen::Index c = 4 * static_cast<Eigen::Index>(j);
@@ -114,18 +132,17 @@ TakeArrays arrays_from_clip(const Clip& clip) {
   a.fps = clip.fps();
   a.offsets.resize(joints, 3);
   a.rotations.resize(frames, 4 * joints);
+  a.translations.resize(frames, 3 * joints);
   a.root_positions = Eigen::MatrixXd::Zero(frames, 3);
   for (Eigen::Index j = 0; j < joints; ++j) {
     const Joint& joint = s.joints[static_cast<size_t>(j)];
     a.joint_names.push_back(joint.name);
     a.parents.push_back(joint.parent);
-    const bool moves_below_root = joint.parent >= 0 && frames > 0 &&
-                                  std::any_of(joint.channels.begin(), joint.channels.end(), is_position);
-    const Eigen::Vector3d offset = moves_below_root ? joint_local_translation(joint, clip.motion.row(0).data()) : joint.offset;
-    a.offsets.row(j) = offset.transpose();
+    a.offsets.row(j) = joint.offset.transpose();
     Eigen::Quaterniond previous = Eigen::Quaterniond::Identity();
     for (Eigen::Index f = 0; f < frames; ++f) {
       const double* row = clip.motion.row(f).data();
+      a.translations.block<1, 3>(f, 3 * j) = joint_local_translation(joint, row).transpose();
       Eigen::Quaterniond q(joint_local_rotation(joint, row));
       if (q.dot(previous) < 0.0) q.coeffs() = -q.coeffs();
       a.rotations.block<1, 4>(f, 4 * j) << q.w(), q.x(), q.y(), q.z();

@@ -159,9 +159,12 @@ def test_info_equals_the_cli():
         assert mostyle.info(path) == json.loads(printed)
 
 
-def arrays_of(take):
-    return dict(joint_names=take.joint_names, parents=take.parents, offsets=take.offsets,
-                rotations=take.rotations, root_positions=take.root_positions, fps=take.fps)
+def arrays_of(take, translations=False):
+    arrays = dict(joint_names=take.joint_names, parents=take.parents, offsets=take.offsets,
+                  rotations=take.rotations, root_positions=take.root_positions, fps=take.fps)
+    if translations:
+        arrays["translations"] = take.translations
+    return arrays
 
 
 def test_a_take_from_arrays_gives_its_arrays_back():
@@ -181,6 +184,17 @@ def test_a_take_from_arrays_blends_as_its_file():
     a, b = mostyle.read(asset("cmu142_walk_happy.bvh")), asset("cmu142_walk_marching.bvh")
     from_file = mostyle.blend(a, b, 0.6)
     from_arrays = mostyle.blend(mostyle.Take(**arrays_of(a)), b, 0.6)
+    assert from_arrays.positions.shape == from_file.positions.shape
+    assert np.max(np.abs(from_arrays.positions - from_file.positions)) <= REBUILT
+
+
+def test_hips_that_move_below_a_still_root_come_through_translations():
+    read = mostyle.read(shared("bandai_walk_happy.bvh"))
+    rebuilt = mostyle.Take(**arrays_of(read, translations=True))
+    assert np.max(np.abs(rebuilt.translations - read.translations)) <= REBUILT
+    assert np.max(np.abs(rebuilt.positions - read.positions)) <= REBUILT
+    style = shared("bandai_walk_sad.bvh")
+    from_file, from_arrays = mostyle.blend(read, style), mostyle.blend(rebuilt, style)
     assert from_arrays.positions.shape == from_file.positions.shape
     assert np.max(np.abs(from_arrays.positions - from_file.positions)) <= REBUILT
 
@@ -233,6 +247,7 @@ def test_arrays_of_the_wrong_shape_are_refused():
         "rotations": np.zeros((frames, joints, 3)),
         "root_positions": np.zeros((frames + 1, 3)),
         "parents": np.zeros(joints - 1),
+        "translations": np.zeros((frames, joints, 2)),
     }
     for name, value in bad.items():
         assert_error(lambda: mostyle.Take(**{**good, name: value}), name)
