@@ -26,7 +26,7 @@ CLI = os.environ.get("MOSTYLE_CLI", str(ROOT / "build" / "app" / "mostyle-cli"))
 SAME = 1e-9
 # A take rebuilt from its arrays has other Euler channels (ZXY, angles from quaternions): its
 # joints land within rounding of the file's, and so does what is made of it.
-REBUILT = 1e-6
+REBUILT = 1e-9
 
 
 def asset(name):
