@@ -16,6 +16,8 @@ if [ "${1:-}" = "--cluster" ]; then packages+=(slurm-wlm munge); fi
 # blender and python3-numpy (Debian's Blender imports glTF only with numpy): the [blender] tests
 # open what mostyle writes with Blender's own importers, as an animator would.
 packages+=(blender python3-numpy)
+# pybind11-dev and python3-dev: the Python module (python/); python3-pytest runs its tests.
+packages+=(pybind11-dev python3-dev python3-pytest)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

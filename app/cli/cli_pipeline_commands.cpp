@@ -45,13 +45,13 @@ Json rows_json(const Eigen::MatrixXd& m) {
 // Options shared by align and blend: the pair's files and how it is prepared and aligned.
 struct PairOptions {
   std::string a, b;
-  AlignFlags align;
+  AlignOptions align;
   std::string mapping_a, mapping_b;
 
   void add_to(CLI::App* cmd) {
     cmd->add_option("A", a, "BVH take A (the reference: its skeleton, units and world frame)")->required();
     cmd->add_option("B", b, "BVH take B (retargeted onto A and aligned onto it in time)")->required();
-    align.add_to(cmd);
+    add_align_options(cmd, align);
     cmd->add_option("--mapping-a", mapping_a, "Major-joint mapping file for A (see assets/mappings)");
     cmd->add_option("--mapping-b", mapping_b, "Major-joint mapping file for B");
   }

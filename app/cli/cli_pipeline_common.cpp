@@ -15,54 +15,37 @@
 
 namespace mostyle::cli {
 
-void AlignFlags::add_to(CLI::App* cmd) {
-  cmd->add_option("--fps", fps, "Working and output frame rate (0 keeps the reference's)")->capture_default_str();
-  cmd->add_option("--time-base", time_base,
+void add_align_options(CLI::App* cmd, AlignOptions& align) {
+  cmd->add_option("--fps", align.fps, "Working and output frame rate (0 keeps the reference's)")->capture_default_str();
+  cmd->add_option("--time-base", align.time_base,
                   "cycles: each cycle of the reference matched with a cycle of each other take (a short take's "
                   "reused in order), so the whole reference is kept, the others' posture where it does not repeat; "
                   "whole: one open-ended alignment of the whole takes (what takes that do not repeat get)")
       ->check(CLI::IsMember({"cycles", "whole"}))
       ->capture_default_str();
-  cmd->add_option("--dtw", dtw,
+  cmd->add_option("--dtw", align.dtw,
                   "slope: slope-limited, open-ended DTW with a smooth warp; paper: the paper's plain "
                   "end-to-end left-foot DTW")
       ->check(CLI::IsMember({"slope", "paper"}))
       ->capture_default_str();
-  cmd->add_option("--align-on", align_on,
+  cmd->add_option("--align-on", align.align_on,
                   "What to align on: auto (left foot for locomotion, else the joints that move), left-foot, "
                   "feet, hands or body")
       ->check(CLI::IsMember({"auto", "left-foot", "feet", "hands", "body"}))
       ->capture_default_str();
-  cmd->add_option("--max-slope", max_slope, "Neither take runs more than this many times faster than the other (2-4)")
+  cmd->add_option("--max-slope", align.max_slope, "Neither take runs more than this many times faster than the other (2-4)")
       ->capture_default_str();
-  cmd->add_flag("--closed-ends", closed_ends, "Align first frames to first and last to last (no open ends)");
-  cmd->add_option("--band", band, "--dtw paper: Sakoe-Chiba band half-width in frames (-1: none)")
+  cmd->add_flag("--closed-ends", align.closed_ends, "Align first frames to first and last to last (no open ends)");
+  cmd->add_option("--band", align.band, "--dtw paper: Sakoe-Chiba band half-width in frames (-1: none)")
       ->capture_default_str();
 }
 
-PrepareOptions AlignFlags::options() const {
-  PrepareOptions o;
-  o.fps = fps;
-  o.align.method = parse_dtw_method(dtw);
-  o.align.time_base = parse_time_base(time_base);
-  o.align.on = parse_align_on(align_on);
-  o.align.band = band;
-  o.align.slope.max_slope = max_slope;
-  o.align.slope.open_ends = !closed_ends;
-  o.Validate();
-  return o;
-}
-
-void ChannelsFlag::add_to(CLI::App* cmd) {
-  cmd->add_option("--channels", value,
+void add_channels_option(CLI::App* cmd, std::string& channels) {
+  cmd->add_option("--channels", channels,
                   "Channel layout of --out: rotations (rotations only below the root, constant translations in "
                   "OFFSET, so every BVH reader agrees) or as-source (the reference's own channels); default "
                   "rotations where the reference's position channels below the root keep one value")
       ->check(CLI::IsMember({"as-source", "rotations"}));
-}
-
-ChannelLayout ChannelsFlag::layout(const Clip& reference) const {
-  return value.empty() ? default_channel_layout(reference) : parse_channel_layout(value);
 }
 
 MappingOverrides load_mapping(const std::string& path) {

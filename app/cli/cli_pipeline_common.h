@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "app/cli/synthesis_request.h"
 #include "engine/decompose/body_parts.h"
 #include "engine/export/channel_layout.h"
 #include "engine/prepare/major_skeleton.h"
@@ -17,28 +18,12 @@
 
 namespace mostyle::cli {
 
-using Json = nlohmann::ordered_json;
+// --fps, --time-base, --dtw, --align-on, --max-slope, --closed-ends, --band, bound to `align`.
+void add_align_options(CLI::App* cmd, AlignOptions& align);
 
-// --fps, --time-base, --dtw, --align-on, --max-slope, --closed-ends, --band.
-struct AlignFlags {
-  double fps = 30.0;
-  int band = -1;
-  std::string time_base = "cycles";
-  std::string dtw = "slope";
-  std::string align_on = "auto";
-  int max_slope = 2;
-  bool closed_ends = false;
-  void add_to(CLI::App* cmd);
-  PrepareOptions options() const;  // validated; throws InputError
-};
-
-// --channels as-source|rotations (unset: rotations where the reference's position channels below
-// the root keep one value, export/channel_layout.h).
-struct ChannelsFlag {
-  std::string value;
-  void add_to(CLI::App* cmd);
-  ChannelLayout layout(const Clip& reference) const;
-};
+// --channels as-source|rotations, bound to `channels` (unset: rotations where the reference's
+// position channels below the root keep one value, export/channel_layout.h).
+void add_channels_option(CLI::App* cmd, std::string& channels);
 
 // A mapping file's overrides (empty path: none).
 MappingOverrides load_mapping(const std::string& path);

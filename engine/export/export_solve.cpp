@@ -574,13 +574,19 @@ ExportResult solve_on(Clip sampled, const Clip& clip, const std::vector<int>& jo
 
 }  // namespace
 
-ExportResult export_blend_bvh(const Clip& clip, const std::vector<int>& joints, const Eigen::MatrixXd& world,
-                              const Eigen::VectorXd& at, double fps, const std::string& path,
-                              ChannelLayout layout) {
+ExportResult solve_export_in_layout(const Clip& clip, const std::vector<int>& joints, const Eigen::MatrixXd& world,
+                                    const Eigen::VectorXd& at, double fps, ChannelLayout layout) {
   ExportResult result = solve_export_at(clip, joints, world, at, fps);
   // The layout is applied to the solved clip, not to A: the solve moves the joint that carries
   // the trajectory (Bandai's Hips, the trajectory child there), which A's values would not show.
   if (layout == ChannelLayout::kRotations) result.clip = with_rotation_channels(result.clip);
+  return result;
+}
+
+ExportResult export_blend_bvh(const Clip& clip, const std::vector<int>& joints, const Eigen::MatrixXd& world,
+                              const Eigen::VectorXd& at, double fps, const std::string& path,
+                              ChannelLayout layout) {
+  ExportResult result = solve_export_in_layout(clip, joints, world, at, fps, layout);
   write_motion_file(result.clip, path);
   return result;
 }

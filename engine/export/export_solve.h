@@ -91,6 +91,11 @@ class ExportFrameSolver {
 ExportResult solve_export_at(const Clip& clip, const std::vector<int>& joints, const Eigen::MatrixXd& world,
                              const Eigen::VectorXd& at, double fps);
 
+// solve_export_at in `layout` (as export_blend_bvh below), without writing it: for callers that
+// hand the clip over or write it later (write_motion_file writes the same file).
+ExportResult solve_export_in_layout(const Clip& clip, const std::vector<int>& joints, const Eigen::MatrixXd& world,
+                                    const Eigen::VectorXd& at, double fps, ChannelLayout layout);
+
 // solve_export_at, then the clip written atomically to `path`: glTF 2.0 when it ends in .glb or
 // .gltf, else BVH (io/motion_file.h write_motion_file). What the CLI's --out and the editor's
 // export call. `layout`: kAsSource writes A's channel layout;

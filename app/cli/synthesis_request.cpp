@@ -1,0 +1,407 @@
+#include "app/cli/synthesis_request.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "app/cli/cli_common.h"
+#include "app/cli/cli_pipeline_common.h"
+#include "engine/align/warp_position.h"
+#include "engine/base/clock.h"
+#include "engine/base/error.h"
+#include "engine/export/export_frames.h"
+#include "engine/kinematics/units.h"
+#include "engine/run/blend_params.h"
+
+namespace mostyle::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// The request's takes as read (the first the reference), prepared and decomposed.
+struct Prepared {
+  std::shared_ptr<const PreparedTakes> prepared;
+  std::shared_ptr<const Decomposed> decomposition;
+  StageTimes times;
+};
+
+void tell(const SynthesisOptions& options, const std::string& line) {
+  if (options.message) options.message(line);
+}
+
+std::shared_ptr<const Clip> read_take(const TakeSource& take, const SynthesisOptions& options) {
+  if (take.clip) return take.clip;
+  std::vector<std::string> warnings, notes;
+  auto clip = std::make_shared<const Clip>(read_motion_file(take.file, &warnings, motion_read_options_from_environment(), &notes));
+  for (const std::string& w : warnings) tell(options, "warning: " + w);
+  for (const std::string& n : notes) tell(options, "note: " + n);
+  return clip;
+}
+
+// Reads, prepares and decomposes the takes; the alignment's warnings go to the message sink.
+// Mapping files name the reference's joints and the second take's.
+Prepared prepare(const std::vector<TakeSource>& takes, const SynthesisOptions& options, const DecomposeParams& dp,
+                 const std::string& mapping_a = "", const std::string& mapping_b = "") {
+  Prepared p;
+  PrepareOptions o = options.align.options();
+  const auto t0 = Clock::now();
+  std::vector<std::shared_ptr<const Clip>> clips;
+  for (const TakeSource& t : takes) clips.push_back(read_take(t, options));
+  p.times.load_ms = ms_since(t0);
+  o.mapping_a = load_mapping(mapping_a);
+  o.mapping_b = load_mapping(mapping_b);
+  p.prepared = prepare_takes(clips, o, nullptr, &p.times);
+  for (const PreparedTake& t : p.prepared->takes)
+    for (const std::string& w : t.alignment.warnings) tell(options, "warning: " + w);
+  p.decomposition = decompose_takes(*p.prepared, dp, nullptr, &p.times);
+  return p;
+}
+
+// The fields every blend, mix and transfer reports, after the command's own in `r`.
+void add_report_fields(const SynthesisResult& s, const std::vector<TakeSource>& takes, const SynthesisOptions& options,
+                       const MixParams& mp, StageTimes times, Json& r) {
+  const PreparedTakes& palette = *s.prepared;
+  const Decomposed& d = *s.decomposition;
+  const MixResult& result = s.mix;
+  const Eigen::MatrixXd& world = result.motion.world;
+  r["frames"] = world.rows();
+  r["fps"] = palette.fps;
+  // A loop lasts all its frames (the next repeat follows its last); a clip, first frame to last.
+  r["duration_s"] = options.loop ? world.rows() / palette.fps : motion_length_s(world.rows(), palette.fps);
+  r["components"] = options.components;
+  r["sparsity"] = options.sparsity;
+  r["joints"] = s.joints;
+  r["timing"] = options.timing;
+  r["residual"] = mp.residual;
+  Json list = Json::array();
+  for (int i = 0; i < palette.size(); ++i) {
+    const size_t n = static_cast<size_t>(i);
+    const PreparedTake& take = palette.takes[n];
+    Json t;
+    t["file"] = takes[n].file;
+    t["weight"] = mp.weights[n];
+    t["major_joints"] = major_joints_json(take.mapping, take.clip->skeleton);
+    t["reconstruction_rmse"] = d.rmse[n];
+    t["foot_sliding"] = take_foot_sliding(palette, i);
+    if (i > 0) t["alignment"] = alignment_json(palette, i);
+    // Its own file's frames at the working rate (null where a take registered by cycles gives
+    // its posture only), and which of its cycles each output frame shows (-1: none).
+    t["source_frames"] = vector_json(frames_in_take(take, result.sources.col(i)));
+    const Eigen::VectorXi shown = cycles_shown(take, result.sources.col(i));
+    t["source_cycles"] = std::vector<int>(shown.data(), shown.data() + shown.size());
+    const CycleRegistration& registration = take.registration;
+    t["time_base"] = take.alignment.by_structure ? "structure"
+                     : registration.empty()      ? "whole"
+                     : registration.posture_only() ? "posture"
+                                                   : "cycles";
+    t["structure"] = action_structure_summary(take.cycles, palette.fps);
+    list.push_back(t);
+  }
+  r["takes"] = list;
+  r["common_timeline"] = {{"samples", palette.samples()},
+                          {"reference_first", palette.timeline.frames[0][0]},
+                          {"reference_last", palette.timeline.frames[0][palette.samples() - 1]}};
+  if (options.loop) r["loop"] = loop_json(result.motion.loop, palette.fps);
+  r["iterations"] = d.iterations;
+  r["local"] = d.params.local && d.shared() != nullptr;
+  r["component_joints"] = component_joints_json(d.component_joints, s.joints);
+  r["component_regions"] = component_regions_json(d.component_joints);
+  r["limb_length_max_error"] = result.motion.limb_length_max_error;
+  if (s.solved) {
+    r["export_fit"] = {{"max", s.clip.fit.max}, {"mean", s.clip.fit.mean}};
+    r["channels"] = channel_layout_name(options.channels.empty() ? default_channel_layout(*palette.takes.front().clip)
+                                                                 : parse_channel_layout(options.channels));
+  }
+  r["foot_lock"] = mp.finish.foot_lock;
+  r["foot_sliding"] = foot_sliding_json(result, palette.feet.body_height);
+  r["skeleton_height"] = guess_units(*palette.takes.front().clip).height;
+  r["timings_ms"] = {{"load", times.load_ms},         {"preprocess", times.preprocess_ms},
+                     {"dtw", times.dtw_ms},           {"decompose", times.decompose_ms},
+                     {"synthesize", times.synthesize_ms}, {"postprocess", times.postprocess_ms},
+                     {"export", times.export_ms}};
+}
+
+// Mixes, solves the clip when asked and fills the report. `r` already holds the command's own
+// fields; `words` adds the fields only it reports, once the mix is made.
+SynthesisResult synthesize(const Prepared& p, const std::vector<TakeSource>& takes, const SynthesisOptions& options,
+                           const MixParams& mp, Json r,
+                           const std::function<void(const SynthesisResult&, Json&)>& words = {}) {
+  SynthesisResult s;
+  s.prepared = p.prepared;
+  s.decomposition = p.decomposition;
+  const PreparedTakes& palette = *p.prepared;
+  StageTimes times = p.times;
+  MixScratch scratch;
+  mix_palette(palette, *p.decomposition, mp, scratch, s.mix, &times);
+  s.joints = palette.takes.front().names;
+  if (!options.out.empty() || options.solve_clip) {
+    const Clip& reference = *palette.takes.front().clip;
+    const ChannelLayout layout =
+        options.channels.empty() ? default_channel_layout(reference) : parse_channel_layout(options.channels);
+    const auto t_export = Clock::now();
+    s.clip = solve_export_in_layout(reference, export_joints(palette), s.mix.motion.world,
+                                    source_frames_in_clip(palette, s.mix), palette.fps, layout);
+    s.solved = true;
+    times.export_ms = ms_since(t_export);
+  }
+  add_report_fields(s, takes, options, mp, times, r);
+  if (words) words(s, r);
+  s.report = std::move(r);
+  return s;
+}
+
+// A blend's alpha is B's weight and 1 - alpha is A's: refused outside the range mix allows a
+// weight (kMinMixWeight to kMaxMixWeight, symmetric about 1/2, so A's weight is in it too).
+void check_alpha(double alpha, const std::string& flag) {
+  if (!(alpha >= kMinMixWeight && alpha <= kMaxMixWeight))
+    throw InputError("expected " + flag + " from " + number(kMinMixWeight) + " to " + number(kMaxMixWeight) +
+                     " (B's weight; A's is 1 - alpha), found " + number(alpha));
+}
+
+// The alphas given per body part (--part-alpha, "legs:0.2,arms:0.8" or repeated), each checked.
+std::vector<std::pair<BodyPart, double>> part_alphas(const std::vector<std::string>& part_alpha) {
+  std::vector<std::string> entries;
+  for (const std::string& e : part_alpha)
+    for (size_t begin = 0; begin <= e.size();) {
+      const size_t comma = std::min(e.find(',', begin), e.size());
+      entries.push_back(e.substr(begin, comma - begin));
+      begin = comma + 1;
+    }
+  std::vector<std::pair<BodyPart, double>> given;
+  for (const auto& [part, values] : parse_part_entries(entries, "--part-alpha", 1)) {
+    check_alpha(values[0], std::string("--part-alpha ") + body_part_name(part));
+    given.emplace_back(part, values[0]);
+  }
+  return given;
+}
+
+// A's and B's words in a blend's report: the alignment per output frame, each take's fit and sliding.
+void add_pair_words(const PreparedTakes& prepared, const Decomposed& d, const MixResult& result, Json& report) {
+  const Alignment& al = prepared.takes[1].alignment;
+  report["dtw"] = {{"cost", al.cost}, {"path_length", al.path.size()}};
+  Json alignment = alignment_json(prepared, 1);
+  // Per output frame: where in A and B it is, how well they match there, the warp's slope.
+  Eigen::VectorXd ratio(result.sample.size()), slope(result.sample.size());
+  for (Eigen::Index k = 0; k < result.sample.size(); ++k) {
+    const Eigen::Index u = std::lround(warp_position(al.warp, prepared.timeline, 1, result.sample[k]));
+    ratio[k] = al.cost_ratio[u];
+    slope[k] = al.slope[u];
+  }
+  alignment["per_frame"] = {{"source_a", vector_json(result.sources.col(0))},
+                            {"source_b", vector_json(result.sources.col(1))},
+                            {"cost_ratio", vector_json(ratio)},
+                            {"slope", vector_json(slope)}};
+  report["alignment"] = alignment;
+  report["reconstruction_rmse"] = {{"a", d.rmse[0]}, {"b", d.rmse[1]}};
+  report["component_nonzero_fraction"] = {{"a", d.nonzero[0]}, {"b", d.nonzero[1]}};
+  report["foot_sliding"]["a"] = take_foot_sliding(prepared, 0);
+  report["foot_sliding"]["b"] = take_foot_sliding(prepared, 1);
+}
+
+// One strength per style (--strength, comma separated or repeated; default 1 each).
+std::vector<double> transfer_strengths(const TransferRequest& request) {
+  const size_t styles = request.styles.size();
+  std::vector<double> strengths;
+  for (const std::string& s : request.strengths)
+    for (double v : parse_numbers(s, "--strength")) strengths.push_back(v);
+  if (request.strengths.empty()) strengths.assign(styles, 1.0);
+  if (strengths.size() != styles)
+    throw InputError("expected " + std::to_string(styles) + " strengths, one per --style, found " +
+                     std::to_string(strengths.size()));
+  return strengths;
+}
+
+}  // namespace
+
+PrepareOptions AlignOptions::options() const {
+  PrepareOptions o;
+  o.fps = fps;
+  o.align.method = parse_dtw_method(dtw);
+  o.align.time_base = parse_time_base(time_base);
+  o.align.on = parse_align_on(align_on);
+  o.align.band = band;
+  o.align.slope.max_slope = max_slope;
+  o.align.slope.open_ends = !closed_ends;
+  o.Validate();
+  return o;
+}
+
+DecomposeParams SynthesisOptions::decompose_params() const {
+  DecomposeParams dp;
+  dp.components = components;
+  dp.sparsity = sparsity;
+  dp.max_iterations = iterations;
+  dp.local = !no_local;
+  return dp;
+}
+
+void SynthesisOptions::set(MixParams& mp) const {
+  mp.reference_timing = timing != timing_words.mixed;
+  mp.residual = !components_only;
+  mp.finish.limb_lengths = !no_limb_constraint;
+  mp.finish.foot_lock = !no_foot_lock;
+  mp.finish.loop = loop;
+}
+
+void SynthesisOptions::Validate() const {
+  if (timing != timing_words.mixed && timing != timing_words.reference)
+    throw InputError("expected --timing " + std::string(timing_words.mixed) + " or " + timing_words.reference +
+                     ", found '" + timing + "'");
+  if (!channels.empty()) parse_channel_layout(channels);
+}
+
+SynthesisResult blend_takes(const BlendRequest& request) {
+  const SynthesisOptions& options = request.options;
+  options.Validate();
+  if (request.mode != "shared" && request.mode != "paper")
+    throw InputError("expected --mode shared or paper, found '" + request.mode + "'");
+  DecomposeParams dp = options.decompose_params();
+  dp.mode = request.mode == "paper" ? BlendMode::kPaper : BlendMode::kShared;
+  dp.basic_motions = request.basic;
+  dp.basic_sparsities = request.basic_sparsities;
+  if (!request.part_alpha.empty()) {
+    if (!request.component_alpha.empty()) throw InputError("give --part-alpha or --component-alpha, not both");
+    if (dp.mode != BlendMode::kShared) throw InputError("--part-alpha needs shared mode (--mode shared)");
+  }
+  // Every alpha is checked before the files are read.
+  check_alpha(request.alpha, "--alpha");
+  for (double a : request.component_alpha) check_alpha(a, "--component-alpha");
+  const std::vector<std::pair<BodyPart, double>> given = part_alphas(request.part_alpha);
+  const auto keys = parse_keys(request.alpha_at, "--alpha-at", 1);
+  for (const auto& key : keys) check_alpha(key.second[0], "--alpha-at");
+  const std::vector<TakeSource> takes{request.a, request.b};
+  const Prepared p = prepare(takes, options, dp, request.mapping_a, request.mapping_b);
+  const Decomposed& d = *p.decomposition;
+  BlendParams bp;
+  bp.alpha = request.alpha;
+  bp.component_alpha = request.component_alpha;
+  if (!given.empty()) bp.component_alpha = weights_for_parts(given, d.component_joints, request.alpha);
+  bp.swap_level = request.swap;
+  MixParams mp = blend_mix_params(bp, d);
+  for (const auto& key : keys) mp.keys.push_back({key.first, {1.0 - key.second[0], key.second[0]}});
+  options.set(mp);
+  Json r;
+  r["command"] = "blend";
+  r["a"] = request.a.file;
+  r["b"] = request.b.file;
+  r["alpha"] = request.alpha;
+  if (!mp.keys.empty()) r["keys"] = keys_json(mp.keys);
+  r["mode"] = request.mode;
+  if (request.basic > 0) {
+    r["basic_motions"] = request.basic;
+    r["swap"] = request.swap;
+  }
+  return synthesize(p, takes, options, mp, r, [&](const SynthesisResult& s, Json& report) {
+    add_pair_words(*s.prepared, *s.decomposition, s.mix, report);
+  });
+}
+
+SynthesisResult mix_takes(const MixRequest& request) {
+  const SynthesisOptions& options = request.options;
+  options.Validate();
+  const size_t n = request.takes.size();
+  if (n < 2 || n > static_cast<size_t>(kMaxPaletteTakes))
+    throw InputError("mix takes from 2 to " + std::to_string(kMaxPaletteTakes) + " BVH files, found " +
+                     std::to_string(n));
+  MixParams mp;
+  const std::vector<double> typed =
+      request.weights.empty() ? std::vector<double>(n, 1.0 / double(n)) : parse_numbers(request.weights, "--weights");
+  mp.weights = normalized_weights(typed);
+  for (const auto& [seconds, w] : parse_keys(request.weights_at, "--weights-at", n))
+    mp.keys.push_back({seconds, normalized_weights(w)});
+  if (!mp.keys.empty() && !request.part_weights.empty())
+    throw InputError("give --weights-at or --part-weights, not both: keys in time mix the whole body");
+  auto given = parse_part_entries(request.part_weights, "--part-weights", n);
+  for (auto& entry : given) entry.second = normalized_weights(entry.second);
+  // Refuse bad weights before the files are read.
+  mp.Validate(static_cast<int>(n), 0);
+  for (const auto& [part, w] : given) {
+    MixParams check = mp;
+    check.weights = w;
+    try {
+      check.Validate(static_cast<int>(n), 0);
+    } catch (const InputError& e) {
+      throw InputError(std::string("--part-weights ") + body_part_name(part) + ": " + e.what());
+    }
+  }
+  options.set(mp);
+  const Prepared p = prepare(request.takes, options, options.decompose_params());
+  if (!given.empty()) mp.component_weights = part_weights(given, p.decomposition->component_joints, mp.weights);
+  Json r;
+  r["command"] = "mix";
+  r["weights"] = mp.weights;
+  r["weights_typed"] = typed;
+  if (!mp.keys.empty()) r["keys"] = keys_json(mp.keys);
+  if (!given.empty()) {
+    Json parts = Json::object();
+    for (const auto& [part, w] : given) parts[body_part_name(part)] = w;
+    r["part_weights"] = parts;
+  }
+  return synthesize(p, request.takes, options, mp, r);
+}
+
+SynthesisResult transfer_style(const TransferRequest& request) {
+  const SynthesisOptions& options = request.options;
+  options.Validate();
+  if (request.styles.empty()) throw InputError("transfer needs a style take (--style)");
+  const size_t styles = request.styles.size();
+  const std::vector<double> strengths = transfer_strengths(request);
+  // The takes: the content, the neutral when given, the styles. Without a neutral the content
+  // is its own: the same mix, on one take fewer, with the content's weight 1 - sum s.
+  const bool has_neutral = !request.neutral.file.empty() || request.neutral.clip;
+  const TransferNeutral neutral = has_neutral ? TransferNeutral::kTake : TransferNeutral::kContent;
+  std::vector<TakeSource> takes{request.content};
+  if (neutral == TransferNeutral::kTake) takes.push_back(request.neutral);
+  takes.insert(takes.end(), request.styles.begin(), request.styles.end());
+  if (takes.size() > static_cast<size_t>(kMaxPaletteTakes))
+    throw InputError("transfer takes at most " + std::to_string(kMaxPaletteTakes - (takes.size() - styles)) +
+                     " styles");
+  MixParams mp;
+  mp.weights = transfer_weights(strengths, neutral);
+  // Content 1, neutral minus the strengths' sum (or the content 1 minus it), each style its strength.
+  mp.min_weight = transfer_min_weight(static_cast<int>(styles));
+  mp.max_weight = transfer_max_weight(static_cast<int>(styles));
+  mp.feet_of_reference = true;
+  for (const auto& [seconds, s] : parse_keys(request.strength_at, "--strength-at", styles))
+    mp.keys.push_back({seconds, transfer_weights(s, neutral)});
+  if (!mp.keys.empty() && !request.part_strengths.empty())
+    throw InputError("give --strength-at or --part-strength, not both: keys in time style the whole body");
+  const auto given = parse_part_entries(request.part_strengths, "--part-strength", styles);
+  std::vector<std::pair<BodyPart, std::vector<double>>> given_weights;
+  for (const auto& [part, s] : given) given_weights.emplace_back(part, transfer_weights(s, neutral));
+  options.set(mp);
+  mp.path_leash = transfer_path_leash(neutral, mp.reference_timing);
+  const Prepared p = prepare(takes, options, options.decompose_params());
+  if (!given_weights.empty())
+    mp.component_weights = part_weights(given_weights, p.decomposition->component_joints, mp.weights);
+  Json r;
+  r["command"] = "transfer";
+  r["content"] = request.content.file;
+  // null: the content is its own neutral (the change is from the content to each style).
+  r["neutral"] = neutral == TransferNeutral::kTake ? Json(request.neutral.file) : Json(nullptr);
+  std::vector<std::string> style_files;
+  for (const TakeSource& s : request.styles) style_files.push_back(s.file);
+  r["styles"] = style_files;
+  r["strengths"] = strengths;
+  r["weights"] = mp.weights;
+  if (!mp.keys.empty()) r["keys"] = keys_json(mp.keys);
+  if (!given.empty()) {
+    Json parts = Json::object();
+    for (const auto& [part, s] : given) parts[body_part_name(part)] = s;
+    r["part_strengths"] = parts;
+  }
+  return synthesize(p, takes, options, mp, r);
+}
+
+std::string result_positions_csv(const SynthesisResult& result) {
+  std::vector<int> columns(result.joints.size());
+  for (size_t i = 0; i < columns.size(); ++i) columns[i] = static_cast<int>(i);
+  return positions_csv(result.mix.motion.world, columns, result.joints);
+}
+
+void write_synthesis_outputs(const SynthesisResult& result, const SynthesisOptions& options) {
+  if (!options.out.empty()) write_motion_file(result.clip.clip, options.out);
+  if (!options.positions_out.empty()) write_output(options.positions_out, result_positions_csv(result));
+  if (!options.report.empty()) write_output(options.report, result.report.dump(2) + "\n");
+}
+
+}  // namespace mostyle::cli
