@@ -28,6 +28,9 @@ class MOSTYLE_OT_style_action(bpy.types.Operator):
     strength: bpy.props.FloatProperty(
         name="Strength", description="How much of the style change a transfer adds (0: the content as it is)",
         default=1.0, min=-1.0, max=2.0)
+    exact_positions: bpy.props.BoolProperty(
+        name="Exact Positions", default=True,
+        description="Key the small bone translations that put each major joint where mostyle put it (off: rotations only, which the rigid skeleton cannot always fit to the mix)")
 
     def execute(self, context):
         try:
@@ -51,10 +54,10 @@ class MOSTYLE_OT_style_action(bpy.types.Operator):
         takes = [take_io.armature_take(mostyle, obj, action) for obj, action in refs]
         result = styling.style(mostyle, self.mode, takes, weights, parts, neutral, self.strength, fps)
         obj, source = refs[0]
-        return write_result(result, obj, source, fps)
+        return write_result(result, obj, source, fps, self.exact_positions)
 
 
-def write_result(result, obj, source, fps):
+def write_result(result, obj, source, fps, exact=True):
     """The result as action '<source>_styled' on obj (made anew, or its keys replaced), which
     obj then plays; `source` keeps its keys and stays saved."""
     name = styling.styled_action_name(source)
@@ -63,7 +66,7 @@ def write_result(result, obj, source, fps):
         action = bpy.data.actions.new(name)
     else:
         action.fcurves.clear()
-    take_io.write_take_action(result, obj, action, source.frame_range[0], fps)
+    take_io.write_take_action(result, obj, action, source.frame_range[0], fps, exact)
     styling.protect(source)
     obj.animation_data_create().action = action
     return action

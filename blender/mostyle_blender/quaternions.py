@@ -77,3 +77,20 @@ def continuous(q):
         flip = np.sum(q[f] * q[f - 1], -1) < 0
         q[f][flip] *= -1
     return q
+
+
+def between(u, v):
+    """The shortest turns (..., 4) taking directions u to v (..., 3); identity where either is
+    zero, a half turn about a perpendicular where they are opposite."""
+    un = u / np.maximum(np.linalg.norm(u, axis=-1, keepdims=True), 1e-300)
+    vn = v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-300)
+    q = np.concatenate([1.0 + np.sum(un * vn, -1, keepdims=True), np.cross(un, vn)], -1)
+    opposite = q[..., 0] < 1e-9
+    if np.any(opposite):
+        side = np.cross(un[opposite], [1.0, 0.0, 0.0])
+        weak = np.linalg.norm(side, axis=-1) < 1e-6
+        side[weak] = np.cross(un[opposite][weak], [0.0, 1.0, 0.0])
+        q[opposite] = np.concatenate([np.zeros((len(side), 1)), side], -1)
+    zero = (np.linalg.norm(u, axis=-1) < 1e-300) | (np.linalg.norm(v, axis=-1) < 1e-300)
+    q[zero] = [1.0, 0.0, 0.0, 0.0]
+    return normalized(q)

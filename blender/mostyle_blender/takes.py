@@ -161,24 +161,64 @@ def _take_from_world(mostyle, bones, rest_heads, rest_rot, poses, fps):
                         rotations=qt.normalized(qt.continuous(local)), root_positions=root_positions, fps=fps)
 
 
-def _world_pose(take):
+def position_targets(take):
+    """{joint index: (frames, 3)} of the joints whose final positions a result carries beside its
+    rotations (the major joints: the result's report names them, as --positions-out does); {}
+    for a take without them."""
+    positions = getattr(take, "positions", None)
+    if positions is None:
+        return {}
+    positions = np.asarray(positions, dtype=float)
+    frames = len(np.asarray(take.rotations))
+    if positions.ndim != 3 or positions.shape[0] != frames or positions.shape[2] != 3:
+        return {}
+    names = list(take.joint_names)
+    if positions.shape[1] != len(names):
+        report = getattr(take, "report", None) or {}
+        names = report.get("joints") if isinstance(report, dict) else None
+        if not names or len(names) != positions.shape[1]:
+            return {}
+    index = {n: i for i, n in enumerate(take.joint_names)}
+    return {index[n]: positions[:, k] for k, n in enumerate(names) if n in index}
+
+
+def _world_pose(take, targets=None, connected=()):
     """Each joint's world rotation (frames, joints, 4) and position (frames, joints, 3) of a Take,
-    in Blender's Z-up world."""
-    rotations = np.asarray(take.rotations, dtype=float)
+    in Blender's Z-up world.
+
+    Joints in `targets` ({index: (frames, 3)}, Take axes) are held to those positions: a joint
+    whose one held child is that target is turned the least that points it there, and the
+    target is placed there unless it is `connected` (Blender keeps a connected bone's head on
+    its parent's tail whatever its location). Every other joint keeps its world rotation."""
+    targets = targets or {}
+    local = np.asarray(take.rotations, dtype=float)
     offsets = np.asarray(take.offsets, dtype=float)
-    root = np.asarray(take.root_positions, dtype=float)
     parents = list(take.parents)
-    frames, joints = rotations.shape[:2]
-    rot = np.empty_like(rotations)
+    frames, joints = local.shape[:2]
+    held_children = {}
+    for j in targets:
+        if parents[j] >= 0:
+            held_children.setdefault(parents[j], []).append(j)
+    order = _parents_first_indices(parents)
+    world = np.empty_like(local)
+    for j in order:
+        p = parents[j]
+        world[:, j] = local[:, j] if p < 0 else qt.multiply(world[:, p], local[:, j])
+    rot = world.copy()
     pos = np.empty((frames, joints, 3))
-    for j in _parents_first_indices(parents):
+    for j in order:
         p = parents[j]
         if p < 0:
-            rot[:, j] = rotations[:, j]
-            pos[:, j] = root
+            pos[:, j] = np.asarray(take.root_positions, dtype=float)
         else:
-            rot[:, j] = qt.multiply(rot[:, p], rotations[:, j])
             pos[:, j] = pos[:, p] + qt.rotate(rot[:, p], np.broadcast_to(offsets[j], (frames, 3)))
+        if j in targets and j not in connected:
+            pos[:, j] = targets[j]
+        children = held_children.get(j, [])
+        if len(children) == 1:
+            c = children[0]
+            have = qt.rotate(rot[:, j], np.broadcast_to(offsets[c], (frames, 3)))
+            rot[:, j] = qt.multiply(qt.between(have, targets[c] - pos[:, j]), rot[:, j])
     rot = qt.multiply(qt.multiply(qt.conjugate(_Q_Z_TO_Y), rot), _Q_Z_TO_Y)
     return rot, pos @ _Z_TO_Y
 
@@ -202,17 +242,23 @@ def _inverse_rigid(m):
     return out
 
 
-def take_pose_bases(take, obj):
+def take_pose_bases(take, obj, exact=True):
     """The pose bones' matrix_basis (frames, bones, 4, 4) that pose armature `obj` as the Take,
     for `obj`'s bones in obj.pose.bones order, and which of them the Take names. A bone the
     Take does not name keeps its rest relative to its parent.
 
     A pose bone's armature-space matrix is parent pose @ (parent rest^-1 @ rest) @ basis, and
     the wanted one is the Take's rotation change from rest applied to the bone's rest
-    orientation, at the Take's joint position; the basis follows."""
-    rot, pos = _world_pose(take)
-    frames = len(rot)
+    orientation, at the Take's joint position; the basis follows.
+
+    With `exact`, a joint whose final position the result carries is placed there by the
+    bone's location: a result's rotations are solved onto the rigid reference skeleton, which
+    cannot always hold siblings where the mix put them (the hips' spine and legs), and the
+    positions are the result."""
     joint = {n: i for i, n in enumerate(take.joint_names)}
+    connected = {joint[b.name] for b in obj.data.bones if b.use_connect and b.name in joint}
+    rot, pos = _world_pose(take, position_targets(take) if exact else None, connected)
+    frames = len(rot)
     world = np.array(obj.matrix_world, dtype=float)
     world3 = world[:3, :3]
     world_inverse = np.linalg.inv(world)
@@ -251,11 +297,12 @@ def _parents_first(pose_bones):
     return sorted(range(len(pose_bones)), key=lambda i: depth[i])
 
 
-def write_take_action(take, obj, action, frame_start, fps):
+def write_take_action(take, obj, action, frame_start, fps, exact=True):
     """Keys `action` so that it plays the Take on armature `obj` from scene frame `frame_start`
     at scene rate `fps`: location and rotation of every bone the Take names, on every frame of
-    the Take, linear between them. Any keys the action had on those channels are replaced."""
-    bases, keyed = take_pose_bases(take, obj)
+    the Take, linear between them. Any keys the action had on those channels are replaced.
+    `exact`: see take_pose_bases."""
+    bases, keyed = take_pose_bases(take, obj, exact)
     frames = frame_start + np.arange(len(bases)) * (fps / float(take.fps))
     for b, pb in enumerate(obj.pose.bones):
         if not keyed[b]:

@@ -119,7 +119,8 @@ def played_heads(obj, joints, frame_start, count):
 
 def compare(name, blender, cli, scale_known=None):
     """Max distance per joint and frame, in body heights (the CLI's first frame's height). The
-    files' units are Blender's times one scale: a known one, else the least-squares one."""
+    file's units are Blender's times `scale_known` (FBX: the armature's unit scale), else the
+    least-squares scale."""
     if blender.shape != cli.shape:
         fail("%s: Blender plays %d frames of %d joints, the CLI wrote %d of %d"
              % (name, blender.shape[0], blender.shape[1], cli.shape[0], cli.shape[1]))
@@ -204,7 +205,8 @@ def case_fbx_gltf(args):
     joy = next(a for a in bpy.data.actions if a.name.startswith("cmu142_walk_joy"))
     takes = [(mixamo, mixamo.animation_data.action), (cmu, joy)]
     style_and_compare("fbx_gltf", takes, {"weights": "0.6,0.4", "mode": 'MIX'}, args.cli,
-                      ["mix", fbx, glb + "#cmu142_walk_joy", "--weights", "0.6,0.4", "--fps", "30"])
+                      ["mix", fbx, glb + "#cmu142_walk_joy", "--weights", "0.6,0.4", "--fps", "30"],
+                      scale_known=1.0 / mixamo.matrix_world.to_scale()[0])
 
 
 def case_transfer(args):
