@@ -162,22 +162,26 @@ def _take_from_world(mostyle, bones, rest_heads, rest_rot, poses, fps):
 
 
 def position_targets(take):
-    """{joint index: (frames, 3)} of the joints whose final positions a result carries beside its
-    rotations (the major joints: the result's report names them, as --positions-out does); {}
-    for a take without them."""
+    """{joint index: (frames, 3)} of the joints whose final positions a Take carries beside its
+    rotations (a result: its major joints, as --positions-out; a take read from a file: every
+    joint, position channels below the root included); {} for a Take without them."""
     positions = getattr(take, "positions", None)
     if positions is None:
         return {}
     positions = np.asarray(positions, dtype=float)
     frames = len(np.asarray(take.rotations))
+    if positions.ndim == 2 and positions.shape[1] % 3 == 0:
+        positions = positions.reshape(len(positions), -1, 3)
     if positions.ndim != 3 or positions.shape[0] != frames or positions.shape[2] != 3:
         return {}
-    names = list(take.joint_names)
-    if positions.shape[1] != len(names):
-        report = getattr(take, "report", None) or {}
-        names = report.get("joints") if isinstance(report, dict) else None
-        if not names or len(names) != positions.shape[1]:
-            return {}
+    names = getattr(take, "position_joints", None)
+    if not names:
+        names = list(take.joint_names)
+        if positions.shape[1] != len(names):
+            report = getattr(take, "report", None) or {}
+            names = report.get("joints") if isinstance(report, dict) else None
+    if not names or len(names) != positions.shape[1]:
+        return {}
     index = {n: i for i, n in enumerate(take.joint_names)}
     return {index[n]: positions[:, k] for k, n in enumerate(names) if n in index}
 
