@@ -94,6 +94,7 @@ class Session:
         take_io.write_take_action(take, self.obj, self.action, self.source.frame_range[0], self.fps)
         if self.obj.animation_data.action is not self.action:
             self.obj.animation_data.action = self.action
+        self.action.update_tag()
         self.obj.update_tag(refresh={'TIME'})
         self.last_ms = (time.perf_counter() - asked) * 1000.0
         return None

@@ -72,11 +72,13 @@ def from_matrix(m):
 def continuous(q):
     """q (frames, ..., 4) with each frame's sign flipped to lie nearest the frame before, so that
     keys interpolated between frames take the short way round."""
-    q = q.copy()
-    for f in range(1, len(q)):
-        flip = np.sum(q[f] * q[f - 1], -1) < 0
-        q[f][flip] *= -1
-    return q
+    q = np.asarray(q, dtype=float)
+    if len(q) < 2:
+        return q.copy()
+    turns = np.sign(np.sum(q[1:] * q[:-1], -1))
+    turns[turns == 0] = 1.0
+    signs = np.concatenate([np.ones((1,) + turns.shape[1:]), np.cumprod(turns, axis=0)])
+    return q * signs[..., None]
 
 
 def between(u, v):

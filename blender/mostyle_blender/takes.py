@@ -265,6 +265,7 @@ def take_pose_bases(take, obj, exact=True):
     frames = len(rot)
     world = np.array(obj.matrix_world, dtype=float)
     world3 = world[:3, :3]
+    world3_inverse = np.linalg.inv(world3)
     world_inverse = np.linalg.inv(world)
     pose_bones = list(obj.pose.bones)
     index = {pb.name: i for i, pb in enumerate(pose_bones)}
@@ -288,7 +289,7 @@ def take_pose_bases(take, obj, exact=True):
         m = np.tile(np.eye(4), (frames, 1, 1))
         # In armature space: world^-1 @ D @ world @ rest, the change applied where the bone is.
         turn = qt.to_matrix(rot[:, j])
-        m[:, :3, :3] = np.linalg.solve(world3, turn @ world3) @ rest[b, :3, :3]
+        m[:, :3, :3] = world3_inverse @ turn @ (world3 @ rest[b, :3, :3])
         m[:, :3, 3] = (np.c_[pos[:, j], np.ones(frames)] @ world_inverse.T)[:, :3]
         wanted[b] = m
         bases[:, b] = _inverse_rigid(relative) @ _inverse_rigid(parent_pose) @ m
@@ -349,7 +350,8 @@ def _key(action, path, index, group, frames, values):
     if curve is None:
         curve = action.fcurves.new(path, index=index, action_group=group)
     points = curve.keyframe_points
-    if len(points) != len(frames):
+    fresh = len(points) != len(frames)
+    if fresh:
         points.clear()
         points.add(len(frames))
         points.foreach_set("interpolation", [_LINEAR] * len(frames))
@@ -357,5 +359,7 @@ def _key(action, path, index, group, frames, values):
     co[0::2] = frames
     co[1::2] = values
     points.foreach_set("co", co)
-    # Linear keys need no handles; only a changed count needs the curve's caches rebuilt.
-    curve.update()
+    # Linear keys need no handles: only new keys need the curve's caches rebuilt; new values on
+    # the same frames (the preview's every change) only need Blender told.
+    if fresh:
+        curve.update()
