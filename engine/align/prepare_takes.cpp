@@ -494,6 +494,22 @@ void align_onto_reference(int i, const PrepareOptions& options, const LegColumns
   } else {
     t.alignment = align_takes(reference.canonical, t.canonical, p.feature_joints, p.feet.leg_length, fps,
                               options.align, control);
+    // Registration by cycles was asked for (the default) but the takes cannot be registered (a
+    // walk and a jump): where the open ends leave part of the reference out, all of both is
+    // matched (closed ends), so that all of the reference plays at every weight; where their
+    // lengths are too far apart for the slope limit, the open-ended alignment stays.
+    const int frames = static_cast<int>(reference.canonical.local.rows());
+    if (options.align.method == DtwMethod::kSlope && options.align.time_base == TimeBase::kCycles &&
+        options.align.slope.open_ends && (t.alignment.a_first > 0 || t.alignment.a_last < frames - 1)) {
+      AlignmentOptions closed = options.align;
+      closed.slope.open_ends = false;
+      try {
+        t.alignment = align_takes(reference.canonical, t.canonical, p.feature_joints, p.feet.leg_length, fps, closed,
+                                  control);
+      } catch (const InputError&) {
+        // Lengths beyond the slope limit: the open-ended alignment, with its warning.
+      }
+    }
     t.alignment.whole_because = why_whole(reference.cycles, own, options.align, aligned_name(0, n, *reference.clip).name,
                                           aligned_name(i, n, *t.clip).name);
   }

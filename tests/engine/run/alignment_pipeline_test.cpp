@@ -11,6 +11,7 @@
 
 #include "engine/align/time_warp.h"
 #include "engine/io/bvh_io.h"
+#include "engine/io/motion_file.h"
 #include "engine/base/clip.h"
 #include "engine/kinematics/units.h"
 #include "engine/run/blend_params.h"
@@ -298,4 +299,21 @@ TEST_CASE("alignment pipeline: no pops on the shared motions' hardest pairs, acr
       CHECK(blend <= kPopRatio * takes);
     }
   }
+}
+
+TEST_CASE("alignment pipeline: a walk with a jump, which cannot be registered by cycles, matches all of the walk",
+          "[alignment]") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  // Open ends matched 0.6 s of the 2 s loop with the jump and left the rest out; closed, all of
+  // both takes are on the path.
+  auto walk = std::make_shared<const Clip>(read_motion_file(test::shared_motion("wild/gltf_cesiumman_walk.glb")));
+  auto jump = std::make_shared<const Clip>(read_motion_file(test::shared_motion("wild/xia_neutral_16.bvh")));
+  const auto p = prepare_takes({walk, jump}, {});
+  const Alignment& al = p->takes[1].alignment;
+  CHECK_FALSE(al.by_cycles());
+  CHECK(al.a_first == 0);
+  CHECK(al.a_last == al.frames_a - 1);
+  CHECK(al.b_first == 0);
+  CHECK(al.b_last == al.frames_b - 1);
+  for (const std::string& w : al.warnings) CHECK(w.find("left out") == std::string::npos);
 }
