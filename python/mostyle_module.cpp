@@ -5,9 +5,12 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <new>
 #include <string>
 #include <vector>
@@ -19,6 +22,7 @@
 #include "engine/base/error.h"
 #include "engine/io/motion_file.h"
 #include "engine/kinematics/kinematics.h"
+#include "engine/kinematics/resample.h"
 #include "python/take_arrays.h"
 
 namespace py = pybind11;
@@ -43,6 +47,14 @@ struct Take {
   std::vector<std::string> position_joints;
   std::string report;                   // a result's report as JSON text; "" for a take
   std::vector<std::string> warnings;    // the reader's and the alignment's
+  // The clip as arrays, made at the first property read: the clip never changes, and a caller
+  // such as the Blender add-on reads several properties of one result in turn.
+  std::shared_ptr<const TakeArrays> arrays_cache;
+
+  const TakeArrays& arrays() {
+    if (!arrays_cache) arrays_cache = std::make_shared<const TakeArrays>(arrays_from_clip(*clip));
+    return *arrays_cache;
+  }
 
   void compute_positions() {
     if (positions.size() > 0 || clip->frames() == 0) return;
@@ -242,6 +254,69 @@ py::object json_to_python(const std::string& text) {
   return py::module_::import("json").attr("loads")(text);
 }
 
+// Rows `at` (clip frames, rounded to the nearest, clamped) of a matrix with a row per frame,
+// column by column as Eigen stores them.
+template <class M>
+M nearest_rows(const M& m, const Eigen::VectorXd& at) {
+  std::vector<Eigen::Index> rows(static_cast<size_t>(at.size()));
+  for (Eigen::Index f = 0; f < at.size(); ++f)
+    rows[static_cast<size_t>(f)] =
+        std::clamp<Eigen::Index>(static_cast<Eigen::Index>(std::lround(at[f])), 0, m.rows() - 1);
+  M out(at.size(), m.cols());
+  for (Eigen::Index c = 0; c < m.cols(); ++c)
+    for (Eigen::Index f = 0; f < at.size(); ++f) out(f, c) = m(rows[static_cast<size_t>(f)], c);
+  return out;
+}
+
+// The reference at the frames a result shows, its nearest own frame each (no interpolation:
+// Euler angles and quaternions are interpolated with trigonometry, which costs what the mix
+// costs), at the result's rate; its arrays picked from `reference_arrays` alike, their signs made
+// continuous again as arrays_from_clip makes them.
+Take reference_at(const Clip& reference, const TakeArrays& reference_arrays, const Eigen::VectorXd& at, double fps) {
+  Clip clip;
+  clip.source = reference.source;
+  clip.skeleton = reference.skeleton;
+  clip.motion = nearest_rows(reference.motion, at);
+  clip.frame_time = 1.0 / fps;
+  TakeArrays a = reference_arrays;
+  a.fps = clip.fps();
+  a.rotations = nearest_rows(reference_arrays.rotations, at);
+  a.translations = nearest_rows(reference_arrays.translations, at);
+  a.root_positions = nearest_rows(reference_arrays.root_positions, at);
+  Eigen::MatrixXd& q = a.rotations;
+  for (Eigen::Index j = 0; j < q.cols(); j += 4)
+    for (Eigen::Index f = 1; f < q.rows(); ++f) {
+      const double dot = q(f, j) * q(f - 1, j) + q(f, j + 1) * q(f - 1, j + 1) + q(f, j + 2) * q(f - 1, j + 2) +
+                         q(f, j + 3) * q(f - 1, j + 3);
+      if (dot < 0.0)
+        for (int k = 0; k < 4; ++k) q(f, j + k) = -q(f, j + k);
+    }
+  Take take;
+  take.clip = std::make_shared<const Clip>(std::move(clip));
+  take.arrays_cache = std::make_shared<const TakeArrays>(std::move(a));
+  return take;
+}
+
+// A result as a Take, its outputs written. Called with the GIL released. A result whose clip
+// was not solved carries the reference's own frames it shows (reference_at; `reference_arrays`
+// the reference's arrays): its rotations are the reference's, its positions the result's.
+Take result_take(SynthesisResult& result, const SynthesisOptions& options,
+                 const TakeArrays* reference_arrays = nullptr) {
+  cli::write_synthesis_outputs(result, options);
+  Take take;
+  if (result.solved) {
+    take.clip = std::make_shared<const Clip>(std::move(result.clip.clip));
+  } else {
+    const PreparedTakes& palette = *result.prepared;
+    take = reference_at(*palette.takes.front().clip, *reference_arrays, source_frames_in_clip(palette, result.mix),
+                        palette.fps);
+  }
+  take.positions = result.mix.motion.world;
+  take.position_joints = result.joints;
+  take.report = result.report.dump(-1, ' ', false, cli::Json::error_handler_t::replace);
+  return take;
+}
+
 // Runs a request with the GIL released and makes its result a Take.
 template <class R>
 Take run_request(R& request, SynthesisResult (*run)(const R&)) {
@@ -252,12 +327,7 @@ Take run_request(R& request, SynthesisResult (*run)(const R&)) {
   {
     py::gil_scoped_release release;
     SynthesisResult result = run(request);
-    cli::write_synthesis_outputs(result, request.options);
-    take.clip = std::make_shared<const Clip>(std::move(result.clip.clip));
-    const Eigen::MatrixXd& world = result.mix.motion.world;
-    take.positions = world;
-    take.position_joints = result.joints;
-    take.report = result.report.dump(-1, ' ', false, cli::Json::error_handler_t::replace);
+    take = result_take(result, request.options);
   }
   take.warnings = std::move(messages);
   return take;
@@ -319,6 +389,103 @@ Take transfer(py::handle content, py::handle style, py::handle neutral, py::hand
     Request r{&request.options, nullptr, nullptr, &request};
     set_options(r, kTransfer, "transfer", kwargs);
     return run_request(request, &cli::transfer_style);
+  });
+}
+
+// A set of takes prepared once (read, aligned, decomposed) and mixed again with other weights:
+// what a slider that moves asks for. One mix at a time per handle (its scratch is shared);
+// several handles mix at once.
+struct Prepared {
+  std::shared_ptr<const cli::PreparedSynthesis> synthesis;
+  py::dict options;          // prepare's keyword arguments, set on every request made from it
+  bool has_neutral = false;  // takes are content, neutral, styles: only transfer
+  std::vector<std::string> warnings;
+  std::unique_ptr<std::mutex> busy = std::make_unique<std::mutex>();
+  std::shared_ptr<MixScratch> scratch = std::make_shared<MixScratch>();
+  std::shared_ptr<const TakeArrays> reference;  // the reference's arrays, made at the first mix without a solve
+};
+
+MixRequest prepared_mix_request(const Prepared& p, py::handle weights, py::handle part_weights) {
+  if (p.has_neutral) throw InputError("takes prepared with a neutral transfer a style: call transfer(), or prepare them without it to mix");
+  MixRequest request;
+  request.takes = p.synthesis->takes;
+  Request r{&request.options, nullptr, &request, nullptr};
+  set_options(r, kMix, "mix", py::kwargs(p.options));
+  if (!weights.is_none()) request.weights = numbers_text(weights);
+  if (!part_weights.is_none()) request.part_weights = part_entries(part_weights);
+  return request;
+}
+
+TransferRequest prepared_transfer_request(const Prepared& p, py::handle strength, py::handle part_strength) {
+  const std::vector<TakeSource>& takes = p.synthesis->takes;
+  TransferRequest request;
+  Request r{&request.options, nullptr, nullptr, &request};
+  set_options(r, kTransfer, "transfer", py::kwargs(p.options));
+  // Takes prepared to be mixed keep the alignment they were prepared with (the mix's default
+  // rate, unless fps was given): a transfer of them is not aligned again.
+  if (!p.has_neutral) request.options.align = p.synthesis->align;
+  request.content = takes.front();
+  size_t first_style = 1;
+  if (p.has_neutral) request.neutral = takes[first_style++];
+  if (takes.size() <= first_style) throw InputError("a transfer needs the content and at least one style take");
+  request.styles.assign(takes.begin() + static_cast<std::ptrdiff_t>(first_style), takes.end());
+  if (!strength.is_none()) request.strengths = {numbers_text(strength)};
+  if (!part_strength.is_none()) request.part_strengths = part_entries(part_strength);
+  return request;
+}
+
+// Mixes a request made from a handle with the GIL released. solve: the result's clip solved on
+// the reference's skeleton, as mix and transfer give it; else its positions only, beside the
+// reference's own rotations (see result_take).
+template <class R>
+Take run_prepared(Prepared& p, R& request, bool solve,
+                  SynthesisResult (*run)(const cli::PreparedSynthesis&, const R&, MixScratch&)) {
+  request.options.solve_clip = solve;
+  Take take;
+  {
+    py::gil_scoped_release release;
+    std::lock_guard<std::mutex> lock(*p.busy);
+    SynthesisResult result = run(*p.synthesis, request, *p.scratch);
+    if (!result.solved && !p.reference)
+      p.reference = std::make_shared<const TakeArrays>(arrays_from_clip(*p.synthesis->prepared->takes.front().clip));
+    take = result_take(result, request.options, p.reference.get());
+  }
+  take.warnings = p.warnings;
+  return take;
+}
+
+Prepared prepare(py::handle takes, py::handle neutral, const py::kwargs& kwargs) {
+  return guarded([&] {
+    if (!py::isinstance<py::list>(takes) && !py::isinstance<py::tuple>(takes))
+      throw InputError("expected the takes as a list, found " + type_name(takes));
+    Prepared p;
+    p.options = py::dict(kwargs);
+    p.has_neutral = !neutral.is_none();
+    std::vector<std::string> messages;
+    const cli::MessageSink sink = [&messages](const std::string& line) { messages.push_back(line); };
+    const std::vector<TakeSource> sources = take_sources(takes, "a take");
+    if (p.has_neutral) {
+      if (sources.size() < 2) throw InputError("a transfer needs the content and at least one style take");
+      TransferRequest request;
+      request.content = sources.front();
+      request.neutral = take_source(neutral, "the neutral");
+      request.styles.assign(sources.begin() + 1, sources.end());
+      Request r{&request.options, nullptr, nullptr, &request};
+      set_options(r, kTransfer, "prepare with a neutral (transfer)", kwargs);
+      request.options.message = sink;
+      py::gil_scoped_release release;
+      p.synthesis = std::make_shared<const cli::PreparedSynthesis>(cli::prepare_transfer(request));
+    } else {
+      MixRequest request;
+      request.takes = sources;
+      Request r{&request.options, nullptr, &request, nullptr};
+      set_options(r, kMix, "prepare", kwargs);
+      request.options.message = sink;
+      py::gil_scoped_release release;
+      p.synthesis = std::make_shared<const cli::PreparedSynthesis>(cli::prepare_mix(request));
+    }
+    p.warnings = std::move(messages);
+    return p;
   });
 }
 
@@ -422,25 +589,25 @@ PYBIND11_MODULE(mostyle, m) {
       .def(py::init(&take_from_arrays), py::arg("joint_names"), py::arg("parents"), py::arg("offsets"),
            py::arg("rotations"), py::arg("root_positions"), py::arg("fps") = 30.0,
            py::arg("translations") = py::none())
-      .def_property_readonly("joint_names", [](const Take& t) { return arrays_from_clip(*t.clip).joint_names; })
-      .def_property_readonly("parents", [](const Take& t) {
-        const std::vector<int> p = arrays_from_clip(*t.clip).parents;
+      .def_property_readonly("joint_names", [](Take& t) { return t.arrays().joint_names; })
+      .def_property_readonly("parents", [](Take& t) {
+        const std::vector<int> p = t.arrays().parents;
         return py::array_t<long long>(static_cast<py::ssize_t>(p.size()), std::vector<long long>(p.begin(), p.end()).data());
       })
-      .def_property_readonly("offsets", [](const Take& t) {
-        const TakeArrays a = arrays_from_clip(*t.clip);
+      .def_property_readonly("offsets", [](Take& t) {
+        const TakeArrays& a = t.arrays();
         return numpy_copy(a.offsets, {a.offsets.rows(), 3});
       })
-      .def_property_readonly("rotations", [](const Take& t) {
-        const TakeArrays a = arrays_from_clip(*t.clip);
+      .def_property_readonly("rotations", [](Take& t) {
+        const TakeArrays& a = t.arrays();
         return numpy_copy(a.rotations, {a.rotations.rows(), a.rotations.cols() / 4, 4});
       })
-      .def_property_readonly("root_positions", [](const Take& t) {
-        const TakeArrays a = arrays_from_clip(*t.clip);
+      .def_property_readonly("root_positions", [](Take& t) {
+        const TakeArrays& a = t.arrays();
         return numpy_copy(a.root_positions, {a.root_positions.rows(), 3});
       })
-      .def_property_readonly("translations", [](const Take& t) {
-        const TakeArrays a = arrays_from_clip(*t.clip);
+      .def_property_readonly("translations", [](Take& t) {
+        const TakeArrays& a = t.arrays();
         return numpy_copy(a.translations, {a.translations.rows(), a.translations.cols() / 3, 3});
       }, "F x J x 3 local translations (a joint's offset, or its position channels where it has them)")
       .def_property_readonly("positions", [](Take& t) {
@@ -466,6 +633,37 @@ PYBIND11_MODULE(mostyle, m) {
                std::to_string(t.clip->skeleton.joint_count_without_end_sites()) + " joints>";
       });
 
+  py::class_<Prepared>(m, "Prepared",
+                       "Takes read, aligned and decomposed once, by mostyle.prepare: each mix() or transfer() "
+                       "runs only the mix (and the result's solve), with the options prepare was given.")
+      .def("mix", [](Prepared& p, py::handle weights, py::handle part_weights, bool solve) {
+             return guarded([&] {
+               MixRequest request = prepared_mix_request(p, weights, part_weights);
+               return run_prepared(p, request, solve, &cli::mix_prepared);
+             });
+           }, py::arg("weights") = py::none(), py::arg("part_weights") = py::none(), py::arg("solve") = true,
+           "What mostyle.mix gives for these takes and options with these weights. solve=False: the "
+           "result's positions only, beside the reference's own rotations at the nearest of its frames "
+           "to each frame shown, without solving them onto the reference's skeleton (the slow part "
+           "of a mix once prepared).")
+      .def("transfer", [](Prepared& p, py::handle strength, py::handle part_strength, bool solve) {
+             return guarded([&] {
+               TransferRequest request = prepared_transfer_request(p, strength, part_strength);
+               return run_prepared(p, request, solve, &cli::transfer_prepared);
+             });
+           }, py::arg("strength") = py::none(), py::arg("part_strength") = py::none(), py::arg("solve") = true,
+           "What mostyle.transfer gives with the first take as the content, the neutral prepare was "
+           "given (none: the content is its own) and the other takes as the styles; strength one per "
+           "style (default 1 each). solve as mix().")
+      .def_property_readonly("takes", [](const Prepared& p) { return p.synthesis->takes.size(); },
+                             "how many takes were prepared (a transfer's content, neutral and styles)")
+      .def_property_readonly("warnings", [](const Prepared& p) { return p.warnings; })
+      .def("__repr__", [](const Prepared& p) {
+        return "<mostyle.Prepared " + std::to_string(p.synthesis->takes.size()) + " takes, " +
+               std::to_string(p.synthesis->prepared->samples()) + " samples at " +
+               cli::number(p.synthesis->prepared->fps) + " fps" + (p.has_neutral ? ", with a neutral>" : ">");
+      });
+
   m.def("read", &read_take, py::arg("path"), py::arg("take") = py::none(),
         "Reads a take: BVH, FBX, glTF, or FILE#ANIMATION; take names the animation of an FBX or glTF file.");
   m.def("blend", &blend, py::arg("a"), py::arg("b"), py::arg("alpha") = cli::BlendRequest().alpha,
@@ -476,6 +674,10 @@ PYBIND11_MODULE(mostyle, m) {
         py::arg("strength") = py::none(),
         "Puts a style onto content as mostyle-cli transfer does; style is one take or a list, strength "
         "one per style (default 1 each).");
+  m.def("prepare", &prepare, py::arg("takes"), py::arg("neutral") = py::none(),
+        "Reads, aligns and decomposes takes once, for many mixes: options as mix's (transfer's with a "
+        "neutral). Returns a Prepared whose mix() and transfer() give what mostyle.mix and "
+        "mostyle.transfer give.");
   m.def("info", &info, py::arg("path"), py::arg("take") = py::none(), py::arg("fps") = 0.0,
         py::arg("mapping") = py::none(), "What mostyle-cli info --json prints, as a dict.");
 }

@@ -17,13 +17,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// The request's takes as read (the first the reference), prepared and decomposed.
-struct Prepared {
-  std::shared_ptr<const PreparedTakes> prepared;
-  std::shared_ptr<const Decomposed> decomposition;
-  StageTimes times;
-};
-
 void tell(const SynthesisOptions& options, const std::string& line) {
   if (options.message) options.message(line);
 }
@@ -39,9 +32,13 @@ std::shared_ptr<const Clip> read_take(const TakeSource& take, const SynthesisOpt
 
 // Reads, prepares and decomposes the takes; the alignment's warnings go to the message sink.
 // Mapping files name the reference's joints and the second take's.
-Prepared prepare(const std::vector<TakeSource>& takes, const SynthesisOptions& options, const DecomposeParams& dp,
-                 const std::string& mapping_a = "", const std::string& mapping_b = "") {
-  Prepared p;
+PreparedSynthesis prepare(const std::vector<TakeSource>& takes, const SynthesisOptions& options,
+                          const DecomposeParams& dp, const std::string& mapping_a = "",
+                          const std::string& mapping_b = "") {
+  PreparedSynthesis p;
+  p.takes = takes;
+  p.align = options.align;
+  p.decompose = dp;
   PrepareOptions o = options.align.options();
   const auto t0 = Clock::now();
   std::vector<std::shared_ptr<const Clip>> clips;
@@ -122,15 +119,15 @@ void add_report_fields(const SynthesisResult& s, const std::vector<TakeSource>& 
 
 // Mixes, solves the clip when asked and fills the report. `r` already holds the command's own
 // fields; `words` adds the fields only it reports, once the mix is made.
-SynthesisResult synthesize(const Prepared& p, const std::vector<TakeSource>& takes, const SynthesisOptions& options,
-                           const MixParams& mp, Json r,
+SynthesisResult synthesize(const PreparedSynthesis& p, const SynthesisOptions& options, const MixParams& mp,
+                           MixScratch& scratch, Json r,
                            const std::function<void(const SynthesisResult&, Json&)>& words = {}) {
+  const std::vector<TakeSource>& takes = p.takes;
   SynthesisResult s;
   s.prepared = p.prepared;
   s.decomposition = p.decomposition;
   const PreparedTakes& palette = *p.prepared;
   StageTimes times = p.times;
-  MixScratch scratch;
   mix_palette(palette, *p.decomposition, mp, scratch, s.mix, &times);
   s.joints = palette.takes.front().names;
   if (!options.out.empty() || options.solve_clip) {
@@ -269,7 +266,7 @@ SynthesisResult blend_takes(const BlendRequest& request) {
   const auto keys = parse_keys(request.alpha_at, "--alpha-at", 1);
   for (const auto& key : keys) check_alpha(key.second[0], "--alpha-at");
   const std::vector<TakeSource> takes{request.a, request.b};
-  const Prepared p = prepare(takes, options, dp, request.mapping_a, request.mapping_b);
+  const PreparedSynthesis p = prepare(takes, options, dp, request.mapping_a, request.mapping_b);
   const Decomposed& d = *p.decomposition;
   BlendParams bp;
   bp.alpha = request.alpha;
@@ -290,33 +287,43 @@ SynthesisResult blend_takes(const BlendRequest& request) {
     r["basic_motions"] = request.basic;
     r["swap"] = request.swap;
   }
-  return synthesize(p, takes, options, mp, r, [&](const SynthesisResult& s, Json& report) {
+  MixScratch scratch;
+  return synthesize(p, options, mp, scratch, r, [&](const SynthesisResult& s, Json& report) {
     add_pair_words(*s.prepared, *s.decomposition, s.mix, report);
   });
 }
 
-SynthesisResult mix_takes(const MixRequest& request) {
+namespace {
+
+// A mix's weights, read from the request and checked before any file is read.
+struct MixPlan {
+  MixParams params;  // the weights, keys and clean-up; per-part weights are set once decomposed
+  std::vector<double> typed;
+  std::vector<std::pair<BodyPart, std::vector<double>>> parts;
+};
+
+MixPlan mix_plan(const MixRequest& request) {
   const SynthesisOptions& options = request.options;
   options.Validate();
   const size_t n = request.takes.size();
   if (n < 2 || n > static_cast<size_t>(kMaxPaletteTakes))
     throw InputError("mix takes from 2 to " + std::to_string(kMaxPaletteTakes) + " BVH files, found " +
                      std::to_string(n));
-  MixParams mp;
-  const std::vector<double> typed =
+  MixPlan w;
+  MixParams& mp = w.params;
+  w.typed =
       request.weights.empty() ? std::vector<double>(n, 1.0 / double(n)) : parse_numbers(request.weights, "--weights");
-  mp.weights = normalized_weights(typed);
-  for (const auto& [seconds, w] : parse_keys(request.weights_at, "--weights-at", n))
-    mp.keys.push_back({seconds, normalized_weights(w)});
+  mp.weights = normalized_weights(w.typed);
+  for (const auto& [seconds, weights] : parse_keys(request.weights_at, "--weights-at", n))
+    mp.keys.push_back({seconds, normalized_weights(weights)});
   if (!mp.keys.empty() && !request.part_weights.empty())
     throw InputError("give --weights-at or --part-weights, not both: keys in time mix the whole body");
-  auto given = parse_part_entries(request.part_weights, "--part-weights", n);
-  for (auto& entry : given) entry.second = normalized_weights(entry.second);
-  // Refuse bad weights before the files are read.
+  w.parts = parse_part_entries(request.part_weights, "--part-weights", n);
+  for (auto& entry : w.parts) entry.second = normalized_weights(entry.second);
   mp.Validate(static_cast<int>(n), 0);
-  for (const auto& [part, w] : given) {
+  for (const auto& [part, weights] : w.parts) {
     MixParams check = mp;
-    check.weights = w;
+    check.weights = weights;
     try {
       check.Validate(static_cast<int>(n), 0);
     } catch (const InputError& e) {
@@ -324,72 +331,152 @@ SynthesisResult mix_takes(const MixRequest& request) {
     }
   }
   options.set(mp);
-  const Prepared p = prepare(request.takes, options, options.decompose_params());
-  if (!given.empty()) mp.component_weights = part_weights(given, p.decomposition->component_joints, mp.weights);
+  return w;
+}
+
+SynthesisResult mix_with(const PreparedSynthesis& p, const MixRequest& request, MixPlan w, MixScratch& scratch) {
+  MixParams& mp = w.params;
+  if (!w.parts.empty()) mp.component_weights = part_weights(w.parts, p.decomposition->component_joints, mp.weights);
   Json r;
   r["command"] = "mix";
   r["weights"] = mp.weights;
-  r["weights_typed"] = typed;
+  r["weights_typed"] = w.typed;
   if (!mp.keys.empty()) r["keys"] = keys_json(mp.keys);
-  if (!given.empty()) {
+  if (!w.parts.empty()) {
     Json parts = Json::object();
-    for (const auto& [part, w] : given) parts[body_part_name(part)] = w;
+    for (const auto& [part, weights] : w.parts) parts[body_part_name(part)] = weights;
     r["part_weights"] = parts;
   }
-  return synthesize(p, request.takes, options, mp, r);
+  return synthesize(p, request.options, mp, scratch, r);
 }
 
-SynthesisResult transfer_style(const TransferRequest& request) {
+// A prepared request's takes and options against the request it is asked to mix: the same
+// number of takes, aligned and decomposed alike, else the mix would not be the request's.
+void check_prepared_for(const PreparedSynthesis& p, size_t takes, const SynthesisOptions& options,
+                        const DecomposeParams& dp) {
+  const AlignOptions& a = p.align;
+  const AlignOptions& b = options.align;
+  const bool same_align = a.fps == b.fps && a.band == b.band && a.time_base == b.time_base && a.dtw == b.dtw &&
+                          a.align_on == b.align_on && a.max_slope == b.max_slope && a.closed_ends == b.closed_ends;
+  const bool same_decompose = p.decompose.components == dp.components && p.decompose.sparsity == dp.sparsity &&
+                              p.decompose.max_iterations == dp.max_iterations && p.decompose.local == dp.local &&
+                              p.decompose.mode == dp.mode;
+  if (p.takes.size() != takes)
+    throw InputError("the takes were prepared as " + std::to_string(p.takes.size()) + " takes, the request has " +
+                     std::to_string(takes));
+  if (!same_align || !same_decompose)
+    throw InputError("the takes were prepared with other alignment or decomposition options: prepare them again");
+}
+
+}  // namespace
+
+SynthesisResult mix_takes(const MixRequest& request) {
+  MixPlan w = mix_plan(request);
+  MixScratch scratch;
+  return mix_with(prepare(request.takes, request.options, request.options.decompose_params()), request, std::move(w),
+                  scratch);
+}
+
+PreparedSynthesis prepare_mix(const MixRequest& request) {
+  mix_plan(request);
+  return prepare(request.takes, request.options, request.options.decompose_params());
+}
+
+SynthesisResult mix_prepared(const PreparedSynthesis& prepared, const MixRequest& request, MixScratch& scratch) {
+  MixPlan w = mix_plan(request);
+  check_prepared_for(prepared, request.takes.size(), request.options, request.options.decompose_params());
+  return mix_with(prepared, request, std::move(w), scratch);
+}
+
+namespace {
+
+// A transfer's takes and weights, read from the request and checked before any file is read.
+struct TransferPlan {
+  std::vector<TakeSource> takes;  // the content, the neutral when given, the styles
+  TransferNeutral neutral = TransferNeutral::kContent;
+  std::vector<double> strengths;
+  MixParams params;
+  std::vector<std::pair<BodyPart, std::vector<double>>> given;          // strengths per part
+  std::vector<std::pair<BodyPart, std::vector<double>>> given_weights;  // the same as weights
+};
+
+TransferPlan transfer_plan(const TransferRequest& request) {
   const SynthesisOptions& options = request.options;
   options.Validate();
   if (request.styles.empty()) throw InputError("transfer needs a style take (--style)");
   const size_t styles = request.styles.size();
-  const std::vector<double> strengths = transfer_strengths(request);
+  TransferPlan w;
+  w.strengths = transfer_strengths(request);
   // The takes: the content, the neutral when given, the styles. Without a neutral the content
   // is its own: the same mix, on one take fewer, with the content's weight 1 - sum s.
   const bool has_neutral = !request.neutral.file.empty() || request.neutral.clip;
-  const TransferNeutral neutral = has_neutral ? TransferNeutral::kTake : TransferNeutral::kContent;
-  std::vector<TakeSource> takes{request.content};
-  if (neutral == TransferNeutral::kTake) takes.push_back(request.neutral);
-  takes.insert(takes.end(), request.styles.begin(), request.styles.end());
-  if (takes.size() > static_cast<size_t>(kMaxPaletteTakes))
-    throw InputError("transfer takes at most " + std::to_string(kMaxPaletteTakes - (takes.size() - styles)) +
+  w.neutral = has_neutral ? TransferNeutral::kTake : TransferNeutral::kContent;
+  w.takes = {request.content};
+  if (w.neutral == TransferNeutral::kTake) w.takes.push_back(request.neutral);
+  w.takes.insert(w.takes.end(), request.styles.begin(), request.styles.end());
+  if (w.takes.size() > static_cast<size_t>(kMaxPaletteTakes))
+    throw InputError("transfer takes at most " + std::to_string(kMaxPaletteTakes - (w.takes.size() - styles)) +
                      " styles");
-  MixParams mp;
-  mp.weights = transfer_weights(strengths, neutral);
+  MixParams& mp = w.params;
+  mp.weights = transfer_weights(w.strengths, w.neutral);
   // Content 1, neutral minus the strengths' sum (or the content 1 minus it), each style its strength.
   mp.min_weight = transfer_min_weight(static_cast<int>(styles));
   mp.max_weight = transfer_max_weight(static_cast<int>(styles));
   mp.feet_of_reference = true;
   for (const auto& [seconds, s] : parse_keys(request.strength_at, "--strength-at", styles))
-    mp.keys.push_back({seconds, transfer_weights(s, neutral)});
+    mp.keys.push_back({seconds, transfer_weights(s, w.neutral)});
   if (!mp.keys.empty() && !request.part_strengths.empty())
     throw InputError("give --strength-at or --part-strength, not both: keys in time style the whole body");
-  const auto given = parse_part_entries(request.part_strengths, "--part-strength", styles);
-  std::vector<std::pair<BodyPart, std::vector<double>>> given_weights;
-  for (const auto& [part, s] : given) given_weights.emplace_back(part, transfer_weights(s, neutral));
+  w.given = parse_part_entries(request.part_strengths, "--part-strength", styles);
+  for (const auto& [part, s] : w.given) w.given_weights.emplace_back(part, transfer_weights(s, w.neutral));
   options.set(mp);
-  mp.path_leash = transfer_path_leash(neutral, mp.reference_timing);
-  const Prepared p = prepare(takes, options, options.decompose_params());
-  if (!given_weights.empty())
-    mp.component_weights = part_weights(given_weights, p.decomposition->component_joints, mp.weights);
+  mp.path_leash = transfer_path_leash(w.neutral, mp.reference_timing);
+  return w;
+}
+
+SynthesisResult transfer_with(const PreparedSynthesis& p, const TransferRequest& request, TransferPlan w,
+                              MixScratch& scratch) {
+  MixParams& mp = w.params;
+  if (!w.given_weights.empty())
+    mp.component_weights = part_weights(w.given_weights, p.decomposition->component_joints, mp.weights);
   Json r;
   r["command"] = "transfer";
   r["content"] = request.content.file;
   // null: the content is its own neutral (the change is from the content to each style).
-  r["neutral"] = neutral == TransferNeutral::kTake ? Json(request.neutral.file) : Json(nullptr);
+  r["neutral"] = w.neutral == TransferNeutral::kTake ? Json(request.neutral.file) : Json(nullptr);
   std::vector<std::string> style_files;
   for (const TakeSource& s : request.styles) style_files.push_back(s.file);
   r["styles"] = style_files;
-  r["strengths"] = strengths;
+  r["strengths"] = w.strengths;
   r["weights"] = mp.weights;
   if (!mp.keys.empty()) r["keys"] = keys_json(mp.keys);
-  if (!given.empty()) {
+  if (!w.given.empty()) {
     Json parts = Json::object();
-    for (const auto& [part, s] : given) parts[body_part_name(part)] = s;
+    for (const auto& [part, s] : w.given) parts[body_part_name(part)] = s;
     r["part_strengths"] = parts;
   }
-  return synthesize(p, takes, options, mp, r);
+  return synthesize(p, request.options, mp, scratch, r);
+}
+
+}  // namespace
+
+SynthesisResult transfer_style(const TransferRequest& request) {
+  TransferPlan w = transfer_plan(request);
+  MixScratch scratch;
+  const PreparedSynthesis p = prepare(w.takes, request.options, request.options.decompose_params());
+  return transfer_with(p, request, std::move(w), scratch);
+}
+
+PreparedSynthesis prepare_transfer(const TransferRequest& request) {
+  const TransferPlan w = transfer_plan(request);
+  return prepare(w.takes, request.options, request.options.decompose_params());
+}
+
+SynthesisResult transfer_prepared(const PreparedSynthesis& prepared, const TransferRequest& request,
+                                  MixScratch& scratch) {
+  TransferPlan w = transfer_plan(request);
+  check_prepared_for(prepared, w.takes.size(), request.options, request.options.decompose_params());
+  return transfer_with(prepared, request, std::move(w), scratch);
 }
 
 std::string result_positions_csv(const SynthesisResult& result) {

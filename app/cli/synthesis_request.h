@@ -124,12 +124,38 @@ struct SynthesisResult {
   Json report;                            // what --report writes
 };
 
+// A request's takes read, prepared and decomposed: what a mix with other weights starts from, so
+// that a weight change runs only the mix and the result's solve.
+struct PreparedSynthesis {
+  std::vector<TakeSource> takes;  // as mixed: the first the reference (a transfer's content, neutral, styles)
+  std::shared_ptr<const PreparedTakes> prepared;
+  std::shared_ptr<const Decomposed> decomposition;
+  AlignOptions align;             // what they were prepared with
+  DecomposeParams decompose;
+  StageTimes times;               // load, preprocess, dtw and decompose, as they took
+};
+
 // Each checks its numbers before reading a file, reads the takes (the first the reference),
 // prepares, decomposes and mixes them, solves the clip when asked, and fills the report. Writes
 // nothing: write_synthesis_outputs does. Throws InputError on bad input, with the CLI's sentence.
 SynthesisResult blend_takes(const BlendRequest& request);
 SynthesisResult mix_takes(const MixRequest& request);
 SynthesisResult transfer_style(const TransferRequest& request);
+
+// mix_takes and transfer_style in two steps: prepare_* checks the request's numbers and reads,
+// prepares and decomposes its takes (the slow part); *_prepared mixes the request's weights (or
+// strengths) on them and gives what mix_takes or transfer_style gives for that request, the
+// report's timings the preparation's. A request handed to *_prepared names the same takes (not
+// read again: the prepared ones are mixed) with the same alignment and decomposition options;
+// its weights, keys, parts, timing, clean-up and outputs are its own. scratch is kept from one
+// call to the next, so that a re-mix allocates nothing in the mix (mix_palette.h). Throw
+// InputError as mix_takes and transfer_style do, and when the request's takes or alignment and
+// decomposition options are not the prepared ones. *_prepared: O(the mix + the solve).
+PreparedSynthesis prepare_mix(const MixRequest& request);
+SynthesisResult mix_prepared(const PreparedSynthesis& prepared, const MixRequest& request, MixScratch& scratch);
+PreparedSynthesis prepare_transfer(const TransferRequest& request);
+SynthesisResult transfer_prepared(const PreparedSynthesis& prepared, const TransferRequest& request,
+                                  MixScratch& scratch);
 
 // Writes options.out, options.positions_out and options.report, those given. Throws InputError
 // when one cannot be written.

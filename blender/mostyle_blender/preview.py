@@ -19,6 +19,9 @@ import bpy
 from . import styling, takes as take_io
 
 _POLL_S = 0.02
+# How long the weights stay still before the solved result replaces the quick one: a slider being
+# dragged moves again sooner, and would otherwise wait for the solve.
+_SETTLE_S = 0.15
 
 
 class Session:
@@ -36,6 +39,7 @@ class Session:
         self.pending = None
         self.result = None  # (request id, Take or None, error sentence or None, seconds)
         self.shown = -1
+        self.shown_outcome = None
         self.next_id = 0
         self.stopping = False
         self.thread = threading.Thread(target=self._work, name="mostyle preview", daemon=True)
@@ -62,33 +66,48 @@ class Session:
                     return
                 request, self.pending = self.pending, None
             rid, weights, parts, strength, asked = request
-            try:
-                take = self._style(weights, parts, strength)
-                outcome = (rid, take, None, asked)
-            except Exception as e:
-                traceback.print_exc()
-                outcome = (rid, None, str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__, asked)
-            with self.lock:
-                self.result = outcome
+            # First the result's positions on the reference's own rotations (no solve), shown at
+            # once; then, unless the weights moved on meanwhile, the solved result in its place.
+            for solve in (False, True):
+                if solve:
+                    with self.lock:
+                        self.lock.wait_for(lambda: self.pending is not None or self.stopping, timeout=_SETTLE_S)
+                        if self.pending is not None or self.stopping:
+                            break
+                try:
+                    take = self._style(weights, parts, strength, solve)
+                    outcome = (rid, take, None, asked)
+                except Exception as e:
+                    traceback.print_exc()
+                    outcome = (rid, None, str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__,
+                               asked)
+                with self.lock:
+                    self.result = outcome
+                    if outcome[2] is not None or self.pending is not None or self.stopping or take is None:
+                        break
 
-    def _style(self, weights, parts, strength):
+    def _style(self, weights, parts, strength, solve):
         prepare = getattr(self.mostyle, "prepare", None)
         if prepare is not None:
             if self.prepared is None:
                 self.prepared = prepare(self.takes, neutral=self.neutral, fps=self.fps)
             if self.mode == 'MIX':
-                return self.prepared.mix(weights=weights, part_weights=parts)
-            return self.prepared.transfer(strength=[strength * w for w in weights[1:]])
+                return self.prepared.mix(weights=weights, part_weights=parts, solve=solve)
+            part_strength = {p: [strength * w for w in ws[1:]] for p, ws in parts.items()} if parts else None
+            return self.prepared.transfer(strength=[strength * w for w in weights[1:]], part_strength=part_strength,
+                                          solve=solve)
+        if not solve:
+            return None
         return styling.style(self.mostyle, self.mode, self.takes, weights, parts, self.neutral, strength, self.fps)
 
     def take_up(self):
         """Writes the newest result into the preview action; its error sentence, or None."""
         with self.lock:
             outcome = self.result
-        if outcome is None or outcome[0] == self.shown:
+        if outcome is None or outcome is self.shown_outcome:
             return None
         rid, take, error, asked = outcome
-        self.shown = rid
+        self.shown, self.shown_outcome = rid, outcome
         if error is not None:
             return error
         take_io.write_take_action(take, self.obj, self.action, self.source.frame_range[0], self.fps)

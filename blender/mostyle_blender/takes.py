@@ -122,10 +122,14 @@ def _world_matrices(obj, bones):
     return world @ local[[index[b.name] for b in bones]]
 
 
-def armature_take(mostyle, obj, action):
+def armature_take(mostyle, obj, action, played=False):
     """`action` played on armature `obj` as a mostyle.Take: every whole frame its keys span, at the
     scene's rate, as Blender evaluates it (constraints and drivers included), positions in
-    Blender's units, Y up. Raises ValueError naming the armature when it cannot be read."""
+    Blender's units, Y up. Raises ValueError naming the armature when it cannot be read.
+
+    Where the pose is the action's curves alone (no constraints or drivers, no object animation
+    or parent, bones that inherit as Blender does by default), the curves are evaluated here, for
+    all frames at once; else, or with `played`, Blender plays the action frame by frame."""
     if obj.type != 'ARMATURE':
         raise ValueError("'%s' is not an armature" % obj.name)
     bones = skeleton_bones(obj)
@@ -136,13 +140,119 @@ def armature_take(mostyle, obj, action):
     world_rest = np.array(obj.matrix_world, dtype=float) @ np.array([np.array(b.matrix_local) for b in bones])
     rest_heads = world_rest[:, :3, 3] @ _Z_TO_Y.T
     rest_rot = qt.from_matrix(world_rest[:, :3, :3])
-    poses = np.empty((len(frames), len(bones), 4, 4))
-    with _ActionSwap(obj, action):
-        for i, f in enumerate(frames):
-            whole = math.floor(f + 1e-6)
-            scene.frame_set(int(whole), subframe=max(0.0, f - whole))
-            poses[i] = _world_matrices(obj, bones)
+    if not played and _curves_alone(obj, action):
+        poses = _curve_poses(obj, action, bones, np.asarray(frames, dtype=float))
+    else:
+        poses = np.empty((len(frames), len(bones), 4, 4))
+        with _ActionSwap(obj, action):
+            for i, f in enumerate(frames):
+                whole = math.floor(f + 1e-6)
+                scene.frame_set(int(whole), subframe=max(0.0, f - whole))
+                poses[i] = _world_matrices(obj, bones)
     return _take_from_world(mostyle, bones, rest_heads, rest_rot, poses, fps)
+
+
+def _curves_alone(obj, action):
+    """Whether Blender's pose of `obj` playing `action` is the action's bone curves alone."""
+    if obj.constraints or obj.parent is not None:
+        return False
+    data = obj.animation_data
+    if data is not None and len(data.drivers) > 0:
+        return False
+    for pb in obj.pose.bones:
+        b = pb.bone
+        if pb.constraints or not b.use_inherit_rotation or b.inherit_scale != 'FULL' or not b.use_local_location \
+                or b.use_relative_parent:
+            return False
+    return all(c.data_path.startswith('pose.bones["') for c in action.fcurves)
+
+
+def _curve_values(curve, frames):
+    """The curve at `frames`: its keys interpolated where that is what Blender does (linear keys,
+    or every frame on a key), else Blender's own evaluation frame by frame."""
+    points = curve.keyframe_points
+    co = np.empty(2 * len(points), dtype=np.float32)
+    points.foreach_get("co", co)
+    x, y = co[0::2].astype(float), co[1::2].astype(float)
+    if len(x) == 0:
+        return None
+    if not curve.modifiers and curve.extrapolation == 'CONSTANT':
+        modes = np.empty(len(points), dtype=np.int32)
+        points.foreach_get("interpolation", modes)
+        if np.all(modes[:-1] == _LINEAR) or _on_keys(frames, x):
+            return np.interp(frames, x, y)
+    return np.array([curve.evaluate(float(f)) for f in frames])
+
+
+def _on_keys(frames, keys):
+    """Whether every frame lies on a key (keys ascending)."""
+    at = np.clip(np.searchsorted(keys, frames), 1, max(1, len(keys) - 1))
+    near = np.minimum(np.abs(frames - keys[at - 1]), np.abs(frames - keys[np.minimum(at, len(keys) - 1)]))
+    return bool(np.all(near < 1e-4))
+
+
+def _euler_quaternions(angles, order):
+    """(frames, 4) quaternions of Euler angles (frames, 3: x, y, z radians) in Blender's `order`
+    ('XYZ': X turned first)."""
+    axes = {"X": 0, "Y": 1, "Z": 2}
+    q = np.tile([1.0, 0.0, 0.0, 0.0], (len(angles), 1))
+    for axis in order:
+        a = axes[axis]
+        turn = np.zeros((len(angles), 4))
+        turn[:, 0] = np.cos(angles[:, a] / 2)
+        turn[:, 1 + a] = np.sin(angles[:, a] / 2)
+        q = qt.multiply(turn, q)
+    return q
+
+
+def _curve_poses(obj, action, bones, frames):
+    """(frames, bones, 4, 4) world matrices of `bones` as Blender poses them playing `action`,
+    from its curves: parent pose @ (parent rest^-1 @ rest) @ basis, basis = location @ rotation
+    @ scale, each channel without a curve at the pose bone's own value."""
+    count = len(frames)
+    curves = {}
+    for c in action.fcurves:
+        curves[(c.data_path, c.array_index)] = c
+
+    def channel(pb, prop, size):
+        path = 'pose.bones["%s"].%s' % (_escape(pb.name), prop)
+        own = np.array(getattr(pb, prop), dtype=float)
+        out = np.tile(own, (count, 1))
+        for i in range(size):
+            c = curves.get((path, i))
+            values = _curve_values(c, frames) if c is not None and not c.mute else None
+            if values is not None:
+                out[:, i] = values
+        return out
+
+    pose = {}
+    order = []
+    stack = [b for b in obj.data.bones if b.parent is None]
+    while stack:
+        b = stack.pop()
+        order.append(b)
+        stack.extend(b.children)
+    for b in order:
+        pb = obj.pose.bones[b.name]
+        if pb.rotation_mode == 'QUATERNION':
+            q = qt.normalized(channel(pb, "rotation_quaternion", 4))
+        elif pb.rotation_mode == 'AXIS_ANGLE':
+            v = channel(pb, "rotation_axis_angle", 4)
+            axis = v[:, 1:] / np.maximum(np.linalg.norm(v[:, 1:], axis=1, keepdims=True), 1e-12)
+            q = np.c_[np.cos(v[:, 0] / 2), axis * np.sin(v[:, 0] / 2)[:, None]]
+        else:
+            q = _euler_quaternions(channel(pb, "rotation_euler", 3), pb.rotation_mode)
+        basis = np.tile(np.eye(4), (count, 1, 1))
+        basis[:, :3, :3] = qt.to_matrix(q) * channel(pb, "scale", 3)[:, None, :]
+        basis[:, :3, 3] = channel(pb, "location", 3)
+        rest = np.array(b.matrix_local, dtype=float)
+        if b.parent is None:
+            pose[b.name] = rest @ basis
+        else:
+            relative = np.linalg.inv(np.array(b.parent.matrix_local, dtype=float)) @ rest
+            pose[b.name] = pose[b.parent.name] @ relative @ basis
+    world = np.array(obj.matrix_world, dtype=float)
+    return np.stack([world @ pose[b.name] for b in bones], 1)
 
 
 def _take_from_world(mostyle, bones, rest_heads, rest_rot, poses, fps):
@@ -236,24 +346,28 @@ def _parents_first_indices(parents):
     return sorted(range(len(parents)), key=depth)
 
 
-def _inverse_rigid(m):
-    """Inverse of (..., 4, 4) rotation-and-translation matrices."""
-    out = np.zeros_like(m)
-    r = np.swapaxes(m[..., :3, :3], -1, -2)
-    out[..., :3, :3] = r
-    out[..., :3, 3] = -(r @ m[..., :3, 3:])[..., 0]
-    out[..., 3, 3] = 1.0
-    return out
+def _compose(a, b):
+    """Rigid transforms as (quaternion (..., 4), translation (..., 3)): a after b."""
+    return qt.multiply(a[0], b[0]), a[1] + qt.rotate(a[0], np.broadcast_to(b[1], np.broadcast_shapes(
+        np.shape(a[1]), np.shape(b[1]))))
+
+
+def _inverse(a):
+    q = qt.conjugate(a[0])
+    return q, -qt.rotate(q, np.broadcast_to(a[1], np.broadcast_shapes(np.shape(q)[:-1] + (3,), np.shape(a[1]))))
 
 
 def take_pose_bases(take, obj, exact=True):
-    """The pose bones' matrix_basis (frames, bones, 4, 4) that pose armature `obj` as the Take,
-    for `obj`'s bones in obj.pose.bones order, and which of them the Take names. A bone the
-    Take does not name keeps its rest relative to its parent.
+    """The pose bones' matrix_basis that pose armature `obj` as the Take, as a rotation
+    (frames, bones, 4: w, x, y, z) and a location (frames, bones, 3), for `obj`'s bones in
+    obj.pose.bones order, and which of them the Take names. A bone the Take does not name keeps
+    its rest relative to its parent.
 
-    A pose bone's armature-space matrix is parent pose @ (parent rest^-1 @ rest) @ basis, and
+    A pose bone's armature-space transform is parent pose @ (parent rest^-1 @ rest) @ basis, and
     the wanted one is the Take's rotation change from rest applied to the bone's rest
-    orientation, at the Take's joint position; the basis follows.
+    orientation, at the Take's joint position; the basis follows. Every transform is rigid (the
+    armature's own scale is taken out of its world rotation), so each is a quaternion and a
+    translation over all frames at once, never a matrix per key.
 
     With `exact`, a joint whose final position the result carries is placed there by the
     bone's location: a result's rotations are solved onto the rigid reference skeleton, which
@@ -264,37 +378,46 @@ def take_pose_bases(take, obj, exact=True):
     rot, pos = _world_pose(take, position_targets(take) if exact else None, connected)
     frames = len(rot)
     world = np.array(obj.matrix_world, dtype=float)
-    world3 = world[:3, :3]
-    world3_inverse = np.linalg.inv(world3)
+    world_q = qt.from_matrix(world[:3, :3])
     world_inverse = np.linalg.inv(world)
     pose_bones = list(obj.pose.bones)
     index = {pb.name: i for i, pb in enumerate(pose_bones)}
     rest = np.array([np.array(pb.bone.matrix_local) for pb in pose_bones])
+    rest_t = (qt.from_matrix(rest[:, :3, :3]), rest[:, :3, 3])
+    relative = [None] * len(pose_bones)
+    parents = [index[pb.parent.name] if pb.parent is not None else -1 for pb in pose_bones]
+    for b, parent in enumerate(parents):
+        own = (rest_t[0][b], rest_t[1][b])
+        relative[b] = own if parent < 0 else _compose(_inverse((rest_t[0][parent], rest_t[1][parent])), own)
+    keyed = [pb.name in joint for pb in pose_bones]
+    named = [b for b in range(len(pose_bones)) if keyed[b]]
+    columns = [joint[pose_bones[b].name] for b in named]
+    # In armature space: world^-1 @ D @ world @ rest, the change applied where the bone is; all
+    # the named bones at once.
+    wanted_q = qt.multiply(qt.multiply(qt.conjugate(world_q), qt.multiply(rot[:, columns], world_q)), rest_t[0][named])
+    wanted_t = pos[:, columns] @ world_inverse[:3, :3].T + world_inverse[:3, 3]
     wanted = [None] * len(pose_bones)
-    bases = np.tile(np.eye(4), (frames, len(pose_bones), 1, 1))
-    keyed = [False] * len(pose_bones)
+    for k, b in enumerate(named):
+        wanted[b] = (wanted_q[:, k], wanted_t[:, k])
+    identity = (np.array([1.0, 0.0, 0.0, 0.0]), np.zeros(3))
     for b in _parents_first(pose_bones):
-        pb = pose_bones[b]
-        parent = index[pb.parent.name] if pb.parent is not None else -1
-        if parent >= 0:
-            relative = _inverse_rigid(rest[parent]) @ rest[b]
-            parent_pose = wanted[parent]
-        else:
-            relative = rest[b]
-            parent_pose = np.tile(np.eye(4), (frames, 1, 1))
-        j = joint.get(pb.name)
-        if j is None:
-            wanted[b] = parent_pose @ relative
-            continue
-        m = np.tile(np.eye(4), (frames, 1, 1))
-        # In armature space: world^-1 @ D @ world @ rest, the change applied where the bone is.
-        turn = qt.to_matrix(rot[:, j])
-        m[:, :3, :3] = world3_inverse @ turn @ (world3 @ rest[b, :3, :3])
-        m[:, :3, 3] = (np.c_[pos[:, j], np.ones(frames)] @ world_inverse.T)[:, :3]
-        wanted[b] = m
-        bases[:, b] = _inverse_rigid(relative) @ _inverse_rigid(parent_pose) @ m
-        keyed[b] = True
-    return bases, keyed
+        if wanted[b] is None:
+            parent = parents[b]
+            wanted[b] = _compose(wanted[parent] if parent >= 0 else identity, relative[b])
+    # basis = relative^-1 @ parent pose^-1 @ wanted, every named bone at once.
+    frames_ones = np.ones((frames, 1, 1))
+    parent_q = np.stack([wanted[parents[b]][0] * frames_ones[:, 0] if parents[b] >= 0 else
+                         np.tile(identity[0], (frames, 1)) for b in named], 1)
+    parent_t = np.stack([wanted[parents[b]][1] * frames_ones[:, 0] if parents[b] >= 0 else
+                         np.zeros((frames, 3)) for b in named], 1)
+    relative_q = np.array([relative[b][0] for b in named])
+    relative_t = np.array([relative[b][1] for b in named])
+    basis = _compose(_inverse((relative_q, relative_t)), _compose(_inverse((parent_q, parent_t)), (wanted_q, wanted_t)))
+    rotations = np.tile([1.0, 0.0, 0.0, 0.0], (frames, len(pose_bones), 1))
+    locations = np.zeros((frames, len(pose_bones), 3))
+    rotations[:, named] = basis[0]
+    locations[:, named] = basis[1]
+    return rotations, locations, keyed
 
 
 def _parents_first(pose_bones):
@@ -307,16 +430,17 @@ def write_take_action(take, obj, action, frame_start, fps, exact=True):
     at scene rate `fps`: location and rotation of every bone the Take names, on every frame of
     the Take, linear between them. Any keys the action had on those channels are replaced.
     `exact`: see take_pose_bases."""
-    bases, keyed = take_pose_bases(take, obj, exact)
-    frames = frame_start + np.arange(len(bases)) * (fps / float(take.fps))
+    rotations, locations, keyed = take_pose_bases(take, obj, exact)
+    frames = frame_start + np.arange(len(rotations)) * (fps / float(take.fps))
+    rotations = qt.continuous(qt.normalized(rotations))
     for b, pb in enumerate(obj.pose.bones):
         if not keyed[b]:
             continue
         base = 'pose.bones["%s"].' % _escape(pb.name)
-        location = bases[:, b, :3, 3]
+        location = locations[:, b]
         for i in range(3):
             _key(action, base + "location", i, pb.name, frames, location[:, i])
-        q = qt.continuous(qt.from_matrix(bases[:, b, :3, :3]))
+        q = rotations[:, b]
         if pb.rotation_mode == 'QUATERNION':
             for i in range(4):
                 _key(action, base + "rotation_quaternion", i, pb.name, frames, q[:, i])

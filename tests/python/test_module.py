@@ -281,3 +281,87 @@ def test_a_loop_equals_the_cli(tmp_path):
     a, b = asset("cmu142_walk_happy.bvh"), asset("cmu142_walk_joy.bvh")
     cli = run_cli(["blend", a, b, "--loop", "--channels", "as-source"], tmp_path)
     assert_same_as_cli(mostyle.blend(a, b, loop=True, channels="as-source"), cli, tmp_path)
+
+
+def assert_same_result(prepared, whole):
+    """A prepared handle's result against the whole call's: positions, report, rotations."""
+    assert prepared.positions.shape == whole.positions.shape
+    assert np.max(np.abs(prepared.positions - whole.positions)) <= SAME
+    assert without_timings(prepared.report) == without_timings(whole.report)
+    assert np.array_equal(prepared.rotations, whole.rotations)
+    assert np.array_equal(prepared.root_positions, whole.root_positions)
+
+
+def test_a_prepared_mix_equals_the_whole_mix_for_each_weight():
+    takes = [mostyle.read(asset("cmu142_walk_%s.bvh" % s)) for s in ("happy", "joy", "clumsy")]
+    prepared = mostyle.prepare(takes, k=6, foot_lock=True)
+    assert prepared.takes == 3
+    for weights, parts in (([0.5, 0.3, 0.2], None), ([0.1, 0.1, 0.8], {"arms": [0.2, 0.4, 0.4]}),
+                           ([0.5, 0.3, 0.2], None)):
+        whole = mostyle.mix(takes, weights=weights, part_weights=parts, k=6, foot_lock=True)
+        assert_same_result(prepared.mix(weights=weights, part_weights=parts), whole)
+
+
+def test_a_prepared_mix_equals_the_cli(tmp_path):
+    takes = [asset("cmu142_walk_happy.bvh"), asset("cmu142_walk_marching.bvh")]
+    cli = run_cli(["mix", *takes, "--weights", "0.3,0.7", "--timing", "reference"], tmp_path)
+    assert_same_as_cli(mostyle.prepare(takes, timing="reference").mix([0.3, 0.7]), cli, tmp_path)
+
+
+def test_a_prepared_transfer_equals_the_whole_transfer():
+    content, neutral = asset("cmu142_walk_happy.bvh"), asset("cmu142_walk_clumsy.bvh")
+    styles = [asset("cmu142_walk_marching.bvh"), asset("cmu142_walk_joy.bvh")]
+    prepared = mostyle.prepare([content, *styles], neutral=neutral)
+    for strength in ([0.5, 0.25], [1.0, -0.5]):
+        whole = mostyle.transfer(content, styles, neutral=neutral, strength=strength)
+        assert_same_result(prepared.transfer(strength=strength), whole)
+    whole = mostyle.transfer(content, styles, neutral=neutral, part_strength={"legs": [0.2, 0.3]})
+    assert_same_result(prepared.transfer(part_strength={"legs": [0.2, 0.3]}), whole)
+    assert_error(lambda: prepared.mix([0.25, 0.25, 0.25, 0.25]), "neutral")
+
+
+def test_takes_prepared_to_mix_transfer_at_their_rate():
+    content, style = asset("cmu142_walk_happy.bvh"), asset("cmu142_walk_joy.bvh")
+    prepared = mostyle.prepare([content, style], fps=30)
+    whole = mostyle.transfer(content, style, strength=0.6, fps=30)
+    assert_same_result(prepared.transfer(strength=0.6), whole)
+
+
+def test_a_prepared_mix_without_the_solve_has_the_same_positions():
+    takes = [asset("cmu142_walk_happy.bvh"), asset("cmu142_walk_joy.bvh")]
+    prepared = mostyle.prepare(takes)
+    solved, cheap = prepared.mix([0.4, 0.6]), prepared.mix([0.4, 0.6], solve=False)
+    assert np.max(np.abs(cheap.positions - solved.positions)) <= SAME
+    assert without_timings(cheap.report).keys() <= without_timings(solved.report).keys()
+    assert cheap.frames == solved.frames and cheap.joint_names == solved.joint_names
+    # The reference's own rotations at the frames shown: unit quaternions, continuous.
+    q = cheap.rotations
+    assert np.allclose(np.linalg.norm(q, axis=-1), 1.0)
+    assert np.all(np.sum(q[1:] * q[:-1], -1) >= 0.0)
+
+
+def test_prepared_takes_refuse_bad_weights_and_options():
+    prepared = mostyle.prepare([asset("cmu142_walk_happy.bvh"), asset("cmu142_walk_joy.bvh")])
+    assert_error(lambda: prepared.mix([0.5, 0.3, 0.2]), "weights")
+    assert_error(lambda: prepared.mix([3.0, -2.0]), "weight")
+    assert_error(lambda: mostyle.prepare([asset("cmu142_walk_happy.bvh")]), "2 to")
+    assert_error(lambda: mostyle.prepare([asset("cmu142_walk_happy.bvh"), asset("cmu142_walk_joy.bvh")], alpha=1),
+                 "unknown option")
+
+
+def test_threads_mix_one_prepared_set_as_one_at_a_time():
+    prepared = mostyle.prepare([asset("cmu142_walk_happy.bvh"), asset("cmu142_walk_marching.bvh")])
+    weights = [[0.2, 0.8], [0.5, 0.5], [0.9, 0.1]]
+    alone = [prepared.mix(w).positions for w in weights]
+    together = [None] * len(weights)
+
+    def run(i):
+        together[i] = prepared.mix(weights[i]).positions
+
+    threads = [threading.Thread(target=run, args=(i,)) for i in range(len(weights))]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for x, y in zip(alone, together):
+        assert np.array_equal(x, y)
