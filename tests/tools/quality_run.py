@@ -249,17 +249,8 @@ def features(frames, roles, height, period_s):
     """style_check.py's features, by role: per joint (but the hips) its mean height above the hips
     and reach forward of them, its RMS amplitude about its mean in the body's frame (all in
     heights), and the stride period (PERIOD_WEIGHT log seconds; left out where `info` finds none). The body's frame:
-    lateral from the right leg's hip to the left's, forward across it on the ground."""
-    li, ri = roles.index('L_leg0'), roles.index('R_leg0')
-    local = []
-    for f in frames:
-        hips, l, r = f[0], f[li], f[ri]
-        lat = (l[0] - r[0], l[2] - r[2])
-        n = math.hypot(*lat) or 1.0
-        lat = (lat[0] / n, lat[1] / n)
-        fwd = (lat[1], -lat[0])
-        local.append([((p[0] - hips[0]) * fwd[0] + (p[2] - hips[2]) * fwd[1], p[1] - hips[1],
-                       (p[0] - hips[0]) * lat[0] + (p[2] - hips[2]) * lat[1]) for p in f])
+    lateral from the right leg's hip to the left's, forward across it on the ground (body_frame)."""
+    local = body_frame(frames, roles)
     out = {}
     for j, role in enumerate(roles):
         if role in (None, 'hips'): continue
@@ -296,8 +287,8 @@ def way_to(made, wanted):
 
 
 def body_frame(frames, roles):
-    """Each frame's joints about its hips, in the body's frame (forward, up, lateral; as
-    `features` takes it)."""
+    """Each frame's joints about its hips, in the body's frame (forward, up, lateral): lateral from
+    the right leg's hip to the left's, forward across it on the ground."""
     li, ri = roles.index('L_leg0'), roles.index('R_leg0')
     out = []
     for f in frames:
