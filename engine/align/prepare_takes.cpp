@@ -481,8 +481,8 @@ void align_onto_reference(int i, const PrepareOptions& options, const LegColumns
       for (double& f : registered.registration.source)
         if (!std::isnan(f)) f = std::fmod(f, double(unrolled.loop_frames));
     adopt(registered);
-  } else if (reference.cycles.kind == CycleKind::kNone && own.kind == CycleKind::kGait) {
-    // A walk on a reference that does not repeat (standing, a jump): no frame of it matches, so
+  } else if (reference.cycles.kind != CycleKind::kGait && own.kind == CycleKind::kGait) {
+    // A walk on a reference that does not walk (standing, a jump, a wave): no frame of it matches, so
     // it gives its posture only, as between a reference's cycles (matching its steps to a
     // standing take by DTW would slide the feet and shake the limbs). Test: "posture registration:
     // a walk's style put on a standing take moves only its posture" (cycle_registration_test.cpp).
