@@ -317,3 +317,17 @@ TEST_CASE("alignment pipeline: a walk with a jump, which cannot be registered by
   CHECK(al.b_last == al.frames_b - 1);
   for (const std::string& w : al.warnings) CHECK(w.find("left out") == std::string::npos);
 }
+
+TEST_CASE("alignment pipeline: a walk put on a waving take gives its posture only, as on a standing one",
+          "[alignment]") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  // The wave repeats (periodic strokes of the left hand) but does not walk: no frame of the walk
+  // matches it, and its steps laid on the standing body would slide its feet.
+  auto wave = std::make_shared<const Clip>(read_motion_file(test::shared_motion("actions/bandai2_wave-left-hand_active.bvh")));
+  auto walk = std::make_shared<const Clip>(read_motion_file(test::shared_motion("bandai_walk_normal.bvh")));
+  const auto p = prepare_takes({wave, walk}, {});
+  REQUIRE(p->takes[0].cycles.kind == CycleKind::kPeriodic);
+  CHECK(p->takes[1].registration.posture_only());
+  CHECK(p->takes[1].alignment.a_first == 0);
+  CHECK(p->takes[1].alignment.a_last == p->takes[0].canonical.local.rows() - 1);
+}
