@@ -746,6 +746,9 @@ TEST_CASE("live-send: a thousand connections opened and closed leave its descrip
     REQUIRE(test::eventually([&] {
       return ::poll(batch.data(), batch.size(), 0) == static_cast<int>(batch.size());
     }));
+    // A refused client can read the end a moment before the server has closed its side: the
+    // count is taken once the server has had that moment (a busy machine stretches it).
+    test::eventually([&] { return test::open_descriptors(pid) - before <= 15; });
     most = std::max(most, test::open_descriptors(pid) - before);
     for (const pollfd& p : batch)
       if (p.fd >= 0) ::close(p.fd);
