@@ -146,6 +146,11 @@ class MOSTYLE_OT_add_take(bpy.types.Operator):
         return {'FINISHED'}
 
 
+def armature_with_takes(context):
+    """Whether the active object is an armature with takes in its mostyle list."""
+    return context.object is not None and context.object.type == 'ARMATURE' and len(context.object.mostyle.takes) > 0
+
+
 class MOSTYLE_OT_remove_take(bpy.types.Operator):
     """Remove the selected take"""
     bl_idname = "mostyle.remove_take"
@@ -154,7 +159,7 @@ class MOSTYLE_OT_remove_take(bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        return context.object is not None and context.object.type == 'ARMATURE' and len(context.object.mostyle.takes) > 0
+        return armature_with_takes(context)
 
     def execute(self, context):
         settings = context.object.mostyle
@@ -186,7 +191,7 @@ class MOSTYLE_OT_apply(bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        return context.object is not None and context.object.type == 'ARMATURE' and len(context.object.mostyle.takes) > 0
+        return armature_with_takes(context)
 
     def execute(self, context):
         settings = context.object.mostyle
