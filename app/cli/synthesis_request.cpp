@@ -334,6 +334,13 @@ MixPlan mix_plan(const MixRequest& request) {
   return w;
 }
 
+// Body-part entries as the report lists them: {"legs": [...], ...}.
+Json parts_json(const std::vector<std::pair<BodyPart, std::vector<double>>>& entries) {
+  Json parts = Json::object();
+  for (const auto& [part, values] : entries) parts[body_part_name(part)] = values;
+  return parts;
+}
+
 SynthesisResult mix_with(const PreparedSynthesis& p, const MixRequest& request, MixPlan w, MixScratch& scratch) {
   MixParams& mp = w.params;
   if (!w.parts.empty()) mp.component_weights = part_weights(w.parts, p.decomposition->component_joints, mp.weights);
@@ -342,11 +349,7 @@ SynthesisResult mix_with(const PreparedSynthesis& p, const MixRequest& request, 
   r["weights"] = mp.weights;
   r["weights_typed"] = w.typed;
   if (!mp.keys.empty()) r["keys"] = keys_json(mp.keys);
-  if (!w.parts.empty()) {
-    Json parts = Json::object();
-    for (const auto& [part, weights] : w.parts) parts[body_part_name(part)] = weights;
-    r["part_weights"] = parts;
-  }
+  if (!w.parts.empty()) r["part_weights"] = parts_json(w.parts);
   return synthesize(p, request.options, mp, scratch, r);
 }
 
@@ -450,11 +453,7 @@ SynthesisResult transfer_with(const PreparedSynthesis& p, const TransferRequest&
   r["strengths"] = w.strengths;
   r["weights"] = mp.weights;
   if (!mp.keys.empty()) r["keys"] = keys_json(mp.keys);
-  if (!w.given.empty()) {
-    Json parts = Json::object();
-    for (const auto& [part, s] : w.given) parts[body_part_name(part)] = s;
-    r["part_strengths"] = parts;
-  }
+  if (!w.given.empty()) r["part_strengths"] = parts_json(w.given);
   return synthesize(p, request.options, mp, scratch, r);
 }
 

@@ -168,18 +168,23 @@ class MOSTYLE_OT_remove_take(bpy.types.Operator):
         return {'FINISHED'}
 
 
+def take_spec(obj, action):
+    """A take as style_action names it: "Obj:Action", "Obj" for its own action, "" for none."""
+    if obj is None:
+        return ""
+    return obj.name + (":" + action.name if action else "")
+
+
 def operator_arguments(settings):
     """The panel's settings as bpy.ops.mostyle.style_action's arguments."""
-    takes = []
-    for t in settings.takes:
-        takes.append(t.object.name + (":" + t.action.name if t.action else "") if t.object else "")
+    takes = [take_spec(t.object, t.action) for t in settings.takes]
     args = {"takes": ",".join(takes), "weights": ",".join("%.9g" % t.weight for t in settings.takes),
             "mode": settings.mode, "strength": settings.strength, "neutral": ""}
     if settings.use_parts:
         args["part_weights"] = ";".join(p + ":" + ",".join("%.9g" % getattr(t, p) for t in settings.takes)
                                         for p in styling.PARTS)
     if settings.mode == 'TRANSFER' and settings.neutral_object is not None:
-        args["neutral"] = settings.neutral_object.name + (":" + settings.neutral_action.name if settings.neutral_action else "")
+        args["neutral"] = take_spec(settings.neutral_object, settings.neutral_action)
     return args
 
 

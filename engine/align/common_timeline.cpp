@@ -29,9 +29,8 @@ class WarpReader {
 
   // Where the warp holds the reference at r while the take moves on (its samples there share r:
   // the take plays a part the reference lacks, such as a rest before its action), the take's
-  // frame as that hold begins; at(r) is where it ends. Elsewhere at(r).
-  double entering(double r) {
-    const double leaving = at(r);
+  // frame as that hold begins; leaving, at(r) just read, is where it ends. Elsewhere leaving.
+  double entering(double r, double leaving) const {
     if (w_.a.size() < 2) return leaving;
     Eigen::Index k = segment_;
     if (std::abs(w_.a[k + 1] - r) <= kOnFrame && w_.a.size() == k + 2) ++k;  // a hold at the warp's end
@@ -64,7 +63,6 @@ class WarpReader {
 
 }  // namespace
 
-
 CommonTimeline common_timeline(const std::vector<const TimeWarp*>& warps) {
   if (warps.empty()) throw InputError("a palette needs at least two takes");
   for (const TimeWarp* w : warps)
@@ -89,7 +87,7 @@ CommonTimeline common_timeline(const std::vector<const TimeWarp*>& warps) {
     double hold = 0.0;
     for (size_t i = 0; i < readers.size(); ++i) {
       leaving[i] = readers[i].at(r);
-      entering[i] = readers[i].entering(r);
+      entering[i] = readers[i].entering(r, leaving[i]);
       takes[i].push_back(entering[i]);
       hold = std::max(hold, leaving[i] - entering[i]);
     }

@@ -76,6 +76,23 @@ def assert_same_as_cli(result, cli, tmp_path):
     assert written.read_bytes() == out
 
 
+
+def assert_same_in_threads(make, inputs):
+    """make(x) for every input, one thread each at once, equals make(x) called one at a time."""
+    alone = [make(x) for x in inputs]
+    together = [None] * len(inputs)
+
+    def run(i):
+        together[i] = make(inputs[i])
+
+    threads = [threading.Thread(target=run, args=(i,)) for i in range(len(inputs))]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for x, y in zip(alone, together):
+        assert np.array_equal(x, y)
+
 def test_read_gives_a_take_with_its_arrays():
     take = mostyle.read(asset("cmu142_walk_happy.bvh"))
     joints = len(take.joint_names)
@@ -262,19 +279,7 @@ def test_arrays_of_the_wrong_shape_are_refused():
 def test_threads_blend_at_once_as_one_at_a_time():
     a, b = asset("cmu142_walk_happy.bvh"), asset("cmu142_walk_marching.bvh")
     alphas = [0.2, 0.5, 0.8]
-    alone = [mostyle.blend(a, b, alpha).positions for alpha in alphas]
-    together = [None] * len(alphas)
-
-    def run(i):
-        together[i] = mostyle.blend(a, b, alphas[i]).positions
-
-    threads = [threading.Thread(target=run, args=(i,)) for i in range(len(alphas))]
-    for t in threads:
-        t.start()
-    for t in threads:
-        t.join()
-    for x, y in zip(alone, together):
-        assert np.array_equal(x, y)
+    assert_same_in_threads(lambda alpha: mostyle.blend(a, b, alpha).positions, alphas)
 
 
 def test_a_loop_equals_the_cli(tmp_path):
@@ -352,16 +357,4 @@ def test_prepared_takes_refuse_bad_weights_and_options():
 def test_threads_mix_one_prepared_set_as_one_at_a_time():
     prepared = mostyle.prepare([asset("cmu142_walk_happy.bvh"), asset("cmu142_walk_marching.bvh")])
     weights = [[0.2, 0.8], [0.5, 0.5], [0.9, 0.1]]
-    alone = [prepared.mix(w).positions for w in weights]
-    together = [None] * len(weights)
-
-    def run(i):
-        together[i] = prepared.mix(weights[i]).positions
-
-    threads = [threading.Thread(target=run, args=(i,)) for i in range(len(weights))]
-    for t in threads:
-        t.start()
-    for t in threads:
-        t.join()
-    for x, y in zip(alone, together):
-        assert np.array_equal(x, y)
+    assert_same_in_threads(lambda w: prepared.mix(w).positions, weights)
