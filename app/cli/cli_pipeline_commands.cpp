@@ -17,7 +17,6 @@
 #include "engine/align/time_warp.h"
 #include "engine/base/error.h"
 #include "engine/export/export_solve.h"
-#include "engine/run/blend_params.h"
 #include "engine/kinematics/units.h"
 
 namespace mostyle::cli {

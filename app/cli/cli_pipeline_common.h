@@ -13,7 +13,6 @@
 #include "engine/export/channel_layout.h"
 #include "engine/prepare/major_skeleton.h"
 #include "engine/post/loop.h"
-#include "engine/run/blend_params.h"
 #include "engine/synthesize/mix_palette.h"
 
 namespace mostyle::cli {

@@ -62,14 +62,15 @@ struct StyleFlags {
     if (n < 2 || n > static_cast<size_t>(kMaxPaletteTakes))
       throw InputError("--mix takes from 2 to " + std::to_string(kMaxPaletteTakes) + " takes, found " +
                        std::to_string(n));
-    MixParams mp;
-    mp.weights = normalized_weights(weights.empty() ? std::vector<double>(n, 1.0 / double(n))
-                                                    : parse_numbers(weights, "--weights"));
-    if (mp.weights.size() != n)
+    const std::vector<double> w = normalized_weights(weights.empty() ? std::vector<double>(n, 1.0 / double(n))
+                                                                     : parse_numbers(weights, "--weights"));
+    if (w.size() != n)
       throw InputError("expected " + std::to_string(n) + " weights, one per --mix take, found " +
-                       std::to_string(mp.weights.size()));
+                       std::to_string(w.size()));
+    MixParams mp;
+    mp.layers = take_layers(w);
     mp.Validate(static_cast<int>(n), 0);
-    strengths_out->assign(mp.weights.begin() + 1, mp.weights.end());
+    strengths_out->assign(w.begin() + 1, w.end());
     return mix;
   }
 };

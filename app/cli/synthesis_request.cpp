@@ -10,7 +10,6 @@
 #include "engine/base/error.h"
 #include "engine/export/export_frames.h"
 #include "engine/kinematics/units.h"
-#include "engine/run/blend_params.h"
 
 namespace mostyle::cli {
 namespace {
@@ -70,12 +69,13 @@ void add_report_fields(const SynthesisResult& s, const std::vector<TakeSource>& 
   r["timing"] = options.timing;
   r["residual"] = mp.residual;
   Json list = Json::array();
+  const std::vector<double> weights = take_weights(mp.layers, palette.size());
   for (int i = 0; i < palette.size(); ++i) {
     const size_t n = static_cast<size_t>(i);
     const PreparedTake& take = palette.takes[n];
     Json t;
     t["file"] = takes[n].file;
-    t["weight"] = mp.weights[n];
+    t["weight"] = weights[n];
     t["major_joints"] = major_joints_json(take.mapping, take.clip->skeleton);
     t["reconstruction_rmse"] = d.rmse[n];
     t["foot_sliding"] = take_foot_sliding(palette, i);
@@ -169,6 +169,29 @@ std::vector<std::pair<BodyPart, double>> part_alphas(const std::vector<std::stri
     given.emplace_back(part, values[0]);
   }
   return given;
+}
+
+// A blend's alphas per component (--component-alpha, or --part-alpha's for the parts given and
+// --alpha for the rest), in shared mode; none otherwise (paper mode blends the whole body).
+std::vector<double> component_alphas(const BlendRequest& request, const std::vector<std::pair<BodyPart, double>>& given,
+                                     const Decomposed& d) {
+  if (d.shared() == nullptr) return {};
+  if (!given.empty()) return weights_for_parts(given, d.component_joints, request.alpha);
+  if (!request.component_alpha.empty() && static_cast<int>(request.component_alpha.size()) != d.components())
+    throw InputError("expected " + std::to_string(d.components()) + " component alphas, found " +
+                     std::to_string(request.component_alpha.size()));
+  return request.component_alpha;
+}
+
+// A blend's two layers: A at 1 - alpha, B at alpha, per component (1 - alpha_c, alpha_c) when
+// `alphas` has one per component.
+MixLayers blend_layers(double alpha, const std::vector<double>& alphas) {
+  MixLayers layers = take_layers({1.0 - alpha, alpha});
+  for (double a : alphas) {
+    layers.layers[0].component_weights.push_back(1.0 - a);
+    layers.layers[1].component_weights.push_back(a);
+  }
+  return layers;
 }
 
 // A's and B's words in a blend's report: the alignment per output frame, each take's fit and sliding.
@@ -268,12 +291,9 @@ SynthesisResult blend_takes(const BlendRequest& request) {
   const std::vector<TakeSource> takes{request.a, request.b};
   const PreparedSynthesis p = prepare(takes, options, dp, request.mapping_a, request.mapping_b);
   const Decomposed& d = *p.decomposition;
-  BlendParams bp;
-  bp.alpha = request.alpha;
-  bp.component_alpha = request.component_alpha;
-  if (!given.empty()) bp.component_alpha = weights_for_parts(given, d.component_joints, request.alpha);
-  bp.swap_level = request.swap;
-  MixParams mp = blend_mix_params(bp, d);
+  MixParams mp;
+  mp.layers = blend_layers(request.alpha, component_alphas(request, given, d));
+  mp.swap_level = request.swap;
   for (const auto& key : keys) mp.keys.push_back({key.first, {1.0 - key.second[0], key.second[0]}});
   options.set(mp);
   Json r;
@@ -297,8 +317,8 @@ namespace {
 
 // A mix's weights, read from the request and checked before any file is read.
 struct MixPlan {
-  MixParams params;  // the weights, keys and clean-up; per-part weights are set once decomposed
-  std::vector<double> typed;
+  MixParams params;  // the layers, keys and clean-up; per-part weights are set once decomposed
+  std::vector<double> typed, weights;  // as typed, and summing to 1
   std::vector<std::pair<BodyPart, std::vector<double>>> parts;
 };
 
@@ -313,17 +333,21 @@ MixPlan mix_plan(const MixRequest& request) {
   MixParams& mp = w.params;
   w.typed =
       request.weights.empty() ? std::vector<double>(n, 1.0 / double(n)) : parse_numbers(request.weights, "--weights");
-  mp.weights = normalized_weights(w.typed);
+  w.weights = normalized_weights(w.typed);
   for (const auto& [seconds, weights] : parse_keys(request.weights_at, "--weights-at", n))
     mp.keys.push_back({seconds, normalized_weights(weights)});
   if (!mp.keys.empty() && !request.part_weights.empty())
     throw InputError("give --weights-at or --part-weights, not both: keys in time mix the whole body");
   w.parts = parse_part_entries(request.part_weights, "--part-weights", n);
   for (auto& entry : w.parts) entry.second = normalized_weights(entry.second);
+  if (w.weights.size() != n)
+    throw InputError("expected " + std::to_string(n) + " weights, one per take, found " +
+                     std::to_string(w.weights.size()));
+  mp.layers = take_layers(w.weights);
   mp.Validate(static_cast<int>(n), 0);
   for (const auto& [part, weights] : w.parts) {
     MixParams check = mp;
-    check.weights = weights;
+    check.layers = take_layers(weights);
     try {
       check.Validate(static_cast<int>(n), 0);
     } catch (const InputError& e) {
@@ -343,10 +367,10 @@ Json parts_json(const std::vector<std::pair<BodyPart, std::vector<double>>>& ent
 
 SynthesisResult mix_with(const PreparedSynthesis& p, const MixRequest& request, MixPlan w, MixScratch& scratch) {
   MixParams& mp = w.params;
-  if (!w.parts.empty()) mp.component_weights = part_weights(w.parts, p.decomposition->component_joints, mp.weights);
+  if (!w.parts.empty()) mp.layers = take_layers(w.weights, part_weights(w.parts, p.decomposition->component_joints, w.weights));
   Json r;
   r["command"] = "mix";
-  r["weights"] = mp.weights;
+  r["weights"] = w.weights;
   r["weights_typed"] = w.typed;
   if (!mp.keys.empty()) r["keys"] = keys_json(mp.keys);
   if (!w.parts.empty()) r["part_weights"] = parts_json(w.parts);
@@ -399,8 +423,7 @@ struct TransferPlan {
   TransferNeutral neutral = TransferNeutral::kContent;
   std::vector<double> strengths;
   MixParams params;
-  std::vector<std::pair<BodyPart, std::vector<double>>> given;          // strengths per part
-  std::vector<std::pair<BodyPart, std::vector<double>>> given_weights;  // the same as weights
+  std::vector<std::pair<BodyPart, std::vector<double>>> given;  // strengths per part
 };
 
 TransferPlan transfer_plan(const TransferRequest& request) {
@@ -421,8 +444,8 @@ TransferPlan transfer_plan(const TransferRequest& request) {
     throw InputError("transfer takes at most " + std::to_string(kMaxPaletteTakes - (w.takes.size() - styles)) +
                      " styles");
   MixParams& mp = w.params;
-  mp.weights = transfer_weights(w.strengths, w.neutral);
-  // Content 1, neutral minus the strengths' sum (or the content 1 minus it), each style its strength.
+  // The content's layer at 1, each style added from the neutral (or the content) at its strength.
+  mp.layers = transfer_layers(w.strengths, w.neutral);
   mp.min_weight = transfer_min_weight(static_cast<int>(styles));
   mp.max_weight = transfer_max_weight(static_cast<int>(styles));
   mp.feet_of_reference = true;
@@ -431,7 +454,7 @@ TransferPlan transfer_plan(const TransferRequest& request) {
   if (!mp.keys.empty() && !request.part_strengths.empty())
     throw InputError("give --strength-at or --part-strength, not both: keys in time style the whole body");
   w.given = parse_part_entries(request.part_strengths, "--part-strength", styles);
-  for (const auto& [part, s] : w.given) w.given_weights.emplace_back(part, transfer_weights(s, w.neutral));
+  for (const auto& entry : w.given) transfer_weights(entry.second, w.neutral);  // each checked before any file is read
   options.set(mp);
   mp.path_leash = transfer_path_leash(w.neutral, mp.reference_timing);
   return w;
@@ -440,8 +463,13 @@ TransferPlan transfer_plan(const TransferRequest& request) {
 SynthesisResult transfer_with(const PreparedSynthesis& p, const TransferRequest& request, TransferPlan w,
                               MixScratch& scratch) {
   MixParams& mp = w.params;
-  if (!w.given_weights.empty())
-    mp.component_weights = part_weights(w.given_weights, p.decomposition->component_joints, mp.weights);
+  // Strengths per part: each style's layer its strength per component, from the part that decides it.
+  for (size_t style = 0; style < mp.layers.additive.size() && !w.given.empty(); ++style) {
+    std::vector<std::pair<BodyPart, double>> given;
+    for (const auto& [part, s] : w.given) given.emplace_back(part, s[style]);
+    AdditiveLayer& layer = mp.layers.additive[style];
+    layer.component_weights = weights_for_parts(given, p.decomposition->component_joints, layer.weight);
+  }
   Json r;
   r["command"] = "transfer";
   r["content"] = request.content.file;
@@ -451,7 +479,7 @@ SynthesisResult transfer_with(const PreparedSynthesis& p, const TransferRequest&
   for (const TakeSource& s : request.styles) style_files.push_back(s.file);
   r["styles"] = style_files;
   r["strengths"] = w.strengths;
-  r["weights"] = mp.weights;
+  r["weights"] = take_weights(mp.layers, static_cast<int>(w.takes.size()));
   if (!mp.keys.empty()) r["keys"] = keys_json(mp.keys);
   if (!w.given.empty()) r["part_strengths"] = parts_json(w.given);
   return synthesize(p, request.options, mp, scratch, r);

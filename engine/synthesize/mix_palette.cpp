@@ -131,53 +131,88 @@ std::vector<double> normalized_weights(const std::vector<double>& typed) {
   return out;
 }
 
-void MixParams::Validate(int takes, int components) const {
-  if (static_cast<int>(weights.size()) != takes)
-    throw InputError("expected " + std::to_string(takes) + " weights, one per take, found " +
-                     std::to_string(weights.size()));
-  auto check_row = [&](const double* w, const std::string& what) {
+namespace {
+
+// Throws InputError on a layer of a take that is not one of `takes`, or weights per component
+// that are not `components`: what take_weights and take_component_weights read.
+void check_layers(const MixLayers& layers, int takes, int components) {
+  auto check_take = [&](int take) {
+    if (take < 0 || take >= takes)
+      throw InputError("expected layers of takes 1 to " + std::to_string(takes) + ", found one of take " +
+                       std::to_string(take + 1));
+  };
+  auto check_components = [&](const std::vector<double>& w) {
+    if (!w.empty() && static_cast<int>(w.size()) != components)
+      throw InputError("expected per-component weights of " + std::to_string(components) + " components x " +
+                       std::to_string(takes) + " takes");
+  };
+  for (const MixLayer& l : layers.layers) {
+    check_take(l.take);
+    check_components(l.component_weights);
+  }
+  for (const AdditiveLayer& l : layers.additive) {
+    check_take(l.take);
+    check_take(l.from);
+    check_components(l.component_weights);
+  }
+}
+
+// Throws InputError on each take's weights (`weights`, and per component `part_w`, from the
+// layers) or the keys outside what `params` allows: finite, within its range, summing to 1.
+void check_weights(const MixParams& params, const std::vector<double>& weights, const Eigen::MatrixXd& part_w) {
+  const int takes = static_cast<int>(weights.size());
+  auto check_row = [&](auto weight_of, const std::string& what) {
     double sum = 0.0;
     for (int i = 0; i < takes; ++i) {
-      if (!std::isfinite(w[i])) throw InputError("expected finite " + what);
-      if (w[i] < min_weight - 1e-12 || w[i] > max_weight + 1e-12)
-        throw InputError("expected " + what + " from " + std::to_string(min_weight).substr(0, 5) + " to " +
-                         std::to_string(max_weight).substr(0, 4) + ", found " + std::to_string(w[i]) + " for take " +
-                         std::to_string(i + 1));
-      sum += w[i];
+      const double w = weight_of(i);
+      if (!std::isfinite(w)) throw InputError("expected finite " + what);
+      if (w < params.min_weight - 1e-12 || w > params.max_weight + 1e-12)
+        throw InputError("expected " + what + " from " + std::to_string(params.min_weight).substr(0, 5) + " to " +
+                         std::to_string(params.max_weight).substr(0, 4) + ", found " + std::to_string(w) +
+                         " for take " + std::to_string(i + 1));
+      sum += w;
     }
     if (std::abs(sum - 1.0) > kWeightSumTolerance)
       throw InputError("expected " + what + " that sum to 1, found a sum of " + std::to_string(sum));
   };
-  check_row(weights.data(), "weights");
-  if (!keys.empty()) {
-    validate_keys(keys, takes);
-    for (size_t k = 0; k < keys.size(); ++k) check_row(keys[k].weights.data(), "key " + std::to_string(k + 1) + "'s weights");
-    if (component_weights.size() > 0)
+  check_row([&](int i) { return weights[static_cast<size_t>(i)]; }, "weights");
+  if (!params.keys.empty()) {
+    validate_keys(params.keys, takes);
+    for (size_t k = 0; k < params.keys.size(); ++k)
+      check_row([&](int i) { return params.keys[k].weights[static_cast<size_t>(i)]; },
+                "key " + std::to_string(k + 1) + "'s weights");
+    if (part_w.size() > 0)
       throw InputError("weights keyed in time mix one weight per take for the whole body; give per-part weights "
                        "without keys, or keys without per-part weights");
-    if (finish.loop)
+    if (params.finish.loop)
       throw InputError("a loop repeats one stretch with one set of weights; keys change the weights over time: "
                        "give keys or a loop, not both");
   }
-  if (component_weights.size() > 0) {
-    if (component_weights.rows() != components || component_weights.cols() != takes)
-      throw InputError("expected per-component weights of " + std::to_string(components) + " components x " +
-                       std::to_string(takes) + " takes");
-    for (Eigen::Index c = 0; c < component_weights.rows(); ++c) {
-      const Eigen::RowVectorXd row = component_weights.row(c);
-      check_row(row.data(), "part weights");
-    }
-  }
+  for (Eigen::Index c = 0; c < part_w.rows(); ++c) check_row([&](int i) { return part_w(c, i); }, "part weights");
+}
+
+}  // namespace
+
+void MixParams::Validate(int takes, int components) const {
+  check_layers(layers, takes, components);
+  std::vector<double> weights;
+  Eigen::MatrixXd part_w;
+  take_weights(layers, takes, weights);
+  take_component_weights(layers, takes, components, part_w);
+  check_weights(*this, weights, part_w);
 }
 
 namespace {
 
-// Throws InputError where a mix cannot run: params.Validate, and paper mode with more than two
-// takes, weights per part or keys.
-void check_mix(const PreparedTakes& p, const Decomposed& d, const MixParams& params) {
+// Each take's weights from the layers (s.weights, s.part_w), or InputError where a mix cannot
+// run: params.Validate, and paper mode with more than two takes, weights per part or keys.
+void resolve_and_check_mix(const PreparedTakes& p, const Decomposed& d, const MixParams& params, MixScratch& s) {
   const int n = p.size();
-  params.Validate(n, d.components());
-  if (d.paper() != nullptr && (n != 2 || params.component_weights.size() > 0))
+  check_layers(params.layers, n, d.components());
+  take_weights(params.layers, n, s.weights);
+  take_component_weights(params.layers, n, d.components(), s.part_w);
+  check_weights(params, s.weights, s.part_w);
+  if (d.paper() != nullptr && (n != 2 || s.part_w.size() > 0))
     throw InputError("paper mode blends two takes with one weight; mix several takes, or weights per body part, in "
                      "shared mode");
   if (d.paper() != nullptr && !params.keys.empty())
@@ -190,11 +225,11 @@ void check_mix(const PreparedTakes& p, const Decomposed& d, const MixParams& par
 // the root, the contacts and, unless the reference's is kept, the timing (s.timing).
 bool mix_overall_weights(const MixParams& params, int n, MixScratch& s) {
   bool per_component = false;
-  for (Eigen::Index c = 0; c < params.component_weights.rows(); ++c)
-    for (int i = 0; i < n; ++i) per_component |= params.component_weights(c, i) != params.weights[i];
-  s.overall = params.weights;
+  for (Eigen::Index c = 0; c < s.part_w.rows(); ++c)
+    for (int i = 0; i < n; ++i) per_component |= s.part_w(c, i) != s.weights[i];
+  s.overall = s.weights;
   if (per_component)
-    for (int i = 0; i < n; ++i) s.overall[i] = params.component_weights.col(i).mean();
+    for (int i = 0; i < n; ++i) s.overall[i] = s.part_w.col(i).mean();
   s.timing.assign(n, 0.0);
   if (params.reference_timing) s.timing[0] = 1.0;
   else s.timing = s.overall;
@@ -207,7 +242,7 @@ bool mix_overall_weights(const MixParams& params, int n, MixScratch& s) {
 void paper_poses(const PreparedTakes& p, const Decomposed& d, const MixParams& params, const PlayedStretch& st,
                  MixScratch& s, Eigen::MatrixXd& local) {
   const PaperComponents* paper = d.paper();
-  const double alpha = params.weights[1];
+  const double alpha = s.weights[1];
   if (d.params.basic_motions > 0) {
     synthesize_basic_motions(paper->basic_synthesis, params.swap_level, alpha, s.x);
     s.x += paper->basic_a.residual;
@@ -216,7 +251,7 @@ void paper_poses(const PreparedTakes& p, const Decomposed& d, const MixParams& p
   }
   s.samples.resize(s.x.rows(), s.x.cols());
   s.samples.noalias() = s.x * p.scale;
-  s.samples.rowwise() += params.weights[0] * p.takes[0].mean + alpha * p.takes[1].mean;
+  s.samples.rowwise() += s.weights[0] * p.takes[0].mean + alpha * p.takes[1].mean;
   s.stretch = s.samples.middleRows(st.first, st.length());
   s.trajectory.sampler.apply(s.stretch, local);
 }
@@ -233,7 +268,7 @@ void own_poses(const PreparedTakes& p, const MixParams& params, const Eigen::Mat
   for (Eigen::Index k = 0; k < sources.rows(); ++k) {
     auto column = s.local_t.col(k);
     for (int i = 0; i < p.size(); ++i) {
-      const double w = keyed ? s.trajectory.frame_w(k, i) : params.weights[i];
+      const double w = keyed ? s.trajectory.frame_w(k, i) : s.weights[i];
       if (w == 0.0) continue;
       const Eigen::MatrixXd& x = p.takes[i].own_local_t;
       const RowAt at(sources(k, i), x.cols());
@@ -257,9 +292,9 @@ void reconstructed_poses(const PreparedTakes& p, const SharedComponents& shared,
       else local += s.trajectory.frame_w.col(i).asDiagonal() * s.samples;
     } else if (i == 0) {
       s.trajectory.sampler.apply(s.stretch, local);
-      local *= params.weights[0];
+      local *= s.weights[0];
     } else {
-      s.trajectory.sampler.accumulate(s.stretch, params.weights[i], local);
+      s.trajectory.sampler.accumulate(s.stretch, s.weights[i], local);
     }
   }
 }
@@ -270,11 +305,11 @@ void part_poses(const PreparedTakes& p, const Decomposed& d, const MixParams& pa
                 MixScratch& s, Eigen::MatrixXd& local) {
   const SharedComponents* shared = d.shared();
   const int n = p.size();
-  s.joint_weights = joint_values(d.support, params.component_weights);
+  s.joint_weights = joint_values(d.support, s.part_w);
   s.component_w.setZero(st.length(), d.components());
   for (int i = 0; i < n; ++i)
     s.component_w +=
-        shared->stacked.weights[i].middleRows(st.first, st.length()) * params.component_weights.col(i).asDiagonal();
+        shared->stacked.weights[i].middleRows(st.first, st.length()) * s.part_w.col(i).asDiagonal();
   s.samples.noalias() = s.component_w * shared->stacked.components * p.scale;
   // Each take's joint weights spread over the joint's three channels: the means in one row, the
   // residuals a whole-matrix pass per take.
@@ -353,12 +388,11 @@ void finish_rest_of_mix(const PreparedTakes& p, const MixParams& params, MixScra
 
 void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& params, MixScratch& s,
                  MixResult& out, StageTimes* times) {
-  check_mix(p, d, params);
+  resolve_and_check_mix(p, d, params, s);
   s.pending.waiting = false;
   const auto t0 = Clock::now();
   const bool per_component = mix_overall_weights(params, p.size(), s);
-  const PlayedStretch st =
-      played_stretch(p, params.weights, params.keys, params.component_weights, per_component, s.timing);
+  const PlayedStretch st = played_stretch(p, s.weights, params.keys, s.part_w, per_component, s.timing);
   out.first_sample = st.first;
   out.last_sample = st.last;
   const FinishOptions finish =
@@ -406,21 +440,6 @@ Eigen::MatrixXd part_weights(const std::vector<std::pair<BodyPart, std::vector<d
     for (Eigen::Index i = 0; i < n; ++i) out(static_cast<Eigen::Index>(c), i) = row[i];
   }
   return out;
-}
-
-std::vector<double> transfer_weights(const std::vector<double>& strengths, TransferNeutral neutral) {
-  if (strengths.empty()) throw InputError("a transfer needs at least one style (--style)");
-  // The content 1, the neutral (the content itself, or the take after it) minus each strength.
-  std::vector<double> w{1.0};
-  if (neutral == TransferNeutral::kTake) w.push_back(0.0);
-  const size_t from = neutral == TransferNeutral::kTake ? 1 : 0;
-  for (double s : strengths) {
-    if (!std::isfinite(s) || s < kMinStrength || s > kMaxStrength)
-      throw InputError("expected a strength from -1 to 2, found " + std::to_string(s));
-    w[from] -= s;
-    w.push_back(s);
-  }
-  return w;
 }
 
 Eigen::VectorXd source_frames_in_clip(const PreparedTakes& palette, const MixResult& mix) {

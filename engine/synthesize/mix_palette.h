@@ -1,13 +1,12 @@
 #pragma once
 // The synthesis, the last stage of the one chain: the takes prepared by
-// prepare_takes and decomposed by decompose_takes, mixed with one weight per take (or per body
-// part): poses, timing, root path and foot contacts mixed with the weights, then the clean-up
-// (post/finish.h). Shared mode mixes the takes' component weights (any number of takes); paper
-// mode (two takes) is the paper's synthesis with alpha the second take's weight. A blend of two
-// takes at alpha is the mix with weights (1 - alpha, alpha) (blend_params.h); a transfer (a style
-// put on a take of one's own) is a mix whose reference is the content take, with weights
-// (1, -s, s) on content, neutral and style, or (1 - s, s) on content and style when the content
-// is its own neutral (transfer_weights).
+// prepare_takes and decomposed by decompose_takes, mixed as layers (mix_layers.h: a weight per
+// take, or per component, and additive layers): poses, timing, root path and foot contacts mixed
+// with the takes' weights, then the clean-up (post/finish.h). Shared mode mixes the takes'
+// component weights (any number of takes); paper mode (two takes) is the paper's synthesis with
+// alpha the second take's weight. A blend of two takes at alpha is the mix of two layers
+// (1 - alpha, alpha); a transfer (a style put on a take of one's own) is a mix whose reference
+// is the content take, its layer at 1 and each style an additive layer (transfer_layers).
 #include <Eigen/Core>
 #include <memory>
 #include <string>
@@ -20,6 +19,7 @@
 #include "engine/decompose/decompose_takes.h"
 #include "engine/decompose/decomposition.h"
 #include "engine/post/finish.h"
+#include "engine/synthesize/mix_layers.h"
 #include "engine/trajectory/mixed_root.h"
 #include "engine/trajectory/mixed_trajectory.h"
 
@@ -36,17 +36,24 @@ constexpr double kTypedWeightSumTolerance = 1e-3;
 std::vector<double> normalized_weights(const std::vector<double>& typed);
 
 struct MixParams {
-  std::vector<double> weights;       // one per take, summing to 1
-  // Weights keyed in time (weight_keys.h; each key's weights as `weights`); non-empty: they replace
-  // `weights` over the output (shared mode, one weight per take: not with component_weights).
+  // The layers (mix_layers.h): each take's weight the sum of theirs, summing to 1; per component
+  // when a layer has weights per component (from per-part weights: part_weights).
+  MixLayers layers;
+  // Weights keyed in time (weight_keys.h; each key one weight per take, as take_weights gives
+  // them); non-empty: they replace the layers' over the output (shared mode, the whole body: no
+  // layer with weights per component).
   WeightKeys keys;
-  // Per component, one weight per take (k x N, each row summing to 1), from per-part weights
-  // (part_weights); empty: `weights` for every component.
-  Eigen::MatrixXd component_weights;
-  double min_weight = kMinMixWeight, max_weight = kMaxMixWeight;  // transfers allow more
+  // The range each take's weight (whole body, per component, in each key) must be in: one rule
+  // for any number of takes; transfers allow more.
+  double min_weight = kMinMixWeight, max_weight = kMaxMixWeight;
   int swap_level = 0;                // paper mode with basic motions: the level whose core comes from take 1
   bool reference_timing = false;     // keep the reference's timeline instead of mixing timing
-  bool residual = true;              // mix each take's residual too (BlendParams::residual)
+  // Shared mode: mix each take's residual (what the k components do not hold, X - W C) with the
+  // same weights (per component, each joint's the mean of its components'), so that a take's
+  // whole weight gives exactly that take; off: the components' reconstruction alone, as the
+  // paper's synthesis has it. Paper mode never adds residuals (basic motions add the first
+  // take's, as the paper's chain does).
+  bool residual = true;
   double root_pull_seconds = kRootPullSeconds;
   // A transfer: the output's planted feet are held to the reference take's own (the content's
   // planted speed and drift), whatever the weights; else to the takes' mixed by weight.
@@ -59,8 +66,9 @@ struct MixParams {
   // the speed limit, the foot lock and the measures (MixResult::motion's foot_sliding_raw,
   // _cleaned and limb_length_max_error 0); finish_mix_palette completes it.
   bool preview = false;
-  // Throws InputError, in one sentence, on a weight count that is not `takes`, a non-finite
-  // weight, a weight outside [min_weight, max_weight] or weights that do not sum to 1.
+  // Throws InputError, in one sentence, on a layer of a take that is not one of `takes`, weights
+  // per component that are not `components`, a non-finite weight, a take's weight outside
+  // [min_weight, max_weight] or weights that do not sum to 1 (whole body, per component, in a key).
   void Validate(int takes, int components) const;
 };
 
@@ -70,6 +78,8 @@ struct MixScratch {
   Eigen::MatrixXd feet_height;        // K x kFootJoints: the takes' foot joints' heights, planted bands (feet_heights)
   std::vector<double> heights;        // one take's joint's heights at the frames shown, twice (feet_heights)
   Eigen::RowVectorXd channel_w, mixed_mean;
+  std::vector<double> weights;        // each take's, from the layers (take_weights)
+  Eigen::MatrixXd part_w;             // k x N per component, from the layers; empty: none
   std::vector<double> overall, timing, drift_w;
   MixedTrajectory trajectory;         // the clock, the root and the contacts (trajectory/mixed_trajectory.h)
   FinishScratch finish;
@@ -123,20 +133,6 @@ void finish_mix_palette(const PreparedTakes& palette, const MixParams& params, M
 Eigen::MatrixXd part_weights(const std::vector<std::pair<BodyPart, std::vector<double>>>& given,
                              const std::vector<ComponentJoints>& components, const std::vector<double>& rest);
 
-// What a transfer's style change is measured from: a neutral take (the action without the
-// style), or the content itself (no neutral take: the content is its own neutral, as style
-// transfer from one styled clip has it).
-enum class TransferNeutral { kTake, kContent };
-
-// A transfer's weights. With a neutral take, on takes [content, neutral, style_1, ..., style_n]:
-// content 1, neutral -sum s_i, style i s_i (content + sum s_i (style_i - neutral)). With the
-// content its own neutral, on takes [content, style_1, ..., style_n]: content 1 - sum s_i, style
-// i s_i (content + sum s_i (style_i - content)). Throws InputError on no style or a strength
-// outside [kMinStrength, kMaxStrength].
-constexpr double kMinStrength = -1.0;
-constexpr double kMaxStrength = 2.0;
-std::vector<double> transfer_weights(const std::vector<double>& strengths,
-                                     TransferNeutral neutral = TransferNeutral::kTake);
 // A transfer's MixParams::path_leash. A content that is its own neutral keeps its path, within a
 // fifth of the body's height, facing as it does (trajectory/mixed_root.h): its change is
 // everything between two takes, the style take's walk too (another direction and pace). So does

@@ -1,5 +1,5 @@
 // Speed of export and foot lock: the rotation solve of a real blend onto A's full skeleton
-// (an export click; target: well under a second for a minute of motion), and a blend (the mix of two, blend_params.h) with
+// (an export click; target: well under a second for a minute of motion), and a blend (the mix of two, mix_layers.h) with
 // the foot lock (a slider move; target: synthesis and post-processing of a minute at 30 fps
 // well under 1 ms), the lock alone, and contact detection (once per pair).
 #include <benchmark/benchmark.h>
@@ -12,7 +12,6 @@
 #include "engine/base/error.h"
 #include "engine/export/export_solve.h"
 #include "engine/post/foot_contact.h"
-#include "engine/run/blend_params.h"
 
 namespace {
 
@@ -40,7 +39,7 @@ Pair load_pair(const std::string& a, const std::string& b, bool* ok) {
   dp.max_iterations = 30;
   p.decomposed = mostyle::decompose_takes(*p.prepared, dp);
   mostyle::test::BlendRun scratch;
-  mostyle::test::blend_into(*p.prepared, *p.decomposed, mostyle::BlendParams{}, scratch, p.blend);
+  mostyle::test::blend_into(*p.prepared, *p.decomposed, 0.5, mostyle::MixParams(), scratch, p.blend);
   *ok = true;
   return p;
 }
@@ -83,14 +82,13 @@ void BM_BlendWithFootLock(benchmark::State& state) {
   bool ok = false;
   const Pair p = cmu_pair(&ok);
   if (!ok) return state.SkipWithError("no CMU motions");
-  mostyle::BlendParams params;
-  params.foot_lock = state.range(0) != 0;
+  mostyle::MixParams params;
+  params.finish.foot_lock = state.range(0) != 0;
   mostyle::test::BlendRun scratch;
   mostyle::MixResult out;
   double alpha = 0.0;
   for (auto _ : state) {
-    params.alpha = alpha;
-    mostyle::test::blend_into(*p.prepared, *p.decomposed, params, scratch, out);
+    mostyle::test::blend_into(*p.prepared, *p.decomposed, alpha, params, scratch, out);
     benchmark::DoNotOptimize(out.motion.world.data());
     alpha = alpha > 1.0 ? 0.0 : alpha + 0.01;
   }

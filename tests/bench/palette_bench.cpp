@@ -103,15 +103,14 @@ void mix_bench(benchmark::State& state, bool reference_timing, bool keyed = fals
   int step = 0;
   for (auto _ : state) {
     const double t = (step++ % 16) / 16.0;
-    params.weights.assign(p.size(), (1.0 - t) / (p.size() - 1));
-    params.weights[step % p.size()] = t;
+    std::vector<double> weights(p.size(), (1.0 - t) / (p.size() - 1));
+    weights[step % p.size()] = t;
     double sum = 0;
-    for (double w : params.weights) sum += w;
-    params.weights[0] += 1.0 - sum;
-    if (own_transfer) {
-      params.weights.assign(p.size(), 0.0);
-      params.weights[0] = 1.0 - t;
-      params.weights[1 + step % (p.size() - 1)] = t;
+    for (double w : weights) sum += w;
+    weights[0] += 1.0 - sum;
+    params.layers = take_layers(weights);
+    if (own_transfer) {  // the content's layer, one style added from it at t
+      params.layers = MixLayers{{MixLayer{0, 1.0, {}}}, {AdditiveLayer{1 + step % (p.size() - 1), 0, t, {}}}};
       params.reference_timing = true;
       params.feet_of_reference = true;
       params.path_leash = transfer_path_leash(TransferNeutral::kContent, false);
@@ -119,7 +118,7 @@ void mix_bench(benchmark::State& state, bool reference_timing, bool keyed = fals
     if (keyed) {
       std::vector<double> first(p.size(), 0.0);
       first[0] = 1.0;
-      params.keys = {{5.0, first}, {40.0, params.weights}};
+      params.keys = {{5.0, first}, {40.0, take_weights(params.layers, p.size())}};
     }
     if (stage == Stage::kRest) {
       state.PauseTiming();

@@ -1,6 +1,6 @@
 // Speed of the pair pipeline on a minute of motion at 30 fps (1800 frames, 20 major joints):
 // prepare_takes of two takes (resample, FK, retarget, canonical frame, DTW), decompose_takes (shared mode, k = 10)
-// and a blend (the mix of two, blend_params.h) for one alpha, the slider move, which must stay well under 1 ms. With the timing
+// and a blend (the mix of two, mix_layers.h) for one alpha, the slider move, which must stay well under 1 ms. With the timing
 // blended the output's length changes with alpha, and its buffers are resized then (the
 // allocations are counted here by wrapping malloc); with A's timing it allocates nothing once
 // its scratch has the right size.
@@ -19,7 +19,6 @@
 
 #include "tests/engine/run/blend_at.h"
 #include "engine/io/bvh_io.h"
-#include "engine/run/blend_params.h"
 
 // Every heap allocation of the process goes through these (glibc lets a program replace them;
 // the __libc_ functions are glibc's own), so the blend benchmark can count them.
@@ -156,27 +155,26 @@ BENCHMARK(BM_DecomposePair)->Unit(benchmark::kMillisecond);
 // 4: everything and a seamless loop cut.
 void BM_BlendPair(benchmark::State& state) {
   const Pair& pair = minute_pair();
-  BlendParams params;
-  params.foot_lock = state.range(0) < 1 || state.range(0) >= 3;
-  params.limb_lengths = state.range(0) < 2 || state.range(0) >= 3;
-  params.timing_a = state.range(0) == 3;
-  params.loop = state.range(0) == 4;
+  MixParams params;
+  params.finish.foot_lock = state.range(0) < 1 || state.range(0) >= 3;
+  params.finish.limb_lengths = state.range(0) < 2 || state.range(0) >= 3;
+  params.reference_timing = state.range(0) == 3;
+  params.finish.loop = state.range(0) == 4;
   test::BlendRun scratch;
   MixResult out;
-  test::blend_into(*pair.prepared, *pair.decomposed, params, scratch, out);  // sizes the scratch
+  test::blend_into(*pair.prepared, *pair.decomposed, 0.5, params, scratch, out);  // sizes the scratch
   const long before = g_allocations.load();
   double synthesize_ms = 0, postprocess_ms = 0;
   StageTimes times;
   int step = 0;
   for (auto _ : state) {
-    params.alpha = 0.01 * (step++ % 101);
-    test::blend_into(*pair.prepared, *pair.decomposed, params, scratch, out, &times);
+    test::blend_into(*pair.prepared, *pair.decomposed, 0.01 * (step++ % 101), params, scratch, out, &times);
     benchmark::DoNotOptimize(out.motion.world.data());
     synthesize_ms += times.synthesize_ms;
     postprocess_ms += times.postprocess_ms;
   }
   const long allocations = g_allocations.load() - before;
-  if (allocations != 0 && params.timing_a) state.SkipWithError("the blend allocated with a sized scratch");
+  if (allocations != 0 && params.reference_timing) state.SkipWithError("the blend allocated with a sized scratch");
   state.counters["allocations_per_move"] = static_cast<double>(allocations) / std::max(1, step);
   state.counters["frames"] = static_cast<double>(out.motion.world.rows());
   state.counters["synthesize_ms"] = synthesize_ms / std::max(1, step);
@@ -187,13 +185,13 @@ BENCHMARK(BM_BlendPair)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Unit(benchmark:
 // Per-component alphas (each component its own): one 2k x 3N mixing matrix is allocated.
 void BM_BlendPairComponentAlphas(benchmark::State& state) {
   const Pair& pair = minute_pair();
-  BlendParams params;
-  params.component_alpha.assign(pair.decomposed->components(), 0.3);
+  const std::vector<double> alphas(pair.decomposed->components(), 0.3);
   test::BlendRun scratch;
   MixResult out;
-  test::blend_into(*pair.prepared, *pair.decomposed, params, scratch, out);
+  const MixParams params;
+  test::blend_into(*pair.prepared, *pair.decomposed, 0.5, params, scratch, out, nullptr, alphas);
   for (auto _ : state) {
-    test::blend_into(*pair.prepared, *pair.decomposed, params, scratch, out);
+    test::blend_into(*pair.prepared, *pair.decomposed, 0.5, params, scratch, out, nullptr, alphas);
     benchmark::DoNotOptimize(out.motion.world.data());
   }
 }

@@ -24,7 +24,7 @@ inline Clip transfer_on_content(const std::shared_ptr<const Clip>& content, cons
   const auto p = prepare_takes({content, neutral, style}, o);
   const auto d = decompose_takes(*p, DecomposeParams());
   MixParams mp;
-  mp.weights = transfer_weights({strength});
+  mp.layers = transfer_layers({strength});
   mp.min_weight = transfer_min_weight(1);
   mp.max_weight = transfer_max_weight(1);
   mp.reference_timing = true;

@@ -9,7 +9,6 @@
 #include <limits>
 #include <utility>
 
-#include "engine/run/blend_params.h"
 #include "ui/model/keyed_weights.h"
 
 namespace mostyle::ui {
@@ -27,7 +26,8 @@ Eigen::MatrixXd component_alpha_weights(const Document& document, const Decompos
   if (d.shared() == nullptr || !c.per_component) return w;
   std::vector<double> alphas = c.component_alpha;
   alphas.resize(static_cast<size_t>(d.components()), pair_alpha(document));
-  set_component_alpha_weights(alphas, w);
+  w.resize(static_cast<Eigen::Index>(alphas.size()), 2);
+  for (size_t k = 0; k < alphas.size(); ++k) w.row(static_cast<Eigen::Index>(k)) << 1.0 - alphas[k], alphas[k];
   return w;
 }
 
@@ -37,14 +37,15 @@ MixParams mix_params_for(const Document& document, const Decomposed& decompositi
   const DocumentControls& controls = document.controls;
   const PaletteControls& c = controls.palette;
   MixParams m;
-  m.weights = constant_weights(document, takes);
+  const std::vector<double> weights = constant_weights(document, takes);
+  Eigen::MatrixXd component_weights;
   set_mix_keys(controls, takes, m.keys);  // style over time, when keyed
   if (takes == 2) {
     // A pair's weights: any value (how far to exaggerate is the person's call), and its alphas
     // per component when asked for.
     m.min_weight = -std::numeric_limits<double>::infinity();
     m.max_weight = std::numeric_limits<double>::infinity();
-    m.component_weights = component_alpha_weights(document, decomposition);
+    component_weights = component_alpha_weights(document, decomposition);
     // A pair's transfer: B's style on A, A its own neutral, as `transfer A --style B` (the
     // weights are the same: 1 - alpha and alpha).
     if (c.transfer) {
@@ -63,8 +64,9 @@ MixParams mix_params_for(const Document& document, const Decomposed& decompositi
     std::vector<std::pair<BodyPart, std::vector<double>>> given;
     for (size_t part = 0; part < c.part_weights.size() && part < std::size(kParts); ++part)
       if (static_cast<int>(c.part_weights[part].size()) == takes) given.emplace_back(kParts[part], c.part_weights[part]);
-    if (!given.empty()) m.component_weights = part_weights(given, decomposition.component_joints, m.weights);
+    if (!given.empty()) component_weights = part_weights(given, decomposition.component_joints, weights);
   }
+  m.layers = take_layers(weights, component_weights);
   const int levels = decomposition.params.basic_motions;
   m.swap_level = levels > 0 ? std::clamp(controls.swap_level, 0, levels - 1) : 0;
   m.reference_timing = controls.timing_a;

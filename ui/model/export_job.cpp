@@ -11,7 +11,6 @@
 #include "engine/base/clock.h"
 #include "engine/base/error.h"
 #include "engine/kinematics/units.h"
-#include "engine/run/blend_params.h"
 #include "ui/model/blend_session.h"
 #include "engine/io/numbers.h"
 

@@ -25,7 +25,7 @@ class BlendSession;
 enum class ExportRange {
   kAll,    // every frame, first to last
   kInOut,  // from the in point to the out point, both included
-  kLoop,   // the blend's seamless loop (BlendParams::loop), resampled so that it still repeats
+  kLoop,   // the blend's seamless loop (FinishOptions::loop), resampled so that it still repeats
            // without a hitch at the output rate (export_frames.h export_loop_frames)
 };
 

@@ -6,12 +6,13 @@
 #include <memory>
 #include <string>
 
+#include "engine/align/prepare_takes.h"
+#include "engine/decompose/decompose_takes.h"
 #include "engine/decompose/decomposition.h"
 #include "engine/decompose/sparse_coding.h"
 #include "engine/io/bvh_io.h"
 #include "engine/base/error.h"
 #include "engine/prepare/major_skeleton.h"
-#include "engine/run/blend_params.h"
 #include "tests/engine/synthetic_motion.h"
 #include "tests/test_data.h"
 

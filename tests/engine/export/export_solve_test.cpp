@@ -13,7 +13,6 @@
 #include "engine/kinematics/convert.h"
 #include "engine/base/error.h"
 #include "engine/kinematics/kinematics.h"
-#include "engine/run/blend_params.h"
 #include "engine/kinematics/resample.h"
 #include "engine/kinematics/units.h"
 #include "tests/engine/synthetic_motion.h"
@@ -292,10 +291,8 @@ Blended blend_files(const std::string& path_a, const std::string& path_b, double
   dp.components = 8;
   dp.max_iterations = 30;
   const auto d = decompose_takes(*out.prepared, dp);
-  BlendParams bp;
-  bp.alpha = alpha;
   test::BlendRun scratch;
-  test::blend_into(*out.prepared, *d, bp, scratch, out.result);
+  test::blend_into(*out.prepared, *d, alpha, MixParams(), scratch, out.result);
   return out;
 }
 

@@ -35,13 +35,13 @@ TEST_CASE("normalized_weights: a sum within 0.001 of 1 is divided out, anything 
   for (double x : w) sum += x;
   CHECK(sum == Approx(1.0).margin(1e-15));
   MixParams mp;
-  mp.weights = w;
+  mp.layers = take_layers(w);
   CHECK_NOTHROW(mp.Validate(6, 0));
   const std::vector<double> exact = {0.25, 0.75};
   CHECK(normalized_weights(exact) == exact);
   const std::vector<double> off = {0.5, 0.6};  // 1.1: refused by Validate, not normalized
   CHECK(normalized_weights(off) == off);
-  mp.weights = normalized_weights(off);
+  mp.layers = take_layers(normalized_weights(off));
   CHECK_THROWS_AS(mp.Validate(2, 0), InputError);
 }
 

@@ -13,7 +13,6 @@
 #include "engine/io/bvh_io.h"
 #include "engine/base/error.h"
 #include "engine/kinematics/limb_length.h"
-#include "engine/run/blend_params.h"
 #include "tests/engine/synthetic_gait.h"
 #include "tests/test_data.h"
 
@@ -588,13 +587,12 @@ void check_pipeline_foot_lock(const std::string& path_a, const std::string& path
   dp.components = 8;
   dp.max_iterations = 30;
   const auto d = decompose_takes(*p, dp);
-  BlendParams bp;
-  bp.alpha = 0.5;
+  MixParams bp;
   test::BlendRun scratch;
   MixResult locked, free;
-  test::blend_into(*p, *d, bp, scratch, locked);
-  bp.foot_lock = false;
-  test::blend_into(*p, *d, bp, scratch, free);
+  test::blend_into(*p, *d, 0.5, bp, scratch, locked);
+  bp.finish.foot_lock = false;
+  test::blend_into(*p, *d, 0.5, bp, scratch, free);
   INFO(path_a << " / " << path_b << ": sliding A " << take_foot_sliding(*p, 0) << ", B " << take_foot_sliding(*p, 1)
               << ", raw " << locked.motion.foot_sliding_raw << ", cleaned " << locked.motion.foot_sliding_cleaned
               << ", inputs " << locked.foot_sliding_inputs);

@@ -14,7 +14,6 @@
 #include "engine/io/motion_file.h"
 #include "engine/base/clip.h"
 #include "engine/kinematics/units.h"
-#include "engine/run/blend_params.h"
 #include "tests/engine/run/blend_at.h"
 #include "tests/test_data.h"
 
@@ -170,8 +169,8 @@ TEST_CASE("alignment pipeline: alpha 0 is as long as A's matched range, alpha 1 
 TEST_CASE("alignment pipeline: timing_a keeps A's timeline at every alpha", "[alignment]") {
   const Pair x = happy_marching();
   const PreparedTakes& p = *x.p;
-  BlendParams keep;
-  keep.timing_a = true;
+  MixParams keep;
+  keep.reference_timing = true;
   const MixResult r0 = blend_at(p, *x.d, 0.0, keep), r1 = blend_at(p, *x.d, 1.0, keep);
   INFO("frames at alpha 0: " << r0.motion.world.rows() << ", at 1: " << r1.motion.world.rows());
   CHECK(r0.motion.world.rows() == r1.motion.world.rows());
@@ -183,8 +182,8 @@ TEST_CASE("alignment pipeline: alpha 0 reproduces A at the frames it shows", "[a
   const Pair x = happy_marching();
   const PreparedTakes& p = *x.p;
   for (bool timing_a : {false, true}) {
-    BlendParams params;
-    params.timing_a = timing_a;
+    MixParams params;
+    params.reference_timing = timing_a;
     const MixResult r = blend_at(p, *x.d, 0.0, params);
     const Eigen::MatrixXd a_there = sample_rows(p.takes[0].world, r.sources.col(0));
     const double e = mean_joint_distance(r.motion.world, a_there) / x.height;
@@ -225,8 +224,8 @@ TEST_CASE("alignment pipeline: standing before and after a take is left out of t
 TEST_CASE("alignment pipeline: a loop of whole cycles with a seamless seam", "[alignment]") {
   const Pair x = happy_marching();
   const PreparedTakes& p = *x.p;
-  BlendParams params;
-  params.loop = true;
+  MixParams params;
+  params.finish.loop = true;
   const MixResult r = blend_at(p, *x.d, 0.5, params);
   const LoopCut& cut = r.motion.loop;
   INFO("loop " << cut.begin << ".." << cut.end << ", " << cut.cycles << " cycles, travel (" << cut.travel.x() << ", "
@@ -252,11 +251,11 @@ TEST_CASE("alignment pipeline: a loop of whole cycles with a seamless seam", "[a
 TEST_CASE("alignment pipeline: with the residuals alpha 0 is A and one alpha per component agrees", "[alignment]") {
   const Pair x = happy_marching();
   const PreparedTakes& p = *x.p;
-  BlendParams exact;
-  exact.foot_lock = false;  // the lock pins planted feet at their mean place, A's own included
+  MixParams exact;
+  exact.finish.foot_lock = false;  // the lock pins planted feet at their mean place, A's own included
   const MixResult r = blend_at(p, *x.d, 0.0, exact);
   const double with_residual = mean_joint_distance(r.motion.world, sample_rows(p.takes[0].world, r.sources.col(0))) / x.height;
-  BlendParams components = exact;
+  MixParams components = exact;
   components.residual = false;
   const MixResult c = blend_at(p, *x.d, 0.0, components);
   const double components_only = mean_joint_distance(c.motion.world, sample_rows(p.takes[0].world, c.sources.col(0))) / x.height;
@@ -268,9 +267,8 @@ TEST_CASE("alignment pipeline: with the residuals alpha 0 is A and one alpha per
   CHECK(with_residual < components_only);
   // Per-component alphas all equal to alpha give the single-alpha blend.
   for (double alpha : {0.0, 0.3, 1.0}) {
-    BlendParams each = exact;
-    each.component_alpha.assign(static_cast<size_t>(x.d->components()), alpha);
-    const MixResult per = blend_at(p, *x.d, alpha, each), one = blend_at(p, *x.d, alpha, exact);
+    const std::vector<double> each(static_cast<size_t>(x.d->components()), alpha);
+    const MixResult per = blend_at(p, *x.d, alpha, exact, each), one = blend_at(p, *x.d, alpha, exact);
     REQUIRE(per.motion.world.rows() == one.motion.world.rows());
     CHECK((per.motion.world - one.motion.world).cwiseAbs().maxCoeff() < 1e-9 * x.height);
   }

@@ -1,4 +1,3 @@
-#include "engine/run/blend_params.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -156,8 +155,8 @@ PairCheck check_pair(const std::shared_ptr<const Clip>& a, const std::shared_ptr
   const double height = guess_units(*a).height;
   PairCheck c;
   std::vector<MixResult> results;
-  BlendParams on_a;
-  on_a.timing_a = true;
+  MixParams on_a;
+  on_a.reference_timing = true;
   for (double alpha : kAlphas) results.push_back(blend_at(*p, *d, alpha, on_a));
   c.alpha0 = distance(results.front().motion.world, reference_at(*a, *p, results.front()), height);
   const Eigen::MatrixXd pose_b = canonical_pose(*p, results.back().motion.world);
@@ -298,8 +297,8 @@ TEST_CASE("shared mode at alpha 1 is B, from A's start", "[pipeline]") {
   const auto p = prepare_takes({a, b}, {});
   const auto d = decompose_takes(*p, reproduction_params());
   const double height = guess_units(*a).height;
-  BlendParams no_lock;
-  no_lock.foot_lock = false;  // compare the synthesis itself
+  MixParams no_lock;
+  no_lock.finish.foot_lock = false;  // compare the synthesis itself
   const MixResult r = blend_at(*p, *d, 1.0, no_lock);
   const Distance e = distance(r.motion.world, sample_rows(p->takes[1].world_placed, r.sources.col(1)), height);
   INFO("alpha 1: mean " << 100 * e.mean << "%, max " << 100 * e.max << "%");
@@ -500,14 +499,11 @@ TEST_CASE("pipeline errors are sentences, not crashes", "[pipeline]") {
     d.basic_motions = 2;  // shared mode
     CHECK_THROWS_AS(decompose_takes(*p, d), InputError);
     const auto decomposed = decompose_takes(*p, DecomposeParams());
-    BlendParams bp;
-    bp.alpha = std::nan("");
     test::BlendRun scratch;
     MixResult out;
-    CHECK_THROWS_AS(test::blend_into(*p, *decomposed, bp, scratch, out), InputError);
-    bp = BlendParams();
-    bp.component_alpha = {0.5};
-    CHECK_THROWS_WITH(test::blend_into(*p, *decomposed, bp, scratch, out), "expected 10 component alphas, found 1");
+    CHECK_THROWS_AS(test::blend_into(*p, *decomposed, std::nan(""), MixParams(), scratch, out), InputError);
+    CHECK_THROWS_WITH(test::blend_into(*p, *decomposed, 0.5, MixParams(), scratch, out, nullptr, {0.5}),
+                      "expected per-component weights of 10 components x 2 takes");
   }
 }
 
@@ -517,20 +513,19 @@ TEST_CASE("per-component alphas, limb lengths off, the root pull off", "[pipelin
   const auto p = prepare_takes({a, b}, {});
   const auto d = decompose_takes(*p, DecomposeParams());
   SECTION("the same alpha for every component is the plain blend") {
-    BlendParams each;
-    each.component_alpha.assign(d->components(), 0.3);
-    CHECK((blend_at(*p, *d, 0.3, each).motion.world - blend_at(*p, *d, 0.3).motion.world).cwiseAbs().maxCoeff() < kSameTake);
+    const std::vector<double> each(d->components(), 0.3);
+    CHECK((blend_at(*p, *d, 0.3, MixParams(), each).motion.world - blend_at(*p, *d, 0.3).motion.world).cwiseAbs().maxCoeff() < kSameTake);
   }
   SECTION("without the limb constraint the bones are not exact, and the error says so") {
-    BlendParams loose;
-    loose.limb_lengths = false;
-    loose.foot_lock = false;
+    MixParams loose;
+    loose.finish.limb_lengths = false;
+    loose.finish.foot_lock = false;
     const MixResult r = blend_at(*p, *d, 0.5, loose);
     CHECK(relative_bone_error(*p, r.motion.world) > 1e-4);
     CHECK(r.motion.limb_length_max_error == Approx(max_bone_length_error(r.motion.world, p->parents, p->lengths)));
   }
   SECTION("no root pull: alpha 0 is still A") {
-    BlendParams free;
+    MixParams free;
     free.root_pull_seconds = 0;
     const MixResult r = blend_at(*p, *d, 0.0, free), pulled = blend_at(*p, *d, 0.0);
     CHECK((r.motion.world - pulled.motion.world).cwiseAbs().maxCoeff() < 1e-6);
@@ -538,13 +533,10 @@ TEST_CASE("per-component alphas, limb lengths off, the root pull off", "[pipelin
   SECTION("repeated blends with one scratch give the same result") {
     test::BlendRun scratch;
     MixResult first, again;
-    BlendParams bp;
-    bp.alpha = 0.7;
-    test::blend_into(*p, *d, bp, scratch, first);
-    bp.alpha = 0.2;
-    test::blend_into(*p, *d, bp, scratch, again);
-    bp.alpha = 0.7;
-    test::blend_into(*p, *d, bp, scratch, again);
+    const MixParams bp;
+    test::blend_into(*p, *d, 0.7, bp, scratch, first);
+    test::blend_into(*p, *d, 0.2, bp, scratch, again);
+    test::blend_into(*p, *d, 0.7, bp, scratch, again);
     CHECK(again.motion.world == first.motion.world);
   }
 }

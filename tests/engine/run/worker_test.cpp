@@ -35,7 +35,7 @@ double seconds_since(Clock::time_point t0) {
 MixResult mix_of(const WorkerSnapshot& s, std::vector<double> weights = {}) {
   const int n = s.prepared->size();
   MixParams params;
-  params.weights = weights.empty() ? std::vector<double>(static_cast<size_t>(n), 1.0 / n) : weights;
+  params.layers = take_layers(weights.empty() ? std::vector<double>(static_cast<size_t>(n), 1.0 / n) : weights);
   MixScratch scratch;
   MixResult out;
   mix_palette(*s.prepared, *s.decomposed, params, scratch, out);

@@ -43,9 +43,10 @@ DecomposeParams params() {
   return d;
 }
 
-MixResult mix(const PreparedTakes& p, const Decomposed& d, std::vector<double> weights,
-              MixParams params = {}) {
-  params.weights = std::move(weights);
+// One layer per take at `weights`, per component `component_weights` (k x N) when given.
+MixResult mix(const PreparedTakes& p, const Decomposed& d, const std::vector<double>& weights, MixParams params = {},
+              const Eigen::MatrixXd& component_weights = Eigen::MatrixXd()) {
+  params.layers = take_layers(weights, component_weights);
   MixScratch scratch;
   MixResult out;
   mix_palette(p, d, params, scratch, out);
@@ -121,11 +122,12 @@ TEST_CASE("palette: four takes, weights checked, one-hot gives the take, equal w
   REQUIRE(p->size() == 4);
   const double height = guess_units(*clips[0]).height;
 
-  SECTION("weights that do not sum to 1, out of range or of the wrong count are refused") {
+  SECTION("weights that do not sum to 1, out of range or of takes that are not there are refused") {
     CHECK_THROWS_AS(mix(*p, *d, {0.5, 0.5, 0.5, 0.5}), InputError);
     CHECK_THROWS_AS(mix(*p, *d, {1.6, -0.2, -0.2, -0.2}), InputError);
     CHECK_THROWS_AS(mix(*p, *d, {1.4, -0.6, 0.1, 0.1}), InputError);
-    CHECK_THROWS_AS(mix(*p, *d, {0.5, 0.5}), InputError);
+    CHECK_THROWS_WITH(mix(*p, *d, {0.2, 0.2, 0.2, 0.2, 0.2}), "expected layers of takes 1 to 4, found one of take 5");
+    CHECK_NOTHROW(mix(*p, *d, {0.5, 0.5}));  // the takes without a layer weigh 0
     CHECK_THROWS_AS(mix(*p, *d, {0.5, 0.5, NAN, 0.0}), InputError);
     CHECK_NOTHROW(mix(*p, *d, {1.5, -0.5, 0.0, 0.0}));
     CHECK_NOTHROW(mix(*p, *d, {0.25, 0.25, 0.25, 0.25}));
@@ -163,13 +165,12 @@ TEST_CASE("palette: four takes, weights checked, one-hot gives the take, equal w
 
   SECTION("per-part weights: the legs from one take, the rest from another") {
     std::vector<std::pair<BodyPart, std::vector<double>>> given{{BodyPart::kLegs, one_hot(4, 1)}};
-    MixParams mp;
-    mp.component_weights = part_weights(given, d->component_joints, one_hot(4, 0));
-    const MixResult m = mix(*p, *d, one_hot(4, 0), mp);
+    const Eigen::MatrixXd parts = part_weights(given, d->component_joints, one_hot(4, 0));
+    const MixResult m = mix(*p, *d, one_hot(4, 0), MixParams(), parts);
     for (size_t c = 0; c < d->component_joints.size(); ++c) {
       const BodyRegion region = d->component_joints[c].region;
       const bool leg = region == BodyRegion::kLeftLeg || region == BodyRegion::kRightLeg;
-      CHECK(mp.component_weights(static_cast<Eigen::Index>(c), 1) == (leg ? 1.0 : 0.0));
+      CHECK(parts(static_cast<Eigen::Index>(c), 1) == (leg ? 1.0 : 0.0));
     }
     // The ankles follow take 1, the wrists take 0 (closer to it than to take 1).
     const Eigen::MatrixXd take0 = own_pose_at(p->takes[0], m.sources.col(0));
@@ -225,8 +226,8 @@ TEST_CASE("palette: transfer identities") {
     CHECK((m.local - own_pose_at(p->takes[2], m.sources.col(2))).cwiseAbs().maxCoeff() < 0.01 * height);
     const auto owned = pair_of(*p, 2);
     const PreparedTakes& pair = *owned;
-    BlendParams unlocked;
-    unlocked.foot_lock = false;
+    MixParams unlocked;
+    unlocked.finish.foot_lock = false;
     const MixResult b = blend_at(pair, *decompose_takes(pair, params()), 1.0, unlocked);
     REQUIRE(m.motion.world.rows() == b.motion.world.rows());
     CHECK(max_distance(m.motion.world, b.motion.world, height) < kOneHot);
@@ -255,10 +256,10 @@ TEST_CASE("palette: transfer identities") {
   for (double s : {kMinStrength, kMaxStrength})
     for (TransferNeutral neutral : {TransferNeutral::kTake, TransferNeutral::kContent}) {
       MixParams mp;
-      mp.weights = transfer_weights(std::vector<double>(4, s), neutral);
+      mp.layers = transfer_layers(std::vector<double>(4, s), neutral);
       mp.min_weight = transfer_min_weight(4);
       mp.max_weight = transfer_max_weight(4);
-      CHECK_NOTHROW(mp.Validate(static_cast<int>(mp.weights.size()), 0));
+      CHECK_NOTHROW(mp.Validate(neutral == TransferNeutral::kTake ? 6 : 5, 0));
     }
   CHECK_THROWS_AS(transfer_weights({}), InputError);
   CHECK_THROWS_AS(transfer_weights({2.5}), InputError);
@@ -352,9 +353,8 @@ TEST_CASE("palette: weights keyed in time") {
   SECTION("keys are refused with per-part weights and with bad times") {
     MixParams keyed;
     keyed.keys = {{0.0, w}};
-    keyed.component_weights = Eigen::MatrixXd::Constant(d->components(), 3, 1.0 / 3);
-    CHECK_THROWS_WITH(mix(*p, *d, w, keyed), Catch::Contains("per-part weights without keys"));
-    keyed.component_weights.resize(0, 0);
+    CHECK_THROWS_WITH(mix(*p, *d, w, keyed, Eigen::MatrixXd::Constant(d->components(), 3, 1.0 / 3)),
+                      Catch::Contains("per-part weights without keys"));
     keyed.keys = {{2.0, w}, {1.0, w}};
     CHECK_THROWS_AS(mix(*p, *d, w, keyed), InputError);
     keyed.keys = {{0.0, {2.0, -0.5, -0.5}}};
@@ -573,14 +573,14 @@ TEST_CASE("palette: a preview then finish_mix_palette is the whole mix, exactly"
   const std::vector<double> w{0.4, 0.3, 0.2, 0.1};
   std::vector<std::pair<std::string, MixParams>> cases;
   MixParams plain;
-  plain.weights = w;
+  plain.layers = take_layers(w);
   cases.emplace_back("plain", plain);
   MixParams keyed = plain;
   keyed.keys = {{1.0, one_hot(4, 0)}, {4.0, w}};
   cases.emplace_back("keyed", keyed);
   MixParams parts = plain;
   const std::vector<std::pair<BodyPart, std::vector<double>>> legs{{BodyPart::kLegs, one_hot(4, 2)}};
-  parts.component_weights = part_weights(legs, d->component_joints, w);
+  parts.layers = take_layers(w, part_weights(legs, d->component_joints, w));
   cases.emplace_back("per part", parts);
   MixParams reference = plain;
   reference.reference_timing = true;
@@ -592,7 +592,7 @@ TEST_CASE("palette: a preview then finish_mix_palette is the whole mix, exactly"
   unlocked.finish.foot_lock = false;
   cases.emplace_back("no foot lock", unlocked);
   MixParams feet = plain;
-  feet.weights = {1.0, -0.5, 0.5, 0.0};
+  feet.layers = take_layers({1.0, -0.5, 0.5, 0.0});
   feet.min_weight = transfer_min_weight(1);
   feet.max_weight = transfer_max_weight(1);
   feet.feet_of_reference = true;

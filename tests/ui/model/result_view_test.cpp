@@ -41,14 +41,14 @@ TEST_CASE("result view: the mix parameters carry the keys that fit the takes") {
   c.keys = {WeightKey{0.0, {1.0, 0.0, 0.0}}, WeightKey{2.0, {0.0, 0.0, 1.0}}};
   const MixParams keyed = mix_params_for(doc, d, 3);
   CHECK(same_keys(keyed.keys, c.keys));
-  CHECK(keyed.weights == doc.weights);  // the constant weights as they were
+  CHECK(take_weights(keyed.layers, 3) == doc.weights);  // the constant weights as they were
   // A transfer: the content's and the neutral's weights made from the styles'.
   c.palette.transfer = true;
   c.palette.content_neutral = false;
   c.palette.neutral = 1;
   c.palette.strengths = {1.0, 1.0, 0.5};
   const MixParams transfer = mix_params_for(doc, d, 3);
-  CHECK(transfer.weights == std::vector<double>{1.0, -0.5, 0.5});
+  CHECK(take_weights(transfer.layers, 3) == std::vector<double>{1.0, -0.5, 0.5});
   REQUIRE(transfer.keys.size() == 2);
   CHECK(transfer.keys[0].weights == std::vector<double>{1.0, 0.0, 0.0});
   CHECK(transfer.keys[1].weights == std::vector<double>{1.0, -1.0, 1.0});
@@ -56,7 +56,7 @@ TEST_CASE("result view: the mix parameters carry the keys that fit the takes") {
   // content)), the content 1 minus their sum.
   c.palette.content_neutral = true;
   const MixParams own = mix_params_for(doc, d, 3);
-  CHECK(own.weights == std::vector<double>{-0.5, 1.0, 0.5});
+  CHECK(take_weights(own.layers, 3) == std::vector<double>{-0.5, 1.0, 0.5});
   CHECK(own.keys[0].weights == std::vector<double>{1.0, 0.0, 0.0});
   CHECK(own.keys[1].weights == std::vector<double>{0.0, 0.0, 1.0});
   c.palette.content_neutral = false;

@@ -91,7 +91,7 @@ struct Palette {
     return hover(kTitle, slider, &i);
   }
   std::vector<double> mix_weights() {
-    return mix_params_for(s.state.document, *s.session.snapshot().decomposed, 3).weights;
+    return take_weights(mix_params_for(s.state.document, *s.session.snapshot().decomposed, 3).layers, 3);
   }
 };
 

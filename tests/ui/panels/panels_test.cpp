@@ -320,7 +320,7 @@ TEST_CASE("a pair's transfer puts B's style on A, which keeps its path, as `tran
   const MixParams m = mix_params_for(s.state.document, *s.session.snapshot().decomposed, 2);
   CHECK(m.feet_of_reference);
   CHECK(m.path_leash == transfer_path_leash(TransferNeutral::kContent, false));
-  CHECK(m.weights == std::vector<double>{0.0, 1.0});
+  CHECK(take_weights(m.layers, 2) == std::vector<double>{0.0, 1.0});
   // A's whole take, its hips within the leash (a fifth of the body's height) of A's own.
   CHECK(result.frames() == a.frames());
   CHECK(hips_gap(result, a) < 0.25 * height);
