@@ -24,8 +24,7 @@
 #include "ui/model/live_style_spec.h"
 #include "ui/panels/playback_panel.h"
 #include "ui/panels/components_panel.h"
-#include "ui/panels/dtw_panel.h"
-#include "ui/panels/palette_panel.h"
+#include "ui/panels/layers_panel.h"
 #include "ui/panels/files_panel.h"
 #include "ui/panels/layout.h"
 #include "ui/panels/metrics_panel.h"
@@ -98,7 +97,7 @@ Editor::Editor(const EditorOptions& options)
   } else {
     const std::vector<std::string> files = options.files.empty() ? default_motion_files() : options.files;
     // --weights (or a pair's --alpha), one per take: parse_editor_options checked their count.
-    state_.document.weights = options.initial.weights;
+    ui::set_layer_weights(state_.document, options.initial.weights);
     session_->load_files(files, ui::WeightsOf::kNewTakes);  // three or more: the style palette
     first_take = files.empty() ? std::string() : files[0];
   }
@@ -111,8 +110,7 @@ Editor::Editor(const EditorOptions& options)
   files_panel_ = files_panel.get();
   files_panel->set_live(&live_);
   add_panel(std::move(files_panel));
-  add_panel(std::make_unique<ui::DtwPanel>(*session_));
-  add_panel(std::make_unique<ui::PalettePanel>(*session_));
+  add_panel(std::make_unique<ui::LayersPanel>(*session_));
   add_panel(std::make_unique<ui::ComponentsPanel>(*session_));
   auto metrics_panel = std::make_unique<ui::MetricsPanel>(*session_);
   metrics_panel->set_live(&live_);
@@ -431,7 +429,7 @@ void Editor::center_view() {
   const auto rects = ui::compute_layout(display.x, display.y, ui::playback_bar_height());
   const ui::PanelRect& left = rects[static_cast<size_t>(ui::PanelId::kTakes)];
   const ui::PanelRect& right = rects[static_cast<size_t>(ui::PanelId::kComponents)];
-  const ui::PanelRect& strip = rects[static_cast<size_t>(ui::PanelId::kDtw)];
+  const ui::PanelRect& strip = rects[static_cast<size_t>(ui::PanelId::kLayers)];
   const float x0 = left.x + left.w, x1 = right.x, y0 = 0.0f, y1 = strip.y;
   if (display.x > 0 && display.y > 0 && x1 > x0 && y1 > y0) {
     camera_.lens_shift = glm::vec2((x0 + x1) / display.x - 1.0f, 1.0f - (y0 + y1) / display.y);

@@ -120,8 +120,9 @@ std::string read_flag(Flag& f, EditorOptions& o) {
     o.save_session_path = value;
   } else if (name == "--alpha") {
     double v = 0.0;
-    if (!f.take_value() || !parse_double(value, &v) || v < 0.0 || v > 1.0)
-      return "--alpha: expected a number in [0, 1], got '" + value + "'";
+    // The rule `blend --alpha` has: B's weight, and A's 1 - alpha, within a mix's range.
+    if (!f.take_value() || !parse_double(value, &v) || v < kMinMixWeight || v > kMaxMixWeight)
+      return "--alpha: expected a number from -0.5 to 1.5, got '" + value + "'";
     o.initial.alpha = v;
   } else if (name == "--components") {
     int v = 0;
@@ -175,15 +176,12 @@ std::string check_options(EditorOptions& o) {
   const size_t takes = o.files.empty() ? 2 : std::max<size_t>(o.files.size(), 2);
   // --alpha: a pair's weights, unless --weights gives them (a palette and a session have no alpha).
   if (o.initial.alpha && o.initial.weights.empty() && o.session_path.empty() && takes == 2)
-    o.initial.weights = ui::pair_weights(*o.initial.alpha);
+    o.initial.weights = {1.0 - *o.initial.alpha, *o.initial.alpha};
   if (!o.initial.weights.empty()) {
     if (!o.session_path.empty()) return "--weights: a session brings its own weights; give takes instead";
     if (o.initial.weights.size() != takes)
       return "--weights: expected " + std::to_string(takes) + " weights, one per take, got " +
              std::to_string(o.initial.weights.size());
-    if (takes == 2 && (o.initial.weights[1] < 0.0 || o.initial.weights[1] > 1.0))
-      return "--weights: a pair's weights are 1 - alpha and alpha, alpha from 0 to 1, got " +
-             std::to_string(o.initial.weights[1]);
   }
   return "";
 }
@@ -281,7 +279,7 @@ std::string editor_usage() {
          "  --offscreen           no display needed (OSMesa); use with --screenshot\n"
          "  --window-size WxH     window and screenshot size in pixels (default 1280x720)\n"
          "  --paused              start with playback paused\n"
-         "  --alpha A             initial blend, 0 = first take, 1 = second (default 0.5)\n"
+         "  --alpha A             initial blend, 0 = first take, 1 = second, -0.5 to 1.5 (default 0.5)\n"
          "  --components K        initial number of components (default 10)\n"
          "  --sparsity F          initial fraction of non-zeros per component, (0, 1] (default 0.1)\n"
          "  --frame N             initial frame (default 0)\n"

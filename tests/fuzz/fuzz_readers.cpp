@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
@@ -18,6 +19,7 @@
 #include "engine/kinematics/units.h"
 #include "engine/prepare/major_skeleton.h"
 #include "engine/synthesize/mix_palette.h"
+#include "ui/model/document_fields.h"
 #include "ui/model/session_file.h"
 
 namespace mostyle::fuzz {
@@ -192,11 +194,14 @@ bool read_session(std::string_view bytes) {
   }
   const ui::Document& d = session.document;
   const ui::DocumentControls& c = d.controls;
-  for (double w : d.weights) check(w >= kMinMixWeight && w <= kMaxMixWeight, "weights in the palette's range");
+  auto in_layer_range = [](double w) { return w >= ui::kLayerWeightRange.lo && w <= ui::kLayerWeightRange.hi; };
+  for (const ui::TakeLayer& layer : d.layers) {
+    check(in_layer_range(layer.weight), "layer weights in the layers' range");
+    for (const std::optional<double>& w : layer.component_weights)
+      check(!w || in_layer_range(*w), "weights per component in the layers' range");
+  }
   check(d.parameters.components >= 1, "at least one component");
   check(d.parameters.sparsity > 0.0 && d.parameters.sparsity <= 1.0, "sparsity in (0, 1]");
-  for (double a : c.component_alpha)  // a pair's alpha range: weights (1 - a, a) within the mix's
-    check(a >= 1.0 - kMaxMixWeight && a <= kMaxMixWeight, "component alphas from -0.5 to 1.5");
   for (double f : c.basic_sparsities) check(f > 0.0 && f <= 1.0, "basic sparsities in (0, 1]");
   check(c.basic_motions >= 0 && c.swap_level >= 0 && (c.swap_level == 0 || c.swap_level < c.basic_motions),
         "the level from B is one of the basic motions");

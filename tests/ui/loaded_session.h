@@ -7,7 +7,7 @@
 #include "tests/test_data.h"
 #include "ui/model/blend_session.h"
 #include "ui/panels/components_panel.h"
-#include "ui/panels/dtw_panel.h"
+#include "ui/panels/layers_panel.h"
 #include "ui/panels/files_panel.h"
 #include "ui/panels/metrics_panel.h"
 #include "ui/panels/parameters_panel.h"
@@ -32,7 +32,7 @@ inline std::vector<std::unique_ptr<ui::Panel>> all_panels(ui::BlendSession& sess
   panels.push_back(std::make_unique<ui::TakesPanel>());
   panels.push_back(std::make_unique<ui::ParametersPanel>(session));
   panels.push_back(std::make_unique<ui::FilesPanel>(session, asset("motions")));
-  panels.push_back(std::make_unique<ui::DtwPanel>(session));
+  panels.push_back(std::make_unique<ui::LayersPanel>(session));
   panels.push_back(std::make_unique<ui::ComponentsPanel>(session));
   panels.push_back(std::make_unique<ui::MetricsPanel>(session));
   panels.push_back(std::make_unique<ui::PlaybackPanel>());

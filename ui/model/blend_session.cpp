@@ -38,25 +38,16 @@ BlendSession::BlendSession(const BvhReadOptions& read)
 BlendSession::~BlendSession() = default;
 
 void BlendSession::load_files(const std::vector<std::string>& paths, WeightsOf weights) {
-  if (paths.size() <= 2) {
-    load(paths.empty() ? std::string() : paths[0], paths.size() > 1 ? paths[1] : std::string());
-  } else {
-    requested_files_ = paths;
-    requested_a_ = paths[0];
-    requested_b_ = paths[1];
-    load_waiting_ = true;
-  }
+  requested_files_.clear();
+  for (const std::string& path : paths)
+    if (!path.empty() || requested_files_.empty()) requested_files_.push_back(path);
+  requested_a_ = requested_files_.empty() ? std::string() : requested_files_[0];
+  requested_b_ = requested_files_.size() > 1 ? requested_files_[1] : std::string();
+  load_waiting_ = true;
   weights_of_ = weights;
 }
 
-void BlendSession::load(const std::string& path_a, const std::string& path_b) {
-  requested_a_ = path_a;
-  requested_b_ = path_b;
-  requested_files_ = {path_a};
-  if (!path_b.empty()) requested_files_.push_back(path_b);
-  load_waiting_ = true;
-  weights_of_ = WeightsOf::kLoadedTakes;
-}
+void BlendSession::load(const std::string& path_a, const std::string& path_b) { load_files({path_a, path_b}); }
 
 PrepareOptions BlendSession::prepare_options(const Document& document) const {
   PrepareOptions o;
@@ -118,12 +109,10 @@ void BlendSession::poll(EditorState& state) {
   state.document.files = snapshot_->prepared ? snapshot_->paths : std::vector<std::string>();
   if (takes() != seen_prepared_) {
     seen_prepared_ = takes();
-    if (takes() != nullptr) {  // the weights follow the takes, one rule for any number of them
-      const std::vector<std::string>& weights_of = weights_of_ == WeightsOf::kNewTakes ? snapshot_->paths : files_before;
-      const std::vector<double> weights_before = state.document.weights;
-      state.document.weights = weights_for_takes(weights_of, weights_before, snapshot_->paths);
-      if (palette() != nullptr)
-        size_palette_controls(state.document.controls.palette, weights_of, weights_before, snapshot_->paths);
+    if (takes() != nullptr) {  // the layers follow the takes, one rule for any number of them
+      const std::vector<std::string>& layers_of = weights_of_ == WeightsOf::kNewTakes ? snapshot_->paths : files_before;
+      state.document.layers = layers_for_takes(layers_of, state.document.layers, snapshot_->paths);
+      size_transfer_controls(state.document.controls, layers_of, snapshot_->paths);
       weights_of_ = WeightsOf::kLoadedTakes;
     }
     take_up_takes(state);
@@ -150,14 +139,14 @@ void BlendSession::take_up_takes(EditorState& state) {
   view_.take_up(*p, snapshot_->paths, snapshot_->warnings, state);
 }
 
-// A new decomposition: per-component alphas sized to its k, and a pair's point on the error
-// curve (the curve for a new pair, sparsity or mode computed in the background).
+// A new decomposition: the layers' weights per component fitted to its components, and its point
+// on the error curve (the curve for new takes, sparsity or mode computed in the background).
 void BlendSession::take_up_decomposition(EditorState& state) {
   const Decomposed* d = seen_decomposed_;
   DocumentControls& c = state.document.controls;
-  if (pair() != nullptr) c.component_alpha.resize(static_cast<size_t>(d->components()), pair_alpha(state.document));
+  if (d->shared() != nullptr) fit_component_weights(state.document, *d);
   if (c.selected_component >= d->components()) c.selected_component = -1;
-  if (pair() != nullptr) sweep_.add(*d, seen_prepared_, snapshot_->paths, prepare_options(asked_));  // a pair's curve
+  sweep_.add(*d, seen_prepared_, snapshot_->paths, prepare_options(asked_));
 }
 
 void BlendSession::update_result(EditorState& state, bool item_held) {

@@ -24,9 +24,9 @@
 
 namespace mostyle::ui {
 
-// Whose weights the document holds (Document::weights) when a load is asked for: the takes
-// loaded now (a take added, replaced or removed: the new takes' weights follow from them by
-// weights_for_takes, ui/model/document_mix.h), or the new takes' already (undo, a session, a new
+// Whose layers the document holds (Document::layers) when a load is asked for: the takes loaded
+// now (a take added, replaced or removed: the new takes' layers follow from them by
+// layers_for_takes, ui/model/document_mix.h), or the new takes' already (undo, a session, a new
 // order of the takes, the command line: kept when they are one per take).
 enum class WeightsOf { kLoadedTakes, kNewTakes };
 
@@ -38,29 +38,20 @@ class BlendSession {
   BlendSession(const BlendSession&) = delete;
   BlendSession& operator=(const BlendSession&) = delete;
 
-  // Asks for a pair (b empty: A with itself). What was loaded stays until it succeeds; a failure
-  // shows up as error() on a later poll(). The paths join the recent takes once they loaded. The
-  // document's weights are the loaded takes' (WeightsOf::kLoadedTakes).
-  void load(const std::string& path_a, const std::string& path_b);
-  // Several files: one or two load as the pair (one: A with itself); three to sixteen as the
-  // style palette (the first the reference), mixed with the document's weights, taken as
-  // `weights` says once the takes arrive. The worker is asked at the next sync(), with the
-  // document's alignment options then.
+  // Asks for the takes `paths`, 2 to 16 (one: the take with itself; the first the reference),
+  // mixed with the document's layers, taken as `weights` says once the takes arrive. What was
+  // loaded stays until it succeeds; a failure shows up as error() on a later poll(). The paths
+  // join the recent takes once they loaded. The worker is asked at the next sync(), with the
+  // document's alignment options then. An empty path after the first is left out.
   void load_files(const std::vector<std::string>& paths, WeightsOf weights = WeightsOf::kLoadedTakes);
+  // load_files({a, b}), in a pair's words (b empty: A with itself).
+  void load(const std::string& path_a, const std::string& path_b);
   // A load asked for that the worker has not been given yet (the next sync() gives it).
   bool load_waiting() const { return load_waiting_; }
-  // The files last asked for (pair or palette), loaded or not.
+  // The files last asked for, loaded or not.
   const std::vector<std::string>& requested_files() const { return requested_files_; }
   // The takes loaded (any number), or null.
   const PreparedTakes* takes() const { return snapshot_->prepared.get(); }
-  // The takes loaded: two are the pair (A and B), three or more the palette (words and the
-  // views that only a pair has: the DTW view, the basic motions).
-  const PreparedTakes* pair() const {
-    return snapshot_->prepared && snapshot_->prepared->size() == 2 ? snapshot_->prepared.get() : nullptr;
-  }
-  const PreparedTakes* palette() const {
-    return snapshot_->prepared && snapshot_->prepared->size() > 2 ? snapshot_->prepared.get() : nullptr;
-  }
   // The file of loaded take i ("" when there is none).
   const std::string& loaded_path(size_t i) const {
     static const std::string kNone;
@@ -68,7 +59,7 @@ class BlendSession {
   }
   const ResultView& result_view() const { return view_; }
   // Before the panels, once per frame: takes up a new snapshot (new takes: rebuilds the takes
-  // shown and sets the document's files to them, and its weights: weights_for_takes).
+  // shown and sets the document's files to them, and its layers: layers_for_takes).
   void poll(EditorState& state);
   // After the panels (and before them, after poll, with item_held): brings the engine to the
   // document. A load waiting goes to the worker; an alignment option that changed aligns the
@@ -97,13 +88,14 @@ class BlendSession {
   // Why the document's weights or keys were refused (the last result stays), or "".
   const std::string& result_error() const { return view_.error(); }
   const std::vector<ErrorPoint>& error_curve() const { return sweep_.curve(); }
-  // Reconstruction error against k (ui/model/error_sweep.h), being computed in the background.
+  // Reconstruction error against k (ui/model/error_sweep.h) of the takes loaded, being computed
+  // in the background.
   bool sweeping() const { return sweep_.sweeping(); }
 
   // The decomposition the panels' sliders ask for differs from the one shown.
   bool decomposition_outdated() const;
 
-  // The pair last asked for (what the files panel's fields show), loaded or not.
+  // The first two files last asked for, loaded or not ("" when there is none).
   const std::string& requested_a() const { return requested_a_; }
   const std::string& requested_b() const { return requested_b_; }
 

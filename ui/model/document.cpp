@@ -61,11 +61,8 @@ bool operator==(const DocumentControls& x, const DocumentControls& y) {
   return a == b;
 }
 
-bool operator==(const PaletteControls& x, const PaletteControls& y) {
-  Document a, b;
-  a.controls.palette = x;
-  b.controls.palette = y;
-  return a == b;
+bool operator==(const TakeLayer& x, const TakeLayer& y) {
+  return x.weight == y.weight && x.component_weights == y.component_weights;
 }
 
 DocumentControls document_controls(DocumentControls controls) {
@@ -82,31 +79,32 @@ bool same_files(const std::vector<std::string>& x, const std::vector<std::string
   return true;
 }
 
-double pair_alpha(const Document& d) { return d.weights.size() == 2 ? d.weights[1] : 0.5; }
+std::vector<double> layer_weights(const Document& d) {
+  std::vector<double> out;
+  for (const TakeLayer& layer : d.layers) out.push_back(layer.weight);
+  return out;
+}
+
+void set_layer_weights(Document& d, const std::vector<double>& weights) {
+  d.layers.resize(weights.size());
+  for (size_t i = 0; i < weights.size(); ++i) d.layers[i].weight = weights[i];
+}
+
+double pair_alpha(const Document& d) { return d.layers.size() > 1 ? d.layers[1].weight : 0.5; }
 
 namespace {
 
 // Take k of the result is take order[k] of `d`, for a permutation or for a selection of takes;
-// per-take vectors of another length than d's takes are left as they are.
+// layers not one per take of d's are left as they are.
 Document select_takes(const Document& d, const std::vector<int>& order, size_t takes) {
-  const size_t n = order.size();
-  auto selected = [&](const std::vector<double>& v) {
-    if (v.size() != takes) return v;
-    std::vector<double> out(n);
-    for (size_t k = 0; k < n; ++k) out[k] = v[static_cast<size_t>(order[k])];
-    return out;
-  };
-  const PaletteControls& c = d.controls.palette;
-  Document selected_document = d;
-  selected_document.weights = selected(d.weights);
-  PaletteControls& out = selected_document.controls.palette;
-  out.strengths = selected(c.strengths);
-  for (std::vector<double>& row : out.part_weights) row = selected(row);
-  for (size_t k = 0; k < n; ++k) {
-    if (order[k] == c.neutral) out.neutral = static_cast<int>(k);
-    if (order[k] == c.content) out.content = static_cast<int>(k);
+  Document selected = d;
+  if (d.layers.size() == takes) {
+    selected.layers.clear();
+    for (int k : order) selected.layers.push_back(d.layers[static_cast<size_t>(k)]);
   }
-  return selected_document;
+  for (size_t k = 0; k < order.size(); ++k)
+    if (order[k] == d.controls.neutral) selected.controls.neutral = static_cast<int>(k);
+  return selected;
 }
 
 }  // namespace
@@ -119,13 +117,12 @@ Document keep_takes(const Document& d, const std::vector<int>& kept) {
   Document out = select_takes(d, kept, d.files.size());
   out.files.clear();
   for (int k : kept) out.files.push_back(d.files[static_cast<size_t>(k)]);
-  const PaletteControls& c = d.controls.palette;
-  if (c.transfer && std::find(kept.begin(), kept.end(), c.neutral) == kept.end()) out.controls.palette.content_neutral = true;
-  out.controls.palette.content = 0;  // the content is the reference, whichever take that now is
-  if (out.weights.size() == kept.size() && !kept.empty()) {
+  const DocumentControls& c = d.controls;
+  if (c.transfer && std::find(kept.begin(), kept.end(), c.neutral) == kept.end()) out.controls.content_neutral = true;
+  if (out.layers.size() == kept.size() && !kept.empty() && !c.transfer) {  // a mix's weights sum to 1 again
     double sum = 0.0;
-    for (double w : out.weights) sum += w;
-    for (double& w : out.weights) w = sum != 0.0 ? w / sum : 1.0 / static_cast<double>(kept.size());
+    for (const TakeLayer& layer : out.layers) sum += layer.weight;
+    for (TakeLayer& layer : out.layers) layer.weight = sum != 0.0 ? layer.weight / sum : 1.0 / static_cast<double>(kept.size());
   }
   return out;
 }

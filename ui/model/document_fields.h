@@ -4,8 +4,8 @@
 // change to it makes stale. Equality (undo sees a change), what undo and redo must redo
 // (stale_after), the session file (ui/model/session_file.cpp: its keys,
 // the ranges it reads with, the keys it refuses) and the panels' sliders are all made from this
-// one list: a field added to Document, DocumentControls, PaletteControls or BlendParameters goes
-// here, and nowhere else.
+// one list: a field added to Document, DocumentControls or BlendParameters goes here, and
+// nowhere else.
 #include "engine/synthesize/mix_palette.h"
 #include "engine/align/prepare_takes.h"
 #include "ui/model/document.h"
@@ -25,21 +25,25 @@ struct Range {
   double lo = 0.0, hi = 0.0;
   bool open_low = false;  // lo itself is not allowed
 };
-// A pair's alpha slider and each component's alpha: the weights (1 - alpha, alpha) within the mix's
-// bounds, as `blend --alpha` takes it (0 is A, 1 is B; beyond them, mild exaggeration).
+// A pair's alpha as version 1 and 2 session files kept it (and each component's): the weights
+// (1 - alpha, alpha) within the mix's bounds, as `blend --alpha` takes it (0 is A, 1 is B).
 inline constexpr Range kAlphaRange{1.0 - kMaxMixWeight, kMaxMixWeight};
 inline constexpr Range kComponentsRange{1, 40};
 inline constexpr Range kSparsityRange{0.01, 1.0};        // also each basic-motion level's
 inline constexpr Range kBasicMotionsRange{0, 5};
-inline constexpr Range kMixWeightRange{kMinMixWeight, kMaxMixWeight};  // Document::weights, per-part weights
+// A weight's control in a mix (any number of takes: the one rule `mix` and `blend` have), and a
+// style's strength in a transfer.
+inline constexpr Range kMixWeightRange{kMinMixWeight, kMaxMixWeight};
 inline constexpr Range kStrengthRange{kMinStrength, kMaxStrength};
 inline constexpr Range kTakesRange{0, kMaxPaletteTakes};  // how many takes; a take's index is below hi
 inline constexpr Range kTakeIndexRange{0, kMaxPaletteTakes - 1};
-// Each weight of a key (DocumentControls::keys): the widest range any mode mixes with, a transfer's
-// (its neutral take, or the content when it is its own neutral, loses what every style gains:
-// document_mix.cpp mix_params_for). The engine judges the weights for the mode they are mixed in
-// (MixParams::Validate).
-inline constexpr Range kKeyWeightRange{transfer_min_weight(kMaxPaletteTakes), transfer_max_weight(kMaxPaletteTakes)};
+// Each layer's weight as a document holds it (TakeLayer, and each weight of a key,
+// DocumentControls::keys): the widest range any mode mixes with, a transfer's (its neutral take,
+// or the content when it is its own neutral, loses what every style gains: keyed_weights.h
+// transfer_mix_weights), so that a mix started from a transfer's weights is held too. The controls
+// set them within kMixWeightRange or kStrengthRange; the engine judges the weights for the mode
+// they are mixed in (MixParams::Validate) and the editor shows its sentence.
+inline constexpr Range kLayerWeightRange{transfer_min_weight(kMaxPaletteTakes), transfer_max_weight(kMaxPaletteTakes)};
 inline constexpr Range kNoRange{};                        // not a number (a choice, a flag, options)
 
 // The levels swap_level may take with `basic_motions` levels: 0 to basic_motions - 1 (0 alone
@@ -59,14 +63,14 @@ struct Field {
 template <typename Doc, typename F>
 void document_fields(Doc& x, Doc& y, F&& f) {
   f(Field{"takes", Stale::kTakes, kTakesRange}, x.files, y.files);
-  f(Field{"weights", Stale::kMix, kMixWeightRange}, x.weights, y.weights);
+  f(Field{"layers", Stale::kMix, kLayerWeightRange}, x.layers, y.layers);
   auto &px = x.parameters, &py = y.parameters;
   f(Field{"parameters.components", Stale::kDecomposition, kComponentsRange}, px.components, py.components);
   f(Field{"parameters.sparsity", Stale::kDecomposition, kSparsityRange}, px.sparsity, py.sparsity);
   auto &cx = x.controls, &cy = y.controls;
   f(Field{"controls.mode", Stale::kDecomposition, kNoRange}, cx.mode, cy.mode);
-  f(Field{"controls.per_component", Stale::kMix, kNoRange}, cx.per_component, cy.per_component);
-  f(Field{"controls.component_alpha", Stale::kMix, kAlphaRange}, cx.component_alpha, cy.component_alpha);
+  f(Field{"controls.per_part", Stale::kMix, kNoRange}, cx.per_part, cy.per_part);
+  f(Field{"controls.component_regions", Stale::kMix, kNoRange}, cx.component_regions, cy.component_regions);
   f(Field{"controls.basic_motions", Stale::kDecomposition, kBasicMotionsRange}, cx.basic_motions, cy.basic_motions);
   f(Field{"controls.basic_sparsities", Stale::kDecomposition, kSparsityRange}, cx.basic_sparsities,
     cy.basic_sparsities);
@@ -76,19 +80,14 @@ void document_fields(Doc& x, Doc& y, F&& f) {
   f(Field{"controls.timing_a", Stale::kMix, kNoRange}, cx.timing_a, cy.timing_a);
   f(Field{"controls.loop", Stale::kMix, kNoRange}, cx.loop, cy.loop);
   f(Field{"controls.residual", Stale::kMix, kNoRange}, cx.residual, cy.residual);
-  f(Field{"controls.keys", Stale::kMix, kKeyWeightRange}, cx.keys, cy.keys);
+  f(Field{"controls.transfer", Stale::kMix, kNoRange}, cx.transfer, cy.transfer);
+  f(Field{"controls.neutral", Stale::kMix, kTakeIndexRange}, cx.neutral, cy.neutral);
+  f(Field{"controls.content_neutral", Stale::kMix, kNoRange}, cx.content_neutral, cy.content_neutral);
+  f(Field{"controls.ghosts", Stale::kView, kNoRange}, cx.ghosts, cy.ghosts);
+  f(Field{"controls.keys", Stale::kMix, kLayerWeightRange}, cx.keys, cy.keys);
   f(Field{"controls.align", Stale::kAlignment, kNoRange}, cx.align, cy.align);
   f(Field{"controls.selected_component", Stale::kView, kNoRange, false}, cx.selected_component, cy.selected_component);
   f(Field{"controls.dtw_coordinate", Stale::kView, kNoRange, false}, cx.dtw_coordinate, cy.dtw_coordinate);
-  auto &wx = cx.palette, &wy = cy.palette;
-  f(Field{"controls.palette.per_part", Stale::kMix, kNoRange}, wx.per_part, wy.per_part);
-  f(Field{"controls.palette.part_weights", Stale::kMix, kMixWeightRange}, wx.part_weights, wy.part_weights);
-  f(Field{"controls.palette.transfer", Stale::kMix, kNoRange}, wx.transfer, wy.transfer);
-  f(Field{"controls.palette.content", Stale::kMix, kTakeIndexRange}, wx.content, wy.content);
-  f(Field{"controls.palette.neutral", Stale::kMix, kTakeIndexRange}, wx.neutral, wy.neutral);
-  f(Field{"controls.palette.content_neutral", Stale::kMix, kNoRange}, wx.content_neutral, wy.content_neutral);
-  f(Field{"controls.palette.strengths", Stale::kMix, kStrengthRange}, wx.strengths, wy.strengths);
-  f(Field{"controls.palette.ghosts", Stale::kView, kNoRange}, wx.ghosts, wy.ghosts);
   f(Field{"view.overlay", Stale::kView, kNoRange}, x.overlay, y.overlay);
 }
 

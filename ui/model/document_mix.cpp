@@ -14,65 +14,66 @@
 namespace mostyle::ui {
 namespace {
 
-// The parts the palette panel gives weights to, in PaletteControls::part_weights order.
-constexpr BodyPart kParts[] = {BodyPart::kLegs, BodyPart::kArms, BodyPart::kSpine};
-
-// A pair's per-component alphas as weights (1 - alpha_c, alpha_c), k x 2 (a component without
-// an alpha of its own yet takes alpha); none unless the components are shared and asked for one
-// by one.
-Eigen::MatrixXd component_alpha_weights(const Document& document, const Decomposed& d) {
-  const DocumentControls& c = document.controls;
+// The layers' weights per component the document mixes (k x takes): each layer's own there, else
+// its weight (`weights`, constant_weights); empty unless weights per part are on, in shared mode,
+// with a layer that has them for these takes.
+Eigen::MatrixXd mixed_component_weights(const Document& document, const Decomposed& d, const std::vector<double>& weights) {
   Eigen::MatrixXd w;
-  if (d.shared() == nullptr || !c.per_component) return w;
-  std::vector<double> alphas = c.component_alpha;
-  alphas.resize(static_cast<size_t>(d.components()), pair_alpha(document));
-  w.resize(static_cast<Eigen::Index>(alphas.size()), 2);
-  for (size_t k = 0; k < alphas.size(); ++k) w.row(static_cast<Eigen::Index>(k)) << 1.0 - alphas[k], alphas[k];
+  const std::vector<TakeLayer>& layers = document.layers;
+  const bool any = std::any_of(layers.begin(), layers.end(), [](const TakeLayer& l) { return !l.component_weights.empty(); });
+  if (!document.controls.per_part || d.shared() == nullptr || layers.size() != weights.size() || !any) return w;
+  w.resize(d.components(), static_cast<Eigen::Index>(layers.size()));
+  for (Eigen::Index c = 0; c < w.rows(); ++c)
+    for (size_t i = 0; i < layers.size(); ++i) {
+      const std::vector<std::optional<double>>& own = layers[i].component_weights;
+      const size_t at = static_cast<size_t>(c);
+      w(c, static_cast<Eigen::Index>(i)) = at < own.size() && own[at] ? *own[at] : weights[i];
+    }
   return w;
+}
+
+// A transfer's layers: the content's (take 0) at 1, each style (every take but the content and
+// the neutral) added from the neutral at its strength (weights[i]), per component its column of
+// `parts` when there are parts.
+MixLayers transfer_layers_of(const std::vector<double>& weights, const Eigen::MatrixXd& parts, int neutral) {
+  MixLayers layers;
+  layers.layers.push_back(MixLayer{0, 1.0, {}});
+  for (int i = 1; i < static_cast<int>(weights.size()); ++i) {
+    if (i == neutral) continue;
+    AdditiveLayer style{i, neutral, weights[static_cast<size_t>(i)], {}};
+    if (parts.size() > 0) style.component_weights.assign(parts.col(i).data(), parts.col(i).data() + parts.rows());
+    layers.additive.push_back(std::move(style));
+  }
+  return layers;
 }
 
 }  // namespace
 
 MixParams mix_params_for(const Document& document, const Decomposed& decomposition, int takes) {
-  const DocumentControls& controls = document.controls;
-  const PaletteControls& c = controls.palette;
+  const DocumentControls& c = document.controls;
   MixParams m;
   const std::vector<double> weights = constant_weights(document, takes);
-  Eigen::MatrixXd component_weights;
-  set_mix_keys(controls, takes, m.keys);  // style over time, when keyed
-  if (takes == 2) {
-    // A pair's weights: any value (how far to exaggerate is the person's call), and its alphas
-    // per component when asked for.
-    m.min_weight = -std::numeric_limits<double>::infinity();
-    m.max_weight = std::numeric_limits<double>::infinity();
-    component_weights = component_alpha_weights(document, decomposition);
-    // A pair's transfer: B's style on A, A its own neutral, as `transfer A --style B` (the
-    // weights are the same: 1 - alpha and alpha).
-    if (c.transfer) {
-      m.feet_of_reference = true;
-      m.path_leash = transfer_path_leash(TransferNeutral::kContent, controls.timing_a);
-    }
-  } else if (c.transfer) {
-    // A transfer: content is the reference (take 0); the neutral take (or the content, when it
-    // is its own neutral) loses what each style gains.
+  const Eigen::MatrixXd parts = mixed_component_weights(document, decomposition, weights);
+  set_mix_keys(c, takes, m.keys);  // style over time, when keyed
+  if (c.transfer) {
+    // The content is the reference (take 0); each style adds its change from the neutral take (or
+    // from the content, when it is its own neutral), as `transfer` does: the content keeps its
+    // path and its planted feet.
+    const int neutral = transfer_neutral(c, takes);
+    m.layers = transfer_layers_of(weights, parts, neutral);
     m.min_weight = transfer_min_weight(takes);
     m.max_weight = transfer_max_weight(takes);
     m.feet_of_reference = true;
-    m.path_leash = transfer_path_leash(c.content_neutral ? TransferNeutral::kContent : TransferNeutral::kTake, controls.timing_a);
-  } else if (c.per_part) {
-    // Each part: its own weights when given (one per take), else the overall weights.
-    std::vector<std::pair<BodyPart, std::vector<double>>> given;
-    for (size_t part = 0; part < c.part_weights.size() && part < std::size(kParts); ++part)
-      if (static_cast<int>(c.part_weights[part].size()) == takes) given.emplace_back(kParts[part], c.part_weights[part]);
-    if (!given.empty()) component_weights = part_weights(given, decomposition.component_joints, weights);
+    m.path_leash = transfer_path_leash(neutral == 0 ? TransferNeutral::kContent : TransferNeutral::kTake, c.timing_a);
+  } else {
+    m.layers = take_layers(weights, parts);
   }
-  m.layers = take_layers(weights, component_weights);
   const int levels = decomposition.params.basic_motions;
-  m.swap_level = levels > 0 ? std::clamp(controls.swap_level, 0, levels - 1) : 0;
-  m.reference_timing = controls.timing_a;
-  m.residual = controls.residual;
-  m.finish.foot_lock = controls.foot_lock;
-  m.finish.loop = controls.loop;
+  m.swap_level = levels > 0 ? std::clamp(c.swap_level, 0, levels - 1) : 0;
+  m.reference_timing = c.timing_a;
+  m.residual = c.residual;
+  m.finish.foot_lock = c.foot_lock;
+  m.finish.loop = c.loop;
   m.Validate(takes, decomposition.components());
   return m;
 }
@@ -114,30 +115,63 @@ int named_neutral(const std::vector<std::string>& files) {
   return -1;
 }
 
-void size_palette_controls(PaletteControls& controls, const std::vector<std::string>& before,
-                           const std::vector<double>& weights_before, const std::vector<std::string>& after) {
-  const size_t n = after.size();
-  const int takes = static_cast<int>(n);
-  // A pair's transfer keeps its strength in the pair's alpha (B's weight): B's strength once it
-  // is a palette.
-  std::vector<double> strengths = controls.strengths;
-  if (strengths.size() != before.size() && before.size() == 2 && weights_before.size() == 2 && controls.transfer)
-    strengths = {1.0, weights_before[1]};
-  // Takes added keep every value there was and start neutral themselves (strength and weights 0).
-  if (const auto kept = values_for_takes(before, strengths, after, 0.0)) {
-    controls.strengths = *kept;
-  } else if (controls.strengths.size() != n) {  // new takes: full strength, and a neutral as named
-    controls.strengths.assign(n, 1.0);
+std::vector<TakeLayer> layers_for_takes(const std::vector<std::string>& before, const std::vector<TakeLayer>& layers,
+                                        const std::vector<std::string>& after) {
+  std::vector<double> weights;
+  for (const TakeLayer& layer : layers) weights.push_back(layer.weight);
+  const std::optional<std::vector<double>> kept = values_for_takes(before, weights, after, 0.0);
+  std::vector<TakeLayer> out;
+  if (!kept) {
+    for (double w : weights_for_takes(before, weights, after)) out.push_back(TakeLayer{w, {}});
+    return out;
+  }
+  out = layers;
+  // A layer added: weight 0 everywhere, so that the result stays as it was.
+  TakeLayer added;
+  for (const TakeLayer& layer : layers) {
+    added.component_weights.resize(std::max(added.component_weights.size(), layer.component_weights.size()));
+    for (size_t c = 0; c < layer.component_weights.size(); ++c)
+      if (layer.component_weights[c]) added.component_weights[c] = 0.0;
+  }
+  out.resize(after.size(), added);
+  return out;
+}
+
+void size_transfer_controls(DocumentControls& controls, const std::vector<std::string>& before,
+                            const std::vector<std::string>& after) {
+  const int takes = static_cast<int>(after.size());
+  // The takes before, or takes added to them: the neutral stays; new takes: the one named so.
+  const std::vector<double> one_each(before.size(), 0.0);
+  if (!values_for_takes(before, one_each, after, 0.0)) {
     const int neutral = named_neutral(after);
     controls.content_neutral = neutral < 0;
     if (neutral >= 0) controls.neutral = neutral;
   }
-  controls.part_weights.resize(std::size(kParts));
-  for (auto& w : controls.part_weights) {
-    const auto kept = values_for_takes(before, w, after, 0.0);
-    w = kept ? *kept : std::vector<double>();  // empty: the part follows the overall weights
-  }
   controls.neutral = std::clamp(controls.neutral, 1, std::max(1, takes - 1));
+}
+
+void fit_component_weights(Document& document, const Decomposed& decomposition) {
+  DocumentControls& c = document.controls;
+  const std::vector<TakeLayer>& layers = document.layers;
+  if (std::all_of(layers.begin(), layers.end(), [](const TakeLayer& l) { return l.component_weights.empty(); })) return;
+  std::vector<BodyRegion> regions;
+  for (const ComponentJoints& joints : decomposition.component_joints) regions.push_back(joints.region);
+  const size_t k = regions.size();
+  for (TakeLayer& layer : document.layers) {
+    std::vector<std::optional<double>>& own = layer.component_weights;
+    if (own.empty() || c.component_regions == regions) continue;
+    if (c.component_regions.size() != own.size()) {  // regions not known: kept by index
+      own.resize(k);
+      continue;
+    }
+    std::vector<std::optional<double>> fitted(k);
+    for (size_t i = 0; i < k; ++i) {
+      const auto first = std::find(c.component_regions.begin(), c.component_regions.end(), regions[i]);
+      if (first != c.component_regions.end()) fitted[i] = own[static_cast<size_t>(first - c.component_regions.begin())];
+    }
+    own = std::move(fitted);
+  }
+  c.component_regions = std::move(regions);
 }
 
 }  // namespace mostyle::ui

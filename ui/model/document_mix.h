@@ -1,8 +1,9 @@
 #pragma once
 // The one translation from what the animator set (a Document) to the engine's mix (MixParams),
-// for any number of takes: the weights (constant_weights: Document::weights, a transfer's made
-// from its strengths), a pair's per-component or per-part weights, the keys, a transfer's weight limits,
-// the basic-motion level swapped, the timing and the clean-up options. Which document fields make
+// for any number of takes: the layers (engine/synthesize/mix_layers.h: each take's weight,
+// constant_weights, and its weights per component; a transfer's content layer and its styles
+// added at their strengths), the keys, the weight limits, the basic-motion level swapped, the
+// timing and the clean-up options. Which document fields make
 // a mix stale is the field list's business (document_fields.h, Stale::kMix): whoever mixes
 // compares documents with differs_at, not parameters by hand.
 #include <optional>
@@ -37,12 +38,25 @@ std::vector<double> weights_for_takes(const std::vector<std::string>& before, co
 // "normal" as a word of its name (walk_normal.bvh, Neutral01.fbx); -1 when none is.
 int named_neutral(const std::vector<std::string>& files);
 
-// The palette controls of takes `before` (the document's weights then: weights_before) sized for
-// takes `after`: the strengths and per-part weights by values_for_takes (a take added starts at 0:
-// the result is as it was); a pair's transfer strength (its alpha) becomes B's. For other takes:
-// full strengths, the neutral the take so named (named_neutral), else none (the content is its
-// own neutral); per-part rows cleared; the neutral among the takes.
-void size_palette_controls(PaletteControls& controls, const std::vector<std::string>& before,
-                           const std::vector<double>& weights_before, const std::vector<std::string>& after);
+// The layers of takes `after` when the document's were those of takes `before`, by
+// values_for_takes: the same takes keep theirs; takes added at the end keep theirs and each one
+// added gets a layer at weight 0 (its weights per component 0 where the others have theirs), so
+// the result is as it was; else equal weights and none per component (a pair's 0.5/0.5).
+// O(after x k).
+std::vector<TakeLayer> layers_for_takes(const std::vector<std::string>& before, const std::vector<TakeLayer>& layers,
+                                        const std::vector<std::string>& after);
+
+// A transfer's neutral for takes `after` (those of the layers before: `before`): new takes (not
+// those before, nor those with takes added) take the neutral named so (named_neutral), else none
+// (the content is its own neutral); the neutral stays among the takes.
+void size_transfer_controls(DocumentControls& controls, const std::vector<std::string>& before,
+                            const std::vector<std::string>& after);
+
+// The layers' weights per component fitted to `decomposition`'s components (shared mode): kept
+// when they were set on its components (DocumentControls::component_regions the same, or not
+// known and as many), else each of its components takes the weights of the first component of
+// its body region (none: the layer's weight); the regions become the decomposition's. Nothing
+// when no layer has weights per component. O(k^2 x takes).
+void fit_component_weights(Document& document, const Decomposed& decomposition);
 
 }  // namespace mostyle::ui

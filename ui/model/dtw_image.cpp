@@ -4,11 +4,12 @@
 
 namespace mostyle::ui {
 
-DtwCostImage dtw_cost_image(const PreparedTakes& takes) {
+DtwCostImage dtw_cost_image(const PreparedTakes& takes, int take) {
   DtwCostImage img;
-  if (takes.size() < 2) return img;
-  const Eigen::MatrixXd& fa = takes.takes[1].alignment.feature.a;
-  const Eigen::MatrixXd& fb = takes.takes[1].alignment.feature.b;
+  if (take < 1 || take >= takes.size()) return img;
+  const Alignment& al = takes.takes[static_cast<size_t>(take)].alignment;
+  const Eigen::MatrixXd& fa = al.feature.a;
+  const Eigen::MatrixXd& fb = al.feature.b;
   if (fa.rows() == 0 || fb.rows() == 0) return img;
   img.frames_a = static_cast<int>(fa.rows());
   img.frames_b = static_cast<int>(fb.rows());

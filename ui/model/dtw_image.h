@@ -1,13 +1,14 @@
 #pragma once
-// The DTW view's cost picture: the local-cost matrix of a pair's alignment (its take 1 aligned
-// onto take 0), sampled at cell centres, for the DTW panel to draw. Plain data, no ImGui.
+// The alignment view's cost picture: the local-cost matrix of one take's alignment onto the
+// reference (take 0), sampled at cell centres, for the alignment view to draw. Plain data, no ImGui.
 #include <Eigen/Core>
 
 #include "engine/align/prepare_takes.h"
 
 namespace mostyle::ui {
 
-// rows x cols cells (at most kMaxCells each way) over A frames (rows) x B frames (cols).
+// rows x cols cells (at most kMaxCells each way) over the reference's frames (rows) x the take's
+// (cols).
 struct DtwCostImage {
   static constexpr int kMaxCells = 64;
   int rows = 0, cols = 0;
@@ -15,9 +16,10 @@ struct DtwCostImage {
   Eigen::MatrixXf cost;  // rows x cols, local cost normalised to [0, 1]
 };
 
-// Local cost c(i, j) = |a_i - b_j| (the DTW's, engine/align/dtw.h) of take 1's alignment
+// Local cost c(i, j) = |a_i - b_j| (the DTW's, engine/align/dtw.h) of take `take`'s alignment
 // features at the centre of each cell: O(cells), not O(F x Fb), so a long take does not stall the
-// frame that takes it up. Empty (no cells) with fewer than two takes or no features.
-DtwCostImage dtw_cost_image(const PreparedTakes& takes);
+// frame that takes it up. Empty (no cells) for a take that is not there (or the reference) or
+// without features.
+DtwCostImage dtw_cost_image(const PreparedTakes& takes, int take = 1);
 
 }  // namespace mostyle::ui

@@ -17,7 +17,7 @@ void ErrorSweep::insert(const ErrorPoint& point, bool replace) {
 
 void ErrorSweep::add(const Decomposed& d, const PreparedTakes* takes, const std::vector<std::string>& paths,
                      const PrepareOptions& options) {
-  insert(ErrorPoint{d.params.components, d.params.sparsity, d.params.mode, d.rmse[0], d.rmse[1]}, true);
+  insert(ErrorPoint{d.params.components, d.params.sparsity, d.params.mode, d.rmse}, true);
   const bool same_curve = params_.mode == d.params.mode && params_.sparsity == d.params.sparsity &&
                           params_.basic_motions == d.params.basic_motions;
   if (same_curve && worker_ && swept_ == takes) return;
@@ -53,7 +53,7 @@ void ErrorSweep::poll() {
   }
   const Decomposed* d = snap->decomposed.get();
   if (d == nullptr || d->params.components != params_.components) return;
-  insert(ErrorPoint{d->params.components, d->params.sparsity, d->params.mode, d->rmse[0], d->rmse[1]}, false);
+  insert(ErrorPoint{d->params.components, d->params.sparsity, d->params.mode, d->rmse}, false);
   if (++next_ >= static_cast<int>(std::size(kComponents))) {
     next_ = -1;
     return;

@@ -1,8 +1,8 @@
 #pragma once
 // Reconstruction error against k, for the components view's curve: each decomposition the editor
-// shows adds its point, and a second engine Worker decomposes the same pair at each k of
-// kComponents (mode and sparsity as shown), one after the other, in the background. Never touches
-// the result. No ImGui.
+// shows adds its point, and a second engine Worker decomposes the same takes (any number of them)
+// at each k of kComponents (mode and sparsity as shown), one after the other, in the background.
+// Never touches the result. No ImGui.
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -18,7 +18,7 @@ struct ErrorPoint {
   int components = 0;
   double sparsity = 0.0;
   BlendMode mode = BlendMode::kShared;
-  double rmse_a = 0.0, rmse_b = 0.0;  // A's units
+  std::vector<double> rmse;           // each take's, in the order of the takes; the reference's units
 };
 
 class ErrorSweep {
@@ -28,9 +28,9 @@ class ErrorSweep {
   // The sweep's takes are read with `read`, as the editor's own worker reads them.
   explicit ErrorSweep(const BvhReadOptions& read) : read_(read) {}
 
-  // A decomposition shown for the pair `takes` (read from `paths`, prepared with `options`): its
-  // point joins the curve (replacing one at the same k, sparsity and mode), and a new pair,
-  // sparsity, mode or basic motions starts the sweep again for it.
+  // A decomposition shown for `takes` (read from `paths`, prepared with `options`): its point
+  // joins the curve (replacing one at the same k, sparsity and mode), and new takes, sparsity,
+  // mode or basic motions start the sweep again for them.
   void add(const Decomposed& d, const PreparedTakes* takes, const std::vector<std::string>& paths,
            const PrepareOptions& options);
   // New takes: the curve spoke of the previous ones.
@@ -57,7 +57,7 @@ class ErrorSweep {
   std::uint64_t seen_version_ = 0;       // of worker_'s snapshot, at the last poll
   int next_ = -1;                        // index into kComponents being computed; -1: none
   DecomposeParams params_;               // the sweep's request now
-  const PreparedTakes* swept_ = nullptr;  // the pair the sweep was started for
+  const PreparedTakes* swept_ = nullptr;  // the takes the sweep was started for
   std::vector<ErrorPoint> curve_;
 };
 

@@ -9,8 +9,8 @@
 namespace mostyle::ui {
 namespace {
 
-// Whether the takes are mixed as a transfer: a palette (three or more) in transfer mode.
-bool is_transfer(const DocumentControls& c, int takes) { return takes >= 3 && c.palette.transfer; }
+// Whether the takes are mixed as a transfer: transfer mode, with a style beside the content.
+bool is_transfer(const DocumentControls& c, int takes) { return takes >= 2 && c.transfer; }
 
 // w (one per take, two or more) made a transfer's weights in place: the content 1, the neutral
 // (take `neutral`, 0 the content itself) minus the styles' sum (transfer_mix_weights).
@@ -24,23 +24,25 @@ void make_transfer(std::vector<double>& w, int neutral) {
 }
 
 // The constant controls set from mix weights, as the controls set them without keys: the inverse
-// of constant_weights (a transfer's content and neutral weights are its own: only the styles').
+// of constant_weights (a transfer's content and neutral weights follow from the styles': only the
+// styles' strengths are set, and the content's and the neutral's layers keep what they had for
+// when they are styles again).
 void set_constant_weights(Document& d, int takes, const std::vector<double>& weights) {
-  PaletteControls& c = d.controls.palette;
   if (!is_transfer(d.controls, takes)) {
-    d.weights = weights;
+    set_layer_weights(d, weights);
     return;
   }
-  const int neutral = transfer_neutral(c, takes);
-  c.strengths.resize(static_cast<size_t>(takes), 1.0);  // as the palette's take-up sizes them
+  const int neutral = transfer_neutral(d.controls, takes);
+  if (static_cast<int>(d.layers.size()) != takes) set_layer_weights(d, constant_weights(d, takes));
   for (int i = 1; i < takes; ++i)
-    if (i != neutral) c.strengths[static_cast<size_t>(i)] = weights[static_cast<size_t>(i)];
+    if (i != neutral) d.layers[static_cast<size_t>(i)].weight = weights[static_cast<size_t>(i)];
 }
 
 }  // namespace
 
-int transfer_neutral(const PaletteControls& c, int takes) {
-  return c.content_neutral ? 0 : std::clamp(c.neutral, 1, std::max(takes - 1, 1));
+int transfer_neutral(const DocumentControls& c, int takes) {
+  // A neutral take needs a style beside it: with none, the content is its own neutral.
+  return c.content_neutral || takes < 3 ? 0 : std::clamp(c.neutral, 1, takes - 1);
 }
 
 std::vector<double> transfer_mix_weights(const std::vector<double>& values, int neutral, int takes) {
@@ -51,10 +53,16 @@ std::vector<double> transfer_mix_weights(const std::vector<double>& values, int 
 }
 
 std::vector<double> constant_weights(const Document& d, int takes) {
-  if (is_transfer(d.controls, takes))
-    return transfer_mix_weights(d.controls.palette.strengths, transfer_neutral(d.controls.palette, takes), takes);
-  if (static_cast<int>(d.weights.size()) == takes) return d.weights;
-  return std::vector<double>(static_cast<size_t>(takes), 1.0 / takes);
+  std::vector<double> w = static_cast<int>(d.layers.size()) == takes
+                              ? layer_weights(d)
+                              : std::vector<double>(static_cast<size_t>(takes), 1.0 / takes);
+  if (is_transfer(d.controls, takes)) make_transfer(w, transfer_neutral(d.controls, takes));
+  return w;
+}
+
+void set_transfer(Document& d, int takes, bool on) {
+  if (!on && is_transfer(d.controls, takes)) set_layer_weights(d, constant_weights(d, takes));
+  d.controls.transfer = on;
 }
 
 void set_mix_keys(const DocumentControls& c, int takes, WeightKeys& out) {
@@ -64,7 +72,7 @@ void set_mix_keys(const DocumentControls& c, int takes, WeightKeys& out) {
   }
   out = c.keys;  // copy-assigned element by element: the vectors out has are reused
   if (is_transfer(c, takes))
-    for (WeightKey& key : out) make_transfer(key.weights, transfer_neutral(c.palette, takes));
+    for (WeightKey& key : out) make_transfer(key.weights, transfer_neutral(c, takes));
 }
 
 KeyTime key_time(const EditorState& state) {
@@ -88,7 +96,7 @@ std::vector<double> weights_at_playhead(const EditorState& state, int takes) {
   weights_at(c.keys, key_time(state).seconds, w);
   // The ease is linear in each weight, so easing the styles' and making the transfer's after is
   // the same as easing the transfer's keys (set_mix_keys).
-  if (is_transfer(c, takes)) make_transfer(w, transfer_neutral(c.palette, takes));
+  if (is_transfer(c, takes)) make_transfer(w, transfer_neutral(c, takes));
   return w;
 }
 

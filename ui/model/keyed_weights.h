@@ -5,13 +5,13 @@
 // its marks make at the playhead. Plain data: no ImGui; tests drive it with an EditorState made
 // by hand.
 //
-// One representation: a key holds the mix weights the engine takes (MixParams::weights, one per
-// take): a pair's (1 - alpha, alpha), a palette's weights, a transfer's transfer weights (the
-// content 1, each style its strength, the neutral minus their sum; with the content its own
-// neutral, the content 1 minus their sum). In a transfer the content's and neutral's weights are
-// always made again from the styles' (transfer_mix_weights), so a key follows a neutral or content
-// chosen after it as the strengths do, and what the strength sliders show at the playhead is what
-// plays.
+// One representation, the layers' (Document::layers): a key holds one weight per take, the
+// weights the engine's layers give each take (mix_layers.h take_weights): a pair's (1 - alpha,
+// alpha), a mix's weights, a transfer's transfer weights (the content 1, each style its strength,
+// the neutral minus their sum; with the content its own neutral, the content 1 minus their sum).
+// In a transfer the content's and neutral's weights are always made again from the styles'
+// (transfer_mix_weights), so a key follows a neutral or content chosen after it as the layers'
+// strengths do, and what the strength sliders show at the playhead is what plays.
 //
 // Times: seconds of the result from its first frame. The playhead (Playback::time_s) runs on the
 // reference take, and every take the editor shows is on the result's timeline (a pair's A and B
@@ -26,22 +26,28 @@
 namespace mostyle::ui {
 
 // A transfer's neutral take among `takes` (takes >= 2): 0 when the content (take 0) is its own
-// neutral (PaletteControls::content_neutral), else its neutral clamped to 1 .. takes - 1.
-int transfer_neutral(const PaletteControls& c, int takes);
+// neutral (DocumentControls::content_neutral, or two takes: a neutral needs a style beside it),
+// else its neutral clamped to 1 .. takes - 1.
+int transfer_neutral(const DocumentControls& c, int takes);
 
-// A transfer's mix weights from per-take values (PaletteControls::strengths, or a key's weights):
-// the content (take 0: the palette is prepared with it first) 1, each style its value, the
+// A transfer's mix weights from per-take values (the layers' weights, or a key's weights):
+// the content (take 0: the takes are prepared with it first) 1, each style its value, the
 // neutral (transfer_neutral: clamped to 0 .. takes - 1; 0, the content itself) minus the styles'
 // sum; every take but the content and the neutral is a style; a value missing counts 0. takes >= 2.
 std::vector<double> transfer_mix_weights(const std::vector<double>& values, int neutral, int takes);
 
-// The document's mix weights with nothing keyed, one per take: Document::weights (equal ones while
-// they are not one per take, so a pair's default is 0.5/0.5), or a transfer's (three or more takes
-// in transfer mode) transfer_mix_weights of its strengths.
+// The document's mix weights with nothing keyed, one per take: the layers' weights (equal ones
+// while they are not one per take, so a pair's default is 0.5/0.5), in transfer mode
+// transfer_mix_weights of them (the styles' are their strengths).
 std::vector<double> constant_weights(const Document& d, int takes);
 
+// Transfer mode on or off. Off, the layers take the transfer's weights (constant_weights): the
+// mix starts from what the transfer showed (a pair's alpha stays its alpha). On, each style's
+// weight is its strength.
+void set_transfer(Document& d, int takes, bool on);
+
 // The keys as the engine takes them (MixParams::keys) into `out`: none unless they fit the takes
-// (keys_fit); in a transfer (three or more takes) each key's content and neutral weights made from
+// (keys_fit); in a transfer each key's content and neutral weights made from
 // its styles' (transfer_mix_weights). No allocation once `out` has the keys' sizes (a slider's
 // every frame). O(keys x takes).
 void set_mix_keys(const DocumentControls& c, int takes, WeightKeys& out);
@@ -69,7 +75,7 @@ std::vector<double> weights_at_playhead(const EditorState& state, int takes);
 // Auto-key, the weight controls' edit: `weights` (mix weights, one per take) at the playhead.
 // With keys that fit the takes, the key at the playhead takes them, or a new key there, and the
 // playback pauses (a drag edits one key); without keys, the constant weights take them
-// (Document::weights; a transfer's strengths of its styles), as those controls set them
+// (the layers' weights; in a transfer the styles' strengths), as those controls set them
 // themselves.
 void set_weights_at_playhead(EditorState& state, int takes, const std::vector<double>& weights);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "engine/base/error.h"
+#include "engine/synthesize/mix_layers.h"
 #include "ui/model/keyed_weights.h"
 
 namespace mostyle::ui {
@@ -10,27 +11,17 @@ namespace mostyle::ui {
 LiveStylePlan live_style_plan(const Document& document, int takes) {
   LiveStylePlan plan;
   if (takes < 2) return plan;
-  const PaletteControls& palette = document.controls.palette;
-  if (takes == 2) {
-    plan.takes = {0, 1};
-    plan.strengths = {pair_alpha(document)};
-  } else if (!palette.transfer) {
-    // The stream is the first take's performer: the mix's weights of the others are how much of
-    // each is put on it (the first take's own weight is what is left of the stream).
-    const std::vector<double> weights = constant_weights(document, takes);
-    for (int i = 0; i < takes; ++i) plan.takes.push_back(i);
-    plan.strengths.assign(weights.begin() + 1, weights.end());
-  } else {
-    const int neutral = transfer_neutral(palette, takes);  // 0: the content is its own neutral
-    plan.takes.push_back(neutral);
-    for (int i = 1; i < takes; ++i) {
-      if (i == neutral) continue;
-      plan.takes.push_back(i);
-      const size_t at = static_cast<size_t>(i);
-      plan.strengths.push_back(at < palette.strengths.size() ? palette.strengths[at] : 1.0);
-    }
+  // The stream stands in for the first take (a transfer's content); the neutral is the first
+  // take itself, or a transfer's neutral take; every other take is a style added at its layer's
+  // weight (a mix's weight, a transfer's strength), as the mix's additive layers have it.
+  const int neutral = document.controls.transfer ? transfer_neutral(document.controls, takes) : 0;
+  const std::vector<double> weights = constant_weights(document, takes);
+  plan.takes.push_back(neutral);
+  for (int i = 1; i < takes; ++i) {
+    if (i == neutral) continue;
+    plan.takes.push_back(i);
+    plan.strengths.push_back(std::clamp(weights[static_cast<size_t>(i)], kMinStrength, kMaxStrength));
   }
-  for (double& s : plan.strengths) s = std::clamp(s, -1.0, 2.0);
   return plan;
 }
 

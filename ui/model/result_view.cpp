@@ -23,30 +23,39 @@ const glm::vec4 kHighlight(1.0f, 0.92f, 0.25f, 1.0f);
 
 using Clock = std::chrono::steady_clock;
 
+// Take i's short name among `takes`: its letter in a pair (take_letter), else its label (the
+// animation's name, or its file's): how the result's provenance names it.
+std::string short_name(int i, int takes, const std::string& path) {
+  const char* letter = take_letter(i, takes);
+  return *letter ? letter : take_label(path);
+}
+
 // How the engine's alignment warnings name take i of `takes` (prepare_takes: A and B for a
 // pair, its file's name for more), so each warning is filed under its take.
 std::string aligned_name(int i, int takes, const PreparedTake& take) {
-  if (takes == 2) return i == 0 ? "A" : "B";
-  return std::filesystem::path(take.clip->source).filename().string();
+  const char* letter = take_letter(i, takes);
+  return *letter ? letter : std::filesystem::path(take.clip->source).filename().string();
 }
 
-// Take i's label in the takes list and the viewport: a pair's "A  happy" and "B  marching", a
-// palette's "reference  normal" and then each take's own name.
+// Take i's label in the takes list and the viewport: its letter before its label in a pair
+// ("A  happy"), "reference  normal" for the first of more, and then each take's own name.
 std::string take_caption(int i, int takes, const std::string& path) {
-  if (takes == 2) return std::string(i == 0 ? "A  " : "B  ") + take_label(path);
-  return (i == 0 ? "reference  " : "") + take_label(path);
+  const char* letter = take_letter(i, takes);
+  const std::string lead = *letter ? std::string(letter) + "  " : i == 0 ? "reference  " : "";
+  return lead + take_label(path);
 }
 
-// The result's label: a blend says its alpha (a pair's transfer its strength), or that it is per
-// component or keyed; a palette says whether it mixes or transfers.
+// The result's label: what it is (result_name), per part or keyed; a pair's also says its alpha
+// (a pair's transfer its strength), the one number that tells a pair's result.
 std::string result_caption(const Document& d, const Decomposed* decomposition, int takes) {
-  const bool transfer = d.controls.palette.transfer;
+  const bool transfer = d.controls.transfer;
   const std::string name = result_name(takes, transfer);
-  if (takes > 2) return name;
+  const bool shared = decomposition != nullptr && decomposition->params.mode == BlendMode::kShared;
+  if (d.controls.per_part && shared) return name + " (per part)";
+  const bool keyed = !d.controls.keys.empty() && keys_fit(d.controls.keys, takes);
   const char* amount = transfer ? "strength" : "alpha";
-  if (d.controls.per_component && decomposition != nullptr && decomposition->params.mode == BlendMode::kShared)
-    return name + " (per component)";
-  if (!d.controls.keys.empty() && keys_fit(d.controls.keys, takes)) return name + "  " + amount + " keyed";
+  if (takes != 2) return keyed ? name + "  keyed" : name;  // only a pair has one number to say, its alpha
+  if (keyed) return name + "  " + amount + " keyed";
   char label[64];
   std::snprintf(label, sizeof label, "%s  %s %.2f", name.c_str(), amount, pair_alpha(d));
   return label;
@@ -114,15 +123,15 @@ void ResultView::take_up(const PreparedTakes& p, const std::vector<std::string>&
     // Its positions until the first result arrives.
     Take t = shown_take(take_caption(i, n, path), take_color(i), take.clip, p.fps, p.parents, take.world_placed);
     t.path = path;
-    names_.push_back(n == 2 ? aligned_names[static_cast<size_t>(i)] : take_label(t.path));
+    names_.push_back(short_name(i, n, t.path));
     t.warnings = std::move(by_take[static_cast<size_t>(i)].load);
     t.notes = std::move(by_take[static_cast<size_t>(i)].alignment);
     t.contacts = joint_contacts(take.own_contacts, p.feet, joints);
     state.takes.push_back(std::move(t));
   }
-  Take result = shown_take(result_name(n, state.document.controls.palette.transfer), result_color(),
-                           p.takes.front().clip, p.fps, p.parents, p.takes.front().world_placed);
-  result.path = n == 2 ? "(blend of A and B)" : "(mix of the palette's takes)";
+  const std::string name = result_name(n, state.document.controls.transfer);
+  Take result = shown_take(name, result_color(), p.takes.front().clip, p.fps, p.parents, p.takes.front().world_placed);
+  result.path = "(the " + name + " of the takes)";
   state.takes.push_back(std::move(result));
   // Shared floor and start, side-by-side spacing and direction (ui/model/lanes.h).
   const Placement placed = placement_of(p.takes.front().world_placed);
@@ -139,7 +148,7 @@ void ResultView::update(const PreparedTakes& p, const Decomposed* d, EditorState
     remix(p, *d, state, item_held);
   else if (!item_held && previewing())
     finish(p, state);
-  if (placed_overlay_ != state.document.overlay || placed_ghosts_ != state.document.controls.palette.ghosts)
+  if (placed_overlay_ != state.document.overlay || placed_ghosts_ != state.document.controls.ghosts)
     place(p, state);
   highlight(d, state);
 }
@@ -193,7 +202,7 @@ void ResultView::take_up_mix(const PreparedTakes& p, EditorState& state) {
 // when overlaid; side by side, each in a lane beside the result's path (ui/model/lanes.h).
 void ResultView::place(const PreparedTakes& p, EditorState& state) {
   const int n = p.size();
-  const bool overlay = state.document.overlay, ghosts = state.document.controls.palette.ghosts;
+  const bool overlay = state.document.overlay, ghosts = state.document.controls.ghosts;
   const int joints = static_cast<int>(p.majors.size());
   const bool lanes_on = !overlay && has_mix_;
   Lanes lanes;
@@ -210,8 +219,8 @@ void ResultView::place(const PreparedTakes& p, EditorState& state) {
   for (int i = 0; i < n; ++i) {
     const PreparedTake& take = p.takes[static_cast<size_t>(i)];
     Take& t = state.takes[static_cast<size_t>(i)];
-    // A pair's B always stands beside the blend; a palette's other takes only as ghosts.
-    t.visible = i == 0 || n == 2 || ghosts;
+    // The reference always stands beside the result; the other takes as ghosts.
+    t.visible = i == 0 || ghosts;
     if (has_mix_) {
       const Eigen::VectorXd at = mix_.sources.col(i);
       sample_rows(take.world_placed, at, sampled_);

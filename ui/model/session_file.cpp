@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <initializer_list>
+#include <iterator>
+#include <optional>
 #include <system_error>
 
 #include <nlohmann/json.hpp>
@@ -36,6 +38,9 @@ constexpr double kMaxTime = 1e9;         // playhead and keys, seconds
 constexpr double kMinSpeed = 0.01, kMaxSpeed = 100.0;
 constexpr std::size_t kMaxQuoted = 40;   // bytes of a key or value repeated in a message
 constexpr double kMaxFloat = 1e30;       // above it a double is not cast to float (undefined)
+// The body regions a file names (controls.component_regions), by body_region_name.
+constexpr BodyRegion kRegions[] = {BodyRegion::kSpineAndHead, BodyRegion::kLeftArm, BodyRegion::kRightArm,
+                                   BodyRegion::kLeftLeg, BodyRegion::kRightLeg};
 
 // ---- Where a value is in the text, for the line of a message ----
 
@@ -378,7 +383,7 @@ AlignmentOptions read_align(const Reader& r, const Json& j, const Where& w) {
 
 // ---- The document: its fields from the one list (ui/model/document_fields.h) ----
 
-// A field's place in the file: "controls.palette.strengths" is /controls/palette/strengths.
+// A field's place in the file: "controls.align.on" is /controls/align/on.
 Where field_where(const Field& field) {
   Where w;
   w.name = field.key;
@@ -413,6 +418,25 @@ OrderedJson field_json(const WeightKeys& keys, const fs::path&) {
   }
   return j;
 }
+OrderedJson field_json(const std::vector<TakeLayer>& layers, const fs::path&) {
+  OrderedJson j = OrderedJson::array();
+  for (const TakeLayer& layer : layers) {
+    OrderedJson l = OrderedJson::object();
+    l["weight"] = layer.weight;
+    if (!layer.component_weights.empty()) {
+      OrderedJson per = OrderedJson::array();
+      for (const std::optional<double>& w : layer.component_weights) per.push_back(w ? OrderedJson(*w) : OrderedJson());
+      l["component_weights"] = per;
+    }
+    j.push_back(l);
+  }
+  return j;
+}
+OrderedJson field_json(const std::vector<BodyRegion>& regions, const fs::path&) {
+  OrderedJson j = OrderedJson::array();
+  for (BodyRegion r : regions) j.push_back(body_region_name(r));
+  return j;
+}
 OrderedJson field_json(const std::vector<std::string>& takes, const fs::path& folder) {
   OrderedJson j = OrderedJson::array();
   for (const std::string& f : takes) j.push_back(take_for_file(f, folder));
@@ -432,11 +456,40 @@ void read_field(const Reader& r, const Json& j, const Where& w, const Field&, bo
 void read_field(const Reader& r, const Json& j, const Where& w, const Field& f, std::vector<double>& v, const fs::path&) {
   v = r.numbers(j, w, f.range);
 }
-void read_field(const Reader& r, const Json& j, const Where& w, const Field& f, std::vector<std::vector<double>>& v,
+// Layers: [{"weight": w, "component_weights": [w or null, ...]}, ...], each weight in the field's
+// range ("weight" needed; null: the layer's weight for that component).
+void read_field(const Reader& r, const Json& j, const Where& w, const Field& f, std::vector<TakeLayer>& layers,
                 const fs::path&) {
-  if (!j.is_array()) r.expected(w, "an array of arrays of numbers", j);
-  v.clear();
-  for (std::size_t i = 0; i < j.size(); ++i) v.push_back(r.numbers(j[i], w.item(i), f.range));
+  if (!j.is_array()) r.expected(w, "an array of layers {\"weight\": w, \"component_weights\": [...]}", j);
+  layers.clear();
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    const Where at = w.item(i);
+    r.object(j[i], at);
+    r.only_keys(j[i], at, {"weight", "component_weights"});
+    if (!j[i].contains("weight")) r.fail(at, at.name + ": a layer needs \"weight\"");
+    TakeLayer layer;
+    layer.weight = r.number(j[i].at("weight"), at.key("weight"), f.range);
+    r.member(j[i], at, "component_weights", [&](const Json& v, const Where& per) {
+      if (!v.is_array()) r.expected(per, "an array of numbers or nulls", v);
+      for (std::size_t c = 0; c < v.size(); ++c)
+        layer.component_weights.push_back(v[c].is_null() ? std::nullopt
+                                                         : std::optional<double>(r.number(v[c], per.item(c), f.range)));
+    });
+    layers.push_back(std::move(layer));
+  }
+}
+// Body regions by name ("left leg", ...), as body_region_name says them.
+void read_field(const Reader& r, const Json& j, const Where& w, const Field&, std::vector<BodyRegion>& regions,
+                const fs::path&) {
+  if (!j.is_array()) r.expected(w, "an array of body regions", j);
+  regions.clear();
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    const std::string name = r.string(j[i], w.item(i));
+    const auto* found = std::find_if(std::begin(kRegions), std::end(kRegions),
+                                     [&](BodyRegion region) { return name == body_region_name(region); });
+    if (found == std::end(kRegions)) r.expected(w.item(i), "a body region (\"left leg\", \"spine and head\", ...)", j[i]);
+    regions.push_back(*found);
+  }
 }
 // Keys: [{"seconds": s, "weights": [...]}, ...], each weight in the field's range, then the
 // engine's own check (in order of time, as many weights in each) with the line of the first key
@@ -567,7 +620,8 @@ void read_version_1_weights(const Reader& r, Json& j) {
   std::vector<double> pair, palette;
   const auto parameters = j.find("parameters");
   if (parameters != j.end() && parameters->is_object() && parameters->contains("alpha")) {
-    pair = pair_weights(r.number(parameters->at("alpha"), top.key("parameters").key("alpha"), kAlphaRange));
+    const double alpha = r.number(parameters->at("alpha"), top.key("parameters").key("alpha"), kAlphaRange);
+    pair = {1.0 - alpha, alpha};
     parameters->erase("alpha");
   }
   const auto controls = j.find("controls");
@@ -582,6 +636,98 @@ void read_version_1_weights(const Reader& r, Json& j) {
   const std::size_t n = takes != j.end() && takes->is_array() ? takes->size() : 0;
   const std::vector<double>& weights = n >= 3 ? palette : pair;
   if (!weights.empty()) j["weights"] = weights;
+}
+
+// Version 2 kept the weights apart from their layers: "weights" (one per take), a pair's
+// "controls.per_component" and "controls.component_alpha" (per component, B's weight), and
+// "controls.palette": {"per_part", "part_weights" ([legs, arms, spine] x takes, an empty row: the
+// weights), "transfer", "content", "neutral", "content_neutral", "strengths", "ghosts"}. They are
+// read (with the ranges version 2 read them with), taken out of `j`, and put in as version 3 keeps
+// them: "layers" (a palette's transfer its strengths, anything else its weights; a pair's
+// component alphas as (1 - alpha_c, alpha_c), a palette's part rows as weights per body region),
+// "controls.per_part", "controls.component_regions" and the transfer's and ghosts' own keys (a
+// pair's takes always stood beside its result: ghosts on).
+void read_version_2_layers(const Reader& r, Json& j) {
+  const Where top, controls_at = top.key("controls"), palette_at = controls_at.key("palette");
+  const auto takes = j.find("takes");
+  const std::size_t n = takes != j.end() && takes->is_array() ? takes->size() : 0;
+  std::vector<double> weights, component_alpha, strengths;
+  std::vector<std::vector<double>> part_rows;
+  bool per_component = false, per_part = false, transfer = false, content_neutral = false, ghosts = false;
+  int neutral = 1;
+  if (j.contains("weights")) weights = r.numbers(j["weights"], top.key("weights"), kMixWeightRange);
+  j.erase("weights");
+  if (!j.contains("controls")) j["controls"] = Json::object();
+  Json& controls = j["controls"];
+  r.object(controls, controls_at);
+  r.member(controls, controls_at, "per_component", [&](const Json& v, const Where& at) { per_component = r.boolean(v, at); });
+  r.member(controls, controls_at, "component_alpha",
+           [&](const Json& v, const Where& at) { component_alpha = r.numbers(v, at, kAlphaRange); });
+  if (controls.contains("palette")) {
+    const Json& p = r.object(controls["palette"], palette_at);
+    r.only_keys(p, palette_at, {"per_part", "part_weights", "transfer", "content", "neutral", "content_neutral",
+                                "strengths", "ghosts"});
+    r.member(p, palette_at, "per_part", [&](const Json& v, const Where& at) { per_part = r.boolean(v, at); });
+    r.member(p, palette_at, "part_weights", [&](const Json& v, const Where& at) {
+      if (!v.is_array()) r.expected(at, "an array of arrays of numbers", v);
+      for (std::size_t i = 0; i < v.size(); ++i) part_rows.push_back(r.numbers(v[i], at.item(i), kMixWeightRange));
+    });
+    r.member(p, palette_at, "transfer", [&](const Json& v, const Where& at) { transfer = r.boolean(v, at); });
+    r.member(p, palette_at, "content", [&](const Json& v, const Where& at) { r.whole(v, at, 0, kMaxPaletteTakes - 1); });
+    r.member(p, palette_at, "neutral", [&](const Json& v, const Where& at) { neutral = r.whole(v, at, 0, kMaxPaletteTakes - 1); });
+    r.member(p, palette_at, "content_neutral", [&](const Json& v, const Where& at) { content_neutral = r.boolean(v, at); });
+    r.member(p, palette_at, "strengths", [&](const Json& v, const Where& at) { strengths = r.numbers(v, at, kStrengthRange); });
+    r.member(p, palette_at, "ghosts", [&](const Json& v, const Where& at) { ghosts = r.boolean(v, at); });
+  }
+  for (const char* key : {"per_component", "component_alpha", "palette"}) controls.erase(key);
+  const bool palette = n >= 3;
+  // The layers' weights: a palette's transfer mixed its strengths (1 where none was set).
+  std::vector<double> layer_weights = weights;
+  if (palette && transfer) {
+    strengths.resize(n, 1.0);
+    layer_weights = strengths;
+  }
+  std::vector<OrderedJson> per(n, OrderedJson());
+  auto set_per = [&](std::size_t take, std::size_t at, double w) {
+    if (per[take].is_null()) per[take] = OrderedJson::array();
+    while (per[take].size() <= at) per[take].push_back(nullptr);
+    per[take][at] = w;
+  };
+  if (!palette && n == 2 && !component_alpha.empty()) {  // kept by index (no regions known)
+    for (std::size_t c = 0; c < component_alpha.size(); ++c) {
+      set_per(0, c, 1.0 - component_alpha[c]);
+      set_per(1, c, component_alpha[c]);
+    }
+  }
+  constexpr BodyPart kRowParts[] = {BodyPart::kLegs, BodyPart::kArms, BodyPart::kSpine};
+  bool by_region = false;
+  for (std::size_t row = 0; palette && row < part_rows.size() && row < std::size(kRowParts); ++row) {
+    if (part_rows[row].size() != n) continue;  // the part followed the weights
+    for (std::size_t g = 0; g < std::size(kRegions); ++g)
+      if (part_covers(kRowParts[row], kRegions[g]))
+        for (std::size_t i = 0; i < n; ++i) set_per(i, g, part_rows[row][i]);
+    by_region = true;
+  }
+  if (layer_weights.size() == n || std::any_of(per.begin(), per.end(), [](const OrderedJson& p) { return !p.is_null(); })) {
+    OrderedJson layers = OrderedJson::array();
+    for (std::size_t i = 0; i < n; ++i) {
+      OrderedJson l = OrderedJson::object();
+      l["weight"] = layer_weights.size() == n ? layer_weights[i] : 1.0 / static_cast<double>(n);
+      if (!per[i].is_null()) l["component_weights"] = per[i];
+      layers.push_back(l);
+    }
+    j["layers"] = layers;
+  }
+  if (by_region) {
+    OrderedJson regions = OrderedJson::array();
+    for (BodyRegion g : kRegions) regions.push_back(body_region_name(g));
+    controls["component_regions"] = regions;
+  }
+  controls["per_part"] = palette ? per_part : per_component;
+  controls["transfer"] = transfer;
+  controls["neutral"] = neutral;
+  controls["content_neutral"] = content_neutral;
+  controls["ghosts"] = palette ? ghosts : true;
 }
 
 SessionCamera read_camera(const Reader& r, const Json& j, const Where& w) {
@@ -674,11 +820,12 @@ SessionFile parse_session(std::string_view text, const std::string& session_path
   if (version == j.end())
     r.fail(top, "no \"version\": not a mostyle session (expected \"version\": " + std::to_string(kSessionVersion) + ")");
   if (!version->is_number_integer()) r.expected(top.key("version"), "a whole number", *version);
-  if (*version != 1 && *version != kSessionVersion)
+  if (*version < 1 || *version > kSessionVersion)
     r.fail(top.key("version"), "version " + a_json_type(*version) +
                                    " is not one this mostyle reads (it reads versions 1 to " +
                                    std::to_string(kSessionVersion) + ")");
   if (*version == 1) read_version_1_weights(r, j);
+  if (*version <= 2) read_version_2_layers(r, j);
   check_keys(r, j, top, "", {"version", "camera", "playback"});
 
   SessionFile session;

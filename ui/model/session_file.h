@@ -1,15 +1,17 @@
 #pragma once
 // The editor's session file (.mostyle): the takes, every parameter (a Document,
 // ui/model/document.h), the camera and the playback, as JSON, so that a day's work opens again as it
-// was left. Version 2 reads:
+// was left. Version 3 reads:
 //   {
-//     "version": 2,
+//     "version": 3,
 //     "takes": ["walks/happy.bvh", "walks/marching.bvh"],      (relative to the session's folder)
-//     "weights": [0.7, 0.3],                                    (one per take; a pair's: 1 - alpha, alpha)
+//     "layers": [{"weight": 0.7}, {"weight": 0.3, "component_weights": [0.3, null, ...]}],
+//                                                               (one per take; a pair's: 1 - alpha, alpha)
 //     "parameters": {"components": 10, "sparsity": 0.1},
-//     "controls": {"mode": "shared", "per_component": false, "component_alpha": [...], ...,
+//     "controls": {"mode": "shared", "per_part": false, "component_regions": ["left leg", ...], ...,
+//                  "transfer": false, "neutral": 1, "content_neutral": false, "ghosts": true,
 //                  "keys": [{"seconds": 0, "weights": [1, 0]}, {"seconds": 10, "weights": [0, 1]}],
-//                  "align": {"method": "slope", "on": "auto", ...}, "palette": {...}},
+//                  "align": {"method": "slope", "on": "auto", ...}},
 //     "view": {"overlay": false},
 //     "camera": {"target": [0, 9, 0], "yaw": 0.65, "pitch": 0.22, "distance": 80, "fov_y": 0.61},
 //     "playback": {"time_s": 1.5, "playing": false, "speed": 1, "loop": true}
@@ -17,9 +19,11 @@
 // Only "version" is required; a key left out keeps its default, an unknown key is refused (a
 // typo is never silently ignored), and so is a value out of its range. The document's keys, the
 // ranges they are read with (those the editor's controls allow) and the keys known are those of
-// the one list of its fields (ui/model/document_fields.h). Version 1 files read too: they kept a
-// pair's weights as "parameters": {"alpha": a} and a palette's as "controls": {"palette":
-// {"weights": [...]}}, read into "weights" (a palette's for three or more takes, else the alpha's).
+// the one list of its fields (ui/model/document_fields.h). Versions 1 and 2 read too: version 2
+// kept the weights beside their takes ("weights", a pair's "controls.component_alpha", a
+// palette's "controls.palette" with its strengths and part weights), read into the layers;
+// version 1 also kept a pair's weights as "parameters": {"alpha": a} and a palette's as
+// "controls": {"palette": {"weights": [...]}}.
 #include <array>
 #include <cstddef>
 #include <optional>
@@ -32,7 +36,7 @@
 
 namespace mostyle::ui {
 
-constexpr int kSessionVersion = 2;  // the version written; 1 and 2 are read
+constexpr int kSessionVersion = 3;  // the version written; 1 to 3 are read
 constexpr const char* kSessionExtension = ".mostyle";
 constexpr std::size_t kMaxSessionBytes = std::size_t{16} << 20;  // a larger file is refused unread
 

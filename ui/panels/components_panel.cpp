@@ -8,25 +8,13 @@
 
 #include <imgui.h>
 
+#include "engine/io/motion_file.h"
+
 #include "ui/panels/layout.h"
 #include "ui/panels/plot.h"
 
 namespace mostyle::ui {
 namespace {
-
-// The style palette: its shared components by body part, with their joints.
-void draw_palette_components(const Decomposed& pd, const PreparedTakes& palette) {
-  ImGui::TextColored(kDimColor, "%d components shared by %d takes", pd.components(), palette.size());
-  ImGui::PushTextWrapPos(0.0f);
-  for (const ComponentJoints& cj : pd.component_joints) {
-    std::string joints;
-    for (int column : cj.columns) joints += (joints.empty() ? "" : ", ") + palette.takes.front().names[static_cast<size_t>(column)];
-    ImGui::Text("%s", cj.name.c_str());
-    ImGui::SameLine();
-    ImGui::TextColored(kDimColor, "%s", joints.c_str());
-  }
-  ImGui::PopTextWrapPos();
-}
 
 // The component picked (c.selected_component): a combo of the components by their plain names
 // ("left leg 2", from the body region they move), and previous and next.
@@ -69,57 +57,85 @@ void draw_joints(const PreparedTakes& p, const Decomposed& d, int sel) {
   ImGui::PopTextWrapPos();
 }
 
-// Component `sel`'s weights in A and B over A's timeline; a click moves the playhead there.
-void draw_weights(EditorState& state, const PreparedTakes& p, const Decomposed& d, int sel) {
-  const bool shared = d.params.mode == BlendMode::kShared;
-  const Eigen::MatrixXd* wa = shared ? &d.shared()->stacked.weights[0] : &d.paper()->a.weights;
-  const Eigen::MatrixXd* wb = shared ? &d.shared()->stacked.weights[1] : &d.paper()->b.weights;
-  const float plot_h = std::max(50.0f, (ImGui::GetContentRegionAvail().y - 2.0f * ImGui::GetTextLineHeightWithSpacing()) * 0.5f);
-  if (sel >= 0 && sel < wa->cols() && sel < wb->cols() && wa->rows() > 1) {
-    const double top = std::max({1e-9, wa->col(sel).cwiseAbs().maxCoeff(), wb->col(sel).cwiseAbs().maxCoeff()});
-    PlotArea w = begin_plot("##weights", -1.0f, plot_h, 0.0, static_cast<double>(wa->rows() - 1), -1.05 * top, 1.05 * top);
-    plot_line(w, static_cast<int>(wa->rows()), [&](int i, double* x, double* y) { *x = i; *y = (*wa)(i, sel); }, color_a());
-    plot_line(w, static_cast<int>(wb->rows()), [&](int i, double* x, double* y) { *x = i; *y = (*wb)(i, sel); }, color_b());
-    plot_vline(w, frame_at(state.takes.front(), state.playback.time_s), IM_COL32(255, 255, 255, 140));
-    plot_legend(w, 0, "weight in A", color_a());
-    plot_legend(w, 1, "weight in B", color_b());
-    if (w.hovered) ImGui::SetTooltip("How much of this component A and B use over time; click: jump there");
-    if (w.clicked) state.playback.time_s = (std::clamp(w.x_at(ImGui::GetIO().MousePos.x), 0.0, 1e9) + 0.5) / p.fps;
-  } else {
-    ImGui::TextColored(kDimColor, "Pick a component to see its joints and weights.");
-  }
+// Take i's name in the plots' legends: a pair's A and B, else its label.
+std::string legend_name(const PreparedTakes& p, int i) {
+  const char* letter = take_letter(i, p.size());
+  return *letter ? letter : take_label(p.takes[static_cast<size_t>(i)].clip->source);
 }
 
-// The fit error of A and B against k, a point per decomposition tried; hover: the nearest.
-void draw_fit_error_plot(const std::vector<const ErrorPoint*>& points) {
+// Take i's weights of the components (frames x k, on the common timeline), or null in paper mode
+// past its two takes.
+const Eigen::MatrixXd* take_weights_of(const Decomposed& d, int i) {
+  if (const SharedComponents* shared = d.shared()) return &shared->stacked.weights[static_cast<size_t>(i)];
+  if (i > 1) return nullptr;
+  return i == 0 ? &d.paper()->a.weights : &d.paper()->b.weights;
+}
+
+// Component `sel`'s weight in each take over the common timeline; a click moves the playhead there.
+void draw_weights(EditorState& state, const PreparedTakes& p, const Decomposed& d, int sel) {
+  const float plot_h = std::max(50.0f, (ImGui::GetContentRegionAvail().y - 2.0f * ImGui::GetTextLineHeightWithSpacing()) * 0.5f);
+  const Eigen::MatrixXd* first = take_weights_of(d, 0);
+  if (sel < 0 || first == nullptr || sel >= first->cols() || first->rows() <= 1) {
+    ImGui::TextColored(kDimColor, "Pick a component to see its joints and weights.");
+    return;
+  }
+  double top = 1e-9;
+  for (int i = 0; i < p.size(); ++i)
+    if (const Eigen::MatrixXd* w = take_weights_of(d, i)) top = std::max(top, w->col(sel).cwiseAbs().maxCoeff());
+  PlotArea w = begin_plot("##weights", -1.0f, plot_h, 0.0, static_cast<double>(first->rows() - 1), -1.05 * top, 1.05 * top);
+  for (int i = 0; i < p.size(); ++i) {
+    const Eigen::MatrixXd* x = take_weights_of(d, i);
+    if (x == nullptr) continue;
+    plot_line(w, static_cast<int>(x->rows()), [&](int f, double* px, double* py) { *px = f; *py = (*x)(f, sel); },
+              take_color_u32(i));
+    if ((i + 1) * ImGui::GetTextLineHeight() < plot_h)  // as many legends as the plot has room for
+      plot_legend(w, i, ("weight in " + legend_name(p, i)).c_str(), take_color_u32(i));
+  }
+  plot_vline(w, frame_at(state.takes.front(), state.playback.time_s), IM_COL32(255, 255, 255, 140));
+  if (w.hovered) ImGui::SetTooltip("How much of this component each take uses over time; click: jump there");
+  if (w.clicked) state.playback.time_s = (std::clamp(w.x_at(ImGui::GetIO().MousePos.x), 0.0, 1e9) + 0.5) / p.fps;
+}
+
+// Each take's fit error against k, a point per decomposition tried; hover: the nearest.
+void draw_fit_error_plot(const PreparedTakes& p, const std::vector<const ErrorPoint*>& points) {
   double top = 1e-9;
   int kmax = 1;
   for (const ErrorPoint* e : points) {
-    top = std::max({top, e->rmse_a, e->rmse_b});
+    for (double r : e->rmse) top = std::max(top, r);
     kmax = std::max(kmax, e->components);
   }
   PlotArea r = begin_plot("##rmse", -1.0f, std::max(40.0f, ImGui::GetContentRegionAvail().y - 4.0f), 0.0, kmax + 1, 0.0,
                           1.1 * top);
   const int n = static_cast<int>(points.size());
-  plot_line(r, n, [&](int i, double* x, double* y) { *x = points[static_cast<size_t>(i)]->components; *y = points[static_cast<size_t>(i)]->rmse_a; }, color_a());
-  plot_line(r, n, [&](int i, double* x, double* y) { *x = points[static_cast<size_t>(i)]->components; *y = points[static_cast<size_t>(i)]->rmse_b; }, color_b());
   ImDrawList* dl = ImGui::GetWindowDrawList();
-  for (const ErrorPoint* e : points) {
-    dl->AddCircleFilled(r.to_screen(e->components, e->rmse_a), 3.0f, color_a());
-    dl->AddCircleFilled(r.to_screen(e->components, e->rmse_b), 3.0f, color_b());
+  for (int take = 0; take < p.size(); ++take) {
+    auto error_at = [&](int i) {
+      const std::vector<double>& rmse = points[static_cast<size_t>(i)]->rmse;
+      return static_cast<size_t>(take) < rmse.size() ? rmse[static_cast<size_t>(take)] : 0.0;
+    };
+    plot_line(r, n, [&](int i, double* x, double* y) { *x = points[static_cast<size_t>(i)]->components; *y = error_at(i); },
+              take_color_u32(take));
+    for (int i = 0; i < n; ++i)
+      dl->AddCircleFilled(r.to_screen(points[static_cast<size_t>(i)]->components, error_at(i)), 3.0f, take_color_u32(take));
   }
   if (r.hovered) {
     const ErrorPoint* nearest = points.front();
     const double k = r.x_at(ImGui::GetIO().MousePos.x);
     for (const ErrorPoint* e : points)
       if (std::abs(e->components - k) < std::abs(nearest->components - k)) nearest = e;
-    ImGui::SetTooltip("%d components\nfit error A %.4g\nfit error B %.4g (file units)", nearest->components,
-                      nearest->rmse_a, nearest->rmse_b);
+    std::string lines = std::to_string(nearest->components) + " components";
+    for (size_t take = 0; take < nearest->rmse.size() && take < static_cast<size_t>(p.size()); ++take) {
+      char line[96];
+      std::snprintf(line, sizeof line, "\nfit error %s %.4g", legend_name(p, static_cast<int>(take)).c_str(),
+                    nearest->rmse[take]);
+      lines += line;
+    }
+    ImGui::SetTooltip("%s (file units)", lines.c_str());
   }
 }
 
 // Reconstruction error against k, from every decomposition seen with this mode and sparsity.
-void draw_fit_error(const BlendSession& session, const Decomposed& d) {
+void draw_fit_error(const BlendSession& session, const PreparedTakes& p, const Decomposed& d) {
   std::vector<const ErrorPoint*> points;
   for (const ErrorPoint& e : session.error_curve())
     if (e.mode == d.params.mode && e.sparsity == d.params.sparsity) points.push_back(&e);
@@ -131,7 +147,7 @@ void draw_fit_error(const BlendSession& session, const Decomposed& d) {
   ImGui::SameLine();
   if (session.sweeping()) ImGui::TextColored(kDimColor, "computing...");
   else ImGui::TextColored(kDimColor, "%d to %d", points.front()->components, points.back()->components);
-  draw_fit_error_plot(points);
+  draw_fit_error_plot(p, points);
 }
 
 }  // namespace
@@ -142,26 +158,21 @@ void ComponentsPanel::draw(EditorState& state) {
     ImGui::End();
     return;
   }
-  const PreparedTakes* p = session_.pair();
-  const Decomposed* d = session_.snapshot().decomposed.get();
+  const PreparedTakes* p = session_.takes();
+  const Decomposed* d = p != nullptr ? session_.snapshot().decomposed.get() : nullptr;
   DocumentControls& c = state.document.controls;
-  if (const Decomposed* pd = session_.palette() != nullptr ? session_.snapshot().decomposed.get() : nullptr) {
-    draw_palette_components(*pd, *session_.palette());
+  if (d == nullptr) {
+    ImGui::TextColored(kDimColor, "Waiting for the decomposition...");
     ImGui::End();
     return;
   }
-  if (p == nullptr || d == nullptr) {
-    ImGui::TextColored(kDimColor, session_.palette() ? "Waiting for the palette's decomposition..."
-                                                     : "Waiting for the decomposition...");
-    ImGui::End();
-    return;
-  }
+  ImGui::TextColored(kDimColor, "%d components shared by %d takes", d->components(), p->size());
   draw_picker(c, *d);
-  // Its joints (lit on the blend skeleton) and its weights over A's timeline.
+  // Its joints (lit on the result's skeleton), its weight in each take over time, the fit error.
   const int sel = c.selected_component;
   draw_joints(*p, *d, sel);
   draw_weights(state, *p, *d, sel);
-  draw_fit_error(session_, *d);
+  draw_fit_error(session_, *p, *d);
   ImGui::End();
 }
 

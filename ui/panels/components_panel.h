@@ -1,6 +1,6 @@
 #pragma once
-// Pick a component: its joints light up on the blend; its weights over time for A and B; the
-// reconstruction error against k from the decompositions seen so far.
+// Pick a component: its joints light up on the result; its weight over time in each take; each
+// take's reconstruction error against k from the decompositions seen so far.
 #include "ui/model/blend_session.h"
 #include "ui/panels/panel.h"
 

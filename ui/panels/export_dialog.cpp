@@ -170,7 +170,7 @@ void ExportDialog::draw(EditorState& state) {
   // When the result becomes another kind (a pair a palette, a mix a transfer), not while a name
   // is typed.
   const PreparedTakes* p = session_.snapshot().prepared.get();
-  const std::string result = p != nullptr ? result_name(p->size(), state.document.controls.palette.transfer) : "";
+  const std::string result = p != nullptr ? result_name(p->size(), state.document.controls.transfer) : "";
   if (p != nullptr && result != named_result_) {
     named_result_ = result;
     const std::string named = export_name_for(settings_.path, result);
@@ -267,8 +267,8 @@ void ExportDialog::draw_rate(const ExportSubject& subject) {
     tooltip(tip);
   };
   char source_label[48];
-  const bool pair = subject.takes <= 2;
-  std::snprintf(source_label, sizeof source_label, "%s own (%g)", pair ? "A's" : "The reference's", source);
+  const char* letter = take_letter(0, subject.takes);
+  std::snprintf(source_label, sizeof source_label, "%s own (%g)", *letter ? "A's" : "The reference's", source);
   const std::string source_tip = "The rate of " + (subject.name.empty() ? std::string("the reference take") : subject.name);
   rate_button(ExportRate::kSource, source_label, source_tip.c_str());
   ImGui::SameLine();

@@ -79,12 +79,13 @@ std::string without_folders(std::string text, std::vector<std::string> folders) 
 }
 
 std::string take_role(int take, int takes) {
-  if (takes <= 2) return take == 0 ? "A" : "B";
-  return std::to_string(take + 1);
+  const char* letter = take_letter(take, takes);
+  return *letter ? letter : std::to_string(take + 1);
 }
 
 std::vector<std::string> with_take(std::vector<std::string> takes, size_t index, const std::string& path) {
-  if (takes.size() == 2 && takes[1].empty() && index == 2) index = 1;  // A with itself: the B it lacked
+  // An empty field last (a take alone with itself: the B it lacks) takes a file added.
+  if (index == takes.size() && !takes.empty() && takes.back().empty()) index = takes.size() - 1;
   if (index >= takes.size()) takes.push_back(path);
   else takes[index] = path;
   return takes;
@@ -96,31 +97,20 @@ FilesPanel::FilesPanel(BlendSession& session, std::string folder)
 void FilesPanel::take_buttons(const std::string& path, const std::vector<std::string>& takes) {
   BlendSession& s = session_;
   const int n = static_cast<int>(takes.size());
-  if (n <= 2) {
-    for (int i = 0; i < 2; ++i) {
-      if (ImGui::SmallButton(take_role(i, 2).c_str())) s.load_files(with_take(takes, static_cast<size_t>(i), path));
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip(i == 0 ? "Load as A, the take whose timing and skeleton lead" : "Load as B, the style blended in");
-      ImGui::SameLine();
-    }
-  }
   if (ImGui::SmallButton("+")) s.load_files(with_take(takes, takes.size(), path));
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip(n <= 2 && !takes[1].empty() ? "Add as a third take: the pair becomes a style palette"
-                                                  : "Add as one more take of the palette");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Add as one more take");
   ImGui::SameLine();
-  if (n > 2) {
-    if (ImGui::SmallButton("Replace...")) ImGui::OpenPopup("##replace");
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Put this file in place of one take of the palette");
-    if (ImGui::BeginPopup("##replace")) {
-      for (int i = 0; i < n; ++i) {
-        const std::string label = take_role(i, n) + "  " + fs::path(takes[static_cast<size_t>(i)]).filename().string() +
-                                  (i == 0 ? "  (reference)" : "");
-        if (ImGui::Selectable(label.c_str())) s.load_files(with_take(takes, static_cast<size_t>(i), path));
-      }
-      ImGui::EndPopup();
+  if (ImGui::SmallButton("Replace...")) ImGui::OpenPopup("##replace");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Put this file in place of one of the takes");
+  if (ImGui::BeginPopup("##replace")) {
+    for (int i = 0; i < n; ++i) {
+      const std::string label = take_role(i, n) + "  " + fs::path(takes[static_cast<size_t>(i)]).filename().string() +
+                                (i == 0 ? "  (reference)" : "");
+      if (ImGui::Selectable(label.c_str())) s.load_files(with_take(takes, static_cast<size_t>(i), path));
     }
-    ImGui::SameLine();
+    ImGui::EndPopup();
   }
+  ImGui::SameLine();
 }
 
 void FilesPanel::draw(EditorState& state) {
@@ -165,7 +155,7 @@ void FilesPanel::draw(EditorState& state) {
     const ImGuiID panel_id = ImGui::GetCurrentWindow()->ID;
     ImGui::BeginChild("##live", ImVec2(0.0f, foot), false, fits ? ImGuiWindowFlags_NoScrollbar : 0);
     ImGui::PushOverrideID(panel_id);  // the export field's id is the panel's, wherever it is drawn
-    draw_export_field(state, export_folder, static_cast<int>(takes.size()));
+    draw_export_field(state, export_folder);
     ImGui::PopID();
     if (live_ != nullptr) draw_live(state);
     live_height_ = std::max(ImGui::GetFrameHeight(), ImGui::GetCursorPosY() - spacing);
@@ -187,14 +177,13 @@ void FilesPanel::sync_fields() {
 }
 
 void FilesPanel::load_dropped(EditorState& state, const std::vector<std::string>& takes) {
-  // Dropped files: two or more are the new takes (three or more the style palette, the first the
-  // reference); one is the pair's new B, or one more take of a palette.
+  // Dropped files: two or more are the new takes (the first the reference); one is one more take
+  // (the B a take alone with itself lacked).
   if (state.dropped.empty()) return;
-  const int n = static_cast<int>(takes.size());
   std::vector<std::string> files;
   files.swap(state.dropped);
   if (files.size() >= 2) session_.load_files(files);
-  else session_.load_files(with_take(takes, n <= 2 ? 1 : takes.size(), files[0]));
+  else session_.load_files(with_take(takes, takes.size(), files[0]));
 }
 
 void FilesPanel::draw_take_fields(const std::vector<std::string>& takes) {
@@ -204,7 +193,7 @@ void FilesPanel::draw_take_fields(const std::vector<std::string>& takes) {
   // or Load loads the takes with this one as typed.
   std::vector<std::string> typed;
   for (const PathField& f : fields_) typed.push_back(f.path());
-  ImGui::PushItemWidth(n > 2 ? -116.0f : -92.0f);
+  ImGui::PushItemWidth(-116.0f);
   int remove = -1;
   for (int i = 0; i < n; ++i) {
     PathField& field = fields_[static_cast<size_t>(i)];
@@ -220,15 +209,11 @@ void FilesPanel::draw_take_fields(const std::vector<std::string>& takes) {
     ImGui::SameLine();
     if (ImGui::Button("Load") || entered) s.load_files(with_take(takes, static_cast<size_t>(i), field.path()));
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("%s", n <= 2 ? (i == 0 ? "Load this file as A, the take whose timing and skeleton lead"
-                                              : "Load this file as B, the style blended in")
-                                     : (i == 0 ? "Load this file as the reference (its skeleton, timing and path lead)"
-                                               : "Load this file as this take of the palette"));
-    if (n > 2) {
-      ImGui::SameLine();
-      if (ImGui::SmallButton("x")) remove = i;
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Take this take out (two left: a pair)");
-    }
+      ImGui::SetTooltip("%s", i == 0 ? "Load this file as the reference (its skeleton, timing and path lead)"
+                                     : "Load this file as this take");
+    ImGui::SameLine();
+    if (ImGui::SmallButton("x")) remove = i;
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Take this take out (one left: the take with itself)");
     ImGui::PopID();
   }
   ImGui::PopItemWidth();
@@ -237,16 +222,15 @@ void FilesPanel::draw_take_fields(const std::vector<std::string>& takes) {
     rest.erase(rest.begin() + remove);
     s.load_files(rest);
   }
-  if (ImGui::Button(n <= 2 ? "Load pair" : "Load all")) s.load_files(typed);
+  if (ImGui::Button("Load all")) s.load_files(typed);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Load every field as typed, as the new takes");
   ImGui::SameLine();
   ImGui::TextColored(kDimColor, "or drop motion files here");
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip(n <= 2 ? "Two or more files (BVH, FBX, glTF): the new takes. One file: the new B."
-                             : "Two or more files (BVH, FBX, glTF): the new takes. One file: one more take.");
+    ImGui::SetTooltip("Two or more files (BVH, FBX, glTF): the new takes. One file: one more take.");
 }
 
-void FilesPanel::draw_export_field(EditorState& state, const std::string& export_folder, int n) {
+void FilesPanel::draw_export_field(EditorState& state, const std::string& export_folder) {
   char* export_path = export_dialog_.settings().path;
   ImGui::SetNextItemWidth(-92.0f);
   const bool enter_export = ImGui::InputText("##export", export_path, sizeof export_dialog_.settings().path,
@@ -258,8 +242,7 @@ void FilesPanel::draw_export_field(EditorState& state, const std::string& export
   if (ImGui::Button("Export...") || enter_export) command_open_export(state);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Choose the frame rate, the frames and the channels, then write the result on the\n"
-                      "%s's skeleton as BVH or glTF (.glb), by the file's extension (Ctrl+E)",
-                      n <= 2 ? "A take" : "reference take");
+                      "reference take's skeleton as BVH or glTF (.glb), by the file's extension (Ctrl+E)");
 }
 
 void FilesPanel::draw_messages() {
@@ -398,8 +381,8 @@ void FilesPanel::draw_live(const EditorState& state) {
   const bool open = ImGui::CollapsingHeader("Live");
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Style a motion-capture stream as it comes (Axis Neuron's BVH broadcasting, string format,\n"
-                      "TCP) with the loaded takes as the result shows them: a pair at alpha (A the neutral), a mix\n"
-                      "with the stream as the first take, a transfer with the stream as the content; new takes\n"
+                      "TCP) with the loaded takes as the result shows them: the stream as the first take (a\n"
+                      "transfer's content), every other take but the neutral a style at its weight; new takes\n"
                       "restyle it on the same connection");
   if (!open) return;
   sync_live_fields();

@@ -33,10 +33,10 @@ struct PathField {
   std::string path() const;           // what to load; "" when the field is empty
 };
 
-// What a take is called in the panel: "A" and "B" in a pair, "1" to "N" in a palette.
+// What a take is called in the panel: "A" and "B" in a pair (take_letter), "1" to "N" for more.
 std::string take_role(int take, int takes);
-// `takes` with take `index` replaced by `path` (index == size: `path` added). A pair whose B is
-// empty (A with itself) stays a pair when its B is set.
+// `takes` with take `index` replaced by `path` (index == size: `path` added, or put in an empty
+// last field: A alone with itself gets its B).
 std::vector<std::string> with_take(std::vector<std::string> takes, size_t index, const std::string& path);
 
 // `text` with each of `folders` (and the slash after it) taken out, longest first: error and
@@ -52,8 +52,7 @@ class FilesPanel : public Panel {
   void set_live(LiveSource* live) { live_ = live; }
 
  private:
-  // The buttons that put `path` among `takes`: A and B (replace) and + (add) for a pair, + and
-  // Replace... (which take) for a palette.
+  // The buttons that put `path` among `takes`: + (add) and Replace... (which take).
   void take_buttons(const std::string& path, const std::vector<std::string>& takes);
   // One row of the browser: the take buttons for `path`, then `label`.
   void take_row(const std::string& path, const std::string& label, const std::vector<std::string>& takes);
@@ -61,9 +60,9 @@ class FilesPanel : public Panel {
   // The steps of draw, in the order it takes them; `takes` are the takes last asked for (synced_).
   void sync_fields();  // the fields to the requested takes, when those changed
   void load_dropped(EditorState& state, const std::vector<std::string>& takes);
-  void draw_take_fields(const std::vector<std::string>& takes);  // a field per take, Load pair / all
-  // The export field and Export... (opens the dialog); n: the number of takes.
-  void draw_export_field(EditorState& state, const std::string& export_folder, int n);
+  void draw_take_fields(const std::vector<std::string>& takes);  // a field per take, Load all
+  // The export field and Export... (opens the dialog).
+  void draw_export_field(EditorState& state, const std::string& export_folder);
   void draw_messages();  // a load error, the export's progress or outcome
   void draw_browser(const std::vector<std::string>& takes);
   void list_folder();  // folder_ into dirs_ and files_ (or list_error_)

@@ -1,7 +1,7 @@
 #pragma once
 // Where the editor's panels go, as a pure function of the display size (compute_layout): a left
 // column (takes, parameters), a right column (components, metrics, files), and along the bottom
-// the DTW view between the columns over the playback bar, which spans the window. The side
+// the takes' layers (layers_panel.h) between the columns over the playback bar, which spans the window. The side
 // columns take about a quarter of the width each (340 to 420 px), and the central 30% x 30% of
 // the window stays clear for the skeletons at every size from 1280x720 to 2560x1440
 // (tests/ui/panels/layout_test.cpp).
@@ -40,13 +40,13 @@ struct PanelRect {
 };
 
 // The panels the layout places, in compute_layout's order.
-enum class PanelId { kTakes, kParameters, kFiles, kComponents, kMetrics, kDtw, kPlayback };
+enum class PanelId { kTakes, kParameters, kFiles, kComponents, kMetrics, kLayers, kPlayback };
 constexpr int kPanelCount = 7;
 
 // The ImGui window title (and id) of each panel.
 inline const char* panel_title(PanelId id) {
   static const char* const kTitles[kPanelCount] = {"Takes",      "Parameters", "Files",   "Components",
-                                                   "Metrics",    "DTW alignment", "Playback"};
+                                                   "Metrics",    "Layers",     "Playback"};
   return kTitles[static_cast<int>(id)];
 }
 
@@ -101,11 +101,11 @@ inline std::array<PanelRect, kPanelCount> compute_layout(float width, float heig
   at(PanelId::kFiles) = PanelRect{right_x, top + components_h + metrics_h + 2.0f * g, side,
                                   right_h - components_h - metrics_h};
 
-  // Bottom, between the columns: the DTW view, from just under the clear centre to the bar.
-  const float dtw_x = m + side + g;
-  const float dtw_y = std::min(centre.bottom() + g, at(PanelId::kPlayback).y - g - 1.0f);
-  at(PanelId::kDtw) = PanelRect{dtw_x, dtw_y, std::max(1.0f, right_x - g - dtw_x),
-                                std::max(1.0f, at(PanelId::kPlayback).y - g - dtw_y)};
+  // Bottom, between the columns: the takes' layers, from just under the clear centre to the bar.
+  const float strip_x = m + side + g;
+  const float strip_y = std::min(centre.bottom() + g, at(PanelId::kPlayback).y - g - 1.0f);
+  at(PanelId::kLayers) = PanelRect{strip_x, strip_y, std::max(1.0f, right_x - g - strip_x),
+                                std::max(1.0f, at(PanelId::kPlayback).y - g - strip_y)};
   return r;
 }
 

@@ -1,6 +1,7 @@
 #include "ui/panels/metrics_panel.h"
 #include "ui/panels/theme.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -47,17 +48,16 @@ Metrics gather_metrics(const BlendSession& session, bool transfer) {
   const WorkerSnapshot& snapshot = session.snapshot();
   const PreparedTakes* p = snapshot.prepared.get();
   if (p == nullptr) return m;
-  const bool pair = p->size() == 2;
   const Decomposed* d = snapshot.decomposed.get();
   m.reference = p->takes.front().clip.get();
   m.body_height = p->feet.body_height;
   m.result = result_name(p->size(), transfer);
-  std::vector<std::string> names = {"A", "B"};
-  if (!pair) {
-    std::vector<std::string> sources;
-    for (const PreparedTake& take : p->takes) sources.push_back(take.clip->source);
-    names = distinct_take_labels(sources);  // narrow column: what differs
-  }
+  // A pair's takes by their letters, more by what tells their names apart (a narrow column).
+  std::vector<std::string> sources;
+  for (const PreparedTake& take : p->takes) sources.push_back(take.clip->source);
+  std::vector<std::string> names = distinct_take_labels(sources);
+  for (int i = 0; i < p->size(); ++i)
+    if (*take_letter(i, p->size())) names[static_cast<size_t>(i)] = take_letter(i, p->size());
   for (int i = 0; i < p->size(); ++i)
     m.takes.push_back({names[static_cast<size_t>(i)], d != nullptr ? d->rmse[static_cast<size_t>(i)] : -1.0,
                        take_foot_sliding(*p, i)});
@@ -87,20 +87,20 @@ void MetricsPanel::draw(EditorState& state) {
     return;
   }
   draw_live_table();
-  const Metrics m = gather_metrics(session_, state.document.controls.palette.transfer);
+  const Metrics m = gather_metrics(session_, state.document.controls.transfer);
   guess_unit(m.reference);
-  const bool pair = m.takes.size() <= 2;
-  const char* reference = pair ? "take A" : "the reference take";
-  if (m.reference != nullptr) draw_unit_note(pair, reference);
+  const char* letter = take_letter(0, static_cast<int>(m.takes.size()));
+  const std::string reference = *letter ? std::string("take ") + letter : "the reference take";
+  if (m.reference != nullptr) draw_unit_note(reference.c_str());
   draw_takes_table(m);
-  draw_quality_table(m, reference);
+  draw_quality_table(m, reference.c_str());
   // Timings differ run to run: a screenshot run (frame_ms < 0) shows none of them.
   if (state.times.frame_ms < 0.0f) {
     ImGui::TextColored(kDimColor, "(timings hidden in screenshots)");
     ImGui::End();
     return;
   }
-  draw_times_table(m, state.times, pair);
+  draw_times_table(m, state.times);
   ImGui::End();
 }
 
@@ -122,12 +122,12 @@ std::string MetricsPanel::length(double value, const char* per) const {
   return length_in_words(value, cm_per_unit_, height_, per);
 }
 
-void MetricsPanel::draw_unit_note(bool pair, const char* reference) {
+void MetricsPanel::draw_unit_note(const char* reference) {
   ImGui::PushTextWrapPos(0.0f);
   if (cm_per_unit_ > 0.0)
     ImGui::TextColored(kDimColor, "Lengths in metric units; the file is in %s.", unit_name_.c_str());
   else
-    ImGui::TextColored(kDimColor, "Unknown length unit: lengths as a share of %s's height.", pair ? "A" : "the reference");
+    ImGui::TextColored(kDimColor, "Unknown length unit: lengths as a share of %s's height.", reference);
   ImGui::PopTextWrapPos();
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("BVH files do not say their unit: it is guessed from %s's height\n"
@@ -198,7 +198,7 @@ void MetricsPanel::draw_quality_table(const Metrics& m, const char* reference) {
   ImGui::EndTable();
 }
 
-void MetricsPanel::draw_times_table(const Metrics& m, const FrameTimes& times, bool pair) {
+void MetricsPanel::draw_times_table(const Metrics& m, const FrameTimes& times) {
   if (!begin_table("##times")) return;
   row("Loading", milliseconds(m.load_ms), "Reading the takes' files");
   row("Preparing", milliseconds(m.preprocess_ms),
@@ -210,7 +210,8 @@ void MetricsPanel::draw_times_table(const Metrics& m, const FrameTimes& times, b
   row("Synthesis", milliseconds(m.synthesize_ms, "%.3f ms"), synthesis.c_str());
   const std::string cleanup = "Bone lengths and foot lock on the " + m.result;
   row("Clean-up", milliseconds(m.postprocess_ms, "%.3f ms"), cleanup.c_str());
-  const std::string all = pair ? "Blend, all" : "Mix, all";
+  std::string all = m.result + ", all";
+  all[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(all[0])));
   const std::string all_tip = "The whole " + m.result + " after a slider move, on the editor's thread";
   row(all.c_str(), milliseconds(m.result_ms, "%.3f ms"), all_tip.c_str());
   row("Export", milliseconds(times.export_ms), "The last export");

@@ -11,11 +11,11 @@
 
 namespace mostyle::ui {
 
-// What the metrics panel shows, gathered from the session for a pair or a palette alike; a
+// What the metrics panel shows, gathered from the session for any number of takes alike; a
 // negative number is not known yet ("-").
 struct Metrics {
   struct Take {
-    std::string name;           // "A", "B", or the file's name in a palette
+    std::string name;           // "A", "B" in a pair, else what tells the takes' names apart
     double fit_error = -1.0;    // what the components do not rebuild (RMSE), reference units
     double foot_sliding = -1.0; // how fast its planted feet move (engine/post/planted_feet.h), reference units per second
   };
@@ -28,7 +28,7 @@ struct Metrics {
   double load_ms = -1.0, preprocess_ms = -1.0, dtw_ms = -1.0, decompose_ms = -1.0;
   double synthesize_ms = -1.0, postprocess_ms = -1.0, result_ms = -1.0;
 };
-// O(takes): no copy of any motion. transfer: the palette is in transfer mode (the document's).
+// O(takes): no copy of any motion. transfer: the takes are in transfer mode (the document's).
 Metrics gather_metrics(const BlendSession& session, bool transfer);
 
 class MetricsPanel : public Panel {
@@ -47,11 +47,12 @@ class MetricsPanel : public Panel {
   // A speed of planted feet (reference units per second) as the CLI says it: a share of the body's
   // height per second ("0.85%h/s"); "-" when negative or without a height.
   static std::string planted_speed(double value, double body_height);
-  // The unit lengths are shown in; pair: A is the reference, named `reference` in the tooltip.
-  void draw_unit_note(bool pair, const char* reference);
+  // The unit lengths are shown in; the reference take named `reference` ("take A", "the
+  // reference take").
+  void draw_unit_note(const char* reference);
   void draw_takes_table(const Metrics& m);                            // fit error and foot sliding per take
   void draw_quality_table(const Metrics& m, const char* reference);   // the result's bones and feet
-  void draw_times_table(const Metrics& m, const FrameTimes& times, bool pair);  // each stage's time
+  void draw_times_table(const Metrics& m, const FrameTimes& times);  // each stage's time
   void draw_live_table();  // the live source's, once it has been connected
 
   const LiveSource* live_ = nullptr;

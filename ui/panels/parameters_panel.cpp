@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <optional>
+#include <vector>
 
 #include <imgui.h>
 
 #include "ui/model/keyed_weights.h"
-#include "ui/panels/keyed_tint.h"
+#include "ui/model/layer_parts.h"
 #include "ui/panels/layout.h"
 #include "ui/panels/range_slider.h"
 #include "ui/panels/theme.h"
@@ -14,39 +16,6 @@
 namespace mostyle::ui {
 
 namespace {
-
-// A pair's alpha: keyed over time, the value at the playhead, and moving it keys it there
-// (auto-key). In transfer mode it is the strength of B's style put on A.
-void draw_alpha(EditorState& state) {
-  const Keyed keyed = keyed_at_playhead(state, 2);
-  const bool transfer = state.document.controls.palette.transfer;
-  double alpha = weights_at_playhead(state, 2)[1];
-  bool moved = false;
-  {
-    const KeyedTint tint(keyed);
-    moved = range_slider(transfer ? "strength###alpha" : "alpha###alpha", alpha, kAlphaRange);
-  }
-  if (moved) set_weights_at_playhead(state, 2, pair_weights(alpha));  // blended this frame
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("%s Applied immediately.%s",
-                      transfer ? "0 leaves A as it is, 1 puts B's whole style on A." : "0: style A, 1: style B.",
-                      keyed_hint(keyed));
-}
-
-// A pair's mode: a blend of A and B, or a transfer of B's style onto A, A its own neutral (the
-// command line's `transfer A --style B`): A keeps its path, its pace and its timeline.
-void draw_pair_transfer(DocumentControls& c) {
-  bool transfer = c.palette.transfer;
-  if (ImGui::Checkbox("put B's style on A", &transfer)) {
-    c.palette.transfer = transfer;
-    if (transfer) c.palette.content_neutral = true;  // a pair has no other take to be the neutral
-    c.timing_a = transfer;                           // as the palette's Transfer button does
-  }
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("On: A is your own take and B a style. A keeps its path, its timing and its planted\n"
-                      "feet's pace, and takes on B's style as far as the strength says.\n"
-                      "Off: a blend between A and B, their paths and timing mixed too.");
-}
 
 // k and sparsity: the decomposition, recomputed when the slider is let go.
 void draw_decomposition(BlendParameters& p) {
@@ -60,12 +29,14 @@ void draw_decomposition(BlendParameters& p) {
                       "Small: each component is a small body part. Recomputed when you let go.");
 }
 
-// The blend mode (a pair's) and how the takes are aligned in time.
-void draw_mode_and_alignment(DocumentControls& c, bool palette) {
+// The decomposition's mode and how the takes are aligned in time. Paper mode, the paper's own
+// synthesis, blends two takes: it is offered for two.
+void draw_mode_and_alignment(DocumentControls& c, int takes) {
   int mode = c.mode == BlendMode::kShared ? 0 : 1;
-  if (!palette && ImGui::Combo("mode", &mode, "shared\0paper\0"))
+  const bool two = takes == 2;
+  if (two && ImGui::Combo("mode", &mode, "shared\0paper\0"))
     c.mode = mode == 0 ? BlendMode::kShared : BlendMode::kPaper;  // the engine link decomposes again
-  if (!palette && ImGui::IsItemHovered())
+  if (two && ImGui::IsItemHovered())
     ImGui::SetTooltip("shared: one component set for A and B (alpha 1 is B)\npaper: separate decompositions, "
                       "cores blended (paper 3.6)");
   int align_on = static_cast<int>(c.align.on);
@@ -89,16 +60,15 @@ void draw_mode_and_alignment(DocumentControls& c, bool palette) {
 }
 
 // Foot lock, the timing, the seamless loop and components only, two to a line.
-void draw_options(DocumentControls& c, bool palette) {
+void draw_options(DocumentControls& c) {
   ImGui::Checkbox("foot lock", &c.foot_lock);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Pin planted feet in place so the result does not skate");
   ImGui::SameLine();
-  ImGui::Checkbox(palette ? "reference timing" : "A's timing", &c.timing_a);
+  ImGui::Checkbox("reference timing", &c.timing_a);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("%s", palette ? "Off: the mix's timing is mixed with the weights, as style is.\n"
-                                      "On: keep the reference take's timeline, to stay in sync with other material."
-                                    : "Off: the blend's timing moves from A's (alpha 0) to B's (alpha 1), as style does.\n"
-                                      "On: keep A's timeline, to stay in sync with other material.");
+    ImGui::SetTooltip("Off: the result's timing is mixed with the weights, as style is (a pair's moves from A's\n"
+                      "at alpha 0 to B's at 1).\nOn: keep the reference take's (A's) timeline, to stay in sync with "
+                      "other material.");
   ImGui::Checkbox("seamless loop", &c.loop);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Cut 1 to 4 whole gait cycles that play seamlessly on repeat (root travel kept).\n"
@@ -112,9 +82,9 @@ void draw_options(DocumentControls& c, bool palette) {
                       "(the paper's synthesis); k and sparsity then shape the whole result.");
 }
 
-// Worker progress; the previous decomposition stays on screen until the new one arrives. Then a
-// pair's result error (a palette's weights say theirs in the palette panel).
-void draw_status(const BlendSession& s, const Decomposed* d, bool palette) {
+// Worker progress; the previous decomposition stays on screen until the new one arrives (the
+// weights say why they are refused in the takes' panel, layers_panel.h).
+void draw_status(const BlendSession& s, const Decomposed* d) {
   const WorkerStatus status = s.status();
   if (status.stage == WorkerStage::kLoading || status.stage == WorkerStage::kDecomposing) {
     char overlay[64];
@@ -127,68 +97,91 @@ void draw_status(const BlendSession& s, const Decomposed* d, bool palette) {
       ImGui::SetTooltip("The decomposition the result uses now: %d components, sparsity %.2f, %s mode, %d iterations",
                         d->params.components, d->params.sparsity, blend_mode_name(d->params.mode), d->iterations);
   }
-  if (!palette && !s.result_error().empty()) {
-    ImGui::PushTextWrapPos(0.0f);
-    ImGui::TextColored(kErrorColor, "%s", s.result_error().c_str());
-    ImGui::PopTextWrapPos();
-  }
 }
 
-// One slider per part (legs, arms, spine): it sets every component of that part.
-void draw_part_alphas(DocumentControls& c, const Decomposed& d) {
-  for (BodyPart part : {BodyPart::kLegs, BodyPart::kArms, BodyPart::kSpine}) {
-    int first = -1;
-    for (int i = 0; i < d.components(); ++i)
-      if (part_covers(part, d.component_joints[static_cast<size_t>(i)].region)) {
-        first = i;
-        break;
-      }
-    if (first < 0) continue;
-    double a = c.component_alpha[static_cast<size_t>(first)];
-    if (range_slider(body_part_name(part), a, kAlphaRange)) {
-      for (int i = 0; i < d.components(); ++i)
-        if (part_covers(part, d.component_joints[static_cast<size_t>(i)].region))
-          c.component_alpha[static_cast<size_t>(i)] = a;
-      c.per_component = true;
+// One row of weights, one per take (a part's or a component's): each take's drag in its colour,
+// the others following so that a mix's row sums to 1; in a transfer the styles' strengths only
+// (the content's and the neutral's follow from them). Returns the row when one moved.
+std::optional<std::vector<double>> draw_weight_row(const EditorState& state, std::vector<double> row) {
+  const DocumentControls& c = state.document.controls;
+  const int n = static_cast<int>(row.size());
+  const int neutral = c.transfer ? transfer_neutral(c, n) : -1;
+  bool moved = false;
+  const float width = ImGui::CalcTextSize("-0.50").x + 2.0f * ImGui::GetStyle().FramePadding.x + ImGui::GetFontSize();
+  for (int i = 0; i < n; ++i) {
+    ImGui::PushID(i);
+    if (i > 0) ImGui::SameLine();
+    ImGui::SetNextItemWidth(width);
+    double w = row[static_cast<size_t>(i)];
+    if (c.transfer && (i == 0 || i == neutral)) {
+      ImGui::TextColored(kDimColor, "%*s", 5, i == 0 ? "cont." : "neut.");
+    } else if (range_drag("##w", w, c.transfer ? kStrengthRange : kMixWeightRange)) {
+      if (c.transfer) row[static_cast<size_t>(i)] = w;
+      else row = set_weight_keeping_sum(row, i, w);
+      moved = true;
     }
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("This body part's style: 0 from A, 1 from B (sets all its components)");
+      ImGui::SetTooltip("%s", state.takes.size() > static_cast<size_t>(i) ? state.takes[static_cast<size_t>(i)].label.c_str() : "");
+    ImGui::PopID();
+  }
+  if (!moved) return std::nullopt;
+  return row;
+}
+
+// One row per part (legs, arms, spine): it sets every component of that part.
+void draw_part_weights(EditorState& state, const Decomposed& d, const std::vector<double>& weights) {
+  for (BodyPart part : kLayerParts) {
+    const int first = first_component_of(d, part);
+    if (first < 0) continue;
+    ImGui::PushID(static_cast<int>(part));
+    ImGui::AlignTextToFramePadding();
+    ImGui::TextUnformatted(body_part_name(part));
+    ImGui::SameLine(90.0f);
+    if (const auto row = draw_weight_row(state, component_row(state.document, first, weights))) {
+      set_part_row(state.document, d, part, row);
+      state.document.controls.per_part = true;
+    }
+    ImGui::PopID();
   }
 }
 
-// One slider per component; the one hovered or held is the selected component.
-void draw_component_alphas(DocumentControls& c, const Decomposed& d) {
+// One row per component; the one hovered or held is the selected component.
+void draw_component_weights(EditorState& state, const Decomposed& d, const std::vector<double>& weights) {
+  DocumentControls& c = state.document.controls;
   ImGui::TextColored(kDimColor, "each component:");
   for (int i = 0; i < d.components(); ++i) {
-    ImGui::PushID(i);
-    double a = c.component_alpha[static_cast<size_t>(i)];
-    char label[64];
-    std::snprintf(label, sizeof label, "%s%s", d.component_joints[static_cast<size_t>(i)].name.c_str(),
-                  i == c.selected_component ? " *" : "");
-    if (range_slider(label, a, kAlphaRange)) {
-      c.component_alpha[static_cast<size_t>(i)] = a;
-      c.per_component = true;
+    ImGui::PushID(1000 + i);
+    ImGui::AlignTextToFramePadding();
+    ImGui::Text("%s%s", d.component_joints[static_cast<size_t>(i)].name.c_str(), i == c.selected_component ? " *" : "");
+    if (ImGui::IsItemHovered()) c.selected_component = i;
+    ImGui::SameLine(90.0f);
+    ImGui::BeginGroup();
+    if (const auto row = draw_weight_row(state, component_row(state.document, i, weights))) {
+      set_component_row(state.document, d, i, row);
+      c.per_part = true;
     }
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("This component's style: 0 from A, 1 from B (its joints light up)");
+    ImGui::EndGroup();
     if (ImGui::IsItemHovered() || ImGui::IsItemActive()) c.selected_component = i;
     ImGui::PopID();
   }
 }
 
-// Shared mode: a different alpha for each body part or component.
-void draw_body_parts(DocumentControls& c, double alpha, const Decomposed* d) {
+// Shared mode: the takes' weights for each body part or component on their own.
+void draw_body_parts(EditorState& state, const Decomposed* d, int takes) {
+  DocumentControls& c = state.document.controls;
   const bool parts = ImGui::CollapsingHeader("Body parts");
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("A different alpha for the legs, the arms, the spine, or each component");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Other weights for the legs, the arms, the spine, or each component");
   if (!parts) return;
-  ImGui::Checkbox("alpha per body part", &c.per_component);
+  ImGui::Checkbox("weights per body part", &c.per_part);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Take each body part's style from A or B on its own: legs from one, arms from the other.");
-  if (d == nullptr || d->params.mode != BlendMode::kShared) return;
-  c.component_alpha.resize(static_cast<size_t>(d->components()), alpha);
-  if (ImGui::SmallButton("all = alpha")) std::fill(c.component_alpha.begin(), c.component_alpha.end(), alpha);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Set every body part and component back to the main alpha");
-  draw_part_alphas(c, *d);
-  draw_component_alphas(c, *d);
+    ImGui::SetTooltip("Take each body part's style from its own weights: legs from one take, arms from another.");
+  if (d == nullptr || d->params.mode != BlendMode::kShared || takes < 1) return;
+  if (ImGui::SmallButton("all = weights"))
+    for (int i = 0; i < d->components(); ++i) set_component_row(state.document, *d, i, std::nullopt);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Every body part and component back to the takes' own weights");
+  const std::vector<double> weights = weights_at_playhead(state, takes);
+  draw_part_weights(state, *d, weights);
+  draw_component_weights(state, *d, weights);
 }
 
 // Paper mode: the takes in levels of basic motions, and the level whose style comes from B.
@@ -232,19 +225,14 @@ void ParametersPanel::draw(EditorState& state) {
   const Decomposed* d = s.snapshot().decomposed.get();
   ImGui::PushItemWidth(-120.0f);  // room for the labels on the right
 
-  // With the style palette loaded, its panel holds the weights; alpha, the mode and the body
-  // parts' alphas are the pair's.
-  const bool palette = s.palette() != nullptr;
-  if (!palette) {
-    draw_alpha(state);
-    draw_pair_transfer(c);
-  }
+  // The takes' weights are in their own panel (layers_panel.h); here what is mixed and how.
+  const int takes = s.takes() != nullptr ? s.takes()->size() : 0;
   draw_decomposition(p);
-  draw_mode_and_alignment(c, palette);
-  draw_options(c, palette);
-  draw_status(s, d, palette);
-  if (c.mode == BlendMode::kShared && !palette) draw_body_parts(c, pair_alpha(state.document), d);
-  else if (!palette) draw_basic_motions(c, p);
+  draw_mode_and_alignment(c, takes);
+  draw_options(c);
+  draw_status(s, d);
+  if (c.mode == BlendMode::kShared) draw_body_parts(state, d, takes);
+  else draw_basic_motions(c, p);
 
   ImGui::PopItemWidth();
   ImGui::End();

@@ -1,6 +1,8 @@
 #pragma once
-// alpha (applied in the same frame), k and sparsity (re-decomposition on the worker, with its
-// progress), mode, per-component alphas (shared), basic motions (paper).
+// What the takes are mixed from and how, for any number of takes: k and sparsity
+// (re-decomposition on the worker, with its progress), the mode (paper mode for two takes), the
+// alignment, the options, the layers' weights per body part and per component (shared), basic
+// motions (paper). The weights themselves are in the takes' panel (layers_panel.h).
 #include "ui/model/blend_session.h"
 #include "ui/panels/panel.h"
 

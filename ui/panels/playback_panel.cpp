@@ -38,13 +38,9 @@ Track track_of(float left, float width, int last) {
   return Track{left + inset, left + width - inset, last};
 }
 
-// "alpha 0.30" for a pair, "weights 0.20, 0.30, 0.50" for a palette.
+// "weights 0.20, 0.30, 0.50": a key's weights, one per take.
 std::string weights_words(const std::vector<double>& w) {
   char number[32];
-  if (w.size() == 2) {
-    std::snprintf(number, sizeof number, "alpha %.2f", w[1]);
-    return number;
-  }
   std::string words = "weights ";
   for (std::size_t i = 0; i < w.size(); ++i) {
     std::snprintf(number, sizeof number, "%s%.2f", i == 0 ? "" : ", ", w[i]);
@@ -127,11 +123,10 @@ void draw_transport(EditorState& state, const Timeline& t, int frame) {
   ImGui::SameLine();
   if (ImGui::Button("Set key")) key_at_playhead(state, t.takes);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Key the style at this frame (K): %s, as the sliders show it now (a key already here takes "
-                      "it).\nThe style eases from key to key over the result; with keys, moving a weight keys it at "
-                      "the playhead.\nOn the timeline: drag a key to move it, click it to go to it, right-click it "
-                      "(or Delete) to remove it.",
-                      t.takes == 2 ? "alpha" : "the palette's weights");
+    ImGui::SetTooltip("Key the style at this frame (K): the takes' weights, as the weights show them now (a key "
+                      "already here takes them).\nThe style eases from key to key over the result; with keys, moving a "
+                      "weight keys it at the playhead.\nOn the timeline: drag a key to move it, click it to go to it, "
+                      "right-click it (or Delete) to remove it.");
   ImGui::SameLine();
 }
 

@@ -1,5 +1,7 @@
 #include "ui/panels/plot.h"
 
+#include "ui/model/result_view.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -79,8 +81,10 @@ void plot_axis_label(const PlotArea& area, const char* text, bool left) {
   dl->AddText(at, IM_COL32(160, 164, 172, 255), text);
 }
 
-ImU32 color_a() { return IM_COL32(245, 153, 71, 255); }
-ImU32 color_b() { return IM_COL32(92, 163, 247, 255); }
+ImU32 take_color_u32(int take) {
+  const glm::vec3 c = take_color(take);
+  return ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1.0f));
+}
 ImU32 color_blend() { return IM_COL32(128, 224, 117, 255); }
 
 }  // namespace mostyle::ui

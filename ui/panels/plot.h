@@ -33,9 +33,9 @@ void plot_legend(const PlotArea& area, int row, const char* text, ImU32 color);
 // `left`, its bottom-left (what a left-hand axis counts).
 void plot_axis_label(const PlotArea& area, const char* text, bool left = false);
 
-// Colours shared by the plots: A, B and the blend as in the viewport.
-ImU32 color_a();
-ImU32 color_b();
+// Colours shared by the plots: each take's and the result's, as in the viewport (take_color,
+// result_color).
+ImU32 take_color_u32(int take);
 ImU32 color_blend();
 
 }  // namespace mostyle::ui

@@ -156,7 +156,7 @@ TEST_CASE("editor options: bad values and unknown flags are usage errors that sa
     const char* mentions;
   };
   const std::vector<Case> cases = {
-      {{"--alpha", "1.5"}, "--alpha"},      {{"--alpha", "x"}, "--alpha"},
+      {{"--alpha", "1.6"}, "--alpha"},      {{"--alpha", "x"}, "--alpha"},
       {{"--alpha"}, "--alpha"},             {{"--components", "0"}, "--components"},
       {{"--components", "2.5"}, "--components"}, {{"--sparsity", "0"}, "--sparsity"},
       {{"--frame", "-1"}, "--frame"},       {{"--screenshot"}, "--screenshot"},
@@ -427,7 +427,7 @@ TEST_CASE("mostyle without a display says so in one line and exits 1, --offscree
   CHECK(fs::exists(out));
   fs::remove(out);
   CHECK(run(std::string(MOSTYLE_EXE) + " --alpha 7", &err) == 2);
-  CHECK(err == "mostyle: --alpha: expected a number in [0, 1], got '7'\n");
+  CHECK(err == "mostyle: --alpha: expected a number from -0.5 to 1.5, got '7'\n");
   CHECK(run(std::string(MOSTYLE_EXE) + " --window-size 12x7", &err) == 2);
   CHECK(err == "mostyle: --window-size: expected WIDTHxHEIGHT in pixels, each 320 to 16384 (e.g. 1920x1080), got '12x7'\n");
 }
@@ -699,13 +699,20 @@ TEST_CASE("editor options: --weights and --save-session") {
        {std::vector<const char*>{"a.bvh", "b.bvh", "c.bvh", "--weights", "0.5,0.5"},
         std::vector<const char*>{"a.bvh", "b.bvh", "c.bvh", "--weights", "0.5,0.6,0"},
         std::vector<const char*>{"a.bvh", "b.bvh", "c.bvh", "--weights", "2,-0.5,-0.5"},
-        std::vector<const char*>{"a.bvh", "b.bvh", "--weights", "1.3,-0.3"},
+        std::vector<const char*>{"a.bvh", "b.bvh", "--weights", "1.6,-0.6"},
         std::vector<const char*>{"day.mostyle", "--weights", "0.5,0.5"},
         std::vector<const char*>{"--save-session", "day.bvh"}, std::vector<const char*>{"--save-session"}}) {
     const ParseResult p = parse(bad);
     INFO(p.error);
     CHECK(p.status == ParseStatus::kUsageError);
   }
+  // A pair's weights and alpha have the mix's range, as `blend --alpha` has it: B's 1.3 and -0.3.
+  r = parse({"a.bvh", "b.bvh", "--weights", "-0.3,1.3"});
+  REQUIRE(r.status == ParseStatus::kRun);
+  CHECK(r.options.initial.weights == std::vector<double>{-0.3, 1.3});
+  r = parse({"a.bvh", "b.bvh", "--alpha", "-0.5"});
+  REQUIRE(r.status == ParseStatus::kRun);
+  CHECK(r.options.initial.weights == std::vector<double>{1.5, -0.5});
   r = parse({"--save-session", "out/day", "--paused"});
   REQUIRE(r.status == ParseStatus::kRun);
   CHECK(r.options.save_session_path == "out/day");
@@ -753,7 +760,7 @@ TEST_CASE("a state set up by flags, saved with --save-session, reopens to the sa
     INFO(err);
     REQUIRE(fs::exists(session));
     const mostyle::ui::SessionFile saved = mostyle::ui::read_session_file(session);
-    if (c.name == "palette") CHECK(saved.document.weights[0] == Approx(1.3));
+    if (c.name == "palette") CHECK(saved.document.layers[0].weight == Approx(1.3));
     else CHECK(pair_alpha(saved.document) == Approx(0.7));
     REQUIRE(run(program + " " + session + " --window-size 640x360 --screenshot " + again, &err) == 0);
     const mostyle::render::Image a = mostyle::render::read_png(first), b = mostyle::render::read_png(again);

@@ -7,6 +7,7 @@
 
 #include "tests/ui/loaded_session.h"
 #include "ui/model/document_fields.h"
+#include "ui/model/layer_parts.h"
 
 using namespace mostyle;
 using namespace mostyle::ui;
@@ -39,7 +40,7 @@ TEST_CASE("engine link: each change does what its field makes stale, and nothing
   SECTION("a view field: nothing asked of the worker, the blend unchanged") {
     const Eigen::MatrixXd before = s.session.result()->motion.world;
     s.state.document.overlay = !s.state.document.overlay;
-    s.state.document.controls.palette.ghosts = true;
+    s.state.document.controls.ghosts = true;
     s.session.sync(s.state);
     CHECK_FALSE(worker_asked(s.session));
     CHECK(s.session.result()->motion.world == before);
@@ -105,7 +106,8 @@ TEST_CASE("engine link: a pair's keys reach the mix, and where the engine refuse
   CHECK_FALSE(s.session.result()->motion.world.isApprox(at_b));
   // Keys with an alpha per body part: the engine refuses, says why, and the last blend stays.
   d.controls.keys = {WeightKey{1.0, {0.0, 1.0}}};
-  d.controls.per_component = true;
+  d.controls.per_part = true;
+  set_part_row(d, *s.session.snapshot().decomposed, BodyPart::kLegs, std::vector<double>{0.0, 1.0});
   const Eigen::MatrixXd before = s.session.result()->motion.world;
   s.session.sync(s.state);
   CHECK_THAT(s.session.result_error(), Catch::Contains("keyed in time"));

@@ -192,7 +192,7 @@ TEST_CASE("cycle provenance: a case worked by hand") {
 
 TEST_CASE("cycle provenance: a pair's blend in the editor, each output cycle from the paired take cycles") {
   LoadedSession s;
-  const PreparedTakes* p = s.session.pair();
+  const PreparedTakes* p = s.session.takes();
   REQUIRE(p != nullptr);
   REQUIRE(s.session.result() != nullptr);
   const std::vector<CycleProvenance>& spans = s.state.cycle_provenance;
@@ -211,7 +211,7 @@ TEST_CASE("cycle provenance: a palette's mix in the editor, a short take's cycle
   s.session.load_files({test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"),
                         test::asset("motions/cmu142_walk_joy.bvh")});
   s.session.wait_idle(s.state);
-  const PreparedTakes* p = s.session.palette();
+  const PreparedTakes* p = s.session.takes();
   REQUIRE(p != nullptr);
   REQUIRE(s.session.result_view().mix() != nullptr);
   const std::vector<CycleProvenance>& spans = s.state.cycle_provenance;

@@ -1,56 +1,61 @@
-// The editor's document (ui/model/document.h): a palette's per-take values follow their takes.
+// The editor's document (ui/model/document.h): each take's layer follows its take.
 #include "ui/model/document.h"
 #include "ui/model/document_fields.h"
 
 #include <catch2/catch.hpp>
 #include <iterator>
+#include <optional>
+#include <utility>
+#include <vector>
 
 using namespace mostyle;
 using namespace mostyle::ui;
 
-TEST_CASE("reorder_takes: each take keeps its weight, per-part weights and strength when the content changes") {
+// A layer at weight w, its weights per component `parts` (none: empty).
+TakeLayer layer(double w, std::vector<std::optional<double>> parts = {}) { return TakeLayer{w, std::move(parts)}; }
+
+TEST_CASE("reorder_takes: each take keeps its layer (weight and per-part weights) when the content changes") {
   // Takes: normal (content), tired, proud, old. Making "proud" (2) the content moves it first.
   Document d;
   d.files = {"normal.bvh", "tired.bvh", "proud.bvh", "old.bvh"};
-  d.weights = {0.63, 0.08, 0.2, 0.09};
-  PaletteControls& c = d.controls.palette;
-  c.part_weights = {{1, 0, 0, 0}, {}, {0, 0, 0.5, 0.5}};
-  c.strengths = {0.0, 1.5, -1.0, 0.7};
+  d.layers = {layer(0.63, {1.0, std::nullopt}), layer(0.08, {0.0, std::nullopt}), layer(0.2, {0.0, 0.5}),
+              layer(0.09, {0.0, 0.5})};
+  DocumentControls& c = d.controls;
   c.neutral = 3;  // old
   c.transfer = true;
   const std::vector<int> order = {2, 0, 1, 3};  // proud, normal, tired, old
   const Document r = reorder_takes(d, order);
-  CHECK(r.weights == std::vector<double>{0.2, 0.63, 0.08, 0.09});
+  CHECK(layer_weights(r) == std::vector<double>{0.2, 0.63, 0.08, 0.09});
   CHECK(r.files == d.files);  // loaded again in the new order: the engine link sets them
-  const PaletteControls& rc = r.controls.palette;
-  CHECK(rc.part_weights[0] == std::vector<double>{0, 1, 0, 0});
-  CHECK(rc.part_weights[1].empty());  // "the weights": nothing to reorder
-  CHECK(rc.part_weights[2] == std::vector<double>{0.5, 0, 0, 0.5});
-  CHECK(rc.strengths == std::vector<double>{-1.0, 0.0, 1.5, 0.7});
-  CHECK(rc.neutral == 3);
-  CHECK(rc.transfer);
+  CHECK(r.layers[0].component_weights == std::vector<std::optional<double>>{0.0, 0.5});
+  CHECK(r.layers[1].component_weights == std::vector<std::optional<double>>{1.0, std::nullopt});
+  CHECK(r.controls.neutral == 3);
+  CHECK(r.controls.transfer);
   // And back: the inverse order gives the document we started from.
   std::vector<int> inverse(order.size());
   for (size_t k = 0; k < order.size(); ++k) inverse[static_cast<size_t>(order[k])] = static_cast<int>(k);
   CHECK(reorder_takes(r, inverse) == d);
-  // The neutral moves with its take; values not sized for these takes are left alone.
+  // The neutral moves with its take; layers not sized for these takes are left alone.
   c.neutral = 1;
-  d.weights = {0.5, 0.5};
+  set_layer_weights(d, {0.5, 0.5});
   const Document moved = reorder_takes(d, {1, 2, 0, 3});
-  CHECK(moved.controls.palette.neutral == 0);
-  CHECK(moved.weights == std::vector<double>{0.5, 0.5});
+  CHECK(moved.controls.neutral == 0);
+  CHECK(layer_weights(moved) == std::vector<double>{0.5, 0.5});
 }
 
-TEST_CASE("pair_alpha: a pair's alpha is its second weight, 0.5 while the weights are not a pair's") {
+TEST_CASE("pair_alpha: a pair's alpha is its second layer's weight, 0.5 before there is one") {
   Document d;
   CHECK(pair_alpha(d) == 0.5);  // nothing loaded: the default
   set_pair_alpha(d, 0.3);
-  CHECK(d.weights == std::vector<double>{0.7, 0.3});
+  CHECK(layer_weights(d) == std::vector<double>{0.7, 0.3});
   CHECK(pair_alpha(d) == 0.3);
   set_pair_alpha(d, 0.0);
-  CHECK(d.weights == std::vector<double>{1.0, 0.0});  // exactly A
-  d.weights = {0.2, 0.3, 0.5};
-  CHECK(pair_alpha(d) == 0.5);  // a palette's weights: no alpha
+  CHECK(layer_weights(d) == std::vector<double>{1.0, 0.0});  // exactly A
+  // The layers' weights set keep each layer's weights per component.
+  d.layers[1].component_weights = {0.25};
+  set_layer_weights(d, {0.2, 0.3, 0.5});
+  CHECK(d.layers[1].component_weights == std::vector<std::optional<double>>{0.25});
+  CHECK(layer_weights(d) == std::vector<double>{0.2, 0.3, 0.5});
 }
 
 TEST_CASE("document fields: each one, changed alone, differs and makes stale what it should", "[document]") {
@@ -64,8 +69,8 @@ TEST_CASE("document fields: each one, changed alone, differs and makes stale wha
       {"k", [](Document& d) { d.parameters.components = 4; }, Stale::kDecomposition},
       {"sparsity", [](Document& d) { d.parameters.sparsity = 0.3; }, Stale::kDecomposition},
       {"mode", [](Document& d) { d.controls.mode = BlendMode::kPaper; }, Stale::kDecomposition},
-      {"per component", [](Document& d) { d.controls.per_component = true; }, Stale::kMix},
-      {"component alphas", [](Document& d) { d.controls.component_alpha = {0.1, 0.9}; }, Stale::kMix},
+      {"per part", [](Document& d) { d.controls.per_part = true; }, Stale::kMix},
+      {"component regions", [](Document& d) { d.controls.component_regions = {BodyRegion::kLeftLeg}; }, Stale::kMix},
       {"basic motions", [](Document& d) { d.controls.basic_motions = 2; }, Stale::kDecomposition},
       {"basic sparsities", [](Document& d) { d.controls.basic_sparsities = {0.2}; }, Stale::kDecomposition},
       {"swap level", [](Document& d) { d.controls.swap_level = 1; }, Stale::kMix},
@@ -78,15 +83,11 @@ TEST_CASE("document fields: each one, changed alone, differs and makes stale wha
       {"keys", [](Document& d) { d.controls.keys = {WeightKey{1.0, {0.5, 0.5}}}; }, Stale::kMix},
       {"picked component", [](Document& d) { d.controls.selected_component = 3; }, Stale::kView},
       {"DTW coordinate", [](Document& d) { d.controls.dtw_coordinate = 0; }, Stale::kView},
-      {"weights", [](Document& d) { set_pair_alpha(d, 0.7); }, Stale::kMix},
-      {"per part", [](Document& d) { d.controls.palette.per_part = true; }, Stale::kMix},
-      {"part weights", [](Document& d) { d.controls.palette.part_weights = {{0.5, 0.5}}; }, Stale::kMix},
-      {"transfer", [](Document& d) { d.controls.palette.transfer = true; }, Stale::kMix},
-      {"content", [](Document& d) { d.controls.palette.content = 2; }, Stale::kMix},
-      {"neutral", [](Document& d) { d.controls.palette.neutral = 2; }, Stale::kMix},
-      {"content its own neutral", [](Document& d) { d.controls.palette.content_neutral = true; }, Stale::kMix},
-      {"strengths", [](Document& d) { d.controls.palette.strengths = {1.0, 0.5}; }, Stale::kMix},
-      {"ghosts", [](Document& d) { d.controls.palette.ghosts = true; }, Stale::kView},
+      {"layers", [](Document& d) { set_pair_alpha(d, 0.7); }, Stale::kMix},
+      {"transfer", [](Document& d) { d.controls.transfer = true; }, Stale::kMix},
+      {"neutral", [](Document& d) { d.controls.neutral = 2; }, Stale::kMix},
+      {"content its own neutral", [](Document& d) { d.controls.content_neutral = true; }, Stale::kMix},
+      {"ghosts", [](Document& d) { d.controls.ghosts = false; }, Stale::kView},
       {"files", [](Document& d) { d.files = {"a.bvh", "b.bvh"}; }, Stale::kTakes},
       {"overlay", [](Document& d) { d.overlay = true; }, Stale::kView},
   };

@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <optional>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -14,6 +15,7 @@
 #include "tests/test_data.h"
 #include "tests/ui/imgui_frame.h"
 #include "tests/ui/loaded_session.h"
+#include "ui/model/layer_parts.h"
 #include "ui/model/unsaved_question.h"
 #include "ui/model/edit_history.h"
 #include "ui/model/keyed_weights.h"
@@ -143,17 +145,18 @@ TEST_CASE("undo and redo a load: the takes come back through the worker, and no 
   CHECK_FALSE(edits.can_redo());
 }
 
-TEST_CASE("undo and redo k: a new decomposition resizing the per-component alphas makes no step") {
+TEST_CASE("undo and redo k: a new decomposition fitting the layers' weights per component makes no step") {
   LoadedSession s;
   EditHistory edits;
+  set_component_row(s.state.document, *s.session.snapshot().decomposed, 0, std::vector<double>{0.2, 0.8});
   edits.record(s.state, s.session, false);
   const int k = s.state.document.parameters.components;
-  REQUIRE(s.state.document.controls.component_alpha.size() == static_cast<size_t>(k));
+  REQUIRE(s.state.document.layers[1].component_weights.size() == static_cast<size_t>(k));
   s.state.document.parameters.components = k - 2;  // the k slider, let go
   edits.record(s.state, s.session, true);
   edits.record(s.state, s.session, false);
   s.session.wait_idle(s.state);
-  CHECK(s.state.document.controls.component_alpha.size() == static_cast<size_t>(k - 2));
+  CHECK(s.state.document.layers[1].component_weights.size() == static_cast<size_t>(k - 2));
   edits.record(s.state, s.session, false);
   CHECK(edits.history().undo_steps() == 1);
   REQUIRE(edits.undo(s.state, s.session));
@@ -200,22 +203,25 @@ TEST_CASE("an opened session whose take is missing opens its other takes, restor
 TEST_CASE("keep_takes: a session's takes left out take their values with them; the weights sum to 1 again") {
   Document d;
   d.files = {"a.bvh", "b.bvh", "c.bvh", "d.bvh"};
-  d.weights = {0.4, 0.2, 0.2, 0.2};
-  d.controls.palette.transfer = true;
-  d.controls.palette.neutral = 2;
-  d.controls.palette.strengths = {1.0, 0.5, 1.0, 0.25};
-  d.controls.palette.part_weights = {{0.1, 0.2, 0.3, 0.4}, {}, {}};
+  set_layer_weights(d, {0.4, 0.2, 0.2, 0.2});
+  for (size_t i = 0; i < 4; ++i) d.layers[i].component_weights = {0.1 * static_cast<double>(i + 1)};
   const Document kept = keep_takes(d, {0, 1, 3});
   CHECK(kept.files == std::vector<std::string>{"a.bvh", "b.bvh", "d.bvh"});
-  CHECK(kept.weights[0] == Approx(0.5));
-  CHECK(kept.weights[1] == Approx(0.25));
-  CHECK(kept.weights[2] == Approx(0.25));
-  CHECK(kept.controls.palette.strengths == std::vector<double>{1.0, 0.5, 0.25});
-  CHECK(kept.controls.palette.part_weights[0] == std::vector<double>{0.1, 0.2, 0.4});
-  CHECK(kept.controls.palette.content_neutral);  // its neutral (c) is gone: the content is its own
+  const std::vector<double> w = layer_weights(kept);
+  CHECK(w[0] == Approx(0.5));
+  CHECK(w[1] == Approx(0.25));
+  CHECK(w[2] == Approx(0.25));
+  CHECK(kept.layers[2].component_weights == std::vector<std::optional<double>>{0.4});
+  // A transfer's strengths stay as they are; its neutral (c) gone, the content is its own.
+  d.controls.transfer = true;
+  d.controls.neutral = 2;
+  set_layer_weights(d, {1.0, 0.5, 1.0, 0.25});
+  const Document transfer_kept = keep_takes(d, {0, 1, 3});
+  CHECK(layer_weights(transfer_kept) == std::vector<double>{1.0, 0.5, 0.25});
+  CHECK(transfer_kept.controls.content_neutral);
   const Document neutral_kept = keep_takes(d, {0, 2, 3});
-  CHECK_FALSE(neutral_kept.controls.palette.content_neutral);
-  CHECK(neutral_kept.controls.palette.neutral == 1);
+  CHECK_FALSE(neutral_kept.controls.content_neutral);
+  CHECK(neutral_kept.controls.neutral == 1);
 }
 
 TEST_CASE("undo and redo keys: Set key is a step of its own, a mark's drag one more, and the blend follows") {

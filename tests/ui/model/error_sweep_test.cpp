@@ -1,6 +1,6 @@
 // The error curve against k (ui/model/error_sweep.h) through the editor's engine link over the
 // bundled pair: the shown decomposition's point, then one per k of the sweep, sorted; a new
-// sparsity starts a curve of its own; new takes clear it; a palette has none.
+// sparsity starts a curve of its own; new takes clear it; three takes have theirs too.
 #include <algorithm>
 #include <iterator>
 
@@ -29,16 +29,16 @@ TEST_CASE("error sweep: every k of the sweep and the one shown, by k, the shown 
   for (size_t i = 0; i < curve.size(); ++i) {
     CHECK(curve[i].components == ErrorSweep::kComponents[i]);
     CHECK(curve[i].sparsity == 0.2);
-    CHECK(curve[i].rmse_a > 0.0);
-    CHECK(curve[i].rmse_b > 0.0);
+    REQUIRE(curve[i].rmse.size() == 2);
+    CHECK(curve[i].rmse[0] > 0.0);
+    CHECK(curve[i].rmse[1] > 0.0);
   }
   // More components fit better (each its own decomposition: allow a little noise).
-  CHECK(curve.back().rmse_a < curve.front().rmse_a);
+  CHECK(curve.back().rmse[0] < curve.front().rmse[0]);
   const Decomposed& shown = *s.session.snapshot().decomposed;
   const auto six = std::find_if(curve.begin(), curve.end(), [](const ErrorPoint& e) { return e.components == 6; });
   REQUIRE(six != curve.end());
-  CHECK(six->rmse_a == shown.rmse[0]);
-  CHECK(six->rmse_b == shown.rmse[1]);
+  CHECK(six->rmse == shown.rmse);
 
   // Another sparsity: a curve of its own beside the first.
   s.state.document.parameters.sparsity = 0.3;
@@ -52,11 +52,12 @@ TEST_CASE("error sweep: every k of the sweep and the one shown, by k, the shown 
   CHECK(points_at(s.session.error_curve(), 0.2) == 0);
   CHECK(points_at(s.session.error_curve(), 0.3) == static_cast<int>(std::size(ErrorSweep::kComponents)));
 
-  // A palette has no curve (the sweep is a pair's).
+  // Three takes: a curve of their own, a fit error per take.
   s.session.load_files({test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"),
                         test::asset("motions/cmu142_walk_joy.bvh")});
   s.session.wait_idle(s.state);
-  REQUIRE(s.session.palette() != nullptr);
-  CHECK(s.session.error_curve().empty());
+  REQUIRE(s.session.takes() != nullptr);
   CHECK_FALSE(s.session.sweeping());
+  CHECK(points_at(s.session.error_curve(), 0.3) == static_cast<int>(std::size(ErrorSweep::kComponents)));
+  for (const ErrorPoint& e : s.session.error_curve()) CHECK(e.rmse.size() == 3);
 }

@@ -95,12 +95,12 @@ TEST_CASE("document: every edited field counts, the view's own state does not") 
   changed[0].parameters.components = 4;
   changed[1].parameters.sparsity = 0.3;
   changed[2].controls.mode = BlendMode::kPaper;
-  changed[3].controls.component_alpha = {0.2, 0.8};
+  changed[3].controls.per_part = true;
   changed[4].controls.foot_lock = false;
   changed[5].controls.align.on = AlignOn::kBody;
   changed[6].controls.align.slope.max_slope = 3;
-  changed[7].weights = {0.5, 0.25, 0.25};
-  changed[8].controls.palette.part_weights = {{1.0, 0.0}};
+  set_layer_weights(changed[7], {0.5, 0.25, 0.25});
+  changed[8].layers[1].component_weights = {1.0, std::nullopt};
   changed[9].files = {"/takes/a.bvh", "/takes/c.bvh"};
   changed[10].overlay = true;
   changed[11].controls.basic_sparsities = {0.2};

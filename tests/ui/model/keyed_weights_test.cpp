@@ -49,46 +49,50 @@ TEST_CASE("keyed weights: without keys, the controls show and take the weights a
   EditorState palette = loaded(3);
   CHECK(weights_at_playhead(palette, 3) == std::vector<double>(3, 1.0 / 3.0));  // not sized yet: equal
   set_weights_at_playhead(palette, 3, {0.2, 0.3, 0.5});
-  CHECK(palette.document.weights == std::vector<double>{0.2, 0.3, 0.5});
-  // A transfer: content 1, each style its strength, the neutral (take 1) minus their sum.
-  PaletteControls& c = palette.document.controls.palette;
+  CHECK(layer_weights(palette.document) == std::vector<double>{0.2, 0.3, 0.5});
+  // A transfer: content 1, each style its strength (its layer's weight), the neutral (take 1)
+  // minus their sum.
+  DocumentControls& c = palette.document.controls;
   c.transfer = true;
   c.neutral = 1;
-  c.strengths = {9.0, 9.0, 0.8};  // the content's and the neutral's are not used
+  set_layer_weights(palette.document, {9.0, 9.0, 0.8});  // the content's and the neutral's are not used
   CHECK(weights_at_playhead(palette, 3) == std::vector<double>{1.0, -0.8, 0.8});
   set_weights_at_playhead(palette, 3, {1.0, -0.5, 0.5});
-  CHECK(c.strengths == std::vector<double>{9.0, 9.0, 0.5});
+  CHECK(layer_weights(palette.document) == std::vector<double>{9.0, 9.0, 0.5});
   CHECK(transfer_mix_weights({0.0, 0.0, 0.5, 1.5}, 2, 4) == std::vector<double>{1.0, 0.0, -1.5, 1.5});
   CHECK(transfer_mix_weights({}, 1, 3) == std::vector<double>{1.0, 0.0, 0.0});  // a value missing counts 0
   // No neutral take: the content is its own neutral, every other take a style; the content 1
   // minus the styles' sum, and the strengths edited are every take's but the content's.
   c.content_neutral = true;
-  c.strengths = {9.0, 0.25, 0.5};
+  set_layer_weights(palette.document, {9.0, 0.25, 0.5});
   CHECK(transfer_neutral(c, 3) == 0);
   CHECK(weights_at_playhead(palette, 3) == std::vector<double>{0.25, 0.25, 0.5});
   set_weights_at_playhead(palette, 3, {0.0, 0.4, 0.6});
-  CHECK(c.strengths == std::vector<double>{9.0, 0.4, 0.6});
+  CHECK(layer_weights(palette.document) == std::vector<double>{9.0, 0.4, 0.6});
   CHECK(c.neutral == 1);  // kept for when a neutral take is chosen again
   c.content_neutral = false;
   CHECK(transfer_neutral(c, 3) == 1);
   CHECK(weights_at_playhead(palette, 3) == std::vector<double>{1.0, -0.6, 0.6});
   CHECK(transfer_mix_weights({0.0, 0.5, 1.5}, 0, 3) == std::vector<double>{-1.0, 0.5, 1.5});
-  // The transfer's weights toggled off: the mix's weights as they were, untouched by the strengths.
-  c.transfer = false;
-  CHECK(weights_at_playhead(palette, 3) == std::vector<double>{0.2, 0.3, 0.5});
+  // The transfer toggled off: the mix starts from the weights the transfer mixed.
+  set_transfer(palette.document, 3, false);
+  CHECK(weights_at_playhead(palette, 3) == std::vector<double>{1.0, -0.6, 0.6});
+  // And on again: each style's weight its strength, the content's and neutral's made from them.
+  set_transfer(palette.document, 3, true);
+  CHECK(weights_at_playhead(palette, 3) == std::vector<double>{1.0, -0.6, 0.6});
 }
 
 TEST_CASE("keyed weights: a transfer's document before its takes are in has only the weights it holds") {
   // A session in transfer mode whose takes are not loaded (missing, or still loading): no
-  // transfer of nothing, and a pair is never a transfer.
+  // transfer of nothing; layers not one per take, equal weights as the styles' strengths.
   Document d;
-  d.controls.palette.transfer = true;
-  d.controls.palette.strengths = {0.0, 1.0, 1.25};
+  d.controls.transfer = true;
+  set_layer_weights(d, {0.0, 1.0, 1.25});
   CHECK(constant_weights(d, 0).empty());
-  CHECK(constant_weights(d, 2) == std::vector<double>{0.5, 0.5});
+  CHECK(constant_weights(d, 2) == std::vector<double>{0.5, 0.5});  // a pair's: A its own neutral
+  CHECK(constant_weights(d, 3) == std::vector<double>{1.0, -1.25, 1.25});  // neutral 1 loses what the style gains
   set_pair_alpha(d, 0.25);
   CHECK(constant_weights(d, 2) == std::vector<double>{0.75, 0.25});
-  CHECK(constant_weights(d, 3) == std::vector<double>{1.0, -1.25, 1.25});  // neutral 1 loses what the style gains
 }
 
 TEST_CASE("keyed weights: a normal walk that becomes tired over ten seconds") {
@@ -163,8 +167,8 @@ TEST_CASE("keyed weights: the engine's keys, a transfer's made from its styles' 
   // the styles' weights (their strengths). A key made in a mix (weights summing to 1) reads so; a
   // transfer's own key is the same whichever take is the neutral (its takes but the content sum
   // to 0), so a neutral chosen after the keys plays what the strength sliders show.
-  c.palette.transfer = true;
-  c.palette.neutral = 1;
+  c.transfer = true;
+  c.neutral = 1;
   c.keys = {WeightKey{0.0, {0.4, 0.3, 0.2, 0.1}}, WeightKey{4.0, {1.0, -1.5, 1.0, 0.5}}};
   set_mix_keys(c, 4, out);
   REQUIRE(out.size() == 2);
@@ -173,7 +177,7 @@ TEST_CASE("keyed weights: the engine's keys, a transfer's made from its styles' 
   CHECK(out[0].weights[2] == 0.2);
   CHECK(out[0].weights[3] == 0.1);
   CHECK(out[1].weights == c.keys[1].weights);
-  c.palette.neutral = 2;
+  c.neutral = 2;
   set_mix_keys(c, 4, out);
   CHECK(out[0].weights[0] == 1.0);
   CHECK(out[0].weights[1] == 0.3);
@@ -181,12 +185,12 @@ TEST_CASE("keyed weights: the engine's keys, a transfer's made from its styles' 
   CHECK(out[0].weights[3] == 0.1);
   CHECK(out[1].weights == c.keys[1].weights);
   // The content its own neutral: each key's content weight 1 minus every other take's.
-  c.palette.content_neutral = true;
+  c.content_neutral = true;
   set_mix_keys(c, 4, out);
   CHECK(out[0].weights[0] == Approx(0.4));
   CHECK(out[0].weights[1] == 0.3);
   CHECK(out[1].weights[0] == Approx(1.0 - (-1.5 + 1.0 + 0.5)));
-  c.palette.content_neutral = false;
+  c.content_neutral = false;
   set_mix_keys(c, 4, out);
   // The weights shown at the playhead are those the engine eases to there (the ease is linear in
   // each weight): halfway between the keys, the mean of the two.
@@ -201,11 +205,11 @@ TEST_CASE("keyed weights: the engine's keys, a transfer's made from its styles' 
 TEST_CASE("keyed weights: keys made for another number of takes are left out, and a new key replaces them") {
   EditorState state = loaded(3);  // a palette of three, keys of a pair kept from before
   state.document.controls.keys = {WeightKey{0.0, {1.0, 0.0}}, WeightKey{10.0, {0.0, 1.0}}};
-  state.document.weights = {0.2, 0.3, 0.5};
+  set_layer_weights(state.document, {0.2, 0.3, 0.5});
   CHECK(keyed_at_playhead(state, 3) == Keyed::kNo);
   CHECK(weights_at_playhead(state, 3) == std::vector<double>{0.2, 0.3, 0.5});
   set_weights_at_playhead(state, 3, {0.6, 0.2, 0.2});  // the constant weights, as without keys
-  CHECK(state.document.weights == std::vector<double>{0.6, 0.2, 0.2});
+  CHECK(layer_weights(state.document) == std::vector<double>{0.6, 0.2, 0.2});
   CHECK(state.document.controls.keys.size() == 2);
   go_to(state, 30);
   key_at_playhead(state, 3);

@@ -305,48 +305,45 @@ TEST_CASE("live source: a bad address, a missing skeleton and too few takes are 
   CHECK(!l.live.active());
 }
 
-TEST_CASE("live style plan: a pair's alpha, a mix's weights, a transfer's neutral and strengths") {
+TEST_CASE("live style plan: one rule, every take but the neutral a style at its layer's weight") {
   Document d;
   CHECK(live_style_plan(d, 1).takes.empty());  // nothing to style with
   CHECK(live_style_plan(d, 1).strengths.empty());
 
-  // A pair: A the neutral, B the style, at alpha (transfer mode is a palette's only).
+  // A pair: A the neutral, B the style, at alpha; in transfer mode too (A its own neutral).
   set_pair_alpha(d, 0.25);
-  d.controls.palette.transfer = true;
   CHECK(live_style_plan(d, 2).takes == std::vector<int>{0, 1});
   CHECK(live_strengths(d, 2) == std::vector<double>{0.25});
-  d.controls.palette.transfer = false;
+  d.controls.transfer = true;
+  CHECK(live_style_plan(d, 2).takes == std::vector<int>{0, 1});
+  CHECK(live_strengths(d, 2) == std::vector<double>{0.25});
+  d.controls.transfer = false;
 
   // A mix: the stream stands in for take 0, the others' weights are their strengths.
-  d.weights = {0.5, 0.25, 0.25};
+  set_layer_weights(d, {0.5, 0.25, 0.25});
   CHECK(live_style_plan(d, 3).takes == std::vector<int>{0, 1, 2});
   CHECK(live_strengths(d, 3) == std::vector<double>{0.25, 0.25});
-  d.weights = {-0.5, 0.25, 1.25};
+  set_layer_weights(d, {-0.5, 0.25, 1.25});
   CHECK(live_strengths(d, 3) == std::vector<double>{0.25, 1.25});
-  // Weights not one per take (takes just changed): equal ones, as the mix takes them.
-  d.weights = {0.5, 0.5};
-  CHECK(live_strengths(d, 4) == std::vector<double>{0.25, 0.25, 0.25});
-  // The palette's strengths are the transfer's, not the mix's.
-  d.controls.palette.strengths = {1.0, 0.7, 0.7, 0.7};
+  // Layers not one per take (takes just changed): equal weights, as the mix takes them.
+  set_layer_weights(d, {0.5, 0.5});
   CHECK(live_strengths(d, 4) == std::vector<double>{0.25, 0.25, 0.25});
 
   // A transfer: the stream stands in for the content (take 0), take `neutral` is the neutral,
-  // every other take a style at its strength (1 where unset), clamped to [-1, 2].
-  d.controls.palette.transfer = true;
-  d.controls.palette.neutral = 2;
-  d.controls.palette.strengths = {1.0, 0.5, 0.9, 3.0};
+  // every other take a style at its layer's weight (its strength), clamped to [-1, 2].
+  d.controls.transfer = true;
+  d.controls.neutral = 2;
+  set_layer_weights(d, {1.0, 0.5, 0.9, 3.0});
   CHECK(live_style_plan(d, 4).takes == std::vector<int>{2, 1, 3});
   CHECK(live_strengths(d, 4) == std::vector<double>{0.5, 2.0});
-  CHECK(live_style_plan(d, 5).takes == std::vector<int>{2, 1, 3, 4});
-  CHECK(live_strengths(d, 5) == std::vector<double>{0.5, 2.0, 1.0});
-  d.controls.palette.strengths = {1.0, -4.0, 0.9, 0.0};
+  set_layer_weights(d, {1.0, -4.0, 0.9, 0.0});
   CHECK(live_strengths(d, 4) == std::vector<double>{-1.0, 0.0});
   // A neutral beyond the takes is the last one, as the transfer takes it.
-  d.controls.palette.neutral = 7;
+  d.controls.neutral = 7;
   CHECK(live_style_plan(d, 4).takes == std::vector<int>{3, 1, 2});
   CHECK(live_strengths(d, 4) == std::vector<double>{-1.0, 0.9});
   // The content its own neutral: the content take is the neutral, every other take a style.
-  d.controls.palette.content_neutral = true;
+  d.controls.content_neutral = true;
   CHECK(live_style_plan(d, 4).takes == std::vector<int>{0, 1, 2, 3});
   CHECK(live_strengths(d, 4) == std::vector<double>{-1.0, 0.9, 0.0});
 
@@ -359,8 +356,8 @@ TEST_CASE("live style plan: a pair's alpha, a mix's weights, a transfer's neutra
     take.clip = clip;
     prepared.takes.push_back(std::move(take));
   }
-  d.controls.palette.content_neutral = false;
-  d.controls.palette.neutral = 3;
+  d.controls.content_neutral = false;
+  d.controls.neutral = 3;
   const LiveStyleSpec s = live_style_spec(prepared, d);
   REQUIRE(s.takes.size() == 3);
   CHECK(s.takes[0] == prepared.takes[3].clip);

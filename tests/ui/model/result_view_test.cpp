@@ -11,6 +11,7 @@
 #include "tests/test_data.h"
 #include "tests/ui/loaded_session.h"
 #include "ui/model/document_mix.h"
+#include "ui/model/layer_parts.h"
 #include "ui/model/weight_keys_edit.h"
 
 using namespace mostyle;
@@ -31,22 +32,22 @@ void load_palette(LoadedSession& s) {
 TEST_CASE("result view: the mix parameters carry the keys that fit the takes") {
   LoadedSession s;
   load_palette(s);
-  REQUIRE(s.session.palette() != nullptr);
+  REQUIRE(s.session.takes() != nullptr);
   const Decomposed& d = *s.session.snapshot().decomposed;
   Document doc = s.state.document;
   DocumentControls& c = doc.controls;
-  doc.weights = {0.2, 0.3, 0.5};
+  set_layer_weights(doc, {0.2, 0.3, 0.5});
   CHECK(mix_params_for(doc, d, 3).keys.empty());
   // Happy becomes joyful over two seconds.
   c.keys = {WeightKey{0.0, {1.0, 0.0, 0.0}}, WeightKey{2.0, {0.0, 0.0, 1.0}}};
   const MixParams keyed = mix_params_for(doc, d, 3);
   CHECK(same_keys(keyed.keys, c.keys));
-  CHECK(take_weights(keyed.layers, 3) == doc.weights);  // the constant weights as they were
+  CHECK(take_weights(keyed.layers, 3) == layer_weights(doc));  // the constant weights as they were
   // A transfer: the content's and the neutral's weights made from the styles'.
-  c.palette.transfer = true;
-  c.palette.content_neutral = false;
-  c.palette.neutral = 1;
-  c.palette.strengths = {1.0, 1.0, 0.5};
+  c.transfer = true;
+  c.content_neutral = false;
+  c.neutral = 1;
+  set_layer_weights(doc, {1.0, 1.0, 0.5});  // the style's strength 0.5
   const MixParams transfer = mix_params_for(doc, d, 3);
   CHECK(take_weights(transfer.layers, 3) == std::vector<double>{1.0, -0.5, 0.5});
   REQUIRE(transfer.keys.size() == 2);
@@ -54,12 +55,12 @@ TEST_CASE("result view: the mix parameters carry the keys that fit the takes") {
   CHECK(transfer.keys[1].weights == std::vector<double>{1.0, -1.0, 1.0});
   // No neutral take: the content is its own, both other takes are styles (content + s (style -
   // content)), the content 1 minus their sum.
-  c.palette.content_neutral = true;
+  c.content_neutral = true;
   const MixParams own = mix_params_for(doc, d, 3);
   CHECK(take_weights(own.layers, 3) == std::vector<double>{-0.5, 1.0, 0.5});
   CHECK(own.keys[0].weights == std::vector<double>{1.0, 0.0, 0.0});
   CHECK(own.keys[1].weights == std::vector<double>{0.0, 0.0, 1.0});
-  c.palette.content_neutral = false;
+  c.content_neutral = false;
   // A pair's keys: none for three takes.
   c.keys = {WeightKey{0.0, {1.0, 0.0}}};
   CHECK(mix_params_for(doc, d, 3).keys.empty());
@@ -75,8 +76,8 @@ TEST_CASE("result view: keys with weights per body part are the engine's sentenc
   CHECK(s.session.result_view().error().empty());
   const Eigen::MatrixXd keyed = s.session.result_view().mix()->motion.world;
   // The legs from the marching take: the engine mixes keys for the whole body only.
-  c.palette.per_part = true;
-  c.palette.part_weights = {{0.0, 1.0, 0.0}, {}, {}};
+  c.per_part = true;
+  set_part_row(s.state.document, *s.session.snapshot().decomposed, BodyPart::kLegs, std::vector<double>{0.0, 1.0, 0.0});
   CHECK_THROWS_AS(mix_params_for(s.state.document, *s.session.snapshot().decomposed, 3), InputError);
   s.session.sync(s.state);
   CHECK_THAT(s.session.result_view().error(), Catch::Contains("keyed in time"));
@@ -117,19 +118,19 @@ TEST_CASE("result view: the weights follow the takes, a take added keeps the oth
   takes.push_back(test::asset("motions/cmu142_walk_joy.bvh"));
   s.session.load_files(takes);
   s.session.wait_idle(s.state);
-  REQUIRE(s.session.palette() != nullptr);
-  const std::vector<double>& w = s.state.document.weights;
+  REQUIRE(s.session.takes() != nullptr);
+  const std::vector<double> w = layer_weights(s.state.document);
   REQUIRE(w.size() == 3);
   CHECK(w[0] == Approx(0.7));
   CHECK(w[1] == Approx(0.3));
   CHECK(w[2] == 0.0);
   // And a fourth: the three keep theirs.
-  s.state.document.weights = {0.5, 0.2, 0.3};
+  set_layer_weights(s.state.document, {0.5, 0.2, 0.3});
   takes.push_back(test::asset("motions/cmu142_walk_clumsy.bvh"));
   s.session.load_files(takes);
   s.session.wait_idle(s.state);
-  REQUIRE(s.session.palette()->size() == 4);
-  CHECK(s.state.document.weights == std::vector<double>{0.5, 0.2, 0.3, 0.0});
+  REQUIRE(s.session.takes()->size() == 4);
+  CHECK(layer_weights(s.state.document) == std::vector<double>{0.5, 0.2, 0.3, 0.0});
 }
 
 TEST_CASE("result view: a take added to a transfer keeps every strength and the result; the new one starts at 0") {
@@ -139,8 +140,8 @@ TEST_CASE("result view: a take added to a transfer keeps every strength and the 
   CHECK_FALSE(values_for_takes({"a", "b"}, {}, {"a", "b", "c"}, 0.0));
   // A pair's transfer at strength 0.5 (B's style on A, its alpha), given a third take with +.
   LoadedSession s;
-  s.state.document.controls.palette.transfer = true;
-  s.state.document.controls.palette.content_neutral = true;
+  s.state.document.controls.transfer = true;
+  s.state.document.controls.content_neutral = true;
   set_pair_alpha(s.state.document, 0.5);
   s.session.sync(s.state);
   s.session.wait_idle(s.state);
@@ -150,13 +151,14 @@ TEST_CASE("result view: a take added to a transfer keeps every strength and the 
   takes.push_back(test::asset("motions/cmu142_walk_joy.bvh"));
   s.session.load_files(takes);
   s.session.wait_idle(s.state);
-  REQUIRE(s.session.palette() != nullptr);
-  const PaletteControls& c = s.state.document.controls.palette;
+  REQUIRE(s.session.takes() != nullptr);
+  const DocumentControls& c = s.state.document.controls;
   CHECK(c.transfer);
   CHECK(c.content_neutral);
-  REQUIRE(c.strengths.size() == 3);
-  CHECK(c.strengths[1] == 0.5);
-  CHECK(c.strengths[2] == 0.0);
+  const std::vector<double> strengths = layer_weights(s.state.document);
+  REQUIRE(strengths.size() == 3);
+  CHECK(strengths[1] == 0.5);
+  CHECK(strengths[2] == 0.0);
   REQUIRE(s.session.result_view().mix() != nullptr);
   // The same result: a take at weight 0 changes no pose (the takes are decomposed again together,
   // and the common timeline is sampled for three, so within a small part of the body's size).
@@ -171,24 +173,23 @@ TEST_CASE("result view: a take added to a transfer keeps every strength and the 
   CHECK(mean < 0.002 * size);
   CHECK(moved < 0.02 * size);
   // A palette's strengths of 0.5 and 0.25, given a fourth take: they stay, the new one at 0.
-  s.state.document.controls.palette.strengths = {1.0, 0.5, 0.25};
+  set_layer_weights(s.state.document, {1.0, 0.5, 0.25});
   takes.push_back(test::asset("motions/cmu142_walk_clumsy.bvh"));
   s.session.load_files(takes);
   s.session.wait_idle(s.state);
-  REQUIRE(s.session.palette()->size() == 4);
-  CHECK(s.state.document.controls.palette.strengths == V{1.0, 0.5, 0.25, 0.0});
+  REQUIRE(s.session.takes()->size() == 4);
+  CHECK(layer_weights(s.state.document) == V{1.0, 0.5, 0.25, 0.0});
 }
 
 TEST_CASE("result view: new takes' transfer starts on the take named neutral, else on the content as its own") {
   CHECK(named_neutral({"normal.bvh", "bye_active.bvh", "bye_normal.bvh"}) == 2);  // never the content
   CHECK(named_neutral({"a/walk_angry.bvh", "b/Neutral01.fbx"}) == 1);
   CHECK(named_neutral({"walk_angry.bvh", "abnormal_walk.bvh", "neutrality.bvh"}) == -1);
-  PaletteControls c;
-  size_palette_controls(c, {}, {}, {"bye_normal.bvh", "bye_active.bvh", "bye_giant.bvh"});
+  DocumentControls c;
+  size_transfer_controls(c, {}, {"bye_normal.bvh", "bye_active.bvh", "bye_giant.bvh"});
   CHECK(c.content_neutral);  // the content is the normal take: it is its own neutral
-  CHECK(c.strengths == std::vector<double>{1.0, 1.0, 1.0});
-  PaletteControls named;
-  size_palette_controls(named, {}, {}, {"bye_active.bvh", "bye_giant.bvh", "bye_normal.bvh"});
+  DocumentControls named;
+  size_transfer_controls(named, {}, {"bye_active.bvh", "bye_giant.bvh", "bye_normal.bvh"});
   CHECK_FALSE(named.content_neutral);
   CHECK(named.neutral == 2);
 }
@@ -198,28 +199,28 @@ TEST_CASE("result view: weights set for the takes asked for stay theirs; other t
                     marching = test::asset("motions/cmu142_walk_marching.bvh"),
                     joy = test::asset("motions/cmu142_walk_joy.bvh"), clumsy = test::asset("motions/cmu142_walk_clumsy.bvh");
   LoadedSession s;
-  REQUIRE(s.state.document.weights == std::vector<double>{0.5, 0.5});  // a pair's default, sized
+  REQUIRE(layer_weights(s.state.document) == std::vector<double>{0.5, 0.5});  // a pair's default, sized
   // Undo, a session or the command line: the weights are the new takes' already.
-  s.state.document.weights = {0.2, 0.5, 0.3};
+  set_layer_weights(s.state.document, {0.2, 0.5, 0.3});
   s.session.load_files({happy, marching, joy}, WeightsOf::kNewTakes);
   s.session.wait_idle(s.state);
-  REQUIRE(s.session.palette() != nullptr);
-  CHECK(s.state.document.weights == std::vector<double>{0.2, 0.5, 0.3});
+  REQUIRE(s.session.takes() != nullptr);
+  CHECK(layer_weights(s.state.document) == std::vector<double>{0.2, 0.5, 0.3});
   // Another order (a new content): reordered with them, each take keeps its weight.
   s.state.document = reorder_takes(s.state.document, {2, 0, 1});
   s.session.load_files({joy, happy, marching}, WeightsOf::kNewTakes);
   s.session.wait_idle(s.state);
   CHECK(s.state.document.files.back() == marching);
-  CHECK(s.state.document.weights == std::vector<double>{0.3, 0.2, 0.5});
+  CHECK(layer_weights(s.state.document) == std::vector<double>{0.3, 0.2, 0.5});
   // A take replaced by another: as many takes, not the same ones, equal weights.
   s.session.load_files({joy, happy, clumsy});
   s.session.wait_idle(s.state);
-  CHECK(s.state.document.weights == std::vector<double>(3, 1.0 / 3));
+  CHECK(layer_weights(s.state.document) == std::vector<double>(3, 1.0 / 3));
   // A take taken out: a pair again, at 0.5/0.5; another pair the same.
-  s.state.document.weights = {0.6, 0.3, 0.1};
+  set_layer_weights(s.state.document, {0.6, 0.3, 0.1});
   s.session.load_files({joy, happy});
   s.session.wait_idle(s.state);
-  CHECK(s.state.document.weights == std::vector<double>{0.5, 0.5});
+  CHECK(layer_weights(s.state.document) == std::vector<double>{0.5, 0.5});
   set_pair_alpha(s.state.document, 0.9);
   s.session.load_files({joy, clumsy});
   s.session.wait_idle(s.state);
@@ -253,4 +254,30 @@ TEST_CASE("result view: a held slider mixes a preview, let go it is finished int
   CHECK(s.session.result()->motion.contacts == whole.motion.contacts);
   CHECK(s.session.result()->motion.foot_sliding_cleaned == whole.motion.foot_sliding_cleaned);
   CHECK(s.state.takes.back().positions.rows() == whole.motion.world.rows());
+}
+
+TEST_CASE("result view: a pair at alpha a is the engine's mix of its two layers, 1 - a and a, at any alpha the mix allows") {
+  LoadedSession s;
+  const PreparedTakes& p = *s.session.takes();
+  const Decomposed& d = *s.session.snapshot().decomposed;
+  for (double a : {0.0, 0.3, 1.0, -0.5, 1.5}) {
+    INFO("alpha " << a);
+    set_pair_alpha(s.state.document, a);
+    s.session.sync(s.state);
+    CHECK(s.session.result_error().empty());
+    // What the editor mixed for a pair before its weights were layers: weights (1 - a, a), the
+    // document's options at their defaults.
+    MixParams blend;
+    blend.layers = take_layers({1.0 - a, a});
+    MixScratch scratch;
+    MixResult out;
+    mix_palette(p, d, blend, scratch, out);
+    CHECK(s.session.result()->motion.world == out.motion.world);
+  }
+  // Beyond the mix's range: the engine's sentence, the last result stays.
+  const Eigen::MatrixXd last = s.session.result()->motion.world;
+  set_pair_alpha(s.state.document, 1.6);
+  s.session.sync(s.state);
+  CHECK_THAT(s.session.result_error(), Catch::Contains("expected weights from -0.50 to 1.50"));
+  CHECK(s.session.result()->motion.world == last);
 }

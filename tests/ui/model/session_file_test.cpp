@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,8 +31,8 @@ SessionFile full_session() {
   d.parameters = {7, 0.25};
   DocumentControls& c = d.controls;
   c.mode = BlendMode::kPaper;
-  c.per_component = true;
-  c.component_alpha = {0.0, 0.125, 1.0, 0.3333333333333333};
+  c.per_part = true;
+  c.component_regions = {BodyRegion::kLeftLeg, BodyRegion::kSpineAndHead, BodyRegion::kRightArm, BodyRegion::kLeftLeg};
   c.basic_motions = 3;
   c.basic_sparsities = {0.5, 0.2, 0.05};
   c.swap_level = 2;
@@ -49,15 +50,13 @@ SessionFile full_session() {
   // Style over time: a walk that becomes tired over ten seconds, then exaggerated.
   c.keys = {WeightKey{0.0, {1.0, 0.0}}, WeightKey{10.0, {0.0, 1.0}}, WeightKey{12.345678901234, {-2.0 / 3.0, 5.0 / 3.0}}};
   // The ends of the sliders' ranges, as a float slider leaves them (1.3f is 1.2999999523...).
-  d.weights = {static_cast<double>(1.3f), -0.5, 1.0 - static_cast<double>(1.3f) + 0.5};
-  c.palette.per_part = true;
-  c.palette.part_weights = {{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.2, 0.2, 0.6}};
-  c.palette.transfer = true;
-  c.palette.content = 2;
-  c.palette.neutral = 0;
-  c.palette.content_neutral = true;
-  c.palette.strengths = {0.0, -1.0, 2.0};
-  c.palette.ghosts = true;
+  d.layers = {TakeLayer{static_cast<double>(1.3f), {0.0, 0.125, std::nullopt, 0.3333333333333333}},
+              TakeLayer{-0.5, {1.0, 0.875, std::nullopt, 0.6666666666666667}},
+              TakeLayer{1.0 - static_cast<double>(1.3f) + 0.5, {}}};
+  c.transfer = true;
+  c.neutral = 0;
+  c.content_neutral = true;
+  c.ghosts = false;
   d.files = {"/data/day1/takes/walk_happy.bvh", "/data/shared/walk_marching.bvh"};
   d.overlay = true;
   SessionCamera camera;
@@ -107,7 +106,9 @@ TEST_CASE("session files: format then parse gives the same session") {
   CHECK(text.back() == '\n');
   const SessionFile back = parse_session(text, "/data/day1/monday.mostyle");
   CHECK(back.document == s.document);
-  CHECK(back.document.controls.palette == s.document.controls.palette);
+  CHECK(back.document.layers == s.document.layers);
+  CHECK_THAT(text, Catch::Contains("\"version\": 3") && Catch::Contains("\"component_weights\": [") &&
+                       Catch::Contains("null"));
   CHECK(same_keys(back.document.controls.keys, s.document.controls.keys));  // to the last bit
   CHECK_THAT(text, Catch::Contains("\"keys\": [") && Catch::Contains("\"seconds\": 10.0"));
   REQUIRE(back.camera.has_value());
@@ -129,7 +130,7 @@ namespace {
 bool set_number(double& x, double v) { return x = v, true; }
 bool set_number(int& x, double v) { return x = static_cast<int>(v), true; }
 bool set_number(std::vector<double>& x, double v) { return x = {v, v}, true; }
-bool set_number(std::vector<std::vector<double>>& x, double v) { return x = {{v, v}, {v, v}}, true; }
+bool set_number(std::vector<TakeLayer>& x, double v) { return x = {TakeLayer{v, {v, std::nullopt}}, TakeLayer{v, {}}}, true; }
 template <typename T>
 bool set_number(T&, double) {
   return false;
@@ -172,11 +173,11 @@ TEST_CASE("session files: every field of the list reads back at both ends of its
       }
     }
   }
-  CHECK(numeric == 11);  // weights, k, sparsity, component alphas, levels, level sparsities, swap level; 4 of the palette
+  CHECK(numeric == 7);  // layers, k, sparsity, levels, level sparsities, swap level, the neutral
   // The sliders' own float ends read back (0.01f is 0.0099999998 as a double).
   Document slid;
   slid.parameters.sparsity = static_cast<double>(0.01f);
-  slid.weights = {static_cast<double>(1.5f), static_cast<double>(-0.5f)};
+  set_layer_weights(slid, {static_cast<double>(1.5f), static_cast<double>(-0.5f)});
   CHECK(parse_session(format_session(SessionFile{slid, std::nullopt, {}}, "s.mostyle"), "s.mostyle").document == slid);
   // More takes than a palette holds.
   Document many;
@@ -199,9 +200,9 @@ TEST_CASE("session files: takes resolve against the session's folder, wherever i
   const SessionFile old = parse_session(
       R"({"version": 1, "controls": {"palette": {"transfer": true, "neutral": 2, "strengths": [0, 1, 0.5]}}})",
       "old.mostyle");
-  CHECK(old.document.controls.palette.transfer);
-  CHECK(old.document.controls.palette.neutral == 2);
-  CHECK_FALSE(old.document.controls.palette.content_neutral);
+  CHECK(old.document.controls.transfer);
+  CHECK(old.document.controls.neutral == 2);
+  CHECK_FALSE(old.document.controls.content_neutral);
   CHECK_FALSE(minimal.camera.has_value());
   CHECK(is_session_path("a/day.mostyle"));
   CHECK(is_session_path("DAY.MOSTYLE"));
@@ -224,11 +225,15 @@ TEST_CASE("session files: version 1 files read a pair's alpha or a palette's wei
 })";
   const Document p = parse_session(pair, "/day/pair.mostyle").document;
   CHECK(p.files == std::vector<std::string>{"/day/happy.bvh", "/day/marching.bvh"});
-  CHECK(p.weights == std::vector<double>{0.7, 0.3});
+  CHECK(layer_weights(p) == std::vector<double>{0.7, 0.3});
   CHECK(pair_alpha(p) == 0.3);
   CHECK(p.parameters.components == 12);
   CHECK(p.parameters.sparsity == 0.15);
-  CHECK(p.controls.component_alpha == std::vector<double>{0.3, 1.0, 0.0});
+  CHECK(p.controls.per_part);
+  CHECK(p.layers[0].component_weights == std::vector<std::optional<double>>{0.7, 0.0, 1.0});
+  CHECK(p.layers[1].component_weights == std::vector<std::optional<double>>{0.3, 1.0, 0.0});
+  CHECK(p.controls.component_regions.empty());  // kept by index once a decomposition is in
+  CHECK(p.controls.ghosts);                      // a pair's takes stood beside its result
   // A palette as version 1 wrote it: its weights; the alpha written beside them was not its.
   const std::string palette = R"({
   "version": 1,
@@ -241,29 +246,72 @@ TEST_CASE("session files: version 1 files read a pair's alpha or a palette's wei
 })";
   const Document m = parse_session(palette, "/day/palette.mostyle").document;
   CHECK(m.files.size() == 4);
-  CHECK(m.weights == std::vector<double>{0.4, 0.3, 0.2, 0.1});
-  CHECK(m.controls.palette.per_part);
-  CHECK(m.controls.palette.part_weights[0] == std::vector<double>{1, 0, 0, 0});
-  CHECK(m.controls.palette.neutral == 2);
-  CHECK(m.controls.palette.strengths == std::vector<double>{1, 1, 1, 1});
-  // Written again, they are version 2: the weights at the top, neither alpha nor the palette's.
+  CHECK(layer_weights(m) == std::vector<double>{0.4, 0.3, 0.2, 0.1});
+  CHECK(m.controls.per_part);
+  CHECK(m.controls.neutral == 2);
+  CHECK_FALSE(m.controls.ghosts);
+  // The legs' row by body region: both legs from the first take, the rest following the weights.
+  REQUIRE(m.controls.component_regions.size() == 5);
+  for (size_t g = 0; g < 5; ++g) {
+    const bool leg = part_covers(BodyPart::kLegs, m.controls.component_regions[g]);
+    for (size_t i = 0; i < 4; ++i)
+      CHECK(m.layers[i].component_weights[g] == (leg ? std::optional<double>(i == 0 ? 1.0 : 0.0) : std::nullopt));
+  }
+  // Written again, they are version 3: the layers at the top, neither alpha nor the palette's.
   for (const Document& d : {p, m}) {
     const std::string text = format_session(SessionFile{d, std::nullopt, {}}, "/day/s.mostyle");
-    CHECK_THAT(text, Catch::Contains("\"version\": 2") && Catch::Contains("\"weights\": [") &&
-                         !Catch::Contains("\"alpha\""));
+    CHECK_THAT(text, Catch::Contains("\"version\": 3") && Catch::Contains("\"layers\": [") &&
+                         !Catch::Contains("\"alpha\"") && !Catch::Contains("\"palette\""));
     CHECK(parse_session(text, "/day/s.mostyle").document == d);
   }
   // Without the weights its takes use (a pair's alpha, a palette's weights): the defaults, equal
   // weights once the takes are in.
   CHECK(parse_session(R"({"version": 1, "takes": ["a.bvh", "b.bvh"], "controls": {"palette": {"weights": [0.2, 0.8]}}})",
                       "s.mostyle")
-            .document.weights.empty());
+            .document.layers.empty());
   CHECK(parse_session(R"({"version": 1, "takes": ["a.bvh", "b.bvh", "c.bvh"], "parameters": {"alpha": 0.9}})",
                       "s.mostyle")
-            .document.weights.empty());
-  // No takes: the alpha, a pair's weights.
-  CHECK(parse_session(R"({"version": 1, "parameters": {"alpha": 0.25}})", "s.mostyle").document.weights ==
-        std::vector<double>{0.75, 0.25});
+            .document.layers.empty());
+  // No takes: the alpha's weights are not one per take (none): the defaults.
+  CHECK(parse_session(R"({"version": 1, "parameters": {"alpha": 0.25}})", "s.mostyle").document.layers.empty());
+}
+
+TEST_CASE("session files: version 2 sessions the editor wrote read into the layers") {
+  // Written by the editor before the layers (tests/ui/model/sessions/): a pair with an alpha per
+  // component, a palette's mix with the legs from one take and the spine from another, and its
+  // transfer with strengths.
+  const std::string dir = test::asset("../tests/ui/model/sessions");
+  const Document pair = read_session_file(dir + "/version_2_pair.mostyle").document;
+  CHECK(fs::path(pair.files[1]).filename() == "cmu142_walk_marching.bvh");
+  CHECK(layer_weights(pair) == std::vector<double>{0.7, 0.3});
+  CHECK(pair.controls.per_part);
+  CHECK(pair.controls.timing_a);
+  CHECK(pair.controls.ghosts);
+  const std::vector<double> alphas{0.3, 0.9, 0.3, 0.0, 0.3, 0.6};
+  REQUIRE(pair.layers[1].component_weights.size() == alphas.size());
+  for (size_t c = 0; c < alphas.size(); ++c) {
+    CHECK(pair.layers[0].component_weights[c] == 1.0 - alphas[c]);
+    CHECK(pair.layers[1].component_weights[c] == alphas[c]);
+  }
+  const Document palette = read_session_file(dir + "/version_2_palette.mostyle").document;
+  CHECK(layer_weights(palette) == std::vector<double>{0.5, 0.2, 0.3});
+  CHECK(palette.controls.per_part);
+  CHECK_FALSE(palette.controls.transfer);
+  CHECK(palette.controls.ghosts);
+  REQUIRE(palette.controls.component_regions.size() == 5);
+  for (size_t g = 0; g < 5; ++g) {
+    const BodyRegion region = palette.controls.component_regions[g];
+    const int from = part_covers(BodyPart::kLegs, region) ? 1 : part_covers(BodyPart::kSpine, region) ? 2 : -1;
+    for (size_t i = 0; i < 3; ++i)
+      CHECK(palette.layers[i].component_weights[g] ==
+            (from < 0 ? std::nullopt : std::optional<double>(static_cast<int>(i) == from ? 1.0 : 0.0)));
+  }
+  // The transfer: its layers' weights are the strengths it mixed.
+  const Document transfer = read_session_file(dir + "/version_2_transfer.mostyle").document;
+  CHECK(transfer.controls.transfer);
+  CHECK(transfer.controls.neutral == 1);
+  CHECK_FALSE(transfer.controls.content_neutral);
+  CHECK(layer_weights(transfer) == std::vector<double>{1.0, 0.5, 0.25});
 }
 
 TEST_CASE("session files: a bad file is refused with one line naming the file and the line") {
@@ -279,7 +327,7 @@ TEST_CASE("session files: a bad file is refused with one line naming the file an
       {"[1, 2]", 1, "expected a mostyle session"},
       {"{\n  \"takes\": []\n}", 1, "no \"version\""},
       {"{\n  \"version\": \"1\"\n}", 2, "version: expected a whole number"},
-      {"{\n  \"version\": 3\n}", 2, "version 3 is not one this mostyle reads (it reads versions 1 to 2)"},
+      {"{\n  \"version\": 4\n}", 2, "version 4 is not one this mostyle reads (it reads versions 1 to 3)"},
       {"{\n  \"version\": 0\n}", 2, "version 0 is not one this mostyle reads"},
       {"{\n  \"version\": 1,\n  \"parameters\": {\n    \"alpha\": \"half\"\n  }\n}", 4,
        "parameters.alpha: expected a number from -0.5 to 1.5, found the string 'half'"},
@@ -303,6 +351,14 @@ TEST_CASE("session files: a bad file is refused with one line naming the file an
       {"{\"version\": 1,\n\"controls\": {\"palette\": 3}}", 2, "controls.palette: expected an object"},
       {"{\"version\": 1,\n\"controls\": {\"palette\": {\n\"wieghts\": []}}}", 3,
        "unknown key 'wieghts' in controls.palette (known: per_part"},
+      {"{\"version\": 3,\n\"controls\": {\"palette\": {}}}", 2, "unknown key 'palette' in controls"},
+      {"{\"version\": 3,\n\"weights\": [0.5, 0.5]}", 2, "unknown key 'weights'"},
+      {"{\"version\": 3,\n\"layers\": [{\"weight\": 0.5},\n{\"weigth\": 0.5}]}", 3, "unknown key 'weigth' in layers[1]"},
+      {"{\"version\": 3,\n\"layers\": [\n{\"component_weights\": [0.5]}]}", 3, "layers[0]: a layer needs \"weight\""},
+      {"{\"version\": 3,\n\"layers\": [{\"weight\": 0.5, \"component_weights\": [\n\"x\"]}]}", 3,
+       "layers[0].component_weights[0]: expected a number"},
+      {"{\"version\": 3,\n\"controls\": {\"component_regions\": [\n\"tail\"]}}", 3,
+       "controls.component_regions[0]: expected a body region"},
       {"{\"version\": 1,\n\"controls\": {\n\"selected_component\": 2}}", 3,
        "unknown key 'selected_component' in controls"},  // where one looks: not kept
       {"{\"version\": 1,\n\"parameters\": {\n\"components\": 41}}", 3,
@@ -319,6 +375,8 @@ TEST_CASE("session files: a bad file is refused with one line naming the file an
        "unknown key 'alpha' in parameters (known: components, sparsity)"},
       {"{\"version\": 2,\n\"controls\": {\"palette\": {\n\"weights\": [0.5, 0.5]}}}", 3,
        "unknown key 'weights' in controls.palette"},
+      {"{\"version\": 2,\n\"controls\": {\"palette\": {\n\"part_weights\": [[2, -1]]}}}", 3,
+       "controls.palette.part_weights[0][0]: expected a number from -0.5 to 1.5, found 2"},
       {"{\"version\": 1,\n\"weights\": [0.5, 0.5]}", 2, "unknown key 'weights' in a version 1 session"},
       // Keys: each a time and a weight per take, in order of time, as many weights in each.
       {"{\"version\": 1,\n\"controls\": {\"keys\": 3}}", 2, "controls.keys: expected an array of keys"},

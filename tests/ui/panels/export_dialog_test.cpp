@@ -290,7 +290,7 @@ TEST_CASE("export dialog: a palette's mix exports whole or from an in to an out 
   s.session.load_files({test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"),
                         test::asset("motions/cmu142_walk_joy.bvh")});
   s.session.wait_idle(s.state);
-  REQUIRE(s.session.palette() != nullptr);
+  REQUIRE(s.session.takes() != nullptr);
   const MixResult* mix = s.session.result_view().mix();
   REQUIRE(mix != nullptr);
   const int mix_frames = static_cast<int>(mix->motion.world.rows());
@@ -406,17 +406,17 @@ TEST_CASE("export dialog: the file is named after the result, a blend, a mix or 
   s.session.load_files({test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"),
                         test::asset("motions/cmu142_walk_joy.bvh")});
   s.session.wait_idle(s.state);
-  REQUIRE(s.session.palette() != nullptr);
+  REQUIRE(s.session.takes() != nullptr);
   frame();
   CHECK(std::string(files.export_dialog().settings().path) == "mix.bvh");
-  CHECK(gather_metrics(s.session, s.state.document.controls.palette.transfer).result == "mix");
-  s.state.document.controls.palette.transfer = true;
+  CHECK(gather_metrics(s.session, s.state.document.controls.transfer).result == "mix");
+  s.state.document.controls.transfer = true;
   frame();
   CHECK(std::string(files.export_dialog().settings().path) == "transfer.bvh");
-  CHECK(gather_metrics(s.session, s.state.document.controls.palette.transfer).result == "transfer");
+  CHECK(gather_metrics(s.session, s.state.document.controls.transfer).result == "transfer");
   // A name typed stays, whatever the mode.
   set_path(files.export_dialog(), "proud.glb");
-  s.state.document.controls.palette.transfer = false;
+  s.state.document.controls.transfer = false;
   frame();
   CHECK(std::string(files.export_dialog().settings().path) == "proud.glb");
 }

@@ -20,7 +20,6 @@
 #include "ui/panels/layout.h"
 #include "ui/model/document_mix.h"
 #include "ui/panels/metrics_panel.h"
-#include "ui/panels/parameters_panel.h"
 
 using namespace mostyle;
 using namespace mostyle::ui;
@@ -53,7 +52,7 @@ TEST_CASE("the session turns a loaded pair into A, B and the blend, in step on t
   }
   REQUIRE(s.session.result() != nullptr);
   CHECK(s.state.takes[result_index(2)].positions.rows() == s.session.result()->motion.world.rows());
-  const DtwCostImage img = dtw_cost_image(*s.session.pair());
+  const DtwCostImage img = dtw_cost_image(*s.session.takes());
   CHECK(img.rows > 0);
   CHECK(img.rows <= DtwCostImage::kMaxCells);
   CHECK(img.cost.maxCoeff() == Approx(1.0));
@@ -65,7 +64,7 @@ TEST_CASE("the panels build over a loaded pair, with a component picked and in b
   auto panels = all_panels(s.session);
   for (int frame = 0; frame < 6; ++frame) {
     if (frame == 2) s.state.document.controls.selected_component = 1;
-    if (frame == 4) s.state.document.controls.per_component = true;
+    if (frame == 4) s.state.document.controls.per_part = true;
     imgui.begin_frame();
     s.session.poll(s.state);
     for (auto& panel : panels) panel->draw(s.state);
@@ -179,7 +178,7 @@ TEST_CASE("export writes the blend as BVH or says why not, in the files panel") 
   CHECK_FALSE(dialog.status().ok);
 }
 
-TEST_CASE("files dropped on the window load as the pair (two) or as B (one)") {
+TEST_CASE("files dropped on the window load as the takes (two or more) or as one more take (one)") {
   LoadedSession s;
   test::HeadlessImGui imgui;
   FilesPanel files(s.session, test::asset("motions"));
@@ -189,13 +188,21 @@ TEST_CASE("files dropped on the window load as the pair (two) or as B (one)") {
   files.draw(s.state);
   imgui.end_frame();
   CHECK(s.state.dropped.empty());
-  CHECK(s.session.requested_a() == test::asset("motions/cmu142_walk_happy.bvh"));
-  CHECK(s.session.requested_b() == joy);
+  CHECK(s.session.requested_files() == std::vector<std::string>{test::asset("motions/cmu142_walk_happy.bvh"),
+                                                                test::asset("motions/cmu142_walk_marching.bvh"), joy});
   s.session.wait_idle(s.state);
   CHECK(s.session.error().empty());
-  CHECK(s.session.snapshot().paths[1] == joy);
+  CHECK(s.session.snapshot().paths[2] == joy);
+  CHECK(s.state.takes.size() == 4);
+  CHECK_THAT(s.state.takes[2].label, Catch::Contains("joy"));
+  // Two dropped: the new takes, a pair again.
+  s.state.dropped = {joy, test::asset("motions/cmu142_walk_happy.bvh")};
+  imgui.begin_frame();
+  files.draw(s.state);
+  imgui.end_frame();
+  s.session.wait_idle(s.state);
+  CHECK(s.session.snapshot().paths[0] == joy);
   CHECK(s.state.takes.size() == 3);
-  CHECK_THAT(s.state.takes[1].label, Catch::Contains("joy"));
 }
 
 TEST_CASE("space plays and pauses, the arrow keys step one frame") {
@@ -230,108 +237,6 @@ TEST_CASE("space plays and pauses, the arrow keys step one frame") {
   CHECK(frame_at(*reference, state.playback.time_s) == 2);
   press(3);
   CHECK(frame_at(*reference, state.playback.time_s) == 1);
-}
-
-namespace {
-
-// The largest horizontal distance between two takes' hips over their frames (Y up).
-double hips_gap(const Take& a, const Take& b) {
-  double gap = 0.0;
-  for (int f = 0; f < std::min(a.frames(), b.frames()); ++f) {
-    const Eigen::Vector3d d = a.positions.row(f).head<3>() - b.positions.row(f).head<3>();
-    gap = std::max(gap, std::hypot(d.x(), d.z()));
-  }
-  return gap;
-}
-
-// The mean distance of the joints from where they stand on the hips, between two takes at a frame.
-double pose_distance(const Take& a, const Take& b, int frame) {
-  const int joints = static_cast<int>(a.positions.cols() / 3);
-  double sum = 0.0;
-  for (int j = 0; j < joints; ++j) {
-    const Eigen::Vector3d pa = a.positions.row(frame).segment<3>(3 * j) - a.positions.row(frame).head<3>();
-    const Eigen::Vector3d pb = b.positions.row(frame).segment<3>(3 * j) - b.positions.row(frame).head<3>();
-    sum += (pa - pb).norm();
-  }
-  return sum / joints;
-}
-
-// The parameters panel drawn one editor frame at a time, and clicked as a person would.
-struct ParametersFrames {
-  LoadedSession& s;
-  test::HeadlessImGui imgui;
-  ParametersPanel panel;
-
-  explicit ParametersFrames(LoadedSession& session) : s(session), panel(session.session) {}
-
-  void frame() {
-    imgui.begin_frame();
-    s.session.poll(s.state);
-    panel.draw(s.state);
-    s.session.sync(s.state, ImGui::IsAnyItemActive());
-    imgui.end_frame();
-  }
-  // A click on the check box `label`: the mouse moved down the panel's left edge until ImGui
-  // hovers the box, pressed for a frame, then let go.
-  void click_box(const char* label) {
-    ImGuiIO& io = ImGui::GetIO();
-    const PanelRect r = panel_rect(PanelId::kParameters);
-    const float x = r.x + ImGui::GetStyle().WindowPadding.x + 0.5f * ImGui::GetFrameHeight();
-    for (float y = r.y; y < r.y + r.h; y += 0.25f * ImGui::GetFrameHeight()) {
-      io.MousePos = ImVec2(x, y);
-      frame();
-      const ImGuiWindow* window = ImGui::FindWindowByName(panel_title(PanelId::kParameters));
-      if (GImGui->HoveredId != ImHashStr(label, 0, window->ID)) continue;
-      io.MouseDown[0] = true;
-      frame();
-      io.MouseDown[0] = false;
-      frame();
-      return;
-    }
-    FAIL("no box \"" << label << "\" in the parameters panel");
-  }
-};
-
-}  // namespace
-
-TEST_CASE("a pair's transfer puts B's style on A, which keeps its path, as `transfer A --style B` does") {
-  LoadedSession s;
-  s.state.document.overlay = true;  // no lateral offsets: the takes can be compared
-  DocumentControls& c = s.state.document.controls;
-  c.timing_a = true;
-  set_pair_alpha(s.state.document, 1.0);
-  s.session.sync(s.state);
-  const Take& a = s.state.takes[0];
-  const Take& result = s.state.takes[result_index(2)];
-  const Eigen::VectorXd ys = a.positions.row(0)(Eigen::seqN(1, a.positions.cols() / 3, 3)).transpose();
-  const double height = ys.maxCoeff() - ys.minCoeff();
-  // A blend at alpha 1 walks B's route: the marching take goes its own way, far from A's.
-  CHECK(hips_gap(result, a) > height);
-  CHECK(result.label.rfind("blend", 0) == 0);
-
-  // The box ticked: A's timeline, A its own neutral, the transfer shown.
-  c.timing_a = false;
-  ParametersFrames panel(s);
-  panel.click_box("put B's style on A");
-  CHECK(c.palette.transfer);
-  CHECK(c.palette.content_neutral);
-  CHECK(c.timing_a);
-  REQUIRE(s.session.result() != nullptr);
-  const MixParams m = mix_params_for(s.state.document, *s.session.snapshot().decomposed, 2);
-  CHECK(m.feet_of_reference);
-  CHECK(m.path_leash == transfer_path_leash(TransferNeutral::kContent, false));
-  CHECK(take_weights(m.layers, 2) == std::vector<double>{0.0, 1.0});
-  // A's whole take, its hips within the leash (a fifth of the body's height) of A's own.
-  CHECK(result.frames() == a.frames());
-  CHECK(hips_gap(result, a) < 0.25 * height);
-  CHECK(result.label == "transfer  strength 1.00");
-  // B's style: where it stands on its hips, the body is not A's.
-  CHECK(pose_distance(result, a, a.frames() / 2) > 0.02 * height);
-  // Ticked off: a blend again, on the timing the blend had.
-  panel.click_box("put B's style on A");
-  CHECK_FALSE(c.palette.transfer);
-  CHECK_FALSE(c.timing_a);
-  CHECK(result.label.rfind("blend", 0) == 0);
 }
 
 TEST_CASE("timing, loop and alignment controls reach the blend and the alignment") {
@@ -422,7 +327,7 @@ TEST_CASE("files panel: a file dropped on a palette is one more take, and a load
                                             test::asset("motions/cmu142_walk_joy.bvh")};
   s.session.load_files(palette);
   s.session.wait_idle(s.state);
-  REQUIRE(s.session.palette() != nullptr);
+  REQUIRE(s.session.takes() != nullptr);
   draw();
   const std::string clumsy = test::asset("motions/cmu142_walk_clumsy.bvh");
   s.state.dropped = {clumsy};
@@ -431,10 +336,10 @@ TEST_CASE("files panel: a file dropped on a palette is one more take, and a load
   four.push_back(clumsy);
   CHECK(s.session.requested_files() == four);  // added, not a pair of the dropped file
   s.session.wait_idle(s.state);
-  REQUIRE(s.session.palette() != nullptr);
-  CHECK(s.session.palette()->size() == 4);
+  REQUIRE(s.session.takes() != nullptr);
+  CHECK(s.session.takes()->size() == 4);
   // The metrics speak of the palette: each take's fit error and foot sliding, the mix's bones.
-  const Metrics m = gather_metrics(s.session, s.state.document.controls.palette.transfer);
+  const Metrics m = gather_metrics(s.session, s.state.document.controls.transfer);
   CHECK(m.result == "mix");
   REQUIRE(m.takes.size() == 4);
   for (const Metrics::Take& t : m.takes) {

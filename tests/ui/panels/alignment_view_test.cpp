@@ -1,6 +1,6 @@
-// The DTW panel's matched frames (ui/panels/dtw_panel.h) as each take's file counts them: a short
+// The alignment view's matched frames (ui/panels/alignment_view.h) as each take's file counts them: a short
 // B at 30 fps registered by cycles onto a longer A at 120 fps.
-#include "ui/panels/dtw_panel.h"
+#include "ui/panels/alignment_view.h"
 
 #include <cmath>
 #include <filesystem>
@@ -41,7 +41,7 @@ std::string short_take_at_30(const fs::path& dir, int frames) {
 
 }  // namespace
 
-TEST_CASE("DTW panel: the matched frames are each take's own, counted at its file's rate") {
+TEST_CASE("alignment view: the matched frames are each take's own, counted at its file's rate") {
   const fs::path dir = fs::temp_directory_path() / ("mostyle_dtw_panel_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const int b_frames = 100;
@@ -53,7 +53,7 @@ TEST_CASE("DTW panel: the matched frames are each take's own, counted at its fil
   session.wait_idle(state);
   fs::remove_all(dir);
   INFO(session.error());
-  const PreparedTakes* p = session.pair();
+  const PreparedTakes* p = session.takes();
   REQUIRE(p != nullptr);
   const Alignment& al = p->takes[1].alignment;
   REQUIRE(al.by_cycles());
@@ -62,16 +62,22 @@ TEST_CASE("DTW panel: the matched frames are each take's own, counted at its fil
   // The registered B repeats B's cycles along A: its frames run past B's own.
   CHECK(al.b_last > b_frames - 1);
 
-  const MatchedFrames m = matched_frames_in_files(*p);
-  CHECK(m.a_first == std::lround(al.a_first * 4.0));  // A's file counts four frames to a working one
-  CHECK(m.a_last == std::lround(al.a_last * 4.0));
-  CHECK(m.a_last <= 1079);
-  CHECK(0 <= m.b_first);
-  CHECK(m.b_first < m.b_last);
-  CHECK(m.b_last <= b_frames - 1);
+  const MatchedFrames m = matched_frames_in_files(*p, 1);
+  CHECK(m.reference_first == std::lround(al.a_first * 4.0));  // A's file counts four frames to a working one
+  CHECK(m.reference_last == std::lround(al.a_last * 4.0));
+  CHECK(m.reference_last <= 1079);
+  CHECK(0 <= m.take_first);
+  CHECK(m.take_first < m.take_last);
+  CHECK(m.take_last <= b_frames - 1);
   // Every own frame of B the registered frames in the matched range come from lies in B's range.
   int outside = 0;
   for (int k = al.b_first; k <= al.b_last; ++k)
-    if (!std::isnan(al.b_source[k])) outside += std::lround(al.b_source[k]) < m.b_first || std::lround(al.b_source[k]) > m.b_last;
+    if (!std::isnan(al.b_source[k]))
+      outside += std::lround(al.b_source[k]) < m.take_first || std::lround(al.b_source[k]) > m.take_last;
   CHECK(outside == 0);
+  // The reference has no alignment of its own, and a take that is not there none either.
+  CHECK(matched_frames_in_files(*p, 0).take_last == 0);
+  CHECK(matched_frames_in_files(*p, 2).take_last == 0);
+  CHECK_FALSE(alignment_plottable(*p, 0));
+  CHECK(alignment_plottable(*p, 1));
 }

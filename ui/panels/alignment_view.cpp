@@ -1,4 +1,4 @@
-#include "ui/panels/dtw_panel.h"
+#include "ui/panels/alignment_view.h"
 #include "ui/panels/theme.h"
 
 #include <algorithm>
@@ -8,15 +8,15 @@
 
 #include <imgui.h>
 
-#include "ui/panels/layout.h"
-#include "ui/panels/plot.h"
 #include "engine/align/warp_position.h"
+#include "engine/io/motion_file.h"
+#include "ui/panels/plot.h"
 
 namespace mostyle::ui {
 namespace {
 constexpr int kMatchLines = 40;  // lines joining matched frames in the "before" plot
 
-// B's signal value at fractional frame t (linear).
+// A signal's value at fractional frame t (linear).
 double sample(const Eigen::MatrixXd& signal, double t, int column) {
   const double last = static_cast<double>(signal.rows() - 1);
   t = std::clamp(t, 0.0, last);
@@ -33,36 +33,36 @@ ImU32 heat(float v) {
   return ImGui::ColorConvertFloat4ToU32(ImVec4(0.08f + 0.9f * r, 0.06f + g, std::max(0.05f, b), 1.0f));
 }
 
-// The output frame showing warp sample u (the first at or after it, the last when none), or -1
-// without a blend: the output's frames are common-timeline samples, found on the warp
-// (warp_position.h), in order.
-int output_frame_at(const PreparedTakes& p, const MixResult* blend, double u) {
-  if (blend == nullptr || blend->sample.size() == 0) return -1;
-  const TimeWarp& warp = p.takes[1].alignment.warp;
-  Eigen::Index lo = 0, hi = blend->sample.size() - 1;
+// The output frame showing take `take`'s warp sample u (the first at or after it, the last when
+// none), or -1 without a result: the output's frames are common-timeline samples, found on the
+// warp (warp_position.h), in order.
+int output_frame_at(const PreparedTakes& p, int take, const MixResult* result, double u) {
+  if (result == nullptr || result->sample.size() == 0) return -1;
+  const TimeWarp& warp = p.takes[static_cast<size_t>(take)].alignment.warp;
+  Eigen::Index lo = 0, hi = result->sample.size() - 1;
   while (lo < hi) {
     const Eigen::Index mid = (lo + hi) / 2;
-    if (warp_position(warp, p.timeline, 1, blend->sample[mid]) < u) lo = mid + 1;
+    if (warp_position(warp, p.timeline, take, result->sample[mid]) < u) lo = mid + 1;
     else hi = mid;
   }
   return static_cast<int>(lo);
 }
 }  // namespace
 
-MatchedFrames matched_frames_in_files(const PreparedTakes& p) {
+MatchedFrames matched_frames_in_files(const PreparedTakes& p, int take) {
   MatchedFrames m;
-  if (p.size() != 2 || p.fps <= 0.0) return m;
-  const Alignment& al = p.takes[1].alignment;
+  if (take < 1 || take >= p.size() || p.fps <= 0.0) return m;
+  const Alignment& al = p.takes[static_cast<size_t>(take)].alignment;
   // A working-rate frame of take t as its file counts it, inside the file.
   auto in_file = [&](double frame, int t) {
     const Clip& clip = *p.takes[static_cast<size_t>(t)].clip;
     const double at = clip.fps() > 0.0 ? frame * clip.fps() / p.fps : frame;
     return std::clamp(static_cast<int>(std::lround(at)), 0, std::max(clip.frames() - 1, 0));
   };
-  m.a_first = in_file(al.a_first, 0);
-  m.a_last = in_file(al.a_last, 0);
-  double b_first = al.b_first, b_last = al.b_last;
-  if (al.by_cycles()) {  // the registered take's frames back to B's own: the lowest and highest used
+  m.reference_first = in_file(al.a_first, 0);
+  m.reference_last = in_file(al.a_last, 0);
+  double first = al.b_first, last = al.b_last;
+  if (al.by_cycles()) {  // the registered take's frames back to its own: the lowest and highest used
     double lo = INFINITY, hi = -INFINITY;
     for (int k = std::max(al.b_first, 0); k <= al.b_last && k < al.b_source.size(); ++k) {
       if (std::isnan(al.b_source[k])) continue;
@@ -70,27 +70,29 @@ MatchedFrames matched_frames_in_files(const PreparedTakes& p) {
       hi = std::max(hi, al.b_source[k]);
     }
     if (lo <= hi) {
-      b_first = lo;
-      b_last = hi;
+      first = lo;
+      last = hi;
     }
   }
-  m.b_first = in_file(b_first, 1);
-  m.b_last = in_file(b_last, 1);
+  m.take_first = in_file(first, take);
+  m.take_last = in_file(last, take);
   return m;
+}
+
+bool alignment_plottable(const PreparedTakes& p, int take) {
+  if (take < 1 || take >= p.size()) return false;
+  const Alignment& al = p.takes[static_cast<size_t>(take)].alignment;
+  return al.feature.a.rows() >= 2 && al.feature.b.rows() >= 2 && !al.path.empty();
 }
 
 namespace {
 
-// A pair aligned far enough to plot: two frames of each signal and a path.
-bool plottable(const PreparedTakes* p) {
-  return p != nullptr && p->takes[1].alignment.feature.a.rows() >= 2 && p->takes[1].alignment.feature.b.rows() >= 2 &&
-         !p->takes[1].alignment.path.empty();
-}
-
-// The aligned pair as the plots show it: the aligned joint's signals (frames x columns, file
-// units), the coordinate shown and its range, and the warp sample at the playhead.
+// The aligned take as the plots show it: the aligned joint's signals (frames x columns, file
+// units) of the reference (a) and of the take (b), the coordinate shown and its range, the warp
+// sample at the playhead, and the two takes' labels and colours.
 struct PairPlot {
   const PreparedTakes& p;
+  int take;
   const Alignment& al;
   const Eigen::MatrixXd& sa;
   const Eigen::MatrixXd& sb;
@@ -99,17 +101,19 @@ struct PairPlot {
   int col;                // the coordinate shown
   double lo, hi, span;    // its range over both takes
   double current_u;       // the warp sample the playhead shows
+  std::string name_a, name_b;  // "A" and "B" in a pair; "reference" and the take's name
+  ImU32 color_a, color_b;
 };
 
-// The warp's first sample at or after A's frame i (the last when none).
+// The warp's first sample at or after the reference's frame i (the last when none).
 double sample_at_a_frame(const TimeWarp& warp, int samples, int i) {
   const double* at = std::lower_bound(warp.a.data(), warp.a.data() + samples, double(i));
   return static_cast<double>(std::min<std::ptrdiff_t>(at - warp.a.data(), samples - 1));
 }
 
-// The pair's plot of the coordinate the document asks for, at the playhead.
-PairPlot pair_plot(const EditorState& state, const PreparedTakes& p, const MixResult* blend) {
-  const Alignment& al = p.takes[1].alignment;
+// Take `take`'s plot of the coordinate the document asks for, at the playhead.
+PairPlot pair_plot(const EditorState& state, const PreparedTakes& p, int take, const MixResult* result) {
+  const Alignment& al = p.takes[static_cast<size_t>(take)].alignment;
   const Eigen::MatrixXd& sa = al.feature.a;
   const Eigen::MatrixXd& sb = al.feature.b;
   const int col = std::clamp(state.document.controls.dtw_coordinate, 0, static_cast<int>(sa.cols()) - 1);
@@ -117,28 +121,33 @@ PairPlot pair_plot(const EditorState& state, const PreparedTakes& p, const MixRe
   double hi = std::max(sa.col(col).maxCoeff(), sb.col(col).maxCoeff());
   if (hi <= lo) hi = lo + 1.0;
   const int current = state.takes.empty() ? 0 : frame_at(state.takes.back(), state.playback.time_s);
-  const double current_u = blend != nullptr && current < blend->sample.size()
-                               ? warp_position(al.warp, p.timeline, 1, blend->sample[current])
+  const double current_u = result != nullptr && current < result->sample.size()
+                               ? warp_position(al.warp, p.timeline, take, result->sample[current])
                                : 0.0;
-  return PairPlot{p, al, sa, sb, al.warp, static_cast<int>(sa.rows()), static_cast<int>(sb.rows()),
-                  al.warp.samples(), col, lo, hi, hi - lo, current_u};
+  const int n = p.size();
+  const std::string a = *take_letter(0, n) ? take_letter(0, n) : "reference";
+  const std::string b = *take_letter(take, n) ? take_letter(take, n) : take_label(p.takes[static_cast<size_t>(take)].clip->source);
+  return PairPlot{p, take, al, sa, sb, al.warp, static_cast<int>(sa.rows()), static_cast<int>(sb.rows()),
+                  al.warp.samples(), col, lo, hi, hi - lo, current_u, a, b, take_color_u32(0), take_color_u32(take)};
 }
 
-// The coordinate shown, what the pair was aligned on and the frames matched, its warnings.
-void draw_header(DocumentControls& c, const PreparedTakes& p) {
-  const Alignment& al = p.takes[1].alignment;
+// The coordinate shown, what the take was aligned on and the frames matched, its warnings.
+void draw_header(DocumentControls& c, const PairPlot& v) {
+  const PreparedTakes& p = v.p;
+  const Alignment& al = v.al;
   ImGui::SetNextItemWidth(110.0f);
   ImGui::Combo("##coordinate", &c.dtw_coordinate, "lateral x\0height y\0forward z\0");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Which coordinate of the aligned joint the plots show");
   ImGui::SameLine();
   std::string joints;
   for (int k : al.feature.columns) joints += (joints.empty() ? "" : ", ") + p.takes[0].names[static_cast<size_t>(k)];
-  const MatchedFrames matched = matched_frames_in_files(p);  // as each file counts its frames
-  ImGui::TextColored(ImVec4(0.6f, 0.62f, 0.66f, 1.0f), "A %d-%d, B %d-%d matched", matched.a_first, matched.a_last,
-                     matched.b_first, matched.b_last);
+  const MatchedFrames matched = matched_frames_in_files(p, v.take);  // as each file counts its frames
+  ImGui::TextColored(ImVec4(0.6f, 0.62f, 0.66f, 1.0f), "%s %d-%d, %s %d-%d matched", v.name_a.c_str(),
+                     matched.reference_first, matched.reference_last, v.name_b.c_str(), matched.take_first,
+                     matched.take_last);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Aligned on %s (%s), %s DTW. Frames outside the matched ranges (shaded) are left out of the "
-                      "blend.\n%d x %d frames at %.0f fps, cost %.3g",
+                      "result.\n%d x %d frames at %.0f fps, cost %.3g",
                       align_on_name(al.feature.on), joints.c_str(), dtw_method_name(al.options.method),
                       static_cast<int>(al.feature.a.rows()), static_cast<int>(al.feature.b.rows()), p.fps, al.cost);
   // The cost matrix's colours: a gradient from a good match to a poor one.
@@ -153,8 +162,8 @@ void draw_header(DocumentControls& c, const PreparedTakes& p) {
                       heat(static_cast<float>(k) / 11.0f));
   ImGui::Dummy(ImVec2(bar_w, bar_h));
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("The cost matrix's colours: how unlike A's frame (down) is to B's (across); the path keeps to "
-                      "the low cost");
+    ImGui::SetTooltip("The cost matrix's colours: how unlike the reference's frame (down) is to the take's (across); "
+                      "the path keeps to the low cost");
   ImGui::SameLine(0.0f, 4.0f);
   ImGui::TextColored(kDimColor, "high");
   ImGui::PushTextWrapPos(0.0f);  // warnings wrap inside the panel
@@ -180,39 +189,40 @@ void draw_before_marks(const PairPlot& v, const PlotArea& before) {
     dl->AddLine(before.to_screen(i, v.sa(i, v.col)), before.to_screen(j, v.sb(j, v.col) - 1.05 * span),
                 IM_COL32(150, 155, 165, 90), 1.0f);
   }
-  // Where each take's cycles begin (engine/align/cycles.h): ticks at the top of A's band and
-  // the bottom of B's.
+  // Where each take's cycles begin (engine/align/cycles.h): ticks at the top of the reference's
+  // band and the bottom of the take's.
   for (const Cycle& c : v.p.takes[0].cycles.cycles)
-    dl->AddLine(before.to_screen(c.begin, hi + 0.1 * span), before.to_screen(c.begin, hi - 0.1 * span), color_a(), 2.0f);
-  for (const Cycle& c : v.p.takes[1].timeline_cycles().cycles)
-    dl->AddLine(before.to_screen(c.begin, lo - 1.15 * span), before.to_screen(c.begin, lo - 0.95 * span), color_b(),
+    dl->AddLine(before.to_screen(c.begin, hi + 0.1 * span), before.to_screen(c.begin, hi - 0.1 * span), v.color_a, 2.0f);
+  for (const Cycle& c : v.p.takes[static_cast<size_t>(v.take)].timeline_cycles().cycles)
+    dl->AddLine(before.to_screen(c.begin, lo - 1.15 * span), before.to_screen(c.begin, lo - 0.95 * span), v.color_b,
                 2.0f);
   dl->PopClipRect();
 }
 
-// Before warping: A above, B below, each on its own timeline; matched frames joined, the
-// matched ranges shaded. A group `width` wide (-1: the panel's width).
+// Before warping: the reference above, the take below, each on its own timeline; matched frames
+// joined, the matched ranges shaded. A group `width` wide (-1: the panel's width).
 PlotArea draw_before(const PairPlot& v, float width, float plot_h) {
   const double lo = v.lo, hi = v.hi, span = v.span;
   const int col = v.col;
   ImGui::BeginGroup();
   ImGui::TextUnformatted("before warping");
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("A above, B below, each on its own timeline; matched frames joined; ticks where each take's "
-                      "cycles begin");
+    ImGui::SetTooltip("%s above, %s below, each on its own timeline; matched frames joined; ticks where each take's "
+                      "cycles begin", v.name_a.c_str(), v.name_b.c_str());
   const int frames = std::max(v.fa, v.fb);
   PlotArea before = begin_plot("##before", width, plot_h, 0.0, frames - 1, lo - 1.15 * span, hi + 0.1 * span);
   draw_before_marks(v, before);
-  plot_line(before, v.fa, [&](int i, double* x, double* y) { *x = i; *y = v.sa(i, col); }, color_a());
-  plot_line(before, v.fb, [&](int j, double* x, double* y) { *x = j; *y = v.sb(j, col) - 1.05 * span; }, color_b());
-  plot_legend(before, 0, "A", color_a());
-  plot_legend(before, 1, "B", color_b());
+  plot_line(before, v.fa, [&](int i, double* x, double* y) { *x = i; *y = v.sa(i, col); }, v.color_a);
+  plot_line(before, v.fb, [&](int j, double* x, double* y) { *x = j; *y = v.sb(j, col) - 1.05 * span; }, v.color_b);
+  plot_legend(before, 0, v.name_a.c_str(), v.color_a);
+  plot_legend(before, 1, v.name_b.c_str(), v.color_b);
   plot_axis_label(before, "frames");
   ImGui::EndGroup();
   return before;
 }
 
-// The cost matrix (A frames down, B frames across) with the path and the playhead on it.
+// The cost matrix (the reference's frames down, the take's across) with the path and the
+// playhead on it.
 PlotArea draw_cost(const PairPlot& v, const DtwCostImage& img, float side) {
   const TimeWarp& warp = v.warp;
   ImGui::BeginGroup();
@@ -233,27 +243,28 @@ PlotArea draw_cost(const PairPlot& v, const DtwCostImage& img, float side) {
               IM_COL32(255, 255, 255, 230), 2.0f);
     const int u = std::clamp(static_cast<int>(std::lround(v.current_u)), 0, v.samples - 1);
     dl->AddCircleFilled(cost.to_screen(warp.b[u] + 0.5, warp.a[u] + 0.5), 4.5f, color_blend());
-    plot_axis_label(cost, "B ->");
-    plot_axis_label(cost, "A v", /*left=*/true);
+    plot_axis_label(cost, (v.name_b + " ->").c_str());
+    plot_axis_label(cost, (v.name_a + " v").c_str(), /*left=*/true);
   }
   ImGui::EndGroup();
   return cost;
 }
 
-// A and B on the warp's samples. *hovered_u: the sample under the mouse, when it is over the plot.
+// Both takes on the warp's samples. *hovered_u: the sample under the mouse, when it is over the plot.
 PlotArea draw_after(const PairPlot& v, float height, double* hovered_u) {
   const TimeWarp& warp = v.warp;
   const int col = v.col, samples = v.samples;
   ImGui::TextUnformatted("after warping");
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("A and B on the common timeline (the warp's samples); under them, how well they match: the\n"
-                      "local cost over the path's typical cost (1 typical; above the red line, shaded, poor)");
+    ImGui::SetTooltip("%s and %s on the common timeline (the warp's samples); under them, how well they match: the\n"
+                      "local cost over the path's typical cost (1 typical; above the red line, shaded, poor)",
+                      v.name_a.c_str(), v.name_b.c_str());
   PlotArea after = begin_plot("##after", -1.0f, height, 0.0, samples - 1, v.lo - 0.08 * v.span, v.hi + 0.08 * v.span);
-  plot_line(after, samples, [&](int u, double* x, double* y) { *x = u; *y = sample(v.sa, warp.a[u], col); }, color_a(), 2.0f);
-  plot_line(after, samples, [&](int u, double* x, double* y) { *x = u; *y = sample(v.sb, warp.b[u], col); }, color_b());
+  plot_line(after, samples, [&](int u, double* x, double* y) { *x = u; *y = sample(v.sa, warp.a[u], col); }, v.color_a, 2.0f);
+  plot_line(after, samples, [&](int u, double* x, double* y) { *x = u; *y = sample(v.sb, warp.b[u], col); }, v.color_b);
   plot_vline(after, v.current_u, IM_COL32(255, 255, 255, 140));
-  plot_legend(after, 0, "A", color_a());
-  plot_legend(after, 1, "B", color_b());
+  plot_legend(after, 0, v.name_a.c_str(), v.color_a);
+  plot_legend(after, 1, v.name_b.c_str(), v.color_b);
   if (after.hovered) *hovered_u = std::clamp(after.x_at(ImGui::GetIO().MousePos.x), 0.0, samples - 1.0);
   return after;
 }
@@ -285,32 +296,25 @@ PlotArea draw_quality(const PairPlot& v, float height, double* hovered_u) {
 void match_tooltip(EditorState& state, const PairPlot& v, const MixResult* blend, double hovered_u, bool clicked) {
   const TimeWarp& warp = v.warp;
   const int u = std::clamp(static_cast<int>(std::lround(hovered_u)), 0, v.samples - 1);
-  ImGui::SetTooltip("A frame %.1f  <->  B frame %.1f\nmatch cost %.2f x the typical, B runs %.2f x A's speed\n"
+  const char* a = v.name_a.c_str();
+  const char* b = v.name_b.c_str();
+  ImGui::SetTooltip("%s frame %.1f  <->  %s frame %.1f\nmatch cost %.2f x the typical, %s runs %.2f x %s's speed\n"
                     "click: jump there",
-                    warp.a[u], warp.b[u], v.al.cost_ratio[u], v.al.slope[u]);
-  const int frame = output_frame_at(v.p, blend, hovered_u);
+                    a, warp.a[u], b, warp.b[u], v.al.cost_ratio[u], b, v.al.slope[u], a);
+  const int frame = output_frame_at(v.p, v.take, blend, hovered_u);
   if (clicked && frame >= 0) state.playback.time_s = (frame + 0.5) / v.p.fps;
 }
 
 }  // namespace
 
-void DtwPanel::draw(EditorState& state) {
-  if (session_.palette() != nullptr) return;  // the style palette has the strip (palette_panel.h)
-  place_panel(PanelId::kDtw, state);
-  if (!ImGui::Begin(panel_title(PanelId::kDtw))) {
-    ImGui::End();
+void draw_alignment(EditorState& state, const PreparedTakes& p, int take, const MixResult* result,
+                    const DtwCostImage& image) {
+  if (!alignment_plottable(p, take)) {
+    ImGui::TextColored(kDimColor, "Not aligned yet.");
     return;
   }
-  const PreparedTakes* p = session_.pair();
-  if (!plottable(p)) {
-    ImGui::TextColored(ImVec4(0.6f, 0.62f, 0.66f, 1.0f), "No pair aligned yet.");
-    ImGui::End();
-    return;
-  }
-  const MixResult* blend = session_.result();
-  draw_header(state.document.controls, *p);
-
-  const PairPlot v = pair_plot(state, *p, blend);
+  const PairPlot v = pair_plot(state, p, take, result);
+  draw_header(state.document.controls, v);
 
   const float line = ImGui::GetTextLineHeightWithSpacing();
   // In the layout's bottom strip (much wider than high) the views stand side by side; a panel
@@ -326,16 +330,13 @@ void DtwPanel::draw(EditorState& state) {
     hovered_u = sample_at_a_frame(v.warp, v.samples, i);
   }
 
-  // Below (or beside): the cost matrix (A frames down, B frames across, the path and the playhead on it)
-  // beside the signals after warping, over the warp's samples, with the match quality under them.
+  // Below (or beside): the cost matrix (the reference's frames down, the take's across, the path
+  // and the playhead on it) beside the signals after warping, over the warp's samples, with the
+  // match quality under them.
   const float side = std::clamp(std::min(ImGui::GetContentRegionAvail().y - line - 4.0f,
                                          0.5f * ImGui::GetContentRegionAvail().x),
                                 60.0f, 600.0f);
-  if (imaged_ != p) {
-    image_ = dtw_cost_image(*p);
-    imaged_ = p;
-  }
-  const PlotArea cost = draw_cost(v, image_, side);
+  const PlotArea cost = draw_cost(v, image, side);
   ImGui::SameLine();
   ImGui::BeginGroup();
   // Tall enough for its curve and its legend to read (a third of the square beside it).
@@ -348,8 +349,7 @@ void DtwPanel::draw(EditorState& state) {
     hovered_u = sample_at_a_frame(v.warp, v.samples, i);
   }
   if (hovered_u >= 0)
-    match_tooltip(state, v, blend, hovered_u, before.clicked || after.clicked || quality.clicked || cost.clicked);
-  ImGui::End();
+    match_tooltip(state, v, result, hovered_u, before.clicked || after.clicked || quality.clicked || cost.clicked);
 }
 
 }  // namespace mostyle::ui
