@@ -98,7 +98,7 @@ Editor::Editor(const EditorOptions& options)
     const std::vector<std::string> files = options.files.empty() ? default_motion_files() : options.files;
     // --weights (or a pair's --alpha), one per take: parse_editor_options checked their count.
     ui::set_layer_weights(state_.document, options.initial.weights);
-    session_->load_files(files, ui::WeightsOf::kNewTakes);  // three or more: the style palette
+    session_->load_files(files, ui::WeightsOf::kNewTakes);
     first_take = files.empty() ? std::string() : files[0];
   }
   std::string folder = std::filesystem::path(first_take).parent_path().string();
@@ -138,7 +138,7 @@ void Editor::update_engine() {
     session_->poll(state_);
     session_->sync(state_, /*item_held=*/true);  // the new snapshot shown; worker requests after the panels
   });
-  // The takes, a pair or a palette alike.
+  // The takes, any number alike.
   const void* pair = session_->snapshot().prepared.get();
   if (pair != nullptr && pair != framed_pair_) {  // new takes: frame them, start at --frame once
     framed_pair_ = pair;

@@ -174,7 +174,7 @@ std::string check_options(EditorOptions& o) {
     break;
   }
   const size_t takes = o.files.empty() ? 2 : std::max<size_t>(o.files.size(), 2);
-  // --alpha: a pair's weights, unless --weights gives them (a palette and a session have no alpha).
+  // --alpha: a pair's weights, unless --weights gives them (more takes and a session have no alpha).
   if (o.initial.alpha && o.initial.weights.empty() && o.session_path.empty() && takes == 2)
     o.initial.weights = {1.0 - *o.initial.alpha, *o.initial.alpha};
   if (!o.initial.weights.empty()) {
@@ -238,7 +238,7 @@ const std::vector<KeyHelp>& editor_keys() {
   static const std::vector<KeyHelp> kKeys = {
       {"Space", "play or pause (from the start again on the last frame)"},
       {"Left / Right arrow", "step one frame back / forward (pauses)"},
-      {"K", "key the style at the playhead: alpha, or the palette's weights (the timeline's Set key)"},
+      {"K", "key the style at the playhead: the takes' weights (the timeline's Set key)"},
       {"Delete", "remove the key under the mouse on the timeline, else the one at the playhead"},
       {"F", "frame all: turn and move the camera to show every skeleton"},
       {"F1 or ?", "show or hide this list of keys"},
@@ -255,7 +255,7 @@ const std::vector<KeyHelp>& editor_keys() {
       {"Right or middle drag", "in the 3D view: move the camera sideways and up or down"},
       {"Mouse wheel", "in the 3D view: move the camera closer or further"},
       {"Drag a key's diamond", "on the timeline: move the key in time; click: go to it; right-click: remove it"},
-      {"Drop .bvh files", "on the window: three or more open the style palette, two the pair, one B"},
+      {"Drop .bvh files", "on the window: two or more are the new takes, one is one more take"},
   };
   return kKeys;
 }
@@ -270,9 +270,10 @@ std::string editor_usage() {
   return "usage: mostyle [A.bvh B.bvh ... | SESSION.mostyle] [options]\n"
          "\n"
          "Blend the styles of motion-capture takes live. With no files, opens the bundled\n"
-         "example pair (CMU subject 142: happy and marching walks). Three to sixteen files open\n"
-         "the style palette (the first is the reference). A session (.mostyle, saved\n"
-         "with Ctrl+S) opens its takes with every parameter, the camera and the playback.\n"
+         "example pair (CMU subject 142: happy and marching walks). Two to sixteen files are\n"
+         "mixed alike, each a layer with its weight, the first the reference. A session\n"
+         "(.mostyle, saved with Ctrl+S) opens its takes with every parameter, the camera and\n"
+         "the playback.\n"
          "\n"
          "options:\n"
          "  --screenshot OUT.png  render the first frames, write a PNG of the whole window, exit\n"
@@ -286,8 +287,8 @@ std::string editor_usage() {
          "  --weights W1,W2,...   initial weights, one per take, summing to 1 (a pair's: 1-alpha,alpha)\n"
          "  --save-session FILE   once the takes are in, save the session to FILE (.mostyle)\n"
          "  --live HOST:PORT      once the takes are in, style the BVH broadcasting stream there with\n"
-         "                        them (a pair: A the neutral, B the style at alpha; a mix: the stream\n"
-         "                        as the first take); with --screenshot, the picture is taken once a\n"
+         "                        them (the stream as the first take, every other take a style at its\n"
+         "                        weight); with --screenshot, the picture is taken once a\n"
          "                        second of it is styled\n"
          "  --live-skeleton FILE  the stream's skeleton: a BVH file with its hierarchy and channels\n"
          "  --help                this text\n"

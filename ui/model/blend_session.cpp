@@ -41,10 +41,15 @@ void BlendSession::load_files(const std::vector<std::string>& paths, WeightsOf w
   requested_files_.clear();
   for (const std::string& path : paths)
     if (!path.empty() || requested_files_.empty()) requested_files_.push_back(path);
-  requested_a_ = requested_files_.empty() ? std::string() : requested_files_[0];
-  requested_b_ = requested_files_.size() > 1 ? requested_files_[1] : std::string();
   load_waiting_ = true;
   weights_of_ = weights;
+}
+
+std::vector<std::string> BlendSession::requested_takes() const {
+  if (requested_a().empty()) return {};
+  std::vector<std::string> takes = requested_files_;
+  if (takes.size() == 1) takes.push_back(takes[0]);  // A with itself
+  return takes;
 }
 
 void BlendSession::load(const std::string& path_a, const std::string& path_b) { load_files({path_a, path_b}); }
@@ -73,9 +78,7 @@ void BlendSession::sync(EditorState& state, bool item_held) {
   if (load_waiting_) {  // a command: given now, with the document's alignment
     load_waiting_ = false;
     asked_.controls.align = d.controls.align;
-    std::vector<std::string> paths = requested_files_;
-    if (paths.size() == 1) paths.push_back(paths[0]);  // A with itself
-    worker_.load(paths, prepare_options(d));
+    worker_.load(requested_files_, prepare_options(d));  // a take alone: with itself
   } else if (realign && snapshot_->prepared) {
     worker_.load(snapshot_->paths, prepare_options(d));
   }

@@ -50,6 +50,9 @@ class BlendSession {
   bool load_waiting() const { return load_waiting_; }
   // The files last asked for, loaded or not.
   const std::vector<std::string>& requested_files() const { return requested_files_; }
+  // Those files as the worker is given them and a Document lists them: a take alone twice (A
+  // with itself); empty before any load (or when the first path asked for was empty).
+  std::vector<std::string> requested_takes() const;
   // The takes loaded (any number), or null.
   const PreparedTakes* takes() const { return snapshot_->prepared.get(); }
   // The file of loaded take i ("" when there is none).
@@ -95,9 +98,11 @@ class BlendSession {
   // The decomposition the panels' sliders ask for differs from the one shown.
   bool decomposition_outdated() const;
 
-  // The first two files last asked for, loaded or not ("" when there is none).
-  const std::string& requested_a() const { return requested_a_; }
-  const std::string& requested_b() const { return requested_b_; }
+  // The first file last asked for, the reference, loaded or not ("" when there is none).
+  const std::string& requested_a() const {
+    static const std::string kNone;
+    return requested_files_.empty() ? kNone : requested_files_[0];
+  }
 
  private:
   PrepareOptions prepare_options(const Document& document) const;
@@ -117,7 +122,6 @@ class BlendSession {
   Document asked_;               // the document as the worker was last asked for it (sync)
   bool load_waiting_ = false;    // load_files() since the last sync()
   WeightsOf weights_of_ = WeightsOf::kLoadedTakes;  // of the load last asked for, until its takes arrive
-  std::string requested_a_, requested_b_;
   std::vector<std::string> requested_files_;
   ResultView view_;
 };

@@ -8,14 +8,6 @@
 namespace mostyle::ui {
 namespace {
 
-// The takes the worker was last asked for, as a Document lists them (A twice for A with itself);
-// empty before any load.
-std::vector<std::string> requested_files(const BlendSession& session) {
-  if (session.requested_files().size() >= 3) return session.requested_files();  // a palette
-  if (session.requested_a().empty()) return {};
-  return {session.requested_a(), session.requested_b().empty() ? session.requested_a() : session.requested_b()};
-}
-
 // The takes of a snapshot, as a Document lists them.
 std::vector<std::string> loaded_files(const WorkerSnapshot& snap) {
   if (snap.prepared) return snap.paths;
@@ -33,7 +25,7 @@ Document capture_document(const EditorState& state) {
 void apply_document(const Document& document, EditorState& state, BlendSession& session) {
   const Document before = capture_document(state);
   // A load on its way counts as loaded: undoing back to the loaded takes must replace it.
-  const std::vector<std::string> takes = load_pending(session) ? requested_files(session) : before.files;
+  const std::vector<std::string> takes = load_pending(session) ? session.requested_takes() : before.files;
   DocumentControls& c = state.document.controls;
   const int selected = c.selected_component, coordinate = c.dtw_coordinate;
   const std::vector<std::string> files = state.document.files;
@@ -53,7 +45,7 @@ std::string apply_session_document(const Document& document, const std::string& 
     if (std::find(missing.begin(), missing.end(), document.files[k]) == missing.end()) kept.push_back(static_cast<int>(k));
   Document opened = missing.empty() || kept.empty() ? document : keep_takes(document, kept);
   if (kept.empty()) opened.files = capture_document(state).files;  // none there: the takes loaded stay
-  if (kept.empty() && load_pending(session)) opened.files = requested_files(session);
+  if (kept.empty() && load_pending(session)) opened.files = session.requested_takes();
   apply_document(opened, state, session);
   return missing_takes_message(session_path, missing, !kept.empty());
 }
@@ -65,7 +57,7 @@ bool load_pending(const BlendSession& session) {
   // A load the worker has finished (even its decomposition and mix: idle, nothing waiting) is
   // still on its way until poll() takes up its snapshot; a failed one, once polled, is not.
   if (!status.pending && !session.has_news()) return false;
-  return requested_files(session) != loaded_files(session.snapshot());
+  return session.requested_takes() != loaded_files(session.snapshot());
 }
 
 void EditHistory::record(const EditorState& state, BlendSession& session, bool item_active) {

@@ -41,8 +41,7 @@ void set_constant_weights(Document& d, int takes, const std::vector<double>& wei
 }  // namespace
 
 int transfer_neutral(const DocumentControls& c, int takes) {
-  // A neutral take needs a style beside it: with none, the content is its own neutral.
-  return c.content_neutral || takes < 3 ? 0 : std::clamp(c.neutral, 1, takes - 1);
+  return c.content_neutral || !neutral_take_possible(takes) ? 0 : std::clamp(c.neutral, 1, takes - 1);
 }
 
 std::vector<double> transfer_mix_weights(const std::vector<double>& values, int neutral, int takes) {

@@ -25,9 +25,13 @@
 
 namespace mostyle::ui {
 
+// Whether a transfer of `takes` takes can have a neutral take: one needs a style beside it and the
+// content, so a pair's transfer has none (B's style on A, A its own neutral).
+inline bool neutral_take_possible(int takes) { return takes >= 3; }
+
 // A transfer's neutral take among `takes` (takes >= 2): 0 when the content (take 0) is its own
-// neutral (DocumentControls::content_neutral, or two takes: a neutral needs a style beside it),
-// else its neutral clamped to 1 .. takes - 1.
+// neutral (DocumentControls::content_neutral, or no neutral take possible), else its neutral
+// clamped to 1 .. takes - 1.
 int transfer_neutral(const DocumentControls& c, int takes);
 
 // A transfer's mix weights from per-take values (the layers' weights, or a key's weights):

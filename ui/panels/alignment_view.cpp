@@ -1,5 +1,4 @@
 #include "ui/panels/alignment_view.h"
-#include "ui/panels/theme.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +9,10 @@
 
 #include "engine/align/warp_position.h"
 #include "engine/io/motion_file.h"
+#include "ui/model/take_structure.h"
 #include "ui/panels/plot.h"
+#include "ui/panels/structure_strip.h"
+#include "ui/panels/theme.h"
 
 namespace mostyle::ui {
 namespace {
@@ -48,6 +50,12 @@ int output_frame_at(const PreparedTakes& p, int take, const MixResult* result, d
   return static_cast<int>(lo);
 }
 }  // namespace
+
+std::string short_take_name(const PreparedTakes& p, int take) {
+  std::vector<std::string> sources;
+  for (const PreparedTake& t : p.takes) sources.push_back(t.clip->source);
+  return distinct_take_labels(sources)[static_cast<size_t>(take)];
+}
 
 MatchedFrames matched_frames_in_files(const PreparedTakes& p, int take) {
   MatchedFrames m;
@@ -126,7 +134,7 @@ PairPlot pair_plot(const EditorState& state, const PreparedTakes& p, int take, c
                                : 0.0;
   const int n = p.size();
   const std::string a = *take_letter(0, n) ? take_letter(0, n) : "reference";
-  const std::string b = *take_letter(take, n) ? take_letter(take, n) : take_label(p.takes[static_cast<size_t>(take)].clip->source);
+  const std::string b = *take_letter(take, n) ? take_letter(take, n) : short_take_name(p, take);
   return PairPlot{p, take, al, sa, sb, al.warp, static_cast<int>(sa.rows()), static_cast<int>(sb.rows()),
                   al.warp.samples(), col, lo, hi, hi - lo, current_u, a, b, take_color_u32(0), take_color_u32(take)};
 }
@@ -221,13 +229,41 @@ PlotArea draw_before(const PairPlot& v, float width, float plot_h) {
   return before;
 }
 
+// Beside the cost matrix, each take's structure along its frames (ui/panels/structure_strip.h):
+// the take's above, across, the reference's at the left, down; hover names a frame's.
+void draw_structure_beside(const PairPlot& v, const PlotArea& cost, ImVec2 corner) {
+  const PreparedTake& ref = v.p.takes[0];
+  const PreparedTake& take = v.p.takes[static_cast<size_t>(v.take)];
+  const ImVec2 across_min(cost.min.x, corner.y), across_max(cost.max.x, cost.min.y - 2.0f);
+  const ImVec2 down_min(corner.x, cost.min.y), down_max(cost.min.x - 2.0f, cost.max.y);
+  draw_structure_strip(take, across_min, across_max, v.fb, false, v.color_b, [&](int j) { return own_frame(take, j); });
+  draw_structure_strip(ref, down_min, down_max, v.fa, true, v.color_a, [](int i) { return double(i); });
+  const ImVec2 mouse = ImGui::GetIO().MousePos;
+  if (ImGui::IsMouseHoveringRect(across_min, across_max)) {
+    const int j = std::clamp(static_cast<int>(cost.x_at(mouse.x)), 0, v.fb - 1);
+    ImGui::SetTooltip("%s frame %d: %s", v.name_b.c_str(), j, frame_structure_words(take, own_frame(take, j)).c_str());
+  } else if (ImGui::IsMouseHoveringRect(down_min, down_max)) {
+    const int i = std::clamp(static_cast<int>(cost.y_at(mouse.y)), 0, v.fa - 1);
+    ImGui::SetTooltip("%s frame %d: %s", v.name_a.c_str(), i, frame_structure_words(ref, i).c_str());
+  }
+}
+
 // The cost matrix (the reference's frames down, the take's across) with the path and the
-// playhead on it.
+// playhead on it, each take's structure beside it (draw_structure_beside). `side`: the whole
+// square's, the structure's strips in it.
 PlotArea draw_cost(const PairPlot& v, const DtwCostImage& img, float side) {
   const TimeWarp& warp = v.warp;
   ImGui::BeginGroup();
   ImGui::TextUnformatted("cost and path");
-  PlotArea cost = begin_plot("##cost", side, side, 0.0, v.fb, v.fa, 0.0);  // y down: frame 0 at the top
+  const float strip = std::max(6.0f, 0.5f * ImGui::GetFontSize());
+  const ImVec2 corner = ImGui::GetCursorScreenPos();
+  const float plot_side = side - strip - ImGui::GetStyle().ItemSpacing.y;
+  ImGui::Dummy(ImVec2(side, strip));
+  ImGui::Dummy(ImVec2(strip, plot_side));
+  ImGui::SameLine(0.0f, 0.0f);
+  // y down: frame 0 at the top
+  PlotArea cost = begin_plot("##cost", plot_side, plot_side, 0.0, v.fb, v.fa, 0.0);
+  draw_structure_beside(v, cost, corner);
   if (img.rows > 0 && img.cols > 0) {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const float cw = (cost.max.x - cost.min.x) / img.cols, ch = (cost.max.y - cost.min.y) / img.rows;
@@ -243,8 +279,10 @@ PlotArea draw_cost(const PairPlot& v, const DtwCostImage& img, float side) {
               IM_COL32(255, 255, 255, 230), 2.0f);
     const int u = std::clamp(static_cast<int>(std::lround(v.current_u)), 0, v.samples - 1);
     dl->AddCircleFilled(cost.to_screen(warp.b[u] + 0.5, warp.a[u] + 0.5), 4.5f, color_blend());
-    plot_axis_label(cost, (v.name_b + " ->").c_str());
-    plot_axis_label(cost, (v.name_a + " v").c_str(), /*left=*/true);
+    if (cost.max.x - cost.min.x > 10.0f * ImGui::GetFontSize()) {  // room for both names
+      plot_axis_label(cost, (v.name_b + " ->").c_str());
+      plot_axis_label(cost, (v.name_a + " v").c_str(), /*left=*/true);
+    }
   }
   ImGui::EndGroup();
   return cost;

@@ -3,10 +3,18 @@
 // take picked, for any number of takes: the aligned joint's signals before and after warping with
 // matched frames joined (paper Fig. 2), the local-cost matrix with the optimal path, and the
 // match quality. Hover: the matched frames; click: jump there.
+#include <string>
+
 #include "ui/model/blend_session.h"
 #include "ui/model/dtw_image.h"
 
 namespace mostyle::ui {
+
+// Take `take`'s name as the takes' views show it: its label (the animation's name, or the file's
+// without its extension) without the start every take's label shares up to a '_' or '-'
+// ("cmu142_walk_happy", "cmu142_walk_marching": "happy", "marching"), so that names fit narrow
+// columns. O(takes).
+std::string short_take_name(const PreparedTakes& p, int take);
 
 // The frames of the reference and of take `take` that its alignment matched, first and last,
 // counted as each take's file counts them: the take's own frames when it was registered by

@@ -12,6 +12,7 @@
 #include "engine/io/numbers.h"
 #include "ui/model/document.h"
 #include "ui/model/keyed_weights.h"
+#include "ui/model/take_structure.h"
 #include "ui/model/weight_keys_edit.h"
 #include "ui/panels/alignment_view.h"
 #include "ui/panels/fitted_text.h"
@@ -19,6 +20,7 @@
 #include "ui/panels/layout.h"
 #include "ui/panels/plot.h"
 #include "ui/panels/range_slider.h"
+#include "ui/panels/structure_strip.h"
 #include "ui/panels/theme.h"
 
 namespace mostyle::ui {
@@ -29,13 +31,11 @@ const char* const kPartNames[] = {"Legs", "Arms", "Spine, head"};  // short: the
 // The transfer's neutral choice that is no take: the change is measured from the content.
 constexpr const char* kContentNeutral = "none: the content is its own neutral";
 
-// Take i's label (the animation's name, or the file's name without its extension) without the
-// start every take's label shares up to a '_' or '-' ("cmu142_walk_happy", "cmu142_walk_marching":
-// "happy", "marching"), so that names fit the narrow columns; the whole name is in the tooltips.
-std::string name_of(const PreparedTakes& p, int i) {
-  std::vector<std::string> sources;
-  for (const PreparedTake& t : p.takes) sources.push_back(t.clip->source);
-  return distinct_take_labels(sources)[static_cast<size_t>(i)];
+// The body parts' column: its checkbox whole, and a part's name beside a take's short name.
+float parts_width() {
+  const ImGuiStyle& style = ImGui::GetStyle();
+  const float checkbox = ImGui::GetFrameHeight() + style.ItemInnerSpacing.x + ImGui::CalcTextSize("Per body part").x;
+  return std::max(checkbox, ImGui::CalcTextSize("Spine, head").x + 7.0f * ImGui::GetFontSize());
 }
 
 void swatch(int take) {
@@ -44,37 +44,44 @@ void swatch(int take) {
   ImGui::SameLine();
 }
 
-// A fraction of `color`'s opacity.
-ImU32 faded(ImU32 color, float alpha) {
-  ImVec4 c = ImGui::ColorConvertU32ToFloat4(color);
-  c.w = alpha;
-  return ImGui::ColorConvertFloat4ToU32(c);
+// Take `take`'s own frames at the result's frames (frames_in_take of its sources: a registered
+// take's frames back to its own, NaN where it gives its posture only); empty without a result.
+Eigen::VectorXd own_frames_shown(const PreparedTakes& p, const MixResult* result, int take) {
+  if (result == nullptr || result->sources.rows() == 0 || take >= result->sources.cols()) return {};
+  return frames_in_take(p.takes[static_cast<size_t>(take)], result->sources.col(take));
 }
 
-// The frames of take `take` the result plays (its source frames, lowest and highest), or none
-// (first > last) without a result.
+// The take's own frames the result plays (lowest and highest), or none (first > last), and the one
+// it shows at the playhead. shown: own_frames_shown.
 struct Played {
   double first = 1.0, last = 0.0, now = -1.0;  // `now`: the frame shown at the playhead, -1 none
 };
-Played played_frames(const EditorState& state, const MixResult* result, int take) {
+Played played_frames(const EditorState& state, const Eigen::VectorXd& shown) {
   Played out;
-  if (result == nullptr || result->sources.rows() == 0 || take >= result->sources.cols()) return out;
-  const auto column = result->sources.col(take);
-  out.first = column.minCoeff();
-  out.last = column.maxCoeff();
-  if (!state.takes.empty()) {
-    const int k = std::clamp(frame_at(state.takes.back(), state.playback.time_s), 0, static_cast<int>(column.size()) - 1);
-    out.now = column[k];
+  out.first = INFINITY;
+  out.last = -INFINITY;
+  for (double f : shown)
+    if (!std::isnan(f)) {
+      out.first = std::min(out.first, f);
+      out.last = std::max(out.last, f);
+    }
+  if (!state.takes.empty() && shown.size() > 0) {
+    const int k = std::clamp(frame_at(state.takes.back(), state.playback.time_s), 0, static_cast<int>(shown.size()) - 1);
+    if (!std::isnan(shown[k])) out.now = shown[k];
   }
   return out;
 }
 
-// The output frame whose source frame of take `take` is nearest `frame`, or -1 without a result.
-int output_frame_showing(const MixResult* result, int take, double frame) {
-  if (result == nullptr || result->sources.rows() == 0 || take >= result->sources.cols()) return -1;
-  Eigen::Index k = 0;
-  (result->sources.col(take).array() - frame).abs().minCoeff(&k);
-  return static_cast<int>(k);
+// The result's frame that shows the take's own frame nearest `frame`, or -1 when none does.
+int output_frame_showing(const Eigen::VectorXd& shown, double frame) {
+  int best = -1;
+  double nearest = INFINITY;
+  for (Eigen::Index k = 0; k < shown.size(); ++k)
+    if (!std::isnan(shown[k]) && std::abs(shown[k] - frame) < nearest) {
+      nearest = std::abs(shown[k] - frame);
+      best = static_cast<int>(k);
+    }
+  return best;
 }
 
 // Take `take`'s own frames as a bar `size` wide at the cursor: its rests shaded, its actions
@@ -90,21 +97,10 @@ void draw_take_timeline(EditorState& state, const PreparedTakes& p, int take, co
   ImDrawList* dl = ImGui::GetWindowDrawList();
   const float top = at.y + 1.0f, bottom = at.y + size.y - 1.0f;
   auto x_of = [&](double frame) { return at.x + static_cast<float>(frame / frames) * size.x; };
-  auto band = [&](double begin, double end, ImU32 color, float inset = 0.0f) {
-    dl->AddRectFilled(ImVec2(x_of(begin), top + inset), ImVec2(x_of(end), bottom - inset), color);
-  };
-  const ImU32 color = take_color_u32(take);
-  band(0, frames, IM_COL32(38, 40, 46, 255));
-  const ActionSpans& spans = t.cycles.spans;
-  for (const FrameSpan& a : spans.actions) band(a.begin, a.end, faded(color, 0.28f));
-  band(0, std::min(spans.rest_before, frames), IM_COL32(70, 74, 84, 255));
-  band(frames - std::min(spans.rest_after, frames), frames, IM_COL32(70, 74, 84, 255));
-  const std::vector<Cycle>& cycles = t.cycles.cycles;
-  for (size_t c = 0; c < cycles.size(); ++c) {
-    band(cycles[c].begin, cycles[c].end, faded(color, c % 2 == 0 ? 0.55f : 0.38f), 0.25f * size.y);
-    dl->AddLine(ImVec2(x_of(cycles[c].begin), top), ImVec2(x_of(cycles[c].begin), bottom), color, 1.5f);
-  }
-  const Played played = played_frames(state, result, take);
+  draw_structure_strip(t, ImVec2(at.x, top), ImVec2(at.x + size.x, bottom), frames, false, take_color_u32(take),
+                       [](int f) { return double(f); });
+  const Eigen::VectorXd shown = own_frames_shown(p, result, take);
+  const Played played = played_frames(state, shown);
   if (played.first <= played.last)
     dl->AddRect(ImVec2(x_of(played.first), top), ImVec2(x_of(played.last + 1.0), bottom), IM_COL32(235, 235, 240, 200));
   if (played.now >= 0.0) {
@@ -114,33 +110,18 @@ void draw_take_timeline(EditorState& state, const PreparedTakes& p, int take, co
   if (!hovered) return;
   const double frame = std::clamp(double(ImGui::GetIO().MousePos.x - at.x) / size.x * frames, 0.0, frames - 1.0);
   ImGui::SetTooltip("%s, frame %d of %d: %s\n%s\nclick: the result's frame that shows it",
-                    name_of(p, take).c_str(), static_cast<int>(frame), frames,
+                    short_take_name(p, take).c_str(), static_cast<int>(frame), frames,
                     frame_structure_words(t, static_cast<int>(frame)).c_str(),
                     played.first <= played.last
                         ? ("the result plays its frames " + std::to_string(static_cast<int>(played.first)) + " to " +
                            std::to_string(static_cast<int>(played.last)))
                               .c_str()
                         : "not played yet");
-  const int shown = output_frame_showing(result, take, frame);
-  if (clicked && shown >= 0) state.playback.time_s = (shown + 0.5) / p.fps;
+  const int output = output_frame_showing(shown, frame);
+  if (clicked && output >= 0) state.playback.time_s = (output + 0.5) / p.fps;
 }
 
 }  // namespace
-
-std::string frame_structure_words(const PreparedTake& take, int frame) {
-  const ActionSpans& spans = take.cycles.spans;
-  const std::vector<Cycle>& cycles = take.cycles.cycles;
-  const char* cycle_word = take.cycles.kind == CycleKind::kGait ? "gait cycle" : "stroke";
-  for (size_t c = 0; c < cycles.size(); ++c)
-    if (frame >= cycles[c].begin && frame < cycles[c].end)
-      return std::string(cycle_word) + " " + std::to_string(c + 1) + " of " + std::to_string(cycles.size());
-  if (frame < spans.rest_before) return "at rest before the action";
-  if (frame >= spans.frames - spans.rest_after && spans.rest_after > 0) return "at rest after the action";
-  for (size_t a = 0; a < spans.actions.size(); ++a)
-    if (frame >= spans.actions[a].begin && frame < spans.actions[a].end)
-      return "action " + std::to_string(a + 1) + " of " + std::to_string(spans.actions.size());
-  return spans.still() ? "at rest" : "a pause between actions";
-}
 
 glm::vec2 pad_vertex(int take, int n) {
   const float angle = 2.0f * kPi * static_cast<float>(take) / static_cast<float>(std::max(n, 1));
@@ -192,7 +173,7 @@ void LayersPanel::draw(EditorState& state) {
       ImGui::EndTabItem();
     }
     aligned_take_ = std::clamp(aligned_take_, 1, std::max(1, p->size() - 1));
-    const std::string tab = "Alignment: " + name_of(*p, aligned_take_) + "###alignment";
+    const std::string tab = "Alignment: " + short_take_name(*p, aligned_take_) + "###alignment";
     if (ImGui::BeginTabItem(tab.c_str())) {
       draw_alignment_tab(state, *p);
       ImGui::EndTabItem();
@@ -248,7 +229,7 @@ void LayersPanel::draw_transfer_takes(EditorState& state, const PreparedTakes& p
   DocumentControls& c = state.document.controls;
   const int n = p.size();
   swatch(0);
-  ImGui::Text("Content: %s", name_of(p, 0).c_str());
+  ImGui::Text("Content: %s", short_take_name(p, 0).c_str());
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("The take that keeps its skeleton, path and length and takes on the style (the first file; "
                       "open your own take first to make it the content)");
@@ -256,8 +237,8 @@ void LayersPanel::draw_transfer_takes(EditorState& state, const PreparedTakes& p
   if (ImGui::SmallButton("Make another take the content...")) ImGui::OpenPopup("##content");
   if (ImGui::BeginPopup("##content")) {
     for (int i = 1; i < n; ++i)
-      if (ImGui::Selectable(name_of(p, i).c_str())) {
-        // The content is the reference: the palette is prepared again with it first.
+      if (ImGui::Selectable(short_take_name(p, i).c_str())) {
+        // The content is the reference: the takes are prepared again with it first.
         // Every take keeps its weight and strength in its new place (ui/model/document.h).
         std::vector<std::string> files = session_.snapshot().paths;
         if (static_cast<size_t>(i) < files.size()) {
@@ -274,13 +255,13 @@ void LayersPanel::draw_transfer_takes(EditorState& state, const PreparedTakes& p
   }
   // The neutral: a take, or none (the content is its own neutral: every other take is a style);
   // a pair's B is its style, A its own neutral.
+  if (!neutral_take_possible(n)) return;
   const int neutral = transfer_neutral(c, n);
-  if (n < 3) return;
   ImGui::SetNextItemWidth(200.0f);
-  if (ImGui::BeginCombo("Neutral", neutral == 0 ? kContentNeutral : name_of(p, neutral).c_str())) {
+  if (ImGui::BeginCombo("Neutral", neutral == 0 ? kContentNeutral : short_take_name(p, neutral).c_str())) {
     if (ImGui::Selectable(kContentNeutral, neutral == 0)) c.content_neutral = true;
     for (int i = 1; i < n; ++i)
-      if (ImGui::Selectable(name_of(p, i).c_str(), i == neutral)) {
+      if (ImGui::Selectable(short_take_name(p, i).c_str(), i == neutral)) {
         c.neutral = i;
         c.content_neutral = false;
       }
@@ -300,10 +281,10 @@ void LayersPanel::draw_takes(EditorState& state, const PreparedTakes& p) {
   const float room = std::max(ImGui::GetContentRegionAvail().y - 4.0f, 60.0f);
   const float pad = std::clamp(room, 80.0f, 220.0f);
   if (ImGui::BeginTable("##takes", c.transfer ? 1 : 3, ImGuiTableFlags_SizingStretchProp)) {
-    ImGui::TableSetupColumn("rows", ImGuiTableColumnFlags_WidthStretch, 6.0f);
+    ImGui::TableSetupColumn("rows", ImGuiTableColumnFlags_WidthStretch);
     if (!c.transfer) {
       ImGui::TableSetupColumn("pad", ImGuiTableColumnFlags_WidthFixed, pad);
-      ImGui::TableSetupColumn("parts", ImGuiTableColumnFlags_WidthStretch, 1.3f);
+      ImGui::TableSetupColumn("parts", ImGuiTableColumnFlags_WidthFixed, parts_width());
     }
     ImGui::TableNextColumn();
     ImGui::BeginChild("##rows", ImVec2(0, room));
@@ -366,7 +347,7 @@ bool LayersPanel::draw_row(EditorState& state, const PreparedTakes& p, int take,
   // The name (a pair's A and B before it), in a column of its own; a click picks its alignment.
   const float name_w = std::min(12.0f * ImGui::GetFontSize(), 0.3f * ImGui::GetContentRegionAvail().x);
   const std::string letter = take_letter(take, n);
-  const std::string name = (letter.empty() ? "" : letter + "  ") + name_of(p, take) + (take == 0 ? " (ref.)" : "");
+  const std::string name = (letter.empty() ? "" : letter + "  ") + short_take_name(p, take) + (take == 0 ? " (ref.)" : "");
   const bool picked = take == aligned_take_;
   if (ImGui::Selectable((fitted(name, name_w) + "###name").c_str(), picked && take > 0, 0, ImVec2(name_w, 0.0f)) &&
       take > 0)
@@ -434,13 +415,13 @@ void LayersPanel::draw_parts(EditorState& state, const PreparedTakes& p) {
     ImGui::SameLine(ImGui::CalcTextSize(kPartNames[2]).x + ImGui::GetStyle().ItemSpacing.x);
     const float arrow = ImGui::GetFrameHeight() + 2.0f * ImGui::GetStyle().FramePadding.x;
     const float width = std::max(ImGui::GetContentRegionAvail().x, arrow + ImGui::GetFontSize());
-    const std::string shown = fitted(from < 0 ? "weights" : name_of(p, from), width - arrow);
+    const std::string shown = fitted(from < 0 ? "weights" : short_take_name(p, from), width - arrow);
     ImGui::SetNextItemWidth(width);
     ImGui::PushID(static_cast<int>(part));
     if (ImGui::BeginCombo("##from", shown.c_str())) {
       if (ImGui::Selectable("the weights", from < 0)) set_part_row(state.document, *d, body_part, std::nullopt);
       for (int i = 0; i < n; ++i)
-        if (ImGui::Selectable(name_of(p, i).c_str(), from == i)) {
+        if (ImGui::Selectable(short_take_name(p, i).c_str(), from == i)) {
           std::vector<double> row(static_cast<size_t>(n), 0.0);
           row[static_cast<size_t>(i)] = 1.0;
           set_part_row(state.document, *d, body_part, row);

@@ -24,10 +24,6 @@ std::vector<double> pad_weights(glm::vec2 point, int n);
 // Where the pad's marker sits for given weights: their weighted mean of the vertices.
 glm::vec2 pad_point(const std::vector<double>& weights);
 
-// What a take's timeline row says of its frame f (frames at the working rate): at rest (before,
-// after or between actions), in action i, stroke or gait cycle j. Plain words for the tooltip.
-std::string frame_structure_words(const PreparedTake& take, int frame);
-
 class LayersPanel : public Panel {
  public:
   explicit LayersPanel(BlendSession& session) : session_(session) {}

@@ -17,6 +17,7 @@
 #include "ui/model/document_mix.h"
 #include "ui/model/keyed_weights.h"
 #include "ui/model/result_view.h"
+#include "ui/model/take_structure.h"
 #include "ui/panels/layers_panel.h"
 #include "ui/panels/layout.h"
 
