@@ -11,7 +11,7 @@
 #include "app/cli/cli_pipeline_common.h"
 #include "app/cli/take_info.h"
 #include "engine/export/export_frames.h"
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/io/numbers.h"
 #include "engine/kinematics/convert.h"
 #include "engine/base/error.h"

@@ -8,7 +8,7 @@
 #include <iostream>
 
 #include "engine/io/atomic_file.h"
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/base/error.h"
 #include "engine/io/memory_limit.h"
 #include "engine/io/motion_file.h"

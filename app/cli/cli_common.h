@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/base/clip.h"
 #include "engine/io/motion_file.h"
 

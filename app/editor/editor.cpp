@@ -17,7 +17,7 @@
 #include <imgui_impl_opengl3.h>
 
 #include "app/editor/tcp_frame_source.h"
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/base/error.h"
 #include "render/gl.h"
 #include "render/skeleton_pose.h"

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "engine/io/motion_file.h"
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/kinematics/convert.h"
 #include "engine/base/error.h"
 #include "engine/kinematics/euler.h"

@@ -13,7 +13,7 @@
 #include <unistd.h>
 
 #include "engine/io/atomic_file.h"
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/io/motion_file.h"
 #include "engine/align/prepare_takes.h"
 

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "engine/io/axis_stream.h"
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "tests/app/live/live_process.h"
 
 namespace {

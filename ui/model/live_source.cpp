@@ -10,7 +10,7 @@
 
 #include "engine/base/error.h"
 #include "engine/io/axis_stream.h"
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/io/bvh_recorder.h"
 #include "engine/kinematics/kinematics.h"
 #include "ui/model/lanes.h"

@@ -33,7 +33,7 @@
 
 #include "app/live/tcp.h"
 #include "engine/io/axis_stream.h"
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "render/png_io.h"
 #include "tests/test_data.h"
 #include "ui/model/live_style_spec.h"

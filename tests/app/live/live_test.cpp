@@ -19,7 +19,7 @@
 
 #include "engine/io/atomic_file.h"
 #include "engine/io/axis_stream.h"
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/kinematics/kinematics.h"
 #include "tests/app/cli/cli_sandbox.h"
 #include "tests/app/live/live_process.h"

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "engine/io/atomic_file.h"
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/base/error.h"
 #include "tests/engine/skeleton_builder.h"
 #include "tests/engine/small_bvh.h"

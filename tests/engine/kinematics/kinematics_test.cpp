@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "tests/test_data.h"
 
 using namespace mostyle;

@@ -5,7 +5,7 @@
 #include <limits>
 #include <string>
 
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/base/error.h"
 #include "engine/kinematics/kinematics.h"
 #include "tests/test_data.h"

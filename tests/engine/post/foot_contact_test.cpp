@@ -10,7 +10,7 @@
 #include <memory>
 #include <vector>
 
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/base/error.h"
 #include "engine/kinematics/limb_length.h"
 #include "engine/run/blend_params.h"

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "engine/io/atomic_file.h"
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/base/error.h"
 #include "engine/io/motion_file.h"
 #include "engine/kinematics/kinematics.h"

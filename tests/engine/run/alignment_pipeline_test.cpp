@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "engine/align/time_warp.h"
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/io/motion_file.h"
 #include "engine/base/clip.h"
 #include "engine/kinematics/units.h"

@@ -17,7 +17,7 @@
 
 #include "engine/base/error.h"
 #include "engine/io/axis_stream.h"
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "tests/test_data.h"
 #include "ui/model/live_source.h"
 #include "ui/model/live_style_spec.h"

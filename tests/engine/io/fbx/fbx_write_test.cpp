@@ -1,4 +1,4 @@
-#include "engine/io/fbx_write.h"
+#include "engine/io/fbx/fbx_write.h"
 
 #include <catch2/catch.hpp>
 #include <unistd.h>
@@ -7,11 +7,11 @@
 #include <cstring>
 #include <filesystem>
 
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/base/error.h"
-#include "engine/io/fbx_binary.h"
-#include "engine/io/fbx_io.h"
-#include "engine/io/fbx_structure.h"
+#include "engine/io/fbx/fbx_binary.h"
+#include "engine/io/fbx/fbx_read.h"
+#include "engine/io/fbx/fbx_structure.h"
 #include "engine/io/motion_file.h"
 #include "engine/kinematics/convert.h"
 #include "engine/kinematics/kinematics.h"

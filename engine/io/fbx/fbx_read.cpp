@@ -1,4 +1,4 @@
-#include "engine/io/fbx_io.h"
+#include "engine/io/fbx/fbx_read.h"
 
 #include <assimp/config.h>
 #include <assimp/scene.h>
@@ -10,7 +10,7 @@
 
 #include "engine/io/atomic_file.h"
 #include "engine/base/error.h"
-#include "engine/io/fbx_structure.h"
+#include "engine/io/fbx/fbx_structure.h"
 
 namespace mostyle {
 namespace {

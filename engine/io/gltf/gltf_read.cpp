@@ -1,4 +1,4 @@
-#include "engine/io/gltf_io.h"
+#include "engine/io/gltf/gltf_read.h"
 
 #include <sys/stat.h>
 

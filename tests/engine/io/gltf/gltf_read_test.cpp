@@ -1,4 +1,4 @@
-#include "engine/io/gltf_io.h"
+#include "engine/io/gltf/gltf_read.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -9,13 +9,13 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/base/error.h"
 #include "engine/io/motion_file.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/resample.h"
 #include "engine/kinematics/units.h"
-#include "tests/engine/io/gltf_validator.h"
+#include "tests/engine/io/gltf/gltf_validator.h"
 #include "tests/engine/io/motion_compare.h"
 #include "tests/test_data.h"
 

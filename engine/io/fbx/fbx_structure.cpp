@@ -1,4 +1,4 @@
-#include "engine/io/fbx_structure.h"
+#include "engine/io/fbx/fbx_structure.h"
 
 #include <algorithm>
 #include <cstring>

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "engine/io/atomic_file.h"
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/base/error.h"
 #include "engine/kinematics/kinematics.h"
 #include "tests/engine/small_bvh.h"

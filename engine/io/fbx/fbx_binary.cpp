@@ -1,4 +1,4 @@
-#include "engine/io/fbx_binary.h"
+#include "engine/io/fbx/fbx_binary.h"
 
 #include <zlib.h>
 

@@ -1,4 +1,4 @@
-#include "engine/io/fbx_structure.h"
+#include "engine/io/fbx/fbx_structure.h"
 
 #include <catch2/catch.hpp>
 
@@ -8,10 +8,10 @@
 #include <random>
 #include <sstream>
 
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/base/error.h"
-#include "engine/io/fbx_io.h"
-#include "tests/engine/io/fbx_ascii.h"
+#include "engine/io/fbx/fbx_read.h"
+#include "tests/engine/io/fbx/fbx_ascii.h"
 #include "tests/test_data.h"
 
 using namespace mostyle;

@@ -1,4 +1,4 @@
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,4 +1,4 @@
-#include "engine/io/csv_io.h"
+#include "engine/io/csv/csv_read.h"
 
 #include <algorithm>
 #include <charconv>

@@ -1,4 +1,4 @@
-#include "engine/io/fbx_io.h"
+#include "engine/io/fbx/fbx_read.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -7,13 +7,13 @@
 #include <filesystem>
 #include <fstream>
 
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/base/error.h"
 #include "engine/io/motion_file.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/resample.h"
 #include "engine/kinematics/units.h"
-#include "tests/engine/io/fbx_ascii.h"
+#include "tests/engine/io/fbx/fbx_ascii.h"
 #include "tests/engine/io/motion_compare.h"
 #include "tests/test_data.h"
 

@@ -1,4 +1,4 @@
-#include "engine/io/fbx_write.h"
+#include "engine/io/fbx/fbx_write.h"
 
 #include <array>
 #include <cmath>
@@ -11,7 +11,7 @@
 #include "engine/io/atomic_file.h"
 #include "engine/base/error.h"
 #include "engine/io/numbers.h"
-#include "engine/io/fbx_binary.h"
+#include "engine/io/fbx/fbx_binary.h"
 #include "engine/kinematics/euler.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/units.h"
