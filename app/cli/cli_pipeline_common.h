@@ -68,7 +68,7 @@ Json vector_json(const Eigen::VectorXd& v);
 // skeleton's name, null where none), "found_by" ("name", "structure", "mapping file", "none")}]}.
 Json major_joints_json(const MajorMapping& mapping, const Skeleton& skeleton);
 Json loop_json(const LoopCut& loop, double fps);
-// How fast the output's planted feet move (engine/post/planted_feet.h): "raw" before the foot
+// How fast the output's planted feet move (engine/measure/planted_feet.h): "raw" before the foot
 // lock, "cleaned" after it, "inputs" the takes' own weighted as mixed, file units per second;
 // the same as fractions of "body_height" per second ("raw_of_height", ...); "ratio" cleaned over
 // inputs (null when the inputs' feet never move).

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "engine/kinematics/limb_length.h"
-#include "engine/post/planted_feet.h"
+#include "engine/measure/planted_feet.h"
 #include "engine/prepare/canonical_frame.h"
 #include "engine/prepare/root_path.h"
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "engine/kinematics/sample_rows.h"
-#include "engine/post/foot_contact.h"
+#include "engine/measure/foot_contact.h"
 #include "engine/post/loop.h"
 #include "engine/post/speed_limit.h"
 #include "engine/post/swing_clearance.h"

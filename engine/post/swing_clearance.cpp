@@ -8,7 +8,7 @@
 #include "engine/base/error.h"
 #include "engine/kinematics/ease.h"
 #include "engine/kinematics/joint_rows.h"
-#include "engine/post/planted_feet.h"
+#include "engine/measure/planted_feet.h"
 
 namespace mostyle {
 namespace {

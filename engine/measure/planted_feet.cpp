@@ -1,4 +1,4 @@
-#include "engine/post/planted_feet.h"
+#include "engine/measure/planted_feet.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "engine/post/foot_contact.h"
+#include "engine/measure/foot_contact.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -9,7 +9,7 @@
 #include "engine/base/error.h"
 #include "engine/kinematics/ease.h"
 #include "engine/kinematics/joint_rows.h"
-#include "engine/post/planted_feet.h"
+#include "engine/measure/planted_feet.h"
 #include "engine/prepare/major_skeleton.h"
 #include "engine/prepare/major_take.h"
 

@@ -1,6 +1,6 @@
 #include "tests/engine/run/blend_at.h"
-#include "engine/post/foot_contact.h"
-#include "engine/post/planted_feet.h"
+#include "engine/measure/foot_contact.h"
+#include "engine/measure/planted_feet.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>

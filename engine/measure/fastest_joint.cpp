@@ -1,4 +1,4 @@
-#include "engine/post/fastest_joint.h"
+#include "engine/measure/fastest_joint.h"
 
 #include <algorithm>
 #include <vector>

@@ -12,7 +12,7 @@
 #include <cmath>
 #include <vector>
 
-#include "engine/post/foot_contact.h"
+#include "engine/measure/foot_contact.h"
 
 namespace mostyle {
 
