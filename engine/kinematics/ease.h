@@ -1,6 +1,6 @@
 #pragma once
 // Easing shared by the stages that fade one thing into another: a take's posture into its own
-// frames (align/cycle_registration), weights between keys (align/weight_keys), the foot lock's
+// frames (align/cycle_registration), weights between keys (trajectory/weight_keys), the foot lock's
 // offsets over a swing (measure/foot_contact).
 #include <algorithm>
 

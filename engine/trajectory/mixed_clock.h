@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "engine/align/common_timeline.h"
-#include "engine/align/weight_keys.h"
+#include "engine/trajectory/weight_keys.h"
 
 namespace mostyle {
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "engine/align/prepare_takes.h"
-#include "engine/align/weight_keys.h"
+#include "engine/trajectory/weight_keys.h"
 #include "engine/kinematics/sample_rows.h"
 #include "engine/post/finish.h"
 #include "engine/trajectory/mixed_root.h"

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "engine/align/alignment.h"
-#include "engine/align/weight_keys.h"
+#include "engine/trajectory/weight_keys.h"
 #include "engine/decompose/decompose_params.h"
 
 namespace mostyle::ui {

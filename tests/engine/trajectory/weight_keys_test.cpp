@@ -1,7 +1,7 @@
-// Weights keyed in time (engine/align/weight_keys.h): eased between keys (smoothstep) worked by
+// Weights keyed in time (engine/trajectory/weight_keys.h): eased between keys (smoothstep) worked by
 // hand, held outside them, per frame as at each time, every bad key refused in a sentence; and
 // the keyed clock (trajectory/mixed_clock.h) the same as the constant one when every key is the same.
-#include "engine/align/weight_keys.h"
+#include "engine/trajectory/weight_keys.h"
 
 #include <catch2/catch.hpp>
 

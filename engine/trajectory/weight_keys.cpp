@@ -1,4 +1,4 @@
-#include "engine/align/weight_keys.h"
+#include "engine/trajectory/weight_keys.h"
 
 #include <algorithm>
 #include <cmath>
