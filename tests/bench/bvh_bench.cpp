@@ -13,6 +13,7 @@
 
 #include "engine/io/atomic_file.h"
 #include "engine/io/bvh/bvh_read.h"
+#include "engine/io/bvh/bvh_write.h"
 #include "engine/kinematics/kinematics.h"
 
 namespace {

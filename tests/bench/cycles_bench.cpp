@@ -14,6 +14,7 @@
 
 #include "engine/io/atomic_file.h"
 #include "engine/io/bvh/bvh_read.h"
+#include "engine/io/bvh/bvh_write.h"
 #include "engine/io/motion_file.h"
 #include "engine/align/prepare_takes.h"
 

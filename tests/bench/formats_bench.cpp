@@ -11,8 +11,10 @@
 
 #include "engine/io/atomic_file.h"
 #include "engine/io/bvh/bvh_read.h"
+#include "engine/io/bvh/bvh_write.h"
 #include "engine/io/fbx/fbx_read.h"
 #include "engine/io/gltf/gltf_read.h"
+#include "engine/io/gltf/gltf_write.h"
 #include "engine/io/scene_animation.h"
 #include "tests/engine/io/fbx/fbx_ascii.h"
 

@@ -19,6 +19,7 @@
 
 #include "engine/io/axis_stream.h"
 #include "engine/io/bvh/bvh_read.h"
+#include "engine/io/bvh/bvh_write.h"
 #include "tests/app/live/live_process.h"
 
 namespace {

@@ -1,6 +1,6 @@
 #pragma once
-// Reading and writing BVH files. Reads every convention seen in real data: any depth (no
-// recursion), 0..6 channels per joint in any order, position channels on any joint (they
+// Reading BVH files (bvh_write.h writes them). Reads every convention seen in real data: any
+// depth (no recursion), 0..6 channels per joint in any order, position channels on any joint (they
 // replace the OFFSET, as Blender reads them), End Sites, LF/CRLF/CR line endings, tabs, scientific
 // notation, names with spaces. Numbers are parsed locale-independently: plain decimals by an
 // exact fast path, the rest with std::from_chars; both give the correctly rounded double.
@@ -37,20 +37,5 @@ Clip parse_bvh(std::string_view text, const std::string& source,
 // be read. About 1 ms per MB of CMU take, reading included (tests/bench/bvh_bench).
 Clip read_bvh_file(const std::string& path, std::vector<std::string>* warnings = nullptr,
                    const BvhReadOptions& options = {});
-
-// Standard BVH text (LF, tab indent, numbers in shortest round-trip form, so values read back
-// bit-exact). A root with position channels is written with OFFSET 0 0 0: its channels place it
-// (Blender's reading and ours), and three.js, which adds the OFFSET, then reads it the same.
-// Joints below the root keep their OFFSET; three.js adds it to their position channels where
-// Blender replaces it, so files with such joints (Bandai) read differently in three.js whatever
-// the writer does, short of zeroing their OFFSETs and losing the rest skeleton.
-std::string format_bvh(const Clip& clip);
-
-// format_bvh's first part: "HIERARCHY" and the joints, up to and without "MOTION".
-std::string format_bvh_hierarchy(const Skeleton& skeleton);
-
-// Writes format_bvh(clip) to a temporary file beside `path` and renames it over `path`.
-// Throws InputError when the file cannot be written; never leaves a partial file.
-void write_bvh_file(const Clip& clip, const std::string& path);
 
 }  // namespace mostyle

@@ -20,6 +20,7 @@
 #include "engine/io/atomic_file.h"
 #include "engine/io/axis_stream.h"
 #include "engine/io/bvh/bvh_read.h"
+#include "engine/io/bvh/bvh_write.h"
 #include "engine/kinematics/kinematics.h"
 #include "tests/app/cli/cli_sandbox.h"
 #include "tests/app/live/live_process.h"

@@ -9,6 +9,7 @@
 
 #include "engine/export/export_solve.h"
 #include "engine/io/bvh/bvh_read.h"
+#include "engine/io/bvh/bvh_write.h"
 #include "engine/base/error.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/units.h"

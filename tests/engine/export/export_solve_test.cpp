@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/io/bvh/bvh_read.h"
+#include "engine/io/bvh/bvh_write.h"
 #include "engine/kinematics/convert.h"
 #include "engine/base/error.h"
 #include "engine/kinematics/kinematics.h"

@@ -20,6 +20,7 @@
 
 #include "engine/io/atomic_file.h"
 #include "engine/io/bvh/bvh_read.h"
+#include "engine/io/bvh/bvh_write.h"
 #include "engine/base/error.h"
 #include "tests/engine/skeleton_builder.h"
 #include "tests/engine/small_bvh.h"

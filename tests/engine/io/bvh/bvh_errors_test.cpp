@@ -7,6 +7,7 @@
 
 #include "engine/io/atomic_file.h"
 #include "engine/io/bvh/bvh_read.h"
+#include "engine/io/bvh/bvh_write.h"
 #include "engine/base/error.h"
 #include "engine/kinematics/kinematics.h"
 #include "tests/engine/small_bvh.h"

@@ -2,10 +2,8 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <unistd.h>
 
 #include <filesystem>
-#include <fstream>
 
 #include "engine/io/bvh/bvh_read.h"
 #include "engine/base/error.h"
@@ -15,6 +13,7 @@
 #include "engine/kinematics/units.h"
 #include "tests/engine/io/fbx/fbx_ascii.h"
 #include "tests/engine/io/motion_compare.h"
+#include "tests/engine/io/temp_dir.h"
 #include "tests/test_data.h"
 
 namespace fs = std::filesystem;
@@ -128,15 +127,7 @@ Connections:  {
 }
 )FBX";
 
-struct TempDir {
-  fs::path dir = fs::temp_directory_path() / ("mostyle_fbx_test_" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(dir); }
-  ~TempDir() { fs::remove_all(dir); }
-  std::string write(const std::string& name, const std::string& bytes) const {
-    std::ofstream(dir / name, std::ios::binary) << bytes;
-    return (dir / name).string();
-  }
-};
+using test::TempDir;
 
 }  // namespace
 

@@ -1,7 +1,6 @@
 #include "engine/io/fbx/fbx_write.h"
 
 #include <catch2/catch.hpp>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstring>
@@ -16,6 +15,7 @@
 #include "engine/kinematics/convert.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/units.h"
+#include "tests/engine/io/temp_dir.h"
 #include "tests/test_data.h"
 
 namespace fs = std::filesystem;
@@ -31,12 +31,7 @@ namespace {
 constexpr double kReadBackMean = 1e-6;
 constexpr double kReadBackMax = 5e-6;
 
-struct TempDir {
-  fs::path dir = fs::temp_directory_path() / ("mostyle_fbx_write_test_" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(dir); }
-  ~TempDir() { fs::remove_all(dir); }
-  std::string path(const std::string& name) const { return (dir / name).string(); }
-};
+using test::TempDir;
 
 struct ReadBack {
   double max = 0.0, mean = 0.0;  // distance between the joints of a and b / a's height
