@@ -11,6 +11,7 @@
 #include "engine/kinematics/ease.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/limb_length.h"
+#include "engine/kinematics/two_bone_ik.h"
 #include "engine/live/live_feet.h"
 #include "engine/live/live_phase.h"
 #include "engine/live/style_change.h"

@@ -7,6 +7,7 @@
 
 #include "engine/kinematics/sample_rows.h"
 #include "engine/measure/foot_contact.h"
+#include "engine/post/foot_lock.h"
 #include "engine/post/loop.h"
 #include "engine/post/speed_limit.h"
 #include "engine/post/swing_clearance.h"
@@ -15,7 +16,7 @@ namespace mostyle {
 
 struct FinishOptions {
   bool limb_lengths = true;  // paper 3.7
-  bool foot_lock = true;     // pin planted feet after the limb lengths (foot_contact.h)
+  bool foot_lock = true;     // pin planted feet after the limb lengths (foot_lock.h)
   bool loop = false;         // cut a seamless loop of whole gait cycles (loop.h)
   // The motion is one whole loop whose last frame shows its first pose again (a loop clip's cycle
   // as the reference, its clock landed on the loop's end: mixed_clock.h land_on_last): that frame is

@@ -6,6 +6,7 @@
 
 #include "engine/base/error.h"
 #include "engine/kinematics/joint_rows.h"
+#include "engine/kinematics/two_bone_ik.h"
 
 namespace mostyle {
 namespace {

@@ -8,6 +8,7 @@
 #include "engine/base/error.h"
 #include "engine/kinematics/ease.h"
 #include "engine/kinematics/joint_rows.h"
+#include "engine/kinematics/two_bone_ik.h"
 #include "engine/measure/planted_feet.h"
 
 namespace mostyle {

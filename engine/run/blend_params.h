@@ -18,7 +18,7 @@ struct BlendParams {
   int swap_level = 0;                    // basic motions: the level whose core comes from B
   bool limb_lengths = true;              // paper 3.7
   double root_pull_seconds = kRootPullSeconds;  // keeps the path between A's and B's (trajectory/mixed_root.h)
-  bool foot_lock = true;                 // pin planted feet after the limb lengths (foot_contact.h)
+  bool foot_lock = true;                 // pin planted feet after the limb lengths (post/foot_lock.h)
   // Timing (trajectory/mixed_clock.h): false blends A's and B's timing with alpha (alpha 0 plays at A's
   // timing and length, 1 at B's); true keeps A's timeline, for a blend that must stay in sync.
   bool timing_a = false;

@@ -11,7 +11,7 @@
 #include "engine/io/bvh/bvh_read.h"
 #include "engine/base/error.h"
 #include "engine/export/export_solve.h"
-#include "engine/measure/foot_contact.h"
+#include "engine/post/foot_lock.h"
 #include "engine/run/blend_params.h"
 
 namespace {
