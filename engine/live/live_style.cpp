@@ -434,9 +434,16 @@ void LiveStyle::State::lock_feet() {
     // bend is the square root of a difference that vanishes).
     Eigen::Vector3d ankle = at(target, c.ankle);
     if ((wanted - ankle).norm() > kUnchanged * body_height) {
-      Eigen::Vector3d knee;
-      two_bone_ik(at(target, c.hip), at(target, c.knee), at(target, c.ankle), wanted, forward, &knee, &ankle);
-      target.segment<3>(3 * c.knee) = knee;
+      TwoBoneIkJob ik;
+      ik.start = at(target, c.hip);
+      ik.mid = at(target, c.knee);
+      ik.end = ankle;
+      ik.target = wanted;
+      ik.pole = ik.mid - ik.start;  // the knee's own bend
+      ik.bend_fallback = forward;
+      const TwoBoneIkResult locked = ik.Run();
+      ankle = locked.end;
+      target.segment<3>(3 * c.knee) = locked.mid;
       target.segment<3>(3 * c.ankle) = ankle;
     }
     if (c.toe >= 0 && leg.joints[1].column >= 0) {

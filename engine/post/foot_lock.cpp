@@ -396,7 +396,7 @@ void move_leg(Matrix& world, const LegColumns& leg, const std::array<LegColumns,
               FootLockScratch& s) {
   const Eigen::Index frames = world.rows();
   // The knee's bend direction where the leg is straight: the last frame's, within a second,
-  // where it was not (none: two_bone_ik picks one).
+  // where it was not (none: the IK picks one).
   const Eigen::Index search = static_cast<Eigen::Index>(std::ceil(rig.fps));
   auto last_bend = [&](Eigen::Index t) -> Eigen::Vector3d {
     for (Eigen::Index u = t; u >= std::max<Eigen::Index>(0, t - search); --u) {
@@ -454,8 +454,16 @@ void move_leg(Matrix& world, const LegColumns& leg, const std::array<LegColumns,
     const Eigen::Vector3d pole = turn * knee_pole(world, leg, rig_legs, t, offset.norm(), rig.leg_length);
     const bool straight = !(pole.norm() > kStraightLeg * rig.leg_length);
     const Eigen::Vector3d before = straight ? Eigen::Vector3d(turn * last_bend(t)) : Eigen::Vector3d::Zero();
-    Eigen::Vector3d new_knee, new_ankle;
-    two_bone_ik_pole(hip, knee, ankle, target, straight ? before : pole, before, &new_knee, &new_ankle);
+    TwoBoneIkJob ik;
+    ik.start = hip;
+    ik.mid = knee;
+    ik.end = ankle;
+    ik.target = target;
+    ik.pole = straight ? before : pole;
+    ik.bend_fallback = before;
+    const TwoBoneIkResult locked = ik.Run();
+    const Eigen::Vector3d& new_knee = locked.mid;
+    const Eigen::Vector3d& new_ankle = locked.end;
     set_joint(world, t, leg.knee, new_knee);
     set_joint(world, t, leg.ankle, new_ankle);
     if (leg.toe >= 0) set_joint(world, t, leg.toe, joint_at(world, t, leg.toe) + (new_ankle - ankle));

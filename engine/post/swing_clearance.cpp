@@ -63,9 +63,16 @@ void raise_leg(Eigen::MatrixXd& world, const LegColumns& leg, const std::array<L
     const double back = pole.dot(facing);
     if (back < 0.0) pole -= moving * back * facing;
     pole += moving * kKneeForwardBias * leg_length * facing;
-    Eigen::Vector3d new_knee, new_ankle;
-    two_bone_ik_pole(hip, knee, ankle, ankle + Eigen::Vector3d(0.0, lift[t], 0.0), pole, facing, &new_knee,
-                     &new_ankle);
+    TwoBoneIkJob ik;
+    ik.start = hip;
+    ik.mid = knee;
+    ik.end = ankle;
+    ik.target = ankle + Eigen::Vector3d(0.0, lift[t], 0.0);
+    ik.pole = pole;
+    ik.bend_fallback = facing;
+    const TwoBoneIkResult raised = ik.Run();
+    const Eigen::Vector3d& new_knee = raised.mid;
+    const Eigen::Vector3d& new_ankle = raised.end;
     set_joint(world, t, leg.knee, new_knee);
     set_joint(world, t, leg.ankle, new_ankle);
     if (leg.toe >= 0) set_joint(world, t, leg.toe, joint_at(world, t, leg.toe) + (new_ankle - ankle));
