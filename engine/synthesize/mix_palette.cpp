@@ -310,8 +310,12 @@ void preview_finish(const PreparedTakes& p, const MixParams& params, const Playe
   const bool keyed = !params.keys.empty();
   out.foot_sliding_inputs = inputs_planted_speed(p, s.overall, keyed ? &s.trajectory.frame_w : nullptr, params.feet_of_reference);
   const FinishRig rig = mix_rig(p, st.fastest, out.foot_sliding_inputs);
-  finish_preview(s.trajectory.sampler, s.trajectory.ground_u, s.trajectory.heading_u, s.trajectory.contacts_u, rig, finish, out.local, s.trajectory.u_stretch, s.finish,
-                 out.motion);
+  FinishPath path;
+  path.sampler = &s.trajectory.sampler;
+  path.ground_u = &s.trajectory.ground_u;
+  path.heading_u = &s.trajectory.heading_u;
+  path.contacts_u = &s.trajectory.contacts_u;
+  finish_preview(path, rig, finish, out.local, s.trajectory.u_stretch, s.finish, out.motion);
   if (finish.loop || finish.closed) {  // the loop's frames only
     s.sources_uncut = out.sources;
     s.trajectory.sampler.set(s.trajectory.u_stretch, st.length());
