@@ -365,8 +365,11 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
       played_stretch(p, params.weights, params.keys, params.component_weights, per_component, s.timing);
   out.first_sample = st.first;
   out.last_sample = st.last;
-  const FinishOptions finish =
-      output_clock(p, params.keys, params.reference_timing, s.timing, params.finish, st, s.trajectory, out.sources);
+  ClockWeights clock;
+  clock.keys = &params.keys;
+  clock.timing = &s.timing;
+  clock.reference_timing = params.reference_timing;
+  const FinishOptions finish = output_clock(p, clock, params.finish, st, s.trajectory, out.sources);
   if (d.paper() != nullptr) paper_poses(p, d, params, st, s, out.local);
   else if (per_component) part_poses(p, d, params, st, s, out.local);
   else if (params.residual) own_poses(p, params, out.sources, s, out.local);

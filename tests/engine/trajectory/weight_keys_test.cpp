@@ -67,19 +67,19 @@ TEST_CASE("weight keys: the keyed clock with one set of weights is the constant 
   t.first = {0, 0};
   t.last = {u - 1, u - 1};
   Eigen::VectorXd constant, keyed;
-  mixed_timeline(t, std::vector<double>{0.3, 0.7}, 0, u - 1, constant);
+  mixed_timeline(t, std::vector<double>{0.3, 0.7}, {0, u - 1}, constant);
   Eigen::MatrixXd sample_w;
-  mixed_timeline(t, WeightKeys{{0.0, {0.3, 0.7}}, {1.0, {0.3, 0.7}}}, 30.0, 0, u - 1, keyed, &sample_w);
+  mixed_timeline(t, WeightKeys{{0.0, {0.3, 0.7}}, {1.0, {0.3, 0.7}}}, 30.0, {0, u - 1}, keyed, &sample_w);
   REQUIRE(keyed.size() == constant.size());
   CHECK((keyed - constant).cwiseAbs().maxCoeff() < 1e-12);
   CHECK(sample_w.rows() == u);
   CHECK(sample_w(10, 1) == 0.7);
   // Keyed from the reference's timing to the other's: the first samples advance as the reference,
   // the last as the other take (1.5 frames a sample over its fast middle is over by then).
-  mixed_timeline(t, WeightKeys{{0.0, {1.0, 0.0}}, {0.5, {0.0, 1.0}}}, 30.0, 0, u - 1, keyed, &sample_w);
+  mixed_timeline(t, WeightKeys{{0.0, {1.0, 0.0}}, {0.5, {0.0, 1.0}}}, 30.0, {0, u - 1}, keyed, &sample_w);
   CHECK(sample_w(0, 0) == 1.0);
   CHECK(sample_w(u - 1, 1) == 1.0);
   CHECK(keyed[1] - keyed[0] == Approx(1.0));
-  CHECK_THROWS_AS(mixed_timeline(t, WeightKeys{}, 30.0, 0, u - 1, keyed), InputError);
-  CHECK_THROWS_AS(mixed_timeline(t, WeightKeys{{0.0, {1.0}}}, 30.0, 0, u - 1, keyed), InputError);
+  CHECK_THROWS_AS(mixed_timeline(t, WeightKeys{}, 30.0, {0, u - 1}, keyed), InputError);
+  CHECK_THROWS_AS(mixed_timeline(t, WeightKeys{{0.0, {1.0}}}, 30.0, {0, u - 1}, keyed), InputError);
 }
