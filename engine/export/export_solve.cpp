@@ -176,18 +176,24 @@ double rotation_distance(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
   return Eigen::AngleAxisd(a.transpose() * b).angle();
 }
 
+// What a fit of several children weighs, in file units squared (from the skeleton's size): the
+// damping of refine_rotation (per radian squared), the coherence with the frame before (per
+// radian squared of turn) and the cost under which every child is placed.
+struct FitCosts {
+  double damping = 0.0, coherence = 0.0, exact_cost = 0.0;
+};
+
 // The rotation of a joint with several children: refine_rotation from the direction fit; where
 // that stops short of placing every child (the least squares has other minima), also from the
 // previous frame's solution and from the direction fit turned a quarter turn about each axis,
 // keeping a fit that places every child (within exact_cost) over one that does not, among such
 // fits the rotation nearest the direction fit (the one that changes A's pose least), and among
-// the others the lowest cost, counted, between two distinct minima, with coherence (file units
-// squared per radian squared) times the squared turn from the frame before's rotation.
-// previous: null on the first frame.
+// the others the lowest cost, counted, between two distinct minima, with coherence times the
+// squared turn from the frame before's rotation. previous: null on the first frame.
 Eigen::Matrix3d solve_several(const std::vector<ChildGeometry>& children, const Eigen::Vector3d& position,
                               const Eigen::Matrix3d& start, const Eigen::Matrix3d* previous,
-                              double previous_cost, double damping, double coherence, double exact_cost,
-                              double* cost_out) {
+                              double previous_cost, const FitCosts& costs, double* cost_out) {
+  const double damping = costs.damping, coherence = costs.coherence, exact_cost = costs.exact_cost;
   auto score = [&](const Eigen::Matrix3d& r, double cost) {
     if (!previous) return cost;
     const double turn = rotation_distance(r, *previous);
@@ -274,7 +280,8 @@ struct ExportFrameSolver::State {
   int top = -1;                         // the topmost column
   int carrier = -1;                     // the joint that carries the trajectory
   std::vector<int> carrier_chain;       // joints below the carrier down to the top column's joint
-  double min_length = 0.0, damping = 0.0, coherence = 0.0, exact_cost = 0.0;
+  double min_length = 0.0;
+  FitCosts costs;
   bool first = true;
   std::vector<Eigen::Matrix3d> local_rotation, global_rotation;
   std::vector<Eigen::Vector3d> local_translation, position, previous;
@@ -432,9 +439,9 @@ ExportFrameSolver::ExportFrameSolver(const Skeleton& skeleton_in, const std::vec
   s.carrier = trajectory_carrier(skeleton, s.top >= 0 ? joints[s.top] : -1, s.carrier_chain);
   const double size = skeleton_size(skeleton);
   s.min_length = kNoDirection * size;
-  s.damping = (kDamping * size) * (kDamping * size);
-  s.coherence = (kCoherence * size) * (kCoherence * size);
-  s.exact_cost = (kExactCost * size) * (kExactCost * size);
+  s.costs.damping = (kDamping * size) * (kDamping * size);
+  s.costs.coherence = (kCoherence * size) * (kCoherence * size);
+  s.costs.exact_cost = (kExactCost * size) * (kExactCost * size);
 
   s.local_rotation.resize(static_cast<size_t>(n));
   s.global_rotation.resize(static_cast<size_t>(n));
@@ -497,8 +504,8 @@ bool ExportFrameSolver::State::turn_to_children(int j, const Eigen::Matrix3d& pa
   if (from.empty()) return false;
   const Eigen::Matrix3d start = best_rotation(from, to) * global_rotation[j];
   const Eigen::Matrix3d last = parent_rotation * euler_to_matrix(p.order, previous[j]);
-  global_rotation[j] = solve_several(geometry, position[j], start, !first ? &last : nullptr, previous_cost[j], damping,
-                                     coherence, exact_cost, &previous_cost[j]);
+  global_rotation[j] = solve_several(geometry, position[j], start, !first ? &last : nullptr, previous_cost[j], costs,
+                                     &previous_cost[j]);
   return true;
 }
 
