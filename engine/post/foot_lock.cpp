@@ -146,15 +146,24 @@ void hold_foot_heading(Eigen::MatrixXd& world, const LockedLeg& leg, const Eigen
   }
 }
 
+// Where a foot joint counts as planted (planted_feet.h): within `height` of its floor.
+struct PlantedBand {
+  std::array<int, kFootJoints> columns;    // each foot joint's column in world, -1 where the rig has none
+  std::array<double, kFootJoints> floors;  // each one's floor height
+  double height = 0.0;
+};
+
 // Within each run, the offset (s.target) that takes out, step by step, what the foot's planted
 // joints move beyond what they may (share of drift; none: nothing), so they move by that much and never
 // faster than they did; centred on the run (the least total correction). A step's move is its
 // planted joints' averaged, each weighted by how near it is to its floor (a heel lifting off
 // leaves the toe to hold the foot; a toe coming down, the heel); a step with neither joint
 // planted at both ends (a filled break) keeps the offset. O(F).
-void run_offsets(const Eigen::MatrixXd& world, const LockedLeg& leg, const std::array<int, kFootJoints>& columns,
-                 const std::array<double, kFootJoints>& floors, double band, const Eigen::MatrixXd* drift,
-                 double share, FootLockScratch& s) {
+void run_offsets(const Eigen::MatrixXd& world, const LockedLeg& leg, const PlantedBand& within,
+                 const Eigen::MatrixXd* drift, double share, FootLockScratch& s) {
+  const std::array<int, kFootJoints>& columns = within.columns;
+  const std::array<double, kFootJoints>& floors = within.floors;
+  const double band = within.height;
   for (const auto& [start, end] : s.runs) {
     s.target.row(start).setZero();
     for (Eigen::Index u = start; u < end; ++u) {
@@ -526,6 +535,7 @@ void lock_legs(Eigen::MatrixXd& world, const FootRig& rig, const std::array<doub
   const Eigen::Index frames = world.rows();
   const int ramp = rig.blend_frames();
   const std::array<int, kFootJoints> columns = foot_joint_columns(rig);
+  const PlantedBand within{columns, floors, kPlantedHeightFraction * rig.body_height};
   for (int side = 0; side < 2; ++side) {
     const LockedLeg leg{rig.legs[static_cast<size_t>(side)], {2 * side, 2 * side + 1}};
     if (!leg.columns.usable()) continue;
@@ -536,7 +546,7 @@ void lock_legs(Eigen::MatrixXd& world, const FootRig& rig, const std::array<doub
     find_runs(leg, rig.max_gap_frames(), scratch);
     scratch.target.setZero();
     hold_foot_heading(world, leg, drift, share, ramp, scratch);
-    run_offsets(world, leg, columns, floors, kPlantedHeightFraction * rig.body_height, drift, share, scratch);
+    run_offsets(world, leg, within, drift, share, scratch);
     swing_profile(world, leg, max_speed / rig.fps, scratch);
     if (max_speed > 0.0) fit_to_swings(world, leg, ramp, max_speed / rig.fps, scratch);
     ease_between_runs(frames, ramp, scratch);
