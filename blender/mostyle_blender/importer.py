@@ -107,8 +107,7 @@ class MOSTYLE_OT_import_take(bpy.types.Operator, ImportHelper):
             obj = import_take(context, self.filepath, self.take or None, self.use_scene_fps)
         except Exception as e:
             traceback.print_exc()
-            text = str(e).strip()
-            self.report({'ERROR'}, text.splitlines()[0] if text else type(e).__name__)
+            self.report({'ERROR'}, styling.one_line(e))
             return {'CANCELLED'}
         self.report({'INFO'}, "mostyle: imported '%s'" % obj.name)
         return {'FINISHED'}

@@ -326,7 +326,8 @@ def _world_pose(take, targets=None, connected=()):
             pos[:, level] = np.asarray(take.root_positions, dtype=float)[:, None]
         else:
             above = parents[level]
-            pos[:, level] = pos[:, above] + qt.rotate(rot[:, above], np.broadcast_to(offsets[level], (frames, len(level), 3)))
+            offset = np.broadcast_to(offsets[level], (frames, len(level), 3))
+            pos[:, level] = pos[:, above] + qt.rotate(rot[:, above], offset)
         placed = [j for j in level if j in targets and j not in connected]
         if placed:
             pos[:, placed] = np.stack([targets[j] for j in placed], 1)
@@ -430,8 +431,9 @@ def take_pose_bases(take, obj, exact=True, rig=None):
                                                   (relative_q[b], relative_t[b]))
     # basis = relative^-1 @ parent pose^-1 @ wanted, every named bone at once.
     above = parent[named]
+    parent_pose = (wanted_q[:, above], wanted_t[:, above])
     basis = _compose(_inverse((relative_q[named], relative_t[named])),
-                     _compose(_inverse((wanted_q[:, above], wanted_t[:, above])), (wanted_q[:, named], wanted_t[:, named])))
+                     _compose(_inverse(parent_pose), (wanted_q[:, named], wanted_t[:, named])))
     rotations = np.tile([1.0, 0.0, 0.0, 0.0], (frames, bones, 1))
     locations = np.zeros((frames, bones, 3))
     rotations[:, named] = basis[0]
@@ -480,6 +482,47 @@ def _rotation_channels(q, mode):
         eulers[f] = e
         previous = e
     return "rotation_euler", eulers
+
+
+def held_take(take):
+    """A Take's arrays read out once, as a Take-like value whose frames take_frame picks without
+    copying them again (each read of a mostyle.Take's array is a copy of the whole array)."""
+    return SimpleNamespace(joint_names=list(take.joint_names), parents=list(take.parents),
+                           offsets=np.asarray(take.offsets, dtype=float),
+                           rotations=np.asarray(take.rotations, dtype=float),
+                           root_positions=np.asarray(take.root_positions, dtype=float),
+                           positions=np.asarray(take.positions, dtype=float),
+                           position_joints=list(take.position_joints), fps=float(take.fps), report=None)
+
+
+def take_frame(held, frame):
+    """Frame `frame` of a held_take as a one-frame Take-like value."""
+    one = slice(frame, frame + 1)
+    return SimpleNamespace(joint_names=held.joint_names, parents=held.parents, offsets=held.offsets,
+                           rotations=held.rotations[one], root_positions=held.root_positions[one],
+                           positions=held.positions[one], position_joints=held.position_joints, fps=held.fps,
+                           report=None)
+
+
+def take_index_at(take, scene_frame, frame_start, fps):
+    """The Take's frame that write_take_action keys at `scene_frame` (or the nearest one; the
+    first and last hold before and after it, as the action's curves do)."""
+    index = int(round((scene_frame - frame_start) * float(take.fps) / fps))
+    return min(max(index, 0), len(take.rotations) - 1)
+
+
+def pose_take_frame(held, obj, frame, rig=None, exact=True):
+    """Poses armature `obj`'s bones as frame `frame` of a held_take, as write_take_action's keys
+    pose them there: the bones the Take names get its location and rotation, the others keep
+    theirs. `rig`: as take_pose_bases's. Writes no keys; Blender shows the pose once it next
+    evaluates the armature."""
+    rotations, locations, keyed = take_pose_bases(take_frame(held, frame), obj, exact, rig)
+    for b, pb in enumerate(obj.pose.bones):
+        if not keyed[b]:
+            continue
+        pb.location = locations[0, b].tolist()
+        prop, values = _rotation_channels(qt.normalized(rotations[:, b]), pb.rotation_mode)
+        setattr(pb, prop, values[0].tolist())
 
 
 def _escape(name):
