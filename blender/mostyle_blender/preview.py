@@ -162,6 +162,7 @@ class Session:
         _set_pose_values(self.obj, self.restore_pose)
         if data is not None and data.action is None:
             data.action = self.restore
+            take_io.play_first_slot(data)
 
 
 # A pose bone's channels the preview sets, with their sizes.

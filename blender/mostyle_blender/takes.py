@@ -79,6 +79,7 @@ class _ActionSwap:
         self.saved = (had, data.action, data.use_nla, data.action_influence, data.action_blend_type,
                       bpy_frame(self.obj))
         data.action = self.action
+        play_first_slot(data)
         data.use_nla = False
         data.action_influence = 1.0
         data.action_blend_type = 'REPLACE'
@@ -96,6 +97,15 @@ class _ActionSwap:
         scene = _scene_of(self.obj)
         scene.frame_set(int(frame[0]), subframe=frame[1])
         return False
+
+
+def play_first_slot(data):
+    """Blender 4.4+ plays an action through one of its slots, and picks none when the action's
+    slot has animated another ID (another armature's take): the first slot then, the one the
+    curves read here are in. Older Blenders have no slots."""
+    action = data.action
+    if getattr(data, "action_slot", True) is None and action is not None and len(action.slots) > 0:
+        data.action_slot = action.slots[0]
 
 
 def bpy_frame(obj):

@@ -112,8 +112,8 @@ def main():
         take = one_minute(mostyle, mostyle.read(os.path.join(folder, n)))
         obj = importer.build_armature(bpy.context, take, n[:-4])
         action = bpy.data.actions.new(n[:-4])
-        obj.animation_data_create().action = action
         take_io.write_take_action(take, obj, action, 1, 30.0)
+        obj.animation_data_create().action = action
         refs.append((obj, action))
     print("blender_preview_bench: %s, 4 takes of %.0f s at their own rate, mixed at 30 fps" % (folder, ONE_MINUTE_S))
     playing = frame_changes(scene, args.repeats)
