@@ -527,11 +527,12 @@ def pose_take_frame(held, obj, frame, rig=None, exact=True):
     theirs. `rig`: as take_pose_bases's. Writes no keys; Blender shows the pose once it next
     evaluates the armature."""
     rotations, locations, keyed = take_pose_bases(take_frame(held, frame), obj, exact, rig)
+    rotations = qt.normalized(rotations)
     for b, pb in enumerate(obj.pose.bones):
         if not keyed[b]:
             continue
         pb.location = locations[0, b].tolist()
-        prop, values = _rotation_channels(qt.normalized(rotations[:, b]), pb.rotation_mode)
+        prop, values = _rotation_channels(rotations[:, b], pb.rotation_mode)
         setattr(pb, prop, values[0].tolist())
 
 

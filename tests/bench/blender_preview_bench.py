@@ -133,6 +133,9 @@ def main():
     for name, values in parts.items():
         report(name, values)
     report("frame change, the reference playing its action", playing)
+    while not session.settled():  # the solve would run beside the frame changes
+        time.sleep(0.001)
+    session.take_up(scene)
     report("frame change while previewing", frame_changes(scene, args.repeats))
     solved, solve_call = [], []
     for _ in range(max(3, args.repeats // 4)):
