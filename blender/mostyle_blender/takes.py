@@ -508,10 +508,8 @@ def held_take(take):
 def take_frame(held, frame):
     """Frame `frame` of a held_take as a one-frame Take-like value."""
     one = slice(frame, frame + 1)
-    return SimpleNamespace(joint_names=held.joint_names, parents=held.parents, offsets=held.offsets,
-                           rotations=held.rotations[one], root_positions=held.root_positions[one],
-                           positions=held.positions[one], position_joints=held.position_joints, fps=held.fps,
-                           report=None)
+    return SimpleNamespace(**dict(vars(held), rotations=held.rotations[one], root_positions=held.root_positions[one],
+                                  positions=held.positions[one]))
 
 
 def take_index_at(take, scene_frame, frame_start, fps):
