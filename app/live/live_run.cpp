@@ -13,7 +13,7 @@
 
 #include "app/live/frame_server.h"
 #include "app/live/stop_pipe.h"
-#include "engine/io/axis_stream.h"
+#include "engine/live/axis_stream.h"
 #include "engine/base/error.h"
 
 namespace mostyle::live {

@@ -9,9 +9,9 @@
 #include <thread>
 
 #include "engine/base/error.h"
-#include "engine/io/axis_stream.h"
+#include "engine/live/axis_stream.h"
 #include "engine/io/bvh_io.h"
-#include "engine/io/bvh_recorder.h"
+#include "engine/live/bvh_recorder.h"
 #include "engine/kinematics/kinematics.h"
 #include "ui/model/lanes.h"
 #include "ui/model/result_view.h"

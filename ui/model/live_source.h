@@ -1,6 +1,6 @@
 #pragma once
 // The editor's Live source: a motion-capture stream in Axis Neuron's "BVH broadcasting" string
-// format (engine/io/axis_stream.h) styled frame by frame as it arrives, as `mostyle-cli live`
+// format (engine/live/axis_stream.h) styled frame by frame as it arrives, as `mostyle-cli live`
 // styles it (engine/live/live_style.h), with the takes loaded in the editor as the neutral and
 // the styles (ui/model/live_style_spec.h says which is which in each mode). The viewport shows the stream and the styled stream side by side at the newest
 // frame; the Files panel connects and records, the Metrics panel shows the latency.
@@ -148,7 +148,7 @@ class LiveSource {
 
   // Records the styled stream to `path` (and the stream as it came, to input_recording_path,
   // when with_input), from the next frame on: a BVH file that reads whole at every moment
-  // (engine/io/bvh_recorder.h). false when not streaming yet or the file cannot be written
+  // (engine/live/bvh_recorder.h). false when not streaming yet or the file cannot be written
   // (status().record_error says why). A recording before ends first.
   bool start_recording(const std::string& path, bool with_input);
   void stop_recording();

@@ -1,4 +1,4 @@
-#include "engine/io/bvh_recorder.h"
+#include "engine/live/bvh_recorder.h"
 
 #include <fcntl.h>
 #include <unistd.h>
