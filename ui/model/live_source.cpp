@@ -28,28 +28,6 @@ size_t max_line_bytes(int channels) {
   return std::max<size_t>(size_t{1} << 16, static_cast<size_t>(channels + kAxisReferenceValues) * 64 + 1024);
 }
 
-// Every joint's global position at one frame (values: the frame's channels), into out (3 per
-// joint, file units), as joint_positions (engine/kinematics/kinematics.h) poses it, one frame at
-// a time so that the worker poses each frame as it comes. O(joints).
-void pose_frame(const Skeleton& s, const double* values, std::vector<Eigen::Matrix3d>& rotations, double* out) {
-  const size_t n = s.joints.size();
-  rotations.resize(n);
-  for (size_t i = 0; i < n; ++i) {
-    const Joint& j = s.joints[i];
-    const Eigen::Matrix3d r = joint_local_rotation(j, values);
-    const Eigen::Vector3d t = joint_local_translation(j, values);
-    Eigen::Map<Eigen::Vector3d> p(out + 3 * i);
-    if (j.parent < 0) {
-      rotations[i] = r;
-      p = t;
-    } else {
-      const size_t parent = static_cast<size_t>(j.parent);
-      rotations[i] = rotations[parent] * r;
-      p = Eigen::Map<const Eigen::Vector3d>(out + 3 * parent) + rotations[parent] * t;
-    }
-  }
-}
-
 // The last `capacity` frames of a stream, as it came and styled, with where every joint was and
 // when each frame was styled: a ring, so that memory stays bounded however long it runs.
 class FrameRing {
@@ -162,8 +140,8 @@ struct LiveSource::Run {
   // The worker's own (the ring too: it alone writes it, under the lock).
   std::unique_ptr<LiveStyle> style;
   std::uint64_t style_generation = 0;  // the spec `style` was made from
-  std::vector<Eigen::Matrix3d> rotations;
-  std::vector<double> styled_values, input_at, styled_at;
+  std::vector<double> styled_values;
+  Pose input_pose, styled_pose;  // the frame's, as it came and styled
 
   bool finished() const { return worker_done && builder_done; }
 
@@ -291,8 +269,6 @@ struct LiveSource::Run {
     const int channels = clip.skeleton.channel_count;
     const int coordinates = 3 * static_cast<int>(clip.skeleton.joints.size());
     styled_values.assign(static_cast<size_t>(channels), 0.0);
-    input_at.assign(static_cast<size_t>(coordinates), 0.0);
-    styled_at.assign(static_cast<size_t>(coordinates), 0.0);
     {
       std::lock_guard<std::mutex> lock(mutex);
       skeleton = std::move(clip.skeleton);
@@ -347,15 +323,18 @@ struct LiveSource::Run {
     const Clock::time_point done = Clock::now();
     for (double v : styled_values)
       if (!std::isfinite(v)) return skip(at_line(line, "the styled frame holds a value that is not a finite number"));
-    pose_frame(skeleton, in, rotations, input_at.data());
-    pose_frame(skeleton, styled_values.data(), rotations, styled_at.data());
+    pose_frame(skeleton, in, &input_pose);
+    pose_frame(skeleton, styled_values.data(), &styled_pose);
     std::lock_guard<std::mutex> lock(mutex);
     const int row = ring.push();
-    const Eigen::Index c = skeleton.channel_count, x = static_cast<Eigen::Index>(input_at.size());
+    const Eigen::Index c = skeleton.channel_count;
     ring.input_.row(row) = Eigen::Map<const Eigen::RowVectorXd>(in, c);
     ring.styled_.row(row) = Eigen::Map<const Eigen::RowVectorXd>(styled_values.data(), c);
-    ring.input_at_.row(row) = Eigen::Map<const Eigen::RowVectorXd>(input_at.data(), x);
-    ring.styled_at_.row(row) = Eigen::Map<const Eigen::RowVectorXd>(styled_at.data(), x);
+    for (size_t j = 0; j < input_pose.positions.size(); ++j) {
+      const Eigen::Index x = 3 * static_cast<Eigen::Index>(j);
+      ring.input_at_.block<1, 3>(row, x) = input_pose.positions[j].transpose();
+      ring.styled_at_.block<1, 3>(row, x) = styled_pose.positions[j].transpose();
+    }
     ring.times_[static_cast<size_t>(row)] = done;
     ring.latency_us_[static_cast<size_t>(row)] = std::chrono::duration<double, std::micro>(done - arrival).count();
     ++status.lines;
