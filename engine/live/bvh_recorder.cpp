@@ -137,4 +137,17 @@ void BvhRecorder::append(const double* values) {
   }
 }
 
+std::string append_or_stop(std::unique_ptr<BvhRecorder>* recorder, const double* values) {
+  if (!*recorder) return std::string();
+  try {
+    (*recorder)->append(values);
+  } catch (const InputError& e) {
+    const std::string why = std::string(e.what()) + "; the recording stops at " +
+                            std::to_string((*recorder)->frames()) + " frames";
+    recorder->reset();
+    return why;
+  }
+  return std::string();
+}
+
 }  // namespace mostyle

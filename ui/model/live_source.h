@@ -6,9 +6,10 @@
 // frame; the Files panel connects and records, the Metrics panel shows the latency.
 //
 // Threads: connect() starts one worker thread of its own, which reads the stream's skeleton,
-// prepares the styler (heavy: seconds), opens the FrameSource, then reads its bytes, cuts them
-// into lines, parses each, styles it, records it and appends it to a window of the last
-// window_seconds. The styler is the worker's alone: strengths set from the UI thread are handed
+// prepares the styler (heavy: seconds), opens the FrameSource, then reads its bytes and hands
+// them to the engine's stream loop (engine/live/stream_styler.h: lines cut, parsed, styled, as
+// the command line's live does), recording each frame styled and appending it to a window of
+// the last window_seconds. The styler is the worker's alone: strengths set from the UI thread are handed
 // to it under a lock and applied before its next frame. New takes (set_style) are made into a
 // new styler on a second thread of the connection's, which hands it to the worker when made;
 // the worker styles with the one it has meanwhile and keeps the connection. The UI thread calls the public
