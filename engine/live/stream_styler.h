@@ -41,8 +41,9 @@ class StreamStyler {
   // The stream's next bytes, every line they complete handled in turn: a line that is not a
   // frame (malformed), another avatar's than the first frame's, or one whose styled frame holds
   // a value that is not finite, skipped; the others styled. Then the lines found too long
-  // (max_stream_line_bytes), skipped. A partial line waits for the next bytes. Allocation-free
-  // once a line's values are held; memory bounded by one line.
+  // (max_stream_line_bytes), skipped. A partial line waits for the next bytes. A frame costs
+  // what LiveStyle::style_frame does, with no allocation once a line's values are held (a skip
+  // makes its clause); memory bounded by one line.
   void feed(std::string_view bytes, Sink& sink);
   // The stream closed: a line it ended inside is skipped.
   void end(Sink& sink);

@@ -289,7 +289,8 @@ struct LiveSource::Run : StreamStyler::Sink {
     if (!stopping) lines.end(*this);
   }
 
-  // Before each frame: the styler made from new takes, if there is one, and the strengths set since the last.
+  // Before each frame: the styler made from new takes, if there is one, and the strengths set
+  // since the last.
   LiveStyle& styler() override {
     take_up_style();
     take_strengths();

@@ -90,7 +90,8 @@ TEST_CASE("stream styler: lines that give no frame are skipped, each with its nu
   REQUIRE(kept.skips.size() == 4);
   CHECK(kept.skips[0].rfind("line 2: expected ", 0) == 0);
   CHECK(kept.skips[1] == "line 3: avatar 2 is not the one styled (0)");
-  CHECK(kept.skips[2] == "line 4: the line is longer than " + std::to_string(max_stream_line_bytes(channels)) + " bytes");
+  const std::string longest = std::to_string(max_stream_line_bytes(channels));
+  CHECK(kept.skips[2] == "line 4: the line is longer than " + longest + " bytes");
   CHECK(kept.skips[3] == "line 7: the stream ended inside a line");
 
   // A new stream: its lines numbered from 1, its first frame's avatar the one styled.
