@@ -12,7 +12,7 @@
 #include "app/cli/take_info.h"
 #include "engine/export/export_frames.h"
 #include "engine/io/bvh_io.h"
-#include "engine/io/numbers.h"
+#include "engine/base/numbers.h"
 #include "engine/kinematics/convert.h"
 #include "engine/base/error.h"
 #include "engine/io/motion_file.h"

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <string>
 
-#include "engine/io/atomic_file.h"
+#include "engine/base/atomic_file.h"
 #include "engine/io/bvh_io.h"
 #include "engine/io/fbx_io.h"
 #include "engine/io/gltf_io.h"

@@ -17,7 +17,7 @@
 #include <thread>
 #include <vector>
 
-#include "engine/io/axis_stream.h"
+#include "engine/live/axis_stream.h"
 #include "engine/io/bvh_io.h"
 #include "tests/app/live/live_process.h"
 

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "app/batch/job_line.h"
-#include "engine/io/axis_stream.h"
+#include "engine/live/axis_stream.h"
 #include "engine/io/bvh_io.h"
 #include "engine/io/csv_io.h"
 #include "engine/base/error.h"

@@ -32,7 +32,7 @@
 #include "tests/render/osmesa_context.h"
 
 #include "app/live/tcp.h"
-#include "engine/io/axis_stream.h"
+#include "engine/live/axis_stream.h"
 #include "engine/io/bvh_io.h"
 #include "render/png_io.h"
 #include "tests/test_data.h"

@@ -17,8 +17,8 @@
 #include <thread>
 #include <vector>
 
-#include "engine/io/atomic_file.h"
-#include "engine/io/axis_stream.h"
+#include "engine/base/atomic_file.h"
+#include "engine/live/axis_stream.h"
 #include "engine/io/bvh_io.h"
 #include "engine/kinematics/kinematics.h"
 #include "tests/app/cli/cli_sandbox.h"

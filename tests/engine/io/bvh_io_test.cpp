@@ -9,7 +9,7 @@
 #include <string>
 #include <unistd.h>
 
-#include "engine/io/atomic_file.h"
+#include "engine/base/atomic_file.h"
 #include "engine/base/error.h"
 #include "engine/kinematics/kinematics.h"
 #include "tests/engine/small_bvh.h"

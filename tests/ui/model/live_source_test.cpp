@@ -16,7 +16,7 @@
 #include <catch2/catch.hpp>
 
 #include "engine/base/error.h"
-#include "engine/io/axis_stream.h"
+#include "engine/live/axis_stream.h"
 #include "engine/io/bvh_io.h"
 #include "tests/test_data.h"
 #include "ui/model/live_source.h"
