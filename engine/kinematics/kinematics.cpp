@@ -359,4 +359,15 @@ std::vector<Eigen::Vector3d> rest_positions(const Skeleton& skeleton) {
   return out;
 }
 
+std::vector<int> chain_joints(const Skeleton& skeleton, const std::vector<int>& joints) {
+  std::vector<char> needed(skeleton.joints.size(), 0);
+  for (int j : joints)
+    for (int p = j; p >= 0 && !needed[static_cast<size_t>(p)]; p = skeleton.joints[static_cast<size_t>(p)].parent)
+      needed[static_cast<size_t>(p)] = 1;
+  std::vector<int> out;
+  for (size_t j = 0; j < needed.size(); ++j)
+    if (needed[j]) out.push_back(static_cast<int>(j));
+  return out;
+}
+
 }  // namespace mostyle

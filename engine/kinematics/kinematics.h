@@ -44,6 +44,10 @@ void pose_frame(const Skeleton& skeleton, const double* values, Pose* pose);
 // joints and their ancestors), the others' entries in *pose (which holds every joint) left as
 // they were. O(chain).
 void pose_frame(const Skeleton& skeleton, const double* values, const std::vector<int>& chain, Pose* pose);
+
+// The joints to pose for `joints`: those and their ancestors, each once, parents first (a chain
+// for pose_frame). O(joints in the skeleton).
+std::vector<int> chain_joints(const Skeleton& skeleton, const std::vector<int>& joints);
 // Joint j's global rotation and position into *pose from its local rotation and translation and
 // its parent's global ones (posed before it); a root's are its local ones. The step pose_frame
 // takes per joint, for a solver that sets each joint's rotation before its children's. O(1).

@@ -112,8 +112,8 @@ Clip sample_clip(const Clip& clip, const Eigen::VectorXd& at, double fps, const 
   };
   const auto& all = clip.skeleton.joints;
   std::vector<bool> wanted(all.size(), joints.empty());
-  for (int j : joints)
-    for (int a = j; a >= 0 && !wanted[a]; a = all[a].parent) wanted[a] = true;
+  if (!joints.empty())
+    for (int j : chain_joints(clip.skeleton, joints)) wanted[static_cast<size_t>(j)] = true;
   std::vector<Rotating> rotating;
   std::vector<bool> slerped(clip.motion.cols(), false);  // or not sampled (not wanted)
   for (size_t ji = 0; ji < all.size(); ++ji) {

@@ -104,17 +104,6 @@ void check_strengths(const std::vector<double>& strengths, size_t styles) {
       throw InputError("live: expected a strength from -1 to 2, found " + std::to_string(s));
 }
 
-// The skeleton's joints to pose for these (their ancestors too), parents first.
-std::vector<int> posed_joints(const Skeleton& skeleton, const std::vector<int>& joints) {
-  std::vector<char> needed(skeleton.joints.size(), 0);
-  for (int j : joints)
-    for (int p = j; p >= 0 && !needed[static_cast<size_t>(p)]; p = skeleton.joints[static_cast<size_t>(p)].parent)
-      needed[static_cast<size_t>(p)] = 1;
-  std::vector<int> out;
-  for (size_t j = 0; j < needed.size(); ++j)
-    if (needed[j]) out.push_back(static_cast<int>(j));
-  return out;
-}
 
 }  // namespace
 
@@ -519,7 +508,7 @@ LiveStyle::LiveStyle(const Skeleton& skeleton, double fps, const LiveStyleSpec& 
   s.rig = rig;
   s.body_height = rig.body_height;
   s.change = std::move(change);
-  s.chain = posed_joints(skeleton, joints);
+  s.chain = chain_joints(skeleton, joints);
   s.posed.rotations.assign(skeleton.joints.size(), Eigen::Matrix3d::Identity());
   s.posed.positions.assign(skeleton.joints.size(), Eigen::Vector3d::Zero());
   s.to = spec.strengths;

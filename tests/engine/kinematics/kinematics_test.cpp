@@ -269,3 +269,15 @@ TEST_CASE("FK handles a 20000-deep hierarchy without recursion", "[kinematics]")
   CHECK(p(0, 3 * (kDepth - 1) + 1) == kDepth);
   CHECK(p(0, 3 * kDepth + 1) == kDepth + 1);
 }
+
+TEST_CASE("chain_joints: the joints asked for and their ancestors, once each, parents first") {
+  const Clip clip = parse_bvh(
+      "HIERARCHY\nROOT R\n{\nOFFSET 0 0 0\nCHANNELS 3 Xposition Yposition Zposition\n"
+      "JOINT A\n{\nOFFSET 1 0 0\nCHANNELS 0\nJOINT B\n{\nOFFSET 1 0 0\nCHANNELS 0\nEnd Site\n{\nOFFSET 1 0 0\n}\n}\n}\n"
+      "JOINT C\n{\nOFFSET 0 1 0\nCHANNELS 0\nEnd Site\n{\nOFFSET 0 1 0\n}\n}\n}\nMOTION\nFrames: 1\nFrame Time: 0.1\n0 0 0\n",
+      "chain.bvh");
+  // Joints in file order: R 0, A 1, B 2, B's end 3, C 4, C's end 5.
+  CHECK(chain_joints(clip.skeleton, {2}) == std::vector<int>{0, 1, 2});
+  CHECK(chain_joints(clip.skeleton, {4, 2, 1}) == std::vector<int>{0, 1, 2, 4});
+  CHECK(chain_joints(clip.skeleton, {}).empty());
+}
