@@ -28,7 +28,7 @@ void add_channels_option(CLI::App* cmd, std::string& channels);
 // A mapping file's overrides (empty path: none).
 MappingOverrides load_mapping(const std::string& path);
 
-// Numbers separated by commas, each a decimal or a fraction ("0.2,1/3,...", io/numbers.h);
+// Numbers separated by commas, each a decimal or a fraction ("0.2,1/3,...", base/numbers.h);
 // `flag` names the option in the error. Throws InputError on an entry that is neither.
 std::vector<double> parse_numbers(const std::string& list, const std::string& flag);
 

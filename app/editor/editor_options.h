@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/io/memory_limit.h"
+#include "engine/base/memory_limit.h"
 #include "ui/model/editor_state.h"
 
 namespace mostyle::app {

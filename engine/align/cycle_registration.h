@@ -24,7 +24,11 @@ std::vector<int> pair_cycles(const TakeCycles& reference, const TakeCycles& take
 // span outside the reference's cycles holds, frame for frame, the reference's own motion moved
 // by the take's posture (the take's mean pose over its cycles minus the reference's), faded
 // over up to fade frames into the take's own frames running on from the cycle before and into
-// the cycle after. Where a reused cycle does not follow on from the one before in the take (its
+// the cycle after. The reference's start (before its first cycle) and stop (after its last)
+// hold the take's own start and stop instead, in its timing, where both takes are alike there
+// (both under way, or both starting or stopping from standing), their lengths are within 1.5
+// times each other, and, for the stop, the take has as many cycles as the reference: at weight 1
+// the walk begins and ends as the take's does. Where a reused cycle does not follow on from the one before in the take (its
 // last cycle, then its first again), the pose difference at the seam is spread over the cycle
 // (full at its start, none at its end). The root steps follow the same rule (the take's in its
 // cycles, the reference's in between) and are integrated from the reference's first frame.

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "engine/base/clip.h"
-#include "engine/io/memory_limit.h"
+#include "engine/base/memory_limit.h"
 #include "engine/io/scene_animation.h"
 
 namespace mostyle {

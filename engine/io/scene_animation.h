@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "engine/base/clip.h"
-#include "engine/io/memory_limit.h"
+#include "engine/base/memory_limit.h"
 
 namespace mostyle {
 

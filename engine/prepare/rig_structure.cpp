@@ -326,26 +326,12 @@ std::vector<std::vector<Eigen::Vector3d>> sample_positions(const Skeleton& s, co
   const Eigen::Index frames = motion.rows();
   const Eigen::Index count = std::min<Eigen::Index>(frames, kCueFrames);
   std::vector<std::vector<Eigen::Vector3d>> out;
-  const size_t n = s.joints.size();
-  std::vector<Eigen::Matrix3d> rotation(n);
+  Pose pose;
   for (Eigen::Index k = 0; k < 2 * count; ++k) {
     const Eigen::Index first = count > 1 ? (k / 2) * (frames - 1) / (count - 1) : 0;
     const Eigen::Index f = std::min(first + k % 2, frames - 1);
-    const double* row = motion.row(f).data();
-    std::vector<Eigen::Vector3d> p(n);
-    for (size_t j = 0; j < n; ++j) {
-      const Joint& joint = s.joints[j];
-      const Eigen::Matrix3d local = joint.end_site ? Eigen::Matrix3d::Identity() : joint_local_rotation(joint, row);
-      const Eigen::Vector3d offset = joint.end_site ? joint.offset : joint_local_translation(joint, row);
-      if (joint.parent < 0) {
-        p[j] = offset;
-        rotation[j] = local;
-      } else {
-        p[j] = p[joint.parent] + rotation[joint.parent] * offset;
-        rotation[j] = rotation[joint.parent] * local;
-      }
-    }
-    out.push_back(std::move(p));
+    pose_frame(s, motion.row(f).data(), &pose);
+    out.push_back(pose.positions);
   }
   return out;
 }

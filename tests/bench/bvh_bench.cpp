@@ -11,7 +11,7 @@
 #include <unistd.h>
 #include <vector>
 
-#include "engine/io/atomic_file.h"
+#include "engine/base/atomic_file.h"
 #include "engine/io/bvh/bvh_read.h"
 #include "engine/io/bvh/bvh_write.h"
 #include "engine/kinematics/kinematics.h"

@@ -12,7 +12,7 @@
 #include <string>
 #include <unistd.h>
 
-#include "engine/io/atomic_file.h"
+#include "engine/base/atomic_file.h"
 #include "engine/io/bvh/bvh_read.h"
 #include "engine/io/bvh/bvh_write.h"
 #include "engine/io/motion_file.h"

@@ -9,12 +9,13 @@
 #include <filesystem>
 #include <string>
 
-#include "engine/io/atomic_file.h"
+#include "engine/base/atomic_file.h"
 #include "engine/io/bvh/bvh_read.h"
 #include "engine/io/bvh/bvh_write.h"
 #include "engine/io/fbx/fbx_read.h"
 #include "engine/io/gltf/gltf_read.h"
 #include "engine/io/gltf/gltf_write.h"
+#include "engine/io/gltf_io.h"
 #include "engine/io/scene_animation.h"
 #include "tests/engine/io/fbx/fbx_ascii.h"
 

@@ -6,10 +6,10 @@
 #include <stdexcept>
 
 #include "app/batch/job_line.h"
-#include "engine/io/axis_stream.h"
 #include "engine/io/bvh/bvh_read.h"
 #include "engine/io/bvh/bvh_write.h"
 #include "engine/io/csv/csv_read.h"
+#include "engine/live/axis_stream.h"
 #include "engine/base/error.h"
 #include "engine/io/fbx/fbx_read.h"
 #include "engine/io/fbx/fbx_write.h"

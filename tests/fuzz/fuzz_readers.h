@@ -31,7 +31,7 @@ bool read_fbx(std::string_view bytes);
 // loaded.
 bool write_read_back(std::string_view bytes);
 
-// A TCP byte stream of Axis Neuron BVH broadcasting lines (engine/io/axis_stream.h): the first
+// A TCP byte stream of Axis Neuron BVH broadcasting lines (engine/live/axis_stream.h): the first
 // byte picks the channel count (1 to 16) and the size of the chunks the rest is cut into; each
 // line the splitter gives is parsed. The lines are the same however the bytes are cut, none
 // over the bound; a frame read is finite and as many values as the channels (and a reference of

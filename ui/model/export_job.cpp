@@ -13,7 +13,7 @@
 #include "engine/kinematics/units.h"
 #include "engine/run/blend_params.h"
 #include "ui/model/blend_session.h"
-#include "engine/io/numbers.h"
+#include "engine/base/numbers.h"
 
 namespace mostyle::ui {
 namespace fs = std::filesystem;

@@ -9,9 +9,9 @@
 #include <cstdint>
 #include <string>
 
-#include "engine/io/atomic_file.h"
+#include "engine/base/atomic_file.h"
 #include "engine/base/error.h"
-#include "engine/io/huge_pages.h"
+#include "engine/base/huge_pages.h"
 
 namespace mostyle {
 namespace {

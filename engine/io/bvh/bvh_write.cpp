@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/io/atomic_file.h"
+#include "engine/base/atomic_file.h"
 
 namespace mostyle {
 namespace {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/io/atomic_file.h"
+#include "engine/base/atomic_file.h"
 #include "engine/base/error.h"
 
 namespace mostyle {

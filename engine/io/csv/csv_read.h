@@ -4,7 +4,7 @@
 #include <string>
 #include <string_view>
 
-#include "engine/io/memory_limit.h"
+#include "engine/base/memory_limit.h"
 
 namespace mostyle {
 

@@ -8,7 +8,7 @@
 #include <new>
 #include <unordered_map>
 
-#include "engine/io/atomic_file.h"
+#include "engine/base/atomic_file.h"
 #include "engine/base/error.h"
 #include "engine/io/fbx/fbx_structure.h"
 

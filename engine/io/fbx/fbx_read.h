@@ -10,7 +10,7 @@
 #include <string>
 #include <string_view>
 
-#include "engine/io/memory_limit.h"
+#include "engine/base/memory_limit.h"
 #include "engine/io/scene_animation.h"
 
 namespace mostyle {

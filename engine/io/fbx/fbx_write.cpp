@@ -8,9 +8,9 @@
 #include <unordered_set>
 #include <vector>
 
-#include "engine/io/atomic_file.h"
+#include "engine/base/atomic_file.h"
 #include "engine/base/error.h"
-#include "engine/io/numbers.h"
+#include "engine/base/numbers.h"
 #include "engine/io/fbx/fbx_binary.h"
 #include "engine/kinematics/euler.h"
 #include "engine/kinematics/kinematics.h"

@@ -7,9 +7,9 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
+#include "engine/base/atomic_file.h"
 #include "engine/base/error.h"
-#include "engine/io/atomic_file.h"
-#include "engine/io/numbers.h"
+#include "engine/base/numbers.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/units.h"
 

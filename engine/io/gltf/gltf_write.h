@@ -5,6 +5,8 @@
 #include <string>
 
 #include "engine/base/clip.h"
+#include "engine/base/memory_limit.h"
+#include "engine/io/scene_animation.h"
 
 namespace mostyle {
 

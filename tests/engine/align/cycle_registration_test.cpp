@@ -76,7 +76,8 @@ TEST_CASE("cycle registration: the registered take, worked by hand") {
   const RegisteredMotion r = register_by_cycles(ref, contacts_marked(100, 0.0), rc, take, contacts_marked(40, 1.0), tc, 2);
   const CycleRegistration& g = r.registration;
   CHECK(g.pairs == std::vector<int>{0, 1, 0});
-  // Spans: 10 frames before, 15 + 15 (the take's cycles), 10 of the pause, 15, 5 after.
+  // Spans: 10 frames before (the take's own 5 before its first cycle are too few to stand for
+  // them), 15 + 15 (the take's cycles), 10 of the pause, 15, 5 after.
   REQUIRE(r.motion.local.rows() == 10 + 15 + 15 + 10 + 15 + 5);
   REQUIRE(g.cycles.cycles.size() == 3);
   CHECK(g.cycles.cycles[0].begin == 10);
@@ -121,6 +122,44 @@ TEST_CASE("cycle registration: the registered take, worked by hand") {
   // The root: the take's steps (one unit a frame along +z) throughout, from the reference's start.
   CHECK(r.motion.ground(0, 1) == Approx(0.0));
   CHECK(r.motion.ground(69, 1) == Approx(69.0));
+}
+
+TEST_CASE("cycle registration: a start and a stop show the take's own where both takes are alike there") {
+  // The reference: 60 frames, cycles 10-30 and 30-50. The take: 70 frames, cycles 15-35, 35-50 and
+  // 50-60 (more than the reference's), its stop 60-70 after its last cycle.
+  const CanonicalMotion ref = ramp_motion(60, 1.0), take = ramp_motion(70, 3.0);
+  TakeCycles rc, tc;
+  rc.kind = tc.kind = CycleKind::kGait;
+  rc.foot = tc.foot = 0;
+  rc.cycles = {{10, 30}, {30, 50}};
+  tc.cycles = {{15, 35}, {35, 50}, {50, 60}};
+  rc.period = 20;
+  tc.period = 15;
+  const RegisteredMotion r = register_by_cycles(ref, contacts_marked(60, 0.0), rc, take, contacts_marked(70, 1.0), tc, 2);
+  const CycleRegistration& g = r.registration;
+  // Start: the take's frames 0-14; cycles 0 and 1 (35 frames); stop: its frames 60-69, after its
+  // cycle 1 that ends at 50, not at 60: the seam (50 - 60) shrinks linearly over the stop.
+  REQUIRE(r.motion.local.rows() == 15 + 35 + 10);
+  CHECK(g.source[0] == 0.0);
+  CHECK(g.source[14] == 14.0);
+  CHECK(g.source[50] == 60.0);
+  CHECK(r.motion.local(50, 0) == Approx(50.0));
+  CHECK(r.motion.local(55, 0) == Approx(65.0 - 10.0 * 0.5));
+  CHECK(g.source[59] == 69.0);
+  CHECK(r.contacts(59, 0) == 1.0);
+  CHECK(g.anchors.front().cycle);
+  CHECK(g.anchors[g.anchors.size() - 2].cycle);
+
+  // The same take standing at its start (its root still over its first frames) while the
+  // reference is under way: its start is not the reference's, which shows its posture instead
+  // (the reference's own frames, moved), the take's frames only near its first cycle.
+  CanonicalMotion standing = take;
+  for (int f = 0; f < 15; ++f) standing.ground.row(f) << 0.0, 0.0;
+  const RegisteredMotion s = register_by_cycles(ref, contacts_marked(60, 0.0), rc, standing, contacts_marked(70, 1.0), tc, 2);
+  REQUIRE(s.motion.local.rows() == 10 + 35 + 10);
+  CHECK_FALSE(s.registration.anchors.front().cycle);
+  CHECK(std::isnan(s.registration.source[0]));
+  CHECK(s.registration.anchors[s.registration.anchors.size() - 2].cycle);
 }
 
 TEST_CASE("cycle registration: a reused cycle that does not follow on eases its seam over the cycle") {

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/io/atomic_file.h"
+#include "engine/base/atomic_file.h"
 #include "engine/io/bvh/bvh_read.h"
 #include "engine/base/error.h"
 #include "engine/io/motion_file.h"

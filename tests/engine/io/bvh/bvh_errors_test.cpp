@@ -5,7 +5,7 @@
 #include <random>
 #include <string>
 
-#include "engine/io/atomic_file.h"
+#include "engine/base/atomic_file.h"
 #include "engine/io/bvh/bvh_read.h"
 #include "engine/io/bvh/bvh_write.h"
 #include "engine/base/error.h"

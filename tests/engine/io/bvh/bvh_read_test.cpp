@@ -8,6 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "engine/base/atomic_file.h"
+#include "engine/base/error.h"
+#include "engine/kinematics/kinematics.h"
 #include "tests/engine/io/bvh/bvh_checks.h"
 #include "tests/engine/small_bvh.h"
 #include "tests/test_data.h"

@@ -1,4 +1,4 @@
-#include "engine/io/bvh_recorder.h"
+#include "engine/live/bvh_recorder.h"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -135,6 +135,19 @@ void BvhRecorder::append(const double* values) {
     frames_ = 0;
     throw InputError(path_ + ": cannot write: " + std::strerror(e));
   }
+}
+
+std::string append_or_stop(std::unique_ptr<BvhRecorder>* recorder, const double* values) {
+  if (!*recorder) return std::string();
+  try {
+    (*recorder)->append(values);
+  } catch (const InputError& e) {
+    const std::string why = std::string(e.what()) + "; the recording stops at " +
+                            std::to_string((*recorder)->frames()) + " frames";
+    recorder->reset();
+    return why;
+  }
+  return std::string();
 }
 
 }  // namespace mostyle

@@ -2,7 +2,7 @@
 // frame lines never cross a page; and a recorder killed with SIGKILL at random moments leaves a
 // file that our reader loads whole and that Blender's importer would (every line after Frame
 // Time holds all the channels as numbers).
-#include "engine/io/bvh_recorder.h"
+#include "engine/live/bvh_recorder.h"
 
 #include <signal.h>
 #include <sys/wait.h>
@@ -18,7 +18,7 @@
 #include <thread>
 #include <vector>
 
-#include "engine/io/atomic_file.h"
+#include "engine/base/atomic_file.h"
 #include "engine/io/bvh/bvh_read.h"
 #include "engine/io/bvh/bvh_write.h"
 #include "engine/base/error.h"

@@ -1,4 +1,4 @@
-#include "engine/io/numbers.h"
+#include "engine/base/numbers.h"
 
 #include <cctype>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "engine/io/atomic_file.h"
+#include "engine/base/atomic_file.h"
 
 #include <catch2/catch.hpp>
 #include <filesystem>

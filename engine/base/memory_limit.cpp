@@ -1,4 +1,4 @@
-#include "engine/io/memory_limit.h"
+#include "engine/base/memory_limit.h"
 
 #include <charconv>
 #include <cmath>

@@ -1,7 +1,7 @@
 // Axis Neuron's BVH broadcasting lines: hand-worked lines parsed and written, every reason a line
 // is refused, the round trip within the written precision, and the splitter against every way a
 // stream's bytes may be cut into chunks.
-#include "engine/io/axis_stream.h"
+#include "engine/live/axis_stream.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>

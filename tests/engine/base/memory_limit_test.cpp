@@ -1,11 +1,11 @@
-#include "engine/io/memory_limit.h"
+#include "engine/base/memory_limit.h"
 
 #include <catch2/catch.hpp>
 #include <cstring>
 #include <string>
 #include <vector>
 
-#include "engine/io/huge_pages.h"
+#include "engine/base/huge_pages.h"
 
 using namespace mostyle;
 

@@ -1,4 +1,4 @@
-#include "engine/io/huge_pages.h"
+#include "engine/base/huge_pages.h"
 
 #include <cstdint>
 

@@ -18,6 +18,7 @@
 // channels) spans pages and may be cut by a kill: ours then loads the frames before it, with a
 // warning. Nothing is synced to disk: what a power cut keeps is the file system's.
 #include <cstddef>
+#include <memory>
 #include <string>
 
 #include "engine/base/clip.h"
@@ -63,5 +64,11 @@ class BvhRecorder {
   size_t page_ = 4096;
   std::string line_;         // the frame line being written, reused
 };
+
+// Appends one frame to *recorder when it holds one. A write that fails ends the recording
+// (*recorder closed and null, its file whole up to the frame before) and returns why in one
+// sentence: "PATH: cannot write: No space left on device; the recording stops at 1200 frames";
+// "" otherwise.
+std::string append_or_stop(std::unique_ptr<BvhRecorder>* recorder, const double* values);
 
 }  // namespace mostyle

@@ -1,11 +1,11 @@
-// Numbers as a person types them (engine/io/numbers.h): decimals and fractions, nothing else;
+// Numbers as a person types them (engine/base/numbers.h): decimals and fractions, nothing else;
 // and lengths and durations as a person reads them.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
 
 #include "engine/base/error.h"
-#include "engine/io/numbers.h"
+#include "engine/base/numbers.h"
 #include "engine/synthesize/mix_palette.h"
 
 using namespace mostyle;

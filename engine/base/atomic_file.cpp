@@ -1,4 +1,4 @@
-#include "engine/io/atomic_file.h"
+#include "engine/base/atomic_file.h"
 
 #include <atomic>
 #include <cerrno>
@@ -11,8 +11,8 @@
 #include <unistd.h>
 
 #include "engine/base/error.h"
-#include "engine/io/huge_pages.h"
-#include "engine/io/memory_limit.h"
+#include "engine/base/huge_pages.h"
+#include "engine/base/memory_limit.h"
 
 namespace mostyle {
 namespace {

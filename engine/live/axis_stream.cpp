@@ -1,4 +1,4 @@
-#include "engine/io/axis_stream.h"
+#include "engine/live/axis_stream.h"
 
 #include <charconv>
 #include <cmath>
