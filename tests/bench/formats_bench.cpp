@@ -15,7 +15,6 @@
 #include "engine/io/fbx/fbx_read.h"
 #include "engine/io/gltf/gltf_read.h"
 #include "engine/io/gltf/gltf_write.h"
-#include "engine/io/gltf_io.h"
 #include "engine/io/scene_animation.h"
 #include "tests/engine/io/fbx/fbx_ascii.h"
 
