@@ -294,15 +294,53 @@ RegisteredMotion register_by_cycles(const CanonicalMotion& reference, const Eige
   return out;
 }
 
+TakePosture take_posture(const Eigen::MatrixXd& local, const TakeCycles& cycles) {
+  const Eigen::Index rows = local.rows(), cols = local.cols();
+  std::vector<Eigen::Index> frames;
+  if (cycles.kind == CycleKind::kGait && !cycles.cycles.empty()) {
+    for (const Cycle& c : cycles.cycles)
+      for (Eigen::Index f = c.begin; f < c.end; ++f)
+        frames.push_back(f < rows ? f : cycles.loops() ? f % cycles.loop_frames : rows - 1);
+  } else {
+    for (Eigen::Index f = 0; f < rows; ++f) frames.push_back(f);
+  }
+  TakePosture out;
+  out.mean = Eigen::RowVectorXd::Zero(cols);
+  out.spread = Eigen::RowVectorXd::Zero(cols / 3);
+  if (frames.empty()) return out;
+  for (Eigen::Index f : frames) out.mean += local.row(f);
+  out.mean /= static_cast<double>(frames.size());
+  for (Eigen::Index f : frames)
+    for (Eigen::Index j = 0; j < cols / 3; ++j)
+      out.spread[j] += (local.row(f).segment<3>(3 * j) - out.mean.segment<3>(3 * j)).squaredNorm();
+  out.spread = (out.spread / static_cast<double>(frames.size())).cwiseSqrt();
+  out.fastest = Eigen::RowVectorXd::Zero(cols / 3);
+  for (Eigen::Index f = 1; f < rows; ++f)
+    for (Eigen::Index j = 0; j < cols / 3; ++j)
+      out.fastest[j] = std::max(out.fastest[j], (local.row(f).segment<3>(3 * j) - local.row(f - 1).segment<3>(3 * j)).norm());
+  return out;
+}
+
 RegisteredMotion register_posture_only(const CanonicalMotion& reference, const Eigen::MatrixXd& reference_contacts,
-                                       const CanonicalMotion& take, const TakeCycles& take_cycles) {
-  const Eigen::Index fr = reference.local.rows(), ft = take.local.rows();
-  if (fr < 1 || ft < 1 || take.local.cols() != reference.local.cols() || reference_contacts.rows() != fr)
+                                       const TakePosture& take, const TakeCycles& take_cycles,
+                                       const std::vector<bool>& sized, double spread_floor) {
+  const Eigen::Index fr = reference.local.rows(), joints = reference.local.cols() / 3;
+  if (fr < 1 || take.mean.size() != reference.local.cols() || take.spread.size() != joints || take.fastest.size() != joints ||
+      static_cast<Eigen::Index>(sized.size()) != joints || reference_contacts.rows() != fr)
     throw InputError("posture registration: the takes' poses and contacts do not have matching sizes");
-  if (take_cycles.cycles.empty()) throw InputError("posture registration: the take has no cycles to give a posture");
-  const Eigen::RowVectorXd posture = cycles_mean_pose(take.local, take_cycles) - reference.local.colwise().mean();
+  if (!(spread_floor > 0.0)) throw InputError("posture registration: expected a spread floor above 0");
+  const TakePosture own = take_posture(reference.local, TakeCycles());
   RegisteredMotion out;
-  out.motion.local = reference.local.rowwise() + posture;
+  out.motion.local = reference.local;
+  for (Eigen::Index j = 0; j < joints; ++j) {
+    double scale = 1.0;
+    if (sized[static_cast<size_t>(j)]) {
+      scale = take.spread[j] / std::max(own.spread[j], spread_floor);
+      if (own.fastest[j] > 0.0) scale = std::min(scale, std::max(1.0, take.fastest[j] / own.fastest[j]));
+    }
+    for (Eigen::Index c = 3 * j; c < 3 * j + 3; ++c)
+      out.motion.local.col(c) = ((reference.local.col(c).array() - own.mean[c]) * scale + take.mean[c]).matrix();
+  }
   out.motion.ground = reference.ground;
   out.motion.heading = reference.heading;
   out.contacts = reference_contacts;
