@@ -39,6 +39,9 @@ constexpr int kShareRounds = 5;
 constexpr double kShareClose = 0.97;
 // A planted joint at the top of the planted band still has this weight in the foot's step.
 constexpr double kMinAnchorWeight = 0.1;
+// The body comes down at most this many leg lengths for the pinned feet to be within reach: a
+// knee bent further would read as a crouch the takes do not make.
+constexpr double kMaxBodyDrop = 0.05;
 
 // One leg as the lock's steps see it: its columns, and its ankle's and toe's foot joints
 // (planted_feet.h order; a toe column of -1 where the rig has none).
@@ -445,6 +448,16 @@ void move_leg(Matrix& world, const LegColumns& leg, const std::array<LegColumns,
     if (t > 0 && s.pinned[t - 1] && !s.pinned[t]) short_of = applied - s.target.row(t - 1).transpose();
     Eigen::Vector2d wanted = s.target.row(t).transpose();
     if (s.ease[t] >= 0.0) wanted += (1.0 - s.ease[t]) * short_of;
+    if (s.record_drop) {
+      // How far the hip must come down for the ankle to reach the wanted target with the knee
+      // bent to the margin (a straighter leg's reach is its own length, which the drop shortens):
+      // the hip's height above it less what that reach leaves once the horizontal distance is taken.
+      const Eigen::Vector3d d = ankle - hip;
+      const double bent = kReachMargin * ((knee - hip).norm() + (ankle - knee).norm());
+      const double across = Eigen::Vector2d(d.x() + wanted.x(), d.z() + wanted.y()).squaredNorm();
+      const double down = across < bent * bent ? -d.y() - std::sqrt(bent * bent - across) : -d.y();
+      s.drop[t] = std::max(s.drop[t], down);
+    }
     Eigen::Vector2d offset = within_reach(wanted);
     if (t > 0 && s.weight[t - 1] > 0.0) {
       const double limit = (wanted - wanted_before).norm() + catch_up;
@@ -572,6 +585,83 @@ void copy_leg_columns(Eigen::MatrixXd& world, const FootRig& rig, Eigen::MatrixX
   }
 }
 
+// The body brought down by s.drop (every joint but the legs' knees, ankles and toes), each leg's
+// knee bent so that its ankle stays (two-bone IK from the lowered hip), on the frames it comes
+// down. The knee bends the way it bends, leaning forwards (the way the hips face). O(F).
+void lower_body(Eigen::MatrixXd& world, const FootRig& rig, const FootLockScratch& s) {
+  const Eigen::Index joints = world.cols() / 3;
+  std::vector<bool> below_hip(static_cast<size_t>(joints), false);
+  for (const LegColumns& leg : rig.legs)
+    for (int c : {leg.knee, leg.ankle, leg.toe})
+      if (c >= 0) below_hip[static_cast<size_t>(c)] = true;
+  for (Eigen::Index t = 0; t < world.rows(); ++t) {
+    const double down = s.drop[t];
+    if (!(down > 0.0)) continue;
+    for (Eigen::Index j = 0; j < joints; ++j)
+      if (!below_hip[static_cast<size_t>(j)]) world(t, 3 * j + 1) -= down;
+    Eigen::Vector3d facing = Eigen::Vector3d::Zero();
+    if (rig.legs[0].hip >= 0 && rig.legs[1].hip >= 0) {
+      const Eigen::Vector3d across = joint_at(world, t, rig.legs[0].hip) - joint_at(world, t, rig.legs[1].hip);
+      facing = Eigen::Vector3d(-across.z(), 0.0, across.x());
+    }
+    for (const LegColumns& leg : rig.legs) {
+      if (!leg.usable()) continue;
+      const Eigen::Vector3d hip = joint_at(world, t, leg.hip), ankle = joint_at(world, t, leg.ankle);
+      const Eigen::Vector3d lowered(0.0, down, 0.0);
+      TwoBoneIkJob ik;
+      ik.start = hip;
+      ik.mid = joint_at(world, t, leg.knee) - lowered;
+      ik.end = ankle - lowered;
+      ik.target = ankle;
+      // The knee's own bend, leaning forwards: a straight leg's bend is too small to say which way.
+      ik.pole = ik.mid - ik.start;
+      if (facing.norm() > 0) ik.pole += kKneeForwardBias * rig.leg_length * facing.normalized();
+      ik.bend_fallback = facing;
+      const TwoBoneIkResult settled = ik.Run();
+      set_joint(world, t, leg.knee, settled.mid);
+      set_joint(world, t, leg.ankle, settled.end);
+      if (leg.toe >= 0) set_joint(world, t, leg.toe, joint_at(world, t, leg.toe) + (settled.end - ankle));
+    }
+  }
+}
+
+// Where pinning the planted feet (allowing all of the drift: the takes' own planted moves need no
+// room, so a take alone is left as it is) would take them beyond the legs' reach, the body
+// brought down as far as that needs (a try of the lock records it), at most kMaxBodyDrop of the leg: the
+// running maximum over twice blend_frames() either side, averaged over blend_frames() either
+// side, so that every frame comes down at least as far as it needs and the change is gradual.
+// The legs' columns are put back as they were before the try. False, the motion as it was, where
+// no frame needs it. O(F x ramp).
+bool drop_for_reach(Eigen::MatrixXd& world, const FootRig& rig, const std::array<double, kFootJoints>& floors,
+                    const Eigen::MatrixXd* drift, const FootLockLimits& limits, FootLockScratch& s) {
+  const Eigen::Index frames = world.rows();
+  copy_leg_columns(world, rig, s.original, false);
+  s.drop.setZero(frames);
+  s.record_drop = true;
+  lock_legs(world, rig, floors, drift, 1.0, limits.fastest_joint, s);
+  s.record_drop = false;
+  copy_leg_columns(world, rig, s.original, true);
+  s.drop = s.drop.cwiseMax(0.0).cwiseMin(kMaxBodyDrop * rig.leg_length);
+  if (!(s.drop.maxCoeff() > 0.0)) return false;
+  const Eigen::Index ramp = rig.blend_frames();
+  s.drop_max.resize(frames);
+  for (Eigen::Index t = 0; t < frames; ++t) {
+    const Eigen::Index a = std::max<Eigen::Index>(0, t - 2 * ramp), b = std::min(frames - 1, t + 2 * ramp);
+    s.drop_max[t] = s.drop.segment(a, b - a + 1).maxCoeff();
+  }
+  for (Eigen::Index t = 0; t < frames; ++t) {
+    const Eigen::Index a = std::max<Eigen::Index>(0, t - ramp), b = std::min(frames - 1, t + ramp);
+    s.drop[t] = s.drop_max.segment(a, b - a + 1).mean();
+  }
+  lower_body(world, rig, s);
+  return true;
+}
+
+// The lock, allowing as much of the drift as keeps the planted feet under limits.planted_speed
+// (apply_foot_lock); the planted feet's measure it leaves. Needs a drift and a limit.
+double lock_within_limit(Eigen::MatrixXd& world, const FootRig& rig, const std::array<double, kFootJoints>& floors,
+                         const Eigen::MatrixXd* drift, const FootLockLimits& limits, FootLockScratch& scratch);
+
 }  // namespace
 
 void apply_foot_lock(Eigen::MatrixXd& world, const FootRig& rig, FootLockScratch& scratch, const Eigen::MatrixXd* drift,
@@ -594,6 +684,26 @@ void apply_foot_lock(Eigen::MatrixXd& world, const FootRig& rig, FootLockScratch
     lock_legs(world, rig, floors, drift, 1.0, limits.fastest_joint, scratch);
     return;
   }
+  // Locked as the legs stand; where that leaves the planted feet faster than the limit, and it
+  // is the legs' reach that held the pin back (a content standing on straight legs under a style
+  // that sways its hips), the body comes down and the legs are locked again from there. A take
+  // alone, its planted feet its own, is never lowered.
+  copy_leg_columns(world, rig, scratch.unlocked, false);
+  if (lock_within_limit(world, rig, floors, drift, limits, scratch) <= limits.planted_speed) return;
+  copy_leg_columns(world, rig, scratch.locked, false);
+  copy_leg_columns(world, rig, scratch.unlocked, true);
+  if (!drop_for_reach(world, rig, floors, drift, limits, scratch)) {
+    copy_leg_columns(world, rig, scratch.locked, true);
+    return;
+  }
+  scratch.before_moves.fill(std::numeric_limits<double>::quiet_NaN());
+  lock_within_limit(world, rig, floors, drift, limits, scratch);
+}
+
+namespace {
+
+double lock_within_limit(Eigen::MatrixXd& world, const FootRig& rig, const std::array<double, kFootJoints>& floors,
+                         const Eigen::MatrixXd* drift, const FootLockLimits& limits, FootLockScratch& scratch) {
   // Allowing all the drift, the planted feet may still move faster than planted_speed (the
   // output's planted steps fall where the takes' move most); then less of it is allowed: none,
   // and if that is under the limit, the largest share found (regula falsi, Illinois' variant: the
@@ -603,11 +713,11 @@ void apply_foot_lock(Eigen::MatrixXd& world, const FootRig& rig, FootLockScratch
   copy_leg_columns(world, rig, scratch.original, false);
   lock_legs(world, rig, floors, drift, 1.0, limits.fastest_joint, scratch);
   double high = 1.0, at_high = planted_speed(world, scratch.planted, rig).speed;
-  if (at_high <= limit) return;
+  if (at_high <= limit) return at_high;
   copy_leg_columns(world, rig, scratch.original, true);
   lock_legs(world, rig, floors, drift, 0.0, limits.fastest_joint, scratch);
   double low = 0.0, at_low = planted_speed(world, scratch.planted, rig).speed;
-  if (at_low >= limit) return;
+  if (at_low >= limit) return at_low;
   copy_leg_columns(world, rig, scratch.best, false);  // the motion at `low`, under the limit
   // Distances from the limit, the one kept twice in a row halved (Illinois).
   double below = limit - at_low, above = at_high - limit;
@@ -632,6 +742,9 @@ void apply_foot_lock(Eigen::MatrixXd& world, const FootRig& rig, FootLockScratch
     }
   }
   copy_leg_columns(world, rig, scratch.best, true);
+  return at_low;
 }
+
+}  // namespace
 
 }  // namespace mostyle

@@ -27,10 +27,16 @@ struct FootLockScratch {
   // F x 18: the legs' knees, ankles and toes as they were, and in the best try, where the lock
   // tries again.
   Eigen::MatrixXd original, best;
+  // F x 18: the legs before the lock, and as locked where the lock tries again from a lowered body.
+  Eigen::MatrixXd unlocked, locked;
   // F x 15, a frame a row: both hips and one leg's knee, ankle and toe, as the lock moves the leg.
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> leg_rows;
   std::array<double, 2> before_moves{};  // per leg: its planted joints' moves before the lock
   const Eigen::MatrixXd* held = nullptr;  // apply_foot_lock's, for its tries
+  // F: how far the body comes down so that the pinned feet are within the legs' reach, and the
+  // running maximum it is smoothed from.
+  Eigen::VectorXd drop, drop_max;
+  bool record_drop = false;  // a try records into drop what each frame's targets need
 };
 
 // What the lock keeps an output under, from the takes it mixes (0: no limit), units per second.
@@ -62,7 +68,10 @@ struct FootLockLimits {
 // hip-ankle line, leaning slightly towards the toe (less as the knee bends or the ankle moves
 // less) and, where the knee is nearly straight, towards its bend on the frame before; a target
 // beyond the leg's reach is shortened to it (a straight leg stays as straight), and what the
-// reach held back is caught up gradually. The toe moves with the ankle (the foot is
+// reach held back is caught up gradually. Where fully pinned targets would be beyond reach (a
+// content standing on straight legs, a style swaying its hips over them), the whole body above
+// the knees first comes down as far as they need, at most kMaxBodyDrop of the leg, smoothed over
+// blend_frames() either side so it never pops, the knees bending to keep the feet where they are. The toe moves with the ankle (the foot is
 // translated). Frames beyond the fades are left exactly as they were. A leg whose planted joints
 // would move more in all than before the lock is left as it was: the measure never rises.
 // drift: when given (F x 2 kFootJoints, x and z per foot joint in planted_feet.h's order, world

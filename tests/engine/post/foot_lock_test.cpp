@@ -320,3 +320,70 @@ TEST_CASE("the pipeline locks planted feet of real blends from ../shared/motions
   check_pipeline_foot_lock(test::shared_motion("bandai_walk_normal.bvh"), test::shared_motion("bandai_walk_tired.bvh"));
   check_pipeline_foot_lock(test::shared_motion("cmu142_walk_joy.bvh"), test::shared_motion("bandai_walk_sad.bvh"));
 }
+
+namespace {
+
+// Standing on nearly straight legs (hip to ankle 0.999 of the leg) while the hips sway +-3 cm
+// forwards and back over a second; the feet stand under the hips and so slide with them when
+// `skating`, else stay put. Left leg at z -10, right at +10, facing +X.
+Eigen::MatrixXd swaying_stance(int frames, bool skating) {
+  Eigen::MatrixXd w(frames, 24);
+  const double reach = 0.999 * (kThigh + kShin);
+  for (int side = 0; side < 2; ++side) {
+    const double z = side == 0 ? -10.0 : 10.0;
+    for (int f = 0; f < frames; ++f) {
+      const double sway = 3.0 * std::sin(2.0 * M_PI * f / kFps);
+      const Eigen::Vector3d ankle(skating ? sway : 0.0, kAnkleHeight, z);
+      const Eigen::Vector3d hip = ankle + Eigen::Vector3d(skating ? 0.0 : sway, 0.0, 0.0) +
+                                  Eigen::Vector3d(0.0, std::sqrt(reach * reach - (skating ? 0.0 : sway * sway)), 0.0);
+      // The knee a little forward of the hip-ankle line, the bones their lengths.
+      const Eigen::Vector3d d = ankle - hip, n = d.normalized();
+      const Eigen::Vector3d bend = (Eigen::Vector3d::UnitX() - n * n.x()).normalized();
+      const double along = (kThigh * kThigh - kShin * kShin + d.squaredNorm()) / (2 * d.norm());
+      put(w, f, 4 * side, hip);
+      put(w, f, 4 * side + 1, hip + n * along + bend * std::sqrt(kThigh * kThigh - along * along));
+      put(w, f, 4 * side + 2, ankle);
+      put(w, f, 4 * side + 3, ankle + Eigen::Vector3d(12, -6, 0));
+    }
+  }
+  return w;
+}
+
+}  // namespace
+
+TEST_CASE("the foot lock brings the body down where straight legs cannot reach the pinned feet", "[foot_lock]") {
+  const FootRig rig = test_rig();
+  const int frames = 90;
+  const Eigen::MatrixXd none = Eigen::MatrixXd::Zero(frames, 2 * kFootJoints);
+  FootLockLimits limits;
+  limits.planted_speed = 0.01;  // cm/s: the content's own feet stand still
+  FootLockScratch scratch;
+  // Feet that stand still already: nothing to pin, the body stays (a take alone is left as it is).
+  const Eigen::MatrixXd still = swaying_stance(frames, false);
+  Eigen::MatrixXd w = still;
+  apply_foot_lock(w, rig, scratch, &none, limits);
+  CHECK((w - still).cwiseAbs().maxCoeff() < kExact);
+  // Feet that slide with the hips: pinning them needs more than straight legs reach, so the body
+  // comes down (a few millimetres) and the knees bend; the feet then stand still.
+  const Eigen::MatrixXd skating = swaying_stance(frames, true);
+  w = skating;
+  apply_foot_lock(w, rig, scratch, &none, limits);
+  CHECK(planted_speed(skating, rig).speed > 50.0 * limits.planted_speed);
+  CHECK(planted_speed(w, rig).speed <= limits.planted_speed);
+  double lowest = 0.0, fastest_knee = 0.0;
+  for (int f = 0; f < frames; ++f)
+    for (int side = 0; side < 2; ++side) {
+      const int hip = 4 * side, knee = hip + 1, ankle = hip + 2;
+      const double down = skating(f, 3 * hip + 1) - w(f, 3 * hip + 1);
+      CHECK(down >= -kExact);
+      CHECK(down <= 0.05 * rig.leg_length + kExact);
+      lowest = std::max(lowest, down);
+      CHECK((at(w, f, knee) - at(w, f, hip)).norm() == Approx(kThigh).epsilon(1e-9));
+      CHECK((at(w, f, ankle) - at(w, f, knee)).norm() == Approx(kShin).epsilon(1e-9));
+      CHECK(w(f, 3 * ankle + 1) == Approx(kAnkleHeight).epsilon(1e-12));  // heights kept
+      if (f > 0) fastest_knee = std::max(fastest_knee, (at(w, f, knee) - at(w, f - 1, knee)).norm());
+    }
+  CHECK(lowest > 0.0);
+  // No pop: the knees move about as fast as the swaying hips (3 cm at 2 pi a second: 0.63 cm a frame).
+  CHECK(fastest_knee < 1.5);
+}
