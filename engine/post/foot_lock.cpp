@@ -11,6 +11,7 @@
 #include "engine/kinematics/joint_rows.h"
 #include "engine/kinematics/two_bone_ik.h"
 #include "engine/measure/planted_feet.h"
+#include "engine/post/leg_move.h"
 
 namespace mostyle {
 namespace {
@@ -483,12 +484,7 @@ void move_leg(Matrix& world, const LegColumns& leg, const std::array<LegColumns,
     ik.target = target;
     ik.pole = straight ? before : pole;
     ik.bend_fallback = before;
-    const TwoBoneIkResult locked = ik.Run();
-    const Eigen::Vector3d& new_knee = locked.mid;
-    const Eigen::Vector3d& new_ankle = locked.end;
-    set_joint(world, t, leg.knee, new_knee);
-    set_joint(world, t, leg.ankle, new_ankle);
-    if (leg.toe >= 0) set_joint(world, t, leg.toe, joint_at(world, t, leg.toe) + (new_ankle - ankle));
+    place_leg(world, t, leg, ik.Run());
   }
 }
 
@@ -617,10 +613,7 @@ void lower_body(Eigen::MatrixXd& world, const FootRig& rig, const FootLockScratc
       ik.pole = ik.mid - ik.start;
       if (facing.norm() > 0) ik.pole += kKneeForwardBias * rig.leg_length * facing.normalized();
       ik.bend_fallback = facing;
-      const TwoBoneIkResult settled = ik.Run();
-      set_joint(world, t, leg.knee, settled.mid);
-      set_joint(world, t, leg.ankle, settled.end);
-      if (leg.toe >= 0) set_joint(world, t, leg.toe, joint_at(world, t, leg.toe) + (settled.end - ankle));
+      place_leg(world, t, leg, ik.Run());
     }
   }
 }

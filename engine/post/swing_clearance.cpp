@@ -10,6 +10,7 @@
 #include "engine/kinematics/joint_rows.h"
 #include "engine/kinematics/two_bone_ik.h"
 #include "engine/measure/planted_feet.h"
+#include "engine/post/leg_move.h"
 
 namespace mostyle {
 namespace {
@@ -70,12 +71,7 @@ void raise_leg(Eigen::MatrixXd& world, const LegColumns& leg, const std::array<L
     ik.target = ankle + Eigen::Vector3d(0.0, lift[t], 0.0);
     ik.pole = pole;
     ik.bend_fallback = facing;
-    const TwoBoneIkResult raised = ik.Run();
-    const Eigen::Vector3d& new_knee = raised.mid;
-    const Eigen::Vector3d& new_ankle = raised.end;
-    set_joint(world, t, leg.knee, new_knee);
-    set_joint(world, t, leg.ankle, new_ankle);
-    if (leg.toe >= 0) set_joint(world, t, leg.toe, joint_at(world, t, leg.toe) + (new_ankle - ankle));
+    place_leg(world, t, leg, ik.Run());
   }
 }
 
