@@ -49,6 +49,22 @@ int output_frame_at(const PreparedTakes& p, const MixResult* blend, double u) {
 }
 }  // namespace
 
+StructureMarks structure_marks(const PreparedTake& take) {
+  StructureMarks m;
+  const ActionSpans& s = take.cycles.spans;
+  const int frames = static_cast<int>(take.canonical.local.rows());
+  // Registered, or read on other frames than those plotted (a loop's closing frame appended).
+  if (!take.registration.empty() || s.frames != frames || frames == 0) return m;
+  if (s.still()) {
+    m.rests.push_back({0, frames});
+    return m;
+  }
+  if (s.rest_before > 0) m.rests.push_back({0, s.rest_before});
+  if (s.rest_after > 0) m.rests.push_back({frames - s.rest_after, frames});
+  m.actions = s.actions;
+  return m;
+}
+
 MatchedFrames matched_frames_in_files(const PreparedTakes& p) {
   MatchedFrames m;
   if (p.size() != 2 || p.fps <= 0.0) return m;
@@ -180,6 +196,18 @@ void draw_before_marks(const PairPlot& v, const PlotArea& before) {
     dl->AddLine(before.to_screen(i, v.sa(i, v.col)), before.to_screen(j, v.sb(j, v.col) - 1.05 * span),
                 IM_COL32(150, 155, 165, 90), 1.0f);
   }
+  // Each take's rests shaded grey across its band, its actions a strip at the band's outer edge.
+  // (top above bottom, and the strip's, in the plot's values: a rectangle from its top left.)
+  auto shade = [&](const StructureMarks& marks, double top, double bottom, double strip_top, double strip_bottom,
+                   ImU32 strip) {
+    for (const FrameSpan& r : marks.rests)
+      dl->AddRectFilled(before.to_screen(r.begin, top), before.to_screen(r.end - 1, bottom), IM_COL32(150, 150, 160, 45));
+    for (const FrameSpan& a : marks.actions)
+      dl->AddRectFilled(before.to_screen(a.begin, strip_top), before.to_screen(a.end - 1, strip_bottom), strip);
+  };
+  const ImU32 strip_a = (color_a() & 0x00FFFFFFu) | 0x90000000u, strip_b = (color_b() & 0x00FFFFFFu) | 0x90000000u;
+  shade(structure_marks(v.p.takes[0]), hi + 0.1 * span, lo - 0.05 * span, hi + 0.1 * span, hi + 0.03 * span, strip_a);
+  shade(structure_marks(v.p.takes[1]), hi - 1.1 * span, lo - 1.15 * span, lo - 1.08 * span, lo - 1.15 * span, strip_b);
   // Where each take's cycles begin (engine/align/cycles.h): ticks at the top of A's band and
   // the bottom of B's.
   for (const Cycle& c : v.p.takes[0].cycles.cycles)
@@ -198,8 +226,9 @@ PlotArea draw_before(const PairPlot& v, float width, float plot_h) {
   ImGui::BeginGroup();
   ImGui::TextUnformatted("before warping");
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("A above, B below, each on its own timeline; matched frames joined; ticks where each take's "
-                      "cycles begin");
+    ImGui::SetTooltip("A above, B below, each on its own timeline; matched frames joined; shaded grey: rests; a "
+                      "strip at the edge: the actions between them; ticks where each take's cycles (steps or "
+                      "strokes) begin");
   const int frames = std::max(v.fa, v.fb);
   PlotArea before = begin_plot("##before", width, plot_h, 0.0, frames - 1, lo - 1.15 * span, hi + 0.1 * span);
   draw_before_marks(v, before);

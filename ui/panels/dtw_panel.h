@@ -16,6 +16,15 @@ struct MatchedFrames {
 };
 MatchedFrames matched_frames_in_files(const PreparedTakes& p);
 
+// A take's structure as the "before" plot shades it (engine/align/action_structure.h), in the
+// frames it is plotted at: its rests and its actions, [begin, end) each; a take at rest
+// throughout is one rest. None for a take registered by cycles (it is plotted as registered,
+// its cycles laid on the reference's, where the ticks show its strokes or steps).
+struct StructureMarks {
+  std::vector<FrameSpan> rests, actions;
+};
+StructureMarks structure_marks(const PreparedTake& take);
+
 class DtwPanel : public Panel {
  public:
   explicit DtwPanel(BlendSession& session) : session_(session) {}

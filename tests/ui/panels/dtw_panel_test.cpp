@@ -75,3 +75,46 @@ TEST_CASE("DTW panel: the matched frames are each take's own, counted at its fil
     if (!std::isnan(al.b_source[k])) outside += std::lround(al.b_source[k]) < m.b_first || std::lround(al.b_source[k]) > m.b_last;
   CHECK(outside == 0);
 }
+
+TEST_CASE("DTW panel: each take's rests and actions as the before plot shades them") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  EditorState state;
+  state.document.parameters.components = 4;
+  BlendSession session;
+  // A good-bye (an action between rests) and a wave (strokes of the left hand), aligned by their
+  // structure: both plotted on their own frames.
+  session.load(test::shared_motion("actions/bandai_bye_normal.bvh"),
+               test::shared_motion("actions/bandai2_wave-left-hand_active.bvh"));
+  session.wait_idle(state);
+  INFO(session.error());
+  const PreparedTakes* p = session.pair();
+  REQUIRE(p != nullptr);
+  for (int i = 0; i < 2; ++i) {
+    const PreparedTake& t = p->takes[static_cast<size_t>(i)];
+    const ActionSpans& s = t.cycles.spans;
+    const StructureMarks m = structure_marks(t);
+    const int frames = static_cast<int>(t.canonical.local.rows());
+    INFO("take " << i << ": " << frames << " frames, rests " << s.rest_before << " and " << s.rest_after);
+    REQUIRE(t.registration.empty());
+    // Every frame is a rest or inside the moving span, the actions in order, none overlapping.
+    int covered = 0, last = 0;
+    for (const FrameSpan& r : m.rests) covered += r.frames();
+    CHECK(m.actions.size() == s.actions.size());
+    for (const FrameSpan& a : m.actions) {
+      CHECK(a.begin >= last);
+      CHECK(a.end <= frames);
+      last = a.end;
+    }
+    CHECK(covered == s.rest_before + s.rest_after);
+    if (!m.actions.empty()) CHECK(covered + (m.actions.back().end - m.actions.front().begin) <= frames);
+  }
+  // A walk registered by cycles onto another is plotted as registered: no marks of its own.
+  BlendSession walks;
+  walks.load(test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"));
+  walks.wait_idle(state);
+  REQUIRE(walks.pair() != nullptr);
+  REQUIRE_FALSE(walks.pair()->takes[1].registration.empty());
+  const StructureMarks none = structure_marks(walks.pair()->takes[1]);
+  CHECK(none.rests.empty());
+  CHECK(none.actions.empty());
+}
