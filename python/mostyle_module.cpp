@@ -278,7 +278,12 @@ Take reference_at(const Clip& reference, const TakeArrays& reference_arrays, con
   clip.skeleton = reference.skeleton;
   clip.motion = nearest_rows(reference.motion, at);
   clip.frame_time = 1.0 / fps;
-  TakeArrays a = reference_arrays;
+  // Only the skeleton's arrays are copied whole: the per-frame ones are the reference's length,
+  // several times the frames shown when it was read at a higher rate.
+  TakeArrays a;
+  a.joint_names = reference_arrays.joint_names;
+  a.parents = reference_arrays.parents;
+  a.offsets = reference_arrays.offsets;
   a.fps = clip.fps();
   a.rotations = nearest_rows(reference_arrays.rotations, at);
   a.translations = nearest_rows(reference_arrays.translations, at);

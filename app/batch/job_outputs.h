@@ -14,7 +14,7 @@ namespace mostyle::cli {
 std::vector<std::string> job_outputs(const std::vector<std::string>& args);
 
 // Removes what a killed job left of its outputs: every output is written to a temporary file
-// OUTPUT.tmp<PID>_<N> beside it (engine/io/atomic_file) and renamed, so a job killed between the
+// OUTPUT.tmp<PID>_<N> beside it (engine/base/atomic_file) and renamed, so a job killed between the
 // two leaves that file. Removes only those of process `pid`; returns how many it removed. Never
 // throws (a folder that cannot be listed is left alone). O(files in the outputs' folders).
 int remove_leftovers(const std::vector<std::string>& outputs, int pid);

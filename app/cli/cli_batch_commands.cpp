@@ -17,7 +17,7 @@
 #include "app/batch/job_runner.h"
 #include "app/batch/stop_signal.h"
 #include "app/cli/cli_common.h"
-#include "engine/io/atomic_file.h"
+#include "engine/base/atomic_file.h"
 #include "engine/base/error.h"
 
 namespace mostyle::cli {

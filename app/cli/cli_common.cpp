@@ -7,10 +7,10 @@
 #include <filesystem>
 #include <iostream>
 
-#include "engine/io/atomic_file.h"
-#include "engine/io/bvh_io.h"
+#include "engine/base/atomic_file.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/base/error.h"
-#include "engine/io/memory_limit.h"
+#include "engine/base/memory_limit.h"
 #include "engine/io/motion_file.h"
 
 namespace mostyle::cli {

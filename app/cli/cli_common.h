@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/base/clip.h"
 #include "engine/io/motion_file.h"
 
@@ -24,7 +24,7 @@ std::string positions_csv(const Eigen::MatrixXd& positions, const std::vector<in
 
 // The memory limit of a reader of outside input from the environment: MOSTYLE_MAX_MEMORY_MB,
 // when set, bounds the memory one file's values may need (default 4096). Throws InputError when
-// it is not a whole number of megabytes from 1 up (engine/io/memory_limit.h).
+// it is not a whole number of megabytes from 1 up (engine/base/memory_limit.h).
 size_t memory_limit_from_environment();
 // The BVH reader's options with that limit.
 BvhReadOptions bvh_read_options_from_environment();

@@ -10,9 +10,9 @@
 
 #include "app/cli/cli_common.h"
 #include "app/cli/cli_pipeline_common.h"
-#include "engine/io/atomic_file.h"
+#include "engine/base/atomic_file.h"
 #include "engine/base/clock.h"
-#include "engine/io/csv_io.h"
+#include "engine/io/csv/csv_read.h"
 #include "engine/align/dtw.h"
 #include "engine/align/time_warp.h"
 #include "engine/base/error.h"

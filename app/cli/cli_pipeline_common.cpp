@@ -9,9 +9,9 @@
 #include <functional>
 
 #include "app/cli/cli_common.h"
-#include "engine/io/atomic_file.h"
+#include "engine/base/atomic_file.h"
 #include "engine/base/error.h"
-#include "engine/io/numbers.h"
+#include "engine/base/numbers.h"
 
 namespace mostyle::cli {
 

@@ -27,7 +27,7 @@ void add_channels_option(CLI::App* cmd, std::string& channels);
 // A mapping file's overrides (empty path: none).
 MappingOverrides load_mapping(const std::string& path);
 
-// Numbers separated by commas, each a decimal or a fraction ("0.2,1/3,...", io/numbers.h);
+// Numbers separated by commas, each a decimal or a fraction ("0.2,1/3,...", base/numbers.h);
 // `flag` names the option in the error. Throws InputError on an entry that is neither.
 std::vector<double> parse_numbers(const std::string& list, const std::string& flag);
 
@@ -67,7 +67,7 @@ Json vector_json(const Eigen::VectorXd& v);
 // skeleton's name, null where none), "found_by" ("name", "structure", "mapping file", "none")}]}.
 Json major_joints_json(const MajorMapping& mapping, const Skeleton& skeleton);
 Json loop_json(const LoopCut& loop, double fps);
-// How fast the output's planted feet move (engine/post/planted_feet.h): "raw" before the foot
+// How fast the output's planted feet move (engine/measure/planted_feet.h): "raw" before the foot
 // lock, "cleaned" after it, "inputs" the takes' own weighted as mixed, file units per second;
 // the same as fractions of "body_height" per second ("raw_of_height", ...); "ratio" cleaned over
 // inputs (null when the inputs' feet never move).

@@ -11,7 +11,7 @@
 #include "app/cli/cli_pipeline_common.h"
 #include "app/live/live_run.h"
 #include "engine/base/error.h"
-#include "engine/io/numbers.h"
+#include "engine/base/numbers.h"
 #include "engine/live/live_style.h"
 #include "engine/synthesize/mix_palette.h"
 #include "engine/align/prepare_takes.h"

@@ -7,7 +7,7 @@
 #include "engine/base/error.h"
 #include "engine/export/export_frames.h"
 #include "engine/io/motion_file.h"
-#include "engine/io/numbers.h"
+#include "engine/base/numbers.h"
 
 namespace mostyle::cli {
 namespace {

@@ -17,7 +17,7 @@
 #include <imgui_impl_opengl3.h>
 
 #include "app/editor/tcp_frame_source.h"
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/base/error.h"
 #include "render/gl.h"
 #include "render/skeleton_pose.h"
@@ -36,7 +36,7 @@ namespace mostyle::app {
 namespace {
 
 // Joints closer than this to the floor (times the skeleton's size) get a contact ring when a
-// take carries no contacts of the pipeline's own (engine/foot_contact.h).
+// take carries no contacts of the pipeline's own (engine/measure/foot_contact.h).
 constexpr float kContactTolerance = 0.04f;
 // How much of the view the skeletons fill when framed: room for the floor and the panels.
 constexpr float kFrameFill = 0.62f;

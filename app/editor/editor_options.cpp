@@ -8,7 +8,7 @@
 #include <system_error>
 
 #include "engine/base/error.h"
-#include "engine/io/numbers.h"
+#include "engine/base/numbers.h"
 #include "engine/synthesize/mix_palette.h"
 #include "ui/model/session_file.h"
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/io/memory_limit.h"
+#include "engine/base/memory_limit.h"
 #include "ui/model/editor_state.h"
 
 namespace mostyle::app {
@@ -43,7 +43,7 @@ struct EditorOptions {
   InitialState initial;
   int width = 1280;                 // window / offscreen size, pixels (--window-size), also the
   int height = 720;                 // screenshot's; each in [kMinWindowSide, kMaxWindowSide]
-  // The most memory one take's frames may need (engine/io/bvh_io.h): MOSTYLE_MAX_MEMORY_MB from
+  // The most memory one take's frames may need (engine/io/bvh/bvh_read.h): MOSTYLE_MAX_MEMORY_MB from
   // the environment, as mostyle-cli takes it; not a flag.
   size_t max_memory_bytes = kDefaultMaxBytes;
 };

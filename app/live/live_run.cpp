@@ -4,7 +4,6 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cmath>
 #include <cstring>
 #include <iostream>
 #include <optional>
@@ -13,8 +12,9 @@
 
 #include "app/live/frame_server.h"
 #include "app/live/stop_pipe.h"
-#include "engine/io/axis_stream.h"
 #include "engine/base/error.h"
+#include "engine/live/axis_stream.h"
+#include "engine/live/stream_styler.h"
 
 namespace mostyle::live {
 namespace {
@@ -30,19 +30,12 @@ constexpr auto kWarnEvery = std::chrono::seconds(1);           // skipped-frame 
 constexpr auto kDrainFor = std::chrono::seconds(2);            // clients' queues at the end
 constexpr size_t kReadBytes = size_t{1} << 16;
 
-// A line may hold each value in up to 64 bytes (a long decimal), with room for the avatar.
-size_t max_line_bytes(int channels) {
-  return std::max<size_t>(size_t{1} << 16, static_cast<size_t>(channels + kAxisReferenceValues) * 64 + 1024);
-}
-
-class LiveRun {
+// The stream's lines come back here from the engine's loop (StreamStyler): served, recorded,
+// counted, warned about.
+class LiveRun : StreamStyler::Sink {
  public:
   LiveRun(LiveConfig& config, LiveStyle& style)
-      : config_(config),
-        style_(style),
-        channels_(config.skeleton.channel_count),
-        splitter_(max_line_bytes(channels_)),
-        styled_values_(static_cast<size_t>(channels_)) {}
+      : config_(config), style_(style), channels_(config.skeleton.channel_count), stream_(channels_) {}
 
   int run() {
     ignore_sigpipe();
@@ -168,9 +161,7 @@ class LiveRun {
     // elsewhere, another avatar first): nothing of the last one carries over.
     if (connected_once_) style_.restart();
     connected_once_ = true;
-    styled_avatar_ = -1;
-    splitter_.reset();
-    dropped_lines_ = 0;
+    stream_.restart();
     lines_before_ = lines_in_;
     std::cerr << "mostyle: note: connected to " << config_.source.text() << "\n";
   }
@@ -184,58 +175,33 @@ class LiveRun {
       source_closed();
       return;
     }
-    std::string_view chunk(buffer_.data(), static_cast<size_t>(n));
-    std::string_view line;
-    while (splitter_.next(&chunk, &line)) handle_line(line);
-    count_dropped_lines();
+    stream_.feed(std::string_view(buffer_.data(), static_cast<size_t>(n)), *this);
   }
 
-  void count_dropped_lines() {
-    while (dropped_lines_ < splitter_.dropped()) {
-      ++dropped_lines_;
-      ++lines_in_;
-      skip("the line is longer than " + std::to_string(max_line_bytes(channels_)) + " bytes",
-           splitter_.dropped_line_number());
-    }
-  }
+  LiveStyle& styler() override { return style_; }
 
-  void handle_line(std::string_view line) {
+  void styled(const AxisFrame& frame, const double* values) override {
     ++lines_in_;
-    const long long number = splitter_.line_number();
-    if (parse_axis_line(line, channels_, &frame_, &reason_) != AxisLineStatus::kOk) return skip(reason_, number);
-    if (styled_avatar_ < 0) styled_avatar_ = frame_.avatar_index;
-    if (frame_.avatar_index != styled_avatar_)
-      return skip("avatar " + std::to_string(frame_.avatar_index) + " is not the one styled (" +
-                      std::to_string(styled_avatar_) + ")",
-                  number);
-    style_.style_frame(frame_.values.data(), styled_values_.data());
-    for (double v : styled_values_)
-      if (!std::isfinite(v)) return skip("the styled frame holds a value that is not a finite number", number);
     ++styled_;
     if (server_) {
       line_out_.clear();
-      append_axis_line(&line_out_, frame_.avatar_index, frame_.avatar_name, frame_.reference.data(),
-                       static_cast<int>(frame_.reference.size()), styled_values_.data(), channels_);
+      append_axis_line(&line_out_, frame.avatar_index, frame.avatar_name, frame.reference.data(),
+                       static_cast<int>(frame.reference.size()), values, channels_);
       server_->send(line_out_);
     }
     // After the send: a recording's writes never delay the frame they hold.
-    record(config_.record, styled_values_.data());
-    record(config_.record_input, frame_.values.data());
+    record(&config_.record, values);
+    record(&config_.record_input, frame.values.data());
   }
 
-  void record(std::unique_ptr<BvhRecorder>& recorder, const double* values) {
-    if (!recorder) return;
-    try {
-      recorder->append(values);
-    } catch (const InputError& e) {
-      std::cerr << "mostyle: warning: " << e.what() << "; the recording stops at " << recorder->frames()
-                << " frames\n";
-      recorder.reset();
-    }
+  static void record(std::unique_ptr<BvhRecorder>* recorder, const double* values) {
+    const std::string stopped = append_or_stop(recorder, values);
+    if (!stopped.empty()) std::cerr << "mostyle: warning: " << stopped << "\n";
   }
 
   // Counts a frame skipped; warns at most once a second (one sentence: where, what, how many).
-  void skip(const std::string& why, long long line) {
+  void skipped(long long line, const std::string& why) override {
+    ++lines_in_;
     ++skipped_;
     const Clock::time_point now = Clock::now();
     if (warned_ && now - last_warning_ < kWarnEvery) return;
@@ -246,11 +212,7 @@ class LiveRun {
   }
 
   void source_closed() {
-    if (splitter_.has_partial()) {
-      ++lines_in_;
-      skip("the stream ended inside a line", splitter_.line_number() + 1);
-    }
-    count_dropped_lines();
+    stream_.end(*this);
     ::close(source_fd_);
     source_fd_ = -1;
     if (config_.connect_timeout_s == 0.0) {  // one try: the stream's end is the end
@@ -302,12 +264,9 @@ class LiveRun {
   Clock::duration retry_in_ = kFirstRetry;
   std::vector<pollfd> fds_;
   std::vector<char> buffer_;
-  AxisLineSplitter splitter_;
-  AxisFrame frame_;
-  std::string reason_, line_out_;
-  std::vector<double> styled_values_;
-  int styled_avatar_ = -1;
-  long long lines_in_ = 0, lines_before_ = 0, styled_ = 0, skipped_ = 0, dropped_lines_ = 0;
+  StreamStyler stream_;
+  std::string line_out_;
+  long long lines_in_ = 0, lines_before_ = 0, styled_ = 0, skipped_ = 0;
   bool warned_ = false;
   Clock::time_point last_warning_;
 };

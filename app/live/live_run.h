@@ -7,7 +7,7 @@
 
 #include "app/live/frame_server.h"
 #include "app/live/tcp.h"
-#include "engine/io/bvh_recorder.h"
+#include "engine/live/bvh_recorder.h"
 #include "engine/base/clip.h"
 #include "engine/live/live_style.h"
 

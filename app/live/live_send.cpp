@@ -7,7 +7,7 @@
 #include "app/live/frame_server.h"
 #include "app/live/live_run.h"
 #include "app/live/stop_pipe.h"
-#include "engine/io/axis_stream.h"
+#include "engine/live/axis_stream.h"
 
 namespace mostyle::live {
 namespace {

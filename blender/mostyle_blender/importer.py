@@ -82,8 +82,10 @@ def import_take(context, path, take_name=None, use_scene_fps=False):
     name = take_name or os.path.splitext(os.path.basename(path))[0]
     obj = build_armature(context, take, name)
     action = bpy.data.actions.new(name)
-    obj.animation_data_create().action = action
     take_io.write_take_action(take, obj, action, scene.frame_start, take_io.scene_fps(scene))
+    # Assigned once keyed: Blender 4.4+ gives an object the slot of an action assigned to it only
+    # if the action has one (the keys make it).
+    obj.animation_data_create().action = action
     end = int(np.ceil(action.frame_range[1]))
     if end > scene.frame_end:
         scene.frame_end = end
@@ -107,8 +109,7 @@ class MOSTYLE_OT_import_take(bpy.types.Operator, ImportHelper):
             obj = import_take(context, self.filepath, self.take or None, self.use_scene_fps)
         except Exception as e:
             traceback.print_exc()
-            text = str(e).strip()
-            self.report({'ERROR'}, text.splitlines()[0] if text else type(e).__name__)
+            self.report({'ERROR'}, styling.one_line(e))
             return {'CANCELLED'}
         self.report({'INFO'}, "mostyle: imported '%s'" % obj.name)
         return {'FINISHED'}

@@ -37,7 +37,7 @@ class MOSTYLE_OT_style_action(bpy.types.Operator):
             action = self.style(context)
         except Exception as e:  # the person sees one line; the traceback is for the console
             traceback.print_exc()
-            self.report({'ERROR'}, one_line(e))
+            self.report({'ERROR'}, styling.one_line(e))
             return {'CANCELLED'}
         self.report({'INFO'}, "mostyle: wrote action '%s'" % action.name)
         return {'FINISHED'}
@@ -70,11 +70,6 @@ def write_result(result, obj, source, fps, exact=True):
     styling.protect(source)
     obj.animation_data_create().action = action
     return action
-
-
-def one_line(error):
-    text = str(error).strip()
-    return text.splitlines()[0] if text else type(error).__name__
 
 
 classes = (MOSTYLE_OT_style_action,)

@@ -29,7 +29,7 @@ def _changed(self, context):
             preview.request(settings)
     except Exception as e:
         traceback.print_exc()
-        preview.status()["error"] = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
+        preview.status()["error"] = styling.one_line(e)
 
 
 def _preview_toggled(self, context):
@@ -76,7 +76,7 @@ class MostyleSettings(bpy.types.PropertyGroup):
 def take_label(take):
     if take.object is None:
         return "(no armature)"
-    action = take.action or (take.object.animation_data.action if take.object.animation_data else None)
+    action = take.action or preview.own_action(take.object)
     return "%s : %s" % (take.object.name, action.name if action else "(no action)")
 
 
@@ -87,11 +87,11 @@ def candidate_takes(context):
         if obj.type != 'ARMATURE':
             continue
         names = {b.name for b in obj.data.bones}
-        own = obj.animation_data.action if obj.animation_data else None
+        own = preview.own_action(obj)
         if own is not None:
             out.append((obj, own))
         for action in bpy.data.actions:
-            if action is own or action.name.endswith("_preview"):
+            if action is own:
                 continue
             bones = {c.data_path.split('"')[1] for c in action.fcurves if c.data_path.startswith('pose.bones["')}
             if bones and len(bones & names) >= 0.5 * len(bones):
@@ -133,7 +133,7 @@ class MOSTYLE_OT_add_take(bpy.types.Operator):
             self.report({'ERROR'}, str(e))
             return {'CANCELLED'}
         if not settings.takes:
-            own = context.object.animation_data.action if context.object.animation_data else None
+            own = preview.own_action(context.object)
             if own is not None and (obj, action) != (context.object, own):
                 first = settings.takes.add()
                 first.object, first.action = context.object, own

@@ -98,5 +98,11 @@ def protect(action):
         action.use_fake_user = True
 
 
+def one_line(error):
+    """An exception as the one line the person sees (the traceback goes to the console)."""
+    text = str(error).strip()
+    return text.splitlines()[0] if text else type(error).__name__
+
+
 def module():
     return engine_link.module()

@@ -8,6 +8,7 @@ space: a joint's rotation change from rest, D = world pose rotation * world rest
 the same in either convention once the axes are turned Y up.
 """
 import math
+from types import SimpleNamespace
 
 import numpy as np
 from mathutils import Quaternion
@@ -78,6 +79,7 @@ class _ActionSwap:
         self.saved = (had, data.action, data.use_nla, data.action_influence, data.action_blend_type,
                       bpy_frame(self.obj))
         data.action = self.action
+        play_first_slot(data)
         data.use_nla = False
         data.action_influence = 1.0
         data.action_blend_type = 'REPLACE'
@@ -95,6 +97,15 @@ class _ActionSwap:
         scene = _scene_of(self.obj)
         scene.frame_set(int(frame[0]), subframe=frame[1])
         return False
+
+
+def play_first_slot(data):
+    """Blender 4.4+ plays an action through one of its slots, and picks none when the action's
+    slot has animated another ID (another armature's take): the first slot then, the one the
+    curves read here are in. Older Blenders have no slots."""
+    action = data.action
+    if getattr(data, "action_slot", True) is None and action is not None and len(action.slots) > 0:
+        data.action_slot = action.slots[0]
 
 
 def bpy_frame(obj):
@@ -303,38 +314,50 @@ def _world_pose(take, targets=None, connected=()):
     Joints in `targets` ({index: (frames, 3)}, Take axes) are held to those positions: a joint
     whose one held child is that target is turned the least that points it there, and the
     target is placed there unless it is `connected` (Blender keeps a connected bone's head on
-    its parent's tail whatever its location). Every other joint keeps its world rotation."""
+    its parent's tail whatever its location). Every other joint keeps its world rotation.
+    Joints of one depth are worked out together, as each needs only its parent's."""
     targets = targets or {}
     local = np.asarray(take.rotations, dtype=float)
     offsets = np.asarray(take.offsets, dtype=float)
-    parents = list(take.parents)
+    parents = np.asarray(take.parents, dtype=int)
     frames, joints = local.shape[:2]
     held_children = {}
     for j in targets:
         if parents[j] >= 0:
-            held_children.setdefault(parents[j], []).append(j)
-    order = _parents_first_indices(parents)
+            held_children.setdefault(int(parents[j]), []).append(j)
+    levels = _depth_levels(parents)
     world = np.empty_like(local)
-    for j in order:
-        p = parents[j]
-        world[:, j] = local[:, j] if p < 0 else qt.multiply(world[:, p], local[:, j])
+    for depth, level in enumerate(levels):
+        world[:, level] = local[:, level] if depth == 0 else qt.multiply(world[:, parents[level]], local[:, level])
     rot = world.copy()
     pos = np.empty((frames, joints, 3))
-    for j in order:
-        p = parents[j]
-        if p < 0:
-            pos[:, j] = np.asarray(take.root_positions, dtype=float)
+    for depth, level in enumerate(levels):
+        if depth == 0:
+            pos[:, level] = np.asarray(take.root_positions, dtype=float)[:, None]
         else:
-            pos[:, j] = pos[:, p] + qt.rotate(rot[:, p], np.broadcast_to(offsets[j], (frames, 3)))
-        if j in targets and j not in connected:
-            pos[:, j] = targets[j]
-        children = held_children.get(j, [])
-        if len(children) == 1:
-            c = children[0]
-            have = qt.rotate(rot[:, j], np.broadcast_to(offsets[c], (frames, 3)))
-            rot[:, j] = qt.multiply(qt.between(have, targets[c] - pos[:, j]), rot[:, j])
+            above = parents[level]
+            offset = np.broadcast_to(offsets[level], (frames, len(level), 3))
+            pos[:, level] = pos[:, above] + qt.rotate(rot[:, above], offset)
+        placed = [j for j in level if j in targets and j not in connected]
+        if placed:
+            pos[:, placed] = np.stack([targets[j] for j in placed], 1)
+        turned = [j for j in level if len(held_children.get(j, ())) == 1]
+        if turned:
+            children = [held_children[j][0] for j in turned]
+            have = qt.rotate(rot[:, turned], np.broadcast_to(offsets[children], (frames, len(turned), 3)))
+            aim = np.stack([targets[c] for c in children], 1) - pos[:, turned]
+            rot[:, turned] = qt.multiply(qt.between(have, aim), rot[:, turned])
     rot = qt.multiply(qt.multiply(qt.conjugate(_Q_Z_TO_Y), rot), _Q_Z_TO_Y)
     return rot, pos @ _Z_TO_Y
+
+
+def _depth_levels(parents):
+    """Joint indices by depth (parents: -1 for a root): the roots', their children's, and so on."""
+    depth = np.zeros(len(parents), dtype=int)
+    for j in _parents_first_indices(list(parents)):
+        if parents[j] >= 0:
+            depth[j] = depth[parents[j]] + 1
+    return [np.flatnonzero(depth == d) for d in range(depth.max() + 1)] if len(parents) else []
 
 
 def _parents_first_indices(parents):
@@ -357,11 +380,37 @@ def _inverse(a):
     return q, -qt.rotate(q, np.broadcast_to(a[1], np.broadcast_shapes(np.shape(q)[:-1] + (3,), np.shape(a[1]))))
 
 
-def take_pose_bases(take, obj, exact=True):
+def armature_rig(obj, joint_names):
+    """What take_pose_bases needs of armature `obj` to pose it as Takes of joints `joint_names`,
+    read once: its world transform, its pose bones' rests relative to their parents, and which
+    bones the Take names. Valid while the armature's bones and placement stay as they are."""
+    joint = {n: i for i, n in enumerate(joint_names)}
+    world = np.array(obj.matrix_world, dtype=float)
+    pose_bones = list(obj.pose.bones)
+    index = {pb.name: i for i, pb in enumerate(pose_bones)}
+    rest = np.array([np.array(pb.bone.matrix_local) for pb in pose_bones])
+    rest_q, rest_t = qt.from_matrix(rest[:, :3, :3]), rest[:, :3, 3]
+    parents = [index[pb.parent.name] if pb.parent is not None else -1 for pb in pose_bones]
+    relative_q, relative_t = rest_q.copy(), rest_t.copy()
+    for b, parent in enumerate(parents):
+        if parent >= 0:
+            relative_q[b], relative_t[b] = _compose(_inverse((rest_q[parent], rest_t[parent])), (rest_q[b], rest_t[b]))
+    keyed = [pb.name in joint for pb in pose_bones]
+    named = [b for b in range(len(pose_bones)) if keyed[b]]
+    return SimpleNamespace(
+        connected={joint[b.name] for b in obj.data.bones if b.use_connect and b.name in joint},
+        world_q=qt.from_matrix(world[:3, :3]), world_inverse=np.linalg.inv(world), rest_q=rest_q,
+        parents=parents, relative=(relative_q, relative_t), keyed=keyed, named=named,
+        columns=[joint[pose_bones[b].name] for b in named],
+        unnamed=[b for b in _parents_first(pose_bones) if not keyed[b]])
+
+
+def take_pose_bases(take, obj, exact=True, rig=None):
     """The pose bones' matrix_basis that pose armature `obj` as the Take, as a rotation
     (frames, bones, 4: w, x, y, z) and a location (frames, bones, 3), for `obj`'s bones in
     obj.pose.bones order, and which of them the Take names. A bone the Take does not name keeps
-    its rest relative to its parent.
+    its rest relative to its parent. `rig`: armature_rig(obj, take.joint_names), read again
+    when not given.
 
     A pose bone's armature-space transform is parent pose @ (parent rest^-1 @ rest) @ basis, and
     the wanted one is the Take's rotation change from rest applied to the bone's rest
@@ -373,51 +422,33 @@ def take_pose_bases(take, obj, exact=True):
     bone's location: a result's rotations are solved onto the rigid reference skeleton, which
     cannot always hold siblings where the mix put them (the hips' spine and legs), and the
     positions are the result."""
-    joint = {n: i for i, n in enumerate(take.joint_names)}
-    connected = {joint[b.name] for b in obj.data.bones if b.use_connect and b.name in joint}
-    rot, pos = _world_pose(take, position_targets(take) if exact else None, connected)
-    frames = len(rot)
-    world = np.array(obj.matrix_world, dtype=float)
-    world_q = qt.from_matrix(world[:3, :3])
-    world_inverse = np.linalg.inv(world)
-    pose_bones = list(obj.pose.bones)
-    index = {pb.name: i for i, pb in enumerate(pose_bones)}
-    rest = np.array([np.array(pb.bone.matrix_local) for pb in pose_bones])
-    rest_t = (qt.from_matrix(rest[:, :3, :3]), rest[:, :3, 3])
-    relative = [None] * len(pose_bones)
-    parents = [index[pb.parent.name] if pb.parent is not None else -1 for pb in pose_bones]
-    for b, parent in enumerate(parents):
-        own = (rest_t[0][b], rest_t[1][b])
-        relative[b] = own if parent < 0 else _compose(_inverse((rest_t[0][parent], rest_t[1][parent])), own)
-    keyed = [pb.name in joint for pb in pose_bones]
-    named = [b for b in range(len(pose_bones)) if keyed[b]]
-    columns = [joint[pose_bones[b].name] for b in named]
+    rig = rig or armature_rig(obj, take.joint_names)
+    rot, pos = _world_pose(take, position_targets(take) if exact else None, rig.connected)
+    frames, bones = len(rot), len(rig.parents)
+    named, columns = rig.named, rig.columns
+    # Each bone's wanted armature-space transform; one more, the identity, is a root's parent.
+    wanted_q = np.tile([1.0, 0.0, 0.0, 0.0], (frames, bones + 1, 1))
+    wanted_t = np.zeros((frames, bones + 1, 3))
     # In armature space: world^-1 @ D @ world @ rest, the change applied where the bone is; all
     # the named bones at once.
-    wanted_q = qt.multiply(qt.multiply(qt.conjugate(world_q), qt.multiply(rot[:, columns], world_q)), rest_t[0][named])
-    wanted_t = pos[:, columns] @ world_inverse[:3, :3].T + world_inverse[:3, 3]
-    wanted = [None] * len(pose_bones)
-    for k, b in enumerate(named):
-        wanted[b] = (wanted_q[:, k], wanted_t[:, k])
-    identity = (np.array([1.0, 0.0, 0.0, 0.0]), np.zeros(3))
-    for b in _parents_first(pose_bones):
-        if wanted[b] is None:
-            parent = parents[b]
-            wanted[b] = _compose(wanted[parent] if parent >= 0 else identity, relative[b])
+    wanted_q[:, named] = qt.multiply(qt.multiply(qt.conjugate(rig.world_q), qt.multiply(rot[:, columns], rig.world_q)),
+                                     rig.rest_q[named])
+    wanted_t[:, named] = pos[:, columns] @ rig.world_inverse[:3, :3].T + rig.world_inverse[:3, 3]
+    parent = np.array([p if p >= 0 else bones for p in rig.parents], dtype=int)
+    relative_q, relative_t = rig.relative
+    for b in rig.unnamed:
+        wanted_q[:, b], wanted_t[:, b] = _compose((wanted_q[:, parent[b]], wanted_t[:, parent[b]]),
+                                                  (relative_q[b], relative_t[b]))
     # basis = relative^-1 @ parent pose^-1 @ wanted, every named bone at once.
-    frames_ones = np.ones((frames, 1, 1))
-    parent_q = np.stack([wanted[parents[b]][0] * frames_ones[:, 0] if parents[b] >= 0 else
-                         np.tile(identity[0], (frames, 1)) for b in named], 1)
-    parent_t = np.stack([wanted[parents[b]][1] * frames_ones[:, 0] if parents[b] >= 0 else
-                         np.zeros((frames, 3)) for b in named], 1)
-    relative_q = np.array([relative[b][0] for b in named])
-    relative_t = np.array([relative[b][1] for b in named])
-    basis = _compose(_inverse((relative_q, relative_t)), _compose(_inverse((parent_q, parent_t)), (wanted_q, wanted_t)))
-    rotations = np.tile([1.0, 0.0, 0.0, 0.0], (frames, len(pose_bones), 1))
-    locations = np.zeros((frames, len(pose_bones), 3))
+    above = parent[named]
+    parent_pose = (wanted_q[:, above], wanted_t[:, above])
+    basis = _compose(_inverse((relative_q[named], relative_t[named])),
+                     _compose(_inverse(parent_pose), (wanted_q[:, named], wanted_t[:, named])))
+    rotations = np.tile([1.0, 0.0, 0.0, 0.0], (frames, bones, 1))
+    locations = np.zeros((frames, bones, 3))
     rotations[:, named] = basis[0]
     locations[:, named] = basis[1]
-    return rotations, locations, keyed
+    return rotations, locations, rig.keyed
 
 
 def _parents_first(pose_bones):
@@ -440,26 +471,67 @@ def write_take_action(take, obj, action, frame_start, fps, exact=True):
         location = locations[:, b]
         for i in range(3):
             _key(action, base + "location", i, pb.name, frames, location[:, i])
-        q = rotations[:, b]
-        if pb.rotation_mode == 'QUATERNION':
-            for i in range(4):
-                _key(action, base + "rotation_quaternion", i, pb.name, frames, q[:, i])
-        elif pb.rotation_mode == 'AXIS_ANGLE':
-            angle = 2 * np.arccos(np.clip(q[:, 0], -1, 1))
-            axis = q[:, 1:] / np.maximum(np.linalg.norm(q[:, 1:], axis=1, keepdims=True), 1e-12)
-            values = np.c_[angle, axis]
-            for i in range(4):
-                _key(action, base + "rotation_axis_angle", i, pb.name, frames, values[:, i])
-        else:
-            eulers = np.empty((len(q), 3))
-            previous = None
-            for f in range(len(q)):
-                e = Quaternion(q[f]).to_euler(pb.rotation_mode, previous) if previous else \
-                    Quaternion(q[f]).to_euler(pb.rotation_mode)
-                eulers[f] = e
-                previous = e
-            for i in range(3):
-                _key(action, base + "rotation_euler", i, pb.name, frames, eulers[:, i])
+        prop, values = _rotation_channels(rotations[:, b], pb.rotation_mode)
+        for i in range(values.shape[1]):
+            _key(action, base + prop, i, pb.name, frames, values[:, i])
+
+
+def _rotation_channels(q, mode):
+    """Unit quaternions q (frames, 4) as a pose bone of rotation `mode` holds them: its rotation
+    property's name and values (frames, 4 or 3), Euler angles each nearest the frame before."""
+    if mode == 'QUATERNION':
+        return "rotation_quaternion", q
+    if mode == 'AXIS_ANGLE':
+        angle = 2 * np.arccos(np.clip(q[:, 0], -1, 1))
+        axis = q[:, 1:] / np.maximum(np.linalg.norm(q[:, 1:], axis=1, keepdims=True), 1e-12)
+        return "rotation_axis_angle", np.c_[angle, axis]
+    eulers = np.empty((len(q), 3))
+    previous = None
+    for f in range(len(q)):
+        e = Quaternion(q[f]).to_euler(mode, previous) if previous else Quaternion(q[f]).to_euler(mode)
+        eulers[f] = e
+        previous = e
+    return "rotation_euler", eulers
+
+
+def held_take(take):
+    """A Take's arrays read out once, as a Take-like value whose frames take_frame picks without
+    copying them again (each read of a mostyle.Take's array is a copy of the whole array)."""
+    return SimpleNamespace(joint_names=list(take.joint_names), parents=list(take.parents),
+                           offsets=np.asarray(take.offsets, dtype=float),
+                           rotations=np.asarray(take.rotations, dtype=float),
+                           root_positions=np.asarray(take.root_positions, dtype=float),
+                           positions=np.asarray(take.positions, dtype=float),
+                           position_joints=list(take.position_joints), fps=float(take.fps), report=None)
+
+
+def take_frame(held, frame):
+    """Frame `frame` of a held_take as a one-frame Take-like value."""
+    one = slice(frame, frame + 1)
+    return SimpleNamespace(**dict(vars(held), rotations=held.rotations[one], root_positions=held.root_positions[one],
+                                  positions=held.positions[one]))
+
+
+def take_index_at(take, scene_frame, frame_start, fps):
+    """The Take's frame that write_take_action keys at `scene_frame` (or the nearest one; the
+    first and last hold before and after it, as the action's curves do)."""
+    index = int(round((scene_frame - frame_start) * float(take.fps) / fps))
+    return min(max(index, 0), len(take.rotations) - 1)
+
+
+def pose_take_frame(held, obj, frame, rig=None, exact=True):
+    """Poses armature `obj`'s bones as frame `frame` of a held_take, as write_take_action's keys
+    pose them there: the bones the Take names get its location and rotation, the others keep
+    theirs. `rig`: as take_pose_bases's. Writes no keys; Blender shows the pose once it next
+    evaluates the armature."""
+    rotations, locations, keyed = take_pose_bases(take_frame(held, frame), obj, exact, rig)
+    rotations = qt.normalized(rotations)
+    for b, pb in enumerate(obj.pose.bones):
+        if not keyed[b]:
+            continue
+        pb.location = locations[0, b].tolist()
+        prop, values = _rotation_channels(rotations[:, b], pb.rotation_mode)
+        setattr(pb, prop, values[0].tolist())
 
 
 def _escape(name):

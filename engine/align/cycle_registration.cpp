@@ -70,6 +70,7 @@ struct Registering {
   const CanonicalMotion& take;
   const Eigen::MatrixXd& take_contacts;
   const TakeCycles& take_cycles;
+  const TakeCycles& reference_cycles;
   const std::vector<Span>& spans;
   Eigen::RowVectorXd offset;              // the take's mean posture less the reference's
   Eigen::MatrixXd ref_steps, take_steps;  // root_steps of each
@@ -146,6 +147,80 @@ void fill_between_cycles(const Registering& in, size_t si, RegisteredMotion& out
   }
 }
 
+// Whether a take is under way at its first frame (start) or its last (stop): its root moves at
+// least half its median speed over its cycles, averaged over a quarter of a cycle there; a take
+// that starts from standing or stops is not. steps: root_steps (F x 3).
+bool under_way(const Eigen::MatrixXd& steps, const TakeCycles& cycles, bool start) {
+  const Eigen::Index frames = steps.rows();
+  std::vector<double> speeds;
+  for (const Cycle& c : cycles.cycles)
+    for (int f = c.begin; f < c.end && f + 1 < frames; ++f) speeds.push_back(steps.row(f).head<2>().norm());
+  if (speeds.empty() || frames < 2) return false;
+  std::nth_element(speeds.begin(), speeds.begin() + speeds.size() / 2, speeds.end());
+  const double median = speeds[speeds.size() / 2];
+  const Eigen::Index k = std::clamp<Eigen::Index>(std::lround(cycles.period / 4), 1, frames - 1);
+  // The last row of steps is zero (no step after the last frame): a stop is read before it.
+  const Eigen::MatrixXd edge = start ? steps.topRows(k) : steps.middleRows(frames - 1 - k, k);
+  return edge.leftCols(2).rowwise().norm().mean() >= 0.5 * median;
+}
+
+// The take's own frames before its first cycle or after its last, when span si is the
+// reference's start or stop and is to show them: the take is not a loop (a loop has no start or
+// stop of its own), has such frames, and both takes are alike there (both start from standing,
+// or both are already walking when they begin: a take cut in mid-walk). A stop also needs the
+// take to have no fewer cycles than the reference: where its cycles are reused, the stop runs on
+// from the reused cycle as the frames between cycles do (fill_between_cycles). [t0, t1) frames
+// of the take; empty when not.
+constexpr double kEdgeLengthRatio = 1.5;
+struct OwnEdge {
+  int t0 = 0, t1 = 0;
+  int frames() const { return t1 - t0; }
+};
+
+OwnEdge own_edge(const Registering& in, size_t si) {
+  const Span& s = in.spans[si];
+  if (s.cycle >= 0 || s.r1 <= s.r0 || in.take_cycles.kind != CycleKind::kGait || in.take_cycles.loops() ||
+      in.take_cycles.cycles.empty())
+    return {};
+  const int ft = static_cast<int>(in.take.local.rows());
+  // Alike, and of lengths the cycles' own match allows (kEdgeLengthRatio): a far longer stop
+  // squeezed onto a short one would play at several times its speed on the reference's clock.
+  auto fits = [&](const OwnEdge& e, bool start) {
+    const double n = s.r1 - s.r0, m = e.frames();
+    return m > 0 && m <= kEdgeLengthRatio * n && n <= kEdgeLengthRatio * m &&
+           under_way(in.ref_steps, in.reference_cycles, start) == under_way(in.take_steps, in.take_cycles, start);
+  };
+  if (si == 0 && in.spans.size() > 1) {
+    const OwnEdge e{0, in.take_cycles.cycles.front().begin};
+    if (fits(e, true)) return e;
+  }
+  if (si + 1 == in.spans.size() && si > 0 && in.take_cycles.cycles.size() >= in.reference_cycles.cycles.size()) {
+    const OwnEdge e{in.take_cycles.cycles.back().end, ft};
+    if (fits(e, false)) return e;
+  }
+  return {};
+}
+
+// Span si, the reference's start or stop, laid with the take's own start or stop (own_edge):
+// its frames, in its timing, the registration's anchors matching the two spans as they match
+// cycles. A stop that follows a reused cycle (the take has more cycles than the reference) meets
+// it with the pose difference at the seam spread over the stop.
+void copy_take_edge(const Registering& in, size_t si, const OwnEdge& edge, RegisteredMotion& out,
+                    Eigen::MatrixXd& steps, Eigen::Index& v) {
+  CycleRegistration& reg = out.registration;
+  Eigen::RowVectorXd seam = Eigen::RowVectorXd::Zero(in.reference.local.cols());
+  if (si > 0) {
+    const Cycle& before = in.paired(reg, si - 1);
+    if (before.end != edge.t0) seam = in.take.local.row(before.end) - in.take.local.row(edge.t0);
+  }
+  for (int f = edge.t0; f < edge.t1; ++f, ++v) {
+    out.motion.local.row(v) = in.take.local.row(f) + (1.0 - double(f - edge.t0) / edge.frames()) * seam;
+    out.contacts.row(v) = in.take_contacts.row(f);
+    steps.row(v) = in.take_steps.row(f);
+    reg.source[v] = f;
+  }
+}
+
 }  // namespace
 
 Eigen::RowVectorXd cycles_mean_pose(const Eigen::MatrixXd& local, const TakeCycles& cycles) {
@@ -180,19 +255,26 @@ RegisteredMotion register_by_cycles(const CanonicalMotion& reference, const Eige
   reg.cycles.foot = take_cycles.foot;
   reg.cycles.period = take_cycles.period;
   const std::vector<Span> spans = reference_spans(reference_cycles, fr);
-  Eigen::Index v_frames = 0;
-  for (const Span& s : spans)
-    v_frames += s.cycle < 0 ? s.r1 - s.r0 : take_cycles.cycles[static_cast<size_t>(reg.pairs[static_cast<size_t>(s.cycle)])].frames();
   const Registering in{reference,
                        reference_contacts,
                        take,
                        take_contacts,
                        take_cycles,
+                       reference_cycles,
                        spans,
                        cycles_mean_pose(take.local, take_cycles) - cycles_mean_pose(reference.local, reference_cycles),
                        root_steps(reference),
                        root_steps(take),
                        fade};
+  std::vector<OwnEdge> edges(spans.size());
+  Eigen::Index v_frames = 0;
+  for (size_t si = 0; si < spans.size(); ++si) {
+    const Span& s = spans[si];
+    edges[si] = own_edge(in, si);
+    v_frames += s.cycle >= 0 ? take_cycles.cycles[static_cast<size_t>(reg.pairs[static_cast<size_t>(s.cycle)])].frames()
+                : edges[si].frames() > 0 ? edges[si].frames()
+                                         : s.r1 - s.r0;
+  }
   out.motion.local.resize(v_frames, reference.local.cols());
   out.contacts.resize(v_frames, 2);
   Eigen::MatrixXd steps(v_frames, 3);
@@ -200,8 +282,10 @@ RegisteredMotion register_by_cycles(const CanonicalMotion& reference, const Eige
   reg.source_cycle = Eigen::VectorXi::Constant(v_frames, -1);
   Eigen::Index v = 0;
   for (size_t si = 0; si < spans.size(); ++si) {
-    reg.anchors.push_back({spans[si].r0, static_cast<int>(v), spans[si].cycle >= 0});
+    const bool own = edges[si].frames() > 0;
+    reg.anchors.push_back({spans[si].r0, static_cast<int>(v), spans[si].cycle >= 0 || own});
     if (spans[si].cycle >= 0) copy_take_cycle(in, si, out, steps, v);
+    else if (own) copy_take_edge(in, si, edges[si], out, steps, v);
     else fill_between_cycles(in, si, out, steps, v);
   }
   reg.anchors.push_back({static_cast<int>(fr) - 1, static_cast<int>(v_frames) - 1, false});
@@ -210,15 +294,53 @@ RegisteredMotion register_by_cycles(const CanonicalMotion& reference, const Eige
   return out;
 }
 
+TakePosture take_posture(const Eigen::MatrixXd& local, const TakeCycles& cycles) {
+  const Eigen::Index rows = local.rows(), cols = local.cols();
+  std::vector<Eigen::Index> frames;
+  if (cycles.kind == CycleKind::kGait && !cycles.cycles.empty()) {
+    for (const Cycle& c : cycles.cycles)
+      for (Eigen::Index f = c.begin; f < c.end; ++f)
+        frames.push_back(f < rows ? f : cycles.loops() ? f % cycles.loop_frames : rows - 1);
+  } else {
+    for (Eigen::Index f = 0; f < rows; ++f) frames.push_back(f);
+  }
+  TakePosture out;
+  out.mean = Eigen::RowVectorXd::Zero(cols);
+  out.spread = Eigen::RowVectorXd::Zero(cols / 3);
+  if (frames.empty()) return out;
+  for (Eigen::Index f : frames) out.mean += local.row(f);
+  out.mean /= static_cast<double>(frames.size());
+  for (Eigen::Index f : frames)
+    for (Eigen::Index j = 0; j < cols / 3; ++j)
+      out.spread[j] += (local.row(f).segment<3>(3 * j) - out.mean.segment<3>(3 * j)).squaredNorm();
+  out.spread = (out.spread / static_cast<double>(frames.size())).cwiseSqrt();
+  out.fastest = Eigen::RowVectorXd::Zero(cols / 3);
+  for (Eigen::Index f = 1; f < rows; ++f)
+    for (Eigen::Index j = 0; j < cols / 3; ++j)
+      out.fastest[j] = std::max(out.fastest[j], (local.row(f).segment<3>(3 * j) - local.row(f - 1).segment<3>(3 * j)).norm());
+  return out;
+}
+
 RegisteredMotion register_posture_only(const CanonicalMotion& reference, const Eigen::MatrixXd& reference_contacts,
-                                       const CanonicalMotion& take, const TakeCycles& take_cycles) {
-  const Eigen::Index fr = reference.local.rows(), ft = take.local.rows();
-  if (fr < 1 || ft < 1 || take.local.cols() != reference.local.cols() || reference_contacts.rows() != fr)
+                                       const TakePosture& take, const TakeCycles& take_cycles,
+                                       const std::vector<bool>& sized, double spread_floor) {
+  const Eigen::Index fr = reference.local.rows(), joints = reference.local.cols() / 3;
+  if (fr < 1 || take.mean.size() != reference.local.cols() || take.spread.size() != joints || take.fastest.size() != joints ||
+      static_cast<Eigen::Index>(sized.size()) != joints || reference_contacts.rows() != fr)
     throw InputError("posture registration: the takes' poses and contacts do not have matching sizes");
-  if (take_cycles.cycles.empty()) throw InputError("posture registration: the take has no cycles to give a posture");
-  const Eigen::RowVectorXd posture = cycles_mean_pose(take.local, take_cycles) - reference.local.colwise().mean();
+  if (!(spread_floor > 0.0)) throw InputError("posture registration: expected a spread floor above 0");
+  const TakePosture own = take_posture(reference.local, TakeCycles());
   RegisteredMotion out;
-  out.motion.local = reference.local.rowwise() + posture;
+  out.motion.local = reference.local;
+  for (Eigen::Index j = 0; j < joints; ++j) {
+    double scale = 1.0;
+    if (sized[static_cast<size_t>(j)]) {
+      scale = take.spread[j] / std::max(own.spread[j], spread_floor);
+      if (own.fastest[j] > 0.0) scale = std::min(scale, std::max(1.0, take.fastest[j] / own.fastest[j]));
+    }
+    for (Eigen::Index c = 3 * j; c < 3 * j + 3; ++c)
+      out.motion.local.col(c) = ((reference.local.col(c).array() - own.mean[c]) * scale + take.mean[c]).matrix();
+  }
   out.motion.ground = reference.ground;
   out.motion.heading = reference.heading;
   out.contacts = reference_contacts;

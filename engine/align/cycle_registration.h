@@ -24,7 +24,11 @@ std::vector<int> pair_cycles(const TakeCycles& reference, const TakeCycles& take
 // span outside the reference's cycles holds, frame for frame, the reference's own motion moved
 // by the take's posture (the take's mean pose over its cycles minus the reference's), faded
 // over up to fade frames into the take's own frames running on from the cycle before and into
-// the cycle after. Where a reused cycle does not follow on from the one before in the take (its
+// the cycle after. The reference's start (before its first cycle) and stop (after its last)
+// hold the take's own start and stop instead, in its timing, where both takes are alike there
+// (both under way, or both starting or stopping from standing), their lengths are within 1.5
+// times each other, and, for the stop, the take has as many cycles as the reference: at weight 1
+// the walk begins and ends as the take's does. Where a reused cycle does not follow on from the one before in the take (its
 // last cycle, then its first again), the pose difference at the seam is spread over the cycle
 // (full at its start, none at its end). The root steps follow the same rule (the take's in its
 // cycles, the reference's in between) and are integrated from the reference's first frame.
@@ -72,14 +76,33 @@ RegisteredMotion register_by_cycles(const CanonicalMotion& reference, const Eige
 // zero row when there are no cycles. O(cycle frames x 3M).
 Eigen::RowVectorXd cycles_mean_pose(const Eigen::MatrixXd& local, const TakeCycles& cycles);
 
-// A take that walks laid on a reference that has no cycles (standing, a jump, a reach): no frame
-// of the take matches one of the reference's, so it gives its posture only, throughout, as it
-// does between the reference's cycles: the reference's own motion (its poses, root and contacts)
-// moved by the take's mean pose over its cycles minus the reference's mean pose. Frames run 1:1
-// (anchors at both ends); every source is NaN. reference: Fr frames; take_cycles: the take's
-// (a loop's may be read across its end). Throws InputError on mismatched sizes or a take without
-// cycles. O(Fr x 3M + take's cycle frames x 3M).
+// What a take gives where it gives its posture only: its mean pose and how far each joint moves
+// about it, over its cycles for a take that walks (a loop's read across its end, as
+// cycles_mean_pose), over all of its frames otherwise. The spread is the style's size of
+// movement (an exhausted wave's small strokes, a proud walk's wide arm swing), which a posture
+// alone leaves out. O(frames x 3M).
+struct TakePosture {
+  Eigen::RowVectorXd mean;    // 3M: the mean pose (a row of local)
+  Eigen::RowVectorXd spread;  // M: each joint's RMS distance from its mean position
+  Eigen::RowVectorXd fastest; // M: each joint's largest move from one frame to the next (of all frames)
+};
+TakePosture take_posture(const Eigen::MatrixXd& local, const TakeCycles& cycles);
+
+// A take laid on a reference it has no part to match with: a walk on a reference that does not
+// walk (standing, a jump, a wave), or a take that does not walk (a wave, a bow, a kick) on a
+// walking reference. No frame of the take matches one of the reference's, so it gives its
+// posture only, throughout, as a walk does between the reference's cycles: the reference's own
+// motion (its poses, root and contacts) moved by the take's mean pose minus the reference's (both
+// take_posture; the reference's over all of its frames), and, for the joints `sized` marks (M;
+// the legs carry the reference's steps, so they keep their motion), the reference's movement about
+// its mean scaled by the take's spread over the reference's, at least spread_floor (so a joint
+// the reference holds still moves less than the take's at most), and never so much that it moves
+// faster than the take's fastest (no pop where a small swing is sized up). With the reference's own
+// posture nothing changes. Frames run 1:1 (anchors at both ends); every source is NaN.
+// reference: Fr frames; take_cycles: the take's, kept in the registration. Throws InputError on
+// mismatched sizes or a spread floor not above 0. O(Fr x 3M).
 RegisteredMotion register_posture_only(const CanonicalMotion& reference, const Eigen::MatrixXd& reference_contacts,
-                                       const CanonicalMotion& take, const TakeCycles& take_cycles);
+                                       const TakePosture& take, const TakeCycles& take_cycles,
+                                       const std::vector<bool>& sized, double spread_floor);
 
 }  // namespace mostyle

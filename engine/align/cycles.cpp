@@ -9,7 +9,7 @@
 
 #include "engine/align/loop_clip.h"
 #include "engine/base/error.h"
-#include "engine/post/foot_contact.h"
+#include "engine/measure/foot_contact.h"
 
 namespace mostyle {
 namespace {

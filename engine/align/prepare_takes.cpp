@@ -22,6 +22,10 @@ constexpr double kMaxFps = 1000.0;
 // The posture of a take registered by cycles fades in and out over this many of the
 // reference's cycles, where the reference is not in a cycle.
 constexpr double kPostureFadeCycles = 0.5;
+// A take that gives its posture only sizes the reference's movement about its mean by its own
+// spread over the reference's, the reference's taken as at least this many leg lengths: a joint
+// the reference barely moves then moves by at most the take's spread, never its jitter scaled up.
+constexpr double kPostureSpreadFloor = 0.05;
 // A take's planted travel (foot_travel) counts its foot joints' steps within this many of the
 // measure's bands of their floor: an output planted where a take's foot is just above the band
 // (their floors differ a little, as their frames do) may move as that foot does. The lock keeps
@@ -418,6 +422,27 @@ bool aligns_by_structure(const TakeCycles& reference, const TakeCycles& take, co
   return rests || !cycles_register(reference, take);
 }
 
+// Whether a take gives the reference its posture only, by the default method and time base: one of
+// the two walks (gait cycles) and the other does not, so that they share no part to match (a walk
+// and a wave, a bow, a kick or standing).
+bool gives_posture_only(const TakeCycles& reference, const TakeCycles& take, const AlignmentOptions& o) {
+  if (o.method != DtwMethod::kSlope || o.time_base != TimeBase::kCycles) return false;
+  return (reference.kind == CycleKind::kGait) != (take.kind == CycleKind::kGait);
+}
+
+// The joints (M) neither the root nor in a leg (a leg's hip, given by leg, and every joint below
+// it): the ones a posture's spread sizes.
+std::vector<bool> above_the_legs(const std::vector<int>& parents, const LegColumns6& leg) {
+  std::vector<bool> out(parents.size(), false);
+  for (size_t j = 0; j < parents.size(); ++j) {
+    bool in_leg = false;
+    for (int a = static_cast<int>(j); a >= 0 && !in_leg; a = parents[static_cast<size_t>(a)])
+      in_leg = a == leg[0] || a == leg[3];
+    out[j] = parents[j] >= 0 && !in_leg;
+  }
+  return out;
+}
+
 // A structure note with the takes' names for "A" and "B" where they are not a pair's.
 std::string named_note(const std::string& note, const std::string& a, const std::string& b) {
   if (a == "A" && b == "B") return note;
@@ -481,12 +506,22 @@ void align_onto_reference(int i, const PrepareOptions& options, const LegColumns
       for (double& f : registered.registration.source)
         if (!std::isnan(f)) f = std::fmod(f, double(unrolled.loop_frames));
     adopt(registered);
-  } else if (reference.cycles.kind != CycleKind::kGait && own.kind == CycleKind::kGait) {
-    // A walk on a reference that does not walk (standing, a jump, a wave): no frame of it matches, so
-    // it gives its posture only, as between a reference's cycles (matching its steps to a
-    // standing take by DTW would slide the feet and shake the limbs). Test: "posture registration:
-    // a walk's style put on a standing take moves only its posture" (cycle_registration_test.cpp).
-    RegisteredMotion registered = register_posture_only(reference.canonical, reference.own_contacts, t.canonical, own);
+  } else if (gives_posture_only(reference.cycles, own, options.align)) {
+    // One of the two walks and the other does not (a walk on a standing or waving reference, a
+    // wave, a bow or a kick on a walking one): no frame of the take matches, so it gives its
+    // posture only, as between a reference's cycles (matching steps to a standing take by DTW
+    // would slide the feet and shake the limbs, and leave out what it cannot match). Tests:
+    // "posture registration: a walk's style put on a standing take moves only its posture"
+    // (cycle_registration_test.cpp), "a take that does not walk gives a walking reference its
+    // posture only" (alignment_pipeline_test.cpp).
+    // A walk's arms swing with its steps, a size of movement its own locomotion sets; a take that
+    // does not walk (an exhausted wave's small strokes, a masculine one's large) sizes the
+    // reference's arms, spine and head with its own.
+    const std::vector<bool> sized = own.kind == CycleKind::kGait ? std::vector<bool>(p.parents.size(), false)
+                                                                 : above_the_legs(p.parents, leg);
+    RegisteredMotion registered = register_posture_only(reference.canonical, reference.own_contacts,
+                                                        take_posture(t.canonical.local, own), own, sized,
+                                                        kPostureSpreadFloor * p.feet.leg_length);
     adopt(registered);
   } else if (aligns_by_structure(reference.cycles, own, options.align)) {
     t.alignment = align_by_structure(reference.canonical, reference.cycles.spans, t.canonical, t.cycles.spans,
@@ -525,8 +560,10 @@ void align_onto_reference(int i, const PrepareOptions& options, const LegColumns
     t.alignment.warnings.push_back("its posture only: " +
                                    why_whole(reference.cycles, own, options.align, aligned_name(0, n, *reference.clip).name,
                                              aligned_name(i, n, *t.clip).name) +
-                                   "; " + aligned_name(i, n, *t.clip).name +
-                                   " gives its mean pose over its cycles throughout, none of its motion");
+                                   "; " + aligned_name(i, n, *t.clip).name + " gives its " +
+                                   (own.kind == CycleKind::kGait ? "mean pose over its cycles"
+                                                                 : "mean pose and the size of its movements") +
+                                   " throughout, none of its motion");
 }
 
 // Every take on the common timeline (p.timeline set), placed where the reference stands when its

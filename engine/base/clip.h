@@ -1,6 +1,6 @@
 #pragma once
 // A motion clip as a BVH file holds it: a skeleton of joints with channels, and per-frame
-// channel values. Value types only; reading and writing live in bvh_io.h.
+// channel values. Value types only; reading and writing live in io/bvh/.
 #include <Eigen/Core>
 #include <array>
 #include <string>

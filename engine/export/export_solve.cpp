@@ -7,7 +7,7 @@
 #include <string>
 
 #include "engine/io/motion_file.h"
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/kinematics/convert.h"
 #include "engine/base/error.h"
 #include "engine/kinematics/euler.h"
@@ -176,18 +176,24 @@ double rotation_distance(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
   return Eigen::AngleAxisd(a.transpose() * b).angle();
 }
 
+// What a fit of several children weighs, in file units squared (from the skeleton's size): the
+// damping of refine_rotation (per radian squared), the coherence with the frame before (per
+// radian squared of turn) and the cost under which every child is placed.
+struct FitCosts {
+  double damping = 0.0, coherence = 0.0, exact_cost = 0.0;
+};
+
 // The rotation of a joint with several children: refine_rotation from the direction fit; where
 // that stops short of placing every child (the least squares has other minima), also from the
 // previous frame's solution and from the direction fit turned a quarter turn about each axis,
 // keeping a fit that places every child (within exact_cost) over one that does not, among such
 // fits the rotation nearest the direction fit (the one that changes A's pose least), and among
-// the others the lowest cost, counted, between two distinct minima, with coherence (file units
-// squared per radian squared) times the squared turn from the frame before's rotation.
-// previous: null on the first frame.
+// the others the lowest cost, counted, between two distinct minima, with coherence times the
+// squared turn from the frame before's rotation. previous: null on the first frame.
 Eigen::Matrix3d solve_several(const std::vector<ChildGeometry>& children, const Eigen::Vector3d& position,
                               const Eigen::Matrix3d& start, const Eigen::Matrix3d* previous,
-                              double previous_cost, double damping, double coherence, double exact_cost,
-                              double* cost_out) {
+                              double previous_cost, const FitCosts& costs, double* cost_out) {
+  const double damping = costs.damping, coherence = costs.coherence, exact_cost = costs.exact_cost;
   auto score = [&](const Eigen::Matrix3d& r, double cost) {
     if (!previous) return cost;
     const double turn = rotation_distance(r, *previous);
@@ -274,10 +280,12 @@ struct ExportFrameSolver::State {
   int top = -1;                         // the topmost column
   int carrier = -1;                     // the joint that carries the trajectory
   std::vector<int> carrier_chain;       // joints below the carrier down to the top column's joint
-  double min_length = 0.0, damping = 0.0, coherence = 0.0, exact_cost = 0.0;
+  double min_length = 0.0;
+  FitCosts costs;
   bool first = true;
-  std::vector<Eigen::Matrix3d> local_rotation, global_rotation;
-  std::vector<Eigen::Vector3d> local_translation, position, previous;
+  std::vector<Eigen::Matrix3d> local_rotation;
+  std::vector<Eigen::Vector3d> local_translation, previous;
+  Pose world;  // per joint, as solved so far in this frame
   std::vector<Eigen::Vector3d> from, to;
   std::vector<ChildGeometry> geometry;
   std::vector<double> previous_cost;  // joints with several children
@@ -432,14 +440,14 @@ ExportFrameSolver::ExportFrameSolver(const Skeleton& skeleton_in, const std::vec
   s.carrier = trajectory_carrier(skeleton, s.top >= 0 ? joints[s.top] : -1, s.carrier_chain);
   const double size = skeleton_size(skeleton);
   s.min_length = kNoDirection * size;
-  s.damping = (kDamping * size) * (kDamping * size);
-  s.coherence = (kCoherence * size) * (kCoherence * size);
-  s.exact_cost = (kExactCost * size) * (kExactCost * size);
+  s.costs.damping = (kDamping * size) * (kDamping * size);
+  s.costs.coherence = (kCoherence * size) * (kCoherence * size);
+  s.costs.exact_cost = (kExactCost * size) * (kExactCost * size);
 
   s.local_rotation.resize(static_cast<size_t>(n));
-  s.global_rotation.resize(static_cast<size_t>(n));
+  s.world.rotations.resize(static_cast<size_t>(n));
   s.local_translation.resize(static_cast<size_t>(n));
-  s.position.resize(static_cast<size_t>(n));
+  s.world.positions.resize(static_cast<size_t>(n));
   s.previous.assign(static_cast<size_t>(n), Eigen::Vector3d::Zero());
   s.previous_cost.assign(static_cast<size_t>(n), 0.0);
   // At most one entry per child column of a joint: reserved so that no frame allocates.
@@ -461,8 +469,9 @@ Eigen::Vector3d ExportFrameSolver::State::place_carrier(int j, const Eigen::Matr
                                                         const Eigen::Vector3d& parent_position, const double* targets,
                                                         double* row) const {
   const Joint& joint = skeleton.joints[j];
+  const Eigen::Matrix3d rotation = parent_rotation * local_rotation[j];
   const Eigen::Vector3d below =
-      carrier_chain.empty() ? Eigen::Vector3d::Zero() : Eigen::Vector3d(global_rotation[j] * vector_of(carrier_chain));
+      carrier_chain.empty() ? Eigen::Vector3d::Zero() : Eigen::Vector3d(rotation * vector_of(carrier_chain));
   const Eigen::Vector3d wanted = parent_rotation.transpose() * (target(targets, top) - below - parent_position);
   for (size_t c = 0; c < joint.channels.size(); ++c)
     if (is_position(joint.channels[c])) row[joint.first_channel + c] = wanted[channel_axis(joint.channels[c])];
@@ -478,8 +487,8 @@ bool ExportFrameSolver::State::turn_to_children(int j, const Eigen::Matrix3d& pa
   to.clear();
   geometry.clear();
   for (const ChildLink& link : p.children) {
-    const Eigen::Vector3d u = global_rotation[j] * vector_of(link.pivot >= 0 ? chain[link.column] : link.to_child);
-    const Eigen::Vector3d v = target(targets, link.column) - position[j];
+    const Eigen::Vector3d u = world.rotations[j] * vector_of(link.pivot >= 0 ? chain[link.column] : link.to_child);
+    const Eigen::Vector3d v = target(targets, link.column) - world.positions[j];
     if (u.norm() > min_length && v.norm() > min_length) {
       from.push_back(u.normalized());
       to.push_back(v.normalized());
@@ -495,10 +504,10 @@ bool ExportFrameSolver::State::turn_to_children(int j, const Eigen::Matrix3d& pa
     geometry.push_back(g);
   }
   if (from.empty()) return false;
-  const Eigen::Matrix3d start = best_rotation(from, to) * global_rotation[j];
+  const Eigen::Matrix3d start = best_rotation(from, to) * world.rotations[j];
   const Eigen::Matrix3d last = parent_rotation * euler_to_matrix(p.order, previous[j]);
-  global_rotation[j] = solve_several(geometry, position[j], start, !first ? &last : nullptr, previous_cost[j], damping,
-                                     coherence, exact_cost, &previous_cost[j]);
+  world.rotations[j] = solve_several(geometry, world.positions[j], start, !first ? &last : nullptr, previous_cost[j], costs,
+                                     &previous_cost[j]);
   return true;
 }
 
@@ -507,10 +516,10 @@ bool ExportFrameSolver::State::turn_to_children(int j, const Eigen::Matrix3d& pa
 // joint j now is, so errors do not accumulate down a chain. False when either is too short.
 bool ExportFrameSolver::State::aim_at_child(int j, const double* targets) {
   const JointPlan& p = plan[j];
-  const Eigen::Vector3d u = global_rotation[j] * vector_of(p.aim_chain);
-  const Eigen::Vector3d v = target(targets, p.aim_column) - position[j];
+  const Eigen::Vector3d u = world.rotations[j] * vector_of(p.aim_chain);
+  const Eigen::Vector3d v = target(targets, p.aim_column) - world.positions[j];
   if (!(u.norm() > min_length && v.norm() > min_length)) return false;
-  global_rotation[j] = Eigen::Quaterniond::FromTwoVectors(u, v).toRotationMatrix() * global_rotation[j];
+  world.rotations[j] = Eigen::Quaterniond::FromTwoVectors(u, v).toRotationMatrix() * world.rotations[j];
   return true;
 }
 
@@ -527,13 +536,14 @@ void ExportFrameSolver::solve(const double* a_row, const double* targets, double
   for (int j = 0; j < n; ++j) {
     const Joint& joint = skeleton.joints[j];
     const JointPlan& p = s.plan[j];
+    // The parent's frame as solved (a root's: the world's).
     const Eigen::Matrix3d parent_rotation =
-        joint.parent >= 0 ? s.global_rotation[joint.parent] : Eigen::Matrix3d::Identity();
-    const Eigen::Vector3d parent_position = joint.parent >= 0 ? s.position[joint.parent] : Eigen::Vector3d::Zero();
-    s.global_rotation[j] = parent_rotation * s.local_rotation[j];
+        joint.parent >= 0 ? s.world.rotations[joint.parent] : Eigen::Matrix3d::Identity();
+    const Eigen::Vector3d parent_position =
+        joint.parent >= 0 ? s.world.positions[joint.parent] : Eigen::Vector3d::Zero();
     const Eigen::Vector3d translation =
         j == s.carrier ? s.place_carrier(j, parent_rotation, parent_position, targets, row) : s.local_translation[j];
-    s.position[j] = parent_position + parent_rotation * translation;
+    place_joint(skeleton, j, s.local_rotation[j], translation, &s.world);
     if (!p.rotates) continue;
     Eigen::Vector3d angles;
     for (int d = 0; d < 3; ++d) angles[d] = a_row[p.rotation_channels[d]];
@@ -542,7 +552,7 @@ void ExportFrameSolver::solve(const double* a_row, const double* targets, double
                         : p.aim_column >= 0    ? s.aim_at_child(j, targets)
                                                : false;
     if (solved) {
-      angles = matrix_to_euler_near(p.order, parent_rotation.transpose() * s.global_rotation[j], near);
+      angles = matrix_to_euler_near(p.order, parent_rotation.transpose() * s.world.rotations[j], near);
     } else if (!s.first) {
       angles = euler_near(angles, near);
     }

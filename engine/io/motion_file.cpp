@@ -5,11 +5,13 @@
 #include <cmath>
 #include <filesystem>
 
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
+#include "engine/io/bvh/bvh_write.h"
 #include "engine/base/error.h"
-#include "engine/io/fbx_io.h"
-#include "engine/io/fbx_write.h"
-#include "engine/io/gltf_io.h"
+#include "engine/io/fbx/fbx_read.h"
+#include "engine/io/fbx/fbx_write.h"
+#include "engine/io/gltf/gltf_read.h"
+#include "engine/io/gltf/gltf_write.h"
 
 namespace mostyle {
 namespace {

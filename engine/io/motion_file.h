@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "engine/base/clip.h"
-#include "engine/io/memory_limit.h"
+#include "engine/base/memory_limit.h"
 #include "engine/io/scene_animation.h"
 
 namespace mostyle {
@@ -49,7 +49,7 @@ struct MotionReadOptions {
   std::string take;   // the animation to read; "" takes FILE#ANIMATION's, else the first
 };
 
-// Reads one take. `text` is a path or FILE#ANIMATION. BVH goes to bvh_io.h read_bvh_file
+// Reads one take. `text` is a path or FILE#ANIMATION. BVH goes to bvh_read.h read_bvh_file
 // (its recoverable defects appended to *warnings). For FBX and glTF: the take named by
 // options.take or by '#' (options.take wins), else the first, with a sentence naming the others
 // appended to *notes ("walk.glb: read animation 'a' (the first); the file also has 'b', 'c':
@@ -66,9 +66,9 @@ std::vector<TakeInfo> read_motion_takes(const std::string& path, const MotionRea
 // Throws InputError for a BVH path or an unreadable file.
 AnimatedScene read_animated_scene(const std::string& path, size_t max_bytes = kDefaultMaxBytes);
 
-// Writes a clip by the extension of `path`: .glb/.gltf as glTF 2.0 (gltf_io.h
+// Writes a clip by the extension of `path`: .glb/.gltf as glTF 2.0 (gltf_write.h
 // write_gltf_file), .fbx as binary FBX 7.4 (fbx_write.h write_fbx_file), anything else as BVH
-// (bvh_io.h write_bvh_file). Atomic; throws InputError.
+// (bvh_write.h write_bvh_file). Atomic; throws InputError.
 void write_motion_file(const Clip& clip, const std::string& path);
 
 // True when `path` ends in an extension a motion is written in (.bvh, .fbx, .glb, .gltf,

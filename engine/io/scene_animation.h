@@ -1,7 +1,7 @@
 #pragma once
 // Keyed node animation as FBX and glTF files hold it: a tree of nodes with rest transforms, the
 // nodes the file's skins deform with, and takes whose tracks key a node's translation, rotation
-// or scale at times. The readers (gltf_io.h, fbx_io.h) fill this value; scene_skeleton finds the
+// or scale at times. The readers (gltf_read.h, fbx_read.h) fill this value; scene_skeleton finds the
 // file's one skeleton and scene_take_to_clip samples one take on it at a frame rate into the
 // engine's Clip, so every later stage sees what a BVH file gives, and every take of a file has
 // the same joints.
@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "engine/base/clip.h"
-#include "engine/io/memory_limit.h"
+#include "engine/base/memory_limit.h"
 
 namespace mostyle {
 

@@ -1,7 +1,7 @@
 #pragma once
 // Easing shared by the stages that fade one thing into another: a take's posture into its own
-// frames (align/cycle_registration), weights between keys (align/weight_keys), the foot lock's
-// offsets over a swing (post/foot_contact).
+// frames (align/cycle_registration), weights between keys (trajectory/weight_keys), the foot lock's
+// offsets over a swing (post/foot_lock).
 #include <algorithm>
 
 namespace mostyle {

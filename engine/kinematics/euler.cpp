@@ -49,18 +49,6 @@ double gimbal_first_angle(const Eigen::Matrix3d& R, int i, int j, int k) {
 
 }  // namespace
 
-std::array<int, 3> euler_axes(EulerOrder order) {
-  switch (order) {
-    case EulerOrder::kXYZ: return {0, 1, 2};
-    case EulerOrder::kXZY: return {0, 2, 1};
-    case EulerOrder::kYXZ: return {1, 0, 2};
-    case EulerOrder::kYZX: return {1, 2, 0};
-    case EulerOrder::kZXY: return {2, 0, 1};
-    case EulerOrder::kZYX: return {2, 1, 0};
-  }
-  return {0, 1, 2};
-}
-
 std::string euler_order_name(EulerOrder order) {
   std::string s;
   for (int a : euler_axes(order)) s += static_cast<char>('X' + a);

@@ -11,7 +11,18 @@ namespace mostyle {
 // Named as the channels appear: kZXY is "Zrotation Xrotation Yrotation", R = Rz * Rx * Ry.
 enum class EulerOrder { kXYZ, kXZY, kYXZ, kYZX, kZXY, kZYX };
 
-std::array<int, 3> euler_axes(EulerOrder order);  // axis indices 0..2 in channel order
+// Axis indices 0..2 in channel order. Inline: the resampler and FK ask once per joint and frame.
+inline std::array<int, 3> euler_axes(EulerOrder order) {
+  switch (order) {
+    case EulerOrder::kXYZ: return {0, 1, 2};
+    case EulerOrder::kXZY: return {0, 2, 1};
+    case EulerOrder::kYXZ: return {1, 0, 2};
+    case EulerOrder::kYZX: return {1, 2, 0};
+    case EulerOrder::kZXY: return {2, 0, 1};
+    case EulerOrder::kZYX: return {2, 1, 0};
+  }
+  return {0, 1, 2};
+}
 std::string euler_order_name(EulerOrder order);   // "ZXY"
 bool parse_euler_order(std::string_view text, EulerOrder* order);  // "zxy" too; false if not one
 

@@ -65,40 +65,48 @@ Eigen::Vector3d joint_local_translation(const Joint& joint, const double* frame_
   return has_position ? t : joint.offset;
 }
 
-namespace {
-
-// Fills global rotations and positions of one frame; joints are stored parents first.
-void frame_pose(const Skeleton& s, const double* values, std::vector<Eigen::Matrix3d>* rotations,
-                std::vector<Eigen::Vector3d>* positions) {
-  const size_t n = s.joints.size();
-  rotations->resize(n);
-  positions->resize(n);
-  for (size_t i = 0; i < n; ++i) {
-    const Joint& j = s.joints[i];
-    assert(j.parent < static_cast<int>(i) && "joints must come after their parent");
-    const Eigen::Matrix3d local_r = joint_local_rotation(j, values);
-    const Eigen::Vector3d local_t = joint_local_translation(j, values);
-    if (j.parent < 0) {
-      (*rotations)[i] = local_r;
-      (*positions)[i] = local_t;
-    } else {
-      (*rotations)[i] = (*rotations)[j.parent] * local_r;
-      (*positions)[i] = (*positions)[j.parent] + (*rotations)[j.parent] * local_t;
-    }
+void place_joint(const Skeleton& skeleton, int j, const Eigen::Matrix3d& local_rotation,
+                 const Eigen::Vector3d& local_translation, Pose* pose) {
+  const int parent = skeleton.joints[static_cast<size_t>(j)].parent;
+  assert(parent < j && "joints must come after their parent");
+  Eigen::Matrix3d& rotation = pose->rotations[static_cast<size_t>(j)];
+  Eigen::Vector3d& position = pose->positions[static_cast<size_t>(j)];
+  if (parent < 0) {
+    rotation = local_rotation;
+    position = local_translation;
+  } else {
+    const Eigen::Matrix3d& parent_rotation = pose->rotations[static_cast<size_t>(parent)];
+    rotation = parent_rotation * local_rotation;
+    position = pose->positions[static_cast<size_t>(parent)] + parent_rotation * local_translation;
   }
 }
 
-}  // namespace
+void pose_frame(const Skeleton& skeleton, const double* values, const std::vector<int>& chain, Pose* pose) {
+  for (int j : chain) {
+    const Joint& joint = skeleton.joints[static_cast<size_t>(j)];
+    place_joint(skeleton, j, joint_local_rotation(joint, values), joint_local_translation(joint, values), pose);
+  }
+}
+
+void pose_frame(const Skeleton& skeleton, const double* values, Pose* pose) {
+  const size_t n = skeleton.joints.size();
+  pose->rotations.resize(n);
+  pose->positions.resize(n);
+  for (size_t j = 0; j < n; ++j) {
+    const Joint& joint = skeleton.joints[j];
+    place_joint(skeleton, static_cast<int>(j), joint_local_rotation(joint, values),
+                joint_local_translation(joint, values), pose);
+  }
+}
 
 Eigen::MatrixXd joint_positions(const Clip& clip) {
   const Skeleton& s = clip.skeleton;
   const int n = static_cast<int>(s.joints.size());
   Eigen::MatrixXd out(clip.frames(), 3 * n);
-  std::vector<Eigen::Matrix3d> rotations;
-  std::vector<Eigen::Vector3d> positions;
+  Pose pose;
   for (int f = 0; f < clip.frames(); ++f) {
-    frame_pose(s, clip.motion.row(f).data(), &rotations, &positions);
-    for (int i = 0; i < n; ++i) out.block<1, 3>(f, 3 * i) = positions[i].transpose();
+    pose_frame(s, clip.motion.row(f).data(), &pose);
+    for (int i = 0; i < n; ++i) out.block<1, 3>(f, 3 * i) = pose.positions[i].transpose();
   }
   return out;
 }
@@ -330,7 +338,7 @@ Eigen::MatrixXd joint_positions(const Clip& clip, const std::vector<int>& joints
 Pose pose_at(const Clip& clip, int frame) {
   assert(frame >= 0 && frame < clip.frames());
   Pose pose;
-  frame_pose(clip.skeleton, clip.motion.row(frame).data(), &pose.rotations, &pose.positions);
+  pose_frame(clip.skeleton, clip.motion.row(frame).data(), &pose);
   return pose;
 }
 
@@ -348,6 +356,17 @@ std::vector<Eigen::Vector3d> rest_positions(const Skeleton& skeleton) {
       rotation[i] = rotation[j.parent] * j.rest_rotation;
     }
   }
+  return out;
+}
+
+std::vector<int> chain_joints(const Skeleton& skeleton, const std::vector<int>& joints) {
+  std::vector<char> needed(skeleton.joints.size(), 0);
+  for (int j : joints)
+    for (int p = j; p >= 0 && !needed[static_cast<size_t>(p)]; p = skeleton.joints[static_cast<size_t>(p)].parent)
+      needed[static_cast<size_t>(p)] = 1;
+  std::vector<int> out;
+  for (size_t j = 0; j < needed.size(); ++j)
+    if (needed[j]) out.push_back(static_cast<int>(j));
   return out;
 }
 

@@ -35,6 +35,25 @@ struct Pose {
 };
 Pose pose_at(const Clip& clip, int frame);  // frame in [0, clip.frames())
 
+// One frame's FK, for motion posed a frame at a time as it comes (a stream) or as it is solved:
+// every joint's global rotation and position at `values` (the frame's row: skeleton.channel_count
+// values) into *pose, resized to the skeleton's joints; the values joint_positions and pose_at
+// give. Allocation-free once *pose has its size. O(joints).
+void pose_frame(const Skeleton& skeleton, const double* values, Pose* pose);
+// The same for the joints of `chain` only (parents first, each joint's parent in it: a set of
+// joints and their ancestors), the others' entries in *pose (which holds every joint) left as
+// they were. O(chain).
+void pose_frame(const Skeleton& skeleton, const double* values, const std::vector<int>& chain, Pose* pose);
+
+// The joints to pose for `joints`: those and their ancestors, each once, parents first (a chain
+// for pose_frame). O(joints in the skeleton).
+std::vector<int> chain_joints(const Skeleton& skeleton, const std::vector<int>& joints);
+// Joint j's global rotation and position into *pose from its local rotation and translation and
+// its parent's global ones (posed before it); a root's are its local ones. The step pose_frame
+// takes per joint, for a solver that sets each joint's rotation before its children's. O(1).
+void place_joint(const Skeleton& skeleton, int j, const Eigen::Matrix3d& local_rotation,
+                 const Eigen::Vector3d& local_translation, Pose* pose);
+
 // Rest pose: each joint at its OFFSET turned by its parents' Joint::rest_rotation (identity for
 // BVH: all rotation channels zero), position channels taken as the OFFSET: positions per joint,
 // file units. O(joints).

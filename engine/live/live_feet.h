@@ -1,7 +1,7 @@
 #pragma once
 // Foot contacts of a stream, frame by frame, with no future frames (the live styler's,
 // live_style.h): when each foot is planted, and where a foot strikes, as soon as the frames so
-// far tell it. The offline detection (post/foot_contact.h detect_foot_contacts) reads each frame
+// far tell it. The offline detection (measure/foot_contact.h detect_foot_contacts) reads each frame
 // with the frames either side of it; this one reads frame t - 1 once frame t has come (its
 // speed a central difference), against the floor of the frames before it, and keeps what it
 // decided: a contact starts once its ankle has been low and slow for min_contact_seconds and
@@ -13,7 +13,7 @@
 #include <array>
 #include <vector>
 
-#include "engine/post/foot_contact.h"
+#include "engine/measure/foot_contact.h"
 
 namespace mostyle {
 

@@ -11,11 +11,12 @@
 #include "engine/kinematics/ease.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/limb_length.h"
+#include "engine/kinematics/two_bone_ik.h"
 #include "engine/live/live_feet.h"
 #include "engine/live/live_phase.h"
 #include "engine/live/style_change.h"
-#include "engine/post/foot_contact.h"
-#include "engine/post/planted_feet.h"
+#include "engine/measure/foot_contact.h"
+#include "engine/measure/planted_feet.h"
 #include "engine/prepare/major_skeleton.h"
 #include "engine/prepare/major_take.h"
 #include "engine/synthesize/mix_palette.h"
@@ -104,17 +105,6 @@ void check_strengths(const std::vector<double>& strengths, size_t styles) {
       throw InputError("live: expected a strength from -1 to 2, found " + std::to_string(s));
 }
 
-// The skeleton's joints to pose for these (their ancestors too), parents first.
-std::vector<int> posed_joints(const Skeleton& skeleton, const std::vector<int>& joints) {
-  std::vector<char> needed(skeleton.joints.size(), 0);
-  for (int j : joints)
-    for (int p = j; p >= 0 && !needed[static_cast<size_t>(p)]; p = skeleton.joints[static_cast<size_t>(p)].parent)
-      needed[static_cast<size_t>(p)] = 1;
-  std::vector<int> out;
-  for (size_t j = 0; j < needed.size(); ++j)
-    if (needed[j]) out.push_back(static_cast<int>(j));
-  return out;
-}
 
 }  // namespace
 
@@ -129,8 +119,7 @@ struct LiveStyle::State {
   double body_height = 0.0;
   StyleChange change;
   std::vector<int> chain;                    // the stream's joints posed, parents first
-  std::vector<Eigen::Matrix3d> rotation;     // per stream joint, global
-  std::vector<Eigen::Vector3d> position;     // per stream joint, the stream's axes
+  Pose posed;                                // per stream joint, global, the stream's axes (chain's only)
   Eigen::Matrix3d up = Eigen::Matrix3d::Identity();  // the stream's axes to Y up
   // This frame, Y up, 3M values each.
   Eigen::VectorXd in, previous_in, local, change_local, raw, target, delta, previous_delta, solve_targets;
@@ -208,21 +197,10 @@ void LiveStyle::State::start_stream() {
 
 // FK of the joints posed, in the stream's axes, then the major joints turned to Y up.
 void LiveStyle::State::pose(const double* values) {
-  for (int j : chain) {
-    const Joint& joint = skeleton.joints[static_cast<size_t>(j)];
-    const Eigen::Matrix3d r = joint_local_rotation(joint, values);
-    const Eigen::Vector3d t = joint_local_translation(joint, values);
-    if (joint.parent < 0) {
-      rotation[static_cast<size_t>(j)] = r;
-      position[static_cast<size_t>(j)] = t;
-    } else {
-      const size_t p = static_cast<size_t>(joint.parent);
-      rotation[static_cast<size_t>(j)] = rotation[p] * r;
-      position[static_cast<size_t>(j)] = position[p] + rotation[p] * t;
-    }
-  }
+  pose_frame(skeleton, values, chain, &posed);
   if (frames == 0) read_up_axis();
-  for (size_t c = 0; c < joints.size(); ++c) in.segment<3>(3 * static_cast<Eigen::Index>(c)) = up * position[static_cast<size_t>(joints[c])];
+  for (size_t c = 0; c < joints.size(); ++c)
+    in.segment<3>(3 * static_cast<Eigen::Index>(c)) = up * posed.positions[static_cast<size_t>(joints[c])];
 }
 
 // The up axis from the first frame: the one the head (else the highest trunk joint) stands
@@ -235,6 +213,7 @@ void LiveStyle::State::read_up_axis() {
   }
   const int left = rig.legs[0].ankle, right = rig.legs[1].ankle;
   if (top < 0 || left < 0 || right < 0) return;
+  const std::vector<Eigen::Vector3d>& position = posed.positions;
   const Eigen::Vector3d v = position[static_cast<size_t>(joints[static_cast<size_t>(top)])] -
                             0.5 * (position[static_cast<size_t>(joints[static_cast<size_t>(left)])] +
                                    position[static_cast<size_t>(joints[static_cast<size_t>(right)])]);
@@ -433,9 +412,16 @@ void LiveStyle::State::lock_feet() {
     // bend is the square root of a difference that vanishes).
     Eigen::Vector3d ankle = at(target, c.ankle);
     if ((wanted - ankle).norm() > kUnchanged * body_height) {
-      Eigen::Vector3d knee;
-      two_bone_ik(at(target, c.hip), at(target, c.knee), at(target, c.ankle), wanted, forward, &knee, &ankle);
-      target.segment<3>(3 * c.knee) = knee;
+      TwoBoneIkJob ik;
+      ik.start = at(target, c.hip);
+      ik.mid = at(target, c.knee);
+      ik.end = ankle;
+      ik.target = wanted;
+      ik.pole = ik.mid - ik.start;  // the knee's own bend
+      ik.bend_fallback = forward;
+      const TwoBoneIkResult locked = ik.Run();
+      ankle = locked.end;
+      target.segment<3>(3 * c.knee) = locked.mid;
       target.segment<3>(3 * c.ankle) = ankle;
     }
     if (c.toe >= 0 && leg.joints[1].column >= 0) {
@@ -530,9 +516,9 @@ LiveStyle::LiveStyle(const Skeleton& skeleton, double fps, const LiveStyleSpec& 
   s.rig = rig;
   s.body_height = rig.body_height;
   s.change = std::move(change);
-  s.chain = posed_joints(skeleton, joints);
-  s.rotation.assign(skeleton.joints.size(), Eigen::Matrix3d::Identity());
-  s.position.assign(skeleton.joints.size(), Eigen::Vector3d::Zero());
+  s.chain = chain_joints(skeleton, joints);
+  s.posed.rotations.assign(skeleton.joints.size(), Eigen::Matrix3d::Identity());
+  s.posed.positions.assign(skeleton.joints.size(), Eigen::Vector3d::Zero());
   s.to = spec.strengths;
   s.fastest_decay = std::pow(0.5, 1.0 / (kFastestHalfLifeSeconds * fps));
   s.start_stream();

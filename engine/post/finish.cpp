@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "engine/kinematics/limb_length.h"
-#include "engine/post/planted_feet.h"
+#include "engine/measure/planted_feet.h"
 #include "engine/prepare/canonical_frame.h"
 #include "engine/prepare/root_path.h"
 
@@ -155,10 +155,11 @@ void close_locked_seam(const FootRig& feet, double limit, FinishScratch& s, Eige
 
 }  // namespace
 
-void finish_preview(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, const Eigen::VectorXd& heading_u,
-                    const Eigen::MatrixXd& contacts_u, const FinishRig& rig, const FinishOptions& options,
-                    Eigen::MatrixXd& local, Eigen::VectorXd& u, FinishScratch& s, FinishedMotion& out) {
-  sampler.apply(ground_u, s.ground);
+void finish_preview(const FinishPath& path, const FinishRig& rig, const FinishOptions& options, Eigen::MatrixXd& local,
+                    Eigen::VectorXd& u, FinishScratch& s, FinishedMotion& out) {
+  const RowSampler& sampler = *path.sampler;
+  const Eigen::VectorXd& heading_u = *path.heading_u;
+  sampler.apply(*path.ground_u, s.ground);
   s.heading.resize(u.size());
   // Headings along the shorter arc between samples: where the mixed turns carry a whole turn
   // (match_turns), a plain interpolation would spin the body round within one frame.
@@ -168,7 +169,7 @@ void finish_preview(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, 
     const double h1 = heading_u.size() > 1 ? heading_u[i + 1] : h0;
     s.heading[k] = h0 + sampler.frac[k] * std::remainder(h1 - h0, 2.0 * kPi);
   }
-  nearest_rows(contacts_u, u, out.contacts);
+  nearest_rows(*path.contacts_u, u, out.contacts);
   tidy_contacts(out.contacts, *rig.feet);
   cut_loop(options, local, u, s, out);
   to_world(local, s.ground, s.heading, &out.world);
@@ -215,14 +216,6 @@ void finish_rest(const FinishRig& rig, const FinishOptions& options, FinishScrat
     out.foot_sliding_cleaned = planted_speed(out.world, s.planted, *rig.feet).speed;
   }
   out.limb_length_max_error = max_bone_length_error(out.world, *rig.parents, *rig.lengths);
-}
-
-void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, const Eigen::VectorXd& heading_u,
-                   const Eigen::MatrixXd& contacts_u, const FinishRig& rig, const FinishOptions& options,
-                   Eigen::MatrixXd& local, Eigen::VectorXd& u, FinishScratch& s, FinishedMotion& out,
-                   const Eigen::MatrixXd* body_drift, const Eigen::MatrixXd* feet_height) {
-  finish_preview(sampler, ground_u, heading_u, contacts_u, rig, options, local, u, s, out);
-  finish_rest(rig, options, s, out, body_drift, feet_height);
 }
 
 }  // namespace mostyle

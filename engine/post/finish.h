@@ -6,7 +6,8 @@
 #include <vector>
 
 #include "engine/kinematics/sample_rows.h"
-#include "engine/post/foot_contact.h"
+#include "engine/measure/foot_contact.h"
+#include "engine/post/foot_lock.h"
 #include "engine/post/loop.h"
 #include "engine/post/speed_limit.h"
 #include "engine/post/swing_clearance.h"
@@ -15,7 +16,7 @@ namespace mostyle {
 
 struct FinishOptions {
   bool limb_lengths = true;  // paper 3.7
-  bool foot_lock = true;     // pin planted feet after the limb lengths (foot_contact.h)
+  bool foot_lock = true;     // pin planted feet after the limb lengths (foot_lock.h)
   bool loop = false;         // cut a seamless loop of whole gait cycles (loop.h)
   // The motion is one whole loop whose last frame shows its first pose again (a loop clip's cycle
   // as the reference, its clock landed on the loop's end: mixed_clock.h land_on_last): that frame is
@@ -58,34 +59,37 @@ struct FinishScratch {
   SpeedLimitScratch speed;
 };
 
-// local: K x 3M canonical poses at the output frames, u: their K sample positions (sampler set
-// on them); ground_u (U x 2), heading_u (U) and contacts_u (U x 2) on the samples. With a loop,
-// local and u are cut to the loop's frames (closed: all but the last). Throws InputError when a
-// loop is asked of a motion without two foot strikes. body_drift: when given (K x 2 kFootJoints:
+// Where finish_preview places the poses: the output's root path and contacts on the samples (U
+// of them), and the sampler that reads them at the output frames (the mixed trajectory's).
+struct FinishPath {
+  const RowSampler* sampler = nullptr;          // set on the K output frames' sample positions
+  const Eigen::MatrixXd* ground_u = nullptr;    // U x 2: the root's ground point (x, z)
+  const Eigen::VectorXd* heading_u = nullptr;   // U: its heading, radians
+  const Eigen::MatrixXd* contacts_u = nullptr;  // U x 2: the foot contacts, 1 planted
+};
+
+// The clean-up in two calls, so that a preview can show a motion before its slow passes are done.
+// finish_preview places the poses in the world: local (K x 3M canonical poses at the output
+// frames) and u (their K sample positions, path.sampler set on them) along the path, the contacts
+// read at the output frames, the loop cut when asked (local and u cut to the loop's frames;
+// closed: all but the last), the limb-length constraint; out.world, out.contacts and out.loop
+// set, the measures 0. Throws InputError when a loop is asked of a motion without two foot
+// strikes. O(K x M).
+void finish_preview(const FinishPath& path, const FinishRig& rig, const FinishOptions& options, Eigen::MatrixXd& local,
+                    Eigen::VectorXd& u, FinishScratch& scratch, FinishedMotion& out);
+
+// finish_rest, given the same rig, options and scratch and the out finish_preview left, runs the
+// rest: the speed limit, the foot lock, the measures. body_drift: when given (K x 2 kFootJoints:
 // x, z per foot joint, planted_feet.h), how far each planted foot joint may move from output
 // frame k to k + 1 in the body's frame there (the mixed takes' own planted moves, mix_palette.cpp
 // planted_drift), for the foot lock (apply_foot_lock's drift). feet_height: when given (K x
 // kFootJoints, before any loop cut), how high the mixed takes hold each foot joint at output frame
 // k, in planted bands above its floor (mix_palette.cpp feet_heights): with the foot lock, joints
 // above kSwingAirBands are first lifted clear of the floor (swing_clearance.h; not in a loop,
-// whose seam is closed by blending its ends), and joints within
-// one band are pinned as the output's planted ones are (apply_foot_lock's held). foot_sliding_raw
-// and _cleaned: planted_feet.h's measure before and after the lift and the lock. O(K x M);
-// allocation-free once sized, except the loop.
-void finish_motion(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, const Eigen::VectorXd& heading_u,
-                   const Eigen::MatrixXd& contacts_u, const FinishRig& rig, const FinishOptions& options,
-                   Eigen::MatrixXd& local, Eigen::VectorXd& u, FinishScratch& scratch, FinishedMotion& out,
-                   const Eigen::MatrixXd* body_drift = nullptr, const Eigen::MatrixXd* feet_height = nullptr);
-
-// finish_motion in two calls, for a preview that shows a motion before its slow passes are done:
-// finish_preview places the poses in the world (root, contacts, the loop cut, the limb-length
-// constraint: out.world, out.contacts, out.loop; the measures 0), O(K x M); finish_rest, given
-// the same rig, options and scratch, the out finish_preview left and the body drift, runs the
-// rest (the speed limit, the foot lock, the measures), O(K x M) with a larger constant (the lock
-// may try up to seven times). The two in turn give exactly what finish_motion gives.
-void finish_preview(const RowSampler& sampler, const Eigen::MatrixXd& ground_u, const Eigen::VectorXd& heading_u,
-                    const Eigen::MatrixXd& contacts_u, const FinishRig& rig, const FinishOptions& options,
-                    Eigen::MatrixXd& local, Eigen::VectorXd& u, FinishScratch& scratch, FinishedMotion& out);
+// whose seam is closed by blending its ends), and joints within one band are pinned as the
+// output's planted ones are (apply_foot_lock's held). foot_sliding_raw and _cleaned:
+// planted_feet.h's measure before and after the lift and the lock. O(K x M) with a larger
+// constant (the lock may try up to seven times); allocation-free once sized, except the loop.
 void finish_rest(const FinishRig& rig, const FinishOptions& options, FinishScratch& scratch, FinishedMotion& out,
                  const Eigen::MatrixXd* body_drift = nullptr, const Eigen::MatrixXd* feet_height = nullptr);
 

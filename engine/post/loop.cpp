@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "engine/base/error.h"
-#include "engine/post/foot_contact.h"
+#include "engine/measure/foot_contact.h"
 #include "engine/prepare/root_path.h"
 
 namespace mostyle {

@@ -6,6 +6,7 @@
 
 #include "engine/base/error.h"
 #include "engine/kinematics/joint_rows.h"
+#include "engine/kinematics/two_bone_ik.h"
 
 namespace mostyle {
 namespace {
@@ -58,8 +59,16 @@ void warp_strides(Eigen::MatrixXd& local, const Eigen::MatrixXd& map, const Foot
       const Eigen::Vector3d hip = joint_at(local, k, leg.hip), knee = joint_at(local, k, leg.knee);
       const Eigen::Vector3d ankle = joint_at(local, k, leg.ankle);
       const Eigen::Vector3d target = within_reach(hip, ankle, mapped(map, k, ankle), reach(local, k, leg));
-      Eigen::Vector3d new_knee, new_ankle;
-      two_bone_ik(hip, knee, ankle, target, forwards, &new_knee, &new_ankle);
+      TwoBoneIkJob ik;
+      ik.start = hip;
+      ik.mid = knee;
+      ik.end = ankle;
+      ik.target = target;
+      ik.pole = knee - hip;  // the knee's own bend
+      ik.bend_fallback = forwards;
+      const TwoBoneIkResult stepped = ik.Run();
+      const Eigen::Vector3d& new_knee = stepped.mid;
+      const Eigen::Vector3d& new_ankle = stepped.end;
       if (leg.toe >= 0) {
         // The foot keeps its length and its pitch (the toe's drop below the ankle): only the way
         // it points across the floor follows the map. Mapped whole, a foot shortened along the

@@ -9,7 +9,7 @@
 // root's: the stride shortens (or lengthens) with the pace, as a walker's does.
 #include <Eigen/Core>
 
-#include "engine/post/foot_contact.h"
+#include "engine/measure/foot_contact.h"
 
 namespace mostyle {
 

@@ -8,7 +8,9 @@
 #include "engine/base/error.h"
 #include "engine/kinematics/ease.h"
 #include "engine/kinematics/joint_rows.h"
-#include "engine/post/planted_feet.h"
+#include "engine/kinematics/two_bone_ik.h"
+#include "engine/measure/planted_feet.h"
+#include "engine/post/leg_move.h"
 
 namespace mostyle {
 namespace {
@@ -62,12 +64,14 @@ void raise_leg(Eigen::MatrixXd& world, const LegColumns& leg, const std::array<L
     const double back = pole.dot(facing);
     if (back < 0.0) pole -= moving * back * facing;
     pole += moving * kKneeForwardBias * leg_length * facing;
-    Eigen::Vector3d new_knee, new_ankle;
-    two_bone_ik_pole(hip, knee, ankle, ankle + Eigen::Vector3d(0.0, lift[t], 0.0), pole, facing, &new_knee,
-                     &new_ankle);
-    set_joint(world, t, leg.knee, new_knee);
-    set_joint(world, t, leg.ankle, new_ankle);
-    if (leg.toe >= 0) set_joint(world, t, leg.toe, joint_at(world, t, leg.toe) + (new_ankle - ankle));
+    TwoBoneIkJob ik;
+    ik.start = hip;
+    ik.mid = knee;
+    ik.end = ankle;
+    ik.target = ankle + Eigen::Vector3d(0.0, lift[t], 0.0);
+    ik.pole = pole;
+    ik.bend_fallback = facing;
+    place_leg(world, t, leg, ik.Run());
   }
 }
 

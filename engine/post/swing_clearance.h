@@ -9,7 +9,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "engine/post/foot_contact.h"
+#include "engine/measure/foot_contact.h"
 
 namespace mostyle {
 

@@ -16,15 +16,16 @@ MajorTake extract_major_take(const Clip& clip, const MajorMapping& mapping,
   take.source = clip.source;
   take.majors = majors;
   take.parents = subset_parents(majors);
-  const bool same_rate = fps <= 0 || std::abs(fps - clip.fps()) < 1e-9;
-  const Clip resampled = same_rate ? Clip() : resample_clip(clip, fps);
-  const Clip& source = same_rate ? clip : resampled;
-  take.fps = same_rate ? clip.fps() : fps;
   for (int major : majors) {
     const int joint = mapping.joint[major];
     take.clip_joints.push_back(joint);
     take.names.push_back(clip.skeleton.joints[joint].name);
   }
+  const bool same_rate = fps <= 0 || std::abs(fps - clip.fps()) < 1e-9;
+  // Fingers and other joints off the major joints' chains are not resampled: nothing reads them.
+  const Clip resampled = same_rate ? Clip() : resample_clip(clip, fps, take.clip_joints);
+  const Clip& source = same_rate ? clip : resampled;
+  take.fps = same_rate ? clip.fps() : fps;
   take.world = joint_positions(source, take.clip_joints);  // FK of the major joints' chains only
   return take;
 }

@@ -1,6 +1,7 @@
 #include "engine/prepare/retarget.h"
 
 #include <Eigen/Geometry>
+#include <Eigen/LU>
 #include <Eigen/SVD>
 #include <cmath>
 
@@ -31,11 +32,36 @@ Eigen::Vector3d bone(const Eigen::MatrixXd& w, Eigen::Index frame, int child, in
   return (w.block<1, 3>(frame, 3 * child) - w.block<1, 3>(frame, 3 * parent)).transpose();
 }
 
-// The rotation R minimizing sum |R from_i - to_i|^2 (Kabsch), a proper rotation.
+// Below this determinant of the normalized cross-covariance (at most 3^-1.5, an isotropic one),
+// the groups' bones are near a plane or a line, or the best fit a reflection: the SVD decides.
+constexpr double kPolarMinDeterminant = 1e-6;
+// Newton steps at most, and the change (largest entry) at which it has converged: quadratic
+// convergence then takes the next step to rounding.
+constexpr int kPolarSteps = 30;
+constexpr double kPolarConverged = 1e-10;
+
+// The rotation R minimizing sum |R from_i - to_i|^2 (Kabsch), a proper rotation: the orthogonal
+// factor of h^T's polar decomposition (h = sum from_i to_i^T), by Newton's iteration scaled by the
+// determinant (Higham; Byers and Xu), a few 3x3 inverses where a Jacobi SVD of every frame's group
+// was an eighth of preparing a pair; the SVD where the determinant is small or negative.
 Eigen::Matrix3d best_rotation(const std::vector<Eigen::Vector3d>& from,
                               const std::vector<Eigen::Vector3d>& to) {
   Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
   for (size_t i = 0; i < from.size(); ++i) h += from[i] * to[i].transpose();
+  const double size = h.norm();
+  if (!(size > 0.0)) return Eigen::Matrix3d::Identity();
+  Eigen::Matrix3d x = h.transpose() / size;
+  double det = x.determinant();
+  if (det > kPolarMinDeterminant) {
+    for (int step = 0; step < kPolarSteps; ++step) {
+      const double g = std::cbrt(1.0 / det);
+      const Eigen::Matrix3d next = 0.5 * (g * x + x.inverse().transpose() / g);
+      const double change = (next - x).cwiseAbs().maxCoeff();
+      x = next;
+      if (change < kPolarConverged) return 0.5 * (x + x.inverse().transpose());
+      det = x.determinant();
+    }
+  }
   Eigen::JacobiSVD<Eigen::Matrix3d> svd(h, Eigen::ComputeFullU | Eigen::ComputeFullV);
   Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
   if ((svd.matrixV() * svd.matrixU().transpose()).determinant() < 0) d(2, 2) = -1.0;

@@ -326,26 +326,12 @@ std::vector<std::vector<Eigen::Vector3d>> sample_positions(const Skeleton& s, co
   const Eigen::Index frames = motion.rows();
   const Eigen::Index count = std::min<Eigen::Index>(frames, kCueFrames);
   std::vector<std::vector<Eigen::Vector3d>> out;
-  const size_t n = s.joints.size();
-  std::vector<Eigen::Matrix3d> rotation(n);
+  Pose pose;
   for (Eigen::Index k = 0; k < 2 * count; ++k) {
     const Eigen::Index first = count > 1 ? (k / 2) * (frames - 1) / (count - 1) : 0;
     const Eigen::Index f = std::min(first + k % 2, frames - 1);
-    const double* row = motion.row(f).data();
-    std::vector<Eigen::Vector3d> p(n);
-    for (size_t j = 0; j < n; ++j) {
-      const Joint& joint = s.joints[j];
-      const Eigen::Matrix3d local = joint.end_site ? Eigen::Matrix3d::Identity() : joint_local_rotation(joint, row);
-      const Eigen::Vector3d offset = joint.end_site ? joint.offset : joint_local_translation(joint, row);
-      if (joint.parent < 0) {
-        p[j] = offset;
-        rotation[j] = local;
-      } else {
-        p[j] = p[joint.parent] + rotation[joint.parent] * offset;
-        rotation[j] = rotation[joint.parent] * local;
-      }
-    }
-    out.push_back(std::move(p));
+    pose_frame(s, motion.row(f).data(), &pose);
+    out.push_back(pose.positions);
   }
   return out;
 }
@@ -399,14 +385,30 @@ void add_knee(Cue& cue, const std::vector<Eigen::Vector3d>& p, const Limb& leg, 
 
 std::string quoted(const Skeleton& s, int j) { return "'" + s.joints[j].name + "'"; }
 
+// What the structure finds, step by step.
+struct Body {
+  int hips = -1, root_a = -1, root_b = -1;  // the hips and its legs' first joints
+  Limb leg_a, leg_b, arm_a, arm_b;          // arm_a on leg a's side
+  int spine_base = -1;                      // the joint the spine leaves (the hips, or above them)
+  std::vector<int> spine;                   // up from spine_base to the highest joint
+  Eigen::Vector3d lateral = Eigen::Vector3d::Zero();  // towards leg a, level, unit when sides_apart
+  bool sides_apart = false;
+  int chest_at = -1;                        // index in spine of the joint the arms leave
+  int head = -1, lower_spine = -1;
+  bool legs_cut() const { return leg_a.upper >= 0 && leg_b.upper >= 0 && leg_a.middle >= 0 && leg_b.middle >= 0; }
+};
+
 // Which leg is the left one by the body's facing: +1 leg a, -1 leg b, 0 when nothing tells. The
 // first cue that tells wins, in this order: the toes and the knees' bend in the rest pose (when
 // t holds the rest pose); over
 // the motion, the knees' bend (knees bend forward), the planted foot's slide under the body (it
 // moves backward), the root's travel, the toes (least sure: a pointed foot's toe trails the
 // ankle). *contradicted: another of those cues (the motion's toes aside) tells the other way.
-int facing_from_body(const Skeleton& skeleton, const Tree& t, const MotionMatrix* motion, const Limb& leg_a,
-                     const Limb& leg_b, int hips, bool rest_pose, FacingCue* cue, bool* contradicted) {
+int facing_from_body(const Skeleton& skeleton, const Tree& t, const MotionMatrix* motion, const Body& b,
+                     bool rest_pose, FacingCue* cue, bool* contradicted) {
+  const Limb& leg_a = b.leg_a;
+  const Limb& leg_b = b.leg_b;
+  const int hips = b.hips;
   const double min_size = kMinCue * t.height;
   std::vector<std::pair<FacingCue, int>> told;
   // A frame's pose is no rest pose: a walk's trailing foot points back. Its cues are the motion's.
@@ -476,19 +478,6 @@ const char* facing_cue_name(FacingCue cue) {
 }
 
 namespace {
-
-// What the structure finds, step by step.
-struct Body {
-  int hips = -1, root_a = -1, root_b = -1;  // the hips and its legs' first joints
-  Limb leg_a, leg_b, arm_a, arm_b;          // arm_a on leg a's side
-  int spine_base = -1;                      // the joint the spine leaves (the hips, or above them)
-  std::vector<int> spine;                   // up from spine_base to the highest joint
-  Eigen::Vector3d lateral = Eigen::Vector3d::Zero();  // towards leg a, level, unit when sides_apart
-  bool sides_apart = false;
-  int chest_at = -1;                        // index in spine of the joint the arms leave
-  int head = -1, lower_spine = -1;
-  bool legs_cut() const { return leg_a.upper >= 0 && leg_b.upper >= 0 && leg_a.middle >= 0 && leg_b.middle >= 0; }
-};
 
 // The level direction from leg b to leg a (their hips, else their lowest joints).
 void find_sides(const Tree& t, Body& b) {
@@ -572,7 +561,7 @@ int tell_left(const Skeleton& skeleton, const Tree& t, bool rest_pose, const Mot
   int a_left = 0;
   bool contradicted = false;
   if (b.legs_cut())
-    a_left = facing_from_body(skeleton, t, motion, b.leg_a, b.leg_b, b.hips, rest_pose, &out.facing, &contradicted);
+    a_left = facing_from_body(skeleton, t, motion, b, rest_pose, &out.facing, &contradicted);
   int named_a_left = 0;
   if (named != nullptr) {
     int votes = 0;

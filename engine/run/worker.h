@@ -15,7 +15,7 @@
 #include <thread>
 #include <vector>
 
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/base/job_control.h"
 #include "engine/synthesize/mix_palette.h"
 

@@ -345,8 +345,12 @@ void preview_finish(const PreparedTakes& p, const MixParams& params, const Playe
   const bool keyed = !params.keys.empty();
   out.foot_sliding_inputs = inputs_planted_speed(p, s.overall, keyed ? &s.trajectory.frame_w : nullptr, params.feet_of_reference);
   const FinishRig rig = mix_rig(p, st.fastest, out.foot_sliding_inputs);
-  finish_preview(s.trajectory.sampler, s.trajectory.ground_u, s.trajectory.heading_u, s.trajectory.contacts_u, rig, finish, out.local, s.trajectory.u_stretch, s.finish,
-                 out.motion);
+  FinishPath path;
+  path.sampler = &s.trajectory.sampler;
+  path.ground_u = &s.trajectory.ground_u;
+  path.heading_u = &s.trajectory.heading_u;
+  path.contacts_u = &s.trajectory.contacts_u;
+  finish_preview(path, rig, finish, out.local, s.trajectory.u_stretch, s.finish, out.motion);
   if (finish.loop || finish.closed) {  // the loop's frames only
     s.sources_uncut = out.sources;
     s.trajectory.sampler.set(s.trajectory.u_stretch, st.length());
@@ -395,8 +399,11 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
   const PlayedStretch st = played_stretch(p, s.weights, params.keys, s.part_w, per_component, s.timing);
   out.first_sample = st.first;
   out.last_sample = st.last;
-  const FinishOptions finish =
-      output_clock(p, params.keys, params.reference_timing, s.timing, params.finish, st, s.trajectory, out.sources);
+  ClockWeights clock;
+  clock.keys = &params.keys;
+  clock.timing = &s.timing;
+  clock.reference_timing = params.reference_timing;
+  const FinishOptions finish = output_clock(p, clock, params.finish, st, s.trajectory, out.sources);
   if (d.paper() != nullptr) paper_poses(p, d, params, st, s, out.local);
   else if (per_component) part_poses(p, d, params, st, s, out.local);
   else if (params.residual) own_poses(p, params, out.sources, s, out.local);

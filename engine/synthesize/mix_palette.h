@@ -14,7 +14,7 @@
 
 #include "engine/align/common_timeline.h"
 #include "engine/align/prepare_takes.h"
-#include "engine/align/weight_keys.h"
+#include "engine/trajectory/weight_keys.h"
 #include "engine/decompose/body_parts.h"
 #include "engine/decompose/decompose_takes.h"
 #include "engine/decompose/decomposition.h"

@@ -66,8 +66,9 @@ double mixed_step(const CommonTimeline& timeline, const Weight& weight, int k) {
 
 }  // namespace
 
-void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& weights, int first, int last,
+void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& weights, SampleSpan span,
                     Eigen::VectorXd& u, double* clock_at_last) {
+  const int first = span.first, last = span.last;
   if (static_cast<int>(weights.size()) != timeline.takes())
     throw InputError("expected " + std::to_string(timeline.takes()) + " timing weights, found " +
                      std::to_string(weights.size()));
@@ -82,8 +83,9 @@ void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& w
   if (clock_at_last != nullptr) *clock_at_last = total;
 }
 
-void mixed_timeline(const CommonTimeline& timeline, const WeightKeys& keys, double fps, int first, int last,
+void mixed_timeline(const CommonTimeline& timeline, const WeightKeys& keys, double fps, SampleSpan span,
                     Eigen::VectorXd& u, Eigen::MatrixXd* sample_weights, double* clock_at_last) {
+  const int first = span.first, last = span.last;
   validate_keys(keys, timeline.takes());
   if (keys.empty()) throw InputError("cannot time a mix by keys without a key");
   if (!(fps > 0.0) || !std::isfinite(fps)) throw InputError("expected a frame rate above 0 to time keys in seconds");

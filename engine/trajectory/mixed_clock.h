@@ -9,11 +9,16 @@
 #include <vector>
 
 #include "engine/align/common_timeline.h"
-#include "engine/align/weight_keys.h"
+#include "engine/trajectory/weight_keys.h"
 
 namespace mostyle {
 
-// Output frame k sits where the mixed clock T reaches k, over samples first..last of the takes'
+// Samples first..last of the takes' common timeline, both included.
+struct SampleSpan {
+  int first = 0, last = 0;
+};
+
+// Output frame k sits where the mixed clock T reaches k, over the span first..last of the takes'
 // common timeline: T(first) = 0 and T advances by sum_i w_i times take i's frames from one sample
 // to the next (weights: one per take, summing to 1; negative ones exaggerate), but never less than
 // the slowest weighted take advances, so that negative weights cannot stall the clock; T is linear
@@ -23,7 +28,7 @@ namespace mostyle {
 // (1 - w, w) on a one-warp timeline play at A's timing and length for w = 0 and at B's for w = 1.
 // Throws InputError on a weight count that is not the takes', a non-finite weight, or an empty
 // or out-of-range stretch. O((last - first) x N + frames).
-void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& weights, int first, int last,
+void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& weights, SampleSpan span,
                     Eigen::VectorXd& u, double* clock_at_last = nullptr);
 
 // The same with the weights keyed in time (weight_keys.h, validated for the timeline's takes):
@@ -32,7 +37,7 @@ void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& w
 // keys' times are seconds of the output. sample_weights: when given, set to the weights at each
 // sample's output time ((last - first + 1) x N), for the root and contacts. Throws as the above.
 // O((last - first) x N + frames); allocates.
-void mixed_timeline(const CommonTimeline& timeline, const WeightKeys& keys, double fps, int first, int last,
+void mixed_timeline(const CommonTimeline& timeline, const WeightKeys& keys, double fps, SampleSpan span,
                     Eigen::VectorXd& u, Eigen::MatrixXd* sample_weights = nullptr, double* clock_at_last = nullptr);
 
 // Output frames (u: K sample positions, increasing, from mixed_timeline) retimed so that the last

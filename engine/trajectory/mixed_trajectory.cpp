@@ -44,16 +44,17 @@ PlayedStretch played_stretch(const PreparedTakes& p, const std::vector<double>& 
   return st;
 }
 
-FinishOptions output_clock(const PreparedTakes& p, const WeightKeys& keys, bool reference_timing,
-                           const std::vector<double>& timing, const FinishOptions& options, const PlayedStretch& st,
-                           MixedTrajectory& s, Eigen::MatrixXd& sources) {
+FinishOptions output_clock(const PreparedTakes& p, const ClockWeights& weights, const FinishOptions& options,
+                           const PlayedStretch& st, MixedTrajectory& s, Eigen::MatrixXd& sources) {
+  const WeightKeys& keys = *weights.keys;
+  const std::vector<double>& timing = *weights.timing;
   const int n = p.size();
   const bool keyed = !keys.empty();
   double clock_at_last = 0.0;
-  if (keyed && !reference_timing) {
-    mixed_timeline(p.timeline, keys, p.fps, st.first, st.last, s.u, &s.sample_w, &clock_at_last);
+  if (keyed && !weights.reference_timing) {
+    mixed_timeline(p.timeline, keys, p.fps, {st.first, st.last}, s.u, &s.sample_w, &clock_at_last);
   } else {
-    mixed_timeline(p.timeline, timing, st.first, st.last, s.u, &clock_at_last);
+    mixed_timeline(p.timeline, timing, {st.first, st.last}, s.u, &clock_at_last);
     if (keyed) {  // the reference's clock: each sample's weights at the reference's time there
       s.sample_w.resize(st.length(), n);
       std::vector<double> w;

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "engine/align/prepare_takes.h"
-#include "engine/align/weight_keys.h"
+#include "engine/trajectory/weight_keys.h"
 #include "engine/kinematics/sample_rows.h"
 #include "engine/post/finish.h"
 #include "engine/trajectory/mixed_root.h"
@@ -50,16 +50,23 @@ PlayedStretch played_stretch(const PreparedTakes& p, const std::vector<double>& 
                              const Eigen::MatrixXd& component_weights, bool per_component,
                              const std::vector<double>& timing);
 
-// The output's clock (keys, reference_timing and options as MixParams has them; timing as above):
-// s.u (K sample positions, mixed or the reference's), with keys each sample's
+// How the output's clock is weighted, as MixParams has it: by the keys where there are any, else
+// by `timing` (the weights the clock mixes, as played_stretch's).
+struct ClockWeights {
+  const WeightKeys* keys = nullptr;             // empty: none
+  const std::vector<double>* timing = nullptr;  // one per take
+  bool reference_timing = false;  // by `timing` even with keys, which are read at the reference's times
+};
+
+// The output's clock (options as MixParams has them): s.u (K sample positions, mixed or the
+// reference's), with keys each sample's
 // weights (s.sample_w, U x N) and each output frame's (s.frame_w, K x N), s.u_stretch and the
 // sampler on the stretch, and each take's frame at each output frame (sources). Returns the
 // finish's options: a loop clip as the reference, shown whole, makes the output one loop, its
 // clock landed on the loop's end (the reference's last frame, its first pose again), which the
 // finish cuts off.
-FinishOptions output_clock(const PreparedTakes& p, const WeightKeys& keys, bool reference_timing,
-                           const std::vector<double>& timing, const FinishOptions& options, const PlayedStretch& st,
-                           MixedTrajectory& s, Eigen::MatrixXd& sources);
+FinishOptions output_clock(const PreparedTakes& p, const ClockWeights& weights, const FinishOptions& options,
+                           const PlayedStretch& st, MixedTrajectory& s, Eigen::MatrixXd& sources);
 
 // The root over the stretch (s.ground_u, s.heading_u) and the contacts (s.contacts_u): steps,
 // whole-turn flips and the paths pulled towards (integrate_root_towards), as the steps are

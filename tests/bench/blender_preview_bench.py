@@ -6,9 +6,13 @@ usage: blender -b --factory-startup --python tests/bench/blender_preview_bench.p
 
 The takes are the four CMU walks (the shared motions', else assets/motions'), each played on to
 one minute by repeating it from where its root ended. Prints, in milliseconds: reading the four
-armatures' actions (once per set of takes), then per weight change the module's call on the
-worker thread, writing its result into the preview action, and Blender posing the armature at a
-frame, each as a median and the worst of N changes.
+armatures' actions and the first change (which prepares the takes), once per set of takes; then
+per weight change, as a median and the worst of N changes, its parts: the module's call on the
+worker thread (and reading its arrays there), handing the result over, taking it up (posing the
+armature's bones at the current frame), and Blender evaluating the new pose; then a frame change
+with and without the preview (the bones posed from the result held), and the solved result once
+the weights stay still. In Blender's UI the timer that takes results up looks every
+preview._POLL_S on top.
 """
 import argparse
 import os
@@ -20,6 +24,9 @@ import bpy
 import numpy as np
 
 ONE_MINUTE_S = 60.0
+# A weight change's parts, as change() times them.
+PARTS = ("module's call, its arrays read (worker)", "result handed over", "take up and pose",
+         "Blender evaluates the pose", "weight change to pose")
 
 
 def arguments():
@@ -54,6 +61,38 @@ def ms(seconds):
     return seconds * 1000.0
 
 
+def report(label, values):
+    print("blender_preview_bench: %-45s median %7.1f ms, worst %7.1f ms" % (label, ms(statistics.median(values)),
+                                                                             ms(max(values))))
+
+
+def change(session, scene, rng):
+    """One weight change as the preview makes it, to the new pose evaluated: its parts' seconds."""
+    asked = time.perf_counter()
+    session.request(list(rng.dirichlet(np.ones(4))), None, 1.0)
+    while session.busy():
+        time.sleep(0.0002)
+    ready = time.perf_counter()
+    if not session.take_up(scene) or session.error:
+        print("blender_preview_bench: the mix failed: %s" % session.error)
+        os._exit(1)
+    shown = time.perf_counter()
+    bpy.context.view_layer.update()
+    posed = time.perf_counter()
+    call = session.shown.seconds
+    return dict(zip(PARTS, (call, ready - asked - call, shown - ready, posed - shown, posed - asked)))
+
+
+def frame_changes(scene, count):
+    """The seconds of `count` frame changes, ten frames apart."""
+    out = []
+    for f in range(count):
+        t = time.perf_counter()
+        scene.frame_set(scene.frame_start + 10 * (f + 1))
+        out.append(time.perf_counter() - t)
+    return out
+
+
 def main():
     args = arguments()
     if args.module:
@@ -73,40 +112,44 @@ def main():
         take = one_minute(mostyle, mostyle.read(os.path.join(folder, n)))
         obj = importer.build_armature(bpy.context, take, n[:-4])
         action = bpy.data.actions.new(n[:-4])
-        obj.animation_data_create().action = action
         take_io.write_take_action(take, obj, action, 1, 30.0)
+        obj.animation_data_create().action = action
         refs.append((obj, action))
+    print("blender_preview_bench: %s, 4 takes of %.0f s at their own rate, mixed at 30 fps" % (folder, ONE_MINUTE_S))
+    playing = frame_changes(scene, args.repeats)
     t = time.perf_counter()
     session = preview.Session(mostyle, refs[0][0], refs[0][1], refs, None, 'MIX', 30.0)
     read_s = time.perf_counter() - t
-    print("blender_preview_bench: %s, 4 takes of %.0f s at their own rate, mixed at 30 fps; reading the armatures' actions: %.0f ms (once per set of takes)"
-          % (folder, ONE_MINUTE_S, ms(read_s)))
-    module_s, write_s, pose_s, total_s = [], [], [], []
+    preview.run(session)
     rng = np.random.default_rng(1)
+    t = time.perf_counter()
+    change(session, scene, rng)
+    report("reading the armatures' actions (once)", [read_s])
+    report("first change, preparing the takes (once)", [time.perf_counter() - t])
+    parts = {name: [] for name in PARTS}
     for _ in range(args.repeats):
-        w = rng.dirichlet(np.ones(4))
+        for name, seconds in change(session, scene, rng).items():
+            parts[name].append(seconds)
+    for name, values in parts.items():
+        report(name, values)
+    report("frame change, the reference playing its action", playing)
+    while not session.settled():  # the solve would run beside the frame changes
+        time.sleep(0.001)
+    session.take_up(scene)
+    report("frame change while previewing", frame_changes(scene, args.repeats))
+    solved, solve_call = [], []
+    for _ in range(max(3, args.repeats // 4)):
         asked = time.perf_counter()
-        session.request(list(w), None, 1.0)
-        while session.busy():
+        session.request(list(rng.dirichlet(np.ones(4))), None, 1.0)
+        while not session.settled():
             time.sleep(0.0005)
-        computed = time.perf_counter()
-        error = session.take_up()
-        if error:
-            print("blender_preview_bench: the mix failed: " + error)
-            os._exit(1)
-        written = time.perf_counter()
-        scene.frame_set(scene.frame_current)
-        posed = time.perf_counter()
-        module_s.append(computed - asked)
-        write_s.append(written - computed)
-        pose_s.append(posed - written)
-        total_s.append(posed - asked)
-    session.stop()
-    how = "prepared handle (mostyle.prepare)" if hasattr(mostyle, "prepare") else "whole mostyle.mix calls"
-    for label, values in (("module (%s)" % how, module_s), ("write the preview action", write_s),
-                          ("pose at a frame", pose_s), ("weight change to pose", total_s)):
-        print("blender_preview_bench: %-45s median %7.1f ms, worst %7.1f ms"
-              % (label, ms(statistics.median(values)), ms(max(values))))
+        session.take_up(scene)
+        bpy.context.view_layer.update()
+        solved.append(time.perf_counter() - asked)
+        solve_call.append(session.shown.seconds)
+    report("solved result shown (settle %.0f ms)" % ms(preview._SETTLE_S), solved)
+    report("the solving call", solve_call)
+    preview.stop()
     sys.stdout.flush()
     os._exit(0)
 

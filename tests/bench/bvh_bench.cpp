@@ -11,8 +11,9 @@
 #include <unistd.h>
 #include <vector>
 
-#include "engine/io/atomic_file.h"
-#include "engine/io/bvh_io.h"
+#include "engine/base/atomic_file.h"
+#include "engine/io/bvh/bvh_read.h"
+#include "engine/io/bvh/bvh_write.h"
 #include "engine/kinematics/kinematics.h"
 
 namespace {

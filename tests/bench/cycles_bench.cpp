@@ -12,8 +12,9 @@
 #include <string>
 #include <unistd.h>
 
-#include "engine/io/atomic_file.h"
-#include "engine/io/bvh_io.h"
+#include "engine/base/atomic_file.h"
+#include "engine/io/bvh/bvh_read.h"
+#include "engine/io/bvh/bvh_write.h"
 #include "engine/io/motion_file.h"
 #include "engine/align/prepare_takes.h"
 

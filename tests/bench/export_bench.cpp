@@ -8,10 +8,10 @@
 #include <string>
 
 #include "tests/engine/run/blend_at.h"
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/base/error.h"
 #include "engine/export/export_solve.h"
-#include "engine/post/foot_contact.h"
+#include "engine/post/foot_lock.h"
 
 namespace {
 

@@ -1,7 +1,7 @@
 // Reading FBX and glTF beside BVH, on the same motion: a CMU take (cmu142_walk_joy
 // from ../shared/motions, else the trimmed one in assets/) repeated into one long take and
 // written by the benchmark as a 20 MB GLB (our writer), a 20 MB ASCII FBX (the tests' writer,
-// tests/engine/io/fbx_ascii.h: mostyle writes no binary FBX) and the BVH of the same frames.
+// tests/engine/io/fbx/fbx_ascii.h: mostyle writes no binary FBX) and the BVH of the same frames.
 // Each reads from memory to a sampled Clip at the file's rate (parse + sample), so the numbers
 // compare the whole read. MB/s via SetBytesProcessed; frames per file in the counters.
 #include <benchmark/benchmark.h>
@@ -9,12 +9,14 @@
 #include <filesystem>
 #include <string>
 
-#include "engine/io/atomic_file.h"
-#include "engine/io/bvh_io.h"
-#include "engine/io/fbx_io.h"
-#include "engine/io/gltf_io.h"
+#include "engine/base/atomic_file.h"
+#include "engine/io/bvh/bvh_read.h"
+#include "engine/io/bvh/bvh_write.h"
+#include "engine/io/fbx/fbx_read.h"
+#include "engine/io/gltf/gltf_read.h"
+#include "engine/io/gltf/gltf_write.h"
 #include "engine/io/scene_animation.h"
-#include "tests/engine/io/fbx_ascii.h"
+#include "tests/engine/io/fbx/fbx_ascii.h"
 
 namespace {
 

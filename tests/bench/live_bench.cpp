@@ -17,8 +17,9 @@
 #include <thread>
 #include <vector>
 
-#include "engine/io/axis_stream.h"
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
+#include "engine/io/bvh/bvh_write.h"
+#include "engine/live/axis_stream.h"
 #include "tests/app/live/live_process.h"
 
 namespace {

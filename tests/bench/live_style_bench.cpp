@@ -13,7 +13,7 @@
 #include <memory>
 #include <string>
 
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/live/live_style.h"
 #include "tests/engine/live/axis_rig.h"
 

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/synthesize/mix_palette.h"
 
 namespace {

@@ -18,7 +18,7 @@
 #include <string>
 
 #include "tests/engine/run/blend_at.h"
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 
 // Every heap allocation of the process goes through these (glibc lets a program replace them;
 // the __libc_ functions are glibc's own), so the blend benchmark can count them.

@@ -9,7 +9,7 @@
 
 #include "app/editor/editor.h"
 #include "app/editor/imgui_context.h"
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/units.h"
 #include "render/gl.h"

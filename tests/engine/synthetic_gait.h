@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "engine/align/cycles.h"
-#include "engine/post/foot_contact.h"
+#include "engine/measure/foot_contact.h"
 
 namespace mostyle::test {
 

@@ -7,13 +7,15 @@
 #include <stdexcept>
 
 #include "app/batch/job_line.h"
-#include "engine/io/axis_stream.h"
-#include "engine/io/bvh_io.h"
-#include "engine/io/csv_io.h"
+#include "engine/io/bvh/bvh_read.h"
+#include "engine/io/bvh/bvh_write.h"
+#include "engine/io/csv/csv_read.h"
+#include "engine/live/axis_stream.h"
 #include "engine/base/error.h"
-#include "engine/io/fbx_io.h"
-#include "engine/io/fbx_write.h"
-#include "engine/io/gltf_io.h"
+#include "engine/io/fbx/fbx_read.h"
+#include "engine/io/fbx/fbx_write.h"
+#include "engine/io/gltf/gltf_read.h"
+#include "engine/io/gltf/gltf_write.h"
 #include "engine/io/scene_animation.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/units.h"
@@ -45,7 +47,7 @@ void check_same_clip(const Clip& a, const Clip& b) {
     check(x.parent == y.parent && x.end_site == y.end_site, "round trip: tree at joint " + std::to_string(i));
     check(x.channels == y.channels && x.first_channel == y.first_channel,
           "round trip: channels of joint " + std::to_string(i));
-    // The writer zeroes a root's OFFSET when position channels place it (bvh_io.h).
+    // The writer zeroes a root's OFFSET when position channels place it (bvh_write.h).
     const bool moot = x.parent < 0 && !x.channels.empty() &&
                       std::any_of(x.channels.begin(), x.channels.end(), is_position);
     check(moot || x.offset == y.offset, "round trip: OFFSET of joint " + std::to_string(i));

@@ -19,8 +19,8 @@
 
 #include "engine/align/alignment.h"
 #include "engine/decompose/body_parts.h"
-#include "engine/align/weight_keys.h"
 #include "engine/decompose/decompose_params.h"
+#include "engine/trajectory/weight_keys.h"
 
 namespace mostyle::ui {
 

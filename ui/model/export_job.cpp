@@ -12,7 +12,7 @@
 #include "engine/base/error.h"
 #include "engine/kinematics/units.h"
 #include "ui/model/blend_session.h"
-#include "engine/io/numbers.h"
+#include "engine/base/numbers.h"
 
 namespace mostyle::ui {
 namespace fs = std::filesystem;

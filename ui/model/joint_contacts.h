@@ -3,7 +3,7 @@
 // (Take::contacts, frames x joints): the ankle and toe columns of each planted foot.
 #include <Eigen/Core>
 
-#include "engine/post/foot_contact.h"
+#include "engine/measure/foot_contact.h"
 
 namespace mostyle::ui {
 

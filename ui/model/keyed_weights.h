@@ -19,7 +19,7 @@
 // frame, at the result's rate: key_time is that frame's time.
 #include <vector>
 
-#include "engine/align/weight_keys.h"
+#include "engine/trajectory/weight_keys.h"
 #include "ui/model/document.h"
 #include "ui/model/editor_state.h"
 

@@ -5,14 +5,15 @@
 #include <condition_variable>
 #include <filesystem>
 #include <mutex>
-#include <string_view>
 #include <thread>
 
 #include "engine/base/error.h"
-#include "engine/io/axis_stream.h"
-#include "engine/io/bvh_io.h"
-#include "engine/io/bvh_recorder.h"
+#include "engine/io/bvh/bvh_read.h"
+#include "engine/live/axis_stream.h"
+#include "engine/live/bvh_recorder.h"
 #include "engine/kinematics/kinematics.h"
+#include "engine/live/bvh_recorder.h"
+#include "engine/live/stream_styler.h"
 #include "ui/model/lanes.h"
 #include "ui/model/result_view.h"
 
@@ -21,34 +22,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-
-// A line may hold each value in up to 64 bytes (a long decimal), with room for the avatar: the
-// bound `mostyle-cli live` reads with.
-size_t max_line_bytes(int channels) {
-  return std::max<size_t>(size_t{1} << 16, static_cast<size_t>(channels + kAxisReferenceValues) * 64 + 1024);
-}
-
-// Every joint's global position at one frame (values: the frame's channels), into out (3 per
-// joint, file units), as joint_positions (engine/kinematics/kinematics.h) poses it, one frame at
-// a time so that the worker poses each frame as it comes. O(joints).
-void pose_frame(const Skeleton& s, const double* values, std::vector<Eigen::Matrix3d>& rotations, double* out) {
-  const size_t n = s.joints.size();
-  rotations.resize(n);
-  for (size_t i = 0; i < n; ++i) {
-    const Joint& j = s.joints[i];
-    const Eigen::Matrix3d r = joint_local_rotation(j, values);
-    const Eigen::Vector3d t = joint_local_translation(j, values);
-    Eigen::Map<Eigen::Vector3d> p(out + 3 * i);
-    if (j.parent < 0) {
-      rotations[i] = r;
-      p = t;
-    } else {
-      const size_t parent = static_cast<size_t>(j.parent);
-      rotations[i] = rotations[parent] * r;
-      p = Eigen::Map<const Eigen::Vector3d>(out + 3 * parent) + rotations[parent] * t;
-    }
-  }
-}
 
 // The last `capacity` frames of a stream, as it came and styled, with where every joint was and
 // when each frame was styled: a ring, so that memory stays bounded however long it runs.
@@ -90,9 +63,6 @@ class FrameRing {
   long long total_ = 0;
 };
 
-// Why a line was skipped, with its number in the stream.
-std::string at_line(long long line, const std::string& why) { return "line " + std::to_string(line) + ": " + why; }
-
 }  // namespace
 
 std::string input_recording_path(const std::string& styled_path) {
@@ -128,8 +98,9 @@ std::string live_status_line(const LiveStatus& s) {
 // One connection: its worker thread, its builder thread (new takes made into a styler) and what
 // they share with the UI thread. Each spec asked is a generation: 0 the one connect() is given,
 // then one more for each set_style with other takes; strengths belong to a generation and are
-// handed only to the styler made from it.
-struct LiveSource::Run {
+// handed only to the styler made from it. The stream's lines come back to the worker from the
+// engine's loop (StreamStyler) as the Sink's calls.
+struct LiveSource::Run : StreamStyler::Sink {
   // Set before the threads start; read-only then.
   LiveSettings settings;
   LiveStyleSpec spec;
@@ -162,8 +133,9 @@ struct LiveSource::Run {
   // The worker's own (the ring too: it alone writes it, under the lock).
   std::unique_ptr<LiveStyle> style;
   std::uint64_t style_generation = 0;  // the spec `style` was made from
-  std::vector<Eigen::Matrix3d> rotations;
-  std::vector<double> styled_values, input_at, styled_at;
+  std::vector<double> caught_up;  // a styler made meanwhile styles the frames it missed here (not shown)
+  Pose input_pose, styled_pose;   // the frame's, as it came and styled
+  Clock::time_point arrival;      // when the bytes being styled were read
 
   bool finished() const { return worker_done && builder_done; }
 
@@ -271,7 +243,7 @@ struct LiveSource::Run {
     }
     const long long first = ring.total() - ring.count();
     for (long long f = std::max(through, first); f < ring.total(); ++f)
-      made->style_frame(ring.input_.row(ring.row(static_cast<int>(f - first))).data(), styled_values.data());
+      made->style_frame(ring.input_.row(ring.row(static_cast<int>(f - first))).data(), caught_up.data());
     style = std::move(made);
   }
 
@@ -290,9 +262,7 @@ struct LiveSource::Run {
     style = std::make_unique<LiveStyle>(clip.skeleton, rate, spec);
     const int channels = clip.skeleton.channel_count;
     const int coordinates = 3 * static_cast<int>(clip.skeleton.joints.size());
-    styled_values.assign(static_cast<size_t>(channels), 0.0);
-    input_at.assign(static_cast<size_t>(coordinates), 0.0);
-    styled_at.assign(static_cast<size_t>(coordinates), 0.0);
+    caught_up.assign(static_cast<size_t>(channels), 0.0);
     {
       std::lock_guard<std::mutex> lock(mutex);
       skeleton = std::move(clip.skeleton);
@@ -312,50 +282,39 @@ struct LiveSource::Run {
 
   // Reads until the source closes or the run is stopped, each complete line handled as it comes.
   void stream() {
-    AxisLineSplitter splitter(max_line_bytes(skeleton.channel_count));
-    AxisFrame frame;
-    std::string bytes, reason;
-    int avatar = -1;
-    long long dropped = 0;
+    StreamStyler lines(skeleton.channel_count);
+    std::string bytes;
     while (!stopping && source->read(&bytes)) {
-      const Clock::time_point arrival = Clock::now();
-      std::string_view chunk(bytes), line;
-      while (splitter.next(&chunk, &line)) {
-        const long long number = splitter.line_number();
-        if (parse_axis_line(line, skeleton.channel_count, &frame, &reason) != AxisLineStatus::kOk) {
-          skip(at_line(number, reason));
-        } else if (avatar >= 0 && frame.avatar_index != avatar) {
-          skip(at_line(number, "avatar " + std::to_string(frame.avatar_index) + " is not the one styled (" +
-                                   std::to_string(avatar) + ")"));
-        } else {
-          avatar = frame.avatar_index;
-          style_frame(frame.values.data(), number, arrival);
-        }
-      }
-      for (; dropped < splitter.dropped(); ++dropped)
-        skip(at_line(splitter.dropped_line_number(),
-                     "the line is longer than " + std::to_string(max_line_bytes(skeleton.channel_count)) + " bytes"));
+      arrival = Clock::now();
+      lines.feed(bytes, *this);
     }
-    if (!stopping && splitter.has_partial()) skip(at_line(splitter.line_number() + 1, "the stream ended inside a line"));
+    if (!stopping) lines.end(*this);
   }
 
-  // One frame: the strengths set since the last, styled, posed, recorded, in the window.
-  void style_frame(const double* in, long long line, Clock::time_point arrival) {
+  // Before each frame: the styler made from new takes, if there is one, and the strengths set
+  // since the last.
+  LiveStyle& styler() override {
     take_up_style();
     take_strengths();
-    style->style_frame(in, styled_values.data());
+    return *style;
+  }
+
+  // One frame styled: posed, in the window, recorded.
+  void styled(const AxisFrame& frame, const double* values) override {
     const Clock::time_point done = Clock::now();
-    for (double v : styled_values)
-      if (!std::isfinite(v)) return skip(at_line(line, "the styled frame holds a value that is not a finite number"));
-    pose_frame(skeleton, in, rotations, input_at.data());
-    pose_frame(skeleton, styled_values.data(), rotations, styled_at.data());
+    const double* in = frame.values.data();
+    pose_frame(skeleton, in, &input_pose);
+    pose_frame(skeleton, values, &styled_pose);
     std::lock_guard<std::mutex> lock(mutex);
     const int row = ring.push();
-    const Eigen::Index c = skeleton.channel_count, x = static_cast<Eigen::Index>(input_at.size());
+    const Eigen::Index c = skeleton.channel_count;
     ring.input_.row(row) = Eigen::Map<const Eigen::RowVectorXd>(in, c);
-    ring.styled_.row(row) = Eigen::Map<const Eigen::RowVectorXd>(styled_values.data(), c);
-    ring.input_at_.row(row) = Eigen::Map<const Eigen::RowVectorXd>(input_at.data(), x);
-    ring.styled_at_.row(row) = Eigen::Map<const Eigen::RowVectorXd>(styled_at.data(), x);
+    ring.styled_.row(row) = Eigen::Map<const Eigen::RowVectorXd>(values, c);
+    for (size_t j = 0; j < input_pose.positions.size(); ++j) {
+      const Eigen::Index x = 3 * static_cast<Eigen::Index>(j);
+      ring.input_at_.block<1, 3>(row, x) = input_pose.positions[j].transpose();
+      ring.styled_at_.block<1, 3>(row, x) = styled_pose.positions[j].transpose();
+    }
     ring.times_[static_cast<size_t>(row)] = done;
     ring.latency_us_[static_cast<size_t>(row)] = std::chrono::duration<double, std::micro>(done - arrival).count();
     ++status.lines;
@@ -363,22 +322,23 @@ struct LiveSource::Run {
     status.in_cycle = style->in_cycle();
     status.phase = style->phase();
     status.strengths = style->strengths();
-    record_frame(in);
+    record_frame(in, values);
     ++version;
   }
 
-  // Under the lock: the recordings' next frame (a recording that cannot be written stops, said).
-  void record_frame(const double* in) {
-    try {
-      if (record) record->append(styled_values.data());
-      if (record_input) record_input->append(in);
+  // Under the lock: the recordings' next frame (a recording that cannot be written stops, both
+  // files with it, said).
+  void record_frame(const double* in, const double* values) {
+    std::string stopped = append_or_stop(&record, values);
+    if (stopped.empty()) stopped = append_or_stop(&record_input, in);
+    if (stopped.empty()) {
       if (record) status.recorded = record->frames();
-    } catch (const InputError& e) {
-      status.record_error = std::string(e.what()) + "; the recording stops at " + std::to_string(status.recorded) + " frames";
-      record.reset();
-      record_input.reset();
-      status.recording = false;
+      return;
     }
+    status.record_error = stopped;
+    record.reset();
+    record_input.reset();
+    status.recording = false;
   }
 
   void take_strengths() {
@@ -400,11 +360,11 @@ struct LiveSource::Run {
     status.strength_error = refused;
   }
 
-  void skip(const std::string& why) {
+  void skipped(long long line, const std::string& why) override {
     std::lock_guard<std::mutex> lock(mutex);
     ++status.lines;
     ++status.skipped;
-    status.last_skip = why;
+    status.last_skip = "line " + std::to_string(line) + ": " + why;
     ++version;
   }
 

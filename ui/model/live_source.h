@@ -1,14 +1,15 @@
 #pragma once
 // The editor's Live source: a motion-capture stream in Axis Neuron's "BVH broadcasting" string
-// format (engine/io/axis_stream.h) styled frame by frame as it arrives, as `mostyle-cli live`
+// format (engine/live/axis_stream.h) styled frame by frame as it arrives, as `mostyle-cli live`
 // styles it (engine/live/live_style.h), with the takes loaded in the editor as the neutral and
 // the styles (ui/model/live_style_spec.h says which is which in each mode). The viewport shows the stream and the styled stream side by side at the newest
 // frame; the Files panel connects and records, the Metrics panel shows the latency.
 //
 // Threads: connect() starts one worker thread of its own, which reads the stream's skeleton,
-// prepares the styler (heavy: seconds), opens the FrameSource, then reads its bytes, cuts them
-// into lines, parses each, styles it, records it and appends it to a window of the last
-// window_seconds. The styler is the worker's alone: strengths set from the UI thread are handed
+// prepares the styler (heavy: seconds), opens the FrameSource, then reads its bytes and hands
+// them to the engine's stream loop (engine/live/stream_styler.h: lines cut, parsed, styled, as
+// the command line's live does), recording each frame styled and appending it to a window of
+// the last window_seconds. The styler is the worker's alone: strengths set from the UI thread are handed
 // to it under a lock and applied before its next frame. New takes (set_style) are made into a
 // new styler on a second thread of the connection's, which hands it to the worker when made;
 // the worker styles with the one it has meanwhile and keeps the connection. The UI thread calls the public
@@ -148,7 +149,7 @@ class LiveSource {
 
   // Records the styled stream to `path` (and the stream as it came, to input_recording_path,
   // when with_input), from the next frame on: a BVH file that reads whole at every moment
-  // (engine/io/bvh_recorder.h). false when not streaming yet or the file cannot be written
+  // (engine/live/bvh_recorder.h). false when not streaming yet or the file cannot be written
   // (status().record_error says why). A recording before ends first.
   bool start_recording(const std::string& path, bool with_input);
   void stop_recording();

@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/io/atomic_file.h"
+#include "engine/base/atomic_file.h"
 #include "engine/base/error.h"
 
 namespace mostyle::ui {

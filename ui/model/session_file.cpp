@@ -15,7 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/align/alignment.h"
-#include "engine/io/atomic_file.h"
+#include "engine/base/atomic_file.h"
 #include "engine/base/error.h"
 #include "ui/model/document_fields.h"
 

@@ -72,7 +72,7 @@ SessionFile parse_session(std::string_view text, const std::string& session_path
 
 // parse_session of the file's bytes. Throws InputError: "PATH: cannot read: ..." or as above.
 SessionFile read_session_file(const std::string& path);
-// format_session into the file, written atomically (engine/io/atomic_file.h): a failed write
+// format_session into the file, written atomically (engine/base/atomic_file.h): a failed write
 // leaves the previous file as it was. Throws InputError "PATH: cannot write: ...".
 void write_session_file(const std::string& path, const SessionFile& session);
 

@@ -23,6 +23,20 @@ double own_frame(const PreparedTake& take, int frame) {
   return source[std::clamp<Eigen::Index>(frame, 0, source.size() - 1)];
 }
 
+std::vector<StructureSpan> structure_spans(const PreparedTake& take, int frames,
+                                           const std::function<double(int)>& own_frame_at) {
+  std::vector<StructureSpan> out;
+  double before = NAN;
+  for (int f = 0; f < frames; ++f) {
+    const double own = own_frame_at(f);
+    const FrameStructure s = frame_structure(take, own);
+    if (out.empty() || s != out.back().structure || own < before) out.push_back(StructureSpan{f, f, s});
+    out.back().end = f + 1;
+    before = own;
+  }
+  return out;
+}
+
 std::string frame_structure_words(const PreparedTake& take, double frame) {
   const FrameStructure s = frame_structure(take, frame);
   const ActionSpans& spans = take.cycles.spans;

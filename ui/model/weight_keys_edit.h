@@ -1,12 +1,12 @@
 #pragma once
-// Style over time in the editor: a list of weight keys (engine/align/weight_keys.h) as
+// Style over time in the editor: a list of weight keys (engine/trajectory/weight_keys.h) as
 // the timeline edits it: a key set at a moment (the key already there replaced), moved in time
 // between its neighbours, the list compared and put in another order of takes. Pure functions on
 // plain data: no ImGui, no engine work. Times are seconds of the result from its first frame (the
 // playhead's clock: ui/model/keyed_weights.h key_time); a key's weights are one per take.
 #include <vector>
 
-#include "engine/align/weight_keys.h"
+#include "engine/trajectory/weight_keys.h"
 
 namespace mostyle::ui {
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <string>
 
 #include <imgui.h>
@@ -197,11 +198,28 @@ void draw_before_marks(const PairPlot& v, const PlotArea& before) {
     dl->AddLine(before.to_screen(i, v.sa(i, v.col)), before.to_screen(j, v.sb(j, v.col) - 1.05 * span),
                 IM_COL32(150, 155, 165, 90), 1.0f);
   }
+  // Each take's rests shaded grey across its band, its actions (and the strokes or steps in them)
+  // a strip at the band's outer edge, on the frames plotted: the take's through its registration.
+  auto shade = [&](const PreparedTake& t, int frames, const std::function<double(int)>& own, double top,
+                   double bottom, double strip_top, double strip_bottom, ImU32 color) {
+    const ImU32 strip = (color & 0x00FFFFFFu) | 0x90000000u;
+    for (const StructureSpan& r : structure_spans(t, frames, own)) {
+      if (r.structure.part == FramePart::kRest)
+        dl->AddRectFilled(before.to_screen(r.begin, top), before.to_screen(r.end, bottom), IM_COL32(150, 150, 160, 45));
+      else if (r.structure.part != FramePart::kPosture)
+        dl->AddRectFilled(before.to_screen(r.begin, strip_top), before.to_screen(r.end, strip_bottom), strip);
+    }
+  };
+  const PreparedTake& take = v.p.takes[static_cast<size_t>(v.take)];
+  shade(v.p.takes[0], v.fa, [](int i) { return double(i); }, hi + 0.1 * span, lo - 0.05 * span, hi + 0.1 * span,
+        hi + 0.03 * span, v.color_a);
+  shade(take, v.fb, [&](int j) { return own_frame(take, j); }, hi - 1.1 * span, lo - 1.15 * span, lo - 1.08 * span,
+        lo - 1.15 * span, v.color_b);
   // Where each take's cycles begin (engine/align/cycles.h): ticks at the top of the reference's
   // band and the bottom of the take's.
   for (const Cycle& c : v.p.takes[0].cycles.cycles)
     dl->AddLine(before.to_screen(c.begin, hi + 0.1 * span), before.to_screen(c.begin, hi - 0.1 * span), v.color_a, 2.0f);
-  for (const Cycle& c : v.p.takes[static_cast<size_t>(v.take)].timeline_cycles().cycles)
+  for (const Cycle& c : take.timeline_cycles().cycles)
     dl->AddLine(before.to_screen(c.begin, lo - 1.15 * span), before.to_screen(c.begin, lo - 0.95 * span), v.color_b,
                 2.0f);
   dl->PopClipRect();
@@ -215,8 +233,9 @@ PlotArea draw_before(const PairPlot& v, float width, float plot_h) {
   ImGui::BeginGroup();
   ImGui::TextUnformatted("before warping");
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("%s above, %s below, each on its own timeline; matched frames joined; ticks where each take's "
-                      "cycles begin", v.name_a.c_str(), v.name_b.c_str());
+    ImGui::SetTooltip("%s above, %s below, each on its own timeline; matched frames joined; shaded grey: rests; a "
+                      "strip at the edge: the actions between them; ticks where each take's cycles (steps or "
+                      "strokes) begin", v.name_a.c_str(), v.name_b.c_str());
   const int frames = std::max(v.fa, v.fb);
   PlotArea before = begin_plot("##before", width, plot_h, 0.0, frames - 1, lo - 1.15 * span, hi + 0.1 * span);
   draw_before_marks(v, before);

@@ -13,7 +13,7 @@
 
 #include "engine/export/export_frames.h"
 #include "engine/io/motion_file.h"
-#include "engine/io/numbers.h"
+#include "engine/base/numbers.h"
 #include "ui/panels/files_panel.h"
 
 namespace mostyle::ui {

@@ -14,7 +14,7 @@
 #include <chrono>
 
 #include "engine/io/motion_file.h"
-#include "engine/io/numbers.h"
+#include "engine/base/numbers.h"
 
 #include "ui/panels/layout.h"
 #include "ui/model/live_style_spec.h"

@@ -9,7 +9,7 @@
 
 #include "engine/export/export_frames.h"
 #include "engine/io/motion_file.h"
-#include "engine/io/numbers.h"
+#include "engine/base/numbers.h"
 #include "ui/model/document.h"
 #include "ui/model/keyed_weights.h"
 #include "ui/model/take_structure.h"

@@ -9,7 +9,7 @@
 #include <imgui.h>
 
 #include "engine/io/motion_file.h"
-#include "engine/io/numbers.h"
+#include "engine/base/numbers.h"
 #include "engine/kinematics/units.h"
 #include "ui/panels/fitted_text.h"
 #include "ui/panels/layout.h"

@@ -17,7 +17,7 @@ struct Metrics {
   struct Take {
     std::string name;           // "A", "B" in a pair, else what tells the takes' names apart
     double fit_error = -1.0;    // what the components do not rebuild (RMSE), reference units
-    double foot_sliding = -1.0; // how fast its planted feet move (engine/post/planted_feet.h), reference units per second
+    double foot_sliding = -1.0; // how fast its planted feet move (engine/measure/planted_feet.h), reference units per second
   };
   const Clip* reference = nullptr;  // the take whose units every length is in
   std::string result = "blend";     // result_name (ui/model/document.h): "blend", "mix" or "transfer"

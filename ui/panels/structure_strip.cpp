@@ -37,29 +37,17 @@ void draw_structure_strip(const PreparedTake& take, ImVec2 min, ImVec2 max, int 
     else dl->AddLine(ImVec2(a, across0), ImVec2(a, across1), color, 1.5f);
   };
   const float band_inset = 0.25f * (across1 - across0);
-  // One rectangle per run of frames alike (a rest, an action, a cycle); a cycle shown again
-  // (the take's own frame going back, a registered take repeating it) begins a run of its own.
-  int begin = 0;
-  double own = own_frame_at(0);
-  FrameStructure run = frame_structure(take, own);
-  for (int f = 1; f <= frames; ++f) {
-    const double next_own = f < frames ? own_frame_at(f) : own;
-    const FrameStructure next = frame_structure(take, next_own);
-    const bool again = next_own < own;
-    own = next_own;
-    if (f < frames && next == run && !again) continue;
-    switch (run.part) {
-      case FramePart::kPosture: rect(begin, f, 0.0f, kPostureColor); break;
-      case FramePart::kRest: rect(begin, f, 0.0f, kRestColor); break;
-      case FramePart::kAction: rect(begin, f, 0.0f, faded(color, 0.28f)); break;
+  for (const StructureSpan& run : structure_spans(take, frames, own_frame_at)) {
+    switch (run.structure.part) {
+      case FramePart::kPosture: rect(run.begin, run.end, 0.0f, kPostureColor); break;
+      case FramePart::kRest: rect(run.begin, run.end, 0.0f, kRestColor); break;
+      case FramePart::kAction: rect(run.begin, run.end, 0.0f, faded(color, 0.28f)); break;
       case FramePart::kCycle:
-        rect(begin, f, 0.0f, faded(color, 0.28f));
-        rect(begin, f, band_inset, faded(color, run.index % 2 == 0 ? 0.55f : 0.38f));
-        tick(begin);
+        rect(run.begin, run.end, 0.0f, faded(color, 0.28f));
+        rect(run.begin, run.end, band_inset, faded(color, run.structure.index % 2 == 0 ? 0.55f : 0.38f));
+        tick(run.begin);
         break;
     }
-    begin = f;
-    run = next;
   }
 }
 

@@ -19,7 +19,7 @@
 #include <string>
 #include <thread>
 
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "tests/app/cli/cli_sandbox.h"
 #include "tests/test_data.h"
 

@@ -12,11 +12,11 @@
 #include <sstream>
 #include <string>
 
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/io/motion_file.h"
 #include "engine/kinematics/kinematics.h"
 #include "tests/app/cli/cli_sandbox.h"
-#include "tests/engine/io/gltf_validator.h"
+#include "tests/engine/io/gltf/gltf_validator.h"
 #include "tests/test_data.h"
 
 namespace fs = std::filesystem;

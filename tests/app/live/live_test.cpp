@@ -17,9 +17,10 @@
 #include <thread>
 #include <vector>
 
-#include "engine/io/atomic_file.h"
-#include "engine/io/axis_stream.h"
-#include "engine/io/bvh_io.h"
+#include "engine/base/atomic_file.h"
+#include "engine/io/bvh/bvh_read.h"
+#include "engine/io/bvh/bvh_write.h"
+#include "engine/live/axis_stream.h"
 #include "engine/kinematics/kinematics.h"
 #include "tests/app/cli/cli_sandbox.h"
 #include "tests/app/live/live_process.h"

@@ -61,6 +61,9 @@ CanonicalMotion ramp_motion(int frames, double level) {
 
 Eigen::MatrixXd contacts_marked(int frames, double value) { return Eigen::MatrixXd::Constant(frames, 2, value); }
 
+// ramp_motion's one joint, its movement kept as it is by a posture.
+const std::vector<bool> kOneJointUnsized{false};
+
 }  // namespace
 
 TEST_CASE("cycle registration: the registered take, worked by hand") {
@@ -76,7 +79,8 @@ TEST_CASE("cycle registration: the registered take, worked by hand") {
   const RegisteredMotion r = register_by_cycles(ref, contacts_marked(100, 0.0), rc, take, contacts_marked(40, 1.0), tc, 2);
   const CycleRegistration& g = r.registration;
   CHECK(g.pairs == std::vector<int>{0, 1, 0});
-  // Spans: 10 frames before, 15 + 15 (the take's cycles), 10 of the pause, 15, 5 after.
+  // Spans: 10 frames before (the take's own 5 before its first cycle are too few to stand for
+  // them), 15 + 15 (the take's cycles), 10 of the pause, 15, 5 after.
   REQUIRE(r.motion.local.rows() == 10 + 15 + 15 + 10 + 15 + 5);
   REQUIRE(g.cycles.cycles.size() == 3);
   CHECK(g.cycles.cycles[0].begin == 10);
@@ -121,6 +125,44 @@ TEST_CASE("cycle registration: the registered take, worked by hand") {
   // The root: the take's steps (one unit a frame along +z) throughout, from the reference's start.
   CHECK(r.motion.ground(0, 1) == Approx(0.0));
   CHECK(r.motion.ground(69, 1) == Approx(69.0));
+}
+
+TEST_CASE("cycle registration: a start and a stop show the take's own where both takes are alike there") {
+  // The reference: 60 frames, cycles 10-30 and 30-50. The take: 70 frames, cycles 15-35, 35-50 and
+  // 50-60 (more than the reference's), its stop 60-70 after its last cycle.
+  const CanonicalMotion ref = ramp_motion(60, 1.0), take = ramp_motion(70, 3.0);
+  TakeCycles rc, tc;
+  rc.kind = tc.kind = CycleKind::kGait;
+  rc.foot = tc.foot = 0;
+  rc.cycles = {{10, 30}, {30, 50}};
+  tc.cycles = {{15, 35}, {35, 50}, {50, 60}};
+  rc.period = 20;
+  tc.period = 15;
+  const RegisteredMotion r = register_by_cycles(ref, contacts_marked(60, 0.0), rc, take, contacts_marked(70, 1.0), tc, 2);
+  const CycleRegistration& g = r.registration;
+  // Start: the take's frames 0-14; cycles 0 and 1 (35 frames); stop: its frames 60-69, after its
+  // cycle 1 that ends at 50, not at 60: the seam (50 - 60) shrinks linearly over the stop.
+  REQUIRE(r.motion.local.rows() == 15 + 35 + 10);
+  CHECK(g.source[0] == 0.0);
+  CHECK(g.source[14] == 14.0);
+  CHECK(g.source[50] == 60.0);
+  CHECK(r.motion.local(50, 0) == Approx(50.0));
+  CHECK(r.motion.local(55, 0) == Approx(65.0 - 10.0 * 0.5));
+  CHECK(g.source[59] == 69.0);
+  CHECK(r.contacts(59, 0) == 1.0);
+  CHECK(g.anchors.front().cycle);
+  CHECK(g.anchors[g.anchors.size() - 2].cycle);
+
+  // The same take standing at its start (its root still over its first frames) while the
+  // reference is under way: its start is not the reference's, which shows its posture instead
+  // (the reference's own frames, moved), the take's frames only near its first cycle.
+  CanonicalMotion standing = take;
+  for (int f = 0; f < 15; ++f) standing.ground.row(f) << 0.0, 0.0;
+  const RegisteredMotion s = register_by_cycles(ref, contacts_marked(60, 0.0), rc, standing, contacts_marked(70, 1.0), tc, 2);
+  REQUIRE(s.motion.local.rows() == 10 + 35 + 10);
+  CHECK_FALSE(s.registration.anchors.front().cycle);
+  CHECK(std::isnan(s.registration.source[0]));
+  CHECK(s.registration.anchors[s.registration.anchors.size() - 2].cycle);
 }
 
 TEST_CASE("cycle registration: a reused cycle that does not follow on eases its seam over the cycle") {
@@ -222,7 +264,8 @@ TEST_CASE("posture registration: a walk on a reference with no cycles gives its 
   cycles.kind = CycleKind::kGait;
   cycles.foot = 0;
   cycles.cycles = {{4, 8}, {8, 12}};
-  const RegisteredMotion r = register_posture_only(reference, contacts_marked(6, 1.0), take, cycles);
+  const RegisteredMotion r =
+      register_posture_only(reference, contacts_marked(6, 1.0), take_posture(take.local, cycles), cycles, kOneJointUnsized, 1.0);
   REQUIRE(r.motion.local.rows() == 6);
   for (int f = 0; f < 6; ++f) {
     CHECK(r.motion.local(f, 0) == Approx(f + 5.0));
@@ -245,10 +288,58 @@ TEST_CASE("posture registration: a walk on a reference with no cycles gives its 
   loop.kind = CycleKind::kGait;
   loop.loop_frames = 10;
   loop.cycles = {{5, 15}};
-  const RegisteredMotion l = register_posture_only(reference, contacts_marked(6, 0.0), ramp_motion(10, 1.0), loop);
+  const RegisteredMotion l =
+      register_posture_only(reference, contacts_marked(6, 0.0), take_posture(ramp_motion(10, 1.0).local, loop), loop,
+                            kOneJointUnsized, 1.0);
   CHECK(l.motion.local(0, 0) == Approx(0.0 + 4.5 - 2.5));
-  // A take without cycles has no posture to give.
-  CHECK_THROWS_AS(register_posture_only(reference, contacts_marked(6, 0.0), take, TakeCycles()), InputError);
+  // A pose of another skeleton's size is refused.
+  TakePosture other = take_posture(take.local, cycles);
+  other.mean.resize(2);
+  CHECK_THROWS_AS(register_posture_only(reference, contacts_marked(6, 0.0), other, loop, kOneJointUnsized, 1.0), InputError);
+}
+
+TEST_CASE("posture of a take: its mean pose and spread, and the reference's movement sized by it, worked by hand") {
+  // Take: 10 frames, x = 0, 2, .., 18, y = 2, no cycles: mean x 9, spread 2 sqrt(8.25) (the RMS of
+  // x - 9), fastest 2 a frame. Reference: 6 frames, x = 0..5, y = 1: mean x 2.5, spread
+  // sqrt(17.5 / 6), fastest 1.
+  CanonicalMotion take = ramp_motion(10, 2.0);
+  take.local.col(0) *= 2.0;
+  const CanonicalMotion reference = ramp_motion(6, 1.0);
+  const TakePosture posture = take_posture(take.local, TakeCycles());
+  CHECK(posture.mean[0] == Approx(9.0));
+  CHECK(posture.mean[1] == Approx(2.0));
+  CHECK(posture.spread[0] == Approx(2.0 * std::sqrt(8.25)));
+  CHECK(posture.fastest[0] == Approx(2.0));
+  // A walk's posture is over its cycles, its mean the one cycles_mean_pose gives.
+  TakeCycles cycles;
+  cycles.kind = CycleKind::kGait;
+  cycles.cycles = {{4, 8}, {8, 12}};
+  const CanonicalMotion walk = ramp_motion(20, 5.0);
+  CHECK(take_posture(walk.local, cycles).mean.isApprox(cycles_mean_pose(walk.local, cycles)));
+  CHECK(take_posture(walk.local, cycles).spread[0] == Approx(std::sqrt(5.25)));  // x = 4..11 about 7.5
+  // The spreads' ratio, 2 sqrt(8.25) / sqrt(17.5 / 6) = 3.4, would move x 3.4 a frame, faster than
+  // the take's 2: sized by 2. x = 9 + (f - 2.5) 2; y keeps the reference's (still) 1, moved to 2.
+  const RegisteredMotion r =
+      register_posture_only(reference, contacts_marked(6, 1.0), posture, TakeCycles(), {true}, 1.0);
+  for (int f = 0; f < 6; ++f) {
+    CHECK(r.motion.local(f, 0) == Approx(9.0 + (f - 2.5) * 2.0));
+    CHECK(r.motion.local(f, 1) == Approx(2.0));
+  }
+  CHECK(r.registration.posture_only());
+  // The reference's spread taken as at least the floor (3 here): sized by 2 sqrt(8.25) / 3 = 1.9.
+  const RegisteredMotion floored =
+      register_posture_only(reference, contacts_marked(6, 1.0), posture, TakeCycles(), {true}, 3.0);
+  CHECK(floored.motion.local(0, 0) == Approx(9.0 - 2.5 * 2.0 * std::sqrt(8.25) / 3.0));
+  // Not sized: moved by the posture alone.
+  const RegisteredMotion unsized =
+      register_posture_only(reference, contacts_marked(6, 1.0), posture, TakeCycles(), kOneJointUnsized, 1.0);
+  CHECK(unsized.motion.local(0, 0) == Approx(0.0 + 9.0 - 2.5));
+  // The reference's own posture changes nothing.
+  const RegisteredMotion same = register_posture_only(reference, contacts_marked(6, 1.0),
+                                                      take_posture(reference.local, TakeCycles()), TakeCycles(), {true}, 1.0);
+  CHECK(same.motion.local.isApprox(reference.local));
+  CHECK_THROWS_AS(register_posture_only(reference, contacts_marked(6, 1.0), posture, TakeCycles(), {true}, 0.0),
+                  InputError);
 }
 
 TEST_CASE("posture registration: a walk's style put on a standing take moves only its posture", "[shared]") {

@@ -10,7 +10,7 @@
 #include "engine/decompose/decompose_takes.h"
 #include "engine/decompose/decomposition.h"
 #include "engine/decompose/sparse_coding.h"
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/base/error.h"
 #include "engine/prepare/major_skeleton.h"
 #include "tests/engine/synthetic_motion.h"

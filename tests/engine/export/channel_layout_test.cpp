@@ -8,7 +8,8 @@
 #include <vector>
 
 #include "engine/export/export_solve.h"
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
+#include "engine/io/bvh/bvh_write.h"
 #include "engine/base/error.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/units.h"

@@ -9,7 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
+#include "engine/io/bvh/bvh_write.h"
 #include "engine/kinematics/convert.h"
 #include "engine/base/error.h"
 #include "engine/kinematics/kinematics.h"

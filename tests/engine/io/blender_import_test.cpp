@@ -1,7 +1,6 @@
 // What Blender makes of the files mostyle writes and reads, checked with Blender itself
 // (tests/blender/import_report.py: Blender's own importers, default settings). Skips, visibly,
 // where Blender is not installed or cannot import glTF (Debian's Blender needs python3-numpy).
-#include <unistd.h>
 
 #include <catch2/catch.hpp>
 #include <cstdio>
@@ -13,11 +12,12 @@
 #include <string>
 #include <vector>
 
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/io/motion_file.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/resample.h"
 #include "engine/kinematics/units.h"
+#include "tests/engine/io/temp_dir.h"
 #include "tests/test_data.h"
 
 namespace fs = std::filesystem;
@@ -30,12 +30,7 @@ namespace {
 constexpr double kBlenderMax = 5e-5;
 constexpr double kBlenderMean = 1e-5;
 
-struct TempDir {
-  fs::path dir = fs::temp_directory_path() / ("mostyle_blender_test_" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(dir); }
-  ~TempDir() { fs::remove_all(dir); }
-  std::string path(const std::string& name) const { return (dir / name).string(); }
-};
+using test::TempDir;
 
 std::string quoted(const std::string& text) {
   std::string out = "'";

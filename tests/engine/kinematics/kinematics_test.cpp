@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "tests/test_data.h"
 
 using namespace mostyle;
@@ -157,6 +157,39 @@ TEST_CASE("FK of some joints poses them exactly as FK of all", "[kinematics]") {
   CHECK(joint_positions(clip, {}).cols() == 0);
 }
 
+TEST_CASE("one frame's FK poses real takes' frames exactly as the whole clip's FK", "[kinematics]") {
+  for (const std::string& path : test::asset_motions()) {
+    INFO(path);
+    const Clip clip = read_bvh_file(path);
+    const int n = static_cast<int>(clip.skeleton.joints.size());
+    std::vector<int> every(static_cast<size_t>(n));
+    for (int j = 0; j < n; ++j) every[static_cast<size_t>(j)] = j;
+    // The four-frame FK of joint_positions(clip, joints) is code of its own: the same values.
+    const Eigen::MatrixXd whole = joint_positions(clip, every);
+    // A leg's chain only: the hips' descendants down one side, with their ancestors.
+    std::vector<int> chain;
+    for (int j = 0; j < n && chain.size() < 5; ++j)
+      if (j == 0 || clip.skeleton.joints[static_cast<size_t>(j)].parent == chain.back()) chain.push_back(j);
+    Pose pose, part;
+    part.rotations.assign(static_cast<size_t>(n), Eigen::Matrix3d::Identity());
+    part.positions.assign(static_cast<size_t>(n), Eigen::Vector3d::Zero());
+    for (int f = 0; f < clip.frames(); ++f) {
+      const double* row = clip.motion.row(f).data();
+      pose_frame(clip.skeleton, row, &pose);
+      REQUIRE(pose.positions.size() == static_cast<size_t>(n));
+      bool same = true;
+      for (int j = 0; j < n; ++j) same = same && pose.positions[static_cast<size_t>(j)] == position(whole, f, j);
+      pose_frame(clip.skeleton, row, chain, &part);
+      for (int j : chain)
+        same = same && part.positions[static_cast<size_t>(j)] == pose.positions[static_cast<size_t>(j)] &&
+               part.rotations[static_cast<size_t>(j)] == pose.rotations[static_cast<size_t>(j)];
+      if (!same) FAIL("frame " << f << " differs");
+    }
+    // Joints off the chain are left as they were.
+    CHECK(part.positions[static_cast<size_t>(n - 1)] == Eigen::Vector3d::Zero());
+  }
+}
+
 TEST_CASE("rest_positions turns each OFFSET by its parents' rest rotations", "[kinematics]") {
   // An FBX or glTF rest pose: the root turned a quarter about Z, the arm a quarter about Y.
   Skeleton s;
@@ -235,4 +268,16 @@ TEST_CASE("FK handles a 20000-deep hierarchy without recursion", "[kinematics]")
   // A straight chain up +Y: joint i at height i + 1, the End Site at kDepth + 1.
   CHECK(p(0, 3 * (kDepth - 1) + 1) == kDepth);
   CHECK(p(0, 3 * kDepth + 1) == kDepth + 1);
+}
+
+TEST_CASE("chain_joints: the joints asked for and their ancestors, once each, parents first") {
+  const Clip clip = parse_bvh(
+      "HIERARCHY\nROOT R\n{\nOFFSET 0 0 0\nCHANNELS 3 Xposition Yposition Zposition\n"
+      "JOINT A\n{\nOFFSET 1 0 0\nCHANNELS 0\nJOINT B\n{\nOFFSET 1 0 0\nCHANNELS 0\nEnd Site\n{\nOFFSET 1 0 0\n}\n}\n}\n"
+      "JOINT C\n{\nOFFSET 0 1 0\nCHANNELS 0\nEnd Site\n{\nOFFSET 0 1 0\n}\n}\n}\nMOTION\nFrames: 1\nFrame Time: 0.1\n0 0 0\n",
+      "chain.bvh");
+  // Joints in file order: R 0, A 1, B 2, B's end 3, C 4, C's end 5.
+  CHECK(chain_joints(clip.skeleton, {2}) == std::vector<int>{0, 1, 2});
+  CHECK(chain_joints(clip.skeleton, {4, 2, 1}) == std::vector<int>{0, 1, 2, 4});
+  CHECK(chain_joints(clip.skeleton, {}).empty());
 }

@@ -5,7 +5,7 @@
 #include <limits>
 #include <string>
 
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/base/error.h"
 #include "engine/kinematics/kinematics.h"
 #include "tests/test_data.h"
@@ -201,5 +201,27 @@ TEST_CASE("resample every shared file to 30 fps and 24 fps", "[resample]") {
         }
       }
     }
+  }
+}
+
+TEST_CASE("resample: only the chains of the joints asked for, the same values", "[resample]") {
+  const Clip clip = read_bvh_file(test::asset("motions/cmu142_walk_clumsy.bvh"));
+  // The left hand's chain and the right foot's; the fingers and the other limbs are not asked for.
+  std::vector<int> asked;
+  for (size_t j = 0; j < clip.skeleton.joints.size(); ++j) {
+    const std::string& name = clip.skeleton.joints[j].name;
+    if (name == "LeftHand" || name == "RightFoot") asked.push_back(static_cast<int>(j));
+  }
+  REQUIRE(asked.size() == 2);
+  const Clip all = resample_clip(clip, 24);  // 120 -> 24 is every 5th frame: also try 36 (between frames)
+  const Clip some = resample_clip(clip, 24, asked);
+  CHECK(joint_positions(some, asked) == joint_positions(all, asked));
+  const Clip between = resample_clip(clip, 36), between_some = resample_clip(clip, 36, asked);
+  CHECK(joint_positions(between_some, asked) == joint_positions(between, asked));
+  // A joint off the chains keeps zeros: nothing was sampled for it.
+  for (const Joint& j : clip.skeleton.joints) {
+    if (j.name != "RightHand" || j.channels.empty()) continue;
+    CHECK(between_some.motion.middleCols(j.first_channel, j.channels.size()).isZero());
+    CHECK_FALSE(between.motion.middleCols(j.first_channel, j.channels.size()).isZero());
   }
 }

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "engine/export/export_solve.h"
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/base/clip.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/kinematics/limb_length.h"

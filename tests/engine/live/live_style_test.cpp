@@ -8,14 +8,14 @@
 #include <string>
 #include <vector>
 
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/base/error.h"
 #include "engine/kinematics/kinematics.h"
 #include "engine/live/live_feet.h"
 #include "engine/live/live_phase.h"
 #include "engine/kinematics/limb_length.h"
-#include "engine/post/foot_contact.h"
-#include "engine/post/planted_feet.h"
+#include "engine/measure/foot_contact.h"
+#include "engine/measure/planted_feet.h"
 #include "engine/prepare/major_skeleton.h"
 #include "engine/align/prepare_takes.h"
 #include "tests/engine/live/axis_rig.h"

@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "engine/base/error.h"
-#include "engine/post/planted_feet.h"
+#include "engine/measure/planted_feet.h"
 
 using namespace mostyle;
 

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/io/atomic_file.h"
-#include "engine/io/bvh_io.h"
+#include "engine/base/atomic_file.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/base/error.h"
 #include "engine/io/motion_file.h"
 #include "engine/kinematics/kinematics.h"

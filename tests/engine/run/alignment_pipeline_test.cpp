@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "engine/align/time_warp.h"
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/io/motion_file.h"
 #include "engine/base/clip.h"
 #include "engine/kinematics/units.h"
@@ -299,20 +299,17 @@ TEST_CASE("alignment pipeline: no pops on the shared motions' hardest pairs, acr
   }
 }
 
-TEST_CASE("alignment pipeline: a walk with a jump, which cannot be registered by cycles, matches all of the walk",
-          "[alignment]") {
+TEST_CASE("alignment pipeline: a jump on a walking loop gives its posture, and all of the walk plays", "[alignment]") {
   MOSTYLE_REQUIRE_SHARED_MOTIONS();
-  // Open ends matched 0.6 s of the 2 s loop with the jump and left the rest out; closed, all of
-  // both takes are on the path.
+  // Open ends matched 0.6 s of the 2 s loop with the jump and left the rest out; the jump has no
+  // steps to match the walk's, so it is laid on all of the walk as its posture.
   auto walk = std::make_shared<const Clip>(read_motion_file(test::shared_motion("wild/gltf_cesiumman_walk.glb")));
   auto jump = std::make_shared<const Clip>(read_motion_file(test::shared_motion("wild/xia_neutral_16.bvh")));
   const auto p = prepare_takes({walk, jump}, {});
   const Alignment& al = p->takes[1].alignment;
-  CHECK_FALSE(al.by_cycles());
+  CHECK(p->takes[1].registration.posture_only());
   CHECK(al.a_first == 0);
   CHECK(al.a_last == al.frames_a - 1);
-  CHECK(al.b_first == 0);
-  CHECK(al.b_last == al.frames_b - 1);
   for (const std::string& w : al.warnings) CHECK(w.find("left out") == std::string::npos);
 }
 
@@ -328,4 +325,30 @@ TEST_CASE("alignment pipeline: a walk put on a waving take gives its posture onl
   CHECK(p->takes[1].registration.posture_only());
   CHECK(p->takes[1].alignment.a_first == 0);
   CHECK(p->takes[1].alignment.a_last == p->takes[0].canonical.local.rows() - 1);
+}
+
+TEST_CASE("alignment pipeline: a take that does not walk gives a walking reference its posture only", "[alignment]") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  // A raised hand and a kick have no steps to match a walk's: matched by DTW, the raised hand left
+  // out most of the walk; laid on it as a posture, all of the walk plays, moved by the take's mean
+  // pose, its arms and head moving as much as the take's.
+  auto walk = std::make_shared<const Clip>(read_motion_file(test::shared_motion("bandai_walk_normal.bvh")));
+  for (const char* name : {"actions/bandai2_raise-up-right-hand_exhausted.bvh", "actions/bandai_kick_normal.bvh"}) {
+    INFO(name);
+    auto take = std::make_shared<const Clip>(read_motion_file(test::shared_motion(name)));
+    const auto p = prepare_takes({walk, take}, {});
+    REQUIRE(p->takes[0].cycles.kind == CycleKind::kGait);
+    const PreparedTake& t = p->takes[1];
+    CHECK(t.registration.posture_only());
+    CHECK(t.alignment.a_first == 0);
+    CHECK(t.alignment.a_last == p->takes[0].canonical.local.rows() - 1);
+    bool said = false;
+    for (const std::string& w : t.alignment.warnings) {
+      CHECK(w.find("left out") == std::string::npos);
+      said = said || w.find("its posture only") != std::string::npos && w.find("size of its movements") != std::string::npos;
+    }
+    CHECK(said);
+    // Its frames hold the walk's motion, so its feet step with the walk's.
+    CHECK(t.own_contacts == p->takes[0].own_contacts);
+  }
 }

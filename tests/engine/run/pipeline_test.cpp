@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "engine/align/time_warp.h"
-#include "engine/io/atomic_file.h"
-#include "engine/io/bvh_io.h"
+#include "engine/base/atomic_file.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/kinematics/convert.h"
 #include "engine/base/error.h"
 #include "engine/kinematics/euler.h"

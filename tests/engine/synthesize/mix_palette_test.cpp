@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/io/motion_file.h"
 #include "engine/kinematics/limb_length.h"
 #include "engine/base/error.h"

@@ -39,7 +39,7 @@ CommonTimeline samples_of(const TimeWarp& w) {
 Eigen::VectorXd timeline(const TimeWarp& w, double weight) {
   const CommonTimeline t = samples_of(w);
   Eigen::VectorXd u;
-  mixed_timeline(t, {1.0 - weight, weight}, 0, t.samples() - 1, u);
+  mixed_timeline(t, {1.0 - weight, weight}, {0, t.samples() - 1}, u);
   return u;
 }
 
@@ -159,7 +159,7 @@ TEST_CASE("timing: no allocation when u has the right size", "[timing]") {
   const CommonTimeline t = samples_of(w);
   Eigen::VectorXd u(7);
   const double* data = u.data();
-  mixed_timeline(t, {0.0, 1.0}, 0, 3, u);
+  mixed_timeline(t, {0.0, 1.0}, {0, 3}, u);
   CHECK(u.data() == data);
 }
 
@@ -172,8 +172,8 @@ TEST_CASE("timing: a one-sample warp gives one frame, bad input throws InputErro
   Eigen::VectorXd out;
   const TimeWarp empty;
   CHECK_THROWS_AS(common_timeline({&empty}), InputError);
-  CHECK_THROWS_AS(mixed_timeline(t, {0.5, std::nan("")}, 0, 0, out), InputError);
-  CHECK_THROWS_AS(mixed_timeline(t, {0.5, INFINITY}, 0, 0, out), InputError);
+  CHECK_THROWS_AS(mixed_timeline(t, {0.5, std::nan("")}, {0, 0}, out), InputError);
+  CHECK_THROWS_AS(mixed_timeline(t, {0.5, INFINITY}, {0, 0}, out), InputError);
 }
 
 TEST_CASE("timing: three takes' clock advances by the weighted frames", "[timing]") {
@@ -183,16 +183,16 @@ TEST_CASE("timing: three takes' clock advances by the weighted frames", "[timing
   t.frames = {Eigen::VectorXd::LinSpaced(9, 0, 4), Eigen::VectorXd::LinSpaced(9, 0, 8),
               Eigen::VectorXd::LinSpaced(9, 10, 14)};
   Eigen::VectorXd u;
-  mixed_timeline(t, {0.5, 0.5, 0.0}, 0, 8, u);
+  mixed_timeline(t, {0.5, 0.5, 0.0}, {0, 8}, u);
   REQUIRE(u.size() == 7);
   for (Eigen::Index f = 0; f < u.size(); ++f) CHECK(u[f] == Approx(f * 8.0 / 6.0).margin(kExact));
-  CHECK_THROWS_AS(mixed_timeline(t, {0.5, 0.5}, 0, 8, u), InputError);
-  CHECK_THROWS_AS(mixed_timeline(t, {0.5, 0.5, 0.0}, 2, 9, u), InputError);
-  mixed_timeline(t, {0.0, 1.0, 0.0}, 2, 6, u);  // take 1 from its frame 2 to 6: 5 frames
+  CHECK_THROWS_AS(mixed_timeline(t, {0.5, 0.5}, {0, 8}, u), InputError);
+  CHECK_THROWS_AS(mixed_timeline(t, {0.5, 0.5, 0.0}, {2, 9}, u), InputError);
+  mixed_timeline(t, {0.0, 1.0, 0.0}, {2, 6}, u);  // take 1 from its frame 2 to 6: 5 frames
   REQUIRE(u.size() == 5);
   CHECK(u[0] == Approx(2.0));
   CHECK(u[4] == Approx(6.0));
-  CHECK_THROWS_AS(mixed_timeline(t, {0.5, NAN, 0.5}, 0, 8, u), InputError);
+  CHECK_THROWS_AS(mixed_timeline(t, {0.5, NAN, 0.5}, {0, 8}, u), InputError);
 }
 
 TEST_CASE("timing: a whole loop's clock lands on its last sample, stretched evenly", "[timing]") {
@@ -236,11 +236,11 @@ TEST_CASE("timing: the clock's end is given with the frames", "[timing]") {
   t.frames = {Eigen::VectorXd::LinSpaced(10, 0, 9), Eigen::VectorXd::LinSpaced(10, 0, 9 / 0.9)};
   Eigen::VectorXd u;
   double end = -1.0;
-  mixed_timeline(t, {0.0, 1.0}, 0, 9, u, &end);
+  mixed_timeline(t, {0.0, 1.0}, {0, 9}, u, &end);
   CHECK(end == Approx(10.0));
   CHECK(u.size() == 11);
   end = -1.0;
-  mixed_timeline(t, WeightKeys{{0.0, {0.0, 1.0}}}, 30.0, 0, 9, u, nullptr, &end);
+  mixed_timeline(t, WeightKeys{{0.0, {0.0, 1.0}}}, 30.0, {0, 9}, u, nullptr, &end);
   CHECK(end == Approx(10.0));
 }
 
@@ -251,7 +251,7 @@ TEST_CASE("timing: a hold of the reference takes B's time at B's weight, none on
   REQUIRE(t.samples() == 10);
   for (const auto& [weight, frames] : {std::pair{0.0, 7}, std::pair{1.0, 10}, std::pair{0.5, 8}}) {
     Eigen::VectorXd u;
-    mixed_timeline(t, {1.0 - weight, weight}, 0, t.samples() - 1, u);
+    mixed_timeline(t, {1.0 - weight, weight}, {0, t.samples() - 1}, u);
     INFO("weight " << weight);
     REQUIRE(u.size() == frames);
     CHECK(non_decreasing(u));
@@ -261,6 +261,6 @@ TEST_CASE("timing: a hold of the reference takes B's time at B's weight, none on
     CHECK(b_first == Approx(0.0).margin(kExact));
   }
   Eigen::VectorXd u;
-  mixed_timeline(t, {1.0, 0.0}, 0, t.samples() - 1, u);
+  mixed_timeline(t, {1.0, 0.0}, {0, t.samples() - 1}, u);
   for (Eigen::Index k = 0; k < u.size(); ++k) CHECK(at(t.frames[0], u[k]) == Approx(double(k)).margin(kExact));
 }

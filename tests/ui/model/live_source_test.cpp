@@ -16,8 +16,8 @@
 #include <catch2/catch.hpp>
 
 #include "engine/base/error.h"
-#include "engine/io/axis_stream.h"
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
+#include "engine/live/axis_stream.h"
 #include "tests/test_data.h"
 #include "ui/model/live_source.h"
 #include "ui/model/live_style_spec.h"

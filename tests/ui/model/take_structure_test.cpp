@@ -1,10 +1,13 @@
 // A take's structure as the takes' views shade it (ui/model/take_structure.h), on a take made by
-// hand: rest, an action holding two gait cycles, a pause, a second action, rest; and a take
-// registered by cycles, whose timeline's frames go back to its own (NaN: its posture only).
+// hand: rest, an action holding two gait cycles, a pause, a second action, rest; a take
+// registered by cycles, whose timeline's frames go back to its own (NaN: its posture only); and
+// the spans the views shade on a good-bye, a wave and a registered walk.
 #include <cmath>
 
 #include <catch2/catch.hpp>
 
+#include "tests/test_data.h"
+#include "ui/model/blend_session.h"
 #include "ui/model/take_structure.h"
 
 using namespace mostyle;
@@ -64,4 +67,55 @@ TEST_CASE("take structure: a take's own frame on its timeline, through its regis
   CHECK(own_frame(registered, 1) == 4.0);
   CHECK(std::isnan(own_frame(registered, 2)));
   CHECK(own_frame(registered, 9) == 12.5);  // past the end: the last
+}
+
+TEST_CASE("take structure: the spans of a good-bye and a wave tile their frames, rests and actions as read") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  EditorState state;
+  state.document.parameters.components = 4;
+  BlendSession session;
+  // A good-bye (an action between rests) and a wave (strokes of the left hand), aligned by their
+  // structure: both on their own frames.
+  session.load(test::shared_motion("actions/bandai_bye_normal.bvh"),
+               test::shared_motion("actions/bandai2_wave-left-hand_active.bvh"));
+  session.wait_idle(state);
+  INFO(session.error());
+  const PreparedTakes* p = session.takes();
+  REQUIRE(p != nullptr);
+  for (const PreparedTake& t : p->takes) {
+    const ActionSpans& s = t.cycles.spans;
+    const int frames = static_cast<int>(t.canonical.local.rows());
+    INFO(t.clip->source << ": " << frames << " frames, rests " << s.rest_before << " and " << s.rest_after);
+    REQUIRE(t.registration.empty());
+    const std::vector<StructureSpan> spans = structure_spans(t, frames, [&](int f) { return own_frame(t, f); });
+    REQUIRE_FALSE(spans.empty());
+    int at = 0, moving = 0, in_actions = 0;
+    for (const StructureSpan& r : spans) {
+      CHECK(r.begin == at);  // in order, none overlapping, none missing
+      at = r.end;
+      if (r.structure.part != FramePart::kRest) moving += r.end - r.begin;
+      CHECK(r.structure.part != FramePart::kPosture);
+    }
+    CHECK(at == frames);
+    for (const FrameSpan& a : s.actions) in_actions += std::min(a.end, frames) - a.begin;
+    CHECK(moving == in_actions);
+    if (s.rest_before > 0) CHECK(spans.front().end == s.rest_before);
+  }
+}
+
+TEST_CASE("take structure: a walk registered by cycles shows its own cycles again and again") {
+  EditorState state;
+  state.document.parameters.components = 4;
+  BlendSession walks;
+  walks.load(test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"));
+  walks.wait_idle(state);
+  REQUIRE(walks.takes() != nullptr);
+  const PreparedTake& t = walks.takes()->takes[1];
+  REQUIRE_FALSE(t.registration.empty());
+  const int frames = static_cast<int>(t.registration.source.size());
+  const std::vector<StructureSpan> spans = structure_spans(t, frames, [&](int f) { return own_frame(t, f); });
+  int cycles = 0;
+  for (const StructureSpan& r : spans) cycles += r.structure.part == FramePart::kCycle;
+  // Each reference cycle shows one of the take's: at least as many cycle spans as it has.
+  CHECK(cycles >= static_cast<int>(t.registration.cycles.cycles.size()));
 }

@@ -13,7 +13,7 @@
 #include <imgui.h>
 #include <imgui_internal.h>  // ImGui::FindWindowByName
 
-#include "engine/io/bvh_io.h"
+#include "engine/io/bvh/bvh_read.h"
 #include "engine/base/job_control.h"
 #include "engine/io/motion_file.h"
 #include "engine/kinematics/kinematics.h"
