@@ -40,6 +40,9 @@
 
 namespace mostyle {
 
+// A transfer's layers (synthesize/mix_layers.h) with the stream as the content: each style an
+// additive layer from the neutral at its strength, in the additive layers' range [kMinStrength,
+// kMaxStrength].
 struct LiveStyleSpec {
   std::vector<std::shared_ptr<const Clip>> takes;  // [neutral, style_1, ..., style_n] (n >= 1), as loaded
   std::vector<double> strengths;                    // one per style

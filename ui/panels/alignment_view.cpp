@@ -298,9 +298,11 @@ PlotArea draw_cost(const PairPlot& v, const DtwCostImage& img, float side) {
               IM_COL32(255, 255, 255, 230), 2.0f);
     const int u = std::clamp(static_cast<int>(std::lround(v.current_u)), 0, v.samples - 1);
     dl->AddCircleFilled(cost.to_screen(warp.b[u] + 0.5, warp.a[u] + 0.5), 4.5f, color_blend());
-    if (cost.max.x - cost.min.x > 10.0f * ImGui::GetFontSize()) {  // room for both names
-      plot_axis_label(cost, (v.name_b + " ->").c_str());
-      plot_axis_label(cost, (v.name_a + " v").c_str(), /*left=*/true);
+    const std::string across = v.name_b + " ->", down = v.name_a + " v";
+    const float names = ImGui::CalcTextSize(across.c_str()).x + ImGui::CalcTextSize(down.c_str()).x;
+    if (cost.max.x - cost.min.x > names + 2.0f * ImGui::GetFontSize()) {  // both names, apart
+      plot_axis_label(cost, across.c_str());
+      plot_axis_label(cost, down.c_str(), /*left=*/true);
     }
   }
   ImGui::EndGroup();

@@ -279,7 +279,8 @@ void LayersPanel::draw_takes(EditorState& state, const PreparedTakes& p) {
   std::vector<double> weights = weights_at_playhead(state, n);
   bool moved = false;
   const float room = std::max(ImGui::GetContentRegionAvail().y - 4.0f, 60.0f);
-  const float pad = std::clamp(room, 80.0f, 220.0f);
+  // The pad square, at most a fifth of the width: the rows' names and timelines need the rest.
+  const float pad = std::clamp(std::min(room, 0.2f * ImGui::GetContentRegionAvail().x), 80.0f, 220.0f);
   if (ImGui::BeginTable("##takes", c.transfer ? 1 : 3, ImGuiTableFlags_SizingStretchProp)) {
     ImGui::TableSetupColumn("rows", ImGuiTableColumnFlags_WidthStretch);
     if (!c.transfer) {
@@ -345,7 +346,7 @@ bool LayersPanel::draw_row(EditorState& state, const PreparedTakes& p, int take,
   }
   ImGui::SameLine();
   // The name (a pair's A and B before it), in a column of its own; a click picks its alignment.
-  const float name_w = std::min(12.0f * ImGui::GetFontSize(), 0.3f * ImGui::GetContentRegionAvail().x);
+  const float name_w = std::min(12.0f * ImGui::GetFontSize(), 0.4f * ImGui::GetContentRegionAvail().x);
   const std::string letter = take_letter(take, n);
   const std::string name = (letter.empty() ? "" : letter + "  ") + short_take_name(p, take) + (take == 0 ? " (ref.)" : "");
   const bool picked = take == aligned_take_;
