@@ -1,7 +1,9 @@
 #pragma once
-// A BlendSession with the bundled pair loaded and decomposed (small k, quick), and every editor
-// panel over it, in the order the editor draws them: for the panel and layout tests.
+// A BlendSession with the bundled pair (or two takes given) loaded and decomposed (small k,
+// quick), and every editor panel over it, in the order the editor draws them: for the model,
+// panel and layout tests.
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "tests/test_data.h"
@@ -19,10 +21,11 @@ namespace mostyle::test {
 struct LoadedSession {
   ui::EditorState state;
   ui::BlendSession session;
-  LoadedSession() {
+  LoadedSession() : LoadedSession(asset("motions/cmu142_walk_happy.bvh"), asset("motions/cmu142_walk_marching.bvh")) {}
+  LoadedSession(const std::string& a, const std::string& b) {
     state.document.parameters.components = 6;  // small and quick
     state.document.parameters.sparsity = 0.2;
-    session.load(asset("motions/cmu142_walk_happy.bvh"), asset("motions/cmu142_walk_marching.bvh"));
+    session.load(a, b);
     session.wait_idle(state);
   }
 };

@@ -7,7 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include "tests/test_data.h"
-#include "ui/model/blend_session.h"
+#include "tests/ui/loaded_session.h"
 #include "ui/model/take_structure.h"
 
 using namespace mostyle;
@@ -71,16 +71,12 @@ TEST_CASE("take structure: a take's own frame on its timeline, through its regis
 
 TEST_CASE("take structure: the spans of a good-bye and a wave tile their frames, rests and actions as read") {
   MOSTYLE_REQUIRE_SHARED_MOTIONS();
-  EditorState state;
-  state.document.parameters.components = 4;
-  BlendSession session;
   // A good-bye (an action between rests) and a wave (strokes of the left hand), aligned by their
   // structure: both on their own frames.
-  session.load(test::shared_motion("actions/bandai_bye_normal.bvh"),
-               test::shared_motion("actions/bandai2_wave-left-hand_active.bvh"));
-  session.wait_idle(state);
-  INFO(session.error());
-  const PreparedTakes* p = session.takes();
+  const test::LoadedSession loaded(test::shared_motion("actions/bandai_bye_normal.bvh"),
+                              test::shared_motion("actions/bandai2_wave-left-hand_active.bvh"));
+  INFO(loaded.session.error());
+  const PreparedTakes* p = loaded.session.takes();
   REQUIRE(p != nullptr);
   for (const PreparedTake& t : p->takes) {
     const ActionSpans& s = t.cycles.spans;
@@ -104,13 +100,9 @@ TEST_CASE("take structure: the spans of a good-bye and a wave tile their frames,
 }
 
 TEST_CASE("take structure: a walk registered by cycles shows its own cycles again and again") {
-  EditorState state;
-  state.document.parameters.components = 4;
-  BlendSession walks;
-  walks.load(test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"));
-  walks.wait_idle(state);
-  REQUIRE(walks.takes() != nullptr);
-  const PreparedTake& t = walks.takes()->takes[1];
+  const test::LoadedSession walks;  // the bundled pair
+  REQUIRE(walks.session.takes() != nullptr);
+  const PreparedTake& t = walks.session.takes()->takes[1];
   REQUIRE_FALSE(t.registration.empty());
   const int frames = static_cast<int>(t.registration.source.size());
   const std::vector<StructureSpan> spans = structure_spans(t, frames, [&](int f) { return own_frame(t, f); });

@@ -58,11 +58,8 @@ TEST_CASE("take warnings: a pair whose B says a wrong frame count shows the warn
   const std::string b = (dir / "marching_cut.bvh").string();
   std::ofstream(b) << text;
 
-  EditorState state;
-  state.document.parameters.components = 4;
-  BlendSession session;
-  session.load(test::asset("motions/cmu142_walk_happy.bvh"), b);
-  session.wait_idle(state);
+  const test::LoadedSession s(test::asset("motions/cmu142_walk_happy.bvh"), b);
+  const EditorState& state = s.state;
   fs::remove_all(dir);
   REQUIRE(state.takes.size() == 3);
   REQUIRE(state.takes[1].ok());

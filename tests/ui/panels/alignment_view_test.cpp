@@ -13,6 +13,7 @@
 #include <catch2/catch.hpp>
 
 #include "tests/test_data.h"
+#include "tests/ui/loaded_session.h"
 
 using namespace mostyle;
 using namespace mostyle::ui;
@@ -42,15 +43,11 @@ std::string short_take_at_30(const fs::path& dir, int frames) {
 }  // namespace
 
 TEST_CASE("alignment view: the matched frames are each take's own, counted at its file's rate") {
-  const fs::path dir = fs::temp_directory_path() / ("mostyle_dtw_panel_" + std::to_string(::getpid()));
+  const fs::path dir = fs::temp_directory_path() / ("mostyle_alignment_view_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const int b_frames = 100;
-  const std::string b = short_take_at_30(dir, b_frames);
-  EditorState state;
-  state.document.parameters.components = 4;
-  BlendSession session;
-  session.load(test::asset("motions/cmu142_walk_happy.bvh"), b);
-  session.wait_idle(state);
+  const test::LoadedSession s(test::asset("motions/cmu142_walk_happy.bvh"), short_take_at_30(dir, b_frames));
+  const BlendSession& session = s.session;
   fs::remove_all(dir);
   INFO(session.error());
   const PreparedTakes* p = session.takes();
