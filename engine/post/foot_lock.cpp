@@ -355,6 +355,15 @@ void ease_between_runs(Eigen::Index frames, int ramp, FootLockScratch& s) {
 // bend it had on the frame before (as locked) holds it, the more the straighter the knee. Both
 // fade as the ankle moves less (`moved`): a lock that does not move the ankle leaves the leg as
 // it was. O(1).
+// The way the body faces at frame t, horizontal, not normalized: its hips' left-right line
+// turned a quarter about the vertical; zero where the rig lacks a hip.
+template <typename Matrix>
+Eigen::Vector3d body_facing(const Matrix& world, const std::array<LegColumns, 2>& rig_legs, Eigen::Index t) {
+  if (rig_legs[0].hip < 0 || rig_legs[1].hip < 0) return Eigen::Vector3d::Zero();
+  const Eigen::Vector3d across = joint_at(world, t, rig_legs[0].hip) - joint_at(world, t, rig_legs[1].hip);
+  return Eigen::Vector3d(-across.z(), 0.0, across.x());  // across x up
+}
+
 template <typename Matrix>
 Eigen::Vector3d knee_pole(const Matrix& world, const LegColumns& leg,
                           const std::array<LegColumns, 2>& rig_legs, Eigen::Index t, double moved, double leg_length) {
@@ -368,14 +377,10 @@ Eigen::Vector3d knee_pole(const Matrix& world, const LegColumns& leg,
   // the IK would fold the leg backwards along that as it moves the ankle. Its backward part is
   // dropped as the ankle is moved (a lock that does not move the ankle leaves the leg as it
   // was): such a knee is straight, and the bias below bends it forwards.
-  if (rig_legs[0].hip >= 0 && rig_legs[1].hip >= 0) {
-    const Eigen::Vector3d across = joint_at(world, t, rig_legs[0].hip) - joint_at(world, t, rig_legs[1].hip);
-    Eigen::Vector3d facing(-across.z(), 0.0, across.x());  // across x up, horizontal
-    if (facing.norm() > 0) {
-      facing.normalize();
-      const double back = pole.dot(facing);
-      if (back < 0.0) pole -= moving * back * facing;
-    }
+  const Eigen::Vector3d facing = body_facing(world, rig_legs, t);
+  if (facing.norm() > 0) {
+    const double back = pole.dot(facing.normalized());
+    if (back < 0.0) pole -= moving * back * facing.normalized();
   }
   const double bend = pole.norm();
   // The toe bias fades out as the knee bends more (gone at three times its size).
@@ -595,11 +600,7 @@ void lower_body(Eigen::MatrixXd& world, const FootRig& rig, const FootLockScratc
     if (!(down > 0.0)) continue;
     for (Eigen::Index j = 0; j < joints; ++j)
       if (!below_hip[static_cast<size_t>(j)]) world(t, 3 * j + 1) -= down;
-    Eigen::Vector3d facing = Eigen::Vector3d::Zero();
-    if (rig.legs[0].hip >= 0 && rig.legs[1].hip >= 0) {
-      const Eigen::Vector3d across = joint_at(world, t, rig.legs[0].hip) - joint_at(world, t, rig.legs[1].hip);
-      facing = Eigen::Vector3d(-across.z(), 0.0, across.x());
-    }
+    const Eigen::Vector3d facing = body_facing(world, rig.legs, t);
     for (const LegColumns& leg : rig.legs) {
       if (!leg.usable()) continue;
       const Eigen::Vector3d hip = joint_at(world, t, leg.hip), ankle = joint_at(world, t, leg.ankle);
