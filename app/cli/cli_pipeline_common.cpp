@@ -217,6 +217,9 @@ std::string report_summary(const Json& r, const std::string& out, const std::str
           "; the takes' own " + of_body("inputs");
   if (sliding.contains("ratio") && sliding["ratio"].is_number())
     text += " (" + fixed(sliding["ratio"].get<double>(), 2) + "x)";
+  const Json& fastest = r["fastest_joint"];
+  if (fastest["ratio"].is_number())
+    text += "\n  fastest joint " + fixed(fastest["ratio"].get<double>(), 2) + "x the takes' fastest";
   if (!out.empty()) {
     text += "\n  wrote " + out;
     if (r.contains("export_fit"))
@@ -365,20 +368,25 @@ Json loop_json(const LoopCut& loop, double fps) {
           {"turn_removed_degrees", loop.turn_removed * 57.29577951308232}};
 }
 
-Json foot_sliding_json(const MixResult& mix, double body_height) {
-  const double raw = mix.motion.foot_sliding_raw, cleaned = mix.motion.foot_sliding_cleaned;
-  const double inputs = mix.foot_sliding_inputs;
+void add_result_measures(const MixMeasures& measures, Json& report) {
+  const ResultMeasures& m = *measures.result;
+  const double body_height = measures.body_height;
   auto of_height = [&](double v) { return body_height > 0.0 ? v / body_height : 0.0; };
-  Json j = {{"measure", "mean horizontal speed of ankles and toes within 3% of body height of their floor"},
-            {"body_height", body_height},
-            {"raw", raw},
-            {"cleaned", cleaned},
-            {"inputs", inputs},
-            {"raw_of_height", of_height(raw)},
-            {"cleaned_of_height", of_height(cleaned)},
-            {"inputs_of_height", of_height(inputs)}};
-  j["ratio"] = inputs > 0.0 ? Json(cleaned / inputs) : Json(nullptr);
-  return j;
+  auto ratio = [](const std::optional<double>& r) { return r ? Json(*r) : Json(nullptr); };
+  report["limb_length_max_error"] = m.limb_length_max_error;
+  report["foot_sliding"] = {{"measure", "mean horizontal speed of ankles and toes within 3% of body height of their floor"},
+                            {"body_height", body_height},
+                            {"raw", m.planted_raw},
+                            {"cleaned", m.planted_cleaned},
+                            {"inputs", m.planted_inputs},
+                            {"raw_of_height", of_height(m.planted_raw)},
+                            {"cleaned_of_height", of_height(m.planted_cleaned)},
+                            {"inputs_of_height", of_height(m.planted_inputs)},
+                            {"ratio", ratio(m.planted_ratio())}};
+  report["fastest_joint"] = {{"measure", "99.9th percentile over frame steps of the fastest joint's speed"},
+                             {"result", m.fastest_joint},
+                             {"inputs", m.fastest_inputs},
+                             {"ratio", ratio(m.fastest_ratio())}};
 }
 
 }  // namespace mostyle::cli

@@ -13,6 +13,7 @@
 #include "engine/export/channel_layout.h"
 #include "engine/prepare/major_skeleton.h"
 #include "engine/post/loop.h"
+#include "engine/synthesize/mix_measures.h"
 #include "engine/synthesize/mix_palette.h"
 
 namespace mostyle::cli {
@@ -67,10 +68,13 @@ Json vector_json(const Eigen::VectorXd& v);
 // skeleton's name, null where none), "found_by" ("name", "structure", "mapping file", "none")}]}.
 Json major_joints_json(const MajorMapping& mapping, const Skeleton& skeleton);
 Json loop_json(const LoopCut& loop, double fps);
-// How fast the output's planted feet move (engine/measure/planted_feet.h): "raw" before the foot
-// lock, "cleaned" after it, "inputs" the takes' own weighted as mixed, file units per second;
-// the same as fractions of "body_height" per second ("raw_of_height", ...); "ratio" cleaned over
-// inputs (null when the inputs' feet never move).
-Json foot_sliding_json(const MixResult& mix, double body_height);
+// A result's measures (engine/synthesize/mix_measures.h) as the report gives them:
+// "limb_length_max_error"; "foot_sliding", how fast the output's planted feet move ("raw" before
+// the foot lock, "cleaned" after it, "inputs" the takes' own weighted as mixed, file units per
+// second; the same as fractions of "body_height" per second ("raw_of_height", ...); "ratio"
+// cleaned over inputs, null when the inputs' feet never move); "fastest_joint", how fast its
+// fastest joint moves ("result", "inputs" the fastest of the takes mixed, "ratio" between them,
+// null for still takes). Set in `report`.
+void add_result_measures(const MixMeasures& measures, Json& report);
 
 }  // namespace mostyle::cli

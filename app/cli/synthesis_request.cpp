@@ -70,6 +70,7 @@ void add_report_fields(const SynthesisResult& s, const std::vector<TakeSource>& 
   r["residual"] = mp.residual;
   Json list = Json::array();
   const std::vector<double> weights = take_weights(mp.layers, palette.size());
+  const MixMeasures measures = mix_measures(palette, &d, &result);
   for (int i = 0; i < palette.size(); ++i) {
     const size_t n = static_cast<size_t>(i);
     const PreparedTake& take = palette.takes[n];
@@ -77,8 +78,9 @@ void add_report_fields(const SynthesisResult& s, const std::vector<TakeSource>& 
     t["file"] = takes[n].file;
     t["weight"] = weights[n];
     t["major_joints"] = major_joints_json(take.mapping, take.clip->skeleton);
-    t["reconstruction_rmse"] = d.rmse[n];
-    t["foot_sliding"] = take_foot_sliding(palette, i);
+    t["reconstruction_rmse"] = *measures.takes[n].fit_error;
+    t["foot_sliding"] = measures.takes[n].planted_speed;
+    t["fastest_joint"] = measures.takes[n].fastest_joint;
     if (i > 0) t["alignment"] = alignment_json(palette, i);
     // Its own file's frames at the working rate (null where a take registered by cycles gives
     // its posture only), and which of its cycles each output frame shows (-1: none).
@@ -102,14 +104,13 @@ void add_report_fields(const SynthesisResult& s, const std::vector<TakeSource>& 
   r["local"] = d.params.local && d.shared() != nullptr;
   r["component_joints"] = component_joints_json(d.component_joints, s.joints);
   r["component_regions"] = component_regions_json(d.component_joints);
-  r["limb_length_max_error"] = result.motion.limb_length_max_error;
   if (s.solved) {
     r["export_fit"] = {{"max", s.clip.fit.max}, {"mean", s.clip.fit.mean}};
     r["channels"] = channel_layout_name(options.channels.empty() ? default_channel_layout(*palette.takes.front().clip)
                                                                  : parse_channel_layout(options.channels));
   }
   r["foot_lock"] = mp.finish.foot_lock;
-  r["foot_sliding"] = foot_sliding_json(result, palette.feet.body_height);
+  add_result_measures(measures, r);
   r["skeleton_height"] = guess_units(*palette.takes.front().clip).height;
   r["timings_ms"] = {{"load", times.load_ms},         {"preprocess", times.preprocess_ms},
                      {"dtw", times.dtw_ms},           {"decompose", times.decompose_ms},
@@ -213,8 +214,8 @@ void add_pair_words(const PreparedTakes& prepared, const Decomposed& d, const Mi
   report["alignment"] = alignment;
   report["reconstruction_rmse"] = {{"a", d.rmse[0]}, {"b", d.rmse[1]}};
   report["component_nonzero_fraction"] = {{"a", d.nonzero[0]}, {"b", d.nonzero[1]}};
-  report["foot_sliding"]["a"] = take_foot_sliding(prepared, 0);
-  report["foot_sliding"]["b"] = take_foot_sliding(prepared, 1);
+  report["foot_sliding"]["a"] = prepared.takes[0].planted.speed;
+  report["foot_sliding"]["b"] = prepared.takes[1].planted.speed;
 }
 
 // One strength per style (--strength, comma separated or repeated; default 1 each).

@@ -704,8 +704,4 @@ Eigen::VectorXi cycles_shown(const PreparedTake& take, const Eigen::VectorXd& fr
   return out;
 }
 
-double take_foot_sliding(const PreparedTakes& prepared, int take) {
-  return prepared.takes.at(static_cast<size_t>(take)).planted.speed;
-}
-
 }  // namespace mostyle

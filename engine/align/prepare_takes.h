@@ -127,10 +127,6 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
 // detect_cycles.
 TakeCycles take_cycles(const std::shared_ptr<const Clip>& clip);
 
-// How fast take i's planted feet move on its own frames (planted_feet.h; PreparedTake::planted),
-// the reference's units per second. O(1): measured once, when prepared.
-double take_foot_sliding(const PreparedTakes& prepared, int take);
-
 // The reference's joint index of each major column (for export).
 std::vector<int> export_joints(const PreparedTakes& prepared);
 

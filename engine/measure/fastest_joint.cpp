@@ -6,8 +6,13 @@
 namespace mostyle {
 
 double fastest_joint_speed(const Eigen::MatrixXd& world, double fps) {
+  std::vector<double> steps;
+  return fastest_joint_speed(world, fps, steps);
+}
+
+double fastest_joint_speed(const Eigen::MatrixXd& world, double fps, std::vector<double>& steps) {
   if (world.rows() < 2) return 0.0;
-  std::vector<double> steps(static_cast<size_t>(world.rows() - 1), 0.0);
+  steps.assign(static_cast<size_t>(world.rows() - 1), 0.0);
   for (Eigen::Index t = 0; t + 1 < world.rows(); ++t)
     for (Eigen::Index c = 0; c + 2 < world.cols(); c += 3)
       steps[static_cast<size_t>(t)] =

@@ -2,6 +2,7 @@
 // How fast a motion's fastest joint moves: the measure outputs are held to against their takes
 // (no pops: a blend, mix or transfer moves no joint much faster than its fastest take does).
 #include <Eigen/Core>
+#include <vector>
 
 namespace mostyle {
 
@@ -11,5 +12,7 @@ constexpr double kFastestJointPercentile = 0.999;  // of the frame steps: one ba
 // fastest joint's speed on that step, file units per second. world: F x 3M at fps. 0 with fewer
 // than two frames. O(F x M + F log F); allocates F values.
 double fastest_joint_speed(const Eigen::MatrixXd& world, double fps);
+// The same with its frame steps in `steps` (resized to F - 1): no allocation once sized.
+double fastest_joint_speed(const Eigen::MatrixXd& world, double fps, std::vector<double>& steps);
 
 }  // namespace mostyle

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "engine/kinematics/limb_length.h"
+#include "engine/measure/fastest_joint.h"
 #include "engine/measure/planted_feet.h"
 #include "engine/prepare/canonical_frame.h"
 #include "engine/prepare/root_path.h"
@@ -173,7 +174,7 @@ void finish_preview(const FinishPath& path, const FinishRig& rig, const FinishOp
   tidy_contacts(out.contacts, *rig.feet);
   cut_loop(options, local, u, s, out);
   to_world(local, s.ground, s.heading, &out.world);
-  out.foot_sliding_raw = out.foot_sliding_cleaned = out.limb_length_max_error = 0.0;
+  out.foot_sliding_raw = out.foot_sliding_cleaned = out.limb_length_max_error = out.fastest_joint = 0.0;
   if (options.limb_lengths) apply_limb_lengths(out.world, *rig.parents, *rig.lengths, limb_options(rig));
 }
 
@@ -216,6 +217,7 @@ void finish_rest(const FinishRig& rig, const FinishOptions& options, FinishScrat
     out.foot_sliding_cleaned = planted_speed(out.world, s.planted, *rig.feet).speed;
   }
   out.limb_length_max_error = max_bone_length_error(out.world, *rig.parents, *rig.lengths);
+  out.fastest_joint = fastest_joint_speed(out.world, rig.feet->fps, s.steps);
 }
 
 }  // namespace mostyle

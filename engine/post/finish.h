@@ -43,12 +43,16 @@ struct FinishedMotion {
   // lock and after it (never more: the lock moves planted feet no faster than they were).
   double foot_sliding_raw = 0;
   double foot_sliding_cleaned = 0;
+  // How fast its fastest joint moves after the clean-up (fastest_joint.h), file units per second:
+  // what pops are told by, against the takes' (FootLockLimits::fastest_joint).
+  double fastest_joint = 0;
 };
 
 struct FinishScratch {
   Eigen::MatrixXd before_lock;  // a loop's world before the foot lock
   Eigen::MatrixXd ground, drift, planted;
   std::vector<double> heights;
+  std::vector<double> steps;  // the fastest joint's speed per frame step (fastest_joint_speed)
   Eigen::VectorXd heading;
   Eigen::VectorXd heading_uncut;  // the headings before a loop's cut, for the body drift
   Eigen::MatrixXd feet_height;    // feet_height cut to a loop's frames

@@ -344,6 +344,7 @@ void preview_finish(const PreparedTakes& p, const MixParams& params, const Playe
                     const FinishOptions& finish, MixScratch& s, MixResult& out) {
   const bool keyed = !params.keys.empty();
   out.foot_sliding_inputs = inputs_planted_speed(p, s.overall, keyed ? &s.trajectory.frame_w : nullptr, params.feet_of_reference);
+  out.fastest_inputs = st.fastest;
   const FinishRig rig = mix_rig(p, st.fastest, out.foot_sliding_inputs);
   FinishPath path;
   path.sampler = &s.trajectory.sampler;

