@@ -3,7 +3,7 @@ import traceback
 
 import bpy
 
-from . import styling, takes as take_io
+from . import action_curves, styling, takes as take_io
 
 
 class MOSTYLE_OT_style_action(bpy.types.Operator):
@@ -65,7 +65,7 @@ def write_result(result, obj, source, fps, exact=True):
     if action is None:
         action = bpy.data.actions.new(name)
     else:
-        action.fcurves.clear()
+        action_curves.clear(action)
     take_io.write_take_action(result, obj, action, source.frame_range[0], fps, exact)
     styling.protect(source)
     obj.animation_data_create().action = action

@@ -4,7 +4,7 @@ import traceback
 
 import bpy
 
-from . import preview, styling
+from . import action_curves, preview, styling
 
 
 def _is_armature(self, obj):
@@ -93,7 +93,7 @@ def candidate_takes(context):
         for action in bpy.data.actions:
             if action is own:
                 continue
-            bones = {c.data_path.split('"')[1] for c in action.fcurves if c.data_path.startswith('pose.bones["')}
+            bones = {c.data_path.split('"')[1] for c in action_curves.curves(action) if c.data_path.startswith('pose.bones["')}
             if bones and len(bones & names) >= 0.5 * len(bones):
                 out.append((obj, action))
     return out

@@ -13,6 +13,7 @@ from types import SimpleNamespace
 import numpy as np
 from mathutils import Quaternion
 
+from . import action_curves
 from . import quaternions as qt
 
 # Blender's Z-up world into a Take's Y-up one: (x, y, z) -> (x, z, -y), a quarter turn about X.
@@ -48,7 +49,7 @@ def action_times(action, fps):
     they lie, at their own rate, so that mostyle resamples the take as it does the file;
     anything else on every whole frame its keys span, at the scene's rate."""
     keys = set()
-    for curve in action.fcurves:
+    for curve in action_curves.curves(action):
         points = curve.keyframe_points
         co = np.empty(2 * len(points), dtype=np.float32)
         points.foreach_get("co", co)
@@ -175,7 +176,7 @@ def _curves_alone(obj, action):
         if pb.constraints or not b.use_inherit_rotation or b.inherit_scale != 'FULL' or not b.use_local_location \
                 or b.use_relative_parent:
             return False
-    return all(c.data_path.startswith('pose.bones["') for c in action.fcurves)
+    return all(c.data_path.startswith('pose.bones["') for c in action_curves.curves(action))
 
 
 def _curve_values(curve, frames):
@@ -222,7 +223,7 @@ def _curve_poses(obj, action, bones, frames):
     @ scale, each channel without a curve at the pose bone's own value."""
     count = len(frames)
     curves = {}
-    for c in action.fcurves:
+    for c in action_curves.curves(action):
         curves[(c.data_path, c.array_index)] = c
 
     def channel(pb, prop, size):
@@ -542,9 +543,7 @@ _LINEAR = 1  # FCurve keyframe interpolation 'LINEAR' as foreach_set takes it
 
 
 def _key(action, path, index, group, frames, values):
-    curve = action.fcurves.find(path, index=index)
-    if curve is None:
-        curve = action.fcurves.new(path, index=index, action_group=group)
+    curve = action_curves.ensure_curve(action, path, index, group)
     points = curve.keyframe_points
     fresh = len(points) != len(frames)
     if fresh:

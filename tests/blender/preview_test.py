@@ -68,9 +68,14 @@ def import_take(path):
     return next(o for o in bpy.data.objects if o not in before and o.type == 'ARMATURE')
 
 
+def action_curves(action):
+    from mostyle_blender import action_curves as curves  # the add-on's, for every Blender's API
+    return curves.curves(action)
+
+
 def action_keys():
     """Every action's keys, by action name."""
-    return {a.name: {(c.data_path, c.array_index): [tuple(k.co) for k in c.keyframe_points] for c in a.fcurves}
+    return {a.name: {(c.data_path, c.array_index): [tuple(k.co) for k in c.keyframe_points] for c in action_curves(a)}
             for a in bpy.data.actions}
 
 
@@ -126,8 +131,8 @@ def main():
     source = ref.animation_data.action
     # A bone the reference's action does not key, posed by hand: the preview poses it too, and
     # gives the hand's pose back when it stops.
-    for curve in [c for c in source.fcurves if c.data_path.startswith('pose.bones["LeftForeArm"]')]:
-        source.fcurves.remove(curve)
+    for curve in [c for c in action_curves(source) if c.data_path.startswith('pose.bones["LeftForeArm"]')]:
+        action_curves(source).remove(curve)
     ref.pose.bones["LeftForeArm"].rotation_quaternion = (0.9, 0.1, 0.3, 0.0)
     bpy.context.view_layer.objects.active = ref
     settings = ref.mostyle

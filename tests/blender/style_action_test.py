@@ -140,8 +140,13 @@ def compare(name, blender, cli, scale_known=None):
              % (name, error.max(), worst[0]))
 
 
+def action_curves(action):
+    from mostyle_blender import action_curves as curves  # the add-on's, for every Blender's API
+    return curves.curves(action)
+
+
 def action_keys(action):
-    return {(c.data_path, c.array_index): [tuple(k.co) for k in c.keyframe_points] for c in action.fcurves}
+    return {(c.data_path, c.array_index): [tuple(k.co) for k in c.keyframe_points] for c in action_curves(action)}
 
 
 def check_operator(obj, source, originals, frames):
@@ -150,7 +155,7 @@ def check_operator(obj, source, originals, frames):
     styled = obj.animation_data.action
     if styled is None or styled.name != source.name + "_styled":
         fail("the reference armature plays %s, not %s_styled" % (styled and styled.name, source.name))
-    for curve in styled.fcurves:
+    for curve in action_curves(styled):
         keys = [k.co.x for k in curve.keyframe_points]
         if len(keys) != frames or any(abs(b - a - 1) > 1e-4 for a, b in zip(keys, keys[1:])):
             fail("%s[%d] is not keyed on each of %d frames" % (curve.data_path, curve.array_index, frames))
