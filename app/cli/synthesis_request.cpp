@@ -52,6 +52,25 @@ PreparedSynthesis prepare(const std::vector<TakeSource>& takes, const SynthesisO
   return p;
 }
 
+// The layers a result was mixed with (engine/synthesize/mix_layers.h), as the report lists them:
+// "layers", each {"take", "weight"} and "component_weights" where it has them, and "additive",
+// each {"take", "from", "strength"} and its strengths per component. The takes by their index
+// in the report's "takes".
+Json layers_json(const MixLayers& layers) {
+  Json normal = Json::array(), additive = Json::array();
+  for (const MixLayer& l : layers.layers) {
+    Json j = {{"take", l.take}, {"weight", l.weight}};
+    if (!l.component_weights.empty()) j["component_weights"] = l.component_weights;
+    normal.push_back(j);
+  }
+  for (const AdditiveLayer& l : layers.additive) {
+    Json j = {{"take", l.take}, {"from", l.from}, {"strength", l.weight}};
+    if (!l.component_weights.empty()) j["component_strengths"] = l.component_weights;
+    additive.push_back(j);
+  }
+  return {{"layers", normal}, {"additive", additive}};
+}
+
 // The fields every blend, mix and transfer reports, after the command's own in `r`.
 void add_report_fields(const SynthesisResult& s, const std::vector<TakeSource>& takes, const SynthesisOptions& options,
                        const MixParams& mp, StageTimes times, Json& r) {
@@ -96,6 +115,7 @@ void add_report_fields(const SynthesisResult& s, const std::vector<TakeSource>& 
     list.push_back(t);
   }
   r["takes"] = list;
+  r["mixed_as"] = layers_json(mp.layers);
   r["common_timeline"] = {{"samples", palette.samples()},
                           {"reference_first", palette.timeline.frames[0][0]},
                           {"reference_last", palette.timeline.frames[0][palette.samples() - 1]}};

@@ -297,6 +297,23 @@ def assert_same_result(prepared, whole):
     assert np.array_equal(prepared.root_positions, whole.root_positions)
 
 
+def test_a_result_says_the_layers_it_was_mixed_with():
+    takes = [asset("cmu142_walk_happy.bvh"), asset("cmu142_walk_marching.bvh"), asset("cmu142_walk_joy.bvh")]
+    mixed = mostyle.mix(takes, weights=[0.5, 0.3, 0.2]).report["mixed_as"]
+    assert [(l["take"], l["weight"]) for l in mixed["layers"]] == [(0, 0.5), (1, 0.3), (2, 0.2)]
+    assert mixed["additive"] == []
+    blend = mostyle.blend(takes[0], takes[1], alpha=0.25).report["mixed_as"]
+    assert [l["weight"] for l in blend["layers"]] == [0.75, 0.25]
+    transfer = mostyle.transfer(takes[0], [takes[1], takes[2]], neutral=asset("cmu142_walk_clumsy.bvh"),
+                                strength=[0.5, 1.5]).report["mixed_as"]
+    # The content (take 0) at 1; each style (takes 2 and 3) added from the neutral (take 1).
+    assert [(l["take"], l["weight"]) for l in transfer["layers"]] == [(0, 1.0)]
+    assert [(l["take"], l["from"], l["strength"]) for l in transfer["additive"]] == [(2, 1, 0.5), (3, 1, 1.5)]
+    parts = mostyle.mix(takes[:2], weights=[0.5, 0.5], part_weights={"legs": [0.0, 1.0]}).report["mixed_as"]
+    assert all(len(l["component_weights"]) > 0 for l in parts["layers"])
+    assert 1.0 in parts["layers"][1]["component_weights"]  # the legs' components from take 1
+
+
 def test_a_prepared_mix_equals_the_whole_mix_for_each_weight():
     takes = [mostyle.read(asset("cmu142_walk_%s.bvh" % s)) for s in ("happy", "joy", "clumsy")]
     prepared = mostyle.prepare(takes, k=6, foot_lock=True)
