@@ -21,6 +21,11 @@ _Z_TO_Y = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]])
 _Q_Z_TO_Y = np.array([math.cos(-math.pi / 4), math.sin(-math.pi / 4), 0.0, 0.0])
 
 
+# A bone's translation from its parent further from its rest offset than this share of the
+# rig's largest offset moves it (Blender's float32 matrices put a few 1e-7 on every bone).
+_MOVED_BONE = 1e-5
+
+
 def scene_fps(scene):
     return scene.render.fps / scene.render.fps_base
 
@@ -278,9 +283,19 @@ def _take_from_world(mostyle, bones, rest_heads, rest_rot, poses, fps):
         if p >= 0:
             local[:, j] = qt.multiply(qt.conjugate(change[:, p]), change[:, j])
             offsets[j] = rest_heads[j] - rest_heads[p]
-    root_positions = poses[:, 0, :3, 3] @ _Z_TO_Y.T
+    heads = poses[:, :, :3, 3] @ _Z_TO_Y.T
+    root_positions = heads[:, 0]
+    # A bone below the root moved by its location keys (Bandai's hips under a still root, a
+    # rig's IK or prop bones): its translation from its parent, in the parent's posed frame, on
+    # every frame; a rig whose bones all keep their rest offsets passes none.
+    translations = np.broadcast_to(offsets, heads.shape).copy()
+    for j, p in enumerate(parents):
+        if p >= 0:
+            translations[:, j] = qt.rotate(qt.conjugate(change[:, p]), heads[:, j] - heads[:, p])
+    moved = np.abs(translations - offsets[None]).max() > _MOVED_BONE * max(1e-9, np.abs(offsets).max())
     return mostyle.Take(joint_names=[b.name for b in bones], parents=parents, offsets=offsets,
-                        rotations=qt.normalized(qt.continuous(local)), root_positions=root_positions, fps=fps)
+                        rotations=qt.normalized(qt.continuous(local)), root_positions=root_positions, fps=fps,
+                        translations=translations if moved else None)
 
 
 def position_targets(take):

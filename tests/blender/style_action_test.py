@@ -10,9 +10,11 @@ CASE:
   fbx_gltf  a Mixamo FBX walk (Blender's FBX importer) mixed with a CMU glTF clip (Blender's glTF
             importer): two skeletons
   transfer  the CMU joy walk's change from the CMU happy walk onto an Aalto walk (another rig)
+  action    actions, not walks: a good-bye mixed with its active style, then the active wave's
+            change from the normal wave put on the good-bye (a style across actions)
 --addon is the folder holding mostyle_blender; --module the folder holding the mostyle module
 (a build's python/); --motions the shared motions, or MOSTYLE_SHARED_MOTIONS_DIR when set
-(fbx_gltf and transfer skip without them).
+(fbx_gltf, transfer and action skip without them).
 Exit status 0: passed; 1: failed; 77: skipped (no module, or no shared motions), saying why.
 """
 import argparse
@@ -34,7 +36,7 @@ MAX_ERROR_HEIGHTS = 1e-3
 def arguments():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     p = argparse.ArgumentParser(prog="style_action_test.py")
-    p.add_argument("case", choices=["bvh_pair", "fbx_gltf", "transfer"])
+    p.add_argument("case", choices=["bvh_pair", "fbx_gltf", "transfer", "action"])
     p.add_argument("--cli", required=True)
     p.add_argument("--addon", required=True)
     p.add_argument("--module", default="")
@@ -231,11 +233,30 @@ def case_transfer(args):
                        "--fps", "30"], scale_known=1.0)
 
 
+def case_action(args):
+    bye, bye_active, wave, wave_active = need_motions(
+        args, "actions/bandai_bye_normal.bvh", "actions/bandai_bye_active.bvh",
+        "actions/bandai2_wave-left-hand_normal.bvh", "actions/bandai2_wave-left-hand_active.bvh")
+    fresh_scene(30)
+    b, ba, w, wa = (import_with_mostyle(p) for p in (bye, bye_active, wave, wave_active))
+    style_and_compare("action mix", [(b, b.animation_data.action), (ba, ba.animation_data.action)],
+                      {"weights": "0.4,0.6", "mode": 'MIX'}, args.cli,
+                      ["mix", bye, bye_active, "--weights", "0.4,0.6", "--fps", "30"], scale_known=1.0)
+    # The good-bye's styled action is the reference's now: style its source action again.
+    source = bpy.data.actions[b.animation_data.action.name[:-len("_styled")]]
+    b.animation_data.action = source
+    style_and_compare("action transfer", [(b, source), (wa, wa.animation_data.action)],
+                      {"mode": 'TRANSFER', "neutral": w.name, "strength": 1.0}, args.cli,
+                      ["transfer", bye, "--style", wave_active, "--neutral", wave, "--strength", "1",
+                       "--fps", "30"], scale_known=1.0)
+
+
 def main():
     args = arguments()
     load_addon(args)
     try:
-        {"bvh_pair": case_bvh_pair, "fbx_gltf": case_fbx_gltf, "transfer": case_transfer}[args.case](args)
+        {"bvh_pair": case_bvh_pair, "fbx_gltf": case_fbx_gltf, "transfer": case_transfer,
+         "action": case_action}[args.case](args)
     except SystemExit:
         raise
     except Exception:
