@@ -20,6 +20,16 @@ bool shows_whole_loop(const PreparedTakes& p, int first, int last) {
   return r.frames[first] <= 0.0 && r.frames[last] >= double(frames - 1);
 }
 
+// The ground path's travel from its first sample to its last made the path's own (x, z), the
+// difference taken away in even shares along it. ground, path: U x 2. O(U).
+void keep_loop_travel(Eigen::MatrixXd& ground, const Eigen::Ref<const Eigen::MatrixXd>& path) {
+  const Eigen::Index n = ground.rows();
+  if (n < 2 || path.rows() != n) return;
+  const Eigen::RowVector2d off =
+      (ground.row(n - 1) - ground.row(0)) - (path.row(n - 1) - path.row(0));
+  for (Eigen::Index k = 1; k < n; ++k) ground.row(k) -= (double(k) / double(n - 1)) * off;
+}
+
 }  // namespace
 
 PlayedStretch played_stretch(const PreparedTakes& p, const std::vector<double>& weights, const WeightKeys& keys,
@@ -124,6 +134,13 @@ void mix_root(const PreparedTakes& p, const WeightKeys& keys, const std::vector<
                       static_cast<Eigen::Index>(std::lround(leash.drift_seconds * p.fps)), s.drift_u);
     keep_near_path(s.ground_u, p.takes.front().ground.middleRows(first, length), leash.body_heights * p.feet.body_height);
     keep_near_heading(s.heading_u, p.reference_heading.segment(first, length), kPathLeashHeading);
+    // A loop of a reference that does not walk (a stance, a repeated gesture) travels as the
+    // reference does over the loop: any other travel is a gap between its last frame and its
+    // first's next repeat, which the foot lock's seam then spreads over feet that never swing
+    // (they crept as far as the root had drifted under a style that sways its hips). A walking
+    // loop's travel is its strides', which the stride map fits and the seam takes up over the swings.
+    if (p.reference().cycles.kind != CycleKind::kGait && shows_whole_loop(p, st.first, st.last))
+      keep_loop_travel(s.ground_u, p.takes.front().ground.middleRows(first, length));
     // A content that does not walk (no gait cycles: a jump, a stand) has no stride to fit.
     if (p.reference().cycles.kind == CycleKind::kGait)
       stride_map(s.free_ground_u, s.free_heading_u, s.ground_u, s.heading_u, p.fps, p.feet.body_height, s.stride_u);

@@ -471,3 +471,35 @@ TEST_CASE("cli blend: every wild walk and run blends with a Bandai walk, whateve
   CHECK(r.out.find("  major joints of gltf_cesiumman_walk.glb: 18 by structure (structure: hips") != std::string::npos);
   CHECK(r.out.find("major joints of bandai_walk_normal.bvh") == std::string::npos);
 }
+
+TEST_CASE("cli transfer onto a standing loop: the loop travels as its content does, so planted feet do not creep",
+          "[cli][shared]") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  if (test::shared_motion("actions/bandai_respond_normal.bvh").empty()) return;
+  Sandbox box;
+  // A reply gesture that reads as one loop (its last pose its first), styled by a musical
+  // good-bye whose hips wander: the output is one loop too, its seam closed.
+  const auto r = box.cli("transfer " + quoted(test::shared_motion("actions/bandai_respond_normal.bvh")) + " --style " +
+                         quoted(test::shared_motion("actions/bandai_bye_musical.bvh")) + " --positions-out " +
+                         quoted(box.path("t.csv")) + " --report " + quoted(box.path("t.json")));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const auto report = nlohmann::json::parse(test::slurp(box.path("t.json")));
+  const double height = report["foot_sliding"]["body_height"];
+  // The hips' first and last frames, where the next repeat takes over: the content stands.
+  std::istringstream in(test::slurp(box.path("t.csv")));
+  std::string line;
+  std::getline(in, line);
+  std::vector<Eigen::Vector2d> hips;
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::istringstream fields(line);
+    for (std::string v; std::getline(fields, v, ',');) f.push_back(v);
+    if (f.size() == 5 && f[1] == "Hips") hips.emplace_back(std::stod(f[2]), std::stod(f[4]));
+  }
+  REQUIRE(hips.size() > 10);
+  // It drifted 1.6% of the height over the loop, and the planted feet crept as far (2.85 times
+  // the content's planted speed).
+  CHECK((hips.back() - hips.front()).norm() < 0.01 * height);
+  CHECK(report["foot_sliding"]["ratio"].get<double>() < 2.0);
+}
