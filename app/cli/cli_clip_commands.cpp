@@ -80,7 +80,7 @@ void print_info_text(const std::string& path, const FileInfo& info) {
             << "  takes: " << info.takes.size() << (info.takes.size() > 1 ? ", every one on this skeleton" : "")
             << "\n";
   for (const TakeInfo& t : info.takes) {
-    std::cout << "    " << t.name << "  (" << duration_in_words(t.seconds) << ", " << t.keys << " keys";
+    std::cout << "    " << t.name << "  (" << duration_in_words(t.seconds) << ", " << t.keyframes << " keyframes";
     if (t.moves >= 0) std::cout << ", moves " << t.moves << " joints";
     std::cout << ")\n";
   }

@@ -296,12 +296,12 @@ SynthesisResult blend_takes(const BlendRequest& request) {
   if (request.mode != "shared" && request.mode != "paper")
     throw InputError("expected --mode shared or paper, found '" + request.mode + "'");
   DecomposeParams dp = options.decompose_params();
-  dp.mode = request.mode == "paper" ? BlendMode::kPaper : BlendMode::kShared;
+  dp.mode = request.mode == "paper" ? DecompositionMode::kPaper : DecompositionMode::kShared;
   dp.basic_motions = request.basic;
   dp.basic_sparsities = request.basic_sparsities;
   if (!request.part_alpha.empty()) {
     if (!request.component_alpha.empty()) throw InputError("give --part-alpha or --component-alpha, not both");
-    if (dp.mode != BlendMode::kShared) throw InputError("--part-alpha needs shared mode (--mode shared)");
+    if (dp.mode != DecompositionMode::kShared) throw InputError("--part-alpha needs shared mode (--mode shared)");
   }
   // Every alpha is checked before the files are read.
   check_alpha(request.alpha, "--alpha");

@@ -75,7 +75,7 @@ Json info_json(const std::string& path, const FileInfo& info) {
                    {"from", info.origin.key}};
   auto& tk = j["takes"] = Json::array();
   for (const TakeInfo& t : info.takes)
-    tk.push_back({{"name", t.name}, {"seconds", t.seconds}, {"keys", t.keys}, {"moves", t.moves}});
+    tk.push_back({{"name", t.name}, {"seconds", t.seconds}, {"keyframes", t.keyframes}, {"moves", t.moves}});
   if (info.cycles) {
     j["cycles"] = cycles_json(*info.cycles, clip.fps());
     j["structure"] = action_structure_summary(*info.cycles, clip.fps());

@@ -74,7 +74,7 @@ void set_camera(render::OrbitCamera& c, const ui::SessionCamera& s) {
 }  // namespace
 
 Editor::Editor(const EditorOptions& options)
-    : session_(std::make_unique<ui::BlendSession>(BvhReadOptions{options.max_memory_bytes})),
+    : engine_(std::make_unique<ui::EngineLink>(BvhReadOptions{options.max_memory_bytes})),
       live_(make_tcp_frame_source) {
   state_.document.parameters = options.initial.parameters;
   state_.playback.playing = !options.initial.paused;
@@ -93,26 +93,26 @@ Editor::Editor(const EditorOptions& options)
   // frame) and the editor starts as it would without it.
   std::string first_take;
   if (!options.session_path.empty() && open_session(options.session_path)) {
-    first_take = session_->requested_a().empty() ? session_path_ : session_->requested_a();
+    first_take = engine_->requested_a().empty() ? session_path_ : engine_->requested_a();
   } else {
     const std::vector<std::string> files = options.files.empty() ? default_motion_files() : options.files;
     // --weights (or a pair's --alpha), one per take: parse_editor_options checked their count.
     ui::set_layer_weights(state_.document, options.initial.weights);
-    session_->load_files(files, ui::WeightsOf::kNewTakes);
+    engine_->load_files(files, ui::WeightsOf::kNewTakes);
     first_take = files.empty() ? std::string() : files[0];
   }
   std::string folder = std::filesystem::path(first_take).parent_path().string();
   if (folder.empty()) folder = ".";
   // The panels, drawn in this order each frame. New panels go here.
   add_panel(std::make_unique<ui::TakesPanel>());
-  add_panel(std::make_unique<ui::ParametersPanel>(*session_));
-  auto files_panel = std::make_unique<ui::FilesPanel>(*session_, folder);
+  add_panel(std::make_unique<ui::ParametersPanel>(*engine_));
+  auto files_panel = std::make_unique<ui::FilesPanel>(*engine_, folder);
   files_panel_ = files_panel.get();
   files_panel->set_live(&live_);
   add_panel(std::move(files_panel));
-  add_panel(std::make_unique<ui::LayersPanel>(*session_));
-  add_panel(std::make_unique<ui::ComponentsPanel>(*session_));
-  auto metrics_panel = std::make_unique<ui::MetricsPanel>(*session_);
+  add_panel(std::make_unique<ui::LayersPanel>(*engine_));
+  add_panel(std::make_unique<ui::ComponentsPanel>(*engine_));
+  auto metrics_panel = std::make_unique<ui::MetricsPanel>(*engine_);
   metrics_panel->set_live(&live_);
   add_panel(std::move(metrics_panel));
   add_panel(std::make_unique<ui::PlaybackPanel>());
@@ -124,26 +124,26 @@ void Editor::on_result_takes(F&& engine_call) {
     engine_call();
     return;
   }
-  std::swap(state_.takes, result_takes_);
+  std::swap(state_.shown, result_takes_);
   std::swap(state_.cycle_provenance, result_provenance_);
   engine_call();
-  std::swap(state_.takes, result_takes_);
+  std::swap(state_.shown, result_takes_);
   std::swap(state_.cycle_provenance, result_provenance_);
 }
 
 void Editor::update_engine() {
   // Before poll(): a load the worker has published by now is in the snapshot poll() takes up.
-  const bool loading = ui::load_pending(*session_);
+  const bool loading = ui::load_pending(*engine_);
   on_result_takes([this] {
-    session_->poll(state_);
-    session_->sync(state_, /*item_held=*/true);  // the new snapshot shown; worker requests after the panels
+    engine_->poll(state_);
+    engine_->sync(state_, /*item_held=*/true);  // the new snapshot shown; worker requests after the panels
   });
   // The takes, any number alike.
-  const void* pair = session_->snapshot().prepared.get();
+  const void* pair = engine_->snapshot().prepared.get();
   if (pair != nullptr && pair != framed_pair_) {  // new takes: frame them, start at --frame once
     framed_pair_ = pair;
     state_.view.request_reframe = true;
-    if (const ui::Take* reference = state_.reference_take()) {
+    if (const ui::ShownMotion* reference = state_.reference_take()) {
       const int frame = initial_frame_applied_ ? 0 : std::min(initial_frame_, std::max(reference->frames() - 1, 0));
       state_.playback.time_s = (frame + 0.5) / reference->rate();
       initial_frame_applied_ = true;
@@ -161,12 +161,12 @@ void Editor::update_engine() {
 }
 
 void Editor::wait_for_engine() {
-  on_result_takes([this] { session_->wait_idle(state_); });
+  on_result_takes([this] { engine_->wait_idle(state_); });
   update_engine();
 }
 
 bool Editor::connect_live() {
-  const PreparedTakes* takes = session_->takes();
+  const PreparedTakes* takes = engine_->takes();
   if (takes == nullptr) return false;
   live_.connect(live_.settings(), ui::live_style_spec(*takes, state_.document));
   return true;
@@ -184,13 +184,13 @@ void Editor::wait_for_live(double seconds, std::chrono::milliseconds timeout) {
 }
 
 void Editor::update_live() {
-  if (live_on_start_ && session_->takes() != nullptr && !ui::load_pending(*session_)) {
+  if (live_on_start_ && engine_->takes() != nullptr && !ui::load_pending(*engine_)) {
     live_on_start_ = false;
     connect_live();
   }
   // The styler follows the takes and the document as the editor shows them: strengths as they
   // move (eased to), a new styler, the connection kept, when the takes or the mode change.
-  const PreparedTakes* takes = session_->takes();
+  const PreparedTakes* takes = engine_->takes();
   if (live_.active() && takes != nullptr && takes->size() >= 2) live_.set_style(ui::live_style_spec(*takes, state_.document));
   const bool changed = live_.poll();
   const bool show = live_.has_window() && (live_.active() || live_.status().state == ui::LiveState::kClosed);
@@ -200,19 +200,19 @@ void Editor::update_live() {
 
 void Editor::show_live_takes(bool changed) {
   if (!live_shown_) {  // ResultView's takes aside until the live ones go
-    result_takes_ = std::move(state_.takes);
+    result_takes_ = std::move(state_.shown);
     result_provenance_ = std::move(state_.cycle_provenance);
-    state_.takes.clear();
+    state_.shown.clear();
     state_.cycle_provenance.clear();
     live_shown_ = true;
     state_.view.request_reframe = true;
   }
-  if (changed || state_.takes.empty()) live_.move_takes_into(&state_.takes);  // as the takes panel left them shown
+  if (changed || state_.shown.empty()) live_.move_takes_into(&state_.shown);  // as the takes panel left them shown
 }
 
 void Editor::show_result_takes() {
   if (!live_shown_) return;
-  state_.takes = std::move(result_takes_);
+  state_.shown = std::move(result_takes_);
   state_.cycle_provenance = std::move(result_provenance_);
   result_takes_.clear();
   result_provenance_.clear();
@@ -253,7 +253,7 @@ void Editor::shutdown_graphics() {
 void Editor::build_scene() {
   scene_.skeletons.clear();
   scene_.ground_height = 0.0f;
-  for (const ui::Take& t : state_.takes) {
+  for (const ui::ShownMotion& t : state_.shown) {
     if (!t.ok() || !t.visible) continue;
     render::SkeletonPose pose;
     pose.label = t.label;
@@ -283,7 +283,7 @@ void Editor::frame_camera(float aspect) {
   // A three-quarter view across the lanes the takes stand in side by side, from the front of
   // the reference's overall travel (the lanes are across it, ui/model/lanes.h): whichever way the
   // takes face or wander, they stand apart in the view, not one behind the other.
-  const Eigen::Vector3d side = session_->side();
+  const Eigen::Vector3d side = engine_->side();
   const float heading = static_cast<float>(std::atan2(-side.z(), side.x()));  // the travel (x, z) = (-side.z, side.x)
   camera_.yaw = heading + 0.65f;
   camera_.pitch = 0.22f;
@@ -308,48 +308,48 @@ bool Editor::imgui_settling() {
 }
 
 bool Editor::animating() const {
-  const WorkerStatus status = session_->status();
-  return state_.playback.playing || status.stage != WorkerStage::kIdle || status.pending || session_->has_news() ||
-         session_->sweeping() || scripted_save_pending() ||
+  const WorkerStatus status = engine_->status();
+  return state_.playback.playing || status.stage != WorkerStage::kIdle || status.pending || engine_->has_news() ||
+         engine_->sweeping() || scripted_save_pending() ||
          !state_.dropped.empty() || (files_panel_ != nullptr && files_panel_->export_dialog().busy()) || live_.active();
 }
 
 void Editor::handle_keys() {
   const ImGuiIO& io = ImGui::GetIO();
   if (io.WantTextInput || io.WantCaptureKeyboard) return;  // typing in a field, holding a slider
-  bool toggle_keys = ImGui::IsKeyPressed(kKeyF1, false);
-  for (ImWchar c : io.InputQueueCharacters) toggle_keys |= c == '?';  // '?' on any keyboard layout
-  if (toggle_keys) ui::command_toggle_keys(state_);
-  if (state_.view.show_keys && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false))
-    state_.view.show_keys = false;
+  bool toggle_shortcuts = ImGui::IsKeyPressed(kKeyboardF1, false);
+  for (ImWchar c : io.InputQueueCharacters) toggle_shortcuts |= c == '?';  // '?' on any keyboard layout
+  if (toggle_shortcuts) ui::command_toggle_shortcuts(state_);
+  if (state_.view.show_shortcuts && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false))
+    state_.view.show_shortcuts = false;
   const bool modifier = io.KeyCtrl || io.KeyAlt || io.KeySuper;
-  if (!modifier && ImGui::IsKeyPressed(kKeyF, false)) ui::command_frame_all(state_);
-  if (io.KeyCtrl && (ImGui::IsKeyPressed(kKeyZero, false) || ImGui::IsKeyPressed(kKeyKeypadZero, false)))
+  if (!modifier && ImGui::IsKeyPressed(kKeyboardF, false)) ui::command_frame_all(state_);
+  if (io.KeyCtrl && (ImGui::IsKeyPressed(kKeyboardZero, false) || ImGui::IsKeyPressed(kKeyboardKeypadZero, false)))
     ui::command_reset_layout(state_);
-  if (io.KeyCtrl && ImGui::IsKeyPressed(kKeyE, false)) ui::command_open_export(state_);
+  if (io.KeyCtrl && ImGui::IsKeyPressed(kKeyboardE, false)) ui::command_open_export(state_);
   if (io.KeyCtrl && !io.KeyAlt) {
-    const bool z = ImGui::IsKeyPressed(kKeyZ, true);  // held down, undo and redo repeat
+    const bool z = ImGui::IsKeyPressed(kKeyboardZ, true);  // held down, undo and redo repeat
     if (z && !io.KeyShift) undo();
-    if ((z && io.KeyShift) || ImGui::IsKeyPressed(kKeyY, true)) redo();
-    if (ImGui::IsKeyPressed(kKeyS, false)) command_save(/*ask=*/io.KeyShift);
-    if (ImGui::IsKeyPressed(kKeyO, false)) command_open();
+    if ((z && io.KeyShift) || ImGui::IsKeyPressed(kKeyboardY, true)) redo();
+    if (ImGui::IsKeyPressed(kKeyboardS, false)) command_save(/*ask=*/io.KeyShift);
+    if (ImGui::IsKeyPressed(kKeyboardO, false)) command_open();
   }
 }
 
 void Editor::draw_keys_window() {
-  if (!state_.view.show_keys) return;
+  if (!state_.view.show_shortcuts) return;
   // Top centre, over the viewport (it is shown when asked for, and closes with Esc).
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(0.5f * display.x, ui::kLayoutMargin), ImGuiCond_Appearing, ImVec2(0.5f, 0.0f));
   bool open = true;
   const ImGuiWindowFlags flags =
       ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings;
-  if (ImGui::Begin("Keys", &open, flags)) {
+  if (ImGui::Begin("Shortcuts", &open, flags)) {
     if (ImGui::BeginTable("##keys", 2, ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_RowBg)) {
-      for (const KeyHelp& k : editor_keys()) {
+      for (const ShortcutHelp& k : editor_shortcuts()) {
         ImGui::TableNextRow();
         ImGui::TableNextColumn();
-        ImGui::TextUnformatted(k.keys);
+        ImGui::TextUnformatted(k.shortcut);
         ImGui::TableNextColumn();
         ImGui::TextUnformatted(k.action);
       }
@@ -368,7 +368,7 @@ void Editor::draw_keys_window() {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Hide this list; F1 or ? shows it again");
   }
   ImGui::End();
-  if (!open) state_.view.show_keys = false;
+  if (!open) state_.view.show_shortcuts = false;
 }
 
 void Editor::frame(const FrameInput& input) {
@@ -387,11 +387,11 @@ void Editor::frame(const FrameInput& input) {
   handle_keys();
 
   // Playback on A's aligned timeline; with loop off it stops on the last frame.
-  if (const ui::Take* reference = state_.reference_take())
+  if (const ui::ShownMotion* reference = state_.reference_take())
     ui::advance_playback(state_.playback, static_cast<double>(input.delta_s), ui::take_length_s(*reference));
   // A live stream plays at its newest frame while it streams.
-  if (live_shown_ && live_.active() && !state_.takes.empty())
-    state_.playback.time_s = ui::take_length_s(state_.takes.front());
+  if (live_shown_ && live_.active() && !state_.shown.empty())
+    state_.playback.time_s = ui::take_length_s(state_.shown.front());
 
   draw_windows();
   center_view();
@@ -412,13 +412,13 @@ void Editor::draw_windows() {
   // Panels first: an alpha moved in this frame is blended and drawn in this frame.
   state_.files_folder = session_folder();
   for (auto& panel : panels_) panel->draw(state_);
-  state_.view.reset_layout = false;  // laid out; a Reset layout from the keys window: next frame
+  state_.view.reset_layout = false;  // laid out; a Reset layout from the shortcuts window: next frame
   draw_keys_window();
   draw_session_windows();
   draw_unsaved_question();
   // After the panels: what they changed is an undo step once nothing is held (a drag is one).
-  edits_.record(state_, *session_, ImGui::IsAnyItemActive());
-  on_result_takes([this] { session_->sync(state_, ImGui::IsAnyItemActive()); });
+  edits_.record(state_, *engine_, ImGui::IsAnyItemActive());
+  on_result_takes([this] { engine_->sync(state_, ImGui::IsAnyItemActive()); });
   build_scene();
 }
 
@@ -521,17 +521,17 @@ void Editor::follow_skeletons(float delta_s) {
 
 void Editor::save_session_when_ready() {
   if (scripted_save_path_.empty() || frames_drawn_ < 2) return;
-  const WorkerStatus status = session_->status();
-  const bool loaded = session_->snapshot().prepared != nullptr;
-  if (status.stage != WorkerStage::kIdle || status.pending || ui::load_pending(*session_)) return;
-  if (!loaded && session_->error().empty()) return;
+  const WorkerStatus status = engine_->status();
+  const bool loaded = engine_->snapshot().prepared != nullptr;
+  if (status.stage != WorkerStage::kIdle || status.pending || ui::load_pending(*engine_)) return;
+  if (!loaded && engine_->error().empty()) return;
   if (!save_session(scripted_save_path_)) scripted_save_error_ = session_message_.text();
   scripted_save_path_.clear();
 }
 
-bool Editor::undo() { return edits_.undo(state_, *session_); }
+bool Editor::undo() { return edits_.undo(state_, *engine_); }
 
-bool Editor::redo() { return edits_.redo(state_, *session_); }
+bool Editor::redo() { return edits_.redo(state_, *engine_); }
 
 bool Editor::save_session(const std::string& path) {
   namespace fs = std::filesystem;
@@ -578,7 +578,7 @@ bool Editor::open_session(const std::string& path) {
     session_message_.set(e.what(), true);
     return false;
   }
-  const std::string missing = ui::apply_session_document(file.document, where, state_, *session_);
+  const std::string missing = ui::apply_session_document(file.document, where, state_, *engine_);
   // An opened session is a new document, as in any animation package: no undo reaches back to
   // the one before, which would show other takes under this session's name (and Save would
   // write them into it). What is saved is the document once its takes are in.
@@ -606,7 +606,7 @@ void Editor::open_when_answered() {
 std::string Editor::session_folder() const {
   if (!session_path_.empty()) return std::filesystem::path(session_path_).parent_path().string();
   if (!session_folder_.empty()) return session_folder_;
-  const std::string& a = session_->loaded_path(0);
+  const std::string& a = engine_->loaded_path(0);
   if (!a.empty()) return std::filesystem::path(absolute_path(a)).parent_path().string();
   return absolute_path(".");
 }

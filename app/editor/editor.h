@@ -24,7 +24,7 @@
 #include "render/gpu_timer.h"
 #include "render/render_target.h"
 #include "render/scene_renderer.h"
-#include "ui/model/blend_session.h"
+#include "ui/model/engine_link.h"
 #include "ui/model/unsaved_question.h"
 #include "ui/model/edit_history.h"
 #include "ui/model/live_source.h"
@@ -43,15 +43,15 @@ namespace mostyle::app {
 // Keys the editor reads beyond the few that ImGui 1.86 names (io.KeyMap), as indices into
 // io.KeysDown: GLFW's key codes, which the window platform feeds (window_platform.cpp checks
 // them at compile time; ASCII for letters and digits). The offscreen platform feeds no keys.
-constexpr int kKeyF = 'F';           // GLFW_KEY_F
-constexpr int kKeyZero = '0';        // GLFW_KEY_0
-constexpr int kKeyF1 = 290;          // GLFW_KEY_F1
-constexpr int kKeyKeypadZero = 320;  // GLFW_KEY_KP_0
-constexpr int kKeyE = 'E';           // GLFW_KEY_E
-constexpr int kKeyZ = 'Z';           // GLFW_KEY_Z: Ctrl+Z undo, Ctrl+Shift+Z redo
-constexpr int kKeyY = 'Y';           // GLFW_KEY_Y: Ctrl+Y redo
-constexpr int kKeyS = 'S';           // GLFW_KEY_S: Ctrl+S save the session, Ctrl+Shift+S save as
-constexpr int kKeyO = 'O';           // GLFW_KEY_O: Ctrl+O open a session
+constexpr int kKeyboardF = 'F';           // GLFW_KEY_F
+constexpr int kKeyboardZero = '0';        // GLFW_KEY_0
+constexpr int kKeyboardF1 = 290;          // GLFW_KEY_F1
+constexpr int kKeyboardKeypadZero = 320;  // GLFW_KEY_KP_0
+constexpr int kKeyboardE = 'E';           // GLFW_KEY_E
+constexpr int kKeyboardZ = 'Z';           // GLFW_KEY_Z: Ctrl+Z undo, Ctrl+Shift+Z redo
+constexpr int kKeyboardY = 'Y';           // GLFW_KEY_Y: Ctrl+Y redo
+constexpr int kKeyboardS = 'S';           // GLFW_KEY_S: Ctrl+S save the session, Ctrl+Shift+S save as
+constexpr int kKeyboardO = 'O';           // GLFW_KEY_O: Ctrl+O open a session
 
 struct FrameInput {
   glm::ivec2 framebuffer_size{0};  // pixels of the default framebuffer to draw into
@@ -75,11 +75,11 @@ class Editor {
   // Before the GL context goes away.
   void shutdown_graphics();
 
-  // One frame: ImGui::NewFrame, keys, panels, the keys window, camera input, ImGui::Render,
+  // One frame: ImGui::NewFrame, keys, panels, the shortcuts window, camera input, ImGui::Render,
   // viewport, ImGui draw data. Draws into framebuffer 0 at input.framebuffer_size. The platform
   // has already set ImGui's display size and input (its own NewFrame). The panels are laid out
   // again (ui/panels/layout.h) on the first frame, whenever the display size changes, and on Reset
-  // layout. Keys (editor_keys()) count only when ImGui does not want the keyboard.
+  // layout. Keys (editor_shortcuts()) count only when ImGui does not want the keyboard.
   void frame(const FrameInput& input);
 
   // Screenshots: playback starts paused where --frame put it, and no timing text is shown,
@@ -91,7 +91,7 @@ class Editor {
 
   void add_panel(std::unique_ptr<ui::Panel> panel) { panels_.push_back(std::move(panel)); }
   ui::EditorState& state() { return state_; }
-  ui::BlendSession& session() { return *session_; }
+  ui::EngineLink& engine() { return *engine_; }
 
   // The Live source (the Files panel's Live section; --live): a stream styled with the loaded
   // takes as it arrives, over TCP. While it streams (and after its source closed, until
@@ -117,7 +117,7 @@ class Editor {
   void drop_files(const std::vector<std::string>& paths);
   // A thread-safe wake-up for an event loop that waits for input at rest (glfwPostEmptyEvent):
   // called on the engine's threads when a job finishes, so its result is drawn at once.
-  void set_wake(std::function<void()> wake) { session_->set_wake(std::move(wake)); }
+  void set_wake(std::function<void()> wake) { engine_->set_wake(std::move(wake)); }
   const render::OrbitCamera& camera() const { return camera_; }
   // Whether the next frame differs from this one without any input: playing, the engine (a
   // load, a decomposition, the error sweep, an export) still working, or a result of it not yet
@@ -212,11 +212,11 @@ class Editor {
   void save_recent_files();
 
   ui::EditorState state_;
-  std::unique_ptr<ui::BlendSession> session_;  // before panels_: they hold references to it
+  std::unique_ptr<ui::EngineLink> engine_;  // before panels_: they hold references to it
   ui::LiveSource live_;                        // before panels_ too
-  bool live_shown_ = false;                    // state_.takes are the live source's
+  bool live_shown_ = false;                    // state_.shown are the live source's
   bool live_on_start_ = false;                 // --live: connect once the takes are in
-  std::vector<ui::Take> result_takes_;         // ResultView's, aside while the live takes are shown
+  std::vector<ui::ShownMotion> result_takes_;         // ResultView's, aside while the live takes are shown
   std::vector<ui::CycleProvenance> result_provenance_;
   std::vector<std::unique_ptr<ui::Panel>> panels_;
   ui::FilesPanel* files_panel_ = nullptr;  // in panels_; owns the export dialog (animating())

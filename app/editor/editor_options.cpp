@@ -234,8 +234,8 @@ std::string session_argument_error(const EditorOptions& options) {
   return "";
 }
 
-const std::vector<KeyHelp>& editor_keys() {
-  static const std::vector<KeyHelp> kKeys = {
+const std::vector<ShortcutHelp>& editor_shortcuts() {
+  static const std::vector<ShortcutHelp> kKeys = {
       {"Space", "play or pause (from the start again on the last frame)"},
       {"Left / Right arrow", "step one frame back / forward (pauses)"},
       {"K", "key the style at the playhead: the takes' weights (the timeline's Set key)"},
@@ -262,8 +262,8 @@ const std::vector<KeyHelp>& editor_keys() {
 
 std::string editor_usage() {
   std::string keys;
-  for (const KeyHelp& k : editor_keys()) {
-    std::string line = std::string("  ") + k.keys;
+  for (const ShortcutHelp& k : editor_shortcuts()) {
+    std::string line = std::string("  ") + k.shortcut;
     line.resize(std::max<size_t>(line.size() + 1, 24), ' ');
     keys += line + k.action + "\n";
   }

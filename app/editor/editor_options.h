@@ -2,7 +2,7 @@
 // The editor's command line: `mostyle [A.bvh B.bvh ... | SESSION.mostyle] [--screenshot OUT.png] [--offscreen]
 // [--window-size WxH] [--paused] [--alpha A] [--components K] [--sparsity F] [--frame N]
 // [--live HOST:PORT --live-skeleton FILE] [--help]`, and the list of the editor's keys (the
-// keys window and --help show it).
+// shortcuts window and --help show it).
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,7 +14,7 @@ namespace mostyle::app {
 
 // Where the editor starts, so a screenshot is reproducible. Panels take it from EditorState.
 struct InitialState {
-  ui::BlendParameters parameters;  // --components, --sparsity
+  ui::DecompositionControls parameters;  // --components, --sparsity
   // --weights, one per take, summing to 1, or a pair's (1 - alpha, alpha) from --alpha; empty:
   // the defaults (equal weights).
   std::vector<double> weights;
@@ -68,13 +68,13 @@ std::string session_argument_error(const EditorOptions& options);
 std::string editor_usage();
 
 // One line of the keys list: what to press and what it does, in plain words.
-struct KeyHelp {
-  const char* keys;    // "Space", "Ctrl+0", "Left drag"
+struct ShortcutHelp {
+  const char* shortcut;  // "Space", "Ctrl+0", "Left drag"
   const char* action;  // "play or pause"
 };
 
-// Every key and mouse gesture the editor has, in the order the keys window (F1) lists them.
-const std::vector<KeyHelp>& editor_keys();
+// Every key and mouse gesture the editor has, in the order the shortcuts window (F1) lists them.
+const std::vector<ShortcutHelp>& editor_shortcuts();
 
 // The bundled example pair (assets/motions/cmu142_walk_happy.bvh and ..._marching.bvh), found
 // from $MOSTYLE_ASSETS, the source tree the program was built from, or beside the program.

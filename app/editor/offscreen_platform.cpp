@@ -51,7 +51,7 @@ int run_offscreen(const EditorOptions& options) {
     if (!options.live_address.empty()) editor.wait_for_live(1.0, std::chrono::seconds(60));
     try {
       // Takes that did not load leave nothing to show: their one sentence, exit 1, no picture.
-      if (!editor.session().error().empty()) throw std::runtime_error(editor.session().error());
+      if (!editor.engine().error().empty()) throw std::runtime_error(editor.engine().error());
       editor.init_graphics();
       for (int frame = 0; frame < kScreenshotFrames; ++frame) {
         // What a platform back-end would do: display size, time step, no pointer.

@@ -25,14 +25,14 @@ namespace mostyle::app {
 namespace {
 
 // The editor reads these keys from io.KeysDown by GLFW's codes (app/editor/editor.h).
-static_assert(kKeyF == GLFW_KEY_F && kKeyZero == GLFW_KEY_0 && kKeyF1 == GLFW_KEY_F1 && kKeyKeypadZero == GLFW_KEY_KP_0,
+static_assert(kKeyboardF == GLFW_KEY_F && kKeyboardZero == GLFW_KEY_0 && kKeyboardF1 == GLFW_KEY_F1 && kKeyboardKeypadZero == GLFW_KEY_KP_0,
               "app/editor/editor.h's key codes must be GLFW's");
-static_assert(kKeyE == GLFW_KEY_E, "app/editor/editor.h's key codes must be GLFW's");
+static_assert(kKeyboardE == GLFW_KEY_E, "app/editor/editor.h's key codes must be GLFW's");
 static_assert(kActionRelease == GLFW_RELEASE && kActionPress == GLFW_PRESS && kActionRepeat == GLFW_REPEAT &&
                   kModShift == GLFW_MOD_SHIFT && kModControl == GLFW_MOD_CONTROL && kModAlt == GLFW_MOD_ALT &&
                   kModSuper == GLFW_MOD_SUPER && GLFW_KEY_LEFT_SHIFT == 340 && GLFW_KEY_RIGHT_SUPER == 347,
               "app/editor/input_queue.h's values must be GLFW's");
-static_assert(kKeyZ == GLFW_KEY_Z && kKeyY == GLFW_KEY_Y && kKeyS == GLFW_KEY_S && kKeyO == GLFW_KEY_O,
+static_assert(kKeyboardZ == GLFW_KEY_Z && kKeyboardY == GLFW_KEY_Y && kKeyboardS == GLFW_KEY_S && kKeyboardO == GLFW_KEY_O,
               "app/editor/editor.h's key codes must be GLFW's");
 
 constexpr double kRestWakeSeconds = 0.5;  // at rest, how often to look up from waiting
@@ -227,7 +227,7 @@ int run_window(const EditorOptions& options) {
     connect_window(window, editor, screenshot);
     try {
       // A screenshot of takes that did not load would show nothing: their one sentence, exit 1.
-      if (screenshot && !editor.session().error().empty()) throw std::runtime_error(editor.session().error());
+      if (screenshot && !editor.engine().error().empty()) throw std::runtime_error(editor.engine().error());
       editor.init_graphics();
       status = run_frames(window, editor, options, screenshot);
     } catch (const std::exception& e) {

@@ -114,7 +114,7 @@ Alignment align_takes(const CanonicalMotion& a, const CanonicalMotion& b, const 
 // registered take. Throws InputError (bad options, missing joints) or Cancelled. Cost: the sum over cycles of
 // their DTWs, O(sum of Lr x Lt x features), plus O(Fa + V).
 // Test: "alignment pipeline: no pops on the shared motions' hardest pairs, across conventions"
-// (tests/engine/run/alignment_pipeline_test.cpp); the quality run's `fast` column (docs/quality.md).
+// (tests/engine/worker/alignment_pipeline_test.cpp); the quality run's `fast` column (docs/quality.md).
 constexpr double kCycleWarpSmoothing = 0.2;
 
 // Aligns B onto A (as align_takes does) piece by piece along their structures (action_structure.h:

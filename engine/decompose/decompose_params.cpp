@@ -7,7 +7,7 @@
 
 namespace mostyle {
 
-const char* blend_mode_name(BlendMode mode) { return mode == BlendMode::kShared ? "shared" : "paper"; }
+const char* decomposition_mode_name(DecompositionMode mode) { return mode == DecompositionMode::kShared ? "shared" : "paper"; }
 
 void DecomposeParams::Validate(int channels) const {
   if (components < 1 || components > channels)
@@ -20,7 +20,7 @@ void DecomposeParams::Validate(int channels) const {
     throw InputError("expected a tolerance of 0 or more, found " + std::to_string(tolerance));
   if (basic_motions < 0 || basic_motions > 16)
     throw InputError("expected from 0 to 16 basic motions, found " + std::to_string(basic_motions));
-  if (basic_motions > 0 && mode != BlendMode::kPaper)
+  if (basic_motions > 0 && mode != DecompositionMode::kPaper)
     throw InputError("basic motions are a paper-mode synthesis; use --mode paper with --basic");
   for (double f : basic_sparsities)
     if (!(f > 0 && f <= 1)) throw InputError("expected basic-motion sparsities in (0, 1], found " + std::to_string(f));

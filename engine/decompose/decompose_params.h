@@ -8,11 +8,11 @@
 
 namespace mostyle {
 
-enum class BlendMode { kShared, kPaper };
-const char* blend_mode_name(BlendMode mode);  // "shared", "paper"
+enum class DecompositionMode { kShared, kPaper };
+const char* decomposition_mode_name(DecompositionMode mode);  // "shared", "paper"
 
 struct DecomposeParams {
-  BlendMode mode = BlendMode::kShared;
+  DecompositionMode mode = DecompositionMode::kShared;
   int components = 10;     // k
   double sparsity = 0.1;   // fraction of non-zeros kept in C (the paper's figures use 0.1)
   int max_iterations = 100;

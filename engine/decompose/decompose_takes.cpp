@@ -102,12 +102,12 @@ const Eigen::MatrixXd& decompose_paper_mode(const PreparedTakes& p, const Decomp
 std::shared_ptr<const Decomposed> decompose_takes(const PreparedTakes& prepared, const DecomposeParams& params,
                                                   JobControl* control, StageTimes* times) {
   params.Validate(static_cast<int>(prepared.reference().x.cols()));
-  if (params.mode != BlendMode::kShared && prepared.size() != 2)
+  if (params.mode != DecompositionMode::kShared && prepared.size() != 2)
     throw InputError("several takes mix shared components; paper mode and basic motions blend two takes (use blend)");
   const auto t0 = Clock::now();
   auto d = std::make_shared<Decomposed>();
   d->params = params;
-  const Eigen::MatrixXd& components = params.mode == BlendMode::kShared
+  const Eigen::MatrixXd& components = params.mode == DecompositionMode::kShared
                                           ? decompose_shared_mode(prepared, params, control, *d)
                                           : decompose_paper_mode(prepared, params, control, *d);
   d->support = (components.array() != 0.0).cast<double>();

@@ -142,7 +142,7 @@ std::vector<TakeInfo> read_motion_takes(const std::string& path, const MotionRea
     TakeInfo info;
     info.name = std::filesystem::path(tp.path).stem().string();
     info.seconds = clip.frames() > 1 ? (clip.frames() - 1) * clip.frame_time : 0.0;
-    info.keys = clip.frames();
+    info.keyframes = clip.frames();
     return {info};
   }
   return scene_take_infos(read_animated_scene(tp.path, options.max_bytes));

@@ -125,7 +125,7 @@ std::vector<TakeInfo> scene_take_infos(const AnimatedScene& scene) {
       if (t.times.empty()) continue;
       first = std::min(first, t.times.front());
       last = std::max(last, t.times.back());
-      info.keys = std::max(info.keys, static_cast<int>(t.times.size()));
+      info.keyframes = std::max(info.keyframes, static_cast<int>(t.times.size()));
       if (t.node >= 0 && t.node < static_cast<int>(joint_of.size()) && joint_of[t.node] >= 0) keyed[t.node] = 1;
     }
     info.seconds = last >= first && std::isfinite(last - first) ? last - first : 0.0;

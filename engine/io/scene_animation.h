@@ -88,7 +88,7 @@ SceneSkeleton scene_skeleton(const AnimatedScene& scene, int take = -1);
 struct TakeInfo {
   std::string name;
   double seconds = 0.0;  // last key time - first key time
-  int keys = 0;          // the most keys on one track
+  int keyframes = 0;     // the most keyframes on one track
   int moves = 0;         // joints of the file's skeleton the take keys (a BVH's: every joint); -1 when not known
 };
 // Every take of the scene; `moves` is -1 for a take whose skeleton cannot be found.

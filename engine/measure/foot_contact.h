@@ -64,7 +64,7 @@ Eigen::MatrixXd detect_foot_contacts(const Eigen::MatrixXd& world, const FootRig
 // max_gap_seconds between two contacts filled, then contacts shorter than min_contact_seconds
 // (at rig.fps, to the nearest frame) dropped, but for one that the take's first or last frame
 // cuts (it may have lasted longer: a landing in the last frames is a foot strike). A mix's contacts (weighted, then thresholded) can flicker where the takes
-// plant at different moments; the foot lock would pin each flicker's runs apart. O(F), in place.
+// plant at different moments; the foot lock would pin each flicker's stances apart. O(F), in place.
 void tidy_contacts(Eigen::MatrixXd& contacts, const FootRig& rig);
 
 // B's contacts (Fb x 2) carried onto A's timeline: row i is B's row at warp(i) rounded (warp:

@@ -19,7 +19,7 @@ namespace {
 // A bend (knee off the hip-target line) shorter than this fraction of the leg has no usable
 // direction: the previous frame's is used instead.
 constexpr double kStraightLeg = kStraightChain;
-// Bisection steps for a run's fitting shift (fitting_shift): 2^-30 of the balanced shift.
+// Bisection steps for a stance's fitting shift (fitting_shift): 2^-30 of the balanced shift.
 constexpr int kFitShiftSteps = 30;
 // How far (leg lengths) the knee's pole leans towards where the foot points (apply_foot_lock).
 constexpr double kKneeForwardBias = 0.02;
@@ -51,10 +51,10 @@ struct LockedLeg {
   int joints[2];
 };
 
-// The runs of frames the leg's foot is pinned over (scratch.pinned, scratch.runs): every frame one
+// The stances of frames the leg's foot is pinned over (scratch.pinned, scratch.stances): every frame one
 // of its joints is planted (planted_feet.h, the measure the output is judged by), breaks of up to
-// max_gap filled. Short runs are kept: a planted step left out would slide. O(F).
-void find_runs(const LockedLeg& leg, int max_gap, FootLockScratch& s) {
+// max_gap filled. Short stances are kept: a planted step left out would slide. O(F).
+void find_stances(const LockedLeg& leg, int max_gap, FootLockScratch& s) {
   const Eigen::Index frames = s.planted.rows();
   s.pinned.resize(frames);
   // A joint the rig lacks (a toeless leg's toe) has no height, which reads as held: not counted.
@@ -74,7 +74,7 @@ void find_runs(const LockedLeg& leg, int max_gap, FootLockScratch& s) {
     if (t > 0 && e < frames && e - t <= max_gap) s.pinned.segment(t, e - t).setOnes();
     t = e;
   }
-  s.runs.clear();
+  s.stances.clear();
   for (Eigen::Index t = 0; t < frames;) {
     if (!s.pinned[t]) {
       ++t;
@@ -82,7 +82,7 @@ void find_runs(const LockedLeg& leg, int max_gap, FootLockScratch& s) {
     }
     Eigen::Index end = t;
     while (end + 1 < frames && s.pinned[end + 1]) ++end;
-    s.runs.emplace_back(t, end);
+    s.stances.emplace_back(t, end);
     t = end + 1;
   }
 }
@@ -97,9 +97,9 @@ double foot_heading(const Eigen::MatrixXd& world, Eigen::Index t, int ankle, int
 
 double wrapped(double angle) { return std::remainder(angle, 2.0 * kPi); }
 
-// Within each run, the turn about the vertical (s.yaw) that holds the foot's heading where both
-// its joints are planted, as run_offsets holds its place: each step's turn beyond what the drift
-// allows (share of it; never more than the step turned) taken out, centred on the run, and faded
+// Within each stance, the turn about the vertical (s.yaw) that holds the foot's heading where both
+// its joints are planted, as stance_offsets holds its place: each step's turn beyond what the drift
+// allows (share of it; never more than the step turned) taken out, centred on the stance, and faded
 // out over `ramp` frames either side of it; the toe is turned about the ankle by it (its height
 // and its distance from the ankle kept). The offset, which moves the foot by its joints' averaged
 // step, then holds both: a foot the mix turns from frame to frame (the style's legs turning it,
@@ -114,7 +114,7 @@ void hold_foot_heading(Eigen::MatrixXd& world, const LockedLeg& leg, const Eigen
   const int ja = leg.joints[0], jt = leg.joints[1];
   auto planted = [&](Eigen::Index t) { return s.planted(t, ja) > 0.5 && s.planted(t, jt) > 0.5; };
   const Eigen::Vector2d none = Eigen::Vector2d::Zero();
-  for (const auto& [start, end] : s.runs) {
+  for (const auto& [start, end] : s.stances) {
     for (Eigen::Index u = start; u < end; ++u) {
       s.yaw[u + 1] = s.yaw[u];
       if (!planted(u) || !planted(u + 1)) continue;
@@ -129,13 +129,13 @@ void hold_foot_heading(Eigen::MatrixXd& world, const LockedLeg& leg, const Eigen
       }
       s.yaw[u + 1] += allowed - turned;
     }
-    auto run = s.yaw.segment(start, end - start + 1);
-    run.array() -= run.mean();
+    auto stance = s.yaw.segment(start, end - start + 1);
+    stance.array() -= stance.mean();
   }
-  for (size_t r = 0; r < s.runs.size(); ++r) {
-    const auto [start, end] = s.runs[r];
-    const Eigen::Index before = r > 0 ? s.runs[r - 1].second + 1 : 0;
-    const Eigen::Index after = r + 1 < s.runs.size() ? s.runs[r + 1].first - 1 : frames - 1;
+  for (size_t r = 0; r < s.stances.size(); ++r) {
+    const auto [start, end] = s.stances[r];
+    const Eigen::Index before = r > 0 ? s.stances[r - 1].second + 1 : 0;
+    const Eigen::Index after = r + 1 < s.stances.size() ? s.stances[r + 1].first - 1 : frames - 1;
     for (Eigen::Index u = std::max(before, start - ramp); u < start; ++u)
       s.yaw[u] += smoothstep(1.0 - static_cast<double>(start - u) / (ramp + 1)) * s.yaw[start];
     for (Eigen::Index u = end + 1; u <= std::min(after, end + ramp); ++u)
@@ -157,18 +157,18 @@ struct PlantedBand {
   double height = 0.0;
 };
 
-// Within each run, the offset (s.target) that takes out, step by step, what the foot's planted
+// Within each stance, the offset (s.target) that takes out, step by step, what the foot's planted
 // joints move beyond what they may (share of drift; none: nothing), so they move by that much and never
-// faster than they did; centred on the run (the least total correction). A step's move is its
+// faster than they did; centred on the stance (the least total correction). A step's move is its
 // planted joints' averaged, each weighted by how near it is to its floor (a heel lifting off
 // leaves the toe to hold the foot; a toe coming down, the heel); a step with neither joint
 // planted at both ends (a filled break) keeps the offset. O(F).
-void run_offsets(const Eigen::MatrixXd& world, const LockedLeg& leg, const PlantedBand& within,
+void stance_offsets(const Eigen::MatrixXd& world, const LockedLeg& leg, const PlantedBand& within,
                  const Eigen::MatrixXd* drift, double share, FootLockScratch& s) {
   const std::array<int, kFootJoints>& columns = within.columns;
   const std::array<double, kFootJoints>& floors = within.floors;
   const double band = within.height;
-  for (const auto& [start, end] : s.runs) {
+  for (const auto& [start, end] : s.stances) {
     s.target.row(start).setZero();
     for (Eigen::Index u = start; u < end; ++u) {
       double weights = 0.0;
@@ -196,8 +196,8 @@ void run_offsets(const Eigen::MatrixXd& world, const LockedLeg& leg, const Plant
   }
 }
 
-// How far the offset has gone from one run's to the next's at each frame of the swings between
-// runs (s.swing: 0 at a run's last frame, 1 at the next's first). Each step takes a share of the
+// How far the offset has gone from one stance's to the next's at each frame of the swings between
+// stances (s.swing: 0 at a stance's last frame, 1 at the next's first). Each step takes a share of the
 // change that grows with the room the foot has under `fastest` (units a frame) on that step, its
 // ankle's or toe's own speed taken off, times a bump that starts and ends at zero (no jump in
 // speed at lift-off or landing): the change goes where the swinging foot is slow, not where it is
@@ -207,8 +207,8 @@ void run_offsets(const Eigen::MatrixXd& world, const LockedLeg& leg, const Plant
 void swing_profile(const Eigen::MatrixXd& world, const LockedLeg& leg, double fastest, FootLockScratch& s) {
   const Eigen::Index frames = world.rows();
   s.swing.setZero(frames);
-  for (size_t r = 1; r < s.runs.size(); ++r) {
-    const Eigen::Index from = s.runs[r - 1].second, to = s.runs[r].first, span = to - from;
+  for (size_t r = 1; r < s.stances.size(); ++r) {
+    const Eigen::Index from = s.stances[r - 1].second, to = s.stances[r].first, span = to - from;
     auto bump = [&](Eigen::Index u) { return std::pow(std::sin(kPi * (double(u - from) + 0.5) / double(span)), 2); };
     double total = 0.0;
     for (Eigen::Index u = from; u < to; ++u) {  // the step u -> u + 1
@@ -222,7 +222,7 @@ void swing_profile(const Eigen::MatrixXd& world, const LockedLeg& leg, double fa
       total += bump(u) * room;
       s.swing[u + 1] = total;
     }
-    if (!(total > 0.0)) {  // no step with room: the bump alone (the run is then not pinned)
+    if (!(total > 0.0)) {  // no step with room: the bump alone (the stance is then not pinned)
       total = 0.0;
       for (Eigen::Index u = from; u < to; ++u) s.swing[u + 1] = total += bump(u);
     }
@@ -230,14 +230,14 @@ void swing_profile(const Eigen::MatrixXd& world, const LockedLeg& leg, double fa
   }
 }
 
-// The shift (taken off every offset of a run) that lets a run's offsets at its ends (first,
+// The shift (taken off every offset of a stance) that lets a stance's offsets at its ends (first,
 // last) fit the rooms before and after it, or come as near as they can: the offsets are centred
-// on the run (the least total correction), so where one side's swing has little room and the
+// on the stance (the least total correction), so where one side's swing has little room and the
 // other's much, the whole pin would be scaled down to the smaller room although moving the pinned
 // spot towards the roomier side fits it. The shift goes from none towards the balanced one (the
 // two ends' offsets in proportion to their rooms, the largest fit), only as far as the fit needs
 // (bisection on that way; each end's distance is convex along it, so where the balanced shift
-// fits, the shifts that fit from there back towards none are one stretch). A run that fits as it
+// fits, the shifts that fit from there back towards none are one stretch). A stance that fits as it
 // is gets none. O(1).
 Eigen::RowVector2d fitting_shift(const Eigen::RowVector2d& first, const Eigen::RowVector2d& last, double before,
                                  double after) {
@@ -261,10 +261,10 @@ Eigen::RowVector2d fitting_shift(const Eigen::RowVector2d& first, const Eigen::R
   return hi * balanced;
 }
 
-// Each run's offsets, shifted as fitting_shift finds, then scaled down where the change of offset before or after it (spread over a
+// Each stance's offsets, shifted as fitting_shift finds, then scaled down where the change of offset before or after it (spread over a
 // swing as s.swing shares it, or a fade) would move the foot faster than `fastest` units a frame: on every step of the
-// swing the foot's own speed plus the offset's change at most that (each run may take half of a
-// swing's room, a fade's whole). A run next to a swing of a few frames (a foot that barely leaves
+// swing the foot's own speed plus the offset's change at most that (each stance may take half of a
+// swing's room, a fade's whole). A stance next to a swing of a few frames (a foot that barely leaves
 // the band) or a swing already near the takes' fastest is pinned in part rather than make the
 // swinging foot pop. O(F).
 void fit_to_swings(const Eigen::MatrixXd& world, const LockedLeg& leg, int ramp, double fastest, FootLockScratch& s) {
@@ -281,24 +281,24 @@ void fit_to_swings(const Eigen::MatrixXd& world, const LockedLeg& leg, int ramp,
     }
     return out;
   };
-  for (size_t r = 0; r < s.runs.size(); ++r) {
+  for (size_t r = 0; r < s.stances.size(); ++r) {
     // Plain variables, not a structured binding: C++17 lambdas cannot capture those.
-    const Eigen::Index start = s.runs[r].first, end = s.runs[r].second;
+    const Eigen::Index start = s.stances[r].first, end = s.stances[r].second;
     double before, after;
     if (r == 0) {
       before = room(start - ramp - 1, start, [&](Eigen::Index u) {
         return u >= start ? 1.0 : u < start - ramp ? 0.0 : smoothstep(1.0 - double(start - u) / (ramp + 1));
       });
     } else {
-      const Eigen::Index from = s.runs[r - 1].second;
+      const Eigen::Index from = s.stances[r - 1].second;
       before = 0.5 * room(from, start, [&](Eigen::Index u) { return u <= from ? 0.0 : s.swing[u]; });
     }
-    if (r + 1 == s.runs.size()) {
+    if (r + 1 == s.stances.size()) {
       after = room(end, end + ramp + 1, [&](Eigen::Index u) {
         return u <= end ? 1.0 : u > end + ramp ? 0.0 : smoothstep(1.0 - double(u - end) / (ramp + 1));
       });
     } else {
-      const Eigen::Index to = s.runs[r + 1].first;
+      const Eigen::Index to = s.stances[r + 1].first;
       after = 0.5 * room(end, to, [&](Eigen::Index u) { return u <= end ? 0.0 : s.swing[u]; });
     }
     auto rows = s.target.middleRows(start, end - start + 1);
@@ -311,32 +311,32 @@ void fit_to_swings(const Eigen::MatrixXd& world, const LockedLeg& leg, int ramp,
   }
 }
 
-// The offsets between runs (s.target, s.weight 1 wherever the ankle moves, s.ease): the change
-// from one run to the next spread over the whole swing as swing_profile shares it (s.swing: no
+// The offsets between stances (s.target, s.weight 1 wherever the ankle moves, s.ease): the change
+// from one stance to the next spread over the whole swing as swing_profile shares it (s.swing: no
 // jump in speed at landing or lift-off, most of it on the swing's slow steps); before the first
-// run and after the last a fade over ramp frames. O(F).
-void ease_between_runs(Eigen::Index frames, int ramp, FootLockScratch& s) {
+// stance and after the last a fade over ramp frames. O(F).
+void ease_between_stances(Eigen::Index frames, int ramp, FootLockScratch& s) {
   s.weight.setZero(frames);
   s.ease.setConstant(frames, -1.0);
-  for (size_t r = 0; r < s.runs.size(); ++r) {
-    const auto [start, end] = s.runs[r];
+  for (size_t r = 0; r < s.stances.size(); ++r) {
+    const auto [start, end] = s.stances[r];
     s.weight.segment(start, end - start + 1).setOnes();
-    if (r > 0) {  // the swing from the previous run
-      const Eigen::Index previous_end = s.runs[r - 1].second;
+    if (r > 0) {  // the swing from the previous stance
+      const Eigen::Index previous_end = s.stances[r - 1].second;
       for (Eigen::Index u = previous_end + 1; u < start; ++u) {
         const double f = s.swing[u];
         s.weight[u] = 1.0;
         s.ease[u] = f;
         s.target.row(u) = (1.0 - f) * s.target.row(previous_end) + f * s.target.row(start);
       }
-    } else {  // fade in before the first run
+    } else {  // fade in before the first stance
       for (Eigen::Index u = std::max<Eigen::Index>(0, start - ramp); u < start; ++u) {
         const double f = smoothstep(1.0 - static_cast<double>(start - u) / (ramp + 1));
         s.weight[u] = 1.0;
         s.target.row(u) = f * s.target.row(start);
       }
     }
-    if (r + 1 == s.runs.size())  // fade out after the last run
+    if (r + 1 == s.stances.size())  // fade out after the last stance
       for (Eigen::Index u = end + 1; u <= std::min(frames - 1, end + ramp); ++u) {
         const double f = smoothstep(1.0 - static_cast<double>(u - end) / (ramp + 1));
         s.weight[u] = 1.0;
@@ -406,7 +406,7 @@ Eigen::Vector3d knee_pole(const Matrix& world, const LegColumns& leg,
 // would lift the ankle along the straightened leg and let the knee snap back when the lock lets
 // go. What the reach held back is caught up no faster than the target moves plus kOffsetCatchUp
 // (all at once, a leg bending from straight in a few frames would free a whole stance's pinning
-// in a jump), and what follows a run eases from where the foot was, not from where the leg could
+// in a jump), and what follows a stance eases from where the foot was, not from where the leg could
 // not reach. O(F).
 // rig_legs: the legs' columns in world (their hips read for the way the body faces).
 template <typename Matrix>
@@ -428,7 +428,7 @@ void move_leg(Matrix& world, const LegColumns& leg, const std::array<LegColumns,
     return Eigen::Vector3d::Zero();
   };
   // The offset applied on the frame before (0 where the lock left the leg alone), the target
-  // then, and how much the offset fell short of the target on the last frame of the last run.
+  // then, and how much the offset fell short of the target on the last frame of the last stance.
   Eigen::Vector2d applied = Eigen::Vector2d::Zero(), wanted_before = Eigen::Vector2d::Zero();
   Eigen::Vector2d short_of = Eigen::Vector2d::Zero();
   const double catch_up = kOffsetCatchUp * rig.leg_length / rig.fps;
@@ -557,13 +557,13 @@ void lock_legs(Eigen::MatrixXd& world, const FootRig& rig, const std::array<doub
       const int c = b == 0 ? leg.columns.knee : b == 1 ? leg.columns.ankle : leg.columns.toe;
       if (c >= 0) scratch.before.middleCols(3 * b, 3) = world.middleCols(3 * c, 3);
     }
-    find_runs(leg, rig.max_gap_frames(), scratch);
+    find_stances(leg, rig.max_gap_frames(), scratch);
     scratch.target.setZero();
     hold_foot_heading(world, leg, drift, share, ramp, scratch);
-    run_offsets(world, leg, within, drift, share, scratch);
+    stance_offsets(world, leg, within, drift, share, scratch);
     swing_profile(world, leg, max_speed / rig.fps, scratch);
     if (max_speed > 0.0) fit_to_swings(world, leg, ramp, max_speed / rig.fps, scratch);
-    ease_between_runs(frames, ramp, scratch);
+    ease_between_stances(frames, ramp, scratch);
     move_leg_rows(world, leg.columns, rig, scratch);
     keep_if_slower(world, leg, columns, scratch, scratch.before_moves[static_cast<size_t>(side)]);
   }

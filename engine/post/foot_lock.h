@@ -18,12 +18,12 @@ struct FootLockScratch {
   Eigen::MatrixXd target;  // F x 2: the horizontal offset (x, z) that moves it
   Eigen::MatrixXd planted; // F x 4: planted_feet.h's planted frames
   Eigen::VectorXi pinned;  // F: 1 on the frames a foot is pinned over
-  Eigen::VectorXd ease;    // F: after a run, how far its offset has eased to the next (-1 elsewhere)
-  Eigen::VectorXd swing;   // F: within a swing, how far the offset has gone from one run's to the next's
+  Eigen::VectorXd ease;    // F: after a stance, how far its offset has eased to the next (-1 elsewhere)
+  Eigen::VectorXd swing;   // F: within a swing, how far the offset has gone from one stance's to the next's
   Eigen::VectorXd yaw;     // F: the turn (radians about the vertical) that holds a planted foot's heading
   Eigen::MatrixXd before;  // F x 9: a leg's knee, ankle and toe as they were
   std::vector<double> heights;
-  std::vector<std::pair<Eigen::Index, Eigen::Index>> runs;  // a leg's runs, first and last frame
+  std::vector<std::pair<Eigen::Index, Eigen::Index>> stances;  // a leg's stances, first and last frame
   // F x 18: the legs' knees, ankles and toes as they were, and in the best try, where the lock
   // tries again.
   Eigen::MatrixXd original, best;
@@ -42,7 +42,7 @@ struct FootLockScratch {
 // What the lock keeps an output under, from the takes it mixes (0: no limit), units per second.
 struct FootLockLimits {
   // No step of a swing or fade is made faster than this by the change of offset it carries (each
-  // foot joint's own speed plus that change): the runs on either side are pinned in part instead
+  // foot joint's own speed plus that change): the stances on either side are pinned in part instead
   // (the mixed takes' fastest joint, fastest_joint.h: no pops).
   double fastest_joint = 0.0;
   // With a drift: where allowing all of it leaves the planted feet (planted_feet.h's measure)
@@ -50,18 +50,18 @@ struct FootLockLimits {
   double planted_speed = 0.0;
 };
 
-// Locks planted feet in place, in world (F x 3M) itself. A foot is pinned over runs of frames
-// where one of its joints is planted by planted_feet.h's measure (within a band of its floor: a
-// heel coming down, a toe pushing off, what detect_foot_contacts calls a contact), breaks of up
-// to max_gap_seconds filled. Within a run each frame step takes out what the foot's
+// Locks planted feet in place, in world (F x 3M) itself. A foot is pinned over its stances, the
+// stretches of frames where one of its joints is planted by planted_feet.h's measure (within a
+// band of its floor: a heel coming down, a toe pushing off, what detect_foot_contacts calls a
+// contact), breaks of up to max_gap_seconds filled. Within a stance each frame step takes out what the foot's
 // planted joints move beyond what they may (`drift`; without it, nothing), their steps averaged
 // weighted by how near each is to its floor (a lifting heel leaves the toe to hold the foot), so
-// the foot moves as it may and never faster than it did; the run's offsets have a mean of zero
-// (the least total correction). The offset changes from one run to the next; between runs the
+// the foot moves as it may and never faster than it did; the stance's offsets have a mean of zero
+// (the least total correction). The offset changes from one stance to the next; between stances the
 // change is spread over the whole swing, each step's share a bump that is zero at landing and
 // lift-off (no jump in speed there) times the room that step leaves under the limit's fastest
 // joint (the foot's own speed taken off): the change goes where the swinging foot is slow, not
-// mid-swing where it is at its fastest; before the first run and after the last it fades over
+// mid-swing where it is at its fastest; before the first stance and after the last it fades over
 // blend_frames(). Each such frame moves the ankle horizontally (its height kept, so the same
 // steps stay planted) with analytic two-bone IK: the hip stays, thigh and shin keep their
 // lengths, the knee bends in the plane of hip, target and the knee's own offset from its
@@ -80,11 +80,11 @@ struct FootLockLimits {
 // still. A motion whose planted feet move exactly as allowed (a take on its own) is left as it
 // is. Throws InputError on a shape mismatch or a rig without a body height. O(F), no allocation
 // once scratch has size F.
-// limits: see FootLockLimits; with planted_speed the lock may run up to seven times.
+// limits: see FootLockLimits; with planted_speed the lock may try up to seven times.
 // held: when given (F x kFootJoints, planted_feet.h's order), 1 where the takes mixed plant that
 // foot joint (read only for the joints the rig has): a foot is pinned over those frames too (a
 // foot the takes stand on, which the mix lifts before it comes down, is held over its spot, not
-// eased towards its next run).
+// eased towards its next stance).
 void apply_foot_lock(Eigen::MatrixXd& world, const FootRig& rig, FootLockScratch& scratch,
                      const Eigen::MatrixXd* drift = nullptr, const FootLockLimits& limits = {},
                      const Eigen::MatrixXd* held = nullptr);

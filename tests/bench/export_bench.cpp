@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "tests/engine/run/blend_at.h"
+#include "tests/engine/worker/blend_at.h"
 #include "engine/io/bvh/bvh_read.h"
 #include "engine/base/error.h"
 #include "engine/export/export_solve.h"

@@ -17,7 +17,7 @@
 #include <memory>
 #include <string>
 
-#include "tests/engine/run/blend_at.h"
+#include "tests/engine/worker/blend_at.h"
 #include "engine/io/bvh/bvh_read.h"
 
 // Every heap allocation of the process goes through these (glibc lets a program replace them;

@@ -147,7 +147,7 @@ void BM_EditorFrame(benchmark::State& state) {
   const bool decomposing = state.range(0) != 0;
   int busy = 0, frames = 0;
   for (auto _ : state) {
-    if (decomposing && editor.session().status().stage == WorkerStage::kIdle) {
+    if (decomposing && editor.engine().status().stage == WorkerStage::kIdle) {
       editor.state().document.parameters.components = editor.state().document.parameters.components == 30 ? 32 : 30;  // ~0.3 s each
     }
     set_pair_alpha(editor.state().document, 0.5 + 0.4 * std::sin(0.05 * frames));  // re-blended each frame
@@ -155,10 +155,10 @@ void BM_EditorFrame(benchmark::State& state) {
     io.DeltaTime = 1.0f / 60.0f;
     editor.frame(app::FrameInput{kSize, 1.0f / 60.0f});
     glFinish();
-    busy += editor.session().status().stage != WorkerStage::kIdle ? 1 : 0;
+    busy += editor.engine().status().stage != WorkerStage::kIdle ? 1 : 0;
     ++frames;
   }
-  state.counters["skeletons"] = static_cast<double>(editor.state().takes.size());
+  state.counters["skeletons"] = static_cast<double>(editor.state().shown.size());
   state.counters["busy_frames"] = frames > 0 ? static_cast<double>(busy) / frames : 0.0;
   editor.shutdown_graphics();
 }

@@ -2,7 +2,7 @@
 // Where each cycle of the result shown came from (registration by cycles): for each
 // output cycle, which cycle of each take it shows, in that take's own file. The timeline's
 // tooltip reads it (ui/panels/playback_panel.cpp); it is made once per result (a new blend or mix),
-// not per frame, by the pair's and the palette's paths alike (ui/model/blend_session.cpp,
+// not per frame, by the pair's and the palette's paths alike (ui/model/engine_link.cpp,
 // ui/model/result_view.cpp). Plain data, no ImGui.
 //
 // The output is cut into spans where the reference shows one of its cycles (an output cycle) and

@@ -47,7 +47,7 @@ Stale stale_after(const Document& before, const Document& after) {
 // that differ only there.
 bool operator==(const Document& x, const Document& y) { return stale_after(x, y) == Stale::kNothing; }
 
-bool operator==(const BlendParameters& x, const BlendParameters& y) {
+bool operator==(const DecompositionControls& x, const DecompositionControls& y) {
   Document a, b;
   a.parameters = x;
   b.parameters = y;
@@ -94,7 +94,7 @@ double pair_alpha(const Document& d) { return d.layers.size() > 1 ? d.layers[1].
 
 namespace {
 
-// Take k of the result is take order[k] of `d`, for a permutation or for a selection of takes;
+// ShownMotion k of the result is take order[k] of `d`, for a permutation or for a selection of takes;
 // layers not one per take of d's are left as they are.
 Document select_takes(const Document& d, const std::vector<int>& order, size_t takes) {
   Document selected = d;

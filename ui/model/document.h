@@ -3,7 +3,7 @@
 // controls (mode, options, alignment, transfer), the loaded takes and their layers (each take's
 // weight), and the view options
 // one expects to undo. The editor keeps one (EditorState::document, ui/model/editor_state.h): the
-// panels change it, the engine link (BlendSession::sync) brings the engine to it. Undo and redo
+// panels change it, the engine link (EngineLink::sync) brings the engine to it. Undo and redo
 // (ui/model/history.h) keep copies of it; a session file (ui/model/session_file.h) holds one.
 // Plain data: no ImGui, no GL, no engine work. Its fields, their ranges and what a change to
 // each makes stale are listed once, in ui/model/document_fields.h.
@@ -25,7 +25,7 @@
 namespace mostyle::ui {
 
 // The decomposition the animator asks for (defaults from the paper's figures).
-struct BlendParameters {
+struct DecompositionControls {
   int components = 10;    // k
   double sparsity = 0.1;  // f in (0, 1]: fraction of non-zeros kept per component
 };
@@ -60,7 +60,7 @@ inline const char* take_letter(int take, int takes) { return takes == 2 ? (take 
 
 // What the parameter panels edit beyond the layers' weights and the decomposition's k and sparsity.
 struct DocumentControls {
-  BlendMode mode = BlendMode::kShared;
+  DecompositionMode mode = DecompositionMode::kShared;
   // The layers' weights per component (TakeLayer::component_weights) mixed (shared mode): each
   // body part or component its own style.
   bool per_part = false;
@@ -94,11 +94,11 @@ struct DocumentControls {
 };
 
 struct Document {
-  BlendParameters parameters;        // k, sparsity
+  DecompositionControls parameters;        // k, sparsity
   DocumentControls controls;         // selected_component and dtw_coordinate at their defaults
   // The loaded takes as paths: a pair is A then B (A twice for A with itself); a palette is every
   // take, the reference first. Empty: nothing loaded. The engine link sets them as takes arrive;
-  // a load is a command (BlendSession::load_files), not an edit of this field.
+  // a load is a command (EngineLink::load_files), not an edit of this field.
   std::vector<std::string> files;
   // One layer per take, in the order of `files`: each take's weight (and per component). Not one
   // per take (nothing loaded yet, or takes just changed): equal weights are mixed
@@ -110,10 +110,10 @@ struct Document {
 
 // Field by field, from the one list of a Document's fields (ui/model/document_fields.h): a field added
 // to one of these structs goes into that list, or undo does not see it change.
-bool operator==(const BlendParameters& x, const BlendParameters& y);
+bool operator==(const DecompositionControls& x, const DecompositionControls& y);
 bool operator==(const DocumentControls& x, const DocumentControls& y);
 bool operator==(const Document& x, const Document& y);
-inline bool operator!=(const BlendParameters& x, const BlendParameters& y) { return !(x == y); }
+inline bool operator!=(const DecompositionControls& x, const DecompositionControls& y) { return !(x == y); }
 inline bool operator!=(const DocumentControls& x, const DocumentControls& y) { return !(x == y); }
 inline bool operator!=(const Document& x, const Document& y) { return !(x == y); }
 

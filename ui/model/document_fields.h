@@ -4,7 +4,7 @@
 // change to it makes stale. Equality (undo sees a change), what undo and redo must redo
 // (stale_after), the session file (ui/model/session_file.cpp: its keys,
 // the ranges it reads with, the keys it refuses) and the panels' sliders are all made from this
-// one list: a field added to Document, DocumentControls or BlendParameters goes here, and
+// one list: a field added to Document, DocumentControls or DecompositionControls goes here, and
 // nowhere else.
 #include "engine/synthesize/mix_palette.h"
 #include "engine/align/prepare_takes.h"

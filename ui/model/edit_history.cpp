@@ -22,48 +22,48 @@ Document capture_document(const EditorState& state) {
   return d;
 }
 
-void apply_document(const Document& document, EditorState& state, BlendSession& session) {
+void apply_document(const Document& document, EditorState& state, EngineLink& engine) {
   const Document before = capture_document(state);
   // A load on its way counts as loaded: undoing back to the loaded takes must replace it.
-  const std::vector<std::string> takes = load_pending(session) ? session.requested_takes() : before.files;
+  const std::vector<std::string> takes = load_pending(engine) ? engine.requested_takes() : before.files;
   DocumentControls& c = state.document.controls;
   const int selected = c.selected_component, coordinate = c.dtw_coordinate;
   const std::vector<std::string> files = state.document.files;
-  state.document = document;  // the engine link (BlendSession::sync) does what that makes stale
+  state.document = document;  // the engine link (EngineLink::sync) does what that makes stale
   state.document.files = files;  // loaded takes stay what they are until the new ones arrive
   c.selected_component = selected;
   c.dtw_coordinate = coordinate;
   if (!document.files.empty() && !same_files(takes, document.files))
-    session.load_files(document.files, WeightsOf::kNewTakes);  // a pair, or a palette of three or more
+    engine.load_files(document.files, WeightsOf::kNewTakes);  // a pair, or a palette of three or more
 }
 
 std::string apply_session_document(const Document& document, const std::string& session_path, EditorState& state,
-                                   BlendSession& session) {
+                                   EngineLink& engine) {
   const std::vector<std::string> missing = missing_takes(document);
   std::vector<int> kept;
   for (size_t k = 0; k < document.files.size(); ++k)
     if (std::find(missing.begin(), missing.end(), document.files[k]) == missing.end()) kept.push_back(static_cast<int>(k));
   Document opened = missing.empty() || kept.empty() ? document : keep_takes(document, kept);
   if (kept.empty()) opened.files = capture_document(state).files;  // none there: the takes loaded stay
-  if (kept.empty() && load_pending(session)) opened.files = session.requested_takes();
-  apply_document(opened, state, session);
+  if (kept.empty() && load_pending(engine)) opened.files = engine.requested_takes();
+  apply_document(opened, state, engine);
   return missing_takes_message(session_path, missing, !kept.empty());
 }
 
-bool load_pending(const BlendSession& session) {
-  const WorkerStatus status = session.status();
-  if (status.stage == WorkerStage::kLoading || session.load_waiting()) return true;
-  if (session.requested_a().empty()) return false;
+bool load_pending(const EngineLink& engine) {
+  const WorkerStatus status = engine.status();
+  if (status.stage == WorkerStage::kLoading || engine.load_waiting()) return true;
+  if (engine.requested_a().empty()) return false;
   // A load the worker has finished (even its decomposition and mix: idle, nothing waiting) is
   // still on its way until poll() takes up its snapshot; a failed one, once polled, is not.
-  if (!status.pending && !session.has_news()) return false;
-  return session.requested_takes() != loaded_files(session.snapshot());
+  if (!status.pending && !engine.has_news()) return false;
+  return engine.requested_takes() != loaded_files(engine.snapshot());
 }
 
-void EditHistory::record(const EditorState& state, BlendSession& session, bool item_active) {
+void EditHistory::record(const EditorState& state, EngineLink& engine, bool item_active) {
   touched_ = touched_ || item_active || state.command_edits != seen_command_edits_;
   seen_command_edits_ = state.command_edits;
-  if (item_active || load_pending(session)) return;
+  if (item_active || load_pending(engine)) return;
   const Document now = capture_document(state);
   if (now.files.empty()) return;  // nothing loaded yet: no state to come back to
   const Document* top = history_.current();
@@ -77,20 +77,20 @@ bool EditHistory::unsaved() const {
   return top != nullptr && saved_ && !(*top == *saved_);
 }
 
-bool EditHistory::undo(EditorState& state, BlendSession& session) {
-  record(state, session, false);
+bool EditHistory::undo(EditorState& state, EngineLink& engine) {
+  record(state, engine, false);
   const std::optional<Document> d = history_.undo();
   if (!d) return false;
-  apply_document(*d, state, session);
+  apply_document(*d, state, engine);
   touched_ = false;
   return true;
 }
 
-bool EditHistory::redo(EditorState& state, BlendSession& session) {
-  record(state, session, false);
+bool EditHistory::redo(EditorState& state, EngineLink& engine) {
+  record(state, engine, false);
   const std::optional<Document> d = history_.redo();
   if (!d) return false;
-  apply_document(*d, state, session);
+  apply_document(*d, state, engine);
   touched_ = false;
   return true;
 }

@@ -1,6 +1,6 @@
 #pragma once
 // Undo and redo in the editor: the live Document (ui/model/document.h) captured from the EditorState
-// and the BlendSession, applied back (undo, redo, an opened session), and recorded as steps of a
+// and the EngineLink, applied back (undo, redo, an opened session), and recorded as steps of a
 // History (ui/model/history.h) at the right moments. No ImGui here: the editor says whether an ImGui
 // item is held, so tests drive it without a window.
 //
@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "ui/model/blend_session.h"
+#include "ui/model/engine_link.h"
 #include "ui/model/document.h"
 #include "ui/model/editor_state.h"
 #include "ui/model/history.h"
@@ -26,20 +26,20 @@ Document capture_document(const EditorState& state);
 
 // Makes `document` the editor's: the parameters, the controls (the picked component and the DTW
 // view's coordinate stay), the overlay; and a load when the takes differ from those loaded or
-// being loaded (a pair, or a palette of three or more: BlendSession::load_files). The engine link
-// (BlendSession::sync) does the rest that changes: a re-alignment, a decomposition, a mix.
+// being loaded (a pair, or a palette of three or more: EngineLink::load_files). The engine link
+// (EngineLink::sync) does the rest that changes: a re-alignment, a decomposition, a mix.
 // Returns at once: the takes arrive on a later poll().
-void apply_document(const Document& document, EditorState& state, BlendSession& session);
+void apply_document(const Document& document, EditorState& state, EngineLink& engine);
 
 // A document read from a session file at `session_path`: apply_document, except that takes not
 // there are left out (keep_takes: the others load, with their weights), and when none is there the
 // takes loaded stay (everything else is applied). Returns the sentence naming the missing files
 // (missing_takes_message, ui/model/session_file.h), or "".
 std::string apply_session_document(const Document& document, const std::string& session_path, EditorState& state,
-                                   BlendSession& session);
+                                   EngineLink& engine);
 
 // A load or re-alignment asked of the session's worker and not yet published by it.
-bool load_pending(const BlendSession& session);
+bool load_pending(const EngineLink& engine);
 
 class EditHistory {
  public:
@@ -50,11 +50,11 @@ class EditHistory {
   // Document when nothing is held, no load is pending and something is loaded, if an item was
   // held or a command edited it (EditorState::command_edits) since the last commit or the takes
   // changed (the first one sets the starting state).
-  void record(const EditorState& state, BlendSession& session, bool item_active);
+  void record(const EditorState& state, EngineLink& engine, bool item_active);
   // Records what is there, steps back (forward) and applies that state. false: nothing to undo
   // (redo). Returns at once; a load it asks for arrives later.
-  bool undo(EditorState& state, BlendSession& session);
-  bool redo(EditorState& state, BlendSession& session);
+  bool undo(EditorState& state, EngineLink& engine);
+  bool redo(EditorState& state, EngineLink& engine);
   // The next record() commits even when no item was held (an opened session, a command).
   void mark_edited() { touched_ = true; }
 

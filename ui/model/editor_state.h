@@ -17,8 +17,9 @@
 
 namespace mostyle::ui {
 
-// One loaded (or failed) BVH take.
-struct Take {
+// One motion the editor shows: a loaded (or failed) take, or the result made from the takes
+// (a blend, a mix or a transfer), with what its skeleton is drawn with.
+struct ShownMotion {
   std::string path;
   std::string label;                      // file name without folder and extension
   std::string error;                      // non-empty: loading failed, shown as it is
@@ -61,7 +62,7 @@ struct ViewOptions {
   bool contacts = true;
   int samples = 0;        // viewport MSAA samples; 0: automatic (4 on a GPU, 1 on llvmpipe)
   bool request_reframe = false;  // set by a panel: frame the skeletons on the next frame
-  bool show_keys = false;        // the window listing every key (F1 or ?)
+  bool show_shortcuts = false;        // the window listing every shortcut (F1 or ?)
   bool show_export = false;      // the export dialog (Ctrl+E, the files panel's Export button)
   // Panels take their place from ui/panels/layout.h this frame (ImGuiCond_Always) instead of only the
   // first time: set when the display size changed or on Reset layout, cleared after the panels.
@@ -79,7 +80,7 @@ struct FrameTimes {
 
 struct EditorState {
   // Every parameter the animator sets, once (ui/model/document.h): the panels change it, the
-  // engine link (BlendSession::sync) brings the engine to it, undo keeps copies of it.
+  // engine link (EngineLink::sync) brings the engine to it, undo keeps copies of it.
   Document document;
   // Edits of the document given as commands (a key pressed, a click on the timeline) rather than
   // by holding an item: each adds one (command_edited), so that the next EditHistory::record makes
@@ -87,7 +88,7 @@ struct EditorState {
   int command_edits = 0;
   Playback playback;
   ViewOptions view;
-  std::vector<Take> takes;
+  std::vector<ShownMotion> shown;  // the takes, then the result (a blend, a mix or a transfer)
   // Where each cycle of the result shown came from (ui/model/cycle_provenance.h): spans of the
   // reference take's frames (the timeline's), made when a result arrives; empty: no result.
   std::vector<CycleProvenance> cycle_provenance;
@@ -103,8 +104,8 @@ struct EditorState {
   FrameTimes times;
 
   // The take that sets the timeline (frame numbers, fps, length): the first that loaded.
-  const Take* reference_take() const {
-    for (const Take& t : takes)
+  const ShownMotion* reference_take() const {
+    for (const ShownMotion& t : shown)
       if (t.ok()) return &t;
     return nullptr;
   }
@@ -115,13 +116,13 @@ struct EditorState {
 // after the panels were drawn).
 inline void command_frame_all(EditorState& state) { state.view.request_reframe = true; }
 inline void command_reset_layout(EditorState& state) { state.view.reset_layout = true; }
-inline void command_toggle_keys(EditorState& state) { state.view.show_keys = !state.view.show_keys; }
+inline void command_toggle_shortcuts(EditorState& state) { state.view.show_shortcuts = !state.view.show_shortcuts; }
 inline void command_open_export(EditorState& state) { state.view.show_export = true; }
 // After a document edit given by a key or a click (see EditorState::command_edits).
 inline void command_edited(EditorState& state) { ++state.command_edits; }
 
 // Time of the last frame of `take`, seconds from the first; 0 without frames.
-inline double take_length_s(const Take& take) { return take.frames() > 1 ? (take.frames() - 1) / take.rate() : 0.0; }
+inline double take_length_s(const ShownMotion& take) { return take.frames() > 1 ? (take.frames() - 1) / take.rate() : 0.0; }
 
 // Moves the playhead on by dt_s x speed while playing. Past the end: back to the start with loop
 // on; with loop off it stays on the last frame and playback stops (the button reads Play).
@@ -145,7 +146,7 @@ inline void toggle_playback(Playback& p, double length_s) {
 }
 
 // Frame of `take` at time t (seconds), clamped to its range; 0 for a take without frames.
-inline int frame_at(const Take& take, double time_s) {
+inline int frame_at(const ShownMotion& take, double time_s) {
   if (!take.ok() || take.frames() == 0) return 0;
   double f = time_s * take.rate();
   int frame = f <= 0.0 ? 0 : static_cast<int>(f + 1e-6);

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/run/worker.h"
+#include "engine/worker/worker.h"
 
 namespace mostyle::ui {
 
@@ -17,7 +17,7 @@ namespace mostyle::ui {
 struct ErrorPoint {
   int components = 0;
   double sparsity = 0.0;
-  BlendMode mode = BlendMode::kShared;
+  DecompositionMode mode = DecompositionMode::kShared;
   std::vector<double> rmse;           // each take's, in the order of the takes; the reference's units
 };
 

@@ -11,7 +11,7 @@
 #include "engine/base/clock.h"
 #include "engine/base/error.h"
 #include "engine/kinematics/units.h"
-#include "ui/model/blend_session.h"
+#include "ui/model/engine_link.h"
 #include "engine/base/numbers.h"
 
 namespace mostyle::ui {
@@ -24,14 +24,14 @@ constexpr float kResampledProgress = 0.1f;
 
 }  // namespace
 
-ExportSubject export_subject(const BlendSession& session) {
+ExportSubject export_subject(const EngineLink& engine) {
   ExportSubject subject;
-  if (const PreparedTakes* takes = session.snapshot().prepared.get()) {
+  if (const PreparedTakes* takes = engine.snapshot().prepared.get()) {
     subject.identity = takes;
     subject.clip = takes->reference().clip.get();
     subject.working_fps = takes->fps;
     subject.takes = takes->size();
-    if (const MixResult* result = session.result()) {
+    if (const MixResult* result = engine.result()) {
       subject.frames = static_cast<int>(result->motion.world.rows());
       subject.loop_cycles = result->motion.loop.cycles;
     }
@@ -40,10 +40,10 @@ ExportSubject export_subject(const BlendSession& session) {
   return subject;
 }
 
-ExportRequest make_export_request(const BlendSession& session, const ExportOptions& options) {
+ExportRequest make_export_request(const EngineLink& engine, const ExportOptions& options) {
   if (options.path.empty()) throw InputError("Export: no file name given.");
-  const std::shared_ptr<const PreparedTakes> takes = session.snapshot().prepared;
-  const MixResult* result = session.result();
+  const std::shared_ptr<const PreparedTakes> takes = engine.snapshot().prepared;
+  const MixResult* result = engine.result();
   const std::string what = result_name(takes != nullptr ? takes->size() : 2, false);
   if (takes == nullptr || result == nullptr || result->motion.world.rows() == 0)
     throw InputError("Export: nothing to export yet (no " + what + ").");

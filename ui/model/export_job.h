@@ -1,6 +1,6 @@
 #pragma once
 // The export of the blend, off the UI thread: a
-// request copied from the session (so the blend may change while the file is written), the
+// request copied from the engine link (so the blend may change while the file is written), the
 // export itself (engine/export/export_frames.h, then export_solve.h export_blend_bvh) and a
 // small job that runs it on a thread of its own with progress and cancel (engine JobControl).
 #include <atomic>
@@ -19,7 +19,7 @@
 
 namespace mostyle::ui {
 
-class BlendSession;
+class EngineLink;
 
 // Which frames of the blend an export writes.
 enum class ExportRange {
@@ -39,7 +39,7 @@ struct ExportOptions {
   ChannelLayout layout = ChannelLayout::kAsSource;  // the caller's default: default_channel_layout(A)
 };
 
-// What the session shows, as the export dialog needs it each frame, whatever the number of takes:
+// What the engine link shows, as the export dialog needs it each frame, whatever the number of takes:
 // the reference take (A, or a palette's first) and the result on it (the blend or the mix).
 struct ExportSubject {
   const void* identity = nullptr;  // the prepared pair or palette: a new one resets the dialog
@@ -51,11 +51,11 @@ struct ExportSubject {
   int takes = 0;                   // 2 for a pair, N for a palette
 };
 // O(1): no copy of the result.
-ExportSubject export_subject(const BlendSession& session);
+ExportSubject export_subject(const EngineLink& engine);
 
-// Everything one export needs, copied out of the session: the job never reads the session.
+// Everything one export needs, copied out of the engine link: the job never reads it.
 struct ExportRequest {
-  std::shared_ptr<const Clip> clip;  // take A as loaded (immutable, shared with the session)
+  std::shared_ptr<const Clip> clip;  // take A as loaded (immutable, shared with the engine link)
   std::vector<int> joints;           // A's joint of each major column (prepare_takes.h export_joints)
   Eigen::MatrixXd world;             // F x 3M: the blend at working_fps, A's units and world
   Eigen::VectorXd at;                // F: A's clip frame each blend frame shows (source_frames_in_clip)
@@ -64,9 +64,9 @@ struct ExportRequest {
   ExportOptions options;             // the path made absolute
 };
 
-// The request for the session's current blend. Throws InputError with a sentence when there is
+// The request for the engine link's current blend. Throws InputError with a sentence when there is
 // no file name, no blend yet, or a loop asked of a blend without one. Copies the blend: O(F x 3M).
-ExportRequest make_export_request(const BlendSession& session, const ExportOptions& options);
+ExportRequest make_export_request(const EngineLink& engine, const ExportOptions& options);
 
 // How an export went, in words for the person and in numbers for tests.
 struct ExportOutcome {

@@ -75,7 +75,7 @@ void set_mix_keys(const DocumentControls& c, int takes, WeightKeys& out) {
 }
 
 KeyTime key_time(const EditorState& state) {
-  const Take* reference = state.reference_take();
+  const ShownMotion* reference = state.reference_take();
   if (reference == nullptr) return KeyTime{state.playback.time_s, 0.0};
   const double fps = reference->rate();
   return KeyTime{frame_at(*reference, state.playback.time_s) / fps, 0.5 / fps};

@@ -618,13 +618,13 @@ void LiveSource::make_takes() {
                               placed(input_positions_, shift_)));
   takes_.push_back(shown_take("styled", result_color(), styled_, styled_->fps(), parents,
                               placed(styled_positions_, shift_ + static_cast<double>(spacing_) * side_)));
-  for (Take& t : takes_) {
+  for (ShownMotion& t : takes_) {
     t.path = input_->source;
     t.size = size_;
   }
 }
 
-void LiveSource::move_takes_into(std::vector<Take>* shown) {
+void LiveSource::move_takes_into(std::vector<ShownMotion>* shown) {
   if (takes_.empty()) return;
   for (size_t i = 0; i < shown->size() && i < takes_.size(); ++i) takes_[i].visible = (*shown)[i].visible;
   *shown = std::move(takes_);

@@ -168,12 +168,12 @@ class LiveSource {
   // The viewport's two takes for the window (EditorState::takes while live: the stream at 0,
   // the styled stream 1, as ResultView lays out a take and its result): every joint's position
   // on the stream's floor, the styled stream beside it. Empty before the first frame.
-  const std::vector<Take>& takes() const { return takes_; }
+  const std::vector<ShownMotion>& takes() const { return takes_; }
   // Whether there is a window to show (a frame styled since connect()).
   bool has_window() const { return input_ != nullptr && input_->frames() > 0; }
   // Moves takes() into *shown (the editor's EditorState::takes), each keeping the `visible` it
   // had there; takes() is empty until the next window. No copy of the positions.
-  void move_takes_into(std::vector<Take>* shown);
+  void move_takes_into(std::vector<ShownMotion>* shown);
 
   // Blocks until `done` holds for status() (polling), or `timeout` passes; returns whether it
   // held. Tests and screenshots only.
@@ -199,7 +199,7 @@ class LiveSource {
   bool placed_ = false;          // the placement is fixed at the first window of a stream
   Eigen::Vector3d shift_ = Eigen::Vector3d::Zero(), side_ = Eigen::Vector3d::UnitX();
   float size_ = 1.0f, spacing_ = 1.0f;
-  std::vector<Take> takes_;
+  std::vector<ShownMotion> takes_;
 };
 
 }  // namespace mostyle::ui

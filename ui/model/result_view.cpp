@@ -50,7 +50,7 @@ std::string take_caption(int i, int takes, const std::string& path) {
 std::string result_caption(const Document& d, const Decomposed* decomposition, int takes) {
   const bool transfer = d.controls.transfer;
   const std::string name = result_name(takes, transfer);
-  const bool shared = decomposition != nullptr && decomposition->params.mode == BlendMode::kShared;
+  const bool shared = decomposition != nullptr && decomposition->params.mode == DecompositionMode::kShared;
   if (d.controls.per_part && shared) return name + " (per part)";
   const bool keyed = !d.controls.keys.empty() && keys_fit(d.controls.keys, takes);
   const char* amount = transfer ? "strength" : "alpha";
@@ -80,9 +80,9 @@ glm::vec3 take_color(int take) {
 
 glm::vec3 result_color() { return {0.50f, 0.88f, 0.46f}; }
 
-Take shown_take(std::string label, glm::vec3 color, std::shared_ptr<const Clip> clip, double fps,
+ShownMotion shown_take(std::string label, glm::vec3 color, std::shared_ptr<const Clip> clip, double fps,
                 std::vector<int> parents, Eigen::MatrixXd positions) {
-  Take t;
+  ShownMotion t;
   t.label = std::move(label);
   t.color = color;
   t.clip = std::move(clip);
@@ -102,7 +102,7 @@ void ResultView::take_up(const PreparedTakes& p, const std::vector<std::string>&
                          const std::vector<std::string>& warnings, EditorState& state) {
   clear();
   const int n = p.size();
-  state.takes.clear();
+  state.shown.clear();
   state.cycle_provenance.clear();  // of the previous takes' result
   names_.clear();
   // Each take's load warnings and its alignment onto the reference under it.
@@ -121,29 +121,29 @@ void ResultView::take_up(const PreparedTakes& p, const std::vector<std::string>&
     const PreparedTake& take = p.takes[static_cast<size_t>(i)];
     const std::string& path = take_paths[static_cast<size_t>(i)];
     // Its positions until the first result arrives.
-    Take t = shown_take(take_caption(i, n, path), take_color(i), take.clip, p.fps, p.parents, take.world_placed);
+    ShownMotion t = shown_take(take_caption(i, n, path), take_color(i), take.clip, p.fps, p.parents, take.world_placed);
     t.path = path;
     names_.push_back(short_name(i, n, t.path));
     t.warnings = std::move(by_take[static_cast<size_t>(i)].load);
     t.notes = std::move(by_take[static_cast<size_t>(i)].alignment);
     t.contacts = joint_contacts(take.own_contacts, p.feet, joints);
-    state.takes.push_back(std::move(t));
+    state.shown.push_back(std::move(t));
   }
   const std::string name = result_name(n, state.document.controls.transfer);
-  Take result = shown_take(name, result_color(), p.takes.front().clip, p.fps, p.parents, p.takes.front().world_placed);
+  ShownMotion result = shown_take(name, result_color(), p.takes.front().clip, p.fps, p.parents, p.takes.front().world_placed);
   result.path = "(the " + name + " of the takes)";
-  state.takes.push_back(std::move(result));
+  state.shown.push_back(std::move(result));
   // Shared floor and start, side-by-side spacing and direction (ui/model/lanes.h).
   const Placement placed = placement_of(p.takes.front().world_placed);
   shift_ = placed.shift;
   side_ = placed.side;
   spacing_ = placed.spacing;
-  for (Take& t : state.takes) t.size = placed.size;
+  for (ShownMotion& t : state.shown) t.size = placed.size;
   place(p, state);
 }
 
 void ResultView::update(const PreparedTakes& p, const Decomposed* d, EditorState& state, bool item_held) {
-  if (static_cast<int>(state.takes.size()) != p.size() + 1) return;
+  if (static_cast<int>(state.shown.size()) != p.size() + 1) return;
   if (d != nullptr && (d != mixed_decomposition_ || differs_at(mixed_, state.document, Stale::kMix)))
     remix(p, *d, state, item_held);
   else if (!item_held && previewing())
@@ -191,7 +191,7 @@ void ResultView::take_up_mix(const PreparedTakes& p, EditorState& state) {
   const Decomposed& d = *mixed_decomposition_;
   // Where each of its cycles came from, for the timeline's tooltip: once per result.
   state.cycle_provenance = cycle_provenance(p, mix_.sources, names_);
-  Take& result = state.takes[static_cast<size_t>(result_index(p.size()))];
+  ShownMotion& result = state.shown[static_cast<size_t>(result_index(p.size()))];
   result.label = result_caption(state.document, &d, p.size());
   result.contacts = joint_contacts(mix_.motion.contacts, p.feet, static_cast<int>(p.majors.size()));
   place(p, state);
@@ -211,14 +211,14 @@ void ResultView::place(const PreparedTakes& p, EditorState& state) {
     for (Eigen::Index j = 0; 3 * j < rows.cols(); ++j)
       for (int a = 0; a < 3; ++a) rows.col(3 * j + a).array() += offset[a];
   };
-  Take& result = state.takes[static_cast<size_t>(result_index(n))];
+  ShownMotion& result = state.shown[static_cast<size_t>(result_index(n))];
   if (has_mix_) {
     result.positions = mix_.motion.world;
     shift_by(result.positions, shift_);
   }
   for (int i = 0; i < n; ++i) {
     const PreparedTake& take = p.takes[static_cast<size_t>(i)];
-    Take& t = state.takes[static_cast<size_t>(i)];
+    ShownMotion& t = state.shown[static_cast<size_t>(i)];
     // The reference always stands beside the result; the other takes as ghosts.
     t.visible = i == 0 || ghosts;
     if (has_mix_) {
@@ -237,14 +237,14 @@ void ResultView::place(const PreparedTakes& p, EditorState& state) {
       shift_by(t.positions, shift_ + (overlay ? 0.0 : slot * spacing_) * side_);
     }
   }
-  result.cycle_starts = state.takes.front().cycle_starts;  // the result walks the reference's cycles
+  result.cycle_starts = state.shown.front().cycle_starts;  // the result walks the reference's cycles
   placed_overlay_ = overlay;
   placed_ghosts_ = ghosts;
 }
 
 // The selected component's joints light up on the result.
 void ResultView::highlight(const Decomposed* d, EditorState& state) const {
-  Take& result = state.takes.back();
+  ShownMotion& result = state.shown.back();
   result.highlights.clear();
   const int c = state.document.controls.selected_component;
   if (d == nullptr || c < 0 || c >= d->support.rows()) return;

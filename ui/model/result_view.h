@@ -7,7 +7,7 @@
 // is a preview (the poses, the root and the limb lengths: under a millisecond for a minute of
 // eight takes), and the foot lock and the measures follow once it is let go (finish_mix_palette:
 // the same result as one whole mix). The takes and their decomposition come from the engine's worker
-// (BlendSession); this file only turns them into what is shown.
+// (EngineLink); this file only turns them into what is shown.
 //
 // EditorState::takes while takes are loaded: take i at i (the reference first), the result last.
 #include <string>
@@ -33,12 +33,12 @@ glm::vec3 result_color();
 // One take as the viewport shows it, for whatever makes the takes shown (ResultView; the live
 // source, ui/model/live_source.h): its label, colour, clip, the rate of `positions` (frames x
 // 3*joints, world units) and the joints' parents; the rest at Take's defaults.
-Take shown_take(std::string label, glm::vec3 color, std::shared_ptr<const Clip> clip, double fps,
+ShownMotion shown_take(std::string label, glm::vec3 color, std::shared_ptr<const Clip> clip, double fps,
                 std::vector<int> parents, Eigen::MatrixXd positions);
 
 class ResultView {
  public:
-  // New takes: one Take each and the result, on the reference's floor and start. paths: the
+  // New takes: one ShownMotion each and the result, on the reference's floor and start. paths: the
   // takes' files; warnings: the load's, each filed under the take it names.
   void take_up(const PreparedTakes& takes, const std::vector<std::string>& paths, const std::vector<std::string>& warnings,
                EditorState& state);

@@ -406,7 +406,7 @@ template <typename T>
 OrderedJson field_json(const T& v, const fs::path&) {
   return v;
 }
-OrderedJson field_json(BlendMode mode, const fs::path&) { return blend_mode_name(mode); }
+OrderedJson field_json(DecompositionMode mode, const fs::path&) { return decomposition_mode_name(mode); }
 OrderedJson field_json(const AlignmentOptions& a, const fs::path&) { return align_json(a); }
 OrderedJson field_json(const WeightKeys& keys, const fs::path&) {
   OrderedJson j = OrderedJson::array();
@@ -528,12 +528,12 @@ void read_field(const Reader& r, const Json& j, const Where& w, const Field& f, 
     r.fail(w.item(bad), w.name + ": " + e.what());
   }
 }
-void read_field(const Reader& r, const Json& j, const Where& w, const Field&, BlendMode& v, const fs::path&) {
+void read_field(const Reader& r, const Json& j, const Where& w, const Field&, DecompositionMode& v, const fs::path&) {
   const std::string mode = r.string(j, w);
-  if (mode == blend_mode_name(BlendMode::kShared))
-    v = BlendMode::kShared;
-  else if (mode == blend_mode_name(BlendMode::kPaper))
-    v = BlendMode::kPaper;
+  if (mode == decomposition_mode_name(DecompositionMode::kShared))
+    v = DecompositionMode::kShared;
+  else if (mode == decomposition_mode_name(DecompositionMode::kPaper))
+    v = DecompositionMode::kPaper;
   else
     r.expected(w, "\"shared\" or \"paper\"", j);
 }

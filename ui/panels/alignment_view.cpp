@@ -129,7 +129,7 @@ PairPlot pair_plot(const EditorState& state, const PreparedTakes& p, int take, c
   const double lo = std::min(sa.col(col).minCoeff(), sb.col(col).minCoeff());
   double hi = std::max(sa.col(col).maxCoeff(), sb.col(col).maxCoeff());
   if (hi <= lo) hi = lo + 1.0;
-  const int current = state.takes.empty() ? 0 : frame_at(state.takes.back(), state.playback.time_s);
+  const int current = state.shown.empty() ? 0 : frame_at(state.shown.back(), state.playback.time_s);
   const double current_u = result != nullptr && current < result->sample.size()
                                ? warp_position(al.warp, p.timeline, take, result->sample[current])
                                : 0.0;

@@ -5,7 +5,7 @@
 // match quality. Hover: the matched frames; click: jump there.
 #include <string>
 
-#include "ui/model/blend_session.h"
+#include "ui/model/engine_link.h"
 #include "ui/model/dtw_image.h"
 
 namespace mostyle::ui {

@@ -91,7 +91,7 @@ void draw_weights(EditorState& state, const PreparedTakes& p, const Decomposed& 
     if ((i + 1) * ImGui::GetTextLineHeight() < plot_h)  // as many legends as the plot has room for
       plot_legend(w, i, ("weight in " + legend_name(p, i)).c_str(), take_color_u32(i));
   }
-  plot_vline(w, frame_at(state.takes.front(), state.playback.time_s), IM_COL32(255, 255, 255, 140));
+  plot_vline(w, frame_at(state.shown.front(), state.playback.time_s), IM_COL32(255, 255, 255, 140));
   if (w.hovered) ImGui::SetTooltip("How much of this component each take uses over time; click: jump there");
   if (w.clicked) state.playback.time_s = (std::clamp(w.x_at(ImGui::GetIO().MousePos.x), 0.0, 1e9) + 0.5) / p.fps;
 }
@@ -135,9 +135,9 @@ void draw_fit_error_plot(const PreparedTakes& p, const std::vector<const ErrorPo
 }
 
 // Reconstruction error against k, from every decomposition seen with this mode and sparsity.
-void draw_fit_error(const BlendSession& session, const PreparedTakes& p, const Decomposed& d) {
+void draw_fit_error(const EngineLink& engine, const PreparedTakes& p, const Decomposed& d) {
   std::vector<const ErrorPoint*> points;
-  for (const ErrorPoint& e : session.error_curve())
+  for (const ErrorPoint& e : engine.error_curve())
     if (e.mode == d.params.mode && e.sparsity == d.params.sparsity) points.push_back(&e);
   ImGui::Text("Fit error by k (sparsity %.2f)", d.params.sparsity);
   if (ImGui::IsItemHovered())
@@ -145,7 +145,7 @@ void draw_fit_error(const BlendSession& session, const PreparedTakes& p, const D
                       "for each number of components tried so far: the curve flattens where more stop helping.");
   if (points.empty()) return;
   ImGui::SameLine();
-  if (session.sweeping()) ImGui::TextColored(kDimColor, "computing...");
+  if (engine.sweeping()) ImGui::TextColored(kDimColor, "computing...");
   else ImGui::TextColored(kDimColor, "%d to %d", points.front()->components, points.back()->components);
   draw_fit_error_plot(p, points);
 }
@@ -158,8 +158,8 @@ void ComponentsPanel::draw(EditorState& state) {
     ImGui::End();
     return;
   }
-  const PreparedTakes* p = session_.takes();
-  const Decomposed* d = p != nullptr ? session_.snapshot().decomposed.get() : nullptr;
+  const PreparedTakes* p = engine_.takes();
+  const Decomposed* d = p != nullptr ? engine_.snapshot().decomposed.get() : nullptr;
   DocumentControls& c = state.document.controls;
   if (d == nullptr) {
     ImGui::TextColored(kDimColor, "Waiting for the decomposition...");
@@ -172,7 +172,7 @@ void ComponentsPanel::draw(EditorState& state) {
   const int sel = c.selected_component;
   draw_joints(*p, *d, sel);
   draw_weights(state, *p, *d, sel);
-  draw_fit_error(session_, *p, *d);
+  draw_fit_error(engine_, *p, *d);
   ImGui::End();
 }
 

@@ -79,10 +79,10 @@ double export_rate_fps(ExportRate rate, double source_fps, double custom_fps) {
   return custom_fps;
 }
 
-ExportDialog::ExportDialog(BlendSession& session) : session_(session) {}
+ExportDialog::ExportDialog(EngineLink& engine) : engine_(engine) {}
 
 ExportOptions ExportDialog::options() const {
-  const ExportSubject subject = export_subject(session_);
+  const ExportSubject subject = export_subject(engine_);
   ExportOptions o;
   // A name alone goes beside the session (or the first take), as every file the editor writes.
   const fs::path typed(settings_.path);
@@ -97,7 +97,7 @@ ExportOptions ExportDialog::options() const {
 }
 
 void ExportDialog::poll() {
-  const ExportSubject subject = export_subject(session_);
+  const ExportSubject subject = export_subject(engine_);
   if (subject.identity != seen_pair_) {
     seen_pair_ = subject.identity;
     confirm_ = false;
@@ -139,7 +139,7 @@ ExportDialog::Pressed ExportDialog::start(bool overwrite) {
   if (job_.running()) return Pressed::kBusy;
   ExportRequest request;
   try {
-    request = make_export_request(session_, options());
+    request = make_export_request(engine_, options());
   } catch (const std::exception& e) {  // InputError: no file name, no blend, no loop
     confirm_ = false;
     status_.ok = false;
@@ -169,7 +169,7 @@ void ExportDialog::draw(EditorState& state) {
   typing_range_ = false;  // until the in or out field drawn below is found active
   // When the result becomes another kind (a pair a palette, a mix a transfer), not while a name
   // is typed.
-  const PreparedTakes* p = session_.snapshot().prepared.get();
+  const PreparedTakes* p = engine_.snapshot().prepared.get();
   const std::string result = p != nullptr ? result_name(p->size(), state.document.controls.transfer) : "";
   if (p != nullptr && result != named_result_) {
     named_result_ = result;
@@ -208,7 +208,7 @@ void ExportDialog::draw(EditorState& state) {
 }
 
 void ExportDialog::draw_contents(EditorState& state, bool* open) {
-  const ExportSubject subject = export_subject(session_);
+  const ExportSubject subject = export_subject(engine_);
   const bool busy = job_.running();  // once: the job may end while the dialog is drawn
   // A path edited after the question was asked: the question was about another file.
   if (confirm_ && absolute_path(options().path) != confirm_path_) confirm_ = false;
@@ -363,7 +363,7 @@ void ExportDialog::draw_in_out_fields(const ExportSubject& subject) {
 void ExportDialog::draw_in_out_buttons(const EditorState& state, const ExportSubject& subject) {
   const double working = subject.working_fps;
   const double length = motion_length_s(subject.frames, working);
-  const Take* reference = state.reference_take();
+  const ShownMotion* reference = state.reference_take();
   const double playhead = reference != nullptr ? frame_at(*reference, state.playback.time_s) / working : 0.0;
   if (ImGui::SmallButton("In at playhead")) {
     settings_.in_s = std::min(playhead, length);

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "engine/export/channel_layout.h"
-#include "ui/model/blend_session.h"
+#include "ui/model/engine_link.h"
 #include "ui/model/export_job.h"
 #include "ui/panels/panel.h"
 
@@ -60,7 +60,7 @@ struct ExportSettings {
 
 class ExportDialog : public Panel {
  public:
-  explicit ExportDialog(BlendSession& session);
+  explicit ExportDialog(EngineLink& engine);
 
   // poll(), the file named after the result shown (export_name_for), then the window while
   // state.view.show_export (closing it clears that).
@@ -71,7 +71,7 @@ class ExportDialog : public Panel {
     kStarted,  // the export runs on its thread
     kConfirm,  // the file exists: nothing written, the dialog asks to overwrite it
     kBusy,     // an export is still running: nothing started
-    kFailed,   // no file name, no blend, no loop: the sentence is the session's export message
+    kFailed,   // no file name, no blend, no loop: the sentence is the engine link's export message
   };
   // Export: starts the export, unless the file exists (then asks, kConfirm).
   Pressed press_export();
@@ -88,7 +88,7 @@ class ExportDialog : public Panel {
   const ExportStatus& status() const { return status_; }
 
   ExportSettings& settings() { return settings_; }
-  // The settings for the session's current pair: the rate resolved, the range as chosen.
+  // The settings for the engine link's current result: the rate resolved, the range as chosen.
   ExportOptions options() const;
   bool confirming_overwrite() const { return confirm_; }
   // An export runs, or its outcome waits for the next poll(): the editor keeps drawing frames.
@@ -113,7 +113,7 @@ class ExportDialog : public Panel {
   void draw_actions(bool busy, bool enter, bool* open);
   void draw_status();  // the last outcome
 
-  BlendSession& session_;
+  EngineLink& engine_;
   ExportSettings settings_;
   ExportJob job_;
   ExportStatus status_;

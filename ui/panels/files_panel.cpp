@@ -91,11 +91,11 @@ std::vector<std::string> with_take(std::vector<std::string> takes, size_t index,
   return takes;
 }
 
-FilesPanel::FilesPanel(BlendSession& session, std::string folder)
-    : session_(session), folder_(std::move(folder)), export_dialog_(session) {}
+FilesPanel::FilesPanel(EngineLink& engine, std::string folder)
+    : engine_(engine), folder_(std::move(folder)), export_dialog_(engine) {}
 
 void FilesPanel::take_buttons(const std::string& path, const std::vector<std::string>& takes) {
-  BlendSession& s = session_;
+  EngineLink& s = engine_;
   const int n = static_cast<int>(takes.size());
   if (ImGui::SmallButton("+")) s.load_files(with_take(takes, takes.size(), path));
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Add as one more take");
@@ -167,7 +167,7 @@ void FilesPanel::draw(EditorState& state) {
 void FilesPanel::sync_fields() {
   // The fields follow the takes last asked for (not while the animator types): after a failed
   // load they hold the bad path, to correct.
-  std::vector<std::string> requested = session_.requested_files();
+  std::vector<std::string> requested = engine_.requested_files();
   if (requested.size() < 2) requested.resize(2);  // a pair's B field, empty: A with itself
   if (requested != synced_) {
     synced_ = requested;
@@ -182,12 +182,12 @@ void FilesPanel::load_dropped(EditorState& state, const std::vector<std::string>
   if (state.dropped.empty()) return;
   std::vector<std::string> files;
   files.swap(state.dropped);
-  if (files.size() >= 2) session_.load_files(files);
-  else session_.load_files(with_take(takes, takes.size(), files[0]));
+  if (files.size() >= 2) engine_.load_files(files);
+  else engine_.load_files(with_take(takes, takes.size(), files[0]));
 }
 
 void FilesPanel::draw_take_fields(const std::vector<std::string>& takes) {
-  BlendSession& s = session_;
+  EngineLink& s = engine_;
   const int n = static_cast<int>(takes.size());
   // One path field per take: the file's name; on hover, its folder and what typing does. Enter
   // or Load loads the takes with this one as typed.
@@ -213,7 +213,7 @@ void FilesPanel::draw_take_fields(const std::vector<std::string>& takes) {
                                      : "Load this file as this take");
     ImGui::SameLine();
     if (ImGui::SmallButton("x")) remove = i;
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Take this take out (one left: the take with itself)");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("ShownMotion this take out (one left: the take with itself)");
     ImGui::PopID();
   }
   ImGui::PopItemWidth();
@@ -250,7 +250,7 @@ void FilesPanel::draw_messages() {
   // tried), the export's progress or outcome. Hover shows a message whole.
   ImGui::BeginChild("##messages", ImVec2(0.0f, ImGui::GetTextLineHeightWithSpacing() * 2.2f), false,
                     ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
-  if (!session_.error().empty()) sentence(kErrorColor, session_.error(), {});
+  if (!engine_.error().empty()) sentence(kErrorColor, engine_.error(), {});
   if (export_dialog_.job().running())
     ImGui::ProgressBar(export_dialog_.job().progress(), ImVec2(-FLT_MIN, 0.0f), "exporting");
   else if (!export_dialog_.status().message.empty())
@@ -396,14 +396,14 @@ void FilesPanel::draw_live(const EditorState& state) {
     live_error_.clear();
     if (active) {
       live_->disconnect();
-    } else if (session_.takes() == nullptr) {
+    } else if (engine_.takes() == nullptr) {
       live_error_ = "Live: load two takes or more first: a neutral and the styles.";
     } else {
       settings.address = live_address_;
       settings.skeleton = live_skeleton_;
       live_synced_ = settings;
       try {
-        live_->connect(settings, live_style_spec(*session_.takes(), state.document));
+        live_->connect(settings, live_style_spec(*engine_.takes(), state.document));
       } catch (const std::exception& e) {
         live_error_ = e.what();
       }

@@ -16,7 +16,7 @@
 
 #include "engine/io/scene_animation.h"
 
-#include "ui/model/blend_session.h"
+#include "ui/model/engine_link.h"
 #include "ui/model/live_source.h"
 #include "ui/panels/export_dialog.h"
 #include "ui/panels/panel.h"
@@ -45,7 +45,7 @@ std::string without_folders(std::string text, std::vector<std::string> folders);
 
 class FilesPanel : public Panel {
  public:
-  FilesPanel(BlendSession& session, std::string folder);
+  FilesPanel(EngineLink& engine, std::string folder);
   void draw(EditorState& state) override;
   ExportDialog& export_dialog() { return export_dialog_; }
   // The live source the Live section drives (the editor's); none: no Live section.
@@ -83,7 +83,7 @@ class FilesPanel : public Panel {
   std::string live_error_;    // why Connect did nothing (no takes), until the next Connect
   float live_height_ = 24.0f; // the foot's height on the frame before (the export field, the Live section), pixels
 
-  BlendSession& session_;
+  EngineLink& engine_;
   std::string folder_;  // the browser's folder
   std::vector<PathField> fields_;  // one per take (at least two: a pair's B may be empty)
   ExportDialog export_dialog_;  // its file is the export field's (settings().path)

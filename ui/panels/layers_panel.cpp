@@ -65,8 +65,8 @@ Played played_frames(const EditorState& state, const Eigen::VectorXd& shown) {
       out.first = std::min(out.first, f);
       out.last = std::max(out.last, f);
     }
-  if (!state.takes.empty() && shown.size() > 0) {
-    const int k = std::clamp(frame_at(state.takes.back(), state.playback.time_s), 0, static_cast<int>(shown.size()) - 1);
+  if (!state.shown.empty() && shown.size() > 0) {
+    const int k = std::clamp(frame_at(state.shown.back(), state.playback.time_s), 0, static_cast<int>(shown.size()) - 1);
     if (!std::isnan(shown[k])) out.now = shown[k];
   }
   return out;
@@ -154,7 +154,7 @@ glm::vec2 pad_point(const std::vector<double>& weights) {
 }
 
 void LayersPanel::draw(EditorState& state) {
-  const PreparedTakes* p = session_.takes();
+  const PreparedTakes* p = engine_.takes();
   place_panel(PanelId::kLayers, state);
   if (!ImGui::Begin(panel_title(PanelId::kLayers))) {
     ImGui::End();
@@ -213,7 +213,7 @@ void LayersPanel::draw_mode(EditorState& state, const PreparedTakes& p) {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Every take the same weight");
     ImGui::SameLine();
   }
-  const ResultView& view = session_.result_view();
+  const ResultView& view = engine_.result_view();
   if (const MixResult* m = view.mix()) {
     const std::string length = duration_in_words(motion_length_s(m->motion.world.rows(), p.fps));
     ImGui::TextColored(kDimColor, "%d takes, %s", n, length.c_str());
@@ -240,7 +240,7 @@ void LayersPanel::draw_transfer_takes(EditorState& state, const PreparedTakes& p
       if (ImGui::Selectable(short_take_name(p, i).c_str())) {
         // The content is the reference: the takes are prepared again with it first.
         // Every take keeps its weight and strength in its new place (ui/model/document.h).
-        std::vector<std::string> files = session_.snapshot().paths;
+        std::vector<std::string> files = engine_.snapshot().paths;
         if (static_cast<size_t>(i) < files.size()) {
           std::vector<int> order(files.size());
           for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
@@ -248,7 +248,7 @@ void LayersPanel::draw_transfer_takes(EditorState& state, const PreparedTakes& p
           std::rotate(files.begin(), files.begin() + i, files.begin() + i + 1);
           state.document = reorder_takes(state.document, order);
           state.document.controls.keys = reorder_keys(state.document.controls.keys, order);
-          session_.load_files(files, WeightsOf::kNewTakes);
+          engine_.load_files(files, WeightsOf::kNewTakes);
         }
       }
     ImGui::EndPopup();
@@ -359,7 +359,7 @@ bool LayersPanel::draw_row(EditorState& state, const PreparedTakes& p, int take,
                                 : "\nClick: its alignment onto the reference in the Alignment tab");
   ImGui::SameLine();
   const float bar_w = std::max(ImGui::GetContentRegionAvail().x, 40.0f);
-  draw_take_timeline(state, p, take, session_.result(), ImVec2(bar_w, ImGui::GetFrameHeight()));
+  draw_take_timeline(state, p, take, engine_.result(), ImVec2(bar_w, ImGui::GetFrameHeight()));
   ImGui::PopID();
   return moved;
 }
@@ -403,9 +403,9 @@ void LayersPanel::draw_parts(EditorState& state, const PreparedTakes& p) {
   DocumentControls& c = state.document.controls;
   ImGui::Checkbox("Per body part", &c.per_part);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Take a body part's style from one take (legs from one, arms from another); the rest follows "
+    ImGui::SetTooltip("ShownMotion a body part's style from one take (legs from one, arms from another); the rest follows "
                       "the weights");
-  const Decomposed* d = session_.snapshot().decomposed.get();
+  const Decomposed* d = engine_.snapshot().decomposed.get();
   if (!c.per_part || d == nullptr || d->shared() == nullptr) return;
   for (size_t part = 0; part < std::size(kPartNames); ++part) {
     const BodyPart body_part = kLayerParts[part];
@@ -441,7 +441,7 @@ void LayersPanel::draw_alignment_tab(EditorState& state, const PreparedTakes& p)
     imaged_ = &p;
     imaged_take_ = aligned_take_;
   }
-  draw_alignment(state, p, aligned_take_, session_.result(), image_);
+  draw_alignment(state, p, aligned_take_, engine_.result(), image_);
 }
 
 }  // namespace mostyle::ui

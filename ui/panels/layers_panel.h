@@ -10,7 +10,7 @@
 #include <glm/glm.hpp>
 #include <vector>
 
-#include "ui/model/blend_session.h"
+#include "ui/model/engine_link.h"
 #include "ui/model/dtw_image.h"
 #include "ui/model/layer_parts.h"
 #include "ui/panels/panel.h"
@@ -26,7 +26,7 @@ glm::vec2 pad_point(const std::vector<double>& weights);
 
 class LayersPanel : public Panel {
  public:
-  explicit LayersPanel(BlendSession& session) : session_(session) {}
+  explicit LayersPanel(EngineLink& engine) : engine_(engine) {}
   void draw(EditorState& state) override;
 
   // The take the Alignment tab shows (1 .. N - 1).
@@ -45,7 +45,7 @@ class LayersPanel : public Panel {
   void draw_parts(EditorState& state, const PreparedTakes& p);
   void draw_alignment_tab(EditorState& state, const PreparedTakes& p);
 
-  BlendSession& session_;
+  EngineLink& engine_;
   int aligned_take_ = 1;
   DtwCostImage image_;                     // of imaged_'s take imaged_take_, made once per take
   const PreparedTakes* imaged_ = nullptr;

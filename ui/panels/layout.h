@@ -123,7 +123,7 @@ inline PanelRect panel_rect(PanelId id, int takes = 3) {
 // Before a panel's ImGui::Begin: its place and size from the layout, forced when
 // state.view.reset_layout is set, else only the first time the window appears.
 inline void place_panel(PanelId id, const EditorState& state) {
-  const PanelRect r = panel_rect(id, static_cast<int>(state.takes.size()));
+  const PanelRect r = panel_rect(id, static_cast<int>(state.shown.size()));
   const ImGuiCond cond = state.view.reset_layout ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
   ImGui::SetNextWindowPos(ImVec2(r.x, r.y), cond);
   ImGui::SetNextWindowSize(ImVec2(r.w, r.h), cond);
@@ -135,7 +135,7 @@ inline void place_panel(PanelId id, const EditorState& state) {
 // changed (the Takes panel's height follows it).
 inline void track_display_size(EditorState& state, glm::vec2* last) {
   const ImVec2 display = ImGui::GetIO().DisplaySize;
-  const int takes = static_cast<int>(state.takes.size());
+  const int takes = static_cast<int>(state.shown.size());
   if (takes != state.view.laid_out_takes) {
     state.view.reset_layout = true;
     state.view.laid_out_takes = takes;

@@ -43,9 +43,9 @@ bool begin_table(const char* id) {
 }
 }  // namespace
 
-Metrics gather_metrics(const BlendSession& session, bool transfer) {
+Metrics gather_metrics(const EngineLink& engine, bool transfer) {
   Metrics m;
-  const WorkerSnapshot& snapshot = session.snapshot();
+  const WorkerSnapshot& snapshot = engine.snapshot();
   const PreparedTakes* p = snapshot.prepared.get();
   if (p == nullptr) return m;
   const Decomposed* d = snapshot.decomposed.get();
@@ -62,7 +62,7 @@ Metrics gather_metrics(const BlendSession& session, bool transfer) {
   m.dtw_ms = snapshot.times.dtw_ms;
   if (d != nullptr) m.decompose_ms = snapshot.times.decompose_ms;
   // The result shown (a blend, mix or transfer), made on this thread.
-  const ResultView& view = session.result_view();
+  const ResultView& view = engine.result_view();
   m.measures = mix_measures(*p, d, view.mix(), !view.previewing());
   if (view.mix() != nullptr) {
     const StageTimes& times = view.mix_times();
@@ -80,7 +80,7 @@ void MetricsPanel::draw(EditorState& state) {
     return;
   }
   draw_live_table();
-  const Metrics m = gather_metrics(session_, state.document.controls.transfer);
+  const Metrics m = gather_metrics(engine_, state.document.controls.transfer);
   guess_unit(m.reference);
   const char* letter = take_letter(0, static_cast<int>(m.take_names.size()));
   const std::string reference = *letter ? std::string("take ") + letter : "the reference take";

@@ -6,13 +6,13 @@
 #include <vector>
 
 #include "engine/synthesize/mix_measures.h"
-#include "ui/model/blend_session.h"
+#include "ui/model/engine_link.h"
 #include "ui/model/live_source.h"
 #include "ui/panels/panel.h"
 
 namespace mostyle::ui {
 
-// What the metrics panel shows, gathered from the session for any number of takes alike: the
+// What the metrics panel shows, gathered from the engine link for any number of takes alike: the
 // takes' names, the measures the CLI reports (engine/synthesize/mix_measures.h) and the stages'
 // times; a negative time is not known yet ("-").
 struct Metrics {
@@ -25,11 +25,11 @@ struct Metrics {
   double synthesize_ms = -1.0, postprocess_ms = -1.0, result_ms = -1.0;
 };
 // O(takes): no copy of any motion. transfer: the takes are in transfer mode (the document's).
-Metrics gather_metrics(const BlendSession& session, bool transfer);
+Metrics gather_metrics(const EngineLink& engine, bool transfer);
 
 class MetricsPanel : public Panel {
  public:
-  explicit MetricsPanel(BlendSession& session) : session_(session) {}
+  explicit MetricsPanel(EngineLink& engine) : engine_(engine) {}
   void draw(EditorState& state) override;
   // The live source whose rate, latency and skipped frames are shown first while it runs; none:
   // not shown.
@@ -53,7 +53,7 @@ class MetricsPanel : public Panel {
 
   const LiveSource* live_ = nullptr;
 
-  BlendSession& session_;
+  EngineLink& engine_;
   // The reference's unit, guessed once per loaded reference take.
   const Clip* unit_clip_ = nullptr;
   double cm_per_unit_ = 0.0;

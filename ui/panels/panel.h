@@ -3,8 +3,8 @@
 // ImGui::NewFrame() and ImGui::Render(), in the order panels were added. A panel draws its own
 // ImGui window(s), reads the EditorState and the engine's results, and edits the document
 // (EditorState::document), the playback or the view. It asks the engine for nothing: after the
-// panels, the engine link (BlendSession::sync) does what the document's change makes stale.
-// Loading takes is the one command a panel gives (BlendSession::load_files). Nothing blocks.
+// panels, the engine link (EngineLink::sync) does what the document's change makes stale.
+// Loading takes is the one command a panel gives (EngineLink::load_files). Nothing blocks.
 #include "ui/model/editor_state.h"
 
 namespace mostyle::ui {

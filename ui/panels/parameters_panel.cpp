@@ -18,7 +18,7 @@ namespace mostyle::ui {
 namespace {
 
 // k and sparsity: the decomposition, recomputed when the slider is let go.
-void draw_decomposition(BlendParameters& p) {
+void draw_decomposition(DecompositionControls& p) {
   range_slider("components (k)", p.components, kComponentsRange);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("How many components the takes are split into. More: closer to the takes, less general.\n"
@@ -32,10 +32,10 @@ void draw_decomposition(BlendParameters& p) {
 // The decomposition's mode and how the takes are aligned in time. Paper mode, the paper's own
 // synthesis, blends two takes: it is offered for two.
 void draw_mode_and_alignment(DocumentControls& c, int takes) {
-  int mode = c.mode == BlendMode::kShared ? 0 : 1;
+  int mode = c.mode == DecompositionMode::kShared ? 0 : 1;
   const bool two = takes == 2;
   if (two && ImGui::Combo("mode", &mode, "shared\0paper\0"))
-    c.mode = mode == 0 ? BlendMode::kShared : BlendMode::kPaper;  // the engine link decomposes again
+    c.mode = mode == 0 ? DecompositionMode::kShared : DecompositionMode::kPaper;  // the engine link decomposes again
   if (two && ImGui::IsItemHovered())
     ImGui::SetTooltip("shared: one component set for A and B (alpha 1 is B)\npaper: separate decompositions, "
                       "cores blended (paper 3.6)");
@@ -84,7 +84,7 @@ void draw_options(DocumentControls& c) {
 
 // Worker progress; the previous decomposition stays on screen until the new one arrives (the
 // weights say why they are refused in the takes' panel, layers_panel.h).
-void draw_status(const BlendSession& s, const Decomposed* d) {
+void draw_status(const EngineLink& s, const Decomposed* d) {
   const WorkerStatus status = s.status();
   if (status.stage == WorkerStage::kLoading || status.stage == WorkerStage::kDecomposing) {
     char overlay[64];
@@ -92,10 +92,10 @@ void draw_status(const BlendSession& s, const Decomposed* d) {
     ImGui::ProgressBar(status.progress, ImVec2(-1.0f, 0.0f), overlay);
   } else if (d != nullptr) {
     ImGui::TextColored(kDimColor, "shown: k %d, sparsity %.2f, %s", d->params.components, d->params.sparsity,
-                       blend_mode_name(d->params.mode));
+                       decomposition_mode_name(d->params.mode));
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("The decomposition the result uses now: %d components, sparsity %.2f, %s mode, %d iterations",
-                        d->params.components, d->params.sparsity, blend_mode_name(d->params.mode), d->iterations);
+                        d->params.components, d->params.sparsity, decomposition_mode_name(d->params.mode), d->iterations);
   }
 }
 
@@ -121,7 +121,7 @@ std::optional<std::vector<double>> draw_weight_row(const EditorState& state, std
       moved = true;
     }
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("%s", state.takes.size() > static_cast<size_t>(i) ? state.takes[static_cast<size_t>(i)].label.c_str() : "");
+      ImGui::SetTooltip("%s", state.shown.size() > static_cast<size_t>(i) ? state.shown[static_cast<size_t>(i)].label.c_str() : "");
     ImGui::PopID();
   }
   if (!moved) return std::nullopt;
@@ -174,8 +174,8 @@ void draw_body_parts(EditorState& state, const Decomposed* d, int takes) {
   if (!parts) return;
   ImGui::Checkbox("weights per body part", &c.per_part);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Take each body part's style from its own weights: legs from one take, arms from another.");
-  if (d == nullptr || d->params.mode != BlendMode::kShared || takes < 1) return;
+    ImGui::SetTooltip("ShownMotion each body part's style from its own weights: legs from one take, arms from another.");
+  if (d == nullptr || d->params.mode != DecompositionMode::kShared || takes < 1) return;
   if (ImGui::SmallButton("all = weights"))
     for (int i = 0; i < d->components(); ++i) set_component_row(state.document, *d, i, std::nullopt);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Every body part and component back to the takes' own weights");
@@ -185,7 +185,7 @@ void draw_body_parts(EditorState& state, const Decomposed* d, int takes) {
 }
 
 // Paper mode: the takes in levels of basic motions, and the level whose style comes from B.
-void draw_basic_motions(DocumentControls& c, const BlendParameters& p) {
+void draw_basic_motions(DocumentControls& c, const DecompositionControls& p) {
   const bool basic = ImGui::CollapsingHeader("Basic motions", ImGuiTreeNodeFlags_DefaultOpen);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Paper mode: the takes in levels of motion, one level from B");
   if (!basic) return;
@@ -219,9 +219,9 @@ void ParametersPanel::draw(EditorState& state) {
     ImGui::End();
     return;
   }
-  BlendSession& s = session_;
+  EngineLink& s = engine_;
   DocumentControls& c = state.document.controls;
-  BlendParameters& p = state.document.parameters;
+  DecompositionControls& p = state.document.parameters;
   const Decomposed* d = s.snapshot().decomposed.get();
   ImGui::PushItemWidth(-120.0f);  // room for the labels on the right
 
@@ -231,7 +231,7 @@ void ParametersPanel::draw(EditorState& state) {
   draw_mode_and_alignment(c, takes);
   draw_options(c);
   draw_status(s, d);
-  if (c.mode == BlendMode::kShared) draw_body_parts(state, d, takes);
+  if (c.mode == DecompositionMode::kShared) draw_body_parts(state, d, takes);
   else draw_basic_motions(c, p);
 
   ImGui::PopItemWidth();

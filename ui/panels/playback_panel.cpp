@@ -52,7 +52,7 @@ std::string weights_words(const std::vector<double>& w) {
 // What the timeline shows of the reference take: its rate, length and last frame, and the
 // number of takes mixed (the weights a key holds).
 struct Timeline {
-  const Take* reference = nullptr;
+  const ShownMotion* reference = nullptr;
   double fps = 0.0;
   double length_s = 0.0;
   int last = 0;
@@ -245,10 +245,10 @@ void PlaybackPanel::draw(EditorState& state) {
   hovered_span_ = -1;
   if (!begin_window()) return;
   // The list of keys, reachable from here without knowing its key.
-  if (ImGui::Button("Keys")) command_toggle_keys(state);
+  if (ImGui::Button("Shortcuts")) command_toggle_shortcuts(state);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Every key and mouse gesture, Frame all and Reset layout (F1 or ?)");
   ImGui::SameLine();
-  const Take* reference = state.reference_take();
+  const ShownMotion* reference = state.reference_take();
   if (reference == nullptr) {
     ImGui::TextColored(kDimColor, "No take loaded.");
     ImGui::End();

@@ -33,7 +33,7 @@ void TakesPanel::draw(EditorState& state) {
     ImGui::End();
     return;
   }
-  for (Take& take : state.takes) {
+  for (ShownMotion& take : state.shown) {
     ImGui::PushID(&take);
     if (take.ok()) {
       ImGui::ColorEdit3("##color", &take.color.x, ImGuiColorEditFlags_NoInputs | ImGuiColorEditFlags_NoLabel);
@@ -58,7 +58,7 @@ void TakesPanel::draw(EditorState& state) {
     }
     ImGui::PopID();
   }
-  if (state.takes.empty()) ImGui::TextColored(kDimColor, "No takes.");
+  if (state.shown.empty()) ImGui::TextColored(kDimColor, "No takes.");
 
   // The camera and where the takes stand, on one row.
   if (ImGui::Button("Frame all")) command_frame_all(state);

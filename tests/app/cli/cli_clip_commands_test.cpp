@@ -69,7 +69,7 @@ TEST_CASE("cli info: the skeleton once, the takes on it, how each major joint wa
   REQUIRE(r.status == 0);
   CHECK(r.out.find("  joints: 31 (+7 End Sites), the file's hierarchy, root 'Hips'\n") != std::string::npos);
   CHECK(r.out.find("    cmu142_walk_clumsy  (8.99") != std::string::npos);
-  CHECK(r.out.find("keys, moves 31 joints)") != std::string::npos);
+  CHECK(r.out.find("keyframes, moves 31 joints)") != std::string::npos);
   CHECK(r.out.find("  major joints: 20 by name\n") != std::string::npos);
   CHECK(r.out.find("    left_knee: LeftLeg (name)\n") != std::string::npos);
   // A mapping file's line says so.

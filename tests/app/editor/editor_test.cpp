@@ -54,10 +54,10 @@ ParseResult parse(std::vector<const char*> args) {
 void load_walks(Editor& editor, const std::vector<std::string>& names) {
   std::vector<std::string> files;
   for (const std::string& name : names) files.push_back(mostyle::test::asset("motions/" + name + ".bvh"));
-  editor.session().load_files(files, mostyle::ui::WeightsOf::kNewTakes);
+  editor.engine().load_files(files, mostyle::ui::WeightsOf::kNewTakes);
   editor.wait_for_engine();
-  REQUIRE(editor.session().takes() != nullptr);
-  REQUIRE(editor.session().takes()->size() == static_cast<int>(names.size()));
+  REQUIRE(editor.engine().takes() != nullptr);
+  REQUIRE(editor.engine().takes()->size() == static_cast<int>(names.size()));
 }
 
 // Runs a shell command; returns its exit status and (if asked) what it wrote on stderr.
@@ -145,9 +145,9 @@ TEST_CASE("editor options: defaults are the paper's, and --help") {
   CHECK(parse({"-h"}).status == ParseStatus::kHelp);
   CHECK_THAT(editor_usage(), Catch::Contains("--offscreen") && Catch::Contains("--screenshot"));
   CHECK_THAT(editor_usage(), Catch::Contains("--window-size WxH") && Catch::Contains("--paused"));
-  // --help lists every key the keys window (F1) lists.
-  REQUIRE_FALSE(editor_keys().empty());
-  for (const KeyHelp& k : editor_keys()) CHECK_THAT(editor_usage(), Catch::Contains(k.keys) && Catch::Contains(k.action));
+  // --help lists every key the shortcuts window (F1) lists.
+  REQUIRE_FALSE(editor_shortcuts().empty());
+  for (const ShortcutHelp& k : editor_shortcuts()) CHECK_THAT(editor_usage(), Catch::Contains(k.shortcut) && Catch::Contains(k.action));
 }
 
 TEST_CASE("editor options: bad values and unknown flags are usage errors that say which") {
@@ -184,7 +184,7 @@ TEST_CASE("the editor loads the pair on the worker, and a load error keeps the p
   options.initial.frame = 12;
   Editor editor(options);  // no GL context needed; returns before the worker is done
   editor.wait_for_engine();
-  const auto& takes = editor.state().takes;
+  const auto& takes = editor.state().shown;
   REQUIRE(takes.size() == 3);  // A, B on A's timeline, the blend
   for (const auto& t : takes) {
     CHECK(t.ok());
@@ -197,10 +197,10 @@ TEST_CASE("the editor loads the pair on the worker, and a load error keeps the p
   CHECK(editor.state().reference_take() == &takes[0]);
   CHECK(mostyle::ui::frame_at(takes[0], editor.state().playback.time_s) == 12);
 
-  editor.session().load("/nonexistent/walk.bvh", mostyle::test::asset("motions/cmu142_walk_marching.bvh"));
+  editor.engine().load("/nonexistent/walk.bvh", mostyle::test::asset("motions/cmu142_walk_marching.bvh"));
   editor.wait_for_engine();
-  CHECK_THAT(editor.session().error(), Catch::Contains("/nonexistent/walk.bvh"));
-  CHECK(editor.state().takes.size() == 3);
+  CHECK_THAT(editor.engine().error(), Catch::Contains("/nonexistent/walk.bvh"));
+  CHECK(editor.state().shown.size() == 3);
 }
 
 TEST_CASE("editor options and loads: MOSTYLE_MAX_MEMORY_MB bounds a take's frames, as in mostyle-cli") {
@@ -229,7 +229,7 @@ TEST_CASE("editor options and loads: MOSTYLE_MAX_MEMORY_MB bounds a take's frame
   options.files = {long_take, mostyle::test::asset("motions/cmu142_walk_marching.bvh")};
   Editor editor(options);
   editor.wait_for_engine();
-  CHECK(editor.session().error() == long_take + ":8: expected frames within the memory limit of 1 MB, found Frames: "
+  CHECK(editor.engine().error() == long_take + ":8: expected frames within the memory limit of 1 MB, found Frames: "
                                                 "30000 of 6 values each (1.4 MB)");
   fs::remove(long_take);
 }
@@ -251,7 +251,7 @@ TEST_CASE("the editor keeps rendering offscreen for hundreds of frames while dec
     ImGuiIO& io = ImGui::GetIO();
     io.DisplaySize = ImVec2(static_cast<float>(size.x), static_cast<float>(size.y));
     io.DeltaTime = 1.0f / 60.0f;
-    if (frame % 60 == 30 && !state.takes.empty()) {  // a new k or sparsity: re-decomposition
+    if (frame % 60 == 30 && !state.shown.empty()) {  // a new k or sparsity: re-decomposition
       state.document.parameters.components = 6 + 2 * ((frame / 60) % 4);
       state.document.parameters.sparsity = frame % 120 == 30 ? 0.2 : 0.3;
       ++decompositions_requested;
@@ -260,9 +260,9 @@ TEST_CASE("the editor keeps rendering offscreen for hundreds of frames while dec
     if (frame % 90 == 45) state.document.overlay = !state.document.overlay;
     editor.frame(FrameInput{size, 1.0f / 60.0f});
     // The frame went on while the decomposition it asked for was not there yet.
-    if (editor.session().decomposition_outdated()) ++frames_while_busy;
-    if (state.takes.size() == 3) {
-      const Eigen::MatrixXd& blend = state.takes[2].positions;
+    if (editor.engine().decomposition_outdated()) ++frames_while_busy;
+    if (state.shown.size() == 3) {
+      const Eigen::MatrixXd& blend = state.shown[2].positions;
       // Alpha changes the blend's poses and, with its timing, its length.
       if (previous_blend.size() > 0 && (previous_blend.rows() != blend.rows() || previous_blend != blend)) ++blend_changes;
       previous_blend = blend;
@@ -274,8 +274,8 @@ TEST_CASE("the editor keeps rendering offscreen for hundreds of frames while dec
   CHECK(decompositions_requested >= 4);
   CHECK(frames_while_busy > 0);  // frames went on while the worker worked
   CHECK(blend_changes > 100);    // and the blend followed alpha
-  CHECK(editor.session().error().empty());
-  const auto& shown = editor.session().snapshot().decompose_params;
+  CHECK(editor.engine().error().empty());
+  const auto& shown = editor.engine().snapshot().decompose_params;
   CHECK(shown.components == state.document.parameters.components);  // the last request won
   CHECK(shown.sparsity == state.document.parameters.sparsity);
 }
@@ -298,7 +298,7 @@ TEST_CASE("keys: F1 and ? show the keys list, Esc hides it, F frames all, Ctrl+0
     frame();
   };
   auto keys_shown = [&]() {
-    const ImGuiWindow* w = ImGui::FindWindowByName("Keys");
+    const ImGuiWindow* w = ImGui::FindWindowByName("Shortcuts");
     return w != nullptr && w->Active;
   };
   frame();
@@ -306,12 +306,12 @@ TEST_CASE("keys: F1 and ? show the keys list, Esc hides it, F frames all, Ctrl+0
   CHECK_FALSE(state.playback.playing);  // --paused
   CHECK_FALSE(keys_shown());
 
-  press(kKeyF1);
-  CHECK(state.view.show_keys);
+  press(kKeyboardF1);
+  CHECK(state.view.show_shortcuts);
   CHECK(keys_shown());
   io.AddInputCharacter('?');
   frame();
-  CHECK_FALSE(state.view.show_keys);
+  CHECK_FALSE(state.view.show_shortcuts);
   CHECK_FALSE(keys_shown());
   io.AddInputCharacter('?');
   frame();
@@ -334,7 +334,7 @@ TEST_CASE("keys: F1 and ? show the keys list, Esc hides it, F frames all, Ctrl+0
   CHECK(editor.camera().pitch == Approx(mostyle::render::OrbitCamera::kMinPitch));
   CHECK(editor.camera().eye().y > 0.0f);
   io.MousePos = ImVec2(-FLT_MAX, -FLT_MAX);
-  press(kKeyF);
+  press(kKeyboardF);
   CHECK(editor.camera().yaw == Approx(framed_yaw));
   CHECK(editor.camera().pitch > mostyle::render::OrbitCamera::kMinPitch);
 
@@ -350,7 +350,7 @@ TEST_CASE("keys: F1 and ? show the keys list, Esc hides it, F frames all, Ctrl+0
   frame();
   CHECK(ImGui::FindWindowByName(files)->Pos.x == 420.0f);
   io.KeyCtrl = true;
-  press(kKeyZero);
+  press(kKeyboardZero);
   io.KeyCtrl = false;
   CHECK(ImGui::FindWindowByName(files)->Pos.x == Approx(home.x).margin(1.0f));
   CHECK(ImGui::FindWindowByName(files)->Pos.y == Approx(home.y).margin(1.0f));
@@ -372,7 +372,7 @@ TEST_CASE("keys: F1 and ? show the keys list, Esc hides it, F frames all, Ctrl+0
   };
   CHECK_FALSE(export_shown());
   io.KeyCtrl = true;
-  press(kKeyE);
+  press(kKeyboardE);
   io.KeyCtrl = false;
   CHECK(state.view.show_export);
   CHECK(export_shown());
@@ -517,20 +517,20 @@ TEST_CASE("sessions and undo: Ctrl+Z / Ctrl+Y undo and redo a load, a saved sess
     frame(editor);
     editor.wait_for_engine();
     frame(editor);
-    REQUIRE(editor.session().snapshot().paths[0] == joy);
+    REQUIRE(editor.engine().snapshot().paths[0] == joy);
     CHECK(editor.edits().can_undo());
-    press(editor, kKeyZ, true, false);
+    press(editor, kKeyboardZ, true, false);
     editor.wait_for_engine();
     frame(editor);
-    CHECK(editor.session().snapshot().paths[0] == happy);
+    CHECK(editor.engine().snapshot().paths[0] == happy);
     CHECK(editor.edits().can_redo());
-    press(editor, kKeyY, true, false);
+    press(editor, kKeyboardY, true, false);
     editor.wait_for_engine();
     frame(editor);
-    CHECK(editor.session().snapshot().paths[0] == joy);
-    press(editor, kKeyZ, true, true);
+    CHECK(editor.engine().snapshot().paths[0] == joy);
+    press(editor, kKeyboardZ, true, true);
     CHECK_FALSE(editor.edits().can_redo());
-    CHECK(editor.session().snapshot().paths[0] == joy);
+    CHECK(editor.engine().snapshot().paths[0] == joy);
 
     // Saved: the takes, every parameter, the camera and the playback. ".mostyle" is added.
     set_pair_alpha(editor.state().document, 0.8);
@@ -543,10 +543,10 @@ TEST_CASE("sessions and undo: Ctrl+Z / Ctrl+Y undo and redo a load, a saved sess
     CHECK(ui::read_recent_files(options.recent_path).sessions.front() == day);
     // Ctrl+S saves there again without asking; Ctrl+O asks which session, Esc closes it.
     fs::remove(day);
-    press(editor, kKeyS, true, false);
+    press(editor, kKeyboardS, true, false);
     CHECK(fs::exists(day));
     CHECK_FALSE(shown("Save session"));
-    press(editor, kKeyO, true, false);
+    press(editor, kKeyboardO, true, false);
     CHECK(shown("Open session"));
     press(editor, 256, false, false);
     CHECK_FALSE(shown("Open session"));
@@ -572,7 +572,7 @@ TEST_CASE("sessions and undo: Ctrl+Z / Ctrl+Y undo and redo a load, a saved sess
   reopened.wait_for_engine();
   reopened.init_graphics();
   frame(reopened);
-  CHECK(reopened.session().snapshot().paths[0] == joy);
+  CHECK(reopened.engine().snapshot().paths[0] == joy);
   CHECK(reopened.state().playback.time_s == saved.playback.time_s);
   CHECK_FALSE(reopened.state().playback.playing);
   CHECK(reopened.camera().yaw == Approx(saved.camera->yaw));
@@ -608,9 +608,9 @@ TEST_CASE("sessions and undo: Ctrl+Z / Ctrl+Y undo and redo a load, a saved sess
   CHECK(reopened.session_path().empty());
   reopened.wait_for_engine();
   frame(reopened);
-  CHECK(reopened.session().snapshot().paths[0] == marching);
+  CHECK(reopened.engine().snapshot().paths[0] == marching);
   CHECK_FALSE(reopened.edits().can_undo());
-  press(reopened, kKeyS, true, false);  // Ctrl+S asks where, in the session's folder
+  press(reopened, kKeyboardS, true, false);  // Ctrl+S asks where, in the session's folder
   CHECK(shown("Save session"));
   press(reopened, 256, false, false);
   std::ifstream unchanged(dir / "moved.mostyle");
@@ -655,7 +655,7 @@ TEST_CASE("at rest, a finished decomposition wakes the editor and shows at once 
   auto frame = [&] { e.frame(); };
   // Paused with the engine idle and everything taken up: at rest, the window may wait.
   for (int i = 0; i < 3 && editor.animating(); ++i) {
-    editor.session().wait_idle(editor.state());
+    editor.engine().wait_idle(editor.state());
     frame();
   }
   REQUIRE_FALSE(editor.animating());
@@ -665,10 +665,10 @@ TEST_CASE("at rest, a finished decomposition wakes the editor and shows at once 
   // A new k (as the slider gives it): the worker decomposes while no input comes.
   const int before = wakes;
   editor.state().document.parameters.components = 6;
-  editor.session().sync(editor.state());
+  editor.engine().sync(editor.state());
   CHECK(editor.animating());  // the worker has work
   const auto t0 = std::chrono::steady_clock::now();
-  while (editor.session().status().stage != mostyle::WorkerStage::kIdle || editor.session().status().pending) {
+  while (editor.engine().status().stage != mostyle::WorkerStage::kIdle || editor.engine().status().pending) {
     REQUIRE(std::chrono::steady_clock::now() - t0 < std::chrono::seconds(60));
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
@@ -680,8 +680,8 @@ TEST_CASE("at rest, a finished decomposition wakes the editor and shows at once 
   CHECK(wakes > before);
   CHECK(editor.animating());
   frame();
-  CHECK(editor.session().snapshot().decompose_params.components == 6);
-  CHECK_FALSE(editor.session().decomposition_outdated());
+  CHECK(editor.engine().snapshot().decompose_params.components == 6);
+  CHECK_FALSE(editor.engine().decomposition_outdated());
   editor.shutdown_graphics();
 }
 
@@ -778,12 +778,12 @@ namespace {
 // between its view and that line, 0 looking straight across, 1 looking along it.
 double looking_along_lanes(mostyle::test::OffscreenEditor& e) {
   const mostyle::ui::EditorState& s = e.editor.state();
-  REQUIRE(s.takes.size() == 3);
-  auto hips = [&](const mostyle::ui::Take& t) {
+  REQUIRE(s.shown.size() == 3);
+  auto hips = [&](const mostyle::ui::ShownMotion& t) {
     const Eigen::Index f = mostyle::ui::frame_at(t, s.playback.time_s);
     return Eigen::Vector2d(t.positions(f, 0), t.positions(f, 2));
   };
-  const Eigen::Vector2d across = hips(s.takes[1]) - hips(s.takes[0]);
+  const Eigen::Vector2d across = hips(s.shown[1]) - hips(s.shown[0]);
   const glm::vec3 f = e.editor.camera().forward();
   const Eigen::Vector2d view(f.x, f.z);
   REQUIRE(across.norm() > 0.0);
@@ -805,7 +805,7 @@ TEST_CASE("the first view looks across the lanes, the takes apart: the bundled p
     mostyle::test::OffscreenEditor e({1280, 720}, options);
     REQUIRE(e.gl.ok());
     e.editor.wait_for_engine();
-    REQUIRE(e.editor.session().error().empty());
+    REQUIRE(e.editor.engine().error().empty());
     e.editor.init_graphics();
     for (int i = 0; i < 3; ++i) e.frame();
     // A three-quarter view: within 45 degrees of looking straight across.
@@ -821,7 +821,7 @@ TEST_CASE("paused, a change that moves the result moves the view with it; at res
   editor.wait_for_engine();
   editor.init_graphics();
   mostyle::ui::EditorState& s = editor.state();
-  const mostyle::ui::Take& blend = s.takes[mostyle::ui::result_index(2)];
+  const mostyle::ui::ShownMotion& blend = s.shown[mostyle::ui::result_index(2)];
   set_pair_alpha(s.document, 0.0);
   for (int i = 0; i < 3; ++i) e.frame();
   s.playback.time_s = (blend.frames() - 0.5) / blend.rate();  // the last frame: far from the start
@@ -830,11 +830,11 @@ TEST_CASE("paused, a change that moves the result moves the view with it; at res
   // The takes' mean hips (x, z) against the camera's target.
   auto hips = [&] {
     Eigen::Vector2d sum = Eigen::Vector2d::Zero();
-    for (const mostyle::ui::Take& t : s.takes) {
+    for (const mostyle::ui::ShownMotion& t : s.shown) {
       const Eigen::Index f = mostyle::ui::frame_at(t, s.playback.time_s);
       sum += Eigen::Vector2d(t.positions(f, 0), t.positions(f, 2));
     }
-    return Eigen::Vector2d(sum / static_cast<double>(s.takes.size()));
+    return Eigen::Vector2d(sum / static_cast<double>(s.shown.size()));
   };
   auto target = [&] { return Eigen::Vector2d(editor.camera().target.x, editor.camera().target.z); };
   const Eigen::Vector2d before = hips(), offset = target() - before;
@@ -960,11 +960,11 @@ TEST_CASE("opening a session over unsaved edits asks first; undo never ties a se
   CHECK(ed.session_path() == fs::absolute(bowday).lexically_normal().string());
   ed.wait_for_engine();
   for (int i = 0; i < 3; ++i) e.frame();
-  CHECK(ed.session().snapshot().paths[0] == joy);
+  CHECK(ed.engine().snapshot().paths[0] == joy);
   // Ctrl+Z cannot bring the old takes back under this session's name: the open began anew.
   CHECK_FALSE(ed.edits().can_undo());
   CHECK_FALSE(ed.undo());
-  CHECK(ed.session().snapshot().paths[0] == joy);
+  CHECK(ed.engine().snapshot().paths[0] == joy);
   CHECK_FALSE(ed.edits().unsaved());
   // Closing now asks nothing, and the session file still holds its own takes.
   ed.request_close();
@@ -1065,8 +1065,8 @@ TEST_CASE("editor: the Live source connects over loopback and shows the stream a
   Editor& editor = e.editor;
   editor.wait_for_engine();
   editor.init_graphics();
-  REQUIRE(editor.state().takes.size() == 3);  // the bundled pair and its blend
-  const std::string blend_label = editor.state().takes[2].label;
+  REQUIRE(editor.state().shown.size() == 3);  // the bundled pair and its blend
+  const std::string blend_label = editor.state().shown[2].label;
 
   // What Connect does: the address and skeleton as typed, the loaded takes as neutral and style.
   editor.live().settings().address = "localhost:" + std::to_string(source.port);
@@ -1085,7 +1085,7 @@ TEST_CASE("editor: the Live source connects over loopback and shows the stream a
 
   // The stream and the styled stream in place of the pair, the last window of the stream.
   CHECK(editor.live_shown());
-  const auto& takes = editor.state().takes;
+  const auto& takes = editor.state().shown;
   REQUIRE(takes.size() == 2);
   CHECK(takes[0].label.find("stream") != std::string::npos);
   CHECK(takes[1].label == "styled");
@@ -1097,8 +1097,8 @@ TEST_CASE("editor: the Live source connects over loopback and shows the stream a
   editor.live().disconnect();
   e.frame();
   CHECK_FALSE(editor.live_shown());
-  REQUIRE(editor.state().takes.size() == 3);
-  CHECK(editor.state().takes[2].label == blend_label);
+  REQUIRE(editor.state().shown.size() == 3);
+  CHECK(editor.state().shown[2].label == blend_label);
   editor.shutdown_graphics();
 }
 
@@ -1198,7 +1198,7 @@ TEST_CASE("editor: a Live address nobody serves, or that is not one, is said in 
   CHECK_THAT(editor.live().status().error, Catch::StartsWith("cannot connect to localhost:" + std::to_string(port)));
   editor.update_engine();
   CHECK_FALSE(editor.live_shown());
-  CHECK(editor.state().takes.size() == 3);
+  CHECK(editor.state().shown.size() == 3);
 
   editor.live().settings().address = "localhost";
   REQUIRE(editor.connect_live());

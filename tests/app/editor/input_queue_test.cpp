@@ -116,7 +116,7 @@ TEST_CASE("keys at rest: ten quick presses step ten frames, and typing after Ctr
   };
   frame();
   frame();
-  const mostyle::ui::Take* reference = editor.state().reference_take();
+  const mostyle::ui::ShownMotion* reference = editor.state().reference_take();
   REQUIRE(reference != nullptr);
   const int start = mostyle::ui::frame_at(*reference, editor.state().playback.time_s);
   for (int i = 0; i < 10; ++i) {  // ten taps of the right arrow, all before the next frame
@@ -255,7 +255,7 @@ TEST_CASE("a path typed quickly into a take's field, then Load clicked at once: 
   frame();
   mouse = ImVec2(-FLT_MAX, -FLT_MAX);
   for (int i = 0; i < 500 && !queue.empty(); ++i) frame();
-  const std::vector<std::string> asked = editor.session().requested_files();
+  const std::vector<std::string> asked = editor.engine().requested_files();
   REQUIRE(asked.size() == 2);
   CHECK(asked[1] == path);
   editor.shutdown_graphics();

@@ -1,4 +1,4 @@
-#include "tests/engine/run/blend_at.h"
+#include "tests/engine/worker/blend_at.h"
 #include "engine/export/export_solve.h"
 
 #include <catch2/catch.hpp>

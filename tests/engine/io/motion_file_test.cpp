@@ -37,7 +37,7 @@ TEST_CASE("read_motion_file: BVH through the BVH reader, a take of a BVH is an e
   const std::vector<TakeInfo> takes = read_motion_takes(file);
   REQUIRE(takes.size() == 1);
   CHECK(takes[0].name == "cmu142_walk_clumsy");
-  CHECK(takes[0].keys == 1080);
+  CHECK(takes[0].keyframes == 1080);
 }
 
 TEST_CASE("take labels: what differs between the takes, for narrow columns", "[motion_file]") {

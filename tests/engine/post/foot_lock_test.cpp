@@ -12,7 +12,7 @@
 #include "engine/io/bvh/bvh_read.h"
 #include "engine/kinematics/limb_length.h"
 #include "engine/measure/planted_feet.h"
-#include "tests/engine/run/blend_at.h"
+#include "tests/engine/worker/blend_at.h"
 #include "tests/engine/two_leg_walk.h"
 #include "tests/test_data.h"
 
@@ -161,7 +161,7 @@ TEST_CASE("the foot lock keeps the planted feet's expected drift and pins only w
   CHECK_THROWS_AS(apply_foot_lock(w, rig, scratch, &wrong), InputError);
 }
 
-TEST_CASE("the foot lock keeps each swing under a speed, pinning the runs beside it in part", "[foot_lock]") {
+TEST_CASE("the foot lock keeps each swing under a speed, pinning the stances beside it in part", "[foot_lock]") {
   const FootRig rig = test_rig();
   Eigen::MatrixXd planted;
   const Eigen::MatrixXd skating = walk(150, 20.0, &planted);
@@ -185,17 +185,17 @@ TEST_CASE("the foot lock keeps each swing under a speed, pinning the runs beside
     INFO("frame " << f);
     CHECK(ankle_speed(w, f) <= limit * (1 + 1e-9));
   }
-  // The runs are pinned in part: slower than the walk skates, not held still.
+  // The stances are pinned in part: slower than the walk skates, not held still.
   CHECK(stance_speed(w, planted, rig) < 0.9 * stance_speed(skating, planted, rig));
   CHECK(stance_speed(w, planted, rig) > stance_speed(free, planted, rig) + 1.0);
   CHECK(planted_speed(w, rig).speed <= planted_speed(skating, rig).speed);
 }
 
-TEST_CASE("the foot lock moves a run's pin towards the side with room rather than pin it in part", "[foot_lock]") {
+TEST_CASE("the foot lock moves a stance's pin towards the side with room rather than pin it in part", "[foot_lock]") {
   // The walk cut at frame 138: the left foot's last stance (frames 120-137) runs to the take's
   // end, so after it nothing limits its offset; before it the swing is held to a speed. Centred
-  // on the run, its pin would ask the swing before it for half the run's slide and be scaled down
-  // to what that swing has room for; moved towards the end, it fits whole.
+  // on the stance, its pin would ask the swing before it for half the stance's slide and be
+  // scaled down to what that swing has room for; moved towards the end, it fits whole.
   const FootRig rig = test_rig();
   Eigen::MatrixXd planted_all;
   const Eigen::MatrixXd long_walk = walk(150, 20.0, &planted_all);

@@ -17,7 +17,7 @@
 #include "engine/kinematics/units.h"
 #include "engine/prepare/major_skeleton.h"
 #include "engine/prepare/major_take.h"
-#include "tests/engine/run/blend_at.h"
+#include "tests/engine/worker/blend_at.h"
 #include "tests/test_data.h"
 
 using namespace mostyle;

@@ -14,12 +14,12 @@
 
 #include "engine/align/prepare_takes.h"
 #include "tests/test_data.h"
-#include "tests/ui/loaded_session.h"
+#include "tests/ui/loaded_takes.h"
 #include "ui/model/cycle_provenance.h"
 
 using namespace mostyle;
 using namespace mostyle::ui;
-using test::LoadedSession;
+using test::LoadedTakes;
 
 namespace {
 
@@ -191,31 +191,31 @@ TEST_CASE("cycle provenance: a case worked by hand") {
 }
 
 TEST_CASE("cycle provenance: a pair's blend in the editor, each output cycle from the paired take cycles") {
-  LoadedSession s;
-  const PreparedTakes* p = s.session.takes();
+  LoadedTakes s;
+  const PreparedTakes* p = s.engine.takes();
   REQUIRE(p != nullptr);
-  REQUIRE(s.session.result() != nullptr);
+  REQUIRE(s.engine.result() != nullptr);
   const std::vector<CycleProvenance>& spans = s.state.cycle_provenance;
   CHECK(spans.back().end == s.state.reference_take()->frames());  // the timeline's frames
-  check_real(*p, s.session.result()->sources, spans);
+  check_real(*p, s.engine.result()->sources, spans);
   CHECK(spans.front().takes[1].take == "B");
   // A new alpha: a new blend, its spans made again (the timing may change its length).
   set_pair_alpha(s.state.document, 0.9);
-  s.session.sync(s.state);
-  CHECK(s.state.cycle_provenance.back().end == s.session.result()->sources.rows());
-  check_real(*p, s.session.result()->sources, s.state.cycle_provenance);
+  s.engine.sync(s.state);
+  CHECK(s.state.cycle_provenance.back().end == s.engine.result()->sources.rows());
+  check_real(*p, s.engine.result()->sources, s.state.cycle_provenance);
 }
 
 TEST_CASE("cycle provenance: a palette's mix in the editor, a short take's cycles reused") {
-  LoadedSession s;
-  s.session.load_files({test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"),
+  LoadedTakes s;
+  s.engine.load_files({test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"),
                         test::asset("motions/cmu142_walk_joy.bvh")});
-  s.session.wait_idle(s.state);
-  const PreparedTakes* p = s.session.takes();
+  s.engine.wait_idle(s.state);
+  const PreparedTakes* p = s.engine.takes();
   REQUIRE(p != nullptr);
-  REQUIRE(s.session.result_view().mix() != nullptr);
+  REQUIRE(s.engine.result_view().mix() != nullptr);
   const std::vector<CycleProvenance>& spans = s.state.cycle_provenance;
-  check_real(*p, s.session.result_view().mix()->sources, spans);
+  check_real(*p, s.engine.result_view().mix()->sources, spans);
   CHECK(spans.front().takes[2].take == "cmu142_walk_joy");
   // A take registered with fewer cycles than the reference's shown in the result has one reused.
   for (int i = 1; i < p->size(); ++i) {

@@ -68,7 +68,7 @@ TEST_CASE("document fields: each one, changed alone, differs and makes stale wha
   const Change changes[] = {
       {"k", [](Document& d) { d.parameters.components = 4; }, Stale::kDecomposition},
       {"sparsity", [](Document& d) { d.parameters.sparsity = 0.3; }, Stale::kDecomposition},
-      {"mode", [](Document& d) { d.controls.mode = BlendMode::kPaper; }, Stale::kDecomposition},
+      {"mode", [](Document& d) { d.controls.mode = DecompositionMode::kPaper; }, Stale::kDecomposition},
       {"per part", [](Document& d) { d.controls.per_part = true; }, Stale::kMix},
       {"component regions", [](Document& d) { d.controls.component_regions = {BodyRegion::kLeftLeg}; }, Stale::kMix},
       {"basic motions", [](Document& d) { d.controls.basic_motions = 2; }, Stale::kDecomposition},

@@ -94,7 +94,7 @@ TEST_CASE("document: every edited field counts, the view's own state does not") 
   std::vector<Document> changed(12, base);
   changed[0].parameters.components = 4;
   changed[1].parameters.sparsity = 0.3;
-  changed[2].controls.mode = BlendMode::kPaper;
+  changed[2].controls.mode = DecompositionMode::kPaper;
   changed[3].controls.per_part = true;
   changed[4].controls.foot_lock = false;
   changed[5].controls.align.on = AlignOn::kBody;

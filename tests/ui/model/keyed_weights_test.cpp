@@ -22,11 +22,11 @@ constexpr double kFps = 30.0;
 // `takes` takes loaded (a pair: two), the result ten seconds long, the playhead paused at frame 0.
 EditorState loaded(int takes) {
   EditorState state;
-  Take result;
+  ShownMotion result;
   result.clip = std::make_shared<Clip>();
   result.fps = kFps;
   result.positions = Eigen::MatrixXd::Zero(301, 3);
-  state.takes.push_back(result);
+  state.shown.push_back(result);
   for (int i = 0; i < takes; ++i) state.document.files.push_back("take" + std::to_string(i) + ".bvh");
   state.playback.playing = false;
   return state;

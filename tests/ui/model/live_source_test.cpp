@@ -177,7 +177,7 @@ TEST_CASE("live source: every frame is styled as the styler alone styles it, and
   CHECK(moved > 1.0);  // degrees or file units: the style changed the stream
 
   // The viewport's two takes: the stream, then the styled stream in the result's colour.
-  const std::vector<Take>& takes = l.live.takes();
+  const std::vector<ShownMotion>& takes = l.live.takes();
   REQUIRE(takes.size() == 2);
   CHECK(takes[0].ok());
   CHECK(takes[1].ok());

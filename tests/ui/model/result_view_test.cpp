@@ -9,31 +9,31 @@
 
 #include "engine/base/error.h"
 #include "tests/test_data.h"
-#include "tests/ui/loaded_session.h"
+#include "tests/ui/loaded_takes.h"
 #include "ui/model/document_mix.h"
 #include "ui/model/layer_parts.h"
 #include "ui/model/weight_keys_edit.h"
 
 using namespace mostyle;
 using namespace mostyle::ui;
-using test::LoadedSession;
+using test::LoadedTakes;
 
 namespace {
 
 // The bundled pair's session, with a palette of three takes loaded instead.
-void load_palette(LoadedSession& s) {
-  s.session.load_files({test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"),
+void load_palette(LoadedTakes& s) {
+  s.engine.load_files({test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"),
                         test::asset("motions/cmu142_walk_joy.bvh")});
-  s.session.wait_idle(s.state);
+  s.engine.wait_idle(s.state);
 }
 
 }  // namespace
 
 TEST_CASE("result view: the mix parameters carry the keys that fit the takes") {
-  LoadedSession s;
+  LoadedTakes s;
   load_palette(s);
-  REQUIRE(s.session.takes() != nullptr);
-  const Decomposed& d = *s.session.snapshot().decomposed;
+  REQUIRE(s.engine.takes() != nullptr);
+  const Decomposed& d = *s.engine.snapshot().decomposed;
   Document doc = s.state.document;
   DocumentControls& c = doc.controls;
   set_layer_weights(doc, {0.2, 0.3, 0.5});
@@ -67,24 +67,24 @@ TEST_CASE("result view: the mix parameters carry the keys that fit the takes") {
 }
 
 TEST_CASE("result view: keys with weights per body part are the engine's sentence, the last mix stays") {
-  LoadedSession s;
+  LoadedTakes s;
   load_palette(s);
-  REQUIRE(s.session.result_view().mix() != nullptr);
+  REQUIRE(s.engine.result_view().mix() != nullptr);
   DocumentControls& c = s.state.document.controls;
   c.keys = {WeightKey{0.0, {1.0, 0.0, 0.0}}, WeightKey{2.0, {0.0, 0.0, 1.0}}};
-  s.session.sync(s.state);
-  CHECK(s.session.result_view().error().empty());
-  const Eigen::MatrixXd keyed = s.session.result_view().mix()->motion.world;
+  s.engine.sync(s.state);
+  CHECK(s.engine.result_view().error().empty());
+  const Eigen::MatrixXd keyed = s.engine.result_view().mix()->motion.world;
   // The legs from the marching take: the engine mixes keys for the whole body only.
   c.per_part = true;
-  set_part_row(s.state.document, *s.session.snapshot().decomposed, BodyPart::kLegs, std::vector<double>{0.0, 1.0, 0.0});
-  CHECK_THROWS_AS(mix_params_for(s.state.document, *s.session.snapshot().decomposed, 3), InputError);
-  s.session.sync(s.state);
-  CHECK_THAT(s.session.result_view().error(), Catch::Contains("keyed in time"));
-  CHECK(s.session.result_view().mix()->motion.world == keyed);
+  set_part_row(s.state.document, *s.engine.snapshot().decomposed, BodyPart::kLegs, std::vector<double>{0.0, 1.0, 0.0});
+  CHECK_THROWS_AS(mix_params_for(s.state.document, *s.engine.snapshot().decomposed, 3), InputError);
+  s.engine.sync(s.state);
+  CHECK_THAT(s.engine.result_view().error(), Catch::Contains("keyed in time"));
+  CHECK(s.engine.result_view().mix()->motion.world == keyed);
   c.keys.clear();
-  s.session.sync(s.state);
-  CHECK(s.session.result_view().error().empty());
+  s.engine.sync(s.state);
+  CHECK(s.engine.result_view().error().empty());
 }
 
 TEST_CASE("result view: the weights follow the takes, a take added keeps the others' weights, the new one at 0") {
@@ -111,14 +111,14 @@ TEST_CASE("result view: the weights follow the takes, a take added keeps the oth
   CHECK(weights_for_takes({"a", "b"}, {0.7, 0.3}, S{}).empty());
 
   // A pair at 0.7/0.3 (alpha 0.3) given a third take with +.
-  LoadedSession s;
+  LoadedTakes s;
   set_pair_alpha(s.state.document, 0.3);
-  std::vector<std::string> takes = s.session.requested_files();
+  std::vector<std::string> takes = s.engine.requested_files();
   REQUIRE(takes.size() == 2);
   takes.push_back(test::asset("motions/cmu142_walk_joy.bvh"));
-  s.session.load_files(takes);
-  s.session.wait_idle(s.state);
-  REQUIRE(s.session.takes() != nullptr);
+  s.engine.load_files(takes);
+  s.engine.wait_idle(s.state);
+  REQUIRE(s.engine.takes() != nullptr);
   const std::vector<double> w = layer_weights(s.state.document);
   REQUIRE(w.size() == 3);
   CHECK(w[0] == Approx(0.7));
@@ -127,9 +127,9 @@ TEST_CASE("result view: the weights follow the takes, a take added keeps the oth
   // And a fourth: the three keep theirs.
   set_layer_weights(s.state.document, {0.5, 0.2, 0.3});
   takes.push_back(test::asset("motions/cmu142_walk_clumsy.bvh"));
-  s.session.load_files(takes);
-  s.session.wait_idle(s.state);
-  REQUIRE(s.session.takes()->size() == 4);
+  s.engine.load_files(takes);
+  s.engine.wait_idle(s.state);
+  REQUIRE(s.engine.takes()->size() == 4);
   CHECK(layer_weights(s.state.document) == std::vector<double>{0.5, 0.2, 0.3, 0.0});
 }
 
@@ -139,19 +139,19 @@ TEST_CASE("result view: a take added to a transfer keeps every strength and the 
   CHECK_FALSE(values_for_takes({"a", "b"}, {1.0, 0.5}, {"c", "a", "b"}, 0.0));
   CHECK_FALSE(values_for_takes({"a", "b"}, {}, {"a", "b", "c"}, 0.0));
   // A pair's transfer at strength 0.5 (B's style on A, its alpha), given a third take with +.
-  LoadedSession s;
+  LoadedTakes s;
   s.state.document.controls.transfer = true;
   s.state.document.controls.content_neutral = true;
   set_pair_alpha(s.state.document, 0.5);
-  s.session.sync(s.state);
-  s.session.wait_idle(s.state);
-  REQUIRE(s.session.result_view().mix() != nullptr);
-  const Eigen::MatrixXd before = s.session.result_view().mix()->motion.world;
-  std::vector<std::string> takes = s.session.requested_files();
+  s.engine.sync(s.state);
+  s.engine.wait_idle(s.state);
+  REQUIRE(s.engine.result_view().mix() != nullptr);
+  const Eigen::MatrixXd before = s.engine.result_view().mix()->motion.world;
+  std::vector<std::string> takes = s.engine.requested_files();
   takes.push_back(test::asset("motions/cmu142_walk_joy.bvh"));
-  s.session.load_files(takes);
-  s.session.wait_idle(s.state);
-  REQUIRE(s.session.takes() != nullptr);
+  s.engine.load_files(takes);
+  s.engine.wait_idle(s.state);
+  REQUIRE(s.engine.takes() != nullptr);
   const DocumentControls& c = s.state.document.controls;
   CHECK(c.transfer);
   CHECK(c.content_neutral);
@@ -159,10 +159,10 @@ TEST_CASE("result view: a take added to a transfer keeps every strength and the 
   REQUIRE(strengths.size() == 3);
   CHECK(strengths[1] == 0.5);
   CHECK(strengths[2] == 0.0);
-  REQUIRE(s.session.result_view().mix() != nullptr);
+  REQUIRE(s.engine.result_view().mix() != nullptr);
   // The same result: a take at weight 0 changes no pose (the takes are decomposed again together,
   // and the common timeline is sampled for three, so within a small part of the body's size).
-  const Eigen::MatrixXd& after = s.session.result_view().mix()->motion.world;
+  const Eigen::MatrixXd& after = s.engine.result_view().mix()->motion.world;
   REQUIRE(after.rows() == before.rows());
   Eigen::VectorXd heights(before.cols() / 3);
   for (Eigen::Index j = 0; j < heights.size(); ++j) heights(j) = before.col(3 * j + 1).mean();
@@ -175,9 +175,9 @@ TEST_CASE("result view: a take added to a transfer keeps every strength and the 
   // A palette's strengths of 0.5 and 0.25, given a fourth take: they stay, the new one at 0.
   set_layer_weights(s.state.document, {1.0, 0.5, 0.25});
   takes.push_back(test::asset("motions/cmu142_walk_clumsy.bvh"));
-  s.session.load_files(takes);
-  s.session.wait_idle(s.state);
-  REQUIRE(s.session.takes()->size() == 4);
+  s.engine.load_files(takes);
+  s.engine.wait_idle(s.state);
+  REQUIRE(s.engine.takes()->size() == 4);
   CHECK(layer_weights(s.state.document) == V{1.0, 0.5, 0.25, 0.0});
 }
 
@@ -198,73 +198,73 @@ TEST_CASE("result view: weights set for the takes asked for stay theirs; other t
   const std::string happy = test::asset("motions/cmu142_walk_happy.bvh"),
                     marching = test::asset("motions/cmu142_walk_marching.bvh"),
                     joy = test::asset("motions/cmu142_walk_joy.bvh"), clumsy = test::asset("motions/cmu142_walk_clumsy.bvh");
-  LoadedSession s;
+  LoadedTakes s;
   REQUIRE(layer_weights(s.state.document) == std::vector<double>{0.5, 0.5});  // a pair's default, sized
   // Undo, a session or the command line: the weights are the new takes' already.
   set_layer_weights(s.state.document, {0.2, 0.5, 0.3});
-  s.session.load_files({happy, marching, joy}, WeightsOf::kNewTakes);
-  s.session.wait_idle(s.state);
-  REQUIRE(s.session.takes() != nullptr);
+  s.engine.load_files({happy, marching, joy}, WeightsOf::kNewTakes);
+  s.engine.wait_idle(s.state);
+  REQUIRE(s.engine.takes() != nullptr);
   CHECK(layer_weights(s.state.document) == std::vector<double>{0.2, 0.5, 0.3});
   // Another order (a new content): reordered with them, each take keeps its weight.
   s.state.document = reorder_takes(s.state.document, {2, 0, 1});
-  s.session.load_files({joy, happy, marching}, WeightsOf::kNewTakes);
-  s.session.wait_idle(s.state);
+  s.engine.load_files({joy, happy, marching}, WeightsOf::kNewTakes);
+  s.engine.wait_idle(s.state);
   CHECK(s.state.document.files.back() == marching);
   CHECK(layer_weights(s.state.document) == std::vector<double>{0.3, 0.2, 0.5});
   // A take replaced by another: as many takes, not the same ones, equal weights.
-  s.session.load_files({joy, happy, clumsy});
-  s.session.wait_idle(s.state);
+  s.engine.load_files({joy, happy, clumsy});
+  s.engine.wait_idle(s.state);
   CHECK(layer_weights(s.state.document) == std::vector<double>(3, 1.0 / 3));
   // A take taken out: a pair again, at 0.5/0.5; another pair the same.
   set_layer_weights(s.state.document, {0.6, 0.3, 0.1});
-  s.session.load_files({joy, happy});
-  s.session.wait_idle(s.state);
+  s.engine.load_files({joy, happy});
+  s.engine.wait_idle(s.state);
   CHECK(layer_weights(s.state.document) == std::vector<double>{0.5, 0.5});
   set_pair_alpha(s.state.document, 0.9);
-  s.session.load_files({joy, clumsy});
-  s.session.wait_idle(s.state);
+  s.engine.load_files({joy, clumsy});
+  s.engine.wait_idle(s.state);
   CHECK(pair_alpha(s.state.document) == 0.5);
   // The same takes aligned again: their weights stay.
   set_pair_alpha(s.state.document, 0.8);
   s.state.document.controls.align.on = AlignOn::kHands;
-  s.session.wait_idle(s.state);
+  s.engine.wait_idle(s.state);
   CHECK(pair_alpha(s.state.document) == 0.8);
 }
 
 TEST_CASE("result view: a held slider mixes a preview, let go it is finished into the whole mix") {
-  LoadedSession s;
-  REQUIRE(s.session.result() != nullptr);
-  CHECK_FALSE(s.session.result_view().previewing());
+  LoadedTakes s;
+  REQUIRE(s.engine.result() != nullptr);
+  CHECK_FALSE(s.engine.result_view().previewing());
   set_pair_alpha(s.state.document, 0.3);
-  s.session.sync(s.state, /*item_held=*/true);  // the alpha slider dragged
-  CHECK(s.session.result_view().previewing());
-  CHECK(s.session.result()->motion.foot_sliding_cleaned == 0.0);  // no foot lock, no measures yet
-  s.session.sync(s.state, /*item_held=*/true);  // still held, nothing new: still the preview
-  CHECK(s.session.result_view().previewing());
-  s.session.sync(s.state, /*item_held=*/false);  // let go
-  CHECK_FALSE(s.session.result_view().previewing());
+  s.engine.sync(s.state, /*item_held=*/true);  // the alpha slider dragged
+  CHECK(s.engine.result_view().previewing());
+  CHECK(s.engine.result()->motion.foot_sliding_cleaned == 0.0);  // no foot lock, no measures yet
+  s.engine.sync(s.state, /*item_held=*/true);  // still held, nothing new: still the preview
+  CHECK(s.engine.result_view().previewing());
+  s.engine.sync(s.state, /*item_held=*/false);  // let go
+  CHECK_FALSE(s.engine.result_view().previewing());
   // The same as one whole mix of the document.
-  const PreparedTakes& p = *s.session.takes();
-  const Decomposed& d = *s.session.snapshot().decomposed;
+  const PreparedTakes& p = *s.engine.takes();
+  const Decomposed& d = *s.engine.snapshot().decomposed;
   MixScratch scratch;
   MixResult whole;
   mix_palette(p, d, mix_params_for(s.state.document, d, p.size()), scratch, whole);
-  CHECK(s.session.result()->motion.world == whole.motion.world);
-  CHECK(s.session.result()->motion.contacts == whole.motion.contacts);
-  CHECK(s.session.result()->motion.foot_sliding_cleaned == whole.motion.foot_sliding_cleaned);
-  CHECK(s.state.takes.back().positions.rows() == whole.motion.world.rows());
+  CHECK(s.engine.result()->motion.world == whole.motion.world);
+  CHECK(s.engine.result()->motion.contacts == whole.motion.contacts);
+  CHECK(s.engine.result()->motion.foot_sliding_cleaned == whole.motion.foot_sliding_cleaned);
+  CHECK(s.state.shown.back().positions.rows() == whole.motion.world.rows());
 }
 
 TEST_CASE("result view: a pair at alpha a is the engine's mix of its two layers, 1 - a and a, at any alpha the mix allows") {
-  LoadedSession s;
-  const PreparedTakes& p = *s.session.takes();
-  const Decomposed& d = *s.session.snapshot().decomposed;
+  LoadedTakes s;
+  const PreparedTakes& p = *s.engine.takes();
+  const Decomposed& d = *s.engine.snapshot().decomposed;
   for (double a : {0.0, 0.3, 1.0, -0.5, 1.5}) {
     INFO("alpha " << a);
     set_pair_alpha(s.state.document, a);
-    s.session.sync(s.state);
-    CHECK(s.session.result_error().empty());
+    s.engine.sync(s.state);
+    CHECK(s.engine.result_error().empty());
     // What the editor mixed for a pair before its weights were layers: weights (1 - a, a), the
     // document's options at their defaults.
     MixParams blend;
@@ -272,12 +272,12 @@ TEST_CASE("result view: a pair at alpha a is the engine's mix of its two layers,
     MixScratch scratch;
     MixResult out;
     mix_palette(p, d, blend, scratch, out);
-    CHECK(s.session.result()->motion.world == out.motion.world);
+    CHECK(s.engine.result()->motion.world == out.motion.world);
   }
   // Beyond the mix's range: the engine's sentence, the last result stays.
-  const Eigen::MatrixXd last = s.session.result()->motion.world;
+  const Eigen::MatrixXd last = s.engine.result()->motion.world;
   set_pair_alpha(s.state.document, 1.6);
-  s.session.sync(s.state);
-  CHECK_THAT(s.session.result_error(), Catch::Contains("expected weights from -0.50 to 1.50"));
-  CHECK(s.session.result()->motion.world == last);
+  s.engine.sync(s.state);
+  CHECK_THAT(s.engine.result_error(), Catch::Contains("expected weights from -0.50 to 1.50"));
+  CHECK(s.engine.result()->motion.world == last);
 }

@@ -30,7 +30,7 @@ SessionFile full_session() {
   Document& d = s.document;
   d.parameters = {7, 0.25};
   DocumentControls& c = d.controls;
-  c.mode = BlendMode::kPaper;
+  c.mode = DecompositionMode::kPaper;
   c.per_part = true;
   c.component_regions = {BodyRegion::kLeftLeg, BodyRegion::kSpineAndHead, BodyRegion::kRightArm, BodyRegion::kLeftLeg};
   c.basic_motions = 3;

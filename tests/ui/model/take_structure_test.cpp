@@ -7,7 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include "tests/test_data.h"
-#include "tests/ui/loaded_session.h"
+#include "tests/ui/loaded_takes.h"
 #include "ui/model/take_structure.h"
 
 using namespace mostyle;
@@ -73,10 +73,10 @@ TEST_CASE("take structure: the spans of a good-bye and a wave tile their frames,
   MOSTYLE_REQUIRE_SHARED_MOTIONS();
   // A good-bye (an action between rests) and a wave (strokes of the left hand), aligned by their
   // structure: both on their own frames.
-  const test::LoadedSession loaded(test::shared_motion("actions/bandai_bye_normal.bvh"),
+  const test::LoadedTakes loaded(test::shared_motion("actions/bandai_bye_normal.bvh"),
                               test::shared_motion("actions/bandai2_wave-left-hand_active.bvh"));
-  INFO(loaded.session.error());
-  const PreparedTakes* p = loaded.session.takes();
+  INFO(loaded.engine.error());
+  const PreparedTakes* p = loaded.engine.takes();
   REQUIRE(p != nullptr);
   for (const PreparedTake& t : p->takes) {
     const ActionSpans& s = t.cycles.spans;
@@ -100,9 +100,9 @@ TEST_CASE("take structure: the spans of a good-bye and a wave tile their frames,
 }
 
 TEST_CASE("take structure: a walk registered by cycles shows its own cycles again and again") {
-  const test::LoadedSession walks;  // the bundled pair
-  REQUIRE(walks.session.takes() != nullptr);
-  const PreparedTake& t = walks.session.takes()->takes[1];
+  const test::LoadedTakes walks;  // the bundled pair
+  REQUIRE(walks.engine.takes() != nullptr);
+  const PreparedTake& t = walks.engine.takes()->takes[1];
   REQUIRE_FALSE(t.registration.empty());
   const int frames = static_cast<int>(t.registration.source.size());
   const std::vector<StructureSpan> spans = structure_spans(t, frames, [&](int f) { return own_frame(t, f); });

@@ -12,7 +12,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "tests/ui/loaded_session.h"
+#include "tests/ui/loaded_takes.h"
 
 using namespace mostyle;
 using namespace mostyle::ui;
@@ -58,14 +58,14 @@ TEST_CASE("take warnings: a pair whose B says a wrong frame count shows the warn
   const std::string b = (dir / "marching_cut.bvh").string();
   std::ofstream(b) << text;
 
-  const test::LoadedSession s(test::asset("motions/cmu142_walk_happy.bvh"), b);
+  const test::LoadedTakes s(test::asset("motions/cmu142_walk_happy.bvh"), b);
   const EditorState& state = s.state;
   fs::remove_all(dir);
-  REQUIRE(state.takes.size() == 3);
-  REQUIRE(state.takes[1].ok());
-  CAPTURE(state.takes[0].warnings, state.takes[1].warnings);
+  REQUIRE(state.shown.size() == 3);
+  REQUIRE(state.shown[1].ok());
+  CAPTURE(state.shown[0].warnings, state.shown[1].warnings);
   bool on_b = false;
-  for (const std::string& w : state.takes[1].warnings) on_b |= w.find("marching_cut.bvh:") != std::string::npos;
+  for (const std::string& w : state.shown[1].warnings) on_b |= w.find("marching_cut.bvh:") != std::string::npos;
   CHECK(on_b);
-  for (const std::string& w : state.takes[0].warnings) CHECK(w.find("marching_cut.bvh:") == std::string::npos);
+  for (const std::string& w : state.shown[0].warnings) CHECK(w.find("marching_cut.bvh:") == std::string::npos);
 }

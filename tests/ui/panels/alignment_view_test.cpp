@@ -13,7 +13,7 @@
 #include <catch2/catch.hpp>
 
 #include "tests/test_data.h"
-#include "tests/ui/loaded_session.h"
+#include "tests/ui/loaded_takes.h"
 
 using namespace mostyle;
 using namespace mostyle::ui;
@@ -46,11 +46,11 @@ TEST_CASE("alignment view: the matched frames are each take's own, counted at it
   const fs::path dir = fs::temp_directory_path() / ("mostyle_alignment_view_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const int b_frames = 100;
-  const test::LoadedSession s(test::asset("motions/cmu142_walk_happy.bvh"), short_take_at_30(dir, b_frames));
-  const BlendSession& session = s.session;
+  const test::LoadedTakes s(test::asset("motions/cmu142_walk_happy.bvh"), short_take_at_30(dir, b_frames));
+  const EngineLink& engine = s.engine;
   fs::remove_all(dir);
-  INFO(session.error());
-  const PreparedTakes* p = session.takes();
+  INFO(engine.error());
+  const PreparedTakes* p = engine.takes();
   REQUIRE(p != nullptr);
   const Alignment& al = p->takes[1].alignment;
   REQUIRE(al.by_cycles());

@@ -19,7 +19,7 @@
 #include "engine/kinematics/kinematics.h"
 #include "tests/test_data.h"
 #include "tests/ui/imgui_frame.h"
-#include "tests/ui/loaded_session.h"
+#include "tests/ui/loaded_takes.h"
 #include "ui/panels/export_dialog.h"
 #include "ui/panels/files_panel.h"
 #include "ui/panels/metrics_panel.h"
@@ -27,7 +27,7 @@
 
 using namespace mostyle;
 using namespace mostyle::ui;
-using test::LoadedSession;
+using test::LoadedTakes;
 namespace fs = std::filesystem;
 
 namespace {
@@ -66,11 +66,11 @@ Clip export_and_read(ExportDialog& dialog, const std::string& path) {
 }  // namespace
 
 TEST_CASE("export dialog: at 60 fps the file has twice the blend's frames less one, at 30 the blend's own") {
-  LoadedSession s;
-  REQUIRE(s.session.result() != nullptr);
-  const int blend_frames = static_cast<int>(s.session.result()->motion.world.rows());
-  REQUIRE(s.session.snapshot().prepared->fps == 30.0);
-  ExportDialog dialog(s.session);
+  LoadedTakes s;
+  REQUIRE(s.engine.result() != nullptr);
+  const int blend_frames = static_cast<int>(s.engine.result()->motion.world.rows());
+  REQUIRE(s.engine.snapshot().prepared->fps == 30.0);
+  ExportDialog dialog(s.engine);
   dialog.poll();
   TempFile file("mostyle_export_dialog_rate.bvh");
 
@@ -109,13 +109,13 @@ TEST_CASE("export dialog: at 60 fps the file has twice the blend's frames less o
 }
 
 TEST_CASE("export dialog: an in and an out point give the frames between them, both included") {
-  LoadedSession s;
-  ExportDialog dialog(s.session);
+  LoadedTakes s;
+  ExportDialog dialog(s.engine);
   dialog.poll();  // the range starts as all of the blend
-  REQUIRE(s.session.result() != nullptr);
-  REQUIRE(s.session.result()->motion.world.rows() > 61);  // over 2 s at 30 fps
+  REQUIRE(s.engine.result() != nullptr);
+  REQUIRE(s.engine.result()->motion.world.rows() > 61);  // over 2 s at 30 fps
   CHECK(dialog.settings().in_s == 0.0);
-  CHECK(dialog.settings().out_s == Approx((s.session.result()->motion.world.rows() - 1) / 30.0));
+  CHECK(dialog.settings().out_s == Approx((s.engine.result()->motion.world.rows() - 1) / 30.0));
   TempFile file("mostyle_export_dialog_range.bvh");
   dialog.settings().range = ExportRange::kInOut;
   dialog.settings().in_s = 1.0;
@@ -127,17 +127,17 @@ TEST_CASE("export dialog: an in and an out point give the frames between them, b
   // An out point past the blend is brought back inside it by the next poll.
   dialog.settings().out_s = 1e6;
   dialog.poll();
-  CHECK(dialog.settings().out_s == Approx((s.session.result()->motion.world.rows() - 1) / 30.0));
+  CHECK(dialog.settings().out_s == Approx((s.engine.result()->motion.world.rows() - 1) / 30.0));
 }
 
 TEST_CASE("export dialog: the loop is written whole, so it repeats at any rate") {
-  LoadedSession s;
+  LoadedTakes s;
   s.state.document.controls.loop = true;
-  s.session.sync(s.state);
-  REQUIRE(s.session.result() != nullptr);
-  REQUIRE(s.session.result()->motion.loop.cycles >= 1);
-  const int loop_frames = static_cast<int>(s.session.result()->motion.world.rows());
-  ExportDialog dialog(s.session);
+  s.engine.sync(s.state);
+  REQUIRE(s.engine.result() != nullptr);
+  REQUIRE(s.engine.result()->motion.loop.cycles >= 1);
+  const int loop_frames = static_cast<int>(s.engine.result()->motion.world.rows());
+  ExportDialog dialog(s.engine);
   dialog.poll();
   TempFile file("mostyle_export_dialog_loop.bvh");
   dialog.settings().range = ExportRange::kLoop;
@@ -146,7 +146,7 @@ TEST_CASE("export dialog: the loop is written whole, so it repeats at any rate")
   CHECK_THAT(dialog.status().message, Catch::Contains("loop"));
   // Without a loop, the loop cannot be asked for.
   s.state.document.controls.loop = false;
-  s.session.sync(s.state);
+  s.engine.sync(s.state);
   fs::remove(file.path);
   set_path(dialog, file.path);
   CHECK(dialog.press_export() == Pressed::kFailed);
@@ -155,8 +155,8 @@ TEST_CASE("export dialog: the loop is written whole, so it repeats at any rate")
 }
 
 TEST_CASE("export dialog: an existing file is overwritten only once confirmed") {
-  LoadedSession s;
-  ExportDialog dialog(s.session);
+  LoadedTakes s;
+  ExportDialog dialog(s.engine);
   dialog.poll();
   TempFile file("mostyle_export_dialog_overwrite.bvh");
   { std::ofstream(file.path) << "old\n"; }
@@ -181,17 +181,17 @@ TEST_CASE("export dialog: an existing file is overwritten only once confirmed") 
 }
 
 TEST_CASE("export dialog: its message clears when new takes load") {
-  LoadedSession s;
-  ExportDialog dialog(s.session);
+  LoadedTakes s;
+  ExportDialog dialog(s.engine);
   dialog.poll();
   TempFile file("mostyle_export_dialog_message.bvh");
   export_and_read(dialog, file.path);
   CHECK_FALSE(dialog.status().message.empty());
   const double ms = dialog.status().ms;
   CHECK(ms >= 0.0);
-  s.session.load(test::asset("motions/cmu142_walk_joy.bvh"), test::asset("motions/cmu142_walk_happy.bvh"));
-  s.session.wait_idle(s.state);
-  REQUIRE(s.session.error().empty());
+  s.engine.load(test::asset("motions/cmu142_walk_joy.bvh"), test::asset("motions/cmu142_walk_happy.bvh"));
+  s.engine.wait_idle(s.state);
+  REQUIRE(s.engine.error().empty());
   dialog.poll();
   CHECK(dialog.status().message.empty());
   CHECK_FALSE(dialog.status().ok);
@@ -203,21 +203,21 @@ TEST_CASE("export dialog: its message clears when new takes load") {
   dialog.poll();
   CHECK_FALSE(dialog.status().message.empty());
   CHECK_FALSE(dialog.status().ok);
-  s.session.load(test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"));
-  s.session.wait_idle(s.state);
+  s.engine.load(test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"));
+  s.engine.wait_idle(s.state);
   dialog.poll();
   CHECK(dialog.status().message.empty());
 }
 
 TEST_CASE("export job: the job copies the blend, and a cancel before the solve writes nothing") {
-  LoadedSession s;
+  LoadedTakes s;
   TempFile file("mostyle_export_job_cancel.bvh");
   ExportOptions options;
   options.path = file.path;
-  options.fps = s.session.snapshot().prepared->fps;
-  const ExportRequest request = make_export_request(s.session, options);
+  options.fps = s.engine.snapshot().prepared->fps;
+  const ExportRequest request = make_export_request(s.engine, options);
   CHECK(request.options.path == fs::absolute(file.path).string());
-  CHECK(request.world == s.session.result()->motion.world);
+  CHECK(request.world == s.engine.result()->motion.world);
   JobControl cancelled;
   cancelled.cancel = true;
   const ExportOutcome outcome = run_export(request, &cancelled);
@@ -231,19 +231,19 @@ TEST_CASE("export job: the job copies the blend, and a cancel before the solve w
   ExportOutcome done;
   CHECK(job.take_outcome(&done));
   CHECK(done.ok);
-  CHECK(done.frames == s.session.result()->motion.world.rows());
+  CHECK(done.frames == s.engine.result()->motion.world.rows());
   CHECK_FALSE(job.take_outcome(&done));
   CHECK(fs::exists(file.path));
   // The same export here and now, without a job.
   fs::remove(file.path);
   CHECK(run_export(request).ok);
-  CHECK(read_bvh_file(file.path).frames() == s.session.result()->motion.world.rows());
+  CHECK(read_bvh_file(file.path).frames() == s.engine.result()->motion.world.rows());
 }
 
 TEST_CASE("export dialog: the window draws in every mode, and the files panel opens it") {
-  LoadedSession s;
+  LoadedTakes s;
   test::HeadlessImGui imgui;
-  FilesPanel files(s.session, test::asset("motions"));
+  FilesPanel files(s.engine, test::asset("motions"));
   TempFile file("mostyle_export_dialog_window.bvh");
   set_path(files.export_dialog(), file.path);
   auto frame = [&]() {
@@ -286,16 +286,16 @@ TEST_CASE("export dialog: the window draws in every mode, and the files panel op
 }
 
 TEST_CASE("export dialog: a palette's mix exports whole or from an in to an out point") {
-  LoadedSession s;
-  s.session.load_files({test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"),
+  LoadedTakes s;
+  s.engine.load_files({test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"),
                         test::asset("motions/cmu142_walk_joy.bvh")});
-  s.session.wait_idle(s.state);
-  REQUIRE(s.session.takes() != nullptr);
-  const MixResult* mix = s.session.result_view().mix();
+  s.engine.wait_idle(s.state);
+  REQUIRE(s.engine.takes() != nullptr);
+  const MixResult* mix = s.engine.result_view().mix();
   REQUIRE(mix != nullptr);
   const int mix_frames = static_cast<int>(mix->motion.world.rows());
   REQUIRE(mix_frames > 61);
-  ExportDialog dialog(s.session);
+  ExportDialog dialog(s.engine);
   dialog.poll();
   // The range is all of the mix, not 0 to 0.
   CHECK(dialog.settings().in_s == 0.0);
@@ -346,9 +346,9 @@ TEST_CASE("export dialog: the format is the file's extension, glTF and FBX expor
   CHECK(with_export_format("blend", ExportFormat::kGltf) == "blend.glb");
   CHECK(with_export_format("", ExportFormat::kGltf).empty());
 
-  LoadedSession s;
-  REQUIRE(s.session.result() != nullptr);
-  ExportDialog dialog(s.session);
+  LoadedTakes s;
+  REQUIRE(s.engine.result() != nullptr);
+  ExportDialog dialog(s.engine);
   dialog.poll();
   TempFile bvh("mostyle_export_dialog_format.bvh"), glb("mostyle_export_dialog_format.glb"),
       fbx("mostyle_export_dialog_format.fbx");
@@ -391,29 +391,29 @@ TEST_CASE("export dialog: the file is named after the result, a blend, a mix or 
   CHECK(std::string(result_name(2, true)) == "transfer");  // a pair's transfer: B's style on A
   CHECK(std::string(result_name(3, false)) == "mix");
 
-  LoadedSession s;
+  LoadedTakes s;
   test::HeadlessImGui imgui;
-  FilesPanel files(s.session, test::asset("motions"));
+  FilesPanel files(s.engine, test::asset("motions"));
   auto frame = [&]() {
     imgui.begin_frame();
-    s.session.poll(s.state);
+    s.engine.poll(s.state);
     files.draw(s.state);
-    s.session.sync(s.state);
+    s.engine.sync(s.state);
     imgui.end_frame();
   };
   frame();
   CHECK(std::string(files.export_dialog().settings().path) == "blend.bvh");
-  s.session.load_files({test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"),
+  s.engine.load_files({test::asset("motions/cmu142_walk_happy.bvh"), test::asset("motions/cmu142_walk_marching.bvh"),
                         test::asset("motions/cmu142_walk_joy.bvh")});
-  s.session.wait_idle(s.state);
-  REQUIRE(s.session.takes() != nullptr);
+  s.engine.wait_idle(s.state);
+  REQUIRE(s.engine.takes() != nullptr);
   frame();
   CHECK(std::string(files.export_dialog().settings().path) == "mix.bvh");
-  CHECK(gather_metrics(s.session, s.state.document.controls.transfer).result == "mix");
+  CHECK(gather_metrics(s.engine, s.state.document.controls.transfer).result == "mix");
   s.state.document.controls.transfer = true;
   frame();
   CHECK(std::string(files.export_dialog().settings().path) == "transfer.bvh");
-  CHECK(gather_metrics(s.session, s.state.document.controls.transfer).result == "transfer");
+  CHECK(gather_metrics(s.engine, s.state.document.controls.transfer).result == "transfer");
   // A name typed stays, whatever the mode.
   set_path(files.export_dialog(), "proud.glb");
   s.state.document.controls.transfer = false;
@@ -422,12 +422,12 @@ TEST_CASE("export dialog: the file is named after the result, a blend, a mix or 
 }
 
 TEST_CASE("export dialog: the in and out fields take a frame typed after one click") {
-  LoadedSession s;
+  LoadedTakes s;
   test::HeadlessImGui imgui;
   ImGuiIO& io = ImGui::GetIO();
   constexpr int kEnter = 257;
   io.KeyMap[ImGuiKey_Enter] = kEnter;
-  ExportDialog dialog(s.session);
+  ExportDialog dialog(s.engine);
   s.state.view.show_export = true;
   dialog.settings().range = ExportRange::kInOut;
   dialog.settings().range_in_frames = true;

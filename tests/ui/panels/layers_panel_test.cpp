@@ -13,7 +13,7 @@
 
 #include "tests/test_data.h"
 #include "tests/ui/imgui_frame.h"
-#include "tests/ui/loaded_session.h"
+#include "tests/ui/loaded_takes.h"
 #include "ui/model/document_mix.h"
 #include "ui/model/keyed_weights.h"
 #include "ui/model/result_view.h"
@@ -23,7 +23,7 @@
 
 using namespace mostyle;
 using namespace mostyle::ui;
-using test::LoadedSession;
+using test::LoadedTakes;
 
 namespace {
 
@@ -59,23 +59,23 @@ ImGuiID row_item(const ImGuiWindow*, const void* arg) {
 
 // The layers panel over `takes` bundled takes (k 6, sparsity 0.2), one editor frame at a time.
 struct Layers {
-  LoadedSession s;
+  LoadedTakes s;
   test::HeadlessImGui imgui;
-  LayersPanel panel{s.session};
+  LayersPanel panel{s.engine};
 
   explicit Layers(int takes = 3) {
     if (takes != 2) {
-      s.session.load_files(bundled(takes));
-      s.session.wait_idle(s.state);
+      s.engine.load_files(bundled(takes));
+      s.engine.wait_idle(s.state);
     }
     s.state.playback.playing = false;
   }
   // A frame as the editor draws it: the panel, then the engine brought to the document.
   int frame() {
     imgui.begin_frame();
-    s.session.poll(s.state);
+    s.engine.poll(s.state);
     panel.draw(s.state);
-    s.session.sync(s.state, ImGui::IsAnyItemActive());
+    s.engine.sync(s.state, ImGui::IsAnyItemActive());
     return imgui.end_frame();
   }
   // The mouse moved over window `title` until ImGui gives the item `id` the hover; false when
@@ -116,8 +116,8 @@ struct Layers {
     click();
   }
   std::vector<double> mix_weights() {
-    const int n = s.session.takes()->size();
-    return take_weights(mix_params_for(s.state.document, *s.session.snapshot().decomposed, n).layers, n);
+    const int n = s.engine.takes()->size();
+    return take_weights(mix_params_for(s.state.document, *s.engine.snapshot().decomposed, n).layers, n);
   }
   // Take `take`'s weight field dragged `pixels` to the left from its middle, a few pixels a frame.
   void drag_weight(int take, float pixels) {
@@ -137,7 +137,7 @@ struct Layers {
 };
 
 // The largest horizontal distance between two takes' hips over their frames (Y up).
-double hips_gap(const Take& a, const Take& b) {
+double hips_gap(const ShownMotion& a, const ShownMotion& b) {
   double gap = 0.0;
   for (int f = 0; f < std::min(a.frames(), b.frames()); ++f) {
     const Eigen::Vector3d d = a.positions.row(f).head<3>() - b.positions.row(f).head<3>();
@@ -147,7 +147,7 @@ double hips_gap(const Take& a, const Take& b) {
 }
 
 // The mean distance of the joints from where they stand on the hips, between two takes at a frame.
-double pose_distance(const Take& a, const Take& b, int frame) {
+double pose_distance(const ShownMotion& a, const ShownMotion& b, int frame) {
   const int joints = static_cast<int>(a.positions.cols() / 3);
   double sum = 0.0;
   for (int j = 0; j < joints; ++j) {
@@ -162,7 +162,7 @@ double pose_distance(const Take& a, const Take& b, int frame) {
 
 TEST_CASE("layers panel: two takes, a row each, B's weight moves A's, and B's alignment in its tab") {
   Layers t(2);
-  REQUIRE(t.s.session.takes()->size() == 2);
+  REQUIRE(t.s.engine.takes()->size() == 2);
   t.frame();
   CHECK(t.has(0, "##w"));
   CHECK(t.has(1, "##w"));
@@ -170,14 +170,14 @@ TEST_CASE("layers panel: two takes, a row each, B's weight moves A's, and B's al
   CHECK(t.has(0, "##timeline"));
   CHECK(t.has(1, "##timeline"));
   // B's weight dragged down: A's follows (they sum to 1), the result is mixed at once.
-  const Eigen::MatrixXd before = t.s.session.result()->motion.world;
+  const Eigen::MatrixXd before = t.s.engine.result()->motion.world;
   t.drag_weight(1, 30.0f);
   const std::vector<double> w = layer_weights(t.s.state.document);
   REQUIRE(w.size() == 2);
   CHECK(w[1] < 0.5);
   CHECK(w[0] + w[1] == Approx(1.0));
   CHECK(pair_alpha(t.s.state.document) == w[1]);
-  CHECK_FALSE(t.s.session.result()->motion.world.isApprox(before));
+  CHECK_FALSE(t.s.engine.result()->motion.world.isApprox(before));
   // The alignment of B onto A: its tab draws the plots.
   CHECK(t.panel.aligned_take() == 1);
   REQUIRE(t.hover(kTitle, alignment_tab, nullptr));
@@ -190,7 +190,7 @@ TEST_CASE("layers panel: two takes, a row each, B's weight moves A's, and B's al
 
 TEST_CASE("layers panel: four takes, a row each, weights that sum to 1, and the alignment of the take picked") {
   Layers t(4);
-  REQUIRE(t.s.session.takes()->size() == 4);
+  REQUIRE(t.s.engine.takes()->size() == 4);
   t.frame();
   for (int i = 0; i < 4; ++i) {
     INFO("take " << i);
@@ -204,7 +204,7 @@ TEST_CASE("layers panel: four takes, a row each, weights that sum to 1, and the 
   double sum = 0.0;
   for (double x : w) sum += x;
   CHECK(sum == Approx(1.0));
-  CHECK(t.s.session.result_view().error().empty());
+  CHECK(t.s.engine.result_view().error().empty());
   // The last take's name picks its alignment, which the tab then shows.
   const RowItem name{3, "###name"};
   REQUIRE(t.hover(kTitle, row_item, &name));
@@ -214,21 +214,21 @@ TEST_CASE("layers panel: four takes, a row each, weights that sum to 1, and the 
   t.click();
   CHECK(t.frame() > 1000);
   // Each take's row tells its structure: the bundled walks are gait cycles.
-  const PreparedTake& take = t.s.session.takes()->takes[3];
+  const PreparedTake& take = t.s.engine.takes()->takes[3];
   REQUIRE_FALSE(take.cycles.cycles.empty());
   CHECK_THAT(frame_structure_words(take, take.cycles.cycles.front().begin), Catch::StartsWith("gait cycle 1 of"));
 }
 
 TEST_CASE("layers panel: a pair's transfer puts B's style on A, which keeps its path, as `transfer A --style B` does") {
   Layers t(2);
-  LoadedSession& s = t.s;
+  LoadedTakes& s = t.s;
   s.state.document.overlay = true;  // no lateral offsets: the takes can be compared
   DocumentControls& c = s.state.document.controls;
   c.timing_a = true;
   set_pair_alpha(s.state.document, 1.0);
-  s.session.sync(s.state);
-  const Take& a = s.state.takes[0];
-  const Take& result = s.state.takes[result_index(2)];
+  s.engine.sync(s.state);
+  const ShownMotion& a = s.state.shown[0];
+  const ShownMotion& result = s.state.shown[result_index(2)];
   const Eigen::VectorXd ys = a.positions.row(0)(Eigen::seqN(1, a.positions.cols() / 3, 3)).transpose();
   const double height = ys.maxCoeff() - ys.minCoeff();
   // A blend at alpha 1 walks B's route: the marching take goes its own way, far from A's.
@@ -246,8 +246,8 @@ TEST_CASE("layers panel: a pair's transfer puts B's style on A, which keeps its 
   CHECK_FALSE(t.hover(kTitle, labelled, "Neutral"));
   CHECK(t.has(1, "##strength"));
   CHECK_FALSE(t.has(0, "##strength"));
-  REQUIRE(s.session.result() != nullptr);
-  const MixParams m = mix_params_for(s.state.document, *s.session.snapshot().decomposed, 2);
+  REQUIRE(s.engine.result() != nullptr);
+  const MixParams m = mix_params_for(s.state.document, *s.engine.snapshot().decomposed, 2);
   CHECK(m.feet_of_reference);
   CHECK(m.path_leash == transfer_path_leash(TransferNeutral::kContent, false));
   CHECK(take_weights(m.layers, 2) == std::vector<double>{0.0, 1.0});
@@ -274,7 +274,7 @@ TEST_CASE("layers panel: a transfer's neutral can be none, the content its own n
   DocumentControls& c = t.s.state.document.controls;
   c.transfer = true;
   t.frame();
-  REQUIRE(t.s.session.takes()->size() == 3);
+  REQUIRE(t.s.engine.takes()->size() == 3);
   // No take is named neutral: the transfer starts with the content its own neutral.
   CHECK(c.content_neutral);
   c.content_neutral = false;
@@ -294,8 +294,8 @@ TEST_CASE("layers panel: a transfer's neutral can be none, the content its own n
   CHECK(t.has(1, "##strength"));
   CHECK(t.has(2, "##strength"));
   // The mix the editor shows is made with them, without an error.
-  CHECK(t.s.session.result_view().error().empty());
-  REQUIRE(t.s.session.result_view().mix() != nullptr);
+  CHECK(t.s.engine.result_view().error().empty());
+  REQUIRE(t.s.engine.result_view().mix() != nullptr);
 
   // A take chosen again is the neutral again.
   t.choose_neutral("marching");
@@ -315,7 +315,7 @@ TEST_CASE("layers panel: Transfer comes in on the content's timing, as the comma
   t.click();
   CHECK(c.transfer);
   CHECK(timing);
-  CHECK(mix_params_for(t.s.state.document, *t.s.session.snapshot().decomposed, 3).reference_timing);
+  CHECK(mix_params_for(t.s.state.document, *t.s.engine.snapshot().decomposed, 3).reference_timing);
   // Clicked again, it changes nothing (a timing the animator set stays).
   timing = false;
   t.click();

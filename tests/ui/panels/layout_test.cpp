@@ -10,7 +10,7 @@
 #include <catch2/catch.hpp>
 
 #include "tests/ui/imgui_frame.h"
-#include "tests/ui/loaded_session.h"
+#include "tests/ui/loaded_takes.h"
 #include "ui/panels/layout.h"
 
 using namespace mostyle;
@@ -32,14 +32,14 @@ PanelRect window_rect(PanelId id) {
 }
 
 // One editor frame of the panels, laid out as app/editor/editor.cpp does.
-void panels_frame(test::HeadlessImGui& imgui, test::LoadedSession& s, std::vector<std::unique_ptr<Panel>>& panels,
+void panels_frame(test::HeadlessImGui& imgui, test::LoadedTakes& s, std::vector<std::unique_ptr<Panel>>& panels,
                   glm::vec2* last_display) {
   imgui.begin_frame();
   track_display_size(s.state, last_display);
-  s.session.poll(s.state);
+  s.engine.poll(s.state);
   for (auto& panel : panels) panel->draw(s.state);
   s.state.view.reset_layout = false;
-  s.session.sync(s.state);
+  s.engine.sync(s.state);
   imgui.end_frame();
 }
 
@@ -81,9 +81,9 @@ TEST_CASE("the layout keeps every panel inside the display, off the centre and o
 }
 
 TEST_CASE("the panels take their places from the layout at 1280x720, 1920x1080 and 2560x1440") {
-  test::LoadedSession s;
+  test::LoadedTakes s;
   test::HeadlessImGui imgui;
-  auto panels = test::all_panels(s.session);
+  auto panels = test::all_panels(s.engine);
   glm::vec2 last_display(0.0f);
   for (const Display& d : kDisplays) {
     CAPTURE(d.width, d.height);
@@ -107,9 +107,9 @@ TEST_CASE("the panels take their places from the layout at 1280x720, 1920x1080 a
 }
 
 TEST_CASE("a moved panel stays until Reset layout or a new display size") {
-  test::LoadedSession s;
+  test::LoadedTakes s;
   test::HeadlessImGui imgui;
-  auto panels = test::all_panels(s.session);
+  auto panels = test::all_panels(s.engine);
   glm::vec2 last_display(0.0f);
   ImGui::GetIO().DisplaySize = ImVec2(1280.0f, 720.0f);
   for (int frame = 0; frame < 2; ++frame) panels_frame(imgui, s, panels, &last_display);

@@ -9,14 +9,14 @@
 #include <imgui_internal.h>  // ImGui::FindWindowByName, GImGui->HoveredId, ImHashData, ImHashStr
 
 #include "tests/ui/imgui_frame.h"
-#include "tests/ui/loaded_session.h"
+#include "tests/ui/loaded_takes.h"
 #include "ui/model/edit_history.h"
 #include "ui/model/keyed_weights.h"
 #include "ui/panels/layout.h"
 
 using namespace mostyle;
 using namespace mostyle::ui;
-using test::LoadedSession;
+using test::LoadedTakes;
 
 namespace {
 
@@ -24,7 +24,7 @@ constexpr int kDeleteKey = 4;  // io.KeyMap's slot for Delete in these tests
 
 // The timeline and the undo history over a loaded pair, one editor frame at a time.
 struct Timeline {
-  LoadedSession s;
+  LoadedTakes s;
   test::HeadlessImGui imgui;
   PlaybackPanel panel;
   EditHistory edits;
@@ -36,10 +36,10 @@ struct Timeline {
   // The panel, then the step recorded and the engine brought to the document, as the editor does.
   void frame() {
     imgui.begin_frame();
-    s.session.poll(s.state);
+    s.engine.poll(s.state);
     panel.draw(s.state);
-    edits.record(s.state, s.session, ImGui::IsAnyItemActive());
-    s.session.sync(s.state, ImGui::IsAnyItemActive());
+    edits.record(s.state, s.engine, ImGui::IsAnyItemActive());
+    s.engine.sync(s.state, ImGui::IsAnyItemActive());
     imgui.end_frame();
   }
   const WeightKeys& keys() const { return s.state.document.controls.keys; }
@@ -92,7 +92,7 @@ TEST_CASE("timeline: K keys the style at the playhead, a mark drags in time as o
   t.go_to(40);
   t.frame();
   set_weights_at_playhead(state, 2, {0.0, 1.0});
-  t.edits.record(state, t.s.session, /*item_active=*/true);
+  t.edits.record(state, t.s.engine, /*item_active=*/true);
   t.frame();
   REQUIRE(t.keys().size() == 2);
   CHECK(t.edits.history().undo_steps() == 2);
@@ -144,11 +144,11 @@ TEST_CASE("timeline: K keys the style at the playhead, a mark drags in time as o
   CHECK(t.edits.history().undo_steps() == 5);
 
   // Undone step by step: the last key back, then the first, then the drag.
-  REQUIRE(t.edits.undo(state, t.s.session));
+  REQUIRE(t.edits.undo(state, t.s.engine));
   CHECK(t.keys().size() == 1);
-  REQUIRE(t.edits.undo(state, t.s.session));
+  REQUIRE(t.edits.undo(state, t.s.engine));
   REQUIRE(t.keys().size() == 2);
-  REQUIRE(t.edits.undo(state, t.s.session));
+  REQUIRE(t.edits.undo(state, t.s.engine));
   CHECK(t.keys()[1].seconds == Approx(40 / t.fps()));
 }
 

@@ -1,4 +1,4 @@
-#include "engine/run/worker.h"
+#include "engine/worker/worker.h"
 
 #include <chrono>
 #include <functional>
@@ -39,7 +39,7 @@ std::vector<std::shared_ptr<const Clip>> read_clips(const std::vector<std::strin
 // so a palette leaves them out of the request instead of refusing it.
 DecomposeParams decompose_params_for(int takes, DecomposeParams params) {
   if (takes <= 2) return params;
-  params.mode = BlendMode::kShared;
+  params.mode = DecompositionMode::kShared;
   params.basic_motions = 0;
   params.basic_sparsities.clear();
   return params;

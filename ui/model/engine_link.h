@@ -17,7 +17,7 @@
 
 #include <Eigen/Core>
 
-#include "engine/run/worker.h"
+#include "engine/worker/worker.h"
 #include "ui/model/editor_state.h"
 #include "ui/model/error_sweep.h"
 #include "ui/model/result_view.h"
@@ -30,13 +30,13 @@ namespace mostyle::ui {
 // order of the takes, the command line: kept when they are one per take).
 enum class WeightsOf { kLoadedTakes, kNewTakes };
 
-class BlendSession {
+class EngineLink {
  public:
   // Takes are read with `read` (the editor passes the memory limit MOSTYLE_MAX_MEMORY_MB sets).
-  explicit BlendSession(const BvhReadOptions& read = {});
-  ~BlendSession();
-  BlendSession(const BlendSession&) = delete;
-  BlendSession& operator=(const BlendSession&) = delete;
+  explicit EngineLink(const BvhReadOptions& read = {});
+  ~EngineLink();
+  EngineLink(const EngineLink&) = delete;
+  EngineLink& operator=(const EngineLink&) = delete;
 
   // Asks for the takes `paths`, 2 to 16 (one: the take with itself; the first the reference),
   // mixed with the document's layers, taken as `weights` says once the takes arrive. What was

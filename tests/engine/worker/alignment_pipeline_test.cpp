@@ -14,7 +14,7 @@
 #include "engine/io/motion_file.h"
 #include "engine/base/clip.h"
 #include "engine/kinematics/units.h"
-#include "tests/engine/run/blend_at.h"
+#include "tests/engine/worker/blend_at.h"
 #include "tests/test_data.h"
 
 using namespace mostyle;

@@ -1,6 +1,6 @@
 // The worker thread (engine/worker.h). Built as its own executable, mostyle_worker_tests, which
 // CI also runs under ThreadSanitizer.
-#include "engine/run/worker.h"
+#include "engine/worker/worker.h"
 
 #include <atomic>
 #include <catch2/catch.hpp>
@@ -369,7 +369,7 @@ TEST_CASE("loads a palette of three bundled takes and decomposes it", "[worker][
   CHECK(s->version >= 2);  // loaded, decomposed
   // The current parameters: the default decomposition.
   CHECK(s->decomposed->components() == DecomposeParams().components);
-  CHECK(s->decomposed->params.mode == BlendMode::kShared);
+  CHECK(s->decomposed->params.mode == DecompositionMode::kShared);
   // A mix of the snapshot has frames, one pose column per shared joint, a source per take.
   const MixResult mix = mix_of(*s);
   CHECK(mix.motion.world.rows() > 0);
@@ -391,7 +391,7 @@ TEST_CASE("new decomposition parameters decompose the palette again, in shared m
   d.sparsity = 0.3;
   SECTION("shared mode") {}
   SECTION("paper mode with basic motions, which are the pair's, decomposes shared components") {
-    d.mode = BlendMode::kPaper;
+    d.mode = DecompositionMode::kPaper;
     d.basic_motions = 2;
   }
   w.decompose(d);
@@ -404,7 +404,7 @@ TEST_CASE("new decomposition parameters decompose the palette again, in shared m
   CHECK(after->decomposed != before->decomposed);
   CHECK(after->decomposed->components() == 4);
   CHECK(after->decomposed->params.sparsity == 0.3);
-  CHECK(after->decomposed->params.mode == BlendMode::kShared);
+  CHECK(after->decomposed->params.mode == DecompositionMode::kShared);
   CHECK(after->decomposed->params.basic_motions == 0);
   CHECK(after->decompose_params.mode == d.mode);  // the request, as made
 
@@ -436,7 +436,7 @@ TEST_CASE("one chain for any number of takes: two, three, two again", "[worker][
 
   // Two takes again: decomposed with the parameters asked for, basic motions and all.
   DecomposeParams d;
-  d.mode = BlendMode::kPaper;
+  d.mode = DecompositionMode::kPaper;
   d.basic_motions = 1;
   d.components = 4;
   w.decompose(d);
@@ -446,7 +446,7 @@ TEST_CASE("one chain for any number of takes: two, three, two again", "[worker][
   INFO(pair->error);
   REQUIRE(pair->decomposed);
   CHECK(pair->prepared->size() == 2);
-  CHECK(pair->decomposed->params.mode == BlendMode::kPaper);
+  CHECK(pair->decomposed->params.mode == DecompositionMode::kPaper);
   CHECK(pair->decomposed->params.basic_motions == 1);
   CHECK(mix_of(*pair, {0.25, 0.75}).sources.cols() == 2);
 }

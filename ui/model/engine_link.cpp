@@ -1,4 +1,4 @@
-#include "ui/model/blend_session.h"
+#include "ui/model/engine_link.h"
 
 #include <algorithm>
 
@@ -16,7 +16,7 @@ DecomposeParams decompose_params_for(const Document& document) {
   p.mode = c.mode;
   p.components = document.parameters.components;
   p.sparsity = document.parameters.sparsity;
-  if (p.mode == BlendMode::kPaper && c.basic_motions > 0) {
+  if (p.mode == DecompositionMode::kPaper && c.basic_motions > 0) {
     p.basic_motions = c.basic_motions;
     p.basic_sparsities = c.basic_sparsities;
     p.basic_sparsities.resize(static_cast<size_t>(p.basic_motions), p.sparsity);
@@ -33,11 +33,11 @@ bool same_decomposition(const DecomposeParams& x, const DecomposeParams& y) {
 
 }  // namespace
 
-BlendSession::BlendSession(const BvhReadOptions& read)
+EngineLink::EngineLink(const BvhReadOptions& read)
     : worker_(read), sweep_(read), snapshot_(worker_.snapshot()) {}
-BlendSession::~BlendSession() = default;
+EngineLink::~EngineLink() = default;
 
-void BlendSession::load_files(const std::vector<std::string>& paths, WeightsOf weights) {
+void EngineLink::load_files(const std::vector<std::string>& paths, WeightsOf weights) {
   requested_files_.clear();
   for (const std::string& path : paths)
     if (!path.empty() || requested_files_.empty()) requested_files_.push_back(path);
@@ -45,27 +45,27 @@ void BlendSession::load_files(const std::vector<std::string>& paths, WeightsOf w
   weights_of_ = weights;
 }
 
-std::vector<std::string> BlendSession::requested_takes() const {
+std::vector<std::string> EngineLink::requested_takes() const {
   if (requested_a().empty()) return {};
   std::vector<std::string> takes = requested_files_;
   if (takes.size() == 1) takes.push_back(takes[0]);  // A with itself
   return takes;
 }
 
-void BlendSession::load(const std::string& path_a, const std::string& path_b) { load_files({path_a, path_b}); }
+void EngineLink::load(const std::string& path_a, const std::string& path_b) { load_files({path_a, path_b}); }
 
-PrepareOptions BlendSession::prepare_options(const Document& document) const {
+PrepareOptions EngineLink::prepare_options(const Document& document) const {
   PrepareOptions o;
   o.align = document.controls.align;
   return o;
 }
 
-void BlendSession::request_decomposition(const Document& document) {
+void EngineLink::request_decomposition(const Document& document) {
   requested_ = decompose_params_for(document);
   worker_.decompose(requested_);
 }
 
-void BlendSession::sync(EditorState& state, bool item_held) {
+void EngineLink::sync(EditorState& state, bool item_held) {
   const Document& d = state.document;
   // What the document's change since the worker was last asked makes stale (document_fields.h),
   // once nothing is held. The decomposition first: a load decomposes with the parameters last
@@ -85,22 +85,22 @@ void BlendSession::sync(EditorState& state, bool item_held) {
   update_result(state, item_held);
 }
 
-bool BlendSession::decomposition_outdated() const {
+bool EngineLink::decomposition_outdated() const {
   return !snapshot_->decomposed || !same_decomposition(snapshot_->decompose_params, requested_);
 }
 
-void BlendSession::set_wake(std::function<void()> wake) {
+void EngineLink::set_wake(std::function<void()> wake) {
   wake_ = std::move(wake);
   worker_.set_on_change(wake_);
   sweep_.set_wake(wake_);
 }
 
-bool BlendSession::has_news() const {
+bool EngineLink::has_news() const {
   if (worker_.snapshot()->version != seen_version_) return true;
   return sweep_.has_news();
 }
 
-void BlendSession::poll(EditorState& state) {
+void EngineLink::poll(EditorState& state) {
   sweep_.poll();
   auto snap = worker_.snapshot();
   if (snap->version == seen_version_) return;
@@ -129,8 +129,8 @@ void BlendSession::poll(EditorState& state) {
 
 // New takes: the takes and their result shown, and they join the recent takes; the error curve
 // of the previous takes goes.
-void BlendSession::take_up_takes(EditorState& state) {
-  state.takes.clear();
+void EngineLink::take_up_takes(EditorState& state) {
+  state.shown.clear();
   state.cycle_provenance.clear();  // of the previous takes' result
   sweep_.clear();
   view_.clear();
@@ -144,7 +144,7 @@ void BlendSession::take_up_takes(EditorState& state) {
 
 // A new decomposition: the layers' weights per component fitted to its components, and its point
 // on the error curve (the curve for new takes, sparsity or mode computed in the background).
-void BlendSession::take_up_decomposition(EditorState& state) {
+void EngineLink::take_up_decomposition(EditorState& state) {
   const Decomposed* d = seen_decomposed_;
   DocumentControls& c = state.document.controls;
   if (d->shared() != nullptr) fit_component_weights(state.document, *d);
@@ -152,11 +152,11 @@ void BlendSession::take_up_decomposition(EditorState& state) {
   sweep_.add(*d, seen_prepared_, snapshot_->paths, prepare_options(asked_));
 }
 
-void BlendSession::update_result(EditorState& state, bool item_held) {
+void EngineLink::update_result(EditorState& state, bool item_held) {
   if (const PreparedTakes* p = takes()) view_.update(*p, snapshot_->decomposed.get(), state, item_held);
 }
 
-void BlendSession::wait_idle(EditorState& state) {
+void EngineLink::wait_idle(EditorState& state) {
   sync(state);
   worker_.wait_idle();
   poll(state);  // a new decomposition starts the error sweep

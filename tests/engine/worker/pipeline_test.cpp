@@ -18,7 +18,7 @@
 #include "engine/kinematics/resample.h"
 #include "engine/kinematics/units.h"
 #include "tests/engine/skeleton_builder.h"
-#include "tests/engine/run/blend_at.h"
+#include "tests/engine/worker/blend_at.h"
 #include "tests/test_data.h"
 
 using namespace mostyle;
@@ -167,7 +167,7 @@ PairCheck check_pair(const std::shared_ptr<const Clip>& a, const std::shared_ptr
   }
   if (paper) {
     DecomposeParams params = reproduction_params();
-    params.mode = BlendMode::kPaper;
+    params.mode = DecompositionMode::kPaper;
     const auto dp = decompose_takes(*p, params);
     c.paper_finite = blend_at(*p, *dp, 0.5).motion.world.allFinite() && blend_at(*p, *dp, 1.0).motion.world.allFinite();
   }
