@@ -76,7 +76,8 @@ FinishOptions output_clock(const PreparedTakes& p, const ClockWeights& weights, 
 // MixParams::path_leash, 0: free), and then facing within kPathLeashHeading of
 // its heading (keep_near_heading), with the stride map from the root before the leash to the root
 // kept (s.stride_u, stride_map; empty without a leash, and for a reference without gait cycles).
-// O(U x N).
+// On a leash, a whole loop of a reference without gait cycles travels as the reference does over
+// it. O(U x N).
 void mix_root(const PreparedTakes& p, const WeightKeys& keys, const std::vector<double>& root_w, double root_pull_seconds,
               const PathLeash& leash, const PlayedStretch& st, MixedTrajectory& s);
 
