@@ -264,19 +264,28 @@ void own_poses(const PreparedTakes& p, const MixParams& params, const Eigen::Mat
                Eigen::MatrixXd& local) {
   const bool keyed = !params.keys.empty();
   const Eigen::Index channels = p.takes.front().own_local_t.rows();
-  s.local_t.setZero(channels, sources.rows());
-  for (Eigen::Index k = 0; k < sources.rows(); ++k) {
-    auto column = s.local_t.col(k);
-    for (int i = 0; i < p.size(); ++i) {
-      const double w = keyed ? s.trajectory.frame_w(k, i) : s.weights[i];
-      if (w == 0.0) continue;
-      const Eigen::MatrixXd& x = p.takes[i].own_local_t;
-      const RowAt at(sources(k, i), x.cols());
-      column.noalias() += (w * (1.0 - at.f)) * x.col(at.r);
-      if (at.f != 0.0) column.noalias() += (w * at.f) * x.col(at.next);
+  const Eigen::Index frames = sources.rows();
+  // A block of output frames at a time, turned into local's rows while it is still in the cache.
+  constexpr Eigen::Index kBlock = 64;
+  s.local_t.resize(channels, std::min(kBlock, frames));
+  local.resize(frames, channels);
+  for (Eigen::Index k0 = 0; k0 < frames; k0 += kBlock) {
+    const Eigen::Index n = std::min(kBlock, frames - k0);
+    s.local_t.leftCols(n).setZero();
+    for (Eigen::Index b = 0; b < n; ++b) {
+      const Eigen::Index k = k0 + b;
+      auto column = s.local_t.col(b);
+      for (int i = 0; i < p.size(); ++i) {
+        const double w = keyed ? s.trajectory.frame_w(k, i) : s.weights[i];
+        if (w == 0.0) continue;
+        const Eigen::MatrixXd& x = p.takes[i].own_local_t;
+        const RowAt at(sources(k, i), x.cols());
+        column.noalias() += (w * (1.0 - at.f)) * x.col(at.r);
+        if (at.f != 0.0) column.noalias() += (w * at.f) * x.col(at.next);
+      }
     }
+    local.middleRows(k0, n) = s.local_t.leftCols(n).transpose();
   }
-  local = s.local_t.transpose();
 }
 
 // sum_i w_i (W_i C scale + mean_i) at the output frames: each take's reconstruction without its
