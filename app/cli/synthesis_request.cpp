@@ -232,10 +232,11 @@ void add_pair_words(const PreparedTakes& prepared, const Decomposed& d, const Mi
                             {"cost_ratio", vector_json(ratio)},
                             {"slope", vector_json(slope)}};
   report["alignment"] = alignment;
-  report["reconstruction_rmse"] = {{"a", d.rmse[0]}, {"b", d.rmse[1]}};
+  const MixMeasures measures = mix_measures(prepared, &d, nullptr);
+  report["reconstruction_rmse"] = {{"a", *measures.takes[0].fit_error}, {"b", *measures.takes[1].fit_error}};
   report["component_nonzero_fraction"] = {{"a", d.nonzero[0]}, {"b", d.nonzero[1]}};
-  report["foot_sliding"]["a"] = prepared.takes[0].planted.speed;
-  report["foot_sliding"]["b"] = prepared.takes[1].planted.speed;
+  report["foot_sliding"]["a"] = measures.takes[0].planted_speed;
+  report["foot_sliding"]["b"] = measures.takes[1].planted_speed;
 }
 
 // One strength per style (--strength, comma separated or repeated; default 1 each).

@@ -58,8 +58,6 @@ def ensure_curve(action, path, index, group):
 
 def clear(action):
     """Removes every F-curve of the action's first slot."""
-    found = curves(action)
-    if hasattr(found, "clear"):
-        found.clear()
+    curves(action).clear()
 
 
