@@ -5,6 +5,7 @@
 #include <string>
 
 #include "engine/base/error.h"
+#include "engine/base/simd.h"
 #include "engine/kinematics/joint_rows.h"
 
 namespace mostyle {
@@ -100,6 +101,32 @@ Eigen::Vector3d placed_direction(const Eigen::MatrixXd& positions, Eigen::Index 
   return direction;
 }
 
+#ifdef MOSTYLE_HAS_AVX_PATH
+// Frames [f, f + 4) of a bone placed as placed_direction's plain case places them (the bone's
+// own direction, one division), four frames in one: false, with nothing written, where any of
+// the four is short or degenerate (placed_direction takes those one at a time).
+MOSTYLE_TARGET_AVX bool place_four_own(double* const child[3], const double* const parent[3], Eigen::Index f,
+                                       double length, double short_length, double degenerate_length) {
+  const __m256d x = _mm256_loadu_pd(child[0] + f), y = _mm256_loadu_pd(child[1] + f), z = _mm256_loadu_pd(child[2] + f);
+  const __m256d squared =
+      _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(x, x), _mm256_mul_pd(y, y)), _mm256_mul_pd(z, z));
+  const __m256d norm = _mm256_sqrt_pd(squared);
+  const __m256d own = _mm256_and_pd(
+      _mm256_and_pd(_mm256_cmp_pd(norm, _mm256_set1_pd(short_length), _CMP_GE_OQ),
+                    _mm256_cmp_pd(norm, _mm256_set1_pd(degenerate_length), _CMP_GT_OQ)),
+      _mm256_cmp_pd(norm, _mm256_setzero_pd(), _CMP_GT_OQ));
+  if (_mm256_movemask_pd(own) != 0xF) return false;
+  const __m256d scale = _mm256_div_pd(_mm256_set1_pd(1.0), norm);
+  const __m256d l = _mm256_set1_pd(length);
+  const __m256d xs[3] = {x, y, z};
+  for (int k = 0; k < 3; ++k) {
+    const __m256d direction = _mm256_mul_pd(xs[k], scale);
+    _mm256_storeu_pd(child[k] + f, _mm256_add_pd(_mm256_loadu_pd(parent[k] + f), _mm256_mul_pd(l, direction)));
+  }
+  return true;
+}
+#endif
+
 }  // namespace
 
 void apply_limb_lengths(Eigen::MatrixXd& positions, const std::vector<int>& parents,
@@ -117,6 +144,7 @@ void apply_limb_lengths(Eigen::MatrixXd& positions, const std::vector<int>& pare
   // bone looks back to is always final (earlier in this joint's loop, or an earlier block).
   constexpr Eigen::Index kBlock = 128;
   const Eigen::Index rows = positions.rows();
+  [[maybe_unused]] const bool avx = cpu_has_avx();
   auto column = [&positions, rows](int c) { return positions.data() + rows * static_cast<Eigen::Index>(c); };
   for (Eigen::Index first = 0; first < rows; first += kBlock) {
     const Eigen::Index last = std::min(rows, first + kBlock);
@@ -135,7 +163,7 @@ void apply_limb_lengths(Eigen::MatrixXd& positions, const std::vector<int>& pare
       const double length = lengths[static_cast<size_t>(j)];
       double* const child[3] = {column(3 * j), column(3 * j + 1), column(3 * j + 2)};
       const double* const parent_column[3] = {column(3 * p), column(3 * p + 1), column(3 * p + 2)};
-      for (Eigen::Index f = first; f < last; ++f) {
+      auto place_one = [&](Eigen::Index f) {
         const Eigen::Vector3d bone(child[0][f], child[1][f], child[2][f]);
         const Eigen::Vector3d parent(parent_column[0][f], parent_column[1][f], parent_column[2][f]);
         const Eigen::Vector3d direction = placed_direction(positions, f, j, p, bone, length, options);
@@ -143,7 +171,18 @@ void apply_limb_lengths(Eigen::MatrixXd& positions, const std::vector<int>& pare
         child[0][f] = placed.x();
         child[1][f] = placed.y();
         child[2][f] = placed.z();
+      };
+      Eigen::Index f = first;
+#ifdef MOSTYLE_HAS_AVX_PATH
+      if (avx) {  // four frames at once, or those four one at a time
+        const double short_length = options.short_fraction * length;
+        const double degenerate_length = options.degenerate_fraction * length;
+        for (; f + 4 <= last; f += 4)
+          if (!place_four_own(child, parent_column, f, length, short_length, degenerate_length))
+            for (Eigen::Index g = f; g < f + 4; ++g) place_one(g);
       }
+#endif
+      for (; f < last; ++f) place_one(f);
     }
   }
 }

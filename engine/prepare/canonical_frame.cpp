@@ -5,6 +5,7 @@
 #include <string>
 
 #include "engine/base/error.h"
+#include "engine/base/simd.h"
 
 namespace mostyle {
 namespace {
@@ -89,6 +90,27 @@ PlacedRoot place_at(const CanonicalMotion& a, double a_frame, const CanonicalMot
   return placed;
 }
 
+#ifdef MOSTYLE_HAS_AVX_PATH
+namespace {
+// to_world's turn of one joint over n frames, four at a time in the same order of operations;
+// returns how many frames it placed (a multiple of four).
+MOSTYLE_TARGET_AVX Eigen::Index turn_four_at_a_time(const double* c, const double* s, const double* x,
+                                                    const double* z, const double* gx, const double* gz,
+                                                    Eigen::Index n, double* wx, double* wz) {
+  Eigen::Index i = 0;
+  for (; i + 4 <= n; i += 4) {
+    const __m256d cv = _mm256_loadu_pd(c + i), sv = _mm256_loadu_pd(s + i);
+    const __m256d xv = _mm256_loadu_pd(x + i), zv = _mm256_loadu_pd(z + i);
+    _mm256_storeu_pd(wx + i, _mm256_add_pd(_mm256_add_pd(_mm256_loadu_pd(gx + i), _mm256_mul_pd(cv, xv)),
+                                           _mm256_mul_pd(sv, zv)));
+    _mm256_storeu_pd(wz + i, _mm256_add_pd(_mm256_sub_pd(_mm256_loadu_pd(gz + i), _mm256_mul_pd(sv, xv)),
+                                           _mm256_mul_pd(cv, zv)));
+  }
+  return i;
+}
+}  // namespace
+#endif
+
 void to_world(const Eigen::MatrixXd& local, const Eigen::MatrixXd& ground,
               const Eigen::VectorXd& heading, Eigen::MatrixXd* world) {
   const Eigen::Index frames = local.rows(), joints = local.cols() / 3;
@@ -97,6 +119,7 @@ void to_world(const Eigen::MatrixXd& local, const Eigen::MatrixXd& ground,
   // column apart in these column-major matrices); the angles of a block are computed once.
   constexpr Eigen::Index kBlock = 64;
   double c[kBlock], s[kBlock];
+  [[maybe_unused]] const bool avx = cpu_has_avx();
   for (Eigen::Index first = 0; first < frames; first += kBlock) {
     const Eigen::Index n = std::min(kBlock, frames - first);
     for (Eigen::Index i = 0; i < n; ++i) {
@@ -112,11 +135,15 @@ void to_world(const Eigen::MatrixXd& local, const Eigen::MatrixXd& ground,
       double* wx = world->col(3 * j).data() + first;
       double* wy = world->col(3 * j + 1).data() + first;
       double* wz = world->col(3 * j + 2).data() + first;
-      for (Eigen::Index i = 0; i < n; ++i) {
+      Eigen::Index i = 0;
+#ifdef MOSTYLE_HAS_AVX_PATH
+      if (avx) i = turn_four_at_a_time(c, s, x, z, gx, gz, n, wx, wz);
+#endif
+      for (; i < n; ++i) {
         wx[i] = gx[i] + c[i] * x[i] + s[i] * z[i];
-        wy[i] = y[i];
         wz[i] = gz[i] - s[i] * x[i] + c[i] * z[i];
       }
+      std::copy(y, y + n, wy);
     }
   }
 }

@@ -9,6 +9,7 @@
 
 #include "engine/base/clock.h"
 #include "engine/base/error.h"
+#include "engine/base/weighted_sum.h"
 #include "engine/post/stride_warp.h"
 #include "engine/prepare/major_skeleton.h"
 #include "engine/synthesize/synthesis.h"
@@ -259,7 +260,7 @@ void paper_poses(const PreparedTakes& p, const Decomposed& d, const MixParams& p
 // sum_i w_i (W_i C scale + mean_i + residual_i) at the output frames only: each take's own pose,
 // read straight at the frame the output frame shows (one-hot weights give the take's own
 // frames), one output frame at a time over the takes' transposed poses (a frame is a contiguous
-// column).
+// column): the two frames of each take around it, weighted, summed in one pass.
 void own_poses(const PreparedTakes& p, const MixParams& params, const Eigen::MatrixXd& sources, MixScratch& s,
                Eigen::MatrixXd& local) {
   const bool keyed = !params.keys.empty();
@@ -269,20 +270,21 @@ void own_poses(const PreparedTakes& p, const MixParams& params, const Eigen::Mat
   constexpr Eigen::Index kBlock = 64;
   s.local_t.resize(channels, std::min(kBlock, frames));
   local.resize(frames, channels);
+  s.terms.resize(2 * static_cast<size_t>(p.size()));
   for (Eigen::Index k0 = 0; k0 < frames; k0 += kBlock) {
     const Eigen::Index n = std::min(kBlock, frames - k0);
-    s.local_t.leftCols(n).setZero();
     for (Eigen::Index b = 0; b < n; ++b) {
       const Eigen::Index k = k0 + b;
-      auto column = s.local_t.col(b);
+      int count = 0;
       for (int i = 0; i < p.size(); ++i) {
         const double w = keyed ? s.trajectory.frame_w(k, i) : s.weights[i];
         if (w == 0.0) continue;
         const Eigen::MatrixXd& x = p.takes[i].own_local_t;
         const RowAt at(sources(k, i), x.cols());
-        column.noalias() += (w * (1.0 - at.f)) * x.col(at.r);
-        if (at.f != 0.0) column.noalias() += (w * at.f) * x.col(at.next);
+        s.terms[count++] = {w * (1.0 - at.f), x.col(at.r).data()};
+        if (at.f != 0.0) s.terms[count++] = {w * at.f, x.col(at.next).data()};
       }
+      weighted_sum(s.terms.data(), count, channels, s.local_t.col(b).data());
     }
     local.middleRows(k0, n) = s.local_t.leftCols(n).transpose();
   }

@@ -14,6 +14,7 @@
 
 #include "engine/align/common_timeline.h"
 #include "engine/align/prepare_takes.h"
+#include "engine/base/weighted_sum.h"
 #include "engine/trajectory/weight_keys.h"
 #include "engine/decompose/body_parts.h"
 #include "engine/decompose/decompose_takes.h"
@@ -78,6 +79,7 @@ struct MixScratch {
   Eigen::MatrixXd feet_height;        // K x kFootJoints: the takes' foot joints' heights, planted bands (feet_heights)
   std::vector<double> heights;        // one take's joint's heights at the frames shown, twice (feet_heights)
   Eigen::RowVectorXd channel_w, mixed_mean;
+  std::vector<WeightedTerm> terms;    // one output frame's takes' frames and their weights (own_poses)
   std::vector<double> weights;        // each take's, from the layers (take_weights)
   Eigen::MatrixXd part_w;             // k x N per component, from the layers; empty: none
   std::vector<double> overall, timing, drift_w;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "engine/base/error.h"
+#include "engine/base/weighted_sum.h"
 #include "engine/trajectory/mixed_clock.h"
 #include "engine/trajectory/mixed_root.h"
 
@@ -28,6 +29,19 @@ void keep_loop_travel(Eigen::MatrixXd& ground, const Eigen::Ref<const Eigen::Mat
   const Eigen::RowVector2d off =
       (ground.row(n - 1) - ground.row(0)) - (path.row(n - 1) - path.row(0));
   for (Eigen::Index k = 1; k < n; ++k) ground.row(k) -= (double(k) / double(n - 1)) * off;
+}
+
+// out = sum_i w_i (take i's `member`, rows [first, first + length)), a column at a time in one
+// pass (the same sums as setZero and one += per take).
+void weighted_columns(const PreparedTakes& p, const std::vector<double>& w, Eigen::MatrixXd PreparedTake::*member,
+                      Eigen::Index first, Eigen::Index length, std::vector<WeightedTerm>& terms, Eigen::MatrixXd& out) {
+  const Eigen::Index columns = (p.takes.front().*member).cols();
+  out.resize(length, columns);
+  terms.resize(static_cast<size_t>(p.size()));
+  for (Eigen::Index c = 0; c < columns; ++c) {
+    for (int i = 0; i < p.size(); ++i) terms[static_cast<size_t>(i)] = {w[static_cast<size_t>(i)], (p.takes[i].*member).col(c).data() + first};
+    weighted_sum(terms.data(), p.size(), length, out.col(c).data());
+  }
 }
 
 }  // namespace
@@ -95,20 +109,20 @@ void mix_root(const PreparedTakes& p, const WeightKeys& keys, const std::vector<
   const int n = p.size();
   const bool keyed = !keys.empty();
   const Eigen::Index first = st.first, length = st.length();
-  s.steps.setZero(length, 3);
-  s.target.setZero(length, 2);
-  s.contacts_u.setZero(length, 2);
-  for (int i = 0; i < n; ++i) {
-    if (keyed) {  // each sample with its own weights
+  if (keyed) {  // each sample with its own weights
+    s.steps.setZero(length, 3);
+    s.target.setZero(length, 2);
+    s.contacts_u.setZero(length, 2);
+    for (int i = 0; i < n; ++i) {
       const auto w = s.sample_w.col(i).asDiagonal();
       s.steps += w * p.takes[i].steps.middleRows(first, length);
       s.target += w * p.takes[i].ground.middleRows(first, length);
       s.contacts_u += w * p.takes[i].contacts.middleRows(first, length);
-      continue;
     }
-    s.steps += root_w[i] * p.takes[i].steps.middleRows(first, length);
-    s.target += root_w[i] * p.takes[i].ground.middleRows(first, length);
-    s.contacts_u += root_w[i] * p.takes[i].contacts.middleRows(first, length);
+  } else {
+    weighted_columns(p, root_w, &PreparedTake::steps, first, length, s.terms, s.steps);
+    weighted_columns(p, root_w, &PreparedTake::ground, first, length, s.terms, s.target);
+    weighted_columns(p, root_w, &PreparedTake::contacts, first, length, s.terms, s.contacts_u);
   }
   for (int i = 1; i < n; ++i) {
     s.flips = p.takes[i].turn_flips.segment(first, length);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "engine/align/prepare_takes.h"
+#include "engine/base/weighted_sum.h"
 #include "engine/trajectory/weight_keys.h"
 #include "engine/kinematics/sample_rows.h"
 #include "engine/post/finish.h"
@@ -34,6 +35,7 @@ struct MixedTrajectory {
   Eigen::VectorXd heading_u;  // U: its heading, radians
   Eigen::MatrixXd contacts_u; // U x 2: the foot contacts, 1 planted
   Eigen::MatrixXd steps, target;  // U x 3, U x 2: the weighted steps and paths mix_root integrates
+  std::vector<WeightedTerm> terms;  // the takes' columns and weights mix_root sums
   Eigen::VectorXd flips;      // U: one take's whole-turn flips
   Eigen::MatrixXd drift_u;    // (U + 1) x 2: remove_path_drift's sums
   // A root on a leash (MixParams::path_leash): the root before it (U x 2, U) and the stride map
