@@ -216,16 +216,31 @@ Alignment align_by_cycles(const CanonicalMotion& a, const RegisteredMotion& b, c
   al.feature = alignment_feature(a, b.motion, joints, options.on, leg_length, fps);
   const Eigen::MatrixXd& fa = al.feature.a;
   const Eigen::MatrixXd& fb = al.feature.b;
+  // A hold at either end (a start or stop far longer in one take) is kept apart from the rest of
+  // the path, so that smoothing does not turn it into a ramp on which the take that plays runs
+  // several times its speed on the other's clock.
+  std::vector<std::pair<int, int>> lead, middle, tail;
+  std::vector<std::pair<int, int>>* piece = &middle;
   auto add = [&](int i, int j) {
-    if (!al.path.empty() && al.path.back() == std::make_pair(i, j)) return;
-    al.path.emplace_back(i, j);
+    if (piece->empty() || piece->back() != std::make_pair(i, j)) piece->emplace_back(i, j);
+    if (al.path.empty() || al.path.back() != std::make_pair(i, j)) al.path.emplace_back(i, j);
   };
   SlopeDtwOptions closed = options.slope;
   closed.open_ends = false;
   for (size_t s = 0; s + 1 < anchors.size(); ++s) {
+    const bool at_end = s == 0 || s + 2 == anchors.size();
+    piece = anchors[s].hold && at_end && anchors.size() > 2 ? (s == 0 ? &lead : &tail) : &middle;
     check_cancel(control);
     const int r0 = anchors[s].reference, v0 = anchors[s].registered;
     const int n = anchors[s + 1].reference - r0, m = anchors[s + 1].registered - v0;
+    if (anchors[s].hold) {  // one of the two stays at its frame while the other plays on
+      for (int k = 0; k <= std::max(n, m); ++k) {
+        const int i = r0 + std::min(k, n), j = v0 + std::min(k, m);
+        add(i, j);
+        al.cost += (fa.row(i) - fb.row(j)).norm();
+      }
+      continue;
+    }
     if (!anchors[s].cycle) {  // between cycles, 1:1
       for (int j = 0; j <= n; ++j) {
         add(r0 + j, v0 + j);
@@ -249,7 +264,11 @@ Alignment align_by_cycles(const CanonicalMotion& a, const RegisteredMotion& b, c
   // frames up to max_slope times as fast for a moment, which a mix with negative weights (a
   // transfer) makes visible as a burst of speed.
   const double smoothing = std::max(options.smoothing_frames, kCycleWarpSmoothing * b.registration.cycles.period);
-  al.warp = smooth_warp(al.path, smoothing);
+  std::vector<TimeWarp> warps;
+  if (lead.size() > 1) warps.push_back(smooth_warp(lead, 0.0));
+  warps.push_back(smooth_warp(middle, smoothing));
+  if (tail.size() > 1) warps.push_back(smooth_warp(tail, 0.0));
+  al.warp = joined_warps(warps);
   al.a_first = 0;
   al.a_last = anchors.back().reference;
   al.b_first = 0;

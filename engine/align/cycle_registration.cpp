@@ -165,8 +165,9 @@ bool under_way(const Eigen::MatrixXd& steps, const TakeCycles& cycles, bool star
 }
 
 // The take's own frames before its first cycle or after its last, when span si is the
-// reference's start or stop and is to show them: the take is not a loop (a loop has no start or
-// stop of its own), has such frames, and both takes are alike there (both start from standing,
+// reference's start or stop and is to show them: neither take is a loop (a loop has no start or
+// stop of its own: the frames before its first cycle and after its last are one stretch of it),
+// the take has such frames, and both takes are alike there (both start from standing,
 // or both are already walking when they begin: a take cut in mid-walk). A stop also needs the
 // take to have no fewer cycles than the reference: where its cycles are reused, the stop runs on
 // from the reused cycle as the frames between cycles do (fill_between_cycles). [t0, t1) frames
@@ -174,31 +175,53 @@ bool under_way(const Eigen::MatrixXd& steps, const TakeCycles& cycles, bool star
 constexpr double kEdgeLengthRatio = 1.5;
 struct OwnEdge {
   int t0 = 0, t1 = 0;
+  bool held = false;  // lengths beyond kEdgeLengthRatio: matched 1:1 next to the cycle, the rest a hold
   int frames() const { return t1 - t0; }
 };
 
 OwnEdge own_edge(const Registering& in, size_t si) {
   const Span& s = in.spans[si];
   if (s.cycle >= 0 || s.r1 <= s.r0 || in.take_cycles.kind != CycleKind::kGait || in.take_cycles.loops() ||
-      in.take_cycles.cycles.empty())
+      in.reference_cycles.loops() || in.take_cycles.cycles.empty())
     return {};
   const int ft = static_cast<int>(in.take.local.rows());
-  // Alike, and of lengths the cycles' own match allows (kEdgeLengthRatio): a far longer stop
-  // squeezed onto a short one would play at several times its speed on the reference's clock.
-  auto fits = [&](const OwnEdge& e, bool start) {
+  // Alike there. Lengths the cycles' own match allows (kEdgeLengthRatio) are matched as cycles
+  // are; longer ones are held (edge_anchors), since a far longer stop squeezed onto a short one
+  // would play at several times its speed on the reference's clock.
+  auto fits = [&](OwnEdge& e, bool start) {
     const double n = s.r1 - s.r0, m = e.frames();
-    return m > 0 && m <= kEdgeLengthRatio * n && n <= kEdgeLengthRatio * m &&
-           under_way(in.ref_steps, in.reference_cycles, start) == under_way(in.take_steps, in.take_cycles, start);
+    e.held = m > kEdgeLengthRatio * n || n > kEdgeLengthRatio * m;
+    return m > 0 && under_way(in.ref_steps, in.reference_cycles, start) == under_way(in.take_steps, in.take_cycles, start);
   };
   if (si == 0 && in.spans.size() > 1) {
-    const OwnEdge e{0, in.take_cycles.cycles.front().begin};
+    OwnEdge e{0, in.take_cycles.cycles.front().begin};
     if (fits(e, true)) return e;
   }
   if (si + 1 == in.spans.size() && si > 0 && in.take_cycles.cycles.size() >= in.reference_cycles.cycles.size()) {
-    const OwnEdge e{in.take_cycles.cycles.back().end, ft};
+    OwnEdge e{in.take_cycles.cycles.back().end, ft};
     if (fits(e, false)) return e;
   }
   return {};
+}
+
+// The anchors of a start or stop laid with the take's own (own_edge) where their lengths are far
+// apart: n reference frames, m of the take's from registered frame v. The frames next to the
+// cycle are matched 1:1, min(n, m) of them; beyond, at the outer edge, the shorter of the two
+// holds its first frame (a start) or its last (a stop) while the other plays on. The common
+// timeline gives a hold the time its weights give the take that plays: at the take's weight 1
+// its whole start or stop plays, in its timing, and none of the reference's excess; at 0 the
+// reference's; on the reference's clock the take's excess is not played, nothing is squeezed.
+void edge_anchors(const Span& s, bool start, int m, int v, std::vector<CycleRegistration::Anchor>& anchors) {
+  const int n = s.r1 - s.r0;
+  using Anchor = CycleRegistration::Anchor;
+  if (start) {
+    anchors.push_back(Anchor{s.r0, v, false, true});
+    anchors.push_back(m > n ? Anchor{s.r0, v + m - n, false, false} : Anchor{s.r0 + n - m, v, false, false});
+  } else {
+    const int matched = std::min(n, m) - 1;
+    anchors.push_back(Anchor{s.r0, v, false, false});
+    anchors.push_back(Anchor{s.r0 + matched, v + matched, false, true});
+  }
 }
 
 // Span si, the reference's start or stop, laid with the take's own start or stop (own_edge):
@@ -283,7 +306,8 @@ RegisteredMotion register_by_cycles(const CanonicalMotion& reference, const Eige
   Eigen::Index v = 0;
   for (size_t si = 0; si < spans.size(); ++si) {
     const bool own = edges[si].frames() > 0;
-    reg.anchors.push_back({spans[si].r0, static_cast<int>(v), spans[si].cycle >= 0 || own});
+    if (own && edges[si].held) edge_anchors(spans[si], si == 0, edges[si].frames(), static_cast<int>(v), reg.anchors);
+    else reg.anchors.push_back({spans[si].r0, static_cast<int>(v), spans[si].cycle >= 0 || own});
     if (spans[si].cycle >= 0) copy_take_cycle(in, si, out, steps, v);
     else if (own) copy_take_edge(in, si, edges[si], out, steps, v);
     else fill_between_cycles(in, si, out, steps, v);

@@ -26,9 +26,10 @@ std::vector<int> pair_cycles(const TakeCycles& reference, const TakeCycles& take
 // over up to fade frames into the take's own frames running on from the cycle before and into
 // the cycle after. The reference's start (before its first cycle) and stop (after its last)
 // hold the take's own start and stop instead, in its timing, where both takes are alike there
-// (both under way, or both starting or stopping from standing), their lengths are within 1.5
-// times each other, and, for the stop, the take has as many cycles as the reference: at weight 1
-// the walk begins and ends as the take's does. Where a reused cycle does not follow on from the one before in the take (its
+// (both under way, or both starting or stopping from standing) and, for the stop, the take has
+// as many cycles as the reference: at weight 1 the walk begins and ends as the take's does. Edges
+// within 1.5 times each other's length are matched as cycles are; longer ones frame for frame
+// next to the cycle and, beyond, a hold of the shorter one (Anchor::hold). Where a reused cycle does not follow on from the one before in the take (its
 // last cycle, then its first again), the pose difference at the seam is spread over the cycle
 // (full at its start, none at its end). The root steps follow the same rule (the take's in its
 // cycles, the reference's in between) and are integrated from the reference's first frame.
@@ -38,10 +39,12 @@ struct CycleRegistration {
   TakeCycles cycles;                  // the registered cycles, in the registered frames, one per reference cycle
   // Where the spans meet: the reference's frame and the registered frame at each span's start,
   // then both ends' last frames (cycle false). From an anchor to the next the frames run 1:1 (a
-  // span outside cycles) or cover a reference cycle and its take cycle (cycle true).
+  // span outside cycles), cover a reference cycle and its take cycle (cycle true), or one of the
+  // two holds its frame while the other plays on (hold true: a start or stop far longer in one).
   struct Anchor {
     int reference = 0, registered = 0;
     bool cycle = false;
+    bool hold = false;
   };
   std::vector<Anchor> anchors;
   Eigen::VectorXd source;             // V: the take's own frame each registered frame shows; NaN: its posture only

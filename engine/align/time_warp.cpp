@@ -77,6 +77,31 @@ TimeWarp smooth_warp(const std::vector<std::pair<int, int>>& steps, double smoot
   return warp;
 }
 
+TimeWarp joined_warps(const std::vector<TimeWarp>& warps) {
+  if (warps.empty()) throw InputError("cannot join no time warps");
+  Eigen::Index samples = 0;
+  for (size_t k = 0; k < warps.size(); ++k) {
+    const TimeWarp& w = warps[k];
+    if (w.samples() == 0) throw InputError("cannot join an empty time warp");
+    if (k > 0 && (w.a[0] != warps[k - 1].a[warps[k - 1].samples() - 1] ||
+                  w.b[0] != warps[k - 1].b[warps[k - 1].samples() - 1]))
+      throw InputError("cannot join time warps that do not meet: warp " + std::to_string(k) +
+                       " starts where warp " + std::to_string(k - 1) + " does not end");
+    samples += w.samples() - (k > 0 ? 1 : 0);
+  }
+  TimeWarp out;
+  out.a.resize(samples);
+  out.b.resize(samples);
+  Eigen::Index at = 0;
+  for (size_t k = 0; k < warps.size(); ++k) {
+    const Eigen::Index skip = k > 0 ? 1 : 0, n = warps[k].samples() - skip;
+    out.a.segment(at, n) = warps[k].a.tail(n);
+    out.b.segment(at, n) = warps[k].b.tail(n);
+    at += n;
+  }
+  return out;
+}
+
 TimeWarp paper_warp(const DtwPath& path, int frames_a) {
   TimeWarp warp;
   warp.b = warp_map(path, frames_a);

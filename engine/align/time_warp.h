@@ -28,6 +28,11 @@ struct TimeWarp {
 constexpr double kWarpSmoothingFrames = 3.0;  // at 30 fps: 0.1 s, under a footstep's duration
 TimeWarp smooth_warp(const std::vector<std::pair<int, int>>& steps, double smoothing_frames = kWarpSmoothingFrames);
 
+// Warps one after another, each starting where the one before ends (its first sample, the same
+// frames as the last one before, is dropped). Throws InputError on none, an empty one or one
+// that does not start where the one before ends.
+TimeWarp joined_warps(const std::vector<TimeWarp>& warps);
+
 // The paper's warp (`--dtw paper`): A's own frames 0..n-1 and, for each, the mean B
 // frame the plain DTW path matches to it (dtw.h warp_map). B may skip frames from one sample to
 // the next. Throws as warp_map does.

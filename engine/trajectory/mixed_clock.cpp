@@ -11,8 +11,11 @@ namespace mostyle {
 namespace {
 
 // Output frame f at the sample position where the clock reaches f; step(k) is the clock's
-// advance from sample k - 1 to k (negative advances hold). One pass to count the frames, one to
-// place them: nothing is allocated but u.
+// advance from sample k - 1 to k (negative advances hold). Where the clock does not move at the
+// start (a take's start its weights give no time: a longer start of a take held against the
+// reference's first frame, on the reference's clock), the first frame is where it starts to
+// move, so that the next frame does not leap over the stretch. One pass to count the frames,
+// one to place them: nothing is allocated but u.
 template <typename Step>
 double timeline_from_steps(int samples, const Step& step, Eigen::VectorXd& u) {
   double total = 0.0;
@@ -20,8 +23,10 @@ double timeline_from_steps(int samples, const Step& step, Eigen::VectorXd& u) {
   const int frames = static_cast<int>(std::floor(total + 1e-9)) + 1;
   u.resize(frames);
   int k = 0;
+  if (total > 0.0)
+    while (k + 2 < samples && !(step(k + 1) > 0.0)) ++k;
   double before = 0.0, after = 0.0;  // clock at samples k and k + 1
-  if (samples > 1) after = std::max(0.0, step(1));
+  if (samples > 1) after = std::max(0.0, step(k + 1));
   for (int f = 0; f < frames; ++f) {
     while (k + 1 < samples - 1 && after < f) {
       ++k;

@@ -1,11 +1,13 @@
 // Registration by cycles (engine/align/cycle_registration.h): a short take's cycles reused in
 // order over a long reference, and on real walks of different lengths, every cycle of the
 // reference matched; then the registered motion itself.
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
 #include <catch2/catch.hpp>
 
+#include "engine/align/alignment.h"
 #include "engine/align/cycle_registration.h"
 #include "engine/base/error.h"
 #include "engine/io/motion_file.h"
@@ -79,52 +81,57 @@ TEST_CASE("cycle registration: the registered take, worked by hand") {
   const RegisteredMotion r = register_by_cycles(ref, contacts_marked(100, 0.0), rc, take, contacts_marked(40, 1.0), tc, 2);
   const CycleRegistration& g = r.registration;
   CHECK(g.pairs == std::vector<int>{0, 1, 0});
-  // Spans: 10 frames before (the take's own 5 before its first cycle are too few to stand for
-  // them), 15 + 15 (the take's cycles), 10 of the pause, 15, 5 after.
-  REQUIRE(r.motion.local.rows() == 10 + 15 + 15 + 10 + 15 + 5);
+  // Spans: the take's own 5 frames before its first cycle (both under way there; the reference's
+  // 10 are more than 1.5 times as many, so the reference's first 5 hold the take's first frame),
+  // 15 + 15 (the take's cycles), 10 of the pause, 15, 5 after (the take has fewer cycles than the
+  // reference, so not its own stop).
+  REQUIRE(r.motion.local.rows() == 5 + 15 + 15 + 10 + 15 + 5);
   REQUIRE(g.cycles.cycles.size() == 3);
-  CHECK(g.cycles.cycles[0].begin == 10);
-  CHECK(g.cycles.cycles[1].begin == 25);
-  CHECK(g.cycles.cycles[2].begin == 50);
-  CHECK(g.cycles.cycles[2].end == 65);
+  CHECK(g.cycles.cycles[0].begin == 5);
+  CHECK(g.cycles.cycles[1].begin == 20);
+  CHECK(g.cycles.cycles[2].begin == 45);
+  CHECK(g.cycles.cycles[2].end == 60);
   // Inside cycles: the take's own frames (x reads the frame back) and contacts; the take's cycle
   // 1 follows its cycle 0 directly (20), so no seam is eased.
-  for (int v = 10; v < 40; ++v) {
-    const double own = v < 25 ? 5 + (v - 10) : 20 + (v - 25);
+  for (int v = 0; v < 35; ++v) {
+    const double own = v;
     CHECK(r.motion.local(v, 0) == Approx(own));
     CHECK(r.motion.local(v, 1) == Approx(3.0));
     CHECK(g.source[v] == own);
-    CHECK(g.source_cycle[v] == (v < 25 ? 0 : 1));
+    CHECK(g.source_cycle[v] == (v < 5 ? -1 : v < 20 ? 0 : 1));
     CHECK(r.contacts(v, 0) == 1.0);
   }
-  CHECK(g.source[50] == 5.0);  // the take's first cycle again
-  CHECK(g.source_cycle[64] == 0);
+  CHECK(g.source[45] == 5.0);  // the take's first cycle again
+  CHECK(g.source_cycle[59] == 0);
   // In the middle of the pause (fade of 2 frames): the reference moved by the posture offset,
   // the take's mean over its cycles minus the reference's.
   const double ref_mean_x = (22.0 * 25 + 47.0 * 25 + 82.0 * 25) / 75.0;  // cycles' own means: 22, 47, 82
   const double take_mean_x = (12.0 * 15 + 27.0 * 15) / 30.0;             // 12, 27
-  const int middle = 40 + 5;                                             // reference frame 65
+  const int middle = 35 + 5;                                             // reference frame 65
   CHECK(r.motion.local(middle, 0) == Approx(65 + take_mean_x - ref_mean_x));
   CHECK(r.motion.local(middle, 1) == Approx(1.0 + 2.0));
   CHECK(std::isnan(g.source[middle]));
   CHECK(g.source_cycle[middle] == -1);
   CHECK(r.contacts(middle, 0) == 0.0);  // the reference's
   // Right after a cycle: the take running on from it (its frame 35), fully weighted.
-  CHECK(r.motion.local(40, 0) == Approx(35.0));
-  CHECK(g.source[40] == 35.0);
-  // Anchors: each span's start, then the ends.
-  REQUIRE(g.anchors.size() == 7);
-  CHECK(g.anchors[1].reference == 10);
-  CHECK(g.anchors[1].registered == 10);
-  CHECK(g.anchors[1].cycle);
-  CHECK(g.anchors[3].reference == 60);
-  CHECK(g.anchors[3].registered == 40);
-  CHECK_FALSE(g.anchors[3].cycle);
+  CHECK(r.motion.local(35, 0) == Approx(35.0));
+  CHECK(g.source[35] == 35.0);
+  // Anchors: each span's start (the start's two: the hold, then 1:1), then the ends.
+  REQUIRE(g.anchors.size() == 8);
+  CHECK(g.anchors[0].hold);
+  CHECK(g.anchors[1].reference == 5);
+  CHECK(g.anchors[1].registered == 0);
+  CHECK(g.anchors[2].reference == 10);
+  CHECK(g.anchors[2].registered == 5);
+  CHECK(g.anchors[2].cycle);
+  CHECK(g.anchors[4].reference == 60);
+  CHECK(g.anchors[4].registered == 35);
+  CHECK_FALSE(g.anchors[4].cycle);
   CHECK(g.anchors.back().reference == 99);
-  CHECK(g.anchors.back().registered == 69);
+  CHECK(g.anchors.back().registered == 64);
   // The root: the take's steps (one unit a frame along +z) throughout, from the reference's start.
   CHECK(r.motion.ground(0, 1) == Approx(0.0));
-  CHECK(r.motion.ground(69, 1) == Approx(69.0));
+  CHECK(r.motion.ground(64, 1) == Approx(64.0));
 }
 
 TEST_CASE("cycle registration: a start and a stop show the take's own where both takes are alike there") {
@@ -165,6 +172,49 @@ TEST_CASE("cycle registration: a start and a stop show the take's own where both
   CHECK(s.registration.anchors[s.registration.anchors.size() - 2].cycle);
 }
 
+TEST_CASE("cycle registration: a start or stop far longer in one take is matched next to the cycle, the rest held") {
+  // The reference: 60 frames, its start 0-2 before cycles 2-22 and 22-42, its stop 42-60 (18
+  // frames). The take: 48 frames, its start 0-12 (12 frames), cycles 12-27 and 27-45, its stop
+  // 45-48 (3 frames). Both under way at both ends. Beyond 1.5 times each other's length.
+  const CanonicalMotion ref = ramp_motion(60, 1.0), take = ramp_motion(48, 3.0);
+  TakeCycles rc, tc;
+  rc.kind = tc.kind = CycleKind::kGait;
+  rc.foot = tc.foot = 0;
+  rc.cycles = {{2, 22}, {22, 42}};
+  tc.cycles = {{12, 27}, {27, 45}};
+  rc.period = 20;
+  tc.period = 16;
+  const RegisteredMotion r = register_by_cycles(ref, contacts_marked(60, 0.0), rc, take, contacts_marked(48, 1.0), tc, 2);
+  const CycleRegistration& g = r.registration;
+  // The take's own start, cycles and stop, every frame of it once: 12 + 33 + 3.
+  REQUIRE(r.motion.local.rows() == 48);
+  for (int v = 0; v < 48; ++v) CHECK(g.source[v] == double(v));
+  // Start: the reference held at its frame 0 over the take's first 10 frames, then 2 frames 1:1
+  // into the first cycle. Stop: 3 frames 1:1 from the last cycle, then the take held at its last
+  // frame over the reference's other 15.
+  using A = CycleRegistration::Anchor;
+  auto is = [](const A& a, int reference, int registered, bool cycle, bool hold) {
+    return a.reference == reference && a.registered == registered && a.cycle == cycle && a.hold == hold;
+  };
+  REQUIRE(g.anchors.size() == 7);
+  CHECK(is(g.anchors[0], 0, 0, false, true));
+  CHECK(is(g.anchors[1], 0, 10, false, false));
+  CHECK(is(g.anchors[2], 2, 12, true, false));
+  CHECK(is(g.anchors[3], 22, 27, true, false));
+  CHECK(is(g.anchors[4], 42, 45, false, false));
+  CHECK(is(g.anchors[5], 44, 47, false, true));
+  CHECK(is(g.anchors[6], 59, 47, false, false));
+  // The warp follows them: every frame of both takes on it, the holds as steps of one take alone.
+  const Alignment al = align_by_cycles(ref, r, FeatureJoints{0, 0, 0, 0}, 1.0, 30.0, AlignmentOptions(), nullptr);
+  auto has = [&](int i, int j) {
+    return std::find(al.path.begin(), al.path.end(), std::make_pair(i, j)) != al.path.end();
+  };
+  for (int j = 0; j <= 10; ++j) CHECK(has(0, j));
+  CHECK(has(1, 11));
+  for (int i = 44; i < 60; ++i) CHECK(has(i, 47));
+  CHECK(al.path.back() == std::make_pair(59, 47));
+}
+
 TEST_CASE("cycle registration: a reused cycle that does not follow on eases its seam over the cycle") {
   const CanonicalMotion ref = ramp_motion(100, 1.0), take = ramp_motion(40, 3.0);
   TakeCycles rc, tc;
@@ -176,8 +226,8 @@ TEST_CASE("cycle registration: a reused cycle that does not follow on eases its 
   // The third cycle is the take's first again, after its second: at the seam the pose goes on
   // from where the second ended (the take's frame 35), and the difference (35 - 5) shrinks
   // linearly to nothing by the cycle's end.
-  const int v = r.registration.cycles.cycles[2].begin;  // 10 + 15 + 15
-  REQUIRE(v == 40);
+  const int v = r.registration.cycles.cycles[2].begin;  // 5 + 15 + 15 (the take's own start)
+  REQUIRE(v == 35);
   CHECK(r.motion.local(v, 0) == Approx(35.0));
   CHECK(r.motion.local(v + 5, 0) == Approx(10.0 + 30.0 * (1.0 - 5.0 / 15.0)));
   CHECK(r.motion.local(v + 14, 0) == Approx(19.0 + 30.0 / 15.0));

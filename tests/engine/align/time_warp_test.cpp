@@ -137,3 +137,22 @@ TEST_CASE("time warp: bad paths throw InputError", "[time_warp]") {
   CHECK_THROWS_AS(smooth_warp(diagonal(4), -1.0), InputError);
   CHECK_THROWS_AS(smooth_warp(diagonal(4), std::nan("")), InputError);
 }
+
+TEST_CASE("joined warps: one after another, the shared sample once; warps that do not meet are refused") {
+  // A hold of A at its frame 0 over B's first 3 frames, then both one frame a sample.
+  TimeWarp hold, run;
+  hold.a = Eigen::VectorXd::Zero(4);
+  hold.b = Eigen::VectorXd::LinSpaced(4, 0.0, 3.0);
+  run.a = Eigen::VectorXd::LinSpaced(3, 0.0, 2.0);
+  run.b = Eigen::VectorXd::LinSpaced(3, 3.0, 5.0);
+  const TimeWarp joined = joined_warps({hold, run});
+  Eigen::VectorXd a(6), b(6);
+  a << 0, 0, 0, 0, 1, 2;
+  b << 0, 1, 2, 3, 4, 5;
+  CHECK(joined.a == a);
+  CHECK(joined.b == b);
+  CHECK(joined_warps({run}).a == run.a);
+  CHECK_THROWS_AS(joined_warps({run, hold}), InputError);  // run ends at (2, 5), hold starts at (0, 0)
+  CHECK_THROWS_AS(joined_warps({}), InputError);
+  CHECK_THROWS_AS(joined_warps({hold, TimeWarp()}), InputError);
+}

@@ -244,7 +244,7 @@ TEST_CASE("timing: the clock's end is given with the frames", "[timing]") {
   CHECK(end == Approx(10.0));
 }
 
-TEST_CASE("timing: a hold of the reference takes B's time at B's weight, none on A's clock", "[timing]") {
+TEST_CASE("timing: a hold of the reference takes B's time at B's weight, none on A's clock, where the output starts", "[timing]") {
   // B plays 3 frames of rest while A holds its first frame, then both run 6 frames together.
   const TimeWarp rest_first = warp_of({0, 0, 0, 0, 1, 2, 3, 4, 5, 6}, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9});
   const CommonTimeline t = common_timeline({&rest_first});
@@ -258,7 +258,10 @@ TEST_CASE("timing: a hold of the reference takes B's time at B's weight, none on
     // A's frame at each output frame: held at 0 while the hold plays, then one a frame.
     const double a_last = at(t.frames[0], u[u.size() - 1]), b_first = at(t.frames[1], u[0]);
     CHECK(a_last == Approx(weight == 0.5 ? 5.5 : 6.0).margin(kExact));  // 0.5: the clock ends at 7.5
-    CHECK(b_first == Approx(0.0).margin(kExact));
+    // On A's clock the hold takes no time, and the output starts where it ends (B's frame 3),
+    // so that its second frame does not leap over B's rest.
+    CHECK(b_first == Approx(weight == 0.0 ? 3.0 : 0.0).margin(kExact));
+    if (weight == 0.0) CHECK(at(t.frames[1], u[1]) == Approx(4.0).margin(kExact));
   }
   Eigen::VectorXd u;
   mixed_timeline(t, {1.0, 0.0}, {0, t.samples() - 1}, u);

@@ -314,6 +314,39 @@ TEST_CASE("shared mode at alpha 1 is B, from A's start", "[pipeline]") {
   CHECK(p->takes[1].ground.rows() == p->samples());
 }
 
+TEST_CASE("a walk whose start and stop are far longer or shorter than A's plays them whole at weight 1", "[pipeline]") {
+  // The angry walk starts 14 frames before its first cycle and stops 3 after its last; the normal
+  // walk 2 and 16. At alpha 1 every frame of the angry walk plays, one after another; at alpha 0
+  // every frame of the normal one; on A's clock B's longer start is not played at all, so its
+  // first output frames do not leap through it.
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  const auto a = load(test::shared_motion("bandai_walk_normal.bvh"));
+  const auto b = load(test::shared_motion("bandai_walk_angry.bvh"));
+  const auto p = prepare_takes({a, b}, {});
+  const auto d = decompose_takes(*p, reproduction_params());
+  auto own_frames = [&](const MixResult& r, int take) {
+    return frames_in_take(p->takes[static_cast<size_t>(take)], r.sources.col(take));
+  };
+  auto played_whole = [](const Eigen::VectorXd& frames, Eigen::Index own) {
+    double largest_step = 0.0;
+    for (Eigen::Index k = 1; k < frames.size(); ++k) largest_step = std::max(largest_step, frames[k] - frames[k - 1]);
+    INFO("first " << frames[0] << ", last " << frames[frames.size() - 1] << " of " << own << ", largest step "
+                  << largest_step);
+    CHECK(frames.allFinite());
+    CHECK(frames[0] < 0.5);
+    CHECK(frames[frames.size() - 1] > double(own) - 1.5);
+    CHECK(largest_step < 1.5);
+  };
+  const Eigen::Index frames_b = p->takes[1].own_local_t.cols(), frames_a = p->takes[0].own_local_t.cols();
+  played_whole(own_frames(blend_at(*p, *d, 1.0), 1), frames_b);
+  played_whole(own_frames(blend_at(*p, *d, 0.0), 0), frames_a);
+  MixParams on_a;
+  on_a.reference_timing = true;
+  const Eigen::VectorXd b_on_a = own_frames(blend_at(*p, *d, 1.0, on_a), 1);
+  for (Eigen::Index k = 1; k < b_on_a.size(); ++k)
+    if (std::isfinite(b_on_a[k]) && std::isfinite(b_on_a[k - 1])) CHECK(b_on_a[k] - b_on_a[k - 1] < 2.5);
+}
+
 TEST_CASE("B is retargeted to A's bones across units and frame rates", "[pipeline]") {
   // A: CMU units at 120 fps. B: another take in centimetres at 100 fps.
   const auto a = load(test::asset("motions/cmu142_walk_happy.bvh"));
