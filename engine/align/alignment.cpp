@@ -269,12 +269,41 @@ Alignment align_by_cycles(const CanonicalMotion& a, const RegisteredMotion& b, c
   warps.push_back(smooth_warp(middle, smoothing));
   if (tail.size() > 1) warps.push_back(smooth_warp(tail, 0.0));
   al.warp = joined_warps(warps);
+  const int lead_samples = lead.size() > 1 ? warps.front().samples() : 0;
+  const int tail_samples = tail.size() > 1 ? warps.back().samples() : 0;
+  // What a hold does, said as the structure alignment says it of rests.
+  auto lasting = [&](int frames) {
+    char s[32];
+    std::snprintf(s, sizeof s, "%.1f s", frames / fps);
+    return std::string(s);
+  };
+  if (lead_samples > 0) {
+    const int a_frames = lead.back().first - lead.front().first, b_frames = lead.back().second - lead.front().second;
+    al.notes.push_back(a_frames == 0 ? "B's start is longer than A's: A holds its first pose while B's first " +
+                                           lasting(b_frames) + " play (none of them on A's clock)"
+                                     : "A's start is longer than B's: B holds its first pose over A's first " +
+                                           lasting(a_frames));
+  }
+  if (tail_samples > 0) {
+    const int a_frames = tail.back().first - tail.front().first, b_frames = tail.back().second - tail.front().second;
+    al.notes.push_back(a_frames == 0 ? "B's stop is longer than A's: A holds its last pose while B's last " +
+                                           lasting(b_frames) + " play (none of them on A's clock)"
+                                     : "A's stop is longer than B's: B holds its last pose over A's last " +
+                                           lasting(a_frames) + " (none of them at B's weight 1)");
+  }
   al.a_first = 0;
   al.a_last = anchors.back().reference;
   al.b_first = 0;
   al.b_last = anchors.back().registered;
   al.b_source = b.registration.source;
   assess(al, static_cast<int>(a.local.rows()), static_cast<int>(b.motion.local.rows()), fps);
+  // A held pose against one that moves matches poorly by construction; the notes say why.
+  const int samples = al.warp.samples();
+  al.poor.erase(std::remove_if(al.poor.begin(), al.poor.end(),
+                               [&](const std::pair<int, int>& p) {
+                                 return p.first < lead_samples || p.second >= samples - tail_samples;
+                               }),
+                al.poor.end());
   return al;
 }
 

@@ -213,6 +213,13 @@ TEST_CASE("cycle registration: a start or stop far longer in one take is matched
   CHECK(has(1, 11));
   for (int i = 44; i < 60; ++i) CHECK(has(i, 47));
   CHECK(al.path.back() == std::make_pair(59, 47));
+  // Said in words, and not flagged as poor matches (a held pose against one that moves).
+  REQUIRE(al.notes.size() == 2);
+  CHECK(al.notes[0] == "B's start is longer than A's: A holds its first pose while B's first 0.3 s play (none of them "
+                       "on A's clock)");
+  CHECK(al.notes[1] == "A's stop is longer than B's: B holds its last pose over A's last 0.5 s (none of them at B's "
+                       "weight 1)");
+  for (const auto& [k, end] : al.poor) CHECK((al.warp.a[k] > 0.5 && al.warp.a[end] < 43.5));
 }
 
 TEST_CASE("cycle registration: a reused cycle that does not follow on eases its seam over the cycle") {
