@@ -309,7 +309,7 @@ inline bool send_all(int fd, const std::string& bytes) {
   return true;
 }
 
-// Reads lines from `fd` until `count` lines came (count < 0: until the end of the stream) or
+// Reads lines from `fd` until `count` lines came, no more (count < 0: until the end of the stream) or
 // kLiveTimeout passed; `on_lines`, when given, hears how many have come after each read.
 inline std::vector<std::string> read_lines(int fd, long long count = -1,
                                            const std::function<void(size_t)>& on_lines = {}) {
@@ -321,8 +321,21 @@ inline std::vector<std::string> read_lines(int fd, long long count = -1,
     pollfd p{fd, POLLIN, 0};
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - TestClock::now()).count();
     if (left <= 0 || ::poll(&p, 1, static_cast<int>(left)) <= 0) break;
-    const ssize_t n = ::recv(fd, buffer, sizeof buffer, 0);
+    // With a count, only the bytes up to the line that completes it are taken (looked at first,
+    // then read), so that the next read starts at the next line, not inside it.
+    ssize_t n = ::recv(fd, buffer, sizeof buffer, count < 0 ? 0 : MSG_PEEK);
     if (n <= 0) break;
+    if (count >= 0) {
+      long long wanted = count - static_cast<long long>(lines.size());
+      ssize_t upto = n;
+      for (ssize_t i = 0; i < n; ++i)
+        if (buffer[i] == '\n' && --wanted == 0) {
+          upto = i + 1;
+          break;
+        }
+      n = ::recv(fd, buffer, static_cast<size_t>(upto), 0);
+      if (n <= 0) break;
+    }
     partial.append(buffer, static_cast<size_t>(n));
     size_t start = 0;
     for (size_t nl; (nl = partial.find('\n', start)) != std::string::npos; start = nl + 1)
