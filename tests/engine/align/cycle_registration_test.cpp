@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include <catch2/catch.hpp>
 
@@ -47,6 +49,16 @@ TEST_CASE("cycle registration: a 6.5 s walk covers every cycle of a 22 s one") {
 
 namespace {
 
+// Gait cycles starting at `foot`'s strikes, of the given frames and median length.
+TakeCycles gait(std::vector<Cycle> cycles, int foot, double period = 0.0) {
+  TakeCycles c;
+  c.kind = CycleKind::kGait;
+  c.foot = foot;
+  c.cycles = std::move(cycles);
+  c.period = period;
+  return c;
+}
+
 // A made-up motion of one joint: x a ramp (its frame number, so a frame can be read back from its
 // pose), y `level`, z 0; walking along +z at one unit a frame, facing +z.
 CanonicalMotion ramp_motion(int frames, double level) {
@@ -72,12 +84,7 @@ TEST_CASE("cycle registration: the registered take, worked by hand") {
   // The reference: 100 frames, cycles at 10-35, 35-60 and 70-95 (a pause at 60-70). The take: 40
   // frames, cycles 5-20 and 20-35.
   const CanonicalMotion ref = ramp_motion(100, 1.0), take = ramp_motion(40, 3.0);
-  TakeCycles rc, tc;
-  rc.kind = tc.kind = CycleKind::kGait;
-  rc.foot = tc.foot = 0;
-  rc.cycles = {{10, 35}, {35, 60}, {70, 95}};
-  tc.cycles = {{5, 20}, {20, 35}};
-  tc.period = 15;
+  const TakeCycles rc = gait({{10, 35}, {35, 60}, {70, 95}}, 0), tc = gait({{5, 20}, {20, 35}}, 0, 15);
   const RegisteredMotion r = register_by_cycles(ref, contacts_marked(100, 0.0), rc, take, contacts_marked(40, 1.0), tc, 2);
   const CycleRegistration& g = r.registration;
   CHECK(g.pairs == std::vector<int>{0, 1, 0});
@@ -138,13 +145,7 @@ TEST_CASE("cycle registration: a start and a stop show the take's own where both
   // The reference: 60 frames, cycles 10-30 and 30-50. The take: 70 frames, cycles 15-35, 35-50 and
   // 50-60 (more than the reference's), its stop 60-70 after its last cycle.
   const CanonicalMotion ref = ramp_motion(60, 1.0), take = ramp_motion(70, 3.0);
-  TakeCycles rc, tc;
-  rc.kind = tc.kind = CycleKind::kGait;
-  rc.foot = tc.foot = 0;
-  rc.cycles = {{10, 30}, {30, 50}};
-  tc.cycles = {{15, 35}, {35, 50}, {50, 60}};
-  rc.period = 20;
-  tc.period = 15;
+  const TakeCycles rc = gait({{10, 30}, {30, 50}}, 0, 20), tc = gait({{15, 35}, {35, 50}, {50, 60}}, 0, 15);
   const RegisteredMotion r = register_by_cycles(ref, contacts_marked(60, 0.0), rc, take, contacts_marked(70, 1.0), tc, 2);
   const CycleRegistration& g = r.registration;
   // Start: the take's frames 0-14; cycles 0 and 1 (35 frames); stop: its frames 60-69, after its
@@ -177,13 +178,7 @@ TEST_CASE("cycle registration: a start or stop far longer in one take is matched
   // frames). The take: 48 frames, its start 0-12 (12 frames), cycles 12-27 and 27-45, its stop
   // 45-48 (3 frames). Both under way at both ends. Beyond 1.5 times each other's length.
   const CanonicalMotion ref = ramp_motion(60, 1.0), take = ramp_motion(48, 3.0);
-  TakeCycles rc, tc;
-  rc.kind = tc.kind = CycleKind::kGait;
-  rc.foot = tc.foot = 0;
-  rc.cycles = {{2, 22}, {22, 42}};
-  tc.cycles = {{12, 27}, {27, 45}};
-  rc.period = 20;
-  tc.period = 16;
+  const TakeCycles rc = gait({{2, 22}, {22, 42}}, 0, 20), tc = gait({{12, 27}, {27, 45}}, 0, 16);
   const RegisteredMotion r = register_by_cycles(ref, contacts_marked(60, 0.0), rc, take, contacts_marked(48, 1.0), tc, 2);
   const CycleRegistration& g = r.registration;
   // The take's own start, cycles and stop, every frame of it once: 12 + 33 + 3.
@@ -224,11 +219,7 @@ TEST_CASE("cycle registration: a start or stop far longer in one take is matched
 
 TEST_CASE("cycle registration: a reused cycle that does not follow on eases its seam over the cycle") {
   const CanonicalMotion ref = ramp_motion(100, 1.0), take = ramp_motion(40, 3.0);
-  TakeCycles rc, tc;
-  rc.kind = tc.kind = CycleKind::kGait;
-  rc.foot = tc.foot = 1;
-  rc.cycles = {{10, 30}, {30, 50}, {50, 70}};  // one after another
-  tc.cycles = {{5, 20}, {20, 35}};
+  const TakeCycles rc = gait({{10, 30}, {30, 50}, {50, 70}}, 1), tc = gait({{5, 20}, {20, 35}}, 1);  // one after another
   const RegisteredMotion r = register_by_cycles(ref, contacts_marked(100, 0.0), rc, take, contacts_marked(40, 1.0), tc, 2);
   // The third cycle is the take's first again, after its second: at the seam the pose goes on
   // from where the second ended (the take's frame 35), and the difference (35 - 5) shrinks
