@@ -202,7 +202,10 @@ void finish_rest(const FinishRig& rig, const FinishOptions& options, FinishScrat
       // takes' heights at the frames shown do not describe the output's feet (a foot eased down
       // towards its first frame's step would be lifted against the seam, and the lift spread
       // over the whole loop with the lock's).
-      if (out.loop.frames() == 0) lift_swinging_feet(out.world, *rig.feet, s.air, s.swing);
+      if (out.loop.frames() == 0) {
+        lift_swinging_feet(out.world, *rig.feet, s.air, s.swing);
+        settle_held_feet(out.world, *rig.feet, s.feet_height, s.held, s.swing);
+      }
     }
     apply_foot_lock(out.world, *rig.feet, s.foot, body_drift != nullptr ? &s.drift : nullptr, rig.lock_limits,
                     feet_height != nullptr ? &s.held : nullptr);

@@ -45,4 +45,18 @@ struct SwingClearanceScratch {
 double lift_swinging_feet(Eigen::MatrixXd& world, const FootRig& rig, const Eigen::MatrixXd& air,
                           SwingClearanceScratch& scratch);
 
+// The counterpart for feet the takes plant: each foot joint the takes hold within the planted band
+// (held, F x kFootJoints, above 0.5) that is in the output's band too (planted_frames; a foot the
+// output swings is not brought down) set to the height the takes hold it (heights: F x
+// kFootJoints, planted bands above the floor, as the foot lock's feet heights), over the output's
+// own floor: the ankle raised or lowered with two-bone IK (raise_leg: the knee bends in its own
+// plane), then the toe to its height, the foot keeping its length and its way across the floor;
+// eased over kSwingEaseSeconds on either side of the frames held. A mix of poses changes a
+// planted foot's shape where the takes' feet do not (a style's heel lifting, its foot rolling, put
+// on a content that stands flat): the ankle then moves across the floor about a toe that stays,
+// and no pin of the whole foot holds both. With the takes' heights, the foot rolls as theirs do.
+// Returns the largest change, file units. Throws InputError on a shape mismatch. O(F x w).
+double settle_held_feet(Eigen::MatrixXd& world, const FootRig& rig, const Eigen::MatrixXd& heights,
+                        const Eigen::MatrixXd& held, SwingClearanceScratch& scratch);
+
 }  // namespace mostyle
