@@ -39,11 +39,11 @@ void ease_lift(const Eigen::VectorXd& need, int ramp, Eigen::VectorXd& lift) {
   }
 }
 
-// The leg's ankle raised by lift[t] (lowered where it is negative) on every frame with a lift, the toe moved with it. The knee
-// bends in its own plane (the least change to the pose), but forwards, the way the body faces
-// (the hips' left-right line turned a quarter about the vertical): a knee a mix leaves nearly
-// straight, or bent a little backwards, would fold backwards or flip its bend from one frame to
-// the next as the lift bends it. Both corrections grow with the lift from none, so a lift
+// The leg's ankle raised by lift[t] (lowered where it is negative) on every frame with a lift,
+// the toe moved with it. The knee bends in its own plane (the least change to the pose), but
+// forwards, the way the body faces (the hips' left-right line turned a quarter about the
+// vertical): a knee a mix leaves nearly straight, or bent a little backwards, would fold
+// backwards or flip its bend from one frame to the next as the lift bends it. Both corrections grow with the lift from none, so a lift
 // easing in bends the knee from where it was. O(F).
 void raise_leg(Eigen::MatrixXd& world, const LegColumns& leg, const std::array<LegColumns, 2>& legs,
                double leg_length, const Eigen::VectorXd& lift) {
@@ -158,8 +158,8 @@ double settle_held_feet(Eigen::MatrixXd& world, const FootRig& rig, const Eigen:
   std::array<double, kFootJoints> floors;
   planted_frames(world, rig, s.planted, s.heights, &floors);
   double largest = 0.0;
-  Eigen::VectorXd weight;
-  Eigen::VectorXi from;
+  Eigen::VectorXd& weight = s.weight;
+  Eigen::VectorXi& from = s.from;
   for (int side = 0; side < 2; ++side) {
     const LegColumns& leg = rig.legs[static_cast<size_t>(side)];
     if (!leg.usable()) continue;

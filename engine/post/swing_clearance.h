@@ -30,6 +30,8 @@ struct SwingClearanceScratch {
   std::vector<double> heights;
   Eigen::VectorXd need, lift;  // F: one leg's lift needed on each frame, and eased
   Eigen::MatrixXd total;       // F x 2: each leg's lift over all passes
+  Eigen::VectorXd weight;      // F: settle_held_feet's share of one joint's settling
+  Eigen::VectorXi from;        // F: the held frame it is read from (-1: none)
 };
 
 // Lifts, in world (F x 3M, Y up, file units) itself, each foot joint (planted_feet.h's ankles and
@@ -55,7 +57,8 @@ double lift_swinging_feet(Eigen::MatrixXd& world, const FootRig& rig, const Eige
 // planted foot's shape where the takes' feet do not (a style's heel lifting, its foot rolling, put
 // on a content that stands flat): the ankle then moves across the floor about a toe that stays,
 // and no pin of the whole foot holds both. With the takes' heights, the foot rolls as theirs do.
-// Returns the largest change, file units. Throws InputError on a shape mismatch. O(F x w).
+// Returns the largest change, file units. Throws InputError on a shape mismatch. O(F x w); no
+// allocation once scratch has size F.
 double settle_held_feet(Eigen::MatrixXd& world, const FootRig& rig, const Eigen::MatrixXd& heights,
                         const Eigen::MatrixXd& held, SwingClearanceScratch& scratch);
 
