@@ -471,6 +471,7 @@ TransferPlan transfer_plan(const TransferRequest& request) {
   mp.min_weight = transfer_min_weight(static_cast<int>(styles));
   mp.max_weight = transfer_max_weight(static_cast<int>(styles));
   mp.feet_of_reference = true;
+  mp.reference_cycles = true;
   for (const auto& [seconds, s] : parse_keys(request.strength_at, "--strength-at", styles))
     mp.keys.push_back({seconds, transfer_weights(s, w.neutral)});
   if (!mp.keys.empty() && !request.part_strengths.empty())

@@ -11,11 +11,16 @@
 
 namespace mostyle {
 
+int replay_cycle(int k, int n, int slots) {
+  if (k < n) return k;
+  return ((k - slots) % n + n) % n;
+}
+
 std::vector<int> pair_cycles(const TakeCycles& reference, const TakeCycles& take) {
   std::vector<int> pairs;
   if (take.cycles.empty()) return pairs;
-  const int n = static_cast<int>(take.cycles.size());
-  for (size_t k = 0; k < reference.cycles.size(); ++k) pairs.push_back(static_cast<int>(k) % n);
+  const int n = static_cast<int>(take.cycles.size()), slots = static_cast<int>(reference.cycles.size());
+  for (int k = 0; k < slots; ++k) pairs.push_back(replay_cycle(k, n, slots));
   return pairs;
 }
 
@@ -95,12 +100,14 @@ void copy_take_cycle(const Registering& in, size_t si, RegisteredMotion& out, Ei
     if (before.end != c.begin) seam = in.take.local.row(before.end) - in.take.local.row(c.begin);
   }
   reg.cycles.cycles.push_back({static_cast<int>(v), static_cast<int>(v) + c.frames()});
+  const bool eased = seam.squaredNorm() > 0.0;
   for (int j = 0; j < c.frames(); ++j, ++v) {
     const int f = c.begin + j;
     out.motion.local.row(v) = in.take.local.row(f) + (1.0 - double(j) / c.frames()) * seam;
     out.contacts.row(v) = in.take_contacts.row(f);
     steps.row(v) = in.take_steps.row(f);
-    reg.source[v] = f;
+    // A seam's first frame shows the pose the cycle before ended on.
+    reg.source[v] = j == 0 && eased ? in.paired(reg, si - 1).end : f;
     reg.source_cycle[v] = tc;
   }
 }
@@ -168,10 +175,9 @@ bool under_way(const Eigen::MatrixXd& steps, const TakeCycles& cycles, bool star
 // reference's start or stop and is to show them: neither take is a loop (a loop has no start or
 // stop of its own: the frames before its first cycle and after its last are one stretch of it),
 // the take has such frames, and both takes are alike there (both start from standing,
-// or both are already walking when they begin: a take cut in mid-walk). A stop also needs the
-// take to have no fewer cycles than the reference: where its cycles are reused, the stop runs on
-// from the reused cycle as the frames between cycles do (fill_between_cycles). [t0, t1) frames
-// of the take; empty when not.
+// or both are already walking when they begin: a take cut in mid-walk). The reference's last
+// cycle holds the take's last (pair_cycles), so its stop follows on. [t0, t1) frames of the
+// take; empty when not.
 constexpr double kEdgeLengthRatio = 1.5;
 struct OwnEdge {
   int t0 = 0, t1 = 0;
@@ -197,7 +203,7 @@ OwnEdge own_edge(const Registering& in, size_t si) {
     OwnEdge e{0, in.take_cycles.cycles.front().begin};
     if (fits(e, true)) return e;
   }
-  if (si + 1 == in.spans.size() && si > 0 && in.take_cycles.cycles.size() >= in.reference_cycles.cycles.size()) {
+  if (si + 1 == in.spans.size() && si > 0) {
     OwnEdge e{in.take_cycles.cycles.back().end, ft};
     if (fits(e, false)) return e;
   }
@@ -315,6 +321,81 @@ RegisteredMotion register_by_cycles(const CanonicalMotion& reference, const Eige
   reg.anchors.push_back({static_cast<int>(fr) - 1, static_cast<int>(v_frames) - 1, false});
   integrate_root(steps, reference.ground.row(0).transpose(), reference.heading[0], &out.motion.ground,
                  &out.motion.heading);
+  return out;
+}
+
+RegisteredMotion extend_by_cycles(const CanonicalMotion& motion, const Eigen::MatrixXd& contacts,
+                                  const TakeCycles& cycles, int slots) {
+  const Eigen::Index frames = motion.local.rows();
+  const int n = static_cast<int>(cycles.cycles.size());
+  if (contacts.rows() != frames) throw InputError("cycle extension: the take's poses and contacts do not have matching sizes");
+  check_cycles(cycles, frames, "reference");
+  if (n == 0 || slots <= n)
+    throw InputError("cycle extension: expected more slots (" + std::to_string(slots) + ") than the take's " +
+                     std::to_string(n) + " cycles");
+  std::vector<int> shown;  // the cycle each slot shows
+  for (int k = 0; k < slots; ++k) shown.push_back(replay_cycle(k, n, slots));
+  const int resume = cycles.cycles.back().end;  // the stop, after the last own cycle
+  Eigen::Index v_frames = frames;
+  for (int k = n; k < slots; ++k) v_frames += cycles.cycles[static_cast<size_t>(shown[k])].frames();
+  const Eigen::MatrixXd own_steps = root_steps(motion);
+  RegisteredMotion out;
+  CycleRegistration& reg = out.registration;
+  reg.take_cycles = cycles;
+  reg.pairs = shown;
+  reg.cycles.kind = cycles.kind;
+  reg.cycles.foot = cycles.foot;
+  reg.cycles.period = cycles.period;
+  reg.cycles.strike_phase = cycles.strike_phase;
+  // The rests and actions in the extended frames: the replays lie inside the moving span.
+  reg.cycles.spans = cycles.spans;
+  ActionSpans& spans = reg.cycles.spans;
+  const int extra = static_cast<int>(v_frames - frames);
+  if (spans.frames > 0) {
+    spans.frames += extra;
+    for (FrameSpan& a : spans.actions) {
+      if (a.begin >= resume) a.begin += extra;
+      if (a.end >= resume) a.end += extra;
+    }
+  }
+  out.motion.local.resize(v_frames, motion.local.cols());
+  out.contacts.resize(v_frames, 2);
+  Eigen::MatrixXd steps(v_frames, 3);
+  reg.source.resize(v_frames);
+  reg.source_cycle = Eigen::VectorXi::Constant(v_frames, -1);
+  Eigen::Index v = 0;
+  auto copy = [&](int f, int cycle, const Eigen::RowVectorXd* seam, double share) {
+    out.motion.local.row(v) = motion.local.row(f);
+    if (seam != nullptr) out.motion.local.row(v) += share * *seam;
+    out.contacts.row(v) = contacts.row(f);
+    steps.row(v) = own_steps.row(f);
+    reg.source[v] = f;
+    reg.source_cycle[v] = cycle;
+    ++v;
+  };
+  auto cycle_of = [&](int f) {
+    for (int k = 0; k < n; ++k)
+      if (f >= cycles.cycles[static_cast<size_t>(k)].begin && f < cycles.cycles[static_cast<size_t>(k)].end) return k;
+    return -1;
+  };
+  for (int f = 0; f < resume; ++f) copy(f, cycle_of(f), nullptr, 0.0);
+  for (int k = 0; k < n; ++k) reg.cycles.cycles.push_back(cycles.cycles[static_cast<size_t>(k)]);
+  using Anchor = CycleRegistration::Anchor;
+  reg.anchors.push_back(Anchor{0, 0, false, false});
+  reg.anchors.push_back(Anchor{resume, resume, false, true});  // the file's frame held over the replays
+  int before_end = resume;  // the take's frame the last slot ended on
+  for (int k = n; k < slots; ++k) {
+    const Cycle& c = cycles.cycles[static_cast<size_t>(shown[k])];
+    const Eigen::RowVectorXd seam = motion.local.row(before_end) - motion.local.row(c.begin);
+    reg.cycles.cycles.push_back({static_cast<int>(v), static_cast<int>(v) + c.frames()});
+    for (int j = 0; j < c.frames(); ++j) copy(c.begin + j, shown[k], &seam, 1.0 - double(j) / c.frames());
+    reg.source[v - c.frames()] = before_end;  // its first frame shows the pose the slot before ended on
+    before_end = c.end;
+  }
+  reg.anchors.push_back(Anchor{resume, static_cast<int>(v), false, false});
+  for (int f = resume; f < frames; ++f) copy(f, cycle_of(f), nullptr, 0.0);
+  reg.anchors.push_back(Anchor{static_cast<int>(frames) - 1, static_cast<int>(v_frames) - 1, false, false});
+  integrate_root(steps, motion.ground.row(0).transpose(), motion.heading[0], &out.motion.ground, &out.motion.heading);
   return out;
 }
 

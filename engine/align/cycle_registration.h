@@ -15,8 +15,16 @@
 namespace mostyle {
 
 // For each cycle of the reference, the index of the take's cycle matched with it; empty when
-// either has no cycles. The take's cycles are used in order from its first, then again.
+// either has no cycles. The take's cycles in order, then, where the reference has more, its last
+// cycles again in order, ending on its last (replay_cycle): the slots past the take's own hold
+// cycles it has already played, so that a mix at the take's weight 1 skips them and plays its
+// own cycles once each, its stop after its last (mixed_clock.h).
 std::vector<int> pair_cycles(const TakeCycles& reference, const TakeCycles& take);
+
+// The cycle of n a take shows at slot k of `slots` (slots >= n, k < slots): its own k below n,
+// then its last slots - n cycles again in order (from the first again where it has fewer), so
+// that the last slot shows its last cycle and its stop follows on.
+int replay_cycle(int k, int n, int slots);
 
 // The take registered onto the reference by cycles: a motion of V frames laid on the
 // reference's spans, in order. A span of the reference inside its cycle k holds the take's cycle
@@ -26,8 +34,8 @@ std::vector<int> pair_cycles(const TakeCycles& reference, const TakeCycles& take
 // over up to fade frames into the take's own frames running on from the cycle before and into
 // the cycle after. The reference's start (before its first cycle) and stop (after its last)
 // hold the take's own start and stop instead, in its timing, where both takes are alike there
-// (both under way, or both starting or stopping from standing) and, for the stop, the take has
-// as many cycles as the reference: at weight 1 the walk begins and ends as the take's does. Edges
+// (both under way, or both starting or stopping from standing; the reference's last cycle holds
+// the take's last, pair_cycles): at weight 1 the walk begins and ends as the take's does. Edges
 // within 1.5 times each other's length are matched as cycles are; longer ones frame for frame
 // next to the cycle and, beyond, a hold of the shorter one (Anchor::hold). Where a reused cycle does not follow on from the one before in the take (its
 // last cycle, then its first again), the pose difference at the seam is spread over the cycle
@@ -60,6 +68,19 @@ struct RegisteredMotion {
   Eigen::MatrixXd contacts;      // V x 2
   CycleRegistration registration;
 };
+
+// The reference laid on `slots` cycles (more than its own, a take registered with it has more):
+// its own frames, and before its stop its last slots - cycles cycles again (replay_cycle), each
+// replay's seam with the cycle before it (the pose at its end against its start) spread over it
+// (full at its start, none at its end), its root's steps its own. So another take's extra cycles
+// have cycles of the reference to be registered on, and a mix at the reference's weight 1 skips
+// the replays and shows its own frames in order (mixed_clock.h). The registration's source is
+// the reference's own frame at each frame, pairs the slots' cycles, cycles the slots in the
+// extended frames; motion, contacts and root V frames, the root integrated from its first frame.
+// Throws InputError on cycles that do not fit the frames, or slots not above the cycles.
+// O(V x 3M).
+RegisteredMotion extend_by_cycles(const CanonicalMotion& motion, const Eigen::MatrixXd& contacts,
+                                  const TakeCycles& cycles, int slots);
 
 // Whether two takes can be registered by cycles: both have cycles of one kind, and gait cycles
 // begin at the same foot's strikes (detect the take's again with CycleOptions::foot otherwise).

@@ -457,14 +457,75 @@ std::string named_note(const std::string& note, const std::string& a, const std:
   return out;
 }
 
+// The reference as its file has it, where its own timeline is extended with replays of its
+// cycles (extend_reference): takes that are not registered by cycles (a stance, a gesture, a
+// whole-take match) are aligned onto these frames, and their warps then laid on the extended
+// ones, holding where the replays are (extended_warp), so that a mix that leaves the replays
+// out (at the reference's weight 1, a transfer) plays them as aligned on the reference itself.
+struct OwnReference {
+  CanonicalMotion canonical;  // the file's frames; empty when the reference is not extended
+  int resume = 0, extra = 0;  // the file's frame after which the replays come, and their frames
+  bool extended() const { return extra > 0; }
+};
+
+// An alignment onto the reference's file frames laid on its extended frames: a frame f of the
+// reference from `resume` on becomes f + extra, and over the replays the take holds the frame
+// it has at `resume` (a sample there and one at resume + extra, the take's frame the same).
+void extended_warp(const OwnReference& own, Alignment& al) {
+  if (!own.extended()) return;
+  const double r = own.resume, e = own.extra;
+  auto moved = [&](double f) { return f >= r ? f + e : f; };
+  const TimeWarp& w = al.warp;
+  const int u = w.samples();
+  int at = 0;  // the first sample at or past resume
+  while (at < u && w.a[at] < r) ++at;
+  std::vector<double> a, b, c, sl;
+  auto push = [&](double fa, double fb, int from, double sv) {
+    a.push_back(fa);
+    b.push_back(fb);
+    c.push_back(al.cost_ratio.size() > from ? al.cost_ratio[from] : 0.0);
+    sl.push_back(sv);
+  };
+  int inserted = 0;
+  for (int k = 0; k < u; ++k) {
+    if (k == at && at > 0 && at < u) {
+      // The take's frame at resume, held over the replays.
+      const double t = (r - w.a[at - 1]) / std::max(1e-12, w.a[at] - w.a[at - 1]);
+      const double fb = w.a[at] == r ? w.b[at] : w.b[at - 1] + t * (w.b[at] - w.b[at - 1]);
+      push(r, fb, at, 0.0);
+      ++inserted;
+      if (w.a[at] > r) {
+        push(r + e, fb, at, 0.0);
+        ++inserted;
+      }
+    }
+    push(moved(w.a[k]), w.b[k], k, al.slope.size() > k ? al.slope[k] : 0.0);
+  }
+  const int n = static_cast<int>(a.size());
+  al.warp.a = Eigen::Map<Eigen::VectorXd>(a.data(), n);
+  al.warp.b = Eigen::Map<Eigen::VectorXd>(b.data(), n);
+  al.cost_ratio = Eigen::Map<Eigen::VectorXd>(c.data(), n);
+  al.slope = Eigen::Map<Eigen::VectorXd>(sl.data(), n);
+  for (auto& [i, j] : al.path) i = static_cast<int>(moved(i));
+  al.a_first = static_cast<int>(moved(al.a_first));
+  al.a_last = static_cast<int>(moved(al.a_last));
+  al.frames_a += own.extra;
+  for (auto& [first, last] : al.poor) {
+    if (first >= at) first += inserted;
+    if (last >= at) last += inserted;
+  }
+}
+
 // Take i (> 0) aligned onto the reference: by cycles where both repeat (its own timeline then
 // becomes the registered take, its cycles on the reference's), else whole; with the alignment's
 // warnings.
-void align_onto_reference(int i, const PrepareOptions& options, const LegColumns6& leg, PreparedTakes& p,
-                          JobControl* control) {
+void align_onto_reference(int i, const PrepareOptions& options, const LegColumns6& leg, const OwnReference& own_reference,
+                          PreparedTakes& p, JobControl* control) {
   const int n = p.size();
   const double fps = p.fps;
   const PreparedTake& reference = p.takes.front();
+  const TakeCycles& slots = reference.timeline_cycles();
+  const CanonicalMotion& file_frames = own_reference.extended() ? own_reference.canonical : reference.canonical;
   PreparedTake& t = p.takes[static_cast<size_t>(i)];
   TakeCycles own = cycles_to_register(p, t, options.align);
   const int fade = std::max(2, static_cast<int>(std::lround(kPostureFadeCycles * reference.cycles.period)));
@@ -497,9 +558,9 @@ void align_onto_reference(int i, const PrepareOptions& options, const LegColumns
     t.registration = std::move(registered.registration);
     t.own_local_t = t.canonical.local.transpose();
   };
-  if (cycles_register(reference.cycles, own) && ends_inside(reference.cycles, reference.canonical.local.rows()) &&
+  if (cycles_register(slots, own) && ends_inside(slots, reference.canonical.local.rows()) &&
       ends_inside(own, take_motion->local.rows())) {
-    RegisteredMotion registered = register_by_cycles(reference.canonical, reference.own_contacts, reference.cycles,
+    RegisteredMotion registered = register_by_cycles(reference.canonical, reference.own_contacts, slots,
                                                      *take_motion, *take_contacts, own, fade);
     // An unrolled loop's frames are its file's frames modulo the loop.
     if (unrolled.loop_frames > 0)
@@ -524,27 +585,29 @@ void align_onto_reference(int i, const PrepareOptions& options, const LegColumns
                                                         kPostureSpreadFloor * p.feet.leg_length);
     adopt(registered);
   } else if (aligns_by_structure(reference.cycles, own, options.align)) {
-    t.alignment = align_by_structure(reference.canonical, reference.cycles.spans, t.canonical, t.cycles.spans,
+    t.alignment = align_by_structure(file_frames, reference.cycles.spans, t.canonical, t.cycles.spans,
                                      p.feature_joints, p.feet.leg_length, fps, options.align, control);
+    extended_warp(own_reference, t.alignment);
   } else {
-    t.alignment = align_takes(reference.canonical, t.canonical, p.feature_joints, p.feet.leg_length, fps,
+    t.alignment = align_takes(file_frames, t.canonical, p.feature_joints, p.feet.leg_length, fps,
                               options.align, control);
     // Registration by cycles was asked for (the default) but the takes cannot be registered (a
     // walk and a jump): where the open ends leave part of the reference out, all of both is
     // matched (closed ends), so that all of the reference plays at every weight; where their
     // lengths are too far apart for the slope limit, the open-ended alignment stays.
-    const int frames = static_cast<int>(reference.canonical.local.rows());
+    const int frames = static_cast<int>(file_frames.local.rows());
     if (options.align.method == DtwMethod::kSlope && options.align.time_base == TimeBase::kCycles &&
         options.align.slope.open_ends && (t.alignment.a_first > 0 || t.alignment.a_last < frames - 1)) {
       AlignmentOptions closed = options.align;
       closed.slope.open_ends = false;
       try {
-        t.alignment = align_takes(reference.canonical, t.canonical, p.feature_joints, p.feet.leg_length, fps, closed,
+        t.alignment = align_takes(file_frames, t.canonical, p.feature_joints, p.feet.leg_length, fps, closed,
                                   control);
       } catch (const InputError&) {
         // Lengths beyond the slope limit: the open-ended alignment, with its warning.
       }
     }
+    extended_warp(own_reference, t.alignment);
     t.alignment.whole_because = why_whole(reference.cycles, own, options.align, aligned_name(0, n, *reference.clip).name,
                                           aligned_name(i, n, *t.clip).name);
   }
@@ -564,6 +627,87 @@ void align_onto_reference(int i, const PrepareOptions& options, const LegColumns
                                    (own.kind == CycleKind::kGait ? "mean pose over its cycles"
                                                                  : "mean pose and the size of its movements") +
                                    " throughout, none of its motion");
+}
+
+// The cycles take i (> 0) registers with when it has its own to lay on the reference's (not a
+// loop, its cycles ending inside its frames), at the phase of the reference's; none otherwise.
+TakeCycles cycles_to_fill(const PreparedTakes& p, const PreparedTake& t, const AlignmentOptions& align) {
+  const TakeCycles& reference = p.takes.front().cycles;
+  TakeCycles own = cycles_to_register(p, t, align);
+  if (!cycles_register(reference, own) || own.loops()) return {};
+  const int frames = static_cast<int>(t.canonical.local.rows());
+  if (own.kind == CycleKind::kGait && (own.strike_phase != 0.0 || reference.strike_phase != 0.0))
+    own = cycles_at_phase(own, reference.strike_phase, frames);
+  return ends_inside(own, frames) ? own : TakeCycles();
+}
+
+// The reference's own timeline made long enough for every take's cycles: where a take to be
+// registered by cycles has more than the reference (a walk of 7 strides blended with one of 5),
+// the reference's last cycles are played again before its stop (extend_by_cycles), so that each
+// take's every cycle has a slot and at its weight 1 the mix plays all of them. The reference's
+// world, canonical motion and contacts become the extended ones, its registration says which of
+// its frames each shows; a loop reference, which repeats without end, is left as it is.
+OwnReference extend_reference(PreparedTakes& p, const PrepareOptions& options, const LegColumns6& leg) {
+  PreparedTake& r = p.takes.front();
+  const Eigen::Index frames = r.canonical.local.rows();
+  OwnReference own;
+  if (r.cycles.loops() || r.cycles.cycles.empty() || !ends_inside(r.cycles, frames)) return own;
+  int slots = static_cast<int>(r.cycles.cycles.size());
+  for (int i = 1; i < p.size(); ++i)
+    slots = std::max(slots, static_cast<int>(cycles_to_fill(p, p.takes[static_cast<size_t>(i)], options.align).cycles.size()));
+  if (slots <= static_cast<int>(r.cycles.cycles.size())) return own;
+  RegisteredMotion extended = extend_by_cycles(r.canonical, r.own_contacts, r.cycles, slots);
+  own.canonical = r.canonical;
+  own.resume = r.cycles.cycles.back().end;
+  own.extra = static_cast<int>(extended.motion.local.rows() - frames);
+  to_world(extended.motion.local, extended.motion.ground, extended.motion.heading, &r.world);
+  apply_limb_lengths(r.world, p.parents, p.lengths);
+  r.canonical = to_canonical(r.world, 0, leg[0], leg[3]);
+  r.own_local_t = r.canonical.local.transpose();
+  r.own_contacts = std::move(extended.contacts);
+  r.registration = std::move(extended.registration);
+  return own;
+}
+
+// The slots (PreparedTakes::slots) on the common timeline: each of the reference's timeline
+// cycles from the sample at its first frame to the sample at its end (whole reference frames are
+// samples), and which takes call each their own.
+void find_slots(PreparedTakes& p) {
+  p.slots = CycleSlots();
+  const PreparedTake& r = p.reference();
+  bool any = false;
+  for (int i = 1; i < p.size(); ++i) any |= !p.takes[static_cast<size_t>(i)].registration.pairs.empty();
+  if (!any || r.cycles.loops()) return;
+  const TakeCycles& cycles = r.timeline_cycles();
+  const Eigen::VectorXd& at = r.frames;
+  auto sample_at = [&](int frame) {
+    const double* found = std::lower_bound(at.data(), at.data() + at.size(), double(frame) - 1e-9);
+    return static_cast<int>(std::min<Eigen::Index>(found - at.data(), at.size() - 1));
+  };
+  const int n = p.size(), s_count = static_cast<int>(cycles.cycles.size());
+  p.slots.own = Eigen::MatrixXd::Zero(s_count, n);
+  for (int s = 0; s < s_count; ++s) {
+    const Cycle& c = cycles.cycles[static_cast<size_t>(s)];
+    p.slots.slots.push_back({sample_at(c.begin), sample_at(c.end)});
+  }
+  // A slot is a take's own where its cycle there is shown for the first time.
+  auto own_of = [&](const PreparedTake& t, int i) {
+    const std::vector<int>& pairs = t.registration.pairs;
+    std::vector<bool> seen(t.registration.take_cycles.cycles.size() + 1, false);
+    for (int s = 0; s < s_count; ++s) {
+      const int c = s < static_cast<int>(pairs.size()) ? pairs[static_cast<size_t>(s)] : -1;
+      const bool first = c >= 0 && c < static_cast<int>(seen.size()) && !seen[static_cast<size_t>(c)];
+      if (c >= 0 && c < static_cast<int>(seen.size())) seen[static_cast<size_t>(c)] = true;
+      p.slots.own(s, i) = t.registration.take_cycles.loops() || first ? 1.0 : 0.0;
+    }
+  };
+  if (r.registration.pairs.empty()) p.slots.own.col(0).setOnes();
+  else own_of(r, 0);
+  for (int i = 1; i < n; ++i) {
+    const PreparedTake& t = p.takes[static_cast<size_t>(i)];
+    if (t.registration.pairs.empty()) p.slots.own.col(i) = p.slots.own.col(0);
+    else own_of(t, i);
+  }
 }
 
 // Every take on the common timeline (p.timeline set), placed where the reference stands when its
@@ -632,9 +776,10 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
   report_progress(control, 0.3f);
 
   const auto t1 = Clock::now();
+  const OwnReference own_reference = extend_reference(*p, options, leg);
   std::vector<const TimeWarp*> warps;
   for (int i = 1; i < n; ++i) {
-    align_onto_reference(i, options, leg, *p, control);
+    align_onto_reference(i, options, leg, own_reference, *p, control);
     warps.push_back(&p->takes[static_cast<size_t>(i)].alignment.warp);
   }
   spent.dtw_ms = ms_since(t1);
@@ -649,6 +794,7 @@ std::shared_ptr<const PreparedTakes> prepare_takes(const std::vector<std::shared
   const auto t2 = Clock::now();
   p->timeline = common_timeline(warps);
   place_on_timeline(*p);
+  find_slots(*p);
   normalize_takes(*p);
   spent.preprocess_ms += ms_since(t2);
   check_cancel(control);

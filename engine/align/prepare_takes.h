@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "engine/align/alignment.h"
+#include "engine/align/cycle_slots.h"
 #include "engine/align/cycles.h"
 #include "engine/align/common_timeline.h"
 #include "engine/base/clip.h"
@@ -105,6 +106,11 @@ struct PreparedTakes {
   double fps = 30.0;                 // working rate
   double scale = 1.0;                // normalization scale, shared by every take
   Eigen::VectorXd reference_heading; // U: the reference's heading at each sample (a mix starts facing it)
+  // The reference's cycles as slots every take registered by cycles fills (cycle_slots.h): as
+  // many as the most cycles of any take, the reference's own timeline extended with replays of
+  // its last cycles where it has fewer (extend_by_cycles); empty when no take is registered by
+  // cycles.
+  CycleSlots slots;
   int samples() const { return timeline.samples(); }
   int size() const { return static_cast<int>(takes.size()); }
   const PreparedTake& reference() const { return takes.front(); }

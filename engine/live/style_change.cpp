@@ -236,7 +236,11 @@ StyleChange style_change(const PreparedTakes& p, const Eigen::RowVectorXd& strea
     const Eigen::MatrixXd style_phases =
         mean_poses(style.local, matched_frames(neutral_frames, neutral_take.frames, t.frames));
     out.cycle.push_back(rolled(periodic_table(style_phases - neutral_phases), roll));
-    out.posture.push_back(cycles_mean_pose(style.local, t.registration.cycles) - neutral_mean);
+    // Over the style's cycles laid on the neutral's own (not on the slots the neutral plays again
+    // where the style has more cycles, cycle_slots.h), as the change by phase is.
+    TakeCycles on_own = t.registration.cycles;
+    if (on_own.cycles.size() > neutral_cycles.size()) on_own.cycles.resize(neutral_cycles.size());
+    out.posture.push_back(cycles_mean_pose(style.local, on_own) - neutral_mean);
     out.planted.push_back(planted_change(out.cycle.back(), out.stance, out.posture.back()));
   }
   return out;

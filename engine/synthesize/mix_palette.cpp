@@ -335,6 +335,36 @@ void part_poses(const PreparedTakes& p, const Decomposed& d, const MixParams& pa
   s.trajectory.sampler.apply(s.samples, local);
 }
 
+// Where the clock leaves a cycle slot out (s.trajectory.skipped), the output's pose would jump
+// from the slot's first sample to its last (each take's pose there differs by a cycle's
+// variation: a replayed cycle's seam, a stride longer than the last): the jump, mixed as the poses
+// are (the overall weights; with keys, those at the frame after it), is taken away at the frame
+// after it and eased back in over the next cycle, so the poses go on from where they were and are
+// the takes' own again a cycle on. O(skipped x (N + cycle) x 3M).
+void ease_skipped_slots(const PreparedTakes& p, const MixParams& params, MixScratch& s, Eigen::MatrixXd& local,
+                        MixResult& out) {
+  const MixedTrajectory& t = s.trajectory;
+  out.slot_skips.clear();
+  const Eigen::Index ease = std::max<Eigen::Index>(1, std::lround(p.reference().timeline_cycles().period));
+  out.slot_ease = ease;
+  if (t.skipped.empty()) return;
+  const bool keyed = !params.keys.empty();
+  const Eigen::Index frames = local.rows();
+  for (size_t j = 0; j < t.skipped.size(); ++j) {
+    const Eigen::Index k = t.skip_frames[j];
+    if (k <= 0 || k >= frames) continue;
+    if (out.slot_skips.empty() || out.slot_skips.back() != k) out.slot_skips.push_back(k);
+    const CycleSlots::Slot& slot = p.slots.slots[static_cast<size_t>(t.skipped[j])];
+    s.mixed_mean.setZero(local.cols());
+    for (int i = 0; i < p.size(); ++i) {
+      const double w = keyed ? t.frame_w(k, i) : s.overall[static_cast<size_t>(i)];
+      if (w != 0.0) s.mixed_mean += w * (p.takes[i].local.row(slot.last) - p.takes[i].local.row(slot.first));
+    }
+    for (Eigen::Index f = k; f < std::min(frames, k + ease); ++f)
+      local.row(f) -= (1.0 - double(f - k) / double(ease)) * s.mixed_mean;
+  }
+}
+
 // The rig the clean-up measures the output with: the reference's, the foot lock held to the
 // takes' fastest joint and planted feet (MixResult::foot_sliding_inputs).
 FinishRig mix_rig(const PreparedTakes& p, double fastest, double planted_speed) {
@@ -393,6 +423,9 @@ void finish_rest_of_mix(const PreparedTakes& p, const MixParams& params, MixScra
       planted_drift(p, sources, s.overall, keyed ? &s.trajectory.frame_w : nullptr, s.drift);
       feet_heights(p, sources, s.overall, keyed ? &s.trajectory.frame_w : nullptr, s.feet_height, s.heights);
     }
+    // No planted move across a slot left out: the takes' travel over it is not played.
+    for (Eigen::Index k : s.trajectory.skip_frames)
+      if (k >= 1 && k - 1 < s.drift.rows()) s.drift.row(k - 1).setZero();
     drift = &s.drift;
     feet_height = &s.feet_height;
   }
@@ -415,11 +448,13 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
   clock.keys = &params.keys;
   clock.timing = &s.timing;
   clock.reference_timing = params.reference_timing;
+  clock.reference_cycles = params.reference_cycles;
   const FinishOptions finish = output_clock(p, clock, params.finish, st, s.trajectory, out.sources);
   if (d.paper() != nullptr) paper_poses(p, d, params, st, s, out.local);
   else if (per_component) part_poses(p, d, params, st, s, out.local);
   else if (params.residual) own_poses(p, params, out.sources, s, out.local);
   else reconstructed_poses(p, *d.shared(), params, st, s, out.local);
+  ease_skipped_slots(p, params, s, out.local, out);
   if (times != nullptr) times->synthesize_ms = ms_since(t0);
 
   const auto t1 = Clock::now();
@@ -462,7 +497,8 @@ Eigen::MatrixXd part_weights(const std::vector<std::pair<BodyPart, std::vector<d
 }
 
 Eigen::VectorXd source_frames_in_clip(const PreparedTakes& palette, const MixResult& mix) {
-  return mix.sources.col(0) * (palette.takes.front().clip->fps() / palette.fps);
+  // The reference's own frames (through its replays of cycles, when extended) in its file's rate.
+  return frames_in_take(palette.takes.front(), mix.sources.col(0)) * (palette.takes.front().clip->fps() / palette.fps);
 }
 
 }  // namespace mostyle

@@ -59,6 +59,10 @@ struct MixParams {
   // A transfer: the output's planted feet are held to the reference take's own (the content's
   // planted speed and drift), whatever the weights; else to the takes' mixed by weight.
   bool feet_of_reference = false;
+  // A transfer: the output plays the reference's own cycles (the content's), none of the slots a
+  // style take with more cycles adds (PreparedTakes::slots); else as many as the timing weights
+  // give (a blend at a take's weight 1 plays its cycles). The reference's timing plays its own.
+  bool reference_cycles = false;
   // The root kept near the reference's own path (trajectory/mixed_root.h PathLeash); none: the
   // mixed path as it comes. A transfer takes transfer_path_leash.
   PathLeash path_leash;
@@ -101,6 +105,10 @@ struct MixResult {
   Eigen::VectorXd sample;    // K: the common timeline's sample each output frame is at
   int first_sample = 0, last_sample = 0;  // the stretch played: where every take with a weight is matched
   Eigen::MatrixXd sources;   // K x N: each take's frame (fractional, working rate) at each output frame
+  // Where the clock left a cycle slot out (PreparedTakes::slots): the output frames after each,
+  // from which the poses' jump there is eased out over slot_ease frames (a cycle).
+  std::vector<Eigen::Index> slot_skips;
+  Eigen::Index slot_ease = 0;
   // How fast the takes' own planted feet move (PreparedTake::planted), weighted as mixed (with
   // keys, each take's mean weight over the output; per part, its mean over the components): what
   // motion.foot_sliding_raw and _cleaned are measured against. With a negative weight (a

@@ -69,10 +69,33 @@ double mixed_step(const CommonTimeline& timeline, const Weight& weight, int k) {
   return std::max(step, slowest);
 }
 
+// Whether slot s lies inside the stretch (a slot the stretch cuts always plays).
+bool inside(const CycleSlots::Slot& slot, SampleSpan span) { return slot.first >= span.first && slot.last <= span.last; }
+
+// Slot s's share of the weights' own cycles (SlotCount), the reference's own alone when asked.
+template <typename Weight>
+double slot_share(const SlotPlay& play, int s, int takes, const Weight& weight) {
+  const Eigen::MatrixXd& own = play.slots->own;
+  if (play.reference_only) return own(s, 0);
+  double share = 0.0;
+  for (int i = 0; i < takes; ++i) share += weight(i) * own(s, i);
+  return share;
+}
+
+// Whether the clock's advance into sample k (absolute) is left out: k inside a skipped slot,
+// after its first sample. skipped: slot indices in order.
+bool skipped_step(const SlotPlay& play, const std::vector<int>& skipped, int k) {
+  const auto at = std::upper_bound(skipped.begin(), skipped.end(), k, [&](int sample, int s) {
+    return sample <= play.slots->slots[static_cast<size_t>(s)].first;
+  });
+  if (at == skipped.begin()) return false;
+  return k <= play.slots->slots[static_cast<size_t>(*std::prev(at))].last;
+}
+
 }  // namespace
 
 void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& weights, SampleSpan span,
-                    Eigen::VectorXd& u, double* clock_at_last) {
+                    Eigen::VectorXd& u, double* clock_at_last, const SlotPlay& slots) {
   const int first = span.first, last = span.last;
   if (static_cast<int>(weights.size()) != timeline.takes())
     throw InputError("expected " + std::to_string(timeline.takes()) + " timing weights, found " +
@@ -80,16 +103,30 @@ void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& w
   for (double w : weights)
     if (!std::isfinite(w)) throw InputError("expected finite timing weights");
   check_stretch(timeline, first, last);
+  std::vector<int> none;
+  std::vector<int>& skipped = slots.skipped != nullptr ? *slots.skipped : none;
+  skipped.clear();
+  if (slots.slots != nullptr) {
+    SlotCount count;
+    for (int s = 0; s < slots.slots->size(); ++s) {
+      const bool in = inside(slots.slots->slots[static_cast<size_t>(s)], span);
+      if (!count.play(slot_share(slots, s, timeline.takes(), [&](int i) { return weights[static_cast<size_t>(i)]; })) && in)
+        skipped.push_back(s);
+    }
+  }
   const double total = timeline_from_steps(
       last - first + 1,
-      [&](int k) { return mixed_step(timeline, [&](int i) { return weights[static_cast<size_t>(i)]; }, first + k); },
+      [&](int k) {
+        if (!skipped.empty() && skipped_step(slots, skipped, first + k)) return 0.0;
+        return mixed_step(timeline, [&](int i) { return weights[static_cast<size_t>(i)]; }, first + k);
+      },
       u);
   u.array() += first;
   if (clock_at_last != nullptr) *clock_at_last = total;
 }
 
 void mixed_timeline(const CommonTimeline& timeline, const WeightKeys& keys, double fps, SampleSpan span,
-                    Eigen::VectorXd& u, Eigen::MatrixXd* sample_weights, double* clock_at_last) {
+                    Eigen::VectorXd& u, Eigen::MatrixXd* sample_weights, double* clock_at_last, const SlotPlay& slots) {
   const int first = span.first, last = span.last;
   validate_keys(keys, timeline.takes());
   if (keys.empty()) throw InputError("cannot time a mix by keys without a key");
@@ -100,14 +137,30 @@ void mixed_timeline(const CommonTimeline& timeline, const WeightKeys& keys, doub
   std::vector<double> w;
   double clock = 0.0;
   if (sample_weights != nullptr) sample_weights->resize(samples, timeline.takes());
+  std::vector<int> none;
+  std::vector<int>& skipped = slots.skipped != nullptr ? *slots.skipped : none;
+  skipped.clear();
+  SlotCount count;
+  int next_slot = 0, skip_to = -1;  // the next slot to decide; the last sample of a slot being left out
+  const int slot_count = slots.slots != nullptr ? slots.slots->size() : 0;
   for (int k = 0; k < samples; ++k) {
     weights_at(keys, clock / fps, w);
     for (double x : w)
       if (!std::isfinite(x)) throw InputError("expected finite timing weights");
     if (sample_weights != nullptr)
       for (int i = 0; i < timeline.takes(); ++i) (*sample_weights)(k, i) = w[static_cast<size_t>(i)];
+    // Slots that begin here (or began before the stretch) are decided with the weights now.
+    while (next_slot < slot_count && slots.slots->slots[static_cast<size_t>(next_slot)].first <= first + k) {
+      const CycleSlots::Slot& slot = slots.slots->slots[static_cast<size_t>(next_slot)];
+      const bool play = count.play(slot_share(slots, next_slot, timeline.takes(), [&](int i) { return w[static_cast<size_t>(i)]; }));
+      if (!play && inside(slot, span)) {
+        skipped.push_back(next_slot);
+        skip_to = slot.last;
+      }
+      ++next_slot;
+    }
     if (k + 1 < samples) {
-      steps[k + 1] = mixed_step(timeline, [&](int i) { return w[static_cast<size_t>(i)]; }, first + k + 1);
+      steps[k + 1] = first + k + 1 <= skip_to ? 0.0 : mixed_step(timeline, [&](int i) { return w[static_cast<size_t>(i)]; }, first + k + 1);
       clock += std::max(0.0, steps[k + 1]);
     }
   }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/align/common_timeline.h"
+#include "engine/align/cycle_slots.h"
 #include "engine/trajectory/weight_keys.h"
 
 namespace mostyle {
@@ -16,6 +17,16 @@ namespace mostyle {
 // Samples first..last of the takes' common timeline, both included.
 struct SampleSpan {
   int first = 0, last = 0;
+};
+
+// The cycle slots a mix plays (cycle_slots.h). A slot inside the stretch that the weights do not
+// call for (SlotCount) gets no time on the clock: the output leaves it out, from its first sample
+// straight to its last, so that a take at weight 1 plays its own cycles once each and a blend as
+// many as its weights give. A slot the stretch cuts is always played.
+struct SlotPlay {
+  const CycleSlots* slots = nullptr;    // none: every sample plays
+  bool reference_only = false;          // the reference's own slots whatever the weights (a transfer's content)
+  std::vector<int>* skipped = nullptr;  // when given: set to the slots left out, in order
 };
 
 // Output frame k sits where the mixed clock T reaches k, over the span first..last of the takes'
@@ -28,8 +39,9 @@ struct SampleSpan {
 // (1 - w, w) on a one-warp timeline play at A's timing and length for w = 0 and at B's for w = 1.
 // Throws InputError on a weight count that is not the takes', a non-finite weight, or an empty
 // or out-of-range stretch. O((last - first) x N + frames).
+// slots: the cycle slots to play (SlotPlay), none by default.
 void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& weights, SampleSpan span,
-                    Eigen::VectorXd& u, double* clock_at_last = nullptr);
+                    Eigen::VectorXd& u, double* clock_at_last = nullptr, const SlotPlay& slots = {});
 
 // The same with the weights keyed in time (weight_keys.h, validated for the timeline's takes):
 // the clock's advance from sample k - 1 to k takes the keys' weights at the output time the clock
@@ -37,8 +49,10 @@ void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& w
 // keys' times are seconds of the output. sample_weights: when given, set to the weights at each
 // sample's output time ((last - first + 1) x N), for the root and contacts. Throws as the above.
 // O((last - first) x N + frames); allocates.
+// Each slot is decided by the keys' weights at the output time the clock has reached at its first sample.
 void mixed_timeline(const CommonTimeline& timeline, const WeightKeys& keys, double fps, SampleSpan span,
-                    Eigen::VectorXd& u, Eigen::MatrixXd* sample_weights = nullptr, double* clock_at_last = nullptr);
+                    Eigen::VectorXd& u, Eigen::MatrixXd* sample_weights = nullptr, double* clock_at_last = nullptr,
+                    const SlotPlay& slots = {});
 
 // Output frames (u: K sample positions, increasing, from mixed_timeline) retimed so that the last
 // lands exactly on sample `last`: a whole loop (its last sample repeats its first pose) then ends

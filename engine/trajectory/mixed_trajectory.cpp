@@ -31,6 +31,78 @@ void keep_loop_travel(Eigen::MatrixXd& ground, const Eigen::Ref<const Eigen::Mat
   for (Eigen::Index k = 1; k < n; ++k) ground.row(k) -= (double(k) / double(n - 1)) * off;
 }
 
+// A path over the stretch (rows counted from sample `first`) with the slots left out closed up:
+// over each, it stays where the slot begins, and after it goes on moved rigidly (turned by the
+// heading's change over the slot, when given, and moved back by the slot's travel). ground: U x 2;
+// heading: U or null, then the turns over each slot when given (a path without a heading of its
+// own: the weighted one, turned as the weighted steps turn). O(U x skipped).
+void close_skipped(const CycleSlots& slots, const std::vector<int>& skipped, int first, Eigen::MatrixXd& ground,
+                   Eigen::VectorXd* heading, const std::vector<double>* turns = nullptr) {
+  const Eigen::Index n = ground.rows();
+  for (size_t j = 0; j < skipped.size(); ++j) {
+    const int slot = skipped[j];
+    const Eigen::Index a = slots.slots[static_cast<size_t>(slot)].first - first, b = slots.slots[static_cast<size_t>(slot)].last - first;
+    if (a < 0 || b >= n || b <= a) continue;
+    const double turn = heading != nullptr ? (*heading)[b] - (*heading)[a] : turns != nullptr ? (*turns)[j] : 0.0;
+    // integrate_root turns a body-frame step by -heading into the world: undoing a turn turns by +turn.
+    const double c = std::cos(turn), sn = std::sin(turn);
+    const Eigen::RowVector2d from = ground.row(b), to = ground.row(a);
+    for (Eigen::Index k = a + 1; k < n; ++k) {
+      if (k <= b) {
+        ground.row(k) = to;
+        if (heading != nullptr) (*heading)[k] = (*heading)[a];
+        continue;
+      }
+      const Eigen::RowVector2d d = ground.row(k) - from;
+      ground(k, 0) = to[0] + c * d[0] - sn * d[1];
+      ground(k, 1) = to[1] + sn * d[0] + c * d[1];
+      if (heading != nullptr) (*heading)[k] -= turn;
+    }
+  }
+}
+
+// The rows of a stretch (length rows from sample `first`) that are played: all but those inside
+// a skipped slot after its first sample. O(length).
+void played_rows(const CycleSlots& slots, const std::vector<int>& skipped, Eigen::Index first, Eigen::Index length,
+                 std::vector<Eigen::Index>& kept) {
+  kept.clear();
+  size_t next = 0;
+  for (Eigen::Index r = 0; r < length; ++r) {
+    while (next < skipped.size() && slots.slots[static_cast<size_t>(skipped[next])].last - first < r) ++next;
+    const bool inside = next < skipped.size() && slots.slots[static_cast<size_t>(skipped[next])].first - first < r &&
+                        r <= slots.slots[static_cast<size_t>(skipped[next])].last - first;
+    if (!inside) kept.push_back(r);
+  }
+}
+
+// out.row(j) = m.row(kept[j]).
+template <typename M>
+void keep_rows(const M& m, const std::vector<Eigen::Index>& kept, M& out) {
+  out.resize(static_cast<Eigen::Index>(kept.size()), m.cols());
+  for (size_t j = 0; j < kept.size(); ++j) out.row(static_cast<Eigen::Index>(j)) = m.row(kept[j]);
+}
+
+// Steps (rows: sample r to r + 1) from each kept row to the next kept: the steps between them summed.
+void summed_steps(const Eigen::MatrixXd& steps, const std::vector<Eigen::Index>& kept, Eigen::MatrixXd& out) {
+  out.setZero(static_cast<Eigen::Index>(kept.size()), steps.cols());
+  for (size_t j = 0; j < kept.size(); ++j) {
+    const Eigen::Index end = j + 1 < kept.size() ? kept[j + 1] : kept[j] + 1;
+    for (Eigen::Index r = kept[j]; r < end && r < steps.rows(); ++r) out.row(static_cast<Eigen::Index>(j)) += steps.row(r);
+  }
+}
+
+// The played rows spread back over the stretch's length rows: a row left out holds the last
+// played row before it.
+template <typename M>
+void spread_rows(const M& m, const std::vector<Eigen::Index>& kept, Eigen::Index length, M& out) {
+  out.resize(length, m.cols());
+  size_t j = 0;
+  for (Eigen::Index r = 0; r < length; ++r) {
+    while (j + 1 < kept.size() && kept[j + 1] <= r) ++j;
+    out.row(r) = m.row(static_cast<Eigen::Index>(j));
+  }
+}
+
 // out = sum_i w_i (take i's `member`, rows [first, first + length)), a column at a time in one
 // pass (the same sums as setZero and one += per take).
 void weighted_columns(const PreparedTakes& p, const std::vector<double>& w, Eigen::MatrixXd PreparedTake::*member,
@@ -75,10 +147,14 @@ FinishOptions output_clock(const PreparedTakes& p, const ClockWeights& weights, 
   const int n = p.size();
   const bool keyed = !keys.empty();
   double clock_at_last = 0.0;
+  SlotPlay slots;
+  slots.slots = p.slots.empty() ? nullptr : &p.slots;
+  slots.reference_only = weights.reference_cycles || weights.reference_timing;
+  slots.skipped = &s.skipped;
   if (keyed && !weights.reference_timing) {
-    mixed_timeline(p.timeline, keys, p.fps, {st.first, st.last}, s.u, &s.sample_w, &clock_at_last);
+    mixed_timeline(p.timeline, keys, p.fps, {st.first, st.last}, s.u, &s.sample_w, &clock_at_last, slots);
   } else {
-    mixed_timeline(p.timeline, timing, {st.first, st.last}, s.u, &clock_at_last);
+    mixed_timeline(p.timeline, timing, {st.first, st.last}, s.u, &clock_at_last, slots);
     if (keyed) {  // the reference's clock: each sample's weights at the reference's time there
       s.sample_w.resize(st.length(), n);
       std::vector<double> w;
@@ -97,6 +173,13 @@ FinishOptions output_clock(const PreparedTakes& p, const ClockWeights& weights, 
   }
   s.u_stretch = s.u.array() - double(st.first);
   s.sampler.set(s.u_stretch, st.length());
+  // Where each slot left out is: the first output frame at or past its last sample.
+  s.skip_frames.clear();
+  for (int slot : s.skipped) {
+    const double end = p.slots.slots[static_cast<size_t>(slot)].last;
+    const double* at = std::lower_bound(s.u.data(), s.u.data() + s.u.size(), end - 1e-9);
+    s.skip_frames.push_back(at - s.u.data());
+  }
   // Each take's frame at each output frame: the residual's poses and the foot lock's drift read
   // it; written again only when a loop cuts the output.
   write_sources(p, s.sampler, st.first, sources);
@@ -124,6 +207,15 @@ void mix_root(const PreparedTakes& p, const WeightKeys& keys, const std::vector<
     weighted_columns(p, root_w, &PreparedTake::ground, first, length, s.terms, s.target);
     weighted_columns(p, root_w, &PreparedTake::contacts, first, length, s.terms, s.contacts_u);
   }
+  // A slot left out takes no step (its whole turns, spread, are still taken); the turn its steps
+  // would have taken turns the weighted paths after it back.
+  s.skip_turns.clear();
+  for (int slot : s.skipped) {
+    const Eigen::Index a = p.slots.slots[static_cast<size_t>(slot)].first - first, b = p.slots.slots[static_cast<size_t>(slot)].last - first;
+    const bool inside = a >= 0 && b < length && b > a;
+    s.skip_turns.push_back(inside ? s.steps.col(2).segment(a, b - a).sum() : 0.0);
+    if (inside) s.steps.middleRows(a, b - a).setZero();
+  }
   for (int i = 1; i < n; ++i) {
     s.flips = p.takes[i].turn_flips.segment(first, length);
     if (keyed) add_spread_turns(s.flips, s.sample_w.col(i), p.fps, s.steps);
@@ -139,22 +231,45 @@ void mix_root(const PreparedTakes& p, const WeightKeys& keys, const std::vector<
     convex &= root_w[i] >= 0.0;
     for (const WeightKey& key : keys) convex &= key.weights[static_cast<size_t>(i)] >= 0.0;
   }
+  const bool leashed = leash.body_heights > 0.0;
+  if (leashed) {
+    s.path_u = p.takes.front().ground.middleRows(first, length);
+    s.path_heading_u = p.reference_heading.segment(first, length);
+  }
+  // The slots the clock leaves out: the root is made on the samples played alone (the paths it
+  // is pulled towards or kept near closed up over them, moved rigidly), so that neither the
+  // pull nor the leash's windows see the samples no output frame shows, and spread back after.
+  const bool skips = !s.skipped.empty();
+  if (skips) {
+    played_rows(p.slots, s.skipped, first, length, s.kept);
+    close_skipped(p.slots, s.skipped, static_cast<int>(first), s.target, nullptr, &s.skip_turns);
+    if (leashed) close_skipped(p.slots, s.skipped, static_cast<int>(first), s.path_u, &s.path_heading_u);
+    summed_steps(s.steps, s.kept, s.played_steps);
+    s.steps.swap(s.played_steps);
+    keep_rows(s.target, s.kept, s.played_steps);
+    s.target.swap(s.played_steps);
+    if (leashed) {
+      keep_rows(s.path_u, s.kept, s.played_steps);
+      s.path_u.swap(s.played_steps);
+      keep_rows(s.path_heading_u, s.kept, s.played_heading);
+      s.path_heading_u.swap(s.played_heading);
+    }
+  }
   integrate_root_towards(s.steps, s.target, p.reference_heading[first], p.fps, convex ? root_pull_seconds : 0.0,
                          &s.ground_u, &s.heading_u);
-  if (leash.body_heights > 0.0) {
+  if (leashed) {
     s.free_ground_u = s.ground_u;
     s.free_heading_u = s.heading_u;
-    remove_path_drift(s.ground_u, p.takes.front().ground.middleRows(first, length),
-                      static_cast<Eigen::Index>(std::lround(leash.drift_seconds * p.fps)), s.drift_u);
-    keep_near_path(s.ground_u, p.takes.front().ground.middleRows(first, length), leash.body_heights * p.feet.body_height);
-    keep_near_heading(s.heading_u, p.reference_heading.segment(first, length), kPathLeashHeading);
+    remove_path_drift(s.ground_u, s.path_u, static_cast<Eigen::Index>(std::lround(leash.drift_seconds * p.fps)), s.drift_u);
+    keep_near_path(s.ground_u, s.path_u, leash.body_heights * p.feet.body_height);
+    keep_near_heading(s.heading_u, s.path_heading_u, kPathLeashHeading);
     // A loop of a reference that does not walk (a stance, a repeated gesture) travels as the
     // reference does over the loop: any other travel is a gap between its last frame and its
     // first's next repeat, which the foot lock's seam then spreads over feet that never swing
     // (they crept as far as the root had drifted under a style that sways its hips). A walking
     // loop's travel is its strides', which the stride map fits and the seam takes up over the swings.
     if (p.reference().cycles.kind != CycleKind::kGait && shows_whole_loop(p, st.first, st.last))
-      keep_loop_travel(s.ground_u, p.takes.front().ground.middleRows(first, length));
+      keep_loop_travel(s.ground_u, s.path_u);
     // A content that does not walk (no gait cycles: a jump, a stand) has no stride to fit.
     if (p.reference().cycles.kind == CycleKind::kGait)
       stride_map(s.free_ground_u, s.free_heading_u, s.ground_u, s.heading_u, p.fps, p.feet.body_height, s.stride_u);
@@ -162,6 +277,16 @@ void mix_root(const PreparedTakes& p, const WeightKeys& keys, const std::vector<
       s.stride_u.resize(0, 4);
   } else {
     s.stride_u.resize(0, 4);
+  }
+  if (skips) {
+    spread_rows(s.ground_u, s.kept, length, s.played_steps);
+    s.ground_u.swap(s.played_steps);
+    spread_rows(s.heading_u, s.kept, length, s.played_heading);
+    s.heading_u.swap(s.played_heading);
+    if (s.stride_u.rows() > 0) {
+      spread_rows(s.stride_u, s.kept, length, s.played_steps);
+      s.stride_u.swap(s.played_steps);
+    }
   }
   s.contacts_u = (s.contacts_u.array() > 0.5).cast<double>();
 }

@@ -42,6 +42,17 @@ struct MixedTrajectory {
   // (U x 4, stride_map) that fits the legs to the root kept; stride_u is empty without a leash.
   Eigen::MatrixXd free_ground_u, stride_u;
   Eigen::VectorXd free_heading_u;
+  // The cycle slots the clock left out (PreparedTakes::slots, mixed_clock.h SlotPlay), in order,
+  // and where each is left out: the output frame that shows the sample at its end (the frame
+  // before it shows its first).
+  std::vector<int> skipped;
+  std::vector<Eigen::Index> skip_frames;
+  std::vector<double> skip_turns;  // the weighted steps' turn over each slot left out (radians)
+  Eigen::MatrixXd path_u;     // U x 2: the reference's path with the slots left out closed up (a leash)
+  Eigen::VectorXd path_heading_u;  // U: its heading
+  std::vector<Eigen::Index> kept;  // the stretch's rows played (all but those inside a slot left out)
+  Eigen::MatrixXd played_steps;    // scratch: a matrix on the rows played, or spread back
+  Eigen::VectorXd played_heading;  // scratch: the same for a heading
 };
 
 // The stretch every take with a weight matches (a take at weight 0 does not shorten it): weights,
@@ -58,6 +69,9 @@ struct ClockWeights {
   const WeightKeys* keys = nullptr;             // empty: none
   const std::vector<double>* timing = nullptr;  // one per take
   bool reference_timing = false;  // by `timing` even with keys, which are read at the reference's times
+  // The reference's own cycle slots only (MixParams::reference_cycles; also on the reference's
+  // timing), else as many as the timing weights give (mixed_clock.h SlotPlay).
+  bool reference_cycles = false;
 };
 
 // The output's clock (options as MixParams has them): s.u (K sample positions, mixed or the
@@ -79,7 +93,8 @@ FinishOptions output_clock(const PreparedTakes& p, const ClockWeights& weights, 
 // its heading (keep_near_heading), with the stride map from the root before the leash to the root
 // kept (s.stride_u, stride_map; empty without a leash, and for a reference without gait cycles).
 // On a leash, a whole loop of a reference without gait cycles travels as the reference does over
-// it. O(U x N).
+// it. Over a cycle slot the clock leaves out (s.skipped) the root neither moves nor turns, and the
+// paths it is pulled towards or kept near go on from where it was left out, moved rigidly. O(U x N).
 void mix_root(const PreparedTakes& p, const WeightKeys& keys, const std::vector<double>& root_w, double root_pull_seconds,
               const PathLeash& leash, const PlayedStretch& st, MixedTrajectory& s);
 

@@ -113,6 +113,7 @@ void mix_bench(benchmark::State& state, bool reference_timing, bool keyed = fals
       params.layers = MixLayers{{MixLayer{0, 1.0, {}}}, {AdditiveLayer{1 + step % (p.size() - 1), 0, t, {}}}};
       params.reference_timing = true;
       params.feet_of_reference = true;
+      params.reference_cycles = true;
       params.path_leash = transfer_path_leash(TransferNeutral::kContent, false);
     }
     if (keyed) {

@@ -29,6 +29,7 @@ inline Clip transfer_on_content(const std::shared_ptr<const Clip>& content, cons
   mp.max_weight = transfer_max_weight(1);
   mp.reference_timing = true;
   mp.feet_of_reference = true;  // as the command line's transfer holds them
+  mp.reference_cycles = true;
   MixScratch scratch;
   MixResult result;
   mix_palette(*p, *d, mp, scratch, result);

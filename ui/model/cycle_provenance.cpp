@@ -93,8 +93,15 @@ std::vector<CycleProvenance> cycle_provenance(const PreparedTakes& prepared, con
     shown[static_cast<size_t>(i)] = cycles_shown(take, sources.col(i));
     own[static_cast<size_t>(i)] = frames_in_take(take, sources.col(i));
   }
-  // The spans: runs of output frames where the reference shows one cycle, or none.
-  const Eigen::VectorXi& reference = shown.front();
+  // The spans: runs of output frames where the reference shows one of its timeline's cycles (a
+  // slot: its own cycle, or one played again where another take has more), or none.
+  const std::vector<Cycle>& slots = prepared.takes.front().timeline_cycles().cycles;
+  Eigen::VectorXi reference(frames);
+  for (int k = 0; k < frames; ++k) {
+    const double f = sources(k, 0);
+    const auto at = std::upper_bound(slots.begin(), slots.end(), f, [](double x, const Cycle& c) { return x < c.begin; });
+    reference[k] = at != slots.begin() && f < std::prev(at)->end ? static_cast<int>(std::prev(at) - slots.begin()) : -1;
+  }
   int output_cycle = 0;
   for (int begin = 0; begin < frames;) {
     int end = begin + 1;
@@ -103,6 +110,7 @@ std::vector<CycleProvenance> cycle_provenance(const PreparedTakes& prepared, con
     span.begin = begin;
     span.end = end;
     span.cycle = reference[begin] >= 0 ? output_cycle++ : -1;
+    span.slot = reference[begin];
     spans.push_back(std::move(span));
     begin = end;
   }

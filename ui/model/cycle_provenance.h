@@ -44,6 +44,9 @@ struct TakeCycleSource {
 struct CycleProvenance {
   int begin = 0, end = 0;  // output frames [begin, end), at the working rate
   int cycle = -1;          // the result's cycle, 0-based in output order; -1: outside the reference's cycles
+  // The reference's cycle slot it plays (its timeline's cycle: PreparedTakes::slots), -1 outside;
+  // the slot each registered take's pairs index.
+  int slot = -1;
   std::vector<TakeCycleSource> takes;  // one per take, the reference first
 };
 

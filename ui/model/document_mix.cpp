@@ -64,6 +64,7 @@ MixParams mix_params_for(const Document& document, const Decomposed& decompositi
     m.min_weight = transfer_min_weight(takes);
     m.max_weight = transfer_max_weight(takes);
     m.feet_of_reference = true;
+    m.reference_cycles = true;
     m.path_leash = transfer_path_leash(neutral == 0 ? TransferNeutral::kContent : TransferNeutral::kTake, c.timing_a);
   } else {
     m.layers = take_layers(weights, parts);

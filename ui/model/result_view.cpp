@@ -19,6 +19,25 @@
 namespace mostyle::ui {
 namespace {
 
+// A take shown at a mix's sources, where the mix left a cycle slot out (MixResult::slot_skips):
+// its frames after it are its own timeline's past the slot, which it walked on over; moved back
+// along the ground so that it goes on from where it was, one frame's step on, as the result does.
+void close_slot_skips(const std::vector<Eigen::Index>& skips, Eigen::MatrixXd& rows) {
+  for (Eigen::Index k : skips) {
+    if (k < 2 || k >= rows.rows()) continue;
+    const double dx = 2.0 * rows(k - 1, 0) - rows(k - 2, 0) - rows(k, 0);
+    const double dz = 2.0 * rows(k - 1, 2) - rows(k - 2, 2) - rows(k, 2);
+    for (Eigen::Index j = 0; 3 * j < rows.cols(); ++j) {
+      rows.block(k, 3 * j, rows.rows() - k, 1).array() += dx;
+      rows.block(k, 3 * j + 2, rows.rows() - k, 1).array() += dz;
+    }
+  }
+}
+
+}  // namespace
+
+namespace {
+
 const glm::vec4 kHighlight(1.0f, 0.92f, 0.25f, 1.0f);
 
 using Clock = std::chrono::steady_clock;
@@ -224,6 +243,7 @@ void ResultView::place(const PreparedTakes& p, EditorState& state) {
     if (has_mix_) {
       const Eigen::VectorXd at = mix_.sources.col(i);
       sample_rows(take.world_placed, at, sampled_);
+      close_slot_skips(mix_.slot_skips, sampled_);
       t.contacts = joint_contacts(nearest_rows(take.own_contacts, at), p.feet, joints);
       t.cycle_starts = cycle_starts_at(take.timeline_cycles(), at);
     } else {

@@ -217,7 +217,7 @@ void draw_before_marks(const PairPlot& v, const PlotArea& before) {
         lo - 1.15 * span, v.color_b);
   // Where each take's cycles begin (engine/align/cycles.h): ticks at the top of the reference's
   // band and the bottom of the take's.
-  for (const Cycle& c : v.p.takes[0].cycles.cycles)
+  for (const Cycle& c : v.p.takes[0].timeline_cycles().cycles)
     dl->AddLine(before.to_screen(c.begin, hi + 0.1 * span), before.to_screen(c.begin, hi - 0.1 * span), v.color_a, 2.0f);
   for (const Cycle& c : take.timeline_cycles().cycles)
     dl->AddLine(before.to_screen(c.begin, lo - 1.15 * span), before.to_screen(c.begin, lo - 0.95 * span), v.color_b,

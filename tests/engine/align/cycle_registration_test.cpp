@@ -25,8 +25,15 @@ TEST_CASE("cycle registration: a short take's cycles reused in order, worked by 
   TakeCycles reference, take;
   reference.cycles = {{10, 40}, {40, 70}, {80, 100}, {100, 130}, {130, 160}};  // a pause at 70-80
   take.cycles = {{0, 15}, {15, 33}};
+  // Its own two, then its last three slots' worth again in order, ending on its last, so that
+  // its stop follows: 0 1 | 1 0 1.
   const std::vector<int> pairs = pair_cycles(reference, take);
-  CHECK(pairs == std::vector<int>{0, 1, 0, 1, 0});
+  CHECK(pairs == std::vector<int>{0, 1, 1, 0, 1});
+  CHECK(replay_cycle(0, 2, 5) == 0);
+  CHECK(replay_cycle(4, 2, 5) == 1);
+  TakeCycles three;
+  three.cycles = {{0, 10}, {10, 20}, {20, 30}};
+  CHECK(pair_cycles(reference, three) == std::vector<int>{0, 1, 2, 1, 2});  // the last two again
   // Nothing to pair: no cycles on either side.
   CHECK(pair_cycles(reference, TakeCycles()).empty());
   CHECK(pair_cycles(TakeCycles(), take).empty());
@@ -42,8 +49,11 @@ TEST_CASE("cycle registration: a 6.5 s walk covers every cycle of a 22 s one") {
   REQUIRE(ref.cycles.size() > other.cycles.size());  // the style take is the shorter
   const std::vector<int> pairs = pair_cycles(ref, other);
   CHECK(pairs.size() == ref.cycles.size());  // every cycle of the reference is matched
-  // Every cycle of the short take is used, in order, more than once.
-  for (size_t k = 0; k < pairs.size(); ++k) CHECK(pairs[k] == static_cast<int>(k % other.cycles.size()));
+  // Every cycle of the short take is used, its own in order first, then again in order, the
+  // last slot its last cycle.
+  const int n = static_cast<int>(other.cycles.size()), slots = static_cast<int>(pairs.size());
+  for (int k = 0; k < slots; ++k) CHECK(pairs[static_cast<size_t>(k)] == (k < n ? k : ((k - slots) % n + n) % n));
+  CHECK(pairs.back() == n - 1);
   CHECK(pairs.size() >= 2 * other.cycles.size());
 }
 
@@ -87,11 +97,11 @@ TEST_CASE("cycle registration: the registered take, worked by hand") {
   const TakeCycles rc = gait({{10, 35}, {35, 60}, {70, 95}}, 0), tc = gait({{5, 20}, {20, 35}}, 0, 15);
   const RegisteredMotion r = register_by_cycles(ref, contacts_marked(100, 0.0), rc, take, contacts_marked(40, 1.0), tc, 2);
   const CycleRegistration& g = r.registration;
-  CHECK(g.pairs == std::vector<int>{0, 1, 0});
+  CHECK(g.pairs == std::vector<int>{0, 1, 1});
   // Spans: the take's own 5 frames before its first cycle (both under way there; the reference's
   // 10 are more than 1.5 times as many, so the reference's first 5 hold the take's first frame),
-  // 15 + 15 (the take's cycles), 10 of the pause, 15, 5 after (the take has fewer cycles than the
-  // reference, so not its own stop).
+  // 15 + 15 (the take's cycles), 10 of the pause, 15 (its last cycle again), 5 after (its own
+  // stop, which follows its last cycle).
   REQUIRE(r.motion.local.rows() == 5 + 15 + 15 + 10 + 15 + 5);
   REQUIRE(g.cycles.cycles.size() == 3);
   CHECK(g.cycles.cycles[0].begin == 5);
@@ -108,8 +118,8 @@ TEST_CASE("cycle registration: the registered take, worked by hand") {
     CHECK(g.source_cycle[v] == (v < 5 ? -1 : v < 20 ? 0 : 1));
     CHECK(r.contacts(v, 0) == 1.0);
   }
-  CHECK(g.source[45] == 5.0);  // the take's first cycle again
-  CHECK(g.source_cycle[59] == 0);
+  CHECK(g.source[45] == 20.0);  // the take's last cycle again
+  CHECK(g.source_cycle[59] == 1);
   // In the middle of the pause (fade of 2 frames): the reference moved by the posture offset,
   // the take's mean over its cycles minus the reference's.
   const double ref_mean_x = (22.0 * 25 + 47.0 * 25 + 82.0 * 25) / 75.0;  // cycles' own means: 22, 47, 82
@@ -221,15 +231,16 @@ TEST_CASE("cycle registration: a reused cycle that does not follow on eases its 
   const CanonicalMotion ref = ramp_motion(100, 1.0), take = ramp_motion(40, 3.0);
   const TakeCycles rc = gait({{10, 30}, {30, 50}, {50, 70}}, 1), tc = gait({{5, 20}, {20, 35}}, 1);  // one after another
   const RegisteredMotion r = register_by_cycles(ref, contacts_marked(100, 0.0), rc, take, contacts_marked(40, 1.0), tc, 2);
-  // The third cycle is the take's first again, after its second: at the seam the pose goes on
-  // from where the second ended (the take's frame 35), and the difference (35 - 5) shrinks
-  // linearly to nothing by the cycle's end.
+  // The third cycle is the take's last (second) again, after itself: at the seam the pose goes on
+  // from where it ended (the take's frame 35), and the difference (35 - 20) shrinks linearly to
+  // nothing by the cycle's end.
   const int v = r.registration.cycles.cycles[2].begin;  // 5 + 15 + 15 (the take's own start)
   REQUIRE(v == 35);
   CHECK(r.motion.local(v, 0) == Approx(35.0));
-  CHECK(r.motion.local(v + 5, 0) == Approx(10.0 + 30.0 * (1.0 - 5.0 / 15.0)));
-  CHECK(r.motion.local(v + 14, 0) == Approx(19.0 + 30.0 / 15.0));
-  CHECK(r.registration.source[v] == 5.0);
+  CHECK(r.motion.local(v + 5, 0) == Approx(25.0 + 15.0 * (1.0 - 5.0 / 15.0)));
+  CHECK(r.motion.local(v + 14, 0) == Approx(34.0 + 15.0 / 15.0));
+  CHECK(r.registration.source[v] == 35.0);  // the seam's first frame shows the pose the cycle before ended on
+  CHECK(r.registration.source[v + 1] == 21.0);
 }
 
 TEST_CASE("cycle registration: takes that cannot be registered are refused, and say why") {
@@ -409,4 +420,40 @@ TEST_CASE("posture registration: a walk's style put on a standing take moves onl
   CHECK(test::fastest_joint_step(out) <= 1.25 * test::fastest_joint_step(*idle));
   // The posture does change: the old walk's stoop.
   CHECK((joint_positions(out) - joint_positions(*idle)).cwiseAbs().maxCoeff() > 0.02 * guess_units(*idle).height);
+}
+
+TEST_CASE("cycle extension: a reference laid on more slots plays its last cycles again before its stop, worked by hand") {
+  // 60 frames, cycles 10-25 and 25-40, a stop 40-60; on 4 slots: its own two, then both again.
+  const CanonicalMotion m = ramp_motion(60, 1.0);
+  const TakeCycles c = gait({{10, 25}, {25, 40}}, 0, 15);
+  const RegisteredMotion r = extend_by_cycles(m, contacts_marked(60, 1.0), c, 4);
+  const CycleRegistration& g = r.registration;
+  CHECK(g.pairs == std::vector<int>{0, 1, 0, 1});
+  REQUIRE(r.motion.local.rows() == 60 + 15 + 15);
+  REQUIRE(g.cycles.cycles.size() == 4);
+  CHECK(g.cycles.cycles[2].begin == 40);
+  CHECK(g.cycles.cycles[3].begin == 55);
+  CHECK(g.cycles.cycles[3].end == 70);
+  // Its own frames up to its last cycle's end, as they are.
+  for (int v = 0; v < 40; ++v) {
+    CHECK(r.motion.local(v, 0) == Approx(v));
+    CHECK(g.source[v] == v);
+  }
+  // The first replay (its cycle 0, 10-25) after its cycle 1 ended on frame 40: the seam (40 - 10)
+  // spread over the replay, full at its start; its first frame shows the pose it goes on from.
+  CHECK(r.motion.local(40, 0) == Approx(40.0));
+  CHECK(g.source[40] == 40.0);
+  CHECK(r.motion.local(45, 0) == Approx(15.0 + 30.0 * (1.0 - 5.0 / 15.0)));
+  CHECK(g.source[45] == 15.0);
+  CHECK(g.source_cycle[45] == 0);
+  // The second replay (its cycle 1, 25-40) follows cycle 0 on directly: no seam.
+  CHECK(r.motion.local(55, 0) == Approx(25.0));
+  CHECK(g.source_cycle[60] == 1);
+  // Then its stop, its own frames: the last replay ended on frame 40, where the stop begins.
+  for (int f = 40; f < 60; ++f) CHECK(r.motion.local(f + 30, 0) == Approx(f));
+  CHECK(g.source[89] == 59.0);
+  // The root walks on through the replays: one unit a frame along +z from the first frame's.
+  CHECK(r.motion.ground(89, 1) == Approx(89.0));
+  // A replay slot count not above the cycles is refused.
+  CHECK_THROWS_AS(extend_by_cycles(m, contacts_marked(60, 1.0), c, 2), InputError);
 }

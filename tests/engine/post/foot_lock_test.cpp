@@ -256,6 +256,8 @@ double fastest_joint(const Eigen::MatrixXd& world, double fps) {
   return v[std::min(v.size() - 1, static_cast<size_t>(0.999 * static_cast<double>(v.size())))];
 }
 
+constexpr double kUpperBodyTouch = 1e-2;
+
 void check_pipeline_foot_lock(const std::string& path_a, const std::string& path_b) {
   auto a = std::make_shared<const Clip>(read_bvh_file(path_a));
   auto b = std::make_shared<const Clip>(read_bvh_file(path_b));
@@ -303,7 +305,10 @@ void check_pipeline_foot_lock(const std::string& path_a, const std::string& path
   for (size_t c = 0; c < p->majors.size(); ++c) {
     const bool leg = p->majors[c] >= static_cast<int>(MajorJoint::kLeftKnee) &&
                      p->majors[c] != static_cast<int>(MajorJoint::kRightHip);
-    if (!leg) CHECK(locked.motion.world.middleCols(3 * c, 3) == free.motion.world.middleCols(3 * c, 3));
+    // The speed limit after the lock spreads a knee's bend over neighbouring frames of the whole
+    // pose where it would pop: the rest of the body moves by no more than a hair.
+    if (!leg) CHECK((locked.motion.world.middleCols(3 * c, 3) - free.motion.world.middleCols(3 * c, 3)).cwiseAbs().maxCoeff() <=
+                    kUpperBodyTouch * p->feet.leg_length);
   }
 }
 

@@ -101,6 +101,20 @@ Eigen::MatrixXd own_pose_at(const PreparedTake& t, const Eigen::VectorXd& frames
   return out;
 }
 
+// A difference of poses (K x 3M) with the frames where the mix eases out a cycle slot it left
+// out set to 0 (MixResult::slot_skips): there the poses are the takes' own plus the jump eased.
+Eigen::MatrixXd outside_eases(const MixResult& m, Eigen::MatrixXd diff) {
+  for (Eigen::Index k : m.slot_skips)
+    for (Eigen::Index f = k; f < std::min(diff.rows(), k + m.slot_ease); ++f) diff.row(f).setZero();
+  return diff;
+}
+
+// One-hot mixes of a palette and of a pair may differ by a frame of rounding in the clock (their
+// common timelines' samples differ), a frame more for each cycle slot the palette leaves out;
+// their common frames are compared.
+constexpr Eigen::Index kClockSlackFrames = 1;
+
+
 }  // namespace
 
 TEST_CASE("palette: two takes with weights 1 - a, a are the pair's blend at alpha a") {
@@ -143,10 +157,15 @@ TEST_CASE("palette: four takes, weights checked, one-hot gives the take, equal w
       const PreparedTakes& pair = *owned;
       const MixResult b = blend_at(pair, *decompose_takes(pair, params()), 1.0);
       INFO("take " << i);
-      REQUIRE(m.motion.world.rows() == b.motion.world.rows());
-      CHECK(max_distance(m.motion.world, b.motion.world, height) < kOneHot);
+      REQUIRE(std::abs(m.motion.world.rows() - b.motion.world.rows()) <= kClockSlackFrames);
+      // Where the palette has more cycle slots than the pair (another take has more cycles), the
+      // one-hot mix leaves this take's replays out, and its clock may then run up to a frame apart
+      // from the pair's (a slot's ends lie within a frame of the take's cycles' ends on the smoothed
+      // warp): the frames are then the take's own, checked below, not the pair's one by one.
+      const Eigen::Index common = std::min(m.motion.world.rows(), b.motion.world.rows());
+      if (m.slot_skips.empty()) CHECK(max_distance(m.motion.world.topRows(common), b.motion.world.topRows(common), height) < kOneHot);
       // Before the clean-up, it is the take's own pose at the frames shown.
-      CHECK((m.local - own_pose_at(p->takes[static_cast<size_t>(i)], m.sources.col(i))).cwiseAbs().maxCoeff() < kExact);
+      CHECK(outside_eases(m, m.local - own_pose_at(p->takes[static_cast<size_t>(i)], m.sources.col(i))).cwiseAbs().maxCoeff() < kExact);
     }
   }
 
@@ -154,7 +173,7 @@ TEST_CASE("palette: four takes, weights checked, one-hot gives the take, equal w
     const MixResult m = mix(*p, *d, {0.25, 0.25, 0.25, 0.25});
     Eigen::MatrixXd mean = Eigen::MatrixXd::Zero(m.local.rows(), m.local.cols());
     for (int i = 0; i < 4; ++i) mean += 0.25 * own_pose_at(p->takes[static_cast<size_t>(i)], m.sources.col(i));
-    CHECK((m.local - mean).cwiseAbs().maxCoeff() < kExact);
+    CHECK(outside_eases(m, m.local - mean).cwiseAbs().maxCoeff() < kExact);
     // Its length lies among the takes' lengths over the common stretch.
     double shortest = 1e9, longest = 0;
     for (int i = 0; i < 4; ++i) {
@@ -249,9 +268,9 @@ TEST_CASE("palette: transfer identities") {
     mp.max_weight = transfer_max_weight(1);
     mp.finish.foot_lock = false;
     const MixResult zero = mix(*p, *d, transfer_weights({0.0}, TransferNeutral::kContent), mp);
-    CHECK((zero.local - own_pose_at(p->takes[0], zero.sources.col(0))).cwiseAbs().maxCoeff() < kExact);
+    CHECK(outside_eases(zero, zero.local - own_pose_at(p->takes[0], zero.sources.col(0))).cwiseAbs().maxCoeff() < kExact);
     const MixResult one = mix(*p, *d, transfer_weights({1.0}, TransferNeutral::kContent), mp);
-    CHECK((one.local - own_pose_at(p->takes[1], one.sources.col(1))).cwiseAbs().maxCoeff() < kExact);
+    CHECK(outside_eases(one, one.local - own_pose_at(p->takes[1], one.sources.col(1))).cwiseAbs().maxCoeff() < kExact);
   }
   CHECK(transfer_weights({0.5, 0.25}) == std::vector<double>{1.0, -0.75, 0.5, 0.25});
   CHECK(transfer_weights({0.5, 0.25}, TransferNeutral::kContent) == std::vector<double>{0.25, 0.5, 0.25});
@@ -297,8 +316,13 @@ TEST_CASE("palette: components are connected body parts on each convention, and 
     const auto owned = pair_of(*p, last);
     const PreparedTakes& pair = *owned;
     const MixResult b = blend_at(pair, *decompose_takes(pair, params()), 1.0);
-    REQUIRE(m.motion.world.rows() == b.motion.world.rows());
-    CHECK(max_distance(m.motion.world, b.motion.world, guess_units(*clips[0]).height) < kOneHot);
+    // Within a frame in length where the palette skips the take's replays (as above), the same
+    // frame for frame where it does not.
+    REQUIRE(std::abs(m.motion.world.rows() - b.motion.world.rows()) <=
+            kClockSlackFrames * (1 + static_cast<Eigen::Index>(m.slot_skips.size())));
+    const double height = guess_units(*clips[0]).height;
+    if (m.slot_skips.empty()) CHECK(max_distance(m.motion.world, b.motion.world, height) < kOneHot);
+    else CHECK(outside_eases(m, m.local - own_pose_at(p->takes[static_cast<size_t>(last)], m.sources.col(last))).cwiseAbs().maxCoeff() < 1e-6 * height);
   }
 }
 
@@ -337,9 +361,7 @@ TEST_CASE("palette: weights keyed in time") {
     const Eigen::Index after = static_cast<Eigen::Index>(5.2 * p->fps);
     REQUIRE(m.local.rows() > after + 10);
     const Eigen::MatrixXd take1 = own_pose_at(p->takes[1], m.sources.col(1));
-    CHECK((m.local.bottomRows(m.local.rows() - after) - take1.bottomRows(m.local.rows() - after))
-              .cwiseAbs()
-              .maxCoeff() < 1e-6 * height);
+    CHECK(outside_eases(m, m.local - take1).bottomRows(m.local.rows() - after).cwiseAbs().maxCoeff() < 1e-6 * height);
     // Frame by frame: no joint moves faster than in either take's own mix.
     auto fastest = [&](const Eigen::MatrixXd& x) {
       double v = 0;

@@ -267,3 +267,23 @@ TEST_CASE("timing: a hold of the reference takes B's time at B's weight, none on
   mixed_timeline(t, {1.0, 0.0}, {0, t.samples() - 1}, u);
   for (Eigen::Index k = 0; k < u.size(); ++k) CHECK(at(t.frames[0], u[k]) == Approx(double(k)).margin(kExact));
 }
+
+TEST_CASE("cycle slots: one-hot weights play that take's own slots, weights between two a count between", "[clock]") {
+  // Slot shares of a take with 5 own cycles of 7 slots (its own first five) and one with all 7.
+  auto played = [](double w) {
+    SlotCount count;
+    std::vector<int> out;
+    for (int s = 0; s < 7; ++s)
+      if (count.play((1.0 - w) * (s < 5 ? 1.0 : 0.0) + w * 1.0)) out.push_back(s);
+    return out;
+  };
+  CHECK(played(0.0) == std::vector<int>{0, 1, 2, 3, 4});
+  CHECK(played(1.0) == std::vector<int>{0, 1, 2, 3, 4, 5, 6});
+  CHECK(played(0.5).size() == 6);  // round(0.5 x 5 + 0.5 x 7)
+  CHECK(played(0.25).size() == 6);  // round(0.75 x 5 + 0.25 x 7) = round(5.5), half up
+  CHECK(played(0.2).size() == 5);   // round(5.4)
+  // Shares out of [0, 1] (an exaggeration) are held to it.
+  SlotCount wide;
+  CHECK(wide.play(1.5));
+  CHECK_FALSE(wide.play(-0.5));
+}

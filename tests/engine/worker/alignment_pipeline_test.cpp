@@ -85,11 +85,19 @@ Clip padded(const Clip& clip, int frames) {
   return out;
 }
 
+constexpr double kHalfLengthSlack = 1.05;
+
 struct Pair {
   std::shared_ptr<const Clip> a, b;
   std::shared_ptr<const PreparedTakes> p;
   std::shared_ptr<const Decomposed> d;
   double height = 0;
+  // A as its file has it (its own frames, prepared with itself): the pair's reference holds its
+  // cycles again where B has more (cycle_slots.h), and its world goes on from them.
+  Eigen::MatrixXd a_world;
+  // A's file frames at an output's reference sources.
+  Eigen::VectorXd a_frames(const Eigen::VectorXd& sources) const { return frames_in_take(p->reference(), sources); }
+  Eigen::MatrixXd a_at(const Eigen::VectorXd& sources) const { return sample_rows(a_world, a_frames(sources)); }
 };
 
 Pair happy_marching() {
@@ -98,6 +106,7 @@ Pair happy_marching() {
   pair.b = load("cmu142_walk_marching.bvh");
   pair.p = prepare_takes({pair.a, pair.b}, {});
   pair.d = decompose_takes(*pair.p, DecomposeParams());
+  pair.a_world = prepare_takes({pair.a, pair.a}, {})->takes[0].world;
   pair.height = guess_units(*pair.a).height;
   return pair;
 }
@@ -154,16 +163,21 @@ TEST_CASE("alignment pipeline: alpha 0 is as long as A's matched range, alpha 1 
   const Pair x = happy_marching();
   const PreparedTakes& p = *x.p;
   const Alignment& al = p.takes[1].alignment;
-  const double range_a = al.a_last - al.a_first + 1, range_b = al.b_last - al.b_first + 1;
+  // A's range in its file's frames (its own timeline holds replays of its cycles where B has more).
+  const Eigen::VectorXd a_ends = x.a_frames(Eigen::Vector2d(al.a_first, al.a_last));
+  const double range_a = a_ends[1] - a_ends[0] + 1, range_b = al.b_last - al.b_first + 1;
   const MixResult r0 = blend_at(p, *x.d, 0.0), r1 = blend_at(p, *x.d, 1.0), half = blend_at(p, *x.d, 0.5);
   INFO("A's range " << range_a << ", B's " << range_b << "; frames at alpha 0: " << r0.motion.world.rows() << ", 0.5: "
                     << half.motion.world.rows() << ", 1: " << r1.motion.world.rows());
   CHECK(std::abs(r0.motion.world.rows() - range_a) <= kLengthSlack);
   CHECK(std::abs(r1.motion.world.rows() - range_b) <= kLengthSlack);
+  // Half way, as many cycles as half of each take's (17 of A's 15 and B's 19) at the cadence half
+  // way between theirs: the length, their product, may run a little past the longer take's.
   CHECK(half.motion.world.rows() >= std::min(r0.motion.world.rows(), r1.motion.world.rows()));
-  CHECK(half.motion.world.rows() <= std::max(r0.motion.world.rows(), r1.motion.world.rows()));
+  CHECK(half.motion.world.rows() <= kHalfLengthSlack * std::max(r0.motion.world.rows(), r1.motion.world.rows()));
   // At alpha 0 the output frames are A's own frames, one apart.
-  for (Eigen::Index k = 1; k < r0.sources.col(0).size(); ++k) CHECK(r0.sources.col(0)[k] - r0.sources.col(0)[k - 1] == Approx(1.0));
+  const Eigen::VectorXd own = x.a_frames(r0.sources.col(0));
+  for (Eigen::Index k = 1; k < own.size(); ++k) CHECK(own[k] - own[k - 1] == Approx(1.0));
 }
 
 TEST_CASE("alignment pipeline: timing_a keeps A's timeline at every alpha", "[alignment]") {
@@ -185,7 +199,7 @@ TEST_CASE("alignment pipeline: alpha 0 reproduces A at the frames it shows", "[a
     MixParams params;
     params.reference_timing = timing_a;
     const MixResult r = blend_at(p, *x.d, 0.0, params);
-    const Eigen::MatrixXd a_there = sample_rows(p.takes[0].world, r.sources.col(0));
+    const Eigen::MatrixXd a_there = x.a_at(r.sources.col(0));
     const double e = mean_joint_distance(r.motion.world, a_there) / x.height;
     INFO("timing_a " << timing_a << ": mean " << 100 * e << "% of height " << x.height);
     CHECK(e < kAlphaZeroMean);
@@ -254,11 +268,11 @@ TEST_CASE("alignment pipeline: with the residuals alpha 0 is A and one alpha per
   MixParams exact;
   exact.finish.foot_lock = false;  // the lock pins planted feet at their mean place, A's own included
   const MixResult r = blend_at(p, *x.d, 0.0, exact);
-  const double with_residual = mean_joint_distance(r.motion.world, sample_rows(p.takes[0].world, r.sources.col(0))) / x.height;
+  const double with_residual = mean_joint_distance(r.motion.world, x.a_at(r.sources.col(0))) / x.height;
   MixParams components = exact;
   components.residual = false;
   const MixResult c = blend_at(p, *x.d, 0.0, components);
-  const double components_only = mean_joint_distance(c.motion.world, sample_rows(p.takes[0].world, c.sources.col(0))) / x.height;
+  const double components_only = mean_joint_distance(c.motion.world, x.a_at(c.sources.col(0))) / x.height;
   INFO("alpha 0 against A: " << 100 * with_residual << "% of height with residuals, " << 100 * components_only
                              << "% from the components alone");
   // What is left is the sampling of A between its frames along the warp and back (0.1 s of
@@ -351,4 +365,37 @@ TEST_CASE("alignment pipeline: a take that does not walk gives a walking referen
     // Its frames hold the walk's motion, so its feet step with the walk's.
     CHECK(t.own_contacts == p->takes[0].own_contacts);
   }
+}
+
+TEST_CASE("alignment pipeline: a walk of more cycles than A plays all of them at alpha 1, A's own at alpha 0", "[alignment]") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  // bandai_walk_normal walks 5 gait cycles, bandai_walk_old 7: A's timeline plays its last cycles
+  // again for B's last two, and a blend plays as many as its weights give.
+  const auto a = std::make_shared<const Clip>(read_bvh_file(test::shared_motion("bandai_walk_normal.bvh")));
+  const auto b = std::make_shared<const Clip>(read_bvh_file(test::shared_motion("bandai_walk_old.bvh")));
+  const auto p = prepare_takes({a, b}, {});
+  const auto d = decompose_takes(*p, DecomposeParams());
+  const int cycles_a = static_cast<int>(p->takes[0].cycles.cycles.size());
+  const int cycles_b = static_cast<int>(p->takes[1].registration.take_cycles.cycles.size());
+  REQUIRE(cycles_b > cycles_a);
+  REQUIRE(p->slots.size() == cycles_b);
+  const Eigen::Index frames_a = a->frames() * p->fps / a->fps(), frames_b = b->frames() * p->fps / b->fps();
+  const MixResult r0 = blend_at(*p, *d, 0.0), r1 = blend_at(*p, *d, 1.0), half = blend_at(*p, *d, 0.5);
+  INFO("frames: A " << frames_a << ", B " << frames_b << "; alpha 0 " << r0.motion.world.rows() << ", 0.5 "
+                    << half.motion.world.rows() << ", 1 " << r1.motion.world.rows());
+  // Alpha 1 is B's whole performance, every frame of it once, in order; alpha 0 A's.
+  CHECK(std::abs(r1.motion.world.rows() - frames_b) <= 1);
+  CHECK(std::abs(r0.motion.world.rows() - frames_a) <= 1);
+  const Eigen::VectorXd own_b = frames_in_take(p->takes[1], r1.sources.col(1));
+  const Eigen::VectorXd own_a = frames_in_take(p->takes[0], r0.sources.col(0));
+  for (Eigen::Index k = 1; k < own_b.size(); ++k) CHECK(own_b[k] - own_b[k - 1] == Approx(1.0).margin(0.02));
+  for (Eigen::Index k = 1; k < own_a.size(); ++k) CHECK(own_a[k] - own_a[k - 1] == Approx(1.0).margin(1e-9));
+  CHECK(own_b[own_b.size() - 1] >= frames_b - 2);
+  // Half way: a cycle more than A's, and a length between the two.
+  CHECK(half.motion.world.rows() > r0.motion.world.rows());
+  CHECK(half.motion.world.rows() < r1.motion.world.rows());
+  CHECK(half.slot_skips.size() == 1);
+  // No pops where a slot is left out: no joint faster than the takes' fastest.
+  const double takes = std::max(joint_speeds(p->takes[0].world).maxCoeff(), joint_speeds(p->takes[1].world).maxCoeff());
+  CHECK(joint_speeds(half.motion.world).maxCoeff() <= kPopRatio * takes);
 }

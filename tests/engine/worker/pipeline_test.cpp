@@ -82,8 +82,10 @@ Eigen::MatrixXd reference_positions(const Clip& a, const PreparedTakes& p) {
 
 // The reference at the frames of A a blend shows (MixResult::source_a): a blend plays only A's
 // matched range, on its own timeline (trajectory/mixed_clock.h).
+// A's file frames at the output's frames, through the replays of its cycles its own timeline
+// holds where B has more (frames_in_take).
 Eigen::MatrixXd reference_at(const Clip& a, const PreparedTakes& p, const MixResult& r) {
-  return sample_rows(reference_positions(a, p), r.sources.col(0));
+  return sample_rows(reference_positions(a, p), frames_in_take(p.reference(), r.sources.col(0)));
 }
 
 double relative_bone_error(const PreparedTakes& p, const Eigen::MatrixXd& world) {
@@ -466,7 +468,10 @@ TEST_CASE("working frame rate: 0 keeps A's", "[pipeline]") {
   o.fps = 0;
   const auto p = prepare_takes({a, b}, o);
   CHECK(p->fps == 24.0);
-  CHECK(p->takes[0].world.rows() == a->frames());
+  // A's own frames at 24 fps, its cycles played again where B has more (its registration's sources).
+  const Eigen::Index own = p->takes[0].registration.empty() ? p->takes[0].world.rows()
+                                                             : static_cast<Eigen::Index>(p->takes[0].registration.source.maxCoeff()) + 1;
+  CHECK(own == a->frames());
   const PairCheck r = check_pair(a, b, o);
   CHECK(r.alpha0.mean < kAlphaZeroMean);
 }

@@ -112,7 +112,7 @@ void check_real(const PreparedTakes& p, const Eigen::MatrixXd& sources, const st
       // Registered: the cycle paired with the reference's, at every output frame of the cycle
       // away from its seams.
       ++registered_cycles;
-      CHECK(from.cycle == take.registration.pairs[static_cast<size_t>(span.takes[0].cycle)]);
+      CHECK(from.cycle == take.registration.pairs[static_cast<size_t>(span.slot)]);
       const Eigen::VectorXi shown = cycles_shown(take, sources.col(i));
       for (int k = span.begin + kSeamFrames; k < span.end - kSeamFrames; ++k) CHECK(shown[k] == from.cycle);
     }
