@@ -2,9 +2,10 @@
 // The reference's cycles as slots on the common timeline, each take's cycles laid in them
 // (cycle_registration.h pair_cycles): a take with fewer cycles than the slots shows some of its
 // cycles again in the last ones, the reference too (extend_by_cycles) where another take has
-// more. A mix plays as many slots as its weights give the takes' own cycles (a walk of 5 cycles
-// blended half and half with one of 7 walks 6) and skips the rest, so that each take at weight
-// 1 plays its own cycles once each, its start and stop, and none it replays (mixed_clock.h).
+// more. A mix plays the reference's own slots while it has a weight, and as many more as the
+// weights give the other takes' own cycles (a walk of 5 cycles blended half and half with one of
+// 7 walks 6), and skips the rest, so that each take at weight 1 plays its own cycles once each,
+// its start and stop, and none it replays (mixed_clock.h SlotPlay).
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>

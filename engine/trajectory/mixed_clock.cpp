@@ -72,14 +72,18 @@ double mixed_step(const CommonTimeline& timeline, const Weight& weight, int k) {
 // Whether slot s lies inside the stretch (a slot the stretch cuts always plays).
 bool inside(const CycleSlots::Slot& slot, SampleSpan span) { return slot.first >= span.first && slot.last <= span.last; }
 
-// Slot s's share of the weights' own cycles (SlotCount), the reference's own alone when asked.
+// Whether slot s plays: the reference's own slots alone when asked; else, while the reference
+// has a weight, each of its own cycles (all of the reference plays at every weight below 1), and
+// the slots it plays again as the weights' own cycles call for them (SlotCount); at its weight 0,
+// every slot by the count, so that the takes weighted play their own.
 template <typename Weight>
-double slot_share(const SlotPlay& play, int s, int takes, const Weight& weight) {
+bool slot_plays(const SlotPlay& play, int s, int takes, const Weight& weight, SlotCount& count) {
   const Eigen::MatrixXd& own = play.slots->own;
-  if (play.reference_only) return own(s, 0);
+  if (play.reference_only) return own(s, 0) > 0.5;
+  if (weight(0) > 0.0 && own(s, 0) > 0.5) return true;
   double share = 0.0;
   for (int i = 0; i < takes; ++i) share += weight(i) * own(s, i);
-  return share;
+  return count.play(share);
 }
 
 // Whether the clock's advance into sample k (absolute) is left out: k inside a skipped slot,
@@ -110,7 +114,7 @@ void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& w
     SlotCount count;
     for (int s = 0; s < slots.slots->size(); ++s) {
       const bool in = inside(slots.slots->slots[static_cast<size_t>(s)], span);
-      if (!count.play(slot_share(slots, s, timeline.takes(), [&](int i) { return weights[static_cast<size_t>(i)]; })) && in)
+      if (!slot_plays(slots, s, timeline.takes(), [&](int i) { return weights[static_cast<size_t>(i)]; }, count) && in)
         skipped.push_back(s);
     }
   }
@@ -152,7 +156,7 @@ void mixed_timeline(const CommonTimeline& timeline, const WeightKeys& keys, doub
     // Slots that begin here (or began before the stretch) are decided with the weights now.
     while (next_slot < slot_count && slots.slots->slots[static_cast<size_t>(next_slot)].first <= first + k) {
       const CycleSlots::Slot& slot = slots.slots->slots[static_cast<size_t>(next_slot)];
-      const bool play = count.play(slot_share(slots, next_slot, timeline.takes(), [&](int i) { return w[static_cast<size_t>(i)]; }));
+      const bool play = slot_plays(slots, next_slot, timeline.takes(), [&](int i) { return w[static_cast<size_t>(i)]; }, count);
       if (!play && inside(slot, span)) {
         skipped.push_back(next_slot);
         skip_to = slot.last;

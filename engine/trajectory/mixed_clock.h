@@ -19,10 +19,13 @@ struct SampleSpan {
   int first = 0, last = 0;
 };
 
-// The cycle slots a mix plays (cycle_slots.h). A slot inside the stretch that the weights do not
-// call for (SlotCount) gets no time on the clock: the output leaves it out, from its first sample
-// straight to its last, so that a take at weight 1 plays its own cycles once each and a blend as
-// many as its weights give. A slot the stretch cuts is always played.
+// The cycle slots a mix plays (cycle_slots.h). While the reference has a weight, its own cycles
+// all play (all of it at every weight below 1), and of the slots it plays again those the other
+// takes' weights call for (SlotCount: a blend of a walk of 5 cycles with one of 7 plays 6 half
+// way); at the reference's weight 0, as many slots as the weights give the takes' own cycles, so
+// that a take at weight 1 plays its own cycles once each. A slot not played gets no time on the
+// clock: the output leaves it out, from its first sample straight to its last. A slot the
+// stretch cuts is always played.
 struct SlotPlay {
   const CycleSlots* slots = nullptr;    // none: every sample plays
   bool reference_only = false;          // the reference's own slots whatever the weights (a transfer's content)
