@@ -145,15 +145,24 @@ void add_align_command(CLI::App& app, std::function<int()>* run) {
       } else {
         std::string joints;
         for (int c : al.feature.columns) joints += (joints.empty() ? "" : ", ") + p->reference().names[c];
+        // A's frames as its file counts them: its own timeline plays its last cycles again where
+        // B has more cycles (cycle_slots.h), which the alignment's frames count.
+        const Eigen::VectorXd a_own =
+            frames_in_take(p->reference(), Eigen::Vector3d(al.a_first, al.a_last, al.frames_a - 1));
+        const int frames_a = static_cast<int>(std::lround(a_own[2])) + 1;
+        const int replayed = static_cast<int>(p->reference().timeline_cycles().cycles.size() - p->reference().cycles.cycles.size());
         std::cout << "aligned on: " << align_on_name(al.feature.on) << " (" << joints << "), "
                   << dtw_method_name(al.options.method) << " DTW\n"
-                  << "frames: " << al.frames_a << " / " << al.frames_b << " at "
+                  << "frames: " << frames_a << " / " << al.frames_b << " at "
                   << number(p->fps) << " fps\n"
-                  << "matched: A " << al.a_first << "-" << al.a_last << ", B " << al.b_first << "-" << al.b_last
-                  << "\n"
+                  << "matched: A " << std::lround(a_own[0]) << "-" << std::lround(a_own[1]) << ", B " << al.b_first << "-"
+                  << al.b_last << "\n"
+                  << (replayed > 0 ? "A's last cycles played again for B's " + std::to_string(replayed) +
+                                         " more (a blend plays them as B's weight calls for them)\n"
+                                   : std::string())
                   << "dtw cost: " << number(al.cost) << " (A's units), path of " << al.path.size() << " steps, "
                   << number(times.dtw_ms) << " ms\n"
-                  << "cycles: A " << cycles_summary(p->takes[0].cycles, p->fps, al.frames_a) << "\n"
+                  << "cycles: A " << cycles_summary(p->takes[0].cycles, p->fps, frames_a) << "\n"
                   << "        B " << cycles_summary(p->takes[1].cycles, p->fps, al.frames_b) << "\n";
       }
       return 0;
