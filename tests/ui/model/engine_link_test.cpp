@@ -90,7 +90,9 @@ TEST_CASE("engine link: a pair's keys reach the mix, and where the engine refuse
   const Eigen::MatrixXd at_b = s.engine.result()->motion.world;
   set_pair_alpha(d, 0.0);
   s.engine.sync(s.state);
-  REQUIRE_FALSE(s.engine.result()->motion.world.isApprox(at_b));
+  // Another result (another length too, where A and B walk different counts of cycles).
+  const Eigen::MatrixXd& at_a = s.engine.result()->motion.world;
+  REQUIRE_FALSE((at_a.rows() == at_b.rows() && at_a.isApprox(at_b)));
   d.controls.keys = {WeightKey{1.0, {0.0, 1.0}}};
   s.engine.sync(s.state);
   CHECK_FALSE(worker_asked(s.engine));  // a mix field: mixed again on this thread
@@ -103,7 +105,8 @@ TEST_CASE("engine link: a pair's keys reach the mix, and where the engine refuse
   d.controls.keys = {WeightKey{1.0, {0.0, 0.5, 0.5}}};
   s.engine.sync(s.state);
   CHECK(s.engine.result_error().empty());
-  CHECK_FALSE(s.engine.result()->motion.world.isApprox(at_b));
+  const Eigen::MatrixXd& again = s.engine.result()->motion.world;
+  CHECK_FALSE((again.rows() == at_b.rows() && again.isApprox(at_b)));
   // Keys with an alpha per body part: the engine refuses, says why, and the last blend stays.
   d.controls.keys = {WeightKey{1.0, {0.0, 1.0}}};
   d.controls.per_part = true;

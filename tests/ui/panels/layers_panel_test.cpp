@@ -177,7 +177,9 @@ TEST_CASE("layers panel: two takes, a row each, B's weight moves A's, and B's al
   CHECK(w[1] < 0.5);
   CHECK(w[0] + w[1] == Approx(1.0));
   CHECK(pair_alpha(t.s.state.document) == w[1]);
-  CHECK_FALSE(t.s.engine.result()->motion.world.isApprox(before));
+  // Another result: its length too where the weights play another count of B's extra cycles.
+  const Eigen::MatrixXd& after = t.s.engine.result()->motion.world;
+  CHECK((after.rows() != before.rows() || !after.isApprox(before)));
   // The alignment of B onto A: its tab draws the plots.
   CHECK(t.panel.aligned_take() == 1);
   REQUIRE(t.hover(kTitle, alignment_tab, nullptr));
