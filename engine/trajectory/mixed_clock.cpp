@@ -17,9 +17,14 @@ namespace {
 // move, so that the next frame does not leap over the stretch. One pass to count the frames,
 // one to place them: nothing is allocated but u.
 template <typename Step>
-double timeline_from_steps(int samples, const Step& step, Eigen::VectorXd& u) {
-  double total = 0.0;
-  for (int k = 1; k < samples; ++k) total += std::max(0.0, step(k));
+ClockEnd timeline_from_steps(int samples, const Step& step, Eigen::VectorXd& u) {
+  ClockEnd end;
+  double& total = end.clock;
+  for (int k = 1; k < samples; ++k) {
+    const double advance = std::max(0.0, step(k));
+    total += advance;
+    if (advance > 0.0) end.sample = k;
+  }
   const int frames = static_cast<int>(std::floor(total + 1e-9)) + 1;
   u.resize(frames);
   int k = 0;
@@ -40,7 +45,7 @@ double timeline_from_steps(int samples, const Step& step, Eigen::VectorXd& u) {
     const double span = after - before;
     u[f] = k + (span > 0 ? std::clamp((f - before) / span, 0.0, 1.0) : 0.0);
   }
-  return total;
+  return end;
 }
 
 }  // namespace
@@ -99,7 +104,7 @@ bool skipped_step(const SlotPlay& play, const std::vector<int>& skipped, int k) 
 }  // namespace
 
 void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& weights, SampleSpan span,
-                    Eigen::VectorXd& u, double* clock_at_last, const SlotPlay& slots) {
+                    Eigen::VectorXd& u, ClockEnd* end, const SlotPlay& slots) {
   const int first = span.first, last = span.last;
   if (static_cast<int>(weights.size()) != timeline.takes())
     throw InputError("expected " + std::to_string(timeline.takes()) + " timing weights, found " +
@@ -118,7 +123,7 @@ void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& w
         skipped.push_back(s);
     }
   }
-  const double total = timeline_from_steps(
+  ClockEnd reached = timeline_from_steps(
       last - first + 1,
       [&](int k) {
         if (!skipped.empty() && skipped_step(slots, skipped, first + k)) return 0.0;
@@ -126,11 +131,12 @@ void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& w
       },
       u);
   u.array() += first;
-  if (clock_at_last != nullptr) *clock_at_last = total;
+  reached.sample += first;
+  if (end != nullptr) *end = reached;
 }
 
 void mixed_timeline(const CommonTimeline& timeline, const WeightKeys& keys, double fps, SampleSpan span,
-                    Eigen::VectorXd& u, Eigen::MatrixXd* sample_weights, double* clock_at_last, const SlotPlay& slots) {
+                    Eigen::VectorXd& u, Eigen::MatrixXd* sample_weights, ClockEnd* end, const SlotPlay& slots) {
   const int first = span.first, last = span.last;
   validate_keys(keys, timeline.takes());
   if (keys.empty()) throw InputError("cannot time a mix by keys without a key");
@@ -168,9 +174,10 @@ void mixed_timeline(const CommonTimeline& timeline, const WeightKeys& keys, doub
       clock += std::max(0.0, steps[k + 1]);
     }
   }
-  const double total = timeline_from_steps(samples, [&](int k) { return steps[k]; }, u);
+  ClockEnd reached = timeline_from_steps(samples, [&](int k) { return steps[k]; }, u);
   u.array() += first;
-  if (clock_at_last != nullptr) *clock_at_last = total;
+  reached.sample += first;
+  if (end != nullptr) *end = reached;
 }
 
 void land_on_last(Eigen::VectorXd& u, double last, double clock_at_last) {

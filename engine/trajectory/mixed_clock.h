@@ -32,19 +32,27 @@ struct SlotPlay {
   std::vector<int>* skipped = nullptr;  // when given: set to the slots left out, in order
 };
 
+// Where the mixed clock ends: T(last) (output frames, fractional) and the first sample from which
+// it no longer advances up to `last` (a reference held at its last frame while another take's rest
+// plays gets no time there on the reference's clock: its last frame is that sample, not `last`).
+struct ClockEnd {
+  double clock = 0.0;
+  int sample = 0;
+};
+
 // Output frame k sits where the mixed clock T reaches k, over the span first..last of the takes'
 // common timeline: T(first) = 0 and T advances by sum_i w_i times take i's frames from one sample
 // to the next (weights: one per take, summing to 1; negative ones exaggerate), but never less than
 // the slowest weighted take advances, so that negative weights cannot stall the clock; T is linear
 // between samples. Writes each output frame's fractional sample position (first..last) into u
-// (floor(T(last)) + 1 frames; no allocation when it has that size) and, when clock_at_last is
-// given, T(last) there (output frames, fractional). Two takes with weights
+// (floor(T(last)) + 1 frames; no allocation when it has that size) and, when `end` is given,
+// where the clock ends (ClockEnd). Two takes with weights
 // (1 - w, w) on a one-warp timeline play at A's timing and length for w = 0 and at B's for w = 1.
 // Throws InputError on a weight count that is not the takes', a non-finite weight, or an empty
 // or out-of-range stretch. O((last - first) x N + frames).
 // slots: the cycle slots to play (SlotPlay), none by default.
 void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& weights, SampleSpan span,
-                    Eigen::VectorXd& u, double* clock_at_last = nullptr, const SlotPlay& slots = {});
+                    Eigen::VectorXd& u, ClockEnd* end = nullptr, const SlotPlay& slots = {});
 
 // The same with the weights keyed in time (weight_keys.h, validated for the timeline's takes):
 // the clock's advance from sample k - 1 to k takes the keys' weights at the output time the clock
@@ -54,13 +62,13 @@ void mixed_timeline(const CommonTimeline& timeline, const std::vector<double>& w
 // O((last - first) x N + frames); allocates.
 // Each slot is decided by the keys' weights at the output time the clock has reached at its first sample.
 void mixed_timeline(const CommonTimeline& timeline, const WeightKeys& keys, double fps, SampleSpan span,
-                    Eigen::VectorXd& u, Eigen::MatrixXd* sample_weights = nullptr, double* clock_at_last = nullptr,
+                    Eigen::VectorXd& u, Eigen::MatrixXd* sample_weights = nullptr, ClockEnd* end = nullptr,
                     const SlotPlay& slots = {});
 
 // Output frames (u: K sample positions, increasing, from mixed_timeline) retimed so that the last
-// lands exactly on sample `last`: a whole loop (its last sample repeats its first pose) then ends
-// on a frame, to be cut off as the loop closes. The clock's end, clock_at_last (mixed_timeline's
-// T(last), a fraction of a frame past u's last), is rounded to a whole number of frames and the
+// lands exactly on sample `last` (where the clock ends, ClockEnd::sample): a whole loop (its last
+// sample repeats its first pose) then ends on a frame, to be cut off as the loop closes. The
+// clock's end, clock_at_last (ClockEnd::clock, a fraction of a frame past u's last), is rounded to a whole number of frames and the
 // clock stretched or squeezed evenly to it (by at most half a frame in all); between u's last
 // frame and `last` the clock runs linearly. Read from the clock, not from u's last step carried
 // on: samples are not evenly spread in time (the reference's whole frames are among them), so a

@@ -21,14 +21,14 @@ bool shows_whole_loop(const PreparedTakes& p, int first, int last) {
   return r.frames[first] <= 0.0 && r.frames[last] >= double(frames - 1);
 }
 
-// The ground path's travel from its first sample to its last made the path's own (x, z), the
-// difference taken away in even shares along it. ground, path: U x 2. O(U).
-void keep_loop_travel(Eigen::MatrixXd& ground, const Eigen::Ref<const Eigen::MatrixXd>& path) {
+// The ground path's travel from its first sample to sample `end` (where the loop ends, the
+// clock's end) made the path's own (x, z), the difference taken away in even shares along it and
+// in full after it. ground, path: U x 2. O(U).
+void keep_loop_travel(Eigen::MatrixXd& ground, const Eigen::Ref<const Eigen::MatrixXd>& path, Eigen::Index end) {
   const Eigen::Index n = ground.rows();
-  if (n < 2 || path.rows() != n) return;
-  const Eigen::RowVector2d off =
-      (ground.row(n - 1) - ground.row(0)) - (path.row(n - 1) - path.row(0));
-  for (Eigen::Index k = 1; k < n; ++k) ground.row(k) -= (double(k) / double(n - 1)) * off;
+  if (n < 2 || path.rows() != n || end < 1 || end >= n) return;
+  const Eigen::RowVector2d off = (ground.row(end) - ground.row(0)) - (path.row(end) - path.row(0));
+  for (Eigen::Index k = 1; k < n; ++k) ground.row(k) -= (double(std::min(k, end)) / double(end)) * off;
 }
 
 // A path over the stretch (rows counted from sample `first`) with the slots left out closed up:
@@ -146,15 +146,15 @@ FinishOptions output_clock(const PreparedTakes& p, const ClockWeights& weights, 
   const std::vector<double>& timing = *weights.timing;
   const int n = p.size();
   const bool keyed = !keys.empty();
-  double clock_at_last = 0.0;
+  ClockEnd end;
   SlotPlay slots;
   slots.slots = p.slots.empty() ? nullptr : &p.slots;
   slots.reference_only = weights.reference_cycles || weights.reference_timing;
   slots.skipped = &s.skipped;
   if (keyed && !weights.reference_timing) {
-    mixed_timeline(p.timeline, keys, p.fps, {st.first, st.last}, s.u, &s.sample_w, &clock_at_last, slots);
+    mixed_timeline(p.timeline, keys, p.fps, {st.first, st.last}, s.u, &s.sample_w, &end, slots);
   } else {
-    mixed_timeline(p.timeline, timing, {st.first, st.last}, s.u, &clock_at_last, slots);
+    mixed_timeline(p.timeline, timing, {st.first, st.last}, s.u, &end, slots);
     if (keyed) {  // the reference's clock: each sample's weights at the reference's time there
       s.sample_w.resize(st.length(), n);
       std::vector<double> w;
@@ -168,7 +168,7 @@ FinishOptions output_clock(const PreparedTakes& p, const ClockWeights& weights, 
   FinishOptions finish = options;
   finish.closed = shows_whole_loop(p, st.first, st.last);
   if (finish.closed) {
-    land_on_last(s.u, st.last, clock_at_last);
+    land_on_last(s.u, end.sample, end.clock);
     finish.loop = false;
   }
   s.u_stretch = s.u.array() - double(st.first);
@@ -268,8 +268,12 @@ void mix_root(const PreparedTakes& p, const WeightKeys& keys, const std::vector<
     // first's next repeat, which the foot lock's seam then spreads over feet that never swing
     // (they crept as far as the root had drifted under a style that sways its hips). A walking
     // loop's travel is its strides', which the stride map fits and the seam takes up over the swings.
-    if (p.reference().cycles.kind != CycleKind::kGait && shows_whole_loop(p, st.first, st.last))
-      keep_loop_travel(s.ground_u, s.path_u);
+    if (p.reference().cycles.kind != CycleKind::kGait && shows_whole_loop(p, st.first, st.last)) {
+      // Over the loop's samples: its last frame is where the clock ends (output_clock).
+      Eigen::Index end = std::lround(s.u[s.u.size() - 1]) - first;
+      if (skips) end = std::upper_bound(s.kept.begin(), s.kept.end(), end) - s.kept.begin() - 1;
+      keep_loop_travel(s.ground_u, s.path_u, end);
+    }
     // A content that does not walk (no gait cycles: a jump, a stand) has no stride to fit.
     if (p.reference().cycles.kind == CycleKind::kGait)
       stride_map(s.free_ground_u, s.free_heading_u, s.ground_u, s.heading_u, p.fps, p.feet.body_height, s.stride_u);

@@ -231,17 +231,43 @@ TEST_CASE("timing: a loop's clock lands by the clock's end, not by its last step
 }
 
 TEST_CASE("timing: the clock's end is given with the frames", "[timing]") {
-  // Frames every 0.9 samples over samples 0..9: T(9) = 10.
+  // Frames every 0.9 samples over samples 0..9: T(9) = 10, still advancing at sample 9.
   CommonTimeline t;
   t.frames = {Eigen::VectorXd::LinSpaced(10, 0, 9), Eigen::VectorXd::LinSpaced(10, 0, 9 / 0.9)};
   Eigen::VectorXd u;
-  double end = -1.0;
+  ClockEnd end;
+  end.clock = -1.0;
   mixed_timeline(t, {0.0, 1.0}, {0, 9}, u, &end);
-  CHECK(end == Approx(10.0));
+  CHECK(end.clock == Approx(10.0));
+  CHECK(end.sample == 9);
   CHECK(u.size() == 11);
-  end = -1.0;
+  end = ClockEnd{-1.0, -1};
   mixed_timeline(t, WeightKeys{{0.0, {0.0, 1.0}}}, 30.0, {0, 9}, u, nullptr, &end);
-  CHECK(end == Approx(10.0));
+  CHECK(end.clock == Approx(10.0));
+  CHECK(end.sample == 9);
+}
+
+TEST_CASE("timing: on A's clock its last frame is where A reaches it, not the end of B's rest held against it", "[timing]") {
+  // A plays frames 0..6 over samples 0..6, then holds frame 6 while B plays 3 frames of rest
+  // (samples 7..9). On A's clock the clock ends at sample 6: a loop of A lands there, so its last
+  // frame shows B where A's last frame meets it, not B three frames on.
+  const TimeWarp rest_last = warp_of({0, 1, 2, 3, 4, 5, 6, 6, 6, 6}, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9});
+  const CommonTimeline t = common_timeline({&rest_last});
+  REQUIRE(t.samples() == 10);
+  Eigen::VectorXd u;
+  ClockEnd end;
+  mixed_timeline(t, {1.0, 0.0}, {0, 9}, u, &end);
+  CHECK(end.clock == Approx(6.0));
+  CHECK(end.sample == 6);
+  REQUIRE(u.size() == 7);
+  CHECK(u[6] == Approx(6.0));
+  land_on_last(u, end.sample, end.clock);
+  REQUIRE(u.size() == 7);
+  for (int k = 0; k < 7; ++k) CHECK(u[k] == Approx(double(k)));
+  // On B's clock the rest plays: the clock runs to the last sample.
+  mixed_timeline(t, {0.0, 1.0}, {0, 9}, u, &end);
+  CHECK(end.clock == Approx(9.0));
+  CHECK(end.sample == 9);
 }
 
 TEST_CASE("timing: a hold of the reference takes B's time at B's weight, none on A's clock, where the output starts", "[timing]") {
