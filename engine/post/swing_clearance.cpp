@@ -191,8 +191,16 @@ double settle_held_feet(Eigen::MatrixXd& world, const FootRig& rig, const Eigen:
       const Eigen::Vector3d foot = joint_at(world, t, ct) - ankle;
       const double length = foot.norm(), across = std::hypot(foot.x(), foot.z());
       if (!(length > 0.0) || !(across > 0.0)) continue;
-      const double up = std::clamp(foot.y() + change, -length, length);
-      const double scale = std::sqrt(std::max(0.0, length * length - up * up)) / across;
+      // The foot turns about the ankle in its own vertical plane, the toe along an arc at most
+      // kToeArcOverChange times the change long: a foot pointing nearly straight down (a kick's
+      // swing eased into a plant) is not tipped on end, its toe swept under the ankle, for a
+      // small change of height.
+      const double pitch = std::atan2(foot.y(), across);
+      const double wanted_pitch = std::asin(std::clamp((foot.y() + change) / length, -1.0, 1.0));
+      const double turn = kToeArcOverChange * std::abs(change) / length;
+      const double turned = std::clamp(wanted_pitch, pitch - turn, pitch + turn);
+      const double up = length * std::sin(turned);
+      const double scale = length * std::cos(turned) / across;
       set_joint(world, t, ct, ankle + Eigen::Vector3d(foot.x() * scale, up, foot.z() * scale));
       largest = std::max(largest, std::abs(up - foot.y()));
     }

@@ -25,6 +25,11 @@ constexpr double kSwingClearanceBands = 1.25;
 // a foot rises gradually before a swing begins and comes down gradually after it: no pop.
 constexpr double kSwingEaseSeconds = 0.1;
 
+// settle_held_feet turns a foot about its ankle to set its toe's height; the toe's way along that
+// arc is at most this many times the change of height asked (a flat foot reaches it within a
+// fraction; a steep one is not tipped on end).
+constexpr double kToeArcOverChange = 2.0;
+
 struct SwingClearanceScratch {
   Eigen::MatrixXd planted;     // F x kFootJoints (planted_frames)
   std::vector<double> heights;
@@ -52,7 +57,8 @@ double lift_swinging_feet(Eigen::MatrixXd& world, const FootRig& rig, const Eige
 // output swings is not brought down) set to the height the takes hold it (heights: F x
 // kFootJoints, planted bands above the floor, as the foot lock's feet heights), over the output's
 // own floor: the ankle raised or lowered with two-bone IK (raise_leg: the knee bends in its own
-// plane), then the toe to its height, the foot keeping its length and its way across the floor;
+// plane), then the toe to its height, the foot keeping its length and its way across the floor
+// (turned about the ankle along an arc of at most kToeArcOverChange times the change);
 // eased over kSwingEaseSeconds on either side of the frames held. A mix of poses changes a
 // planted foot's shape where the takes' feet do not (a style's heel lifting, its foot rolling, put
 // on a content that stands flat): the ankle then moves across the floor about a toe that stays,
