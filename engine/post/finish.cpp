@@ -60,6 +60,16 @@ void world_drift(const Eigen::MatrixXd& body_drift, const LoopCut& loop, FinishS
   if (loop.frames() > 0) s.drift = s.drift.middleRows(loop.begin, loop.frames()).eval();
 }
 
+// held (K x kFootJoints) cleared where the takes' planted drift (K x 2 kFootJoints, a frame's
+// move to the next) moves that joint more than `step` into or out of the frame. O(K).
+void release_moving_feet(const Eigen::MatrixXd& drift, double step, Eigen::MatrixXd& held) {
+  const Eigen::Index frames = std::min(drift.rows(), held.rows());
+  auto moved = [&](Eigen::Index t, int j) { return std::hypot(drift(t, 2 * j), drift(t, 2 * j + 1)) > step; };
+  for (Eigen::Index t = 0; t < frames; ++t)
+    for (int j = 0; j < kFootJoints; ++j)
+      if (held(t, j) > 0.5 && (moved(t, j) || (t > 0 && moved(t - 1, j)))) held(t, j) = 0.0;
+}
+
 LimbLengthOptions limb_options(const FinishRig& rig) {
   LimbLengthOptions limbs;
   limbs.short_fraction = rig.short_bone_fraction;
@@ -198,6 +208,7 @@ void finish_rest(const FinishRig& rig, const FinishOptions& options, FinishScrat
       else s.feet_height = *feet_height;
       s.air = (s.feet_height.array() > kSwingAirBands).cast<double>();
       s.held = (s.feet_height.array() <= 1.0).cast<double>();
+      if (body_drift != nullptr) release_moving_feet(s.drift, kHeldFootSpeed * rig.feet->body_height / rig.feet->fps, s.held);
       // Not a loop: closing its seam blends its last frames towards its first, so there the
       // takes' heights at the frames shown do not describe the output's feet (a foot eased down
       // towards its first frame's step would be lifted against the seam, and the lift spread

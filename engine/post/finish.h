@@ -48,6 +48,11 @@ struct FinishedMotion {
   double fastest_joint = 0;
 };
 
+// A foot joint the mixed takes move faster than this (body heights per second, their planted
+// drift into or out of a frame) is not held there, however low: a foot that skims the floor at a
+// swing's speed (a kick's dragging foot) is not standing on it, and neither pinned nor set down.
+constexpr double kHeldFootSpeed = 0.25;
+
 struct FinishScratch {
   Eigen::MatrixXd before_lock;  // a loop's world before the foot lock
   Eigen::MatrixXd ground, drift, planted;
@@ -90,8 +95,9 @@ void finish_preview(const FinishPath& path, const FinishRig& rig, const FinishOp
 // kFootJoints, before any loop cut), how high the mixed takes hold each foot joint at output frame
 // k, in planted bands above its floor (mix_palette.cpp feet_heights): with the foot lock, joints
 // above kSwingAirBands are first lifted clear of the floor (swing_clearance.h; not in a loop,
-// whose seam is closed by blending its ends), and joints within one band are pinned as the
-// output's planted ones are (apply_foot_lock's held). foot_sliding_raw and _cleaned:
+// whose seam is closed by blending its ends), and joints within one band that the takes move no
+// faster than kHeldFootSpeed (by body_drift) are pinned as the output's planted ones are
+// (apply_foot_lock's held) and set to the takes' heights (settle_held_feet). foot_sliding_raw and _cleaned:
 // planted_feet.h's measure before and after the lift and the lock. O(K x M) with a larger
 // constant (the lock may try up to seven times); allocation-free once sized, except the loop.
 void finish_rest(const FinishRig& rig, const FinishOptions& options, FinishScratch& scratch, FinishedMotion& out,

@@ -503,3 +503,28 @@ TEST_CASE("cli transfer onto a standing loop: the loop travels as its content do
   CHECK((hips.back() - hips.front()).norm() < 0.01 * height);
   CHECK(report["foot_sliding"]["ratio"].get<double>() < 2.0);
 }
+
+TEST_CASE("cli transfer across actions keeps planted feet within 1.25x the content's", "[cli][shared]") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  if (test::shared_motion("actions/bandai_kick_normal.bvh").empty()) return;
+  Sandbox box;
+  const auto act = [](const char* name) { return quoted(test::shared_motion(std::string("actions/") + name)); };
+  // A loop of a reply styled by a good-bye whose style rest ends after the reply's last frame:
+  // the loop lands where the reply's clock ends, so that rest is not squeezed into its last frame
+  // and the seam is not spread over feet that never swing (1.51x before). And a kick whose left
+  // foot skims the floor through its strokes, given a sad walk's posture: the foot is not held
+  // where it drags, so the lock pins its stands rather than one stance over the whole take,
+  // which it gave up on (1.37x before).
+  for (const std::string args :
+       {"transfer " + act("bandai_respond_normal.bvh") + " --neutral " + act("bandai_bye_normal.bvh") + " --style " +
+            act("bandai_bye_musical.bvh"),
+        "transfer " + act("bandai_kick_normal.bvh") + " --style " + quoted(test::shared_motion("bandai_walk_sad.bvh"))}) {
+    INFO(args);
+    const auto r = box.cli(args + " --report " + quoted(box.path("t.json")));
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    const auto report = nlohmann::json::parse(test::slurp(box.path("t.json")));
+    CHECK(report["foot_sliding"]["ratio"].get<double>() <= 1.25);
+    CHECK(report["fastest_joint"]["ratio"].get<double>() <= 1.25);
+  }
+}
