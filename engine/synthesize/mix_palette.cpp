@@ -290,6 +290,69 @@ void own_poses(const PreparedTakes& p, const MixParams& params, const Eigen::Mat
   }
 }
 
+// Per joint (three channels of a take's own poses, 3M x F), the RMS distance of its positions
+// from their mean over the take's frames: how much the take moves it. No allocation once sized.
+void joint_amplitudes(const Eigen::MatrixXd& x_t, Eigen::VectorXd& amp) {
+  const Eigen::Index joints = x_t.rows() / 3, frames = std::max<Eigen::Index>(1, x_t.cols());
+  amp.resize(joints);
+  for (Eigen::Index j = 0; j < joints; ++j) {
+    double sum = 0.0;
+    for (Eigen::Index c = 3 * j; c < 3 * j + 3; ++c) {
+      const double mean = x_t.row(c).mean();
+      sum += (x_t.row(c).array() - mean).square().sum();
+    }
+    amp[j] = std::sqrt(sum / double(frames));
+  }
+}
+
+// A style's change from a neutral of another action (both aligned to the content by their
+// structure, not phase by phase as cycles are): how the style moves a joint differently from the
+// neutral, about the change's mean, belongs to that action's strokes (one wave's arm against
+// another's). Put on a content that holds the joint still (a raised right hand styled from a
+// left-hand wave's takes), it would set a still arm moving, none of the content's. Per joint it
+// keeps that movement as far as the content moves the joint against the neutral (the content's
+// movement over the neutral's, at most 1) and leaves the rest out; the change's mean, the
+// style's posture, stays whole. O(K x 3M) per such layer; no allocation once scratch is sized.
+void still_where_content_is(const PreparedTakes& p, const MixParams& params, const Eigen::MatrixXd& sources,
+                            MixScratch& s, Eigen::MatrixXd& local) {
+  const bool keyed = !params.keys.empty();
+  const Eigen::Index frames = local.rows(), channels = local.cols(), joints = channels / 3;
+  if (frames == 0) return;
+  for (const AdditiveLayer& l : params.layers.additive) {
+    if (l.take == l.from || l.from == 0 || (!keyed && l.weight == 0.0)) continue;
+    const PreparedTake& take = p.takes[static_cast<size_t>(l.take)];
+    const PreparedTake& from = p.takes[static_cast<size_t>(l.from)];
+    if (!take.registration.empty() || !from.registration.empty()) continue;
+    joint_amplitudes(p.reference().own_local_t, s.amp_content);
+    joint_amplitudes(from.own_local_t, s.amp_from);
+    s.left_out.resize(joints);
+    bool any = false;
+    for (Eigen::Index j = 0; j < joints; ++j) {
+      const double kept = s.amp_from[j] > 0.0 ? std::min(1.0, s.amp_content[j] / s.amp_from[j]) : 1.0;
+      s.left_out[j] = 1.0 - kept;
+      any |= s.left_out[j] > 0.0;
+    }
+    if (!any) continue;
+    const Eigen::MatrixXd& xt = take.own_local_t;
+    const Eigen::MatrixXd& xf = from.own_local_t;
+    s.change.resize(frames, channels);
+    for (Eigen::Index k = 0; k < frames; ++k) {
+      const RowAt a(sources(k, l.take), xt.cols()), b(sources(k, l.from), xf.cols());
+      s.change.row(k) = ((1.0 - a.f) * xt.col(a.r) + a.f * xt.col(a.next) - (1.0 - b.f) * xf.col(b.r) -
+                         b.f * xf.col(b.next)).transpose();
+    }
+    s.change_mean = s.change.colwise().mean();
+    for (Eigen::Index c = 0; c < channels; ++c) {
+      const double out = s.left_out[c / 3];
+      if (out == 0.0) continue;
+      for (Eigen::Index k = 0; k < frames; ++k) {
+        const double w = keyed ? s.trajectory.frame_w(k, l.take) : l.weight;
+        local(k, c) -= w * out * (s.change(k, c) - s.change_mean[c]);
+      }
+    }
+  }
+}
+
 // sum_i w_i (W_i C scale + mean_i) at the output frames: each take's reconstruction without its
 // residual, with keys each output frame with its own weights.
 void reconstructed_poses(const PreparedTakes& p, const SharedComponents& shared, const MixParams& params,
@@ -454,6 +517,7 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
   else if (per_component) part_poses(p, d, params, st, s, out.local);
   else if (params.residual) own_poses(p, params, out.sources, s, out.local);
   else reconstructed_poses(p, *d.shared(), params, st, s, out.local);
+  if (d.paper() == nullptr) still_where_content_is(p, params, out.sources, s, out.local);
   ease_skipped_slots(p, params, s, out.local, out);
   if (times != nullptr) times->synthesize_ms = ms_since(t0);
 

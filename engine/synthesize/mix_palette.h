@@ -79,6 +79,11 @@ struct MixParams {
 
 struct MixScratch {
   Eigen::MatrixXd x, samples, joint_weights, stretch, local_t, component_w;
+  // A transfer's change at each output frame, its mean, and per joint the content's and the
+  // neutral's movement and the share of the change's movement left out (still_where_content_is).
+  Eigen::MatrixXd change;
+  Eigen::RowVectorXd change_mean;
+  Eigen::VectorXd amp_content, amp_from, left_out;
   Eigen::MatrixXd drift;              // K x 2 kFootJoints: the planted feet's expected moves (the foot lock's)
   Eigen::MatrixXd feet_height;        // K x kFootJoints: the takes' foot joints' heights, planted bands (feet_heights)
   std::vector<double> heights;        // one take's joint's heights at the frames shown, twice (feet_heights)

@@ -504,6 +504,64 @@ TEST_CASE("cli transfer onto a standing loop: the loop travels as its content do
   CHECK(report["foot_sliding"]["ratio"].get<double>() < 2.0);
 }
 
+namespace {
+
+// One joint's positions about the hips, frame by frame, from a positions CSV (frame,joint,x,y,z).
+std::vector<Eigen::Vector3d> about_hips(const std::string& csv, const std::string& joint) {
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  std::vector<Eigen::Vector3d> hips, at;
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::istringstream fields(line);
+    for (std::string v; std::getline(fields, v, ',');) f.push_back(v);
+    if (f.size() != 5) continue;
+    const Eigen::Vector3d p(std::stod(f[2]), std::stod(f[3]), std::stod(f[4]));
+    if (f[1] == "Hips") hips.push_back(p);
+    if (f[1] == joint) at.push_back(p);
+  }
+  for (size_t k = 0; k < std::min(hips.size(), at.size()); ++k) at[k] -= hips[k];
+  return at;
+}
+
+// The RMS distance of positions from their mean: how much a joint moves.
+double movement(const std::vector<Eigen::Vector3d>& p) {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& x : p) mean += x;
+  mean /= double(std::max<size_t>(1, p.size()));
+  double sum = 0.0;
+  for (const auto& x : p) sum += (x - mean).squaredNorm();
+  return std::sqrt(sum / double(std::max<size_t>(1, p.size())));
+}
+
+}  // namespace
+
+TEST_CASE("cli transfer across actions: a joint the content holds still is not set moving by another action's strokes",
+          "[cli][shared]") {
+  MOSTYLE_REQUIRE_SHARED_MOTIONS();
+  if (test::shared_motion("actions/bandai2_raise-up-right-hand_normal.bvh").empty()) return;
+  Sandbox box;
+  const auto act = [](const char* name) { return quoted(test::shared_motion(std::string("actions/") + name)); };
+  // A raised right hand styled by a left-hand wave's normal -> youthful: the youthful wave's arm
+  // moves unlike the normal's, stroke for stroke, but the raise holds its left arm still (it
+  // moved 6 times as much, 0.073 of the height against the content's 0.012, before).
+  const std::string base = "transfer " + act("bandai2_raise-up-right-hand_normal.bvh") + " --neutral " +
+                           act("bandai2_wave-left-hand_normal.bvh") + " --style " + act("bandai2_wave-left-hand_youthful.bvh");
+  for (const char* strength : {"0", "1"}) {
+    const auto r = box.cli(base + " --strength " + strength + " --positions-out " + quoted(box.path(std::string("s") + strength + ".csv")) +
+                           " --report " + quoted(box.path("s.json")));
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+  }
+  const double height = nlohmann::json::parse(test::slurp(box.path("s.json")))["foot_sliding"]["body_height"];
+  const std::string content = test::slurp(box.path("s0.csv")), out = test::slurp(box.path("s1.csv"));
+  // The left arm as still as the content's, within 1% of the height; the raised right hand
+  // moving as much as the content's, within a tenth.
+  CHECK(movement(about_hips(out, "Hand_L")) <= movement(about_hips(content, "Hand_L")) + 0.01 * height);
+  CHECK(movement(about_hips(out, "Hand_R")) == Approx(movement(about_hips(content, "Hand_R"))).epsilon(0.1));
+}
+
 TEST_CASE("cli transfer across actions keeps planted feet within 1.25x the content's", "[cli][shared]") {
   MOSTYLE_REQUIRE_SHARED_MOTIONS();
   if (test::shared_motion("actions/bandai_kick_normal.bvh").empty()) return;
