@@ -401,11 +401,11 @@ void part_poses(const PreparedTakes& p, const Decomposed& d, const MixParams& pa
 // Where the clock leaves a cycle slot out (s.trajectory.skipped), the output's pose would jump
 // from the slot's first sample to its last (each take's pose there differs by a cycle's
 // variation: a replayed cycle's seam, a stride longer than the last): the jump, mixed as the poses
-// are (the overall weights; with keys, those at the frame after it), is taken away at the frame
+// are (the overall weights; with keys, those at the frame after it; per part, each joint's), is taken away at the frame
 // after it and eased back in over the next cycle, so the poses go on from where they were and are
 // the takes' own again a cycle on. O(skipped x (N + cycle) x 3M).
-void ease_skipped_slots(const PreparedTakes& p, const MixParams& params, MixScratch& s, Eigen::MatrixXd& local,
-                        MixResult& out) {
+void ease_skipped_slots(const PreparedTakes& p, const MixParams& params, bool per_component, MixScratch& s,
+                        Eigen::MatrixXd& local, MixResult& out) {
   const MixedTrajectory& t = s.trajectory;
   out.slot_skips.clear();
   const Eigen::Index ease = std::max<Eigen::Index>(1, std::lround(p.reference().timeline_cycles().period));
@@ -420,8 +420,14 @@ void ease_skipped_slots(const PreparedTakes& p, const MixParams& params, MixScra
     const CycleSlots::Slot& slot = p.slots.slots[static_cast<size_t>(t.skipped[j])];
     s.mixed_mean.setZero(local.cols());
     for (int i = 0; i < p.size(); ++i) {
+      const auto jump = p.takes[i].local.row(slot.last) - p.takes[i].local.row(slot.first);
+      if (per_component) {  // each joint's jump as its poses are mixed (part_poses' joint weights)
+        for (Eigen::Index j = 0; j < s.joint_weights.rows(); ++j)
+          s.mixed_mean.segment(3 * j, 3) += s.joint_weights(j, i) * jump.segment(3 * j, 3);
+        continue;
+      }
       const double w = keyed ? t.frame_w(k, i) : s.overall[static_cast<size_t>(i)];
-      if (w != 0.0) s.mixed_mean += w * (p.takes[i].local.row(slot.last) - p.takes[i].local.row(slot.first));
+      if (w != 0.0) s.mixed_mean += w * jump;
     }
     for (Eigen::Index f = k; f < std::min(frames, k + ease); ++f)
       local.row(f) -= (1.0 - double(f - k) / double(ease)) * s.mixed_mean;
@@ -518,7 +524,7 @@ void mix_palette(const PreparedTakes& p, const Decomposed& d, const MixParams& p
   else if (params.residual) own_poses(p, params, out.sources, s, out.local);
   else reconstructed_poses(p, *d.shared(), params, st, s, out.local);
   if (d.paper() == nullptr) still_where_content_is(p, params, out.sources, s, out.local);
-  ease_skipped_slots(p, params, s, out.local, out);
+  ease_skipped_slots(p, params, per_component, s, out.local, out);
   if (times != nullptr) times->synthesize_ms = ms_since(t0);
 
   const auto t1 = Clock::now();
