@@ -291,18 +291,18 @@ void own_poses(const PreparedTakes& p, const MixParams& params, const Eigen::Mat
 }
 
 // Per joint (three channels of a take's own poses, 3M x F), the RMS distance of its positions
-// from their mean over the take's frames: how much the take moves it. No allocation once sized.
-void joint_amplitudes(const Eigen::MatrixXd& x_t, Eigen::VectorXd& amp) {
-  const Eigen::Index joints = x_t.rows() / 3, frames = std::max<Eigen::Index>(1, x_t.cols());
-  amp.resize(joints);
-  for (Eigen::Index j = 0; j < joints; ++j) {
-    double sum = 0.0;
-    for (Eigen::Index c = 3 * j; c < 3 * j + 3; ++c) {
-      const double mean = x_t.row(c).mean();
-      sum += (x_t.row(c).array() - mean).square().sum();
-    }
-    amp[j] = std::sqrt(sum / double(frames));
-  }
+// from their mean over the take's frames: how much the take moves it. Two passes over the frames,
+// a contiguous column each; mean and spread: per channel scratch. No allocation once sized.
+void joint_amplitudes(const Eigen::MatrixXd& x_t, Eigen::VectorXd& mean, Eigen::VectorXd& spread, Eigen::VectorXd& amp) {
+  const Eigen::Index frames = x_t.cols();
+  mean.setZero(x_t.rows());
+  spread.setZero(x_t.rows());
+  for (Eigen::Index f = 0; f < frames; ++f) mean += x_t.col(f);
+  mean /= double(std::max<Eigen::Index>(1, frames));
+  for (Eigen::Index f = 0; f < frames; ++f) spread += (x_t.col(f) - mean).cwiseAbs2();
+  amp.resize(x_t.rows() / 3);
+  for (Eigen::Index j = 0; j < amp.size(); ++j)
+    amp[j] = std::sqrt(spread.segment(3 * j, 3).sum() / double(std::max<Eigen::Index>(1, frames)));
 }
 
 // A style's change from a neutral of another action (both aligned to the content by their
@@ -323,8 +323,8 @@ void still_where_content_is(const PreparedTakes& p, const MixParams& params, con
     const PreparedTake& take = p.takes[static_cast<size_t>(l.take)];
     const PreparedTake& from = p.takes[static_cast<size_t>(l.from)];
     if (!take.registration.empty() || !from.registration.empty()) continue;
-    joint_amplitudes(p.reference().own_local_t, s.amp_content);
-    joint_amplitudes(from.own_local_t, s.amp_from);
+    joint_amplitudes(p.reference().own_local_t, s.channel_mean, s.channel_spread, s.amp_content);
+    joint_amplitudes(from.own_local_t, s.channel_mean, s.channel_spread, s.amp_from);
     s.left_out.resize(joints);
     bool any = false;
     for (Eigen::Index j = 0; j < joints; ++j) {

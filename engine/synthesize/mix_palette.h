@@ -84,6 +84,7 @@ struct MixScratch {
   Eigen::MatrixXd change;
   Eigen::RowVectorXd change_mean;
   Eigen::VectorXd amp_content, amp_from, left_out;
+  Eigen::VectorXd channel_mean, channel_spread;  // joint_amplitudes' per channel, over a take's frames
   Eigen::MatrixXd drift;              // K x 2 kFootJoints: the planted feet's expected moves (the foot lock's)
   Eigen::MatrixXd feet_height;        // K x kFootJoints: the takes' foot joints' heights, planted bands (feet_heights)
   std::vector<double> heights;        // one take's joint's heights at the frames shown, twice (feet_heights)
